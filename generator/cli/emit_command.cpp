@@ -1,0 +1,44 @@
+#include <cstdio>
+#include <filesystem>
+
+#include "commands.h"
+#include "watergen/output_writer.h"
+#include "watergen/variant_build.h"
+
+namespace watergen::cli {
+
+Runner add_emit_command(CLI::App& app, const Common& common) {
+    struct Options {
+        Variant variant = default_variant();
+        bool all = false;
+        std::string out = "out/emit";
+    };
+    auto o = std::make_shared<Options>();
+    add_variant_options(app, o->variant);
+    app.add_flag("--all", o->all, "emit every combination of the wired choices (axis options are ignored)");
+    app.add_option("--out", o->out, "output directory; each variant goes to <out>/<variant>/ (default out/emit)");
+    return [o, &common]() {
+        const std::vector<Variant> variants = o->all ? all_variants() : std::vector<Variant>{o->variant};
+        int failed = 0;
+        for (const Variant& v : variants) {
+            const VariantBuild build = build_variant(v);
+            print_diagnostics(build.diagnostics, common);
+            if (!build.ok()) {
+                std::fprintf(stderr, "watergen: error: %s failed; nothing written for it\n", v.key().c_str());
+                ++failed;
+                continue;
+            }
+            const auto files = variant_files(build);
+            const std::filesystem::path dir = std::filesystem::path(o->out) / v.file_stem();
+            if (auto e = write_directory_atomically(dir, files)) {
+                std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
+                ++failed;
+                continue;
+            }
+            std::printf("%s -> %s (%zu files)\n", v.key().c_str(), dir.string().c_str(), files.size());
+        }
+        return failed ? kFailed : kOk;
+    };
+}
+
+} // namespace watergen::cli

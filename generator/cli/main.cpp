@@ -1,0 +1,58 @@
+// watergen: generate, validate and compare real-time water shaders.
+#include <cstdio>
+#include <map>
+
+#include "commands.h"
+
+namespace watergen::cli {
+
+void add_variant_options(CLI::App& app, Variant& variant) {
+    const auto& list = axes();
+    for (size_t i = 0; i < list.size(); ++i) {
+        std::vector<std::string> names;
+        std::string help = "node on the " + list[i].name + " axis (default " + list[i].default_choice + "):";
+        for (const auto& c : list[i].choices) {
+            names.push_back(c.name);
+            help += "\n  " + c.name + (c.gold ? " (gold)" : "") + ": " + c.description + (c.seed.empty() ? "" : " [seed " + c.seed + "]");
+        }
+        app.add_option("--" + list[i].name, variant.choices[i], help)->check(CLI::IsMember(names));
+    }
+}
+
+void print_diagnostics(const Diagnostics& ds, const Common& common) {
+    for (const auto& d : ds) std::fprintf(stderr, "%s\n", format_diagnostic(d, common.format).c_str());
+}
+
+} // namespace watergen::cli
+
+int main(int argc, char** argv) {
+    using namespace watergen::cli;
+    CLI::App app{"watergen: generates real-time water shaders (GLSL + HLSL) from one C++ description,\n"
+                 "validates them with glslang and spirv-val, and cross-compiles them with SPIRV-Cross."};
+    app.require_subcommand(1);
+    Common common;
+    std::string format = "gcc";
+    app.add_option("--diagnostics-format", format, "how errors are printed: gcc (file:line:col) or msvc (file(line,col))")
+        ->check(CLI::IsMember({"gcc", "msvc"}));
+    std::map<CLI::App*, Runner> runners;
+    CLI::App* emit = app.add_subcommand("emit", "emit one variant (or --all) in GLSL and HLSL, validated and cross-compiled");
+    runners[emit] = add_emit_command(*emit, common);
+    CLI::App* bench = app.add_subcommand("bench", "benchmarks (print a table, write CSV and JSON)");
+    bench->require_subcommand(1);
+    CLI::App* compile = bench->add_subcommand("compile", "in-process toolchain vs the same chain through command-line tools");
+    runners[compile] = add_bench_compile_command(*compile, common);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "watergen: error: %s (see --help)\n", e.what());
+        return kUsage;
+    }
+    common.format = format == "msvc" ? watergen::DiagnosticFormat::Msvc : watergen::DiagnosticFormat::Gcc;
+    for (auto& [sub, run] : runners)
+        if (sub->parsed()) return run();
+    return kUsage;
+}

@@ -1,0 +1,45 @@
+// Axes of the water shader and the choices wired on each; a Variant picks one per axis.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace watergen {
+
+struct ChoiceInfo {
+    std::string name;        // e.g. "schlick"
+    std::string seed;        // article it comes from, e.g. "000"
+    std::string description; // one line for --help and reports
+    bool gold = false;       // the reference the cheaper choices are measured against
+};
+
+struct AxisInfo {
+    std::string name;                // e.g. "fresnel"
+    std::string default_choice;
+    std::vector<ChoiceInfo> choices; // in documentation order
+};
+
+// Every axis in fixed order; the order of a variant key.
+const std::vector<AxisInfo>& axes();
+const AxisInfo* find_axis(const std::string& name);
+
+struct Variant {
+    std::vector<std::string> choices; // one per axis, in axes() order
+
+    const std::string& choice(const std::string& axis) const;
+    // "fresnel=schlick,extinction=absorb_scatter"
+    std::string key() const;
+    // "fresnel-schlick_extinction-absorb_scatter": safe as a file name
+    std::string file_stem() const;
+};
+
+Variant default_variant();
+// Sets one axis; returns an error message naming the allowed choices on a bad axis or choice.
+std::optional<std::string> set_choice(Variant& v, const std::string& axis, const std::string& choice);
+// Parses a key as produced by Variant::key(); axes left out keep their default.
+std::optional<Variant> parse_variant_key(const std::string& key, std::string* error);
+// Every combination of the wired choices, in key order.
+std::vector<Variant> all_variants();
+
+} // namespace watergen

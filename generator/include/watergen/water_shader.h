@@ -1,0 +1,22 @@
+// Composes the fullscreen water pass (the post-process formulation of seed 000) from the
+// feature node chosen on each axis.
+#pragma once
+
+#include "watergen/ir.h"
+#include "watergen/variant.h"
+
+namespace watergen {
+
+// Textures of the water pass. The scene is rendered first; the water pass reads it back.
+TextureInput scene_color_texture();    // lit colour of what lies under / behind the water, rgb
+TextureInput scene_position_texture(); // world position of that surface, xyz (m)
+
+struct WaterShader {
+    Variant variant;
+    Graph fragment; // inputs: varying v_uv; output "color" (vec4, linear HDR)
+};
+
+// Builds the fragment graph; type errors end up in fragment.diagnostics().
+WaterShader build_water_shader(const Variant& variant);
+
+} // namespace watergen

@@ -1,0 +1,113 @@
+#include "watergen/variant_build.h"
+
+#include <nlohmann/json.hpp>
+
+#include "watergen/runtime/reflection.h"
+#include "watergen/spirv_tools_stage.h"
+
+namespace watergen {
+
+namespace {
+
+const char* kStem = "water";
+
+StageBuild build_stage(EmittedShader source, Diagnostics& all) {
+    StageBuild stage{std::move(source), {}};
+    CompileRequest request{stage.source.language == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl,
+                           stage.source.stage, stage.source.source, stage.source.file_name, "main"};
+    stage.toolchain = run_toolchain(request);
+    Diagnostics ds = stage.toolchain.diagnostics;
+    // Only glslang's diagnostics point at lines of our emitted source.
+    Diagnostics own, rest;
+    for (auto& d : ds) (d.file == stage.source.file_name ? own : rest).push_back(d);
+    attribute_to_nodes(stage.source, own);
+    all.insert(all.end(), own.begin(), own.end());
+    all.insert(all.end(), rest.begin(), rest.end());
+    return stage;
+}
+
+std::string spirv_bytes(const std::vector<uint32_t>& words) {
+    return std::string(reinterpret_cast<const char*>(words.data()), words.size() * sizeof(uint32_t));
+}
+
+std::string with_stamp(const std::string& stamp, const std::string& text) { return "// " + stamp + "\n" + text; }
+
+nlohmann::ordered_json describe(const VariantBuild& b) {
+    nlohmann::ordered_json j;
+    j["generator"] = stamp_text(b.shader.variant.key());
+    j["key"] = b.shader.variant.key();
+    nlohmann::ordered_json choices = nlohmann::ordered_json::object();
+    for (const auto& a : axes()) choices[a.name] = b.shader.variant.choice(a.name);
+    j["choices"] = choices;
+    const ShaderInterface& in = b.languages[0].fragment.source.interface;
+    nlohmann::ordered_json params = nlohmann::ordered_json::array();
+    for (const auto& slot : in.uniforms.members)
+        for (const auto& p : in.parameters)
+            if (p.name == slot.name)
+                params.push_back({{"name", p.name}, {"type", type_name(p.type)}, {"offset", slot.offset},
+                                  {"default", p.default_value}, {"min", p.min}, {"max", p.max},
+                                  {"unit", p.unit}, {"seed", p.seed}, {"node", p.origin}});
+    j["uniform_block"] = {{"name", "WaterParams"}, {"set", 0}, {"binding", kParamsBinding},
+                          {"size", in.uniforms.size}, {"members", params}};
+    nlohmann::ordered_json textures = nlohmann::ordered_json::array();
+    for (const auto& t : in.textures) textures.push_back({{"name", t.name}, {"binding", t.binding}, {"type", type_name(t.type)}});
+    j["textures"] = textures;
+    nlohmann::ordered_json counts = nlohmann::ordered_json::object();
+    for (const auto& lang : b.languages)
+        counts[to_string(lang.language)] = {{"fragment", lang.fragment.toolchain.instruction_count},
+                                            {"fragment_optimized", lang.fragment.toolchain.instruction_count_optimized},
+                                            {"vertex", lang.vertex.toolchain.instruction_count}};
+    j["spirv_instructions"] = counts;
+    return j;
+}
+
+} // namespace
+
+VariantBuild build_variant(const Variant& variant) { return build_shader(build_water_shader(variant)); }
+
+VariantBuild build_shader(WaterShader shader) {
+    VariantBuild b{std::move(shader), {}, {}};
+    const Variant& variant = b.shader.variant;
+    const Diagnostics& graph_errors = b.shader.fragment.diagnostics();
+    b.diagnostics.insert(b.diagnostics.end(), graph_errors.begin(), graph_errors.end());
+    if (has_errors(b.diagnostics)) return b;
+    const std::string key = variant.key();
+    for (size_t i = 0; i < b.languages.size(); ++i) {
+        const Language lang = i == 0 ? Language::Glsl : Language::Hlsl;
+        const std::string dir = std::string(to_string(lang)) + "/";
+        LanguageBuild& out = b.languages[i];
+        out.language = lang;
+        EmittedShader frag = emit_fragment(b.shader.fragment, lang,
+                                           dir + kStem + "." + file_extension(lang, ShaderStage::Fragment), key,
+                                           b.diagnostics);
+        if (has_errors(b.diagnostics)) return b;
+        out.fragment = build_stage(std::move(frag), b.diagnostics);
+        out.vertex = build_stage(emit_fullscreen_vertex(lang, dir + kStem + "." + file_extension(lang, ShaderStage::Vertex), key),
+                                 b.diagnostics);
+    }
+    return b;
+}
+
+std::map<std::string, std::string> variant_files(const VariantBuild& b) {
+    std::map<std::string, std::string> files;
+    if (!b.ok()) return files;
+    const std::string stamp = stamp_text(b.shader.variant.key());
+    for (const auto& lang : b.languages) {
+        for (const StageBuild* s : {&lang.vertex, &lang.fragment}) {
+            const std::string base = std::string(to_string(lang.language)) + "/" + kStem + "." +
+                                     (s->source.stage == ShaderStage::Vertex ? "vert" : "frag");
+            const ToolchainOutputs& t = s->toolchain;
+            files[s->source.file_name] = s->source.source;
+            files[base + ".spv"] = spirv_bytes(t.spirv);
+            files[base + ".opt.spv"] = spirv_bytes(t.spirv_optimized);
+            files[base + ".330.glsl"] = with_stamp(stamp, t.glsl330);
+            files[base + ".300es.glsl"] = with_stamp(stamp, t.essl300);
+            files[base + ".metal"] = with_stamp(stamp, t.msl);
+            files[base + ".reflect.json"] = reflection_to_json(t.reflection);
+        }
+    }
+    files["variant.json"] = describe(b).dump(2) + "\n";
+    return files;
+}
+
+} // namespace watergen

@@ -1,0 +1,93 @@
+#include "watergen/spirv_tools_stage.h"
+
+#include <spirv-tools/libspirv.hpp>
+#include <spirv-tools/optimizer.hpp>
+
+namespace watergen {
+namespace {
+
+constexpr spv_target_env kEnv = SPV_ENV_VULKAN_1_1;
+
+Severity to_severity(spv_message_level_t level) {
+    switch (level) {
+    case SPV_MSG_FATAL:
+    case SPV_MSG_INTERNAL_ERROR:
+    case SPV_MSG_ERROR: return Severity::Error;
+    case SPV_MSG_WARNING: return Severity::Warning;
+    case SPV_MSG_INFO:
+    case SPV_MSG_DEBUG: return Severity::Note;
+    }
+    return Severity::Error;
+}
+
+spvtools::MessageConsumer collect_into(Diagnostics& out, const std::string& file, const char* tool) {
+    return [&out, &file, tool](spv_message_level_t level, const char*, const spv_position_t&,
+                               const char* message) {
+        std::string text = std::string(tool) + ": " + (message ? message : "");
+        while (!text.empty() && text.back() == '\n') text.pop_back();
+        out.push_back({to_severity(level), file, 0, 0, "", std::move(text)});
+    };
+}
+
+OptimizeResult run_optimizer(const std::vector<uint32_t>& spirv, const std::string& file_name,
+                             bool legalize) {
+    OptimizeResult result;
+    spvtools::Optimizer optimizer(kEnv);
+    optimizer.SetMessageConsumer(collect_into(result.diagnostics, file_name, "spirv-opt"));
+    if (legalize)
+        optimizer.RegisterLegalizationPasses();
+    else
+        optimizer.RegisterPerformancePasses();
+    spvtools::OptimizerOptions options;
+    options.set_run_validator(false);
+    if (!optimizer.Run(spirv.data(), spirv.size(), &result.spirv, options)) {
+        result.spirv.clear();
+        if (!has_errors(result.diagnostics))
+            result.diagnostics.push_back({Severity::Error, file_name, 0, 0, "",
+                                          legalize ? "spirv-opt: legalization failed"
+                                                   : "spirv-opt: optimization failed"});
+    }
+    return result;
+}
+
+} // namespace
+
+Diagnostics validate_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name) {
+    Diagnostics ds;
+    spvtools::SpirvTools tools(kEnv);
+    tools.SetMessageConsumer(collect_into(ds, file_name, "spirv-val"));
+    if (!tools.Validate(spirv) && !has_errors(ds))
+        ds.push_back({Severity::Error, file_name, 0, 0, "", "spirv-val: invalid module"});
+    return ds;
+}
+
+OptimizeResult optimize_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name) {
+    return run_optimizer(spirv, file_name, false);
+}
+
+OptimizeResult legalize_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name) {
+    return run_optimizer(spirv, file_name, true);
+}
+
+size_t count_instructions(const std::vector<uint32_t>& spirv) {
+    constexpr size_t kHeaderWords = 5;
+    size_t count = 0;
+    size_t i = kHeaderWords;
+    while (i < spirv.size()) {
+        const uint32_t words = spirv[i] >> 16;
+        if (words == 0 || i + words > spirv.size()) break;  // malformed: stop, don't loop forever
+        ++count;
+        i += words;
+    }
+    return count;
+}
+
+std::string disassemble_spirv(const std::vector<uint32_t>& spirv) {
+    spvtools::SpirvTools tools(kEnv);
+    std::string text;
+    const uint32_t options = SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES | SPV_BINARY_TO_TEXT_OPTION_INDENT;
+    if (!tools.Disassemble(spirv, &text, options)) return {};
+    return text;
+}
+
+} // namespace watergen

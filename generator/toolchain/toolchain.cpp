@@ -1,0 +1,63 @@
+#include "watergen/toolchain.h"
+
+#include "watergen/reflection_stage.h"
+#include "watergen/spirv_cross_stage.h"
+#include "watergen/spirv_tools_stage.h"
+
+namespace watergen {
+namespace {
+
+// Returns true when `from` had errors, so callers can stop the chain.
+bool take(Diagnostics& to, Diagnostics from) {
+    const bool errors = has_errors(from);
+    for (auto& d : from) to.push_back(std::move(d));
+    return errors;
+}
+
+} // namespace
+
+ToolchainOutputs run_toolchain(const CompileRequest& request) {
+    ToolchainOutputs out;
+    const std::string& f = request.file_name;
+
+    SpirvResult compiled = compile_to_spirv(request);
+    if (take(out.diagnostics, std::move(compiled.diagnostics)) || compiled.spirv.empty()) return out;
+    if (take(out.diagnostics, validate_spirv(compiled.spirv, f + ".spv"))) return out;
+    out.spirv = std::move(compiled.spirv);
+    out.instruction_count = count_instructions(out.spirv);
+
+    OptimizeResult optimized = optimize_spirv(out.spirv, f + ".opt.spv");
+    if (take(out.diagnostics, std::move(optimized.diagnostics))) return out;
+    if (take(out.diagnostics, validate_spirv(optimized.spirv, f + ".opt.spv"))) return out;
+    out.spirv_optimized = std::move(optimized.spirv);
+    out.instruction_count_optimized = count_instructions(out.spirv_optimized);
+
+    // The three back ends are independent: report all of their errors before stopping.
+    bool cross_failed = false;
+    const struct {
+        CrossTarget target;
+        std::string* text;
+    } targets[] = {{CrossTarget::Glsl330, &out.glsl330},
+                   {CrossTarget::Essl300, &out.essl300},
+                   {CrossTarget::Msl, &out.msl}};
+    for (const auto& t : targets) {
+        CrossResult cross = cross_compile(out.spirv_optimized, t.target, f + cross_target_suffix(t.target));
+        cross_failed |= take(out.diagnostics, std::move(cross.diagnostics));
+        *t.text = std::move(cross.source);
+    }
+    if (cross_failed) return out;
+
+    bool round_trip_failed =
+        take(out.diagnostics, check_glsl(out.glsl330, request.stage, GlslProfile::Core330,
+                                         f + cross_target_suffix(CrossTarget::Glsl330)));
+    round_trip_failed |= take(out.diagnostics, check_glsl(out.essl300, request.stage, GlslProfile::Es300,
+                                                          f + cross_target_suffix(CrossTarget::Essl300)));
+    if (round_trip_failed) return out;
+
+    ReflectResult reflected = reflect_spirv(out.spirv, request.stage, f + ".spv");
+    out.reflection = std::move(reflected.reflection);
+    take(out.diagnostics, std::move(reflected.diagnostics));
+    return out;
+}
+
+} // namespace watergen

@@ -1,0 +1,56 @@
+// Shader interface as an engine (and the Vulkan runner) needs it: which descriptors a stage
+// binds and where each uniform lives inside its block. Produced by the generator from
+// SPIRV-Cross reflection, stored as JSON next to every shader.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace watergen {
+
+enum class ShaderStage { Vertex, Fragment, Compute };
+
+struct UniformMember {
+    std::string name;   // as declared in the source, e.g. "sun_direction"
+    std::string type;   // GLSL spelling: float, vec2, vec3, vec4, mat3, mat4, int, uint
+    uint32_t offset = 0; // bytes from the start of the block
+    uint32_t size = 0;   // bytes
+};
+
+enum class DescriptorKind { UniformBuffer, StorageBuffer, SampledImage, Sampler, CombinedImageSampler };
+
+struct DescriptorBinding {
+    std::string name;    // variable or block name in the source
+    uint32_t set = 0;
+    uint32_t binding = 0;
+    DescriptorKind kind = DescriptorKind::UniformBuffer;
+    std::string image_dim;                // "2D" or "Cube" for images, "" otherwise
+    uint32_t block_size = 0;              // bytes, for buffers
+    std::vector<UniformMember> members;   // for buffers
+};
+
+struct StageVariable {
+    std::string name;
+    uint32_t location = 0;
+    std::string type;
+};
+
+struct Reflection {
+    ShaderStage stage = ShaderStage::Fragment;
+    std::string entry_point = "main";
+    std::vector<DescriptorBinding> bindings;  // sorted by (set, binding)
+    std::vector<StageVariable> inputs;        // sorted by location
+    std::vector<StageVariable> outputs;       // sorted by location
+};
+
+// Deterministic JSON (sorted, 2-space indent, trailing newline).
+std::string reflection_to_json(const Reflection& r);
+// Returns std::nullopt and sets `error` ("key: what was expected") on malformed input.
+std::optional<Reflection> reflection_from_json(const std::string& text, std::string* error);
+
+const char* to_string(ShaderStage s);
+const char* to_string(DescriptorKind k);
+
+} // namespace watergen

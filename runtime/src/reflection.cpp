@@ -1,0 +1,203 @@
+#include "watergen/runtime/reflection.h"
+
+#include <cstdint>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+namespace watergen {
+namespace {
+
+using nlohmann::json;
+
+constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment, ShaderStage::Compute};
+constexpr DescriptorKind kKinds[] = {DescriptorKind::UniformBuffer, DescriptorKind::StorageBuffer,
+                                     DescriptorKind::SampledImage, DescriptorKind::Sampler,
+                                     DescriptorKind::CombinedImageSampler};
+
+json to_json(const UniformMember& m) {
+    return json{{"name", m.name}, {"type", m.type}, {"offset", m.offset}, {"size", m.size}};
+}
+
+json to_json(const StageVariable& v) {
+    return json{{"name", v.name}, {"location", v.location}, {"type", v.type}};
+}
+
+json to_json(const DescriptorBinding& b) {
+    json members = json::array();
+    for (const auto& m : b.members) members.push_back(to_json(m));
+    return json{{"name", b.name},           {"set", b.set},
+                {"binding", b.binding},     {"kind", to_string(b.kind)},
+                {"image_dim", b.image_dim}, {"block_size", b.block_size},
+                {"members", std::move(members)}};
+}
+
+template <class T>
+json to_json_array(const std::vector<T>& items) {
+    json a = json::array();
+    for (const auto& item : items) a.push_back(to_json(item));
+    return a;
+}
+
+// Reads one JSON object, recording the first problem as "<key path>: <what was expected>".
+// Every accessor checks the type first, so nlohmann never gets to throw.
+class Reader {
+public:
+    Reader(const json& object, std::string path, std::string* error)
+        : object_(object), path_(std::move(path)), error_(error) {}
+
+    bool string(const char* key, std::string& out, bool required = true) {
+        const json* v = find(key, required, "a string");
+        if (!v) return !required && !failed_;
+        if (!v->is_string()) return fail(key, "expected a string");
+        out = v->get<std::string>();
+        return true;
+    }
+
+    bool u32(const char* key, uint32_t& out, bool required = true) {
+        const json* v = find(key, required, "an unsigned 32-bit integer");
+        if (!v) return !required && !failed_;
+        if (!v->is_number_unsigned() || v->get<uint64_t>() > std::numeric_limits<uint32_t>::max())
+            return fail(key, "expected an unsigned 32-bit integer");
+        out = static_cast<uint32_t>(v->get<uint64_t>());
+        return true;
+    }
+
+    template <class Enum, size_t N>
+    bool enumeration(const char* key, const Enum (&values)[N], Enum& out) {
+        std::string text;
+        if (!string(key, text)) return false;
+        std::string expected = "expected one of";
+        for (size_t i = 0; i < N; ++i) {
+            if (text == to_string(values[i])) {
+                out = values[i];
+                return true;
+            }
+            expected += std::string(i ? ", " : " ") + to_string(values[i]);
+        }
+        return fail(key, expected + "; got \"" + text + "\"");
+    }
+
+    // Calls read(element_reader, item) for each object in the array at `key`.
+    template <class T, class Fn>
+    bool array(const char* key, std::vector<T>& out, Fn read, bool required = true) {
+        const json* v = find(key, required, "an array");
+        if (!v) return !required && !failed_;
+        if (!v->is_array()) return fail(key, "expected an array");
+        out.clear();
+        for (size_t i = 0; i < v->size(); ++i) {
+            const std::string element = join(key) + "[" + std::to_string(i) + "]";
+            const json& item = (*v)[i];
+            if (!item.is_object()) {
+                *error_ = element + ": expected an object";
+                return false;
+            }
+            T value{};
+            Reader r(item, element, error_);
+            if (!read(r, value)) return false;
+            out.push_back(std::move(value));
+        }
+        return true;
+    }
+
+private:
+    std::string join(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
+
+    const json* find(const char* key, bool required, const char* expected) {
+        const auto it = object_.find(key);
+        if (it != object_.end()) return &*it;
+        if (required) fail(key, std::string("missing, expected ") + expected);
+        return nullptr;
+    }
+
+    bool fail(const char* key, const std::string& what) {
+        *error_ = join(key) + ": " + what;
+        failed_ = true;
+        return false;
+    }
+
+    const json& object_;
+    std::string path_;
+    std::string* error_;
+    bool failed_ = false;
+};
+
+bool read_member(Reader& r, UniformMember& m) {
+    return r.string("name", m.name) && r.string("type", m.type) && r.u32("offset", m.offset) &&
+           r.u32("size", m.size);
+}
+
+bool read_variable(Reader& r, StageVariable& v) {
+    return r.string("name", v.name) && r.u32("location", v.location) && r.string("type", v.type);
+}
+
+bool read_binding(Reader& r, DescriptorBinding& b) {
+    // image_dim, block_size and members only matter for some kinds, so they may be omitted.
+    return r.string("name", b.name) && r.u32("set", b.set) && r.u32("binding", b.binding) &&
+           r.enumeration("kind", kKinds, b.kind) && r.string("image_dim", b.image_dim, false) &&
+           r.u32("block_size", b.block_size, false) && r.array("members", b.members, read_member, false);
+}
+
+} // namespace
+
+const char* to_string(ShaderStage s) {
+    switch (s) {
+    case ShaderStage::Vertex: return "vertex";
+    case ShaderStage::Fragment: return "fragment";
+    case ShaderStage::Compute: return "compute";
+    }
+    return "unknown";
+}
+
+const char* to_string(DescriptorKind k) {
+    switch (k) {
+    case DescriptorKind::UniformBuffer: return "uniform_buffer";
+    case DescriptorKind::StorageBuffer: return "storage_buffer";
+    case DescriptorKind::SampledImage: return "sampled_image";
+    case DescriptorKind::Sampler: return "sampler";
+    case DescriptorKind::CombinedImageSampler: return "combined_image_sampler";
+    }
+    return "unknown";
+}
+
+std::string reflection_to_json(const Reflection& r) {
+    // nlohmann::json keeps object keys in a std::map, so the output is sorted by key.
+    const json doc{{"stage", to_string(r.stage)},
+                   {"entry_point", r.entry_point},
+                   {"bindings", to_json_array(r.bindings)},
+                   {"inputs", to_json_array(r.inputs)},
+                   {"outputs", to_json_array(r.outputs)}};
+    // replace: a name that is not UTF-8 must not make serialisation throw.
+    return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+}
+
+std::optional<Reflection> reflection_from_json(const std::string& text, std::string* error) {
+    std::string scratch;
+    if (!error) error = &scratch;
+    error->clear();
+    json doc;
+    try {
+        doc = json::parse(text);
+    } catch (const json::exception& e) {
+        // what() is "[json.exception.parse_error.101] parse error at line 1, column 5: ...".
+        std::string what = e.what();
+        const size_t bracket = what.find("] ");
+        if (bracket != std::string::npos) what = what.substr(bracket + 2);
+        *error = "(root): expected valid JSON; " + what;
+        return std::nullopt;
+    }
+    if (!doc.is_object()) {
+        *error = "(root): expected an object";
+        return std::nullopt;
+    }
+    Reflection r;
+    Reader reader(doc, "", error);
+    const bool ok = reader.enumeration("stage", kStages, r.stage) && reader.string("entry_point", r.entry_point) &&
+                    reader.array("bindings", r.bindings, read_binding) &&
+                    reader.array("inputs", r.inputs, read_variable) &&
+                    reader.array("outputs", r.outputs, read_variable);
+    if (!ok) return std::nullopt;
+    return r;
+}
+
+} // namespace watergen

@@ -1,0 +1,72 @@
+// Compute jobs, the numeric harness: node functions compiled into a compute shader read
+// input tuples from storage buffers and write results to others; every storage buffer
+// is read back after one dispatch.
+#include "vulkan_internal.h"
+
+#include <fmt/format.h>
+
+namespace watergen::vk_detail {
+
+void compute_job(Context& ctx, const ComputeJob& job, ComputeResult& result) {
+    const uint32_t groups[3] = {job.group_count_x, job.group_count_y, job.group_count_z};
+    for (int i = 0; i < 3; ++i)
+        if (groups[i] == 0 || groups[i] > ctx.limits.maxComputeWorkGroupCount[i])
+            throw RunnerError(fmt::format("group count {} = {} is outside 1..{}", "xyz"[i],
+                                          groups[i], ctx.limits.maxComputeWorkGroupCount[i]));
+    Scope scope(ctx);
+
+    DescriptorInputs inputs;
+    inputs.uniforms = &job.uniforms;
+    inputs.storage = &job.buffers;
+    inputs.storage_sizes = &job.output_sizes;
+    BoundDescriptors descriptors =
+        bind_descriptors(scope, {{&job.reflection, VK_SHADER_STAGE_COMPUTE_BIT}}, inputs);
+    VkPipelineLayout layout = create_pipeline_layout(scope, descriptors);
+
+    VkComputePipelineCreateInfo cci{};
+    cci.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+    cci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    cci.stage.module = create_shader_module(scope, job.spirv, "compute");
+    cci.stage.pName = job.reflection.entry_point.empty() ? "main" : job.reflection.entry_point.c_str();
+    cci.layout = layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    const auto start_pipeline = Clock::now();
+    VkResult r = vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &cci, nullptr, &pipeline);
+    result.pipeline_ms = ms_since(start_pipeline);
+    vk_check(r, "vkCreateComputePipelines");
+    VkDevice device = ctx.device;
+    scope.defer([device, pipeline] { vkDestroyPipeline(device, pipeline, nullptr); });
+
+    VkCommandBuffer cmd = allocate_command_buffer(scope);
+    VkCommandBufferBeginInfo bi{};
+    bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    if (!descriptors.sets.empty())
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0,
+                                static_cast<uint32_t>(descriptors.sets.size()),
+                                descriptors.sets.data(), 0, nullptr);
+    vkCmdDispatch(cmd, groups[0], groups[1], groups[2]);
+    // The shader's storage writes must be visible to the host reading the mappings.
+    VkMemoryBarrier to_host{};
+    to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0,
+                         1, &to_host, 0, nullptr, 0, nullptr);
+    vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+
+    const auto start = Clock::now();
+    submit_and_wait(ctx, cmd, create_fence(scope));
+    result.dispatch_ms = ms_since(start);
+
+    for (const auto& [name, buffer] : descriptors.storage_buffers) {
+        std::vector<uint8_t> bytes(buffer.size);
+        read_buffer(ctx, buffer, bytes.data(), bytes.size());
+        result.buffers.emplace(name, std::move(bytes));
+    }
+}
+
+} // namespace watergen::vk_detail

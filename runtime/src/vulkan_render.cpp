@@ -1,0 +1,300 @@
+// Render jobs: offscreen RGBA32F target, fullscreen-triangle graphics pipeline, one
+// untimed first draw (lavapipe JITs the shaders there), timestamp-timed steady draws,
+// readback.
+#include "vulkan_internal.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace watergen::vk_detail {
+namespace {
+
+constexpr uint32_t kMaxTimedDraws = 1000;
+
+VkRenderPass create_render_pass(Scope& scope) {
+    VkAttachmentDescription color{};
+    color.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    color.samples = VK_SAMPLE_COUNT_1_BIT;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    // Every draw clears, so the previous contents never matter.
+    color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    color.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = 1;
+    subpass.pColorAttachments = &ref;
+
+    VkSubpassDependency deps[2]{};
+    // The same image is drawn into several times and copied out: this draw's clear must
+    // wait for the previous draw's writes (WAW) and the previous copy's reads (WAR).
+    deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+    deps[0].dstSubpass = 0;
+    deps[0].srcStageMask =
+        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+    deps[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    // The readback copy must see the finished colour writes.
+    deps[1].srcSubpass = 0;
+    deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+    deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+
+    VkRenderPassCreateInfo rci{};
+    rci.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+    rci.attachmentCount = 1;
+    rci.pAttachments = &color;
+    rci.subpassCount = 1;
+    rci.pSubpasses = &subpass;
+    rci.dependencyCount = 2;
+    rci.pDependencies = deps;
+    VkRenderPass pass = VK_NULL_HANDLE;
+    VkDevice device = scope.ctx().device;
+    vk_check(vkCreateRenderPass(device, &rci, nullptr, &pass), "vkCreateRenderPass");
+    scope.defer([device, pass] { vkDestroyRenderPass(device, pass, nullptr); });
+    return pass;
+}
+
+VkFramebuffer create_framebuffer(Scope& scope, VkRenderPass pass, const Image& target) {
+    VkFramebufferCreateInfo fci{};
+    fci.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+    fci.renderPass = pass;
+    fci.attachmentCount = 1;
+    fci.pAttachments = &target.view;
+    fci.width = target.width;
+    fci.height = target.height;
+    fci.layers = 1;
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    VkDevice device = scope.ctx().device;
+    vk_check(vkCreateFramebuffer(device, &fci, nullptr, &fb), "vkCreateFramebuffer");
+    scope.defer([device, fb] { vkDestroyFramebuffer(device, fb, nullptr); });
+    return fb;
+}
+
+const char* entry_point(const Reflection& r) {
+    return r.entry_point.empty() ? "main" : r.entry_point.c_str();
+}
+
+struct Pipeline {
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    double create_ms = 0;
+};
+
+Pipeline create_pipeline(Scope& scope, const RenderJob& job, VkPipelineLayout layout,
+                         VkRenderPass pass) {
+    VkPipelineShaderStageCreateInfo stages[2]{};
+    stages[0].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = create_shader_module(scope, job.vertex_spirv, "vertex");
+    stages[0].pName = entry_point(job.vertex_reflection);
+    stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = create_shader_module(scope, job.fragment_spirv, "fragment");
+    stages[1].pName = entry_point(job.fragment_reflection);
+
+    // Fullscreen triangle: positions come from gl_VertexIndex, so no vertex input. An
+    // indexed grid mesh would add its binding/attributes here.
+    VkPipelineVertexInputStateCreateInfo vertex_input{};
+    vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+    VkPipelineInputAssemblyStateCreateInfo assembly{};
+    assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+
+    VkViewport viewport{0.0f, 0.0f, static_cast<float>(job.width), static_cast<float>(job.height),
+                        0.0f, 1.0f};
+    VkRect2D scissor{{0, 0}, {job.width, job.height}};
+    VkPipelineViewportStateCreateInfo viewport_state{};
+    viewport_state.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+    viewport_state.viewportCount = 1;
+    viewport_state.pViewports = &viewport;
+    viewport_state.scissorCount = 1;
+    viewport_state.pScissors = &scissor;
+
+    VkPipelineRasterizationStateCreateInfo raster{};
+    raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = VK_CULL_MODE_NONE; // winding of the generated triangle is irrelevant
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{};
+    multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+
+    // Raw shader output, no blending: the test compares exact floats.
+    VkPipelineColorBlendAttachmentState blend_attachment{};
+    blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                                      VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    VkPipelineColorBlendStateCreateInfo blend{};
+    blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+    blend.attachmentCount = 1;
+    blend.pAttachments = &blend_attachment;
+
+    VkGraphicsPipelineCreateInfo gci{};
+    gci.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+    gci.stageCount = 2;
+    gci.pStages = stages;
+    gci.pVertexInputState = &vertex_input;
+    gci.pInputAssemblyState = &assembly;
+    gci.pViewportState = &viewport_state;
+    gci.pRasterizationState = &raster;
+    gci.pMultisampleState = &multisample;
+    gci.pColorBlendState = &blend;
+    gci.layout = layout;
+    gci.renderPass = pass;
+    gci.subpass = 0;
+
+    Pipeline p;
+    VkDevice device = scope.ctx().device;
+    // No VkPipelineCache: every job pays full creation cost, so timings and results do
+    // not depend on which jobs ran before.
+    const auto start = Clock::now();
+    VkResult r = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &gci, nullptr, &p.pipeline);
+    p.create_ms = ms_since(start);
+    vk_check(r, "vkCreateGraphicsPipelines");
+    VkPipeline pipeline = p.pipeline;
+    scope.defer([device, pipeline] { vkDestroyPipeline(device, pipeline, nullptr); });
+    return p;
+}
+
+VkQueryPool create_timestamp_pool(Scope& scope) {
+    VkQueryPoolCreateInfo qci{};
+    qci.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+    qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qci.queryCount = 2;
+    VkQueryPool pool = VK_NULL_HANDLE;
+    VkDevice device = scope.ctx().device;
+    vk_check(vkCreateQueryPool(device, &qci, nullptr, &pool), "vkCreateQueryPool");
+    scope.defer([device, pool] { vkDestroyQueryPool(device, pool, nullptr); });
+    return pool;
+}
+
+void begin_reusable(VkCommandBuffer cmd) {
+    VkCommandBufferBeginInfo bi{};
+    bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    // No ONE_TIME_SUBMIT: the draw command buffer is submitted once per draw.
+    vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+} // namespace
+
+void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
+    if (job.timed_draws > kMaxTimedDraws)
+        throw RunnerError(fmt::format("timed_draws {} exceeds {}", job.timed_draws, kMaxTimedDraws));
+    Scope scope(ctx);
+
+    Image target = create_color_target(scope, job.width, job.height);
+    DescriptorInputs inputs;
+    inputs.uniforms = &job.uniforms;
+    inputs.textures = &job.textures;
+    inputs.filter = job.filter;
+    BoundDescriptors descriptors =
+        bind_descriptors(scope,
+                         {{&job.vertex_reflection, VK_SHADER_STAGE_VERTEX_BIT},
+                          {&job.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}},
+                         inputs);
+    VkPipelineLayout layout = create_pipeline_layout(scope, descriptors);
+    VkRenderPass pass = create_render_pass(scope);
+    VkFramebuffer framebuffer = create_framebuffer(scope, pass, target);
+    Pipeline pipeline = create_pipeline(scope, job, layout, pass);
+    result.pipeline_ms = pipeline.create_ms;
+
+    const bool timestamps = ctx.timestamp_mask != 0;
+    VkQueryPool queries = timestamps ? create_timestamp_pool(scope) : VK_NULL_HANDLE;
+
+    // One recorded command buffer, resubmitted for the first and every timed draw.
+    VkCommandBuffer draw = allocate_command_buffer(scope);
+    begin_reusable(draw);
+    if (timestamps) {
+        vkCmdResetQueryPool(draw, queries, 0, 2);
+        vkCmdWriteTimestamp(draw, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries, 0);
+    }
+    VkClearValue clear{};
+    VkRenderPassBeginInfo rbi{};
+    rbi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+    rbi.renderPass = pass;
+    rbi.framebuffer = framebuffer;
+    rbi.renderArea = {{0, 0}, {job.width, job.height}};
+    rbi.clearValueCount = 1;
+    rbi.pClearValues = &clear;
+    vkCmdBeginRenderPass(draw, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindPipeline(draw, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
+    if (!descriptors.sets.empty())
+        vkCmdBindDescriptorSets(draw, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0,
+                                static_cast<uint32_t>(descriptors.sets.size()),
+                                descriptors.sets.data(), 0, nullptr);
+    vkCmdDraw(draw, 3, 1, 0, 0);
+    vkCmdEndRenderPass(draw);
+    // Bottom of pipe: the sample is taken once the draw has fully completed.
+    if (timestamps) vkCmdWriteTimestamp(draw, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);
+    vk_check(vkEndCommandBuffer(draw), "vkEndCommandBuffer");
+
+    VkFence fence = create_fence(scope);
+    auto start = Clock::now();
+    submit_and_wait(ctx, draw, fence);
+    result.first_draw_ms = ms_since(start);
+
+    for (uint32_t i = 0; i < job.timed_draws; ++i) {
+        start = Clock::now();
+        submit_and_wait(ctx, draw, fence);
+        const double wall_ms = ms_since(start);
+        if (!timestamps) { // no timestamp support: CPU wall time is the best we have
+            result.draw_ms.push_back(wall_ms);
+            continue;
+        }
+        uint64_t ticks[2] = {};
+        vk_check(vkGetQueryPoolResults(ctx.device, queries, 0, 2, sizeof(ticks), ticks,
+                                       sizeof(uint64_t),
+                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+                 "vkGetQueryPoolResults");
+        const uint64_t delta = (ticks[1] - ticks[0]) & ctx.timestamp_mask;
+        result.draw_ms.push_back(static_cast<double>(delta) * ctx.limits.timestampPeriod * 1e-6);
+    }
+    result.steady_draw_ms = median(result.draw_ms);
+
+    // Readback. The render pass left the image in TRANSFER_SRC_OPTIMAL and its outgoing
+    // dependency orders the colour writes before this copy.
+    const VkDeviceSize bytes = VkDeviceSize{job.width} * job.height * 4 * sizeof(float);
+    Buffer readback = create_buffer(scope, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    VkCommandBuffer copy = allocate_command_buffer(scope);
+    begin_reusable(copy);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {job.width, job.height, 1};
+    vkCmdCopyImageToBuffer(copy, target.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           readback.buffer, 1, &region);
+    // Make the copy's writes visible to the host's read of the mapping.
+    VkBufferMemoryBarrier to_host{};
+    to_host.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER;
+    to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    to_host.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    to_host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    to_host.buffer = readback.buffer;
+    to_host.size = VK_WHOLE_SIZE;
+    vkCmdPipelineBarrier(copy, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0,
+                         nullptr, 1, &to_host, 0, nullptr);
+    vk_check(vkEndCommandBuffer(copy), "vkEndCommandBuffer");
+    submit_and_wait(ctx, copy, fence);
+
+    // Copy rows come out in image order: row 0 is framebuffer y = 0, the top.
+    result.rgba.resize(size_t{job.width} * job.height * 4);
+    read_buffer(ctx, readback, result.rgba.data(), bytes);
+    result.width = job.width;
+    result.height = job.height;
+}
+
+} // namespace watergen::vk_detail

@@ -1,0 +1,10 @@
+# Runs COMMAND; passes when its exit code is EXPECTED_EXIT and its output matches REGEX.
+execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+set(all "${out}${err}")
+string(REPLACE "\n" " " flat "${all}")
+if(NOT rc STREQUAL "${EXPECTED_EXIT}")
+  message(FATAL_ERROR "exit code ${rc}, expected ${EXPECTED_EXIT}; output:\n${all}")
+endif()
+if(NOT flat MATCHES "${REGEX}")
+  message(FATAL_ERROR "output does not match '${REGEX}':\n${all}")
+endif()

@@ -1,0 +1,67 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "watergen/cpu_evaluator.h"
+#include "watergen/dsl.h"
+
+using namespace watergen;
+
+TEST_CASE("derivatives_difference_within_a_quad", "[evaluator]") {
+    Graph g;
+    Expr uv = varying(g, "v_uv", Type::Vec2);
+    Expr f = uv.x() * uv.x() * 100.0 + uv.y() * 10.0;
+    g.set_output("dx", ddx(f).id());
+    g.set_output("dy", ddy(f).id());
+    const auto dx = evaluate_image(g, "dx", {}, 4, 4, EvalPrecision::Double);
+    const auto dy = evaluate_image(g, "dy", {}, 4, 4, EvalPrecision::Double);
+    REQUIRE(dx.ok());
+    // Pixel (0,0) and (1,0): u = 0.125, 0.375 -> d(100 u^2) = 100 (0.375^2 - 0.125^2) = 12.5.
+    CHECK(dx.values[0] == Approx(12.5));
+    CHECK(dx.values[1] == Approx(12.5));
+    CHECK(dx.values[2] == Approx(100 * (0.875 * 0.875 - 0.625 * 0.625)));
+    CHECK(dy.values[0] == Approx(2.5)); // 10 * (0.375 - 0.125)
+}
+
+TEST_CASE("linear_sampling_follows_the_vulkan_formula", "[evaluator]") {
+    // 2x1 texture: red channel 0 and 1. Texel centres at u = 0.25, 0.75; clamp to edge.
+    const float texels[8] = {0, 0, 0, 1, 1, 0, 0, 1};
+    Graph g;
+    Expr uv = varying(g, "uv", Type::Vec2);
+    g.set_output("out", sample(texture(g, {"t", Type::Texture2D, "", ""}), uv).x().id());
+    EvalInputs in;
+    in.textures["t"] = TextureView{2, 1, texels};
+    in.varyings["uv"] = {0.25, 0.5, 0.5, 0.5, 0.75, 0.5, 0.0, 0.5, 1.0, 0.5, 0.6, 0.5};
+    in.lanes = 6;
+    auto r = evaluate(g, "out", in, EvalPrecision::Double);
+    REQUIRE(r.ok());
+    const std::vector<double> expected = {0.0, 0.5, 1.0, 0.0, 1.0, 0.7};
+    for (size_t i = 0; i < expected.size(); ++i) CHECK(r.values[i] == Approx(expected[i]).margin(1e-12));
+    in.filter = Filter::Nearest;
+    r = evaluate(g, "out", in, EvalPrecision::Double);
+    CHECK(r.values == std::vector<double>{0.0, 1.0, 1.0, 0.0, 1.0, 1.0});
+}
+
+TEST_CASE("missing_texture_is_an_error_not_a_crash", "[evaluator]") {
+    Graph g;
+    Expr uv = varying(g, "uv", Type::Vec2);
+    g.set_output("out", sample(texture(g, {"t", Type::Texture2D, "", ""}), uv).id());
+    EvalInputs in;
+    in.varyings["uv"] = {0.5, 0.5};
+    in.lanes = 1;
+    const auto r = evaluate(g, "out", in, EvalPrecision::Float);
+    CHECK(r.error == "texture 't' not supplied");
+}
+
+TEST_CASE("float_and_half_modes_round_every_intermediate", "[evaluator]") {
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    g.set_output("out", ((x + 1e-4) - x).id());
+    EvalInputs in;
+    in.varyings["x"] = {1000.0};
+    in.lanes = 1;
+    CHECK(evaluate(g, "out", in, EvalPrecision::Double).values[0] == Approx(1e-4).epsilon(1e-9));
+    // float: 1000.0001 rounds to 1000.0001220703125; half: 1000 + 1e-4 rounds back to 1000.
+    CHECK(evaluate(g, "out", in, EvalPrecision::Float).values[0] == 0.0001220703125);
+    CHECK(evaluate(g, "out", in, EvalPrecision::Half).values[0] == 0.0);
+}

@@ -1,0 +1,164 @@
+// Reflection <-> JSON: deterministic text, lossless round trip, errors that name the key.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "watergen/glslang_stage.h"
+#include "watergen/reflection_stage.h"
+#include "watergen/runtime/reflection.h"
+
+using namespace watergen;
+
+namespace {
+
+Reflection sample_reflection() {
+    Reflection r;
+    r.stage = ShaderStage::Fragment;
+    r.entry_point = "main";
+    DescriptorBinding ubo;
+    ubo.name = "WaterParams";
+    ubo.kind = DescriptorKind::UniformBuffer;
+    ubo.block_size = 32;
+    ubo.members = {{"eye_position", "vec3", 0, 12}, {"water_level", "float", 12, 4}, {"deep_color", "vec4", 16, 16}};
+    DescriptorBinding sampler{"linear_clamp", 0, 1, DescriptorKind::Sampler, "", 0, {}};
+    DescriptorBinding image{"scene_color", 0, 2, DescriptorKind::SampledImage, "2D", 0, {}};
+    DescriptorBinding sky{"sky", 1, 0, DescriptorKind::CombinedImageSampler, "Cube", 0, {}};
+    r.bindings = {ubo, sampler, image, sky};
+    r.inputs = {{"uv", 0, "vec2"}, {"world_position", 1, "vec3"}};
+    r.outputs = {{"frag_color", 0, "vec4"}};
+    return r;
+}
+
+void check_equal(const Reflection& a, const Reflection& b) {
+    CHECK(a.stage == b.stage);
+    CHECK(a.entry_point == b.entry_point);
+    REQUIRE(a.bindings.size() == b.bindings.size());
+    for (size_t i = 0; i < a.bindings.size(); ++i) {
+        const auto& x = a.bindings[i];
+        const auto& y = b.bindings[i];
+        CHECK(x.name == y.name);
+        CHECK(x.set == y.set);
+        CHECK(x.binding == y.binding);
+        CHECK(x.kind == y.kind);
+        CHECK(x.image_dim == y.image_dim);
+        CHECK(x.block_size == y.block_size);
+        REQUIRE(x.members.size() == y.members.size());
+        for (size_t m = 0; m < x.members.size(); ++m) {
+            CHECK(x.members[m].name == y.members[m].name);
+            CHECK(x.members[m].type == y.members[m].type);
+            CHECK(x.members[m].offset == y.members[m].offset);
+            CHECK(x.members[m].size == y.members[m].size);
+        }
+    }
+    auto same_vars = [](const std::vector<StageVariable>& p, const std::vector<StageVariable>& q) {
+        REQUIRE(p.size() == q.size());
+        for (size_t i = 0; i < p.size(); ++i) {
+            CHECK(p[i].name == q[i].name);
+            CHECK(p[i].location == q[i].location);
+            CHECK(p[i].type == q[i].type);
+        }
+    };
+    same_vars(a.inputs, b.inputs);
+    same_vars(a.outputs, b.outputs);
+}
+
+std::string error_for(const std::string& text) {
+    std::string error;
+    const auto r = reflection_from_json(text, &error);
+    CHECK_FALSE(r.has_value());
+    return error;
+}
+
+const char* const kValid = R"({"stage": "fragment", "entry_point": "main",
+  "bindings": [{"name": "t", "set": 0, "binding": 1, "kind": "sampled_image", "image_dim": "2D"}],
+  "inputs": [], "outputs": [{"name": "c", "location": 0, "type": "vec4"}]})";
+
+} // namespace
+
+TEST_CASE("reflection_json_round_trips") {
+    const Reflection original = sample_reflection();
+    const std::string text = reflection_to_json(original);
+    std::string error;
+    const auto back = reflection_from_json(text, &error);
+    INFO(error);
+    REQUIRE(back.has_value());
+    check_equal(original, *back);
+    CHECK(reflection_to_json(*back) == text);
+}
+
+TEST_CASE("reflection_json_is_sorted_indented_and_ends_with_a_newline") {
+    const std::string text = reflection_to_json(sample_reflection());
+    REQUIRE_FALSE(text.empty());
+    CHECK(text.back() == '\n');
+    CHECK(text.rfind("{\n  \"bindings\": [", 0) == 0);  // keys sorted, 2-space indent
+    CHECK(text.find("\"kind\": \"uniform_buffer\"") != std::string::npos);
+    CHECK(text.find("\"stage\": \"fragment\"") != std::string::npos);
+    CHECK(text.find('\t') == std::string::npos);
+}
+
+TEST_CASE("reflection_json_round_trips_a_reflected_shader") {
+    CompileRequest req;
+    req.stage = ShaderStage::Fragment;
+    req.file_name = "t.frag";
+    req.source = R"(#version 450
+layout(set = 0, binding = 0, std140) uniform WaterParams { layout(offset = 0) vec3 eye; layout(offset = 12) float level; } p;
+layout(set = 0, binding = 1) uniform sampler s;
+layout(set = 0, binding = 2) uniform textureCube sky;
+layout(location = 0) in vec3 dir;
+layout(location = 0) out vec4 c;
+void main() { c = texture(samplerCube(sky, s), dir + p.eye) * p.level; }
+)";
+    const SpirvResult spirv = compile_to_spirv(req);
+    REQUIRE(spirv.ok());
+    const ReflectResult refl = reflect_spirv(spirv.spirv, ShaderStage::Fragment, "t.frag.spv");
+    REQUIRE(refl.diagnostics.empty());
+    REQUIRE(refl.reflection.bindings.size() == 3);
+    CHECK(refl.reflection.bindings[2].image_dim == "Cube");
+    std::string error;
+    const auto back = reflection_from_json(reflection_to_json(refl.reflection), &error);
+    INFO(error);
+    REQUIRE(back.has_value());
+    check_equal(refl.reflection, *back);
+}
+
+TEST_CASE("reflection_from_json_accepts_omitted_optional_binding_fields") {
+    std::string error;
+    const auto r = reflection_from_json(kValid, &error);
+    INFO(error);
+    REQUIRE(r.has_value());
+    CHECK(error.empty());
+    REQUIRE(r->bindings.size() == 1);
+    CHECK(r->bindings[0].block_size == 0);
+    CHECK(r->bindings[0].members.empty());
+}
+
+TEST_CASE("reflection_from_json_names_the_bad_key") {
+    CHECK(error_for("{ not json").rfind("(root): expected valid JSON", 0) == 0);
+    CHECK(error_for("[1, 2]") == "(root): expected an object");
+    CHECK(error_for(R"({"entry_point": "main", "bindings": [], "inputs": [], "outputs": []})")
+              .rfind("stage: missing", 0) == 0);
+    CHECK(error_for(R"({"stage": "geometry", "entry_point": "main", "bindings": [], "inputs": [], "outputs": []})") ==
+          "stage: expected one of vertex, fragment, compute; got \"geometry\"");
+
+    std::string text = kValid;
+    text.replace(text.find("\"binding\": 1"), 12, "\"binding\": \"one\"");
+    CHECK(error_for(text) == "bindings[0].binding: expected an unsigned 32-bit integer");
+
+    text = kValid;
+    text.replace(text.find("\"location\": 0"), 13, "\"location\": -1");
+    CHECK(error_for(text) == "outputs[0].location: expected an unsigned 32-bit integer");
+
+    text = kValid;
+    text.replace(text.find("\"sampled_image\""), 15, "\"texture\"");
+    CHECK(error_for(text).rfind("bindings[0].kind: expected one of uniform_buffer,", 0) == 0);
+
+    const std::string bad_member = R"({"stage": "fragment", "entry_point": "main", "inputs": [], "outputs": [],
+      "bindings": [{"name": "B", "set": 0, "binding": 0, "kind": "uniform_buffer",
+                    "members": [{"name": "a", "type": "float", "offset": 0, "size": 4}, {"name": "b", "type": "vec2"}]}]})";
+    CHECK(error_for(bad_member) == "bindings[0].members[1].offset: missing, expected an unsigned 32-bit integer");
+
+    CHECK(error_for(R"({"stage": "vertex", "entry_point": "main", "bindings": [3], "inputs": [], "outputs": []})") ==
+          "bindings[0]: expected an object");
+    // A null error pointer is allowed.
+    CHECK_FALSE(reflection_from_json("nope", nullptr).has_value());
+}

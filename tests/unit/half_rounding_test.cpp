@@ -1,0 +1,28 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "watergen/cpu_evaluator.h"
+
+using namespace watergen;
+
+// binary16: 10 fraction bits, exponent -14..15, subnormal spacing 2^-24, max 65504.
+TEST_CASE("half_rounding_matches_binary16", "[half]") {
+    CHECK(round_to_half(1.0) == 1.0);
+    CHECK(round_to_half(1.0 + std::ldexp(1.0, -11)) == 1.0);                             // tie -> even
+    CHECK(round_to_half(1.0 + 3 * std::ldexp(1.0, -11)) == 1.0 + std::ldexp(1.0, -9));   // tie -> even (up)
+    CHECK(round_to_half(0.1) == 0.0999755859375);
+    CHECK(round_to_half(65504.0) == 65504.0);
+    CHECK(round_to_half(65519.0) == 65504.0);
+    CHECK(std::isinf(round_to_half(65520.0)));
+    CHECK(round_to_half(std::ldexp(1.0, -24)) == std::ldexp(1.0, -24));
+    CHECK(round_to_half(std::ldexp(1.0, -26)) == 0.0);
+    CHECK(round_to_half(-std::ldexp(3.0, -25)) == -std::ldexp(1.0, -23));
+    CHECK(round_to_half(1e5) == INFINITY);
+    CHECK(std::isnan(round_to_half(NAN)));
+}
+
+TEST_CASE("float_rounding_is_binary32", "[half]") {
+    CHECK(round_to(0.1, EvalPrecision::Float) == static_cast<double>(0.1f));
+    CHECK(round_to(0.1, EvalPrecision::Double) == 0.1);
+}
