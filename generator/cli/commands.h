@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "watergen/diagnostic.h"
+#include "watergen/runtime/vulkan_runner.h"
 #include "watergen/variant.h"
 
 namespace watergen::cli {
@@ -27,7 +28,17 @@ using Runner = std::function<int()>;
 void add_variant_options(CLI::App& app, Variant& variant);
 void print_diagnostics(const Diagnostics& ds, const Common& common);
 
+struct RunnerSetup {
+    std::string shader_cache = "off";
+    std::string device;
+};
+void add_runner_options(CLI::App& app, RunnerSetup& setup);
+// Applies the shader-cache choice (reported in *cache_used) and creates the runner; prints
+// the reason and returns nullptr when there is no device (exit with kNoDevice).
+std::unique_ptr<VulkanRunner> create_runner(const RunnerSetup& setup, std::string* cache_used);
+
 Runner add_emit_command(CLI::App& app, const Common& common);
+Runner add_render_command(CLI::App& app, const Common& common);
 Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 
 } // namespace watergen::cli

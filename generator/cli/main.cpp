@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
     std::map<CLI::App*, Runner> runners;
     CLI::App* emit = app.add_subcommand("emit", "emit one variant (or --all) in GLSL and HLSL, validated and cross-compiled");
     runners[emit] = add_emit_command(*emit, common);
+    CLI::App* render = app.add_subcommand("render", "render one variant on Vulkan (lavapipe) through both languages and compare with the CPU");
+    runners[render] = add_render_command(*render, common);
     CLI::App* bench = app.add_subcommand("bench", "benchmarks (print a table, write CSV and JSON)");
     bench->require_subcommand(1);
     CLI::App* compile = bench->add_subcommand("compile", "in-process toolchain vs the same chain through command-line tools");

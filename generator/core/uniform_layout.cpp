@@ -55,15 +55,20 @@ UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnost
     return layout;
 }
 
-std::vector<uint8_t> pack_uniforms(const UniformLayout& layout, const std::vector<Parameter>& parameters) {
+std::vector<uint8_t> pack_uniforms(const UniformLayout& layout, const std::vector<Parameter>& parameters,
+                                   const std::map<std::string, std::vector<double>>& overrides) {
     std::vector<uint8_t> bytes(layout.size, 0);
     for (const auto& slot : layout.members)
-        for (const auto& p : parameters)
-            if (p.name == slot.name)
-                for (size_t i = 0; i < p.default_value.size(); ++i) {
-                    const float f = static_cast<float>(p.default_value[i]);
-                    std::memcpy(bytes.data() + slot.offset + 4 * i, &f, 4);
-                }
+        for (const auto& p : parameters) {
+            if (p.name != slot.name) continue;
+            const std::vector<double>* values = &p.default_value;
+            if (auto it = overrides.find(p.name); it != overrides.end() && it->second.size() == p.default_value.size())
+                values = &it->second;
+            for (size_t i = 0; i < values->size(); ++i) {
+                const float f = static_cast<float>((*values)[i]);
+                std::memcpy(bytes.data() + slot.offset + 4 * i, &f, 4);
+            }
+        }
     return bytes;
 }
 

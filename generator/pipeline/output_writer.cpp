@@ -35,26 +35,26 @@ std::optional<std::string> write_file_atomically(const fs::path& path, const std
     return std::nullopt;
 }
 
-std::optional<std::string> write_directory_atomically(const fs::path& dir, const std::map<std::string, std::string>& files) {
+fs::path make_staging_directory(const fs::path& dir, std::string* error) {
     std::error_code ec;
     const fs::path parent = dir.parent_path().empty() ? fs::path(".") : dir.parent_path();
     fs::create_directories(parent, ec);
-    if (ec) return "cannot create " + parent.string() + ": " + ec.message();
+    if (ec) {
+        if (error) *error = "cannot create " + parent.string() + ": " + ec.message();
+        return {};
+    }
     const fs::path staging = dir.string() + unique_suffix();
     fs::remove_all(staging, ec);
-    for (const auto& [relative, contents] : files) {
-        const fs::path target = staging / relative;
-        fs::create_directories(target.parent_path(), ec);
-        if (ec) {
-            fs::remove_all(staging, ec);
-            return "cannot create " + target.parent_path().string();
-        }
-        if (auto e = write_plain(target, contents)) {
-            fs::remove_all(staging, ec);
-            return e;
-        }
+    fs::create_directories(staging, ec);
+    if (ec) {
+        if (error) *error = "cannot create " + staging.string() + ": " + ec.message();
+        return {};
     }
-    // Swap: the old output stays complete until the new one is in place.
+    return staging;
+}
+
+std::optional<std::string> commit_directory(const fs::path& staging, const fs::path& dir) {
+    std::error_code ec;
     const fs::path old = dir.string() + ".old" + unique_suffix();
     const bool had_old = fs::exists(dir);
     if (had_old) {
@@ -73,6 +73,26 @@ std::optional<std::string> write_directory_atomically(const fs::path& dir, const
     }
     if (had_old) fs::remove_all(old, ec);
     return std::nullopt;
+}
+
+std::optional<std::string> write_directory_atomically(const fs::path& dir, const std::map<std::string, std::string>& files) {
+    std::string error;
+    const fs::path staging = make_staging_directory(dir, &error);
+    if (staging.empty()) return error;
+    std::error_code ec;
+    for (const auto& [relative, contents] : files) {
+        const fs::path target = staging / relative;
+        fs::create_directories(target.parent_path(), ec);
+        if (ec) {
+            fs::remove_all(staging, ec);
+            return "cannot create " + target.parent_path().string();
+        }
+        if (auto e = write_plain(target, contents)) {
+            fs::remove_all(staging, ec);
+            return e;
+        }
+    }
+    return commit_directory(staging, dir);
 }
 
 } // namespace watergen

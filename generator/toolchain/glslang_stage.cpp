@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <charconv>
 #include <map>
-#include <set>
 #include <mutex>
+#include <set>
 #include <string_view>
 
 #include <glslang/Public/ResourceLimits.h>
@@ -19,9 +19,12 @@ namespace {
 
 EShLanguage to_glslang(ShaderStage stage) {
     switch (stage) {
-    case ShaderStage::Vertex: return EShLangVertex;
-    case ShaderStage::Fragment: return EShLangFragment;
-    case ShaderStage::Compute: return EShLangCompute;
+    case ShaderStage::Vertex:
+        return EShLangVertex;
+    case ShaderStage::Fragment:
+        return EShLangFragment;
+    case ShaderStage::Compute:
+        return EShLangCompute;
     }
     return EShLangFragment;
 }
@@ -59,12 +62,14 @@ bool parse_location(std::string_view loc, int& line, int& column) {
 bool is_error_summary(std::string_view message) {
     // "1 compilation errors.  No code generated." repeats what the real errors said.
     size_t digits = 0;
-    while (digits < message.size() && message[digits] >= '0' && message[digits] <= '9') ++digits;
+    while (digits < message.size() && message[digits] >= '0' && message[digits] <= '9')
+        ++digits;
     return digits > 0 && message.substr(digits).starts_with(" compilation errors.");
 }
 
 void append_all(Diagnostics& to, Diagnostics from) {
-    for (auto& d : from) to.push_back(std::move(d));
+    for (auto& d : from)
+        to.push_back(std::move(d));
 }
 
 // A failed glslang call must never come back without an error to show.
@@ -96,7 +101,7 @@ std::string decode_string(const uint32_t* words, size_t count) {
 }
 
 void encode_op_name(uint32_t target, const std::string& name, std::vector<uint32_t>& out) {
-    const size_t string_words = name.size() / 4 + 1;  // always room for the terminating 0
+    const size_t string_words = name.size() / 4 + 1; // always room for the terminating 0
     out.push_back(uint32_t((2 + string_words) << 16) | kOpName);
     out.push_back(target);
     for (size_t w = 0; w < string_words; ++w) {
@@ -111,18 +116,23 @@ void encode_op_name(uint32_t target, const std::string& name, std::vector<uint32
 
 void rename_hlsl_varyings(std::vector<uint32_t>& spirv, ShaderStage stage) {
     uint32_t varying_class = 0;
-    if (stage == ShaderStage::Vertex) varying_class = kStorageOutput;
-    else if (stage == ShaderStage::Fragment) varying_class = kStorageInput;
-    else return;
+    if (stage == ShaderStage::Vertex)
+        varying_class = kStorageOutput;
+    else if (stage == ShaderStage::Fragment)
+        varying_class = kStorageInput;
+    else
+        return;
 
-    std::map<uint32_t, uint32_t> storage;  // interface variable id -> storage class
+    std::map<uint32_t, uint32_t> storage; // interface variable id -> storage class
     std::map<uint32_t, std::string> names;
     for (size_t i = kHeaderWords; i < spirv.size();) {
         const uint32_t count = spirv[i] >> 16, op = spirv[i] & 0xffffu;
-        if (count == 0 || i + count > spirv.size()) return;  // malformed: leave it alone
-        if (op == kOpVariable && count >= 4 && (spirv[i + 3] == kStorageInput || spirv[i + 3] == kStorageOutput))
+        if (count == 0 || i + count > spirv.size()) return; // malformed: leave it alone
+        if (op == kOpVariable && count >= 4 &&
+            (spirv[i + 3] == kStorageInput || spirv[i + 3] == kStorageOutput))
             storage[spirv[i + 2]] = spirv[i + 3];
-        if (op == kOpName && count >= 3) names[spirv[i + 1]] = decode_string(&spirv[i + 2], count - 2);
+        if (op == kOpName && count >= 3)
+            names[spirv[i + 1]] = decode_string(&spirv[i + 2], count - 2);
         i += count;
     }
 
@@ -164,7 +174,8 @@ SpirvResult compile_impl(const CompileRequest& request) {
     glslang::TShader shader(stage);
     const char* text = request.source.c_str();
     shader.setStrings(&text, 1);
-    shader.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, stage, glslang::EShClientVulkan, 100);
+    shader.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, stage,
+                       glslang::EShClientVulkan, 100);
     shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_1);
     shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_3);
     if (hlsl) shader.setEntryPoint(request.entry_point.c_str());
@@ -208,7 +219,8 @@ SpirvResult compile_impl(const CompileRequest& request) {
         result.spirv = std::move(legal.spirv);
         rename_hlsl_varyings(result.spirv, request.stage);
     }
-    if (result.spirv.empty()) ensure_error(result.diagnostics, request.file_name, "glslang: no SPIR-V produced");
+    if (result.spirv.empty())
+        ensure_error(result.diagnostics, request.file_name, "glslang: no SPIR-V produced");
     return result;
 }
 
@@ -234,9 +246,11 @@ VersionLine find_version_line(const std::string& source) {
             std::vector<std::string> tokens;
             size_t i = 0;
             while (i < rest.size()) {
-                while (i < rest.size() && (rest[i] == ' ' || rest[i] == '\t' || rest[i] == '\r')) ++i;
+                while (i < rest.size() && (rest[i] == ' ' || rest[i] == '\t' || rest[i] == '\r'))
+                    ++i;
                 size_t j = i;
-                while (j < rest.size() && rest[j] != ' ' && rest[j] != '\t' && rest[j] != '\r') ++j;
+                while (j < rest.size() && rest[j] != ' ' && rest[j] != '\t' && rest[j] != '\r')
+                    ++j;
                 if (j > i) tokens.emplace_back(rest.substr(i, j - i));
                 i = j;
             }
@@ -257,8 +271,10 @@ Diagnostics parse_glslang_log(const std::string& log, const std::string& file_na
         std::string_view prefix;
         Severity severity;
     } kPrefixes[] = {
-        {"ERROR: ", Severity::Error},       {"WARNING: ", Severity::Warning},
-        {"INTERNAL ERROR: ", Severity::Error}, {"UNIMPLEMENTED: ", Severity::Error},
+        {"ERROR: ", Severity::Error},
+        {"WARNING: ", Severity::Warning},
+        {"INTERNAL ERROR: ", Severity::Error},
+        {"UNIMPLEMENTED: ", Severity::Error},
         {"NOTE: ", Severity::Note},
     };
     Diagnostics out;
@@ -285,7 +301,8 @@ Diagnostics parse_glslang_log(const std::string& log, const std::string& file_na
         Diagnostic d{match->severity, file_name, 0, 0, "", ""};
         const size_t colon_space = rest.find(": ");
         int l = 0, c = 0;
-        if (colon_space != std::string_view::npos && parse_location(rest.substr(0, colon_space), l, c)) {
+        if (colon_space != std::string_view::npos &&
+            parse_location(rest.substr(0, colon_space), l, c)) {
             d.line = l;
             d.column = c;
             rest = rest.substr(colon_space + 2);
@@ -293,7 +310,8 @@ Diagnostics parse_glslang_log(const std::string& log, const std::string& file_na
             continue;
         }
         // glslang pads some messages with a trailing space.
-        while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\t')) rest.remove_suffix(1);
+        while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\t'))
+            rest.remove_suffix(1);
         d.message = std::string(rest);
         out.push_back(std::move(d));
     }
@@ -307,7 +325,8 @@ void glslang_warm_up() {
         CompileRequest tiny;
         tiny.stage = ShaderStage::Fragment;
         tiny.file_name = "<warm-up>";
-        tiny.source = "#version 450\nlayout(location = 0) out vec4 c;\nvoid main() { c = vec4(1.0); }\n";
+        tiny.source =
+            "#version 450\nlayout(location = 0) out vec4 c;\nvoid main() { c = vec4(1.0); }\n";
         (void)compile_impl(tiny);
     });
 }
@@ -339,8 +358,8 @@ Diagnostics check_glsl(const std::string& source, ShaderStage stage, GlslProfile
     shader.setStrings(&text, 1);
     // No client and no target: plain OpenGL / OpenGL ES rules, nothing Vulkan-specific.
     shader.setEnvInput(glslang::EShSourceGlsl, lang, glslang::EShClientNone, 0);
-    const bool parsed = shader.parse(GetDefaultResources(), es ? 300 : 330, es ? EEsProfile : ECoreProfile,
-                                     false, false, EShMsgDefault);
+    const bool parsed = shader.parse(GetDefaultResources(), es ? 300 : 330,
+                                     es ? EEsProfile : ECoreProfile, false, false, EShMsgDefault);
     append_all(ds, parse_glslang_log(shader.getInfoLog(), file_name));
     if (!parsed) {
         ensure_error(ds, file_name, "glslang: GLSL does not compile");

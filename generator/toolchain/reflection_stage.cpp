@@ -10,9 +10,12 @@ namespace {
 
 spv::ExecutionModel to_model(ShaderStage stage) {
     switch (stage) {
-    case ShaderStage::Vertex: return spv::ExecutionModelVertex;
-    case ShaderStage::Fragment: return spv::ExecutionModelFragment;
-    case ShaderStage::Compute: return spv::ExecutionModelGLCompute;
+    case ShaderStage::Vertex:
+        return spv::ExecutionModelVertex;
+    case ShaderStage::Fragment:
+        return spv::ExecutionModelFragment;
+    case ShaderStage::Compute:
+        return spv::ExecutionModelGLCompute;
     }
     return spv::ExecutionModelFragment;
 }
@@ -25,12 +28,28 @@ std::string glsl_type(const spirv_cross::Compiler& compiler, const spirv_cross::
     } else {
         std::string scalar, prefix;
         switch (t.basetype) {
-        case BT::Float: scalar = "float"; break;
-        case BT::Double: scalar = "double"; prefix = "d"; break;
-        case BT::Int: scalar = "int"; prefix = "i"; break;
-        case BT::UInt: scalar = "uint"; prefix = "u"; break;
-        case BT::Boolean: scalar = "bool"; prefix = "b"; break;
-        default: scalar = "unknown"; break;
+        case BT::Float:
+            scalar = "float";
+            break;
+        case BT::Double:
+            scalar = "double";
+            prefix = "d";
+            break;
+        case BT::Int:
+            scalar = "int";
+            prefix = "i";
+            break;
+        case BT::UInt:
+            scalar = "uint";
+            prefix = "u";
+            break;
+        case BT::Boolean:
+            scalar = "bool";
+            prefix = "b";
+            break;
+        default:
+            scalar = "unknown";
+            break;
         }
         if (t.columns > 1) {
             name = prefix + "mat" + std::to_string(t.columns);
@@ -51,16 +70,21 @@ std::string glsl_type(const spirv_cross::Compiler& compiler, const spirv_cross::
 
 std::string image_dim(const spirv_cross::SPIRType& t) {
     switch (t.image.dim) {
-    case spv::Dim1D: return "1D";
-    case spv::Dim2D: return "2D";
-    case spv::Dim3D: return "3D";
-    case spv::DimCube: return "Cube";
-    default: return "other";
+    case spv::Dim1D:
+        return "1D";
+    case spv::Dim2D:
+        return "2D";
+    case spv::Dim3D:
+        return "3D";
+    case spv::DimCube:
+        return "Cube";
+    default:
+        return "other";
     }
 }
 
-DescriptorBinding base_binding(const spirv_cross::Compiler& compiler, const spirv_cross::Resource& r,
-                               DescriptorKind kind) {
+DescriptorBinding base_binding(const spirv_cross::Compiler& compiler,
+                               const spirv_cross::Resource& r, DescriptorKind kind) {
     DescriptorBinding b;
     b.name = r.name.empty() ? compiler.get_fallback_name(r.id) : r.name;
     b.set = compiler.get_decoration(r.id, spv::DecorationDescriptorSet);
@@ -69,8 +93,8 @@ DescriptorBinding base_binding(const spirv_cross::Compiler& compiler, const spir
     return b;
 }
 
-DescriptorBinding block_binding(const spirv_cross::Compiler& compiler, const spirv_cross::Resource& r,
-                                DescriptorKind kind) {
+DescriptorBinding block_binding(const spirv_cross::Compiler& compiler,
+                                const spirv_cross::Resource& r, DescriptorKind kind) {
     DescriptorBinding b = base_binding(compiler, r, kind);
     // The block type name is what both front ends agree on: GLSL's instance name
     // ("params") has no HLSL counterpart, a cbuffer's variable is anonymous.
@@ -89,8 +113,9 @@ DescriptorBinding block_binding(const spirv_cross::Compiler& compiler, const spi
     return b;
 }
 
-std::vector<StageVariable> stage_variables(const spirv_cross::Compiler& compiler,
-                                           const spirv_cross::SmallVector<spirv_cross::Resource>& resources) {
+std::vector<StageVariable>
+stage_variables(const spirv_cross::Compiler& compiler,
+                const spirv_cross::SmallVector<spirv_cross::Resource>& resources) {
     std::vector<StageVariable> vars;
     for (const auto& r : resources) {
         if (compiler.has_decoration(r.id, spv::DecorationBuiltIn)) continue;
@@ -100,23 +125,25 @@ std::vector<StageVariable> stage_variables(const spirv_cross::Compiler& compiler
         v.type = glsl_type(compiler, compiler.get_type(r.type_id));
         vars.push_back(std::move(v));
     }
-    std::stable_sort(vars.begin(), vars.end(),
-                     [](const StageVariable& a, const StageVariable& b) { return a.location < b.location; });
+    std::stable_sort(vars.begin(), vars.end(), [](const StageVariable& a, const StageVariable& b) {
+        return a.location < b.location;
+    });
     return vars;
 }
 
 void warn_unsupported(const spirv_cross::Compiler& compiler,
-                      const spirv_cross::SmallVector<spirv_cross::Resource>& resources, const char* kind,
-                      const std::string& file, Diagnostics& ds) {
+                      const spirv_cross::SmallVector<spirv_cross::Resource>& resources,
+                      const char* kind, const std::string& file, Diagnostics& ds) {
     for (const auto& r : resources) {
         const std::string name = r.name.empty() ? compiler.get_fallback_name(r.id) : r.name;
-        ds.push_back({Severity::Warning, file, 0, 0, "",
-                      "reflect: " + std::string(kind) + " '" + name + "' is not described by Reflection"});
+        ds.push_back(
+            {Severity::Warning, file, 0, 0, "",
+             "reflect: " + std::string(kind) + " '" + name + "' is not described by Reflection"});
     }
 }
 
-void reflect_into(spirv_cross::Compiler& compiler,
-                  ShaderStage stage, const std::string& file, ReflectResult& out) {
+void reflect_into(spirv_cross::Compiler& compiler, ShaderStage stage, const std::string& file,
+                  ReflectResult& out) {
     Reflection& refl = out.reflection;
     refl.stage = stage;
     const spv::ExecutionModel model = to_model(stage);
@@ -129,8 +156,9 @@ void reflect_into(spirv_cross::Compiler& compiler,
         }
     }
     if (!found) {
-        out.diagnostics.push_back({Severity::Error, file, 0, 0, "",
-                                   std::string("reflect: module has no ") + to_string(stage) + " entry point"});
+        out.diagnostics.push_back(
+            {Severity::Error, file, 0, 0, "",
+             std::string("reflect: module has no ") + to_string(stage) + " entry point"});
         return;
     }
     compiler.set_entry_point(refl.entry_point, model);
@@ -138,7 +166,8 @@ void reflect_into(spirv_cross::Compiler& compiler,
     // Only what the entry point statically uses: the HLSL path (front end + legalisation)
     // drops unreferenced globals and inputs while the GLSL path keeps them, so "everything
     // declared" would make the two paths disagree about a shader with an unused texture.
-    const spirv_cross::ShaderResources res = compiler.get_shader_resources(compiler.get_active_interface_variables());
+    const spirv_cross::ShaderResources res =
+        compiler.get_shader_resources(compiler.get_active_interface_variables());
     for (const auto& r : res.uniform_buffers)
         refl.bindings.push_back(block_binding(compiler, r, DescriptorKind::UniformBuffer));
     for (const auto& r : res.storage_buffers)
@@ -160,10 +189,12 @@ void reflect_into(spirv_cross::Compiler& compiler,
     });
 
     warn_unsupported(compiler, res.storage_images, "storage image", file, out.diagnostics);
-    warn_unsupported(compiler, res.push_constant_buffers, "push constant block", file, out.diagnostics);
+    warn_unsupported(compiler, res.push_constant_buffers, "push constant block", file,
+                     out.diagnostics);
     warn_unsupported(compiler, res.subpass_inputs, "subpass input", file, out.diagnostics);
     warn_unsupported(compiler, res.atomic_counters, "atomic counter", file, out.diagnostics);
-    warn_unsupported(compiler, res.acceleration_structures, "acceleration structure", file, out.diagnostics);
+    warn_unsupported(compiler, res.acceleration_structures, "acceleration structure", file,
+                     out.diagnostics);
 
     // Same reason for stage I/O: HLSL legalisation removes an input nobody reads.
     refl.inputs = stage_variables(compiler, res.stage_inputs);
@@ -172,7 +203,8 @@ void reflect_into(spirv_cross::Compiler& compiler,
 
 } // namespace
 
-ReflectResult reflect_spirv(const std::vector<uint32_t>& spirv, ShaderStage stage, const std::string& file_name) {
+ReflectResult reflect_spirv(const std::vector<uint32_t>& spirv, ShaderStage stage,
+                            const std::string& file_name) {
     ReflectResult out;
     out.reflection.stage = stage;
     // SPIRV-Cross throws on malformed modules; stages return errors as data.
@@ -180,7 +212,8 @@ ReflectResult reflect_spirv(const std::vector<uint32_t>& spirv, ShaderStage stag
         spirv_cross::Compiler compiler(spirv);
         reflect_into(compiler, stage, file_name, out);
     } catch (const std::exception& e) {
-        out.diagnostics.push_back({Severity::Error, file_name, 0, 0, "", std::string("reflect: ") + e.what()});
+        out.diagnostics.push_back(
+            {Severity::Error, file_name, 0, 0, "", std::string("reflect: ") + e.what()});
     }
     return out;
 }

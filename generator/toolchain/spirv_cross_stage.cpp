@@ -14,7 +14,8 @@ namespace {
 // which engines would have to hard-code when binding textures by name.
 void name_combined_samplers(spirv_cross::CompilerGLSL& compiler) {
     std::map<uint32_t, int> uses_per_image;
-    for (const auto& c : compiler.get_combined_image_samplers()) ++uses_per_image[uint32_t(c.image_id)];
+    for (const auto& c : compiler.get_combined_image_samplers())
+        ++uses_per_image[uint32_t(c.image_id)];
     for (const auto& c : compiler.get_combined_image_samplers()) {
         std::string image = compiler.get_name(c.image_id);
         if (image.empty()) image = "texture" + std::to_string(uint32_t(c.image_id));
@@ -55,9 +56,12 @@ std::string compile_msl(const std::vector<uint32_t>& spirv) {
 
 const char* cross_target_suffix(CrossTarget target) {
     switch (target) {
-    case CrossTarget::Glsl330: return ".330.glsl";
-    case CrossTarget::Essl300: return ".300es.glsl";
-    case CrossTarget::Msl: return ".metal";
+    case CrossTarget::Glsl330:
+        return ".330.glsl";
+    case CrossTarget::Essl300:
+        return ".300es.glsl";
+    case CrossTarget::Msl:
+        return ".metal";
     }
     return "";
 }
@@ -68,17 +72,24 @@ CrossResult cross_compile(const std::vector<uint32_t>& spirv, CrossTarget target
     // SPIRV-Cross reports every problem by throwing; stages must return errors as data.
     try {
         switch (target) {
-        case CrossTarget::Glsl330: result.source = compile_gl(spirv, false); break;
-        case CrossTarget::Essl300: result.source = compile_gl(spirv, true); break;
-        case CrossTarget::Msl: result.source = compile_msl(spirv); break;
+        case CrossTarget::Glsl330:
+            result.source = compile_gl(spirv, false);
+            break;
+        case CrossTarget::Essl300:
+            result.source = compile_gl(spirv, true);
+            break;
+        case CrossTarget::Msl:
+            result.source = compile_msl(spirv);
+            break;
         }
     } catch (const spirv_cross::CompilerError& e) {
         result.source.clear();
-        result.diagnostics.push_back({Severity::Error, file_name, 0, 0, "", std::string("spirv-cross: ") + e.what()});
+        result.diagnostics.push_back(
+            {Severity::Error, file_name, 0, 0, "", std::string("spirv-cross: ") + e.what()});
     } catch (const std::exception& e) {
         result.source.clear();
-        result.diagnostics.push_back(
-            {Severity::Error, file_name, 0, 0, "", std::string("spirv-cross: internal error: ") + e.what()});
+        result.diagnostics.push_back({Severity::Error, file_name, 0, 0, "",
+                                      std::string("spirv-cross: internal error: ") + e.what()});
     }
     return result;
 }

@@ -12,19 +12,24 @@ Severity to_severity(spv_message_level_t level) {
     switch (level) {
     case SPV_MSG_FATAL:
     case SPV_MSG_INTERNAL_ERROR:
-    case SPV_MSG_ERROR: return Severity::Error;
-    case SPV_MSG_WARNING: return Severity::Warning;
+    case SPV_MSG_ERROR:
+        return Severity::Error;
+    case SPV_MSG_WARNING:
+        return Severity::Warning;
     case SPV_MSG_INFO:
-    case SPV_MSG_DEBUG: return Severity::Note;
+    case SPV_MSG_DEBUG:
+        return Severity::Note;
     }
     return Severity::Error;
 }
 
-spvtools::MessageConsumer collect_into(Diagnostics& out, const std::string& file, const char* tool) {
+spvtools::MessageConsumer collect_into(Diagnostics& out, const std::string& file,
+                                       const char* tool) {
     return [&out, &file, tool](spv_message_level_t level, const char*, const spv_position_t&,
                                const char* message) {
         std::string text = std::string(tool) + ": " + (message ? message : "");
-        while (!text.empty() && text.back() == '\n') text.pop_back();
+        while (!text.empty() && text.back() == '\n')
+            text.pop_back();
         out.push_back({to_severity(level), file, 0, 0, "", std::move(text)});
     };
 }
@@ -43,9 +48,9 @@ OptimizeResult run_optimizer(const std::vector<uint32_t>& spirv, const std::stri
     if (!optimizer.Run(spirv.data(), spirv.size(), &result.spirv, options)) {
         result.spirv.clear();
         if (!has_errors(result.diagnostics))
-            result.diagnostics.push_back({Severity::Error, file_name, 0, 0, "",
-                                          legalize ? "spirv-opt: legalization failed"
-                                                   : "spirv-opt: optimization failed"});
+            result.diagnostics.push_back(
+                {Severity::Error, file_name, 0, 0, "",
+                 legalize ? "spirv-opt: legalization failed" : "spirv-opt: optimization failed"});
     }
     return result;
 }
@@ -75,7 +80,7 @@ size_t count_instructions(const std::vector<uint32_t>& spirv) {
     size_t i = kHeaderWords;
     while (i < spirv.size()) {
         const uint32_t words = spirv[i] >> 16;
-        if (words == 0 || i + words > spirv.size()) break;  // malformed: stop, don't loop forever
+        if (words == 0 || i + words > spirv.size()) break; // malformed: stop, don't loop forever
         ++count;
         i += words;
     }
@@ -85,7 +90,8 @@ size_t count_instructions(const std::vector<uint32_t>& spirv) {
 std::string disassemble_spirv(const std::vector<uint32_t>& spirv) {
     spvtools::SpirvTools tools(kEnv);
     std::string text;
-    const uint32_t options = SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES | SPV_BINARY_TO_TEXT_OPTION_INDENT;
+    const uint32_t options =
+        SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES | SPV_BINARY_TO_TEXT_OPTION_INDENT;
     if (!tools.Disassemble(spirv, &text, options)) return {};
     return text;
 }

@@ -21,9 +21,12 @@ namespace fs = std::filesystem;
 
 const char* stage_flag(ShaderStage stage) {
     switch (stage) {
-    case ShaderStage::Vertex: return "vert";
-    case ShaderStage::Fragment: return "frag";
-    case ShaderStage::Compute: return "comp";
+    case ShaderStage::Vertex:
+        return "vert";
+    case ShaderStage::Fragment:
+        return "frag";
+    case ShaderStage::Compute:
+        return "comp";
     }
     return "frag";
 }
@@ -33,7 +36,7 @@ std::string read_text(const fs::path& p) {
     std::ostringstream ss;
     ss << in.rdbuf();
     std::string text = ss.str();
-    constexpr size_t kMax = 8000;  // enough to see the errors, not a whole disassembly
+    constexpr size_t kMax = 8000; // enough to see the errors, not a whole disassembly
     if (text.size() > kMax) text = text.substr(0, kMax) + "\n[...]";
     return text;
 }
@@ -43,14 +46,17 @@ std::string run(const std::vector<std::string>& argv, const fs::path& dir) {
     const fs::path out_path = dir / (argv[0] + ".stdout");
     const fs::path err_path = dir / (argv[0] + ".stderr");
     std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    for (const auto& a : argv)
+        args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
 
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
     pid_t pid = 0;
     const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
@@ -71,7 +77,8 @@ std::string run(const std::vector<std::string>& argv, const fs::path& dir) {
 
 } // namespace
 
-ProcessChainResult run_tool_process_chain(const CompileRequest& request, const std::string& work_dir) {
+ProcessChainResult run_tool_process_chain(const CompileRequest& request,
+                                          const std::string& work_dir) {
     ProcessChainResult result;
     const fs::path dir(work_dir);
     std::error_code ec;
@@ -93,7 +100,8 @@ ProcessChainResult run_tool_process_chain(const CompileRequest& request, const s
         }
     }
 
-    std::vector<std::string> compile = {"glslangValidator", "-V", "--target-env", "vulkan1.1", "-S", stage};
+    std::vector<std::string> compile = {"glslangValidator", "-V", "--target-env",
+                                        "vulkan1.1",        "-S", stage};
     if (hlsl) compile.insert(compile.end(), {"-D", "-e", request.entry_point});
     compile.insert(compile.end(), {"-o", path("shader.spv"), src});
 
@@ -102,9 +110,10 @@ ProcessChainResult run_tool_process_chain(const CompileRequest& request, const s
         {"spirv-val", "--target-env", "vulkan1.1", path("shader.spv")},
         {"spirv-opt", "-O", "--skip-validation", path("shader.spv"), "-o", path("shader.opt.spv")},
         {"spirv-val", "--target-env", "vulkan1.1", path("shader.opt.spv")},
-        {"spirv-cross", path("shader.opt.spv"), "--version", "330", "--no-es", "--no-420pack-extension",
-         "--output", path("shader.330.glsl")},
-        {"spirv-cross", path("shader.opt.spv"), "--es", "--version", "300", "--output", path("shader.300es.glsl")},
+        {"spirv-cross", path("shader.opt.spv"), "--version", "330", "--no-es",
+         "--no-420pack-extension", "--output", path("shader.330.glsl")},
+        {"spirv-cross", path("shader.opt.spv"), "--es", "--version", "300", "--output",
+         path("shader.300es.glsl")},
         {"spirv-cross", path("shader.opt.spv"), "--msl", "--output", path("shader.metal")},
         {"glslangValidator", "-S", stage, path("shader.330.glsl")},
         {"glslangValidator", "-S", stage, path("shader.300es.glsl")},

@@ -10,7 +10,8 @@ namespace {
 // Returns true when `from` had errors, so callers can stop the chain.
 bool take(Diagnostics& to, Diagnostics from) {
     const bool errors = has_errors(from);
-    for (auto& d : from) to.push_back(std::move(d));
+    for (auto& d : from)
+        to.push_back(std::move(d));
     return errors;
 }
 
@@ -21,7 +22,8 @@ ToolchainOutputs run_toolchain(const CompileRequest& request) {
     const std::string& f = request.file_name;
 
     SpirvResult compiled = compile_to_spirv(request);
-    if (take(out.diagnostics, std::move(compiled.diagnostics)) || compiled.spirv.empty()) return out;
+    if (take(out.diagnostics, std::move(compiled.diagnostics)) || compiled.spirv.empty())
+        return out;
     if (take(out.diagnostics, validate_spirv(compiled.spirv, f + ".spv"))) return out;
     out.spirv = std::move(compiled.spirv);
     out.instruction_count = count_instructions(out.spirv);
@@ -32,27 +34,40 @@ ToolchainOutputs run_toolchain(const CompileRequest& request) {
     out.spirv_optimized = std::move(optimized.spirv);
     out.instruction_count_optimized = count_instructions(out.spirv_optimized);
 
-    // The three back ends are independent: report all of their errors before stopping.
+    // GLSL 330 and ESSL 300 predate compute shaders, so compute only gets MSL.
+    const bool gl_targets = request.stage != ShaderStage::Compute;
+    if (!gl_targets)
+        out.diagnostics.push_back(
+            {Severity::Note, f, 0, 0, "",
+             "GLSL 330 and ESSL 300 have no compute shaders; those outputs are skipped"});
+
+    // The back ends are independent: report all of their errors before stopping.
     bool cross_failed = false;
     const struct {
         CrossTarget target;
         std::string* text;
-    } targets[] = {{CrossTarget::Glsl330, &out.glsl330},
-                   {CrossTarget::Essl300, &out.essl300},
-                   {CrossTarget::Msl, &out.msl}};
+        bool wanted;
+    } targets[] = {{CrossTarget::Glsl330, &out.glsl330, gl_targets},
+                   {CrossTarget::Essl300, &out.essl300, gl_targets},
+                   {CrossTarget::Msl, &out.msl, true}};
     for (const auto& t : targets) {
-        CrossResult cross = cross_compile(out.spirv_optimized, t.target, f + cross_target_suffix(t.target));
+        if (!t.wanted) continue;
+        CrossResult cross =
+            cross_compile(out.spirv_optimized, t.target, f + cross_target_suffix(t.target));
         cross_failed |= take(out.diagnostics, std::move(cross.diagnostics));
         *t.text = std::move(cross.source);
     }
     if (cross_failed) return out;
 
-    bool round_trip_failed =
-        take(out.diagnostics, check_glsl(out.glsl330, request.stage, GlslProfile::Core330,
-                                         f + cross_target_suffix(CrossTarget::Glsl330)));
-    round_trip_failed |= take(out.diagnostics, check_glsl(out.essl300, request.stage, GlslProfile::Es300,
-                                                          f + cross_target_suffix(CrossTarget::Essl300)));
-    if (round_trip_failed) return out;
+    if (gl_targets) {
+        bool round_trip_failed =
+            take(out.diagnostics, check_glsl(out.glsl330, request.stage, GlslProfile::Core330,
+                                             f + cross_target_suffix(CrossTarget::Glsl330)));
+        round_trip_failed |=
+            take(out.diagnostics, check_glsl(out.essl300, request.stage, GlslProfile::Es300,
+                                             f + cross_target_suffix(CrossTarget::Essl300)));
+        if (round_trip_failed) return out;
+    }
 
     ReflectResult reflected = reflect_spirv(out.spirv, request.stage, f + ".spv");
     out.reflection = std::move(reflected.reflection);

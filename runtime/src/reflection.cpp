@@ -10,7 +10,8 @@ namespace {
 
 using nlohmann::json;
 
-constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment, ShaderStage::Compute};
+constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment,
+                                   ShaderStage::Compute};
 constexpr DescriptorKind kKinds[] = {DescriptorKind::UniformBuffer, DescriptorKind::StorageBuffer,
                                      DescriptorKind::SampledImage, DescriptorKind::Sampler,
                                      DescriptorKind::CombinedImageSampler};
@@ -25,24 +26,28 @@ json to_json(const StageVariable& v) {
 
 json to_json(const DescriptorBinding& b) {
     json members = json::array();
-    for (const auto& m : b.members) members.push_back(to_json(m));
-    return json{{"name", b.name},           {"set", b.set},
-                {"binding", b.binding},     {"kind", to_string(b.kind)},
-                {"image_dim", b.image_dim}, {"block_size", b.block_size},
+    for (const auto& m : b.members)
+        members.push_back(to_json(m));
+    return json{{"name", b.name},
+                {"set", b.set},
+                {"binding", b.binding},
+                {"kind", to_string(b.kind)},
+                {"image_dim", b.image_dim},
+                {"block_size", b.block_size},
                 {"members", std::move(members)}};
 }
 
-template <class T>
-json to_json_array(const std::vector<T>& items) {
+template <class T> json to_json_array(const std::vector<T>& items) {
     json a = json::array();
-    for (const auto& item : items) a.push_back(to_json(item));
+    for (const auto& item : items)
+        a.push_back(to_json(item));
     return a;
 }
 
 // Reads one JSON object, recording the first problem as "<key path>: <what was expected>".
 // Every accessor checks the type first, so nlohmann never gets to throw.
 class Reader {
-public:
+  public:
     Reader(const json& object, std::string path, std::string* error)
         : object_(object), path_(std::move(path)), error_(error) {}
 
@@ -100,7 +105,7 @@ public:
         return true;
     }
 
-private:
+  private:
     std::string join(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
 
     const json* find(const char* key, bool required, const char* expected) {
@@ -135,27 +140,36 @@ bool read_binding(Reader& r, DescriptorBinding& b) {
     // image_dim, block_size and members only matter for some kinds, so they may be omitted.
     return r.string("name", b.name) && r.u32("set", b.set) && r.u32("binding", b.binding) &&
            r.enumeration("kind", kKinds, b.kind) && r.string("image_dim", b.image_dim, false) &&
-           r.u32("block_size", b.block_size, false) && r.array("members", b.members, read_member, false);
+           r.u32("block_size", b.block_size, false) &&
+           r.array("members", b.members, read_member, false);
 }
 
 } // namespace
 
 const char* to_string(ShaderStage s) {
     switch (s) {
-    case ShaderStage::Vertex: return "vertex";
-    case ShaderStage::Fragment: return "fragment";
-    case ShaderStage::Compute: return "compute";
+    case ShaderStage::Vertex:
+        return "vertex";
+    case ShaderStage::Fragment:
+        return "fragment";
+    case ShaderStage::Compute:
+        return "compute";
     }
     return "unknown";
 }
 
 const char* to_string(DescriptorKind k) {
     switch (k) {
-    case DescriptorKind::UniformBuffer: return "uniform_buffer";
-    case DescriptorKind::StorageBuffer: return "storage_buffer";
-    case DescriptorKind::SampledImage: return "sampled_image";
-    case DescriptorKind::Sampler: return "sampler";
-    case DescriptorKind::CombinedImageSampler: return "combined_image_sampler";
+    case DescriptorKind::UniformBuffer:
+        return "uniform_buffer";
+    case DescriptorKind::StorageBuffer:
+        return "storage_buffer";
+    case DescriptorKind::SampledImage:
+        return "sampled_image";
+    case DescriptorKind::Sampler:
+        return "sampler";
+    case DescriptorKind::CombinedImageSampler:
+        return "combined_image_sampler";
     }
     return "unknown";
 }
@@ -192,7 +206,8 @@ std::optional<Reflection> reflection_from_json(const std::string& text, std::str
     }
     Reflection r;
     Reader reader(doc, "", error);
-    const bool ok = reader.enumeration("stage", kStages, r.stage) && reader.string("entry_point", r.entry_point) &&
+    const bool ok = reader.enumeration("stage", kStages, r.stage) &&
+                    reader.string("entry_point", r.entry_point) &&
                     reader.array("bindings", r.bindings, read_binding) &&
                     reader.array("inputs", r.inputs, read_variable) &&
                     reader.array("outputs", r.outputs, read_variable);

@@ -19,7 +19,9 @@ Reflection sample_reflection() {
     ubo.name = "WaterParams";
     ubo.kind = DescriptorKind::UniformBuffer;
     ubo.block_size = 32;
-    ubo.members = {{"eye_position", "vec3", 0, 12}, {"water_level", "float", 12, 4}, {"deep_color", "vec4", 16, 16}};
+    ubo.members = {{"eye_position", "vec3", 0, 12},
+                   {"water_level", "float", 12, 4},
+                   {"deep_color", "vec4", 16, 16}};
     DescriptorBinding sampler{"linear_clamp", 0, 1, DescriptorKind::Sampler, "", 0, {}};
     DescriptorBinding image{"scene_color", 0, 2, DescriptorKind::SampledImage, "2D", 0, {}};
     DescriptorBinding sky{"sky", 1, 0, DescriptorKind::CombinedImageSampler, "Cube", 0, {}};
@@ -90,7 +92,7 @@ TEST_CASE("reflection_json_is_sorted_indented_and_ends_with_a_newline") {
     const std::string text = reflection_to_json(sample_reflection());
     REQUIRE_FALSE(text.empty());
     CHECK(text.back() == '\n');
-    CHECK(text.rfind("{\n  \"bindings\": [", 0) == 0);  // keys sorted, 2-space indent
+    CHECK(text.rfind("{\n  \"bindings\": [", 0) == 0); // keys sorted, 2-space indent
     CHECK(text.find("\"kind\": \"uniform_buffer\"") != std::string::npos);
     CHECK(text.find("\"stage\": \"fragment\"") != std::string::npos);
     CHECK(text.find('\t') == std::string::npos);
@@ -137,8 +139,10 @@ TEST_CASE("reflection_from_json_names_the_bad_key") {
     CHECK(error_for("[1, 2]") == "(root): expected an object");
     CHECK(error_for(R"({"entry_point": "main", "bindings": [], "inputs": [], "outputs": []})")
               .rfind("stage: missing", 0) == 0);
-    CHECK(error_for(R"({"stage": "geometry", "entry_point": "main", "bindings": [], "inputs": [], "outputs": []})") ==
-          "stage: expected one of vertex, fragment, compute; got \"geometry\"");
+    CHECK(
+        error_for(
+            R"({"stage": "geometry", "entry_point": "main", "bindings": [], "inputs": [], "outputs": []})") ==
+        "stage: expected one of vertex, fragment, compute; got \"geometry\"");
 
     std::string text = kValid;
     text.replace(text.find("\"binding\": 1"), 12, "\"binding\": \"one\"");
@@ -152,13 +156,17 @@ TEST_CASE("reflection_from_json_names_the_bad_key") {
     text.replace(text.find("\"sampled_image\""), 15, "\"texture\"");
     CHECK(error_for(text).rfind("bindings[0].kind: expected one of uniform_buffer,", 0) == 0);
 
-    const std::string bad_member = R"({"stage": "fragment", "entry_point": "main", "inputs": [], "outputs": [],
+    const std::string bad_member =
+        R"({"stage": "fragment", "entry_point": "main", "inputs": [], "outputs": [],
       "bindings": [{"name": "B", "set": 0, "binding": 0, "kind": "uniform_buffer",
                     "members": [{"name": "a", "type": "float", "offset": 0, "size": 4}, {"name": "b", "type": "vec2"}]}]})";
-    CHECK(error_for(bad_member) == "bindings[0].members[1].offset: missing, expected an unsigned 32-bit integer");
+    CHECK(error_for(bad_member) ==
+          "bindings[0].members[1].offset: missing, expected an unsigned 32-bit integer");
 
-    CHECK(error_for(R"({"stage": "vertex", "entry_point": "main", "bindings": [3], "inputs": [], "outputs": []})") ==
-          "bindings[0]: expected an object");
+    CHECK(
+        error_for(
+            R"({"stage": "vertex", "entry_point": "main", "bindings": [3], "inputs": [], "outputs": []})") ==
+        "bindings[0]: expected an object");
     // A null error pointer is allowed.
     CHECK_FALSE(reflection_from_json("nope", nullptr).has_value());
 }

@@ -52,8 +52,7 @@ void main() {
 }
 )";
 
-// Same shader in HLSL. sample_normal() passes a Texture2D and a SamplerState by value,
-// which is only valid Vulkan SPIR-V after legalisation.
+// Same shader in HLSL.
 const char* const kWaterHlsl = R"([[vk::binding(0, 0)]] cbuffer WaterParams {
     float3 eye_position : packoffset(c0);
     float water_level : packoffset(c0.w);
@@ -116,7 +115,8 @@ VsOut main(float3 position : POSITION0) {
 }
 )";
 
-CompileRequest request(SourceLanguage language, ShaderStage stage, const char* source, const char* file) {
+CompileRequest request(SourceLanguage language, ShaderStage stage, const char* source,
+                       const char* file) {
     CompileRequest r;
     r.language = language;
     r.stage = stage;
@@ -128,14 +128,16 @@ CompileRequest request(SourceLanguage language, ShaderStage stage, const char* s
 std::string describe(const Diagnostics& ds) {
     std::string s;
     for (const auto& d : ds)
-        s += d.file + ":" + std::to_string(d.line) + ": " + (d.severity == Severity::Error ? "error: " : "note/warning: ") +
-             d.message + "\n";
+        s += d.file + ":" + std::to_string(d.line) + ": " +
+             (d.severity == Severity::Error ? "error: " : "note/warning: ") + d.message + "\n";
     return s;
 }
 
 void require_chain_ok(const ToolchainOutputs& out) {
     INFO(describe(out.diagnostics));
     REQUIRE(out.ok());
+    for (const auto& d : out.diagnostics)
+        CHECK(d.severity == Severity::Note); // no warnings either
     CHECK_FALSE(out.spirv.empty());
     CHECK_FALSE(out.spirv_optimized.empty());
     CHECK(out.instruction_count > 0);
@@ -171,8 +173,8 @@ void check_same_bindings(const Reflection& a, const Reflection& b) {
 } // namespace
 
 TEST_CASE("glsl_fragment_shader_goes_through_the_whole_chain") {
-    const ToolchainOutputs out =
-        run_toolchain(request(SourceLanguage::Glsl, ShaderStage::Fragment, kWaterGlsl, "water.frag"));
+    const ToolchainOutputs out = run_toolchain(
+        request(SourceLanguage::Glsl, ShaderStage::Fragment, kWaterGlsl, "water.frag"));
     require_chain_ok(out);
     // Combined samplers carry the texture's name so GL engines can bind them by name.
     CHECK(out.glsl330.find("uniform sampler2D scene_color;") != std::string::npos);
@@ -182,18 +184,18 @@ TEST_CASE("glsl_fragment_shader_goes_through_the_whole_chain") {
 }
 
 TEST_CASE("hlsl_fragment_shader_is_legalized_and_goes_through_the_whole_chain") {
-    const ToolchainOutputs out =
-        run_toolchain(request(SourceLanguage::Hlsl, ShaderStage::Fragment, kWaterHlsl, "water.hlsl"));
+    const ToolchainOutputs out = run_toolchain(
+        request(SourceLanguage::Hlsl, ShaderStage::Fragment, kWaterHlsl, "water.hlsl"));
     require_chain_ok(out);
     CHECK(validate_spirv(out.spirv, "water.hlsl.spv").empty());
     CHECK(out.glsl330.find("uniform sampler2D scene_color;") != std::string::npos);
 }
 
 TEST_CASE("glsl_and_hlsl_paths_reflect_identical_bindings") {
-    const ToolchainOutputs glsl =
-        run_toolchain(request(SourceLanguage::Glsl, ShaderStage::Fragment, kWaterGlsl, "water.frag"));
-    const ToolchainOutputs hlsl =
-        run_toolchain(request(SourceLanguage::Hlsl, ShaderStage::Fragment, kWaterHlsl, "water.hlsl"));
+    const ToolchainOutputs glsl = run_toolchain(
+        request(SourceLanguage::Glsl, ShaderStage::Fragment, kWaterGlsl, "water.frag"));
+    const ToolchainOutputs hlsl = run_toolchain(
+        request(SourceLanguage::Hlsl, ShaderStage::Fragment, kWaterHlsl, "water.hlsl"));
     require_chain_ok(glsl);
     require_chain_ok(hlsl);
     check_same_bindings(glsl.reflection, hlsl.reflection);
@@ -237,15 +239,16 @@ TEST_CASE("glsl_and_hlsl_paths_reflect_identical_bindings") {
 }
 
 TEST_CASE("vertex_shaders_go_through_the_chain_without_reflecting_builtins") {
-    for (const auto& req : {request(SourceLanguage::Glsl, ShaderStage::Vertex, kVertexGlsl, "water.vert"),
-                            request(SourceLanguage::Hlsl, ShaderStage::Vertex, kVertexHlsl, "water_vs.hlsl")}) {
+    for (const auto& req :
+         {request(SourceLanguage::Glsl, ShaderStage::Vertex, kVertexGlsl, "water.vert"),
+          request(SourceLanguage::Hlsl, ShaderStage::Vertex, kVertexHlsl, "water_vs.hlsl")}) {
         INFO(req.file_name);
         const ToolchainOutputs out = run_toolchain(req);
         require_chain_ok(out);
         CHECK(out.reflection.stage == ShaderStage::Vertex);
         REQUIRE(out.reflection.inputs.size() == 1);
         CHECK(out.reflection.inputs[0].type == "vec3");
-        REQUIRE(out.reflection.outputs.size() == 1);  // gl_Position / SV_Position is not listed
+        REQUIRE(out.reflection.outputs.size() == 1); // gl_Position / SV_Position is not listed
         CHECK(out.reflection.outputs[0].type == "vec2");
         // GLSL 330 links varyings by name: HLSL's "@entryPointOutput.uv" must come out as "uv".
         CHECK(out.reflection.outputs[0].name == "uv");
@@ -263,17 +266,19 @@ void main() {
     color = vec4(0.25, 0.5, 0.75, 1.0);
 }
 )";
-    const ToolchainOutputs out = run_toolchain(request(SourceLanguage::Glsl, ShaderStage::Fragment, dead, "dead.frag"));
+    const ToolchainOutputs out =
+        run_toolchain(request(SourceLanguage::Glsl, ShaderStage::Fragment, dead, "dead.frag"));
     require_chain_ok(out);
     CHECK(out.instruction_count_optimized < out.instruction_count);
     CHECK(count_instructions(out.spirv) == out.instruction_count);
-    CHECK(disassemble_spirv(out.spirv_optimized).find("OpEntryPoint Fragment") != std::string::npos);
+    CHECK(disassemble_spirv(out.spirv_optimized).find("OpEntryPoint Fragment") !=
+          std::string::npos);
 }
 
 TEST_CASE("two_threads_compile_at_once_after_warm_up") {
     glslang_warm_up();
-    const ToolchainOutputs reference =
-        run_toolchain(request(SourceLanguage::Glsl, ShaderStage::Fragment, kWaterGlsl, "water.frag"));
+    const ToolchainOutputs reference = run_toolchain(
+        request(SourceLanguage::Glsl, ShaderStage::Fragment, kWaterGlsl, "water.frag"));
     require_chain_ok(reference);
 
     constexpr int kRounds = 4;
@@ -282,8 +287,10 @@ TEST_CASE("two_threads_compile_at_once_after_warm_up") {
         for (int i = 0; i < kRounds; ++i) {
             const bool hlsl = (i + t) % 2 == 1;
             const ToolchainOutputs out =
-                run_toolchain(hlsl ? request(SourceLanguage::Hlsl, ShaderStage::Fragment, kWaterHlsl, "water.hlsl")
-                                   : request(SourceLanguage::Glsl, ShaderStage::Fragment, kWaterGlsl, "water.frag"));
+                run_toolchain(hlsl ? request(SourceLanguage::Hlsl, ShaderStage::Fragment,
+                                             kWaterHlsl, "water.hlsl")
+                                   : request(SourceLanguage::Glsl, ShaderStage::Fragment,
+                                             kWaterGlsl, "water.frag"));
             ok[t] = ok[t] && out.ok() && (hlsl || out.spirv == reference.spirv);
         }
     };
@@ -315,8 +322,10 @@ void main() { color = vec4(uv, params.level, 1.0); }
 };
 float4 main(float2 uv : TEXCOORD0, float3 unread : TEXCOORD1) : SV_Target0 { return float4(uv, level, 1.0); }
 )";
-    const ToolchainOutputs g = run_toolchain(request(SourceLanguage::Glsl, ShaderStage::Fragment, glsl, "u.frag"));
-    const ToolchainOutputs h = run_toolchain(request(SourceLanguage::Hlsl, ShaderStage::Fragment, hlsl, "u.hlsl"));
+    const ToolchainOutputs g =
+        run_toolchain(request(SourceLanguage::Glsl, ShaderStage::Fragment, glsl, "u.frag"));
+    const ToolchainOutputs h =
+        run_toolchain(request(SourceLanguage::Hlsl, ShaderStage::Fragment, hlsl, "u.hlsl"));
     require_chain_ok(g);
     require_chain_ok(h);
     check_same_bindings(g.reflection, h.reflection);
@@ -327,4 +336,50 @@ float4 main(float2 uv : TEXCOORD0, float3 unread : TEXCOORD1) : SV_Target0 { ret
     REQUIRE(g.reflection.inputs.size() == 1);
     REQUIRE(h.reflection.inputs.size() == 1);
     CHECK(g.reflection.inputs[0].name == h.reflection.inputs[0].name);
+}
+
+TEST_CASE("hlsl_struct_holding_a_texture_is_legalized_into_valid_spirv") {
+    // Without legalisation glslang emits OpTypeStruct { image, float }, which Vulkan
+    // forbids (VUID-StandaloneSpirv-None-04667); glslangValidator -Od shows the failure.
+    const char* hlsl = R"([[vk::binding(2, 0)]] Texture2D scene_color;
+[[vk::binding(1, 0)]] SamplerState linear_clamp;
+struct Layer { Texture2D tex; float weight; };
+float4 shade(Layer layer, float2 at) { return layer.tex.Sample(linear_clamp, at) * layer.weight; }
+float4 main(float2 uv : TEXCOORD0) : SV_Target0 {
+    Layer layer;
+    layer.tex = scene_color;
+    layer.weight = 0.5;
+    return shade(layer, uv);
+}
+)";
+    const SpirvResult compiled =
+        compile_to_spirv(request(SourceLanguage::Hlsl, ShaderStage::Fragment, hlsl, "l.hlsl"));
+    INFO(describe(compiled.diagnostics));
+    REQUIRE(compiled.ok());
+    CHECK(validate_spirv(compiled.spirv, "l.hlsl.spv").empty());
+    const ToolchainOutputs out =
+        run_toolchain(request(SourceLanguage::Hlsl, ShaderStage::Fragment, hlsl, "l.hlsl"));
+    require_chain_ok(out);
+    REQUIRE(out.reflection.bindings.size() == 2);
+    CHECK(out.reflection.bindings[1].name == "scene_color");
+}
+
+TEST_CASE("compute_shaders_get_msl_but_no_gl_targets") {
+    const char* compute = R"(#version 450
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0, std430) buffer Heights { float height[]; } heights;
+void main() { heights.height[gl_GlobalInvocationID.x] *= 0.5; }
+)";
+    const ToolchainOutputs out =
+        run_toolchain(request(SourceLanguage::Glsl, ShaderStage::Compute, compute, "h.comp"));
+    INFO(describe(out.diagnostics));
+    REQUIRE(out.ok());
+    CHECK(out.glsl330.empty());
+    CHECK(out.essl300.empty());
+    CHECK(out.msl.find("kernel void") != std::string::npos);
+    REQUIRE(out.reflection.bindings.size() == 1);
+    CHECK(out.reflection.bindings[0].kind == DescriptorKind::StorageBuffer);
+    CHECK(out.reflection.bindings[0].name == "Heights");
+    REQUIRE(out.reflection.bindings[0].members.size() == 1);
+    CHECK(out.reflection.bindings[0].members[0].type == "float[]");
 }

@@ -28,7 +28,8 @@ const Diagnostic* first_error(const Diagnostics& ds) {
     return nullptr;
 }
 
-const char* const kMinimal = "#version 450\nlayout(location = 0) out vec4 c;\nvoid main() { c = vec4(1.0); }\n";
+const char* const kMinimal =
+    "#version 450\nlayout(location = 0) out vec4 c;\nvoid main() { c = vec4(1.0); }\n";
 
 } // namespace
 
@@ -51,7 +52,8 @@ void main() {
     CHECK(e->node.empty());
     CHECK(e->message == "'foo' : undeclared identifier");
     // The "N compilation errors" summary is not repeated as a diagnostic.
-    for (const auto& d : r.diagnostics) CHECK(d.message.find("compilation errors") == std::string::npos);
+    for (const auto& d : r.diagnostics)
+        CHECK(d.message.find("compilation errors") == std::string::npos);
 }
 
 TEST_CASE("glsl_syntax_error_reports_its_line") {
@@ -65,7 +67,7 @@ void main() {
     CHECK_FALSE(r.ok());
     const Diagnostic* e = first_error(r.diagnostics);
     REQUIRE(e != nullptr);
-    CHECK(e->line == 5);  // glslang notices the missing ';' at the next token
+    CHECK(e->line == 5); // glslang notices the missing ';' at the next token
     CHECK(e->message.find("syntax error") != std::string::npos);
 }
 
@@ -93,7 +95,8 @@ TEST_CASE("hlsl_entry_point_comes_from_the_request") {
     req.stage = ShaderStage::Fragment;
     req.file_name = "water.hlsl";
     req.entry_point = "water_ps";
-    req.source = "float4 water_ps(float2 uv : TEXCOORD0) : SV_Target0 { return float4(uv, 0.0, 1.0); }\n";
+    req.source =
+        "float4 water_ps(float2 uv : TEXCOORD0) : SV_Target0 { return float4(uv, 0.0, 1.0); }\n";
     const SpirvResult r = compile_to_spirv(req);
     REQUIRE(r.ok());
     const ReflectResult refl = reflect_spirv(r.spirv, ShaderStage::Fragment);
@@ -118,24 +121,29 @@ TEST_CASE("glslang_log_lines_become_diagnostics") {
     CHECK(ds[2].column == 7);
     CHECK(ds[3].line == 0);
     CHECK(ds[3].message == "Linking fragment stage: Missing entry point");
-    for (const auto& d : ds) CHECK(d.file == "f.frag");
+    for (const auto& d : ds)
+        CHECK(d.file == "f.frag");
 }
 
 TEST_CASE("check_glsl_accepts_330_and_300es_and_rejects_the_wrong_version") {
     const char* core = "#version 330\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
-    const char* es = "#version 300 es\nprecision highp float;\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
+    const char* es =
+        "#version 300 es\nprecision highp float;\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
     CHECK(check_glsl(core, ShaderStage::Fragment, GlslProfile::Core330, "a.330.glsl").empty());
     CHECK(check_glsl(es, ShaderStage::Fragment, GlslProfile::Es300, "a.300es.glsl").empty());
 
-    const Diagnostics wrong = check_glsl(es, ShaderStage::Fragment, GlslProfile::Core330, "a.330.glsl");
+    const Diagnostics wrong =
+        check_glsl(es, ShaderStage::Fragment, GlslProfile::Core330, "a.330.glsl");
     REQUIRE(has_errors(wrong));
     CHECK(wrong[0].line == 1);
     CHECK(wrong[0].message.find("expected '#version 330'") != std::string::npos);
 
     // layout(binding) is not 330 core: exactly what the SPIRV-Cross options must avoid.
-    const char* with_binding = "#version 330\nlayout(binding = 1) uniform sampler2D t;\nout vec4 c;\n"
-                               "void main() { c = texture(t, vec2(0.5)); }\n";
-    const Diagnostics bad = check_glsl(with_binding, ShaderStage::Fragment, GlslProfile::Core330, "b.330.glsl");
+    const char* with_binding =
+        "#version 330\nlayout(binding = 1) uniform sampler2D t;\nout vec4 c;\n"
+        "void main() { c = texture(t, vec2(0.5)); }\n";
+    const Diagnostics bad =
+        check_glsl(with_binding, ShaderStage::Fragment, GlslProfile::Core330, "b.330.glsl");
     REQUIRE(has_errors(bad));
     CHECK(first_error(bad)->line == 2);
 }
@@ -144,7 +152,7 @@ TEST_CASE("spirv_val_rejects_a_broken_module") {
     SpirvResult r = compile_to_spirv(glsl_fragment(kMinimal));
     REQUIRE(r.ok());
     CHECK(validate_spirv(r.spirv, "m.spv").empty());
-    r.spirv.resize(r.spirv.size() - 3);  // cut the function body off
+    r.spirv.resize(r.spirv.size() - 3); // cut the function body off
     const Diagnostics ds = validate_spirv(r.spirv, "m.spv");
     REQUIRE(has_errors(ds));
     CHECK(ds[0].file == "m.spv");
@@ -173,7 +181,8 @@ TEST_CASE("reflecting_the_wrong_stage_is_an_error") {
 }
 
 TEST_CASE("toolchain_stops_at_the_failing_stage_and_names_it") {
-    const ToolchainOutputs out = run_toolchain(glsl_fragment("#version 450\nvoid main() { nope(); }\n"));
+    const ToolchainOutputs out =
+        run_toolchain(glsl_fragment("#version 450\nvoid main() { nope(); }\n"));
     CHECK_FALSE(out.ok());
     CHECK(out.spirv.empty());
     CHECK(out.glsl330.empty());

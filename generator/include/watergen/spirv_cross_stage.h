@@ -12,7 +12,7 @@ namespace watergen {
 enum class CrossTarget { Glsl330, Essl300, Msl };
 
 struct CrossResult {
-    std::string source;  // empty when SPIRV-Cross failed
+    std::string source; // empty when SPIRV-Cross failed
     Diagnostics diagnostics;
 };
 
@@ -26,7 +26,7 @@ struct CrossResult {
 // Inputs: a valid SPIR-V module, the target, a file name for diagnostics
 //         (the toolchain passes "<file>.330.glsl", "<file>.300es.glsl", "<file>.metal").
 // Output: the source text, or diagnostics (SPIRV-Cross errors, prefixed "spirv-cross: ").
-// Cost:   ~1-3 ms for a 100-line shader. Thread-safe (no shared state).
+// Cost:   ~1 ms per target for a 100-line shader. Thread-safe (no shared state).
 CrossResult cross_compile(const std::vector<uint32_t>& spirv, CrossTarget target,
                           const std::string& file_name);
 

@@ -10,7 +10,7 @@ namespace watergen {
 
 struct ProcessChainResult {
     bool ok = false;
-    std::string error;  // "<tool>: exit status N\n<its stderr (or stdout)>" when !ok
+    std::string error; // "<tool>: exit status N\n<its stderr (or stdout)>" when !ok
 };
 
 // What:   the same steps as run_toolchain, one child process each (posix_spawnp, no shell,
@@ -28,7 +28,9 @@ struct ProcessChainResult {
 //         files are named shader.*, so use one directory per concurrent call).
 // Output: ok, or the first failing tool's name, exit status and stderr (stdout when stderr
 //         is empty: glslangValidator reports errors on stdout).
-// Cost:   dominated by process start-up: tens of ms in total.
-ProcessChainResult run_tool_process_chain(const CompileRequest& request, const std::string& work_dir);
+// Cost:   ~100-160 ms for a 100-line shader, mostly glslangValidator rebuilding its
+//         built-in symbol tables in every process (~80 ms for GLSL 450).
+ProcessChainResult run_tool_process_chain(const CompileRequest& request,
+                                          const std::string& work_dir);
 
 } // namespace watergen

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,9 @@ struct UniformLayout {
 // 16-byte register. Deterministic for a given input.
 UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnostics& diagnostics);
 
-// Writes parameter values (double -> float) at their offsets.
-std::vector<uint8_t> pack_uniforms(const UniformLayout& layout, const std::vector<Parameter>& parameters);
+// Writes parameter values (double -> float) at their offsets: the value in `overrides` when
+// present (and of the right size), else the parameter's default.
+std::vector<uint8_t> pack_uniforms(const UniformLayout& layout, const std::vector<Parameter>& parameters,
+                                   const std::map<std::string, std::vector<double>>& overrides = {});
 
 } // namespace watergen
