@@ -39,6 +39,7 @@ std::unique_ptr<VulkanRunner> create_runner(const RunnerSetup& setup, std::strin
 
 Runner add_emit_command(CLI::App& app, const Common& common);
 Runner add_render_command(CLI::App& app, const Common& common);
+Runner add_probe_command(CLI::App& app, const Common& common);
 Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 
 } // namespace watergen::cli

@@ -39,6 +39,8 @@ int main(int argc, char** argv) {
     runners[emit] = add_emit_command(*emit, common);
     CLI::App* render = app.add_subcommand("render", "render one variant on Vulkan (lavapipe) through both languages and compare with the CPU");
     runners[render] = add_render_command(*render, common);
+    CLI::App* probe = app.add_subcommand("probe", "numeric harness: one node over CSV input tuples on the GPU and the CPU");
+    runners[probe] = add_probe_command(*probe, common);
     CLI::App* bench = app.add_subcommand("bench", "benchmarks (print a table, write CSV and JSON)");
     bench->require_subcommand(1);
     CLI::App* compile = bench->add_subcommand("compile", "in-process toolchain vs the same chain through command-line tools");

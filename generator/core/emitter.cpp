@@ -60,7 +60,8 @@ class FragmentWriter {
 public:
     FragmentWriter(const Graph& g, const GlslSyntax& syntax) : g_(g), syntax_(syntax) {}
 
-    std::vector<Line> body(std::string& result, std::set<Op>& used_ops) {
+    // Lines of the body; results[i] spells output i.
+    std::vector<Line> body(std::vector<std::string>& results, std::set<Op>& used_ops) {
         const std::vector<uint32_t> live = g_.live_nodes();
         std::vector<int> uses(g_.size(), 0);
         for (uint32_t id : live)
@@ -95,8 +96,7 @@ public:
             lines.push_back({syntax_.type(n.type) + " " + it->second + " = " + strip_outer(spell(id, true)) + ";",
                              n.origin});
         }
-        const auto& out = g_.outputs().front();
-        result = strip_outer(expr(out.node));
+        for (const auto& out : g_.outputs()) results.push_back(strip_outer(expr(out.node)));
         return lines;
     }
 
@@ -224,17 +224,92 @@ EmittedShader emit_fragment(const Graph& g, Language language, const std::string
     }
     const GlslSyntax& syntax = syntax_for(language);
     out.interface = interface_of(g, diagnostics);
-    std::string result;
+    std::vector<std::string> results;
     std::set<Op> used_ops;
     FragmentWriter writer(g, syntax);
-    std::vector<Line> body = writer.body(result, used_ops);
+    std::vector<Line> body = writer.body(results, used_ops);
     fill(out, template_text(language == Language::Glsl ? "glsl/fragment.glsl" : "hlsl/fragment.hlsl"),
          {{"stamp", {{stamp_text(variant_key), ""}}},
           {"declarations", as_lines(syntax.declarations(out.interface))},
           {"prelude", as_lines(syntax.prelude(used_ops))},
           {"inputs", {{syntax.entry_inputs(out.interface), ""}}},
           {"body", body},
-          {"result", {{result, ""}}}});
+          {"result", {{results.front(), ""}}}});
+    return out;
+}
+
+ProbeLayout probe_layout(const Graph& g) {
+    ProbeLayout layout;
+    // Every varying, used or not, in creation order: the tuple layout is the declared one even
+    // when a node ignores an input.
+    for (uint32_t id = 0; id < g.size(); ++id) {
+        const Node& n = g.node(id);
+        if (n.op != Op::Varying) continue;
+        layout.inputs.push_back({n.name, n.type, layout.input_stride});
+        layout.input_stride += static_cast<uint32_t>(component_count(n.type));
+    }
+    for (const auto& o : g.outputs()) {
+        const Type t = g.node(o.node).type;
+        layout.outputs.push_back({o.name, t, layout.output_stride});
+        layout.output_stride += static_cast<uint32_t>(component_count(t));
+    }
+    return layout;
+}
+
+EmittedShader emit_probe(const Graph& g, Language language, const std::string& file_name,
+                         const std::string& variant_key, Diagnostics& diagnostics) {
+    EmittedShader out;
+    out.language = language;
+    out.stage = ShaderStage::Compute;
+    out.file_name = file_name;
+    for (uint32_t id : g.live_nodes()) {
+        const Op op = g.node(id).op;
+        if (op == Op::Sample || op == Op::Ddx || op == Op::Ddy)
+            diagnostics.push_back({Severity::Error, file_name, 0, 0, g.node(id).origin,
+                                   std::string(op_name(op)) + " needs a fragment stage; a probe cannot run it"});
+    }
+    for (const auto& o : g.outputs())
+        if (!is_float_numeric(g.node(o.node).type))
+            diagnostics.push_back({Severity::Error, file_name, 0, 0, "", "probe output '" + o.name + "' is not a float scalar or vector"});
+    if (g.outputs().empty())
+        diagnostics.push_back({Severity::Error, file_name, 0, 0, "", "probe graph has no output"});
+    if (has_errors(diagnostics)) return out;
+
+    const GlslSyntax& syntax = syntax_for(language);
+    out.interface = interface_of(g, diagnostics);
+    out.interface.varyings.clear(); // probe inputs come from the buffer, not the rasteriser
+    const ProbeLayout layout = probe_layout(g);
+    std::vector<std::string> results;
+    std::set<Op> used_ops;
+    FragmentWriter writer(g, syntax);
+    std::vector<Line> body = writer.body(results, used_ops);
+
+    // Inputs: each varying becomes a local read from the tuple; outputs are written in order.
+    std::vector<Line> reads, writes;
+    for (const auto& in : layout.inputs) {
+        std::vector<std::string> parts;
+        for (int c = 0; c < component_count(in.type); ++c)
+            parts.push_back(fmt::format("probe_in[in_base + {}u]", in.offset + static_cast<uint32_t>(c)));
+        reads.push_back({fmt::format("{} {} = {};", syntax.type(in.type), in.name,
+                                     parts.size() == 1 ? parts[0] : syntax.construct(in.type, parts)), ""});
+    }
+    for (size_t i = 0; i < layout.outputs.size(); ++i) {
+        const auto& o = layout.outputs[i];
+        const int n = component_count(o.type);
+        writes.push_back({fmt::format("{} probe_{} = {};", syntax.type(o.type), o.name, results[i]), ""});
+        for (int c = 0; c < n; ++c)
+            writes.push_back({fmt::format("probe_out[out_base + {}u] = probe_{}{};", o.offset + static_cast<uint32_t>(c),
+                                          o.name, n == 1 ? "" : std::string(".") + "xyzw"[c]), ""});
+    }
+    fill(out, template_text(language == Language::Glsl ? "glsl/probe.comp.glsl" : "hlsl/probe.comp.hlsl"),
+         {{"stamp", {{stamp_text(variant_key), ""}}},
+          {"declarations", as_lines(syntax.declarations(out.interface))},
+          {"prelude", as_lines(syntax.prelude(used_ops))},
+          {"input_stride", {{std::to_string(layout.input_stride), ""}}},
+          {"output_stride", {{std::to_string(layout.output_stride), ""}}},
+          {"reads", reads},
+          {"body", body},
+          {"writes", writes}});
     return out;
 }
 

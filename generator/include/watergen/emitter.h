@@ -56,6 +56,30 @@ EmittedShader emit_fragment(const Graph& g, Language language, const std::string
 EmittedShader emit_fullscreen_vertex(Language language, const std::string& file_name,
                                      const std::string& variant_key);
 
+// The numeric harness: a compute shader that evaluates every output of `g` for a batch of
+// input tuples. Each Varying of `g` (in creation order) is an input read from the storage buffer probe_in
+// (binding kProbeInputBinding) and each output is written to probe_out (kProbeOutputBinding),
+// tuple-major, floats only. One invocation per tuple, 64 per workgroup; the caller pads the
+// tuple count to a multiple of 64.
+constexpr uint32_t kProbeInputBinding = 8;
+constexpr uint32_t kProbeOutputBinding = 9;
+constexpr uint32_t kProbeWorkgroupSize = 64;
+
+struct ProbeField {
+    std::string name;
+    Type type = Type::Float;
+    uint32_t offset = 0; // in floats within a tuple
+};
+
+struct ProbeLayout {
+    std::vector<ProbeField> inputs, outputs;
+    uint32_t input_stride = 0, output_stride = 0; // floats per tuple
+};
+
+ProbeLayout probe_layout(const Graph& g);
+EmittedShader emit_probe(const Graph& g, Language language, const std::string& file_name,
+                         const std::string& variant_key, Diagnostics& diagnostics);
+
 // Fills Diagnostic::node from the line each diagnostic points at in `shader`.
 void attribute_to_nodes(const EmittedShader& shader, Diagnostics& diagnostics);
 

@@ -1,0 +1,111 @@
+#include "watergen/probe.h"
+
+#include <cstring>
+
+#include "watergen/toolchain.h"
+
+namespace watergen {
+
+namespace {
+
+std::string binding_name(const Reflection& r, uint32_t binding) {
+    for (const auto& b : r.bindings)
+        if (b.binding == binding) return b.name;
+    return "";
+}
+
+} // namespace
+
+ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, const std::vector<double>& inputs,
+                   const std::map<std::string, std::vector<double>>& uniforms) {
+    ProbeRun run;
+    run.diagnostics = g.diagnostics();
+    if (has_errors(run.diagnostics)) return run;
+    run.layout = probe_layout(g);
+    const uint32_t in_stride = run.layout.input_stride, out_stride = run.layout.output_stride;
+    if (in_stride == 0 || inputs.size() % in_stride != 0) {
+        run.error = "input holds " + std::to_string(inputs.size()) + " values, not a whole number of " +
+                    std::to_string(in_stride) + "-value tuples";
+        return run;
+    }
+    run.tuples = inputs.size() / in_stride;
+    if (run.tuples == 0) {
+        run.error = "no input tuples";
+        return run;
+    }
+
+    const std::string file = std::string("probe.") + file_extension(language, ShaderStage::Compute);
+    const EmittedShader shader = emit_probe(g, language, file, "probe", run.diagnostics);
+    if (has_errors(run.diagnostics)) return run;
+    const ToolchainOutputs built = run_toolchain(
+        {language == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl, ShaderStage::Compute, shader.source, file, "main"});
+    Diagnostics ds;
+    for (const auto& d : built.diagnostics)
+        if (d.severity != Severity::Note) ds.push_back(d); // e.g. "no compute in GLSL 330": expected here
+    attribute_to_nodes(shader, ds);
+    run.diagnostics.insert(run.diagnostics.end(), ds.begin(), ds.end());
+    if (!built.ok()) return run;
+
+    // Pad to whole workgroups by repeating the last tuple; padded results are dropped.
+    const size_t groups = (run.tuples + kProbeWorkgroupSize - 1) / kProbeWorkgroupSize;
+    const size_t padded = groups * kProbeWorkgroupSize;
+    std::vector<float> in_floats(padded * in_stride);
+    for (size_t t = 0; t < padded; ++t)
+        for (uint32_t k = 0; k < in_stride; ++k)
+            in_floats[t * in_stride + k] = static_cast<float>(inputs[std::min(t, run.tuples - 1) * in_stride + k]);
+    ComputeJob job;
+    job.spirv = built.spirv_optimized;
+    job.reflection = built.reflection;
+    const std::string in_name = binding_name(built.reflection, kProbeInputBinding);
+    const std::string out_name = binding_name(built.reflection, kProbeOutputBinding);
+    std::vector<uint8_t> in_bytes(in_floats.size() * 4);
+    std::memcpy(in_bytes.data(), in_floats.data(), in_bytes.size());
+    job.buffers[in_name] = std::move(in_bytes);
+    job.output_sizes[out_name] = padded * out_stride * 4;
+    job.uniforms = pack_uniforms(shader.interface.uniforms, shader.interface.parameters, uniforms);
+    job.group_count_x = static_cast<uint32_t>(groups);
+    runner.clear_validation_messages();
+    const ComputeResult result = runner.run_compute(job);
+    run.validation_messages = runner.validation_messages();
+    if (!result.ok) {
+        run.error = result.error;
+        return run;
+    }
+    run.pipeline_ms = result.pipeline_ms;
+    run.dispatch_ms = result.dispatch_ms;
+    const auto& out_bytes = result.buffers.at(out_name);
+    run.gpu.resize(run.tuples * out_stride);
+    for (size_t i = 0; i < run.gpu.size(); ++i) {
+        float f;
+        std::memcpy(&f, out_bytes.data() + i * 4, 4);
+        run.gpu[i] = f;
+    }
+
+    EvalInputs eval;
+    eval.uniforms = uniforms;
+    eval.lanes = run.tuples;
+    for (const auto& field : run.layout.inputs) {
+        const int n = component_count(field.type);
+        auto& v = eval.varyings[field.name];
+        for (size_t t = 0; t < run.tuples; ++t)
+            for (int c = 0; c < n; ++c) v.push_back(inputs[t * in_stride + field.offset + static_cast<uint32_t>(c)]);
+    }
+    for (auto [precision, target] : {std::pair{EvalPrecision::Double, &run.cpu_double},
+                                     std::pair{EvalPrecision::Float, &run.cpu_float},
+                                     std::pair{EvalPrecision::Half, &run.cpu_half}}) {
+        target->assign(run.tuples * out_stride, 0.0);
+        for (const auto& field : run.layout.outputs) {
+            const EvalResult r = evaluate(g, field.name, eval, precision);
+            if (!r.ok()) {
+                run.error = "CPU evaluator: " + r.error;
+                return run;
+            }
+            for (size_t t = 0; t < run.tuples; ++t)
+                for (int c = 0; c < r.components; ++c)
+                    (*target)[t * out_stride + field.offset + static_cast<uint32_t>(c)] = r.values[t * r.components + c];
+        }
+    }
+    return run;
+}
+
+} // namespace watergen

@@ -1,0 +1,20 @@
+#version 450
+// {{stamp}}
+
+// Numeric harness: one invocation evaluates one input tuple.
+layout(local_size_x = 64) in;
+
+{{declarations}}
+layout(set = 0, binding = 8, std430) readonly buffer ProbeInputs { float probe_in[]; };
+layout(set = 0, binding = 9, std430) writeonly buffer ProbeOutputs { float probe_out[]; };
+
+{{prelude}}
+void main() {
+    uint in_base = gl_GlobalInvocationID.x * {{input_stride}}u;
+    uint out_base = gl_GlobalInvocationID.x * {{output_stride}}u;
+    {{reads}}
+
+    {{body}}
+
+    {{writes}}
+}

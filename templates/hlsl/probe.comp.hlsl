@@ -1,0 +1,18 @@
+// {{stamp}}
+
+// Numeric harness: one invocation evaluates one input tuple.
+{{declarations}}
+[[vk::binding(8, 0)]] StructuredBuffer<float> probe_in : register(t8);
+[[vk::binding(9, 0)]] RWStructuredBuffer<float> probe_out : register(u0);
+
+{{prelude}}
+[numthreads(64, 1, 1)]
+void main(uint3 invocation : SV_DispatchThreadID) {
+    uint in_base = invocation.x * {{input_stride}}u;
+    uint out_base = invocation.x * {{output_stride}}u;
+    {{reads}}
+
+    {{body}}
+
+    {{writes}}
+}
