@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "watergen/covering_array.h"
 #include "watergen/output_writer.h"
 #include "watergen/tool_process_chain.h"
 #include "watergen/variant_build.h"
@@ -50,7 +51,7 @@ Runner add_bench_compile_command(CLI::App& app, const Common& common) {
         const std::filesystem::path work = std::filesystem::temp_directory_path() / "watergen-bench-compile";
         std::filesystem::create_directories(work);
         std::vector<Row> rows;
-        for (const Variant& v : all_variants()) {
+        for (const Variant& v : pairwise_covering_variants()) {
             std::vector<CompileRequest> requests;
             Diagnostics ds;
             const WaterShader shader = build_water_shader(v);

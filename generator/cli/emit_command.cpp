@@ -2,6 +2,7 @@
 #include <filesystem>
 
 #include "commands.h"
+#include "watergen/covering_array.h"
 #include "watergen/output_writer.h"
 #include "watergen/variant_build.h"
 
@@ -10,15 +11,21 @@ namespace watergen::cli {
 Runner add_emit_command(CLI::App& app, const Common& common) {
     struct Options {
         Variant variant = default_variant();
-        bool all = false;
+        bool covering = false;
         std::string out = "out/emit";
     };
     auto o = std::make_shared<Options>();
     add_variant_options(app, o->variant);
-    app.add_flag("--all", o->all, "emit every combination of the wired choices (axis options are ignored)");
+    app.add_flag("--covering", o->covering,
+                 "emit the pairwise covering set: every pair of choices on two axes in at least one variant "
+                 "(axis options are ignored)");
     app.add_option("--out", o->out, "output directory; each variant goes to <out>/<variant>/ (default out/emit)");
     return [o, &common]() {
-        const std::vector<Variant> variants = o->all ? all_variants() : std::vector<Variant>{o->variant};
+        if (auto e = check_constraints(o->variant); e && !o->covering) {
+            std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
+            return kUsage;
+        }
+        const std::vector<Variant> variants = o->covering ? pairwise_covering_variants() : std::vector<Variant>{o->variant};
         int failed = 0;
         for (const Variant& v : variants) {
             const VariantBuild build = build_variant(v);

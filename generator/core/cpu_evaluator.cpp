@@ -82,7 +82,10 @@ public:
             auto& out = values_[id];
             out.assign(n_ * static_cast<size_t>(std::max(comps, 1)), 0.0);
             if (!compute(id, node, comps, begin, out, error)) return false;
-            for (double& v : out) v = round_to(v, p_);
+            // Half mode: relaxed nodes are binary16, the rest binary32, as a GPU that honours
+            // mediump at 16 bits would compute them.
+            const EvalPrecision p = (p_ == EvalPrecision::Half && !node.relaxed) ? EvalPrecision::Float : p_;
+            for (double& v : out) v = round_to(v, p);
         }
         return true;
     }

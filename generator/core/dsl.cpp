@@ -150,7 +150,15 @@ Expr error_expr(Graph& g) {
 
 Expr make(Op op, std::initializer_list<Expr> list) {
     std::vector<Expr> args(list);
-    Graph& g = args.front().graph();
+    // An argument no node produced (an axis that failed earlier) poisons the result; the
+    // failure itself has been reported already.
+    Graph* graph = nullptr;
+    for (const auto& a : args)
+        if (a.valid()) graph = &a.graph();
+    if (!graph) return Expr();
+    Graph& g = *graph;
+    for (const auto& a : args)
+        if (!a.valid()) return error_expr(g);
     const int arity = expected_arity(op);
     if (arity >= 0 && static_cast<int>(args.size()) != arity) {
         g.error(std::string(op_name(op)) + " expects " + std::to_string(arity) +
@@ -184,6 +192,7 @@ Expr make(Op op, std::initializer_list<Expr> list) {
 }
 
 Expr Expr::swizzle(std::string_view components) const {
+    if (!g_) return *this;
     Graph& g = *g_;
     if (type() == Type::Error) return *this;
     const int available = component_count(type());
@@ -256,6 +265,7 @@ Expr texture(Graph& g, const TextureInput& t) {
 }
 
 Expr named(Expr e, const std::string& name) {
+    if (!e.valid()) return e;
     Node copy = e.graph().node(e.id());
     if (copy.op == Op::Constant || copy.op == Op::Uniform || copy.op == Op::Varying ||
         copy.op == Op::Texture || copy.type == Type::Error)
@@ -265,7 +275,7 @@ Expr named(Expr e, const std::string& name) {
 }
 
 namespace {
-Expr c(Expr like, double v) { return constant(like.graph(), v); }
+Expr c(Expr like, double v) { return like.valid() ? constant(like.graph(), v) : Expr(); }
 } // namespace
 
 Expr operator+(Expr a, Expr b) { return make(Op::Add, {a, b}); }
@@ -304,6 +314,7 @@ Expr vec4(Expr xyz, Expr w) { return make(Op::Construct, {xyz, w}); }
 Expr vec4(Expr a, Expr b, Expr c3, Expr d) { return make(Op::Construct, {a, b, c3, d}); }
 
 Expr mat3(Expr c0, Expr c1, Expr c2) {
+    if (!c0.valid()) return make(Op::Construct, {c0, c1, c2});
     Graph& g = c0.graph();
     for (const Expr& col : {c0, c1, c2}) {
         if (col.type() == Type::Error) return error_expr(g);
@@ -320,6 +331,7 @@ Expr mat3(Expr c0, Expr c1, Expr c2) {
 }
 
 Expr splat(Expr scalar, Type vector_type) {
+    if (!scalar.valid()) return scalar;
     Graph& g = scalar.graph();
     if (scalar.type() == Type::Error) return scalar;
     if (scalar.type() != Type::Float || !is_vector(vector_type)) {

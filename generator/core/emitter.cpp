@@ -93,7 +93,7 @@ public:
                 lines.push_back({syntax_.comment(n.origin.empty() ? "(unnamed)" : n.origin), n.origin});
                 current_origin = n.origin;
             }
-            lines.push_back({syntax_.type(n.type) + " " + it->second + " = " + strip_outer(spell(id, true)) + ";",
+            lines.push_back({syntax_.temp_type(n.type, n.relaxed) + " " + it->second + " = " + strip_outer(spell(id, true)) + ";",
                              n.origin});
         }
         for (const auto& out : g_.outputs()) results.push_back(strip_outer(expr(out.node)));

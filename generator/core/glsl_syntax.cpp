@@ -8,6 +8,10 @@ namespace watergen {
 
 std::string GlslSyntax::type(Type t) const { return type_name(t); }
 
+std::string GlslSyntax::temp_type(Type t, bool relaxed) const {
+    return (relaxed && t != Type::Bool ? "mediump " : "") + type(t);
+}
+
 std::string GlslSyntax::literal(double v) const {
     const float f = static_cast<float>(v);
     if (std::isnan(f)) return "uintBitsToFloat(0x7fc00000u)";

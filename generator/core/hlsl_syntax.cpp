@@ -23,6 +23,10 @@ std::string HlslSyntax::constant(const Node& n) const {
     return construct(n.type, parts);
 }
 
+std::string HlslSyntax::temp_type(Type t, bool relaxed) const {
+    return (relaxed && (is_float_numeric(t) || t == Type::Mat3) ? "min16" : "") + type(t);
+}
+
 // cbuffer members are globals in HLSL.
 std::string HlslSyntax::uniform_ref(const std::string& name) const { return name; }
 

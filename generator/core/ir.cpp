@@ -123,6 +123,7 @@ std::string node_key(const Node& n) {
     key.reserve(16 + n.args.size() * 4 + n.values.size() * 8);
     key.push_back(static_cast<char>(n.op));
     key.push_back(static_cast<char>(n.type));
+    key.push_back(n.relaxed ? 'r' : 'f');
     for (uint32_t a : n.args) key.append(reinterpret_cast<const char*>(&a), sizeof a);
     key.push_back('|');
     for (double v : n.values) key.append(reinterpret_cast<const char*>(&v), sizeof v);
@@ -136,6 +137,9 @@ std::string node_key(const Node& n) {
 } // namespace
 
 uint32_t Graph::add(Node node) {
+    // Leaves (parameters, inputs) keep full precision; operations follow the current scope.
+    if (!is_leaf(node.op) || node.op == Op::Constant) node.relaxed = node.relaxed || relaxed_;
+    if (node.type == Type::Bool || node.type == Type::Texture2D || node.type == Type::TextureCube) node.relaxed = false;
     std::string key = node_key(node);
     if (auto it = index_.find(key); it != index_.end()) {
         Node& existing = nodes_[it->second];

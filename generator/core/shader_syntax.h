@@ -14,6 +14,8 @@ public:
     virtual ~GlslSyntax() = default;
     virtual std::string type(Type t) const;
     virtual std::string literal(double v) const;
+    // Declared type of a temporary; relaxed ones are mediump / min16float.
+    virtual std::string temp_type(Type t, bool relaxed) const;
     virtual std::string constant(const Node& n) const;
     virtual std::string uniform_ref(const std::string& name) const;
     virtual std::string splat(Type t, const std::string& scalar) const;
@@ -31,6 +33,7 @@ class HlslSyntax final : public GlslSyntax {
 public:
     std::string type(Type t) const override;
     std::string constant(const Node& n) const override;
+    std::string temp_type(Type t, bool relaxed) const override;
     std::string uniform_ref(const std::string& name) const override;
     std::string splat(Type t, const std::string& scalar) const override;
     std::string construct(Type t, const std::vector<std::string>& args) const override;

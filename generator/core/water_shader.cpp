@@ -1,6 +1,7 @@
 #include "watergen/water_shader.h"
 
 #include "watergen/nodes.h"
+#include "watergen/surface.h"
 
 namespace watergen {
 
@@ -12,55 +13,49 @@ TextureInput scene_position_texture() {
     return {"scene_position", Type::Texture2D, "world position of the scene surface, xyz in m", ""};
 }
 
-namespace {
-
-Expr apply_fresnel(Graph& g, const std::string& choice, Expr c) {
-    if (choice == "none") return fresnel_none(g, c);
-    if (choice == "exact") return fresnel_exact(g, c);
-    return fresnel_schlick(g, c);
-}
-
-Expr apply_extinction(Graph& g, const std::string& choice, const ExtinctionInputs& in) {
-    if (choice == "none") return extinction_none(g, in);
-    return extinction_absorb_scatter(g, in);
-}
-
-} // namespace
-
 WaterShader build_water_shader(const Variant& variant) {
     WaterShader shader{variant, Graph{}};
     Graph& g = shader.fragment;
-
-    OriginScope scope(g, "surface");
-    Expr uv = varying(g, "v_uv", Type::Vec2);
-    Expr scene = named(sample(texture(g, scene_color_texture()), uv).xyz(), "scene_rgb");
-    Expr position = named(sample(texture(g, scene_position_texture()), uv).xyz(), "scene_pos");
-    Expr eye = uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""});
-    Expr level = uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""});
-    Expr sky = uniform(g, {"sky_color", Type::Vec3, {0.55, 0.7, 0.9}, 0.0, 1e3, "", "000", ""});
-
-    // 000: intersect the eye ray towards the scene point with the water plane.
-    Expr to_scene = position - eye;
-    Expr distance = named(length(to_scene), "scene_distance");
-    Expr ray = named(to_scene / max(distance, 1e-6), "view_ray");
-    // A water pixel's ray points down (the scene lies below the plane); clamping its y keeps
-    // the division finite for a horizontal ray without changing any water pixel.
-    Expr ray_down = named(min(ray.y(), -1e-6), "view_ray_y");
-    Expr hit = named(max((level - eye.y()) / ray_down, 0.0), "surface_distance");
-    Expr path = named(max(distance - hit, 0.0), "water_path");
-    Expr depth = named(max(level - position.y(), 0.0), "water_depth");
-
-    Expr normal = constant(g, {0.0, 1.0, 0.0}); // flat water surface
-    Expr to_eye = -ray;
-    Expr cos_view = named(dot(normal, to_eye), "n_dot_v");
-
-    Expr fresnel = apply_fresnel(g, variant.choice("fresnel"), cos_view);
-    Expr refracted = apply_extinction(g, variant.choice("extinction"), {depth, path, scene});
-
-    OriginScope compose(g, "compose");
-    Expr water = named(mix(refracted, sky, fresnel), "water_rgb");
-    Expr is_water = position.y() < level;
-    Expr rgb = select(is_water, water, scene);
+    Surface s(g);
+    {
+        OriginScope scope(g, "surface");
+        s.uv = varying(g, "v_uv", Type::Vec2);
+        s.scene_rgb = named(sample(texture(g, scene_color_texture()), s.uv).xyz(), "scene_rgb");
+        s.scene_pos = named(sample(texture(g, scene_position_texture()), s.uv).xyz(), "scene_pos");
+        s.eye = uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""});
+        s.level = uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""});
+        s.time = uniform(g, {"time", Type::Float, {0.0}, 0.0, 86400.0, "s", "000", ""});
+        s.sun_travel = uniform(g, {"sun_direction", Type::Vec3, {-0.35, -0.75, 0.55}, -1.0, 1.0, "", "000", ""});
+        s.sun_color = uniform(g, {"sun_color", Type::Vec3, {1.0, 0.95, 0.85}, 0.0, 1e3, "", "000", ""});
+        Expr to_scene = s.scene_pos - s.eye;
+        s.scene_distance = named(length(to_scene), "scene_distance");
+        s.view_ray = named(to_scene / max(s.scene_distance, 1e-6), "view_ray");
+    }
+    const bool relaxed = variant.choice("precision") == "half";
+    // Geometry (positions, times, wave phases) stays 32-bit: half cannot hold 1e5 m or a day
+    // of seconds. The precision axis relaxes the shading math only.
+    apply_waves(s, variant.choice("waves"));
+    apply_normals(s, variant.choice("normals"));
+    {
+        OriginScope scope(g, "surface");
+        s.to_eye = -s.view_ray;
+        s.n_dot_v = named(dot(s.normal, s.to_eye), "n_dot_v");
+    }
+    RelaxedScope shading(g, relaxed);
+    apply_refraction(s, variant.choice("refraction"));
+    apply_extinction(s, variant.choice("extinction"));
+    apply_reflection(s, variant.choice("reflection"));
+    apply_fresnel(s, variant.choice("fresnel"));
+    apply_specular(s, variant.choice("specular"));
+    {
+        OriginScope scope(g, "compose");
+        s.color = named(mix(s.water_color, s.reflected, s.fresnel) + s.specular, "water_rgb");
+    }
+    apply_foam(s, variant.choice("foam"));
+    apply_shore(s, variant.choice("shore"));
+    OriginScope scope(g, "compose");
+    if (has_errors(g.diagnostics())) return shader;
+    Expr rgb = select(s.is_water, s.color, s.scene_rgb);
     g.set_output("color", vec4(rgb, constant(g, 1.0)).id());
     return shader;
 }

@@ -82,6 +82,15 @@ EvalInputs SyntheticScene::eval_inputs() const {
     return in;
 }
 
+SceneCamera scene_camera(uint32_t width, uint32_t height) {
+    const double pitch = -28.0 * kPi / 180.0, half_fov = 30.0 * kPi / 180.0;
+    const dvec3 forward{0.0, std::sin(pitch), std::cos(pitch)};
+    const dvec3 right{1.0, 0.0, 0.0};
+    const dvec3 up = glm::cross(forward, right);
+    return {{kEye.x, kEye.y, kEye.z}, {forward.x, forward.y, forward.z}, {right.x, right.y, right.z},
+            {up.x, up.y, up.z}, std::tan(half_fov), double(width) / height};
+}
+
 SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height) {
     SyntheticScene s;
     s.width = width;
@@ -89,11 +98,11 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height) {
     TextureData color{width, height, 1, std::vector<float>(size_t(width) * height * 4)};
     TextureData position = color;
 
-    const double pitch = -28.0 * kPi / 180.0, half_fov = 30.0 * kPi / 180.0;
-    const dvec3 forward{0.0, std::sin(pitch), std::cos(pitch)};
-    const dvec3 right{1.0, 0.0, 0.0};
-    const dvec3 up = glm::cross(forward, right);
-    const double tan_half = std::tan(half_fov), aspect = double(width) / height;
+    const SceneCamera cam = scene_camera(width, height);
+    const dvec3 forward{cam.forward[0], cam.forward[1], cam.forward[2]};
+    const dvec3 right{cam.right[0], cam.right[1], cam.right[2]};
+    const dvec3 up{cam.up[0], cam.up[1], cam.up[2]};
+    const double tan_half = cam.tan_half_fov_y, aspect = cam.aspect;
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x) {
             // Pixel centre; row 0 is the top of the image.
@@ -116,6 +125,10 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height) {
     s.uniforms["eye_position"] = {kEye.x, kEye.y, kEye.z};
     s.uniforms["water_level"] = {0.0};
     s.uniforms["sun_direction"] = {kSunTravel.x, kSunTravel.y, kSunTravel.z};
+    s.uniforms["time"] = {0.0};
+    add_foam_inputs(s);
+    add_optics_inputs(s);
+    add_wave_inputs(s);
     return s;
 }
 

@@ -1,11 +1,12 @@
 #include <catch2/catch.hpp>
 
+#include "watergen/covering_array.h"
 #include "watergen/variant_build.h"
 
 using namespace watergen;
 
 TEST_CASE("emitting_twice_yields_byte_identical_files", "[determinism]") {
-    for (const Variant& v : all_variants()) {
+    for (const Variant& v : pairwise_covering_variants()) {
         INFO(v.key());
         const auto first = variant_files(build_variant(v));
         const auto second = variant_files(build_variant(v));

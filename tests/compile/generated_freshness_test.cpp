@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "watergen/covering_array.h"
 #include "watergen/variant_build.h"
 
 using namespace watergen;
@@ -19,7 +20,7 @@ TEST_CASE("generated_files_match_the_generator", "[determinism]") {
     const fs::path root = fs::path(source) / "generated" / "water";
     REQUIRE(fs::is_directory(root));
     std::set<std::string> expected_dirs;
-    for (const Variant& v : all_variants()) {
+    for (const Variant& v : pairwise_covering_variants()) {
         INFO(v.key() << " (run scripts/regenerate)");
         expected_dirs.insert(v.file_stem());
         const auto files = variant_files(build_variant(v));

@@ -13,6 +13,7 @@ EvalResult absorb_scatter(const std::vector<double>& depth, const std::vector<do
     Expr d = varying(g, "depth", Type::Float);
     Expr a = varying(g, "path", Type::Float);
     Expr refr = constant(g, {0.5, 0.5, 0.5});
+    RelaxedScope relaxed(g, true);
     g.set_output("out", extinction_absorb_scatter(g, {d, a, refr}).id());
     EvalInputs in;
     in.lanes = depth.size();

@@ -1,4 +1,9 @@
-#include "watergen/nodes.h"
+#include "watergen/nodes/extinction.h"
+
+#include <tuple>
+
+#include "watergen/node_catalog.h"
+#include "watergen/surface.h"
 
 namespace watergen {
 
@@ -23,6 +28,20 @@ Expr extinction_absorb_scatter(Graph& g, const ExtinctionInputs& in) {
     Expr transmittance = named(exp(-(k * scale) * (depth + path)), "transmittance");
     Expr inverse_scatter = named(exp(-(b * scale) * path), "inverse_scatter");
     return named(mix(scatter, in.refraction * transmittance, inverse_scatter) * light, "water_color");
+}
+
+void append_extinction_nodes(std::vector<CatalogNode>& list) {
+    for (auto [name, f, what] : {std::tuple{"extinction.none", &extinction_none, "refracted colour unchanged"},
+                                 std::tuple{"extinction.absorb_scatter", &extinction_absorb_scatter, "003 absorption + scatter"}})
+        list.push_back({name, what, {{"depth", Type::Float}, {"path", Type::Float}, {"refraction", Type::Vec3}},
+                        [f](Graph& g, const std::vector<Expr>& in) { return f(g, {in[0], in[1], in[2]}); }});
+}
+
+void apply_extinction(Surface& s, const std::string& choice) {
+    const ExtinctionInputs in{s.depth, s.path, s.refracted};
+    if (choice == "none") s.water_color = extinction_none(s.g, in);
+    else if (choice == "absorb_scatter") s.water_color = extinction_absorb_scatter(s.g, in);
+    else s.g.error("extinction: no node for choice '" + choice + "'");
 }
 
 } // namespace watergen

@@ -1,4 +1,9 @@
-#include "watergen/nodes.h"
+#include "watergen/nodes/fresnel.h"
+
+#include <tuple>
+
+#include "watergen/node_catalog.h"
+#include "watergen/surface.h"
 
 namespace watergen {
 
@@ -14,6 +19,14 @@ Expr fresnel_none(Graph& g, Expr c) {
     OriginScope scope(g, "fresnel.none");
     (void)c;
     return uniform(g, {"fresnel_constant", Type::Float, {0.020408}, 0.0, 1.0, "", "000", ""});
+}
+
+Expr fresnel_power(Graph& g, Expr c) {
+    OriginScope scope(g, "fresnel.power");
+    Expr q = uniform(g, {"fresnel_power", Type::Float, {4.5}, 0.5, 16.0, "", "002", ""});
+    // pow(0, q) is 0 for q > 0 everywhere; the clamp keeps the base out of pow's undefined
+    // negative range when c > 1 by rounding.
+    return named(pow(saturate(1.0 - c), q), "fresnel");
 }
 
 Expr fresnel_schlick(Graph& g, Expr c) {
@@ -41,6 +54,23 @@ Expr fresnel_exact(Graph& g, Expr c) {
     Expr rp = (n2 * ci - n1 * ct) / max(n2 * ci + n1 * ct, tiny);
     Expr r = named(0.5 * (rs * rs + rp * rp), "fresnel_unpolarised");
     return named(select(s2 >= 1.0, constant(g, 1.0), r), "fresnel");
+}
+
+void append_fresnel_nodes(std::vector<CatalogNode>& list) {
+    for (auto [name, f, what] : {std::tuple{"fresnel.none", &fresnel_none, "constant reflectance"},
+                                 std::tuple{"fresnel.power", &fresnel_power, "(1 - c)^q"},
+                                 std::tuple{"fresnel.schlick", &fresnel_schlick, "Schlick reflectance of c"},
+                                 std::tuple{"fresnel.exact", &fresnel_exact, "exact unpolarised reflectance of c, with TIR"}})
+        list.push_back({name, what, {{"c", Type::Float}},
+                        [f](Graph& g, const std::vector<Expr>& in) { return f(g, in[0]); }});
+}
+
+void apply_fresnel(Surface& s, const std::string& choice) {
+    if (choice == "none") s.fresnel = fresnel_none(s.g, s.n_dot_v);
+    else if (choice == "power") s.fresnel = fresnel_power(s.g, s.n_dot_v);
+    else if (choice == "schlick") s.fresnel = fresnel_schlick(s.g, s.n_dot_v);
+    else if (choice == "exact") s.fresnel = fresnel_exact(s.g, s.n_dot_v);
+    else s.g.error("fresnel: no node for choice '" + choice + "'");
 }
 
 } // namespace watergen

@@ -1,6 +1,7 @@
 // Evaluates a Graph on the CPU: the reference every GPU image and stress input is compared
-// with. Double is the reference; Float rounds every intermediate to binary32 and Half to
-// binary16 (as a shader with every value in mediump / min16float would, at best).
+// with. Double is the reference; Float rounds every intermediate to binary32; Half rounds the
+// relaxed-precision nodes (mediump / min16float) to binary16 and the rest to binary32, as a GPU
+// that runs mediump at 16 bits would (lavapipe runs it at 32).
 #pragma once
 
 #include <map>

@@ -22,7 +22,7 @@ public:
 
     Graph& graph() const { return *g_; }
     uint32_t id() const { return id_; }
-    Type type() const { return g_->node(id_).type; }
+    Type type() const { return g_ ? g_->node(id_).type : Type::Error; }
     bool valid() const { return g_ != nullptr; }
 
     // Swizzles, GLSL letters xyzw / rgba: e.swizzle("xz").
@@ -53,6 +53,19 @@ public:
 private:
     Graph& g_;
     std::string previous_;
+};
+
+// Marks subsequent operations relaxed precision (mediump / min16float) when `relaxed`.
+class RelaxedScope {
+public:
+    RelaxedScope(Graph& g, bool relaxed) : g_(g), previous_(g.relaxed()) { g.set_relaxed(relaxed || previous_); }
+    ~RelaxedScope() { g_.set_relaxed(previous_); }
+    RelaxedScope(const RelaxedScope&) = delete;
+    RelaxedScope& operator=(const RelaxedScope&) = delete;
+
+private:
+    Graph& g_;
+    bool previous_;
 };
 
 // Leaves.

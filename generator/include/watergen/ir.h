@@ -69,6 +69,9 @@ struct Node {
     std::vector<double> values; // Constant components, Swizzle indices
     std::string name;           // leaf name, or a hint for the emitted temporary
     std::string origin;         // feature node that created it, e.g. "fresnel.schlick"
+    // Relaxed precision (the precision=half axis): mediump in GLSL, min16float in HLSL, and
+    // rounded to binary16 by the CPU evaluator's half mode.
+    bool relaxed = false;
 };
 
 // A uniform parameter a feature node reads. Parameters are data: defaults and ranges travel
@@ -106,6 +109,9 @@ public:
     // Feature node that subsequent operations belong to (see OriginScope in dsl.h).
     const std::string& origin() const { return origin_; }
     void set_origin(std::string origin) { origin_ = std::move(origin); }
+    // Whether subsequent operations are relaxed precision (see RelaxedScope in dsl.h).
+    bool relaxed() const { return relaxed_; }
+    void set_relaxed(bool relaxed) { relaxed_ = relaxed; }
 
     void error(std::string message);
     const Diagnostics& diagnostics() const { return diagnostics_; }
@@ -131,6 +137,7 @@ private:
     std::vector<Node> nodes_;
     std::unordered_map<std::string, uint32_t, KeyHash> index_;
     std::string origin_;
+    bool relaxed_ = false;
     Diagnostics diagnostics_;
     std::vector<Parameter> parameters_;
     std::vector<TextureInput> textures_;

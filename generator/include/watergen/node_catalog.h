@@ -23,6 +23,17 @@ struct CatalogNode {
 };
 
 const std::vector<CatalogNode>& node_catalog();
+
+// Each axis file (core/nodes/<axis>.cpp) adds the nodes of its axis.
+void append_waves_nodes(std::vector<CatalogNode>& list);
+void append_normals_nodes(std::vector<CatalogNode>& list);
+void append_refraction_nodes(std::vector<CatalogNode>& list);
+void append_extinction_nodes(std::vector<CatalogNode>& list);
+void append_reflection_nodes(std::vector<CatalogNode>& list);
+void append_fresnel_nodes(std::vector<CatalogNode>& list);
+void append_specular_nodes(std::vector<CatalogNode>& list);
+void append_foam_nodes(std::vector<CatalogNode>& list);
+void append_shore_nodes(std::vector<CatalogNode>& list);
 const CatalogNode* find_catalog_node(const std::string& name);
 std::string catalog_names(); // "a, b, c"
 

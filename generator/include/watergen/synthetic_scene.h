@@ -36,4 +36,18 @@ struct SyntheticScene {
 // Deterministic: the same size always yields the same bytes.
 SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height);
 
+// Inputs of the node families, each in its own file under render/: textures and uniforms the
+// nodes of those axes read (their binding names are the TextureInput names the nodes declare).
+void add_foam_inputs(SyntheticScene& scene);   // scene_foam_inputs.cpp
+void add_optics_inputs(SyntheticScene& scene); // scene_optics_inputs.cpp: reflection, refraction
+void add_wave_inputs(SyntheticScene& scene);   // scene_wave_inputs.cpp: waves, normals
+
+// The camera of the scene (for nodes that project world points to the screen).
+struct SceneCamera {
+    double eye[3];
+    double forward[3], right[3], up[3]; // unit; right x up = forward
+    double tan_half_fov_y, aspect;
+};
+SceneCamera scene_camera(uint32_t width, uint32_t height);
+
 } // namespace watergen

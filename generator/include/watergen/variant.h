@@ -1,6 +1,7 @@
 // Axes of the water shader and the choices wired on each; a Variant picks one per axis.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,7 +40,20 @@ Variant default_variant();
 std::optional<std::string> set_choice(Variant& v, const std::string& axis, const std::string& choice);
 // Parses a key as produced by Variant::key(); axes left out keep their default.
 std::optional<Variant> parse_variant_key(const std::string& key, std::string* error);
-// Every combination of the wired choices, in key order.
-std::vector<Variant> all_variants();
+// axis=choice is only valid with requires_axis in requires_choices.
+struct Constraint {
+    std::string axis, choice;
+    std::string requires_axis;
+    std::vector<std::string> requires_choices;
+    std::string why;
+};
+const std::vector<Constraint>& constraints();
+// The first constraint `v` breaks, as a sentence naming both axes; nullopt when valid.
+std::optional<std::string> check_constraints(const Variant& v);
+
+// Visits every valid variant once, in axis order (odometer over the choices). A pure function
+// of axes() and constraints().
+void for_each_variant(const std::function<void(const Variant&)>& visit);
+size_t variant_space_size();
 
 } // namespace watergen
