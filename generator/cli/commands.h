@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "watergen/diagnostic.h"
+#include "watergen/presets.h"
 #include "watergen/runtime/vulkan_runner.h"
 #include "watergen/variant.h"
 
@@ -24,8 +25,11 @@ struct Common {
 
 using Runner = std::function<int()>;
 
-// Adds --<axis> options for every axis, each restricted to its choices.
-void add_variant_options(CLI::App& app, Variant& variant);
+// Adds --<axis> options for every axis, each restricted to its choices, and --preset.
+void add_variant_options(CLI::App& app, Variant& variant, std::string& preset);
+// Checks the variant's constraints and resolves the preset; prints the reason and returns
+// false on bad input (exit with kUsage).
+bool resolve_variant(const Variant& variant, const std::string& preset_name, const Preset** preset);
 void print_diagnostics(const Diagnostics& ds, const Common& common);
 
 struct RunnerSetup {

@@ -2,6 +2,7 @@
 #include <filesystem>
 
 #include "commands.h"
+#include "watergen/presets.h"
 #include "watergen/covering_array.h"
 #include "watergen/output_writer.h"
 #include "watergen/variant_build.h"
@@ -11,24 +12,23 @@ namespace watergen::cli {
 Runner add_emit_command(CLI::App& app, const Common& common) {
     struct Options {
         Variant variant = default_variant();
+        std::string preset;
         bool covering = false;
         std::string out = "out/emit";
     };
     auto o = std::make_shared<Options>();
-    add_variant_options(app, o->variant);
+    add_variant_options(app, o->variant, o->preset);
     app.add_flag("--covering", o->covering,
                  "emit the pairwise covering set: every pair of choices on two axes in at least one variant "
                  "(axis options are ignored)");
     app.add_option("--out", o->out, "output directory; each variant goes to <out>/<variant>/ (default out/emit)");
     return [o, &common]() {
-        if (auto e = check_constraints(o->variant); e && !o->covering) {
-            std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-            return kUsage;
-        }
+        const Preset* preset = nullptr;
+        if (!resolve_variant(o->covering ? default_variant() : o->variant, o->preset, &preset)) return kUsage;
         const std::vector<Variant> variants = o->covering ? pairwise_covering_variants() : std::vector<Variant>{o->variant};
         int failed = 0;
         for (const Variant& v : variants) {
-            const VariantBuild build = build_variant(v);
+            const VariantBuild build = build_variant(v, preset);
             print_diagnostics(build.diagnostics, common);
             if (!build.ok()) {
                 std::fprintf(stderr, "watergen: error: %s failed; nothing written for it\n", v.key().c_str());

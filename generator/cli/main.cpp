@@ -3,10 +3,14 @@
 #include <map>
 
 #include "commands.h"
+#include "watergen/presets.h"
 
 namespace watergen::cli {
 
-void add_variant_options(CLI::App& app, Variant& variant) {
+void add_variant_options(CLI::App& app, Variant& variant, std::string& preset) {
+    std::vector<std::string> preset_list;
+    for (const auto& p : presets()) preset_list.push_back(p.name);
+    app.add_option("--preset", preset, "parameter preset: " + preset_names())->check(CLI::IsMember(preset_list));
     const auto& list = axes();
     for (size_t i = 0; i < list.size(); ++i) {
         std::vector<std::string> names;
@@ -17,6 +21,15 @@ void add_variant_options(CLI::App& app, Variant& variant) {
         }
         app.add_option("--" + list[i].name, variant.choices[i], help)->check(CLI::IsMember(names));
     }
+}
+
+bool resolve_variant(const Variant& variant, const std::string& preset_name, const Preset** preset) {
+    if (auto e = check_constraints(variant)) {
+        std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
+        return false;
+    }
+    *preset = preset_name.empty() ? nullptr : find_preset(preset_name);
+    return true;
 }
 
 void print_diagnostics(const Diagnostics& ds, const Common& common) {

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "watergen/presets.h"
 #include "watergen/output_writer.h"
 #include "watergen/variant_render.h"
 
@@ -32,13 +33,14 @@ nlohmann::ordered_json timing_json(const RenderResult& r) {
 Runner add_render_command(CLI::App& app, const Common& common) {
     struct Options {
         Variant variant = default_variant();
+        std::string preset;
         uint32_t width = 256, height = 256, draws = 10;
         float exposure = 1.0f;
         std::string out = "out/render";
         RunnerSetup runner;
     };
     auto o = std::make_shared<Options>();
-    add_variant_options(app, o->variant);
+    add_variant_options(app, o->variant, o->preset);
     app.add_option("--width", o->width, "image width in pixels (default 256)")->check(CLI::Range(8, 4096));
     app.add_option("--height", o->height, "image height in pixels (default 256)")->check(CLI::Range(8, 4096));
     app.add_option("--draws", o->draws, "timed draws after the first (JIT) draw; the median is reported (default 10)")
@@ -47,13 +49,17 @@ Runner add_render_command(CLI::App& app, const Common& common) {
     app.add_option("--out", o->out, "output directory; files go to <out>/<variant>/ (default out/render)");
     add_runner_options(app, o->runner);
     return [o, &common]() {
-        const VariantBuild build = build_variant(o->variant);
+        const Preset* preset = nullptr;
+        if (!resolve_variant(o->variant, o->preset, &preset)) return kUsage;
+        const VariantBuild build = build_variant(o->variant, preset);
         print_diagnostics(build.diagnostics, common);
         if (!build.ok()) return kFailed;
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
-        const SyntheticScene scene = make_synthetic_scene(o->width, o->height);
+        SyntheticScene scene = make_synthetic_scene(o->width, o->height);
+        if (preset)
+            for (const auto& [name, values] : preset->values) scene.uniforms[name] = values; // lighting follows the preset
         const VariantRender r = render_variant(*runner, build, scene, {o->width, o->height, o->draws, true});
         if (!r.ok()) {
             std::fprintf(stderr, "watergen: error: %s: %s\n", r.key.c_str(), r.error.c_str());
@@ -73,6 +79,7 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         const DeviceInfo& dev = runner->device_info();
         nlohmann::ordered_json j;
         j["variant"] = r.key;
+        j["preset"] = o->preset;
         j["image"] = {{"width", o->width}, {"height", o->height}, {"format", "RGBA32F"}};
         j["device"] = {{"name", dev.name}, {"driver", dev.driver_name}, {"driver_info", dev.driver_info},
                        {"api_version", format_api_version(dev.api_version)}};

@@ -179,6 +179,16 @@ const Parameter* Graph::find_parameter(const std::string& name) const {
     return nullptr;
 }
 
+bool Graph::set_parameter_default(const std::string& name, const std::vector<double>& value) {
+    for (auto& p : parameters_)
+        if (p.name == name) {
+            if (p.default_value.size() != value.size()) return false;
+            p.default_value = value;
+            return true;
+        }
+    return false;
+}
+
 void Graph::declare_texture(const TextureInput& t) {
     for (const auto& existing : textures_)
         if (existing.name == t.name) return;

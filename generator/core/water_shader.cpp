@@ -1,6 +1,7 @@
 #include "watergen/water_shader.h"
 
 #include "watergen/nodes.h"
+#include "watergen/presets.h"
 #include "watergen/surface.h"
 
 namespace watergen {
@@ -13,8 +14,8 @@ TextureInput scene_position_texture() {
     return {"scene_position", Type::Texture2D, "world position of the scene surface, xyz in m", ""};
 }
 
-WaterShader build_water_shader(const Variant& variant) {
-    WaterShader shader{variant, Graph{}};
+WaterShader build_water_shader(const Variant& variant, const Preset* preset) {
+    WaterShader shader{variant, preset ? preset->name : "", Graph{}};
     Graph& g = shader.fragment;
     Surface s(g);
     {
@@ -57,6 +58,8 @@ WaterShader build_water_shader(const Variant& variant) {
     if (has_errors(g.diagnostics())) return shader;
     Expr rgb = select(s.is_water, s.color, s.scene_rgb);
     g.set_output("color", vec4(rgb, constant(g, 1.0)).id());
+    if (preset)
+        for (const auto& name : apply_preset(g, *preset)) g.error("preset '" + preset->name + "': parameter '" + name + "' has another size");
     return shader;
 }
 

@@ -36,6 +36,7 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
     nlohmann::ordered_json j;
     j["generator"] = stamp_text(b.shader.variant.key());
     j["key"] = b.shader.variant.key();
+    j["preset"] = b.shader.preset;
     nlohmann::ordered_json choices = nlohmann::ordered_json::object();
     for (const auto& a : axes()) choices[a.name] = b.shader.variant.choice(a.name);
     j["choices"] = choices;
@@ -63,7 +64,9 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
 
 } // namespace
 
-VariantBuild build_variant(const Variant& variant) { return build_shader(build_water_shader(variant)); }
+VariantBuild build_variant(const Variant& variant, const Preset* preset) {
+    return build_shader(build_water_shader(variant, preset));
+}
 
 VariantBuild build_shader(WaterShader shader) {
     VariantBuild b{std::move(shader), {}, {}};

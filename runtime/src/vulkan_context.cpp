@@ -59,12 +59,17 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(VkDebugUtilsMessageSeverityFlagB
                                                 const VkDebugUtilsMessengerCallbackDataEXT* data,
                                                 void* user) {
     auto* ctx = static_cast<Context*>(user);
-    std::string text = fmt::format("[{}] {}: {}", severity_name(severity),
-                                   data->pMessageIdName ? data->pMessageIdName : "(no id)",
+    const char* id = data->pMessageIdName ? data->pMessageIdName : "(no id)";
+    std::string text = fmt::format("[{}] {}: {}", severity_name(severity), id,
                                    data->pMessage ? data->pMessage : "");
     // The layer may call back from whichever thread made the Vulkan call.
     std::lock_guard<std::mutex> lock(ctx->messages_mutex);
-    ctx->messages.push_back(std::move(text));
+    // The loader reports ICDs it could not load (intel/radeon without their hardware):
+    // environment noise, not a fault of ours, but the explanation when no device is found.
+    if (std::strcmp(id, "Loader Message") == 0)
+        ctx->loader_messages.push_back(std::move(text));
+    else
+        ctx->messages.push_back(std::move(text));
     return VK_FALSE; // never make the layer fail the call: we want the real behaviour
 }
 
@@ -180,8 +185,9 @@ Context::~Context() {
     if (instance) vkDestroyInstance(instance, nullptr);
 }
 
-std::unique_ptr<Context> create_context(const RunnerOptions& options) {
-    auto ctx = std::make_unique<Context>();
+namespace {
+
+void build_context(Context* ctx, const RunnerOptions& options) {
 
     uint32_t loader_version = VK_API_VERSION_1_0;
     vk_check(vkEnumerateInstanceVersion(&loader_version), "vkEnumerateInstanceVersion");
@@ -191,16 +197,19 @@ std::unique_ptr<Context> create_context(const RunnerOptions& options) {
     // 1.2 is the newest core we use (driver properties); asking for more buys nothing.
     const uint32_t instance_api = std::min(loader_version, uint32_t{VK_API_VERSION_1_2});
 
-    const bool validation = options.validation && has_layer(kValidationLayer) &&
-                            (has_instance_extension(nullptr, VK_EXT_DEBUG_UTILS_EXTENSION_NAME) ||
-                             has_instance_extension(kValidationLayer,
-                                                    VK_EXT_DEBUG_UTILS_EXTENSION_NAME));
+    // The loader implements debug utils itself, so a messenger also works without the
+    // validation layer: then it only hears the loader, which explains device-less failures.
+    const bool loader_debug_utils =
+        has_instance_extension(nullptr, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    const bool validation =
+        options.validation && has_layer(kValidationLayer) &&
+        (loader_debug_utils ||
+         has_instance_extension(kValidationLayer, VK_EXT_DEBUG_UTILS_EXTENSION_NAME));
+    const bool messenger_wanted = validation || loader_debug_utils;
     std::vector<const char*> layers;
     std::vector<const char*> extensions;
-    if (validation) {
-        layers.push_back(kValidationLayer);
-        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    }
+    if (validation) layers.push_back(kValidationLayer);
+    if (messenger_wanted) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
     VkApplicationInfo app{};
     app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
@@ -211,18 +220,22 @@ std::unique_ptr<Context> create_context(const RunnerOptions& options) {
     app.apiVersion = instance_api;
 
     // Chained so that messages from vkCreateInstance / vkDestroyInstance are caught too.
-    VkDebugUtilsMessengerCreateInfoEXT messenger = messenger_info(ctx.get());
+    VkDebugUtilsMessengerCreateInfoEXT messenger = messenger_info(ctx);
     VkInstanceCreateInfo ici{};
     ici.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
-    ici.pNext = validation ? &messenger : nullptr;
+    ici.pNext = messenger_wanted ? &messenger : nullptr;
     ici.pApplicationInfo = &app;
     ici.enabledLayerCount = static_cast<uint32_t>(layers.size());
     ici.ppEnabledLayerNames = layers.data();
     ici.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
     ici.ppEnabledExtensionNames = extensions.data();
-    vk_check(vkCreateInstance(&ici, nullptr, &ctx->instance), "vkCreateInstance");
+    VkResult r = vkCreateInstance(&ici, nullptr, &ctx->instance);
+    if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
+        throw RunnerError("no Vulkan driver could be loaded (vkCreateInstance failed: "
+                          "VK_ERROR_INCOMPATIBLE_DRIVER); install mesa-vulkan-drivers for lavapipe");
+    vk_check(r, "vkCreateInstance");
 
-    if (validation) {
+    if (messenger_wanted) {
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(ctx->instance, "vkCreateDebugUtilsMessengerEXT"));
         ctx->destroy_messenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
@@ -235,16 +248,20 @@ std::unique_ptr<Context> create_context(const RunnerOptions& options) {
 
     // Broken ICDs (e.g. intel/radeon with no matching hardware) are skipped by the loader;
     // only a failure of the whole enumeration is an error.
+    // When every ICD fails, the loader returns VK_ERROR_INITIALIZATION_FAILED.
+    const char* no_device = "no Vulkan physical device found (is mesa-vulkan-drivers installed? "
+                            "does VK_ICD_FILENAMES / VK_DRIVER_FILES include lvp_icd?)";
     uint32_t count = 0;
-    vk_check(vkEnumeratePhysicalDevices(ctx->instance, &count, nullptr),
-             "vkEnumeratePhysicalDevices");
+    r = vkEnumeratePhysicalDevices(ctx->instance, &count, nullptr);
+    if (r == VK_ERROR_INITIALIZATION_FAILED)
+        throw RunnerError(fmt::format("{}; vkEnumeratePhysicalDevices failed: {}", no_device,
+                                      result_name(r)));
+    vk_check(r, "vkEnumeratePhysicalDevices");
     std::vector<VkPhysicalDevice> devices(count);
-    VkResult r = vkEnumeratePhysicalDevices(ctx->instance, &count, devices.data());
+    r = vkEnumeratePhysicalDevices(ctx->instance, &count, devices.data());
     if (r != VK_INCOMPLETE) vk_check(r, "vkEnumeratePhysicalDevices");
     devices.resize(count);
-    if (devices.empty())
-        throw RunnerError("no Vulkan physical device found (is mesa-vulkan-drivers installed? "
-                          "is VK_ICD_FILENAMES / VK_DRIVER_FILES pointing at lvp_icd?)");
+    if (devices.empty()) throw RunnerError(no_device);
 
     std::vector<Candidate> candidates;
     for (VkPhysicalDevice pd : devices) candidates.push_back(describe(pd, instance_api));
@@ -286,6 +303,24 @@ std::unique_ptr<Context> create_context(const RunnerOptions& options) {
     pci.queueFamilyIndex = ctx->queue_family;
     vk_check(vkCreateCommandPool(ctx->device, &pci, nullptr, &ctx->command_pool),
              "vkCreateCommandPool");
+}
+
+} // namespace
+
+std::unique_ptr<Context> create_context(const RunnerOptions& options) {
+    auto ctx = std::make_unique<Context>();
+    try {
+        build_context(ctx.get(), options);
+    } catch (const RunnerError& e) {
+        // Creation failed: what the loader said about unloadable drivers is the likely
+        // explanation, so it goes into the one error message.
+        std::string text = e.what();
+        for (const std::string& m : ctx->loader_messages) text += "\n  loader: " + m;
+        throw RunnerError(text);
+    }
+    // Loader notes from a successful start (e.g. the intel/radeon ICDs skipped on a
+    // machine without that hardware) are not worth keeping.
+    ctx->loader_messages.clear();
     return ctx;
 }
 

@@ -48,7 +48,8 @@ struct Context {
     bool unusable = false;
 
     mutable std::mutex messages_mutex;
-    std::vector<std::string> messages;
+    std::vector<std::string> messages;        // validation layer: what tests fail on
+    std::vector<std::string> loader_messages; // loader (e.g. broken ICDs): for create errors
 
     Context() = default;
     Context(const Context&) = delete;

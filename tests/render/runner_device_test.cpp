@@ -77,3 +77,16 @@ TEST_CASE("device overrides select by name substring or fail clearly", "[render]
         CHECK(VulkanRunner::create(options, &error));
     }
 }
+
+TEST_CASE("no usable Vulkan driver: nullptr and one clear error", "[render][device]") {
+    // Point the loader at a driver manifest that does not exist: nothing can load.
+    ScopedEnv icd("VK_ICD_FILENAMES", "/nonexistent/watergen_no_icd.json");
+    ScopedEnv driver_files("VK_DRIVER_FILES", "/nonexistent/watergen_no_icd.json");
+    RunnerOptions options;
+    options.validation = false;
+    std::string error;
+    auto runner = VulkanRunner::create(options, &error);
+    INFO(error);
+    CHECK_FALSE(runner);
+    CHECK(error.find("mesa-vulkan-drivers") != std::string::npos);
+}

@@ -120,6 +120,9 @@ public:
     void declare_parameter(const Parameter& p);
     const std::vector<Parameter>& parameters() const { return parameters_; }
     const Parameter* find_parameter(const std::string& name) const;
+    // Replaces a declared parameter's default; false when it is not declared or the component
+    // count differs.
+    bool set_parameter_default(const std::string& name, const std::vector<double>& value);
 
     void declare_texture(const TextureInput& t);
     const std::vector<TextureInput>& textures() const { return textures_; }

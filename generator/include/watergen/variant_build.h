@@ -31,7 +31,7 @@ struct VariantBuild {
 
 // Builds both languages of one variant. A graph with type errors stops before emission.
 // Cost: two toolchain runs per stage (a few ms each); thread-safe.
-VariantBuild build_variant(const Variant& variant);
+VariantBuild build_variant(const Variant& variant, const Preset* preset = nullptr);
 // Same for an already composed shader (a custom description, or a test's ill-typed one).
 VariantBuild build_shader(WaterShader shader);
 

@@ -57,8 +57,11 @@ struct RenderJob {
     uint32_t width = 256;
     uint32_t height = 256;
     // Bytes of the one UniformBuffer binding, laid out by the caller from reflection offsets.
+    // Must be at least the block's reflected block_size.
     std::vector<uint8_t> uniforms;
-    // SampledImage / CombinedImageSampler bindings, by reflection binding name.
+    // SampledImage / CombinedImageSampler bindings, by reflection binding name. A binding
+    // with no entry fails the job (naming the binding); entries no binding uses are
+    // ignored, so one set of inputs can serve many variants.
     std::map<std::string, TextureData> textures;
     // Used for every Sampler / CombinedImageSampler binding; clamp to edge, no mips.
     TextureFilter filter = TextureFilter::Linear;
@@ -84,7 +87,8 @@ struct RenderResult {
 struct ComputeJob {
     std::vector<uint32_t> spirv;
     Reflection reflection;
-    // Initial contents of StorageBuffer bindings, by reflection binding name.
+    // Initial contents of StorageBuffer bindings, by reflection binding name (the block
+    // type name, e.g. "Inputs"). Entries no binding uses are ignored.
     std::map<std::string, std::vector<uint8_t>> buffers;
     // Sizes of StorageBuffer bindings the shader only writes (zero-filled before the
     // dispatch). A storage binding in neither map gets its reflected block_size, if nonzero.
