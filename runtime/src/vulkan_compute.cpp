@@ -28,7 +28,8 @@ void compute_job(Context& ctx, const ComputeJob& job, ComputeResult& result) {
     cci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     cci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     cci.stage.module = create_shader_module(scope, job.spirv, "compute");
-    cci.stage.pName = job.reflection.entry_point.empty() ? "main" : job.reflection.entry_point.c_str();
+    cci.stage.pName =
+        job.reflection.entry_point.empty() ? "main" : job.reflection.entry_point.c_str();
     cci.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
     const auto start_pipeline = Clock::now();

@@ -19,8 +19,9 @@ bool has_layer(const char* name) {
     if (vkEnumerateInstanceLayerProperties(&count, nullptr) != VK_SUCCESS) return false;
     std::vector<VkLayerProperties> layers(count);
     if (vkEnumerateInstanceLayerProperties(&count, layers.data()) != VK_SUCCESS) return false;
-    return std::any_of(layers.begin(), layers.end(),
-                       [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+    return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+        return std::strcmp(l.layerName, name) == 0;
+    });
 }
 
 // Extensions of the implementation plus those a layer provides (layer may be null).
@@ -145,10 +146,10 @@ const Candidate& pick_device(const std::vector<Candidate>& cs, const RunnerOptio
         if (c.driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) return c;
     for (const auto& c : cs)
         if (c.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) return c;
-    throw RunnerError(fmt::format(
-        "no lavapipe (llvmpipe / CPU) Vulkan device found (devices: {}); install "
-        "mesa-vulkan-drivers or set WATERGEN_VK_DEVICE to a device name substring",
-        list_names(cs)));
+    throw RunnerError(
+        fmt::format("no lavapipe (llvmpipe / CPU) Vulkan device found (devices: {}); install "
+                    "mesa-vulkan-drivers or set WATERGEN_VK_DEVICE to a device name substring",
+                    list_names(cs)));
 }
 
 // A family that can draw, dispatch and copy; prefer one that can write timestamps.
@@ -231,8 +232,9 @@ void build_context(Context* ctx, const RunnerOptions& options) {
     ici.ppEnabledExtensionNames = extensions.data();
     VkResult r = vkCreateInstance(&ici, nullptr, &ctx->instance);
     if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
-        throw RunnerError("no Vulkan driver could be loaded (vkCreateInstance failed: "
-                          "VK_ERROR_INCOMPATIBLE_DRIVER); install mesa-vulkan-drivers for lavapipe");
+        throw RunnerError(
+            "no Vulkan driver could be loaded (vkCreateInstance failed: "
+            "VK_ERROR_INCOMPATIBLE_DRIVER); install mesa-vulkan-drivers for lavapipe");
     vk_check(r, "vkCreateInstance");
 
     if (messenger_wanted) {
@@ -254,8 +256,8 @@ void build_context(Context* ctx, const RunnerOptions& options) {
     uint32_t count = 0;
     r = vkEnumeratePhysicalDevices(ctx->instance, &count, nullptr);
     if (r == VK_ERROR_INITIALIZATION_FAILED)
-        throw RunnerError(fmt::format("{}; vkEnumeratePhysicalDevices failed: {}", no_device,
-                                      result_name(r)));
+        throw RunnerError(
+            fmt::format("{}; vkEnumeratePhysicalDevices failed: {}", no_device, result_name(r)));
     vk_check(r, "vkEnumeratePhysicalDevices");
     std::vector<VkPhysicalDevice> devices(count);
     r = vkEnumeratePhysicalDevices(ctx->instance, &count, devices.data());
@@ -264,7 +266,8 @@ void build_context(Context* ctx, const RunnerOptions& options) {
     if (devices.empty()) throw RunnerError(no_device);
 
     std::vector<Candidate> candidates;
-    for (VkPhysicalDevice pd : devices) candidates.push_back(describe(pd, instance_api));
+    for (VkPhysicalDevice pd : devices)
+        candidates.push_back(describe(pd, instance_api));
     const Candidate& chosen = pick_device(candidates, options);
     if (chosen.props.apiVersion < VK_API_VERSION_1_1)
         throw RunnerError(fmt::format("Vulkan device '{}' supports only {}; 1.1 is needed",
@@ -315,7 +318,8 @@ std::unique_ptr<Context> create_context(const RunnerOptions& options) {
         // Creation failed: what the loader said about unloadable drivers is the likely
         // explanation, so it goes into the one error message.
         std::string text = e.what();
-        for (const std::string& m : ctx->loader_messages) text += "\n  loader: " + m;
+        for (const std::string& m : ctx->loader_messages)
+            text += "\n  loader: " + m;
         throw RunnerError(text);
     }
     // Loader notes from a successful start (e.g. the intel/radeon ICDs skipped on a

@@ -18,24 +18,27 @@ struct Merged {
 
 VkDescriptorType descriptor_type(DescriptorKind kind) {
     switch (kind) {
-    case DescriptorKind::UniformBuffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case DescriptorKind::StorageBuffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    case DescriptorKind::SampledImage: return VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
-    case DescriptorKind::Sampler: return VK_DESCRIPTOR_TYPE_SAMPLER;
-    case DescriptorKind::CombinedImageSampler: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    case DescriptorKind::UniformBuffer:
+        return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case DescriptorKind::StorageBuffer:
+        return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case DescriptorKind::SampledImage:
+        return VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+    case DescriptorKind::Sampler:
+        return VK_DESCRIPTOR_TYPE_SAMPLER;
+    case DescriptorKind::CombinedImageSampler:
+        return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     }
     throw RunnerError("unknown DescriptorKind");
 }
 
 std::string where(const DescriptorBinding& b) {
-    return fmt::format("{} '{}' (set {}, binding {})", to_string(b.kind), b.name, b.set,
-                       b.binding);
+    return fmt::format("{} '{}' (set {}, binding {})", to_string(b.kind), b.name, b.set, b.binding);
 }
 
 // A binding both stages declare must agree on name and kind; the layout then makes it
 // visible to both stages.
-std::map<std::pair<uint32_t, uint32_t>, Merged>
-merge(const std::vector<StageReflection>& stages) {
+std::map<std::pair<uint32_t, uint32_t>, Merged> merge(const std::vector<StageReflection>& stages) {
     std::map<std::pair<uint32_t, uint32_t>, Merged> merged;
     for (const StageReflection& s : stages) {
         for (const DescriptorBinding& b : s.reflection->bindings) {
@@ -82,11 +85,12 @@ VkSampler create_sampler(Scope& scope, TextureFilter filter) {
 
 Buffer uniform_buffer(Scope& scope, const DescriptorBinding& b, const DescriptorInputs& in) {
     if (!in.uniforms || in.uniforms->empty())
-        throw RunnerError(fmt::format("{} is not supplied by the job (uniforms is empty)", where(b)));
+        throw RunnerError(
+            fmt::format("{} is not supplied by the job (uniforms is empty)", where(b)));
     const size_t size = in.uniforms->size();
     if (size < b.block_size)
-        throw RunnerError(fmt::format("{} needs {} bytes; the job supplies {}", where(b),
-                                      b.block_size, size));
+        throw RunnerError(
+            fmt::format("{} needs {} bytes; the job supplies {}", where(b), b.block_size, size));
     if (size > scope.ctx().limits.maxUniformBufferRange)
         throw RunnerError(fmt::format("{}: {} bytes exceed maxUniformBufferRange {}", where(b),
                                       size, scope.ctx().limits.maxUniformBufferRange));
@@ -113,8 +117,8 @@ Buffer storage_buffer(Scope& scope, const DescriptorBinding& b, const Descriptor
     }
     if (size == 0) size = b.block_size; // fixed-size blocks need no size from the caller
     if (size == 0)
-        throw RunnerError(fmt::format("{} is not supplied by the job (no contents or size)",
-                                      where(b)));
+        throw RunnerError(
+            fmt::format("{} is not supplied by the job (no contents or size)", where(b)));
     return create_buffer(scope, size, usage); // zero-filled by create_buffer
 }
 
@@ -148,7 +152,8 @@ BoundDescriptors bind_descriptors(Scope& scope, const std::vector<StageReflectio
     // buffer binding would be ambiguous.
     std::vector<std::string> uniform_names;
     for (const auto& [key, m] : merged)
-        if (m.binding.kind == DescriptorKind::UniformBuffer) uniform_names.push_back(m.binding.name);
+        if (m.binding.kind == DescriptorKind::UniformBuffer)
+            uniform_names.push_back(m.binding.name);
     if (uniform_names.size() > 1)
         throw RunnerError(fmt::format("shaders declare {} uniform blocks ({}); the job's uniforms "
                                       "bytes can feed only one",
@@ -180,7 +185,8 @@ BoundDescriptors bind_descriptors(Scope& scope, const std::vector<StageReflectio
     }
 
     std::vector<VkDescriptorPoolSize> sizes;
-    for (const auto& [type, count] : type_counts) sizes.push_back({type, count});
+    for (const auto& [type, count] : type_counts)
+        sizes.push_back({type, count});
     VkDescriptorPoolCreateInfo pci{};
     pci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
     pci.maxSets = set_count;

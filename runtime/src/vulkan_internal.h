@@ -20,7 +20,7 @@
 namespace watergen::vk_detail {
 
 class RunnerError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -62,7 +62,7 @@ std::unique_ptr<Context> create_context(const RunnerOptions& options);
 
 // Reverse-order destruction of everything a job created.
 class Scope {
-public:
+  public:
     explicit Scope(Context& ctx) : ctx_(ctx) {}
     ~Scope();
     Scope(const Scope&) = delete;
@@ -70,7 +70,7 @@ public:
     void defer(std::function<void()> destroy) { cleanups_.push_back(std::move(destroy)); }
     Context& ctx() { return ctx_; }
 
-private:
+  private:
     Context& ctx_;
     std::vector<std::function<void()>> cleanups_;
 };

@@ -193,7 +193,8 @@ double median(std::vector<double> v) {
 
 void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
     if (job.timed_draws > kMaxTimedDraws)
-        throw RunnerError(fmt::format("timed_draws {} exceeds {}", job.timed_draws, kMaxTimedDraws));
+        throw RunnerError(
+            fmt::format("timed_draws {} exceeds {}", job.timed_draws, kMaxTimedDraws));
     Scope scope(ctx);
 
     Image target = create_color_target(scope, job.width, job.height);

@@ -95,11 +95,10 @@ Image create_image(Scope& scope, uint32_t width, uint32_t height, uint32_t layer
 
     VkMemoryRequirements req{};
     vkGetImageMemoryRequirements(ctx.device, img.image, &req);
-    VkDeviceMemory memory =
-        allocate(scope, req, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, nullptr);
+    VkDeviceMemory memory = allocate(scope, req, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, nullptr);
     vk_check(vkBindImageMemory(ctx.device, img.image, memory, 0), "vkBindImageMemory");
-    img.view = create_view(scope, img.image,
-                           cube ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_2D, layers);
+    img.view = create_view(scope, img.image, cube ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_2D,
+                           layers);
     return img;
 }
 
@@ -115,7 +114,8 @@ void begin(VkCommandBuffer cmd) {
 Scope::~Scope() {
     // See Context::unusable: objects the device may still be using are leaked.
     if (ctx_.unusable) return;
-    for (auto it = cleanups_.rbegin(); it != cleanups_.rend(); ++it) (*it)();
+    for (auto it = cleanups_.rbegin(); it != cleanups_.rend(); ++it)
+        (*it)();
 }
 
 Buffer create_buffer(Scope& scope, VkDeviceSize size, VkBufferUsageFlags usage) {
@@ -187,8 +187,9 @@ Image create_texture(Scope& scope, const std::string& name, const TextureData& d
     Context& ctx = scope.ctx();
     const uint32_t want_layers = cube ? 6 : 1;
     if (data.layers != want_layers)
-        throw RunnerError(fmt::format("texture '{}' has {} layers; the shader's {} binding needs {}",
-                                      name, data.layers, cube ? "cube" : "2D", want_layers));
+        throw RunnerError(
+            fmt::format("texture '{}' has {} layers; the shader's {} binding needs {}", name,
+                        data.layers, cube ? "cube" : "2D", want_layers));
     const uint32_t max_dim =
         cube ? ctx.limits.maxImageDimensionCube : ctx.limits.maxImageDimension2D;
     if (data.width == 0 || data.height == 0 || data.width > max_dim || data.height > max_dim ||

@@ -23,7 +23,9 @@ std::unique_ptr<VulkanRunner> VulkanRunner::create(const RunnerOptions& options,
 VulkanRunner::VulkanRunner(std::unique_ptr<Context> context) : context_(std::move(context)) {}
 VulkanRunner::~VulkanRunner() = default;
 
-const DeviceInfo& VulkanRunner::device_info() const { return context_->info; }
+const DeviceInfo& VulkanRunner::device_info() const {
+    return context_->info;
+}
 
 std::vector<std::string> VulkanRunner::validation_messages() const {
     std::lock_guard<std::mutex> lock(context_->messages_mutex);
@@ -60,14 +62,13 @@ Result guarded(Context& ctx, const char* what, Body&& body) {
 } // namespace
 
 RenderResult VulkanRunner::render(const RenderJob& job) {
-    return guarded<RenderResult>(*context_, "render",
-                                 [&](RenderResult& r) { vk_detail::render_job(*context_, job, r); });
+    return guarded<RenderResult>(
+        *context_, "render", [&](RenderResult& r) { vk_detail::render_job(*context_, job, r); });
 }
 
 ComputeResult VulkanRunner::run_compute(const ComputeJob& job) {
-    return guarded<ComputeResult>(*context_, "compute", [&](ComputeResult& r) {
-        vk_detail::compute_job(*context_, job, r);
-    });
+    return guarded<ComputeResult>(
+        *context_, "compute", [&](ComputeResult& r) { vk_detail::compute_job(*context_, job, r); });
 }
 
 } // namespace watergen

@@ -36,7 +36,8 @@ TEST_CASE("compute shader squares N floats exactly", "[render][compute]") {
     // check, and the last 24 invocations must not write.
     const uint32_t n = 1000;
     std::vector<float> in(n);
-    for (uint32_t i = 0; i < n; ++i) in[i] = (static_cast<float>(i) - 500.0f) * 0.37f + 0.001f;
+    for (uint32_t i = 0; i < n; ++i)
+        in[i] = (static_cast<float>(i) - 500.0f) * 0.37f + 0.001f;
     const uint32_t count = n;
 
     ComputeJob job;

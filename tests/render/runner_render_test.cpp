@@ -136,13 +136,15 @@ TEST_CASE("fullscreen shader renders exact gl_FragCoord functions", "[render]") 
         CHECK(r.pipeline_ms > 0);
         CHECK(r.first_draw_ms > 0);
         REQUIRE(r.draw_ms.size() == 5);
-        for (double ms : r.draw_ms) CHECK(ms > 0);
+        for (double ms : r.draw_ms)
+            CHECK(ms > 0);
         CHECK(r.steady_draw_ms > 0);
         std::printf("fragcoord 256x256 on %s: pipeline %.2f ms, first draw %.2f ms, steady draw "
                     "%.3f ms (samples",
                     runner.device_info().name.c_str(), r.pipeline_ms, r.first_draw_ms,
                     r.steady_draw_ms);
-        for (double ms : r.draw_ms) std::printf(" %.3f", ms);
+        for (double ms : r.draw_ms)
+            std::printf(" %.3f", ms);
         std::printf(")\n");
     }
     SECTION("non-square: rows come back top first") {

@@ -39,12 +39,14 @@ CompiledStage compile_glsl(ShaderStage stage, const std::string& source) {
     request.source = source;
     request.file_name = std::string("test.") + to_string(stage);
     SpirvResult compiled = compile_to_spirv(request);
-    for (const Diagnostic& d : compiled.diagnostics) UNSCOPED_INFO(describe(d));
+    for (const Diagnostic& d : compiled.diagnostics)
+        UNSCOPED_INFO(describe(d));
     REQUIRE(compiled.ok());
     REQUIRE(compiled.diagnostics.empty());
 
     ReflectResult reflected = reflect_spirv(compiled.spirv, stage, request.file_name);
-    for (const Diagnostic& d : reflected.diagnostics) UNSCOPED_INFO(describe(d));
+    for (const Diagnostic& d : reflected.diagnostics)
+        UNSCOPED_INFO(describe(d));
     REQUIRE(reflected.diagnostics.empty());
     return {std::move(compiled.spirv), std::move(reflected.reflection)};
 }
@@ -102,7 +104,8 @@ void put(std::vector<uint8_t>& bytes, const Reflection& r, const std::string& bl
 
 std::string joined(const std::vector<std::string>& lines) {
     std::string out;
-    for (const auto& l : lines) out += l + "\n";
+    for (const auto& l : lines)
+        out += l + "\n";
     return out;
 }
 

@@ -27,9 +27,9 @@ struct RunnerOptions {
 };
 
 struct DeviceInfo {
-    std::string name;           // VkPhysicalDeviceProperties::deviceName
-    std::string driver_name;    // VkPhysicalDeviceDriverProperties::driverName ("llvmpipe")
-    std::string driver_info;    // e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
+    std::string name;            // VkPhysicalDeviceProperties::deviceName
+    std::string driver_name;     // VkPhysicalDeviceDriverProperties::driverName ("llvmpipe")
+    std::string driver_info;     // e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
     uint32_t driver_version = 0; // raw, vendor-specific encoding
     uint32_t api_version = 0;    // VK_MAKE_API_VERSION encoding
     bool validation_enabled = false;
@@ -52,7 +52,7 @@ struct TextureData {
 struct RenderJob {
     std::vector<uint32_t> vertex_spirv;
     std::vector<uint32_t> fragment_spirv;
-    Reflection vertex_reflection;   // descriptor layout = union of both stages' bindings
+    Reflection vertex_reflection; // descriptor layout = union of both stages' bindings
     Reflection fragment_reflection;
     uint32_t width = 256;
     uint32_t height = 256;
@@ -79,9 +79,15 @@ struct RenderResult {
     // RGBA32F, width*height*4 floats; row 0 is the top of the image (framebuffer y = 0).
     std::vector<float> rgba;
     double pipeline_ms = 0;    // CPU time of vkCreateGraphicsPipelines
-    double first_draw_ms = 0;  // CPU wall time of the first submit + wait (includes JIT)
-    double steady_draw_ms = 0; // median of draw_ms
-    std::vector<double> draw_ms; // one GPU-timestamp sample per timed draw
+    // CPU wall time of the first submit + wait. Includes lavapipe's LLVM JIT, unless
+    // Mesa's own on-disk shader cache already holds the shader (MESA_SHADER_CACHE_DIR);
+    // MESA_SHADER_CACHE_DISABLE=true makes this independent of earlier runs.
+    double first_draw_ms = 0;
+    double steady_draw_ms = 0; // median of draw_ms (0 when timed_draws == 0)
+    // One sample per timed draw: GPU timestamps (top of pipe before the render pass to
+    // bottom of pipe after it, scaled by timestampPeriod); CPU wall time of submit + wait
+    // only if the queue cannot write timestamps.
+    std::vector<double> draw_ms;
 };
 
 struct ComputeJob {
@@ -114,7 +120,7 @@ struct Context;
 }
 
 class VulkanRunner {
-public:
+  public:
     // nullptr and `error` set when no usable device is found or Vulkan fails to start.
     static std::unique_ptr<VulkanRunner> create(const RunnerOptions& options, std::string* error);
     ~VulkanRunner();
@@ -131,7 +137,7 @@ public:
     RenderResult render(const RenderJob& job);
     ComputeResult run_compute(const ComputeJob& job);
 
-private:
+  private:
     explicit VulkanRunner(std::unique_ptr<vk_detail::Context> context);
     std::unique_ptr<vk_detail::Context> context_;
 };
