@@ -7,6 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include "watergen/diagnostic.h"
+#include "watergen/material.h"
+#include "watergen/scene_file.h"
 #include "watergen/presets.h"
 #include "watergen/runtime/vulkan_runner.h"
 #include "watergen/variant.h"
@@ -45,5 +47,16 @@ Runner add_emit_command(CLI::App& app, const Common& common);
 Runner add_render_command(CLI::App& app, const Common& common);
 Runner add_probe_command(CLI::App& app, const Common& common);
 Runner add_bench_compile_command(CLI::App& bench, const Common& common);
+
+// Material and scene files of build, explain and bench build / prune (build_command.cpp).
+// An empty material path means the built-in default material. Prints the error and returns
+// false on bad input (exit with kUsage).
+bool load_material_and_scenes(const std::string& material_path, const std::vector<std::string>& scene_paths,
+                              Material& material, std::vector<SceneFacts>& scenes, const Common& common);
+Runner add_build_command(CLI::App& app, const Common& common);
+Runner add_explain_command(CLI::App& app, const Common& common);
+Runner add_bench_build_command(CLI::App& bench, const Common& common);
+Runner add_bench_prune_command(CLI::App& bench, const Common& common);
+Runner add_bench_accuracy_command(CLI::App& bench, const Common& common);
 
 } // namespace watergen::cli

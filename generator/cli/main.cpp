@@ -58,6 +58,19 @@ int main(int argc, char** argv) {
     bench->require_subcommand(1);
     CLI::App* compile = bench->add_subcommand("compile", "in-process toolchain vs the same chain through command-line tools");
     runners[compile] = add_bench_compile_command(*compile, common);
+    CLI::App* build = app.add_subcommand("build", "build every variant a material's scenes need: pruned, folded, validated, "
+                                                  "cross-compiled, cached, in parallel; writes manifest.json");
+    runners[build] = add_build_command(*build, common);
+    CLI::App* explain = app.add_subcommand("explain", "which variants each scene skips and which terms it folds away, and why");
+    runners[explain] = add_explain_command(*explain, common);
+    CLI::App* bench_build = bench->add_subcommand("build", "variants per second of watergen build: cold and warm cache, "
+                                                           "one thread and all threads");
+    runners[bench_build] = add_bench_build_command(*bench_build, common);
+    CLI::App* bench_prune = bench->add_subcommand("prune", "pruned against unpruned shaders per scene: SPIR-V size, GPU time, "
+                                                           "image difference");
+    runners[bench_prune] = add_bench_prune_command(*bench_prune, common);
+    CLI::App* accuracy = bench->add_subcommand("accuracy", "every cheaper choice against its axis' gold: GPU time ratio and image error");
+    runners[accuracy] = add_bench_accuracy_command(*accuracy, common);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -68,6 +68,65 @@ void sample_2d(const TextureView& t, Filter filter, double u, double v, double o
     }
 }
 
+double cube_fetch(const TextureView& t, int face, long i, long j, int c) {
+    const long n = static_cast<long>(t.width);
+    i = std::clamp<long>(i, 0, n - 1);
+    j = std::clamp<long>(j, 0, n - 1);
+    return t.rgba[((static_cast<size_t>(face) * t.width + static_cast<size_t>(j)) * t.width + static_cast<size_t>(i)) * 4 + c];
+}
+
+// Texel (i, j) of `face`, where at most one of i, j lies one texel past the face: such a texel
+// is the one across the edge on the adjacent face (Vulkan "Cube Map Edge Handling"). Its centre,
+// pushed past the edge, points into exactly that texel of the neighbour (the nearest texel
+// centre of the neighbour is half a texel away, the shrink towards the neighbour's centre is
+// under half a texel), so the neighbour is found geometrically rather than from a table.
+double cube_texel(const TextureView& t, int face, long i, long j, int c) {
+    const long n = static_cast<long>(t.width);
+    if (i >= 0 && i < n && j >= 0 && j < n) return cube_fetch(t, face, i, j, c);
+    double d[3];
+    cube_face_direction(face, (i + 0.5) / n, (j + 0.5) / n, d);
+    const CubeFaceCoord a = cube_face_coord(d[0], d[1], d[2]);
+    return cube_fetch(t, a.face, static_cast<long>(std::floor(a.s * n)), static_cast<long>(std::floor(a.t * n)), c);
+}
+
+void sample_cube(const TextureView& t, Filter filter, double x, double y, double z, double out[4]) {
+    const CubeFaceCoord f = cube_face_coord(x, y, z);
+    const double n = t.width;
+    if (filter == Filter::Nearest) {
+        // Vulkan: nearest filtering of a cube clamps to the edge of the selected face.
+        for (int c = 0; c < 4; ++c)
+            out[c] = cube_fetch(t, f.face, static_cast<long>(std::floor(f.s * n)), static_cast<long>(std::floor(f.t * n)), c);
+        return;
+    }
+    const double fu = f.s * n - 0.5, fv = f.t * n - 0.5;
+    const long x0 = static_cast<long>(std::floor(fu)), y0 = static_cast<long>(std::floor(fv));
+    const double a = fu - std::floor(fu), b = fv - std::floor(fv);
+    const long size = static_cast<long>(t.width);
+    auto outside = [size](long k) { return k < 0 || k >= size; };
+    for (int c = 0; c < 4; ++c) {
+        double texel[2][2];
+        int corner_i = -1, corner_j = -1;
+        for (int dj = 0; dj < 2; ++dj)
+            for (int di = 0; di < 2; ++di) {
+                if (outside(x0 + di) && outside(y0 + dj)) {
+                    // Past both edges: no face owns it (at most one per footprint).
+                    corner_i = di, corner_j = dj;
+                    texel[dj][di] = 0.0;
+                    continue;
+                }
+                texel[dj][di] = cube_texel(t, f.face, x0 + di, y0 + dj, c);
+            }
+        if (corner_i >= 0) {
+            // The mean of the three texels that do exist (lavapipe: the corner's weight is
+            // shared equally among the other three).
+            const double sum = texel[0][0] + texel[0][1] + texel[1][0] + texel[1][1];
+            texel[corner_j][corner_i] = sum / 3.0;
+        }
+        out[c] = (1 - a) * (1 - b) * texel[0][0] + a * (1 - b) * texel[0][1] + (1 - a) * b * texel[1][0] +
+                 a * b * texel[1][1];
+    }
+}
+
 class BlockEvaluator {
 public:
     BlockEvaluator(const Graph& g, const std::vector<uint32_t>& live, const EvalInputs& in, EvalPrecision p)
@@ -235,13 +294,22 @@ private:
                 error = "texture '" + tex.name + "' not supplied";
                 return false;
             }
-            if (tex.type != Type::Texture2D) {
-                error = "texture '" + tex.name + "': only 2D textures are evaluated on the CPU";
+            const TextureView& view = it->second;
+            const bool cube = tex.type == Type::TextureCube;
+            const uint32_t layers = cube ? 6u : 1u;
+            if (view.layers != 0 && view.layers != layers) {
+                error = "texture '" + tex.name + "' has " + std::to_string(view.layers) + " layers; the " +
+                        (cube ? "cube" : "2D") + " binding needs " + std::to_string(layers);
+                return false;
+            }
+            if (view.width == 0 || view.height == 0 || (cube && view.width != view.height)) {
+                error = "texture '" + tex.name + "': bad size" + (cube ? " (cube faces must be square)" : "");
                 return false;
             }
             for (size_t l = 0; l < n_; ++l) {
                 double texel[4];
-                sample_2d(it->second, in_.filter, a1(l, 0), a1(l, 1), texel);
+                if (cube) sample_cube(view, in_.filter, a1(l, 0), a1(l, 1), a1(l, 2), texel);
+                else sample_2d(view, in_.filter, a1(l, 0), a1(l, 1), texel);
                 for (int c = 0; c < 4; ++c) out[l * 4 + c] = texel[c];
             }
             return true;
@@ -295,6 +363,44 @@ std::vector<uint32_t> live_from(const Graph& g, uint32_t root) {
 }
 
 } // namespace
+
+CubeFaceCoord cube_face_coord(double x, double y, double z) {
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) return {};
+    const double ax = std::fabs(x), ay = std::fabs(y), az = std::fabs(z);
+    // Vulkan "Cube Map Face Selection": (sc, tc, rc) per major axis; s = (sc / |rc| + 1) / 2.
+    int face = 0;
+    double sc = 0, tc = 0, ma = 0;
+    if (az >= std::max(ax, ay)) {
+        ma = az;
+        face = std::signbit(z) ? 5 : 4;
+        sc = std::signbit(z) ? -x : x;
+        tc = -y;
+    } else if (ax > ay) {
+        ma = ax;
+        face = std::signbit(x) ? 1 : 0;
+        sc = std::signbit(x) ? z : -z;
+        tc = -y;
+    } else {
+        ma = ay;
+        face = std::signbit(y) ? 3 : 2;
+        sc = x;
+        tc = std::signbit(y) ? -z : z;
+    }
+    const double half_inverse = ma > 0 ? 0.5 / ma : 0.0; // zero vector: the face centre
+    return {face, sc * half_inverse + 0.5, tc * half_inverse + 0.5};
+}
+
+void cube_face_direction(int face, double s, double t, double d[3]) {
+    const double sc = 2.0 * s - 1.0, tc = 2.0 * t - 1.0;
+    switch (face) { // the table of cube_face_coord, solved for the direction
+    case 0: d[0] = 1, d[1] = -tc, d[2] = -sc; return;   // +X: sc = -z, tc = -y
+    case 1: d[0] = -1, d[1] = -tc, d[2] = sc; return;   // -X: sc = +z, tc = -y
+    case 2: d[0] = sc, d[1] = 1, d[2] = tc; return;     // +Y: sc = +x, tc = +z
+    case 3: d[0] = sc, d[1] = -1, d[2] = -tc; return;   // -Y: sc = +x, tc = -z
+    case 4: d[0] = sc, d[1] = -tc, d[2] = 1; return;    // +Z: sc = +x, tc = -y
+    default: d[0] = -sc, d[1] = -tc, d[2] = -1; return; // -Z: sc = -x, tc = -y
+    }
+}
 
 EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs& inputs, EvalPrecision precision) {
     EvalResult result;

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "emitter_internal.h"
 #include "shader_syntax.h"
 
 namespace watergen {
@@ -79,7 +80,8 @@ public:
             used_ops.insert(n.op);
             if (is_leaf(n.op) || n.type == Type::Texture2D || n.type == Type::TextureCube) continue;
             const bool cross_origin = single_user[id] != UINT32_MAX && g_.node(single_user[id]).origin != n.origin;
-            if (uses[id] > 1 || !n.name.empty() || cross_origin) temp_[id] = unique_name(n, id, taken);
+            if (uses[id] > 1 || !n.name.empty() || cross_origin || must_be_named(id, single_user[id]))
+                temp_[id] = unique_name(n, id, taken);
         }
 
         std::vector<Line> lines;
@@ -101,6 +103,17 @@ public:
     }
 
 private:
+    // glslang turns ?: into branches unless both operands are plain names, and a branch inside
+    // a texture() argument leaves OpSampledImage in another block than its use (spirv-val
+    // rejects it). Selects, their operands and sample coordinates are therefore temporaries:
+    // every select becomes OpSelect and every sample sees a finished coordinate.
+    bool must_be_named(uint32_t id, uint32_t user) const {
+        if (g_.node(id).op == Op::Select) return true;
+        if (user == UINT32_MAX) return false;
+        const Op op = g_.node(user).op;
+        return op == Op::Select || op == Op::Sample || op == Op::SampleLevel;
+    }
+
     std::string unique_name(const Node& n, uint32_t id, std::set<std::string>& taken) {
         std::string base = n.name.empty() ? fmt::format("t{}", id) : n.name;
         std::string name = base;
@@ -328,6 +341,32 @@ void attribute_to_nodes(const EmittedShader& shader, Diagnostics& diagnostics) {
         if (!d.node.empty() || d.line <= 0) continue;
         if (static_cast<size_t>(d.line) <= shader.line_origin.size()) d.node = shader.line_origin[d.line - 1];
     }
+}
+
+// ---- for the emitters of other stages (emitter_internal.h, vertex_emitter.cpp) ----
+
+EmittedShader emit_from_skeleton(const Graph& g, Language language, ShaderStage stage, std::string_view skeleton,
+                                 const std::string& file_name, const std::string& variant_key,
+                                 Diagnostics& diagnostics) {
+    EmittedShader out;
+    out.language = language;
+    out.stage = stage;
+    out.file_name = file_name;
+    const GlslSyntax& syntax = syntax_for(language);
+    out.interface = interface_of(g, diagnostics);
+    std::vector<std::string> results;
+    std::set<Op> used_ops;
+    FragmentWriter writer(g, syntax);
+    std::map<std::string, std::vector<Line>> blocks = {
+        {"stamp", {{stamp_text(variant_key), ""}}},
+        {"declarations", as_lines(syntax.declarations(out.interface))},
+        {"inputs", {{syntax.entry_inputs(out.interface), ""}}},
+    };
+    blocks["body"] = writer.body(results, used_ops);
+    blocks["prelude"] = as_lines(syntax.prelude(used_ops));
+    for (size_t i = 0; i < g.outputs().size(); ++i) blocks["output_" + g.outputs()[i].name] = {{results[i], ""}};
+    fill(out, skeleton, blocks);
+    return out;
 }
 
 } // namespace watergen

@@ -11,7 +11,9 @@ PlaneHit intersect_plane(const Surface& s, Expr height) {
 void set_water_column(Surface& s, Expr surface_distance) {
     s.path = named(max(s.scene_distance - surface_distance, 0.0), "water_path");
     s.depth = named(max(s.surface_point.y() - s.scene_pos.y(), 0.0), "water_depth");
-    s.is_water = s.scene_pos.y() < s.surface_point.y();
+    // The eye is above the water: a ray going up never reaches it (its clamped plane hit lies
+    // millions of metres away and would otherwise count the sky as water).
+    s.is_water = (s.scene_pos.y() < s.surface_point.y()) && (s.view_ray.y() < 0.0);
 }
 
 } // namespace watergen

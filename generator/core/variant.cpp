@@ -1,7 +1,12 @@
 #include "watergen/variant.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <functional>
+
+// Header-only use of xxHash: core needs no extra link dependency for one hash.
+#define XXH_INLINE_ALL
+#include <xxhash.h>
 
 namespace watergen {
 
@@ -159,6 +164,13 @@ std::string Variant::file_stem() const {
     for (size_t i = 0; i < axes().size(); ++i)
         s += (i ? "_" : "") + axes()[i].name + "-" + choices[i];
     return s;
+}
+
+std::string Variant::short_hash() const {
+    const std::string k = key();
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(XXH64(k.data(), k.size(), 0)));
+    return hex;
 }
 
 Variant default_variant() {

@@ -77,7 +77,11 @@ dvec3 shade(const Hit& hit, const dvec3& p) {
 EvalInputs SyntheticScene::eval_inputs() const {
     EvalInputs in;
     in.uniforms = uniforms;
-    for (const auto& [name, t] : textures) in.textures[name] = TextureView{t.width, t.height, t.rgba.data()};
+    for (const auto& [name, t] : textures) {
+        TextureView view{t.width, t.height, t.rgba.data()};
+        view.layers = t.layers;
+        in.textures[name] = view;
+    }
     in.filter = Filter::Linear;
     return in;
 }

@@ -2,6 +2,7 @@
 // untimed first draw (lavapipe JITs the shaders there), timestamp-timed steady draws,
 // readback.
 #include "vulkan_internal.h"
+#include "vulkan_mesh.h"
 
 #include <fmt/format.h>
 
@@ -100,9 +101,11 @@ Pipeline create_pipeline(Scope& scope, const RenderJob& job, VkPipelineLayout la
     stages[1].pName = entry_point(job.fragment_reflection);
 
     // Fullscreen triangle: positions come from gl_VertexIndex, so no vertex input. An
-    // indexed grid mesh would add its binding/attributes here.
+    // indexed grid mesh (job.mesh) adds its binding/attributes here.
     VkPipelineVertexInputStateCreateInfo vertex_input{};
     vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+    MeshInputState mesh_input;
+    describe_mesh_input(job.mesh, mesh_input, vertex_input); // no-op without a mesh
     VkPipelineInputAssemblyStateCreateInfo assembly{};
     assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
     assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
@@ -212,6 +215,7 @@ void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
     VkFramebuffer framebuffer = create_framebuffer(scope, pass, target);
     Pipeline pipeline = create_pipeline(scope, job, layout, pass);
     result.pipeline_ms = pipeline.create_ms;
+    const MeshBuffers mesh = upload_mesh(scope, job.mesh); // index_count 0 without a mesh
 
     const bool timestamps = ctx.timestamp_mask != 0;
     VkQueryPool queries = timestamps ? create_timestamp_pool(scope) : VK_NULL_HANDLE;
@@ -237,7 +241,10 @@ void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
         vkCmdBindDescriptorSets(draw, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0,
                                 static_cast<uint32_t>(descriptors.sets.size()),
                                 descriptors.sets.data(), 0, nullptr);
-    vkCmdDraw(draw, 3, 1, 0, 0);
+    if (mesh.index_count)
+        record_mesh_draw(draw, mesh);
+    else
+        vkCmdDraw(draw, 3, 1, 0, 0);
     vkCmdEndRenderPass(draw);
     // Bottom of pipe: the sample is taken once the draw has fully completed.
     if (timestamps) vkCmdWriteTimestamp(draw, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);

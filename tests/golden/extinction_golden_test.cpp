@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "watergen/cpu_evaluator.h"
+#include "watergen/node_catalog.h"
 #include "watergen/nodes.h"
 
 using namespace watergen;
@@ -65,5 +66,29 @@ TEST_CASE("absorb_scatter_is_finite_at_stress_depths", "[extinction][stress]") {
             CHECK(v <= 0.5 + 1e-3); // never brighter than the refracted colour (-1e-3 m adds < 0.05 %)
         }
         CHECK(lowest >= -slack);
+    }
+}
+
+TEST_CASE("zero_absorption_over_an_infinite_path_is_finite", "[extinction][stress]") {
+    // 0 * inf is NaN: without the distance cap every model returned NaN here.
+    const std::map<std::string, std::vector<std::pair<std::string, std::vector<double>>>> zeroed = {
+        {"extinction.absorb_scatter", {{"absorb_coefficients", {0, 0, 0}}, {"scatter_coefficient", {0}}}},
+        {"extinction.beer_lambert", {{"extinction_pure_water_absorption", {0, 0, 0}}}},
+        {"extinction.exponential", {{"extinction_density", {0}}}},
+    };
+    for (const auto& [node, params] : zeroed) {
+        INFO(node);
+        const Graph g = probe_graph(*find_catalog_node(node));
+        EvalInputs in;
+        in.lanes = 2;
+        in.varyings["depth"] = {INFINITY, 1.0};
+        in.varyings["path"] = {INFINITY, INFINITY};
+        in.varyings["refraction"] = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5};
+        for (const auto& [name, value] : params) in.uniforms[name] = value;
+        for (auto p : {EvalPrecision::Double, EvalPrecision::Float, EvalPrecision::Half}) {
+            const auto r = evaluate(g, "value", in, p);
+            REQUIRE(r.ok());
+            for (double v : r.values) CHECK(std::isfinite(v));
+        }
     }
 }

@@ -107,3 +107,15 @@ TEST_CASE("unknown_axis_or_choice_names_the_allowed_ones", "[variant]") {
     CHECK_FALSE(parse_variant_key("fresnel", &error));
     CHECK(error == "variant key item 'fresnel': expected axis=choice");
 }
+
+TEST_CASE("short_hash_is_xxh64_of_the_key", "[variant]") {
+    // Pinned: a key's hash never changes, so logs, caches and manifests stay comparable.
+    const Variant v = default_variant();
+    CHECK(v.key() == "fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,"
+                     "refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=full");
+    CHECK(v.short_hash() == "3dc847c87f7a124c");
+    Variant other = v;
+    REQUIRE_FALSE(set_choice(other, "fresnel", "exact"));
+    CHECK(other.short_hash() != v.short_hash());
+    CHECK(other.short_hash().size() == 16);
+}

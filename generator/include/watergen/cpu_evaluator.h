@@ -20,12 +20,32 @@ const char* to_string(EvalPrecision p);
 double round_to_half(double v);
 double round_to(double v, EvalPrecision p);
 
+// RGBA32F texels laid out like the runner's TextureData: layer-major, then rows (row 0 = v = 0),
+// then columns. A cube holds 6 square faces in Vulkan order +X, -X, +Y, -Y, +Z, -Z.
 struct TextureView {
     uint32_t width = 0, height = 0;
-    const float* rgba = nullptr; // RGBA32F, row 0 = v = 0
+    const float* rgba = nullptr;
+    // 1 (2D) or 6 (cube); 0 = as the sampled binding's type needs (2D: 1, cube: 6).
+    uint32_t layers = 0;
 };
 
-enum class Filter { Nearest, Linear }; // both clamp to edge, as the runner's sampler
+// Both clamp to edge, as the runner's sampler. Cubes follow Vulkan: the face is picked by the
+// major axis of the direction ("Cube Map Face Selection"); linear filtering is seamless, taking
+// texels past a face edge from the adjacent face and replacing the missing corner texel by the
+// mean of the other three (what lavapipe does); nearest clamps within the face.
+enum class Filter { Nearest, Linear };
+
+// Vulkan's cube face selection for direction (x, y, z): face index in Vulkan order and the
+// face coordinates (s, t) in [0, 1]. Ties pick z over y over x (lavapipe's order); a zero or
+// non-finite direction samples the centre of +Z.
+struct CubeFaceCoord {
+    int face = 4;
+    double s = 0.5, t = 0.5;
+};
+CubeFaceCoord cube_face_coord(double x, double y, double z);
+// The inverse: the (unnormalised) direction through face coordinates (s, t) of `face`; also
+// defined past the face's edges (s, t outside [0, 1]). For making cube textures.
+void cube_face_direction(int face, double s, double t, double direction[3]);
 
 struct EvalInputs {
     std::map<std::string, std::vector<double>> uniforms; // overrides of parameter defaults

@@ -68,6 +68,20 @@ private:
     bool previous_;
 };
 
+// Forces 32-bit operations for its lifetime whatever the enclosing RelaxedScope says: geometry
+// (positions up to 1e5 m, times up to a day) overflows or loses all precision in binary16.
+class FullPrecisionScope {
+public:
+    explicit FullPrecisionScope(Graph& g) : g_(g), previous_(g.relaxed()) { g.set_relaxed(false); }
+    ~FullPrecisionScope() { g_.set_relaxed(previous_); }
+    FullPrecisionScope(const FullPrecisionScope&) = delete;
+    FullPrecisionScope& operator=(const FullPrecisionScope&) = delete;
+
+private:
+    Graph& g_;
+    bool previous_;
+};
+
 // Leaves.
 Expr constant(Graph& g, double v);
 Expr constant(Graph& g, std::initializer_list<double> components);

@@ -33,6 +33,8 @@ struct Variant {
     std::string key() const;
     // "fresnel-schlick_extinction-absorb_scatter": safe as a file name
     std::string file_stem() const;
+    // xxHash64 of key(), 16 lower-case hex digits: a short, stable name for logs and caches.
+    std::string short_hash() const;
 };
 
 Variant default_variant();

@@ -49,6 +49,16 @@ struct TextureData {
     std::vector<float> rgba;
 };
 
+// An indexed triangle list (vulkan_mesh.cpp): one interleaved float vertex buffer, attribute i
+// at location i with attribute_sizes[i] floats (1..4), and 32-bit indices. No depth buffer:
+// later triangles overwrite earlier ones, so order them back to front.
+struct MeshData {
+    std::vector<float> vertices;
+    std::vector<uint32_t> attribute_sizes;
+    std::vector<uint32_t> indices;
+    bool empty() const { return indices.empty(); }
+};
+
 struct RenderJob {
     std::vector<uint32_t> vertex_spirv;
     std::vector<uint32_t> fragment_spirv;
@@ -68,7 +78,9 @@ struct RenderJob {
     // Draws after the first one, each timed with GPU timestamp queries.
     uint32_t timed_draws = 5;
     // Geometry is a fullscreen triangle: no vertex buffers, 3 vertices, the vertex shader
-    // derives positions from gl_VertexIndex.
+    // derives positions from gl_VertexIndex. Unless `mesh` is non-empty: then it is drawn
+    // indexed, from its vertex buffer.
+    MeshData mesh;
 };
 
 struct RenderResult {

@@ -1,0 +1,87 @@
+// watergen build [MATERIAL] [--scene S ...] --out DIR: every variant the scenes need, folded,
+// validated, optimised, cross-compiled and reflected in parallel, cached, written atomically.
+#include <cstdio>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "commands.h"
+#include "watergen/build_output.h"
+
+namespace watergen::cli {
+
+bool load_material_and_scenes(const std::string& material_path, const std::vector<std::string>& scene_paths,
+                              Material& material, std::vector<SceneFacts>& scenes, const Common& common) {
+    Diagnostics ds;
+    if (material_path.empty()) {
+        material = default_material();
+    } else if (auto m = load_material(material_path, ds)) {
+        material = std::move(*m);
+    } else {
+        print_diagnostics(ds, common);
+        return false;
+    }
+    for (const auto& path : scene_paths) {
+        auto s = load_scene(path, ds);
+        if (!s) {
+            print_diagnostics(ds, common);
+            return false;
+        }
+        scenes.push_back(std::move(*s));
+    }
+    return true;
+}
+
+Runner add_build_command(CLI::App& app, const Common& common) {
+    struct Options {
+        std::string material;
+        std::vector<std::string> scenes;
+        std::string out;
+        unsigned jobs = 0;
+        std::string cache;
+        bool no_cache = false;
+        bool quiet = false;
+    };
+    auto o = std::make_shared<Options>();
+    app.add_option("material", o->material,
+                   "material description (JSON, see README \"Material files\"); default: the built-in default material, "
+                   "the same as examples/materials/default.json");
+    app.add_option("--scene", o->scenes,
+                   "scene description (JSON, repeatable); with scenes only the variants they reach are built, each folded "
+                   "under the scene's facts into <out>/<scene>/<variant>/; without, every variant of the material goes "
+                   "unfolded into <out>/unpruned/<variant>/");
+    app.add_option("--out", o->out, "output directory, replaced as a whole when the build succeeds")->required();
+    app.add_option("--jobs,-j", o->jobs, "worker threads (default: every hardware thread); output is the same for any count");
+    app.add_option("--cache", o->cache, "cache directory (default: $XDG_CACHE_HOME/watergen or ~/.cache/watergen)");
+    app.add_flag("--no-cache", o->no_cache, "build every variant, and store nothing");
+    app.add_flag("--quiet,-q", o->quiet, "no progress line, only the summary");
+    return [o, &common]() {
+        BuildRequest request;
+        if (!load_material_and_scenes(o->material, o->scenes, request.material, request.scenes, common)) return kUsage;
+        request.out = o->out;
+        request.options.threads = o->jobs;
+        if (!o->no_cache) request.options.cache = BuildCache(o->cache.empty() ? default_cache_dir() : std::filesystem::path(o->cache));
+        const bool tty = !o->quiet && ::isatty(STDERR_FILENO);
+        if (tty)
+            request.options.progress = [](const BuildProgress& p) {
+                std::fprintf(stderr, "\r\033[K[%zu/%zu] %zu cached, %zu failed  %s", p.done, p.total, p.cached, p.failed,
+                             p.key.substr(0, 60).c_str());
+                std::fflush(stderr);
+            };
+        const BuildSummary s = build_material(request);
+        if (tty) std::fprintf(stderr, "\r\033[K");
+        print_diagnostics(s.diagnostics, common);
+        if (s.bad_input) return kUsage;
+        const unsigned threads = o->jobs ? o->jobs : hardware_threads();
+        std::printf("%s\n", fmt::format("build: {} variants ({} built, {} cached, {} shared between scenes, {} same shader as another variant, {} failed) "
+                                        "in {:.2f} s on {} thread{}{}",
+                                        s.variants, s.built, s.cached, s.shared, s.same, s.failed, s.seconds, threads,
+                                        threads == 1 ? "" : "s",
+                                        s.ok() ? fmt::format(" -> {} ({} files)", o->out, s.files)
+                                               : std::string("; nothing written, ") + o->out + " is unchanged")
+                                .c_str());
+        return s.ok() ? kOk : kFailed;
+    };
+}
+
+} // namespace watergen::cli

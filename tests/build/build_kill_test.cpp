@@ -1,0 +1,81 @@
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+#include "build_test_support.h"
+#include "watergen/build_output.h"
+
+using namespace watergen;
+using namespace watergen::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Starts `watergen build` in a child process; returns its pid.
+pid_t start_build(const std::vector<std::string>& args) {
+    std::vector<char*> argv;
+    std::string cli = WATERGEN_CLI;
+    argv.push_back(cli.data());
+    std::vector<std::string> copy = args;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        std::freopen("/dev/null", "w", stdout);
+        std::freopen("/dev/null", "w", stderr);
+        ::execv(cli.c_str(), argv.data());
+        ::_exit(127);
+    }
+    return pid;
+}
+
+} // namespace
+
+TEST_CASE("a_build_killed_midway_leaves_the_previous_output_intact", "[build]") {
+    const TempDir tmp("kill");
+    const fs::path out = tmp.path / "out";
+    // The previous output: one scene. The new build: three scenes, so old and new differ.
+    auto scenes = example_scenes();
+    BuildRequest old_request{default_material(), {scenes.back()}, out, {}};
+    REQUIRE(build_material(old_request).ok());
+    const auto previous = read_tree(out);
+    BuildRequest new_request{default_material(), scenes, tmp.path / "reference", {}};
+    REQUIRE(build_material(new_request).ok());
+    const auto complete = read_tree(new_request.out);
+    REQUIRE(previous != complete);
+
+    std::vector<std::string> args = {"build", "-q", "--no-cache", source_dir() + "/examples/materials/default.json"};
+    for (const auto& p : example_scene_paths()) {
+        args.push_back("--scene");
+        args.push_back(p);
+    }
+    args.push_back("--out");
+    args.push_back(out.string());
+    int killed = 0, finished = 0;
+    for (int delay_ms : {10, 60, 150, 300, 500, 700, 900, 1200}) {
+        const pid_t pid = start_build(args);
+        REQUIRE(pid > 0);
+        std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+        ::kill(pid, SIGKILL);
+        int status = 0;
+        ::waitpid(pid, &status, 0);
+        const bool was_killed = WIFSIGNALED(status);
+        killed += was_killed;
+        finished += !was_killed;
+        const auto now = read_tree(out);
+        INFO("killed after " << delay_ms << " ms: " << (was_killed ? "killed" : "finished"));
+        // Either the old output or the complete new one; never a mix, never nothing.
+        CHECK((now == previous || now == complete));
+        if (now == complete) REQUIRE(build_material(old_request).ok()); // back to the old one
+    }
+    CHECK(killed > 0);
+    // A later build still succeeds and clears what the killed ones left beside the output.
+    REQUIRE(build_material(BuildRequest{default_material(), scenes, out, {}}).ok());
+    CHECK(read_tree(out) == complete);
+    for (const auto& e : fs::directory_iterator(tmp.path))
+        CHECK((e.path().filename() == "out" || e.path().filename() == "reference"));
+}

@@ -1,0 +1,145 @@
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "build_test_support.h"
+#include "watergen/build_output.h"
+
+using namespace watergen;
+using namespace watergen::test;
+namespace fs = std::filesystem;
+
+TEST_CASE("output_is_byte_identical_for_one_thread_and_all_threads", "[build]") {
+    const TempDir tmp("threads");
+    BuildRequest one{default_material(), example_scenes(), tmp.path / "one", {}};
+    one.options.threads = 1;
+    BuildRequest all = one;
+    all.out = tmp.path / "all";
+    all.options.threads = 4; // more workers than cores still gives the same bytes
+    const BuildSummary a = build_material(one);
+    const BuildSummary b = build_material(all);
+    REQUIRE(a.ok());
+    REQUIRE(b.ok());
+    CHECK(a.variants == 20);
+    CHECK(a.same == 4); // open_ocean folds shore=soft into shore=hard
+    const auto fa = read_tree(one.out), fb = read_tree(all.out);
+    CHECK(fa.size() == a.files);
+    CHECK(fa == fb);
+}
+
+TEST_CASE("an_unchanged_variant_comes_from_the_cache_with_the_same_bytes", "[build]") {
+    const TempDir tmp("cache");
+    BuildRequest r{default_material(), example_scenes(), tmp.path / "out", {}};
+    r.options.cache = BuildCache(tmp.path / "cache");
+    const BuildSummary cold = build_material(r);
+    REQUIRE(cold.ok());
+    CHECK(cold.cached == 0);
+    const auto first = read_tree(r.out);
+    const BuildSummary warm = build_material(r);
+    REQUIRE(warm.ok());
+    CHECK(warm.built == 0);
+    CHECK(warm.cached + warm.shared + warm.same == warm.variants);
+    CHECK(read_tree(r.out) == first);
+
+    // A changed parameter value changes only the variants that read it.
+    BuildRequest changed = r;
+    auto& s = changed.material.parameters["shore_hardness"];
+    s.value = std::vector<double>{2.0};
+    const BuildSummary third = build_material(changed);
+    REQUIRE(third.ok());
+    CHECK(third.built > 0);
+    CHECK(third.cached > 0);
+}
+
+TEST_CASE("manifest_lists_every_variant_sorted_with_reflection_and_counts", "[build]") {
+    const TempDir tmp("manifest");
+    BuildRequest r{default_material(), example_scenes(), tmp.path / "out", {}};
+    REQUIRE(build_material(r).ok());
+    const auto tree = read_tree(r.out);
+    const auto m = nlohmann::json::parse(tree.at("manifest.json"));
+    CHECK(m["space"]["full"] == 238080);
+    CHECK(m["space"]["material"] == 12);
+    REQUIRE(m["variants"].size() == 20);
+    std::string previous;
+    for (const auto& v : m["variants"]) {
+        const std::string key = v["scene"].get<std::string>() + "|" + v["key"].get<std::string>();
+        CHECK(previous < key);
+        previous = key;
+        CHECK(v["hash"].get<std::string>().size() == 16);
+        CHECK(v["nodes"]["fresnel"].get<std::string>().rfind("fresnel.", 0) == 0);
+        CHECK(v["reflection"]["uniform_block"]["binding"] == 0);
+        CHECK(v["spirv_instructions"]["glsl"]["fragment"].get<int>() > 0);
+        // Every listed file exists.
+        for (const auto& [kind, files] : v["files"].items())
+            for (const auto& f : files) CHECK(tree.count(f.get<std::string>()) == 1);
+    }
+    // The mountain lake targets phones: ESSL, no HLSL.
+    for (const auto& v : m["variants"])
+        if (v["scene"] == "mountain_lake") {
+            CHECK(v["files"].contains("essl300"));
+            CHECK_FALSE(v["files"].contains("hlsl"));
+            CHECK(v["folded_parameters"].contains("water_level")); // read by every variant; time is not (flat water)
+        }
+}
+
+TEST_CASE("a_build_without_scenes_builds_the_whole_material_unfolded", "[build]") {
+    const TempDir tmp("unpruned");
+    BuildRequest r{default_material(), {}, tmp.path / "out", {}};
+    const BuildSummary s = build_material(r);
+    REQUIRE(s.ok());
+    CHECK(s.variants == 12);
+    CHECK(fs::is_directory(r.out / kUnprunedScene));
+}
+
+TEST_CASE("a_failing_variant_leaves_the_previous_output_untouched", "[build]") {
+    const TempDir tmp("failing");
+    const fs::path out = tmp.path / "out";
+    fs::create_directories(out);
+    std::ofstream(out / "previous.txt") << "previous\n";
+    Material broken = default_material();
+    broken.space.choices[0].push_back("bogus"); // no node: the variant cannot compose
+    BuildRequest r{broken, example_scenes(), out, {}};
+    const BuildSummary s = build_material(r);
+    CHECK_FALSE(s.ok());
+    CHECK(s.failed > 0);
+    CHECK(read_tree(out) == std::map<std::string, std::string>{{"previous.txt", "previous\n"}});
+    for (const auto& e : fs::directory_iterator(tmp.path)) CHECK(e.path().filename() == "out"); // no staging left
+}
+
+TEST_CASE("bad_scene_input_leaves_the_previous_output_untouched", "[build]") {
+    const TempDir tmp("bad-scene");
+    const fs::path out = tmp.path / "out";
+    fs::create_directories(out);
+    std::ofstream(out / "previous.txt") << "previous\n";
+    auto scenes = example_scenes();
+    scenes[0].fixed["colour"] = {1.0};
+    BuildRequest r{default_material(), scenes, out, {}};
+    const BuildSummary s = build_material(r);
+    CHECK(s.bad_input);
+    REQUIRE(s.diagnostics.size() == 1);
+    CHECK(s.diagnostics[0].message.find("unknown parameter 'colour'") != std::string::npos);
+    CHECK(read_tree(out).size() == 1);
+}
+
+TEST_CASE("the_cpp_example_program_and_the_json_file_build_the_same_bytes", "[build]") {
+    const TempDir tmp("example");
+    std::string scene_args, scene_flags;
+    for (const auto& path : example_scene_paths()) {
+        scene_args += " " + path;
+        scene_flags += " --scene " + path;
+    }
+    const std::string cpp = std::string(WATERGEN_EXAMPLE) + " " + (tmp.path / "cpp").string() + scene_args + " > /dev/null";
+    const std::string json = std::string(WATERGEN_CLI) + " build -q --no-cache " + source_dir() +
+                             "/examples/materials/default.json" + scene_flags + " --out " + (tmp.path / "json").string() +
+                             " > /dev/null";
+    REQUIRE(std::system(cpp.c_str()) == 0);
+    REQUIRE(std::system(json.c_str()) == 0);
+    const auto a = read_tree(tmp.path / "cpp"), b = read_tree(tmp.path / "json");
+    CHECK(a.size() > 100);
+    CHECK(a == b);
+}

@@ -1,0 +1,73 @@
+// Helpers of the build tests: temporary directories, whole trees read into memory, the
+// example scenes.
+#pragma once
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+#include "watergen/scene_file.h"
+
+namespace watergen::test {
+
+inline std::string source_dir() {
+    const char* s = std::getenv("WATERGEN_SOURCE_DIR");
+    REQUIRE(s != nullptr);
+    return s;
+}
+
+// A fresh directory under the system temp directory, removed at the end of the test.
+struct TempDir {
+    std::filesystem::path path;
+    explicit TempDir(const std::string& name)
+        : path(std::filesystem::temp_directory_path() / ("watergen-test-" + name + "-" + std::to_string(::getpid()))) {
+        std::filesystem::remove_all(path);
+        std::filesystem::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+};
+
+// Every regular file below `root`: relative path -> bytes.
+inline std::map<std::string, std::string> read_tree(const std::filesystem::path& root) {
+    std::map<std::string, std::string> files;
+    if (!std::filesystem::is_directory(root)) return files;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(root)) {
+        if (!e.is_regular_file()) continue;
+        std::ifstream in(e.path(), std::ios::binary);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        files[std::filesystem::relative(e.path(), root).generic_string()] = ss.str();
+    }
+    return files;
+}
+
+inline std::vector<std::string> example_scene_paths() {
+    std::vector<std::string> paths;
+    for (const auto& e : std::filesystem::directory_iterator(source_dir() + "/examples/scenes"))
+        if (e.path().extension() == ".json") paths.push_back(e.path().string());
+    std::sort(paths.begin(), paths.end());
+    return paths;
+}
+
+inline std::vector<SceneFacts> example_scenes() {
+    std::vector<SceneFacts> scenes;
+    for (const auto& p : example_scene_paths()) {
+        Diagnostics ds;
+        auto s = load_scene(p, ds);
+        REQUIRE(s);
+        scenes.push_back(*s);
+    }
+    return scenes;
+}
+
+} // namespace watergen::test

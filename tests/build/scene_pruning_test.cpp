@@ -1,0 +1,138 @@
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+
+#include "watergen/scene_pruning.h"
+
+using namespace watergen;
+
+namespace {
+
+std::string example(const std::string& relative) {
+    const char* s = std::getenv("WATERGEN_SOURCE_DIR");
+    REQUIRE(s != nullptr);
+    return std::string(s) + "/examples/" + relative;
+}
+
+SceneFacts scene(const std::string& name) {
+    Diagnostics ds;
+    auto s = load_scene(example("scenes/" + name + ".json"), ds);
+    REQUIRE(s);
+    return *s;
+}
+
+Material full() {
+    Diagnostics ds;
+    auto m = load_material(example("materials/full.json"), ds);
+    REQUIRE(m);
+    return *m;
+}
+
+Variant with(std::initializer_list<std::pair<const char*, const char*>> choices) {
+    Variant v = default_variant();
+    for (const auto& [axis, choice] : choices) REQUIRE_FALSE(set_choice(v, axis, choice));
+    return v;
+}
+
+} // namespace
+
+TEST_CASE("scene_facts_rule_out_choices_with_their_reason", "[pruning]") {
+    const SceneFacts ocean = scene("open_ocean"), harbour = scene("harbour_night"), lake = scene("mountain_lake");
+    auto e = scene_excludes(ocean, with({{"foam", "shore"}}));
+    REQUIRE(e);
+    CHECK(e->reason == "no shoreline, so shore foam never shows");
+    CHECK(e->where.find("open_ocean.json:4:3 /shoreline") != std::string::npos);
+    CHECK(scene_excludes(ocean, with({{"foam", "both"}, {"waves", "gerstner"}})));
+    CHECK_FALSE(scene_excludes(ocean, with({{"foam", "crest"}, {"waves", "gerstner"}})));
+    CHECK_FALSE(scene_excludes(harbour, with({{"foam", "shore"}, {"reflection", "planar_projective"}, {"specular", "none"}})));
+
+    e = scene_excludes(harbour, with({{"reflection", "sky_cubemap"}}));
+    REQUIRE(e);
+    CHECK(e->reason == "no cubemap among the scene's reflection sources (planar)");
+    CHECK_FALSE(scene_excludes(ocean, with({{"reflection", "sky_cubemap"}})));
+    CHECK(scene_excludes(ocean, with({{"reflection", "planar_projective"}})));
+    CHECK(scene_excludes(ocean, with({{"reflection", "fourier_horizon"}})));
+
+    e = scene_excludes(harbour, with({{"reflection", "none"}, {"specular", "ggx_sun"}}));
+    REQUIRE(e);
+    CHECK(e->reason == "the sun never rises (elevation at most -6 degrees), so there is no sun highlight");
+
+    e = scene_excludes(lake, with({{"precision", "full"}}));
+    REQUIRE(e);
+    CHECK(e->axis == "precision");
+    CHECK(e->reason == "the scene targets precision half");
+}
+
+TEST_CASE("plans_of_the_example_scenes", "[pruning]") {
+    const Material m = default_material();
+    Diagnostics ds;
+    auto ocean = plan_scene(m, scene("open_ocean"), ds);
+    REQUIRE(ocean);
+    CHECK(ocean->variants.size() == 8);
+    CHECK(ocean->skipped == 4);
+    CHECK(ocean->fixed.count("water_level"));
+    CHECK_FALSE(ocean->fixed.count("time")); // animated waves keep time
+    std::vector<std::string> targets;
+    for (Target t : ocean->targets) targets.push_back(to_string(t));
+    CHECK(targets == std::vector<std::string>{"glsl", "hlsl", "spirv", "msl", "reflection"});
+    CHECK(ocean->facts.named_ranges.at("water_depth").bounds[0].lo == 400);
+    for (size_t i = 1; i < ocean->variants.size(); ++i) CHECK(ocean->variants[i - 1].key() < ocean->variants[i].key());
+
+    auto lake = plan_scene(m, scene("mountain_lake"), ds);
+    REQUIRE(lake);
+    CHECK(lake->variants.size() == 4); // half precision, Schlick only (the material's rule)
+    CHECK(lake->fixed.at("time") == std::vector<double>{0.0});
+
+    auto harbour = plan_scene(m, scene("harbour_night"), ds);
+    REQUIRE(harbour);
+    // Night: the sun travels upwards, 0.10..0.64 of its direction.
+    const Interval sun_y = harbour->facts.parameter_ranges.at("sun_direction").bounds[1];
+    CHECK(sun_y.lo == Approx(0.104528).epsilon(1e-5));
+    CHECK(sun_y.hi == Approx(0.642788).epsilon(1e-5));
+}
+
+TEST_CASE("the_full_space_per_example_scene", "[pruning]") {
+    // What each example scene reaches of all 238080 variants (reported in the README).
+    const Material m = full();
+    REQUIRE(count_variants(m.space) == 238080);
+    Diagnostics ds;
+    const auto ocean = plan_scene(m, scene("open_ocean"), ds);
+    const auto harbour = plan_scene(m, scene("harbour_night"), ds);
+    const auto lake = plan_scene(m, scene("mountain_lake"), ds);
+    REQUIRE(ocean);
+    REQUIRE(harbour);
+    REQUIRE(lake);
+    CHECK(ocean->variants.size() == 29760);
+    CHECK(harbour->variants.size() == 14880);
+    CHECK(lake->variants.size() == 59520);
+    CHECK(ocean->variants.size() + ocean->skipped == 238080);
+}
+
+TEST_CASE("scene_parameter_errors_name_the_scene_file", "[pruning]") {
+    const Material m = default_material();
+    auto check = [&](const std::string& fixed, const std::string& waves, const std::string& expected) {
+        const std::string text = "{\"name\": \"s\", \"shoreline\": true, \"water_depth\": {\"min\": 0, \"max\": 9},\n"
+                                 "\"camera_height\": {\"min\": 1, \"max\": 9}, \"camera_pitch\": {\"min\": -9, \"max\": 0},\n"
+                                 "\"sun_elevation\": {\"min\": 5, \"max\": 9}, \"reflection_sources\": [], \"waves\": \"" +
+                                 waves + "\",\n\"precision\": \"any\", \"platforms\": [\"vulkan\"],\n\"fixed\": {" + fixed + "}}";
+        Diagnostic e;
+        const auto src = JsonSource::parse(text, "s.json", &e);
+        REQUIRE(src);
+        Diagnostics ds;
+        const auto s = parse_scene(*src, ds);
+        REQUIRE(s);
+        CHECK_FALSE(plan_scene(m, *s, ds));
+        REQUIRE(ds.size() == 1);
+        CHECK(format_diagnostic(ds[0]).find(expected) == 0);
+    };
+    check("\"colour\": 1", "animated", "s.json:5:11: error: /fixed/colour: unknown parameter 'colour'; the nodes of material 'default' read ");
+    check("\"eye_position\": [1, 2]", "animated",
+          "s.json:5:11: error: /fixed/eye_position: parameter 'eye_position' is a vec3: expected 3 numbers, got 2");
+    check("\"shore_hardness\": 9", "animated",
+          "s.json:5:11: error: /fixed/shore_hardness: shore_hardness = 9 is out of range; expected a value in [0.5, 4] 1/m");
+    check("\"time\": 3", "animated",
+          "s.json:5:11: error: /fixed/time: time is fixed but the scene's waves are animated; expected \"waves\": \"static\"");
+    check("\"sun_direction\": [0, -1, 0]", "animated",
+          "s.json:5:11: error: /fixed/sun_direction: the fixed sun direction has elevation 90 degrees; expected one within "
+          "sun_elevation [5, 9]");
+}
