@@ -1,15 +1,15 @@
 #include <catch2/catch.hpp>
 
-#include "watergen/covering_array.h"
+#include "covering_builds.h"
 #include "watergen/variant_build.h"
 
 using namespace watergen;
 
 TEST_CASE("emitting_twice_yields_byte_identical_files", "[determinism]") {
-    for (const Variant& v : pairwise_covering_variants()) {
-        INFO(v.key());
-        const auto first = variant_files(build_variant(v));
-        const auto second = variant_files(build_variant(v));
+    for (const VariantBuild& b : test::covering_builds()) {
+        INFO(b.shader.variant.key());
+        const auto first = variant_files(b);
+        const auto second = variant_files(build_variant(b.shader.variant));
         REQUIRE(!first.empty());
         REQUIRE(first.size() == second.size());
         for (const auto& [name, bytes] : first) {
