@@ -455,35 +455,22 @@ WaveHit find_wave_surface(const Surface& s, const std::string& choice, Expr pixe
     return {hit.point, hit.distance, constant(g, {0.0, 0.0})};
 }
 
-namespace {
-
-// The pass looks at the water from above: a ray pointing up never meets it. intersect_plane
-// clamps only the divisor for such a ray, which puts surface_point 5e6 m up the ray, above the
-// scene point, and would make every sky pixel water (with the waves evaluated at |x| ~ 1e6 m).
-void only_looking_down(Surface& s) {
-    s.is_water = s.is_water && s.view_ray.y() < 0.0;
-}
-
-} // namespace
-
 void apply_waves(Surface& s, const std::string& choice) {
     OriginScope scope(s.g, "waves." + choice);
     if (choice == "flat") {
         const PlaneHit hit = intersect_plane(s, s.level);
         s.surface_point = hit.point;
         set_water_column(s, hit.distance);
-        only_looking_down(s);
         return;
     }
     if (choice == "sum_of_sines" || choice == "gerstner" || choice == "heightmap_march" ||
         choice == "heightmap_march_converged") {
-        // Radians per pixel (view_ray is unit): the band limit of the analytic waves.
-        Expr pixel_angle;
-        pixel_angle = named(max(length(ddx(s.view_ray)), length(ddy(s.view_ray))), "pixel_angle");
+        // Radians per pixel (view_ray is unit): the band limit of every wave model's search.
+        Expr pixel_angle =
+            named(max(length(ddx(s.view_ray)), length(ddy(s.view_ray))), "pixel_angle");
         const WaveHit hit = find_wave_surface(s, choice, pixel_angle);
         s.surface_point = hit.point;
         set_water_column(s, hit.distance);
-        only_looking_down(s);
         s.wave_slope = hit.slope;
         return;
     }
