@@ -144,14 +144,17 @@ private:
             facts_[id] = facts;
         } else if (values_[id].size() == v.size()) {
             // The same value reached another way (a name is no part of node identity): both
-            // bounds hold, so keep their intersection.
-            for (size_t c = 0; c < v.size(); ++c) {
+            // bounds hold, so keep their intersection (when they overlap, as they must).
+            bool overlap = true;
+            for (size_t c = 0; c < v.size(); ++c)
+                overlap = overlap && std::max(values_[id][c].lo, v[c].lo) <= std::min(values_[id][c].hi, v[c].hi);
+            for (size_t c = 0; overlap && c < v.size(); ++c) {
                 Interval& e = values_[id][c];
                 e.lo = std::max(e.lo, v[c].lo);
                 e.hi = std::min(e.hi, v[c].hi);
                 e.finite = e.finite || v[c].finite;
             }
-            facts_[id] |= facts;
+            if (overlap) facts_[id] |= facts;
         }
         return id;
     }
@@ -351,13 +354,18 @@ private:
         }
         if (!n.name.empty())
             if (auto it = f_.named_ranges.find(n.name); it != f_.named_ranges.end()) {
+                // An assumption the computed bounds contradict cannot hold anywhere; ignore it
+                // rather than fold by an empty range.
                 const Intervals assumed = bounds_of(it->second, n.type);
-                for (size_t c = 0; c < v.size() && c < assumed.size(); ++c) {
+                bool consistent = assumed.size() == v.size();
+                for (size_t c = 0; consistent && c < v.size(); ++c)
+                    consistent = std::max(v[c].lo, assumed[c].lo) <= std::min(v[c].hi, assumed[c].hi);
+                for (size_t c = 0; consistent && c < v.size(); ++c) {
                     v[c].lo = std::max(v[c].lo, assumed[c].lo);
                     v[c].hi = std::min(v[c].hi, assumed[c].hi);
                     v[c].finite = v[c].finite || (std::isfinite(v[c].lo) && std::isfinite(v[c].hi));
                 }
-                facts.set(std::min(it->second.fact, kMaxFacts - 1));
+                if (consistent) facts.set(std::min(it->second.fact, kMaxFacts - 1));
             }
 
         if (is_float_valued(n.type) && n.op != Op::Constant) {

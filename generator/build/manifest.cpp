@@ -172,7 +172,8 @@ std::string manifest_json(const Material& material, const std::vector<ManifestSc
             v["directory"] = dir;
             v["files"] = files_json(dir, r.files);
         }
-        const JobResult& built = r.same_as.empty() ? r : results[index[{job.scene, r.same_as}]];
+        const auto canonical = r.same_as.empty() ? index.end() : index.find({job.scene, r.same_as});
+        const JobResult& built = canonical == index.end() ? r : results[canonical->second];
         if (auto it = built.files.find("variant.json"); it != built.files.end()) {
             const OJson d = OJson::parse(it->second);
             v["reflection"] = {{"uniform_block", d.value("uniform_block", OJson::object())},

@@ -558,16 +558,16 @@ Material default_material() {
     // Keep in step with examples/materials/default.json (a test builds both and compares).
     Diagnostics ds;
     auto m = MaterialBuilder("default")
-                 .description("clear sea water; the choices with nodes today, a few per axis")
+                 .description("clear sea water: a few choices per axis, enough for every example scene to prune something")
                  .preset("tropical_ocean")
                  .offer("fresnel", {"schlick", "exact"})
-                 .offer("extinction", {"none", "absorb_scatter"})
-                 .offer("specular", {"none"})
-                 .offer("foam", {"none"})
-                 .offer("reflection", {"none"})
-                 .offer("refraction", {"none"})
+                 .offer("extinction", {"absorb_scatter"})
+                 .offer("specular", {"none", "blinn_phong"})
+                 .offer("foam", {"none", "shore"})
+                 .offer("reflection", {"sky_cubemap", "planar_projective"})
+                 .offer("refraction", {"screen_distort"})
                  .offer("normals", {"flat"})
-                 .offer("waves", {"flat"})
+                 .offer("waves", {"flat", "gerstner"})
                  .offer("shore", {"hard", "soft"})
                  .offer("precision", {"full", "half"})
                  .excludes_choice("precision", "half", "fresnel", {"exact"},

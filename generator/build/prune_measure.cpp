@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "watergen/ir_fold.h"
+#include "watergen/uniform_layout.h"
 
 namespace watergen {
 
@@ -18,6 +19,28 @@ std::vector<double> uniform_value(const SyntheticScene& s, const Material& m, co
     if (auto it = m.parameters.find(name); it != m.parameters.end() && it->second.value) return *it->second.value;
     if (auto it = m.declared.find(name); it != m.declared.end()) return it->second.default_value;
     return {};
+}
+
+// Timed draws only: the later rounds need no images and no CPU reference. The job is filled
+// as render_variant fills it (variant_render.cpp), which keeps that helper to itself.
+std::vector<double> timed_draws(VulkanRunner& runner, const LanguageBuild& lang, const SyntheticScene& scene,
+                                const RenderSettings& settings, std::string* error) {
+    RenderJob job;
+    job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
+    job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
+    job.vertex_reflection = lang.vertex.toolchain.reflection;
+    job.fragment_reflection = lang.fragment.toolchain.reflection;
+    job.width = settings.width;
+    job.height = settings.height;
+    const ShaderInterface& in = lang.fragment.source.interface;
+    job.uniforms = pack_uniforms(in.uniforms, in.parameters, scene.uniforms);
+    for (const auto& t : in.textures)
+        if (auto it = scene.textures.find(t.name); it != scene.textures.end()) job.textures[t.name] = it->second;
+    job.filter = TextureFilter::Linear;
+    job.timed_draws = settings.timed_draws;
+    const RenderResult r = runner.render(job);
+    if (!r.ok) *error = r.error;
+    return r.draw_ms;
 }
 
 } // namespace
@@ -119,14 +142,27 @@ PruneMeasurement measure_pruning(VulkanRunner& runner, const Material& m, const 
     double fastest[2][2] = {{1e300, 1e300}, {1e300, 1e300}};
     for (unsigned round = 0; round < std::max(1u, rounds); ++round) {
         for (int which = 0; which < 2; ++which) {
-            VariantRender r = render_variant(runner, which == 0 ? a : b, scene, timed);
-            if (!r.ok()) {
-                out.error = "render: " + r.error;
-                return out;
+            const VariantBuild& build = which == 0 ? a : b;
+            if (round == 0) {
+                VariantRender r = render_variant(runner, build, scene, timed);
+                if (!r.ok()) {
+                    out.error = "render: " + r.error;
+                    return out;
+                }
+                for (int lang = 0; lang < 2; ++lang)
+                    for (double ms : r.gpu[lang].draw_ms) fastest[which][lang] = std::min(fastest[which][lang], ms);
+                (which == 0 ? ra : rb) = std::move(r);
+                continue;
             }
-            for (int lang = 0; lang < 2; ++lang)
-                for (double ms : r.gpu[lang].draw_ms) fastest[which][lang] = std::min(fastest[which][lang], ms);
-            if (round == 0) (which == 0 ? ra : rb) = std::move(r);
+            for (int lang = 0; lang < 2; ++lang) {
+                std::string error;
+                for (double ms : timed_draws(runner, build.languages[static_cast<size_t>(lang)], scene, timed, &error))
+                    fastest[which][lang] = std::min(fastest[which][lang], ms);
+                if (!error.empty()) {
+                    out.error = "render: " + error;
+                    return out;
+                }
+            }
         }
     }
     out.gpu_ms_unpruned = fastest[0][0];

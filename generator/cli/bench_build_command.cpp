@@ -2,10 +2,12 @@
 // no-op rebuild from a full cache), on one thread and on all, for the full space and for a
 // pruned example (a material and its scenes).
 //
-// The full space has 238080 variants but only the choices with nodes today compose; so for
-// the full space the bench measures (1) enumerating it and checking its rules, (2) planning
-// each given scene over it (which variants it reaches), both over all 238080, and (3) building
-// its wired subset: every valid variant whose choices all have nodes.
+// The full space has 238080 variants, far too many to compile in a benchmark, so for it the
+// bench measures (1) enumerating it and checking its rules, (2) planning each given scene over
+// it (which variants the scene reaches), both over all 238080, and (3) building an evenly
+// spaced sample of it (--sample, every k-th variant in enumeration order) through the same
+// jobs as `watergen build` (compose, emit, hash, cache or toolchain), without writing files.
+// The pruned example is a complete `watergen build`, output written.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -39,29 +41,6 @@ Material full_material() {
     return *b.build(ds);
 }
 
-// The full space restricted to choices that compose today. A choice is wired when a variant
-// that composes keeps composing with it (and with the first choices its rules require).
-Material wired_material() {
-    Variant base = default_variant();
-    for (size_t i = 0; i < axes().size(); ++i) base.choices[i] = axes()[i].choices.front().name;
-    MaterialBuilder b("wired");
-    for (size_t i = 0; i < axes().size(); ++i) {
-        std::vector<std::string> wired;
-        for (const auto& c : axes()[i].choices) {
-            Variant v = base;
-            v.choices[i] = c.name;
-            for (const auto& r : builtin_rules())
-                if (v.choice(r.axis) == r.choice && r.other_axis != axes()[i].name)
-                    set_choice(v, r.other_axis, r.other_choices.front());
-            if (!check_constraints(v) && !has_errors(build_water_shader(v).fragment.diagnostics())) wired.push_back(c.name);
-        }
-        b.offer(axes()[i].name, wired);
-    }
-    Diagnostics ds;
-    auto m = b.build(ds);
-    return m ? *m : default_material();
-}
-
 struct Row {
     std::string what;
     size_t variants = 0;
@@ -77,11 +56,13 @@ Runner add_bench_build_command(CLI::App& app, const Common& common) {
         std::vector<std::string> scenes;
         std::string out = "out/bench";
         unsigned threads = 0;
+        size_t sample = 48;
     };
     auto o = std::make_shared<Options>();
     app.add_option("material", o->material, "material of the pruned example (default: the built-in default material)");
     app.add_option("--scene", o->scenes, "scenes of the pruned example (repeatable)");
     app.add_option("--jobs,-j", o->threads, "threads of the 'all threads' runs (default: every hardware thread)");
+    app.add_option("--sample", o->sample, "full-space variants to build, evenly spaced (default 48)")->check(CLI::Range(1, 238080));
     app.add_option("--out", o->out, "directory for build.csv and build.json (default out/bench)");
     return [o, &common]() {
         Material example;
@@ -113,41 +94,62 @@ Runner add_bench_build_command(CLI::App& app, const Common& common) {
             warm.options.threads = 1;
             build_material(warm);
         }
-        auto case_rows = [&](const std::string& label, const Material& m, const std::vector<SceneFacts>& sc) -> bool {
-            for (unsigned threads : {1u, all}) {
-                const fs::path cache = work / fmt::format("cache-{}-{}", label, threads);
-                const fs::path out = work / fmt::format("out-{}-{}", label, threads);
-                for (const char* temperature : {"cold", "warm"}) {
-                    BuildRequest r{m, sc, out, {}};
-                    r.options.threads = threads;
-                    r.options.cache = BuildCache(cache);
-                    const BuildSummary s = build_material(r);
-                    if (!s.ok()) {
-                        print_diagnostics(s.diagnostics, common);
-                        return false;
-                    }
-                    rows.push_back({fmt::format("{}: build {}, {} thread{}", label, temperature, threads, threads == 1 ? "" : "s"),
-                                    s.variants, s.seconds,
-                                    fmt::format("{} built, {} cached, {} same shader", s.built, s.cached, s.same)});
+        // The full space: a sample built as jobs (nothing written).
+        std::vector<BuildJob> sample;
+        {
+            const size_t step = std::max<size_t>(1, n / o->sample);
+            size_t i = 0;
+            enumerate(full.space, [&](const Variant& v) {
+                if (i++ % step == 0 && sample.size() < o->sample) sample.push_back({"sample", v, nullptr, all_targets()});
+            });
+        }
+        for (unsigned threads : {1u, all}) {
+            const BuildCache cache(work / fmt::format("cache-sample-{}", threads));
+            for (const char* temperature : {"cold", "warm"}) {
+                BuildOptions options;
+                options.threads = threads;
+                options.cache = cache;
+                std::vector<JobResult> results;
+                const double t = seconds_of([&] { results = run_build_jobs(full, sample, options); });
+                size_t failed = 0, cached = 0;
+                for (const auto& r : results) {
+                    failed += !r.ok();
+                    cached += r.cached;
                 }
+                rows.push_back({fmt::format("full space, sample of {} (every {}-th): build {}, {} thread{}", sample.size(),
+                                            std::max<size_t>(1, n / o->sample), temperature, threads, threads == 1 ? "" : "s"),
+                                sample.size(), t, fmt::format("{} cached, {} failed", cached, failed)});
             }
-            return true;
-        };
-        const Material wired = wired_material();
-        if (!case_rows(fmt::format("full space, wired subset ({} variants)", count_variants(wired.space)), wired, {}) ||
-            !case_rows("pruned example (" + example.name + (scenes.empty() ? "" : " + " + std::to_string(scenes.size()) + " scenes") + ")",
-                       example, scenes)) {
-            fs::remove_all(work);
-            return kFailed;
+        }
+        // The pruned example: complete builds, output written.
+        const std::string label = "pruned example (" + example.name +
+                                  (scenes.empty() ? ", unpruned" : ", " + std::to_string(scenes.size()) + " scenes") + ")";
+        for (unsigned threads : {1u, all}) {
+            const fs::path cache = work / fmt::format("cache-example-{}", threads);
+            const fs::path out = work / fmt::format("out-example-{}", threads);
+            for (const char* temperature : {"cold", "warm"}) {
+                BuildRequest r{example, scenes, out, {}};
+                r.options.threads = threads;
+                r.options.cache = BuildCache(cache);
+                const BuildSummary s = build_material(r);
+                if (!s.ok()) {
+                    print_diagnostics(s.diagnostics, common);
+                    fs::remove_all(work);
+                    return kFailed;
+                }
+                rows.push_back({fmt::format("{}: build {}, {} thread{}", label, temperature, threads, threads == 1 ? "" : "s"),
+                                s.variants, s.seconds,
+                                fmt::format("{} built, {} cached, {} shared, {} same shader", s.built, s.cached, s.shared, s.same)});
+            }
         }
         fs::remove_all(work);
 
-        std::printf("%-72s %9s %9s %12s  %s\n", "what", "variants", "seconds", "variants/s", "");
+        std::printf("%-78s %9s %9s %12s  %s\n", "what", "variants", "seconds", "variants/s", "");
         std::string csv = "what,variants,seconds,variants_per_second,note\n";
         nlohmann::ordered_json json = nlohmann::ordered_json::array();
         for (const auto& r : rows) {
             const double rate = r.seconds > 0 ? r.variants / r.seconds : 0.0;
-            std::printf("%-72s %9zu %9.3f %12.1f  %s\n", r.what.c_str(), r.variants, r.seconds, rate, r.note.c_str());
+            std::printf("%-78s %9zu %9.3f %12.1f  %s\n", r.what.c_str(), r.variants, r.seconds, rate, r.note.c_str());
             csv += fmt::format("\"{}\",{},{:.4f},{:.1f},\"{}\"\n", r.what, r.variants, r.seconds, rate, r.note);
             json.push_back({{"what", r.what}, {"variants", r.variants}, {"seconds", r.seconds}, {"variants_per_second", rate}, {"note", r.note}});
         }

@@ -70,4 +70,8 @@ inline std::vector<SceneFacts> example_scenes() {
     return scenes;
 }
 
+// `watergen build` of the example material for the example scenes, on every thread without a
+// cache: built once per test binary, then compared against by every test that needs it.
+std::map<std::string, std::string> reference_build();
+
 } // namespace watergen::test

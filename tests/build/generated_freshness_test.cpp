@@ -9,14 +9,7 @@ using namespace watergen::test;
 // generated/ in the repository is exactly what `watergen build` writes today for the example
 // material and scenes (scripts/regenerate rewrites it): fresh, and deterministic.
 TEST_CASE("generated_files_match_the_generator", "[determinism]") {
-    Diagnostics ds;
-    auto material = load_material(source_dir() + "/examples/materials/default.json", ds);
-    REQUIRE(material);
-    const TempDir tmp("fresh");
-    BuildRequest r{*material, example_scenes(), tmp.path / "generated", {}};
-    const BuildSummary s = build_material(r);
-    REQUIRE(s.ok());
-    const auto expected = read_tree(r.out);
+    const auto expected = reference_build();
     const auto on_disk = read_tree(source_dir() + "/generated");
     INFO("run scripts/regenerate");
     for (const auto& [path, bytes] : expected) {

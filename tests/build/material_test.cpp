@@ -38,7 +38,7 @@ TEST_CASE("builder_and_file_describe_the_same_material", "[material]") {
     // The manifest's material section holds everything a build reads from a material.
     CHECK(manifest_json(*file, {}, {}, {}) == manifest_json(cpp, {}, {}, {}));
     CHECK(file->declared.size() == cpp.declared.size());
-    CHECK(count_variants(cpp.space) == 12);
+    CHECK(count_variants(cpp.space) == 96);
 }
 
 TEST_CASE("material_space_keeps_documentation_order", "[material]") {

@@ -68,8 +68,8 @@ TEST_CASE("plans_of_the_example_scenes", "[pruning]") {
     Diagnostics ds;
     auto ocean = plan_scene(m, scene("open_ocean"), ds);
     REQUIRE(ocean);
-    CHECK(ocean->variants.size() == 8);
-    CHECK(ocean->skipped == 4);
+    CHECK(ocean->variants.size() == 16);
+    CHECK(ocean->skipped == 80);
     CHECK(ocean->fixed.count("water_level"));
     CHECK_FALSE(ocean->fixed.count("time")); // animated waves keep time
     std::vector<std::string> targets;
@@ -80,11 +80,14 @@ TEST_CASE("plans_of_the_example_scenes", "[pruning]") {
 
     auto lake = plan_scene(m, scene("mountain_lake"), ds);
     REQUIRE(lake);
-    CHECK(lake->variants.size() == 4); // half precision, Schlick only (the material's rule)
+    CHECK(lake->variants.size() == 16); // half precision, Schlick only (the material's rule), cubemap
     CHECK(lake->fixed.at("time") == std::vector<double>{0.0});
+    for (const Variant& v : lake->variants) CHECK((v.choice("fresnel") == "schlick" && v.choice("reflection") == "sky_cubemap"));
 
     auto harbour = plan_scene(m, scene("harbour_night"), ds);
     REQUIRE(harbour);
+    for (const Variant& v : harbour->variants)
+        CHECK((v.choice("specular") == "none" && v.choice("reflection") == "planar_projective"));
     // Night: the sun travels upwards, 0.10..0.64 of its direction.
     const Interval sun_y = harbour->facts.parameter_ranges.at("sun_direction").bounds[1];
     CHECK(sun_y.lo == Approx(0.104528).epsilon(1e-5));

@@ -4,12 +4,14 @@
 //   constant subexpressions       are evaluated (by the CPU evaluator, the same semantics),
 //   a value the bounds pin down   becomes a constant (saturate(depth * k) = 1 when depth >= 1/k),
 //   a value within +-vanish       becomes 0 (the one approximation; exp(-k d) for a deep scene),
-//   x * 1, 1 * x, x + 0, x - 0, 0 - x = -x, x / 1, -(-x), mix(a, b, 0) = a, mix(a, b, 1) = b, mix(a, a, t) = a,
-//   select on a decided condition, select(c, a, a) = a, min / max / clamp / saturate whose
-//   outcome the bounds decide     are replaced by the surviving operand,
+//   x * 1, 1 * x, x + 0, x - 0, x / 1, -(-x), pow(x, 1), mix(a, b, 0) = a, mix(a, b, 1) = b,
+//   mix(a, a, t) = a, select on a decided condition, select(c, a, a) = a, and min / max /
+//   clamp / saturate whose outcome the bounds decide
+//                                 are replaced by the surviving operand; 0 - x becomes -x,
 //   x * 0 = 0                     only when x is provably finite (inf * 0 and NaN * 0 are NaN),
 // and what no output reads any more is gone, because emission walks live nodes only. Every
-// rewrite is recorded with the facts its decision used, for `watergen explain`.
+// rewrite is recorded with the facts its decision used, for `watergen explain`. The result is
+// compacted (live nodes only, renumbered), so variants that fold alike give the same graph.
 //
 // Soundness: bounds hold on every pixel where the result is shown. Facts about the water
 // (water_depth) are only true on water pixels; the skeleton's final select(is_water, water,
