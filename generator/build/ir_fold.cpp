@@ -38,15 +38,6 @@ bool pure(Op op) {
     }
 }
 
-bool is_infix(Op op) {
-    switch (op) {
-    case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: case Op::Less: case Op::LessEqual:
-    case Op::Greater: case Op::GreaterEqual: case Op::Equal: case Op::NotEqual: case Op::And:
-    case Op::Or: return true;
-    default: return false;
-    }
-}
-
 // How a node reads in explain output: its name when it has one, else its operation.
 std::string label(const Node& n) {
     if (!n.name.empty() && n.op != Op::Constant) return n.name;

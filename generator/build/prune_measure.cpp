@@ -21,24 +21,10 @@ std::vector<double> uniform_value(const SyntheticScene& s, const Material& m, co
     return {};
 }
 
-// Timed draws only: the later rounds need no images and no CPU reference. The job is filled
-// as render_variant fills it (variant_render.cpp), which keeps that helper to itself.
+// Timed draws only: the later rounds need no images and no CPU reference.
 std::vector<double> timed_draws(VulkanRunner& runner, const LanguageBuild& lang, const SyntheticScene& scene,
                                 const RenderSettings& settings, std::string* error) {
-    RenderJob job;
-    job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
-    job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
-    job.vertex_reflection = lang.vertex.toolchain.reflection;
-    job.fragment_reflection = lang.fragment.toolchain.reflection;
-    job.width = settings.width;
-    job.height = settings.height;
-    const ShaderInterface& in = lang.fragment.source.interface;
-    job.uniforms = pack_uniforms(in.uniforms, in.parameters, scene.uniforms);
-    for (const auto& t : in.textures)
-        if (auto it = scene.textures.find(t.name); it != scene.textures.end()) job.textures[t.name] = it->second;
-    job.filter = TextureFilter::Linear;
-    job.timed_draws = settings.timed_draws;
-    const RenderResult r = runner.render(job);
+    const RenderResult r = runner.render(make_render_job(lang, scene, settings));
     if (!r.ok) *error = r.error;
     return r.draw_ms;
 }

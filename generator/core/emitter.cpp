@@ -33,19 +33,6 @@ struct Line {
     std::string origin;
 };
 
-bool is_leaf(Op op) {
-    return op == Op::Constant || op == Op::Uniform || op == Op::Varying || op == Op::Texture;
-}
-
-bool is_infix(Op op) {
-    switch (op) {
-    case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: case Op::Less: case Op::LessEqual:
-    case Op::Greater: case Op::GreaterEqual: case Op::Equal: case Op::NotEqual: case Op::And:
-    case Op::Or: return true;
-    default: return false;
-    }
-}
-
 // Removes one pair of parentheses that encloses the whole text.
 std::string strip_outer(const std::string& s) {
     if (s.size() < 2 || s.front() != '(' || s.back() != ')') return s;

@@ -110,11 +110,20 @@ const char* op_name(Op op) {
     return "?";
 }
 
-namespace {
-
 bool is_leaf(Op op) {
     return op == Op::Constant || op == Op::Uniform || op == Op::Varying || op == Op::Texture;
 }
+
+bool is_infix(Op op) {
+    switch (op) {
+    case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: case Op::Less: case Op::LessEqual:
+    case Op::Greater: case Op::GreaterEqual: case Op::Equal: case Op::NotEqual: case Op::And:
+    case Op::Or: return true;
+    default: return false;
+    }
+}
+
+namespace {
 
 // Identity of a node for hash-consing. The name is identity for leaves only; for other nodes
 // it is a naming hint, so two equal computations with different hints are still one node.

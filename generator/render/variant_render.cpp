@@ -15,9 +15,7 @@ ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height) {
     return img;
 }
 
-namespace {
-
-RenderJob make_job(const LanguageBuild& lang, const SyntheticScene& scene, const RenderSettings& settings) {
+RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene, const RenderSettings& settings) {
     RenderJob job;
     job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
     job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
@@ -34,8 +32,6 @@ RenderJob make_job(const LanguageBuild& lang, const SyntheticScene& scene, const
     return job;
 }
 
-} // namespace
-
 VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build, const SyntheticScene& scene,
                              const RenderSettings& settings) {
     VariantRender out;
@@ -50,7 +46,7 @@ VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build, co
     }
     runner.clear_validation_messages();
     for (size_t i = 0; i < 2; ++i) {
-        out.gpu[i] = runner.render(make_job(build.languages[i], scene, settings));
+        out.gpu[i] = runner.render(make_render_job(build.languages[i], scene, settings));
         if (!out.gpu[i].ok) {
             out.error = std::string(to_string(build.languages[i].language)) + " path: " + out.gpu[i].error;
             return out;

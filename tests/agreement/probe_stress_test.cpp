@@ -12,13 +12,7 @@ namespace {
 
 ProbeRun probe(const std::string& node, Language lang, const std::vector<double>& inputs,
                const std::map<std::string, std::vector<double>>& uniforms = {}) {
-    const Graph g = probe_graph(*find_catalog_node(node));
-    ProbeRun run = run_probe(test::shared_runner(), g, lang, inputs, uniforms);
-    for (const auto& d : run.diagnostics) INFO(format_diagnostic(d));
-    INFO(run.error);
-    REQUIRE(run.ok());
-    CHECK(run.validation_messages.empty());
-    return run;
+    return test::checked_probe(probe_graph(*find_catalog_node(node)), lang, inputs, uniforms);
 }
 
 // water-models.md stress set for c.

@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "watergen/probe.h"
 #include "watergen/runtime/vulkan_runner.h"
 
 namespace watergen::test {
@@ -15,6 +16,17 @@ inline VulkanRunner& shared_runner() {
         return created;
     }();
     return *r;
+}
+
+// run_probe on the shared runner, failing the test on diagnostics, errors or validation messages.
+inline ProbeRun checked_probe(const Graph& g, Language lang, const std::vector<double>& inputs,
+                              const std::map<std::string, std::vector<double>>& uniforms = {}) {
+    ProbeRun run = run_probe(shared_runner(), g, lang, inputs, uniforms);
+    for (const auto& d : run.diagnostics) INFO(format_diagnostic(d));
+    INFO(run.error);
+    REQUIRE(run.ok());
+    CHECK(run.validation_messages.empty());
+    return run;
 }
 
 } // namespace watergen::test

@@ -22,12 +22,7 @@ namespace {
 using Uniforms = std::map<std::string, std::vector<double>>;
 
 ProbeRun probe_graph_on(const Graph& g, Language lang, const std::vector<double>& inputs, const Uniforms& uniforms) {
-    ProbeRun run = run_probe(test::shared_runner(), g, lang, inputs, uniforms);
-    for (const auto& d : run.diagnostics) INFO(format_diagnostic(d));
-    INFO(run.error);
-    REQUIRE(run.ok());
-    CHECK(run.validation_messages.empty());
-    return run;
+    return test::checked_probe(g, lang, inputs, uniforms);
 }
 
 // Per-component bounds of one output value, and the tolerances of the comparisons.

@@ -61,6 +61,8 @@ enum class Op : uint8_t {
 };
 
 const char* op_name(Op op);
+bool is_leaf(Op op);  // Constant, Uniform, Varying, Texture
+bool is_infix(Op op); // written between its operands: + - * / comparisons && ||
 
 struct Node {
     Op op = Op::Constant;

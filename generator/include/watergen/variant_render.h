@@ -36,6 +36,10 @@ struct VariantRender {
 VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build, const SyntheticScene& scene,
                              const RenderSettings& settings);
 
+// The runner job for one language path of a built variant over `scene`: optimised SPIR-V, the
+// scene's textures by binding name, uniforms packed from the scene's values over the defaults.
+RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene, const RenderSettings& settings);
+
 ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height);
 
 } // namespace watergen
