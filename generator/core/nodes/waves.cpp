@@ -139,6 +139,30 @@ Expr gerstner_horizontal(Graph& g, Expr grid_xz, Expr time, Expr footprint) {
     return sum;
 }
 
+// One Newton step towards the grid point x0 with x0 + horizontal(x0) = world_xz, from x0.
+// The Jacobian J = I - sum_i k_i D_i D_i^T (k_i = Q_i A_i w_i sin th_i) is symmetric with
+// eigenvalues in [1 - Q, 1 + Q] for unit directions; its determinant is floored (a damped step
+// where a steep crest nearly folds) so the step stays finite and continuous in its inputs.
+// Same sines and cosines as the displacement and normal at x0: no extra transcendentals.
+Expr gerstner_grid_newton(Graph& g, Expr world_xz, Expr time, Expr x0, Expr footprint) {
+    Expr horizontal, jxx, jxz, jzz;
+    for (const auto& w : gerstner_waves(g, x0, time, footprint)) {
+        horizontal = accumulate(horizontal, w.horizontal * w.c * w.direction);
+        Expr k = w.horizontal * w.frequency * w.s;
+        Expr kx = k * w.direction.x();
+        jxx = accumulate(jxx, kx * w.direction.x());
+        jxz = accumulate(jxz, kx * w.direction.y());
+        jzz = accumulate(jzz, (k * w.direction.y()) * w.direction.y());
+    }
+    jxx = 1.0 - jxx;
+    jzz = 1.0 - jzz;
+    jxz = -jxz;
+    Expr f = named(x0 + horizontal - world_xz, "gerstner_grid_residual");
+    Expr det = named(max(jxx * jzz - jxz * jxz, 0.04), "gerstner_grid_det");
+    Expr step = vec2(jzz * f.x() - jxz * f.y(), jxx * f.y() - jxz * f.x()) / det;
+    return named(x0 - step, "gerstner_grid_point");
+}
+
 } // namespace
 
 // ---- sum of sines ----
@@ -334,7 +358,7 @@ WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, i
     // into a later one (the plain iteration r = 1 oscillates, even chaotically, for grazing
     // rays). That is slow where G is large, so after `safe_steps` such steps each step is a
     // Newton step r = 1 / (1 - T') with T' from the model's analytic slope at S, kept within
-    // [r_safe, 1]. Everything stays continuous in the inputs, and with the model band-limited
+    // [r_safe, 1] and within the bracket below. With the model band-limited
     // to the pixel footprint (pixel_angle) no pixel resolves the silhouettes of crests far
     // below its size, where the first crossing jumps: without the band limit, GPU and CPU
     // rounding sent a few grazing pixels to different crests.
@@ -348,16 +372,42 @@ WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, i
     };
     Expr level = named(s.level + model.top, "search_level");
     PlaneHit hit = intersect_plane(s, level);
+    // The bracket [lo, hi] of the first crossing: hi is the last level found above the surface
+    // (every safe step is), lo the last found below it (at first the bottom of the slab, where
+    // T >= level holds for every model). A Newton step that leaves the bracket bisects it
+    // instead: without that, a Newton step that overshoots a grazing crest can fall into a
+    // 2-cycle between crest and trough (or a chaotic orbit) that 8 steps never leave, and
+    // float rounding then picks the end of the orbit (measured up to 0.045 at 256x256).
+    // The selects switch only where target = level (a root), where a Newton step lands on
+    // the bracket's edge or where T' = 1; either way the step stays in a bracket that holds
+    // the crossing, and the remaining steps converge into it from both branches.
+    // A NaN height compares false everywhere and stays NaN (see set_water_column).
+    Expr hi = level, lo = named(s.level - model.top, "search_low");
     for (int i = 0; i < steps; ++i) {
         Expr fp = footprint(hit);
         Expr target = named(s.level + model.height(hit.point.xz(), fp), "search_target");
         Expr r = r_safe;
+        Expr t_slope;
         if (i >= safe_steps) {
-            Expr t_slope = -dot(model.slope(hit.point.xz(), fp), s.view_ray.xz()) / ray_down;
+            t_slope = -dot(model.slope(hit.point.xz(), fp), s.view_ray.xz()) / ray_down;
             Expr newton = 1.0 / max(1.0 - t_slope, 1e-6);
             r = named(clamp(newton, r_safe, constant(g, 1.0)), "search_step");
         }
-        level = named(level + r * (target - level), "search_level");
+        Expr f = target - level;
+        Expr next = named(level + r * f, "search_level");
+        if (i >= safe_steps) {
+            Expr above = f < 0.0;
+            hi = named(select(above, level, hi), "search_high");
+            lo = named(select(above, lo, level), "search_low");
+            // T' >= 1: Newton would step away from the bracket's crossing (towards one where
+            // the ray leaves the surface); the clamped step r = 1 then expands errors by T'
+            // per step (measured: float and double apart by 2x per step, 2.6e-4 at the end).
+            Expr outside = (next < lo) || (next > hi) || (t_slope >= 1.0);
+            next = named(select(outside, 0.5 * (lo + hi), next), "search_level");
+        } else {
+            hi = level; // a safe step never leaves the region above the first crossing
+        }
+        level = next;
         hit = intersect_plane(s, level);
     }
     return {hit.point, hit.distance, model.slope(hit.point.xz(), footprint(hit))};
@@ -393,9 +443,15 @@ SurfaceModel gerstner_surface(Graph& g, Expr time) {
     Expr steepness =
         uniform(g, {"gerstner_steepness", Type::Float, {0.5}, 0.0, 1.0, "", "004", ""});
     // The height above world xz is the height of the grid point x0 with x0 + horizontal(x0)
-    // = xz: one fixed-point step per search step refines x0 (a contraction for Q < 1).
-    // Crests bunch the grid by up to 1 / (1 - Q), which steepens the world slope by as much.
-    // Height and slope at the same S share one step.
+    // = xz: one Newton step per search step refines x0 (gerstner_grid_newton). A fixed-point
+    // step (a contraction by only Q) lagged metres behind when a grazing ray's S moved by
+    // half a wavelength, so the search saw heights and slopes of the wrong place.
+    // The height is corrected to first order for the step's remaining miss (S minus the
+    // displaced x0, up to metres while S still moves) with the world slope at x0, which the
+    // Newton steps of the search compute anyway: without that, a height from a stale x0 put
+    // the search's bracket on the wrong side of the surface (residuals up to 1.3 cm on rays
+    // 20 degrees down). Crests bunch the grid by up to 1 / (1 - Q), which steepens the world
+    // slope by as much. Height and slope at the same S share one step.
     struct Grid {
         Expr x0;
         uint32_t xz = UINT32_MAX;
@@ -403,21 +459,29 @@ SurfaceModel gerstner_surface(Graph& g, Expr time) {
     auto state = std::make_shared<Grid>();
     auto grid = [&g, time, state](Expr xz, Expr fp) {
         if (state->xz != xz.id()) {
-            state->x0 = gerstner_grid_point(g, xz, time, state->x0.valid() ? state->x0 : xz, 1, fp);
+            FullPrecisionScope full(g);
+            OriginScope scope(g, "waves.gerstner");
+            state->x0 = gerstner_grid_newton(g, xz, time, state->x0.valid() ? state->x0 : xz, fp);
             state->xz = xz.id();
         }
         return state->x0;
     };
+    auto world_slope = [&g, time](Expr x0, Expr fp) {
+        Expr n = gerstner_normal(g, x0, time, fp);
+        // dh/dx = -n.x / n.y; n.y > 0 unless a steepness-1 crest folds, where the
+        // max() caps the slope instead of dividing by zero.
+        return named(-n.xz() / max(n.y(), 1e-4), "wave_slope");
+    };
     return {top, named(slope / max(1.0 - steepness, 0.2), "gerstner_max_slope"),
-            [&g, time, grid](Expr xz, Expr fp) {
-                return gerstner_displacement(g, grid(xz, fp), time, fp).y();
+            [&g, time, grid, world_slope](Expr xz, Expr fp) {
+                Expr x0 = grid(xz, fp);
+                Expr d = gerstner_displacement(g, x0, time, fp);
+                FullPrecisionScope full(g);
+                OriginScope scope(g, "waves.gerstner");
+                Expr miss = xz - (x0 + d.swizzle("xz"));
+                return named(d.y() + dot(world_slope(x0, fp), miss), "gerstner_height");
             },
-            [&g, time, grid](Expr xz, Expr fp) {
-                Expr n = gerstner_normal(g, grid(xz, fp), time, fp);
-                // dh/dx = -n.x / n.y; n.y > 0 unless a steepness-1 crest folds, where the
-                // max() caps the slope instead of dividing by zero.
-                return named(-n.xz() / max(n.y(), 1e-4), "wave_slope");
-            }};
+            [grid, world_slope](Expr xz, Expr fp) { return world_slope(grid(xz, fp), fp); }};
 }
 
 SurfaceModel heightmap_surface(Graph& g, Expr time) {

@@ -99,7 +99,10 @@ struct SurfaceModel {
     std::function<Expr(Expr, Expr)> slope;
 };
 SurfaceModel sum_of_sines_surface(Graph& g, Expr time);
-SurfaceModel gerstner_surface(Graph& g, Expr time); // stateful: reuses its last grid point
+// Stateful: reuses its last grid point, refined by one Newton step (2x2 Jacobian of the
+// horizontal displacement, determinant floored at 0.04) per new world xz; the height is
+// corrected to first order (world slope at x0) for what that step leaves of the miss.
+SurfaceModel gerstner_surface(Graph& g, Expr time);
 SurfaceModel heightmap_surface(Graph& g, Expr time);
 
 // r = 1 / (1 + K |ray.xz| / max(-ray.y, 1e-6)), the damping of surface_search.
@@ -109,7 +112,11 @@ Expr search_relaxation(Graph& g, Expr view_ray, Expr max_slope);
 // `steps` x { T = water_level + height(S.xz); level += r (T - level); S = the view ray meets
 // level } (r = 1 is 000's "level = level + B H"). The first `safe_steps` use r = 1 / (1 + G),
 // which keeps every step monotone so the levels descend towards the first crossing of the ray
-// with the surface; later steps are Newton steps (from model.slope) kept within [that r, 1].
+// with the surface; later steps are Newton steps (from model.slope) kept within [that r, 1]
+// and within a bracket [lo, hi] of the crossing (hi: the last level above the surface, lo: the
+// last below it, at first water_level - top); a Newton step leaving the bracket bisects it
+// instead (so does a step where T' >= 1, where Newton points away from the crossing), so a
+// grazing ray cannot end in a crest-trough cycle whose end float rounding picks.
 // The plane intersections go through intersect_plane. Reads s.eye, s.view_ray, s.level.
 // `pixel_angle` (radians per pixel, optional) band-limits the model at each step's footprint.
 WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, int safe_steps,
