@@ -1,5 +1,5 @@
 # Runs COMMAND; passes when its exit code is EXPECTED_EXIT and its output matches REGEX.
-execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
 set(all "${out}${err}")
 string(REPLACE "\n" " " flat "${all}")
 if(NOT rc STREQUAL "${EXPECTED_EXIT}")
