@@ -6,9 +6,9 @@
 // Usage: build_default_material OUT SCENE.json...
 #include <cstdio>
 
-#include "watergen/build_output.h"
-#include "watergen/material.h"
-#include "watergen/scene_file.h"
+#include "watergen/pipeline/build_output.h"
+#include "watergen/plan/material.h"
+#include "watergen/plan/scene_file.h"
 
 using namespace watergen;
 

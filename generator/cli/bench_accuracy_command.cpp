@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "watergen/output_writer.h"
-#include "watergen/variant_render.h"
+#include "watergen/pipeline/output_writer.h"
+#include "watergen/render/variant_render.h"
 
 namespace watergen::cli {
 

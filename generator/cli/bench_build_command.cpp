@@ -18,9 +18,9 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "watergen/build_output.h"
-#include "watergen/glslang_stage.h"
-#include "watergen/output_writer.h"
+#include "watergen/pipeline/build_output.h"
+#include "watergen/toolchain/glslang_stage.h"
+#include "watergen/pipeline/output_writer.h"
 
 namespace watergen::cli {
 

@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "watergen/covering_array.h"
-#include "watergen/output_writer.h"
-#include "watergen/tool_process_chain.h"
-#include "watergen/variant_build.h"
+#include "watergen/plan/covering_array.h"
+#include "watergen/pipeline/output_writer.h"
+#include "watergen/toolchain/tool_process_chain.h"
+#include "watergen/pipeline/variant_build.h"
 
 namespace watergen::cli {
 

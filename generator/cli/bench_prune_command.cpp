@@ -10,10 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "watergen/build_output.h"
-#include "watergen/emitter.h"
-#include "watergen/output_writer.h"
-#include "watergen/prune_measure.h"
+#include "watergen/pipeline/build_output.h"
+#include "watergen/ir/emitter.h"
+#include "watergen/pipeline/output_writer.h"
+#include "watergen/render/prune_measure.h"
 
 namespace watergen::cli {
 

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "watergen/build_output.h"
+#include "watergen/pipeline/build_output.h"
 
 namespace watergen::cli {
 

@@ -6,12 +6,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "watergen/diagnostic.h"
-#include "watergen/material.h"
-#include "watergen/scene_file.h"
-#include "watergen/presets.h"
+#include "watergen/ir/diagnostic.h"
+#include "watergen/plan/material.h"
+#include "watergen/plan/scene_file.h"
+#include "watergen/water/presets.h"
 #include "watergen/runtime/vulkan_runner.h"
-#include "watergen/variant.h"
+#include "watergen/water/variant.h"
 
 namespace watergen::cli {
 

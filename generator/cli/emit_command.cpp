@@ -2,10 +2,10 @@
 #include <filesystem>
 
 #include "commands.h"
-#include "watergen/presets.h"
-#include "watergen/covering_array.h"
-#include "watergen/output_writer.h"
-#include "watergen/variant_build.h"
+#include "watergen/water/presets.h"
+#include "watergen/plan/covering_array.h"
+#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/variant_build.h"
 
 namespace watergen::cli {
 

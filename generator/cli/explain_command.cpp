@@ -7,8 +7,8 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "watergen/build_output.h"
-#include "watergen/emitter.h"
+#include "watergen/pipeline/build_output.h"
+#include "watergen/ir/emitter.h"
 
 namespace watergen::cli {
 

@@ -3,7 +3,7 @@
 #include <map>
 
 #include "commands.h"
-#include "watergen/presets.h"
+#include "watergen/water/presets.h"
 
 namespace watergen::cli {
 

@@ -7,9 +7,9 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "watergen/node_catalog.h"
-#include "watergen/output_writer.h"
-#include "watergen/probe.h"
+#include "watergen/water/node_catalog.h"
+#include "watergen/pipeline/output_writer.h"
+#include "watergen/render/probe.h"
 
 namespace watergen::cli {
 

@@ -4,9 +4,9 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "watergen/presets.h"
-#include "watergen/output_writer.h"
-#include "watergen/variant_render.h"
+#include "watergen/water/presets.h"
+#include "watergen/pipeline/output_writer.h"
+#include "watergen/render/variant_render.h"
 
 namespace watergen::cli {
 

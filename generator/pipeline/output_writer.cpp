@@ -1,4 +1,4 @@
-#include "watergen/output_writer.h"
+#include "watergen/pipeline/output_writer.h"
 
 #include <fstream>
 #include <system_error>

@@ -1,9 +1,9 @@
-#include "watergen/variant_build.h"
+#include "watergen/pipeline/variant_build.h"
 
 #include <nlohmann/json.hpp>
 
 #include "watergen/runtime/reflection.h"
-#include "watergen/spirv_tools_stage.h"
+#include "watergen/toolchain/spirv_tools_stage.h"
 
 namespace watergen {
 

@@ -1,6 +1,6 @@
-#include "watergen/mesh_render.h"
+#include "watergen/render/mesh_render.h"
 
-#include "watergen/vertex_emitter.h"
+#include "watergen/ir/vertex_emitter.h"
 
 namespace watergen {
 

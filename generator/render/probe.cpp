@@ -1,8 +1,8 @@
-#include "watergen/probe.h"
+#include "watergen/render/probe.h"
 
 #include <cstring>
 
-#include "watergen/toolchain.h"
+#include "watergen/toolchain/toolchain.h"
 
 namespace watergen {
 

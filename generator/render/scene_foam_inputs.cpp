@@ -1,5 +1,5 @@
-#include "watergen/nodes/foam.h"
-#include "watergen/synthetic_scene.h"
+#include "watergen/water/nodes/foam.h"
+#include "watergen/render/synthetic_scene.h"
 
 namespace watergen {
 

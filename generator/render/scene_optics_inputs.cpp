@@ -7,8 +7,8 @@
 
 #include <glm/glm.hpp>
 
-#include "watergen/nodes/reflection.h"
-#include "watergen/synthetic_scene.h"
+#include "watergen/water/nodes/reflection.h"
+#include "watergen/render/synthetic_scene.h"
 
 namespace watergen {
 

@@ -1,7 +1,7 @@
 #include <cmath>
 
-#include "watergen/scene_wave_inputs.h"
-#include "watergen/synthetic_scene.h"
+#include "watergen/render/scene_wave_inputs.h"
+#include "watergen/render/synthetic_scene.h"
 
 namespace watergen {
 

@@ -1,4 +1,4 @@
-#include "watergen/synthetic_scene.h"
+#include "watergen/render/synthetic_scene.h"
 
 #include <cmath>
 

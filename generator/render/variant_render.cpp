@@ -1,4 +1,4 @@
-#include "watergen/variant_render.h"
+#include "watergen/render/variant_render.h"
 
 #include <chrono>
 

@@ -1,4 +1,4 @@
-#include "watergen/glslang_stage.h"
+#include "watergen/toolchain/glslang_stage.h"
 
 #include <algorithm>
 #include <charconv>
@@ -12,7 +12,7 @@
 #include <glslang/SPIRV/GlslangToSpv.h>
 #include <glslang/SPIRV/Logger.h>
 
-#include "watergen/spirv_tools_stage.h"
+#include "watergen/toolchain/spirv_tools_stage.h"
 
 namespace watergen {
 namespace {

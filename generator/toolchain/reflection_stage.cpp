@@ -1,4 +1,4 @@
-#include "watergen/reflection_stage.h"
+#include "watergen/toolchain/reflection_stage.h"
 
 #include <algorithm>
 #include <exception>

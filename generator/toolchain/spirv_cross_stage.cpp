@@ -1,4 +1,4 @@
-#include "watergen/spirv_cross_stage.h"
+#include "watergen/toolchain/spirv_cross_stage.h"
 
 #include <exception>
 #include <map>

@@ -1,4 +1,4 @@
-#include "watergen/spirv_tools_stage.h"
+#include "watergen/toolchain/spirv_tools_stage.h"
 
 #include <spirv-tools/libspirv.hpp>
 #include <spirv-tools/optimizer.hpp>

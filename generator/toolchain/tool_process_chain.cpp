@@ -1,4 +1,4 @@
-#include "watergen/tool_process_chain.h"
+#include "watergen/toolchain/tool_process_chain.h"
 
 #include <fcntl.h>
 #include <spawn.h>

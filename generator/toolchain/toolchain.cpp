@@ -1,8 +1,8 @@
-#include "watergen/toolchain.h"
+#include "watergen/toolchain/toolchain.h"
 
-#include "watergen/reflection_stage.h"
-#include "watergen/spirv_cross_stage.h"
-#include "watergen/spirv_tools_stage.h"
+#include "watergen/toolchain/reflection_stage.h"
+#include "watergen/toolchain/spirv_cross_stage.h"
+#include "watergen/toolchain/spirv_tools_stage.h"
 
 namespace watergen {
 namespace {

@@ -5,7 +5,7 @@
 // job creates is registered with that job's Scope, which destroys them in reverse order.
 #pragma once
 
-#include <watergen/runtime/vulkan_runner.h>
+#include "watergen/runtime/vulkan_runner.h"
 
 #include <vulkan/vulkan.h>
 

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "watergen/node_catalog.h"
+#include "watergen/water/node_catalog.h"
 #include "shared_runner.h"
-#include "watergen/probe.h"
+#include "watergen/render/probe.h"
 
 using namespace watergen;
 

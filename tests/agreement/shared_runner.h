@@ -3,7 +3,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "watergen/probe.h"
+#include "watergen/render/probe.h"
 #include "watergen/runtime/vulkan_runner.h"
 
 namespace watergen::test {

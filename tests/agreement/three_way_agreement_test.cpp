@@ -3,8 +3,8 @@
 #include <cstdio>
 
 #include "shared_runner.h"
-#include "watergen/covering_array.h"
-#include "watergen/variant_render.h"
+#include "watergen/plan/covering_array.h"
+#include "watergen/render/variant_render.h"
 
 using namespace watergen;
 

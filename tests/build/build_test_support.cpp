@@ -1,6 +1,6 @@
 #include "build_test_support.h"
 
-#include "watergen/build_output.h"
+#include "watergen/pipeline/build_output.h"
 
 namespace watergen::test {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "watergen/scene_file.h"
+#include "watergen/plan/scene_file.h"
 
 namespace watergen::test {
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "watergen/json_source.h"
+#include "watergen/plan/json_source.h"
 
 using namespace watergen;
 

@@ -3,8 +3,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "watergen/manifest.h"
-#include "watergen/material.h"
+#include "watergen/pipeline/manifest.h"
+#include "watergen/plan/material.h"
 
 using namespace watergen;
 

@@ -2,7 +2,7 @@
 
 #include "build_test_support.h"
 #include "shared_runner.h"
-#include "watergen/prune_measure.h"
+#include "watergen/render/prune_measure.h"
 
 using namespace watergen;
 using namespace watergen::test;

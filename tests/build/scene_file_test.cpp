@@ -2,7 +2,7 @@
 
 #include <regex>
 
-#include "watergen/scene_file.h"
+#include "watergen/plan/scene_file.h"
 
 using namespace watergen;
 

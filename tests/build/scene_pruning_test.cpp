@@ -2,7 +2,7 @@
 
 #include <cstdlib>
 
-#include "watergen/scene_pruning.h"
+#include "watergen/plan/scene_pruning.h"
 
 using namespace watergen;
 

@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "watergen/variant_space.h"
+#include "watergen/plan/variant_space.h"
 
 using namespace watergen;
 

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "watergen/covering_array.h"
-#include "watergen/variant_build.h"
+#include "watergen/plan/covering_array.h"
+#include "watergen/pipeline/variant_build.h"
 
 namespace watergen::test {
 

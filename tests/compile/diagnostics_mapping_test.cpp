@@ -2,10 +2,10 @@
 
 #include <filesystem>
 
-#include "watergen/dsl.h"
-#include "watergen/glslang_stage.h"
-#include "watergen/output_writer.h"
-#include "watergen/variant_build.h"
+#include "watergen/ir/dsl.h"
+#include "watergen/toolchain/glslang_stage.h"
+#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/variant_build.h"
 
 using namespace watergen;
 

@@ -2,9 +2,9 @@
 
 #include <map>
 
-#include "watergen/covering_array.h"
-#include "watergen/presets.h"
-#include "watergen/water_shader.h"
+#include "watergen/plan/covering_array.h"
+#include "watergen/water/presets.h"
+#include "watergen/water/water_shader.h"
 
 using namespace watergen;
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "watergen/cpu_evaluator.h"
-#include "watergen/dsl.h"
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/dsl.h"
 
 using namespace watergen;
 

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "watergen/cpu_evaluator.h"
-#include "watergen/node_catalog.h"
-#include "watergen/nodes.h"
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/water/node_catalog.h"
+#include "watergen/water/nodes.h"
 
 using namespace watergen;
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "golden_support.h"
-#include "watergen/nodes.h"
+#include "watergen/water/nodes.h"
 
 using namespace watergen;
 using test::eval_scalar_node;

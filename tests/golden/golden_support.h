@@ -4,8 +4,8 @@
 #include <functional>
 #include <vector>
 
-#include "watergen/cpu_evaluator.h"
-#include "watergen/dsl.h"
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/dsl.h"
 
 namespace watergen::test {
 

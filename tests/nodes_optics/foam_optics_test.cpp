@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "optics_support.h"
-#include "watergen/nodes.h"
-#include "watergen/surface.h"
-#include "watergen/synthetic_scene.h"
+#include "watergen/water/nodes.h"
+#include "watergen/water/surface.h"
+#include "watergen/render/synthetic_scene.h"
 
 using namespace watergen;
 using test::eval_catalog_node;

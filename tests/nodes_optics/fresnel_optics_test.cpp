@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "optics_support.h"
-#include "watergen/nodes.h"
+#include "watergen/water/nodes.h"
 
 using namespace watergen;
 

@@ -11,9 +11,9 @@
 #include <random>
 
 #include "../agreement/shared_runner.h"
-#include "watergen/node_catalog.h"
-#include "watergen/nodes.h"
-#include "watergen/probe.h"
+#include "watergen/water/node_catalog.h"
+#include "watergen/water/nodes.h"
+#include "watergen/render/probe.h"
 
 using namespace watergen;
 

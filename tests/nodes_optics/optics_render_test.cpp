@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "../agreement/shared_runner.h"
-#include "watergen/variant_render.h"
+#include "watergen/render/variant_render.h"
 
 using namespace watergen;
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "watergen/cpu_evaluator.h"
-#include "watergen/dsl.h"
-#include "watergen/node_catalog.h"
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/dsl.h"
+#include "watergen/water/node_catalog.h"
 
 namespace watergen::test {
 

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "optics_support.h"
-#include "watergen/nodes.h"
+#include "watergen/water/nodes.h"
 
 using namespace watergen;
 using test::eval_catalog_node;

@@ -9,8 +9,8 @@
 #include <tuple>
 #include <vector>
 
-#include "watergen/cpu_evaluator.h"
-#include "watergen/dsl.h"
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/dsl.h"
 
 using namespace watergen;
 

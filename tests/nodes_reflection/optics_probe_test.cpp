@@ -7,9 +7,9 @@
 #include <cstdio>
 
 #include "../agreement/shared_runner.h"
-#include "watergen/node_catalog.h"
-#include "watergen/probe.h"
-#include "watergen/synthetic_scene.h"
+#include "watergen/water/node_catalog.h"
+#include "watergen/render/probe.h"
+#include "watergen/render/synthetic_scene.h"
 
 using namespace watergen;
 

@@ -7,9 +7,9 @@
 #include <cstdio>
 
 #include "../agreement/shared_runner.h"
-#include "watergen/cpu_evaluator.h"
-#include "watergen/dsl.h"
-#include "watergen/variant_render.h"
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/dsl.h"
+#include "watergen/render/variant_render.h"
 
 using namespace watergen;
 

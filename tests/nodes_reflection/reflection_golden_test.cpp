@@ -7,9 +7,9 @@
 #include <cmath>
 
 #include "reflection_support.h"
-#include "watergen/nodes/reflection.h"
-#include "watergen/surface.h"
-#include "watergen/synthetic_scene.h"
+#include "watergen/water/nodes/reflection.h"
+#include "watergen/water/surface.h"
+#include "watergen/render/synthetic_scene.h"
 
 using namespace watergen;
 using test::eval_catalog;

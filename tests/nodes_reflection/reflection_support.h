@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "watergen/cpu_evaluator.h"
-#include "watergen/node_catalog.h"
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/water/node_catalog.h"
 
 namespace watergen::test {
 

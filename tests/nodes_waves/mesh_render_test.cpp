@@ -7,9 +7,9 @@
 #include <cstdlib>
 
 #include "../agreement/shared_runner.h"
-#include "watergen/dsl.h"
-#include "watergen/mesh_render.h"
-#include "watergen/vertex_emitter.h"
+#include "watergen/ir/dsl.h"
+#include "watergen/render/mesh_render.h"
+#include "watergen/ir/vertex_emitter.h"
 
 using namespace watergen;
 

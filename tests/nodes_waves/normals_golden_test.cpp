@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "watergen/nodes/normals.h"
-#include "watergen/nodes/waves.h"
+#include "watergen/water/nodes/normals.h"
+#include "watergen/water/nodes/waves.h"
 #include "waves_support.h"
 
 using namespace watergen;

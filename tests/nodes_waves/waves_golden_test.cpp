@@ -7,10 +7,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "watergen/nodes/waves.h"
-#include "watergen/surface.h"
-#include "watergen/synthetic_scene.h"
-#include "watergen/water_shader.h"
+#include "watergen/water/nodes/waves.h"
+#include "watergen/water/surface.h"
+#include "watergen/render/synthetic_scene.h"
+#include "watergen/water/water_shader.h"
 #include "waves_support.h"
 
 using namespace watergen;

@@ -8,9 +8,9 @@
 #include <cstdlib>
 
 #include "../agreement/shared_runner.h"
-#include "watergen/dsl.h"
-#include "watergen/variant_render.h"
-#include "watergen/water_shader.h"
+#include "watergen/ir/dsl.h"
+#include "watergen/render/variant_render.h"
+#include "watergen/water/water_shader.h"
 
 using namespace watergen;
 

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "watergen/cpu_evaluator.h"
-#include "watergen/emitter.h"
-#include "watergen/node_catalog.h"
-#include "watergen/scene_wave_inputs.h"
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/emitter.h"
+#include "watergen/water/node_catalog.h"
+#include "watergen/render/scene_wave_inputs.h"
 
 namespace watergen::test {
 

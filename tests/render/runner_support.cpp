@@ -1,7 +1,7 @@
 #include "runner_support.h"
 
-#include <watergen/glslang_stage.h>
-#include <watergen/reflection_stage.h>
+#include "watergen/toolchain/glslang_stage.h"
+#include "watergen/toolchain/reflection_stage.h"
 
 #include <catch2/catch.hpp>
 

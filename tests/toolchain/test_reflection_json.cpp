@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "watergen/glslang_stage.h"
-#include "watergen/reflection_stage.h"
+#include "watergen/toolchain/glslang_stage.h"
+#include "watergen/toolchain/reflection_stage.h"
 #include "watergen/runtime/reflection.h"
 
 using namespace watergen;

@@ -5,9 +5,9 @@
 #include <string>
 #include <thread>
 
-#include "watergen/reflection_stage.h"
-#include "watergen/spirv_tools_stage.h"
-#include "watergen/toolchain.h"
+#include "watergen/toolchain/reflection_stage.h"
+#include "watergen/toolchain/spirv_tools_stage.h"
+#include "watergen/toolchain/toolchain.h"
 
 using namespace watergen;
 

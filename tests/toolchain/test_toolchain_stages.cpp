@@ -3,11 +3,11 @@
 
 #include <string>
 
-#include "watergen/glslang_stage.h"
-#include "watergen/reflection_stage.h"
-#include "watergen/spirv_cross_stage.h"
-#include "watergen/spirv_tools_stage.h"
-#include "watergen/toolchain.h"
+#include "watergen/toolchain/glslang_stage.h"
+#include "watergen/toolchain/reflection_stage.h"
+#include "watergen/toolchain/spirv_cross_stage.h"
+#include "watergen/toolchain/spirv_tools_stage.h"
+#include "watergen/toolchain/toolchain.h"
 
 using namespace watergen;
 

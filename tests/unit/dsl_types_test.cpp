@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "watergen/dsl.h"
+#include "watergen/ir/dsl.h"
 
 using namespace watergen;
 

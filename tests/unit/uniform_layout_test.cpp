@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "watergen/uniform_layout.h"
+#include "watergen/ir/uniform_layout.h"
 
 using namespace watergen;
 

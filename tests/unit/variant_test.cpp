@@ -2,8 +2,8 @@
 
 #include <set>
 
-#include "watergen/covering_array.h"
-#include "watergen/variant.h"
+#include "watergen/plan/covering_array.h"
+#include "watergen/water/variant.h"
 
 using namespace watergen;
 

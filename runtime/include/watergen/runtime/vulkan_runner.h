@@ -8,7 +8,7 @@
 // thread-safe: use one per thread.
 #pragma once
 
-#include <watergen/runtime/reflection.h>
+#include "watergen/runtime/reflection.h"
 
 #include <cstdint>
 #include <map>

@@ -1,0 +1,76 @@
+// Evaluates a Graph on the CPU: the reference every GPU image and stress input is compared
+// with. Double is the reference; Float rounds every intermediate to binary32; Half rounds the
+// relaxed-precision nodes (mediump / min16float) to binary16 and the rest to binary32, as a GPU
+// that runs mediump at 16 bits would (lavapipe runs it at 32).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "watergen/ir/ir.h"
+
+namespace watergen {
+
+enum class EvalPrecision { Double, Float, Half };
+const char* to_string(EvalPrecision p);
+
+// Rounds to the nearest binary16 value (ties to even; overflow to infinity; subnormals kept).
+double round_to_half(double v);
+double round_to(double v, EvalPrecision p);
+
+// RGBA32F texels laid out like the runner's TextureData: layer-major, then rows (row 0 = v = 0),
+// then columns. A cube holds 6 square faces in Vulkan order +X, -X, +Y, -Y, +Z, -Z.
+struct TextureView {
+    uint32_t width = 0, height = 0;
+    const float* rgba = nullptr;
+    // 1 (2D) or 6 (cube); 0 = as the sampled binding's type needs (2D: 1, cube: 6).
+    uint32_t layers = 0;
+};
+
+// Both clamp to edge, as the runner's sampler. Cubes follow Vulkan: the face is picked by the
+// major axis of the direction ("Cube Map Face Selection"); linear filtering is seamless, taking
+// texels past a face edge from the adjacent face and replacing the missing corner texel by the
+// mean of the other three (what lavapipe does); nearest clamps within the face.
+enum class Filter { Nearest, Linear };
+
+// Vulkan's cube face selection for direction (x, y, z): face index in Vulkan order and the
+// face coordinates (s, t) in [0, 1]. Ties pick z over y over x (lavapipe's order); a zero or
+// non-finite direction samples the centre of +Z.
+struct CubeFaceCoord {
+    int face = 4;
+    double s = 0.5, t = 0.5;
+};
+CubeFaceCoord cube_face_coord(double x, double y, double z);
+// The inverse: the (unnormalised) direction through face coordinates (s, t) of `face`; also
+// defined past the face's edges (s, t outside [0, 1]). For making cube textures.
+void cube_face_direction(int face, double s, double t, double direction[3]);
+
+struct EvalInputs {
+    std::map<std::string, std::vector<double>> uniforms; // overrides of parameter defaults
+    std::map<std::string, TextureView> textures;
+    Filter filter = Filter::Linear;
+    // Per-lane fragment inputs: name -> lanes x components, lane-major.
+    std::map<std::string, std::vector<double>> varyings;
+    size_t lanes = 0;
+};
+
+struct EvalResult {
+    std::vector<double> values; // lanes x components, lane-major
+    int components = 0;
+    std::string error; // non-empty on failure (missing texture, ill-typed graph, ...)
+    bool ok() const { return error.empty(); }
+};
+
+// Evaluates output `output` for every lane. Derivatives (ddx, ddy) treat lanes 4k..4k+3 as a
+// 2x2 quad (x, y) = (0,0), (1,0), (0,1), (1,1), with per-row / per-column differences.
+// Cost: live nodes x lanes; lanes are processed in blocks of 1024.
+EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs& inputs, EvalPrecision precision);
+
+// Evaluates a fullscreen fragment graph over width x height pixels with v_uv at pixel centres,
+// like the runner's fullscreen triangle. Result is row-major, row 0 = top.
+EvalResult evaluate_image(const Graph& g, const std::string& output, EvalInputs inputs, uint32_t width,
+                          uint32_t height, EvalPrecision precision);
+
+} // namespace watergen

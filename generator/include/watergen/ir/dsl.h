@@ -1,0 +1,171 @@
+// The C++ DSL feature nodes are written in. An Expr is a handle to a node of a Graph;
+// operators and intrinsics check types when the description is built and record a diagnostic
+// naming the feature node on a mismatch (vec3 + vec2, wrong arity), never leaving it to glslang.
+//
+//   OriginScope scope(g, "fresnel.schlick");
+//   Expr r0 = named(square((n1 - n2) / (n1 + n2)), "r0");
+//   Expr f = r0 + (1.0 - r0) * pow(1.0 - c, 5.0);
+#pragma once
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+#include "watergen/ir/ir.h"
+
+namespace watergen {
+
+class Expr {
+public:
+    Expr() = default;
+    Expr(Graph* g, uint32_t id) : g_(g), id_(id) {}
+
+    Graph& graph() const { return *g_; }
+    uint32_t id() const { return id_; }
+    Type type() const { return g_ ? g_->node(id_).type : Type::Error; }
+    bool valid() const { return g_ != nullptr; }
+
+    // Swizzles, GLSL letters xyzw / rgba: e.swizzle("xz").
+    Expr swizzle(std::string_view components) const;
+    Expr x() const { return swizzle("x"); }
+    Expr y() const { return swizzle("y"); }
+    Expr z() const { return swizzle("z"); }
+    Expr w() const { return swizzle("w"); }
+    Expr xy() const { return swizzle("xy"); }
+    Expr xz() const { return swizzle("xz"); }
+    Expr xyz() const { return swizzle("xyz"); }
+
+private:
+    Graph* g_ = nullptr;
+    uint32_t id_ = 0;
+};
+
+// Sets the graph's current feature node for the lifetime of the scope.
+class OriginScope {
+public:
+    OriginScope(Graph& g, std::string origin) : g_(g), previous_(g.origin()) {
+        g.set_origin(std::move(origin));
+    }
+    ~OriginScope() { g_.set_origin(previous_); }
+    OriginScope(const OriginScope&) = delete;
+    OriginScope& operator=(const OriginScope&) = delete;
+
+private:
+    Graph& g_;
+    std::string previous_;
+};
+
+// Marks subsequent operations relaxed precision (mediump / min16float) when `relaxed`.
+class RelaxedScope {
+public:
+    RelaxedScope(Graph& g, bool relaxed) : g_(g), previous_(g.relaxed()) { g.set_relaxed(relaxed || previous_); }
+    ~RelaxedScope() { g_.set_relaxed(previous_); }
+    RelaxedScope(const RelaxedScope&) = delete;
+    RelaxedScope& operator=(const RelaxedScope&) = delete;
+
+private:
+    Graph& g_;
+    bool previous_;
+};
+
+// Forces 32-bit operations for its lifetime whatever the enclosing RelaxedScope says: geometry
+// (positions up to 1e5 m, times up to a day) overflows or loses all precision in binary16.
+class FullPrecisionScope {
+public:
+    explicit FullPrecisionScope(Graph& g) : g_(g), previous_(g.relaxed()) { g.set_relaxed(false); }
+    ~FullPrecisionScope() { g_.set_relaxed(previous_); }
+    FullPrecisionScope(const FullPrecisionScope&) = delete;
+    FullPrecisionScope& operator=(const FullPrecisionScope&) = delete;
+
+private:
+    Graph& g_;
+    bool previous_;
+};
+
+// Leaves.
+Expr constant(Graph& g, double v);
+Expr constant(Graph& g, std::initializer_list<double> components);
+Expr uniform(Graph& g, const Parameter& p); // declares p and reads it
+Expr varying(Graph& g, const std::string& name, Type type);
+Expr texture(Graph& g, const TextureInput& t);
+
+// Gives the emitted temporary a readable name.
+Expr named(Expr e, const std::string& name);
+
+// Generic node construction with type checking; used by everything below.
+Expr make(Op op, std::initializer_list<Expr> args);
+
+Expr operator+(Expr a, Expr b);
+Expr operator-(Expr a, Expr b);
+Expr operator*(Expr a, Expr b);
+Expr operator/(Expr a, Expr b);
+Expr operator-(Expr a);
+Expr operator+(Expr a, double b);
+Expr operator+(double a, Expr b);
+Expr operator-(Expr a, double b);
+Expr operator-(double a, Expr b);
+Expr operator*(Expr a, double b);
+Expr operator*(double a, Expr b);
+Expr operator/(Expr a, double b);
+Expr operator/(double a, Expr b);
+
+Expr operator<(Expr a, Expr b);
+Expr operator<=(Expr a, Expr b);
+Expr operator>(Expr a, Expr b);
+Expr operator>=(Expr a, Expr b);
+Expr operator<(Expr a, double b);
+Expr operator<=(Expr a, double b);
+Expr operator>(Expr a, double b);
+Expr operator>=(Expr a, double b);
+Expr operator&&(Expr a, Expr b);
+Expr operator||(Expr a, Expr b);
+Expr operator!(Expr a);
+
+Expr select(Expr condition, Expr if_true, Expr if_false);
+Expr vec2(Expr a, Expr b);
+Expr vec3(Expr a, Expr b, Expr c);
+Expr vec3(Expr xy, Expr z);
+Expr vec4(Expr xyz, Expr w);
+Expr vec4(Expr a, Expr b, Expr c, Expr d);
+Expr mat3(Expr c0, Expr c1, Expr c2); // columns
+Expr splat(Expr scalar, Type vector_type);
+
+Expr dot(Expr a, Expr b);
+Expr cross(Expr a, Expr b);
+Expr normalize(Expr a);
+Expr length(Expr a);
+Expr mix(Expr a, Expr b, Expr t);
+Expr mix(Expr a, Expr b, double t);
+Expr clamp(Expr x, Expr lo, Expr hi);
+Expr clamp(Expr x, double lo, double hi);
+Expr saturate(Expr x);
+Expr pow(Expr x, Expr y);
+Expr pow(Expr x, double y);
+Expr exp(Expr x);
+Expr exp2(Expr x);
+Expr log(Expr x);
+Expr sqrt(Expr x);
+Expr rsqrt(Expr x);
+Expr abs(Expr x);
+Expr sign(Expr x);
+Expr min(Expr a, Expr b);
+Expr max(Expr a, Expr b);
+Expr min(Expr a, double b);
+Expr max(Expr a, double b);
+Expr sin(Expr x);
+Expr cos(Expr x);
+Expr atan2(Expr y, Expr x);
+Expr reflect(Expr incident, Expr normal);
+Expr refract(Expr incident, Expr normal, Expr eta);
+Expr step(Expr edge, Expr x);
+Expr smoothstep(Expr edge0, Expr edge1, Expr x);
+Expr fract(Expr x);
+Expr floor(Expr x);
+Expr mod(Expr x, Expr y);
+Expr square(Expr x);
+Expr sample(Expr texture, Expr coordinate);
+Expr sample_level(Expr texture, Expr coordinate, Expr lod);
+Expr ddx(Expr x);
+Expr ddy(Expr x);
+
+} // namespace watergen

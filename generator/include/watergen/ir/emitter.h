@@ -1,0 +1,89 @@
+// Walks a Graph and writes shader source: GLSL 450 for Vulkan, or HLSL (SM 5 syntax, as
+// glslang's HLSL front end reads it). Language differences live in the syntax classes
+// (core/glsl_syntax.cpp, core/hlsl_syntax.cpp) and in the skeletons under templates/.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "watergen/ir/ir.h"
+#include "watergen/runtime/reflection.h"
+#include "watergen/ir/uniform_layout.h"
+
+namespace watergen {
+
+enum class Language { Glsl, Hlsl };
+const char* to_string(Language l);
+const char* file_extension(Language l, ShaderStage s); // "frag.glsl", "frag.hlsl", ...
+
+// Fixed descriptor numbering shared by both languages (set 0).
+constexpr uint32_t kParamsBinding = 0;      // uniform block "WaterParams"
+constexpr uint32_t kSamplerBinding = 1;     // sampler "linear_clamp"
+constexpr uint32_t kFirstTextureBinding = 2; // textures in declaration order
+
+struct TextureBinding {
+    std::string name;
+    Type type = Type::Texture2D;
+    uint32_t binding = 0;
+};
+
+struct ShaderInterface {
+    UniformLayout uniforms;              // empty when the shader reads no parameter
+    std::vector<Parameter> parameters;   // the parameters placed in `uniforms`
+    std::vector<TextureBinding> textures;
+    std::vector<std::pair<std::string, Type>> varyings; // fragment inputs, location = index
+};
+
+struct EmittedShader {
+    Language language = Language::Glsl;
+    ShaderStage stage = ShaderStage::Fragment;
+    std::string file_name;
+    std::string source;
+    // Feature node that produced each line (index = line - 1); "" for skeleton lines.
+    std::vector<std::string> line_origin;
+    ShaderInterface interface;
+};
+
+// The stamp line every generated file carries.
+std::string stamp_text(const std::string& variant_key);
+
+// Emits the fragment stage of `g` (output "color"). Only live nodes are written, and only the
+// parameters and textures they read are declared. Cost: linear in the live graph.
+EmittedShader emit_fragment(const Graph& g, Language language, const std::string& file_name,
+                            const std::string& variant_key, Diagnostics& diagnostics);
+
+// The fullscreen-triangle vertex stage that feeds v_uv to the water pass.
+EmittedShader emit_fullscreen_vertex(Language language, const std::string& file_name,
+                                     const std::string& variant_key);
+
+// The numeric harness: a compute shader that evaluates every output of `g` for a batch of
+// input tuples. Each Varying of `g` (in creation order) is an input read from the storage buffer probe_in
+// (binding kProbeInputBinding) and each output is written to probe_out (kProbeOutputBinding),
+// tuple-major, floats only. One invocation per tuple, 64 per workgroup; the caller pads the
+// tuple count to a multiple of 64.
+constexpr uint32_t kProbeInputBinding = 8;
+constexpr uint32_t kProbeOutputBinding = 9;
+constexpr uint32_t kProbeWorkgroupSize = 64;
+
+struct ProbeField {
+    std::string name;
+    Type type = Type::Float;
+    uint32_t offset = 0; // in floats within a tuple
+};
+
+struct ProbeLayout {
+    std::vector<ProbeField> inputs, outputs;
+    uint32_t input_stride = 0, output_stride = 0; // floats per tuple
+};
+
+ProbeLayout probe_layout(const Graph& g);
+EmittedShader emit_probe(const Graph& g, Language language, const std::string& file_name,
+                         const std::string& variant_key, Diagnostics& diagnostics);
+
+// Fills Diagnostic::node from the line each diagnostic points at in `shader`.
+void attribute_to_nodes(const EmittedShader& shader, Diagnostics& diagnostics);
+
+// Skeleton text from templates/ (embedded at build time); "" if unknown.
+std::string_view template_text(std::string_view name);
+
+} // namespace watergen

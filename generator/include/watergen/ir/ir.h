@@ -1,0 +1,152 @@
+// The typed expression IR every back end reads: a hash-consed DAG of pure operations.
+// Node math is written once against this IR (see dsl.h); the GLSL emitter, the HLSL emitter
+// and the CPU evaluator are its three consumers.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "watergen/ir/diagnostic.h"
+
+namespace watergen {
+
+enum class Type : uint8_t {
+    Error, // result of an ill-typed operation; propagates without further diagnostics
+    Bool,
+    Int,
+    Float,
+    Vec2,
+    Vec3,
+    Vec4,
+    Mat3,
+    Texture2D,
+    TextureCube,
+};
+
+// Components of a value of this type (Mat3 = 9, column-major); 0 for handles and Error.
+int component_count(Type t);
+// Float for 1, Vec2..Vec4 for 2..4.
+Type float_type(int components);
+bool is_float_numeric(Type t); // Float, Vec2, Vec3, Vec4
+bool is_vector(Type t);        // Vec2, Vec3, Vec4
+// GLSL spelling, used in diagnostics and reflection ("vec3").
+const char* type_name(Type t);
+
+enum class Op : uint8_t {
+    // leaves
+    Constant, // values = components
+    Uniform,  // name = member of the parameter block
+    Varying,  // name = fragment input
+    Texture,  // name = texture binding
+    // arithmetic (scalar operands broadcast against vectors)
+    Add, Sub, Mul, Div, Neg,
+    // logic (scalars)
+    Less, LessEqual, Greater, GreaterEqual, Equal, NotEqual, And, Or, Not,
+    Select, // args: condition (Bool), if_true, if_false
+    // shape
+    Swizzle,   // values = component indices
+    Construct, // vector from scalars/vectors, or Mat3 from three Vec3 columns
+    Splat,     // scalar -> vector of `type`
+    // intrinsics
+    Dot, Cross, Normalize, Length, Mix, Clamp, Saturate, Pow, Exp, Exp2, Log, Sqrt, Rsqrt,
+    Abs, Sign, Min, Max, Sin, Cos, Atan2, Reflect, Refract, Step, Smoothstep, Fract, Floor,
+    Mod, // GLSL semantics: x - y * floor(x / y)
+    MatMulVec,
+    Sample,      // args: texture, coordinate
+    SampleLevel, // args: texture, coordinate, lod
+    Ddx, Ddy,
+};
+
+const char* op_name(Op op);
+bool is_leaf(Op op);  // Constant, Uniform, Varying, Texture
+bool is_infix(Op op); // written between its operands: + - * / comparisons && ||
+
+struct Node {
+    Op op = Op::Constant;
+    Type type = Type::Error;
+    std::vector<uint32_t> args;
+    std::vector<double> values; // Constant components, Swizzle indices
+    std::string name;           // leaf name, or a hint for the emitted temporary
+    std::string origin;         // feature node that created it, e.g. "fresnel.schlick"
+    // Relaxed precision (the precision=half axis): mediump in GLSL, min16float in HLSL, and
+    // rounded to binary16 by the CPU evaluator's half mode.
+    bool relaxed = false;
+};
+
+// A uniform parameter a feature node reads. Parameters are data: defaults and ranges travel
+// with the node that declares them, so presets and validation need no shader knowledge.
+struct Parameter {
+    std::string name;    // member name in the parameter block, e.g. "absorb_coefficients"
+    Type type = Type::Float;
+    std::vector<double> default_value;
+    double min = 0.0, max = 0.0; // valid range, per component
+    std::string unit;            // "1/m", "m", "" ...
+    std::string seed;            // where it comes from, e.g. "003"
+    std::string origin;          // declaring feature node
+};
+
+struct TextureInput {
+    std::string name;
+    Type type = Type::Texture2D;
+    std::string description;
+    std::string origin;
+};
+
+struct Output {
+    std::string name;
+    uint32_t node = 0;
+};
+
+// Owns the DAG. Identical nodes (op, type, args, payload) are created once. Ill-typed
+// operations record a Diagnostic naming the current feature node and yield an Error node.
+class Graph {
+public:
+    uint32_t add(Node node);
+    const Node& node(uint32_t id) const { return nodes_[id]; }
+    size_t size() const { return nodes_.size(); }
+
+    // Feature node that subsequent operations belong to (see OriginScope in dsl.h).
+    const std::string& origin() const { return origin_; }
+    void set_origin(std::string origin) { origin_ = std::move(origin); }
+    // Whether subsequent operations are relaxed precision (see RelaxedScope in dsl.h).
+    bool relaxed() const { return relaxed_; }
+    void set_relaxed(bool relaxed) { relaxed_ = relaxed; }
+
+    void error(std::string message);
+    const Diagnostics& diagnostics() const { return diagnostics_; }
+
+    // Declares a parameter once; a second declaration must agree on type and default.
+    void declare_parameter(const Parameter& p);
+    const std::vector<Parameter>& parameters() const { return parameters_; }
+    const Parameter* find_parameter(const std::string& name) const;
+    // Replaces a declared parameter's default; false when it is not declared or the component
+    // count differs.
+    bool set_parameter_default(const std::string& name, const std::vector<double>& value);
+
+    void declare_texture(const TextureInput& t);
+    const std::vector<TextureInput>& textures() const { return textures_; }
+
+    void set_output(std::string name, uint32_t node);
+    const std::vector<Output>& outputs() const { return outputs_; }
+
+    // Ids reachable from the outputs, ascending (ascending id is a topological order).
+    std::vector<uint32_t> live_nodes() const;
+
+private:
+    struct KeyHash {
+        size_t operator()(const std::string& s) const { return std::hash<std::string>{}(s); }
+    };
+    std::vector<Node> nodes_;
+    std::unordered_map<std::string, uint32_t, KeyHash> index_;
+    std::string origin_;
+    bool relaxed_ = false;
+    Diagnostics diagnostics_;
+    std::vector<Parameter> parameters_;
+    std::vector<TextureInput> textures_;
+    std::vector<Output> outputs_;
+};
+
+} // namespace watergen

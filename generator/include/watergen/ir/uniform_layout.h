@@ -1,0 +1,36 @@
+// Places the parameters a shader reads into one uniform block with explicit offsets that are
+// valid under both std140 (GLSL) and HLSL cbuffer packing, so both languages' SPIR-V share one
+// layout and one byte buffer feeds either.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "watergen/ir/ir.h"
+
+namespace watergen {
+
+struct UniformSlot {
+    std::string name;
+    Type type = Type::Float;
+    uint32_t offset = 0; // bytes
+};
+
+struct UniformLayout {
+    std::vector<UniformSlot> members; // ascending offset
+    uint32_t size = 0;                // bytes, a multiple of 16
+};
+
+// Parameters in declaration order; larger members are placed first, each at the lowest offset
+// aligned to its size class (vec3/vec4: 16, vec2: 8, float: 4) that does not straddle a
+// 16-byte register. Deterministic for a given input.
+UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnostics& diagnostics);
+
+// Writes parameter values (double -> float) at their offsets: the value in `overrides` when
+// present (and of the right size), else the parameter's default.
+std::vector<uint8_t> pack_uniforms(const UniformLayout& layout, const std::vector<Parameter>& parameters,
+                                   const std::map<std::string, std::vector<double>>& overrides = {});
+
+} // namespace watergen

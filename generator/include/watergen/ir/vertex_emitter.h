@@ -1,0 +1,18 @@
+// Vertex stages written with the DSL (the mesh path: wave displacement on a grid).
+#pragma once
+
+#include <string>
+
+#include "watergen/ir/emitter.h"
+
+namespace watergen {
+
+// Emits the vertex stage of `g` into the skeleton templates/<language>/<skeleton>.vert.<ext>
+// (e.g. skeleton "mesh" -> glsl/mesh.vert.glsl, hlsl/mesh.vert.hlsl). Each live Varying of `g`
+// is a vertex attribute (location = its index in creation order); the output "position"
+// (vec4, clip space) is required, and every other output must be one the skeleton writes.
+EmittedShader emit_vertex(const Graph& g, Language language, const std::string& skeleton,
+                          const std::string& file_name, const std::string& variant_key,
+                          Diagnostics& diagnostics);
+
+} // namespace watergen

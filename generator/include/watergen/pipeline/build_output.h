@@ -1,0 +1,56 @@
+// `watergen build` as a library call: plan the scenes, build every needed variant in
+// parallel (cached), and write the variants plus manifest.json into the output directory as
+// one atomic step (a staging directory beside it, then a rename), so a failed, invalid or
+// killed build leaves the previous output exactly as it was.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "watergen/pipeline/manifest.h"
+#include "watergen/pipeline/parallel_build.h"
+#include "watergen/plan/scene_pruning.h"
+
+namespace watergen {
+
+// The name of the single "scene" of a build without scenes: every variant, not folded.
+constexpr const char* kUnprunedScene = "unpruned";
+
+struct BuildPlan {
+    std::vector<ScenePlan> scenes;     // sorted by name; empty: unpruned
+    std::vector<Variant> unpruned;     // the material's space, when there are no scenes
+    std::vector<BuildJob> jobs;        // sorted by (scene, key); facts point into `scenes`
+    std::vector<ManifestScene> manifest_scenes;
+};
+
+// Plans every scene against the material; nullopt with one error on bad input (unknown
+// parameters, duplicate scene names, a scene that needs nothing). The plan must not be
+// copied after this (jobs point at its scenes' facts).
+std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes, Diagnostics& ds);
+
+struct BuildSummary {
+    size_t variants = 0;  // jobs: reached (scene, variant) pairs
+    size_t built = 0;     // compiled now
+    size_t cached = 0;    // copied from the cache
+    size_t shared = 0;    // same files as a variant of another scene, built once for both
+    size_t same = 0;      // same shader as another variant of the scene (not built again)
+    size_t failed = 0;
+    size_t files = 0;     // written
+    double seconds = 0;
+    bool bad_input = false; // the error is in the description files (exit 2), not in a shader
+    Diagnostics diagnostics;
+    bool ok() const { return !bad_input && failed == 0 && !has_errors(diagnostics); }
+};
+
+struct BuildRequest {
+    Material material;
+    std::vector<SceneFacts> scenes; // none: the material's whole space, unpruned
+    std::filesystem::path out;
+    BuildOptions options;
+};
+
+BuildSummary build_material(const BuildRequest& request);
+
+} // namespace watergen

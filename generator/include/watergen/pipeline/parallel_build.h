@@ -1,0 +1,63 @@
+// Builds many variants on all cores. Each job composes its variant from the material, folds
+// it under its scene's facts, emits the sources and hashes them; variants of one scene whose
+// folded shaders are identical are built once (the others point at it); the rest are taken
+// from the cache or compiled, validated, optimised, cross-compiled and reflected. Results come
+// back in job order, whatever the thread count or timing, so output is byte-identical.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "watergen/pipeline/build_cache.h"
+#include "watergen/ir/ir_fold.h"
+#include "watergen/plan/material.h"
+
+namespace watergen {
+
+struct BuildJob {
+    std::string scene;                // output directory of the scene
+    Variant variant;
+    const FoldFacts* facts = nullptr; // fold under these; nullptr builds the variant as composed
+    std::vector<Target> targets;
+};
+
+struct JobResult {
+    std::string content_hash;         // cache key of the files
+    std::string shape_hash;           // of the sources without the variant key
+    std::string same_as;              // key of the earlier variant of the scene with the same shader
+    bool folded = false;
+    FoldReport fold;
+    FileMap files;                    // relative to the variant directory, filtered by targets
+    bool cached = false;
+    bool shared = false;              // same content as a job of another scene, built once for both
+    Diagnostics diagnostics;
+    double milliseconds = 0;
+    bool ok() const { return !has_errors(diagnostics); }
+};
+
+struct BuildProgress {
+    size_t done = 0, total = 0, cached = 0, failed = 0;
+    std::string key; // the job that just finished
+};
+
+struct BuildOptions {
+    unsigned threads = 0; // 0: every hardware thread
+    BuildCache cache;     // disabled by default
+    // Called after each job, one call at a time, in completion order (progress display only).
+    std::function<void(const BuildProgress&)> progress;
+};
+
+unsigned hardware_threads();
+
+// Runs task(i) for every i in [0, n) on `threads` workers (0: all cores; 1: the calling thread).
+void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& task);
+
+// Jobs must be sorted by (scene, key) for `same_as` to name the first of equal shaders.
+std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs,
+                                      const BuildOptions& options);
+
+// The files of `all` a target list keeps (variant.json always; see README "watergen build").
+FileMap filter_targets(const FileMap& all, const std::vector<Target>& targets);
+
+} // namespace watergen

@@ -1,0 +1,42 @@
+// One variant from description to validated artifacts: compose the graph, emit GLSL and HLSL,
+// run each stage through the in-process toolchain, and map compiler errors back to nodes.
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+
+#include "watergen/ir/emitter.h"
+#include "watergen/toolchain/toolchain.h"
+#include "watergen/water/water_shader.h"
+
+namespace watergen {
+
+struct StageBuild {
+    EmittedShader source;
+    ToolchainOutputs toolchain;
+};
+
+struct LanguageBuild {
+    Language language = Language::Glsl;
+    StageBuild vertex, fragment;
+};
+
+struct VariantBuild {
+    WaterShader shader;
+    std::array<LanguageBuild, 2> languages; // GLSL, HLSL
+    Diagnostics diagnostics;                // every stage's, nodes filled in where known
+    bool ok() const { return !has_errors(diagnostics); }
+};
+
+// Builds both languages of one variant. A graph with type errors stops before emission.
+// Cost: two toolchain runs per stage (a few ms each); thread-safe.
+VariantBuild build_variant(const Variant& variant, const Preset* preset = nullptr);
+// Same for an already composed shader (a custom description, or a test's ill-typed one).
+VariantBuild build_shader(WaterShader shader);
+
+// The files a build writes, relative path -> contents, e.g. "glsl/water.frag.spv".
+// Empty when the build failed.
+std::map<std::string, std::string> variant_files(const VariantBuild& build);
+
+} // namespace watergen

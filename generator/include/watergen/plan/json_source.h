@@ -1,0 +1,57 @@
+// A JSON description file with the position of every value, so that errors found after
+// parsing (an unknown axis, a range the wrong way round) still name file:line:column and the
+// JSON path (RFC 6901 pointer, e.g. /axes/fresnel/2) of the offending value.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "watergen/ir/diagnostic.h"
+
+namespace watergen {
+
+using Json = nlohmann::ordered_json; // keeps file order, so the first error is the first in the file
+
+struct JsonPosition {
+    int line = 0, column = 0; // 1-based; 0 when unknown
+};
+
+class JsonSource {
+public:
+    // Parses `text` (named `file` in diagnostics). Syntax errors, duplicate keys and empty
+    // input yield nullopt with one Error diagnostic carrying the line and column.
+    static std::optional<JsonSource> parse(const std::string& text, const std::string& file, Diagnostic* error);
+    // Reads and parses a file; a missing or unreadable file is an error naming the path.
+    static std::optional<JsonSource> load(const std::filesystem::path& path, Diagnostic* error);
+
+    const Json& root() const { return root_; }
+    const std::string& file() const { return file_; }
+
+    // Where the value at `pointer` starts (its key, for object members).
+    JsonPosition position(const std::string& pointer) const;
+    // "file:line:column" of the value at `pointer`.
+    std::string where(const std::string& pointer) const;
+    // Error at the value: message reads "<pointer>: <what>".
+    Diagnostic error(const std::string& pointer, const std::string& what) const;
+
+private:
+    std::string file_;
+    Json root_;
+    std::map<std::string, JsonPosition> positions_;
+    friend class JsonSaxBuilder;
+};
+
+// JSON pointer of a member / element below `parent` (escapes ~ and /).
+std::string json_child(const std::string& parent, const std::string& key);
+std::string json_child(const std::string& parent, size_t index);
+// "a number", "a string (\"abc\")", ...: what a value is, for "expected X, got Y".
+std::string json_describe(const Json& value);
+
+// Line and column (1-based) of byte `offset` in `text`.
+JsonPosition position_of_offset(const std::string& text, size_t offset);
+
+} // namespace watergen

@@ -1,0 +1,122 @@
+// A material: which choices each axis offers, extra rules between them, parameter values and
+// ranges, and the targets to emit. Written in C++ with MaterialBuilder, or in a JSON file that
+// load_material() maps onto the same builder call by call, so both routes validate alike and
+// produce identical output.
+//
+//   Material m = *MaterialBuilder("default")
+//                     .offer("fresnel", {"schlick", "exact"})
+//                     .parameter("shore_hardness", {1.0}).range("shore_hardness", 0.5, 4.0)
+//                     .build(diagnostics);
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "watergen/ir/diagnostic.h"
+#include "watergen/plan/json_source.h"
+#include "watergen/plan/variant_space.h"
+#include "watergen/water/water_shader.h"
+
+namespace watergen {
+
+// What a build writes per variant besides variant.json (see README "watergen build").
+enum class Target { Glsl, Hlsl, Spirv, Glsl330, Essl300, Msl, Reflection };
+const std::vector<Target>& all_targets();
+const char* to_string(Target t);
+std::optional<Target> parse_target(const std::string& name);
+std::string target_names(); // "glsl, hlsl, ..."
+
+// Where a builder call came from: a JSON value of a description file, or C++ (no source).
+struct SourceRef {
+    const JsonSource* source = nullptr;
+    std::string pointer; // JSON pointer of the value
+    SourceRef child(const std::string& key) const { return {source, json_child(pointer, key)}; }
+    SourceRef child(size_t index) const { return {source, json_child(pointer, index)}; }
+    std::string where() const; // "file:line:col /pointer", or "" from C++
+    Diagnostic error(const std::string& what) const;
+};
+
+struct ParameterSetting {
+    std::optional<std::vector<double>> value; // replaces the node's default
+    std::optional<double> min, max;           // narrows the node's range, every component
+    std::string where;                        // of the setting, for explain
+};
+
+struct Material {
+    std::string name, description;
+    std::string file; // description file name, "" when built in C++
+    VariantSpace space;
+    std::string preset; // "" for none
+    std::map<std::string, ParameterSetting> parameters;
+    std::vector<Target> targets; // in all_targets() order
+    // Parameters the offered nodes declare (name -> declaration), found by composing them.
+    std::map<std::string, Parameter> declared;
+
+    // The variant's shader with the preset and the material's values applied; parameter
+    // metadata (min / max) narrowed to the material's ranges.
+    WaterShader compose(const Variant& v) const;
+    // Parameter range after the material's narrowing.
+    std::pair<double, double> range(const std::string& parameter) const;
+};
+
+class MaterialBuilder {
+public:
+    explicit MaterialBuilder(std::string name, SourceRef at = {});
+
+    MaterialBuilder& description(std::string text);
+    // Offers these choices on the axis (the axes never offered keep their default choice).
+    MaterialBuilder& offer(const std::string& axis, const std::vector<std::string>& choices, SourceRef at = {});
+    MaterialBuilder& offer_all(const std::string& axis, SourceRef at = {});
+    // axis=choice needs / cannot have other_axis in other_choices.
+    MaterialBuilder& requires_choice(const std::string& axis, const std::string& choice, const std::string& other_axis,
+                                     const std::vector<std::string>& other_choices, std::string why, SourceRef at = {});
+    MaterialBuilder& excludes_choice(const std::string& axis, const std::string& choice, const std::string& other_axis,
+                                     const std::vector<std::string>& other_choices, std::string why, SourceRef at = {});
+    MaterialBuilder& preset(const std::string& name, SourceRef at = {});
+    MaterialBuilder& parameter(const std::string& name, const std::vector<double>& value, SourceRef at = {});
+    MaterialBuilder& range(const std::string& name, double min, double max, SourceRef at = {});
+    MaterialBuilder& targets(const std::vector<std::string>& names, SourceRef at = {});
+
+    // Validates everything (unknown names, sizes, ranges, contradictory rules) and returns the
+    // material, or nullopt with the first error in `diagnostics`.
+    std::optional<Material> build(Diagnostics& diagnostics) const;
+
+private:
+    struct Offer {
+        std::string axis;
+        std::vector<std::string> choices;
+        bool all = false;
+        SourceRef at;
+    };
+    struct RuleCall {
+        Rule rule;
+        SourceRef at;
+    };
+    struct ParameterCall {
+        std::string name;
+        std::optional<std::vector<double>> value;
+        std::optional<std::pair<double, double>> range;
+        SourceRef at;
+    };
+    std::string name_;
+    SourceRef name_at_;
+    std::string description_;
+    std::vector<Offer> offers_;
+    std::vector<RuleCall> rules_;
+    std::optional<std::pair<std::string, SourceRef>> preset_;
+    std::vector<ParameterCall> parameters_;
+    std::optional<std::pair<std::vector<std::string>, SourceRef>> targets_;
+};
+
+// Reads a material description (format: README "Material files"). Errors name the file, line,
+// column and JSON path, and what was expected.
+std::optional<Material> load_material(const std::filesystem::path& path, Diagnostics& diagnostics);
+std::optional<Material> parse_material(const JsonSource& source, Diagnostics& diagnostics);
+
+// The built-in default material (examples/materials/default.json is the same in JSON).
+Material default_material();
+
+} // namespace watergen

@@ -1,0 +1,60 @@
+// What a scene contains, as its description file states it: the facts scene pruning
+// (scene_pruning.h) turns into skipped variants, constants and folded terms.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "watergen/ir/diagnostic.h"
+#include "watergen/plan/json_source.h"
+#include "watergen/plan/material.h"
+
+namespace watergen {
+
+struct FactRange {
+    double min = 0.0, max = 0.0;
+};
+
+// Where to find each fact in the file, for explain ("open_ocean.json:4:3 /shoreline").
+struct SceneWhere {
+    struct Location {
+        std::string file, pointer;
+        JsonPosition position;
+    };
+    std::map<std::string, Location> fact; // JSON pointer without the leading '/' -> location
+    std::string of(const std::string& key) const; // "file:line:col /key"
+    Diagnostic error(const std::string& key, const std::string& what) const;
+};
+
+struct SceneFacts {
+    std::string name;        // also the scene's directory in the build output
+    std::string description;
+    std::string file;        // the file's name (no directories), for reports
+    bool shoreline = true;             // water meets land somewhere in view
+    FactRange water_depth{0.0, 1e4};   // m, on water pixels
+    FactRange camera_height{0.0, 1e5}; // m above the water level
+    FactRange camera_pitch{-90, 90};   // degrees, negative looks down
+    FactRange sun_elevation{-90, 90};  // degrees above the horizon
+    std::vector<std::string> reflection_sources; // of kReflectionSources; empty = none
+    bool waves_animated = true;
+    std::string precision = "any";     // "full", "half" or "any"
+    std::vector<std::string> platforms; // of kPlatforms
+    std::map<std::string, std::vector<double>> fixed; // parameters the scene fixes
+    SceneWhere where;
+};
+
+// Vocabulary of the scene file (README "Scene files").
+extern const std::vector<std::string> kReflectionSources; // planar, cubemap, horizon_map
+extern const std::vector<std::string> kPlatforms;         // vulkan, d3d, opengl, gles, metal
+// Targets a platform needs.
+std::vector<Target> platform_targets(const std::string& platform);
+
+// Reads a scene description. Errors name file, line, column, JSON path and what was
+// expected. Parameters in "fixed" are checked against a material later (scene_pruning.h).
+std::optional<SceneFacts> load_scene(const std::filesystem::path& path, Diagnostics& diagnostics);
+std::optional<SceneFacts> parse_scene(const JsonSource& source, Diagnostics& diagnostics);
+
+} // namespace watergen

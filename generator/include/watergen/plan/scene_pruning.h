@@ -1,0 +1,45 @@
+// From scene facts to what a build needs: which variants of a material a scene can reach
+// (the rest are not generated), which parameters it fixes, what ranges it guarantees (the
+// fold pass turns those into constants and removed terms), and which targets its platforms
+// need. Every decision keeps the scene fact behind it, for `watergen explain`.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "watergen/ir/ir_fold.h"
+#include "watergen/plan/material.h"
+#include "watergen/plan/scene_file.h"
+
+namespace watergen {
+
+// Why a scene cannot use a choice.
+struct Exclusion {
+    std::string axis, choice;
+    std::string reason; // "no shoreline: shore foam never shows"
+    std::string where;  // "open_ocean.json:4:3 /shoreline"
+};
+
+// The first choice of `v` the scene rules out (axes in order), or nullopt when it reaches v.
+std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& v);
+
+struct ScenePlan {
+    SceneFacts scene;
+    FoldFacts facts;              // for fold_graph
+    std::vector<Variant> variants; // reached, sorted by key
+    size_t skipped = 0;           // material variants the scene does not reach
+    std::vector<Target> targets;  // material targets its platforms need, all_targets() order
+    std::map<std::string, std::vector<double>> fixed; // parameters that become constants
+};
+
+// Plans one scene against a material. Errors (exit 2): a fixed parameter the material's
+// nodes do not read, of the wrong size or out of range; time fixed with animated waves; a
+// scene that reaches no variant or needs no target the material emits ("needs nothing").
+std::optional<ScenePlan> plan_scene(const Material& material, const SceneFacts& scene, Diagnostics& diagnostics);
+
+// The facts every build assumes about its inputs (uv in [0, 1], finite scene textures within
+// the world's extent), and the material's parameter ranges; plan_scene adds the scene's.
+FoldFacts base_facts(const Material& material);
+
+} // namespace watergen

@@ -1,0 +1,47 @@
+// The permutation space as a pure function of its description: per axis the choices on
+// offer, plus rules between choices (requires / excludes). The full space is every choice of
+// axes() under constraints(); a material narrows the choices and may add its own rules.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "watergen/water/variant.h"
+
+namespace watergen {
+
+struct Rule {
+    enum class Kind { Requires, Excludes };
+    Kind kind = Kind::Requires;
+    // Requires: axis=choice is only valid with other_axis in other_choices.
+    // Excludes: axis=choice is invalid with other_axis in other_choices.
+    std::string axis, choice;
+    std::string other_axis;
+    std::vector<std::string> other_choices;
+    std::string why;
+    std::string where; // "file:line:col" or "" for built-in rules; shown in messages
+};
+
+struct VariantSpace {
+    std::vector<std::vector<std::string>> choices; // per axis in axes() order, documentation order
+    std::vector<Rule> rules;
+};
+
+// constraints() as rules.
+std::vector<Rule> builtin_rules();
+// Every choice of every axis under builtin_rules(): 238080 variants.
+VariantSpace full_space();
+
+// The first rule `v` breaks, or nullptr when it breaks none.
+const Rule* find_broken_rule(const std::vector<Rule>& rules, const Variant& v);
+// The same as a sentence naming both axes; nullopt when valid.
+std::optional<std::string> broken_rule(const std::vector<Rule>& rules, const Variant& v);
+
+// Visits every valid variant of the space once, odometer order over axes() (the last axis
+// turns fastest). Cost: product of the choice counts x rules.
+void enumerate(const VariantSpace& space, const std::function<void(const Variant&)>& visit);
+size_t count_variants(const VariantSpace& space);
+
+} // namespace watergen

@@ -1,0 +1,33 @@
+// The numeric harness: a graph's outputs evaluated for many input tuples on the GPU (as a
+// compute shader on the Vulkan runner) and on the CPU in double, float and half.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/emitter.h"
+#include "watergen/runtime/vulkan_runner.h"
+
+namespace watergen {
+
+struct ProbeRun {
+    ProbeLayout layout;
+    size_t tuples = 0;
+    // tuples x layout.output_stride, tuple-major.
+    std::vector<double> gpu, cpu_double, cpu_float, cpu_half;
+    double pipeline_ms = 0, dispatch_ms = 0;
+    std::vector<std::string> validation_messages;
+    Diagnostics diagnostics;
+    std::string error;
+    bool ok() const { return error.empty() && !has_errors(diagnostics); }
+};
+
+// `inputs` holds tuples x layout.input_stride values, tuple-major (cast to float for the GPU).
+// `uniforms` override parameter defaults on both sides. Cost: one toolchain run, one pipeline
+// (JIT) and one dispatch, plus three CPU evaluations.
+ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, const std::vector<double>& inputs,
+                   const std::map<std::string, std::vector<double>>& uniforms = {});
+
+} // namespace watergen

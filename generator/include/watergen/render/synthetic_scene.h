@@ -1,0 +1,53 @@
+// The synthetic scene every variant is rendered over, on the GPU and on the CPU alike.
+//
+// World: metres, y up, water plane at y = 0 (uniform water_level). The camera stands at
+// (0, 5, -7) above the beach and looks down the +z axis, pitched 28 degrees down, vertical
+// field of view 60 degrees. The seabed is the plane y = 2 - 0.25 (z + 12): dry beach for
+// z < -4, the shoreline at z = -4, 10 m deep at z = 36 and deeper beyond. A sphere of radius
+// 1 m at (1.5, -1.3, 3) sits half buried in the seabed, its top 0.3 m under the surface. Rays
+// that hit nothing see a smooth sky gradient; their "position" is 1000 m along the ray (above
+// the water, so the water pass leaves them alone). Sand is lit by the sun (Lambert + ambient) and carries a smooth,
+// band-limited ripple pattern (wavelengths >= 2 m) so the image is not flat but no texel is
+// noise: outputs must not be hypersensitive to sub-texel differences between GPU and CPU.
+//
+// Every texture is made at the render resolution, so the fullscreen pass samples texel
+// centres and linear filtering returns texels unchanged (exactly so for power-of-two sizes,
+// where the pixel-centre uv is exact in float; other sizes blend neighbours by ~1e-7).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/runtime/vulkan_runner.h"
+
+namespace watergen {
+
+struct SyntheticScene {
+    uint32_t width = 0, height = 0;
+    std::map<std::string, TextureData> textures;         // by binding name (scene_color, scene_position)
+    std::map<std::string, std::vector<double>> uniforms; // camera, sun: override parameter defaults
+
+    // CPU views of the same textures for the evaluator.
+    EvalInputs eval_inputs() const;
+};
+
+// Deterministic: the same size always yields the same bytes.
+SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height);
+
+// Inputs of the node families, each in its own file under render/: textures and uniforms the
+// nodes of those axes read (their binding names are the TextureInput names the nodes declare).
+void add_foam_inputs(SyntheticScene& scene);   // scene_foam_inputs.cpp
+void add_optics_inputs(SyntheticScene& scene); // scene_optics_inputs.cpp: reflection, refraction
+void add_wave_inputs(SyntheticScene& scene);   // scene_wave_inputs.cpp: waves, normals
+
+// The camera of the scene (for nodes that project world points to the screen).
+struct SceneCamera {
+    double eye[3];
+    double forward[3], right[3], up[3]; // unit; right x up = forward
+    double tan_half_fov_y, aspect;
+};
+SceneCamera scene_camera(uint32_t width, uint32_t height);
+
+} // namespace watergen

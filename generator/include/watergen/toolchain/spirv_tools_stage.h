@@ -1,0 +1,52 @@
+// SPIRV-Tools stages: validation, optimisation, legalisation, counting and disassembly.
+// All run in-process against the Vulkan 1.1 environment (SPIR-V 1.3).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "watergen/ir/diagnostic.h"
+
+namespace watergen {
+
+// What:   spirv-val for Vulkan 1.1 (default validator options, like the CLI).
+// Inputs: a SPIR-V module; file_name goes into each diagnostic.
+// Output: one Error diagnostic per validator message, message prefixed "spirv-val: ";
+//         empty means valid. Line is 0 (SPIR-V has no source lines).
+// Cost:   ~1 ms for a 100-line shader. Thread-safe.
+Diagnostics validate_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name);
+
+struct OptimizeResult {
+    std::vector<uint32_t> spirv; // empty when the optimiser failed
+    Diagnostics diagnostics;
+};
+
+// What:   spirv-opt -O (Optimizer::RegisterPerformancePasses) for Vulkan 1.1. The
+//         optimiser's own pre-validation is skipped: the toolchain always validates first,
+//         and running it twice doubled the cost. Do not feed it unvalidated modules.
+// Inputs: a valid SPIR-V module; file_name for diagnostics.
+// Output: the optimised module plus optimiser messages (prefixed "spirv-opt: ").
+// Cost:   ~3-5 ms for a 100-line shader (the largest in-process stage). Thread-safe.
+OptimizeResult optimize_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name);
+
+// What:   the SPIRV-Tools legalisation recipe (Optimizer::RegisterLegalizationPasses),
+//         which HLSL front ends need: it inlines, scalar-replaces and forwards opaque
+//         handles (Texture2D / SamplerState copies) so the module becomes valid Vulkan.
+// Inputs: glslang's raw HLSL-path output (not yet valid, so no validation beforehand).
+// Output: the legal module plus messages (prefixed "spirv-opt: ").
+// Cost:   ~3 ms for a 100-line shader. Thread-safe.
+OptimizeResult legalize_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name);
+
+// What:   number of instructions in the module, header excluded.
+// Inputs: a SPIR-V module. Output: the count; a malformed tail is not counted.
+// Cost:   one pass over the words.
+size_t count_instructions(const std::vector<uint32_t>& spirv);
+
+// What:   spirv-dis text with friendly names and indentation.
+// Inputs: a SPIR-V module. Output: the text, or "" if the module cannot be disassembled.
+// Cost:   ~1 ms per 1000 instructions.
+std::string disassemble_spirv(const std::vector<uint32_t>& spirv);
+
+} // namespace watergen

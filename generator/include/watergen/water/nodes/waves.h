@@ -1,0 +1,128 @@
+// waves: see apply_waves in watergen/surface.h and core/nodes/waves.cpp.
+//
+// Every function here is geometry: it runs at 32-bit precision even inside a relaxed scope
+// (a probe's half mode), because half holds neither 1e5 m nor a day of seconds.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "watergen/ir/dsl.h"
+
+namespace watergen {
+
+struct Surface;
+
+// Waves per model, fixed per variant (004 sums "numberOfWaves" sines; four is enough to break
+// up the pattern over the synthetic scene and keeps the unrolled search small).
+constexpr int kWaveCount = 4;
+// Post-process surface search for sum_of_sines / gerstner (see surface_search): steps along
+// the view ray, each one height and slope evaluation (sin and cos of 4 phases; Gerstner adds
+// the grid step and its normal), the first kWaveSurfaceSafeSteps Lipschitz-safe, the rest
+// Newton steps. Measured over the synthetic scene in waves_golden_test.
+constexpr int kWaveSurfaceSteps = 8;
+constexpr int kWaveSurfaceSafeSteps = 1;
+// 000's height-map march: the axis choices heightmap_march (Lipschitz-safe steps only, one
+// sample each) and heightmap_march_converged (the gold: Newton steps with central-difference
+// slopes, five samples each).
+constexpr int kHeightmapMarchSteps = 4;
+constexpr int kHeightmapMarchSafeSteps = kHeightmapMarchSteps;
+constexpr int kHeightmapMarchConvergedSteps = 32;
+constexpr int kHeightmapMarchConvergedSafeSteps = 4;
+
+// v / |v|, or `fallback` when |v|^2 <= 1e-30 or is NaN (normalize of a zero vector is NaN on
+// the CPU and undefined on GPUs). Never produces a NaN itself.
+Expr safe_normalize(Expr v, Expr fallback);
+
+// Band limit: `footprint` (m), when given, is a pixel's extent on the water; each wave then
+// fades out as its wavelength drops from 4 to 2 footprints (beyond that it is aliasing noise
+// in the pixel). Without it (points: probes, the mesh path) every wave is in full.
+
+// ---- sum of sines (004) ----
+// h(p) = sum_i a_i sin(f_i (d_i . p) + t phi_i), a_i = A 0.82^i, f_i = F 1.18^i.
+// Parameters: waves_amplitude A (m), waves_frequency F (rad/m), waves_amplitude_gain,
+// waves_frequency_gain, waves_directions_a/_b (d_0 d_1 / d_2 d_3, unit xz), waves_phase_speeds
+// (phi_i, rad/s).
+Expr sum_of_sines_height(Graph& g, Expr xz, Expr time, Expr footprint = Expr()); // m
+Expr sum_of_sines_slope(Graph& g, Expr xz, Expr time, Expr footprint = Expr());  // dh/dx, dh/dz
+Expr sum_of_sines_normal(Graph& g, Expr xz, Expr time, Expr footprint = Expr()); // unit
+
+// ---- Gerstner (004, GPU Gems ch. 1) ----
+// A grid point x0 moves to P = (x0.x + sum Q_i A_i D_i.x cos th_i, level + sum A_i sin th_i,
+// x0.z + sum Q_i A_i D_i.z cos th_i), th_i = w_i (D_i . x0) + phi_i t, Q_i = Q / (w_i A_i n).
+// Parameters: gerstner_amplitude, gerstner_frequency, gerstner_amplitude_gain,
+// gerstner_frequency_gain, gerstner_steepness Q in [0, 1], gerstner_directions_a/_b,
+// gerstner_phase_speeds.
+// P - (x0.x, level, x0.z), m
+Expr gerstner_displacement(Graph& g, Expr grid_xz, Expr time, Expr footprint = Expr());
+// Exact: normalize(dP/dz x dP/dx).
+Expr gerstner_normal(Graph& g, Expr grid_xz, Expr time, Expr footprint = Expr());
+// GPU Gems' closed form (eq. 12), unit.
+Expr gerstner_normal_gpugems(Graph& g, Expr grid_xz, Expr time, Expr footprint = Expr());
+// Grid point x0 whose displaced position lies above world_xz: `iterations` fixed-point steps
+// x0 = world_xz - horizontal(x0) (a contraction for Q < 1), starting from `start`.
+Expr gerstner_grid_point(Graph& g, Expr world_xz, Expr time, Expr start, int iterations,
+                         Expr footprint = Expr());
+
+// ---- height map (000) ----
+// Texture "height_map": r = height in [-1, 1], a periodic tile whose texel k sits at tile
+// coordinate k / (n - 1), so texel 0 equals texel n - 1 (see render/scene_wave_inputs.cpp).
+TextureInput height_map_texture();
+// heightmap_amplitude H (m) x the height map at xz * heightmap_scale + time * heightmap_scroll.
+// With a footprint (band limit, as above) the map fades as a whole by its highest frequency,
+// heightmap_max_cycles per tile (the surface search uses that; the normals do not).
+Expr heightmap_height(Graph& g, Expr xz, Expr time, Expr footprint = Expr());
+// Central differences of heightmap_height, offset heightmap_normal_offset d (m) and strength
+// heightmap_normal_strength s (000): normalize((h(x-d) - h(x+d)) s, 2d, (h(z-d) - h(z+d)) s).
+Expr heightmap_normal(Graph& g, Expr xz, Expr time);
+// (dh/dx, dh/dz) from the same differences.
+Expr heightmap_slope(Graph& g, Expr xz, Expr time, Expr footprint = Expr());
+// Texture coordinate of a periodic tile with `texels` texels per side for the clamp-to-edge
+// sampler: tile coordinate fract(uv) maps onto texel centres 0 .. n - 1.
+Expr tile_coordinate(Expr uv, Expr texels);
+
+Parameter heightmap_amplitude(); // H, m: the height map's [-1, 1] scaled
+
+// ---- where the view ray meets the water (post-process pass) ----
+struct WaveHit {
+    Expr point;    // vec3, m
+    Expr distance; // float, along the view ray, m
+    Expr slope;    // vec2 (dh/dx, dh/dz) at point
+};
+
+// A wave model as the surface search sees it: heights above the water level at world xz.
+struct SurfaceModel {
+    Expr top;       // no crest is higher above the water level, m
+    Expr max_slope; // no |grad h| is larger (world units)
+    // (world xz, footprint or invalid) -> height above the water level (m), or (dh/dx, dh/dz)
+    std::function<Expr(Expr, Expr)> height;
+    std::function<Expr(Expr, Expr)> slope;
+};
+SurfaceModel sum_of_sines_surface(Graph& g, Expr time);
+// Stateful: reuses its last grid point, refined by one Newton step (2x2 Jacobian of the
+// horizontal displacement, determinant floored at 0.04) per new world xz; the height is
+// corrected to first order (world slope at x0) for what that step leaves of the miss.
+SurfaceModel gerstner_surface(Graph& g, Expr time);
+SurfaceModel heightmap_surface(Graph& g, Expr time);
+
+// r = 1 / (1 + K |ray.xz| / max(-ray.y, 1e-6)), the damping of surface_search.
+Expr search_relaxation(Graph& g, Expr view_ray, Expr max_slope);
+
+// 000's march, generalised to every wave model: start at level = water_level + top, then
+// `steps` x { T = water_level + height(S.xz); level += r (T - level); S = the view ray meets
+// level } (r = 1 is 000's "level = level + B H"). The first `safe_steps` use r = 1 / (1 + G),
+// which keeps every step monotone so the levels descend towards the first crossing of the ray
+// with the surface; later steps are Newton steps (from model.slope) kept within [that r, 1]
+// and within a bracket [lo, hi] of the crossing (hi: the last level above the surface, lo: the
+// last below it, at first water_level - top); a Newton step leaving the bracket bisects it
+// instead (so does a step where T' >= 1, where Newton points away from the crossing), so a
+// grazing ray cannot end in a crest-trough cycle whose end float rounding picks.
+// The plane intersections go through intersect_plane. Reads s.eye, s.view_ray, s.level.
+// `pixel_angle` (radians per pixel, optional) band-limits the model at each step's footprint.
+WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, int safe_steps,
+                       Expr pixel_angle = Expr());
+
+// The search of the axis choice `choice` of "waves" (steps as above; flat: the plane).
+WaveHit find_wave_surface(const Surface& s, const std::string& choice, Expr pixel_angle = Expr());
+
+} // namespace watergen

@@ -1,0 +1,459 @@
+#include "watergen/ir/cpu_evaluator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace watergen {
+
+const char* to_string(EvalPrecision p) {
+    switch (p) {
+    case EvalPrecision::Double: return "double";
+    case EvalPrecision::Float: return "float";
+    case EvalPrecision::Half: return "half";
+    }
+    return "?";
+}
+
+double round_to_half(double v) {
+    if (!std::isfinite(v) || v == 0.0) return v;
+    const double a = std::fabs(v);
+    // 65504 is the largest half; values from the midpoint to 65536 upwards round to infinity.
+    if (a >= 65520.0) return std::copysign(std::numeric_limits<double>::infinity(), v);
+    int e = 0;
+    std::frexp(a, &e);                           // a in [2^(e-1), 2^e)
+    const int exponent = std::max(e - 1, -14);  // below 2^-14 the spacing stays 2^-24
+    const double ulp = std::ldexp(1.0, exponent - 10);
+    return std::copysign(std::nearbyint(a / ulp) * ulp, v);
+}
+
+double round_to(double v, EvalPrecision p) {
+    switch (p) {
+    case EvalPrecision::Double: return v;
+    case EvalPrecision::Float: return static_cast<double>(static_cast<float>(v));
+    case EvalPrecision::Half: return round_to_half(static_cast<double>(static_cast<float>(v)));
+    }
+    return v;
+}
+
+namespace {
+
+constexpr size_t kBlock = 1024; // lanes per block: a multiple of 4 (whole quads)
+
+double fetch(const TextureView& t, long x, long y, int c) {
+    x = std::clamp<long>(x, 0, static_cast<long>(t.width) - 1);
+    y = std::clamp<long>(y, 0, static_cast<long>(t.height) - 1);
+    return t.rgba[(static_cast<size_t>(y) * t.width + static_cast<size_t>(x)) * 4 + c];
+}
+
+// Vulkan spec, texel filtering with clamp-to-edge: u' = u * width - 0.5 for linear.
+void sample_2d(const TextureView& t, Filter filter, double u, double v, double out[4]) {
+    if (!std::isfinite(u)) u = 0.0;
+    if (!std::isfinite(v)) v = 0.0;
+    u = std::clamp(u, -1.0, 2.0);
+    v = std::clamp(v, -1.0, 2.0);
+    if (filter == Filter::Nearest) {
+        const long x = static_cast<long>(std::floor(u * t.width));
+        const long y = static_cast<long>(std::floor(v * t.height));
+        for (int c = 0; c < 4; ++c) out[c] = fetch(t, x, y, c);
+        return;
+    }
+    const double fu = u * t.width - 0.5, fv = v * t.height - 0.5;
+    const long x0 = static_cast<long>(std::floor(fu)), y0 = static_cast<long>(std::floor(fv));
+    const double a = fu - std::floor(fu), b = fv - std::floor(fv);
+    for (int c = 0; c < 4; ++c) {
+        const double t00 = fetch(t, x0, y0, c), t10 = fetch(t, x0 + 1, y0, c);
+        const double t01 = fetch(t, x0, y0 + 1, c), t11 = fetch(t, x0 + 1, y0 + 1, c);
+        out[c] = (1 - a) * (1 - b) * t00 + a * (1 - b) * t10 + (1 - a) * b * t01 + a * b * t11;
+    }
+}
+
+double cube_fetch(const TextureView& t, int face, long i, long j, int c) {
+    const long n = static_cast<long>(t.width);
+    i = std::clamp<long>(i, 0, n - 1);
+    j = std::clamp<long>(j, 0, n - 1);
+    return t.rgba[((static_cast<size_t>(face) * t.width + static_cast<size_t>(j)) * t.width + static_cast<size_t>(i)) * 4 + c];
+}
+
+// Texel (i, j) of `face`, where at most one of i, j lies one texel past the face: such a texel
+// is the one across the edge on the adjacent face (Vulkan "Cube Map Edge Handling"). Its centre,
+// pushed past the edge, points into exactly that texel of the neighbour (the nearest texel
+// centre of the neighbour is half a texel away, the shrink towards the neighbour's centre is
+// under half a texel), so the neighbour is found geometrically rather than from a table.
+double cube_texel(const TextureView& t, int face, long i, long j, int c) {
+    const long n = static_cast<long>(t.width);
+    if (i >= 0 && i < n && j >= 0 && j < n) return cube_fetch(t, face, i, j, c);
+    double d[3];
+    cube_face_direction(face, (i + 0.5) / n, (j + 0.5) / n, d);
+    const CubeFaceCoord a = cube_face_coord(d[0], d[1], d[2]);
+    return cube_fetch(t, a.face, static_cast<long>(std::floor(a.s * n)), static_cast<long>(std::floor(a.t * n)), c);
+}
+
+void sample_cube(const TextureView& t, Filter filter, double x, double y, double z, double out[4]) {
+    const CubeFaceCoord f = cube_face_coord(x, y, z);
+    const double n = t.width;
+    if (filter == Filter::Nearest) {
+        // Vulkan: nearest filtering of a cube clamps to the edge of the selected face.
+        for (int c = 0; c < 4; ++c)
+            out[c] = cube_fetch(t, f.face, static_cast<long>(std::floor(f.s * n)), static_cast<long>(std::floor(f.t * n)), c);
+        return;
+    }
+    const double fu = f.s * n - 0.5, fv = f.t * n - 0.5;
+    const long x0 = static_cast<long>(std::floor(fu)), y0 = static_cast<long>(std::floor(fv));
+    const double a = fu - std::floor(fu), b = fv - std::floor(fv);
+    const long size = static_cast<long>(t.width);
+    auto outside = [size](long k) { return k < 0 || k >= size; };
+    for (int c = 0; c < 4; ++c) {
+        double texel[2][2];
+        int corner_i = -1, corner_j = -1;
+        for (int dj = 0; dj < 2; ++dj)
+            for (int di = 0; di < 2; ++di) {
+                if (outside(x0 + di) && outside(y0 + dj)) {
+                    // Past both edges: no face owns it (at most one per footprint).
+                    corner_i = di, corner_j = dj;
+                    texel[dj][di] = 0.0;
+                    continue;
+                }
+                texel[dj][di] = cube_texel(t, f.face, x0 + di, y0 + dj, c);
+            }
+        if (corner_i >= 0) {
+            // The mean of the three texels that do exist (lavapipe: the corner's weight is
+            // shared equally among the other three).
+            const double sum = texel[0][0] + texel[0][1] + texel[1][0] + texel[1][1];
+            texel[corner_j][corner_i] = sum / 3.0;
+        }
+        out[c] = (1 - a) * (1 - b) * texel[0][0] + a * (1 - b) * texel[0][1] + (1 - a) * b * texel[1][0] +
+                 a * b * texel[1][1];
+    }
+}
+
+class BlockEvaluator {
+public:
+    BlockEvaluator(const Graph& g, const std::vector<uint32_t>& live, const EvalInputs& in, EvalPrecision p)
+        : g_(g), live_(live), in_(in), p_(p), values_(g.size()) {}
+
+    // Evaluates lanes [begin, begin + count); returns false and sets error on bad input.
+    bool run(size_t begin, size_t count, std::string& error) {
+        n_ = count;
+        for (uint32_t id : live_) {
+            const Node& node = g_.node(id);
+            const int comps = component_count(node.type);
+            auto& out = values_[id];
+            out.assign(n_ * static_cast<size_t>(std::max(comps, 1)), 0.0);
+            if (!compute(id, node, comps, begin, out, error)) return false;
+            // Half mode: relaxed nodes are binary16, the rest binary32, as a GPU that honours
+            // mediump at 16 bits would compute them.
+            const EvalPrecision p = (p_ == EvalPrecision::Half && !node.relaxed) ? EvalPrecision::Float : p_;
+            for (double& v : out) v = round_to(v, p);
+        }
+        return true;
+    }
+
+    const std::vector<double>& values(uint32_t id) const { return values_[id]; }
+
+private:
+    // Component c of argument i at lane l, broadcasting scalars.
+    double arg(const Node& n, size_t i, size_t l, int c) const {
+        const uint32_t a = n.args[i];
+        const int comps = component_count(g_.node(a).type);
+        return values_[a][l * comps + (comps == 1 ? 0 : c)];
+    }
+
+    bool compute(uint32_t id, const Node& n, int comps, size_t begin, std::vector<double>& out, std::string& error) {
+        (void)id;
+        auto each = [&](auto f) {
+            for (size_t l = 0; l < n_; ++l)
+                for (int c = 0; c < comps; ++c) out[l * comps + c] = f(l, c);
+        };
+        auto a0 = [&](size_t l, int c) { return arg(n, 0, l, c); };
+        auto a1 = [&](size_t l, int c) { return arg(n, 1, l, c); };
+        auto a2 = [&](size_t l, int c) { return arg(n, 2, l, c); };
+        auto reduce_dot = [&](size_t l, size_t i, size_t j) {
+            const int k = component_count(g_.node(n.args[i]).type);
+            double s = 0;
+            for (int c = 0; c < k; ++c) s += arg(n, i, l, c) * arg(n, j, l, c);
+            return s;
+        };
+        switch (n.op) {
+        case Op::Constant:
+            if (n.type == Type::Error) {
+                error = "graph contains an ill-typed node";
+                return false;
+            }
+            each([&](size_t, int c) { return n.values[c]; });
+            return true;
+        case Op::Uniform: {
+            const std::vector<double>* v = nullptr;
+            if (auto it = in_.uniforms.find(n.name); it != in_.uniforms.end()) v = &it->second;
+            else if (const Parameter* p = g_.find_parameter(n.name)) v = &p->default_value;
+            if (!v || static_cast<int>(v->size()) != comps) {
+                error = "uniform '" + n.name + "': no value with " + std::to_string(comps) + " components";
+                return false;
+            }
+            each([&](size_t, int c) { return (*v)[c]; });
+            return true;
+        }
+        case Op::Varying: {
+            auto it = in_.varyings.find(n.name);
+            if (it == in_.varyings.end() || it->second.size() < (begin + n_) * comps) {
+                error = "varying '" + n.name + "' missing or too short";
+                return false;
+            }
+            each([&](size_t l, int c) { return it->second[(begin + l) * comps + c]; });
+            return true;
+        }
+        case Op::Texture: return true;
+        case Op::Add: each([&](size_t l, int c) { return a0(l, c) + a1(l, c); }); return true;
+        case Op::Sub: each([&](size_t l, int c) { return a0(l, c) - a1(l, c); }); return true;
+        case Op::Mul: each([&](size_t l, int c) { return a0(l, c) * a1(l, c); }); return true;
+        case Op::Div: each([&](size_t l, int c) { return a0(l, c) / a1(l, c); }); return true;
+        case Op::Neg: each([&](size_t l, int c) { return -a0(l, c); }); return true;
+        case Op::Less: each([&](size_t l, int) { return double(a0(l, 0) < a1(l, 0)); }); return true;
+        case Op::LessEqual: each([&](size_t l, int) { return double(a0(l, 0) <= a1(l, 0)); }); return true;
+        case Op::Greater: each([&](size_t l, int) { return double(a0(l, 0) > a1(l, 0)); }); return true;
+        case Op::GreaterEqual: each([&](size_t l, int) { return double(a0(l, 0) >= a1(l, 0)); }); return true;
+        case Op::Equal: each([&](size_t l, int) { return double(a0(l, 0) == a1(l, 0)); }); return true;
+        case Op::NotEqual: each([&](size_t l, int) { return double(a0(l, 0) != a1(l, 0)); }); return true;
+        case Op::And: each([&](size_t l, int) { return double(a0(l, 0) != 0 && a1(l, 0) != 0); }); return true;
+        case Op::Or: each([&](size_t l, int) { return double(a0(l, 0) != 0 || a1(l, 0) != 0); }); return true;
+        case Op::Not: each([&](size_t l, int) { return double(a0(l, 0) == 0); }); return true;
+        case Op::Select: each([&](size_t l, int c) { return a0(l, 0) != 0 ? a1(l, c) : a2(l, c); }); return true;
+        case Op::Swizzle: each([&](size_t l, int c) { return a0(l, static_cast<int>(n.values[c])); }); return true;
+        case Op::Splat: each([&](size_t l, int) { return a0(l, 0); }); return true;
+        case Op::Construct: {
+            // Flatten arguments in order (Mat3: three columns, column-major).
+            for (size_t l = 0; l < n_; ++l) {
+                int c = 0;
+                for (size_t i = 0; i < n.args.size(); ++i) {
+                    const int k = component_count(g_.node(n.args[i]).type);
+                    for (int j = 0; j < k; ++j) out[l * comps + c++] = arg(n, i, l, j);
+                }
+            }
+            return true;
+        }
+        case Op::Dot: each([&](size_t l, int) { return reduce_dot(l, 0, 1); }); return true;
+        case Op::Length: each([&](size_t l, int) { return std::sqrt(reduce_dot(l, 0, 0)); }); return true;
+        case Op::Normalize:
+            each([&](size_t l, int c) { return a0(l, c) / std::sqrt(reduce_dot(l, 0, 0)); });
+            return true;
+        case Op::Cross:
+            each([&](size_t l, int c) {
+                const int i = (c + 1) % 3, j = (c + 2) % 3;
+                return a0(l, i) * a1(l, j) - a0(l, j) * a1(l, i);
+            });
+            return true;
+        case Op::Mix: each([&](size_t l, int c) { return a0(l, c) + (a1(l, c) - a0(l, c)) * a2(l, c); }); return true;
+        // GPUs return the non-NaN operand of min/max (IEEE minNum); fmin/fmax do the same.
+        case Op::Clamp: each([&](size_t l, int c) { return std::fmin(std::fmax(a0(l, c), a1(l, c)), a2(l, c)); }); return true;
+        case Op::Saturate: each([&](size_t l, int c) { return std::fmin(std::fmax(a0(l, c), 0.0), 1.0); }); return true;
+        case Op::Min: each([&](size_t l, int c) { return std::fmin(a0(l, c), a1(l, c)); }); return true;
+        case Op::Max: each([&](size_t l, int c) { return std::fmax(a0(l, c), a1(l, c)); }); return true;
+        case Op::Pow: each([&](size_t l, int c) { return std::pow(a0(l, c), a1(l, c)); }); return true;
+        case Op::Exp: each([&](size_t l, int c) { return std::exp(a0(l, c)); }); return true;
+        case Op::Exp2: each([&](size_t l, int c) { return std::exp2(a0(l, c)); }); return true;
+        case Op::Log: each([&](size_t l, int c) { return std::log(a0(l, c)); }); return true;
+        case Op::Sqrt: each([&](size_t l, int c) { return std::sqrt(a0(l, c)); }); return true;
+        case Op::Rsqrt: each([&](size_t l, int c) { return 1.0 / std::sqrt(a0(l, c)); }); return true;
+        case Op::Abs: each([&](size_t l, int c) { return std::fabs(a0(l, c)); }); return true;
+        case Op::Sign: each([&](size_t l, int c) { const double x = a0(l, c); return double((x > 0) - (x < 0)); }); return true;
+        case Op::Sin: each([&](size_t l, int c) { return std::sin(a0(l, c)); }); return true;
+        case Op::Cos: each([&](size_t l, int c) { return std::cos(a0(l, c)); }); return true;
+        case Op::Atan2: each([&](size_t l, int c) { return std::atan2(a0(l, c), a1(l, c)); }); return true;
+        case Op::Fract: each([&](size_t l, int c) { return a0(l, c) - std::floor(a0(l, c)); }); return true;
+        case Op::Floor: each([&](size_t l, int c) { return std::floor(a0(l, c)); }); return true;
+        case Op::Mod: each([&](size_t l, int c) { return a0(l, c) - a1(l, c) * std::floor(a0(l, c) / a1(l, c)); }); return true;
+        case Op::Step: each([&](size_t l, int c) { return a1(l, c) < a0(l, c) ? 0.0 : 1.0; }); return true;
+        case Op::Smoothstep:
+            each([&](size_t l, int c) {
+                const double t = std::fmin(std::fmax((a2(l, c) - a0(l, c)) / (a1(l, c) - a0(l, c)), 0.0), 1.0);
+                return t * t * (3.0 - 2.0 * t);
+            });
+            return true;
+        case Op::Reflect:
+            each([&](size_t l, int c) { return a0(l, c) - 2.0 * reduce_dot(l, 1, 0) * a1(l, c); });
+            return true;
+        case Op::Refract:
+            each([&](size_t l, int c) {
+                const double ni = reduce_dot(l, 1, 0), eta = a2(l, 0);
+                const double k = 1.0 - eta * eta * (1.0 - ni * ni);
+                return k < 0 ? 0.0 : eta * a0(l, c) - (eta * ni + std::sqrt(k)) * a1(l, c);
+            });
+            return true;
+        case Op::MatMulVec:
+            each([&](size_t l, int r) {
+                double s = 0;
+                for (int k = 0; k < 3; ++k) s += arg(n, 0, l, k * 3 + r) * arg(n, 1, l, k);
+                return s;
+            });
+            return true;
+        case Op::Sample:
+        case Op::SampleLevel: {
+            const Node& tex = g_.node(n.args[0]);
+            auto it = in_.textures.find(tex.name);
+            if (it == in_.textures.end() || !it->second.rgba) {
+                error = "texture '" + tex.name + "' not supplied";
+                return false;
+            }
+            const TextureView& view = it->second;
+            const bool cube = tex.type == Type::TextureCube;
+            const uint32_t layers = cube ? 6u : 1u;
+            if (view.layers != 0 && view.layers != layers) {
+                error = "texture '" + tex.name + "' has " + std::to_string(view.layers) + " layers; the " +
+                        (cube ? "cube" : "2D") + " binding needs " + std::to_string(layers);
+                return false;
+            }
+            if (view.width == 0 || view.height == 0 || (cube && view.width != view.height)) {
+                error = "texture '" + tex.name + "': bad size" + (cube ? " (cube faces must be square)" : "");
+                return false;
+            }
+            for (size_t l = 0; l < n_; ++l) {
+                double texel[4];
+                if (cube) sample_cube(view, in_.filter, a1(l, 0), a1(l, 1), a1(l, 2), texel);
+                else sample_2d(view, in_.filter, a1(l, 0), a1(l, 1), texel);
+                for (int c = 0; c < 4; ++c) out[l * 4 + c] = texel[c];
+            }
+            return true;
+        }
+        case Op::Ddx:
+        case Op::Ddy: {
+            // Quad lanes: 0 = (0,0), 1 = (1,0), 2 = (0,1), 3 = (1,1).
+            const bool dx = n.op == Op::Ddx;
+            each([&](size_t l, int c) {
+                const size_t q = l & ~size_t(3), i = l & 3;
+                const size_t lo = dx ? q + (i & 2) : q + (i & 1);
+                const size_t hi = dx ? lo + 1 : lo + 2;
+                return hi < n_ ? a0(hi, c) - a0(lo, c) : 0.0;
+            });
+            return true;
+        }
+        }
+        error = std::string("operation '") + op_name(n.op) + "' has no CPU evaluation";
+        return false;
+    }
+
+    const Graph& g_;
+    const std::vector<uint32_t>& live_;
+    const EvalInputs& in_;
+    EvalPrecision p_;
+    std::vector<std::vector<double>> values_;
+    size_t n_ = 0;
+};
+
+std::optional<uint32_t> find_output(const Graph& g, const std::string& name) {
+    for (const auto& o : g.outputs())
+        if (o.name == name) return o.node;
+    return std::nullopt;
+}
+
+// Ids reachable from one node, ascending.
+std::vector<uint32_t> live_from(const Graph& g, uint32_t root) {
+    std::vector<char> live(g.size(), 0);
+    std::vector<uint32_t> stack{root};
+    while (!stack.empty()) {
+        const uint32_t id = stack.back();
+        stack.pop_back();
+        if (live[id]) continue;
+        live[id] = 1;
+        for (uint32_t a : g.node(id).args) stack.push_back(a);
+    }
+    std::vector<uint32_t> ids;
+    for (uint32_t i = 0; i < g.size(); ++i)
+        if (live[i]) ids.push_back(i);
+    return ids;
+}
+
+} // namespace
+
+CubeFaceCoord cube_face_coord(double x, double y, double z) {
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) return {};
+    const double ax = std::fabs(x), ay = std::fabs(y), az = std::fabs(z);
+    // Vulkan "Cube Map Face Selection": (sc, tc, rc) per major axis; s = (sc / |rc| + 1) / 2.
+    int face = 0;
+    double sc = 0, tc = 0, ma = 0;
+    if (az >= std::max(ax, ay)) {
+        ma = az;
+        face = std::signbit(z) ? 5 : 4;
+        sc = std::signbit(z) ? -x : x;
+        tc = -y;
+    } else if (ax > ay) {
+        ma = ax;
+        face = std::signbit(x) ? 1 : 0;
+        sc = std::signbit(x) ? z : -z;
+        tc = -y;
+    } else {
+        ma = ay;
+        face = std::signbit(y) ? 3 : 2;
+        sc = x;
+        tc = std::signbit(y) ? -z : z;
+    }
+    const double half_inverse = ma > 0 ? 0.5 / ma : 0.0; // zero vector: the face centre
+    return {face, sc * half_inverse + 0.5, tc * half_inverse + 0.5};
+}
+
+void cube_face_direction(int face, double s, double t, double d[3]) {
+    const double sc = 2.0 * s - 1.0, tc = 2.0 * t - 1.0;
+    switch (face) { // the table of cube_face_coord, solved for the direction
+    case 0: d[0] = 1, d[1] = -tc, d[2] = -sc; return;   // +X: sc = -z, tc = -y
+    case 1: d[0] = -1, d[1] = -tc, d[2] = sc; return;   // -X: sc = +z, tc = -y
+    case 2: d[0] = sc, d[1] = 1, d[2] = tc; return;     // +Y: sc = +x, tc = +z
+    case 3: d[0] = sc, d[1] = -1, d[2] = -tc; return;   // -Y: sc = +x, tc = -z
+    case 4: d[0] = sc, d[1] = -tc, d[2] = 1; return;    // +Z: sc = +x, tc = -y
+    default: d[0] = -sc, d[1] = -tc, d[2] = -1; return; // -Z: sc = -x, tc = -y
+    }
+}
+
+EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs& inputs, EvalPrecision precision) {
+    EvalResult result;
+    const auto root = find_output(g, output);
+    if (!root) {
+        result.error = "graph has no output '" + output + "'";
+        return result;
+    }
+    if (has_errors(g.diagnostics())) {
+        result.error = "graph has type errors";
+        return result;
+    }
+    result.components = component_count(g.node(*root).type);
+    result.values.resize(inputs.lanes * static_cast<size_t>(result.components));
+    const std::vector<uint32_t> live = live_from(g, *root);
+    BlockEvaluator block(g, live, inputs, precision);
+    for (size_t begin = 0; begin < inputs.lanes; begin += kBlock) {
+        const size_t count = std::min(kBlock, inputs.lanes - begin);
+        if (!block.run(begin, count, result.error)) return result;
+        const auto& v = block.values(*root);
+        std::copy(v.begin(), v.begin() + static_cast<long>(count * result.components),
+                  result.values.begin() + static_cast<long>(begin * result.components));
+    }
+    return result;
+}
+
+EvalResult evaluate_image(const Graph& g, const std::string& output, EvalInputs inputs, uint32_t width,
+                          uint32_t height, EvalPrecision precision) {
+    // Lanes in 2x2 quads so derivatives see their neighbours; odd edges are padded.
+    const uint32_t qw = (width + 1) / 2, qh = (height + 1) / 2;
+    inputs.lanes = static_cast<size_t>(qw) * qh * 4;
+    std::vector<double> uv(inputs.lanes * 2);
+    for (uint32_t qy = 0; qy < qh; ++qy)
+        for (uint32_t qx = 0; qx < qw; ++qx)
+            for (uint32_t i = 0; i < 4; ++i) {
+                const size_t lane = (static_cast<size_t>(qy) * qw + qx) * 4 + i;
+                uv[lane * 2 + 0] = (2.0 * qx + (i & 1) + 0.5) / width;
+                uv[lane * 2 + 1] = (2.0 * qy + (i >> 1) + 0.5) / height;
+            }
+    inputs.varyings["v_uv"] = std::move(uv);
+    EvalResult quads = evaluate(g, output, inputs, precision);
+    if (!quads.ok()) return quads;
+    EvalResult image;
+    image.components = quads.components;
+    image.values.resize(static_cast<size_t>(width) * height * quads.components);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const size_t lane = (static_cast<size_t>(y / 2) * qw + x / 2) * 4 + (x & 1) + 2 * (y & 1);
+            for (int c = 0; c < quads.components; ++c)
+                image.values[(static_cast<size_t>(y) * width + x) * quads.components + c] =
+                    quads.values[lane * quads.components + c];
+        }
+    return image;
+}
+
+} // namespace watergen

@@ -1,0 +1,386 @@
+#include "watergen/ir/dsl.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace watergen {
+
+namespace {
+
+std::string types_of(const std::vector<Expr>& args) {
+    std::string s;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (i) s += ", ";
+        s += type_name(args[i].type());
+    }
+    return s;
+}
+
+int expected_arity(Op op) {
+    switch (op) {
+    case Op::Neg: case Op::Not: case Op::Normalize: case Op::Length: case Op::Saturate:
+    case Op::Exp: case Op::Exp2: case Op::Log: case Op::Sqrt: case Op::Rsqrt: case Op::Abs:
+    case Op::Sign: case Op::Sin: case Op::Cos: case Op::Fract: case Op::Floor: case Op::Ddx:
+    case Op::Ddy: case Op::Swizzle: case Op::Splat:
+        return 1;
+    case Op::Select: case Op::Mix: case Op::Clamp: case Op::Refract: case Op::Smoothstep:
+    case Op::SampleLevel:
+        return 3;
+    case Op::Construct: return -1;
+    default: return 2;
+    }
+}
+
+bool is_componentwise_with_scalar_broadcast(Op op) {
+    return op == Op::Mix || op == Op::Clamp || op == Op::Min || op == Op::Max || op == Op::Pow ||
+           op == Op::Step || op == Op::Smoothstep || op == Op::Mod || op == Op::Atan2 ||
+           op == Op::Select;
+}
+
+// Type of `op` applied to `args`, or Type::Error with `why` filled in.
+Type infer(Op op, const std::vector<Expr>& args, std::string& why) {
+    auto t = [&](size_t i) { return args[i].type(); };
+    auto same_float = [&](size_t first) {
+        for (size_t i = first; i < args.size(); ++i)
+            if (!is_float_numeric(t(i)) || t(i) != t(first)) return false;
+        return true;
+    };
+    switch (op) {
+    case Op::Add: case Op::Sub: case Op::Mul: case Op::Div:
+        if (t(0) == Type::Int && t(1) == Type::Int) return Type::Int;
+        if (op == Op::Mul && t(0) == Type::Mat3 && t(1) == Type::Vec3) return Type::Vec3;
+        if (is_float_numeric(t(0)) && is_float_numeric(t(1))) {
+            if (t(0) == t(1)) return t(0);
+            if (t(0) == Type::Float) return t(1);
+            if (t(1) == Type::Float) return t(0);
+        }
+        why = "operand types differ";
+        return Type::Error;
+    case Op::Neg:
+    case Op::Normalize: case Op::Saturate: case Op::Exp: case Op::Exp2: case Op::Log:
+    case Op::Sqrt: case Op::Rsqrt: case Op::Abs: case Op::Sign: case Op::Sin: case Op::Cos:
+    case Op::Fract: case Op::Floor: case Op::Ddx: case Op::Ddy:
+        if (is_float_numeric(t(0)) || (op == Op::Neg && t(0) == Type::Int)) return t(0);
+        why = "expects a float scalar or vector";
+        return Type::Error;
+    case Op::Less: case Op::LessEqual: case Op::Greater: case Op::GreaterEqual: case Op::Equal:
+    case Op::NotEqual:
+        if (t(0) == t(1) && (t(0) == Type::Float || t(0) == Type::Int)) return Type::Bool;
+        why = "compares two scalars of one type";
+        return Type::Error;
+    case Op::And: case Op::Or:
+        if (t(0) == Type::Bool && t(1) == Type::Bool) return Type::Bool;
+        why = "expects two bools";
+        return Type::Error;
+    case Op::Not:
+        if (t(0) == Type::Bool) return Type::Bool;
+        why = "expects a bool";
+        return Type::Error;
+    case Op::Select:
+        if (t(0) != Type::Bool) {
+            why = "condition must be bool";
+            return Type::Error;
+        }
+        if (t(1) == t(2) && t(1) != Type::Error) return t(1);
+        why = "branches differ in type";
+        return Type::Error;
+    case Op::Dot:
+        if (same_float(0)) return Type::Float;
+        why = "expects two float vectors of one size";
+        return Type::Error;
+    case Op::Length:
+        if (is_float_numeric(t(0))) return Type::Float;
+        why = "expects a float vector";
+        return Type::Error;
+    case Op::Cross:
+        if (t(0) == Type::Vec3 && t(1) == Type::Vec3) return Type::Vec3;
+        why = "expects two vec3";
+        return Type::Error;
+    case Op::Reflect:
+        if (same_float(0) && is_vector(t(0))) return t(0);
+        why = "expects two float vectors of one size";
+        return Type::Error;
+    case Op::Refract:
+        if (is_vector(t(0)) && t(0) == t(1) && t(2) == Type::Float) return t(0);
+        why = "expects (vecN incident, vecN normal, float eta)";
+        return Type::Error;
+    case Op::Mix: case Op::Clamp: case Op::Min: case Op::Max: case Op::Pow: case Op::Step:
+    case Op::Smoothstep: case Op::Mod: case Op::Atan2:
+        if (same_float(0)) return t(0);
+        why = "operand types differ";
+        return Type::Error;
+    case Op::Sample:
+        if (t(0) == Type::Texture2D && t(1) == Type::Vec2) return Type::Vec4;
+        if (t(0) == Type::TextureCube && t(1) == Type::Vec3) return Type::Vec4;
+        why = "expects (texture2D, vec2) or (textureCube, vec3)";
+        return Type::Error;
+    case Op::SampleLevel:
+        if (t(2) == Type::Float && ((t(0) == Type::Texture2D && t(1) == Type::Vec2) ||
+                                    (t(0) == Type::TextureCube && t(1) == Type::Vec3)))
+            return Type::Vec4;
+        why = "expects (texture2D, vec2, float) or (textureCube, vec3, float)";
+        return Type::Error;
+    case Op::Construct: {
+        int n = 0;
+        for (const auto& a : args) {
+            if (!is_float_numeric(a.type())) {
+                why = "components must be float scalars or vectors";
+                return Type::Error;
+            }
+            n += component_count(a.type());
+        }
+        if (n >= 2 && n <= 4) return float_type(n);
+        why = "makes a vector of 2 to 4 components, got " + std::to_string(n);
+        return Type::Error;
+    }
+    default:
+        why = "is not built through make()";
+        return Type::Error;
+    }
+}
+
+Expr error_expr(Graph& g) {
+    Node n;
+    n.op = Op::Constant;
+    n.type = Type::Error;
+    return Expr(&g, g.add(std::move(n)));
+}
+
+} // namespace
+
+Expr make(Op op, std::initializer_list<Expr> list) {
+    std::vector<Expr> args(list);
+    // An argument no node produced (an axis that failed earlier) poisons the result; the
+    // failure itself has been reported already.
+    Graph* graph = nullptr;
+    for (const auto& a : args)
+        if (a.valid()) graph = &a.graph();
+    if (!graph) return Expr();
+    Graph& g = *graph;
+    for (const auto& a : args)
+        if (!a.valid()) return error_expr(g);
+    const int arity = expected_arity(op);
+    if (arity >= 0 && static_cast<int>(args.size()) != arity) {
+        g.error(std::string(op_name(op)) + " expects " + std::to_string(arity) +
+                " arguments, got " + std::to_string(args.size()));
+        return error_expr(g);
+    }
+    for (const auto& a : args)
+        if (a.type() == Type::Error) return error_expr(g); // already reported
+    // GLSL and HLSL both broadcast scalars in arithmetic, but not uniformly in intrinsics:
+    // make the broadcast explicit so every back end sees matching operand types.
+    if (is_componentwise_with_scalar_broadcast(op)) {
+        Type widest = Type::Float;
+        const size_t first = op == Op::Select ? 1 : 0;
+        for (size_t i = first; i < args.size(); ++i)
+            if (is_vector(args[i].type())) widest = args[i].type();
+        if (widest != Type::Float)
+            for (size_t i = first; i < args.size(); ++i)
+                if (args[i].type() == Type::Float) args[i] = splat(args[i], widest);
+    }
+    std::string why;
+    const Type type = infer(op, args, why);
+    if (type == Type::Error) {
+        g.error(std::string(op_name(op)) + ": " + why + " (got " + types_of(args) + ")");
+        return error_expr(g);
+    }
+    Node n;
+    n.op = (op == Op::Mul && args[0].type() == Type::Mat3) ? Op::MatMulVec : op;
+    n.type = type;
+    for (const auto& a : args) n.args.push_back(a.id());
+    return Expr(&g, g.add(std::move(n)));
+}
+
+Expr Expr::swizzle(std::string_view components) const {
+    if (!g_) return *this;
+    Graph& g = *g_;
+    if (type() == Type::Error) return *this;
+    const int available = component_count(type());
+    if (!is_float_numeric(type()) || components.empty() || components.size() > 4) {
+        g.error("swizzle '" + std::string(components) + "' of " + type_name(type()));
+        return error_expr(g);
+    }
+    Node n;
+    n.op = Op::Swizzle;
+    n.type = float_type(static_cast<int>(components.size()));
+    n.args = {id_};
+    for (char c : components) {
+        int idx = -1;
+        switch (c) {
+        case 'x': case 'r': idx = 0; break;
+        case 'y': case 'g': idx = 1; break;
+        case 'z': case 'b': idx = 2; break;
+        case 'w': case 'a': idx = 3; break;
+        default: break;
+        }
+        if (idx < 0 || idx >= available) {
+            g.error("swizzle '" + std::string(components) + "' reads past a " + type_name(type()));
+            return error_expr(g);
+        }
+        n.values.push_back(idx);
+    }
+    if (n.values.size() == static_cast<size_t>(available)) {
+        bool identity = true;
+        for (int i = 0; i < available; ++i) identity &= n.values[i] == i;
+        if (identity) return *this;
+    }
+    return Expr(&g, g.add(std::move(n)));
+}
+
+Expr constant(Graph& g, double v) { return constant(g, {v}); }
+
+Expr constant(Graph& g, std::initializer_list<double> components) {
+    Node n;
+    n.op = Op::Constant;
+    n.type = float_type(static_cast<int>(components.size()));
+    n.values.assign(components);
+    if (n.type == Type::Error) g.error("constant with " + std::to_string(components.size()) + " components");
+    return Expr(&g, g.add(std::move(n)));
+}
+
+Expr uniform(Graph& g, const Parameter& p) {
+    g.declare_parameter(p);
+    Node n;
+    n.op = Op::Uniform;
+    n.type = p.type;
+    n.name = p.name;
+    return Expr(&g, g.add(std::move(n)));
+}
+
+Expr varying(Graph& g, const std::string& name, Type type) {
+    Node n;
+    n.op = Op::Varying;
+    n.type = type;
+    n.name = name;
+    return Expr(&g, g.add(std::move(n)));
+}
+
+Expr texture(Graph& g, const TextureInput& t) {
+    g.declare_texture(t);
+    Node n;
+    n.op = Op::Texture;
+    n.type = t.type;
+    n.name = t.name;
+    return Expr(&g, g.add(std::move(n)));
+}
+
+Expr named(Expr e, const std::string& name) {
+    if (!e.valid()) return e;
+    Node copy = e.graph().node(e.id());
+    if (copy.op == Op::Constant || copy.op == Op::Uniform || copy.op == Op::Varying ||
+        copy.op == Op::Texture || copy.type == Type::Error)
+        return e;
+    copy.name = name;
+    return Expr(&e.graph(), e.graph().add(std::move(copy)));
+}
+
+namespace {
+Expr c(Expr like, double v) { return like.valid() ? constant(like.graph(), v) : Expr(); }
+} // namespace
+
+Expr operator+(Expr a, Expr b) { return make(Op::Add, {a, b}); }
+Expr operator-(Expr a, Expr b) { return make(Op::Sub, {a, b}); }
+Expr operator*(Expr a, Expr b) { return make(Op::Mul, {a, b}); }
+Expr operator/(Expr a, Expr b) { return make(Op::Div, {a, b}); }
+Expr operator-(Expr a) { return make(Op::Neg, {a}); }
+Expr operator+(Expr a, double b) { return a + c(a, b); }
+Expr operator+(double a, Expr b) { return c(b, a) + b; }
+Expr operator-(Expr a, double b) { return a - c(a, b); }
+Expr operator-(double a, Expr b) { return c(b, a) - b; }
+Expr operator*(Expr a, double b) { return a * c(a, b); }
+Expr operator*(double a, Expr b) { return c(b, a) * b; }
+Expr operator/(Expr a, double b) { return a / c(a, b); }
+Expr operator/(double a, Expr b) { return c(b, a) / b; }
+
+Expr operator<(Expr a, Expr b) { return make(Op::Less, {a, b}); }
+Expr operator<=(Expr a, Expr b) { return make(Op::LessEqual, {a, b}); }
+Expr operator>(Expr a, Expr b) { return make(Op::Greater, {a, b}); }
+Expr operator>=(Expr a, Expr b) { return make(Op::GreaterEqual, {a, b}); }
+Expr operator<(Expr a, double b) { return a < c(a, b); }
+Expr operator<=(Expr a, double b) { return a <= c(a, b); }
+Expr operator>(Expr a, double b) { return a > c(a, b); }
+Expr operator>=(Expr a, double b) { return a >= c(a, b); }
+Expr operator&&(Expr a, Expr b) { return make(Op::And, {a, b}); }
+Expr operator||(Expr a, Expr b) { return make(Op::Or, {a, b}); }
+Expr operator!(Expr a) { return make(Op::Not, {a}); }
+
+Expr select(Expr condition, Expr if_true, Expr if_false) {
+    return make(Op::Select, {condition, if_true, if_false});
+}
+Expr vec2(Expr a, Expr b) { return make(Op::Construct, {a, b}); }
+Expr vec3(Expr a, Expr b, Expr c3) { return make(Op::Construct, {a, b, c3}); }
+Expr vec3(Expr xy, Expr z) { return make(Op::Construct, {xy, z}); }
+Expr vec4(Expr xyz, Expr w) { return make(Op::Construct, {xyz, w}); }
+Expr vec4(Expr a, Expr b, Expr c3, Expr d) { return make(Op::Construct, {a, b, c3, d}); }
+
+Expr mat3(Expr c0, Expr c1, Expr c2) {
+    if (!c0.valid()) return make(Op::Construct, {c0, c1, c2});
+    Graph& g = c0.graph();
+    for (const Expr& col : {c0, c1, c2}) {
+        if (col.type() == Type::Error) return error_expr(g);
+        if (col.type() != Type::Vec3) {
+            g.error(std::string("mat3: columns must be vec3 (got ") + type_name(col.type()) + ")");
+            return error_expr(g);
+        }
+    }
+    Node n;
+    n.op = Op::Construct;
+    n.type = Type::Mat3;
+    n.args = {c0.id(), c1.id(), c2.id()};
+    return Expr(&g, g.add(std::move(n)));
+}
+
+Expr splat(Expr scalar, Type vector_type) {
+    if (!scalar.valid()) return scalar;
+    Graph& g = scalar.graph();
+    if (scalar.type() == Type::Error) return scalar;
+    if (scalar.type() != Type::Float || !is_vector(vector_type)) {
+        g.error(std::string("splat: needs a float and a vector type (got ") + type_name(scalar.type()) + ")");
+        return error_expr(g);
+    }
+    Node n;
+    n.op = Op::Splat;
+    n.type = vector_type;
+    n.args = {scalar.id()};
+    return Expr(&g, g.add(std::move(n)));
+}
+
+Expr dot(Expr a, Expr b) { return make(Op::Dot, {a, b}); }
+Expr cross(Expr a, Expr b) { return make(Op::Cross, {a, b}); }
+Expr normalize(Expr a) { return make(Op::Normalize, {a}); }
+Expr length(Expr a) { return make(Op::Length, {a}); }
+Expr mix(Expr a, Expr b, Expr t) { return make(Op::Mix, {a, b, t}); }
+Expr mix(Expr a, Expr b, double t) { return mix(a, b, c(a, t)); }
+Expr clamp(Expr x, Expr lo, Expr hi) { return make(Op::Clamp, {x, lo, hi}); }
+Expr clamp(Expr x, double lo, double hi) { return clamp(x, c(x, lo), c(x, hi)); }
+Expr saturate(Expr x) { return make(Op::Saturate, {x}); }
+Expr pow(Expr x, Expr y) { return make(Op::Pow, {x, y}); }
+Expr pow(Expr x, double y) { return pow(x, c(x, y)); }
+Expr exp(Expr x) { return make(Op::Exp, {x}); }
+Expr exp2(Expr x) { return make(Op::Exp2, {x}); }
+Expr log(Expr x) { return make(Op::Log, {x}); }
+Expr sqrt(Expr x) { return make(Op::Sqrt, {x}); }
+Expr rsqrt(Expr x) { return make(Op::Rsqrt, {x}); }
+Expr abs(Expr x) { return make(Op::Abs, {x}); }
+Expr sign(Expr x) { return make(Op::Sign, {x}); }
+Expr min(Expr a, Expr b) { return make(Op::Min, {a, b}); }
+Expr max(Expr a, Expr b) { return make(Op::Max, {a, b}); }
+Expr min(Expr a, double b) { return min(a, c(a, b)); }
+Expr max(Expr a, double b) { return max(a, c(a, b)); }
+Expr sin(Expr x) { return make(Op::Sin, {x}); }
+Expr cos(Expr x) { return make(Op::Cos, {x}); }
+Expr atan2(Expr y, Expr x) { return make(Op::Atan2, {y, x}); }
+Expr reflect(Expr incident, Expr normal) { return make(Op::Reflect, {incident, normal}); }
+Expr refract(Expr incident, Expr normal, Expr eta) { return make(Op::Refract, {incident, normal, eta}); }
+Expr step(Expr edge, Expr x) { return make(Op::Step, {edge, x}); }
+Expr smoothstep(Expr e0, Expr e1, Expr x) { return make(Op::Smoothstep, {e0, e1, x}); }
+Expr fract(Expr x) { return make(Op::Fract, {x}); }
+Expr floor(Expr x) { return make(Op::Floor, {x}); }
+Expr mod(Expr x, Expr y) { return make(Op::Mod, {x, y}); }
+Expr square(Expr x) { return x * x; }
+Expr sample(Expr tex, Expr coordinate) { return make(Op::Sample, {tex, coordinate}); }
+Expr sample_level(Expr tex, Expr coordinate, Expr lod) { return make(Op::SampleLevel, {tex, coordinate, lod}); }
+Expr ddx(Expr x) { return make(Op::Ddx, {x}); }
+Expr ddy(Expr x) { return make(Op::Ddy, {x}); }
+
+} // namespace watergen

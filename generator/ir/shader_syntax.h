@@ -1,0 +1,47 @@
+// How one language spells the IR. GlslSyntax is the base; HlslSyntax overrides what differs.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "watergen/ir/emitter.h"
+
+namespace watergen {
+
+class GlslSyntax {
+public:
+    virtual ~GlslSyntax() = default;
+    virtual std::string type(Type t) const;
+    virtual std::string literal(double v) const;
+    // Declared type of a temporary; relaxed ones are mediump / min16float.
+    virtual std::string temp_type(Type t, bool relaxed) const;
+    virtual std::string constant(const Node& n) const;
+    virtual std::string uniform_ref(const std::string& name) const;
+    virtual std::string splat(Type t, const std::string& scalar) const;
+    virtual std::string construct(Type t, const std::vector<std::string>& args) const;
+    // Intrinsic calls, texture sampling and matrix products; arguments already spelled.
+    virtual std::string call(Op op, Type result, const std::vector<std::string>& args,
+                             const std::vector<Type>& arg_types) const;
+    virtual std::vector<std::string> declarations(const ShaderInterface& in) const;
+    virtual std::vector<std::string> prelude(const std::set<Op>& used) const;
+    virtual std::string entry_inputs(const ShaderInterface&) const { return ""; }
+    virtual std::string comment(const std::string& text) const { return "// " + text; }
+};
+
+class HlslSyntax final : public GlslSyntax {
+public:
+    std::string type(Type t) const override;
+    std::string constant(const Node& n) const override;
+    std::string temp_type(Type t, bool relaxed) const override;
+    std::string uniform_ref(const std::string& name) const override;
+    std::string splat(Type t, const std::string& scalar) const override;
+    std::string construct(Type t, const std::vector<std::string>& args) const override;
+    std::string call(Op op, Type result, const std::vector<std::string>& args,
+                     const std::vector<Type>& arg_types) const override;
+    std::vector<std::string> declarations(const ShaderInterface& in) const override;
+    std::vector<std::string> prelude(const std::set<Op>& used) const override;
+    std::string entry_inputs(const ShaderInterface& in) const override;
+};
+
+} // namespace watergen

@@ -1,0 +1,150 @@
+#include "watergen/pipeline/build_output.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cerrno>
+#include <csignal>
+#include <fcntl.h>
+#include <fstream>
+
+#include "watergen/pipeline/output_writer.h"
+
+namespace watergen {
+
+namespace fs = std::filesystem;
+
+std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes, Diagnostics& ds) {
+    BuildPlan plan;
+    std::vector<SceneFacts> sorted = scenes;
+    std::stable_sort(sorted.begin(), sorted.end(), [](const SceneFacts& a, const SceneFacts& b) { return a.name < b.name; });
+    for (size_t i = 0; i < sorted.size(); ++i) {
+        if (i > 0 && sorted[i].name == sorted[i - 1].name) {
+            ds.push_back(sorted[i].where.error("name", "scene name '" + sorted[i].name + "' is used by " + sorted[i - 1].file +
+                                                           " too; expected one name per scene (it names a directory)"));
+            return std::nullopt;
+        }
+        if (sorted[i].name == kUnprunedScene) {
+            ds.push_back(sorted[i].where.error("name", std::string("scene name '") + kUnprunedScene + "' is reserved"));
+            return std::nullopt;
+        }
+        auto p = plan_scene(material, sorted[i], ds);
+        if (!p) return std::nullopt;
+        plan.scenes.push_back(std::move(*p));
+    }
+    if (plan.scenes.empty()) {
+        enumerate(material.space, [&](const Variant& v) { plan.unpruned.push_back(v); });
+        std::sort(plan.unpruned.begin(), plan.unpruned.end(), [](const Variant& a, const Variant& b) { return a.key() < b.key(); });
+        for (const Variant& v : plan.unpruned) plan.jobs.push_back({kUnprunedScene, v, nullptr, material.targets});
+        plan.manifest_scenes.push_back({kUnprunedScene, nullptr, plan.unpruned.size()});
+    }
+    for (const ScenePlan& s : plan.scenes) {
+        for (const Variant& v : s.variants) plan.jobs.push_back({s.scene.name, v, &s.facts, s.targets});
+        plan.manifest_scenes.push_back({s.scene.name, &s, s.variants.size()});
+    }
+    return plan;
+}
+
+namespace {
+
+std::optional<std::string> write_all(const fs::path& root, const std::map<std::string, std::string>& files) {
+    std::error_code ec;
+    for (const auto& [relative, bytes] : files) {
+        const fs::path target = root / relative;
+        fs::create_directories(target.parent_path(), ec);
+        if (ec) return "cannot create " + target.parent_path().string() + ": " + ec.message();
+        std::ofstream out(target, std::ios::binary | std::ios::trunc);
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        out.close();
+        if (!out) return "cannot write " + target.string();
+    }
+    return std::nullopt;
+}
+
+// Puts `staging` in the place of `dir` in one step: renameat2(RENAME_EXCHANGE) swaps the two
+// names atomically, so whenever the process dies, `dir` holds either the old output or the
+// new one, never nothing. Without an old output, or on file systems that cannot exchange,
+// the two-rename commit of output_writer.h.
+std::optional<std::string> swap_into_place(const fs::path& staging, const fs::path& dir) {
+    std::error_code ec;
+    if (fs::is_directory(dir, ec) &&
+        ::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
+        fs::remove_all(staging, ec); // the old output, now under the staging name
+        return std::nullopt;
+    }
+    return commit_directory(staging, dir);
+}
+
+// A killed build leaves its staging directory ("<out>.tmp-<pid>", or "<out>.old.tmp-<pid>"
+// from the fallback commit) beside the output; remove those whose process is gone.
+void remove_stale_staging(const fs::path& out) {
+    std::error_code ec;
+    const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+    const std::string name = out.filename().string();
+    std::vector<fs::path> stale;
+    for (const auto& e : fs::directory_iterator(parent, ec)) {
+        const std::string entry = e.path().filename().string();
+        for (const std::string& prefix : {name + ".tmp-", name + ".old.tmp-"}) {
+            if (entry.rfind(prefix, 0) != 0) continue;
+            const std::string digits = entry.substr(prefix.size());
+            if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+            const long pid = std::stol(digits);
+            if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) stale.push_back(e.path());
+        }
+    }
+    for (const auto& p : stale) fs::remove_all(p, ec);
+}
+
+} // namespace
+
+BuildSummary build_material(const BuildRequest& request) {
+    const auto t0 = std::chrono::steady_clock::now();
+    BuildSummary s;
+    auto plan = plan_build(request.material, request.scenes, s.diagnostics);
+    if (!plan) {
+        s.bad_input = true;
+        return s;
+    }
+    const std::vector<JobResult> results = run_build_jobs(request.material, plan->jobs, request.options);
+    s.variants = plan->jobs.size();
+    std::map<std::string, std::string> files;
+    for (size_t i = 0; i < results.size(); ++i) {
+        const JobResult& r = results[i];
+        if (!r.ok()) {
+            ++s.failed;
+            for (const auto& d : r.diagnostics) s.diagnostics.push_back(d);
+            s.diagnostics.push_back({Severity::Error, "", 0, 0, "",
+                                     plan->jobs[i].scene + ": " + plan->jobs[i].variant.key() + " failed to build"});
+            continue;
+        }
+        if (!r.same_as.empty()) {
+            ++s.same;
+            continue;
+        }
+        (r.shared ? s.shared : r.cached ? s.cached : s.built) += 1;
+        const std::string dir = variant_directory(plan->jobs[i].scene, plan->jobs[i].variant);
+        for (const auto& [path, bytes] : r.files) files[dir + "/" + path] = bytes;
+    }
+    if (s.failed == 0) {
+        files["manifest.json"] = manifest_json(request.material, plan->manifest_scenes, plan->jobs, results);
+        s.files = files.size();
+        // Staging beside the output, then one rename: readers never see a mix of two builds.
+        remove_stale_staging(request.out);
+        std::string error;
+        const fs::path staging = make_staging_directory(request.out, &error);
+        std::optional<std::string> failure;
+        if (staging.empty()) failure = error;
+        else if (auto e = write_all(staging, files)) {
+            std::error_code ec;
+            fs::remove_all(staging, ec);
+            failure = e;
+        } else {
+            failure = swap_into_place(staging, request.out);
+        }
+        if (failure) s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
+    }
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return s;
+}
+
+} // namespace watergen

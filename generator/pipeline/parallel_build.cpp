@@ -1,0 +1,191 @@
+#include "watergen/pipeline/parallel_build.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "watergen/toolchain/glslang_stage.h"
+#include "watergen/pipeline/variant_build.h"
+
+namespace watergen {
+
+namespace {
+
+// Kinds of file a target keeps, by suffix after "water.<stage>".
+bool wanted(const std::string& path, const std::vector<Target>& targets) {
+    auto has = [&](Target t) { return std::find(targets.begin(), targets.end(), t) != targets.end(); };
+    if (path == "variant.json") return true;
+    const bool glsl_dir = path.rfind("glsl/", 0) == 0, hlsl_dir = path.rfind("hlsl/", 0) == 0;
+    auto ends = [&](const char* s) {
+        const std::string suffix = s;
+        return path.size() > suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
+    // The HLSL path's SPIR-V and reflection come with the HLSL target; cross-compiled text
+    // comes from the GLSL path only (the HLSL path's would be the same program again).
+    if (hlsl_dir) {
+        if (!has(Target::Hlsl)) return false;
+        if (ends(".hlsl")) return true;
+        if (ends(".spv")) return has(Target::Spirv);
+        if (ends(".reflect.json")) return has(Target::Reflection);
+        return false;
+    }
+    if (!glsl_dir) return false;
+    if (ends(".330.glsl")) return has(Target::Glsl330);
+    if (ends(".300es.glsl")) return has(Target::Essl300);
+    if (ends(".metal")) return has(Target::Msl);
+    if (ends(".spv")) return has(Target::Spirv);
+    if (ends(".reflect.json")) return has(Target::Reflection);
+    if (ends(".glsl")) return has(Target::Glsl);
+    return false;
+}
+
+std::string emitted_name(Language lang, ShaderStage stage) {
+    return std::string(to_string(lang)) + "/water." + file_extension(lang, stage);
+}
+
+// What the files of a variant depend on besides the toolchain: its sources (which carry the
+// key in their stamp) and the metadata of the parameters they read, which variant.json reports.
+std::vector<std::string> hash_inputs(const WaterShader& shader, const std::string& stamp_key, Diagnostics& ds) {
+    std::vector<std::string> parts{shader.variant.key(), shader.preset};
+    for (Language lang : {Language::Glsl, Language::Hlsl}) {
+        const EmittedShader frag = emit_fragment(shader.fragment, lang, emitted_name(lang, ShaderStage::Fragment), stamp_key, ds);
+        parts.push_back(frag.source);
+        parts.push_back(emit_fullscreen_vertex(lang, emitted_name(lang, ShaderStage::Vertex), stamp_key).source);
+        if (lang != Language::Glsl) continue;
+        for (const Parameter& p : frag.interface.parameters) {
+            std::string s = fmt::format("{}|{}|{}|{}|{}|{}|{}", p.name, static_cast<int>(p.type), p.min, p.max, p.unit, p.seed, p.origin);
+            for (double v : p.default_value) s += fmt::format("|{}", v);
+            parts.push_back(s);
+        }
+    }
+    return parts;
+}
+
+} // namespace
+
+unsigned hardware_threads() { return std::max(1u, std::thread::hardware_concurrency()); }
+
+void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& task) {
+    const unsigned workers = static_cast<unsigned>(std::min<size_t>(threads == 0 ? hardware_threads() : threads, std::max<size_t>(n, 1)));
+    if (workers <= 1) {
+        for (size_t i = 0; i < n; ++i) task(i);
+        return;
+    }
+    std::atomic<size_t> next{0};
+    std::vector<std::thread> pool;
+    for (unsigned w = 0; w < workers; ++w)
+        pool.emplace_back([&] {
+            for (size_t i; (i = next++) < n;) task(i);
+        });
+    for (auto& t : pool) t.join();
+}
+
+FileMap filter_targets(const FileMap& all, const std::vector<Target>& targets) {
+    FileMap kept;
+    for (const auto& [path, bytes] : all)
+        if (wanted(path, targets)) kept[path] = bytes;
+    return kept;
+}
+
+std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs, const BuildOptions& options) {
+    std::vector<JobResult> results(jobs.size());
+    std::vector<WaterShader> shaders(jobs.size());
+    // glslang builds its tables once per process; do it before the threads race for it.
+    glslang_warm_up();
+
+    // Phase 1: compose, fold, hash (no compiler involved).
+    parallel_for(jobs.size(), options.threads, [&](size_t i) {
+        const BuildJob& job = jobs[i];
+        JobResult& r = results[i];
+        WaterShader shader = material.compose(job.variant);
+        const Diagnostics& graph_errors = shader.fragment.diagnostics();
+        r.diagnostics.insert(r.diagnostics.end(), graph_errors.begin(), graph_errors.end());
+        if (has_errors(r.diagnostics)) return;
+        if (job.facts) {
+            FoldResult folded = fold_graph(shader.fragment, *job.facts);
+            shader.fragment = std::move(folded.graph);
+            r.fold = std::move(folded.report);
+            r.folded = true;
+        }
+        r.content_hash = content_hash(hash_inputs(shader, job.variant.key(), r.diagnostics));
+        Diagnostics ignored;
+        std::vector<std::string> shape = hash_inputs(shader, "", ignored);
+        shape.erase(shape.begin()); // equal shaders under different keys are still equal
+        r.shape_hash = content_hash(shape);
+        shaders[i] = std::move(shader);
+    });
+
+    // Variants of one scene that folded to the same shader: build the first only. Equal
+    // content in different scenes (the same variant folded alike) is built once and shared.
+    std::map<std::pair<std::string, std::string>, size_t> first;
+    std::map<std::string, size_t> builder;
+    std::vector<size_t> to_build;
+    std::vector<std::pair<size_t, size_t>> copies; // (job, job whose files it takes)
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        if (!results[i].ok()) continue;
+        auto [it, inserted] = first.emplace(std::make_pair(jobs[i].scene, results[i].shape_hash), i);
+        if (!inserted) {
+            results[i].same_as = jobs[it->second].variant.key();
+            continue;
+        }
+        auto [b, fresh] = builder.emplace(results[i].content_hash, i);
+        if (fresh) to_build.push_back(i);
+        else copies.emplace_back(i, b->second);
+    }
+
+    std::mutex progress_lock;
+    BuildProgress progress{0, jobs.size(), 0, 0, ""};
+    auto report = [&](size_t i) {
+        if (!options.progress) return;
+        std::lock_guard<std::mutex> lock(progress_lock);
+        ++progress.done;
+        progress.cached += results[i].cached ? 1 : 0;
+        progress.failed += results[i].ok() ? 0 : 1;
+        progress.key = jobs[i].variant.key();
+        options.progress(progress);
+    };
+    for (size_t i = 0; i < jobs.size(); ++i)
+        if (!results[i].ok() || !results[i].same_as.empty()) report(i);
+
+    // Phase 2: cache or toolchain.
+    std::map<size_t, FileMap> shared; // unfiltered files of each job built, for its copies
+    std::mutex shared_lock;
+    parallel_for(to_build.size(), options.threads, [&](size_t k) {
+        const size_t i = to_build[k];
+        JobResult& r = results[i];
+        const auto t0 = std::chrono::steady_clock::now();
+        std::optional<FileMap> all = options.cache.load(r.content_hash);
+        r.cached = all.has_value();
+        if (!all) {
+            const VariantBuild build = build_shader(std::move(shaders[i]));
+            r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(), build.diagnostics.end());
+            if (build.ok()) {
+                all = variant_files(build);
+                options.cache.store(r.content_hash, *all); // a cache that cannot be written only costs time
+            }
+        }
+        if (all) r.files = filter_targets(*all, jobs[i].targets);
+        r.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        if (all) {
+            std::lock_guard<std::mutex> lock(shared_lock);
+            shared[i] = std::move(*all);
+        }
+        report(i);
+    });
+    for (const auto& [i, from] : copies) {
+        JobResult& r = results[i];
+        r.diagnostics = results[from].diagnostics;
+        r.cached = results[from].cached;
+        r.shared = true;
+        if (auto it = shared.find(from); it != shared.end()) r.files = filter_targets(it->second, jobs[i].targets);
+        report(i);
+    }
+    return results;
+}
+
+} // namespace watergen

@@ -1,0 +1,83 @@
+#include "watergen/plan/covering_array.h"
+
+#include <set>
+#include <tuple>
+
+namespace watergen {
+
+namespace {
+
+using Pair = std::tuple<size_t, size_t, size_t, size_t>; // axis a, choice i, axis b > a, choice j
+
+// Constraints here are pairwise, so a pair is feasible when the two choices alone obey them.
+bool compatible(const Variant& partial, const std::vector<bool>& set) {
+    for (const auto& c : constraints()) {
+        const AxisInfo* a = find_axis(c.axis);
+        const AxisInfo* b = find_axis(c.requires_axis);
+        const size_t ia = static_cast<size_t>(a - axes().data()), ib = static_cast<size_t>(b - axes().data());
+        if (!set[ia] || !set[ib] || partial.choices[ia] != c.choice) continue;
+        bool ok = false;
+        for (const auto& r : c.requires_choices) ok = ok || partial.choices[ib] == r;
+        if (!ok) return false;
+    }
+    return true;
+}
+
+} // namespace
+
+std::vector<Variant> pairwise_covering_variants() {
+    const auto& list = axes();
+    const size_t n = list.size();
+    std::set<Pair> uncovered;
+    for (size_t a = 0; a < n; ++a)
+        for (size_t b = a + 1; b < n; ++b)
+            for (size_t i = 0; i < list[a].choices.size(); ++i)
+                for (size_t j = 0; j < list[b].choices.size(); ++j) {
+                    Variant v = default_variant();
+                    std::vector<bool> set(n, false);
+                    v.choices[a] = list[a].choices[i].name;
+                    v.choices[b] = list[b].choices[j].name;
+                    set[a] = set[b] = true;
+                    if (compatible(v, set)) uncovered.insert({a, i, b, j});
+                }
+
+    std::vector<Variant> result;
+    while (!uncovered.empty()) {
+        const auto [a0, i0, b0, j0] = *uncovered.begin();
+        Variant v = default_variant();
+        std::vector<size_t> pick(n, 0);
+        std::vector<bool> set(n, false);
+        v.choices[a0] = list[a0].choices[i0].name;
+        v.choices[b0] = list[b0].choices[j0].name;
+        pick[a0] = i0;
+        pick[b0] = j0;
+        set[a0] = set[b0] = true;
+        for (size_t a = 0; a < n; ++a) {
+            if (set[a]) continue;
+            size_t best = SIZE_MAX, best_gain = 0;
+            for (size_t i = 0; i < list[a].choices.size(); ++i) {
+                v.choices[a] = list[a].choices[i].name;
+                set[a] = true;
+                const bool ok = compatible(v, set);
+                set[a] = false;
+                if (!ok) continue;
+                size_t gain = 0;
+                for (size_t b = 0; b < n; ++b)
+                    if (set[b]) gain += uncovered.count(b < a ? Pair{b, pick[b], a, i} : Pair{a, i, b, pick[b]});
+                if (best == SIZE_MAX || gain > best_gain) {
+                    best = i;
+                    best_gain = gain;
+                }
+            }
+            pick[a] = best;
+            v.choices[a] = list[a].choices[best].name;
+            set[a] = true;
+        }
+        for (size_t a = 0; a < n; ++a)
+            for (size_t b = a + 1; b < n; ++b) uncovered.erase({a, pick[a], b, pick[b]});
+        result.push_back(v);
+    }
+    return result;
+}
+
+} // namespace watergen

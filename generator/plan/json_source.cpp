@@ -1,0 +1,260 @@
+#include "watergen/plan/json_source.h"
+
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <vector>
+
+namespace watergen {
+
+namespace {
+
+// nlohmann's SAX events carry no position, but its lexer pulls characters one at a time
+// through the iterator it is given: counting them tells each event where the lexer stands.
+struct CountingIterator {
+    using iterator_category = std::input_iterator_tag;
+    using value_type = char;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const char*;
+    using reference = const char&;
+
+    const char* p = nullptr;
+    const char* base = nullptr;
+    size_t* consumed = nullptr;
+
+    reference operator*() const { return *p; }
+    CountingIterator& operator++() {
+        ++p;
+        *consumed = static_cast<size_t>(p - base);
+        return *this;
+    }
+    CountingIterator operator++(int) {
+        CountingIterator old = *this;
+        ++*this;
+        return old;
+    }
+    bool operator==(const CountingIterator& o) const { return p == o.p; }
+    bool operator!=(const CountingIterator& o) const { return p != o.p; }
+};
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+bool is_scalar_char(char c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '.' || c == '+' || c == '-';
+}
+
+std::string escape_pointer_token(const std::string& key) {
+    std::string s;
+    for (char c : key) {
+        if (c == '~') s += "~0";
+        else if (c == '/') s += "~1";
+        else s += c;
+    }
+    return s;
+}
+
+} // namespace
+
+JsonPosition position_of_offset(const std::string& text, size_t offset) {
+    JsonPosition p{1, 1};
+    for (size_t i = 0; i < offset && i < text.size(); ++i) {
+        if (text[i] == '\n') {
+            ++p.line;
+            p.column = 1;
+        } else {
+            ++p.column;
+        }
+    }
+    return p;
+}
+
+std::string json_child(const std::string& parent, const std::string& key) { return parent + "/" + escape_pointer_token(key); }
+std::string json_child(const std::string& parent, size_t index) { return parent + "/" + std::to_string(index); }
+
+std::string json_describe(const Json& v) {
+    switch (v.type()) {
+    case Json::value_t::null: return "null";
+    case Json::value_t::boolean: return std::string("a boolean (") + (v.get<bool>() ? "true" : "false") + ")";
+    case Json::value_t::number_integer:
+    case Json::value_t::number_unsigned:
+    case Json::value_t::number_float: return "a number (" + v.dump() + ")";
+    case Json::value_t::string: return "a string (" + v.dump() + ")";
+    case Json::value_t::array: return "an array";
+    case Json::value_t::object: return "an object";
+    default: return "a " + std::string(v.type_name());
+    }
+}
+
+// Builds the DOM and records, per JSON pointer, where its key (object members) or its value
+// (array elements, the root) starts.
+class JsonSaxBuilder {
+public:
+    JsonSaxBuilder(JsonSource& out, const std::string& text, const size_t& consumed)
+        : out_(out), text_(text), consumed_(consumed) {}
+
+    bool null() { return value(Json(nullptr), false); }
+    bool boolean(bool b) { return value(Json(b), false); }
+    bool number_integer(Json::number_integer_t v) { return value(Json(v), false); }
+    bool number_unsigned(Json::number_unsigned_t v) { return value(Json(v), false); }
+    bool number_float(Json::number_float_t v, const std::string&) { return value(Json(v), false); }
+    bool string(std::string& s) { return value(Json(s), true); }
+    bool binary(Json::binary_t&) { return fail("binary values are not JSON text"); }
+    bool start_object(std::size_t) {
+        if (!value(Json::object(), false, true)) return false;
+        return true;
+    }
+    bool end_object() {
+        stack_.pop_back();
+        return true;
+    }
+    bool start_array(std::size_t) { return value(Json::array(), false, true); }
+    bool end_array() {
+        stack_.pop_back();
+        return true;
+    }
+    bool key(std::string& k) {
+        Frame& f = stack_.back();
+        if (f.node->contains(k)) {
+            const JsonPosition p = token_start(true);
+            error_ = Diagnostic{Severity::Error, out_.file_, p.line, p.column, "",
+                                json_child(f.pointer, k) + ": duplicate key '" + k + "'"};
+            return false;
+        }
+        f.key = k;
+        out_.positions_[json_child(f.pointer, k)] = token_start(true);
+        return true;
+    }
+    bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) {
+        // nlohmann's message: "[json.exception.parse_error.101] parse error at line L, column C: what".
+        std::string what = ex.what();
+        if (const size_t colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
+        const size_t offset = position > 0 ? position - 1 : 0;
+        const JsonPosition p = position_of_offset(text_, offset);
+        error_ = Diagnostic{Severity::Error, out_.file_, p.line, p.column, "", "invalid JSON: " + what};
+        return false;
+    }
+
+    const std::optional<Diagnostic>& error() const { return error_; }
+
+private:
+    struct Frame {
+        Json* node;
+        std::string pointer;
+        std::string key;
+    };
+
+    bool fail(const std::string& what) {
+        const JsonPosition p = position_of_offset(text_, consumed_);
+        error_ = Diagnostic{Severity::Error, out_.file_, p.line, p.column, "", what};
+        return false;
+    }
+
+    // Start of the token the lexer has just read (a string when `quoted`; containers have
+    // consumed only their opening bracket).
+    JsonPosition token_start(bool quoted, bool container = false) const {
+        size_t i = consumed_;
+        if (container) return position_of_offset(text_, i > 0 ? i - 1 : 0);
+        while (i > 0 && is_space(text_[i - 1])) --i;
+        if (quoted) {
+            // text_[i - 1] is the closing quote; find the opening one (not escaped).
+            size_t j = i >= 2 ? i - 2 : 0;
+            while (j > 0) {
+                if (text_[j] == '"') {
+                    size_t slashes = 0;
+                    while (j >= slashes + 1 && text_[j - slashes - 1] == '\\') ++slashes;
+                    if (slashes % 2 == 0) break;
+                }
+                --j;
+            }
+            return position_of_offset(text_, j);
+        }
+        // Numbers are read one character past their end: step back over that look-ahead.
+        if (i > 0 && !is_scalar_char(text_[i - 1])) {
+            --i;
+            while (i > 0 && is_space(text_[i - 1])) --i;
+        }
+        while (i > 0 && is_scalar_char(text_[i - 1])) --i;
+        return position_of_offset(text_, i);
+    }
+
+    bool value(Json v, bool quoted, bool container = false) {
+        Json* slot = nullptr;
+        std::string pointer;
+        if (stack_.empty()) {
+            out_.root_ = std::move(v);
+            slot = &out_.root_;
+            out_.positions_[""] = token_start(quoted, container);
+        } else {
+            Frame& f = stack_.back();
+            if (f.node->is_array()) {
+                pointer = json_child(f.pointer, f.node->size());
+                f.node->push_back(std::move(v));
+                slot = &f.node->back();
+                out_.positions_[pointer] = token_start(quoted, container);
+            } else {
+                pointer = json_child(f.pointer, f.key);
+                slot = &(*f.node)[f.key];
+                *slot = std::move(v);
+                // Members are located at their key (recorded in key()).
+            }
+        }
+        if (container) stack_.push_back(Frame{slot, pointer, ""});
+        return true;
+    }
+
+    JsonSource& out_;
+    const std::string& text_;
+    const size_t& consumed_;
+    std::vector<Frame> stack_;
+    std::optional<Diagnostic> error_;
+};
+
+std::optional<JsonSource> JsonSource::parse(const std::string& text, const std::string& file, Diagnostic* error) {
+    JsonSource src;
+    src.file_ = file;
+    size_t consumed = 0;
+    JsonSaxBuilder sax(src, text, consumed);
+    CountingIterator first{text.data(), text.data(), &consumed};
+    CountingIterator last{text.data() + text.size(), text.data(), &consumed};
+    const bool ok = Json::sax_parse(first, last, &sax);
+    if (!ok || sax.error()) {
+        if (error)
+            *error = sax.error() ? *sax.error() : Diagnostic{Severity::Error, file, 0, 0, "", "invalid JSON"};
+        return std::nullopt;
+    }
+    return src;
+}
+
+std::optional<JsonSource> JsonSource::load(const std::filesystem::path& path, Diagnostic* error) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        if (error) *error = Diagnostic{Severity::Error, path.string(), 0, 0, "", "cannot open the file"};
+        return std::nullopt;
+    }
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return parse(ss.str(), path.string(), error);
+}
+
+JsonPosition JsonSource::position(const std::string& pointer) const {
+    // A pointer below a leaf (e.g. a component of a number that should have been an array)
+    // falls back to the nearest recorded ancestor.
+    std::string p = pointer;
+    for (;;) {
+        if (auto it = positions_.find(p); it != positions_.end()) return it->second;
+        const size_t slash = p.rfind('/');
+        if (slash == std::string::npos) return {};
+        p = p.substr(0, slash);
+    }
+}
+
+std::string JsonSource::where(const std::string& pointer) const {
+    const JsonPosition p = position(pointer);
+    return file_ + ":" + std::to_string(p.line) + ":" + std::to_string(p.column);
+}
+
+Diagnostic JsonSource::error(const std::string& pointer, const std::string& what) const {
+    const JsonPosition p = position(pointer);
+    return Diagnostic{Severity::Error, file_, p.line, p.column, "", (pointer.empty() ? "/" : pointer) + ": " + what};
+}
+
+} // namespace watergen

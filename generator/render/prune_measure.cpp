@@ -1,0 +1,172 @@
+#include "watergen/render/prune_measure.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "watergen/ir/ir_fold.h"
+#include "watergen/ir/uniform_layout.h"
+
+namespace watergen {
+
+namespace {
+
+constexpr double kDegrees = 3.14159265358979323846 / 180.0;
+
+std::vector<double> uniform_value(const SyntheticScene& s, const Material& m, const std::string& name) {
+    if (auto it = s.uniforms.find(name); it != s.uniforms.end()) return it->second;
+    if (auto it = m.parameters.find(name); it != m.parameters.end() && it->second.value) return *it->second.value;
+    if (auto it = m.declared.find(name); it != m.declared.end()) return it->second.default_value;
+    return {};
+}
+
+// Timed draws only: the later rounds need no images and no CPU reference.
+std::vector<double> timed_draws(VulkanRunner& runner, const LanguageBuild& lang, const SyntheticScene& scene,
+                                const RenderSettings& settings, std::string* error) {
+    const RenderResult r = runner.render(make_render_job(lang, scene, settings));
+    if (!r.ok) *error = r.error;
+    return r.draw_ms;
+}
+
+} // namespace
+
+SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, const Material& m, std::string* notes) {
+    SyntheticScene s = base;
+    std::string log;
+    const SceneFacts& f = plan.scene;
+    for (const auto& [name, value] : plan.fixed) s.uniforms[name] = value;
+
+    const std::vector<double> level_v = uniform_value(s, m, "water_level");
+    const double level = level_v.empty() ? 0.0 : level_v[0];
+    std::vector<double> eye = uniform_value(s, m, "eye_position");
+    if (eye.size() == 3 && !plan.fixed.count("eye_position")) {
+        const double y = std::clamp(eye[1], level + f.camera_height.min, level + f.camera_height.max);
+        if (y != eye[1]) log += fmt::format("eye height {:g} -> {:g} m; ", eye[1], y);
+        eye[1] = y;
+        s.uniforms["eye_position"] = eye;
+    }
+    std::vector<double> sun = uniform_value(s, m, "sun_direction");
+    if (sun.size() == 3 && !plan.fixed.count("sun_direction")) {
+        const double len = std::sqrt(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
+        const double elevation = std::asin(std::clamp(-sun[1] / len, -1.0, 1.0)) / kDegrees;
+        const double e = std::clamp(elevation, f.sun_elevation.min, f.sun_elevation.max);
+        if (e != elevation) {
+            // Same azimuth, new elevation; the sunlight travels downwards by day.
+            const double horizontal = std::hypot(sun[0], sun[2]);
+            const double c = std::cos(e * kDegrees);
+            const double ax = horizontal > 0 ? sun[0] / horizontal : 1.0, az = horizontal > 0 ? sun[2] / horizontal : 0.0;
+            sun = {ax * c, -std::sin(e * kDegrees), az * c};
+            log += fmt::format("sun elevation {:.3g} -> {:g} degrees; ", elevation, e);
+        }
+        s.uniforms["sun_direction"] = sun;
+    }
+    if (auto it = s.textures.find("scene_position"); it != s.textures.end() && eye.size() == 3) {
+        size_t moved = 0;
+        auto& rgba = it->second.rgba;
+        for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
+            const double px = rgba[i], py = rgba[i + 1], pz = rgba[i + 2];
+            if (!(py < level)) continue; // not under the water plane: not a water pixel
+            // Waves move the surface around the plane: keep a margin from restrictive bounds
+            // so that the depth under a displaced surface still obeys the fact.
+            const double depth = level - py;
+            const double margin = std::min(2.0, (f.water_depth.max - f.water_depth.min) / 4);
+            const double d = std::clamp(depth, f.water_depth.min > 0 ? f.water_depth.min + margin : 0.0,
+                                        f.water_depth.max - margin);
+            if (d == depth) continue; // depth does not depend on where the eye is
+            // Slide along the ray from the eye through the point until the depth is d.
+            const double t = (eye[1] - (level - d)) / (eye[1] - py);
+            const double nx = eye[0] + (px - eye[0]) * t, ny = level - d, nz = eye[2] + (pz - eye[2]) * t;
+            rgba[i] = static_cast<float>(nx);
+            rgba[i + 1] = static_cast<float>(ny);
+            rgba[i + 2] = static_cast<float>(nz);
+            rgba[i + 3] = static_cast<float>(std::sqrt((nx - eye[0]) * (nx - eye[0]) + (ny - eye[1]) * (ny - eye[1]) +
+                                                      (nz - eye[2]) * (nz - eye[2])));
+            ++moved;
+        }
+        if (moved) log += fmt::format("{} water texels moved into depth {:g}..{:g} m; ", moved, f.water_depth.min, f.water_depth.max);
+    }
+    if (notes) *notes = log.empty() ? "the synthetic scene already obeys the facts" : log.substr(0, log.size() - 2);
+    return s;
+}
+
+PruneMeasurement measure_pruning(VulkanRunner& runner, const Material& m, const ScenePlan& plan, const Variant& v,
+                                 const SyntheticScene& scene, const RenderSettings& settings, unsigned rounds) {
+    PruneMeasurement out;
+    out.scene = plan.scene.name;
+    out.key = v.key();
+    WaterShader unpruned = m.compose(v);
+    if (has_errors(unpruned.fragment.diagnostics())) {
+        out.error = "variant does not compose: " + unpruned.fragment.diagnostics().front().message;
+        return out;
+    }
+    WaterShader pruned = unpruned;
+    FoldResult folded = fold_graph(unpruned.fragment, plan.facts);
+    out.live_before = folded.report.live_before;
+    out.live_after = folded.report.live_after;
+    pruned.fragment = std::move(folded.graph);
+
+    const VariantBuild a = build_shader(std::move(unpruned));
+    const VariantBuild b = build_shader(std::move(pruned));
+    if (!a.ok() || !b.ok()) {
+        const VariantBuild& bad = a.ok() ? b : a;
+        out.error = std::string(a.ok() ? "pruned" : "unpruned") + " build failed: " +
+                    (bad.diagnostics.empty() ? std::string("?") : format_diagnostic(bad.diagnostics.front()));
+        return out;
+    }
+    out.spirv_unpruned = a.languages[0].fragment.toolchain.instruction_count;
+    out.spirv_pruned = b.languages[0].fragment.toolchain.instruction_count;
+    out.spirv_opt_unpruned = a.languages[0].fragment.toolchain.instruction_count_optimized;
+    out.spirv_opt_pruned = b.languages[0].fragment.toolchain.instruction_count_optimized;
+
+    // GPU time of a shader: the fastest of all timed draws over `rounds` renders that
+    // alternate between the two shaders. On a shared CPU (lavapipe runs on the host's cores)
+    // slow draws measure the neighbours; the fastest draw measures the shader.
+    RenderSettings timed = settings;
+    timed.cpu_double = false;
+    VariantRender ra, rb;
+    double fastest[2][2] = {{1e300, 1e300}, {1e300, 1e300}};
+    for (unsigned round = 0; round < std::max(1u, rounds); ++round) {
+        for (int which = 0; which < 2; ++which) {
+            const VariantBuild& build = which == 0 ? a : b;
+            if (round == 0) {
+                VariantRender r = render_variant(runner, build, scene, timed);
+                if (!r.ok()) {
+                    out.error = "render: " + r.error;
+                    return out;
+                }
+                for (int lang = 0; lang < 2; ++lang)
+                    for (double ms : r.gpu[lang].draw_ms) fastest[which][lang] = std::min(fastest[which][lang], ms);
+                (which == 0 ? ra : rb) = std::move(r);
+                continue;
+            }
+            for (int lang = 0; lang < 2; ++lang) {
+                std::string error;
+                for (double ms : timed_draws(runner, build.languages[static_cast<size_t>(lang)], scene, timed, &error))
+                    fastest[which][lang] = std::min(fastest[which][lang], ms);
+                if (!error.empty()) {
+                    out.error = "render: " + error;
+                    return out;
+                }
+            }
+        }
+    }
+    out.gpu_ms_unpruned = fastest[0][0];
+    out.gpu_ms_pruned = fastest[1][0];
+    out.gpu_ms_unpruned_hlsl = fastest[0][1];
+    out.gpu_ms_pruned_hlsl = fastest[1][1];
+    const ImageErrorStats g = compare_images(rb.gpu_image[0], ra.gpu_image[0]);
+    const ImageErrorStats h = compare_images(rb.gpu_image[1], ra.gpu_image[1]);
+    const ImageErrorStats c = compare_images(rb.cpu_float, ra.cpu_float);
+    for (const ImageErrorStats* s : {&g, &h, &c})
+        if (!s->error.empty() || s->nan_inf_pixels != s->reference_nan_inf_pixels) {
+            out.error = "images cannot be compared: " + (s->error.empty() ? std::string("non-finite pixels differ") : s->error);
+            return out;
+        }
+    out.max_abs_glsl = g.max_abs;
+    out.max_abs_hlsl = h.max_abs;
+    out.max_abs_cpu = c.max_abs;
+    return out;
+}
+
+} // namespace watergen

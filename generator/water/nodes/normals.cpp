@@ -1,0 +1,144 @@
+// Surface normals: flat, central differences of the height map and a detail normal map in a
+// derivative tangent frame (000), and the analytic normal of the wave model (004).
+#include "watergen/water/nodes/normals.h"
+
+#include "watergen/water/node_catalog.h"
+#include "watergen/water/nodes/waves.h"
+#include "watergen/water/surface.h"
+
+namespace watergen {
+
+Expr normal_from_slope(Graph& g, Expr slope) {
+    FullPrecisionScope full(g);
+    // y = 1: never a zero vector, so a plain normalize is safe.
+    return named(normalize(vec3(-slope.x(), constant(g, 1.0), -slope.y())), "wave_normal");
+}
+
+TextureInput detail_normal_map_texture() {
+    return {"detail_normal_map", Type::Texture2D,
+            "tangent-space normals, rgb = 0.5 n + 0.5; periodic tile, texel k at k / (n - 1)", ""};
+}
+
+TangentFrame derivative_tangent_frame(Graph& g, Expr position, Expr uv) {
+    FullPrecisionScope full(g);
+    const double tiny = 1e-24;
+    Expr dp1 = ddx(position), dp2 = ddy(position);
+    Expr duv1 = ddx(uv), duv2 = ddy(uv);
+    // The frame is homogeneous of degree 4 in a common scale of dp and duv (uv is linear in
+    // position): dividing both by the larger |dp| leaves the directions alone and keeps a far
+    // pixel (|dp| ~ 1e6 m near the horizon) from overflowing float in the products below.
+    Expr m = named(max(max(length(dp1), length(dp2)), 1e-30), "frame_scale");
+    dp1 = dp1 / m;
+    dp2 = dp2 / m;
+    duv1 = duv1 / m;
+    duv2 = duv2 / m;
+    // Schuler: M = (dp1, dp2, dp1 x dp2) as rows; the first two rows of its adjugate map the
+    // screen-space uv derivatives to world-space gradients of u and v.
+    Expr n = cross(dp1, dp2);
+    Expr r1 = named(cross(dp2, n), "frame_row1"), r2 = named(cross(n, dp1), "frame_row2");
+    Expr t = named(duv1.x() * r1 + duv2.x() * r2, "frame_tangent");
+    Expr b = named(duv1.y() * r1 + duv2.y() * r2, "frame_binormal");
+    Expr tt = dot(t, t), bb = dot(b, b);
+    // Vanishing uv derivatives (or position derivatives) leave no frame: the caller falls
+    // back to the geometric normal. NaN compares false and falls back too.
+    Expr valid = named(min(tt, bb) > tiny, "frame_valid");
+    return {named(t * rsqrt(max(tt, tiny)), "frame_t"), named(b * rsqrt(max(bb, tiny)), "frame_b"),
+            valid};
+}
+
+Expr detail_normal(Graph& g, Expr base, Expr position, Expr time) {
+    FullPrecisionScope full(g);
+    Expr scale =
+        uniform(g, {"detail_scale", Type::Vec2, {0.25, 0.6}, 0.0, 100.0, "1/m", "000", ""});
+    Expr scroll = uniform(
+        g,
+        {"detail_scroll", Type::Vec4, {0.02, 0.01, -0.015, 0.025}, -10.0, 10.0, "1/s", "000", ""});
+    Expr strength = uniform(g, {"detail_strength", Type::Float, {0.6}, 0.0, 10.0, "", "000", ""});
+    Expr texels =
+        uniform(g, {"detail_texels", Type::Float, {64.0}, 2.0, 16384.0, "texels", "000", ""});
+    Expr map = texture(g, detail_normal_map_texture());
+    Expr zero = constant(g, 0.0);
+    // 000: "the normal map has to be sampled several times with texture coordinates varying
+    // over time": two layers; the second only rescales uv, so it shares the first's frame.
+    Expr uv1 = named(position.xz() * scale.x() + time * scroll.xy(), "detail_uv");
+    Expr uv2 = named(position.xz() * scale.y() + time * scroll.swizzle("zw"), "detail_uv2");
+    // The sampler has one mip level: where a pixel spans a good part of a tile the map would
+    // alias into noise, so each layer's tangential part fades out as its uv footprint per pixel
+    // grows to detail_max_footprint (1/8 tile: Nyquist for the map's 4 cycles per tile).
+    Expr max_footprint = uniform(
+        g, {"detail_max_footprint", Type::Float, {0.125}, 1e-6, 1e3, "tiles/pixel", "000", ""});
+    auto layer = [&](Expr uv, const char* name) {
+        Expr footprint = max(length(ddx(uv)), length(ddy(uv)));
+        Expr keep = saturate(1.0 - footprint / max_footprint);
+        Expr texel = sample_level(map, tile_coordinate(uv, texels), zero).xyz() * 2.0 - 1.0;
+        return named(vec3(texel.xy() * keep, texel.z()), name);
+    };
+    Expr t = named(layer(uv1, "detail_layer") + layer(uv2, "detail_layer2"), "detail_texel");
+    const TangentFrame frame = derivative_tangent_frame(g, position, uv1);
+    Expr n =
+        frame.tangent * (t.x() * strength) + frame.binormal * (t.y() * strength) + base * t.z();
+    // Texels decoding to zero (0.5 grey) give a zero vector: keep the base normal.
+    return named(select(frame.valid, safe_normalize(n, base), base), "detail_normal");
+}
+
+void apply_normals(Surface& s, const std::string& choice) {
+    OriginScope scope(s.g, "normals." + choice);
+    if (choice == "flat") {
+        s.normal = constant(s.g, {0.0, 1.0, 0.0});
+        return;
+    }
+    if (choice == "heightmap_diff") {
+        s.normal = heightmap_normal(s.g, s.surface_point.xz(), s.time);
+        return;
+    }
+    if (choice == "analytic") {
+        if (!s.wave_slope.valid()) {
+            s.g.error(
+                "normals: 'analytic' needs a wave model with derivatives (sum_of_sines, gerstner)");
+            return;
+        }
+        s.normal = normal_from_slope(s.g, s.wave_slope);
+        return;
+    }
+    if (choice == "detail_map") {
+        // The base is the wave model's own normal when it has one, else the plane's.
+        Expr base = s.wave_slope.valid() ? normal_from_slope(s.g, s.wave_slope)
+                                         : constant(s.g, {0.0, 1.0, 0.0});
+        s.normal = detail_normal(s.g, base, s.surface_point, s.time);
+        return;
+    }
+    s.g.error("normals: no node for choice '" + choice + "'");
+}
+
+void append_normals_nodes(std::vector<CatalogNode>& list) {
+    list.push_back(
+        {"normals.flat", "(0, 1, 0)", {{"xz", Type::Vec2}}, [](Graph& g, const std::vector<Expr>&) {
+             return constant(g, {0.0, 1.0, 0.0});
+         }});
+    list.push_back({"normals.heightmap_diff",
+                    "central-difference normal of the height map at xz; reads texture height_map "
+                    "(CPU evaluator only)",
+                    {{"xz", Type::Vec2}, {"time", Type::Float}},
+                    [](Graph& g, const std::vector<Expr>& in) {
+                        OriginScope scope(g, "normals.heightmap_diff");
+                        return heightmap_normal(g, in[0], in[1]);
+                    }});
+    list.push_back({"normals.analytic",
+                    "exact normal of a height field with slope (dh/dx, dh/dz)",
+                    {{"slope", Type::Vec2}},
+                    [](Graph& g, const std::vector<Expr>& in) {
+                        OriginScope scope(g, "normals.analytic");
+                        return normal_from_slope(g, in[0]);
+                    }});
+    list.push_back({"normals.detail_map",
+                    "base normal perturbed by the detail normal map at position; needs ddx/ddy "
+                    "over 2x2 quads and "
+                    "texture detail_normal_map (CPU evaluator only)",
+                    {{"base", Type::Vec3}, {"position", Type::Vec3}, {"time", Type::Float}},
+                    [](Graph& g, const std::vector<Expr>& in) {
+                        OriginScope scope(g, "normals.detail_map");
+                        return detail_normal(g, in[0], in[1], in[2]);
+                    }});
+}
+
+} // namespace watergen

@@ -1,0 +1,91 @@
+#include "watergen/water/nodes/refraction.h"
+
+#include "watergen/water/node_catalog.h"
+#include "watergen/water/nodes/fresnel.h"
+#include "watergen/water/nodes/reflection.h"
+#include "watergen/water/surface.h"
+#include "watergen/water/water_shader.h"
+
+namespace watergen {
+
+Expr screen_distort_uv(Graph& g, Expr uv, Expr normal, Expr depth) {
+    OriginScope scope(g, "refraction.screen_distort");
+    // Screen-space offset per unit of horizontal normal; artistic in both seeds.
+    Expr strength = uniform(g, {"refraction_distortion", Type::Float, {0.03}, 0.0, 1.0, "", "003", ""});
+    Expr fade_depth = uniform(g, {"refraction_shore_fade_depth", Type::Float, {1.0}, 0.0, 100.0, "m", "000", ""});
+    // A negative depth (scene a hair above the plane) gives no displacement. A fade depth of
+    // 0 turns the fade off; dividing by it would give 0 / 0 at the shoreline, and clamp(NaN)
+    // is undefined on GPUs.
+    Expr fade = named(select(fade_depth > constant(g, 0.0), saturate(depth / fade_depth), constant(g, 1.0)),
+                      "distortion_fade");
+    return named(saturate(uv + normal.xz() * (strength * fade)), "refraction_uv");
+}
+
+namespace {
+
+// 002: R = refract(-V, N, n1 / n2); exactly 0 under total internal reflection, unit otherwise.
+Expr refracted_direction(Graph& g, Expr view_ray, Expr normal) {
+    OriginScope scope(g, "refraction.refracted_ray");
+    return named(refract(view_ray, normal, uniform(g, ior_air()) / uniform(g, ior_water())), "refracted_ray");
+}
+
+} // namespace
+
+Expr refracted_ray_point(Graph& g, Expr surface_point, Expr view_ray, Expr normal, Expr depth) {
+    Expr r = refracted_direction(g, view_ray, normal);
+    OriginScope scope(g, "refraction.refracted_ray");
+    // 002: clamp(dv, 0.0, 2.0) / 3.0.
+    Expr dv_max = uniform(g, {"refraction_dv_max", Type::Float, {2.0}, 0.0, 100.0, "m", "002", ""});
+    Expr dv_scale = uniform(g, {"refraction_dv_scale", Type::Float, {1.0 / 3.0}, 0.0, 10.0, "", "002", ""});
+    FullPrecisionScope geometry(g);
+    // clamp(+inf, 0, max) = max: a bottomless pixel still lands a bounded step away.
+    Expr dv = named(clamp(depth, constant(g, 0.0), dv_max) * dv_scale, "refraction_dv");
+    return named(surface_point + r * dv, "refracted_point");
+}
+
+Expr refracted_ray_uv(Graph& g, Expr uv, Expr surface_point, Expr view_ray, Expr normal, Expr depth) {
+    Expr w_point = refracted_ray_point(g, surface_point, view_ray, normal, depth);
+    Expr r = refracted_direction(g, view_ray, normal); // the same node as inside W
+    OriginScope scope(g, "refraction.refracted_ray");
+    Expr transmitted = named(dot(r, r) > constant(g, 0.5), "transmitted");
+    const ProjectiveUv p = projective_uv(g, w_point, "refraction", "002", constant(g, 1.0));
+    return named(select(transmitted && p.valid, p.uv, uv), "refraction_uv");
+}
+
+namespace {
+
+Expr scene_color_at(Graph& g, Expr uv) { return sample(texture(g, scene_color_texture()), uv).xyz(); }
+
+} // namespace
+
+void apply_refraction(Surface& s, const std::string& choice) {
+    if (choice == "none") {
+        OriginScope scope(s.g, "refraction.none");
+        s.refracted = s.scene_rgb;
+    } else if (choice == "screen_distort") {
+        Expr uv = screen_distort_uv(s.g, s.uv, s.normal, s.depth);
+        OriginScope scope(s.g, "refraction.screen_distort");
+        s.refracted = named(scene_color_at(s.g, uv), "refracted");
+    } else if (choice == "refracted_ray") {
+        Expr uv = refracted_ray_uv(s.g, s.uv, s.surface_point, s.view_ray, s.normal, s.depth);
+        OriginScope scope(s.g, "refraction.refracted_ray");
+        s.refracted = named(scene_color_at(s.g, uv), "refracted");
+    } else {
+        s.g.error("refraction: no node for choice '" + choice + "'");
+    }
+}
+
+void append_refraction_nodes(std::vector<CatalogNode>& list) {
+    list.push_back({"refraction.screen_distort_uv", "000/003 uv + N.xz strength, faded towards the shore",
+                    {{"uv", Type::Vec2}, {"normal", Type::Vec3}, {"depth", Type::Float}},
+                    [](Graph& g, const std::vector<Expr>& in) { return screen_distort_uv(g, in[0], in[1], in[2]); }});
+    list.push_back({"refraction.refracted_ray_point", "002 W = U + dv refract(-V, N, n1/n2), dv clamped",
+                    {{"surface_point", Type::Vec3}, {"view_ray", Type::Vec3}, {"normal", Type::Vec3}, {"depth", Type::Float}},
+                    [](Graph& g, const std::vector<Expr>& in) { return refracted_ray_point(g, in[0], in[1], in[2], in[3]); }});
+    list.push_back({"refraction.refracted_ray_uv", "002 screen uv of W; the pixel's uv under TIR or behind the camera",
+                    {{"uv", Type::Vec2}, {"surface_point", Type::Vec3}, {"view_ray", Type::Vec3}, {"normal", Type::Vec3},
+                     {"depth", Type::Float}},
+                    [](Graph& g, const std::vector<Expr>& in) { return refracted_ray_uv(g, in[0], in[1], in[2], in[3], in[4]); }});
+}
+
+} // namespace watergen

@@ -1,0 +1,19 @@
+#include "watergen/water/surface.h"
+
+namespace watergen {
+
+PlaneHit intersect_plane(const Surface& s, Expr height) {
+    Expr ray_down = named(min(s.view_ray.y(), -1e-6), "view_ray_y");
+    Expr t = named(max((height - s.eye.y()) / ray_down, 0.0), "surface_distance");
+    return {named(s.eye + s.view_ray * t, "surface_point"), t};
+}
+
+void set_water_column(Surface& s, Expr surface_distance) {
+    s.path = named(max(s.scene_distance - surface_distance, 0.0), "water_path");
+    s.depth = named(max(s.surface_point.y() - s.scene_pos.y(), 0.0), "water_depth");
+    // The eye is above the water: a ray going up never reaches it (its clamped plane hit lies
+    // millions of metres away and would otherwise count the sky as water).
+    s.is_water = (s.scene_pos.y() < s.surface_point.y()) && (s.view_ray.y() < 0.0);
+}
+
+} // namespace watergen

@@ -1,0 +1,66 @@
+#include "watergen/water/water_shader.h"
+
+#include "watergen/water/nodes.h"
+#include "watergen/water/presets.h"
+#include "watergen/water/surface.h"
+
+namespace watergen {
+
+TextureInput scene_color_texture() {
+    return {"scene_color", Type::Texture2D, "lit colour of the scene under the water, linear rgb", ""};
+}
+
+TextureInput scene_position_texture() {
+    return {"scene_position", Type::Texture2D, "world position of the scene surface, xyz in m", ""};
+}
+
+WaterShader build_water_shader(const Variant& variant, const Preset* preset) {
+    WaterShader shader{variant, preset ? preset->name : "", Graph{}};
+    Graph& g = shader.fragment;
+    Surface s(g);
+    {
+        OriginScope scope(g, "surface");
+        s.uv = varying(g, "v_uv", Type::Vec2);
+        s.scene_rgb = named(sample(texture(g, scene_color_texture()), s.uv).xyz(), "scene_rgb");
+        s.scene_pos = named(sample(texture(g, scene_position_texture()), s.uv).xyz(), "scene_pos");
+        s.eye = uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""});
+        s.level = uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""});
+        s.time = uniform(g, {"time", Type::Float, {0.0}, 0.0, 86400.0, "s", "000", ""});
+        s.sun_travel = uniform(g, {"sun_direction", Type::Vec3, {-0.35, -0.75, 0.55}, -1.0, 1.0, "", "000", ""});
+        s.sun_color = uniform(g, {"sun_color", Type::Vec3, {1.0, 0.95, 0.85}, 0.0, 1e3, "", "000", ""});
+        Expr to_scene = s.scene_pos - s.eye;
+        s.scene_distance = named(length(to_scene), "scene_distance");
+        s.view_ray = named(to_scene / max(s.scene_distance, 1e-6), "view_ray");
+    }
+    const bool relaxed = variant.choice("precision") == "half";
+    // Geometry (positions, times, wave phases) stays 32-bit: half cannot hold 1e5 m or a day
+    // of seconds. The precision axis relaxes the shading math only.
+    apply_waves(s, variant.choice("waves"));
+    apply_normals(s, variant.choice("normals"));
+    {
+        OriginScope scope(g, "surface");
+        s.to_eye = -s.view_ray;
+        s.n_dot_v = named(dot(s.normal, s.to_eye), "n_dot_v");
+    }
+    RelaxedScope shading(g, relaxed);
+    apply_refraction(s, variant.choice("refraction"));
+    apply_extinction(s, variant.choice("extinction"));
+    apply_reflection(s, variant.choice("reflection"));
+    apply_fresnel(s, variant.choice("fresnel"));
+    apply_specular(s, variant.choice("specular"));
+    {
+        OriginScope scope(g, "compose");
+        s.color = named(mix(s.water_color, s.reflected, s.fresnel) + s.specular, "water_rgb");
+    }
+    apply_foam(s, variant.choice("foam"));
+    apply_shore(s, variant.choice("shore"));
+    OriginScope scope(g, "compose");
+    if (has_errors(g.diagnostics())) return shader;
+    Expr rgb = select(s.is_water, s.color, s.scene_rgb);
+    g.set_output("color", vec4(rgb, constant(g, 1.0)).id());
+    if (preset)
+        for (const auto& name : apply_preset(g, *preset)) g.error("preset '" + preset->name + "': parameter '" + name + "' has another size");
+    return shader;
+}
+
+} // namespace watergen
