@@ -4,7 +4,7 @@
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT})
 file(WRITE ${OUT}/previous.txt "the previous build's output\n")
-include(${CMAKE_CURRENT_LIST_DIR}/../compile/expect_command.cmake) # exit code and output; sets rc
+include(${CMAKE_CURRENT_LIST_DIR}/expect_command.cmake) # exit code and output; sets rc
 if(NOT rc STREQUAL "0")
   file(GLOB_RECURSE left RELATIVE ${OUT} ${OUT}/*)
   file(READ ${OUT}/previous.txt previous)

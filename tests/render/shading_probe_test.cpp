@@ -10,7 +10,7 @@
 #include <functional>
 #include <random>
 
-#include "../agreement/shared_runner.h"
+#include "shared_runner.h"
 #include "watergen/water/node_catalog.h"
 #include "watergen/water/nodes.h"
 #include "watergen/render/probe.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "../agreement/shared_runner.h"
+#include "shared_runner.h"
 #include "watergen/water/node_catalog.h"
 #include "watergen/render/probe.h"
 #include "watergen/render/synthetic_scene.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "../agreement/shared_runner.h"
+#include "shared_runner.h"
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/dsl.h"
 #include "watergen/render/variant_render.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "../agreement/shared_runner.h"
+#include "shared_runner.h"
 #include "watergen/water/mesh_shader.h"
 #include "watergen/render/probe.h"
 #include "waves_support.h"

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "../agreement/shared_runner.h"
+#include "shared_runner.h"
 #include "watergen/ir/dsl.h"
 #include "watergen/render/mesh_render.h"
 #include "watergen/ir/vertex_emitter.h"

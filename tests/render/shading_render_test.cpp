@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "../agreement/shared_runner.h"
+#include "shared_runner.h"
 #include "watergen/render/variant_render.h"
 
 using namespace watergen;

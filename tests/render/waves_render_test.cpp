@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "../agreement/shared_runner.h"
+#include "shared_runner.h"
 #include "watergen/ir/dsl.h"
 #include "watergen/render/variant_render.h"
 #include "watergen/water/water_shader.h"
