@@ -27,6 +27,9 @@ struct Common {
 
 using Runner = std::function<int()>;
 
+// A finite number within [lo, hi] (CLI::Range would let NaN through).
+CLI::Validator finite_range(double lo, double hi);
+
 // Adds --<axis> options for every axis, each restricted to its choices, and --preset.
 void add_variant_options(CLI::App& app, Variant& variant, std::string& preset);
 // Checks the variant's constraints and resolves the preset; prints the reason and returns

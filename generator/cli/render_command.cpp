@@ -1,41 +1,18 @@
 #include <cstdio>
 #include <filesystem>
 
-#include <nlohmann/json.hpp>
-
 #include "commands.h"
 #include "watergen/water/presets.h"
-#include "watergen/pipeline/output_writer.h"
-#include "watergen/render/variant_render.h"
+#include "watergen/render/render_report.h"
 
 namespace watergen::cli {
-
-namespace {
-
-nlohmann::ordered_json stats_json(const ImageErrorStats& s) {
-    auto number = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(std::to_string(v)); };
-    return {{"max_abs", number(s.max_abs)},
-            {"max_abs_at", {s.max_abs_location.x, s.max_abs_location.y}},
-            {"rmse", number(s.rmse)},
-            {"psnr_db", number(s.psnr_db)},
-            {"ciede2000_mean", number(s.ciede2000_mean)},
-            {"ciede2000_p99", number(s.ciede2000_p99)},
-            {"nan_inf_pixels", s.nan_inf_pixels}};
-}
-
-nlohmann::ordered_json timing_json(const RenderResult& r) {
-    return {{"pipeline_ms", r.pipeline_ms}, {"first_draw_ms", r.first_draw_ms},
-            {"steady_draw_ms", r.steady_draw_ms}, {"draw_ms", r.draw_ms}};
-}
-
-} // namespace
 
 Runner add_render_command(CLI::App& app, const Common& common) {
     struct Options {
         Variant variant = default_variant();
         std::string preset;
         uint32_t width = 256, height = 256, draws = 10;
-        float exposure = 1.0f;
+        double exposure = 1.0;
         std::string out = "out/render";
         RunnerSetup runner;
     };
@@ -45,7 +22,8 @@ Runner add_render_command(CLI::App& app, const Common& common) {
     app.add_option("--height", o->height, "image height in pixels (default 256)")->check(CLI::Range(8, 4096));
     app.add_option("--draws", o->draws, "timed draws after the first (JIT) draw; the median is reported (default 10)")
         ->check(CLI::Range(1, 1000));
-    app.add_option("--exposure", o->exposure, "exposure applied before the sRGB PNG encoding (default 1)");
+    app.add_option("--exposure", o->exposure, "exposure applied before the sRGB PNG encoding (default 1)")
+        ->check(finite_range(1e-6, 1e6));
     app.add_option("--out", o->out, "output directory; files go to <out>/<variant>/ (default out/render)");
     add_runner_options(app, o->runner);
     return [o, &common]() {
@@ -66,47 +44,10 @@ Runner add_render_command(CLI::App& app, const Common& common) {
             return kFailed;
         }
         const std::filesystem::path dir = std::filesystem::path(o->out) / o->variant.file_stem();
-        std::string error;
-        const auto staging = make_staging_directory(dir, &error);
-        bool ok = !staging.empty();
-        const char* names[2] = {"glsl", "hlsl"};
-        for (int i = 0; i < 2 && ok; ++i) {
-            const auto rgba8 = tone_map_to_srgb8(r.gpu_image[i], o->exposure);
-            ok = write_png(staging / (std::string(names[i]) + ".png"), o->width, o->height, rgba8, &error) &&
-                 write_pfm(staging / (std::string(names[i]) + ".pfm"), r.gpu_image[i], &error);
-        }
-        ok = ok && write_pfm(staging / "cpu_float.pfm", r.cpu_float, &error);
         const DeviceInfo& dev = runner->device_info();
-        nlohmann::ordered_json j;
-        j["variant"] = r.key;
-        j["preset"] = o->preset;
-        j["image"] = {{"width", o->width}, {"height", o->height}, {"format", "RGBA32F"}};
-        j["device"] = {{"name", dev.name}, {"driver", dev.driver_name}, {"driver_info", dev.driver_info},
-                       {"api_version", format_api_version(dev.api_version)}};
-        j["mesa_shader_cache"] = cache;
-        j["spirv"] = "spirv-opt -O output of each language path";
-        j["gpu"] = {{"glsl", timing_json(r.gpu[0])}, {"hlsl", timing_json(r.gpu[1])}};
-        j["cpu_float_ms"] = r.cpu_float_ms;
-        j["errors"] = {{"glsl_vs_hlsl", stats_json(r.glsl_vs_hlsl)},
-                       {"glsl_vs_cpu_float", stats_json(r.glsl_vs_cpu_float)},
-                       {"hlsl_vs_cpu_float", stats_json(r.hlsl_vs_cpu_float)},
-                       {"glsl_vs_cpu_double", stats_json(r.glsl_vs_cpu_double)}};
-        if (ok) {
-            if (auto e = write_file_atomically(staging / "render.json", j.dump(2) + "\n")) {
-                error = *e;
-                ok = false;
-            }
-        }
-        if (ok) {
-            if (auto e = commit_directory(staging, dir)) {
-                error = *e;
-                ok = false;
-            }
-        } else if (!staging.empty()) {
-            std::filesystem::remove_all(staging);
-        }
-        if (!ok) {
-            std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
+        const RenderReportInfo info{o->preset, cache, dev, o->width, o->height, o->exposure};
+        if (auto e = write_render_report(dir, r, info)) {
+            std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
             return kFailed;
         }
         std::printf("%s on %s (%s), %ux%u, Mesa shader cache %s\n", r.key.c_str(), dev.name.c_str(), dev.driver_info.c_str(),
@@ -115,10 +56,19 @@ Runner add_render_command(CLI::App& app, const Common& common) {
                     r.gpu[0].pipeline_ms, r.gpu[0].first_draw_ms, r.gpu[0].steady_draw_ms, o->draws);
         std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median of %u)\n", "hlsl",
                     r.gpu[1].pipeline_ms, r.gpu[1].first_draw_ms, r.gpu[1].steady_draw_ms, o->draws);
-        std::printf("  max abs: glsl-hlsl %.3g, gpu-cpu(float) %.3g, gpu-cpu(double) %.3g; NaN/Inf pixels %llu\n",
-                    r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs, r.glsl_vs_cpu_double.max_abs,
-                    static_cast<unsigned long long>(r.glsl_vs_cpu_float.nan_inf_pixels));
+        std::printf("  max abs: glsl-hlsl %.3g, gpu-cpu(float) %.3g, gpu-cpu(double) %.3g (over pixels finite on "
+                    "both sides)\n",
+                    r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs, r.glsl_vs_cpu_double.max_abs);
+        std::printf("  NaN/Inf pixels: glsl %llu, hlsl %llu, cpu float %llu\n",
+                    static_cast<unsigned long long>(r.glsl_vs_cpu_float.nan_inf_pixels),
+                    static_cast<unsigned long long>(r.hlsl_vs_cpu_float.nan_inf_pixels),
+                    static_cast<unsigned long long>(r.glsl_vs_cpu_float.reference_nan_inf_pixels));
         std::printf("  wrote %s/{glsl,hlsl}.png, .pfm, cpu_float.pfm, render.json\n", dir.string().c_str());
+        if (const uint64_t broken = gpu_only_non_finite_pixels(r); broken > 0) {
+            std::fprintf(stderr, "watergen: error: %s: %llu pixel%s NaN/Inf on the GPU where the CPU float image is finite\n",
+                         r.key.c_str(), static_cast<unsigned long long>(broken), broken == 1 ? " is" : "s are");
+            return kFailed;
+        }
         return kOk;
     };
 }

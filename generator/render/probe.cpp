@@ -1,5 +1,6 @@
 #include "watergen/render/probe.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "watergen/toolchain/toolchain.h"
@@ -46,40 +47,47 @@ ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, cons
     run.diagnostics.insert(run.diagnostics.end(), ds.begin(), ds.end());
     if (!built.ok()) return run;
 
-    // Pad to whole workgroups by repeating the last tuple; padded results are dropped.
-    const size_t groups = (run.tuples + kProbeWorkgroupSize - 1) / kProbeWorkgroupSize;
-    const size_t padded = groups * kProbeWorkgroupSize;
-    std::vector<float> in_floats(padded * in_stride);
-    for (size_t t = 0; t < padded; ++t)
-        for (uint32_t k = 0; k < in_stride; ++k)
-            in_floats[t * in_stride + k] = static_cast<float>(inputs[std::min(t, run.tuples - 1) * in_stride + k]);
     ComputeJob job;
     job.spirv = built.spirv_optimized;
     job.reflection = built.reflection;
+    job.uniforms = pack_uniforms(shader.interface.uniforms, shader.interface.parameters, uniforms);
     const std::string in_name = binding_name(built.reflection, kProbeInputBinding);
     const std::string out_name = binding_name(built.reflection, kProbeOutputBinding);
-    std::vector<uint8_t> in_bytes(in_floats.size() * 4);
-    std::memcpy(in_bytes.data(), in_floats.data(), in_bytes.size());
-    job.buffers[in_name] = std::move(in_bytes);
-    job.output_sizes[out_name] = padded * out_stride * 4;
-    job.uniforms = pack_uniforms(shader.interface.uniforms, shader.interface.parameters, uniforms);
-    job.group_count_x = static_cast<uint32_t>(groups);
     runner.clear_validation_messages();
-    const ComputeResult result = runner.run_compute(job);
-    run.validation_messages = runner.validation_messages();
-    if (!result.ok) {
-        run.error = result.error;
-        return run;
-    }
-    run.pipeline_ms = result.pipeline_ms;
-    run.dispatch_ms = result.dispatch_ms;
-    const auto& out_bytes = result.buffers.at(out_name);
     run.gpu.resize(run.tuples * out_stride);
-    for (size_t i = 0; i < run.gpu.size(); ++i) {
-        float f;
-        std::memcpy(&f, out_bytes.data() + i * 4, 4);
-        run.gpu[i] = f;
+    // Vulkan guarantees 65535 workgroups per dispatch dimension; larger inputs run in chunks.
+    const size_t chunk_tuples = size_t{65535} * kProbeWorkgroupSize;
+    for (size_t first = 0; first < run.tuples; first += chunk_tuples) {
+        const size_t count = std::min(chunk_tuples, run.tuples - first);
+        // Pad to whole workgroups by repeating the chunk's last tuple; padded results are dropped.
+        const size_t groups = (count + kProbeWorkgroupSize - 1) / kProbeWorkgroupSize;
+        const size_t padded = groups * kProbeWorkgroupSize;
+        std::vector<float> in_floats(padded * in_stride);
+        for (size_t t = 0; t < padded; ++t)
+            for (uint32_t k = 0; k < in_stride; ++k)
+                in_floats[t * in_stride + k] =
+                    static_cast<float>(inputs[(first + std::min(t, count - 1)) * in_stride + k]);
+        std::vector<uint8_t> in_bytes(in_floats.size() * 4);
+        std::memcpy(in_bytes.data(), in_floats.data(), in_bytes.size());
+        job.buffers[in_name] = std::move(in_bytes);
+        job.output_sizes[out_name] = padded * out_stride * 4;
+        job.group_count_x = static_cast<uint32_t>(groups);
+        const ComputeResult result = runner.run_compute(job);
+        if (!result.ok) {
+            run.validation_messages = runner.validation_messages();
+            run.error = result.error;
+            return run;
+        }
+        run.pipeline_ms += result.pipeline_ms;
+        run.dispatch_ms += result.dispatch_ms;
+        const auto& out_bytes = result.buffers.at(out_name);
+        for (size_t i = 0; i < count * out_stride; ++i) {
+            float f;
+            std::memcpy(&f, out_bytes.data() + i * 4, 4);
+            run.gpu[first * out_stride + i] = f;
+        }
     }
+    run.validation_messages = runner.validation_messages();
 
     EvalInputs eval;
     eval.uniforms = uniforms;

@@ -150,6 +150,7 @@ ImageErrorStats compare_images(const ImageRGBA32F& test, const ImageRGBA32F& ref
             const bool ref_ok = finite_rgb(&reference.rgba[i]);
             s.nan_inf_pixels += test_ok ? 0 : 1;
             s.reference_nan_inf_pixels += ref_ok ? 0 : 1;
+            s.nan_inf_where_reference_finite += (!test_ok && ref_ok) ? 1 : 0;
             if (!test_ok || !ref_ok) continue;
             ++s.compared_pixels;
             for (int c = 0; c < 3; ++c) {

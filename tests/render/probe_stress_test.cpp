@@ -84,3 +84,20 @@ TEST_CASE("absorb_scatter_is_finite_bounded_and_darkens_with_depth", "[probe][st
         for (size_t i = 0; i < run.gpu.size(); ++i) CHECK(run.gpu[i] == Approx(run.cpu_double[i]).epsilon(2e-6).margin(1e-7));
     }
 }
+
+TEST_CASE("probes_beyond_one_dispatch_run_in_chunks", "[probe]") {
+    // Vulkan guarantees 65535 workgroups of 64 per dispatch; one tuple more than that needs a
+    // second dispatch, and every tuple of it must come back in its place.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    g.set_output("value", (x * 2.0 + 1.0).id());
+    const size_t n = size_t{65535} * kProbeWorkgroupSize + 37;
+    std::vector<double> inputs(n);
+    for (size_t i = 0; i < n; ++i) inputs[i] = static_cast<double>(i % 4096);
+    const ProbeRun run = test::checked_probe(g, Language::Glsl, inputs);
+    REQUIRE(run.tuples == n);
+    size_t wrong = 0;
+    for (size_t i = 0; i < n; ++i) wrong += run.gpu[i] != inputs[i] * 2.0 + 1.0;
+    CHECK(wrong == 0);
+    CHECK(run.gpu[n - 1] == (n - 1) % 4096 * 2.0 + 1.0);
+}

@@ -90,6 +90,22 @@ TEST_CASE("a NaN pixel in the test image is counted and excluded from the error 
     CHECK(s.max_abs_location.y == 2);
     CHECK(s.rmse == Approx(std::sqrt(0.125 * 0.125 / (3.0 * 14))).epsilon(1e-12));
     CHECK(std::isfinite(s.ciede2000_mean));
+    CHECK(s.nan_inf_where_reference_finite == 2);
+}
+
+TEST_CASE("non_finite_pixels_of_both_sides_are_not_counted_as_the_test_side_breaking", "[unit][metrics]") {
+    ImageRGBA32F ref = gradient(4, 4);
+    ImageRGBA32F test = ref;
+    at(test, 1, 3, 0) = std::numeric_limits<float>::quiet_NaN(); // test only
+    at(test, 2, 2, 1) = std::numeric_limits<float>::infinity();  // both
+    at(ref, 2, 2, 0) = std::numeric_limits<float>::quiet_NaN();
+    at(ref, 0, 0, 0) = std::numeric_limits<float>::infinity(); // reference only
+    const ImageErrorStats s = compare_images(test, ref);
+    REQUIRE(s.ok());
+    CHECK(s.nan_inf_pixels == 2);
+    CHECK(s.reference_nan_inf_pixels == 2);
+    CHECK(s.nan_inf_where_reference_finite == 1);
+    CHECK(s.compared_pixels == 13);
 }
 
 TEST_CASE("an all-NaN test image yields NaN error figures so thresholds fail", "[unit][metrics]") {

@@ -37,6 +37,9 @@ struct ImageErrorStats {
     uint64_t compared_pixels = 0;          // pixels with finite RGB in both images
     uint64_t nan_inf_pixels = 0;           // pixels of `test` with any non-finite R, G or B
     uint64_t reference_nan_inf_pixels = 0; // the same for `reference`
+    // Pixels non-finite in `test` but finite in `reference`: the tested side broke where the
+    // reference did not (a failure whatever the error figures say).
+    uint64_t nan_inf_where_reference_finite = 0;
 
     // Linear RGB differences. If no pixel could be compared (every pixel has a NaN/Inf), these
     // and the ciede2000 fields are NaN, so that any threshold check on them fails.

@@ -1,0 +1,25 @@
+// Checks shared by the numeric flags of every subcommand.
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "commands.h"
+
+namespace watergen::cli {
+
+CLI::Validator finite_range(double lo, double hi) {
+    // CLI::Range lets NaN through (every comparison with NaN is false), and prints its bounds
+    // rounded to 6 digits; this one rejects NaN and Inf and prints exact bounds.
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (text.empty() || *end != '\0') return fmt::format("'{}' is not a number", text);
+            if (!std::isfinite(v) || v < lo || v > hi)
+                return fmt::format("{} is out of range; expected a finite number in [{}, {}]", text, lo, hi);
+            return "";
+        },
+        fmt::format("FLOAT in [{} - {}]", lo, hi));
+}
+
+} // namespace watergen::cli

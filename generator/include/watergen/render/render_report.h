@@ -1,0 +1,35 @@
+// What `watergen render` writes for one variant: the two GPU images as PNG (tone-mapped sRGB)
+// and PFM (raw float), the CPU float image, and render.json (device, times, error figures and
+// NaN/Inf counts per side). Written into a staging directory and swapped in whole.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "watergen/render/variant_render.h"
+
+namespace watergen {
+
+struct RenderReportInfo {
+    std::string preset;
+    std::string shader_cache; // "off" or the directory
+    DeviceInfo device;
+    uint32_t width = 0, height = 0;
+    double exposure = 1.0; // of the PNG previews only
+};
+
+// Pixels non-finite on the GPU (either path) where the CPU float image is finite: a variant
+// that breaks on the GPU where the reference does not.
+uint64_t gpu_only_non_finite_pixels(const VariantRender& r);
+
+nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderReportInfo& info);
+
+// Writes the files into `dir` (replacing a previous render of the variant); an error message
+// on failure, with nothing half-written.
+std::optional<std::string> write_render_report(const std::filesystem::path& dir, const VariantRender& r,
+                                               const RenderReportInfo& info);
+
+} // namespace watergen
