@@ -64,9 +64,9 @@ std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) con
     if (!in.uniforms.members.empty()) {
         lines.push_back(fmt::format("[[vk::binding({}, 0)]] cbuffer WaterParams : register(b0) {{", kParamsBinding));
         for (const auto& m : in.uniforms.members) {
-            const char* component = "xyzw" + (m.offset % 16) / 4;
+            const char component = "xyzw"[(m.offset % 16) / 4];
             lines.push_back(fmt::format("    {} {} : packoffset(c{}.{});", type(m.type), m.name,
-                                        m.offset / 16, std::string(1, *component)));
+                                        m.offset / 16, component));
         }
         lines.push_back("};");
     }

@@ -53,11 +53,19 @@ std::vector<std::string> probe_columns(const std::vector<ProbeField>& fields) {
 
 std::optional<std::vector<double>> read_probe_csv(const std::string& path, const std::vector<std::string>& columns,
                                                   std::string& error) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) {
         error = path + ": cannot open for reading";
         return std::nullopt;
     }
+    std::stringstream text;
+    text << file.rdbuf();
+    return parse_probe_csv(text.str(), path, columns, error);
+}
+
+std::optional<std::vector<double>> parse_probe_csv(const std::string& text, const std::string& path,
+                                                   const std::vector<std::string>& columns, std::string& error) {
+    std::istringstream in(text);
     const std::string expected = fmt::format("{}", fmt::join(columns, ","));
     std::vector<double> values;
     bool header = false;

@@ -21,6 +21,9 @@ std::vector<std::string> probe_columns(const std::vector<ProbeField>& fields);
 // JSON files). Errors read "file:line: what was expected"; a file without data rows is one.
 std::optional<std::vector<double>> read_probe_csv(const std::string& path, const std::vector<std::string>& columns,
                                                   std::string& error);
+// The same for text already in memory, named `name` in errors.
+std::optional<std::vector<double>> parse_probe_csv(const std::string& text, const std::string& name,
+                                                   const std::vector<std::string>& columns, std::string& error);
 
 // The inputs, then per output component gpu, cpu_double, cpu_float, cpu_half.
 std::string probe_results_csv(const ProbeRun& run, const std::vector<double>& inputs);
