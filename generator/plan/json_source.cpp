@@ -2,8 +2,10 @@
 
 #include <fstream>
 #include <iterator>
-#include <sstream>
+#include <string_view>
 #include <vector>
+
+#include <fmt/format.h>
 
 namespace watergen {
 
@@ -98,15 +100,12 @@ public:
     bool number_float(Json::number_float_t v, const std::string&) { return value(Json(v), false); }
     bool string(std::string& s) { return value(Json(s), true); }
     bool binary(Json::binary_t&) { return fail("binary values are not JSON text"); }
-    bool start_object(std::size_t) {
-        if (!value(Json::object(), false, true)) return false;
-        return true;
-    }
+    bool start_object(std::size_t) { return !too_deep() && value(Json::object(), false, true); }
     bool end_object() {
         stack_.pop_back();
         return true;
     }
-    bool start_array(std::size_t) { return value(Json::array(), false, true); }
+    bool start_array(std::size_t) { return !too_deep() && value(Json::array(), false, true); }
     bool end_array() {
         stack_.pop_back();
         return true;
@@ -141,6 +140,16 @@ private:
         std::string pointer;
         std::string key;
     };
+
+    // Stops at the first container past the limit, before anything below it is stored.
+    bool too_deep() {
+        if (stack_.size() < kMaxJsonDepth) return false;
+        const JsonPosition p = token_start(false, true);
+        error_ = Diagnostic{Severity::Error, out_.file_, p.line, p.column, "",
+                            fmt::format("invalid JSON: nested deeper than {} levels, the limit for description files",
+                                        kMaxJsonDepth)};
+        return true;
+    }
 
     bool fail(const std::string& what) {
         const JsonPosition p = position_of_offset(text_, consumed_);
@@ -208,7 +217,25 @@ private:
     std::optional<Diagnostic> error_;
 };
 
-std::optional<JsonSource> JsonSource::parse(const std::string& text, const std::string& file, Diagnostic* error) {
+namespace {
+
+constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
+
+Diagnostic too_large(const std::string& text, const std::string& file) {
+    const JsonPosition p = position_of_offset(text, kMaxJsonBytes);
+    return Diagnostic{Severity::Error, file, p.line, p.column, "",
+                      fmt::format("the file is larger than {} bytes (4 MiB), the limit for description files", kMaxJsonBytes)};
+}
+
+} // namespace
+
+std::optional<JsonSource> JsonSource::parse(const std::string& input, const std::string& file, Diagnostic* error) {
+    const bool bom = std::string_view(input).substr(0, kUtf8ByteOrderMark.size()) == kUtf8ByteOrderMark;
+    const std::string text = bom ? input.substr(kUtf8ByteOrderMark.size()) : input;
+    if (text.size() > kMaxJsonBytes) {
+        if (error) *error = too_large(text, file);
+        return std::nullopt;
+    }
     JsonSource src;
     src.file_ = file;
     size_t consumed = 0;
@@ -230,9 +257,14 @@ std::optional<JsonSource> JsonSource::load(const std::filesystem::path& path, Di
         if (error) *error = Diagnostic{Severity::Error, path.string(), 0, 0, "", "cannot open the file"};
         return std::nullopt;
     }
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return parse(ss.str(), path.string(), error);
+    // One byte past the limit (and the byte order mark) is enough to tell that a file is too large.
+    const size_t enough = kMaxJsonBytes + kUtf8ByteOrderMark.size() + 1;
+    std::string text;
+    char chunk[1 << 16];
+    while (text.size() < enough && in.read(chunk, sizeof chunk).gcount() > 0)
+        text.append(chunk, static_cast<size_t>(in.gcount()));
+    if (text.size() > enough) text.resize(enough);
+    return parse(text, path.string(), error);
 }
 
 JsonPosition JsonSource::position(const std::string& pointer) const {

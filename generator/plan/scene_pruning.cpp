@@ -6,17 +6,13 @@
 
 #include <fmt/format.h>
 
+#include "watergen/ir/text.h"
+
 namespace watergen {
 
 namespace {
 
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
-
-std::string join(const std::vector<std::string>& names) {
-    std::string s;
-    for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
-    return s;
-}
 
 // A scene fact that rules out choices of one axis. `rules_out` returns the reason, or "" when
 // the scene can use the choice.

@@ -1,5 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <sys/resource.h>
+
+#include <filesystem>
+#include <fstream>
+
 #include "watergen/plan/json_source.h"
 
 using namespace watergen;
@@ -62,4 +67,80 @@ TEST_CASE("json_missing_file_names_the_path", "[json]") {
     Diagnostic error;
     CHECK_FALSE(JsonSource::load("/no/such/file.json", &error));
     CHECK(format_diagnostic(error) == "/no/such/file.json: error: cannot open the file");
+}
+
+namespace {
+
+// Peak resident memory of this process so far, in KiB.
+long peak_rss_kib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss;
+}
+
+std::string nested_arrays(size_t depth) { return std::string(depth, '[') + std::string(depth, ']'); }
+
+} // namespace
+
+TEST_CASE("json_nested_past_the_depth_limit_is_an_error_found_early", "[json]") {
+    // 60k levels once took gigabytes (a JSON pointer stored per level) and then aborted.
+    const std::string text = "\n  " + nested_arrays(60000);
+    const long before = peak_rss_kib();
+    Diagnostic error;
+    CHECK_FALSE(JsonSource::parse(text, "deep.json", &error));
+    CHECK(peak_rss_kib() - before < 64 * 1024);
+    // Stops at the first bracket past the limit: the 65th, on line 2 after two spaces.
+    CHECK(format_diagnostic(error) ==
+          "deep.json:2:67: error: invalid JSON: nested deeper than 64 levels, the limit for description files");
+}
+
+TEST_CASE("json_nested_up_to_the_depth_limit_parses", "[json]") {
+    Diagnostic error;
+    const auto src = JsonSource::parse(nested_arrays(kMaxJsonDepth), "deep.json", &error);
+    REQUIRE(src);
+    CHECK(src->root().is_array());
+    CHECK_FALSE(JsonSource::parse(nested_arrays(kMaxJsonDepth + 1), "deep.json", &error));
+    // Objects count alike.
+    std::string objects;
+    for (size_t i = 0; i < kMaxJsonDepth; ++i) objects += "{\"a\":";
+    CHECK(JsonSource::parse(objects + "1" + std::string(kMaxJsonDepth, '}'), "deep.json", &error));
+}
+
+TEST_CASE("json_text_past_the_size_limit_is_an_error", "[json]") {
+    // A string filling the file up to the limit exactly, then one byte more.
+    const std::string fits = "\"" + std::string(kMaxJsonBytes - 2, 'a') + "\"";
+    Diagnostic error;
+    CHECK(JsonSource::parse(fits, "big.json", &error));
+    CHECK_FALSE(JsonSource::parse(fits + " ", "big.json", &error));
+    CHECK(format_diagnostic(error) ==
+          "big.json:1:4194305: error: the file is larger than 4194304 bytes (4 MiB), the limit for description files");
+}
+
+TEST_CASE("json_file_past_the_size_limit_is_an_error", "[json]") {
+    const auto path = std::filesystem::temp_directory_path() / "watergen-json-size-test.json";
+    {
+        std::ofstream out(path, std::ios::binary);
+        out << "[\n" << std::string(kMaxJsonBytes, ' ') << "1]";
+    }
+    Diagnostic error;
+    CHECK_FALSE(JsonSource::load(path, &error));
+    std::filesystem::remove(path);
+    CHECK(error.line == 2);
+    CHECK(error.column == static_cast<int>(kMaxJsonBytes) - 1);
+    CHECK(error.message.find("larger than 4194304 bytes") != std::string::npos);
+}
+
+TEST_CASE("json_byte_order_mark_is_skipped_and_not_counted", "[json]") {
+    const std::string text = "{\"name\": \"x\", \"n\": [1, 2]}";
+    Diagnostic error;
+    const auto plain = JsonSource::parse(text, "m.json", &error);
+    const auto marked = JsonSource::parse("\xEF\xBB\xBF" + text, "m.json", &error);
+    REQUIRE(plain);
+    REQUIRE(marked);
+    CHECK(marked->root() == plain->root());
+    CHECK(marked->where("/n/1") == "m.json:1:24");
+    CHECK(plain->where("/n/1") == "m.json:1:24");
+    // Errors on the first line are placed alike too.
+    CHECK_FALSE(JsonSource::parse("\xEF\xBB\xBF{\"a\": 1,}", "m.json", &error));
+    CHECK(error.column == 9);
 }

@@ -95,6 +95,12 @@ TEST_CASE("material_parameters_are_checked_against_the_nodes", "[material]") {
           "value in [0, 1000] 1/m");
     CHECK(error_of("{\"name\": \"x\", \"axes\": {\"shore\": [\"soft\"]},\n \"parameters\": {\"shore_hardness\": {\"min\": 4, \"max\": 2}}}") ==
           "m.json:2:36: error: /parameters/shore_hardness/min: range of 'shore_hardness': min 4 is above max 2; expected min <= max");
+    // Numbers are spelled in full: two different numbers never read alike.
+    CHECK(error_of("{\"name\": \"x\", \"axes\": {\"shore\": [\"soft\"]},\n \"parameters\": {\"shore_hardness\": {\"min\": 4.0000001, \"max\": 4}}}") ==
+          "m.json:2:36: error: /parameters/shore_hardness/min: range of 'shore_hardness': min 4.0000001 is above max 4; expected min <= max");
+    CHECK(error_of("{\"name\": \"x\", \"axes\": {\"shore\": [\"soft\"]},\n \"parameters\": {\"shore_hardness\": {\"value\": 1000.25}}}") ==
+          "m.json:2:36: error: /parameters/shore_hardness/value: value 1000.25 of 'shore_hardness' is out of range; expected a "
+          "value in [0, 1000] 1/m");
     CHECK(error_of("{\"name\": \"x\", \"axes\": {\"shore\": [\"soft\"]},\n \"parameters\": {\"shore_hardness\": {\"min\": -1, \"max\": 2}}}") ==
           "m.json:2:36: error: /parameters/shore_hardness/min: range of 'shore_hardness' [-1, 2] leaves the range its node "
           "declares; expected within [0, 1000] 1/m");

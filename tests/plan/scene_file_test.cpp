@@ -74,6 +74,12 @@ TEST_CASE("scene_errors_name_file_line_path_and_what_was_expected", "[scene]") {
           "s.json:9:3: error: /waves: unknown value 'choppy'; expected one of static, animated");
     CHECK(error_of(scene_text("water_depth", "  \"water_depth\": {\"min\": 30, \"max\": 3},")) ==
           "s.json:4:3: error: /water_depth: min 30 is above max 3; expected min <= max");
+    CHECK(error_of(scene_text("water_depth", "  \"water_depth\": {\"min\": 3.0000001, \"max\": 3},")) ==
+          "s.json:4:3: error: /water_depth: min 3.0000001 is above max 3; expected min <= max");
+    CHECK(error_of(scene_text("water_depth", "  \"water_depth\": {\"min\": 0, \"max\": 30, \"mean\": 4},")) ==
+          "s.json:4:40: error: /water_depth/mean: unknown key 'mean'; expected min or max");
+    CHECK(error_of(scene_text("sun_elevation", "  \"sun_elevation\": {\"min\": 5, \"max\": 90.5},")) ==
+          "s.json:7:31: error: /sun_elevation/max: 90.5 degrees is out of range; expected a value in [-90, 90] degrees");
     CHECK(error_of(scene_text("camera_pitch", "  \"camera_pitch\": {\"min\": -120, \"max\": 10},")) ==
           "s.json:6:20: error: /camera_pitch/min: -120 degrees is out of range; expected a value in [-90, 90] degrees");
     CHECK(error_of(scene_text("platforms", "  \"platforms\": [\"vulkan\", \"playstation\"]")) ==

@@ -80,8 +80,8 @@ public:
     MaterialBuilder& range(const std::string& name, double min, double max, SourceRef at = {});
     MaterialBuilder& targets(const std::vector<std::string>& names, SourceRef at = {});
 
-    // Validates everything (unknown names, sizes, ranges, contradictory rules) and returns the
-    // material, or nullopt with the first error in `diagnostics`.
+    // Validates everything (unknown names, sizes, ranges, contradictory rules) in a fixed order
+    // and returns the material, or nullopt with the first error in `diagnostics`.
     std::optional<Material> build(Diagnostics& diagnostics) const;
 
 private:
@@ -109,14 +109,28 @@ private:
     std::optional<std::pair<std::string, SourceRef>> preset_;
     std::vector<ParameterCall> parameters_;
     std::optional<std::pair<std::vector<std::string>, SourceRef>> targets_;
+
+    // The steps of build(), in its order (material.cpp says what each settles).
+    std::optional<Diagnostic> check_name(Material& m) const;
+    std::optional<Diagnostic> check_offers(Material& m) const;
+    std::optional<Diagnostic> check_rules(Material& m) const;
+    std::optional<Diagnostic> check_usable(Material& m) const;
+    std::optional<Diagnostic> check_preset(Material& m) const;
+    std::optional<Diagnostic> check_parameters(Material& m) const;
+    std::optional<Diagnostic> check_values(Material& m) const;
+    std::optional<Diagnostic> check_targets(Material& m) const;
+    static std::optional<Diagnostic> offered_choices(const Offer& o, std::vector<std::string>& choices);
+    static std::optional<Diagnostic> apply_setting(const ParameterCall& call, const Parameter& p, ParameterSetting& s);
+    SourceRef offered_at(size_t axis, const std::string& choice) const;
 };
 
-// Reads a material description (format: README "Material files"). Errors name the file, line,
-// column and JSON path, and what was expected.
+// Reads a material description (format: README "Material files"; material_file.cpp). Errors
+// name the file, line, column and JSON path, and what was expected.
 std::optional<Material> load_material(const std::filesystem::path& path, Diagnostics& diagnostics);
 std::optional<Material> parse_material(const JsonSource& source, Diagnostics& diagnostics);
 
-// The built-in default material (examples/materials/default.json is the same in JSON).
+// The built-in default material (default_material.cpp; examples/materials/default.json is the
+// same in JSON, and a test builds both and compares them).
 Material default_material();
 
 } // namespace watergen

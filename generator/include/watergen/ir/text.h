@@ -1,0 +1,16 @@
+// Small text helpers shared by every message that lists names or prints a number.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace watergen {
+
+// "a, b, c" (or with another separator).
+std::string join(const std::vector<std::string>& names, const std::string& separator = ", ");
+
+// The shortest text that reads back as the same double ("4.0000001", "1000", "1e+20"):
+// messages such as "min 4.0000001 is above max 4" never round two different numbers alike.
+std::string spell_number(double value);
+
+} // namespace watergen

@@ -1,0 +1,101 @@
+#include "watergen/pipeline/compile_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+
+#include "watergen/ir/emitter.h"
+#include "watergen/plan/covering_array.h"
+#include "watergen/toolchain/tool_process_chain.h"
+#include "watergen/toolchain/toolchain.h"
+#include "watergen/water/water_shader.h"
+
+namespace watergen {
+
+namespace {
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+template <class F> double time_ms(F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// GLSL and HLSL, fragment and vertex.
+std::vector<CompileRequest> compile_requests(const Variant& v, Diagnostics& ds) {
+    std::vector<CompileRequest> requests;
+    const WaterShader shader = build_water_shader(v);
+    for (Language lang : {Language::Glsl, Language::Hlsl}) {
+        const auto src = lang == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl;
+        const EmittedShader frag = emit_fragment(shader.fragment, lang, "water.frag", v.key(), ds);
+        const EmittedShader vert = emit_fullscreen_vertex(lang, "water.vert", v.key());
+        requests.push_back({src, ShaderStage::Fragment, frag.source, "water.frag", "main"});
+        requests.push_back({src, ShaderStage::Vertex, vert.source, "water.vert", "main"});
+    }
+    return requests;
+}
+
+// Times both chains on one variant's shaders; "" or what failed.
+std::string time_chains(const std::vector<CompileRequest>& requests, int repeat, const std::filesystem::path& work,
+                        CompileBenchRow& row) {
+    std::vector<double> in_process, processes;
+    for (int r = 0; r < repeat; ++r) {
+        bool ok = true;
+        in_process.push_back(time_ms([&] {
+            for (const auto& req : requests) ok = run_toolchain(req).ok() && ok;
+        }));
+        std::string error;
+        processes.push_back(time_ms([&] {
+            for (const auto& req : requests) {
+                const auto res = run_tool_process_chain(req, work.string());
+                if (!res.ok) error = res.error;
+            }
+        }));
+        if (!ok || !error.empty()) return error.empty() ? "in-process chain failed" : error;
+    }
+    row.in_process_ms = median(in_process);
+    row.processes_ms = median(processes);
+    return "";
+}
+
+} // namespace
+
+CompileBench run_compile_bench(int repeat) {
+    glslang_warm_up();
+    const std::filesystem::path work = std::filesystem::temp_directory_path() / "watergen-bench-compile";
+    std::filesystem::create_directories(work);
+    CompileBench bench;
+    for (const Variant& v : pairwise_covering_variants()) {
+        Diagnostics ds;
+        const std::vector<CompileRequest> requests = compile_requests(v, ds);
+        if (has_errors(ds)) {
+            bench.diagnostics = std::move(ds);
+            break;
+        }
+        CompileBenchRow row{v.key()};
+        if (const std::string error = time_chains(requests, repeat, work, row); !error.empty()) {
+            bench.error = v.key() + ": " + error;
+            break;
+        }
+        bench.rows.push_back(row);
+    }
+    std::error_code ignored;
+    std::filesystem::remove_all(work, ignored);
+    std::vector<double> in_process, processes, ratios;
+    for (const auto& r : bench.rows) {
+        in_process.push_back(r.in_process_ms);
+        processes.push_back(r.processes_ms);
+        ratios.push_back(r.ratio());
+    }
+    bench.median_in_process_ms = median(in_process);
+    bench.median_processes_ms = median(processes);
+    bench.median_ratio = median(ratios);
+    return bench;
+}
+
+} // namespace watergen
