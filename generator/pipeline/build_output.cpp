@@ -6,8 +6,8 @@
 #include <cerrno>
 #include <csignal>
 #include <fcntl.h>
-#include <fstream>
 
+#include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
 
 namespace watergen {
@@ -47,20 +47,6 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
 
 namespace {
 
-std::optional<std::string> write_all(const fs::path& root, const std::map<std::string, std::string>& files) {
-    std::error_code ec;
-    for (const auto& [relative, bytes] : files) {
-        const fs::path target = root / relative;
-        fs::create_directories(target.parent_path(), ec);
-        if (ec) return "cannot create " + target.parent_path().string() + ": " + ec.message();
-        std::ofstream out(target, std::ios::binary | std::ios::trunc);
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) return "cannot write " + target.string();
-    }
-    return std::nullopt;
-}
-
 // Puts `staging` in the place of `dir` in one step: renameat2(RENAME_EXCHANGE) swaps the two
 // names atomically, so whenever the process dies, `dir` holds either the old output or the
 // new one, never nothing. Without an old output, or on file systems that cannot exchange,
@@ -95,6 +81,46 @@ void remove_stale_staging(const fs::path& out) {
     for (const auto& p : stale) fs::remove_all(p, ec);
 }
 
+// Writes `files` beside the output and swaps them in, if `out` is still one a build may replace.
+std::optional<std::string> publish(const fs::path& out, const std::map<std::string, std::string>& files) {
+    const OutputTarget target = check_output_target(out); // again: the build took a while
+    if (!target.ok()) return target.error;
+    // Staging beside the output, then one rename: readers never see a mix of two builds.
+    remove_stale_staging(target.path);
+    std::string error;
+    const fs::path staging = make_staging_directory(target.path, &error);
+    if (staging.empty()) return error;
+    if (auto e = write_tree(staging, files)) {
+        std::error_code ec;
+        fs::remove_all(staging, ec);
+        return e;
+    }
+    return swap_into_place(staging, target.path);
+}
+
+// Counts a job's result in the summary and adds its files (under its variant directory).
+void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, BuildSummary& s,
+             std::map<std::string, std::string>& files) {
+    if (!r.cache_rejected.empty()) {
+        ++s.cache_rejected;
+        s.diagnostics.push_back({Severity::Warning, cache.entry(r.content_hash).string(), 0, 0, "",
+                                 "cache entry failed verification (" + r.cache_rejected + "); evicted and rebuilt"});
+    }
+    if (!r.ok()) {
+        ++s.failed;
+        for (const auto& d : r.diagnostics) s.diagnostics.push_back(d);
+        s.diagnostics.push_back({Severity::Error, "", 0, 0, "", job.scene + ": " + job.variant.key() + " failed to build"});
+        return;
+    }
+    if (!r.same_as.empty()) {
+        ++s.same;
+        return;
+    }
+    (r.shared ? s.shared : r.cached ? s.cached : s.built) += 1;
+    const std::string dir = variant_directory(job.scene, job.variant);
+    for (const auto& [path, bytes] : r.files) files[dir + "/" + path] = bytes;
+}
+
 } // namespace
 
 BuildSummary build_material(const BuildRequest& request) {
@@ -105,43 +131,21 @@ BuildSummary build_material(const BuildRequest& request) {
         s.bad_input = true;
         return s;
     }
+    // Refuse an output that is not ours before spending time on the build.
+    if (const OutputTarget target = check_output_target(request.out); !target.ok()) {
+        s.bad_input = true;
+        s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", target.error});
+        return s;
+    }
     const std::vector<JobResult> results = run_build_jobs(request.material, plan->jobs, request.options);
     s.variants = plan->jobs.size();
     std::map<std::string, std::string> files;
-    for (size_t i = 0; i < results.size(); ++i) {
-        const JobResult& r = results[i];
-        if (!r.ok()) {
-            ++s.failed;
-            for (const auto& d : r.diagnostics) s.diagnostics.push_back(d);
-            s.diagnostics.push_back({Severity::Error, "", 0, 0, "",
-                                     plan->jobs[i].scene + ": " + plan->jobs[i].variant.key() + " failed to build"});
-            continue;
-        }
-        if (!r.same_as.empty()) {
-            ++s.same;
-            continue;
-        }
-        (r.shared ? s.shared : r.cached ? s.cached : s.built) += 1;
-        const std::string dir = variant_directory(plan->jobs[i].scene, plan->jobs[i].variant);
-        for (const auto& [path, bytes] : r.files) files[dir + "/" + path] = bytes;
-    }
+    for (size_t i = 0; i < results.size(); ++i) collect(plan->jobs[i], results[i], request.options.cache, s, files);
     if (s.failed == 0) {
         files["manifest.json"] = manifest_json(request.material, plan->manifest_scenes, plan->jobs, results);
         s.files = files.size();
-        // Staging beside the output, then one rename: readers never see a mix of two builds.
-        remove_stale_staging(request.out);
-        std::string error;
-        const fs::path staging = make_staging_directory(request.out, &error);
-        std::optional<std::string> failure;
-        if (staging.empty()) failure = error;
-        else if (auto e = write_all(staging, files)) {
-            std::error_code ec;
-            fs::remove_all(staging, ec);
-            failure = e;
-        } else {
-            failure = swap_into_place(staging, request.out);
-        }
-        if (failure) s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
+        if (auto failure = publish(request.out, files))
+            s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
     }
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return s;
