@@ -21,8 +21,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Version 2 records a size and an XXH3-128 hash per file; a version-1 entry reads as damage.
+// Version 2: "watergen-cache 2\n<key>\n", then the records, each with its size and XXH3-128
+// hash. The key line ties an entry to its name: an entry copied under another key is damage.
 constexpr const char* kMagic = "watergen-cache 2\n";
+constexpr const char* kPreviousMagic = "watergen-cache 1\n";
 
 std::string hex16(uint64_t h) {
     char s[17];
@@ -54,17 +56,23 @@ std::optional<size_t> parse_size(const std::string& text, size_t limit) {
     return static_cast<size_t>(n);
 }
 
-// The files of an entry if it is exactly `expected`, every record named plainly and of the
-// recorded size and hash; otherwise nullopt and the first problem in `why`.
-std::optional<FileMap> verify_entry(const std::string& data, const std::vector<std::string>& expected, std::string& why) {
+// The files of the entry for `key` if it is exactly `expected`, every record named plainly and
+// of the recorded size and hash; otherwise nullopt and the first problem in `why`.
+std::optional<FileMap> verify_entry(const std::string& data, const std::string& key, const std::vector<std::string>& expected,
+                                    std::string& why) {
     const std::string magic = kMagic;
     if (data.compare(0, magic.size(), magic) != 0) {
         why = "not a version-2 cache entry";
         return std::nullopt;
     }
+    size_t pos = magic.size();
+    std::string written_for;
+    if (!next_line(data, pos, written_for) || written_for != key) {
+        why = "written for key '" + printable(written_for) + "', not for its own";
+        return std::nullopt;
+    }
     const std::set<std::string> wanted(expected.begin(), expected.end());
     FileMap files;
-    size_t pos = magic.size();
     while (pos < data.size()) {
         std::string path, size_text, digest;
         if (!next_line(data, pos, path) || !next_line(data, pos, size_text) || !next_line(data, pos, digest)) {
@@ -137,8 +145,9 @@ CacheLookup BuildCache::load(const std::string& hash, const std::vector<std::str
     if (!enabled()) return lookup;
     const fs::path path = entry(hash);
     const SafeRead read = read_regular_file(path, kMaxCacheEntryBytes);
-    if (read.missing) return lookup;
-    if (read.bytes) lookup.files = verify_entry(*read.bytes, expected, lookup.rejected);
+    // An entry of the previous format is outdated, not damaged: a quiet miss, overwritten by the store.
+    if (read.missing || (read.bytes && read.bytes->rfind(kPreviousMagic, 0) == 0)) return lookup;
+    if (read.bytes) lookup.files = verify_entry(*read.bytes, hash, expected, lookup.rejected);
     else lookup.rejected = read.why;
     if (!lookup.rejected.empty()) remove_if_same(path, read);
     return lookup;
@@ -146,7 +155,7 @@ CacheLookup BuildCache::load(const std::string& hash, const std::vector<std::str
 
 std::optional<std::string> BuildCache::store(const std::string& hash, const FileMap& files) const {
     if (!enabled()) return std::nullopt;
-    std::string data = kMagic;
+    std::string data = kMagic + hash + "\n";
     for (const auto& [path, bytes] : files) data += cache_record(path, bytes);
     const fs::path target = entry(hash);
     std::error_code ec;

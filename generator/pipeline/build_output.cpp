@@ -49,14 +49,19 @@ namespace {
 
 // Puts `staging` in the place of `dir` in one step: renameat2(RENAME_EXCHANGE) swaps the two
 // names atomically, so whenever the process dies, `dir` holds either the old output or the
-// new one, never nothing. Without an old output, or on file systems that cannot exchange,
-// the two-rename commit of output_writer.h.
+// new one, never nothing. Without an old output, a rename that replaces nothing; if a
+// concurrent build creates `dir` in between, exchange with that. On file systems that cannot
+// exchange, the two-rename commit of output_writer.h.
 std::optional<std::string> swap_into_place(const fs::path& staging, const fs::path& dir) {
-    std::error_code ec;
-    if (fs::is_directory(dir, ec) &&
-        ::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
-        fs::remove_all(staging, ec); // the old output, now under the staging name
-        return std::nullopt;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
+            std::error_code ec;
+            fs::remove_all(staging, ec); // the old output, now under the staging name
+            return std::nullopt;
+        }
+        if (errno != ENOENT) break;
+        if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_NOREPLACE) == 0) return std::nullopt;
+        if (errno != EEXIST) break;
     }
     return commit_directory(staging, dir);
 }
@@ -81,21 +86,28 @@ void remove_stale_staging(const fs::path& out) {
     for (const auto& p : stale) fs::remove_all(p, ec);
 }
 
-// Writes `files` beside the output and swaps them in, if `out` is still one a build may replace.
+// The output directory, resolved, if a build may replace it; else "" and the refusal in `s`.
+fs::path accepted_output(const fs::path& out, BuildSummary& s) {
+    const OutputTarget target = check_output_target(out);
+    if (target.ok()) return target.path;
+    s.bad_input = true;
+    s.diagnostics.push_back({Severity::Error, out.string(), 0, 0, "", target.error});
+    return {};
+}
+
+// Writes `files` beside the output directory `out` and swaps them in.
 std::optional<std::string> publish(const fs::path& out, const std::map<std::string, std::string>& files) {
-    const OutputTarget target = check_output_target(out); // again: the build took a while
-    if (!target.ok()) return target.error;
     // Staging beside the output, then one rename: readers never see a mix of two builds.
-    remove_stale_staging(target.path);
+    remove_stale_staging(out);
     std::string error;
-    const fs::path staging = make_staging_directory(target.path, &error);
+    const fs::path staging = make_staging_directory(out, &error);
     if (staging.empty()) return error;
     if (auto e = write_tree(staging, files)) {
         std::error_code ec;
         fs::remove_all(staging, ec);
         return e;
     }
-    return swap_into_place(staging, target.path);
+    return swap_into_place(staging, out);
 }
 
 // Counts a job's result in the summary and adds its files (under its variant directory).
@@ -132,11 +144,7 @@ BuildSummary build_material(const BuildRequest& request) {
         return s;
     }
     // Refuse an output that is not ours before spending time on the build.
-    if (const OutputTarget target = check_output_target(request.out); !target.ok()) {
-        s.bad_input = true;
-        s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", target.error});
-        return s;
-    }
+    if (accepted_output(request.out, s).empty()) return s;
     const std::vector<JobResult> results = run_build_jobs(request.material, plan->jobs, request.options);
     s.variants = plan->jobs.size();
     std::map<std::string, std::string> files;
@@ -144,7 +152,8 @@ BuildSummary build_material(const BuildRequest& request) {
     if (s.failed == 0) {
         files["manifest.json"] = manifest_json(request.material, plan->manifest_scenes, plan->jobs, results);
         s.files = files.size();
-        if (auto failure = publish(request.out, files))
+        const fs::path out = accepted_output(request.out, s); // again: the build took a while
+        if (auto failure = out.empty() ? std::nullopt : publish(out, files))
             s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
     }
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

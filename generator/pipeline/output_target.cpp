@@ -22,16 +22,6 @@ constexpr const char* kReplaceable =
 // A manifest is a few hundred KB; anything far larger is not one.
 constexpr size_t kMaxManifestBytes = size_t(256) << 20;
 
-const char* kind_of(mode_t mode) {
-    if (S_ISREG(mode)) return "a regular file";
-    if (S_ISLNK(mode)) return "a symbolic link";
-    if (S_ISFIFO(mode)) return "a FIFO";
-    if (S_ISCHR(mode)) return "a character device";
-    if (S_ISBLK(mode)) return "a block device";
-    if (S_ISSOCK(mode)) return "a socket";
-    return "not a directory";
-}
-
 // "out/", "." and ".." name the directory itself: absolute, normal, no trailing separator.
 fs::path normal_absolute(const fs::path& out, std::error_code& ec) {
     fs::path p = fs::absolute(out, ec).lexically_normal();
@@ -94,7 +84,7 @@ OutputTarget check_output_target(const fs::path& out) {
         return t;
     }
     if (!S_ISDIR(st.st_mode)) {
-        t.error = subject + " is " + kind_of(st.st_mode) + "; " + kReplaceable;
+        t.error = subject + " is " + file_kind(st.st_mode) + "; " + kReplaceable;
         return t;
     }
     if (std::string why = refusal_for_directory(t.path); !why.empty()) t.error = subject + " " + why;

@@ -12,16 +12,6 @@ namespace {
 
 std::string errno_text(int e) { return std::strerror(e); }
 
-const char* kind_of(mode_t mode) {
-    if (S_ISLNK(mode)) return "a symbolic link";
-    if (S_ISFIFO(mode)) return "a FIFO";
-    if (S_ISCHR(mode)) return "a character device";
-    if (S_ISBLK(mode)) return "a block device";
-    if (S_ISSOCK(mode)) return "a socket";
-    if (S_ISDIR(mode)) return "a directory";
-    return "not a regular file";
-}
-
 // Reads at most max_bytes + 1 bytes, so a file that grew past the bound is noticed.
 std::optional<std::string> read_bounded(int fd, size_t max_bytes, std::string& why) {
     std::string bytes;
@@ -45,6 +35,17 @@ std::optional<std::string> read_bounded(int fd, size_t max_bytes, std::string& w
 
 } // namespace
 
+const char* file_kind(mode_t mode) {
+    if (S_ISREG(mode)) return "a regular file";
+    if (S_ISDIR(mode)) return "a directory";
+    if (S_ISLNK(mode)) return "a symbolic link";
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    if (S_ISSOCK(mode)) return "a socket";
+    return "an unknown kind of file";
+}
+
 SafeRead read_regular_file(const std::filesystem::path& path, size_t max_bytes) {
     SafeRead r;
     struct stat seen {};
@@ -57,7 +58,7 @@ SafeRead read_regular_file(const std::filesystem::path& path, size_t max_bytes) 
     r.device = seen.st_dev;
     r.inode = seen.st_ino;
     if (!S_ISREG(seen.st_mode)) {
-        r.why = std::string("is ") + kind_of(seen.st_mode) + ", not a regular file";
+        r.why = std::string("is ") + file_kind(seen.st_mode) + ", not a regular file";
         return r;
     }
     if (static_cast<unsigned long long>(seen.st_size) > max_bytes) {

@@ -34,11 +34,16 @@ TEST_CASE("cache_round_trips_binary_files_and_treats_damage_as_a_miss", "[cache]
     // A truncated entry (a crash while writing cannot leave one, but a full disk might).
     const auto entry = tmp.path / "01" / "0123456789abcdef.wgc";
     CHECK(cache.entry("0123456789abcdef") == entry);
-    std::ofstream(entry, std::ios::binary | std::ios::trunc) << "watergen-cache 2\nglsl/a.spv\n999\nabc";
+    std::ofstream(entry, std::ios::binary | std::ios::trunc) << "watergen-cache 2\n0123456789abcdef\nglsl/a.spv\n999\nabc";
     const auto truncated = cache.load("0123456789abcdef", names);
     CHECK_FALSE(truncated.files);
     CHECK(truncated.rejected == "truncated record header");
     CHECK_FALSE(std::filesystem::exists(entry)); // evicted
+    // An entry of the previous format (no hashes) is outdated: a miss, not a failed verification.
+    std::ofstream(entry, std::ios::binary | std::ios::trunc) << "watergen-cache 1\nempty\n0\n";
+    const auto outdated = cache.load("0123456789abcdef", names);
+    CHECK_FALSE(outdated.files);
+    CHECK(outdated.rejected.empty());
     CHECK_FALSE(BuildCache().load("0123456789abcdef", names).files); // disabled
 }
 

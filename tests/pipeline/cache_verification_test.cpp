@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
+#include <sys/wait.h>
 
 #include "build_test_support.h"
 #include "watergen/pipeline/build_output.h"
@@ -92,9 +93,9 @@ struct RecordSpan {
     size_t header, body, size; // where its name line starts, where its bytes start, how many
 };
 
-// The record `name` of an entry: "watergen-cache 2\n", then "<name>\n<size>\n<hash>\n<bytes>"...
+// The record `name` of an entry: "watergen-cache 2\n<key>\n", then "<name>\n<size>\n<hash>\n<bytes>"...
 RecordSpan find_record(const std::string& entry, const std::string& name) {
-    size_t pos = entry.find('\n') + 1;
+    size_t pos = entry.find('\n', entry.find('\n') + 1) + 1;
     while (pos < entry.size()) {
         const size_t size_line = entry.find('\n', pos) + 1, hash_line = entry.find('\n', size_line) + 1;
         const size_t body = entry.find('\n', hash_line) + 1;
@@ -186,6 +187,16 @@ TEST_CASE("a_record_named_to_escape_the_output_writes_nothing_outside", "[cache]
     CHECK(beside == std::vector<std::string>{"cache", "out"});
 }
 
+TEST_CASE("an_entry_copied_under_another_key_is_rebuilt", "[cache]") {
+    const PoisonedCache p("copied");
+    fs::path other;
+    for (const auto& e : fs::recursive_directory_iterator(p.cache))
+        if (e.path().extension() == ".wgc" && e.path() != p.entry) other = e.path();
+    REQUIRE_FALSE(other.empty());
+    p.write_entry(read_file(other)); // intact, but another variant's files
+    p.check_rebuilt(p.build());
+}
+
 TEST_CASE("a_fifo_in_place_of_an_entry_does_not_hang_the_build", "[cache]") {
     const PoisonedCache p("fifo");
     fs::remove(p.entry);
@@ -216,4 +227,23 @@ TEST_CASE("a_symlink_to_dev_zero_is_evicted_without_reading_it", "[cache]") {
     CHECK(read_tree(p.out) == fixture().no_cache_output);
     CHECK(fs::is_regular_file(fs::symlink_status(p.entry))); // the link is gone, not followed
     CHECK(fs::is_character_file("/dev/zero"));
+}
+
+TEST_CASE("two_builds_at_once_into_one_output_and_one_cache_finish_identical", "[cache]") {
+    const PoisonedCache p("concurrent");
+    p.write_entry("garbage"); // both builds find it damaged, evict it and store it again
+    const std::vector<std::string> args = {"build", "-q", fixture().material_file.string(), "--cache", p.cache.string(),
+                                           "--out", p.out.string()};
+    const pid_t a = start_watergen(args), b = start_watergen(args);
+    REQUIRE(a > 0);
+    REQUIRE(b > 0);
+    int status_a = 0, status_b = 0;
+    ::waitpid(a, &status_a, 0);
+    ::waitpid(b, &status_b, 0);
+    CHECK((WIFEXITED(status_a) && WEXITSTATUS(status_a) == 0));
+    CHECK((WIFEXITED(status_b) && WEXITSTATUS(status_b) == 0));
+    CHECK(read_tree(p.out) == fixture().no_cache_output);
+    const BuildSummary after = p.build();
+    CHECK(after.cached == 4); // the cache they left is whole
+    CHECK(after.cache_rejected == 0);
 }

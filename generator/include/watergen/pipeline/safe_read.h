@@ -20,6 +20,9 @@ struct SafeRead {
     ino_t inode = 0;
 };
 
+// "a regular file", "a symbolic link", "a FIFO", "a character device", ... (for messages).
+const char* file_kind(mode_t mode);
+
 SafeRead read_regular_file(const std::filesystem::path& path, size_t max_bytes);
 
 // Removes what read_regular_file found at `path` (the link itself for a symbolic link), unless
