@@ -50,7 +50,10 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                    "scene description (JSON, repeatable); with scenes only the variants they reach are built, each folded "
                    "under the scene's facts into <out>/<scene>/<variant>/; without, every variant of the material goes "
                    "unfolded into <out>/unpruned/<variant>/");
-    app.add_option("--out", o->out, "output directory, replaced as a whole when the build succeeds")->required();
+    app.add_option("--out", o->out,
+                   "output directory, replaced as a whole when the build succeeds; it must be an earlier output of "
+                   "watergen build, an empty directory or a path that does not exist")
+        ->required();
     app.add_option("--jobs,-j", o->jobs, "worker threads (default: every hardware thread); output is the same for any count");
     app.add_option("--cache", o->cache, "cache directory (default: $XDG_CACHE_HOME/watergen or ~/.cache/watergen)");
     app.add_flag("--no-cache", o->no_cache, "build every variant, and store nothing");
@@ -73,9 +76,13 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         print_diagnostics(s.diagnostics, common);
         if (s.bad_input) return kUsage;
         const unsigned threads = o->jobs ? o->jobs : hardware_threads();
-        std::printf("%s\n", fmt::format("build: {} variants ({} built, {} cached, {} shared between scenes, {} same shader as another variant, {} failed) "
+        const std::string rejected =
+            s.cache_rejected == 0 ? std::string()
+                                  : fmt::format("; {} cache entr{} failed verification, rebuilt", s.cache_rejected,
+                                                s.cache_rejected == 1 ? "y" : "ies");
+        std::printf("%s\n", fmt::format("build: {} variants ({} built, {} cached, {} shared between scenes, {} same shader as another variant, {} failed{}) "
                                         "in {:.2f} s on {} thread{}{}",
-                                        s.variants, s.built, s.cached, s.shared, s.same, s.failed, s.seconds, threads,
+                                        s.variants, s.built, s.cached, s.shared, s.same, s.failed, rejected, s.seconds, threads,
                                         threads == 1 ? "" : "s",
                                         s.ok() ? fmt::format(" -> {} ({} files)", o->out, s.files)
                                                : std::string("; nothing written, ") + o->out + " is unchanged")

@@ -3,8 +3,7 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
+#include <set>
 #include <thread>
 #include <unistd.h>
 
@@ -13,18 +12,94 @@
 #include <spirv_cross/spirv_cross_c.h>
 #include <xxhash.h>
 
+#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/safe_read.h"
+
 namespace watergen {
 
 namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kMagic = "watergen-cache 1\n";
+// Version 2: "watergen-cache 2\n<key>\n", then the records, each with its size and XXH3-128
+// hash. The key line ties an entry to its name: an entry copied under another key is damage.
+constexpr const char* kMagic = "watergen-cache 2\n";
+constexpr const char* kPreviousMagic = "watergen-cache 1\n";
 
 std::string hex16(uint64_t h) {
     char s[17];
     std::snprintf(s, sizeof s, "%016llx", static_cast<unsigned long long>(h));
     return s;
+}
+
+// Names taken from a damaged entry go into messages: no control characters, bounded length.
+std::string printable(const std::string& name) {
+    std::string s = name.substr(0, 120);
+    for (char& c : s)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return s.size() < name.size() ? s + "..." : s;
+}
+
+bool next_line(const std::string& data, size_t& pos, std::string& line) {
+    const size_t nl = data.find('\n', pos);
+    if (nl == std::string::npos) return false;
+    line = data.substr(pos, nl - pos);
+    pos = nl + 1;
+    return true;
+}
+
+// "<digits>" no larger than `limit`.
+std::optional<size_t> parse_size(const std::string& text, size_t limit) {
+    if (text.empty() || text.size() > 12 || text.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+    const unsigned long long n = std::stoull(text);
+    if (n > limit) return std::nullopt;
+    return static_cast<size_t>(n);
+}
+
+// The files of the entry for `key` if it is exactly `expected`, every record named plainly and
+// of the recorded size and hash; otherwise nullopt and the first problem in `why`.
+std::optional<FileMap> verify_entry(const std::string& data, const std::string& key, const std::vector<std::string>& expected,
+                                    std::string& why) {
+    const std::string magic = kMagic;
+    if (data.compare(0, magic.size(), magic) != 0) {
+        why = "not a version-2 cache entry";
+        return std::nullopt;
+    }
+    size_t pos = magic.size();
+    std::string written_for;
+    if (!next_line(data, pos, written_for) || written_for != key) {
+        why = "written for key '" + printable(written_for) + "', not for its own";
+        return std::nullopt;
+    }
+    const std::set<std::string> wanted(expected.begin(), expected.end());
+    FileMap files;
+    while (pos < data.size()) {
+        std::string path, size_text, digest;
+        if (!next_line(data, pos, path) || !next_line(data, pos, size_text) || !next_line(data, pos, digest)) {
+            why = "truncated record header";
+            return std::nullopt;
+        }
+        const std::string name = "record '" + printable(path) + "'";
+        if (!is_plain_relative_path(path)) why = name + " is not a plain relative path";
+        else if (!wanted.count(path)) why = "unexpected " + name;
+        else if (files.count(path)) why = name + " appears twice";
+        const std::optional<size_t> size = parse_size(size_text, data.size() - pos);
+        if (why.empty() && !size) why = name + ": size '" + printable(size_text) + "' is not a number within the entry";
+        if (!why.empty()) return std::nullopt;
+        std::string bytes = data.substr(pos, *size);
+        pos += *size;
+        if (file_digest(bytes) != digest) {
+            why = name + ": content does not match its hash";
+            return std::nullopt;
+        }
+        files.emplace(path, std::move(bytes));
+    }
+    for (const std::string& path : wanted)
+        if (!files.count(path)) {
+            why = "missing record '" + path + "'";
+            return std::nullopt;
+        }
+    return files;
 }
 
 } // namespace
@@ -54,41 +129,34 @@ std::string content_hash(const std::vector<std::string>& parts) {
     return hex16(h);
 }
 
+std::string file_digest(const std::string& bytes) {
+    const XXH128_hash_t h = XXH3_128bits(bytes.data(), bytes.size());
+    return hex16(h.high64) + hex16(h.low64);
+}
+
+std::string cache_record(const std::string& path, const std::string& bytes) {
+    return path + "\n" + std::to_string(bytes.size()) + "\n" + file_digest(bytes) + "\n" + bytes;
+}
+
 fs::path BuildCache::entry(const std::string& hash) const { return dir_ / hash.substr(0, 2) / (hash + ".wgc"); }
 
-std::optional<FileMap> BuildCache::load(const std::string& hash) const {
-    if (!enabled()) return std::nullopt;
-    std::ifstream in(entry(hash), std::ios::binary);
-    if (!in) return std::nullopt;
-    std::stringstream ss;
-    ss << in.rdbuf();
-    const std::string data = ss.str();
-    const std::string magic = kMagic;
-    if (data.compare(0, magic.size(), magic) != 0) return std::nullopt;
-    // Records: "<path>\n<size>\n<bytes>".
-    FileMap files;
-    size_t pos = magic.size();
-    while (pos < data.size()) {
-        const size_t nl1 = data.find('\n', pos);
-        if (nl1 == std::string::npos) return std::nullopt;
-        const size_t nl2 = data.find('\n', nl1 + 1);
-        if (nl2 == std::string::npos) return std::nullopt;
-        const std::string path = data.substr(pos, nl1 - pos);
-        char* end = nullptr;
-        const std::string size_text = data.substr(nl1 + 1, nl2 - nl1 - 1);
-        const unsigned long long size = std::strtoull(size_text.c_str(), &end, 10);
-        if (size_text.empty() || *end != '\0' || nl2 + 1 + size > data.size()) return std::nullopt;
-        files[path] = data.substr(nl2 + 1, size);
-        pos = nl2 + 1 + size;
-    }
-    if (files.empty()) return std::nullopt;
-    return files;
+CacheLookup BuildCache::load(const std::string& hash, const std::vector<std::string>& expected) const {
+    CacheLookup lookup;
+    if (!enabled()) return lookup;
+    const fs::path path = entry(hash);
+    const SafeRead read = read_regular_file(path, kMaxCacheEntryBytes);
+    // An entry of the previous format is outdated, not damaged: a quiet miss, overwritten by the store.
+    if (read.missing || (read.bytes && read.bytes->rfind(kPreviousMagic, 0) == 0)) return lookup;
+    if (read.bytes) lookup.files = verify_entry(*read.bytes, hash, expected, lookup.rejected);
+    else lookup.rejected = read.why;
+    if (!lookup.rejected.empty()) remove_if_same(path, read);
+    return lookup;
 }
 
 std::optional<std::string> BuildCache::store(const std::string& hash, const FileMap& files) const {
     if (!enabled()) return std::nullopt;
-    std::string data = kMagic;
-    for (const auto& [path, bytes] : files) data += path + "\n" + std::to_string(bytes.size()) + "\n" + bytes;
+    std::string data = kMagic + hash + "\n";
+    for (const auto& [path, bytes] : files) data += cache_record(path, bytes);
     const fs::path target = entry(hash);
     std::error_code ec;
     fs::create_directories(target.parent_path(), ec);
@@ -98,18 +166,16 @@ std::optional<std::string> BuildCache::store(const std::string& hash, const File
     const fs::path tmp = target.string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                          std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id())) + "-" +
                          std::to_string(counter++);
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out.write(data.data(), static_cast<std::streamsize>(data.size()));
-        if (!out) {
-            fs::remove(tmp, ec);
-            return "cannot write " + tmp.string();
-        }
+    if (auto e = write_new_file(tmp, data)) {
+        fs::remove(tmp, ec);
+        return e;
     }
+    // rename() replaces whatever is at the entry's name (a link itself, never its target).
     fs::rename(tmp, target, ec);
     if (ec) {
+        const std::string why = ec.message();
         fs::remove(tmp, ec);
-        return "cannot rename into " + target.string();
+        return "cannot rename into " + target.string() + ": " + why;
     }
     return std::nullopt;
 }

@@ -6,8 +6,8 @@
 #include <cerrno>
 #include <csignal>
 #include <fcntl.h>
-#include <fstream>
 
+#include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
 
 namespace watergen {
@@ -47,30 +47,21 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
 
 namespace {
 
-std::optional<std::string> write_all(const fs::path& root, const std::map<std::string, std::string>& files) {
-    std::error_code ec;
-    for (const auto& [relative, bytes] : files) {
-        const fs::path target = root / relative;
-        fs::create_directories(target.parent_path(), ec);
-        if (ec) return "cannot create " + target.parent_path().string() + ": " + ec.message();
-        std::ofstream out(target, std::ios::binary | std::ios::trunc);
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) return "cannot write " + target.string();
-    }
-    return std::nullopt;
-}
-
 // Puts `staging` in the place of `dir` in one step: renameat2(RENAME_EXCHANGE) swaps the two
 // names atomically, so whenever the process dies, `dir` holds either the old output or the
-// new one, never nothing. Without an old output, or on file systems that cannot exchange,
-// the two-rename commit of output_writer.h.
+// new one, never nothing. Without an old output, a rename that replaces nothing; if a
+// concurrent build creates `dir` in between, exchange with that. On file systems that cannot
+// exchange, the two-rename commit of output_writer.h.
 std::optional<std::string> swap_into_place(const fs::path& staging, const fs::path& dir) {
-    std::error_code ec;
-    if (fs::is_directory(dir, ec) &&
-        ::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
-        fs::remove_all(staging, ec); // the old output, now under the staging name
-        return std::nullopt;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
+            std::error_code ec;
+            fs::remove_all(staging, ec); // the old output, now under the staging name
+            return std::nullopt;
+        }
+        if (errno != ENOENT) break;
+        if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_NOREPLACE) == 0) return std::nullopt;
+        if (errno != EEXIST) break;
     }
     return commit_directory(staging, dir);
 }
@@ -95,6 +86,53 @@ void remove_stale_staging(const fs::path& out) {
     for (const auto& p : stale) fs::remove_all(p, ec);
 }
 
+// The output directory, resolved, if a build may replace it; else "" and the refusal in `s`.
+fs::path accepted_output(const fs::path& out, BuildSummary& s) {
+    const OutputTarget target = check_output_target(out);
+    if (target.ok()) return target.path;
+    s.bad_input = true;
+    s.diagnostics.push_back({Severity::Error, out.string(), 0, 0, "", target.error});
+    return {};
+}
+
+// Writes `files` beside the output directory `out` and swaps them in.
+std::optional<std::string> publish(const fs::path& out, const std::map<std::string, std::string>& files) {
+    // Staging beside the output, then one rename: readers never see a mix of two builds.
+    remove_stale_staging(out);
+    std::string error;
+    const fs::path staging = make_staging_directory(out, &error);
+    if (staging.empty()) return error;
+    if (auto e = write_tree(staging, files)) {
+        std::error_code ec;
+        fs::remove_all(staging, ec);
+        return e;
+    }
+    return swap_into_place(staging, out);
+}
+
+// Counts a job's result in the summary and adds its files (under its variant directory).
+void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, BuildSummary& s,
+             std::map<std::string, std::string>& files) {
+    if (!r.cache_rejected.empty()) {
+        ++s.cache_rejected;
+        s.diagnostics.push_back({Severity::Warning, cache.entry(r.content_hash).string(), 0, 0, "",
+                                 "cache entry failed verification (" + r.cache_rejected + "); evicted and rebuilt"});
+    }
+    if (!r.ok()) {
+        ++s.failed;
+        for (const auto& d : r.diagnostics) s.diagnostics.push_back(d);
+        s.diagnostics.push_back({Severity::Error, "", 0, 0, "", job.scene + ": " + job.variant.key() + " failed to build"});
+        return;
+    }
+    if (!r.same_as.empty()) {
+        ++s.same;
+        return;
+    }
+    (r.shared ? s.shared : r.cached ? s.cached : s.built) += 1;
+    const std::string dir = variant_directory(job.scene, job.variant);
+    for (const auto& [path, bytes] : r.files) files[dir + "/" + path] = bytes;
+}
+
 } // namespace
 
 BuildSummary build_material(const BuildRequest& request) {
@@ -105,43 +143,18 @@ BuildSummary build_material(const BuildRequest& request) {
         s.bad_input = true;
         return s;
     }
+    // Refuse an output that is not ours before spending time on the build.
+    if (accepted_output(request.out, s).empty()) return s;
     const std::vector<JobResult> results = run_build_jobs(request.material, plan->jobs, request.options);
     s.variants = plan->jobs.size();
     std::map<std::string, std::string> files;
-    for (size_t i = 0; i < results.size(); ++i) {
-        const JobResult& r = results[i];
-        if (!r.ok()) {
-            ++s.failed;
-            for (const auto& d : r.diagnostics) s.diagnostics.push_back(d);
-            s.diagnostics.push_back({Severity::Error, "", 0, 0, "",
-                                     plan->jobs[i].scene + ": " + plan->jobs[i].variant.key() + " failed to build"});
-            continue;
-        }
-        if (!r.same_as.empty()) {
-            ++s.same;
-            continue;
-        }
-        (r.shared ? s.shared : r.cached ? s.cached : s.built) += 1;
-        const std::string dir = variant_directory(plan->jobs[i].scene, plan->jobs[i].variant);
-        for (const auto& [path, bytes] : r.files) files[dir + "/" + path] = bytes;
-    }
+    for (size_t i = 0; i < results.size(); ++i) collect(plan->jobs[i], results[i], request.options.cache, s, files);
     if (s.failed == 0) {
         files["manifest.json"] = manifest_json(request.material, plan->manifest_scenes, plan->jobs, results);
         s.files = files.size();
-        // Staging beside the output, then one rename: readers never see a mix of two builds.
-        remove_stale_staging(request.out);
-        std::string error;
-        const fs::path staging = make_staging_directory(request.out, &error);
-        std::optional<std::string> failure;
-        if (staging.empty()) failure = error;
-        else if (auto e = write_all(staging, files)) {
-            std::error_code ec;
-            fs::remove_all(staging, ec);
-            failure = e;
-        } else {
-            failure = swap_into_place(staging, request.out);
-        }
-        if (failure) s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
+        const fs::path out = accepted_output(request.out, s); // again: the build took a while
+        if (auto failure = out.empty() ? std::nullopt : publish(out, files))
+            s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
     }
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return s;

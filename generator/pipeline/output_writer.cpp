@@ -1,6 +1,8 @@
 #include "watergen/pipeline/output_writer.h"
 
-#include <fstream>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
 #include <system_error>
 #include <unistd.h>
 
@@ -10,26 +12,55 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::optional<std::string> write_plain(const fs::path& path, const std::string& contents) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) return "cannot open " + path.string() + " for writing";
-    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-    out.close();
-    if (!out) return "cannot write " + path.string();
-    return std::nullopt;
-}
-
 std::string unique_suffix() { return ".tmp-" + std::to_string(::getpid()); }
 
 } // namespace
 
+std::optional<std::string> write_new_file(const fs::path& path, const std::string& data) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0) {
+        const int e = errno;
+        return "cannot create " + path.string() + ": " + std::strerror(e);
+    }
+    size_t done = 0;
+    while (done < data.size()) {
+        const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int e = n < 0 ? errno : ENOSPC;
+            ::close(fd);
+            return "cannot write " + path.string() + ": " + std::strerror(e);
+        }
+        done += static_cast<size_t>(n);
+    }
+    if (::close(fd) != 0) {
+        const int e = errno;
+        return "cannot write " + path.string() + ": " + std::strerror(e);
+    }
+    return std::nullopt;
+}
+
+bool is_plain_relative_path(const std::string& path) {
+    if (path.empty() || path.find('\0') != std::string::npos) return false;
+    size_t start = 0;
+    for (;;) {
+        const size_t slash = path.find('/', start);
+        const std::string part = path.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+        if (part.empty() || part == "." || part == "..") return false;
+        if (slash == std::string::npos) return true;
+        start = slash + 1;
+    }
+}
+
 std::optional<std::string> write_file_atomically(const fs::path& path, const std::string& contents) {
     const fs::path tmp = path.string() + unique_suffix();
-    if (auto e = write_plain(tmp, contents)) return e;
     std::error_code ec;
+    fs::remove(tmp, ec); // left by a killed process of the same pid
+    if (auto e = write_new_file(tmp, contents)) return e;
     fs::rename(tmp, path, ec);
     if (ec) {
-        fs::remove(tmp, ec);
+        std::error_code ignored; // `ec` keeps the rename's error for the message
+        fs::remove(tmp, ignored);
         return "cannot rename into " + path.string() + ": " + ec.message();
     }
     return std::nullopt;
@@ -60,7 +91,8 @@ std::optional<std::string> commit_directory(const fs::path& staging, const fs::p
     if (had_old) {
         fs::rename(dir, old, ec);
         if (ec) {
-            fs::remove_all(staging, ec);
+            std::error_code ignored; // `ec` keeps the rename's error for the message
+            fs::remove_all(staging, ignored);
             return "cannot move aside " + dir.string() + ": " + ec.message();
         }
     }
@@ -75,22 +107,27 @@ std::optional<std::string> commit_directory(const fs::path& staging, const fs::p
     return std::nullopt;
 }
 
+std::optional<std::string> write_tree(const fs::path& root, const std::map<std::string, std::string>& files) {
+    for (const auto& [relative, contents] : files)
+        if (!is_plain_relative_path(relative)) return "'" + relative + "' is not a plain relative path inside " + root.string();
+    std::error_code ec;
+    for (const auto& [relative, contents] : files) {
+        const fs::path target = root / relative;
+        fs::create_directories(target.parent_path(), ec);
+        if (ec) return "cannot create " + target.parent_path().string() + ": " + ec.message();
+        if (auto e = write_new_file(target, contents)) return e;
+    }
+    return std::nullopt;
+}
+
 std::optional<std::string> write_directory_atomically(const fs::path& dir, const std::map<std::string, std::string>& files) {
     std::string error;
     const fs::path staging = make_staging_directory(dir, &error);
     if (staging.empty()) return error;
-    std::error_code ec;
-    for (const auto& [relative, contents] : files) {
-        const fs::path target = staging / relative;
-        fs::create_directories(target.parent_path(), ec);
-        if (ec) {
-            fs::remove_all(staging, ec);
-            return "cannot create " + target.parent_path().string();
-        }
-        if (auto e = write_plain(target, contents)) {
-            fs::remove_all(staging, ec);
-            return e;
-        }
+    if (auto e = write_tree(staging, files)) {
+        std::error_code ec;
+        fs::remove_all(staging, ec);
+        return e;
     }
     return commit_directory(staging, dir);
 }

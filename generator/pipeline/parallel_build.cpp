@@ -155,12 +155,15 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
     // Phase 2: cache or toolchain.
     std::map<size_t, FileMap> shared; // unfiltered files of each job built, for its copies
     std::mutex shared_lock;
+    const std::vector<std::string> expected_files = variant_file_names();
     parallel_for(to_build.size(), options.threads, [&](size_t k) {
         const size_t i = to_build[k];
         JobResult& r = results[i];
         const auto t0 = std::chrono::steady_clock::now();
-        std::optional<FileMap> all = options.cache.load(r.content_hash);
+        CacheLookup lookup = options.cache.load(r.content_hash, expected_files);
+        std::optional<FileMap> all = std::move(lookup.files);
         r.cached = all.has_value();
+        r.cache_rejected = std::move(lookup.rejected);
         if (!all) {
             const VariantBuild build = build_shader(std::move(shaders[i]));
             r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(), build.diagnostics.end());

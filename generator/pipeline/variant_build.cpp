@@ -1,5 +1,7 @@
 #include "watergen/pipeline/variant_build.h"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "watergen/runtime/reflection.h"
@@ -10,6 +12,21 @@ namespace watergen {
 namespace {
 
 const char* kStem = "water";
+
+// The names of the files one stage of one language writes (variant_files fills them).
+struct StageFileNames {
+    std::string source, spirv, spirv_optimized, glsl330, essl300, msl, reflection;
+};
+
+StageFileNames stage_file_names(Language lang, ShaderStage stage) {
+    const std::string dir = std::string(to_string(lang)) + "/";
+    const std::string base = dir + kStem + "." + (stage == ShaderStage::Vertex ? "vert" : "frag");
+    return {dir + kStem + "." + file_extension(lang, stage), base + ".spv", base + ".opt.spv", base + ".330.glsl",
+            base + ".300es.glsl", base + ".metal", base + ".reflect.json"};
+}
+
+constexpr Language kLanguages[] = {Language::Glsl, Language::Hlsl};
+constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment};
 
 StageBuild build_stage(EmittedShader source, Diagnostics& all) {
     StageBuild stage{std::move(source), {}};
@@ -76,16 +93,14 @@ VariantBuild build_shader(WaterShader shader) {
     if (has_errors(b.diagnostics)) return b;
     const std::string key = variant.key();
     for (size_t i = 0; i < b.languages.size(); ++i) {
-        const Language lang = i == 0 ? Language::Glsl : Language::Hlsl;
-        const std::string dir = std::string(to_string(lang)) + "/";
+        const Language lang = kLanguages[i];
         LanguageBuild& out = b.languages[i];
         out.language = lang;
-        EmittedShader frag = emit_fragment(b.shader.fragment, lang,
-                                           dir + kStem + "." + file_extension(lang, ShaderStage::Fragment), key,
-                                           b.diagnostics);
+        EmittedShader frag = emit_fragment(b.shader.fragment, lang, stage_file_names(lang, ShaderStage::Fragment).source,
+                                           key, b.diagnostics);
         if (has_errors(b.diagnostics)) return b;
         out.fragment = build_stage(std::move(frag), b.diagnostics);
-        out.vertex = build_stage(emit_fullscreen_vertex(lang, dir + kStem + "." + file_extension(lang, ShaderStage::Vertex), key),
+        out.vertex = build_stage(emit_fullscreen_vertex(lang, stage_file_names(lang, ShaderStage::Vertex).source, key),
                                  b.diagnostics);
     }
     return b;
@@ -97,20 +112,30 @@ std::map<std::string, std::string> variant_files(const VariantBuild& b) {
     const std::string stamp = stamp_text(b.shader.variant.key());
     for (const auto& lang : b.languages) {
         for (const StageBuild* s : {&lang.vertex, &lang.fragment}) {
-            const std::string base = std::string(to_string(lang.language)) + "/" + kStem + "." +
-                                     (s->source.stage == ShaderStage::Vertex ? "vert" : "frag");
+            const StageFileNames names = stage_file_names(lang.language, s->source.stage);
             const ToolchainOutputs& t = s->toolchain;
-            files[s->source.file_name] = s->source.source;
-            files[base + ".spv"] = spirv_bytes(t.spirv);
-            files[base + ".opt.spv"] = spirv_bytes(t.spirv_optimized);
-            files[base + ".330.glsl"] = with_stamp(stamp, t.glsl330);
-            files[base + ".300es.glsl"] = with_stamp(stamp, t.essl300);
-            files[base + ".metal"] = with_stamp(stamp, t.msl);
-            files[base + ".reflect.json"] = reflection_to_json(t.reflection);
+            files[names.source] = s->source.source;
+            files[names.spirv] = spirv_bytes(t.spirv);
+            files[names.spirv_optimized] = spirv_bytes(t.spirv_optimized);
+            files[names.glsl330] = with_stamp(stamp, t.glsl330);
+            files[names.essl300] = with_stamp(stamp, t.essl300);
+            files[names.msl] = with_stamp(stamp, t.msl);
+            files[names.reflection] = reflection_to_json(t.reflection);
         }
     }
     files["variant.json"] = describe(b).dump(2) + "\n";
     return files;
+}
+
+std::vector<std::string> variant_file_names() {
+    std::vector<std::string> names{"variant.json"};
+    for (Language lang : kLanguages)
+        for (ShaderStage stage : kStages) {
+            const StageFileNames n = stage_file_names(lang, stage);
+            names.insert(names.end(), {n.source, n.spirv, n.spirv_optimized, n.glsl330, n.essl300, n.msl, n.reflection});
+        }
+    std::sort(names.begin(), names.end());
+    return names;
 }
 
 } // namespace watergen

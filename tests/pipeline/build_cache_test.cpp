@@ -23,16 +23,28 @@ TEST_CASE("cache_round_trips_binary_files_and_treats_damage_as_a_miss", "[cache]
     const TempDir tmp("cache-unit");
     const BuildCache cache(tmp.path);
     const FileMap files = {{"glsl/a.spv", std::string("\x03\x02\x23\x07\0\n\nxyz", 10)}, {"variant.json", "{}\n"}, {"empty", ""}};
-    CHECK_FALSE(cache.load("0123456789abcdef"));
+    const std::vector<std::string> names = {"empty", "glsl/a.spv", "variant.json"};
+    const auto miss = cache.load("0123456789abcdef", names);
+    CHECK_FALSE(miss.files);
+    CHECK(miss.rejected.empty()); // no entry: a plain miss
     REQUIRE_FALSE(cache.store("0123456789abcdef", files));
-    const auto back = cache.load("0123456789abcdef");
-    REQUIRE(back);
-    CHECK(*back == files);
+    const auto back = cache.load("0123456789abcdef", names);
+    REQUIRE(back.files);
+    CHECK(*back.files == files);
     // A truncated entry (a crash while writing cannot leave one, but a full disk might).
     const auto entry = tmp.path / "01" / "0123456789abcdef.wgc";
-    std::ofstream(entry, std::ios::binary | std::ios::trunc) << "watergen-cache 1\nglsl/a.spv\n999\nabc";
-    CHECK_FALSE(cache.load("0123456789abcdef"));
-    CHECK_FALSE(BuildCache().load("0123456789abcdef")); // disabled
+    CHECK(cache.entry("0123456789abcdef") == entry);
+    std::ofstream(entry, std::ios::binary | std::ios::trunc) << "watergen-cache 2\n0123456789abcdef\nglsl/a.spv\n999\nabc";
+    const auto truncated = cache.load("0123456789abcdef", names);
+    CHECK_FALSE(truncated.files);
+    CHECK(truncated.rejected == "truncated record header");
+    CHECK_FALSE(std::filesystem::exists(entry)); // evicted
+    // An entry of the previous format (no hashes) is outdated: a miss, not a failed verification.
+    std::ofstream(entry, std::ios::binary | std::ios::trunc) << "watergen-cache 1\nempty\n0\n";
+    const auto outdated = cache.load("0123456789abcdef", names);
+    CHECK_FALSE(outdated.files);
+    CHECK(outdated.rejected.empty());
+    CHECK_FALSE(BuildCache().load("0123456789abcdef", names).files); // disabled
 }
 
 TEST_CASE("targets_choose_the_files_of_a_variant", "[cache]") {

@@ -13,28 +13,6 @@ using namespace watergen;
 using namespace watergen::test;
 namespace fs = std::filesystem;
 
-namespace {
-
-// Starts `watergen build` in a child process; returns its pid.
-pid_t start_build(const std::vector<std::string>& args) {
-    std::vector<char*> argv;
-    std::string cli = WATERGEN_CLI;
-    argv.push_back(cli.data());
-    std::vector<std::string> copy = args;
-    for (auto& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-        std::freopen("/dev/null", "w", stdout);
-        std::freopen("/dev/null", "w", stderr);
-        ::execv(cli.c_str(), argv.data());
-        ::_exit(127);
-    }
-    return pid;
-}
-
-} // namespace
-
 TEST_CASE("a_build_killed_midway_leaves_the_previous_output_intact", "[build]") {
     const TempDir tmp("kill");
     const fs::path out = tmp.path / "out";
@@ -55,7 +33,7 @@ TEST_CASE("a_build_killed_midway_leaves_the_previous_output_intact", "[build]") 
     args.push_back(out.string());
     int killed = 0, finished = 0;
     for (int delay_ms : {10, 60, 150, 300, 500, 700, 900, 1200}) {
-        const pid_t pid = start_build(args);
+        const pid_t pid = start_watergen(args);
         REQUIRE(pid > 0);
         std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
         ::kill(pid, SIGKILL);

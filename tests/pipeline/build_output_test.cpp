@@ -104,13 +104,15 @@ TEST_CASE("a_failing_variant_leaves_the_previous_output_untouched", "[build]") {
     const fs::path out = tmp.path / "out";
     fs::create_directories(out);
     std::ofstream(out / "previous.txt") << "previous\n";
+    const std::string manifest = "{\"generator\": \"watergen 0.1.0\"}\n"; // a build may replace only its own output
+    std::ofstream(out / "manifest.json") << manifest;
     Material broken = default_material();
     broken.space.choices[0].push_back("bogus"); // no node: the variant cannot compose
     BuildRequest r{broken, {example_scenes().front()}, out, {}};
     const BuildSummary s = build_material(r);
     CHECK_FALSE(s.ok());
     CHECK(s.failed > 0);
-    CHECK(read_tree(out) == std::map<std::string, std::string>{{"previous.txt", "previous\n"}});
+    CHECK(read_tree(out) == std::map<std::string, std::string>{{"manifest.json", manifest}, {"previous.txt", "previous\n"}});
     for (const auto& e : fs::directory_iterator(tmp.path)) CHECK(e.path().filename() == "out"); // no staging left
 }
 

@@ -74,4 +74,27 @@ inline std::vector<SceneFacts> example_scenes() {
 // cache: built once per test binary, then compared against by every test that needs it.
 std::map<std::string, std::string> reference_build();
 
+inline std::string read_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// Starts the watergen binary with `args` in a child process, its stdout and stderr going to the
+// given files, in `working_directory` unless that is empty; returns its pid.
+pid_t start_watergen(const std::vector<std::string>& args, const std::string& stdout_path = "/dev/null",
+                     const std::string& stderr_path = "/dev/null", const std::filesystem::path& working_directory = {});
+
+struct WatergenRun {
+    bool timed_out = false; // then killed
+    int exit_code = -1;     // -1 when killed by a signal
+    std::string out, err;
+    long max_rss_kb = 0;    // of the child: what it read into memory shows here
+};
+
+// Runs the watergen binary to completion, killing it after `timeout_seconds`.
+WatergenRun run_watergen(const std::vector<std::string>& args, int timeout_seconds = 120,
+                         const std::filesystem::path& working_directory = {});
+
 } // namespace watergen::test

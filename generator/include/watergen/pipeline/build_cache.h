@@ -1,7 +1,9 @@
 // Content-addressed cache of built variants: the key is an xxHash64 over everything a
 // variant's files depend on (emitted sources, parameter metadata, key, preset) plus the
 // versions of watergen and of the toolchain libraries, so an unchanged variant is copied
-// instead of compiled, and any change of input or tool misses.
+// instead of compiled, and any change of input or tool misses. Nothing in the cache is trusted:
+// an entry is used only when it is a regular file holding exactly the expected files, each
+// with its size and XXH3-128 hash; anything else is evicted and rebuilt.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +24,19 @@ const std::string& toolchain_fingerprint();
 // as 16 lower-case hex digits.
 std::string content_hash(const std::vector<std::string>& parts);
 
+// XXH3-128 of one file's bytes, as 32 lower-case hex digits: what an entry records per file.
+std::string file_digest(const std::string& bytes);
+// One file as an entry stores it: "<path>\n<size>\n<file_digest>\n<bytes>".
+std::string cache_record(const std::string& path, const std::string& bytes);
+
+// Entries larger than this are damage, not variants (a variant's files are a few hundred KB).
+constexpr size_t kMaxCacheEntryBytes = size_t(64) << 20;
+
+struct CacheLookup {
+    std::optional<FileMap> files; // on a hit: exactly the expected files, verified
+    std::string rejected;         // non-empty: an entry was there, failed verification (why) and was evicted
+};
+
 class BuildCache {
 public:
     BuildCache() = default; // disabled
@@ -29,14 +44,17 @@ public:
     bool enabled() const { return !dir_.empty(); }
     const std::filesystem::path& dir() const { return dir_; }
 
-    // The files stored under `hash`; nullopt on a miss or an unreadable entry.
-    std::optional<FileMap> load(const std::string& hash) const;
+    // The files stored under `hash` if the entry holds exactly `expected` (relative paths),
+    // each of the recorded size and hash; otherwise a miss, and a damaged entry is evicted.
+    CacheLookup load(const std::string& hash, const std::vector<std::string>& expected) const;
     // Stores atomically (temporary + rename, safe across threads and processes); an error
     // message on failure, which callers may ignore (the build does not depend on the cache).
     std::optional<std::string> store(const std::string& hash, const FileMap& files) const;
 
-private:
+    // The file that holds the entry for `hash`.
     std::filesystem::path entry(const std::string& hash) const;
+
+private:
     std::filesystem::path dir_;
 };
 

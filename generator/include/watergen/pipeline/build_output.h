@@ -37,9 +37,10 @@ struct BuildSummary {
     size_t shared = 0;    // same files as a variant of another scene, built once for both
     size_t same = 0;      // same shader as another variant of the scene (not built again)
     size_t failed = 0;
+    size_t cache_rejected = 0; // cache entries that failed verification: evicted and rebuilt
     size_t files = 0;     // written
     double seconds = 0;
-    bool bad_input = false; // the error is in the description files (exit 2), not in a shader
+    bool bad_input = false; // the error is in the description files or the output path (exit 2), not in a shader
     Diagnostics diagnostics;
     bool ok() const { return !bad_input && failed == 0 && !has_errors(diagnostics); }
 };

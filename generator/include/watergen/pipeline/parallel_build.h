@@ -30,6 +30,7 @@ struct JobResult {
     FoldReport fold;
     FileMap files;                    // relative to the variant directory, filtered by targets
     bool cached = false;
+    std::string cache_rejected;       // why its cache entry failed verification (evicted, rebuilt); "" if it did not
     bool shared = false;              // same content as a job of another scene, built once for both
     Diagnostics diagnostics;
     double milliseconds = 0;

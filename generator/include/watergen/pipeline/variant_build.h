@@ -5,6 +5,7 @@
 #include <array>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "watergen/ir/emitter.h"
 #include "watergen/toolchain/toolchain.h"
@@ -38,5 +39,7 @@ VariantBuild build_shader(WaterShader shader);
 // The files a build writes, relative path -> contents, e.g. "glsl/water.frag.spv".
 // Empty when the build failed.
 std::map<std::string, std::string> variant_files(const VariantBuild& build);
+// The names variant_files gives every successful build, whatever the variant, sorted.
+std::vector<std::string> variant_file_names();
 
 } // namespace watergen

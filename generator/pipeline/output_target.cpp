@@ -1,0 +1,94 @@
+#include "watergen/pipeline/output_target.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <sys/stat.h>
+
+#include <nlohmann/json.hpp>
+
+#include "watergen/pipeline/safe_read.h"
+
+namespace watergen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kReplaceable =
+    "a build replaces only a directory watergen wrote (with its manifest.json), an empty directory or a path that "
+    "does not exist; it was left untouched";
+
+// A manifest is a few hundred KB; anything far larger is not one.
+constexpr size_t kMaxManifestBytes = size_t(256) << 20;
+
+// "out/", "." and ".." name the directory itself: absolute, normal, no trailing separator.
+fs::path normal_absolute(const fs::path& out, std::error_code& ec) {
+    fs::path p = fs::absolute(out, ec).lexically_normal();
+    if (!p.has_filename() && p.has_relative_path()) p = p.parent_path();
+    return p;
+}
+
+bool holds(const fs::path& outer, const fs::path& inner) {
+    return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first == outer.end();
+}
+
+// Why the existing directory `dir` may not be replaced; "" when it may.
+std::string refusal_for_directory(const fs::path& dir) {
+    std::error_code ec;
+    fs::directory_iterator it(dir, ec);
+    if (ec) return "cannot be listed: " + ec.message();
+    if (it == fs::directory_iterator()) return ""; // empty
+    const SafeRead manifest = read_regular_file(dir / "manifest.json", kMaxManifestBytes);
+    if (manifest.bytes && is_watergen_manifest(*manifest.bytes)) return "";
+    return std::string("is a directory of files watergen did not write (no manifest.json of a watergen build); ") +
+           kReplaceable;
+}
+
+} // namespace
+
+bool is_watergen_manifest(const std::string& bytes) {
+    const auto j = nlohmann::json::parse(bytes, nullptr, false);
+    if (!j.is_object() || !j.contains("generator") || !j["generator"].is_string()) return false;
+    return j["generator"].get<std::string>().rfind("watergen ", 0) == 0;
+}
+
+OutputTarget check_output_target(const fs::path& out) {
+    OutputTarget t;
+    if (out.empty()) {
+        t.error = "the output directory is an empty path; expected a directory to create or replace";
+        return t;
+    }
+    std::error_code ec;
+    t.path = normal_absolute(out, ec);
+    if (ec) {
+        t.error = "cannot resolve the output directory: " + ec.message();
+        return t;
+    }
+    // Name the resolved directory where the given path does not show it plainly ("out/", ".", "a/../b").
+    const fs::path last = out.filename();
+    const bool plain = out.lexically_normal() == out && !last.empty() && last != "." && last != "..";
+    const std::string subject = "the output directory" + (plain ? "" : " (" + t.path.string() + ")");
+    // Replacing the current directory (or one above it) would leave the shell in a deleted one.
+    std::error_code cwd_ec, real_ec;
+    const fs::path cwd = fs::current_path(cwd_ec);
+    const fs::path real = fs::weakly_canonical(t.path, real_ec);
+    if (!cwd_ec && !real_ec && holds(real, cwd)) {
+        t.error = subject + " is the current directory or holds it; name one outside the current directory";
+        return t;
+    }
+    struct stat st {};
+    if (::lstat(t.path.c_str(), &st) != 0) {
+        const int e = errno;
+        if (e != ENOENT) t.error = subject + " cannot be inspected: " + std::strerror(e);
+        return t;
+    }
+    if (!S_ISDIR(st.st_mode)) {
+        t.error = subject + " is " + file_kind(st.st_mode) + "; " + kReplaceable;
+        return t;
+    }
+    if (std::string why = refusal_for_directory(t.path); !why.empty()) t.error = subject + " " + why;
+    return t;
+}
+
+} // namespace watergen
