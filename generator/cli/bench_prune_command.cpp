@@ -1,29 +1,41 @@
-// Pruning benchmark: per scene, each distinct folded shader against the same variant
-// unpruned, rendered on the Vulkan runner over the synthetic scene conformed to the scene's
-// facts: SPIR-V instruction counts, GPU time per draw, and how far the images differ.
-#include <algorithm>
+// watergen bench prune: prints bench_prune() (render/prune_bench.h) as a table and writes it
+// to prune.csv and prune.json; fails when a pruned image differs by more than --tolerance.
 #include <cstdio>
-#include <filesystem>
-#include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "watergen/pipeline/build_output.h"
-#include "watergen/ir/emitter.h"
-#include "watergen/pipeline/output_writer.h"
-#include "watergen/render/prune_measure.h"
+#include "watergen/render/prune_bench.h"
 
 namespace watergen::cli {
 
 namespace {
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+void print_row(const std::string& scene, const PruneBenchRow& row) {
+    const PruneMeasurement& r = row.measurement;
+    std::printf("%-14s %-58s %4zu->%-4zu %4zu->%-4zu %4zu->%-4zu %9.4f %9.4f %10.2g\n", scene.c_str(),
+                row.short_key.substr(0, 58).c_str(), r.live_before, r.live_after, r.spirv_unpruned, r.spirv_pruned,
+                r.spirv_opt_unpruned, r.spirv_opt_pruned, r.gpu_ms_pruned / r.gpu_ms_unpruned,
+                r.gpu_ms_pruned_hlsl / r.gpu_ms_unpruned_hlsl, row.max_diff);
+}
+
+std::string csv_row(const std::string& scene, const PruneBenchRow& row) {
+    const PruneMeasurement& r = row.measurement;
+    return fmt::format("{},\"{}\",{},{},{},{},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.3g},{:.3g},{:.3g}\n", scene, row.key,
+                       r.live_before, r.live_after, r.spirv_unpruned, r.spirv_pruned, r.spirv_opt_unpruned, r.spirv_opt_pruned,
+                       r.gpu_ms_unpruned, r.gpu_ms_pruned, r.gpu_ms_unpruned_hlsl, r.gpu_ms_pruned_hlsl, r.max_abs_glsl,
+                       r.max_abs_hlsl, r.max_abs_cpu);
+}
+
+nlohmann::ordered_json json_row(const std::string& scene, const PruneBenchRow& row) {
+    const PruneMeasurement& r = row.measurement;
+    return {{"scene", scene}, {"variant", row.key}, {"ir_nodes", {r.live_before, r.live_after}},
+            {"spirv", {r.spirv_unpruned, r.spirv_pruned}}, {"spirv_opt", {r.spirv_opt_unpruned, r.spirv_opt_pruned}},
+            {"gpu_ms_glsl", {r.gpu_ms_unpruned, r.gpu_ms_pruned}},
+            {"gpu_ms_hlsl", {r.gpu_ms_unpruned_hlsl, r.gpu_ms_pruned_hlsl}},
+            {"max_abs", {{"glsl", r.max_abs_glsl}, {"hlsl", r.max_abs_hlsl}, {"cpu", r.max_abs_cpu}}}};
 }
 
 } // namespace
@@ -63,79 +75,35 @@ Runner add_bench_prune_command(CLI::App& app, const Common& common) {
         std::string cache_used;
         auto runner = create_runner(o->runner, &cache_used);
         if (!runner) return kNoDevice;
-        const SyntheticScene base = make_synthetic_scene(o->size, o->size);
-        const RenderSettings settings{o->size, o->size, o->draws, false};
+        const PruneBenchResult result = bench_prune(*runner, m, plan->scenes, {o->size, o->draws, o->rounds, o->per_scene});
 
         std::printf("%-14s %-58s %11s %11s %11s %9s %9s %10s\n", "scene", "variant (the material's varying axes)", "IR nodes", "SPIR-V", "SPIR-V opt",
                     "GPU glsl", "GPU hlsl", "max |diff|");
         std::string csv = "scene,variant,ir_before,ir_after,spirv_unpruned,spirv_pruned,spirv_opt_unpruned,spirv_opt_pruned,"
                           "gpu_ms_unpruned,gpu_ms_pruned,gpu_ms_unpruned_hlsl,gpu_ms_pruned_hlsl,max_abs_glsl,max_abs_hlsl,max_abs_cpu\n";
         nlohmann::ordered_json json = nlohmann::ordered_json::array();
-        bool within = true;
-        for (const ScenePlan& sp : plan->scenes) {
-            std::string notes;
-            const SyntheticScene scene = conform_scene(base, sp, m, &notes);
-            std::printf("%s: %s\n", sp.scene.name.c_str(), notes.c_str());
-            // One measurement per distinct folded shader.
-            std::set<std::string> shapes;
-            std::vector<double> r_spirv, r_opt, r_gpu, r_gpu_hlsl, r_ir;
-            double worst = 0;
-            for (const Variant& v : sp.variants) {
-                if (o->per_scene && shapes.size() >= o->per_scene) break;
-                const WaterShader shader = m.compose(v);
-                if (has_errors(shader.fragment.diagnostics())) continue;
-                Diagnostics ignored;
-                const FoldResult folded = fold_graph(shader.fragment, sp.facts);
-                if (!shapes.insert(emit_fragment(folded.graph, Language::Glsl, "f", "", ignored).source).second) continue;
-                const PruneMeasurement r = measure_pruning(*runner, m, sp, v, scene, settings, o->rounds);
-                if (!r.ok()) {
-                    std::fprintf(stderr, "watergen: error: %s: %s: %s\n", sp.scene.name.c_str(), v.key().c_str(), r.error.c_str());
-                    return kFailed;
-                }
-                const double diff = std::max({r.max_abs_glsl, r.max_abs_hlsl, r.max_abs_cpu});
-                worst = std::max(worst, diff);
-                within = within && diff <= o->tolerance;
-                r_ir.push_back(double(r.live_after) / r.live_before);
-                r_spirv.push_back(double(r.spirv_pruned) / r.spirv_unpruned);
-                r_opt.push_back(double(r.spirv_opt_pruned) / r.spirv_opt_unpruned);
-                r_gpu.push_back(r.gpu_ms_pruned / r.gpu_ms_unpruned);
-                r_gpu_hlsl.push_back(r.gpu_ms_pruned_hlsl / r.gpu_ms_unpruned_hlsl);
-                // The choices of the axes the material varies, without axis names (the CSV has keys).
-                std::string shortkey;
-                for (size_t a = 0; a < axes().size(); ++a)
-                    if (m.space.choices[a].size() > 1) shortkey += (shortkey.empty() ? "" : ",") + v.choices[a];
-                std::printf("%-14s %-58s %4zu->%-4zu %4zu->%-4zu %4zu->%-4zu %9.4f %9.4f %10.2g\n", sp.scene.name.c_str(),
-                            shortkey.substr(0, 58).c_str(), r.live_before, r.live_after, r.spirv_unpruned, r.spirv_pruned,
-                            r.spirv_opt_unpruned, r.spirv_opt_pruned, r.gpu_ms_pruned / r.gpu_ms_unpruned,
-                            r.gpu_ms_pruned_hlsl / r.gpu_ms_unpruned_hlsl, diff);
-                csv += fmt::format("{},\"{}\",{},{},{},{},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.3g},{:.3g},{:.3g}\n", sp.scene.name,
-                                   v.key(), r.live_before, r.live_after, r.spirv_unpruned, r.spirv_pruned, r.spirv_opt_unpruned,
-                                   r.spirv_opt_pruned, r.gpu_ms_unpruned, r.gpu_ms_pruned, r.gpu_ms_unpruned_hlsl,
-                                   r.gpu_ms_pruned_hlsl, r.max_abs_glsl, r.max_abs_hlsl, r.max_abs_cpu);
-                json.push_back({{"scene", sp.scene.name}, {"variant", v.key()}, {"ir_nodes", {r.live_before, r.live_after}},
-                                {"spirv", {r.spirv_unpruned, r.spirv_pruned}}, {"spirv_opt", {r.spirv_opt_unpruned, r.spirv_opt_pruned}},
-                                {"gpu_ms_glsl", {r.gpu_ms_unpruned, r.gpu_ms_pruned}},
-                                {"gpu_ms_hlsl", {r.gpu_ms_unpruned_hlsl, r.gpu_ms_pruned_hlsl}},
-                                {"max_abs", {{"glsl", r.max_abs_glsl}, {"hlsl", r.max_abs_hlsl}, {"cpu", r.max_abs_cpu}}}});
+        for (const PruneBenchScene& s : result.scenes) {
+            std::printf("%s: %s\n", s.name.c_str(), s.notes.c_str());
+            for (const PruneBenchRow& row : s.rows) {
+                print_row(s.name, row);
+                csv += csv_row(s.name, row);
+                json.push_back(json_row(s.name, row));
             }
+            if (!s.complete) break;
             std::printf("%-14s median ratio pruned/unpruned over %zu shaders: IR nodes %.3f, SPIR-V %.3f, SPIR-V opt %.3f, "
                         "GPU time %.3f (GLSL) %.3f (HLSL); max |diff| %.2g\n",
-                        sp.scene.name.c_str(), r_spirv.size(), median(r_ir), median(r_spirv), median(r_opt), median(r_gpu),
-                        median(r_gpu_hlsl), worst);
+                        s.name.c_str(), s.rows.size(), s.ir, s.spirv, s.spirv_opt, s.gpu_glsl, s.gpu_hlsl, s.worst);
+        }
+        if (!result.ok()) {
+            std::fprintf(stderr, "watergen: error: %s\n", result.error.c_str());
+            return kFailed;
         }
         std::printf("ratios are pruned / unpruned (below 1: pruning saves); SPIR-V = fragment instructions of the GLSL path as "
                     "compiled and after spirv-opt -O; GPU = fastest of %u x %u timed draws at %ux%u on %s; max |diff| over the "
                     "GLSL, HLSL and CPU images\n",
                     o->rounds, o->draws, o->size, o->size, runner->device_info().name.c_str());
-        std::filesystem::create_directories(o->out);
-        const std::filesystem::path dir = o->out;
-        for (auto [name, text] : {std::pair{"prune.csv", csv}, std::pair{"prune.json", json.dump(2) + "\n"}})
-            if (auto e = write_file_atomically(dir / name, text)) {
-                std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-                return kFailed;
-            }
-        std::printf("wrote %s and %s\n", (dir / "prune.csv").string().c_str(), (dir / "prune.json").string().c_str());
-        if (!within) {
+        if (!write_bench_files(o->out, "prune", csv, json.dump(2) + "\n")) return kFailed;
+        if (!result.within(o->tolerance)) {
             std::fprintf(stderr, "watergen: error: a pruned image differs from its unpruned one by more than %g\n", o->tolerance);
             return kFailed;
         }

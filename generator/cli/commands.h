@@ -62,4 +62,8 @@ Runner add_bench_build_command(CLI::App& bench, const Common& common);
 Runner add_bench_prune_command(CLI::App& bench, const Common& common);
 Runner add_bench_accuracy_command(CLI::App& bench, const Common& common);
 
+// Writes <out>/<stem>.csv and <out>/<stem>.json (each atomically) and says so; prints the
+// error and returns false when one cannot be written (exit with kFailed).
+bool write_bench_files(const std::string& out, const std::string& stem, const std::string& csv, const std::string& json);
+
 } // namespace watergen::cli

@@ -274,6 +274,22 @@ Expr named(Expr e, const std::string& name) {
     return Expr(&e.graph(), e.graph().add(std::move(copy)));
 }
 
+Expr bind(const Quantity& quantity, Expr e) {
+    if (!e.valid()) return e;
+    Graph& g = e.graph();
+    const Node& n = g.node(e.id());
+    if (n.type == Type::Error) return e;
+    const std::string id(quantity.id);
+    if (n.type != quantity.type)
+        g.error("quantity '" + id + "' is a " + type_name(quantity.type) + "; bound to a " + type_name(n.type));
+    else if (!quantity.parameter.empty() && (n.op != Op::Uniform || n.name != quantity.parameter))
+        g.error("quantity '" + id + "' stands for parameter '" + std::string(quantity.parameter) + "'; bound to " +
+                (n.op == Op::Uniform ? "parameter '" + n.name + "'" : std::string("a computed value")));
+    else
+        g.bind(quantity, e.id());
+    return e;
+}
+
 namespace {
 Expr c(Expr like, double v) { return like.valid() ? constant(like.graph(), v) : Expr(); }
 } // namespace

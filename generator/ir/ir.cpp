@@ -215,6 +215,12 @@ void Graph::set_output(std::string name, uint32_t node) {
     outputs_.push_back(Output{std::move(name), node});
 }
 
+void Graph::bind(const Quantity& quantity, uint32_t node) {
+    for (const auto& b : bindings_)
+        if (b.quantity == quantity && b.node == node) return;
+    bindings_.push_back({quantity, node});
+}
+
 std::vector<uint32_t> Graph::live_nodes() const {
     std::vector<char> live(nodes_.size(), 0);
     std::vector<uint32_t> stack;

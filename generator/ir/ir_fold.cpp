@@ -78,7 +78,9 @@ std::optional<std::vector<double>> evaluate_constant(const Node& n, const std::v
 
 class Folder {
 public:
-    Folder(const Graph& in, const FoldFacts& facts) : in_(in), f_(facts), map_(in.size(), UINT32_MAX) {}
+    Folder(const Graph& in, const FoldFacts& facts) : in_(in), f_(facts), map_(in.size(), UINT32_MAX) {
+        resolve_quantities();
+    }
 
     void rewrite_all() {
         declare_inputs();
@@ -86,6 +88,8 @@ public:
         event_of_.assign(in_.size(), -1);
         for (uint32_t id : live_) map_[id] = rewrite(id);
         for (const auto& o : in_.outputs()) out_.set_output(o.name, map_[o.node]);
+        for (const auto& b : in_.bindings())
+            if (map_[b.node] != UINT32_MAX) out_.bind(b.quantity, map_[b.node]);
         report_.live_before = live_.size();
     }
 
@@ -109,10 +113,37 @@ public:
             map[id] = out.add(std::move(n));
         }
         for (const auto& o : g.outputs()) out.set_output(o.name, map[o.node]);
+        for (const auto& b : g.bindings())
+            if (map[b.node] != UINT32_MAX) out.bind(b.quantity, map[b.node]);
         return out;
     }
 
 private:
+    // Facts about bound quantities become facts about the parameters or nodes bound to them,
+    // so they apply whatever those are called; the report says where each one went.
+    void resolve_quantities() {
+        std::vector<char> live(in_.size(), 0);
+        for (uint32_t id : in_.live_nodes()) live[id] = 1;
+        auto resolve = [&](const Quantity& q, const FoldFacts::Bounds& bounds, const FoldFacts::Fixed* fixed) {
+            QuantityReach reach = QuantityReach::Unbound;
+            for (const auto& b : in_.bindings()) {
+                if (!(b.quantity == q)) continue;
+                const Node& n = in_.node(b.node);
+                reach = live[b.node] ? QuantityReach::Read : std::min(reach, QuantityReach::Unread);
+                if (n.op == Op::Uniform && fixed) f_.fixed[n.name] = *fixed;
+                else if (n.op == Op::Uniform) f_.parameter_ranges[n.name] = bounds;
+                else node_ranges_[b.node] = bounds;
+            }
+            report_.quantities.push_back({q, reach});
+        };
+        for (const auto& [q, fixed] : f_.fixed_quantities) {
+            FoldFacts::Bounds point{{}, fixed.fact};
+            for (double x : fixed.value) point.bounds.push_back(make_interval(x, x));
+            resolve(q, point, &fixed);
+        }
+        for (const auto& [q, bounds] : f_.quantity_ranges) resolve(q, bounds, nullptr);
+    }
+
     void declare_inputs() {
         for (Parameter p : in_.parameters()) {
             if (f_.fixed.count(p.name)) continue;
@@ -343,21 +374,20 @@ private:
             }
             v = node_intervals(n, args, types);
         }
-        if (!n.name.empty())
-            if (auto it = f_.named_ranges.find(n.name); it != f_.named_ranges.end()) {
-                // An assumption the computed bounds contradict cannot hold anywhere; ignore it
-                // rather than fold by an empty range.
-                const Intervals assumed = bounds_of(it->second, n.type);
-                bool consistent = assumed.size() == v.size();
-                for (size_t c = 0; consistent && c < v.size(); ++c)
-                    consistent = std::max(v[c].lo, assumed[c].lo) <= std::min(v[c].hi, assumed[c].hi);
-                for (size_t c = 0; consistent && c < v.size(); ++c) {
-                    v[c].lo = std::max(v[c].lo, assumed[c].lo);
-                    v[c].hi = std::min(v[c].hi, assumed[c].hi);
-                    v[c].finite = v[c].finite || (std::isfinite(v[c].lo) && std::isfinite(v[c].hi));
-                }
-                if (consistent) facts.set(std::min(it->second.fact, kMaxFacts - 1));
+        if (auto it = node_ranges_.find(in_id); it != node_ranges_.end()) {
+            // An assumption the computed bounds contradict cannot hold anywhere; ignore it
+            // rather than fold by an empty range.
+            const Intervals assumed = bounds_of(it->second, n.type);
+            bool consistent = assumed.size() == v.size();
+            for (size_t c = 0; consistent && c < v.size(); ++c)
+                consistent = std::max(v[c].lo, assumed[c].lo) <= std::min(v[c].hi, assumed[c].hi);
+            for (size_t c = 0; consistent && c < v.size(); ++c) {
+                v[c].lo = std::max(v[c].lo, assumed[c].lo);
+                v[c].hi = std::min(v[c].hi, assumed[c].hi);
+                v[c].finite = v[c].finite || (std::isfinite(v[c].lo) && std::isfinite(v[c].hi));
             }
+            if (consistent) facts.set(std::min(it->second.fact, kMaxFacts - 1));
+        }
 
         if (is_float_valued(n.type) && n.op != Op::Constant) {
             // Constant arguments only: evaluate.
@@ -446,7 +476,8 @@ private:
     }
 
     const Graph& in_;
-    const FoldFacts& f_;
+    FoldFacts f_; // with the bound quantities resolved
+    std::map<uint32_t, FoldFacts::Bounds> node_ranges_; // computed nodes bound to a quantity
     Graph out_;
     std::vector<uint32_t> map_;
     std::vector<Intervals> values_;
@@ -467,7 +498,8 @@ FoldFacts without(const FoldFacts& f, const FactSet& drop) {
     prune(out.fixed);
     prune(out.parameter_ranges);
     prune(out.input_ranges);
-    prune(out.named_ranges);
+    prune(out.fixed_quantities);
+    prune(out.quantity_ranges);
     return out;
 }
 

@@ -14,6 +14,7 @@ Graph with_parameters(const Graph& g, const std::vector<Parameter>& params) {
     for (const auto& t : g.textures()) out.declare_texture(t);
     for (uint32_t id = 0; id < g.size(); ++id) out.add(g.node(id));
     for (const auto& o : g.outputs()) out.set_output(o.name, o.node);
+    for (const auto& b : g.bindings()) out.bind(b.quantity, b.node); // same ids: the scene facts still apply
     return out;
 }
 

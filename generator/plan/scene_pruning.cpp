@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <set>
 
 #include <fmt/format.h>
 
 #include "watergen/ir/text.h"
+#include "watergen/water/scene_quantities.h"
 
 namespace watergen {
 
@@ -63,7 +65,42 @@ std::string spell(const std::vector<double>& v) {
     return s + ")";
 }
 
+// Sorts the material's variants into those the scene reaches and those it skips, keeping
+// each skip's reason (grouped) for explain.
+void reach_variants(const Material& m, ScenePlan& plan) {
+    std::map<std::string, uint32_t> group_of;
+    uint32_t ordinal = 0;
+    enumerate(m.space, [&](const Variant& v) {
+        if (auto e = scene_excludes(plan.scene, v)) {
+            SkippedGroup group{std::move(*e), 0};
+            auto [it, fresh] = group_of.emplace(group.text(), static_cast<uint32_t>(plan.skipped_groups.size()));
+            if (fresh) plan.skipped_groups.push_back(std::move(group));
+            ++plan.skipped_groups[it->second].variants;
+            plan.skipped_variants.push_back({ordinal, it->second});
+            ++plan.skipped;
+        } else {
+            plan.variants.push_back(v);
+        }
+        ++ordinal;
+    });
+    std::sort(plan.variants.begin(), plan.variants.end(),
+              [](const Variant& a, const Variant& b) { return a.key() < b.key(); });
+    // Groups in text order; the variants' group indices follow them.
+    std::vector<uint32_t> renumber(plan.skipped_groups.size());
+    std::vector<SkippedGroup> sorted;
+    for (const auto& [text, index] : group_of) {
+        renumber[index] = static_cast<uint32_t>(sorted.size());
+        sorted.push_back(std::move(plan.skipped_groups[index]));
+    }
+    plan.skipped_groups = std::move(sorted);
+    for (auto& s : plan.skipped_variants) s.group = renumber[s.group];
+}
+
 } // namespace
+
+std::string SkippedGroup::text() const {
+    return fmt::format("{}={}: {} [{}]", exclusion.axis, exclusion.choice, exclusion.reason, exclusion.where);
+}
 
 std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& v) {
     for (const auto& r : scene_rules()) {
@@ -123,34 +160,40 @@ std::optional<ScenePlan> plan_scene(const Material& m, const SceneFacts& scene, 
         plan.fixed[name] = value;
         f.fixed[name] = {value, f.add_fact(name + " = " + spell(value) + " (scene " + scene.name + ")", w.of(key))};
     }
+    // Scene facts about parameters go through their handles (scene_quantities.h): the fold
+    // applies them to whatever uniform the handle is bound to.
+    const std::string time = std::string(scene_quantity::time.parameter);
+    const std::string eye_position = std::string(scene_quantity::eye_position.parameter);
+    const std::string water_level = std::string(scene_quantity::water_level.parameter);
+    const std::string sun_direction = std::string(scene_quantity::sun_direction.parameter);
     // Static waves: time stands still.
-    if (m.declared.count("time")) {
-        if (!scene.waves_animated && !scene.fixed.count("time")) {
-            plan.fixed["time"] = {0.0};
-            f.fixed["time"] = {{0.0}, f.add_fact("waves are static: time = 0", w.of("waves"))};
+    if (m.declared.count(time)) {
+        if (!scene.waves_animated && !scene.fixed.count(time)) {
+            plan.fixed[time] = {0.0};
+            f.fixed_quantities[scene_quantity::time] = {{0.0}, f.add_fact("waves are static: time = 0", w.of("waves"))};
         }
-        if (scene.waves_animated && scene.fixed.count("time"))
+        if (scene.waves_animated && scene.fixed.count(time))
             return fail(w.error("fixed/time", "time is fixed but the scene's waves are animated; expected \"waves\": \"static\""));
     }
     // Camera height above the water level bounds eye_position.y.
-    if (auto eye = m.declared.find("eye_position"); eye != m.declared.end() && eye->second.type == Type::Vec3) {
-        auto [lvl_lo, lvl_hi] = m.range("water_level");
-        if (auto it = plan.fixed.find("water_level"); it != plan.fixed.end()) lvl_lo = lvl_hi = it->second[0];
-        const auto [elo, ehi] = m.range("eye_position");
+    if (auto eye = m.declared.find(eye_position); eye != m.declared.end() && eye->second.type == scene_quantity::eye_position.type) {
+        auto [lvl_lo, lvl_hi] = m.range(water_level);
+        if (auto it = plan.fixed.find(water_level); it != plan.fixed.end()) lvl_lo = lvl_hi = it->second[0];
+        const auto [elo, ehi] = m.range(eye_position);
         const Interval xz = make_interval(elo, ehi);
         const double ylo = std::max(elo, lvl_lo + scene.camera_height.min), yhi = std::min(ehi, lvl_hi + scene.camera_height.max);
         if (ylo > yhi)
             return fail(w.error("camera_height", "no camera position within eye_position's range satisfies the camera height"));
-        if (!plan.fixed.count("eye_position"))
-            f.parameter_ranges["eye_position"] = {
+        if (!plan.fixed.count(eye_position))
+            f.quantity_ranges[scene_quantity::eye_position] = {
                 {xz, make_interval(ylo, yhi), xz},
                 f.add_fact(fmt::format("camera {:g}..{:g} m above the water", scene.camera_height.min, scene.camera_height.max),
                            w.of("camera_height"))};
     }
     // Sun elevation bounds the y of the direction the sunlight travels (downwards by day).
-    if (auto sun = m.declared.find("sun_direction"); sun != m.declared.end() && sun->second.type == Type::Vec3) {
+    if (auto sun = m.declared.find(sun_direction); sun != m.declared.end() && sun->second.type == scene_quantity::sun_direction.type) {
         const double ylo = -std::sin(scene.sun_elevation.max * kDegrees), yhi = -std::sin(scene.sun_elevation.min * kDegrees);
-        if (auto it = plan.fixed.find("sun_direction"); it != plan.fixed.end()) {
+        if (auto it = plan.fixed.find(sun_direction); it != plan.fixed.end()) {
             const auto& d = it->second;
             const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             const double elevation = len > 0 ? std::asin(std::clamp(-d[1] / len, -1.0, 1.0)) / kDegrees : 0.0;
@@ -160,32 +203,23 @@ std::optional<ScenePlan> plan_scene(const Material& m, const SceneFacts& scene, 
                                                 "sun_elevation [{:g}, {:g}]",
                                                 elevation, scene.sun_elevation.min, scene.sun_elevation.max)));
         } else {
-            f.parameter_ranges["sun_direction"] = {
+            f.quantity_ranges[scene_quantity::sun_direction] = {
                 {make_interval(-1.0, 1.0), make_interval(ylo, yhi), make_interval(-1.0, 1.0)},
                 f.add_fact(fmt::format("sun elevation {:g}..{:g} degrees", scene.sun_elevation.min, scene.sun_elevation.max),
                            w.of("sun_elevation"))};
         }
     }
-    // Water depth: a fact about water pixels, attached to the node the waves axis names.
-    f.named_ranges["water_depth"] = {
+    // Water depth: a fact about water pixels, attached to the node the water column binds.
+    f.quantity_ranges[scene_quantity::water_depth] = {
         {make_interval(scene.water_depth.min, scene.water_depth.max)},
         f.add_fact(fmt::format("water depth {:g}..{:g} m", scene.water_depth.min, scene.water_depth.max), w.of("water_depth"))};
 
-    // Variants the scene reaches.
-    std::map<std::string, size_t> reasons;
-    enumerate(m.space, [&](const Variant& v) {
-        if (auto e = scene_excludes(scene, v)) {
-            ++plan.skipped;
-            ++reasons[e->axis + "=" + e->choice + ": " + e->reason];
-        } else {
-            plan.variants.push_back(v);
-        }
-    });
-    std::sort(plan.variants.begin(), plan.variants.end(),
-              [](const Variant& a, const Variant& b) { return a.key() < b.key(); });
+    reach_variants(m, plan);
     if (plan.variants.empty()) {
+        std::set<std::string> reasons;
+        for (const auto& g : plan.skipped_groups) reasons.insert(g.exclusion.axis + "=" + g.exclusion.choice + ": " + g.exclusion.reason);
         std::string why;
-        for (const auto& [r, n] : reasons) why += (why.empty() ? "" : "; ") + r;
+        for (const auto& r : reasons) why += (why.empty() ? "" : "; ") + r;
         return fail(Diagnostic{Severity::Error, w.fact.count("name") ? w.fact.at("name").file : scene.file,
                                w.fact.count("name") ? w.fact.at("name").position.line : 0,
                                w.fact.count("name") ? w.fact.at("name").position.column : 0, "",

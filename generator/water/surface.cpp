@@ -1,5 +1,7 @@
 #include "watergen/water/surface.h"
 
+#include "watergen/water/scene_quantities.h"
+
 namespace watergen {
 
 PlaneHit intersect_plane(const Surface& s, Expr height) {
@@ -10,7 +12,8 @@ PlaneHit intersect_plane(const Surface& s, Expr height) {
 
 void set_water_column(Surface& s, Expr surface_distance) {
     s.path = named(max(s.scene_distance - surface_distance, 0.0), "water_path");
-    s.depth = named(max(s.surface_point.y() - s.scene_pos.y(), 0.0), "water_depth");
+    s.depth = bind(scene_quantity::water_depth,
+                   named(max(s.surface_point.y() - s.scene_pos.y(), 0.0), "water_depth"));
     // The eye is above the water: a ray going up never reaches it (its clamped plane hit lies
     // millions of metres away and would otherwise count the sky as water).
     s.is_water = (s.scene_pos.y() < s.surface_point.y()) && (s.view_ray.y() < 0.0);

@@ -143,13 +143,14 @@ TEST_CASE("x_times_zero_folds_only_when_x_is_finite", "[fold]") {
 }
 
 TEST_CASE("terms_that_vanish_at_depth_fold_to_zero", "[fold]") {
+    constexpr Quantity kDepth{"test_depth", Type::Float, ""};
     Fixture f;
-    Expr depth = named(max(f.x - f.y, 0.0), "water_depth");
+    Expr depth = bind(kDepth, named(max(f.x - f.y, 0.0), "water_depth"));
     Expr k = uniform(f.g, {"k", Type::Float, {0.1}, 0.0, 10.0, "1/m", "", "test"});
     Expr trans = named(exp(-k * depth), "transmittance");
     FoldFacts facts;
     facts.parameter_ranges["k"] = {{make_interval(0.05, 2.0)}, facts.add_fact("k in [0.05, 2]", "")};
-    facts.named_ranges["water_depth"] = {{make_interval(400.0, 4000.0)}, facts.add_fact("depth 400..4000 m", "d.json:5:3")};
+    facts.quantity_ranges[kDepth] = {{make_interval(400.0, 4000.0)}, facts.add_fact("depth 400..4000 m", "d.json:5:3")};
     const FoldResult r = f.fold(f.tex + f.tex * trans, facts);
     CHECK(output(r).op == Op::Swizzle); // tex + tex * 0 -> tex
     bool found = false;
@@ -165,9 +166,9 @@ TEST_CASE("terms_that_vanish_at_depth_fold_to_zero", "[fold]") {
     CHECK(found);
     // Without the depth fact nothing vanishes.
     FoldFacts shallow = facts;
-    shallow.named_ranges.clear();
+    shallow.quantity_ranges.clear();
     Fixture g2;
-    Expr d2 = named(max(g2.x - g2.y, 0.0), "water_depth");
+    Expr d2 = bind(kDepth, named(max(g2.x - g2.y, 0.0), "water_depth"));
     Expr k2 = uniform(g2.g, {"k", Type::Float, {0.1}, 0.0, 10.0, "1/m", "", "test"});
     CHECK(output(g2.fold(g2.tex + g2.tex * named(exp(-k2 * d2), "transmittance"), shallow)).op == Op::Add);
 }

@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "watergen/plan/scene_pruning.h"
+#include "watergen/water/scene_quantities.h"
 
 using namespace watergen;
 
@@ -75,7 +76,7 @@ TEST_CASE("plans_of_the_example_scenes", "[pruning]") {
     std::vector<std::string> targets;
     for (Target t : ocean->targets) targets.push_back(to_string(t));
     CHECK(targets == std::vector<std::string>{"glsl", "hlsl", "spirv", "msl", "reflection"});
-    CHECK(ocean->facts.named_ranges.at("water_depth").bounds[0].lo == 400);
+    CHECK(ocean->facts.quantity_ranges.at(scene_quantity::water_depth).bounds[0].lo == 400);
     for (size_t i = 1; i < ocean->variants.size(); ++i) CHECK(ocean->variants[i - 1].key() < ocean->variants[i].key());
 
     auto lake = plan_scene(m, scene("mountain_lake"), ds);
@@ -89,7 +90,7 @@ TEST_CASE("plans_of_the_example_scenes", "[pruning]") {
     for (const Variant& v : harbour->variants)
         CHECK((v.choice("specular") == "none" && v.choice("reflection") == "planar_projective"));
     // Night: the sun travels upwards, 0.10..0.64 of its direction.
-    const Interval sun_y = harbour->facts.parameter_ranges.at("sun_direction").bounds[1];
+    const Interval sun_y = harbour->facts.quantity_ranges.at(scene_quantity::sun_direction).bounds[1];
     CHECK(sun_y.lo == Approx(0.104528).epsilon(1e-5));
     CHECK(sun_y.hi == Approx(0.642788).epsilon(1e-5));
 }

@@ -92,6 +92,11 @@ Expr texture(Graph& g, const TextureInput& t);
 // Gives the emitted temporary a readable name.
 Expr named(Expr e, const std::string& name);
 
+// Binds `e` to `quantity` (Graph::bind) and returns it. A type other than the quantity's, or
+// a quantity that stands for a parameter bound to anything but the uniform of that name,
+// records a diagnostic: a renamed uniform fails to compose instead of losing its facts.
+Expr bind(const Quantity& quantity, Expr e);
+
 // Generic node construction with type checking; used by everything below.
 Expr make(Op op, std::initializer_list<Expr> args);
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -100,6 +101,24 @@ struct Output {
     uint32_t node = 0;
 };
 
+// A quantity a client layer states facts about (a scene's water depth, its camera position),
+// named by a typed handle rather than by a node's display name: renaming a temporary or a
+// parameter cannot detach a fact from the node it bounds. Handles are declared once, as
+// constants, by the layer that knows the quantity; `id` and `parameter` are string literals.
+struct Quantity {
+    std::string_view id;        // identity, e.g. "water_depth"
+    Type type = Type::Float;
+    std::string_view parameter; // the uniform it stands for, "" for a computed value
+
+    friend bool operator==(const Quantity& a, const Quantity& b) { return a.id == b.id; }
+    friend bool operator<(const Quantity& a, const Quantity& b) { return a.id < b.id; }
+};
+
+struct QuantityBinding {
+    Quantity quantity;
+    uint32_t node = 0;
+};
+
 // Owns the DAG. Identical nodes (op, type, args, payload) are created once. Ill-typed
 // operations record a Diagnostic naming the current feature node and yield an Error node.
 class Graph {
@@ -135,6 +154,12 @@ public:
     // Ids reachable from the outputs, ascending (ascending id is a topological order).
     std::vector<uint32_t> live_nodes() const;
 
+    // Binds `node` to `quantity`: a side table, no part of node identity, so hash-consing
+    // keeps it; the fold pass carries it to the folded graph. A node may stand for several
+    // quantities and a quantity for several nodes. Checked binding: bind() in dsl.h.
+    void bind(const Quantity& quantity, uint32_t node);
+    const std::vector<QuantityBinding>& bindings() const { return bindings_; }
+
 private:
     struct KeyHash {
         size_t operator()(const std::string& s) const { return std::hash<std::string>{}(s); }
@@ -147,6 +172,7 @@ private:
     std::vector<Parameter> parameters_;
     std::vector<TextureInput> textures_;
     std::vector<Output> outputs_;
+    std::vector<QuantityBinding> bindings_;
 };
 
 } // namespace watergen

@@ -1,6 +1,7 @@
 // The fold pass: specialises a fragment graph to what a scene guarantees. Parameters the
-// scene fixes become constants; known ranges (of parameters, of inputs, of named quantities
-// such as water_depth) bound every node through interval arithmetic (interval.h); then
+// scene fixes become constants; known ranges (of parameters, of inputs, of bound quantities
+// such as the water depth, see Graph::bind) bound every node through interval arithmetic
+// (interval.h); then
 //   constant subexpressions       are evaluated (by the CPU evaluator, the same semantics),
 //   a value the bounds pin down   becomes a constant (saturate(depth * k) = 1 when depth >= 1/k),
 //   a value within +-vanish       becomes 0 (the one approximation; exp(-k d) for a deep scene),
@@ -11,12 +12,13 @@
 //   x * 0 = 0                     only when x is provably finite (inf * 0 and NaN * 0 are NaN),
 // and what no output reads any more is gone, because emission walks live nodes only. Every
 // rewrite is recorded with the facts its decision used, for `watergen explain`. The result is
-// compacted (live nodes only, renumbered), so variants that fold alike give the same graph.
+// compacted (live nodes only, renumbered), so variants that fold alike give the same graph;
+// bindings of live nodes move with them.
 //
-// Soundness: bounds hold on every pixel where the result is shown. Facts about the water
-// (water_depth) are only true on water pixels; the skeleton's final select(is_water, water,
-// scene) discards every water term elsewhere, so folding them by those facts cannot change the
-// image. Bool values are never turned into constants (the languages spell them differently);
+// Soundness: bounds hold on every pixel where the result is shown. A fact about a bound
+// quantity may hold only where the graph shows that quantity (a water depth on water pixels,
+// whose shader discards every water term elsewhere), so folding by it cannot change the image.
+// Bool values are never turned into constants (the languages spell them differently);
 // their decided value folds the select / and / or that reads them.
 #pragma once
 
@@ -52,7 +54,11 @@ struct FoldFacts {
     std::map<std::string, Fixed> fixed;             // parameter -> constant value
     std::map<std::string, Bounds> parameter_ranges; // parameter -> range (else its declared one)
     std::map<std::string, Bounds> input_ranges;     // varying or texture name -> range of what it yields
-    std::map<std::string, Bounds> named_ranges;     // node name (e.g. "water_depth") -> assumed range
+    // Facts about bound quantities (Graph::bind), whatever their nodes or parameters are
+    // called: a quantity bound to a uniform is fixed or ranged like that parameter (over the
+    // ones above); one bound to a computed node narrows that node's bounds.
+    std::map<Quantity, Fixed> fixed_quantities;
+    std::map<Quantity, Bounds> quantity_ranges;
     double vanish = 1e-7;                           // |value| <= vanish folds to 0
     // Narrow each rewrite's facts to those without which it would not happen (one extra
     // fold per fact in use): explain names causes, not every fact that touched a bound.
@@ -81,8 +87,21 @@ struct RemovedInput {
     FactSet facts;      // why it is no longer read
 };
 
+// Whether a quantity the facts speak of reached the graph.
+enum class QuantityReach {
+    Read,    // a live node is bound to it: its fact applied
+    Unread,  // bound, but this graph does not read it (a variant without that quantity)
+    Unbound, // no node is bound to it: the fact could not apply anywhere
+};
+
+struct QuantityUse {
+    Quantity quantity;
+    QuantityReach reach = QuantityReach::Unbound;
+};
+
 struct FoldReport {
     std::vector<FoldEvent> events;
+    std::vector<QuantityUse> quantities; // every quantity of fixed_quantities and quantity_ranges
     std::vector<RemovedTerm> removed;        // nodes live before, dead after, ascending id
     std::vector<RemovedInput> removed_parameters, removed_textures;
     std::map<std::string, std::vector<double>> folded_parameters; // fixed parameters that were read

@@ -24,11 +24,26 @@ struct Exclusion {
 // The first choice of `v` the scene rules out (axes in order), or nullopt when it reaches v.
 std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& v);
 
+// Material variants a scene does not reach for one reason.
+struct SkippedGroup {
+    Exclusion exclusion;
+    size_t variants = 0;
+    std::string text() const; // "precision=half: the scene targets precision full [open_ocean.json:11:3 /precision]"
+};
+
+// A skipped variant: its place in enumerate(material.space) order and its group.
+struct SkippedVariant {
+    uint32_t ordinal = 0;
+    uint32_t group = 0; // index into ScenePlan::skipped_groups
+};
+
 struct ScenePlan {
     SceneFacts scene;
-    FoldFacts facts;              // for fold_graph
+    FoldFacts facts;              // for fold_graph; scene facts about quantities keyed by handle
     std::vector<Variant> variants; // reached, sorted by key
     size_t skipped = 0;           // material variants the scene does not reach
+    std::vector<SkippedGroup> skipped_groups;     // one per reason, sorted by text()
+    std::vector<SkippedVariant> skipped_variants; // ascending ordinal
     std::vector<Target> targets;  // material targets its platforms need, all_targets() order
     std::map<std::string, std::vector<double>> fixed; // parameters that become constants
 };
