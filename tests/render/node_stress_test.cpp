@@ -47,13 +47,16 @@ std::vector<double> stress_tuples(const ProbeLayout& layout, uint64_t seed) {
             const int n = component_count(field.type);
             const uint32_t kind = t == 0 ? 2 : rng.next(n > 1 ? 4 : 3);
             double v[4];
-            for (int c = 0; c < n; ++c) v[c] = kind == 0 ? rng.pick(kExtreme) : rng.pick(kOrdinary);
+            for (int c = 0; c < n; ++c)
+                v[c] = kind == 0 ? rng.pick(kExtreme) : rng.pick(kOrdinary);
             if (kind == 1 && n == 1) v[0] = rng.pick(kExtreme) * (rng.next(2) ? 1.0 : 0.37);
             if (kind == 3) { // a direction of extreme length
                 double len2 = 0;
-                for (int c = 0; c < n; ++c) len2 += v[c] * v[c];
+                for (int c = 0; c < n; ++c)
+                    len2 += v[c] * v[c];
                 const double scale = rng.pick(kDirectionLength) / std::sqrt(len2);
-                for (int c = 0; c < n; ++c) v[c] *= scale;
+                for (int c = 0; c < n; ++c)
+                    v[c] *= scale;
             }
             tuples.insert(tuples.end(), v, v + n);
         }
@@ -65,8 +68,10 @@ std::vector<double> stress_tuples(const ProbeLayout& layout, uint64_t seed) {
 // as guards land.
 const std::map<std::string, std::string> kKnownGpuBreaks = {
     {"refraction.refracted_ray_point",
-     "view_ray of length >= ~1e19 (or a normal that long): refract()'s dot(N, I)^2 overflows float on the GPU, "
-     "k = 1 - eta^2 (1 - dot^2) is +inf, the direction is inf / NaN and 0 * inf = NaN even where dv = 0; the CPU "
+     "view_ray of length >= ~1e19 (or a normal that long): refract()'s dot(N, I)^2 overflows float "
+     "on the GPU, "
+     "k = 1 - eta^2 (1 - dot^2) is +inf, the direction is inf / NaN and 0 * inf = NaN even where "
+     "dv = 0; the CPU "
      "float evaluator rounds refract's result, not its intermediates, and stays finite"},
 };
 
@@ -76,7 +81,8 @@ std::pair<double, size_t> max_relative_gap(const ProbeRun& run) {
     std::pair<double, size_t> m{0.0, 0};
     for (size_t i = 0; i < run.gpu.size(); ++i)
         if (std::isfinite(run.gpu[i]) && std::isfinite(run.cpu_float[i])) {
-            const double gap = std::fabs(run.gpu[i] - run.cpu_float[i]) / std::max(1.0, std::fabs(run.cpu_float[i]));
+            const double gap = std::fabs(run.gpu[i] - run.cpu_float[i]) /
+                               std::max(1.0, std::fabs(run.cpu_float[i]));
             if (gap > m.first) m = {gap, i / run.layout.output_stride};
         }
     return m;
@@ -96,38 +102,48 @@ std::string components(const double* values, int n) {
 std::string describe_tuple(const ProbeRun& run, const std::vector<double>& in, size_t t) {
     std::string s;
     for (const auto& f : run.layout.inputs)
-        s += " " + f.name + "=" + components(&in[t * run.layout.input_stride + f.offset], component_count(f.type));
+        s += " " + f.name + "=" +
+             components(&in[t * run.layout.input_stride + f.offset], component_count(f.type));
     const int n = static_cast<int>(run.layout.output_stride);
-    return s + " -> gpu " + components(&run.gpu[t * n], n) + " cpu float " + components(&run.cpu_float[t * n], n);
+    return s + " -> gpu " + components(&run.gpu[t * n], n) + " cpu float " +
+           components(&run.cpu_float[t * n], n);
 }
 
 } // namespace
 
-TEST_CASE("every_node_survives_extreme_finite_inputs_on_the_gpu_where_the_cpu_float_does", "[probe][stress]") {
-    // max|gpu - cpu float| is over components finite on both sides; rel divides by max(1, |cpu float|).
-    std::printf("%-36s %4s %6s %8s %9s %21s %9s\n", "node", "lang", "tuples", "gpu n-f", "gpu-only", "max|gpu - cpu float|", "rel");
+TEST_CASE("every_node_survives_extreme_finite_inputs_on_the_gpu_where_the_cpu_float_does",
+          "[probe][stress]") {
+    // max|gpu - cpu float| is over components finite on both sides; rel divides it by
+    // max(1, |cpu float|). Run this binary to print the table.
+    std::printf("%-36s %4s %6s %8s %9s %21s %9s\n", "node", "lang", "tuples", "gpu n-f", "gpu-only",
+                "max|gpu - cpu float|", "rel");
     uint64_t seed = 1;
     for (const auto& node : node_catalog()) {
-      const Graph g = probe_graph(node);
-      const std::vector<double> in = stress_tuples(probe_layout(g), seed++);
-      for (Language lang : {Language::Glsl, Language::Hlsl}) {
-        INFO(node.name << " " << to_string(lang));
-        const ProbeRun run = test::checked_probe(g, lang, in, {}, probe_scene_textures());
-        const ProbeSummary s = summarize_probe(run);
-        const auto [rel, worst] = max_relative_gap(run);
-        std::printf("%-36s %s %6zu %8zu %9zu %21.3g %9.3g\n", node.name.c_str(), to_string(lang), run.tuples,
-                    s.gpu.non_finite(), s.gpu_only_non_finite, s.max_gpu_vs_cpu_float, rel);
-        if (s.gpu_only_non_finite > 0)
-            std::printf("    first gpu-only non-finite:%s\n", describe_tuple(run, in, s.first_gpu_only_tuple).c_str());
-        if (rel > 1e-3) std::printf("    largest rel gap:%s\n", describe_tuple(run, in, worst).c_str());
-        const auto known = kKnownGpuBreaks.find(node.name);
-        if (known == kKnownGpuBreaks.end()) {
-            INFO("first tuple:" << describe_tuple(run, in, s.first_gpu_only_tuple));
-            CHECK(s.gpu_only_non_finite == 0);
-        } else {
-            INFO("allow-listed (" << known->second << ") but every tuple is finite on the GPU now: remove the entry");
-            CHECK(s.gpu_only_non_finite > 0);
+        const Graph g = probe_graph(node);
+        const std::vector<double> in = stress_tuples(probe_layout(g), seed++);
+        for (Language lang : {Language::Glsl, Language::Hlsl}) {
+            INFO(node.name << " " << to_string(lang));
+            const ProbeRun run = test::checked_probe(g, lang, in, {}, probe_scene_textures());
+            const ProbeSummary s = summarize_probe(run);
+            const auto [rel, worst] = max_relative_gap(run);
+            std::printf("%-36s %s %6zu %8zu %9zu %21.3g %9.3g\n", node.name.c_str(),
+                        to_string(lang), run.tuples, s.gpu.non_finite(), s.gpu_only_non_finite,
+                        s.max_gpu_vs_cpu_float, rel);
+            if (s.gpu_only_non_finite > 0)
+                std::printf("    first gpu-only non-finite:%s\n",
+                            describe_tuple(run, in, s.first_gpu_only_tuple).c_str());
+            if (rel > 1e-3)
+                std::printf("    largest rel gap:%s\n", describe_tuple(run, in, worst).c_str());
+            const auto known = kKnownGpuBreaks.find(node.name);
+            if (known == kKnownGpuBreaks.end()) {
+                INFO("first tuple:" << describe_tuple(run, in, s.first_gpu_only_tuple));
+                CHECK(s.gpu_only_non_finite == 0);
+            } else {
+                INFO("allow-listed ("
+                     << known->second
+                     << ") but every tuple is finite on the GPU now: remove the entry");
+                CHECK(s.gpu_only_non_finite > 0);
+            }
         }
-      }
     }
 }

@@ -19,7 +19,8 @@ using namespace watergen;
 namespace {
 
 ProbeRun probe(const std::string& node, Language lang, const std::vector<double>& inputs) {
-    return test::checked_probe(probe_graph(*find_catalog_node(node)), lang, inputs, {}, probe_scene_textures());
+    return test::checked_probe(probe_graph(*find_catalog_node(node)), lang, inputs, {},
+                               probe_scene_textures());
 }
 
 // (x, z, t): a grid over |xz| <= 60 m (several 16.7 m tiles of the height map) and t <= 50 s,
@@ -29,7 +30,8 @@ std::vector<double> xz_t_tuples() {
     const int n = 24;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j)
-            v.insert(v.end(), {-60.0 + 120.0 * i / (n - 1) + 0.0137 * j, -60.0 + 120.0 * j / (n - 1) - 0.0071 * i,
+            v.insert(v.end(), {-60.0 + 120.0 * i / (n - 1) + 0.0137 * j,
+                               -60.0 + 120.0 * j / (n - 1) - 0.0071 * i,
                                50.0 * ((i * 7 + j * 3) % n) / (n - 1)});
     return v;
 }
@@ -55,7 +57,8 @@ std::vector<double> detail_quad_tuples() {
         const double far = (q % 16) / 15.0;
         const double step = 0.02 + 0.38 * far;
         const double px = -20.0 + 0.731 * q, pz = 3.0 + 60.0 * far;
-        const double base[3] = {0.05 * std::sin(q), 1.0, 0.05 * std::cos(q)}; // not unit: normalised by the node
+        const double base[3] = {0.05 * std::sin(q), 1.0,
+                                0.05 * std::cos(q)}; // not unit: normalised by the node
         for (int k = 0; k < 4; ++k) {
             const double x = px + step * (k & 1) + 0.1 * step * (k >> 1);
             const double z = pz + 1.7 * step * (k >> 1);
@@ -67,7 +70,8 @@ std::vector<double> detail_quad_tuples() {
 
 double max_gap(const std::vector<double>& a, const std::vector<double>& b) {
     double m = 0;
-    for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::fabs(a[i] - b[i]));
+    for (size_t i = 0; i < a.size(); ++i)
+        m = std::max(m, std::fabs(a[i] - b[i]));
     return m;
 }
 
@@ -83,8 +87,9 @@ TEST_CASE("every_catalog_node_that_reads_a_texture_is_probed_here", "[probe][tex
     std::set<std::string> textured;
     for (const auto& node : node_catalog())
         if (!probe_graph(node).textures().empty()) textured.insert(node.name);
-    CHECK(textured == std::set<std::string>{"normals.detail_map", "normals.heightmap_diff", "waves.heightmap.height",
-                                            "waves.heightmap_march", "waves.heightmap_march_converged"});
+    CHECK(textured == std::set<std::string>{"normals.detail_map", "normals.heightmap_diff",
+                                            "waves.heightmap.height", "waves.heightmap_march",
+                                            "waves.heightmap_march_converged"});
 }
 
 TEST_CASE("textured_nodes_agree_between_gpu_and_cpu_float", "[probe][textures]") {
@@ -106,8 +111,10 @@ TEST_CASE("textured_nodes_agree_between_gpu_and_cpu_float", "[probe][textures]")
             INFO(c.node << " " << to_string(lang));
             const ProbeRun run = probe(c.node, lang, c.tuples());
             const ProbeSummary s = summarize_probe(run);
-            std::printf("%-32s %s  %zu tuples  max|gpu - cpu float| %.3g  max|cpu float - cpu double| %.3g\n", c.node,
-                        to_string(lang), run.tuples, s.max_gpu_vs_cpu_float, max_gap(run.cpu_float, run.cpu_double));
+            std::printf("%-32s %s  %zu tuples  max|gpu - cpu float| %.3g  max|cpu float - cpu "
+                        "double| %.3g\n",
+                        c.node, to_string(lang), run.tuples, s.max_gpu_vs_cpu_float,
+                        max_gap(run.cpu_float, run.cpu_double));
             CHECK(s.gpu.non_finite() == 0);
             CHECK(s.cpu_float.non_finite() == 0);
             CHECK(max_gap(run.gpu, run.cpu_float) <= c.tolerance);
@@ -115,13 +122,15 @@ TEST_CASE("textured_nodes_agree_between_gpu_and_cpu_float", "[probe][textures]")
             const auto [lo, hi] = std::minmax_element(run.gpu.begin(), run.gpu.end());
             CHECK(*hi - *lo > 0.05);
             if (std::string(c.node) == "normals.detail_map") {
-                // ... and the detail map tilts the base normal (by up to ~0.5 where it has not faded).
+                // ... and the detail map tilts the base normal (by up to ~0.5 where it has not
+                // faded).
                 const std::vector<double> in = c.tuples();
                 double tilt = 0;
                 for (size_t t = 0; t < run.tuples; ++t) {
                     const double* b = &in[t * 7];
                     const double len = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-                    for (int k = 0; k < 3; ++k) tilt = std::max(tilt, std::fabs(run.gpu[t * 3 + k] - b[k] / len));
+                    for (int k = 0; k < 3; ++k)
+                        tilt = std::max(tilt, std::fabs(run.gpu[t * 3 + k] - b[k] / len));
                 }
                 CHECK(tilt > 0.2);
             }
@@ -137,8 +146,8 @@ TEST_CASE("probe_derivatives_are_fine_differences_over_quads_of_tuples", "[probe
     g.set_output("dy", ddy(p.y() * 3.0).id());
     const std::vector<double> in = {1, 2, 4, 3, 2, 7, 5, 11, -3, 1, 6, -2, 8, 8, 2, -4};
     // Per tuple: dx.x, dx.y, dy.
-    const std::vector<double> expected = {15, 10,  15, 15, 10,  24, 21,  41,  15, 21,  41,  24,
-                                          27, -9,  21, 27, -9,  -6, -60, -72, 21, -60, -72, -6};
+    const std::vector<double> expected = {15, 10, 15, 15, 10, 24, 21,  41,  15, 21,  41,  24,
+                                          27, -9, 21, 27, -9, -6, -60, -72, 21, -60, -72, -6};
     for (Language lang : {Language::Glsl, Language::Hlsl}) {
         INFO(to_string(lang));
         const ProbeRun run = test::checked_probe(g, lang, in);
@@ -146,12 +155,15 @@ TEST_CASE("probe_derivatives_are_fine_differences_over_quads_of_tuples", "[probe
         CHECK(run.cpu_float == expected);
     }
     // An incomplete quad has no well-defined neighbours on the GPU: refused.
-    const ProbeRun partial = run_probe(test::shared_runner(), g, Language::Glsl, std::vector<double>(in.begin(), in.end() - 2));
-    CHECK(partial.error == "the graph takes ddx / ddy over quads of tuples 4k..4k+3; 7 tuples are not whole quads");
+    const ProbeRun partial = run_probe(test::shared_runner(), g, Language::Glsl,
+                                       std::vector<double>(in.begin(), in.end() - 2));
+    CHECK(partial.error ==
+          "the graph takes ddx / ddy over quads of tuples 4k..4k+3; 7 tuples are not whole quads");
 }
 
 TEST_CASE("a_probe_without_the_texture_its_node_reads_fails_naming_it", "[probe][textures]") {
-    const ProbeRun run = run_probe(test::shared_runner(), probe_graph(*find_catalog_node("waves.heightmap.height")),
-                                   Language::Glsl, {1.0, 2.0, 0.0});
+    const ProbeRun run =
+        run_probe(test::shared_runner(), probe_graph(*find_catalog_node("waves.heightmap.height")),
+                  Language::Glsl, {1.0, 2.0, 0.0});
     CHECK(run.error == "the graph reads texture 'height_map'; none supplied");
 }
