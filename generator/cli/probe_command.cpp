@@ -87,6 +87,13 @@ Runner add_probe_command(CLI::App& app, const Common& common) {
             std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
             return kUsage;
         }
+        if (const size_t rows = inputs->size() / layout.input_stride; uses_derivatives(g) && rows % 4 != 0) {
+            std::fprintf(stderr,
+                         "watergen: error: %s: %s takes ddx / ddy over 2x2 quads of data rows 4k..4k+3; %zu rows are "
+                         "not whole quads\n",
+                         o->in.c_str(), o->node.c_str(), rows);
+            return kUsage;
+        }
         if (auto e = check_probe_parameters(g, params, o->allow_out_of_range)) {
             std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
             return kUsage;
@@ -94,7 +101,8 @@ Runner add_probe_command(CLI::App& app, const Common& common) {
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
-        const ProbeRun run = run_probe(*runner, g, o->language == "hlsl" ? Language::Hlsl : Language::Glsl, *inputs, params);
+        const ProbeRun run = run_probe(*runner, g, o->language == "hlsl" ? Language::Hlsl : Language::Glsl, *inputs, params,
+                                       probe_scene_textures());
         print_diagnostics(run.diagnostics, common);
         if (!run.ok()) {
             if (!run.error.empty()) std::fprintf(stderr, "watergen: error: %s\n", run.error.c_str());
@@ -108,6 +116,11 @@ Runner add_probe_command(CLI::App& app, const Common& common) {
         std::printf("%s (%s path) on %s: %zu tuples, dispatch %.2f ms (pipeline %.2f ms, Mesa shader cache %s)\n",
                     o->node.c_str(), o->language.c_str(), runner->device_info().name.c_str(), run.tuples,
                     run.dispatch_ms, run.pipeline_ms, cache.c_str());
+        for (const auto& t : g.textures()) {
+            const TextureData& data = probe_scene_textures().at(t.name);
+            std::printf("  texture %s: %ux%u%s from the synthetic scene, linear, clamp to edge\n", t.name.c_str(), data.width,
+                        data.height, data.layers == 6 ? " x 6 faces" : "");
+        }
         const ProbeSummary summary = summarize_probe(run);
         print_summary(summary);
         std::printf("  wrote %s\n", o->out.c_str());

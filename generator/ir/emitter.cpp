@@ -46,7 +46,10 @@ std::string strip_outer(const std::string& s) {
 
 class FragmentWriter {
 public:
-    FragmentWriter(const Graph& g, const GlslSyntax& syntax) : g_(g), syntax_(syntax) {}
+    // `compute`: written for a compute stage (the probe), which has neither implicit-LOD sampling
+    // nor derivatives: samples read level 0, ddx / ddy become quad differences (emit_probe).
+    FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool compute = false)
+        : g_(g), syntax_(syntax), compute_(compute) {}
 
     // Lines of the body; results[i] spells output i.
     std::vector<Line> body(std::vector<std::string>& results, std::set<Op>& used_ops) {
@@ -94,8 +97,11 @@ private:
     // a texture() argument leaves OpSampledImage in another block than its use (spirv-val
     // rejects it). Selects, their operands and sample coordinates are therefore temporaries:
     // every select becomes OpSelect and every sample sees a finished coordinate.
+    // In a compute stage a quad difference synchronises the workgroup, so it must run in main's
+    // straight-line code, never inside a short-circuit operand.
     bool must_be_named(uint32_t id, uint32_t user) const {
-        if (g_.node(id).op == Op::Select) return true;
+        const Op own = g_.node(id).op;
+        if (own == Op::Select || (compute_ && (own == Op::Ddx || own == Op::Ddy))) return true;
         if (user == UINT32_MAX) return false;
         const Op op = g_.node(user).op;
         return op == Op::Select || op == Op::Sample || op == Op::SampleLevel;
@@ -140,6 +146,16 @@ private:
         case Op::Splat: return syntax_.splat(n.type, strip_outer(a[0]));
         default: break;
         }
+        if (compute_ && (n.op == Op::Ddx || n.op == Op::Ddy))
+            return fmt::format("probe_quad_difference({}, probe_lane, {}u)", strip_outer(a[0]), n.op == Op::Ddx ? 1 : 2);
+        if (compute_ && n.op == Op::Sample) {
+            // One mip level and the same filter for magnification and minification: level 0 is
+            // what the fragment stage's implicit LOD samples too.
+            a.push_back(syntax_.literal(0.0));
+            types.push_back(Type::Float);
+            for (auto& s : a) s = strip_outer(s);
+            return syntax_.call(Op::SampleLevel, n.type, a, types);
+        }
         if (is_infix(n.op)) return "(" + a[0] + " " + op_name(n.op) + " " + a[1] + ")";
         for (auto& s : a) s = strip_outer(s);
         return syntax_.call(n.op, n.type, a, types);
@@ -147,6 +163,7 @@ private:
 
     const Graph& g_;
     const GlslSyntax& syntax_;
+    bool compute_ = false;
     std::map<uint32_t, std::string> temp_;
 };
 
@@ -262,11 +279,10 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
     out.language = language;
     out.stage = ShaderStage::Compute;
     out.file_name = file_name;
+    std::set<Type> differenced; // types of ddx / ddy arguments
     for (uint32_t id : g.live_nodes()) {
-        const Op op = g.node(id).op;
-        if (op == Op::Sample || op == Op::Ddx || op == Op::Ddy)
-            diagnostics.push_back({Severity::Error, file_name, 0, 0, g.node(id).origin,
-                                   std::string(op_name(op)) + " needs a fragment stage; a probe cannot run it"});
+        const Node& n = g.node(id);
+        if (n.op == Op::Ddx || n.op == Op::Ddy) differenced.insert(n.type);
     }
     for (const auto& o : g.outputs())
         if (!is_float_numeric(g.node(o.node).type))
@@ -278,11 +294,23 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
     const GlslSyntax& syntax = syntax_for(language);
     out.interface = interface_of(g, diagnostics);
     out.interface.varyings.clear(); // probe inputs come from the buffer, not the rasteriser
+    if (!out.interface.textures.empty() && out.interface.textures.back().binding >= kProbeInputBinding) {
+        diagnostics.push_back({Severity::Error, file_name, 0, 0, "",
+                               fmt::format("probe graph reads {} textures; bindings {}..{} hold at most {}",
+                                           out.interface.textures.size(), kFirstTextureBinding,
+                                           kProbeInputBinding - 1, kProbeInputBinding - kFirstTextureBinding)});
+        return out;
+    }
     const ProbeLayout layout = probe_layout(g);
     std::vector<std::string> results;
     std::set<Op> used_ops;
-    FragmentWriter writer(g, syntax);
+    FragmentWriter writer(g, syntax, true);
     std::vector<Line> body = writer.body(results, used_ops);
+    std::vector<std::string> prelude = syntax.prelude(used_ops);
+    if (!differenced.empty()) {
+        const std::vector<std::string> helpers = syntax.quad_difference_helpers(differenced);
+        prelude.insert(prelude.end(), helpers.begin(), helpers.end());
+    }
 
     // Inputs: each varying becomes a local read from the tuple; outputs are written in order.
     std::vector<Line> reads, writes;
@@ -304,7 +332,7 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
     fill(out, template_text(language == Language::Glsl ? "glsl/probe.comp.glsl" : "hlsl/probe.comp.hlsl"),
          {{"stamp", {{stamp_text(variant_key), ""}}},
           {"declarations", as_lines(syntax.declarations(out.interface))},
-          {"prelude", as_lines(syntax.prelude(used_ops))},
+          {"prelude", as_lines(prelude)},
           {"input_stride", {{std::to_string(layout.input_stride), ""}}},
           {"output_stride", {{std::to_string(layout.output_stride), ""}}},
           {"reads", reads},

@@ -86,4 +86,24 @@ std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) con
 
 std::vector<std::string> GlslSyntax::prelude(const std::set<Op>&) const { return {}; }
 
+std::vector<std::string> GlslSyntax::quad_difference_helpers(const std::set<Type>& types) const {
+    std::vector<std::string> lines = {
+        "// ddx / ddy of a fragment quad: tuples 4k..4k+3 are the pixels (0,0), (1,0), (0,1), (1,1), as",
+        "// the CPU evaluator's lanes; axis 1 = x, 2 = y. Each lane's value goes through shared memory.",
+    };
+    for (Type t : types) {
+        const std::string ty = type(t), array = "probe_quad_" + ty;
+        lines.push_back(fmt::format("{} {} {}[{}];", workgroup_shared(), ty, array, kProbeWorkgroupSize));
+        lines.push_back(fmt::format("{} probe_quad_difference({} v, uint lane, uint axis) {{", ty, ty));
+        lines.push_back(fmt::format("    {}[lane] = v;", array));
+        lines.push_back(fmt::format("    {};", workgroup_barrier()));
+        lines.push_back("    uint lo = lane & ~axis;");
+        lines.push_back(fmt::format("    {} d = {}[lo | axis] - {}[lo];", ty, array, array));
+        lines.push_back(fmt::format("    {}; // every lane has read before the next call writes", workgroup_barrier()));
+        lines.push_back("    return d;");
+        lines.push_back("}");
+    }
+    return lines;
+}
+
 } // namespace watergen

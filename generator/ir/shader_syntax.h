@@ -27,6 +27,11 @@ public:
     virtual std::vector<std::string> prelude(const std::set<Op>& used) const;
     virtual std::string entry_inputs(const ShaderInterface&) const { return ""; }
     virtual std::string comment(const std::string& text) const { return "// " + text; }
+    // Probe (compute) stand-in for ddx / ddy, which only fragment stages have: functions
+    // probe_quad_difference(v, lane, axis) for each type in `types` (see emit_probe).
+    std::vector<std::string> quad_difference_helpers(const std::set<Type>& types) const;
+    virtual std::string workgroup_shared() const { return "shared"; }
+    virtual std::string workgroup_barrier() const { return "barrier()"; }
 };
 
 class HlslSyntax final : public GlslSyntax {
@@ -42,6 +47,8 @@ public:
     std::vector<std::string> declarations(const ShaderInterface& in) const override;
     std::vector<std::string> prelude(const std::set<Op>& used) const override;
     std::string entry_inputs(const ShaderInterface& in) const override;
+    std::string workgroup_shared() const override { return "groupshared"; }
+    std::string workgroup_barrier() const override { return "GroupMemoryBarrierWithGroupSync()"; }
 };
 
 } // namespace watergen

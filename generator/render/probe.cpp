@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "watergen/render/synthetic_scene.h"
 #include "watergen/toolchain/toolchain.h"
 
 namespace watergen {
@@ -15,51 +16,37 @@ std::string binding_name(const Reflection& r, uint32_t binding) {
     return "";
 }
 
-} // namespace
+// The textures the shader reads, taken from `supplied`; an error names the first one missing.
+bool pick_textures(const ShaderInterface& interface, const std::map<std::string, TextureData>& supplied,
+                   std::map<std::string, TextureData>& picked, std::string& error) {
+    for (const auto& t : interface.textures) {
+        auto it = supplied.find(t.name);
+        if (it == supplied.end()) {
+            error = "the graph reads texture '" + t.name + "'; none supplied";
+            return false;
+        }
+        picked.emplace(t.name, it->second);
+    }
+    return true;
+}
 
-ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, const std::vector<double>& inputs,
-                   const std::map<std::string, std::vector<double>>& uniforms) {
-    ProbeRun run;
-    run.diagnostics = g.diagnostics();
-    if (has_errors(run.diagnostics)) return run;
-    run.layout = probe_layout(g);
+// Runs the compiled probe over every tuple, in dispatches of at most 65535 workgroups.
+void run_on_gpu(VulkanRunner& runner, const ToolchainOutputs& built, ComputeJob& job, const std::vector<double>& inputs,
+                ProbeRun& run) {
     const uint32_t in_stride = run.layout.input_stride, out_stride = run.layout.output_stride;
-    if (in_stride == 0 || inputs.size() % in_stride != 0) {
-        run.error = "input holds " + std::to_string(inputs.size()) + " values, not a whole number of " +
-                    std::to_string(in_stride) + "-value tuples";
-        return run;
-    }
-    run.tuples = inputs.size() / in_stride;
-    if (run.tuples == 0) {
-        run.error = "no input tuples";
-        return run;
-    }
-
-    const std::string file = std::string("probe.") + file_extension(language, ShaderStage::Compute);
-    const EmittedShader shader = emit_probe(g, language, file, "probe", run.diagnostics);
-    if (has_errors(run.diagnostics)) return run;
-    const ToolchainOutputs built = run_toolchain(
-        {language == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl, ShaderStage::Compute, shader.source, file, "main"});
-    Diagnostics ds;
-    for (const auto& d : built.diagnostics)
-        if (d.severity != Severity::Note) ds.push_back(d); // e.g. "no compute in GLSL 330": expected here
-    attribute_to_nodes(shader, ds);
-    run.diagnostics.insert(run.diagnostics.end(), ds.begin(), ds.end());
-    if (!built.ok()) return run;
-
-    ComputeJob job;
     job.spirv = built.spirv_optimized;
     job.reflection = built.reflection;
-    job.uniforms = pack_uniforms(shader.interface.uniforms, shader.interface.parameters, uniforms);
     const std::string in_name = binding_name(built.reflection, kProbeInputBinding);
     const std::string out_name = binding_name(built.reflection, kProbeOutputBinding);
     runner.clear_validation_messages();
     run.gpu.resize(run.tuples * out_stride);
-    // Vulkan guarantees 65535 workgroups per dispatch dimension; larger inputs run in chunks.
+    // Vulkan guarantees 65535 workgroups per dispatch dimension; larger inputs run in chunks
+    // (of whole quads, so ddx / ddy pair the same tuples as on the CPU).
     const size_t chunk_tuples = size_t{65535} * kProbeWorkgroupSize;
     for (size_t first = 0; first < run.tuples; first += chunk_tuples) {
         const size_t count = std::min(chunk_tuples, run.tuples - first);
-        // Pad to whole workgroups by repeating the chunk's last tuple; padded results are dropped.
+        // Pad to whole workgroups by repeating the chunk's last tuple; padded results are dropped
+        // (and padded quads are whole quads of their own: the tuples are whole quads).
         const size_t groups = (count + kProbeWorkgroupSize - 1) / kProbeWorkgroupSize;
         const size_t padded = groups * kProbeWorkgroupSize;
         std::vector<float> in_floats(padded * in_stride);
@@ -76,7 +63,7 @@ ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, cons
         if (!result.ok) {
             run.validation_messages = runner.validation_messages();
             run.error = result.error;
-            return run;
+            return;
         }
         run.pipeline_ms += result.pipeline_ms;
         run.dispatch_ms += result.dispatch_ms;
@@ -88,9 +75,16 @@ ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, cons
         }
     }
     run.validation_messages = runner.validation_messages();
+}
 
+// The same tuples, uniforms and textures on the CPU evaluator in double, float and half.
+void run_on_cpu(const Graph& g, const std::vector<double>& inputs, const std::map<std::string, std::vector<double>>& uniforms,
+                const std::map<std::string, TextureData>& textures, ProbeRun& run) {
+    const uint32_t in_stride = run.layout.input_stride, out_stride = run.layout.output_stride;
     EvalInputs eval;
     eval.uniforms = uniforms;
+    eval.textures = texture_views(textures);
+    eval.filter = Filter::Linear;
     eval.lanes = run.tuples;
     for (const auto& field : run.layout.inputs) {
         const int n = component_count(field.type);
@@ -106,14 +100,74 @@ ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, cons
             const EvalResult r = evaluate(g, field.name, eval, precision);
             if (!r.ok()) {
                 run.error = "CPU evaluator: " + r.error;
-                return run;
+                return;
             }
             for (size_t t = 0; t < run.tuples; ++t)
                 for (int c = 0; c < r.components; ++c)
                     (*target)[t * out_stride + field.offset + static_cast<uint32_t>(c)] = r.values[t * r.components + c];
         }
     }
+}
+
+} // namespace
+
+ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, const std::vector<double>& inputs,
+                   const std::map<std::string, std::vector<double>>& uniforms,
+                   const std::map<std::string, TextureData>& textures) {
+    ProbeRun run;
+    run.diagnostics = g.diagnostics();
+    if (has_errors(run.diagnostics)) return run;
+    run.layout = probe_layout(g);
+    const uint32_t in_stride = run.layout.input_stride;
+    if (in_stride == 0 || inputs.size() % in_stride != 0) {
+        run.error = "input holds " + std::to_string(inputs.size()) + " values, not a whole number of " +
+                    std::to_string(in_stride) + "-value tuples";
+        return run;
+    }
+    run.tuples = inputs.size() / in_stride;
+    if (run.tuples == 0) {
+        run.error = "no input tuples";
+        return run;
+    }
+
+    if (uses_derivatives(g) && run.tuples % 4 != 0) {
+        run.error = "the graph takes ddx / ddy over quads of tuples 4k..4k+3; " + std::to_string(run.tuples) +
+                    " tuples are not whole quads";
+        return run;
+    }
+
+    const std::string file = std::string("probe.") + file_extension(language, ShaderStage::Compute);
+    const EmittedShader shader = emit_probe(g, language, file, "probe", run.diagnostics);
+    if (has_errors(run.diagnostics)) return run;
+    ComputeJob job;
+    if (!pick_textures(shader.interface, textures, job.textures, run.error)) return run;
+    const ToolchainOutputs built = run_toolchain(
+        {language == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl, ShaderStage::Compute, shader.source, file, "main"});
+    Diagnostics ds;
+    for (const auto& d : built.diagnostics)
+        if (d.severity != Severity::Note) ds.push_back(d); // e.g. "no compute in GLSL 330": expected here
+    attribute_to_nodes(shader, ds);
+    run.diagnostics.insert(run.diagnostics.end(), ds.begin(), ds.end());
+    if (!built.ok()) return run;
+
+    job.uniforms = pack_uniforms(shader.interface.uniforms, shader.interface.parameters, uniforms);
+    run_on_gpu(runner, built, job, inputs, run);
+    if (!run.error.empty()) return run;
+    run_on_cpu(g, inputs, uniforms, job.textures, run);
     return run;
+}
+
+bool uses_derivatives(const Graph& g) {
+    for (uint32_t id : g.live_nodes())
+        if (g.node(id).op == Op::Ddx || g.node(id).op == Op::Ddy) return true;
+    return false;
+}
+
+const std::map<std::string, TextureData>& probe_scene_textures() {
+    // Only the scene's own images depend on the size; the node textures (height map, normal
+    // map, sky cube, ...) are made at their fixed sizes.
+    static const std::map<std::string, TextureData> textures = make_synthetic_scene(64, 64).textures;
+    return textures;
 }
 
 } // namespace watergen

@@ -74,14 +74,20 @@ dvec3 shade(const Hit& hit, const dvec3& p) {
 
 } // namespace
 
-EvalInputs SyntheticScene::eval_inputs() const {
-    EvalInputs in;
-    in.uniforms = uniforms;
+std::map<std::string, TextureView> texture_views(const std::map<std::string, TextureData>& textures) {
+    std::map<std::string, TextureView> views;
     for (const auto& [name, t] : textures) {
         TextureView view{t.width, t.height, t.rgba.data()};
         view.layers = t.layers;
-        in.textures[name] = view;
+        views[name] = view;
     }
+    return views;
+}
+
+EvalInputs SyntheticScene::eval_inputs() const {
+    EvalInputs in;
+    in.uniforms = uniforms;
+    in.textures = texture_views(textures);
     in.filter = Filter::Linear;
     return in;
 }

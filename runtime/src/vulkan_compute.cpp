@@ -1,6 +1,6 @@
 // Compute jobs, the numeric harness: node functions compiled into a compute shader read
-// input tuples from storage buffers and write results to others; every storage buffer
-// is read back after one dispatch.
+// input tuples from storage buffers (and textures, bound as for a render job) and write
+// results to others; every storage buffer is read back after one dispatch.
 #include "vulkan_internal.h"
 
 #include <fmt/format.h>
@@ -17,6 +17,8 @@ void compute_job(Context& ctx, const ComputeJob& job, ComputeResult& result) {
 
     DescriptorInputs inputs;
     inputs.uniforms = &job.uniforms;
+    inputs.textures = &job.textures;
+    inputs.filter = job.filter;
     inputs.storage = &job.buffers;
     inputs.storage_sizes = &job.output_sizes;
     BoundDescriptors descriptors =

@@ -12,6 +12,7 @@ layout(set = 0, binding = 9, std430) writeonly buffer ProbeOutputs { float probe
 void main() {
     uint in_base = gl_GlobalInvocationID.x * {{input_stride}}u;
     uint out_base = gl_GlobalInvocationID.x * {{output_stride}}u;
+    uint probe_lane = gl_LocalInvocationIndex; // quad differences (ddx, ddy) pair lanes 4k..4k+3
     {{reads}}
 
     {{body}}

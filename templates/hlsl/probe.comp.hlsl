@@ -7,7 +7,8 @@
 
 {{prelude}}
 [numthreads(64, 1, 1)]
-void main(uint3 invocation : SV_DispatchThreadID) {
+// probe_lane: quad differences (ddx, ddy) pair lanes 4k..4k+3.
+void main(uint3 invocation : SV_DispatchThreadID, uint probe_lane : SV_GroupIndex) {
     uint in_base = invocation.x * {{input_stride}}u;
     uint out_base = invocation.x * {{output_stride}}u;
     {{reads}}

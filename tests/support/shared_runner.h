@@ -20,8 +20,9 @@ inline VulkanRunner& shared_runner() {
 
 // run_probe on the shared runner, failing the test on diagnostics, errors or validation messages.
 inline ProbeRun checked_probe(const Graph& g, Language lang, const std::vector<double>& inputs,
-                              const std::map<std::string, std::vector<double>>& uniforms = {}) {
-    ProbeRun run = run_probe(shared_runner(), g, lang, inputs, uniforms);
+                              const std::map<std::string, std::vector<double>>& uniforms = {},
+                              const std::map<std::string, TextureData>& textures = {}) {
+    ProbeRun run = run_probe(shared_runner(), g, lang, inputs, uniforms, textures);
     for (const auto& d : run.diagnostics) INFO(format_diagnostic(d));
     INFO(run.error);
     REQUIRE(run.ok());

@@ -116,8 +116,7 @@ void append_normals_nodes(std::vector<CatalogNode>& list) {
              return constant(g, {0.0, 1.0, 0.0});
          }});
     list.push_back({"normals.heightmap_diff",
-                    "central-difference normal of the height map at xz; reads texture height_map "
-                    "(CPU evaluator only)",
+                    "central-difference normal of the height map at xz; reads texture height_map",
                     {{"xz", Type::Vec2}, {"time", Type::Float}},
                     [](Graph& g, const std::vector<Expr>& in) {
                         OriginScope scope(g, "normals.heightmap_diff");
@@ -132,8 +131,8 @@ void append_normals_nodes(std::vector<CatalogNode>& list) {
                     }});
     list.push_back({"normals.detail_map",
                     "base normal perturbed by the detail normal map at position; needs ddx/ddy "
-                    "over 2x2 quads and "
-                    "texture detail_normal_map (CPU evaluator only)",
+                    "over 2x2 quads (probe rows 4k..4k+3) and "
+                    "texture detail_normal_map",
                     {{"base", Type::Vec3}, {"position", Type::Vec3}, {"time", Type::Float}},
                     [](Graph& g, const std::vector<Expr>& in) {
                         OriginScope scope(g, "normals.detail_map");

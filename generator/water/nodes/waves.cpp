@@ -551,7 +551,7 @@ void append_waves_nodes(std::vector<CatalogNode>& list) {
             {"waves." + name,
              std::string(
                  "surface point and ray distance (vec4) where the view ray meets the water") +
-                 (textured ? "; reads texture height_map (CPU evaluator only)" : ""),
+                 (textured ? "; reads texture height_map" : ""),
              {{"eye", Type::Vec3},
               {"view_ray", Type::Vec3},
               {"level", Type::Float},
@@ -584,7 +584,7 @@ void append_waves_nodes(std::vector<CatalogNode>& list) {
           std::tuple{"waves.gerstner.normal_gpugems", Fn(&gerstner_normal_gpugems),
                      "GPU Gems' closed-form normal at grid point xz"},
           std::tuple{"waves.heightmap.height", heightmap,
-                     "height-map height at xz, m; reads texture height_map (CPU evaluator only)"}})
+                     "height-map height at xz, m; reads texture height_map"}})
         list.push_back(
             {name,
              what,

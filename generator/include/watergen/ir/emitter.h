@@ -60,7 +60,11 @@ EmittedShader emit_fullscreen_vertex(Language language, const std::string& file_
 // input tuples. Each Varying of `g` (in creation order) is an input read from the storage buffer probe_in
 // (binding kProbeInputBinding) and each output is written to probe_out (kProbeOutputBinding),
 // tuple-major, floats only. One invocation per tuple, 64 per workgroup; the caller pads the
-// tuple count to a multiple of 64.
+// tuple count to a multiple of 64. Textures and linear_clamp are bound as in the fragment stage
+// (at most kProbeInputBinding - kFirstTextureBinding textures). A compute stage has no implicit
+// LOD and no derivatives: samples read level 0 (what a one-level texture gives a fragment too),
+// and ddx / ddy are fine differences over quads of tuples 4k..4k+3 = pixels (0,0), (1,0), (0,1),
+// (1,1) of a 2x2 quad, exchanged through workgroup memory: the CPU evaluator's lane quads.
 constexpr uint32_t kProbeInputBinding = 8;
 constexpr uint32_t kProbeOutputBinding = 9;
 constexpr uint32_t kProbeWorkgroupSize = 64;

@@ -25,9 +25,20 @@ struct ProbeRun {
 };
 
 // `inputs` holds tuples x layout.input_stride values, tuple-major (cast to float for the GPU).
-// `uniforms` override parameter defaults on both sides. Cost: one toolchain run, one pipeline
-// (JIT) and one dispatch, plus three CPU evaluations.
+// `uniforms` override parameter defaults on both sides; `textures` (by TextureInput name) feed
+// both sides, linearly filtered, clamped to edge: every texture the graph reads must be there.
+// Derivatives pair tuples 4k..4k+3 as a 2x2 quad (emit_probe): a graph that uses them takes
+// whole quads (a tuple count that is a multiple of 4). Cost: one toolchain run, one
+// pipeline (JIT) and one dispatch, plus three CPU evaluations.
 ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, const std::vector<double>& inputs,
-                   const std::map<std::string, std::vector<double>>& uniforms = {});
+                   const std::map<std::string, std::vector<double>>& uniforms = {},
+                   const std::map<std::string, TextureData>& textures = {});
+
+// Whether the graph's live nodes take ddx / ddy (then the probe needs whole quads of tuples).
+bool uses_derivatives(const Graph& g);
+
+// The synthetic scene's textures (make_synthetic_scene(64, 64).textures: every TextureInput the
+// catalog nodes read), made once: what `watergen probe` and the stress tests supply.
+const std::map<std::string, TextureData>& probe_scene_textures();
 
 } // namespace watergen

@@ -33,6 +33,9 @@ struct SyntheticScene {
     EvalInputs eval_inputs() const;
 };
 
+// CPU evaluator views of runner textures (the map must outlive the views).
+std::map<std::string, TextureView> texture_views(const std::map<std::string, TextureData>& textures);
+
 // Deterministic: the same size always yields the same bytes.
 SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height);
 

@@ -113,6 +113,9 @@ struct ComputeJob {
     std::map<std::string, uint64_t> output_sizes;
     // Bytes of the UniformBuffer binding, if the shader has one.
     std::vector<uint8_t> uniforms;
+    // SampledImage / CombinedImageSampler bindings and their sampler, as in RenderJob.
+    std::map<std::string, TextureData> textures;
+    TextureFilter filter = TextureFilter::Linear;
     uint32_t group_count_x = 1;
     uint32_t group_count_y = 1;
     uint32_t group_count_z = 1;
