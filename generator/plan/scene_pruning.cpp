@@ -10,11 +10,12 @@
 #include "watergen/ir/text.h"
 #include "watergen/water/scene_quantities.h"
 
+#include "scene_bounds.h"
+
 namespace watergen {
 
 namespace {
 
-constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 
 // A scene fact that rules out choices of one axis. `rules_out` returns the reason, or "" when
 // the scene can use the choice.
@@ -58,12 +59,6 @@ const std::vector<SceneRule>& scene_rules() {
     return rules;
 }
 
-std::string spell(const std::vector<double>& v) {
-    if (v.size() == 1) return fmt::format("{:g}", v[0]);
-    std::string s = "(";
-    for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fmt::format("{:g}", v[i]);
-    return s + ")";
-}
 
 // Sorts the material's variants into those the scene reaches and those it skips, keeping
 // each skip's reason (grouped) for explain.
@@ -137,82 +132,12 @@ std::optional<ScenePlan> plan_scene(const Material& m, const SceneFacts& scene, 
     ScenePlan plan;
     plan.scene = scene;
     plan.facts = base_facts(m);
-    FoldFacts& f = plan.facts;
     const SceneWhere& w = scene.where;
-    std::vector<std::string> read;
-    for (const auto& [n, p] : m.declared) read.push_back(n);
-
-    // Parameters the scene fixes by name.
-    for (const auto& [name, value] : scene.fixed) {
-        const std::string key = "fixed/" + name;
-        auto it = m.declared.find(name);
-        if (it == m.declared.end())
-            return fail(w.error(key, "unknown parameter '" + name + "'; the nodes of material '" + m.name + "' read " + join(read)));
-        const size_t n = static_cast<size_t>(component_count(it->second.type));
-        if (value.size() != n)
-            return fail(w.error(key, fmt::format("parameter '{}' is a {}: expected {} number{}, got {}", name,
-                                                 type_name(it->second.type), n, n == 1 ? "" : "s", value.size())));
-        const auto [lo, hi] = m.range(name);
-        for (double x : value)
-            if (x < lo || x > hi)
-                return fail(w.error(key, fmt::format("{} = {:g} is out of range; expected a value in [{:g}, {:g}] {}", name, x,
-                                                     lo, hi, it->second.unit)));
-        plan.fixed[name] = value;
-        f.fixed[name] = {value, f.add_fact(name + " = " + spell(value) + " (scene " + scene.name + ")", w.of(key))};
-    }
-    // Scene facts about parameters go through their handles (scene_quantities.h): the fold
-    // applies them to whatever uniform the handle is bound to.
-    const std::string time = std::string(scene_quantity::time.parameter);
-    const std::string eye_position = std::string(scene_quantity::eye_position.parameter);
-    const std::string water_level = std::string(scene_quantity::water_level.parameter);
-    const std::string sun_direction = std::string(scene_quantity::sun_direction.parameter);
-    // Static waves: time stands still.
-    if (m.declared.count(time)) {
-        if (!scene.waves_animated && !scene.fixed.count(time)) {
-            plan.fixed[time] = {0.0};
-            f.fixed_quantities[scene_quantity::time] = {{0.0}, f.add_fact("waves are static: time = 0", w.of("waves"))};
-        }
-        if (scene.waves_animated && scene.fixed.count(time))
-            return fail(w.error("fixed/time", "time is fixed but the scene's waves are animated; expected \"waves\": \"static\""));
-    }
-    // Camera height above the water level bounds eye_position.y.
-    if (auto eye = m.declared.find(eye_position); eye != m.declared.end() && eye->second.type == scene_quantity::eye_position.type) {
-        auto [lvl_lo, lvl_hi] = m.range(water_level);
-        if (auto it = plan.fixed.find(water_level); it != plan.fixed.end()) lvl_lo = lvl_hi = it->second[0];
-        const auto [elo, ehi] = m.range(eye_position);
-        const Interval xz = make_interval(elo, ehi);
-        const double ylo = std::max(elo, lvl_lo + scene.camera_height.min), yhi = std::min(ehi, lvl_hi + scene.camera_height.max);
-        if (ylo > yhi)
-            return fail(w.error("camera_height", "no camera position within eye_position's range satisfies the camera height"));
-        if (!plan.fixed.count(eye_position))
-            f.quantity_ranges[scene_quantity::eye_position] = {
-                {xz, make_interval(ylo, yhi), xz},
-                f.add_fact(fmt::format("camera {:g}..{:g} m above the water", scene.camera_height.min, scene.camera_height.max),
-                           w.of("camera_height"))};
-    }
-    // Sun elevation bounds the y of the direction the sunlight travels (downwards by day).
-    if (auto sun = m.declared.find(sun_direction); sun != m.declared.end() && sun->second.type == scene_quantity::sun_direction.type) {
-        const double ylo = -std::sin(scene.sun_elevation.max * kDegrees), yhi = -std::sin(scene.sun_elevation.min * kDegrees);
-        if (auto it = plan.fixed.find(sun_direction); it != plan.fixed.end()) {
-            const auto& d = it->second;
-            const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            const double elevation = len > 0 ? std::asin(std::clamp(-d[1] / len, -1.0, 1.0)) / kDegrees : 0.0;
-            if (elevation < scene.sun_elevation.min - 1e-9 || elevation > scene.sun_elevation.max + 1e-9)
-                return fail(w.error("fixed/sun_direction",
-                                    fmt::format("the fixed sun direction has elevation {:.3g} degrees; expected one within "
-                                                "sun_elevation [{:g}, {:g}]",
-                                                elevation, scene.sun_elevation.min, scene.sun_elevation.max)));
-        } else {
-            f.quantity_ranges[scene_quantity::sun_direction] = {
-                {make_interval(-1.0, 1.0), make_interval(ylo, yhi), make_interval(-1.0, 1.0)},
-                f.add_fact(fmt::format("sun elevation {:g}..{:g} degrees", scene.sun_elevation.min, scene.sun_elevation.max),
-                           w.of("sun_elevation"))};
-        }
-    }
-    // Water depth: a fact about water pixels, attached to the node the water column binds.
-    f.quantity_ranges[scene_quantity::water_depth] = {
-        {make_interval(scene.water_depth.min, scene.water_depth.max)},
-        f.add_fact(fmt::format("water depth {:g}..{:g} m", scene.water_depth.min, scene.water_depth.max), w.of("water_depth"))};
+    // In order: fixed values first (the camera and sun checks read them), then the ranges.
+    for (auto step : {scene_bounds::fix_parameters, scene_bounds::bound_time, scene_bounds::bound_camera,
+                      scene_bounds::bound_sun})
+        if (auto error = step(m, plan)) return fail(std::move(*error));
+    scene_bounds::bound_depth(plan);
 
     reach_variants(m, plan);
     if (plan.variants.empty()) {

@@ -127,6 +127,7 @@ TEST_CASE("scene_parameter_errors_name_the_scene_file", "[pruning]") {
         REQUIRE(s);
         CHECK_FALSE(plan_scene(m, *s, ds));
         REQUIRE(ds.size() == 1);
+        INFO(format_diagnostic(ds[0]));
         CHECK(format_diagnostic(ds[0]).find(expected) == 0);
     };
     check("\"colour\": 1", "animated", "s.json:5:11: error: /fixed/colour: unknown parameter 'colour'; the nodes of material 'default' read ");
@@ -139,4 +140,37 @@ TEST_CASE("scene_parameter_errors_name_the_scene_file", "[pruning]") {
     check("\"sun_direction\": [0, -1, 0]", "animated",
           "s.json:5:11: error: /fixed/sun_direction: the fixed sun direction has elevation 90 degrees; expected one within "
           "sun_elevation [5, 9]");
+    // A fixed value must obey the scene's own ranges, not only the parameter's: an eye 50 km
+    // below the water with a camera 1..9 m above it, a zero sun direction (which would fold
+    // every sun term away), and bounds printed exactly (4.0000001 is not "4").
+    check("\"water_level\": 0, \"eye_position\": [0, -50000, 0]", "animated",
+          "s.json:5:29: error: /fixed/eye_position: the fixed eye position is -50000 m above the water (eye y -50000, "
+          "water level 0..0 m); expected a height within camera_height [1, 9] m");
+    check("\"water_level\": 2, \"eye_position\": [0, 12, 0]", "animated",
+          "s.json:5:29: error: /fixed/eye_position: the fixed eye position is 10 m above the water");
+    check("\"sun_direction\": [0, 0, 0]", "animated",
+          "s.json:5:11: error: /fixed/sun_direction: the fixed sun direction (0, 0, 0) has length 0; expected a direction");
+    check("\"shore_hardness\": 4.0000001", "animated",
+          "s.json:5:11: error: /fixed/shore_hardness: shore_hardness = 4.0000001 is out of range; expected a value in "
+          "[0.5, 4] 1/m");
+}
+
+TEST_CASE("a_fixed_eye_within_the_camera_height_plans", "[pruning]") {
+    const std::string text = "{\"name\": \"s\", \"shoreline\": true, \"water_depth\": {\"min\": 0, \"max\": 9},\n"
+                             "\"camera_height\": {\"min\": 1, \"max\": 9}, \"camera_pitch\": {\"min\": -9, \"max\": 0},\n"
+                             "\"sun_elevation\": {\"min\": 5, \"max\": 9}, \"reflection_sources\": [\"cubemap\"], \"waves\": \"animated\",\n"
+                             "\"precision\": \"any\", \"platforms\": [\"vulkan\"],\n"
+                             "\"fixed\": {\"water_level\": 2, \"eye_position\": [0, 7, -3]}}";
+    Diagnostic e;
+    const auto src = JsonSource::parse(text, "s.json", &e);
+    REQUIRE(src);
+    Diagnostics ds;
+    const auto s = parse_scene(*src, ds);
+    REQUIRE(s);
+    const auto plan = plan_scene(default_material(), *s, ds);
+    std::string errors;
+    for (const auto& d : ds) errors += format_diagnostic(d) + "\n";
+    INFO(errors);
+    REQUIRE(plan);
+    CHECK(plan->fixed.at("eye_position") == std::vector<double>{0, 7, -3});
 }
