@@ -14,8 +14,10 @@ void add_variant_options(CLI::App& app, Variant& variant, std::string& preset) {
     const auto& list = axes();
     for (size_t i = 0; i < list.size(); ++i) {
         std::vector<std::string> names;
-        for (const auto& c : list[i].choices) names.push_back(c.name);
-        app.add_option("--" + list[i].name, variant.choices[i], axis_help(list[i]))->check(CLI::IsMember(names));
+        for (const auto& c : list[i].choices)
+            names.push_back(c.name);
+        app.add_option("--" + list[i].name, variant.choices[i], axis_help(list[i]))
+            ->check(CLI::IsMember(names));
     }
 }
 

@@ -11,7 +11,9 @@ namespace {
 
 using Pair = std::tuple<size_t, size_t, size_t, size_t>; // axis a, choice i, axis b > a, choice j
 
-size_t axis_position(const std::string& name) { return static_cast<size_t>(find_axis(name) - axes().data()); }
+size_t axis_position(const std::string& name) {
+    return static_cast<size_t>(find_axis(name) - axes().data());
+}
 
 // The built-in rules are pairwise, so a pair is feasible when the two choices alone obey them.
 bool compatible(const Variant& partial, const std::vector<bool>& set) {
@@ -20,7 +22,8 @@ bool compatible(const Variant& partial, const std::vector<bool>& set) {
         const size_t ia = axis_position(r.axis), ib = axis_position(r.other_axis);
         if (!set[ia] || !set[ib] || partial.choices[ia] != r.choice) continue;
         bool listed = false;
-        for (const auto& c : r.other_choices) listed = listed || partial.choices[ib] == c;
+        for (const auto& c : r.other_choices)
+            listed = listed || partial.choices[ib] == c;
         if (listed != (r.kind == Rule::Kind::Requires)) return false;
     }
     return true;

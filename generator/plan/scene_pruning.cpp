@@ -32,8 +32,8 @@ struct SceneRule {
 const std::vector<SceneRule>& scene_rules() {
     static const std::vector<SceneRule> rules = [] {
         std::vector<SceneRule> list;
-        for (SceneFact fact : {SceneFact::Shoreline, SceneFact::ReflectionSource, SceneFact::SunAboveHorizon,
-                               SceneFact::Precision})
+        for (SceneFact fact : {SceneFact::Shoreline, SceneFact::ReflectionSource,
+                               SceneFact::SunAboveHorizon, SceneFact::Precision})
             for (size_t a = 0; a < axes().size(); ++a)
                 for (const auto& c : axes()[a].choices)
                     for (const auto& need : c.scene_needs)
@@ -46,10 +46,14 @@ const std::vector<SceneRule>& scene_rules() {
 // The key of SceneWhere::fact a need reads.
 std::string fact_key(SceneFact fact) {
     switch (fact) {
-    case SceneFact::Shoreline: return "shoreline";
-    case SceneFact::ReflectionSource: return "reflection_sources";
-    case SceneFact::SunAboveHorizon: return "sun_elevation";
-    case SceneFact::Precision: return "precision";
+    case SceneFact::Shoreline:
+        return "shoreline";
+    case SceneFact::ReflectionSource:
+        return "reflection_sources";
+    case SceneFact::SunAboveHorizon:
+        return "sun_elevation";
+    case SceneFact::Precision:
+        return "precision";
     }
     return "";
 }
@@ -63,15 +67,19 @@ std::string unmet(const SceneFacts& s, const SceneNeed& need) {
         break;
     case SceneFact::ReflectionSource:
         if (!has_source(s, need.value))
-            missing = "no " + need.value + " among the scene's reflection sources (" +
-                      (s.reflection_sources.empty() ? std::string("none") : join(s.reflection_sources)) + ")";
+            missing =
+                "no " + need.value + " among the scene's reflection sources (" +
+                (s.reflection_sources.empty() ? std::string("none") : join(s.reflection_sources)) +
+                ")";
         break;
     case SceneFact::SunAboveHorizon:
         if (!(s.sun_elevation.max > 0.0))
-            missing = fmt::format("the sun never rises (elevation at most {:g} degrees)", s.sun_elevation.max);
+            missing = fmt::format("the sun never rises (elevation at most {:g} degrees)",
+                                  s.sun_elevation.max);
         break;
     case SceneFact::Precision:
-        if (s.precision != "any" && s.precision != need.value) missing = "the scene targets precision " + s.precision;
+        if (s.precision != "any" && s.precision != need.value)
+            missing = "the scene targets precision " + s.precision;
         break;
     }
     if (missing.empty() || need.consequence.empty()) return missing;
@@ -91,7 +99,9 @@ std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& 
     for (const auto& r : scene_rules()) {
         if (v.choices[r.axis] != r.choice) continue;
         const std::string reason = unmet(scene, r.need);
-        if (!reason.empty()) return Exclusion{axes()[r.axis].name, r.choice, reason, scene.where.of(fact_key(r.need.fact))};
+        if (!reason.empty())
+            return Exclusion{axes()[r.axis].name, r.choice, reason,
+                             scene.where.of(fact_key(r.need.fact))};
     }
     return std::nullopt;
 }

@@ -7,7 +7,8 @@ std::vector<Rule> builtin_rules() {
     for (const auto& a : axes())
         for (const auto& c : a.choices)
             for (const auto& r : c.requirements)
-                rules.push_back({Rule::Kind::Requires, a.name, c.name, r.axis, r.choices, r.why, ""});
+                rules.push_back(
+                    {Rule::Kind::Requires, a.name, c.name, r.axis, r.choices, r.why, ""});
     return rules;
 }
 

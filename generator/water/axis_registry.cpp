@@ -12,9 +12,9 @@ namespace {
 struct Registry {
     // Order is the order of a variant key. Seeds: 000 Toman, 001 Lombard, 002 Mihalik,
     // 003 IceFall, 004 sum of sines / Gerstner / Atlas (../shared/docs/water-models.md).
-    std::vector<AxisInfo> axes = {fresnel_axis(),    extinction_axis(), specular_axis(), foam_axis(),
-                                  reflection_axis(), refraction_axis(), normals_axis(),  waves_axis(),
-                                  shore_axis(),      precision_axis()};
+    std::vector<AxisInfo> axes = {
+        fresnel_axis(),    extinction_axis(), specular_axis(), foam_axis(),  reflection_axis(),
+        refraction_axis(), normals_axis(),    waves_axis(),    shore_axis(), precision_axis()};
     bool frozen = false;
 };
 
@@ -38,7 +38,8 @@ void resolve_requirements(std::vector<AxisInfo>& list) {
                 std::vector<std::string> kept;
                 if (const AxisInfo* other = find_mutable_axis(list, r.axis))
                     for (const auto& c : other->choices)
-                        if (std::find(r.choices.begin(), r.choices.end(), c.name) == r.choices.end())
+                        if (std::find(r.choices.begin(), r.choices.end(), c.name) ==
+                            r.choices.end())
                             kept.push_back(c.name);
                 r.choices = std::move(kept);
                 r.all_but = false;
@@ -47,7 +48,8 @@ void resolve_requirements(std::vector<AxisInfo>& list) {
 
 } // namespace
 
-ChoiceRequirement every_choice_but(const std::string& axis, std::vector<std::string> excluded, const std::string& why) {
+ChoiceRequirement every_choice_but(const std::string& axis, std::vector<std::string> excluded,
+                                   const std::string& why) {
     return {axis, std::move(excluded), why, true};
 }
 
@@ -76,7 +78,9 @@ const ChoiceInfo* find_choice(const AxisInfo& axis, const std::string& name) {
 std::optional<std::string> register_choice(const std::string& axis, ChoiceInfo choice) {
     Registry& r = registry();
     const std::string what = "registering " + axis + "=" + choice.name + ": ";
-    if (r.frozen) return what + "the axis registry is already in use (register before the first call to axes())";
+    if (r.frozen)
+        return what +
+               "the axis registry is already in use (register before the first call to axes())";
     AxisInfo* a = find_mutable_axis(r.axes, axis);
     if (!a) return what + "unknown axis";
     for (const auto& c : a->choices)
@@ -100,6 +104,11 @@ std::string axis_help(const AxisInfo& axis) {
     for (const auto& c : axis.choices) {
         help += "\n  " + c.name + (c.gold ? " (gold)" : "") + ": " + c.description;
         if (!c.approximates.empty()) help += "; approximates " + c.approximates;
+        for (const auto& r : c.requirements) {
+            std::string list;
+            for (const auto& name : r.choices) list += (list.empty() ? "" : ", ") + name;
+            help += "; needs " + r.axis + " in {" + list + "}";
+        }
         if (!c.seed.empty()) help += " [seed " + c.seed + "]";
     }
     return help;
@@ -112,7 +121,8 @@ std::string axes_markdown_table() {
         for (const auto& c : a.choices) {
             std::string marks = c.seed;
             if (c.gold) marks += (marks.empty() ? "" : ", ") + std::string("gold");
-            choices += (choices.empty() ? "" : ", ") + c.name + (marks.empty() ? "" : " (" + marks + ")");
+            choices +=
+                (choices.empty() ? "" : ", ") + c.name + (marks.empty() ? "" : " (" + marks + ")");
         }
         table += "| " + a.name + " | " + choices + " |\n";
     }

@@ -11,7 +11,8 @@ const std::vector<CatalogNode>& node_catalog() {
             for (const auto& c : a.choices) {
                 if (!c.node) continue;
                 const std::string note = c.node->note.empty() ? "" : "; " + c.node->note;
-                nodes.push_back({a.name + "." + c.name, c.description + note, c.node->inputs, c.node->build,
+                nodes.push_back({a.name + "." + c.name, c.description + note, c.node->inputs,
+                                 c.node->build,
                                  c.approximates.empty() ? "" : a.name + "." + c.approximates});
             }
             nodes.insert(nodes.end(), a.extra_nodes.begin(), a.extra_nodes.end());

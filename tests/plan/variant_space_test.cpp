@@ -13,7 +13,8 @@ namespace {
 
 size_t combinations(const VariantSpace& s) {
     size_t n = 1;
-    for (const auto& c : s.choices) n *= c.size();
+    for (const auto& c : s.choices)
+        n *= c.size();
     return n;
 }
 
@@ -63,17 +64,20 @@ TEST_CASE("every_combination_is_visited_exactly_when_no_rule_breaks", "[space]")
 TEST_CASE("builtin_rules_are_the_requirements_of_the_choices", "[space]") {
     size_t requirements = 0;
     for (const auto& a : axes())
-        for (const auto& c : a.choices) requirements += c.requirements.size();
+        for (const auto& c : a.choices)
+            requirements += c.requirements.size();
     const auto rules = builtin_rules();
     CHECK(rules.size() == requirements);
     Variant v = default_variant();
     REQUIRE_FALSE(set_choice(v, "normals", "analytic"));
-    CHECK(*check_constraints(v) == "normals=analytic requires waves in {sum_of_sines, gerstner} (analytic normals are "
-                                   "the derivatives of a closed-form wave model); got waves=flat");
+    CHECK(*check_constraints(v) ==
+          "normals=analytic requires waves in {sum_of_sines, gerstner} (analytic normals are "
+          "the derivatives of a closed-form wave model); got waves=flat");
     REQUIRE_FALSE(set_choice(v, "normals", "flat"));
     REQUIRE_FALSE(set_choice(v, "foam", "both"));
-    CHECK(*check_constraints(v) == "foam=both requires waves in {sum_of_sines, gerstner, heightmap_march, "
-                                   "heightmap_march_converged} (crest foam needs wave heights); got waves=flat");
+    CHECK(*check_constraints(v) ==
+          "foam=both requires waves in {sum_of_sines, gerstner, heightmap_march, "
+          "heightmap_march_converged} (crest foam needs wave heights); got waves=flat");
 }
 
 TEST_CASE("requires_and_excludes_rules", "[space]") {

@@ -7,9 +7,9 @@
 #include <cstdio>
 
 #include "reflection_support.h"
+#include "watergen/render/synthetic_scene.h"
 #include "watergen/water/axis_registry.h"
 #include "watergen/water/surface.h"
-#include "watergen/render/synthetic_scene.h"
 #include "watergen/water/water_shader.h"
 
 using namespace watergen;

@@ -21,10 +21,12 @@ TEST_CASE("variant_key_round_trips", "[variant]") {
 
 TEST_CASE("the_axes_keep_the_order_of_a_variant_key", "[variant]") {
     // Pinned: the order of a variant key, hence of every file stem and short hash.
-    const std::vector<std::string> expected = {"fresnel",    "extinction", "specular", "foam",  "reflection",
-                                               "refraction", "normals",    "waves",    "shore", "precision"};
+    const std::vector<std::string> expected = {"fresnel",    "extinction", "specular", "foam",
+                                               "reflection", "refraction", "normals",  "waves",
+                                               "shore",      "precision"};
     REQUIRE(axes().size() == expected.size());
-    for (size_t i = 0; i < expected.size(); ++i) CHECK(axes()[i].name == expected[i]);
+    for (size_t i = 0; i < expected.size(); ++i)
+        CHECK(axes()[i].name == expected[i]);
 }
 
 TEST_CASE("every_choice_of_the_registry_is_consistent", "[variant]") {
@@ -49,7 +51,8 @@ TEST_CASE("every_choice_of_the_registry_is_consistent", "[variant]") {
                 CHECK(other != &a);
                 CHECK_FALSE(r.all_but); // resolved when the registry froze
                 CHECK_FALSE(r.choices.empty());
-                for (const auto& name : r.choices) CHECK(find_choice(*other, name) != nullptr);
+                for (const auto& name : r.choices)
+                    CHECK(find_choice(*other, name) != nullptr);
             }
             if (c.node) CHECK(find_catalog_node(a.name + "." + c.name) != nullptr);
         }
@@ -71,7 +74,8 @@ TEST_CASE("every_choice_but_resolves_against_the_other_axis", "[variant]") {
 TEST_CASE("the_catalog_holds_each_choice_node_then_the_axis_extras", "[variant]") {
     size_t expected = 0;
     for (const auto& a : axes()) {
-        for (const auto& c : a.choices) expected += c.node.has_value();
+        for (const auto& c : a.choices)
+            expected += c.node.has_value();
         expected += a.extra_nodes.size();
     }
     CHECK(node_catalog().size() == expected);
@@ -106,8 +110,10 @@ TEST_CASE("registering_after_first_use_is_refused", "[variant]") {
     (void)axes();
     const auto error = register_choice("fresnel", {.name = "late", .description = "too late"});
     REQUIRE(error);
-    CHECK(*error == "registering fresnel=late: the axis registry is already in use (register before the first "
-                    "call to axes())");
+    CHECK(
+        *error ==
+        "registering fresnel=late: the axis registry is already in use (register before the first "
+        "call to axes())");
 }
 
 TEST_CASE("constraints_name_both_axes", "[variant]") {

@@ -7,10 +7,10 @@
 #include <cmath>
 
 #include "reflection_support.h"
-#include "watergen/water/nodes/reflection.h"
-#include "watergen/water/axis_registry.h"
-#include "watergen/water/surface.h"
 #include "watergen/render/synthetic_scene.h"
+#include "watergen/water/axis_registry.h"
+#include "watergen/water/nodes/reflection.h"
+#include "watergen/water/surface.h"
 
 using namespace watergen;
 using test::eval_catalog;

@@ -20,13 +20,14 @@ constexpr double kTestReflectance = 0.25;
 // reads the registry.
 void register_test_choice() {
     static const std::optional<std::string> error = register_choice(
-        "fresnel",
-        {.name = "test_constant",
-         .description = "constant reflectance 0.25 (test build only)",
-         .node = ChoiceNode{{{"c", Type::Float}},
-                            [](Graph& g, const std::vector<Expr>&) { return constant(g, kTestReflectance); }},
-         .compose = [](Surface& s) { s.fresnel = constant(s.g, kTestReflectance); },
-         .scene_needs = {{SceneFact::Shoreline, "", "the test constant stays unused"}}});
+        "fresnel", {.name = "test_constant",
+                    .description = "constant reflectance 0.25 (test build only)",
+                    .node = ChoiceNode{{{"c", Type::Float}},
+                                       [](Graph& g, const std::vector<Expr>&) {
+                                           return constant(g, kTestReflectance);
+                                       }},
+                    .compose = [](Surface& s) { s.fresnel = constant(s.g, kTestReflectance); },
+                    .scene_needs = {{SceneFact::Shoreline, "", "the test constant stays unused"}}});
     INFO(error.value_or(""));
     REQUIRE_FALSE(error.has_value());
 }
@@ -57,7 +58,8 @@ TEST_CASE("the_space_grows_by_one_fresnel_choice", "[registry]") {
     CHECK(count_variants(full_space()) == before + before / fresnel.size());
     CHECK(before % fresnel.size() == 0);
     size_t with_it = 0;
-    enumerate(full_space(), [&](const Variant& v) { with_it += v.choice("fresnel") == "test_constant"; });
+    enumerate(full_space(),
+              [&](const Variant& v) { with_it += v.choice("fresnel") == "test_constant"; });
     CHECK(with_it == before / fresnel.size());
 }
 

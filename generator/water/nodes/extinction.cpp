@@ -82,9 +82,14 @@ namespace {
 
 // A choice whose node turns the refracted colour into the water colour.
 ChoiceInfo extinction_choice(ChoiceInfo info, Expr (*node)(Graph&, const ExtinctionInputs&)) {
-    info.node = ChoiceNode{{{"depth", Type::Float}, {"path", Type::Float}, {"refraction", Type::Vec3}},
-                           [node](Graph& g, const std::vector<Expr>& in) { return node(g, {in[0], in[1], in[2]}); }};
-    info.compose = [node](Surface& s) { s.water_color = node(s.g, {s.depth, s.path, s.refracted}); };
+    info.node =
+        ChoiceNode{{{"depth", Type::Float}, {"path", Type::Float}, {"refraction", Type::Vec3}},
+                   [node](Graph& g, const std::vector<Expr>& in) {
+                       return node(g, {in[0], in[1], in[2]});
+                   }};
+    info.compose = [node](Surface& s) {
+        s.water_color = node(s.g, {s.depth, s.path, s.refracted});
+    };
     return info;
 }
 
@@ -93,29 +98,35 @@ ChoiceInfo extinction_choice(ChoiceInfo info, Expr (*node)(Graph&, const Extinct
 AxisInfo extinction_axis() {
     // exponential and absorb_scatter are Beer-Lambert's exp(-k d) with artistic coefficients
     // (one grey density; 003's ocean K plus scatter), measured against the pure-water gold.
-    return {"extinction",
-            "absorb_scatter",
-            {
-                extinction_choice({.name = "none", .description = "refracted colour unchanged"}, &extinction_none),
-                extinction_choice({.name = "linear",
-                                   .seed = "000",
-                                   .description = "per-channel linear fades with depth and with horizontal visibility"},
-                                  &extinction_linear),
-                extinction_choice({.name = "exponential",
-                                   .seed = "002",
-                                   .description = "exponential fog towards the water colour, a = exp(-d k)",
-                                   .approximates = "beer_lambert"},
-                                  &extinction_exponential),
-                extinction_choice({.name = "absorb_scatter",
-                                   .seed = "003",
-                                   .description = "exponential absorption plus scatter colour",
-                                   .approximates = "beer_lambert"},
-                                  &extinction_absorb_scatter),
-                extinction_choice({.name = "beer_lambert",
-                                   .description = "physical per-channel absorption of pure water (Pope and Fry 1997)",
-                                   .gold = true},
-                                  &extinction_beer_lambert),
-            }};
+    return {
+        "extinction",
+        "absorb_scatter",
+        {
+            extinction_choice({.name = "none", .description = "refracted colour unchanged"},
+                              &extinction_none),
+            extinction_choice(
+                {.name = "linear",
+                 .seed = "000",
+                 .description =
+                     "per-channel linear fades with depth and with horizontal visibility"},
+                &extinction_linear),
+            extinction_choice(
+                {.name = "exponential",
+                 .seed = "002",
+                 .description = "exponential fog towards the water colour, a = exp(-d k)",
+                 .approximates = "beer_lambert"},
+                &extinction_exponential),
+            extinction_choice({.name = "absorb_scatter",
+                               .seed = "003",
+                               .description = "exponential absorption plus scatter colour",
+                               .approximates = "beer_lambert"},
+                              &extinction_absorb_scatter),
+            extinction_choice(
+                {.name = "beer_lambert",
+                 .description = "physical per-channel absorption of pure water (Pope and Fry 1997)",
+                 .gold = true},
+                &extinction_beer_lambert),
+        }};
 }
 
 } // namespace watergen

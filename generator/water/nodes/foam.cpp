@@ -130,14 +130,22 @@ void compose_foam(Surface& s, FoamNode node, const std::string& origin) {
 }
 
 ChoiceInfo foam_choice(ChoiceInfo info, FoamNode node) {
-    info.node = ChoiceNode{
-        {{"color", Type::Vec3}, {"pattern", Type::Float}, {"depth", Type::Float}, {"height", Type::Float}},
-        [node](Graph& g, const std::vector<Expr>& in) { return node(g, {in[0], in[1], in[2], in[3]}); }};
-    info.compose = [node, origin = "foam." + info.name](Surface& s) { compose_foam(s, node, origin); };
+    info.node = ChoiceNode{{{"color", Type::Vec3},
+                            {"pattern", Type::Float},
+                            {"depth", Type::Float},
+                            {"height", Type::Float}},
+                           [node](Graph& g, const std::vector<Expr>& in) {
+                               return node(g, {in[0], in[1], in[2], in[3]});
+                           }};
+    info.compose = [node, origin = "foam." + info.name](Surface& s) {
+        compose_foam(s, node, origin);
+    };
     return info;
 }
 
-SceneNeed shoreline_need() { return {SceneFact::Shoreline, "", "shore foam never shows"}; }
+SceneNeed shoreline_need() {
+    return {SceneFact::Shoreline, "", "shore foam never shows"};
+}
 
 ChoiceRequirement wave_heights_requirement() {
     return every_choice_but("waves", {"flat"}, "crest foam needs wave heights");

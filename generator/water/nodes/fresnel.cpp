@@ -58,7 +58,9 @@ namespace {
 
 // A choice whose node reads c = N.V and sets the surface's Fresnel term.
 ChoiceInfo fresnel_choice(ChoiceInfo info, Expr (*node)(Graph&, Expr)) {
-    info.node = ChoiceNode{{{"c", Type::Float}}, [node](Graph& g, const std::vector<Expr>& in) { return node(g, in[0]); }};
+    info.node = ChoiceNode{{{"c", Type::Float}}, [node](Graph& g, const std::vector<Expr>& in) {
+                               return node(g, in[0]);
+                           }};
     info.compose = [node](Surface& s) { s.fresnel = node(s.g, s.n_dot_v); };
     return info;
 }
@@ -67,22 +69,27 @@ ChoiceInfo fresnel_choice(ChoiceInfo info, Expr (*node)(Graph&, Expr)) {
 
 AxisInfo fresnel_axis() {
     // power and Schlick approximate the exact reflectance (water-models.md, "Fresnel").
-    return {"fresnel",
-            "schlick",
-            {
-                fresnel_choice({.name = "none", .description = "constant reflectance"}, &fresnel_none),
-                fresnel_choice({.name = "power", .seed = "002", .description = "F = (1 - c)^q, q = 4.5", .approximates = "exact"},
-                               &fresnel_power),
-                fresnel_choice({.name = "schlick",
-                                .seed = "000",
-                                .description = "Schlick's approximation, R0 from the indices",
-                                .approximates = "exact"},
-                               &fresnel_schlick),
-                fresnel_choice({.name = "exact",
-                                .description = "unpolarised dielectric reflectance with total internal reflection",
-                                .gold = true},
-                               &fresnel_exact),
-            }};
+    return {
+        "fresnel",
+        "schlick",
+        {
+            fresnel_choice({.name = "none", .description = "constant reflectance"}, &fresnel_none),
+            fresnel_choice({.name = "power",
+                            .seed = "002",
+                            .description = "F = (1 - c)^q, q = 4.5",
+                            .approximates = "exact"},
+                           &fresnel_power),
+            fresnel_choice({.name = "schlick",
+                            .seed = "000",
+                            .description = "Schlick's approximation, R0 from the indices",
+                            .approximates = "exact"},
+                           &fresnel_schlick),
+            fresnel_choice(
+                {.name = "exact",
+                 .description = "unpolarised dielectric reflectance with total internal reflection",
+                 .gold = true},
+                &fresnel_exact),
+        }};
 }
 
 } // namespace watergen

@@ -103,7 +103,8 @@ ChoiceInfo normals_choice(ChoiceInfo info, std::vector<NodeInput> inputs,
 
 Expr analytic_normal(Surface& s) {
     if (!s.wave_slope.valid()) {
-        s.g.error("normals: 'analytic' needs a wave model with derivatives (sum_of_sines, gerstner)");
+        s.g.error(
+            "normals: 'analytic' needs a wave model with derivatives (sum_of_sines, gerstner)");
         return Expr();
     }
     return normal_from_slope(s.g, s.wave_slope);
@@ -111,44 +112,61 @@ Expr analytic_normal(Surface& s) {
 
 Expr detail_map_normal(Surface& s) {
     // The base is the wave model's own normal when it has one, else the plane's.
-    Expr base = s.wave_slope.valid() ? normal_from_slope(s.g, s.wave_slope) : constant(s.g, {0.0, 1.0, 0.0});
+    Expr base = s.wave_slope.valid() ? normal_from_slope(s.g, s.wave_slope)
+                                     : constant(s.g, {0.0, 1.0, 0.0});
     return detail_normal(s.g, base, s.surface_point, s.time);
 }
 
 } // namespace
 
 AxisInfo normals_axis() {
-    return {"normals",
-            "flat",
-            {
-                normals_choice({.name = "flat", .description = "(0, 1, 0)"}, {{"xz", Type::Vec2}},
-                               [](Graph& g, const std::vector<Expr>&) { return constant(g, {0.0, 1.0, 0.0}); },
-                               [](Surface& s) { return constant(s.g, {0.0, 1.0, 0.0}); }),
-                normals_choice({.name = "heightmap_diff", .seed = "000", .description = "central differences of the height map"},
-                               {{"xz", Type::Vec2}, {"time", Type::Float}},
-                               [](Graph& g, const std::vector<Expr>& in) { return heightmap_normal(g, in[0], in[1]); },
-                               [](Surface& s) { return heightmap_normal(s.g, s.surface_point.xz(), s.time); },
-                               "reads texture height_map (CPU evaluator only)"),
-                normals_choice({.name = "detail_map",
-                                .seed = "000",
-                                .description = "detail normal map in a derivative tangent frame (Schuler)"},
-                               {{"base", Type::Vec3}, {"position", Type::Vec3}, {"time", Type::Float}},
-                               [](Graph& g, const std::vector<Expr>& in) { return detail_normal(g, in[0], in[1], in[2]); },
-                               &detail_map_normal,
-                               "base normal perturbed at position; needs ddx/ddy over 2x2 quads and texture "
-                               "detail_normal_map (CPU evaluator only)"),
-                // The catalog node takes the slope as input: any height field's exact normal.
-                normals_choice({.name = "analytic",
-                                .seed = "004",
-                                .description = "exact normal of the wave model",
-                                .gold = true,
-                                .requirements = {{"waves",
-                                                  {"sum_of_sines", "gerstner"},
-                                                  "analytic normals are the derivatives of a closed-form wave model"}}},
-                               {{"slope", Type::Vec2}},
-                               [](Graph& g, const std::vector<Expr>& in) { return normal_from_slope(g, in[0]); },
-                               &analytic_normal),
-            }};
+    return {
+        "normals",
+        "flat",
+        {
+            normals_choice(
+                {.name = "flat", .description = "(0, 1, 0)"}, {{"xz", Type::Vec2}},
+                [](Graph& g, const std::vector<Expr>&) {
+                    return constant(g, {0.0, 1.0, 0.0});
+                },
+                [](Surface& s) {
+                    return constant(s.g, {0.0, 1.0, 0.0});
+                }),
+            normals_choice(
+                {.name = "heightmap_diff",
+                 .seed = "000",
+                 .description = "central differences of the height map"},
+                {{"xz", Type::Vec2}, {"time", Type::Float}},
+                [](Graph& g, const std::vector<Expr>& in) {
+                    return heightmap_normal(g, in[0], in[1]);
+                },
+                [](Surface& s) { return heightmap_normal(s.g, s.surface_point.xz(), s.time); },
+                "reads texture height_map (CPU evaluator only)"),
+            normals_choice(
+                {.name = "detail_map",
+                 .seed = "000",
+                 .description = "detail normal map in a derivative tangent frame (Schuler)"},
+                {{"base", Type::Vec3}, {"position", Type::Vec3}, {"time", Type::Float}},
+                [](Graph& g, const std::vector<Expr>& in) {
+                    return detail_normal(g, in[0], in[1], in[2]);
+                },
+                &detail_map_normal,
+                "base normal perturbed at position; needs ddx/ddy over 2x2 quads and texture "
+                "detail_normal_map (CPU evaluator only)"),
+            // The catalog node takes the slope as input: any height field's exact normal.
+            normals_choice(
+                {.name = "analytic",
+                 .seed = "004",
+                 .description = "exact normal of the wave model",
+                 .gold = true,
+                 .requirements =
+                     {{"waves",
+                       {"sum_of_sines", "gerstner"},
+                       "analytic normals are the derivatives of a closed-form wave model"}}},
+                {{"slope", Type::Vec2}},
+                [](Graph& g, const std::vector<Expr>& in) { return normal_from_slope(g, in[0]); },
+                &analytic_normal),
+        }};
 }
 
 } // namespace watergen

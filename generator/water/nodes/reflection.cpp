@@ -184,21 +184,30 @@ ChoiceInfo reflection_choice(ChoiceInfo info, const std::string& source, Expr (*
 
 std::vector<CatalogNode> reflection_nodes() {
     using Node = Expr (*)(Graph&, Expr, Expr, Expr);
-    const std::vector<NodeInput> fourier_inputs = {{"coefs1", Type::Vec4}, {"coefs2", Type::Vec4}, {"ray", Type::Vec3}};
+    const std::vector<NodeInput> fourier_inputs = {
+        {"coefs1", Type::Vec4}, {"coefs2", Type::Vec4}, {"ray", Type::Vec3}};
     auto fourier = [&](const std::string& name, const std::string& what, Node f) {
-        return CatalogNode{name, what, fourier_inputs,
-                           [f](Graph& g, const std::vector<Expr>& in) { return f(g, in[0], in[1], in[2]); }};
+        return CatalogNode{name, what, fourier_inputs, [f](Graph& g, const std::vector<Expr>& in) {
+                               return f(g, in[0], in[1], in[2]);
+                           }};
     };
     return {
-        {"reflection.sky_lookup", "001 cube direction reflect(-V, N), lower half mirrored; w = water tint weight",
+        {"reflection.sky_lookup",
+         "001 cube direction reflect(-V, N), lower half mirrored; w = water tint weight",
          {{"view_ray", Type::Vec3}, {"normal", Type::Vec3}},
          [](Graph& g, const std::vector<Expr>& in) { return sky_cube_lookup(g, in[0], in[1]); }},
-        {"reflection.projective_uv", "001/002 planar reflection uv at P + d N.xz; z = 1 when q.w > 1e-4, else uv = 0.5",
+        {"reflection.projective_uv",
+         "001/002 planar reflection uv at P + d N.xz; z = 1 when q.w > 1e-4, else uv = 0.5",
          {{"surface_point", Type::Vec3}, {"normal", Type::Vec3}},
-         [](Graph& g, const std::vector<Expr>& in) { return planar_reflection_uv(g, in[0], in[1]); }},
-        fourier("reflection.fourier_series", "003 horizon tangent from 8 Fourier coefficients, trig-free", &fourier_series),
-        fourier("reflection.fourier_sky_weight", "003 sky (1) or below the horizon (0), smooth", &fourier_sky_weight),
-        fourier("reflection.fourier_horizon", "003 reflected colour: fourier_below_color below the horizon, sky_color above",
+         [](Graph& g, const std::vector<Expr>& in) {
+             return planar_reflection_uv(g, in[0], in[1]);
+         }},
+        fourier("reflection.fourier_series",
+                "003 horizon tangent from 8 Fourier coefficients, trig-free", &fourier_series),
+        fourier("reflection.fourier_sky_weight", "003 sky (1) or below the horizon (0), smooth",
+                &fourier_sky_weight),
+        fourier("reflection.fourier_horizon",
+                "003 reflected colour: fourier_below_color below the horizon, sky_color above",
                 &fourier_horizon_color),
     };
 }
@@ -206,30 +215,36 @@ std::vector<CatalogNode> reflection_nodes() {
 } // namespace
 
 AxisInfo reflection_axis() {
-    return {"reflection",
-            "sky_cubemap",
-            {
-                {.name = "none",
-                 .description = "constant sky colour",
-                 .compose =
-                     [](Surface& s) {
-                         OriginScope scope(s.g, "reflection.none");
-                         s.reflected = uniform(s.g, sky_color());
-                     }},
-                reflection_choice({.name = "sky_cubemap",
-                                   .seed = "001",
-                                   .description = "environment cubemap along reflect(-V, N), fallback below the horizon"},
-                                  "cubemap", &reflection_sky_cubemap),
-                reflection_choice({.name = "planar_projective",
-                                   .seed = "001",
-                                   .description = "planar reflection texture, projective uv displaced by the normal"},
-                                  "planar", &reflection_planar_projective),
-                reflection_choice({.name = "fourier_horizon",
-                                   .seed = "003",
-                                   .description = "sky above a per-texel horizon from 8 Fourier coefficients, trig-free"},
-                                  "horizon_map", &reflection_fourier_horizon),
-            },
-            reflection_nodes()};
+    return {
+        "reflection",
+        "sky_cubemap",
+        {
+            {.name = "none",
+             .description = "constant sky colour",
+             .compose =
+                 [](Surface& s) {
+                     OriginScope scope(s.g, "reflection.none");
+                     s.reflected = uniform(s.g, sky_color());
+                 }},
+            reflection_choice(
+                {.name = "sky_cubemap",
+                 .seed = "001",
+                 .description =
+                     "environment cubemap along reflect(-V, N), fallback below the horizon"},
+                "cubemap", &reflection_sky_cubemap),
+            reflection_choice(
+                {.name = "planar_projective",
+                 .seed = "001",
+                 .description = "planar reflection texture, projective uv displaced by the normal"},
+                "planar", &reflection_planar_projective),
+            reflection_choice(
+                {.name = "fourier_horizon",
+                 .seed = "003",
+                 .description =
+                     "sky above a per-texel horizon from 8 Fourier coefficients, trig-free"},
+                "horizon_map", &reflection_fourier_horizon),
+        },
+        reflection_nodes()};
 }
 
 } // namespace watergen

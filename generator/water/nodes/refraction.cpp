@@ -64,16 +64,31 @@ void compose_refraction(Surface& s, const std::string& origin, Expr uv) {
 
 std::vector<CatalogNode> refraction_nodes() {
     return {
-        {"refraction.screen_distort_uv", "000/003 uv + N.xz strength, faded towards the shore",
+        {"refraction.screen_distort_uv",
+         "000/003 uv + N.xz strength, faded towards the shore",
          {{"uv", Type::Vec2}, {"normal", Type::Vec3}, {"depth", Type::Float}},
-         [](Graph& g, const std::vector<Expr>& in) { return screen_distort_uv(g, in[0], in[1], in[2]); }},
-        {"refraction.refracted_ray_point", "002 W = U + dv refract(-V, N, n1/n2), dv clamped",
-         {{"surface_point", Type::Vec3}, {"view_ray", Type::Vec3}, {"normal", Type::Vec3}, {"depth", Type::Float}},
-         [](Graph& g, const std::vector<Expr>& in) { return refracted_ray_point(g, in[0], in[1], in[2], in[3]); }},
-        {"refraction.refracted_ray_uv", "002 screen uv of W; the pixel's uv under TIR or behind the camera",
-         {{"uv", Type::Vec2}, {"surface_point", Type::Vec3}, {"view_ray", Type::Vec3}, {"normal", Type::Vec3},
+         [](Graph& g, const std::vector<Expr>& in) {
+             return screen_distort_uv(g, in[0], in[1], in[2]);
+         }},
+        {"refraction.refracted_ray_point",
+         "002 W = U + dv refract(-V, N, n1/n2), dv clamped",
+         {{"surface_point", Type::Vec3},
+          {"view_ray", Type::Vec3},
+          {"normal", Type::Vec3},
           {"depth", Type::Float}},
-         [](Graph& g, const std::vector<Expr>& in) { return refracted_ray_uv(g, in[0], in[1], in[2], in[3], in[4]); }},
+         [](Graph& g, const std::vector<Expr>& in) {
+             return refracted_ray_point(g, in[0], in[1], in[2], in[3]);
+         }},
+        {"refraction.refracted_ray_uv",
+         "002 screen uv of W; the pixel's uv under TIR or behind the camera",
+         {{"uv", Type::Vec2},
+          {"surface_point", Type::Vec3},
+          {"view_ray", Type::Vec3},
+          {"normal", Type::Vec3},
+          {"depth", Type::Float}},
+         [](Graph& g, const std::vector<Expr>& in) {
+             return refracted_ray_uv(g, in[0], in[1], in[2], in[3], in[4]);
+         }},
     };
 }
 
@@ -95,7 +110,8 @@ AxisInfo refraction_axis() {
                  .description = "scene colour at uv displaced by the normal",
                  .compose =
                      [](Surface& s) {
-                         compose_refraction(s, "refraction.screen_distort", screen_distort_uv(s.g, s.uv, s.normal, s.depth));
+                         compose_refraction(s, "refraction.screen_distort",
+                                            screen_distort_uv(s.g, s.uv, s.normal, s.depth));
                      }},
                 {.name = "refracted_ray",
                  .seed = "002",
@@ -103,7 +119,8 @@ AxisInfo refraction_axis() {
                  .compose =
                      [](Surface& s) {
                          compose_refraction(s, "refraction.refracted_ray",
-                                            refracted_ray_uv(s.g, s.uv, s.surface_point, s.view_ray, s.normal, s.depth));
+                                            refracted_ray_uv(s.g, s.uv, s.surface_point, s.view_ray,
+                                                             s.normal, s.depth));
                      }},
             },
             refraction_nodes()};

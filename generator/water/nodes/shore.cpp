@@ -13,15 +13,17 @@ Expr shore_soft(Graph& g, Expr color, Expr refracted, Expr depth) {
 }
 
 AxisInfo shore_axis() {
-    return {"shore",
-            "soft",
-            {
-                {.name = "hard", .seed = "000", .description = "the water colour up to the shoreline"},
-                {.name = "soft",
-                 .seed = "000",
-                 .description = "blend towards the refracted scene by depth x shore hardness",
-                 .compose = [](Surface& s) { s.color = shore_soft(s.g, s.color, s.refracted, s.depth); }},
-            }};
+    return {
+        "shore",
+        "soft",
+        {
+            {.name = "hard", .seed = "000", .description = "the water colour up to the shoreline"},
+            {.name = "soft",
+             .seed = "000",
+             .description = "blend towards the refracted scene by depth x shore hardness",
+             .compose =
+                 [](Surface& s) { s.color = shore_soft(s.g, s.color, s.refracted, s.depth); }},
+        }};
 }
 
 } // namespace watergen

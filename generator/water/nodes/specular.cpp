@@ -132,9 +132,13 @@ namespace {
 
 // A sun lobe: the node gives the intensity, the surface's specular is that times the sun colour.
 ChoiceInfo specular_choice(ChoiceInfo info, Expr (*node)(Graph&, const SpecularInputs&)) {
-    info.node = ChoiceNode{
-        {{"normal", Type::Vec3}, {"to_eye", Type::Vec3}, {"sun_direction", Type::Vec3}, {"fresnel", Type::Float}},
-        [node](Graph& g, const std::vector<Expr>& in) { return node(g, {in[0], in[1], in[2], in[3]}); }};
+    info.node = ChoiceNode{{{"normal", Type::Vec3},
+                            {"to_eye", Type::Vec3},
+                            {"sun_direction", Type::Vec3},
+                            {"fresnel", Type::Float}},
+                           [node](Graph& g, const std::vector<Expr>& in) {
+                               return node(g, {in[0], in[1], in[2], in[3]});
+                           }};
     info.compose = [node, origin = "specular." + info.name](Surface& s) {
         OriginScope scope(s.g, origin);
         Expr intensity = node(s.g, {s.normal, s.to_eye, s.sun_travel, s.fresnel});
@@ -149,28 +153,31 @@ ChoiceInfo specular_choice(ChoiceInfo info, Expr (*node)(Graph&, const SpecularI
 AxisInfo specular_axis() {
     // Blinn-Phong stands in for a microfacet lobe (its exponent plays the width, water-models.md
     // "Specular"); the glare is an artistic lobe of its own.
-    return {"specular",
-            "blinn_phong",
-            {
-                {.name = "none",
-                 .description = "no sun highlight",
-                 .compose =
-                     [](Surface& s) {
-                         OriginScope scope(s.g, "specular.none");
-                         s.specular = constant(s.g, {0.0, 0.0, 0.0});
-                     }},
-                specular_choice({.name = "toman_glare",
-                                 .seed = "000",
-                                 .description = "reflected-eye glare, pow(d, 512) scaled by shininess"},
-                                &specular_toman_glare),
-                specular_choice({.name = "blinn_phong", .description = "pow(N.H, s)", .approximates = "ggx_sun"},
-                                &specular_blinn_phong),
-                specular_choice({.name = "ggx_sun",
-                                 .seed = "004",
-                                 .description = "GGX microfacet sun lobe with Smith masking and Schlick Fresnel",
-                                 .gold = true},
-                                &specular_ggx_sun),
-            }};
+    return {
+        "specular",
+        "blinn_phong",
+        {
+            {.name = "none",
+             .description = "no sun highlight",
+             .compose =
+                 [](Surface& s) {
+                     OriginScope scope(s.g, "specular.none");
+                     s.specular = constant(s.g, {0.0, 0.0, 0.0});
+                 }},
+            specular_choice({.name = "toman_glare",
+                             .seed = "000",
+                             .description = "reflected-eye glare, pow(d, 512) scaled by shininess"},
+                            &specular_toman_glare),
+            specular_choice(
+                {.name = "blinn_phong", .description = "pow(N.H, s)", .approximates = "ggx_sun"},
+                &specular_blinn_phong),
+            specular_choice(
+                {.name = "ggx_sun",
+                 .seed = "004",
+                 .description = "GGX microfacet sun lobe with Smith masking and Schlick Fresnel",
+                 .gold = true},
+                &specular_ggx_sun),
+        }};
 }
 
 } // namespace watergen

@@ -4,7 +4,6 @@
 
 #include <array>
 
-
 namespace watergen {
 
 Expr safe_normalize(Expr v, Expr fallback) {

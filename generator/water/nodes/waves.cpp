@@ -167,11 +167,14 @@ struct WaveSearch {
     int steps = 0, safe_steps = 0;
 };
 
-WaveHit find_wave_surface(const Surface& s, const std::string& origin, const WaveSearch& search, Expr pixel_angle) {
+WaveHit find_wave_surface(const Surface& s, const std::string& origin, const WaveSearch& search,
+                          Expr pixel_angle) {
     Graph& g = s.g;
     FullPrecisionScope full(g);
     OriginScope scope(g, origin);
-    if (search.model) return surface_search(s, search.model(g, s.time), search.steps, search.safe_steps, pixel_angle);
+    if (search.model)
+        return surface_search(s, search.model(g, s.time), search.steps, search.safe_steps,
+                              pixel_angle);
     const PlaneHit hit = intersect_plane(s, s.level);
     return {hit.point, hit.distance, constant(g, {0.0, 0.0})};
 }
@@ -195,18 +198,22 @@ void compose_waves(Surface& s, const std::string& origin, const WaveSearch& sear
 // The catalog node of a choice: where a view ray from `eye` meets the water -> (point, distance).
 ChoiceInfo waves_choice(ChoiceInfo info, WaveSearch search, const std::string& reads = "") {
     const std::string origin = "waves." + info.name;
-    info.node = ChoiceNode{{{"eye", Type::Vec3}, {"view_ray", Type::Vec3}, {"level", Type::Float}, {"time", Type::Float}},
-                           [origin, search](Graph& g, const std::vector<Expr>& in) {
-                               FullPrecisionScope full(g); // points 5e6 m away overflow half
-                               Surface s(g);
-                               s.eye = in[0];
-                               s.view_ray = in[1];
-                               s.level = in[2];
-                               s.time = in[3];
-                               const WaveHit hit = find_wave_surface(s, origin, search, Expr());
-                               return vec4(hit.point, hit.distance);
-                           },
-                           "surface point and ray distance (vec4) where the view ray meets the water" + reads};
+    info.node = ChoiceNode{
+        {{"eye", Type::Vec3},
+         {"view_ray", Type::Vec3},
+         {"level", Type::Float},
+         {"time", Type::Float}},
+        [origin, search](Graph& g, const std::vector<Expr>& in) {
+            FullPrecisionScope full(g); // points 5e6 m away overflow half
+            Surface s(g);
+            s.eye = in[0];
+            s.view_ray = in[1];
+            s.level = in[2];
+            s.time = in[3];
+            const WaveHit hit = find_wave_surface(s, origin, search, Expr());
+            return vec4(hit.point, hit.distance);
+        },
+        "surface point and ray distance (vec4) where the view ray meets the water" + reads};
     info.compose = [origin, search](Surface& s) { compose_waves(s, origin, search); };
     return info;
 }
@@ -214,21 +221,32 @@ ChoiceInfo waves_choice(ChoiceInfo info, WaveSearch search, const std::string& r
 // The families' own nodes at full detail (no footprint): the catalog evaluates points, not pixels.
 std::vector<CatalogNode> wave_family_nodes() {
     using Node = Expr (*)(Graph&, Expr, Expr, Expr);
-    auto node = [](const std::string& name, const std::string& what, Node f, const std::string& approximates = "") {
-        return CatalogNode{name, what, {{"xz", Type::Vec2}, {"time", Type::Float}},
-                           [f](Graph& g, const std::vector<Expr>& in) { return f(g, in[0], in[1], Expr()); }, approximates};
+    auto node = [](const std::string& name, const std::string& what, Node f,
+                   const std::string& approximates = "") {
+        return CatalogNode{
+            name,
+            what,
+            {{"xz", Type::Vec2}, {"time", Type::Float}},
+            [f](Graph& g, const std::vector<Expr>& in) { return f(g, in[0], in[1], Expr()); },
+            approximates};
     };
-    const Node heightmap = [](Graph& g, Expr xz, Expr time, Expr) { return heightmap_height(g, xz, time); };
+    const Node heightmap = [](Graph& g, Expr xz, Expr time, Expr) {
+        return heightmap_height(g, xz, time);
+    };
     return {
-        node("waves.sum_of_sines.height", "height above the water level at xz, m", &sum_of_sines_height),
+        node("waves.sum_of_sines.height", "height above the water level at xz, m",
+             &sum_of_sines_height),
         node("waves.sum_of_sines.slope", "(dh/dx, dh/dz) at xz", &sum_of_sines_slope),
         node("waves.sum_of_sines.normal", "unit normal at xz", &sum_of_sines_normal),
-        node("waves.gerstner.displacement", "displacement of grid point xz, m", &gerstner_displacement),
+        node("waves.gerstner.displacement", "displacement of grid point xz, m",
+             &gerstner_displacement),
         node("waves.gerstner.normal", "exact unit normal at grid point xz", &gerstner_normal),
-        // Exact for one wave; drops the cross terms between waves (water-models.md, "Waves and normals").
-        node("waves.gerstner.normal_gpugems", "GPU Gems' closed-form normal at grid point xz", &gerstner_normal_gpugems,
-             "waves.gerstner.normal"),
-        node("waves.heightmap.height", "height-map height at xz, m; reads texture height_map (CPU evaluator only)",
+        // Exact for one wave; drops the cross terms between waves (water-models.md, "Waves and
+        // normals").
+        node("waves.gerstner.normal_gpugems", "GPU Gems' closed-form normal at grid point xz",
+             &gerstner_normal_gpugems, "waves.gerstner.normal"),
+        node("waves.heightmap.height",
+             "height-map height at xz, m; reads texture height_map (CPU evaluator only)",
              heightmap),
     };
 }
@@ -243,22 +261,25 @@ AxisInfo waves_axis() {
             "flat",
             {
                 waves_choice({.name = "flat", .description = "the water plane"}, {}),
-                waves_choice({.name = "sum_of_sines",
-                              .seed = "004",
-                              .description = "sum of sines, frequency x1.18 and amplitude x0.82 per wave"},
-                             {&sum_of_sines_surface, kWaveSurfaceSteps, kWaveSurfaceSafeSteps}),
+                waves_choice(
+                    {.name = "sum_of_sines",
+                     .seed = "004",
+                     .description = "sum of sines, frequency x1.18 and amplitude x0.82 per wave"},
+                    {&sum_of_sines_surface, kWaveSurfaceSteps, kWaveSurfaceSafeSteps}),
                 waves_choice({.name = "gerstner", .seed = "004", .description = "Gerstner waves"},
                              {&gerstner_surface, kWaveSurfaceSteps, kWaveSurfaceSafeSteps}),
                 waves_choice({.name = "heightmap_march",
                               .seed = "000",
                               .description = "height-map march, 4 iterations",
                               .approximates = "heightmap_march_converged"},
-                             {&heightmap_surface, kHeightmapMarchSteps, kHeightmapMarchSafeSteps}, reads_height_map),
+                             {&heightmap_surface, kHeightmapMarchSteps, kHeightmapMarchSafeSteps},
+                             reads_height_map),
                 waves_choice({.name = "heightmap_march_converged",
                               .seed = "000",
                               .description = "height-map march, 32 iterations",
                               .gold = true},
-                             {&heightmap_surface, kHeightmapMarchConvergedSteps, kHeightmapMarchConvergedSafeSteps},
+                             {&heightmap_surface, kHeightmapMarchConvergedSteps,
+                              kHeightmapMarchConvergedSafeSteps},
                              reads_height_map),
             },
             wave_family_nodes()};

@@ -27,7 +27,8 @@ enum class SceneFact {
 // What a choice needs from a scene; a scene without it never shows the choice.
 struct SceneNeed {
     SceneFact fact = SceneFact::Shoreline;
-    std::string value{};       // ReflectionSource: "cubemap", "planar", "horizon_map"; Precision: "full", "half"
+    std::string
+        value{}; // ReflectionSource: "cubemap", "planar", "horizon_map"; Precision: "full", "half"
     std::string consequence{}; // ends the reason: "no shoreline, so <consequence>"; "" for none
 };
 
@@ -36,10 +37,11 @@ struct ChoiceRequirement {
     std::string axis{};
     std::vector<std::string> choices{}; // documentation order of `axis`
     std::string why{};                  // "crest foam needs wave heights"
-    bool all_but = false;             // `choices` lists the excluded ones; resolved when the registry is frozen
+    bool all_but = false; // `choices` lists the excluded ones; resolved when the registry is frozen
 };
 // Every choice of `axis` except `excluded` (resolved once every axis is known).
-ChoiceRequirement every_choice_but(const std::string& axis, std::vector<std::string> excluded, const std::string& why);
+ChoiceRequirement every_choice_but(const std::string& axis, std::vector<std::string> excluded,
+                                   const std::string& why);
 
 // The choice's feature node on its own: the catalog entry "<axis>.<choice>" the probe runs.
 struct ChoiceNode {
@@ -49,10 +51,10 @@ struct ChoiceNode {
 };
 
 struct ChoiceInfo {
-    std::string name{};        // e.g. "schlick"
-    std::string seed{};        // article it comes from, e.g. "000"
-    std::string description{}; // one line for --help, reports and the node catalog
-    bool gold = false;       // the reference the cheaper choices are measured against
+    std::string name{};         // e.g. "schlick"
+    std::string seed{};         // article it comes from, e.g. "000"
+    std::string description{};  // one line for --help, reports and the node catalog
+    bool gold = false;          // the reference the cheaper choices are measured against
     std::string approximates{}; // the choice of the same axis this one approximates, or ""
     std::optional<ChoiceNode> node{};
     // What the choice does to the surface (water_shader.cpp runs the axes in order); empty:
@@ -82,8 +84,8 @@ std::optional<std::string> register_choice(const std::string& axis, ChoiceInfo c
 // Runs the choice's composition on the surface; an unknown choice records a diagnostic.
 void compose_choice(Surface& s, const std::string& axis, const std::string& choice);
 
-// The --<axis> option's help: default, then one line per choice with gold, seed and what it
-// approximates.
+// The --<axis> option's help: default, then one line per choice with gold, what it approximates,
+// the choices of other axes it needs, and its seed.
 std::string axis_help(const AxisInfo& axis);
 // README's axis table: "| axis | choices |" with each choice's seed and gold mark.
 std::string axes_markdown_table();

@@ -1,4 +1,5 @@
-// waves: the families (water/nodes/wave_families.cpp) and where the view ray meets them (water/nodes/waves.cpp).
+// waves: the families (water/nodes/wave_families.cpp) and where the view ray meets them
+// (water/nodes/waves.cpp).
 //
 // Every function here is geometry: it runs at 32-bit precision even inside a relaxed scope
 // (a probe's half mode), because half holds neither 1e5 m nor a day of seconds.
