@@ -27,8 +27,8 @@ enum class SceneFact {
 // What a choice needs from a scene; a scene without it never shows the choice.
 struct SceneNeed {
     SceneFact fact = SceneFact::Shoreline;
-    std::string
-        value{}; // ReflectionSource: "cubemap", "planar", "horizon_map"; Precision: "full", "half"
+    // ReflectionSource: "cubemap", "planar" or "horizon_map"; Precision: "full" or "half".
+    std::string value{};
     std::string consequence{}; // ends the reason: "no shoreline, so <consequence>"; "" for none
 };
 
@@ -37,7 +37,8 @@ struct ChoiceRequirement {
     std::string axis{};
     std::vector<std::string> choices{}; // documentation order of `axis`
     std::string why{};                  // "crest foam needs wave heights"
-    bool all_but = false; // `choices` lists the excluded ones; resolved when the registry is frozen
+    // `choices` lists the excluded ones instead; resolved when the registry is frozen.
+    bool all_but = false;
 };
 // Every choice of `axis` except `excluded` (resolved once every axis is known).
 ChoiceRequirement every_choice_but(const std::string& axis, std::vector<std::string> excluded,
