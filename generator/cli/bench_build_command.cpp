@@ -23,7 +23,11 @@ Runner add_bench_build_command(CLI::App& app, const Common& common) {
     app.add_option("material", o->material, "material of the pruned example (default: the built-in default material)");
     app.add_option("--scene", o->scenes, "scenes of the pruned example (repeatable)");
     app.add_option("--jobs,-j", o->threads, "threads of the 'all threads' runs (default: every hardware thread)");
-    app.add_option("--sample", o->sample, "full-space variants to build, evenly spaced (default 48)")->check(CLI::Range(1, 238080));
+    app.add_option("--sample", o->sample,
+                   "full-space variants to build, evenly spaced (default 48)")
+        ->check(CLI::Validator(
+            [](std::string& in) { return CLI::Range(size_t{1}, count_variants(full_space()))(in); },
+            "INT in [1 - the full space's size]"));
     app.add_option("--out", o->out, "directory for build.csv and build.json (default out/bench)");
     return [o, &common]() {
         BuildBenchRequest request;

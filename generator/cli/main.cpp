@@ -14,12 +14,10 @@ void add_variant_options(CLI::App& app, Variant& variant, std::string& preset) {
     const auto& list = axes();
     for (size_t i = 0; i < list.size(); ++i) {
         std::vector<std::string> names;
-        std::string help = "node on the " + list[i].name + " axis (default " + list[i].default_choice + "):";
-        for (const auto& c : list[i].choices) {
+        for (const auto& c : list[i].choices)
             names.push_back(c.name);
-            help += "\n  " + c.name + (c.gold ? " (gold)" : "") + ": " + c.description + (c.seed.empty() ? "" : " [seed " + c.seed + "]");
-        }
-        app.add_option("--" + list[i].name, variant.choices[i], help)->check(CLI::IsMember(names));
+        app.add_option("--" + list[i].name, variant.choices[i], axis_help(list[i]))
+            ->check(CLI::IsMember(names));
     }
 }
 

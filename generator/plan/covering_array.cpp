@@ -3,22 +3,28 @@
 #include <set>
 #include <tuple>
 
+#include "watergen/plan/variant_space.h"
+
 namespace watergen {
 
 namespace {
 
 using Pair = std::tuple<size_t, size_t, size_t, size_t>; // axis a, choice i, axis b > a, choice j
 
-// Constraints here are pairwise, so a pair is feasible when the two choices alone obey them.
+size_t axis_position(const std::string& name) {
+    return static_cast<size_t>(find_axis(name) - axes().data());
+}
+
+// The built-in rules are pairwise, so a pair is feasible when the two choices alone obey them.
 bool compatible(const Variant& partial, const std::vector<bool>& set) {
-    for (const auto& c : constraints()) {
-        const AxisInfo* a = find_axis(c.axis);
-        const AxisInfo* b = find_axis(c.requires_axis);
-        const size_t ia = static_cast<size_t>(a - axes().data()), ib = static_cast<size_t>(b - axes().data());
-        if (!set[ia] || !set[ib] || partial.choices[ia] != c.choice) continue;
-        bool ok = false;
-        for (const auto& r : c.requires_choices) ok = ok || partial.choices[ib] == r;
-        if (!ok) return false;
+    static const std::vector<Rule> rules = builtin_rules();
+    for (const auto& r : rules) {
+        const size_t ia = axis_position(r.axis), ib = axis_position(r.other_axis);
+        if (!set[ia] || !set[ib] || partial.choices[ia] != r.choice) continue;
+        bool listed = false;
+        for (const auto& c : r.other_choices)
+            listed = listed || partial.choices[ib] == c;
+        if (listed != (r.kind == Rule::Kind::Requires)) return false;
     }
     return true;
 }

@@ -17,48 +17,74 @@ namespace watergen {
 namespace {
 
 
-// A scene fact that rules out choices of one axis. `rules_out` returns the reason, or "" when
-// the scene can use the choice.
-struct SceneRule {
-    std::string axis;
-    std::string fact; // key of SceneWhere::fact
-    std::function<std::string(const SceneFacts&, const std::string& choice)> rules_out;
-};
-
 bool has_source(const SceneFacts& s, const std::string& source) {
     return std::find(s.reflection_sources.begin(), s.reflection_sources.end(), source) != s.reflection_sources.end();
 }
 
+// A choice's scene need (axis_registry.h), checked on variants where the axis holds the choice.
+struct SceneRule {
+    size_t axis; // position in axes()
+    std::string choice;
+    SceneNeed need;
+};
+
+// Every scene need of the registry, grouped by fact in SceneFact order, then axis order.
 const std::vector<SceneRule>& scene_rules() {
-    static const std::vector<SceneRule> rules = {
-        {"foam", "shoreline",
-         [](const SceneFacts& s, const std::string& c) -> std::string {
-             if (s.shoreline || (c != "shore" && c != "both")) return "";
-             return "no shoreline, so shore foam never shows";
-         }},
-        {"reflection", "reflection_sources",
-         [](const SceneFacts& s, const std::string& c) -> std::string {
-             const std::string need = c == "sky_cubemap" ? "cubemap" : c == "planar_projective" ? "planar"
-                                      : c == "fourier_horizon" ? "horizon_map" : "";
-             if (need.empty() || has_source(s, need)) return "";
-             return "no " + need + " among the scene's reflection sources (" +
-                    (s.reflection_sources.empty() ? std::string("none") : join(s.reflection_sources)) + ")";
-         }},
-        {"specular", "sun_elevation",
-         [](const SceneFacts& s, const std::string& c) -> std::string {
-             if (c == "none" || s.sun_elevation.max > 0.0) return "";
-             return fmt::format("the sun never rises (elevation at most {:g} degrees), so there is no sun highlight",
-                                s.sun_elevation.max);
-         }},
-        {"precision", "precision",
-         [](const SceneFacts& s, const std::string& c) -> std::string {
-             if (s.precision == "any" || s.precision == c) return "";
-             return "the scene targets precision " + s.precision;
-         }},
-    };
+    static const std::vector<SceneRule> rules = [] {
+        std::vector<SceneRule> list;
+        for (SceneFact fact : {SceneFact::Shoreline, SceneFact::ReflectionSource,
+                               SceneFact::SunAboveHorizon, SceneFact::Precision})
+            for (size_t a = 0; a < axes().size(); ++a)
+                for (const auto& c : axes()[a].choices)
+                    for (const auto& need : c.scene_needs)
+                        if (need.fact == fact) list.push_back({a, c.name, need});
+        return list;
+    }();
     return rules;
 }
 
+// The key of SceneWhere::fact a need reads.
+std::string fact_key(SceneFact fact) {
+    switch (fact) {
+    case SceneFact::Shoreline:
+        return "shoreline";
+    case SceneFact::ReflectionSource:
+        return "reflection_sources";
+    case SceneFact::SunAboveHorizon:
+        return "sun_elevation";
+    case SceneFact::Precision:
+        return "precision";
+    }
+    return "";
+}
+
+// Why the scene lacks what `need` asks for, or "" when it has it.
+std::string unmet(const SceneFacts& s, const SceneNeed& need) {
+    std::string missing;
+    switch (need.fact) {
+    case SceneFact::Shoreline:
+        if (!s.shoreline) missing = "no shoreline";
+        break;
+    case SceneFact::ReflectionSource:
+        if (!has_source(s, need.value))
+            missing =
+                "no " + need.value + " among the scene's reflection sources (" +
+                (s.reflection_sources.empty() ? std::string("none") : join(s.reflection_sources)) +
+                ")";
+        break;
+    case SceneFact::SunAboveHorizon:
+        if (!(s.sun_elevation.max > 0.0))
+            missing = fmt::format("the sun never rises (elevation at most {:g} degrees)",
+                                  s.sun_elevation.max);
+        break;
+    case SceneFact::Precision:
+        if (s.precision != "any" && s.precision != need.value)
+            missing = "the scene targets precision " + s.precision;
+        break;
+    }
+    if (missing.empty() || need.consequence.empty()) return missing;
+    return missing + ", so " + need.consequence;
+}
 
 // Sorts the material's variants into those the scene reaches and those it skips, keeping
 // each skip's reason (grouped) for explain.
@@ -99,9 +125,11 @@ std::string SkippedGroup::text() const {
 
 std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& v) {
     for (const auto& r : scene_rules()) {
-        const std::string& choice = v.choice(r.axis);
-        const std::string reason = r.rules_out(scene, choice);
-        if (!reason.empty()) return Exclusion{r.axis, choice, reason, scene.where.of(r.fact)};
+        if (v.choices[r.axis] != r.choice) continue;
+        const std::string reason = unmet(scene, r.need);
+        if (!reason.empty())
+            return Exclusion{axes()[r.axis].name, r.choice, reason,
+                             scene.where.of(fact_key(r.need.fact))};
     }
     return std::nullopt;
 }

@@ -4,9 +4,20 @@ namespace watergen {
 
 std::vector<Rule> builtin_rules() {
     std::vector<Rule> rules;
-    for (const auto& c : constraints())
-        rules.push_back({Rule::Kind::Requires, c.axis, c.choice, c.requires_axis, c.requires_choices, c.why, ""});
+    for (const auto& a : axes())
+        for (const auto& c : a.choices)
+            for (const auto& r : c.requirements)
+                rules.push_back(
+                    {Rule::Kind::Requires, a.name, c.name, r.axis, r.choices, r.why, ""});
     return rules;
+}
+
+std::vector<std::string>& VariantSpace::offered(const std::string& axis) {
+    return choices.at(static_cast<size_t>(find_axis(axis) - axes().data()));
+}
+
+const std::vector<std::string>& VariantSpace::offered(const std::string& axis) const {
+    return choices.at(static_cast<size_t>(find_axis(axis) - axes().data()));
 }
 
 VariantSpace full_space() {
@@ -39,6 +50,11 @@ std::optional<std::string> broken_rule(const std::vector<Rule>& rules, const Var
     return r->axis + "=" + r->choice + (r->kind == Rule::Kind::Requires ? " requires " : " excludes ") + r->other_axis +
            " in {" + list + "}" + (r->why.empty() ? "" : " (" + r->why + ")") + "; got " + r->other_axis + "=" +
            v.choice(r->other_axis) + (r->where.empty() ? "" : " [" + r->where + "]");
+}
+
+std::optional<std::string> check_constraints(const Variant& v) {
+    static const std::vector<Rule> rules = builtin_rules();
+    return broken_rule(rules, v);
 }
 
 void enumerate(const VariantSpace& space, const std::function<void(const Variant&)>& visit) {

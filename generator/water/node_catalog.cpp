@@ -1,20 +1,22 @@
 #include "watergen/water/node_catalog.h"
 
+#include "watergen/water/axis_registry.h"
 
 namespace watergen {
 
 const std::vector<CatalogNode>& node_catalog() {
     static const std::vector<CatalogNode> list = [] {
         std::vector<CatalogNode> nodes;
-        append_waves_nodes(nodes);
-        append_normals_nodes(nodes);
-        append_refraction_nodes(nodes);
-        append_extinction_nodes(nodes);
-        append_reflection_nodes(nodes);
-        append_fresnel_nodes(nodes);
-        append_specular_nodes(nodes);
-        append_foam_nodes(nodes);
-        append_shore_nodes(nodes);
+        for (const auto& a : axes()) {
+            for (const auto& c : a.choices) {
+                if (!c.node) continue;
+                const std::string note = c.node->note.empty() ? "" : "; " + c.node->note;
+                nodes.push_back({a.name + "." + c.name, c.description + note, c.node->inputs,
+                                 c.node->build,
+                                 c.approximates.empty() ? "" : a.name + "." + c.approximates});
+            }
+            nodes.insert(nodes.end(), a.extra_nodes.begin(), a.extra_nodes.end());
+        }
         return nodes;
     }();
     return list;

@@ -40,25 +40,25 @@ WaterShader build_water_shader(const Variant& variant, const Preset* preset) {
     const bool relaxed = variant.choice("precision") == "half";
     // Geometry (positions, times, wave phases) stays 32-bit: half cannot hold 1e5 m or a day
     // of seconds. The precision axis relaxes the shading math only.
-    apply_waves(s, variant.choice("waves"));
-    apply_normals(s, variant.choice("normals"));
+    compose_choice(s, "waves", variant.choice("waves"));
+    compose_choice(s, "normals", variant.choice("normals"));
     {
         OriginScope scope(g, "surface");
         s.to_eye = -s.view_ray;
         s.n_dot_v = named(dot(s.normal, s.to_eye), "n_dot_v");
     }
     RelaxedScope shading(g, relaxed);
-    apply_refraction(s, variant.choice("refraction"));
-    apply_extinction(s, variant.choice("extinction"));
-    apply_reflection(s, variant.choice("reflection"));
-    apply_fresnel(s, variant.choice("fresnel"));
-    apply_specular(s, variant.choice("specular"));
+    compose_choice(s, "refraction", variant.choice("refraction"));
+    compose_choice(s, "extinction", variant.choice("extinction"));
+    compose_choice(s, "reflection", variant.choice("reflection"));
+    compose_choice(s, "fresnel", variant.choice("fresnel"));
+    compose_choice(s, "specular", variant.choice("specular"));
     {
         OriginScope scope(g, "compose");
         s.color = named(mix(s.water_color, s.reflected, s.fresnel) + s.specular, "water_rgb");
     }
-    apply_foam(s, variant.choice("foam"));
-    apply_shore(s, variant.choice("shore"));
+    compose_choice(s, "foam", variant.choice("foam"));
+    compose_choice(s, "shore", variant.choice("shore"));
     OriginScope scope(g, "compose");
     if (has_errors(g.diagnostics())) return shader;
     Expr rgb = select(s.is_water, s.color, s.scene_rgb);

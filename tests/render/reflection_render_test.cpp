@@ -9,6 +9,7 @@
 #include "shared_runner.h"
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/dsl.h"
+#include "watergen/plan/variant_space.h"
 #include "watergen/render/variant_render.h"
 
 using namespace watergen;

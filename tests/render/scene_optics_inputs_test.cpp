@@ -7,8 +7,9 @@
 #include <cstdio>
 
 #include "reflection_support.h"
-#include "watergen/water/surface.h"
 #include "watergen/render/synthetic_scene.h"
+#include "watergen/water/axis_registry.h"
+#include "watergen/water/surface.h"
 #include "watergen/water/water_shader.h"
 
 using namespace watergen;
@@ -71,8 +72,8 @@ TEST_CASE("planar_reflection_map_agrees_with_the_sky_cube_along_the_mirrored_ray
         s->surface_point = varying(g, "surface_point", Type::Vec3);
         s->normal = constant(g, {0.0, 1.0, 0.0});
     }
-    apply_reflection(planar, "planar_projective");
-    apply_reflection(cube, "sky_cubemap");
+    compose_choice(planar, "reflection", "planar_projective");
+    compose_choice(cube, "reflection", "sky_cubemap");
     g.set_output("planar", planar.reflected.id());
     g.set_output("cube", cube.reflected.id());
     EvalInputs in = scene.eval_inputs();

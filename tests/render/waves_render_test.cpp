@@ -9,6 +9,7 @@
 
 #include "shared_runner.h"
 #include "watergen/ir/dsl.h"
+#include "watergen/plan/variant_space.h"
 #include "watergen/render/variant_render.h"
 #include "watergen/water/water_shader.h"
 

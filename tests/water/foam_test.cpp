@@ -4,9 +4,10 @@
 #include <cmath>
 
 #include "optics_support.h"
+#include "watergen/render/synthetic_scene.h"
+#include "watergen/water/axis_registry.h"
 #include "watergen/water/nodes.h"
 #include "watergen/water/surface.h"
-#include "watergen/render/synthetic_scene.h"
 
 using namespace watergen;
 using test::eval_catalog_node;
@@ -116,8 +117,8 @@ TEST_CASE("foam_pattern_texture_is_periodic_smooth_and_in_range", "[foam][golden
 
 namespace {
 
-// apply_foam over a hand-made Surface: varyings p (surface point), t (time), depth. Each point
-// becomes a 2x2 quad of lanes `spacing` metres apart in x and z (the pixel footprint the
+// foam=shore composed over a hand-made Surface: varyings p (surface point), t (time), depth. Each
+// point becomes a 2x2 quad of lanes `spacing` metres apart in x and z (the pixel footprint the
 // pattern filter sees); the result holds lane 0 of each quad.
 EvalResult foam_over_surface(const std::vector<double>& points, const std::vector<double>& times,
                              const std::vector<double>& depths, EvalPrecision p, bool relaxed, double spacing = 0.01) {
@@ -129,7 +130,7 @@ EvalResult foam_over_surface(const std::vector<double>& points, const std::vecto
     s.level = constant(g, 0.0);
     s.color = constant(g, {0.0, 0.0, 0.0});
     RelaxedScope shading(g, relaxed);
-    apply_foam(s, "shore");
+    compose_choice(s, "foam", "shore");
     g.set_output("out", s.color.id());
     static const SyntheticScene scene = foam_scene();
     EvalInputs in = scene.eval_inputs();

@@ -7,9 +7,10 @@
 #include <cmath>
 
 #include "reflection_support.h"
+#include "watergen/render/synthetic_scene.h"
+#include "watergen/water/axis_registry.h"
 #include "watergen/water/nodes/reflection.h"
 #include "watergen/water/surface.h"
-#include "watergen/render/synthetic_scene.h"
 
 using namespace watergen;
 using test::eval_catalog;
@@ -42,7 +43,7 @@ struct TwoToneCube {
     }
 };
 
-// apply_reflection over varyings standing for the surface fields it reads.
+// The reflection choice composed over varyings standing for the surface fields it reads.
 EvalResult reflect_with(const std::string& choice, const std::vector<double>& view_rays, const std::vector<double>& normals,
                         const std::vector<double>& points, EvalInputs in) {
     Graph g;
@@ -50,7 +51,7 @@ EvalResult reflect_with(const std::string& choice, const std::vector<double>& vi
     s.view_ray = varying(g, "view_ray", Type::Vec3);
     s.normal = varying(g, "normal", Type::Vec3);
     s.surface_point = varying(g, "surface_point", Type::Vec3);
-    apply_reflection(s, choice);
+    compose_choice(s, "reflection", choice);
     g.set_output("out", s.reflected.id());
     in.varyings["view_ray"] = view_rays;
     in.varyings["normal"] = normals;

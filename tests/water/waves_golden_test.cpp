@@ -7,9 +7,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "watergen/render/synthetic_scene.h"
+#include "watergen/water/axis_registry.h"
 #include "watergen/water/nodes/waves.h"
 #include "watergen/water/surface.h"
-#include "watergen/render/synthetic_scene.h"
 #include "watergen/water/water_shader.h"
 #include "waves_support.h"
 
@@ -289,8 +290,8 @@ struct SceneSearch {
     std::vector<double> residual;  // S.y - the band-limited surface height at S.xz, m
 };
 
-// apply_waves over the synthetic scene's 128x128 pixels as the water pass composes it (eye
-// (0, 5, -7), level 0, time 0), in 2x2 quads so the band limit sees its pixel footprint. Only
+// The waves choice composed over the synthetic scene's 128x128 pixels as the water pass composes it
+// (eye (0, 5, -7), level 0, time 0), in 2x2 quads so the band limit sees its pixel footprint. Only
 // pixels looking down are kept (upward rays never show water).
 SceneSearch search_scene(const std::string& choice, EvalPrecision p = EvalPrecision::Double) {
     const SyntheticScene scene = make_synthetic_scene(128, 128);
@@ -304,7 +305,7 @@ SceneSearch search_scene(const std::string& choice, EvalPrecision p = EvalPrecis
     Expr to_scene = s.scene_pos - s.eye;
     s.scene_distance = length(to_scene);
     s.view_ray = to_scene / max(s.scene_distance, 1e-6);
-    apply_waves(s, choice);
+    compose_choice(s, "waves", choice);
     g.set_output(
         "out", vec4(s.surface_point, select(s.is_water, constant(g, 1.0), constant(g, 0.0))).id());
     // The surface the search solves for: band-limited at the pixel's footprint at S (as

@@ -1,8 +1,6 @@
 #include "watergen/water/nodes/extinction.h"
 
-#include <tuple>
-
-#include "watergen/water/node_catalog.h"
+#include "axis_tables.h"
 #include "watergen/water/surface.h"
 
 namespace watergen {
@@ -80,24 +78,55 @@ Expr extinction_beer_lambert(Graph& g, const ExtinctionInputs& in) {
     return named(in.refraction * exp(-a * distance), "water_color");
 }
 
-void append_extinction_nodes(std::vector<CatalogNode>& list) {
-    for (auto [name, f, what] : {std::tuple{"extinction.none", &extinction_none, "refracted colour unchanged"},
-                                 std::tuple{"extinction.linear", &extinction_linear, "000 linear fades by depth and visibility"},
-                                 std::tuple{"extinction.exponential", &extinction_exponential, "002 exponential fog to the water colour"},
-                                 std::tuple{"extinction.absorb_scatter", &extinction_absorb_scatter, "003 absorption + scatter"},
-                                 std::tuple{"extinction.beer_lambert", &extinction_beer_lambert, "pure-water Beer-Lambert absorption"}})
-        list.push_back({name, what, {{"depth", Type::Float}, {"path", Type::Float}, {"refraction", Type::Vec3}},
-                        [f](Graph& g, const std::vector<Expr>& in) { return f(g, {in[0], in[1], in[2]}); }});
+namespace {
+
+// A choice whose node turns the refracted colour into the water colour.
+ChoiceInfo extinction_choice(ChoiceInfo info, Expr (*node)(Graph&, const ExtinctionInputs&)) {
+    info.node =
+        ChoiceNode{{{"depth", Type::Float}, {"path", Type::Float}, {"refraction", Type::Vec3}},
+                   [node](Graph& g, const std::vector<Expr>& in) {
+                       return node(g, {in[0], in[1], in[2]});
+                   }};
+    info.compose = [node](Surface& s) {
+        s.water_color = node(s.g, {s.depth, s.path, s.refracted});
+    };
+    return info;
 }
 
-void apply_extinction(Surface& s, const std::string& choice) {
-    const ExtinctionInputs in{s.depth, s.path, s.refracted};
-    if (choice == "none") s.water_color = extinction_none(s.g, in);
-    else if (choice == "linear") s.water_color = extinction_linear(s.g, in);
-    else if (choice == "exponential") s.water_color = extinction_exponential(s.g, in);
-    else if (choice == "absorb_scatter") s.water_color = extinction_absorb_scatter(s.g, in);
-    else if (choice == "beer_lambert") s.water_color = extinction_beer_lambert(s.g, in);
-    else s.g.error("extinction: no node for choice '" + choice + "'");
+} // namespace
+
+AxisInfo extinction_axis() {
+    // exponential and absorb_scatter are Beer-Lambert's exp(-k d) with artistic coefficients
+    // (one grey density; 003's ocean K plus scatter), measured against the pure-water gold.
+    return {
+        "extinction",
+        "absorb_scatter",
+        {
+            extinction_choice({.name = "none", .description = "refracted colour unchanged"},
+                              &extinction_none),
+            extinction_choice(
+                {.name = "linear",
+                 .seed = "000",
+                 .description =
+                     "per-channel linear fades with depth and with horizontal visibility"},
+                &extinction_linear),
+            extinction_choice(
+                {.name = "exponential",
+                 .seed = "002",
+                 .description = "exponential fog towards the water colour, a = exp(-d k)",
+                 .approximates = "beer_lambert"},
+                &extinction_exponential),
+            extinction_choice({.name = "absorb_scatter",
+                               .seed = "003",
+                               .description = "exponential absorption plus scatter colour",
+                               .approximates = "beer_lambert"},
+                              &extinction_absorb_scatter),
+            extinction_choice(
+                {.name = "beer_lambert",
+                 .description = "physical per-channel absorption of pure water (Pope and Fry 1997)",
+                 .gold = true},
+                &extinction_beer_lambert),
+        }};
 }
 
 } // namespace watergen

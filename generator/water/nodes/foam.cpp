@@ -2,9 +2,8 @@
 
 #include <cmath>
 #include <numbers>
-#include <tuple>
 
-#include "watergen/water/node_catalog.h"
+#include "axis_tables.h"
 #include "watergen/water/nodes/extinction.h"
 #include "watergen/water/surface.h"
 
@@ -108,26 +107,14 @@ Expr foam_both(Graph& g, const FoamInputs& in) {
     return blend_foam(g, in, named(f, "foam_coverage"));
 }
 
-void append_foam_nodes(std::vector<CatalogNode>& list) {
-    for (auto [name, f, what] : {std::tuple{"foam.shore", &foam_shore, "000 shore foam band by depth"},
-                                 std::tuple{"foam.crest", &foam_crest, "000 crest foam by wave height"},
-                                 std::tuple{"foam.both", &foam_both, "000 shore + crest foam"}})
-        list.push_back({name, what,
-                        {{"color", Type::Vec3}, {"pattern", Type::Float}, {"depth", Type::Float}, {"height", Type::Float}},
-                        [f](Graph& g, const std::vector<Expr>& in) { return f(g, {in[0], in[1], in[2], in[3]}); }});
-}
+namespace {
 
-void apply_foam(Surface& s, const std::string& choice) {
-    if (choice == "none") return;
-    Expr (*node)(Graph&, const FoamInputs&) = choice == "shore" ? &foam_shore
-                                              : choice == "crest" ? &foam_crest
-                                              : choice == "both"  ? &foam_both
-                                                                  : nullptr;
-    OriginScope scope(s.g, "foam." + choice);
-    if (!node) {
-        s.g.error("foam: no node for choice '" + choice + "'");
-        return;
-    }
+using FoamNode = Expr (*)(Graph&, const FoamInputs&);
+
+// Blends the foam of `node` into the composed colour: the pattern at the surface point, its
+// height above the water level and the water depth.
+void compose_foam(Surface& s, FoamNode node, const std::string& origin) {
+    OriginScope scope(s.g, origin);
     Expr coordinate, height, footprint;
     {
         // Positions up to 1e5 m and times up to 86400 s overflow binary16: geometry stays 32-bit.
@@ -140,6 +127,54 @@ void apply_foam(Surface& s, const std::string& choice) {
     // Explicit level 0: the single-level texture needs no derivatives, which fract breaks.
     Expr raw = named(sample_level(texture(s.g, foam_pattern_texture()), coordinate, constant(s.g, 0.0)).x(), "foam_texel");
     s.color = node(s.g, {s.color, foam_pattern_filtered(s.g, raw, footprint), s.depth, height});
+}
+
+ChoiceInfo foam_choice(ChoiceInfo info, FoamNode node) {
+    info.node = ChoiceNode{{{"color", Type::Vec3},
+                            {"pattern", Type::Float},
+                            {"depth", Type::Float},
+                            {"height", Type::Float}},
+                           [node](Graph& g, const std::vector<Expr>& in) {
+                               return node(g, {in[0], in[1], in[2], in[3]});
+                           }};
+    info.compose = [node, origin = "foam." + info.name](Surface& s) {
+        compose_foam(s, node, origin);
+    };
+    return info;
+}
+
+SceneNeed shoreline_need() {
+    return {SceneFact::Shoreline, "", "shore foam never shows"};
+}
+
+ChoiceRequirement wave_heights_requirement() {
+    return every_choice_but("waves", {"flat"}, "crest foam needs wave heights");
+}
+
+} // namespace
+
+AxisInfo foam_axis() {
+    return {"foam",
+            "none",
+            {
+                {.name = "none", .description = "no foam"},
+                foam_choice({.name = "shore",
+                             .seed = "000",
+                             .description = "foam band along the shoreline by depth",
+                             .scene_needs = {shoreline_need()}},
+                            &foam_shore),
+                foam_choice({.name = "crest",
+                             .seed = "000",
+                             .description = "foam on wave crests by height",
+                             .requirements = {wave_heights_requirement()}},
+                            &foam_crest),
+                foam_choice({.name = "both",
+                             .seed = "000",
+                             .description = "shore and crest foam",
+                             .scene_needs = {shoreline_need()},
+                             .requirements = {wave_heights_requirement()}},
+                            &foam_both),
+            }};
 }
 
 } // namespace watergen

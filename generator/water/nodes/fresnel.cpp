@@ -1,8 +1,6 @@
 #include "watergen/water/nodes/fresnel.h"
 
-#include <tuple>
-
-#include "watergen/water/node_catalog.h"
+#include "axis_tables.h"
 #include "watergen/water/surface.h"
 
 namespace watergen {
@@ -56,21 +54,42 @@ Expr fresnel_exact(Graph& g, Expr c) {
     return named(select(s2 >= 1.0, constant(g, 1.0), r), "fresnel");
 }
 
-void append_fresnel_nodes(std::vector<CatalogNode>& list) {
-    for (auto [name, f, what] : {std::tuple{"fresnel.none", &fresnel_none, "constant reflectance"},
-                                 std::tuple{"fresnel.power", &fresnel_power, "(1 - c)^q"},
-                                 std::tuple{"fresnel.schlick", &fresnel_schlick, "Schlick reflectance of c"},
-                                 std::tuple{"fresnel.exact", &fresnel_exact, "exact unpolarised reflectance of c, with TIR"}})
-        list.push_back({name, what, {{"c", Type::Float}},
-                        [f](Graph& g, const std::vector<Expr>& in) { return f(g, in[0]); }});
+namespace {
+
+// A choice whose node reads c = N.V and sets the surface's Fresnel term.
+ChoiceInfo fresnel_choice(ChoiceInfo info, Expr (*node)(Graph&, Expr)) {
+    info.node = ChoiceNode{{{"c", Type::Float}}, [node](Graph& g, const std::vector<Expr>& in) {
+                               return node(g, in[0]);
+                           }};
+    info.compose = [node](Surface& s) { s.fresnel = node(s.g, s.n_dot_v); };
+    return info;
 }
 
-void apply_fresnel(Surface& s, const std::string& choice) {
-    if (choice == "none") s.fresnel = fresnel_none(s.g, s.n_dot_v);
-    else if (choice == "power") s.fresnel = fresnel_power(s.g, s.n_dot_v);
-    else if (choice == "schlick") s.fresnel = fresnel_schlick(s.g, s.n_dot_v);
-    else if (choice == "exact") s.fresnel = fresnel_exact(s.g, s.n_dot_v);
-    else s.g.error("fresnel: no node for choice '" + choice + "'");
+} // namespace
+
+AxisInfo fresnel_axis() {
+    // power and Schlick approximate the exact reflectance (water-models.md, "Fresnel").
+    return {
+        "fresnel",
+        "schlick",
+        {
+            fresnel_choice({.name = "none", .description = "constant reflectance"}, &fresnel_none),
+            fresnel_choice({.name = "power",
+                            .seed = "002",
+                            .description = "F = (1 - c)^q, q = 4.5",
+                            .approximates = "exact"},
+                           &fresnel_power),
+            fresnel_choice({.name = "schlick",
+                            .seed = "000",
+                            .description = "Schlick's approximation, R0 from the indices",
+                            .approximates = "exact"},
+                           &fresnel_schlick),
+            fresnel_choice(
+                {.name = "exact",
+                 .description = "unpolarised dielectric reflectance with total internal reflection",
+                 .gold = true},
+                &fresnel_exact),
+        }};
 }
 
 } // namespace watergen

@@ -2,7 +2,7 @@
 // derivative tangent frame (000), and the analytic normal of the wave model (004).
 #include "watergen/water/nodes/normals.h"
 
-#include "watergen/water/node_catalog.h"
+#include "axis_tables.h"
 #include "watergen/water/nodes/waves.h"
 #include "watergen/water/surface.h"
 
@@ -81,63 +81,92 @@ Expr detail_normal(Graph& g, Expr base, Expr position, Expr time) {
     return named(select(frame.valid, safe_normalize(n, base), base), "detail_normal");
 }
 
-void apply_normals(Surface& s, const std::string& choice) {
-    OriginScope scope(s.g, "normals." + choice);
-    if (choice == "flat") {
-        s.normal = constant(s.g, {0.0, 1.0, 0.0});
-        return;
-    }
-    if (choice == "heightmap_diff") {
-        s.normal = heightmap_normal(s.g, s.surface_point.xz(), s.time);
-        return;
-    }
-    if (choice == "analytic") {
-        if (!s.wave_slope.valid()) {
-            s.g.error(
-                "normals: 'analytic' needs a wave model with derivatives (sum_of_sines, gerstner)");
-            return;
-        }
-        s.normal = normal_from_slope(s.g, s.wave_slope);
-        return;
-    }
-    if (choice == "detail_map") {
-        // The base is the wave model's own normal when it has one, else the plane's.
-        Expr base = s.wave_slope.valid() ? normal_from_slope(s.g, s.wave_slope)
-                                         : constant(s.g, {0.0, 1.0, 0.0});
-        s.normal = detail_normal(s.g, base, s.surface_point, s.time);
-        return;
-    }
-    s.g.error("normals: no node for choice '" + choice + "'");
+namespace {
+
+// A choice whose node runs under its own origin, in the catalog and in the water pass.
+ChoiceInfo normals_choice(ChoiceInfo info, std::vector<NodeInput> inputs,
+                          std::function<Expr(Graph&, const std::vector<Expr>&)> node,
+                          std::function<Expr(Surface&)> compose, std::string note = "") {
+    const std::string origin = "normals." + info.name;
+    info.node = ChoiceNode{std::move(inputs),
+                           [origin, node](Graph& g, const std::vector<Expr>& in) {
+                               OriginScope scope(g, origin);
+                               return node(g, in);
+                           },
+                           std::move(note)};
+    info.compose = [origin, compose](Surface& s) {
+        OriginScope scope(s.g, origin);
+        if (Expr n = compose(s); n.valid()) s.normal = n;
+    };
+    return info;
 }
 
-void append_normals_nodes(std::vector<CatalogNode>& list) {
-    list.push_back(
-        {"normals.flat", "(0, 1, 0)", {{"xz", Type::Vec2}}, [](Graph& g, const std::vector<Expr>&) {
-             return constant(g, {0.0, 1.0, 0.0});
-         }});
-    list.push_back({"normals.heightmap_diff",
-                    "central-difference normal of the height map at xz; reads texture height_map",
-                    {{"xz", Type::Vec2}, {"time", Type::Float}},
-                    [](Graph& g, const std::vector<Expr>& in) {
-                        OriginScope scope(g, "normals.heightmap_diff");
-                        return heightmap_normal(g, in[0], in[1]);
-                    }});
-    list.push_back({"normals.analytic",
-                    "exact normal of a height field with slope (dh/dx, dh/dz)",
-                    {{"slope", Type::Vec2}},
-                    [](Graph& g, const std::vector<Expr>& in) {
-                        OriginScope scope(g, "normals.analytic");
-                        return normal_from_slope(g, in[0]);
-                    }});
-    list.push_back({"normals.detail_map",
-                    "base normal perturbed by the detail normal map at position; needs ddx/ddy "
-                    "over 2x2 quads (probe rows 4k..4k+3) and "
-                    "texture detail_normal_map",
-                    {{"base", Type::Vec3}, {"position", Type::Vec3}, {"time", Type::Float}},
-                    [](Graph& g, const std::vector<Expr>& in) {
-                        OriginScope scope(g, "normals.detail_map");
-                        return detail_normal(g, in[0], in[1], in[2]);
-                    }});
+Expr analytic_normal(Surface& s) {
+    if (!s.wave_slope.valid()) {
+        s.g.error(
+            "normals: 'analytic' needs a wave model with derivatives (sum_of_sines, gerstner)");
+        return Expr();
+    }
+    return normal_from_slope(s.g, s.wave_slope);
+}
+
+Expr detail_map_normal(Surface& s) {
+    // The base is the wave model's own normal when it has one, else the plane's.
+    Expr base = s.wave_slope.valid() ? normal_from_slope(s.g, s.wave_slope)
+                                     : constant(s.g, {0.0, 1.0, 0.0});
+    return detail_normal(s.g, base, s.surface_point, s.time);
+}
+
+} // namespace
+
+AxisInfo normals_axis() {
+    return {
+        "normals",
+        "flat",
+        {
+            normals_choice(
+                {.name = "flat", .description = "(0, 1, 0)"}, {{"xz", Type::Vec2}},
+                [](Graph& g, const std::vector<Expr>&) {
+                    return constant(g, {0.0, 1.0, 0.0});
+                },
+                [](Surface& s) {
+                    return constant(s.g, {0.0, 1.0, 0.0});
+                }),
+            normals_choice(
+                {.name = "heightmap_diff",
+                 .seed = "000",
+                 .description = "central differences of the height map"},
+                {{"xz", Type::Vec2}, {"time", Type::Float}},
+                [](Graph& g, const std::vector<Expr>& in) {
+                    return heightmap_normal(g, in[0], in[1]);
+                },
+                [](Surface& s) { return heightmap_normal(s.g, s.surface_point.xz(), s.time); },
+                "reads texture height_map"),
+            normals_choice(
+                {.name = "detail_map",
+                 .seed = "000",
+                 .description = "detail normal map in a derivative tangent frame (Schuler)"},
+                {{"base", Type::Vec3}, {"position", Type::Vec3}, {"time", Type::Float}},
+                [](Graph& g, const std::vector<Expr>& in) {
+                    return detail_normal(g, in[0], in[1], in[2]);
+                },
+                &detail_map_normal,
+                "base normal perturbed at position; needs ddx/ddy over 2x2 quads and texture "
+                "detail_normal_map"),
+            // The catalog node takes the slope as input: any height field's exact normal.
+            normals_choice(
+                {.name = "analytic",
+                 .seed = "004",
+                 .description = "exact normal of the wave model",
+                 .gold = true,
+                 .requirements =
+                     {{"waves",
+                       {"sum_of_sines", "gerstner"},
+                       "analytic normals are the derivatives of a closed-form wave model"}}},
+                {{"slope", Type::Vec2}},
+                [](Graph& g, const std::vector<Expr>& in) { return normal_from_slope(g, in[0]); },
+                &analytic_normal),
+        }};
 }
 
 } // namespace watergen

@@ -1,6 +1,6 @@
 #include "watergen/water/nodes/reflection.h"
 
-#include "watergen/water/node_catalog.h"
+#include "axis_tables.h"
 #include "watergen/water/surface.h"
 
 namespace watergen {
@@ -175,39 +175,76 @@ Expr reflection_fourier_horizon(Surface& s) {
     return fourier_horizon_color(s.g, coefs1, coefs2, named(reflect(s.view_ray, s.normal), "reflected_ray"));
 }
 
-} // namespace
-
-void apply_reflection(Surface& s, const std::string& choice) {
-    if (choice == "none") {
-        OriginScope scope(s.g, "reflection.none");
-        s.reflected = uniform(s.g, sky_color());
-    } else if (choice == "sky_cubemap") {
-        s.reflected = reflection_sky_cubemap(s);
-    } else if (choice == "planar_projective") {
-        s.reflected = reflection_planar_projective(s);
-    } else if (choice == "fourier_horizon") {
-        s.reflected = reflection_fourier_horizon(s);
-    } else {
-        s.g.error("reflection: no node for choice '" + choice + "'");
-    }
+// A choice that reads `source` from the engine and sets the reflected colour with `node`.
+ChoiceInfo reflection_choice(ChoiceInfo info, const std::string& source, Expr (*node)(Surface&)) {
+    info.compose = [node](Surface& s) { s.reflected = node(s); };
+    info.scene_needs = {{SceneFact::ReflectionSource, source, ""}};
+    return info;
 }
 
-void append_reflection_nodes(std::vector<CatalogNode>& list) {
-    list.push_back({"reflection.sky_lookup", "001 cube direction reflect(-V, N), lower half mirrored; w = water tint weight",
-                    {{"view_ray", Type::Vec3}, {"normal", Type::Vec3}},
-                    [](Graph& g, const std::vector<Expr>& in) { return sky_cube_lookup(g, in[0], in[1]); }});
-    list.push_back({"reflection.projective_uv", "001/002 planar reflection uv at P + d N.xz; z = 1 when q.w > 1e-4, else uv = 0.5",
-                    {{"surface_point", Type::Vec3}, {"normal", Type::Vec3}},
-                    [](Graph& g, const std::vector<Expr>& in) { return planar_reflection_uv(g, in[0], in[1]); }});
-    list.push_back({"reflection.fourier_series", "003 horizon tangent from 8 Fourier coefficients, trig-free",
-                    {{"coefs1", Type::Vec4}, {"coefs2", Type::Vec4}, {"ray", Type::Vec3}},
-                    [](Graph& g, const std::vector<Expr>& in) { return fourier_series(g, in[0], in[1], in[2]); }});
-    list.push_back({"reflection.fourier_sky_weight", "003 sky (1) or below the horizon (0), smooth",
-                    {{"coefs1", Type::Vec4}, {"coefs2", Type::Vec4}, {"ray", Type::Vec3}},
-                    [](Graph& g, const std::vector<Expr>& in) { return fourier_sky_weight(g, in[0], in[1], in[2]); }});
-    list.push_back({"reflection.fourier_horizon", "003 reflected colour: fourier_below_color below the horizon, sky_color above",
-                    {{"coefs1", Type::Vec4}, {"coefs2", Type::Vec4}, {"ray", Type::Vec3}},
-                    [](Graph& g, const std::vector<Expr>& in) { return fourier_horizon_color(g, in[0], in[1], in[2]); }});
+std::vector<CatalogNode> reflection_nodes() {
+    using Node = Expr (*)(Graph&, Expr, Expr, Expr);
+    const std::vector<NodeInput> fourier_inputs = {
+        {"coefs1", Type::Vec4}, {"coefs2", Type::Vec4}, {"ray", Type::Vec3}};
+    auto fourier = [&](const std::string& name, const std::string& what, Node f) {
+        return CatalogNode{name, what, fourier_inputs, [f](Graph& g, const std::vector<Expr>& in) {
+                               return f(g, in[0], in[1], in[2]);
+                           }};
+    };
+    return {
+        {"reflection.sky_lookup",
+         "001 cube direction reflect(-V, N), lower half mirrored; w = water tint weight",
+         {{"view_ray", Type::Vec3}, {"normal", Type::Vec3}},
+         [](Graph& g, const std::vector<Expr>& in) { return sky_cube_lookup(g, in[0], in[1]); }},
+        {"reflection.projective_uv",
+         "001/002 planar reflection uv at P + d N.xz; z = 1 when q.w > 1e-4, else uv = 0.5",
+         {{"surface_point", Type::Vec3}, {"normal", Type::Vec3}},
+         [](Graph& g, const std::vector<Expr>& in) {
+             return planar_reflection_uv(g, in[0], in[1]);
+         }},
+        fourier("reflection.fourier_series",
+                "003 horizon tangent from 8 Fourier coefficients, trig-free", &fourier_series),
+        fourier("reflection.fourier_sky_weight", "003 sky (1) or below the horizon (0), smooth",
+                &fourier_sky_weight),
+        fourier("reflection.fourier_horizon",
+                "003 reflected colour: fourier_below_color below the horizon, sky_color above",
+                &fourier_horizon_color),
+    };
+}
+
+} // namespace
+
+AxisInfo reflection_axis() {
+    return {
+        "reflection",
+        "sky_cubemap",
+        {
+            {.name = "none",
+             .description = "constant sky colour",
+             .compose =
+                 [](Surface& s) {
+                     OriginScope scope(s.g, "reflection.none");
+                     s.reflected = uniform(s.g, sky_color());
+                 }},
+            reflection_choice(
+                {.name = "sky_cubemap",
+                 .seed = "001",
+                 .description =
+                     "environment cubemap along reflect(-V, N), fallback below the horizon"},
+                "cubemap", &reflection_sky_cubemap),
+            reflection_choice(
+                {.name = "planar_projective",
+                 .seed = "001",
+                 .description = "planar reflection texture, projective uv displaced by the normal"},
+                "planar", &reflection_planar_projective),
+            reflection_choice(
+                {.name = "fourier_horizon",
+                 .seed = "003",
+                 .description =
+                     "sky above a per-texel horizon from 8 Fourier coefficients, trig-free"},
+                "horizon_map", &reflection_fourier_horizon),
+        },
+        reflection_nodes()};
 }
 
 } // namespace watergen

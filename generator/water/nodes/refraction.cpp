@@ -1,6 +1,6 @@
 #include "watergen/water/nodes/refraction.h"
 
-#include "watergen/water/node_catalog.h"
+#include "axis_tables.h"
 #include "watergen/water/nodes/fresnel.h"
 #include "watergen/water/nodes/reflection.h"
 #include "watergen/water/surface.h"
@@ -56,36 +56,74 @@ namespace {
 
 Expr scene_color_at(Graph& g, Expr uv) { return sample(texture(g, scene_color_texture()), uv).xyz(); }
 
-} // namespace
-
-void apply_refraction(Surface& s, const std::string& choice) {
-    if (choice == "none") {
-        OriginScope scope(s.g, "refraction.none");
-        s.refracted = s.scene_rgb;
-    } else if (choice == "screen_distort") {
-        Expr uv = screen_distort_uv(s.g, s.uv, s.normal, s.depth);
-        OriginScope scope(s.g, "refraction.screen_distort");
-        s.refracted = named(scene_color_at(s.g, uv), "refracted");
-    } else if (choice == "refracted_ray") {
-        Expr uv = refracted_ray_uv(s.g, s.uv, s.surface_point, s.view_ray, s.normal, s.depth);
-        OriginScope scope(s.g, "refraction.refracted_ray");
-        s.refracted = named(scene_color_at(s.g, uv), "refracted");
-    } else {
-        s.g.error("refraction: no node for choice '" + choice + "'");
-    }
+// The refracted colour: the scene colour at `uv`.
+void compose_refraction(Surface& s, const std::string& origin, Expr uv) {
+    OriginScope scope(s.g, origin);
+    s.refracted = named(scene_color_at(s.g, uv), "refracted");
 }
 
-void append_refraction_nodes(std::vector<CatalogNode>& list) {
-    list.push_back({"refraction.screen_distort_uv", "000/003 uv + N.xz strength, faded towards the shore",
-                    {{"uv", Type::Vec2}, {"normal", Type::Vec3}, {"depth", Type::Float}},
-                    [](Graph& g, const std::vector<Expr>& in) { return screen_distort_uv(g, in[0], in[1], in[2]); }});
-    list.push_back({"refraction.refracted_ray_point", "002 W = U + dv refract(-V, N, n1/n2), dv clamped",
-                    {{"surface_point", Type::Vec3}, {"view_ray", Type::Vec3}, {"normal", Type::Vec3}, {"depth", Type::Float}},
-                    [](Graph& g, const std::vector<Expr>& in) { return refracted_ray_point(g, in[0], in[1], in[2], in[3]); }});
-    list.push_back({"refraction.refracted_ray_uv", "002 screen uv of W; the pixel's uv under TIR or behind the camera",
-                    {{"uv", Type::Vec2}, {"surface_point", Type::Vec3}, {"view_ray", Type::Vec3}, {"normal", Type::Vec3},
-                     {"depth", Type::Float}},
-                    [](Graph& g, const std::vector<Expr>& in) { return refracted_ray_uv(g, in[0], in[1], in[2], in[3], in[4]); }});
+std::vector<CatalogNode> refraction_nodes() {
+    return {
+        {"refraction.screen_distort_uv",
+         "000/003 uv + N.xz strength, faded towards the shore",
+         {{"uv", Type::Vec2}, {"normal", Type::Vec3}, {"depth", Type::Float}},
+         [](Graph& g, const std::vector<Expr>& in) {
+             return screen_distort_uv(g, in[0], in[1], in[2]);
+         }},
+        {"refraction.refracted_ray_point",
+         "002 W = U + dv refract(-V, N, n1/n2), dv clamped",
+         {{"surface_point", Type::Vec3},
+          {"view_ray", Type::Vec3},
+          {"normal", Type::Vec3},
+          {"depth", Type::Float}},
+         [](Graph& g, const std::vector<Expr>& in) {
+             return refracted_ray_point(g, in[0], in[1], in[2], in[3]);
+         }},
+        {"refraction.refracted_ray_uv",
+         "002 screen uv of W; the pixel's uv under TIR or behind the camera",
+         {{"uv", Type::Vec2},
+          {"surface_point", Type::Vec3},
+          {"view_ray", Type::Vec3},
+          {"normal", Type::Vec3},
+          {"depth", Type::Float}},
+         [](Graph& g, const std::vector<Expr>& in) {
+             return refracted_ray_uv(g, in[0], in[1], in[2], in[3], in[4]);
+         }},
+    };
+}
+
+} // namespace
+
+AxisInfo refraction_axis() {
+    return {"refraction",
+            "screen_distort",
+            {
+                {.name = "none",
+                 .description = "scene colour at the pixel",
+                 .compose =
+                     [](Surface& s) {
+                         OriginScope scope(s.g, "refraction.none");
+                         s.refracted = s.scene_rgb;
+                     }},
+                {.name = "screen_distort",
+                 .seed = "000",
+                 .description = "scene colour at uv displaced by the normal",
+                 .compose =
+                     [](Surface& s) {
+                         compose_refraction(s, "refraction.screen_distort",
+                                            screen_distort_uv(s.g, s.uv, s.normal, s.depth));
+                     }},
+                {.name = "refracted_ray",
+                 .seed = "002",
+                 .description = "scene colour where the refracted ray W = U + dv R meets the bed",
+                 .compose =
+                     [](Surface& s) {
+                         compose_refraction(s, "refraction.refracted_ray",
+                                            refracted_ray_uv(s.g, s.uv, s.surface_point, s.view_ray,
+                                                             s.normal, s.depth));
+                     }},
+            },
+            refraction_nodes()};
 }
 
 } // namespace watergen

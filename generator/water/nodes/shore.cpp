@@ -1,5 +1,6 @@
 #include "watergen/water/nodes/shore.h"
-#include "watergen/water/node_catalog.h"
+
+#include "axis_tables.h"
 #include "watergen/water/surface.h"
 
 namespace watergen {
@@ -11,15 +12,18 @@ Expr shore_soft(Graph& g, Expr color, Expr refracted, Expr depth) {
     return named(mix(refracted, color, saturate(max(depth, 0.0) * hardness)), "shore_color");
 }
 
-void apply_shore(Surface& s, const std::string& choice) {
-    if (choice == "hard") return;
-    if (choice == "soft") {
-        s.color = shore_soft(s.g, s.color, s.refracted, s.depth);
-        return;
-    }
-    s.g.error("shore: no node for choice '" + choice + "'");
+AxisInfo shore_axis() {
+    return {
+        "shore",
+        "soft",
+        {
+            {.name = "hard", .seed = "000", .description = "the water colour up to the shoreline"},
+            {.name = "soft",
+             .seed = "000",
+             .description = "blend towards the refracted scene by depth x shore hardness",
+             .compose =
+                 [](Surface& s) { s.color = shore_soft(s.g, s.color, s.refracted, s.depth); }},
+        }};
 }
-
-void append_shore_nodes(std::vector<CatalogNode>&) {}
 
 } // namespace watergen

@@ -1,9 +1,8 @@
 #include "watergen/water/nodes/specular.h"
 
 #include <numbers>
-#include <tuple>
 
-#include "watergen/water/node_catalog.h"
+#include "axis_tables.h"
 #include "watergen/water/nodes/fresnel.h"
 #include "watergen/water/surface.h"
 
@@ -129,31 +128,56 @@ Expr specular_ggx_sun(Graph& g, const SpecularInputs& in) {
     return named(select(lit, d * f * visibility, constant(g, 0.0)), "specular_intensity");
 }
 
-void append_specular_nodes(std::vector<CatalogNode>& list) {
-    for (auto [name, f, what] : {std::tuple{"specular.toman_glare", &specular_toman_glare, "000 mirrored-eye glare"},
-                                 std::tuple{"specular.blinn_phong", &specular_blinn_phong, "pow(N.H, s)"},
-                                 std::tuple{"specular.ggx_sun", &specular_ggx_sun, "GGX + Smith + Schlick sun lobe"}})
-        list.push_back({name, what,
-                        {{"normal", Type::Vec3}, {"to_eye", Type::Vec3}, {"sun_direction", Type::Vec3}, {"fresnel", Type::Float}},
-                        [f](Graph& g, const std::vector<Expr>& in) { return f(g, {in[0], in[1], in[2], in[3]}); }});
+namespace {
+
+// A sun lobe: the node gives the intensity, the surface's specular is that times the sun colour.
+ChoiceInfo specular_choice(ChoiceInfo info, Expr (*node)(Graph&, const SpecularInputs&)) {
+    info.node = ChoiceNode{{{"normal", Type::Vec3},
+                            {"to_eye", Type::Vec3},
+                            {"sun_direction", Type::Vec3},
+                            {"fresnel", Type::Float}},
+                           [node](Graph& g, const std::vector<Expr>& in) {
+                               return node(g, {in[0], in[1], in[2], in[3]});
+                           }};
+    info.compose = [node, origin = "specular." + info.name](Surface& s) {
+        OriginScope scope(s.g, origin);
+        Expr intensity = node(s.g, {s.normal, s.to_eye, s.sun_travel, s.fresnel});
+        s.specular = named(intensity * s.sun_color, "specular");
+    };
+    info.scene_needs = {{SceneFact::SunAboveHorizon, "", "there is no sun highlight"}};
+    return info;
 }
 
-void apply_specular(Surface& s, const std::string& choice) {
-    OriginScope scope(s.g, "specular." + choice);
-    const SpecularInputs in{s.normal, s.to_eye, s.sun_travel, s.fresnel};
-    Expr intensity;
-    if (choice == "none") {
-        s.specular = constant(s.g, {0.0, 0.0, 0.0});
-        return;
-    }
-    if (choice == "toman_glare") intensity = specular_toman_glare(s.g, in);
-    else if (choice == "blinn_phong") intensity = specular_blinn_phong(s.g, in);
-    else if (choice == "ggx_sun") intensity = specular_ggx_sun(s.g, in);
-    else {
-        s.g.error("specular: no node for choice '" + choice + "'");
-        return;
-    }
-    s.specular = named(intensity * s.sun_color, "specular");
+} // namespace
+
+AxisInfo specular_axis() {
+    // Blinn-Phong stands in for a microfacet lobe (its exponent plays the width, water-models.md
+    // "Specular"); the glare is an artistic lobe of its own.
+    return {
+        "specular",
+        "blinn_phong",
+        {
+            {.name = "none",
+             .description = "no sun highlight",
+             .compose =
+                 [](Surface& s) {
+                     OriginScope scope(s.g, "specular.none");
+                     s.specular = constant(s.g, {0.0, 0.0, 0.0});
+                 }},
+            specular_choice({.name = "toman_glare",
+                             .seed = "000",
+                             .description = "reflected-eye glare, pow(d, 512) scaled by shininess"},
+                            &specular_toman_glare),
+            specular_choice(
+                {.name = "blinn_phong", .description = "pow(N.H, s)", .approximates = "ggx_sun"},
+                &specular_blinn_phong),
+            specular_choice(
+                {.name = "ggx_sun",
+                 .seed = "004",
+                 .description = "GGX microfacet sun lobe with Smith masking and Schlick Fresnel",
+                 .gold = true},
+                &specular_ggx_sun),
+        }};
 }
 
 } // namespace watergen

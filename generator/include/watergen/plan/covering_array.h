@@ -10,7 +10,7 @@ namespace watergen {
 
 // Deterministic greedy construction (each new variant starts from the first uncovered pair and
 // takes, axis by axis, the choice that covers most uncovered pairs). Every variant satisfies
-// constraints(); pairs that no valid variant can hold are left out.
+// builtin_rules(); pairs that no valid variant can hold are left out.
 std::vector<Variant> pairwise_covering_variants();
 
 } // namespace watergen

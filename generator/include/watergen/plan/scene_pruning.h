@@ -21,7 +21,8 @@ struct Exclusion {
     std::string where;  // "open_ocean.json:4:3 /shoreline"
 };
 
-// The first choice of `v` the scene rules out (axes in order), or nullopt when it reaches v.
+// The first choice of `v` the scene rules out (by the scene needs of the registry's choices,
+// in SceneFact order, then axis order), or nullopt when it reaches v.
 std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& v);
 
 // Material variants a scene does not reach for one reason.

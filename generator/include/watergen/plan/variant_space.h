@@ -1,6 +1,7 @@
 // The permutation space as a pure function of its description: per axis the choices on
 // offer, plus rules between choices (requires / excludes). The full space is every choice of
-// axes() under constraints(); a material narrows the choices and may add its own rules.
+// axes() under the requirements the registry's choices declare; a material narrows the choices
+// and may add its own rules. The only enumeration of variants in watergen.
 #pragma once
 
 #include <functional>
@@ -27,17 +28,24 @@ struct Rule {
 struct VariantSpace {
     std::vector<std::vector<std::string>> choices; // per axis in axes() order, documentation order
     std::vector<Rule> rules;
+
+    // The choices on offer on the axis named `axis` (which must be one of axes()).
+    std::vector<std::string>& offered(const std::string& axis);
+    const std::vector<std::string>& offered(const std::string& axis) const;
 };
 
-// constraints() as rules.
+// The requirements of every choice of the registry (ChoiceInfo::requirements) as rules, in
+// axis and choice order.
 std::vector<Rule> builtin_rules();
-// Every choice of every axis under builtin_rules(): 238080 variants.
+// Every choice of every axis under builtin_rules() (its size: count_variants(full_space())).
 VariantSpace full_space();
 
 // The first rule `v` breaks, or nullptr when it breaks none.
 const Rule* find_broken_rule(const std::vector<Rule>& rules, const Variant& v);
 // The same as a sentence naming both axes; nullopt when valid.
 std::optional<std::string> broken_rule(const std::vector<Rule>& rules, const Variant& v);
+// broken_rule(builtin_rules(), v): why `v` is no variant of the full space; nullopt when valid.
+std::optional<std::string> check_constraints(const Variant& v);
 
 // Visits every valid variant of the space once, odometer order over axes() (the last axis
 // turns fastest). Cost: product of the choice counts x rules.

@@ -17,23 +17,16 @@ struct NodeInput {
 
 struct CatalogNode {
     std::string name; // "<axis>.<choice>", e.g. "fresnel.exact"
-    std::string description;
-    std::vector<NodeInput> inputs;
-    std::function<Expr(Graph&, const std::vector<Expr>&)> build;
+    std::string description{};
+    std::vector<NodeInput> inputs{};
+    std::function<Expr(Graph&, const std::vector<Expr>&)> build{};
+    std::string approximates{}; // the catalog node this one approximates, or ""
 };
 
+// Per axis of the registry (axis_registry.h): a node per choice that has one ("fresnel.exact"),
+// then the axis' extra nodes ("waves.gerstner.normal").
 const std::vector<CatalogNode>& node_catalog();
 
-// Each axis file (core/nodes/<axis>.cpp) adds the nodes of its axis.
-void append_waves_nodes(std::vector<CatalogNode>& list);
-void append_normals_nodes(std::vector<CatalogNode>& list);
-void append_refraction_nodes(std::vector<CatalogNode>& list);
-void append_extinction_nodes(std::vector<CatalogNode>& list);
-void append_reflection_nodes(std::vector<CatalogNode>& list);
-void append_fresnel_nodes(std::vector<CatalogNode>& list);
-void append_specular_nodes(std::vector<CatalogNode>& list);
-void append_foam_nodes(std::vector<CatalogNode>& list);
-void append_shore_nodes(std::vector<CatalogNode>& list);
 const CatalogNode* find_catalog_node(const std::string& name);
 std::string catalog_names(); // "a, b, c"
 

@@ -1,6 +1,6 @@
-// What the fullscreen water pass knows at one pixel, filled in axis by axis. Each axis file
-// (core/nodes/<axis>.cpp) provides apply_<axis>(Surface&, choice), reads the fields set by the
-// axes before it and sets its own; water_shader.cpp runs them in the order below.
+// What the fullscreen water pass knows at one pixel, filled in axis by axis. Each choice of the
+// axis registry (axis_registry.h) composes into it: it reads the fields set by the axes before
+// it and sets its own; water_shader.cpp runs the axes in the order below (compose_choice).
 #pragma once
 
 #include <string>
@@ -62,16 +62,5 @@ PlaneHit intersect_plane(const Surface& s, Expr height);
 
 // Sets path, depth and is_water from surface_point (for wave models that move the surface).
 void set_water_column(Surface& s, Expr surface_distance);
-
-// One function per axis; an unknown choice records a diagnostic on the graph.
-void apply_waves(Surface& s, const std::string& choice);
-void apply_normals(Surface& s, const std::string& choice);
-void apply_refraction(Surface& s, const std::string& choice);
-void apply_extinction(Surface& s, const std::string& choice);
-void apply_reflection(Surface& s, const std::string& choice);
-void apply_fresnel(Surface& s, const std::string& choice);
-void apply_specular(Surface& s, const std::string& choice);
-void apply_foam(Surface& s, const std::string& choice);
-void apply_shore(Surface& s, const std::string& choice);
 
 } // namespace watergen

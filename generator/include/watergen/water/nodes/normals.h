@@ -1,4 +1,4 @@
-// normals: see apply_normals in watergen/surface.h and core/nodes/normals.cpp.
+// normals: the choices of the normals axis (water/nodes/normals.cpp declares them).
 #pragma once
 
 #include "watergen/ir/dsl.h"

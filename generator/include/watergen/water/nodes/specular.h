@@ -1,5 +1,5 @@
 // Specular: the sun highlight, added after the Fresnel blend. Every node returns a scalar
-// intensity; apply_specular scales it by sun_color. The sun is a directional light: L is the
+// intensity; the specular choice scales it by sun_color. The sun is a directional light: L is the
 // unit direction sunlight travels (000's convention), so -L points at the sun.
 //
 // Each node is 0 (never NaN) when the sun is at or below the horizon (-L.y <= 0, e.g. the

@@ -1,4 +1,5 @@
-// waves: see apply_waves in watergen/surface.h and core/nodes/waves.cpp.
+// waves: the families (water/nodes/wave_families.cpp) and where the view ray meets them
+// (water/nodes/waves.cpp).
 //
 // Every function here is geometry: it runs at 32-bit precision even inside a relaxed scope
 // (a probe's half mode), because half holds neither 1e5 m nor a day of seconds.
@@ -38,6 +39,13 @@ Expr safe_normalize(Expr v, Expr fallback);
 // fades out as its wavelength drops from 4 to 2 footprints (beyond that it is aliasing noise
 // in the pixel). Without it (points: probes, the mesh path) every wave is in full.
 
+// Bounds of a family at its parameters: no crest is higher than `top` above the water level
+// (sum of a_i, m) and no |grad h| exceeds `max_slope` (sum of a_i f_i).
+struct WaveBounds {
+    Expr top;
+    Expr max_slope;
+};
+
 // ---- sum of sines (004) ----
 // h(p) = sum_i a_i sin(f_i (d_i . p) + t phi_i), a_i = A 0.82^i, f_i = F 1.18^i.
 // Parameters: waves_amplitude A (m), waves_frequency F (rad/m), waves_amplitude_gain,
@@ -46,6 +54,7 @@ Expr safe_normalize(Expr v, Expr fallback);
 Expr sum_of_sines_height(Graph& g, Expr xz, Expr time, Expr footprint = Expr()); // m
 Expr sum_of_sines_slope(Graph& g, Expr xz, Expr time, Expr footprint = Expr());  // dh/dx, dh/dz
 Expr sum_of_sines_normal(Graph& g, Expr xz, Expr time, Expr footprint = Expr()); // unit
+WaveBounds sum_of_sines_bounds(Graph& g, Expr time);
 
 // ---- Gerstner (004, GPU Gems ch. 1) ----
 // A grid point x0 moves to P = (x0.x + sum Q_i A_i D_i.x cos th_i, level + sum A_i sin th_i,
@@ -63,6 +72,10 @@ Expr gerstner_normal_gpugems(Graph& g, Expr grid_xz, Expr time, Expr footprint =
 // x0 = world_xz - horizontal(x0) (a contraction for Q < 1), starting from `start`.
 Expr gerstner_grid_point(Graph& g, Expr world_xz, Expr time, Expr start, int iterations,
                          Expr footprint = Expr());
+WaveBounds gerstner_bounds(Graph& g, Expr time);
+// One Newton step from x0 towards the grid point whose displaced position lies above world_xz
+// (2x2 Jacobian of the horizontal displacement, determinant floored at 0.04).
+Expr gerstner_grid_newton(Graph& g, Expr world_xz, Expr time, Expr x0, Expr footprint);
 
 // ---- height map (000) ----
 // Texture "height_map": r = height in [-1, 1], a periodic tile whose texel k sits at tile
@@ -121,8 +134,5 @@ Expr search_relaxation(Graph& g, Expr view_ray, Expr max_slope);
 // `pixel_angle` (radians per pixel, optional) band-limits the model at each step's footprint.
 WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, int safe_steps,
                        Expr pixel_angle = Expr());
-
-// The search of the axis choice `choice` of "waves" (steps as above; flat: the plane).
-WaveHit find_wave_surface(const Surface& s, const std::string& choice, Expr pixel_angle = Expr());
 
 } // namespace watergen

@@ -1,0 +1,94 @@
+// The axis registry: every axis of the water pass and, per choice, everything the toolkit
+// derives from it. Each axis file (water/nodes/<axis>.cpp) declares its choices once, in one
+// table; the axis list, variant keys, the node catalog, the composition of the water pass, the
+// built-in rules of the variant space, scene pruning, `--help` and README's axis table are all
+// read from here. Adding a choice to an axis touches its axis file only.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "watergen/water/node_catalog.h"
+
+namespace watergen {
+
+struct Surface;
+
+// Scene facts a choice can depend on, in the order scene pruning checks them (plan/scene_pruning).
+enum class SceneFact {
+    Shoreline,        // water meets land somewhere in view
+    ReflectionSource, // the engine provides the reflection source named by SceneNeed::value
+    SunAboveHorizon,  // the sun rises above the horizon at some time
+    Precision,        // the scene targets the precision named by SceneNeed::value (or any)
+};
+
+// What a choice needs from a scene; a scene without it never shows the choice.
+struct SceneNeed {
+    SceneFact fact = SceneFact::Shoreline;
+    // ReflectionSource: "cubemap", "planar" or "horizon_map"; Precision: "full" or "half".
+    std::string value{};
+    std::string consequence{}; // ends the reason: "no shoreline, so <consequence>"; "" for none
+};
+
+// axis=choice is valid only with `axis` in `choices`.
+struct ChoiceRequirement {
+    std::string axis{};
+    std::vector<std::string> choices{}; // documentation order of `axis`
+    std::string why{};                  // "crest foam needs wave heights"
+    // `choices` lists the excluded ones instead; resolved when the registry is frozen.
+    bool all_but = false;
+};
+// Every choice of `axis` except `excluded` (resolved once every axis is known).
+ChoiceRequirement every_choice_but(const std::string& axis, std::vector<std::string> excluded,
+                                   const std::string& why);
+
+// The choice's feature node on its own: the catalog entry "<axis>.<choice>" the probe runs.
+struct ChoiceNode {
+    std::vector<NodeInput> inputs{};
+    std::function<Expr(Graph&, const std::vector<Expr>&)> build{};
+    std::string note{}; // appended to the catalog description, e.g. textures the node reads
+};
+
+struct ChoiceInfo {
+    std::string name{};         // e.g. "schlick"
+    std::string seed{};         // article it comes from, e.g. "000"
+    std::string description{};  // one line for --help, reports and the node catalog
+    bool gold = false;          // the reference the cheaper choices are measured against
+    std::string approximates{}; // the choice of the same axis this one approximates, or ""
+    std::optional<ChoiceNode> node{};
+    // What the choice does to the surface (water_shader.cpp runs the axes in order); empty:
+    // leaves it as it is (foam=none, shore=hard, precision: the skeleton's scope).
+    std::function<void(Surface&)> compose{};
+    std::vector<SceneNeed> scene_needs{};
+    std::vector<ChoiceRequirement> requirements{};
+};
+
+struct AxisInfo {
+    std::string name{}; // e.g. "fresnel"
+    std::string default_choice{};
+    std::vector<ChoiceInfo> choices{}; // in documentation order
+    // Catalog nodes of the axis that are not choices ("waves.gerstner.normal"); names are full.
+    std::vector<CatalogNode> extra_nodes{};
+};
+
+// Every axis in fixed order; the order of a variant key. The first call freezes the registry.
+const std::vector<AxisInfo>& axes();
+const AxisInfo* find_axis(const std::string& name);
+const ChoiceInfo* find_choice(const AxisInfo& axis, const std::string& name);
+
+// Adds a choice at the end of an axis (a test build's extra node, a plug-in). Only before the
+// first call to axes(); returns why not otherwise, or for an unknown axis or a name in use.
+std::optional<std::string> register_choice(const std::string& axis, ChoiceInfo choice);
+
+// Runs the choice's composition on the surface; an unknown choice records a diagnostic.
+void compose_choice(Surface& s, const std::string& axis, const std::string& choice);
+
+// The --<axis> option's help: default, then one line per choice with gold, what it approximates,
+// the choices of other axes it needs, and its seed.
+std::string axis_help(const AxisInfo& axis);
+// README's axis table: "| axis | choices |" with each choice's seed and gold mark.
+std::string axes_markdown_table();
+
+} // namespace watergen
