@@ -4,6 +4,7 @@
 
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/pipeline/variant_build.h"
+#include "watergen/plan/variant_space.h"
 #include "watergen/render/synthetic_scene.h"
 
 namespace watergen {
