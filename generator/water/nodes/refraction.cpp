@@ -3,6 +3,7 @@
 #include "axis_tables.h"
 #include "watergen/water/nodes/fresnel.h"
 #include "watergen/water/nodes/reflection.h"
+#include "watergen/water/nodes/waves.h"
 #include "watergen/water/surface.h"
 #include "watergen/water/water_shader.h"
 
@@ -24,9 +25,14 @@ Expr screen_distort_uv(Graph& g, Expr uv, Expr normal, Expr depth) {
 namespace {
 
 // 002: R = refract(-V, N, n1 / n2); exactly 0 under total internal reflection, unit otherwise.
+// refract() assumes unit vectors; its dot(N, I)^2 overflows float on the GPU for vectors of
+// length ~1e19 (-nan / -inf there, finite on the CPU), so both are normalised first whatever
+// their length (a few instructions, for refracted_ray variants only).
 Expr refracted_direction(Graph& g, Expr view_ray, Expr normal) {
     OriginScope scope(g, "refraction.refracted_ray");
-    return named(refract(view_ray, normal, uniform(g, ior_air()) / uniform(g, ior_water())), "refracted_ray");
+    Expr v = robust_normalize(view_ray, constant(g, {0.0, -1.0, 0.0}));
+    Expr n = robust_normalize(normal, constant(g, {0.0, 1.0, 0.0}));
+    return named(refract(v, n, uniform(g, ior_air()) / uniform(g, ior_water())), "refracted_ray");
 }
 
 } // namespace

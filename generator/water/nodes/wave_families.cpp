@@ -12,6 +12,13 @@ Expr safe_normalize(Expr v, Expr fallback) {
     return select(len2 > 1e-30, v * rsqrt(max(len2, 1e-30)), fallback);
 }
 
+Expr robust_normalize(Expr v, Expr fallback) {
+    Expr a = abs(v);
+    Expr largest = max(max(a.x(), a.y()), a.z());
+    // NaN compares false: a NaN vector keeps its NaN scale and safe_normalize takes the fallback.
+    return safe_normalize(v / max(largest, 1e-30), fallback);
+}
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;

@@ -34,6 +34,9 @@ constexpr int kHeightmapMarchConvergedSafeSteps = 4;
 // v / |v|, or `fallback` when |v|^2 <= 1e-30 or is NaN (normalize of a zero vector is NaN on
 // the CPU and undefined on GPUs). Never produces a NaN itself.
 Expr safe_normalize(Expr v, Expr fallback);
+// The same for vectors of any finite length (1e-30 to 1e30): divided by its largest component
+// first, so |v|^2 cannot overflow or underflow in float. For inputs not known to be unit.
+Expr robust_normalize(Expr v, Expr fallback);
 
 // Band limit: `footprint` (m), when given, is a pixel's extent on the water; each wave then
 // fades out as its wavelength drops from 4 to 2 footprints (beyond that it is aliasing noise
