@@ -10,6 +10,16 @@ PlaneHit intersect_plane(const Surface& s, Expr height) {
     return {named(s.eye + s.view_ray * t, "surface_point"), t};
 }
 
+Expr pixel_angle(const Surface& s) {
+    return named(max(length(ddx(s.view_ray)), length(ddy(s.view_ray))), "pixel_angle");
+}
+
+Expr pixel_footprint(const Surface& s) {
+    // |ray.y| is 0 for a horizontal ray: guarded as in the surface search.
+    Expr ray_down = max(-s.view_ray.y(), 1e-6);
+    return named(pixel_angle(s) * length(s.surface_point - s.eye) / ray_down, "pixel_footprint");
+}
+
 void set_water_column(Surface& s, Expr surface_distance) {
     s.path = named(max(s.scene_distance - surface_distance, 0.0), "water_path");
     s.depth = bind(scene_quantity::water_depth,

@@ -140,7 +140,9 @@ AxisInfo normals_axis() {
                 [](Graph& g, const std::vector<Expr>& in) {
                     return heightmap_normal(g, in[0], in[1]);
                 },
-                [](Surface& s) { return heightmap_normal(s.g, s.surface_point.xz(), s.time); },
+                [](Surface& s) {
+                    return heightmap_normal(s.g, s.surface_point.xz(), s.time, pixel_footprint(s));
+                },
                 "reads texture height_map"),
             normals_choice(
                 {.name = "detail_map",

@@ -333,12 +333,12 @@ Differences heightmap_differences(Graph& g, Expr xz, Expr time, Expr footprint =
 
 } // namespace
 
-Expr heightmap_normal(Graph& g, Expr xz, Expr time) {
+Expr heightmap_normal(Graph& g, Expr xz, Expr time, Expr footprint) {
     FullPrecisionScope full(g);
     OriginScope scope(g, "normals.heightmap_diff");
     Expr strength =
         uniform(g, {"heightmap_normal_strength", Type::Float, {1.0}, 0.0, 100.0, "", "000", ""});
-    const Differences h = heightmap_differences(g, xz, time);
+    const Differences h = heightmap_differences(g, xz, time, footprint);
     // 000: N = {W - E, 2d, S - N}. With d = 0 (or a flat map and strength 0 at d = 0) the vector
     // is zero: safe_normalize keeps the plane's normal instead of NaN.
     Expr n = vec3((h.west - h.east) * strength, 2.0 * h.offset, (h.south - h.north) * strength);

@@ -187,9 +187,7 @@ void compose_waves(Surface& s, const std::string& origin, const WaveSearch& sear
         set_water_column(s, hit.distance);
         return;
     }
-    // Radians per pixel (view_ray is unit): the band limit of every wave model's search.
-    Expr pixel_angle = named(max(length(ddx(s.view_ray)), length(ddy(s.view_ray))), "pixel_angle");
-    const WaveHit hit = find_wave_surface(s, origin, search, pixel_angle);
+    const WaveHit hit = find_wave_surface(s, origin, search, pixel_angle(s));
     s.surface_point = hit.point;
     set_water_column(s, hit.distance);
     s.wave_slope = hit.slope;

@@ -60,6 +60,13 @@ struct PlaneHit {
 };
 PlaneHit intersect_plane(const Surface& s, Expr height);
 
+// Radians per pixel (view_ray is unit, its screen derivatives give the angle a pixel spans):
+// the band limit of the wave models and of the height-map normals.
+Expr pixel_angle(const Surface& s);
+// A pixel's extent (m) on the water at surface_point, along the view direction where a grazing
+// ray stretches it most; needs surface_point.
+Expr pixel_footprint(const Surface& s);
+
 // Sets path, depth and is_water from surface_point (for wave models that move the surface).
 void set_water_column(Surface& s, Expr surface_distance);
 

@@ -90,7 +90,10 @@ TextureInput height_map_texture();
 Expr heightmap_height(Graph& g, Expr xz, Expr time, Expr footprint = Expr());
 // Central differences of heightmap_height, offset heightmap_normal_offset d (m) and strength
 // heightmap_normal_strength s (000): normalize((h(x-d) - h(x+d)) s, 2d, (h(z-d) - h(z+d)) s).
-Expr heightmap_normal(Graph& g, Expr xz, Expr time);
+// With `footprint` (m, a pixel's extent on the water) the map fades out as the march's does
+// (heightmap_height): a far pixel covers many texels, and its differences would be aliasing
+// noise, ill-conditioned besides (float rounding of a 1 km position moved them by 1e-4).
+Expr heightmap_normal(Graph& g, Expr xz, Expr time, Expr footprint = Expr());
 // (dh/dx, dh/dz) from the same differences.
 Expr heightmap_slope(Graph& g, Expr xz, Expr time, Expr footprint = Expr());
 // Texture coordinate of a periodic tile with `texels` texels per side for the clamp-to-edge
