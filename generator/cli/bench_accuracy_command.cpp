@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "watergen/pipeline/output_writer.h"
 #include "watergen/render/accuracy_bench.h"
 
 namespace watergen::cli {
@@ -59,16 +58,9 @@ Runner add_bench_accuracy_command(CLI::App& app, const Common& common) {
         std::printf("reference: %s\n%ux%u, median of %u timed draws, %s; Mesa shader cache %s\n",
                     accuracy_reference_variant().key().c_str(), o->size, o->size, o->draws, runner->device_info().name.c_str(),
                     cache.c_str());
-        const auto dir = std::filesystem::path(o->out);
-        std::filesystem::create_directories(dir);
         nlohmann::ordered_json doc = {{"reference", accuracy_reference_variant().key()}, {"size", o->size},
                                       {"draws", o->draws}, {"device", runner->device_info().name}, {"rows", json}};
-        for (auto [name, text] : {std::pair{"accuracy.csv", csv}, std::pair{"accuracy.json", doc.dump(2) + "\n"}})
-            if (auto e = write_file_atomically(dir / name, text)) {
-                std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-                return kFailed;
-            }
-        std::printf("wrote %s and %s\n", (dir / "accuracy.csv").string().c_str(), (dir / "accuracy.json").string().c_str());
+        if (!write_bench_files(o->out, "accuracy", csv, doc.dump(2) + "\n")) return kFailed;
         return kOk;
     };
 }

@@ -1,14 +1,12 @@
 // Compile benchmark: the in-process chain against the same chain run through the
 // command-line tools as processes, measured in the same run on the same shaders.
 #include <cstdio>
-#include <filesystem>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "watergen/pipeline/compile_bench.h"
-#include "watergen/pipeline/output_writer.h"
 
 namespace watergen::cli {
 
@@ -43,15 +41,8 @@ Runner add_bench_compile_command(CLI::App& app, const Common& common) {
         std::printf("%-46s %14.2f %14.2f %7.1fx\n", "median over variants", bench.median_in_process_ms,
                     bench.median_processes_ms, bench.median_ratio);
         std::printf("chain: glslang -> spirv-val -> spirv-opt -O -> spirv-val -> SPIRV-Cross (GLSL 330, ESSL 300, MSL) + round trip + reflection; median of %d runs\n", o->repeat);
-        std::filesystem::create_directories(o->out);
-        const auto dir = std::filesystem::path(o->out);
         nlohmann::ordered_json doc = {{"repeat", o->repeat}, {"median_ratio", bench.median_ratio}, {"variants", json}};
-        for (auto [name, text] : {std::pair{"compile.csv", csv}, std::pair{"compile.json", doc.dump(2) + "\n"}})
-            if (auto e = write_file_atomically(dir / name, text)) {
-                std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-                return kFailed;
-            }
-        std::printf("wrote %s and %s\n", (dir / "compile.csv").string().c_str(), (dir / "compile.json").string().c_str());
+        if (!write_bench_files(o->out, "compile", csv, doc.dump(2) + "\n")) return kFailed;
         return kOk;
     };
 }
