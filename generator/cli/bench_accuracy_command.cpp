@@ -26,14 +26,7 @@ Runner add_bench_accuracy_command(CLI::App& app, const Common& common) {
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
         const AccuracyBench bench = run_accuracy_bench(*runner, o->size, o->draws);
-        if (has_errors(bench.diagnostics)) {
-            print_diagnostics(bench.diagnostics, common);
-            return kFailed;
-        }
-        if (!bench.error.empty()) {
-            std::fprintf(stderr, "watergen: error: %s\n", bench.error.c_str());
-            return kFailed;
-        }
+        if (!bench_succeeded(bench.diagnostics, bench.error, common)) return kFailed;
         std::printf("%-11s %-33s %7s %10s %8s %11s %11s %9s %9s\n", "axis", "choice", "instrs", "steady ms", "time",
                     "max abs", "rmse", "dE mean", "dE p99");
         std::string csv = "axis,choice,gold,spirv_instructions,steady_ms,time_ratio,max_abs,rmse,ciede2000_mean,ciede2000_p99,note\n";

@@ -21,14 +21,7 @@ Runner add_bench_compile_command(CLI::App& app, const Common& common) {
     app.add_option("--out", o->out, "directory for compile.csv and compile.json (default out/bench)");
     return [o, &common]() {
         const CompileBench bench = run_compile_bench(o->repeat);
-        if (has_errors(bench.diagnostics)) {
-            print_diagnostics(bench.diagnostics, common);
-            return kFailed;
-        }
-        if (!bench.error.empty()) {
-            std::fprintf(stderr, "watergen: error: %s\n", bench.error.c_str());
-            return kFailed;
-        }
+        if (!bench_succeeded(bench.diagnostics, bench.error, common)) return kFailed;
         std::printf("%-46s %14s %14s %8s\n", "variant (4 shaders: GLSL+HLSL, vert+frag)", "in-process ms", "processes ms", "ratio");
         std::string csv = "variant,in_process_ms,processes_ms,ratio\n";
         nlohmann::ordered_json json = nlohmann::ordered_json::array();
