@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "watergen/pipeline/output_writer.h"
 #include "watergen/render/accuracy_bench.h"
 
 namespace watergen::cli {
@@ -27,14 +26,7 @@ Runner add_bench_accuracy_command(CLI::App& app, const Common& common) {
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
         const AccuracyBench bench = run_accuracy_bench(*runner, o->size, o->draws);
-        if (has_errors(bench.diagnostics)) {
-            print_diagnostics(bench.diagnostics, common);
-            return kFailed;
-        }
-        if (!bench.error.empty()) {
-            std::fprintf(stderr, "watergen: error: %s\n", bench.error.c_str());
-            return kFailed;
-        }
+        if (!bench_succeeded(bench.diagnostics, bench.error, common)) return kFailed;
         std::printf("%-11s %-33s %7s %10s %8s %11s %11s %9s %9s\n", "axis", "choice", "instrs", "steady ms", "time",
                     "max abs", "rmse", "dE mean", "dE p99");
         std::string csv = "axis,choice,gold,spirv_instructions,steady_ms,time_ratio,max_abs,rmse,ciede2000_mean,ciede2000_p99,note\n";
@@ -59,16 +51,9 @@ Runner add_bench_accuracy_command(CLI::App& app, const Common& common) {
         std::printf("reference: %s\n%ux%u, median of %u timed draws, %s; Mesa shader cache %s\n",
                     accuracy_reference_variant().key().c_str(), o->size, o->size, o->draws, runner->device_info().name.c_str(),
                     cache.c_str());
-        const auto dir = std::filesystem::path(o->out);
-        std::filesystem::create_directories(dir);
         nlohmann::ordered_json doc = {{"reference", accuracy_reference_variant().key()}, {"size", o->size},
                                       {"draws", o->draws}, {"device", runner->device_info().name}, {"rows", json}};
-        for (auto [name, text] : {std::pair{"accuracy.csv", csv}, std::pair{"accuracy.json", doc.dump(2) + "\n"}})
-            if (auto e = write_file_atomically(dir / name, text)) {
-                std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-                return kFailed;
-            }
-        std::printf("wrote %s and %s\n", (dir / "accuracy.csv").string().c_str(), (dir / "accuracy.json").string().c_str());
+        if (!write_bench_files(o->out, "accuracy", csv, doc.dump(2) + "\n")) return kFailed;
         return kOk;
     };
 }

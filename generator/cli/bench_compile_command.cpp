@@ -1,14 +1,12 @@
 // Compile benchmark: the in-process chain against the same chain run through the
 // command-line tools as processes, measured in the same run on the same shaders.
 #include <cstdio>
-#include <filesystem>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "watergen/pipeline/compile_bench.h"
-#include "watergen/pipeline/output_writer.h"
 
 namespace watergen::cli {
 
@@ -23,14 +21,7 @@ Runner add_bench_compile_command(CLI::App& app, const Common& common) {
     app.add_option("--out", o->out, "directory for compile.csv and compile.json (default out/bench)");
     return [o, &common]() {
         const CompileBench bench = run_compile_bench(o->repeat);
-        if (has_errors(bench.diagnostics)) {
-            print_diagnostics(bench.diagnostics, common);
-            return kFailed;
-        }
-        if (!bench.error.empty()) {
-            std::fprintf(stderr, "watergen: error: %s\n", bench.error.c_str());
-            return kFailed;
-        }
+        if (!bench_succeeded(bench.diagnostics, bench.error, common)) return kFailed;
         std::printf("%-46s %14s %14s %8s\n", "variant (4 shaders: GLSL+HLSL, vert+frag)", "in-process ms", "processes ms", "ratio");
         std::string csv = "variant,in_process_ms,processes_ms,ratio\n";
         nlohmann::ordered_json json = nlohmann::ordered_json::array();
@@ -43,15 +34,8 @@ Runner add_bench_compile_command(CLI::App& app, const Common& common) {
         std::printf("%-46s %14.2f %14.2f %7.1fx\n", "median over variants", bench.median_in_process_ms,
                     bench.median_processes_ms, bench.median_ratio);
         std::printf("chain: glslang -> spirv-val -> spirv-opt -O -> spirv-val -> SPIRV-Cross (GLSL 330, ESSL 300, MSL) + round trip + reflection; median of %d runs\n", o->repeat);
-        std::filesystem::create_directories(o->out);
-        const auto dir = std::filesystem::path(o->out);
         nlohmann::ordered_json doc = {{"repeat", o->repeat}, {"median_ratio", bench.median_ratio}, {"variants", json}};
-        for (auto [name, text] : {std::pair{"compile.csv", csv}, std::pair{"compile.json", doc.dump(2) + "\n"}})
-            if (auto e = write_file_atomically(dir / name, text)) {
-                std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-                return kFailed;
-            }
-        std::printf("wrote %s and %s\n", (dir / "compile.csv").string().c_str(), (dir / "compile.json").string().c_str());
+        if (!write_bench_files(o->out, "compile", csv, doc.dump(2) + "\n")) return kFailed;
         return kOk;
     };
 }

@@ -6,6 +6,18 @@
 
 namespace watergen::cli {
 
+bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error, const Common& common) {
+    if (has_errors(diagnostics)) {
+        print_diagnostics(diagnostics, common);
+        return false;
+    }
+    if (!error.empty()) {
+        std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
+        return false;
+    }
+    return true;
+}
+
 bool write_bench_files(const std::string& out, const std::string& stem, const std::string& csv, const std::string& json) {
     namespace fs = std::filesystem;
     fs::create_directories(out);

@@ -62,6 +62,9 @@ Runner add_bench_build_command(CLI::App& bench, const Common& common);
 Runner add_bench_prune_command(CLI::App& bench, const Common& common);
 Runner add_bench_accuracy_command(CLI::App& bench, const Common& common);
 
+// Prints a bench's error diagnostics, or else its error; false when there was either.
+bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error, const Common& common);
+
 // Writes <out>/<stem>.csv and <out>/<stem>.json (each atomically) and says so; prints the
 // error and returns false when one cannot be written (exit with kFailed).
 bool write_bench_files(const std::string& out, const std::string& stem, const std::string& csv, const std::string& json);

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "watergen/ir/text.h"
 #include "watergen/pipeline/build_output.h"
 #include "watergen/plan/explain.h"
 
@@ -28,8 +29,7 @@ void print_scene(const SceneExplanation& x) {
     for (const auto& g : plan.skipped_groups)
         std::printf("  skips %zu variant%s with %s\n", g.variants, g.variants == 1 ? "" : "s", g.text().c_str());
     for (const auto& [name, because] : x.fixes) std::printf("  fixes %s: %s\n", name.c_str(), because.c_str());
-    std::string targets;
-    for (Target t : plan.targets) targets += (targets.empty() ? "" : ", ") + std::string(to_string(t));
+    const std::string targets = join(plan.targets, [](Target t) { return std::string(to_string(t)); });
     std::printf("  emits %s (platforms %s)\n", targets.c_str(), fmt::format("{}", fmt::join(s.platforms, ", ")).c_str());
     if (x.detail) {
         std::printf("  %s: %zu -> %zu live IR nodes; rewrites:\n", x.detail->key.c_str(), x.detail->live_before,

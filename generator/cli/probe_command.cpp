@@ -1,6 +1,5 @@
 // watergen probe: one node over a CSV of input tuples, on the GPU and on the CPU.
 #include <cstdio>
-#include <sstream>
 
 #include <fmt/format.h>
 
@@ -14,30 +13,6 @@ namespace watergen::cli {
 
 namespace {
 
-// --param name=v[,v...], repeatable; values are checked against the node later.
-bool parse_params(const std::vector<std::string>& specs, std::map<std::string, std::vector<double>>& out,
-                  std::string& error) {
-    for (const auto& spec : specs) {
-        const auto eq = spec.find('=');
-        if (eq == std::string::npos || eq == 0) {
-            error = "--param '" + spec + "': expected name=value[,value...]";
-            return false;
-        }
-        std::vector<double> values;
-        std::stringstream cells(spec.substr(eq + 1));
-        for (std::string cell; std::getline(cells, cell, ',');) {
-            char* end = nullptr;
-            values.push_back(std::strtod(cell.c_str(), &end));
-            if (cell.empty() || *end != '\0') {
-                error = "--param '" + spec + "': '" + cell + "' is not a number";
-                return false;
-            }
-        }
-        out[spec.substr(0, eq)] = values;
-    }
-    return true;
-}
-
 void print_summary(const ProbeSummary& s) {
     auto side = [](const ProbeSideCount& c) { return fmt::format("{} ({} NaN, {} Inf)", c.non_finite(), c.nan, c.inf); };
     std::printf("  non-finite results: gpu %zu, cpu double %zu, cpu float %zu, cpu half %zu\n", s.gpu.non_finite(),
@@ -50,16 +25,63 @@ void print_summary(const ProbeSummary& s) {
                 s.max_gpu_vs_cpu_float, s.max_gpu_vs_cpu_double, s.max_half_vs_double);
 }
 
+struct ProbeOptions {
+    std::string node, in, out, language = "glsl";
+    std::vector<std::string> params;
+    bool allow_out_of_range = false;
+    RunnerSetup runner;
+};
+
+int run_probe_command(const ProbeOptions& o, const Common& common) {
+    std::string error;
+    const auto probe = prepare_probe(*find_catalog_node(o.node), o.in, o.params,
+                                     o.allow_out_of_range, error);
+    if (!probe) {
+        std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
+        return kUsage;
+    }
+    const Graph& g = probe->graph;
+    std::string cache;
+    auto runner = create_runner(o.runner, &cache);
+    if (!runner) return kNoDevice;
+    const ProbeRun run = run_probe(*runner, g, o.language == "hlsl" ? Language::Hlsl : Language::Glsl, probe->tuples,
+                                   probe->params, probe_scene_textures());
+    print_diagnostics(run.diagnostics, common);
+    if (!run.ok()) {
+        if (!run.error.empty()) std::fprintf(stderr, "watergen: error: %s\n", run.error.c_str());
+        return kFailed;
+    }
+    const std::string csv = probe_results_csv(run, probe->tuples);
+    if (auto e = write_file_atomically(o.out, csv)) {
+        std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
+        return kFailed;
+    }
+    std::printf("%s (%s path) on %s: %zu tuples, dispatch %.2f ms (pipeline %.2f ms, Mesa shader cache %s)\n",
+                o.node.c_str(), o.language.c_str(), runner->device_info().name.c_str(), run.tuples,
+                run.dispatch_ms, run.pipeline_ms, cache.c_str());
+    for (const auto& t : g.textures()) {
+        const TextureData& data = probe_scene_textures().at(t.name);
+        std::printf("  texture %s: %ux%u%s from the synthetic scene, linear, clamp to edge\n", t.name.c_str(), data.width,
+                    data.height, data.layers == 6 ? " x 6 faces" : "");
+    }
+    const ProbeSummary summary = summarize_probe(run);
+    print_summary(summary);
+    std::printf("  wrote %s\n", o.out.c_str());
+    if (!summary.gpu_stable()) {
+        std::fprintf(stderr,
+                     "watergen: error: %s: %zu tuple%s non-finite on the GPU where the CPU float result is finite "
+                     "(first: data row %zu)\n",
+                     o.node.c_str(), summary.gpu_only_non_finite, summary.gpu_only_non_finite == 1 ? " is" : "s are",
+                     summary.first_gpu_only_tuple + 1);
+        return kFailed;
+    }
+    return kOk;
+}
+
 } // namespace
 
 Runner add_probe_command(CLI::App& app, const Common& common) {
-    struct Options {
-        std::string node, in, out, language = "glsl";
-        std::vector<std::string> params;
-        bool allow_out_of_range = false;
-        RunnerSetup runner;
-    };
-    auto o = std::make_shared<Options>();
+    auto o = std::make_shared<ProbeOptions>();
     std::vector<std::string> names;
     for (const auto& n : node_catalog()) names.push_back(n.name);
     app.add_option("--node", o->node, "node to probe: " + catalog_names())->required()->check(CLI::IsMember(names));
@@ -76,64 +98,7 @@ Runner add_probe_command(CLI::App& app, const Common& common) {
                  "pass --param values outside the declared range (or non-finite) to GPU and CPU unchecked, for "
                  "stress tests");
     add_runner_options(app, o->runner);
-    return [o, &common]() {
-        const CatalogNode* node = find_catalog_node(o->node);
-        const Graph g = probe_graph(*node);
-        const ProbeLayout layout = probe_layout(g);
-        std::map<std::string, std::vector<double>> params;
-        std::string error;
-        const auto inputs = read_probe_csv(o->in, probe_columns(layout.inputs), error);
-        if (!inputs || !parse_params(o->params, params, error)) {
-            std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
-            return kUsage;
-        }
-        if (const size_t rows = inputs->size() / layout.input_stride; uses_derivatives(g) && rows % 4 != 0) {
-            std::fprintf(stderr,
-                         "watergen: error: %s: %s takes ddx / ddy over 2x2 quads of data rows 4k..4k+3; %zu rows are "
-                         "not whole quads\n",
-                         o->in.c_str(), o->node.c_str(), rows);
-            return kUsage;
-        }
-        if (auto e = check_probe_parameters(g, params, o->allow_out_of_range)) {
-            std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-            return kUsage;
-        }
-        std::string cache;
-        auto runner = create_runner(o->runner, &cache);
-        if (!runner) return kNoDevice;
-        const ProbeRun run = run_probe(*runner, g, o->language == "hlsl" ? Language::Hlsl : Language::Glsl, *inputs, params,
-                                       probe_scene_textures());
-        print_diagnostics(run.diagnostics, common);
-        if (!run.ok()) {
-            if (!run.error.empty()) std::fprintf(stderr, "watergen: error: %s\n", run.error.c_str());
-            return kFailed;
-        }
-        const std::string csv = probe_results_csv(run, *inputs);
-        if (auto e = write_file_atomically(o->out, csv)) {
-            std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-            return kFailed;
-        }
-        std::printf("%s (%s path) on %s: %zu tuples, dispatch %.2f ms (pipeline %.2f ms, Mesa shader cache %s)\n",
-                    o->node.c_str(), o->language.c_str(), runner->device_info().name.c_str(), run.tuples,
-                    run.dispatch_ms, run.pipeline_ms, cache.c_str());
-        for (const auto& t : g.textures()) {
-            const TextureData& data = probe_scene_textures().at(t.name);
-            std::printf("  texture %s: %ux%u%s from the synthetic scene, linear, clamp to edge\n", t.name.c_str(), data.width,
-                        data.height, data.layers == 6 ? " x 6 faces" : "");
-        }
-        const ProbeSummary summary = summarize_probe(run);
-        print_summary(summary);
-        std::printf("  wrote %s\n", o->out.c_str());
-        if (!summary.gpu_stable()) {
-            std::fprintf(stderr,
-                         "watergen: error: %s: %zu tuple%s non-finite on the GPU where the CPU float result is finite "
-                         "(first: data row %zu)\n",
-                         o->node.c_str(), summary.gpu_only_non_finite, summary.gpu_only_non_finite == 1 ? " is" : "s are",
-                         summary.first_gpu_only_tuple + 1);
-            return kFailed;
-        }
-        return kOk;
-    };
+    return [o, &common]() { return run_probe_command(*o, common); };
 }
 
 } // namespace watergen::cli

@@ -100,13 +100,8 @@ std::optional<std::string> publish(const fs::path& out, const std::map<std::stri
     // Staging beside the output, then one rename: readers never see a mix of two builds.
     remove_stale_staging(out);
     std::string error;
-    const fs::path staging = make_staging_directory(out, &error);
+    const fs::path staging = write_staged_tree(out, files, &error);
     if (staging.empty()) return error;
-    if (auto e = write_tree(staging, files)) {
-        std::error_code ec;
-        fs::remove_all(staging, ec);
-        return e;
-    }
     return swap_into_place(staging, out);
 }
 

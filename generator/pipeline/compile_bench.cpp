@@ -12,13 +12,14 @@
 
 namespace watergen {
 
-namespace {
-
 double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
     const size_t n = v.size();
-    return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+namespace {
 
 template <class F> double time_ms(F&& f) {
     const auto t0 = std::chrono::steady_clock::now();

@@ -120,15 +120,22 @@ std::optional<std::string> write_tree(const fs::path& root, const std::map<std::
     return std::nullopt;
 }
 
-std::optional<std::string> write_directory_atomically(const fs::path& dir, const std::map<std::string, std::string>& files) {
-    std::string error;
-    const fs::path staging = make_staging_directory(dir, &error);
-    if (staging.empty()) return error;
+fs::path write_staged_tree(const fs::path& dir, const std::map<std::string, std::string>& files, std::string* error) {
+    const fs::path staging = make_staging_directory(dir, error);
+    if (staging.empty()) return {};
     if (auto e = write_tree(staging, files)) {
         std::error_code ec;
         fs::remove_all(staging, ec);
-        return e;
+        if (error) *error = *e;
+        return {};
     }
+    return staging;
+}
+
+std::optional<std::string> write_directory_atomically(const fs::path& dir, const std::map<std::string, std::string>& files) {
+    std::string error;
+    const fs::path staging = write_staged_tree(dir, files, &error);
+    if (staging.empty()) return error;
     return commit_directory(staging, dir);
 }
 

@@ -66,6 +66,69 @@ std::vector<std::string> hash_inputs(const WaterShader& shader, const std::strin
     return parts;
 }
 
+// Phase 1 for one job: compose, fold, hash (no compiler involved).
+void compose_and_hash(const Material& material, const BuildJob& job, JobResult& r, WaterShader& out) {
+    WaterShader shader = material.compose(job.variant);
+    const Diagnostics& graph_errors = shader.fragment.diagnostics();
+    r.diagnostics.insert(r.diagnostics.end(), graph_errors.begin(), graph_errors.end());
+    if (has_errors(r.diagnostics)) return;
+    if (job.facts) {
+        FoldResult folded = fold_graph(shader.fragment, *job.facts);
+        shader.fragment = std::move(folded.graph);
+        r.fold = std::move(folded.report);
+        r.folded = true;
+    }
+    r.content_hash = content_hash(hash_inputs(shader, job.variant.key(), r.diagnostics));
+    Diagnostics ignored;
+    std::vector<std::string> shape = hash_inputs(shader, "", ignored);
+    shape.erase(shape.begin()); // equal shaders under different keys are still equal
+    r.shape_hash = content_hash(shape);
+    out = std::move(shader);
+}
+
+struct BuildPlan {
+    std::vector<size_t> to_build;
+    std::vector<std::pair<size_t, size_t>> copies; // (job, job whose files it takes)
+};
+
+// Variants of one scene that folded to the same shader: build the first only. Equal
+// content in different scenes (the same variant folded alike) is built once and shared.
+BuildPlan plan_builds(const std::vector<BuildJob>& jobs, std::vector<JobResult>& results) {
+    BuildPlan plan;
+    std::map<std::pair<std::string, std::string>, size_t> first;
+    std::map<std::string, size_t> builder;
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        if (!results[i].ok()) continue;
+        auto [it, inserted] = first.emplace(std::make_pair(jobs[i].scene, results[i].shape_hash), i);
+        if (!inserted) {
+            results[i].same_as = jobs[it->second].variant.key();
+            continue;
+        }
+        auto [b, fresh] = builder.emplace(results[i].content_hash, i);
+        if (fresh) plan.to_build.push_back(i);
+        else plan.copies.emplace_back(i, b->second);
+    }
+    return plan;
+}
+
+// Phase 2 for one job: its files from the cache or the toolchain (all targets), if it built.
+std::optional<FileMap> load_or_build(const BuildOptions& options, WaterShader shader, JobResult& r,
+                                     const std::vector<std::string>& expected_files) {
+    CacheLookup lookup = options.cache.load(r.content_hash, expected_files);
+    std::optional<FileMap> all = std::move(lookup.files);
+    r.cached = all.has_value();
+    r.cache_rejected = std::move(lookup.rejected);
+    if (!all) {
+        const VariantBuild build = build_shader(std::move(shader));
+        r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(), build.diagnostics.end());
+        if (build.ok()) {
+            all = variant_files(build);
+            options.cache.store(r.content_hash, *all); // a cache that cannot be written only costs time
+        }
+    }
+    return all;
+}
+
 } // namespace
 
 unsigned hardware_threads() { return std::max(1u, std::thread::hardware_concurrency()); }
@@ -98,45 +161,9 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
     // glslang builds its tables once per process; do it before the threads race for it.
     glslang_warm_up();
 
-    // Phase 1: compose, fold, hash (no compiler involved).
-    parallel_for(jobs.size(), options.threads, [&](size_t i) {
-        const BuildJob& job = jobs[i];
-        JobResult& r = results[i];
-        WaterShader shader = material.compose(job.variant);
-        const Diagnostics& graph_errors = shader.fragment.diagnostics();
-        r.diagnostics.insert(r.diagnostics.end(), graph_errors.begin(), graph_errors.end());
-        if (has_errors(r.diagnostics)) return;
-        if (job.facts) {
-            FoldResult folded = fold_graph(shader.fragment, *job.facts);
-            shader.fragment = std::move(folded.graph);
-            r.fold = std::move(folded.report);
-            r.folded = true;
-        }
-        r.content_hash = content_hash(hash_inputs(shader, job.variant.key(), r.diagnostics));
-        Diagnostics ignored;
-        std::vector<std::string> shape = hash_inputs(shader, "", ignored);
-        shape.erase(shape.begin()); // equal shaders under different keys are still equal
-        r.shape_hash = content_hash(shape);
-        shaders[i] = std::move(shader);
-    });
-
-    // Variants of one scene that folded to the same shader: build the first only. Equal
-    // content in different scenes (the same variant folded alike) is built once and shared.
-    std::map<std::pair<std::string, std::string>, size_t> first;
-    std::map<std::string, size_t> builder;
-    std::vector<size_t> to_build;
-    std::vector<std::pair<size_t, size_t>> copies; // (job, job whose files it takes)
-    for (size_t i = 0; i < jobs.size(); ++i) {
-        if (!results[i].ok()) continue;
-        auto [it, inserted] = first.emplace(std::make_pair(jobs[i].scene, results[i].shape_hash), i);
-        if (!inserted) {
-            results[i].same_as = jobs[it->second].variant.key();
-            continue;
-        }
-        auto [b, fresh] = builder.emplace(results[i].content_hash, i);
-        if (fresh) to_build.push_back(i);
-        else copies.emplace_back(i, b->second);
-    }
+    parallel_for(jobs.size(), options.threads,
+                 [&](size_t i) { compose_and_hash(material, jobs[i], results[i], shaders[i]); });
+    const BuildPlan plan = plan_builds(jobs, results);
 
     std::mutex progress_lock;
     BuildProgress progress{0, jobs.size(), 0, 0, ""};
@@ -152,26 +179,14 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
     for (size_t i = 0; i < jobs.size(); ++i)
         if (!results[i].ok() || !results[i].same_as.empty()) report(i);
 
-    // Phase 2: cache or toolchain.
     std::map<size_t, FileMap> shared; // unfiltered files of each job built, for its copies
     std::mutex shared_lock;
     const std::vector<std::string> expected_files = variant_file_names();
-    parallel_for(to_build.size(), options.threads, [&](size_t k) {
-        const size_t i = to_build[k];
+    parallel_for(plan.to_build.size(), options.threads, [&](size_t k) {
+        const size_t i = plan.to_build[k];
         JobResult& r = results[i];
         const auto t0 = std::chrono::steady_clock::now();
-        CacheLookup lookup = options.cache.load(r.content_hash, expected_files);
-        std::optional<FileMap> all = std::move(lookup.files);
-        r.cached = all.has_value();
-        r.cache_rejected = std::move(lookup.rejected);
-        if (!all) {
-            const VariantBuild build = build_shader(std::move(shaders[i]));
-            r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(), build.diagnostics.end());
-            if (build.ok()) {
-                all = variant_files(build);
-                options.cache.store(r.content_hash, *all); // a cache that cannot be written only costs time
-            }
-        }
+        std::optional<FileMap> all = load_or_build(options, std::move(shaders[i]), r, expected_files);
         if (all) r.files = filter_targets(*all, jobs[i].targets);
         r.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         if (all) {
@@ -180,7 +195,7 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
         }
         report(i);
     });
-    for (const auto& [i, from] : copies) {
+    for (const auto& [i, from] : plan.copies) {
         JobResult& r = results[i];
         r.diagnostics = results[from].diagnostics;
         r.cached = results[from].cached;

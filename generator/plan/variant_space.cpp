@@ -1,5 +1,7 @@
 #include "watergen/plan/variant_space.h"
 
+#include "watergen/ir/text.h"
+
 namespace watergen {
 
 std::vector<Rule> builtin_rules() {
@@ -45,8 +47,7 @@ const Rule* find_broken_rule(const std::vector<Rule>& rules, const Variant& v) {
 std::optional<std::string> broken_rule(const std::vector<Rule>& rules, const Variant& v) {
     const Rule* r = find_broken_rule(rules, v);
     if (!r) return std::nullopt;
-    std::string list;
-    for (const auto& c : r->other_choices) list += (list.empty() ? "" : ", ") + c;
+    const std::string list = join(r->other_choices);
     return r->axis + "=" + r->choice + (r->kind == Rule::Kind::Requires ? " requires " : " excludes ") + r->other_axis +
            " in {" + list + "}" + (r->why.empty() ? "" : " (" + r->why + ")") + "; got " + r->other_axis + "=" +
            v.choice(r->other_axis) + (r->where.empty() ? "" : " [" + r->where + "]");

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cstring>
 
+#include <fmt/format.h>
+
+#include "watergen/render/probe_table.h"
 #include "watergen/render/synthetic_scene.h"
 #include "watergen/toolchain/toolchain.h"
 
@@ -168,6 +171,31 @@ const std::map<std::string, TextureData>& probe_scene_textures() {
     // map, sky cube, ...) are made at their fixed sizes.
     static const std::map<std::string, TextureData> textures = make_synthetic_scene(64, 64).textures;
     return textures;
+}
+
+std::optional<ProbeInputs> prepare_probe(const CatalogNode& node, const std::string& csv_path,
+                                         const std::vector<std::string>& param_specs,
+                                         bool allow_out_of_range, std::string& error) {
+    ProbeInputs in{probe_graph(node), {}, {}, {}};
+    in.layout = probe_layout(in.graph);
+    auto tuples = read_probe_csv(csv_path, probe_columns(in.layout.inputs), error);
+    if (!tuples) return std::nullopt;
+    auto params = parse_probe_parameters(param_specs, error);
+    if (!params) return std::nullopt;
+    in.tuples = std::move(*tuples);
+    in.params = std::move(*params);
+    if (const size_t rows = in.tuples.size() / in.layout.input_stride;
+        uses_derivatives(in.graph) && rows % 4 != 0) {
+        error = fmt::format("{}: {} takes ddx / ddy over 2x2 quads of data rows 4k..4k+3; {} rows "
+                            "are not whole quads",
+                            csv_path, node.name, rows);
+        return std::nullopt;
+    }
+    if (auto e = check_probe_parameters(in.graph, in.params, allow_out_of_range)) {
+        error = *e;
+        return std::nullopt;
+    }
+    return in;
 }
 
 } // namespace watergen

@@ -1,6 +1,7 @@
 #include "watergen/render/probe_table.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -170,6 +171,30 @@ ProbeSummary summarize_probe(const ProbeRun& run) {
     s.max_gpu_vs_cpu_double = max_abs_diff(run.gpu, run.cpu_double);
     s.max_half_vs_double = max_abs_diff(run.cpu_half, run.cpu_double);
     return s;
+}
+
+std::optional<std::map<std::string, std::vector<double>>> parse_probe_parameters(
+    const std::vector<std::string>& specs, std::string& error) {
+    std::map<std::string, std::vector<double>> out;
+    for (const auto& spec : specs) {
+        const auto eq = spec.find('=');
+        if (eq == std::string::npos || eq == 0) {
+            error = "--param '" + spec + "': expected name=value[,value...]";
+            return std::nullopt;
+        }
+        std::vector<double> values;
+        std::stringstream cells(spec.substr(eq + 1));
+        for (std::string cell; std::getline(cells, cell, ',');) {
+            char* end = nullptr;
+            values.push_back(std::strtod(cell.c_str(), &end));
+            if (cell.empty() || *end != '\0') {
+                error = "--param '" + spec + "': '" + cell + "' is not a number";
+                return std::nullopt;
+            }
+        }
+        out[spec.substr(0, eq)] = values;
+    }
+    return out;
 }
 
 } // namespace watergen

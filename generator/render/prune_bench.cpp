@@ -5,17 +5,11 @@
 
 #include "watergen/ir/emitter.h"
 #include "watergen/ir/ir_fold.h"
+#include "watergen/pipeline/compile_bench.h"
 
 namespace watergen {
 
 namespace {
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // The choices of the axes the material varies, without axis names (the CSV has keys).
 std::string short_key(const Material& m, const Variant& v) {

@@ -69,6 +69,12 @@ const AxisInfo* find_axis(const std::string& name) {
     return nullptr;
 }
 
+ChoiceInfo feature_choice(ChoiceInfo info, ChoiceNode node, std::function<void(Surface&)> compose) {
+    info.node = std::move(node);
+    info.compose = std::move(compose);
+    return info;
+}
+
 const ChoiceInfo* find_choice(const AxisInfo& axis, const std::string& name) {
     for (const auto& c : axis.choices)
         if (c.name == name) return &c;

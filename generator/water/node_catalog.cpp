@@ -1,5 +1,6 @@
 #include "watergen/water/node_catalog.h"
 
+#include "watergen/ir/text.h"
 #include "watergen/water/axis_registry.h"
 
 namespace watergen {
@@ -29,9 +30,7 @@ const CatalogNode* find_catalog_node(const std::string& name) {
 }
 
 std::string catalog_names() {
-    std::string s;
-    for (const auto& n : node_catalog()) s += (s.empty() ? "" : ", ") + n.name;
-    return s;
+    return join(node_catalog(), [](const CatalogNode& n) { return n.name; });
 }
 
 Graph probe_graph(const CatalogNode& node) {

@@ -1,5 +1,7 @@
 #include "watergen/water/presets.h"
 
+#include "watergen/ir/text.h"
+
 namespace watergen {
 
 const std::vector<Preset>& presets() {
@@ -58,9 +60,7 @@ const Preset* find_preset(const std::string& name) {
 }
 
 std::string preset_names() {
-    std::string s;
-    for (const auto& p : presets()) s += (s.empty() ? "" : ", ") + p.name;
-    return s;
+    return join(presets(), [](const Preset& p) { return p.name; });
 }
 
 std::vector<std::string> apply_preset(Graph& g, const Preset& preset) {

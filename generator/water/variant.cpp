@@ -6,6 +6,8 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
+#include "watergen/ir/text.h"
+
 namespace watergen {
 
 namespace {
@@ -18,9 +20,7 @@ size_t axis_index(const std::string& name) {
 }
 
 std::string joined_names(const AxisInfo& a) {
-    std::string s;
-    for (const auto& c : a.choices) s += (s.empty() ? "" : ", ") + c.name;
-    return s;
+    return join(a.choices, [](const ChoiceInfo& c) { return c.name; });
 }
 
 } // namespace
@@ -32,17 +32,15 @@ const std::string& Variant::choice(const std::string& axis) const {
 }
 
 std::string Variant::key() const {
-    std::string s;
-    for (size_t i = 0; i < axes().size(); ++i)
-        s += (i ? "," : "") + axes()[i].name + "=" + choices[i];
-    return s;
+    std::vector<std::string> parts;
+    for (size_t i = 0; i < axes().size(); ++i) parts.push_back(axes()[i].name + "=" + choices[i]);
+    return join(parts, ",");
 }
 
 std::string Variant::file_stem() const {
-    std::string s;
-    for (size_t i = 0; i < axes().size(); ++i)
-        s += (i ? "_" : "") + axes()[i].name + "-" + choices[i];
-    return s;
+    std::vector<std::string> parts;
+    for (size_t i = 0; i < axes().size(); ++i) parts.push_back(axes()[i].name + "-" + choices[i]);
+    return join(parts, "_");
 }
 
 std::string Variant::short_hash() const {
@@ -61,8 +59,7 @@ Variant default_variant() {
 std::optional<std::string> set_choice(Variant& v, const std::string& axis, const std::string& choice) {
     const size_t i = axis_index(axis);
     if (i == axes().size()) {
-        std::string names;
-        for (const auto& a : axes()) names += (names.empty() ? "" : ", ") + a.name;
+        const std::string names = join(axes(), [](const AxisInfo& a) { return a.name; });
         return "unknown axis '" + axis + "' (axes: " + names + ")";
     }
     const AxisInfo& a = axes()[i];

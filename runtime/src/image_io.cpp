@@ -221,6 +221,83 @@ bool write_pfm(const fs::path& path, const ImageRGBA32F& image, std::string* err
     });
 }
 
+namespace {
+
+struct PfmHeader {
+    int channels = 3;
+    uint32_t width = 0, height = 0;
+    double scale = 0;            // negative: little-endian pixel data
+    std::size_t data_offset = 0; // where the pixel data starts
+};
+
+// Header: magic, whitespace, width, whitespace, height, whitespace, scale, exactly one
+// whitespace byte, then the pixel data, which must be exactly width x height pixels.
+// Returns "" or what is wrong.
+std::string parse_pfm_header(const std::vector<unsigned char>& bytes, PfmHeader& h) {
+    if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != 'F' && bytes[1] != 'f'))
+        return "not a PFM file (magic is not \"PF\" or \"Pf\")";
+    h.channels = bytes[1] == 'F' ? 3 : 1;
+    const char* const begin = reinterpret_cast<const char*>(bytes.data());
+    const char* const end = begin + bytes.size();
+    const char* p = begin + 2;
+    auto skip_space = [&] {
+        const char* start = p;
+        while (p < end && is_pfm_space(static_cast<unsigned char>(*p)))
+            ++p;
+        return p != start;
+    };
+    // Each field must be preceded by whitespace and parse completely up to the next one.
+    auto field = [&](auto& value) -> bool {
+        const bool spaced = skip_space();
+        const auto r = std::from_chars(p, end, value);
+        if (!spaced || r.ec != std::errc{}) return false;
+        p = r.ptr;
+        return true;
+    };
+    if (!field(h.width)) return "bad width in header";
+    if (!field(h.height)) return "bad height in header";
+    if (!field(h.scale)) return "bad scale in header";
+    if (!std::isfinite(h.scale) || h.scale == 0) return "scale must be finite and non-zero";
+    if (p == end || !is_pfm_space(static_cast<unsigned char>(*p)))
+        return "header does not end with a whitespace byte after the scale";
+    ++p;
+    if (h.width == 0 || h.height == 0) return fmt::format("empty image {}x{}", h.width, h.height);
+    h.data_offset = static_cast<std::size_t>(p - begin);
+
+    const auto data_bytes = static_cast<uint64_t>(end - p);
+    const uint64_t pixel_bytes = uint64_t(h.channels) * 4;
+    const uint64_t pixels = uint64_t{h.width} * h.height; // < 2^64, no overflow
+    if (data_bytes % pixel_bytes != 0 || data_bytes / pixel_bytes != pixels)
+        return fmt::format("{}x{} with {} channel(s) needs {} pixels x {} bytes of "
+                           "pixel data, found {} bytes",
+                           h.width, h.height, h.channels, pixels, pixel_bytes, data_bytes);
+    return "";
+}
+
+ImageRGBA32F decode_pfm_pixels(const unsigned char* data, const PfmHeader& h) {
+    const bool little_endian = h.scale < 0;
+    const uint64_t pixel_bytes = uint64_t(h.channels) * 4;
+    ImageRGBA32F image;
+    image.width = h.width;
+    image.height = h.height;
+    image.rgba.resize(uint64_t{h.width} * h.height * 4);
+    for (uint32_t row = 0; row < h.height; ++row) {
+        const uint32_t y = h.height - 1 - row; // file row 0 is the bottom
+        for (uint32_t x = 0; x < h.width; ++x) {
+            const unsigned char* src = data + (uint64_t{row} * h.width + x) * pixel_bytes;
+            float* dst = &image.rgba[(uint64_t{y} * h.width + x) * 4];
+            for (int c = 0; c < 3; ++c) {
+                const int sc = h.channels == 3 ? c : 0;
+                dst[c] = std::bit_cast<float>(get_u32(src + sc * 4, little_endian));
+            }
+            dst[3] = 1.0f;
+        }
+    }
+    return image;
+}
+
+} // namespace
+
 std::optional<ImageRGBA32F> read_pfm(const fs::path& path, std::string* error) noexcept {
     constexpr const char* action = "cannot read PFM";
     return guarded(action, path, error, [&]() -> std::optional<ImageRGBA32F> {
@@ -237,73 +314,9 @@ std::optional<ImageRGBA32F> read_pfm(const fs::path& path, std::string* error) n
             bytes.insert(bytes.end(), chunk, chunk + n);
         }
         if (std::ferror(file.get())) return fail(fmt::format("read failed: {}", errno_text(errno)));
-
-        // Header: magic, whitespace, width, whitespace, height, whitespace, scale, exactly one
-        // whitespace byte, then the pixel data.
-        if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != 'F' && bytes[1] != 'f')) {
-            return fail("not a PFM file (magic is not \"PF\" or \"Pf\")");
-        }
-        const int channels = bytes[1] == 'F' ? 3 : 1;
-        const char* const begin = reinterpret_cast<const char*>(bytes.data());
-        const char* const end = begin + bytes.size();
-        const char* p = begin + 2;
-        auto skip_space = [&] {
-            const char* start = p;
-            while (p < end && is_pfm_space(static_cast<unsigned char>(*p)))
-                ++p;
-            return p != start;
-        };
-        // Each field must be preceded by whitespace and parse completely up to the next one.
-        auto field = [&](auto& value, const char* what) -> bool {
-            const bool spaced = skip_space();
-            const auto r = std::from_chars(p, end, value);
-            if (!spaced || r.ec != std::errc{}) {
-                fail(fmt::format("bad {} in header", what));
-                return false;
-            }
-            p = r.ptr;
-            return true;
-        };
-        uint32_t width = 0, height = 0;
-        double scale = 0;
-        if (!field(width, "width") || !field(height, "height") || !field(scale, "scale")) {
-            return std::nullopt;
-        }
-        if (!std::isfinite(scale) || scale == 0) return fail("scale must be finite and non-zero");
-        if (p == end || !is_pfm_space(static_cast<unsigned char>(*p))) {
-            return fail("header does not end with a whitespace byte after the scale");
-        }
-        ++p;
-        if (width == 0 || height == 0) return fail(fmt::format("empty image {}x{}", width, height));
-
-        const auto data_bytes = static_cast<uint64_t>(end - p);
-        const uint64_t pixel_bytes = uint64_t(channels) * 4;
-        const uint64_t pixels = uint64_t{width} * height; // < 2^64, no overflow
-        if (data_bytes % pixel_bytes != 0 || data_bytes / pixel_bytes != pixels) {
-            return fail(fmt::format("{}x{} with {} channel(s) needs {} pixels x {} bytes of "
-                                    "pixel data, found {} bytes",
-                                    width, height, channels, pixels, pixel_bytes, data_bytes));
-        }
-
-        const bool little_endian = scale < 0;
-        ImageRGBA32F image;
-        image.width = width;
-        image.height = height;
-        image.rgba.resize(pixels * 4);
-        const auto* data = reinterpret_cast<const unsigned char*>(p);
-        for (uint32_t row = 0; row < height; ++row) {
-            const uint32_t y = height - 1 - row; // file row 0 is the bottom
-            for (uint32_t x = 0; x < width; ++x) {
-                const unsigned char* src = data + (uint64_t{row} * width + x) * pixel_bytes;
-                float* dst = &image.rgba[(uint64_t{y} * width + x) * 4];
-                for (int c = 0; c < 3; ++c) {
-                    const int sc = channels == 3 ? c : 0;
-                    dst[c] = std::bit_cast<float>(get_u32(src + sc * 4, little_endian));
-                }
-                dst[3] = 1.0f;
-            }
-        }
-        return image;
+        PfmHeader header;
+        if (const std::string cause = parse_pfm_header(bytes, header); !cause.empty()) return fail(cause);
+        return decode_pfm_pixels(bytes.data() + header.data_offset, header);
     });
 }
 

@@ -188,30 +188,42 @@ Context::~Context() {
 
 namespace {
 
-void build_context(Context* ctx, const RunnerOptions& options) {
-
+// The newest instance API we use that the loader supports (1.1 at least).
+uint32_t instance_api_version() {
     uint32_t loader_version = VK_API_VERSION_1_0;
     vk_check(vkEnumerateInstanceVersion(&loader_version), "vkEnumerateInstanceVersion");
     if (loader_version < VK_API_VERSION_1_1)
         throw RunnerError(fmt::format("Vulkan loader supports only {}; 1.1 or newer is needed",
                                       format_api_version(loader_version)));
     // 1.2 is the newest core we use (driver properties); asking for more buys nothing.
-    const uint32_t instance_api = std::min(loader_version, uint32_t{VK_API_VERSION_1_2});
+    return std::min(loader_version, uint32_t{VK_API_VERSION_1_2});
+}
 
+struct InstanceLayers {
+    bool validation = false;
+    bool messenger_wanted = false;
+    std::vector<const char*> layers;
+    std::vector<const char*> extensions;
+};
+
+InstanceLayers choose_layers(const RunnerOptions& options) {
+    InstanceLayers out;
     // The loader implements debug utils itself, so a messenger also works without the
     // validation layer: then it only hears the loader, which explains device-less failures.
     const bool loader_debug_utils =
         has_instance_extension(nullptr, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    const bool validation =
+    out.validation =
         options.validation && has_layer(kValidationLayer) &&
         (loader_debug_utils ||
          has_instance_extension(kValidationLayer, VK_EXT_DEBUG_UTILS_EXTENSION_NAME));
-    const bool messenger_wanted = validation || loader_debug_utils;
-    std::vector<const char*> layers;
-    std::vector<const char*> extensions;
-    if (validation) layers.push_back(kValidationLayer);
-    if (messenger_wanted) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    out.messenger_wanted = out.validation || loader_debug_utils;
+    if (out.validation) out.layers.push_back(kValidationLayer);
+    if (out.messenger_wanted) out.extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    return out;
+}
 
+// Creates ctx->instance and, when wanted, its debug messenger.
+void create_instance(Context* ctx, const InstanceLayers& setup, uint32_t instance_api) {
     VkApplicationInfo app{};
     app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
     app.pApplicationName = "watergen";
@@ -224,12 +236,12 @@ void build_context(Context* ctx, const RunnerOptions& options) {
     VkDebugUtilsMessengerCreateInfoEXT messenger = messenger_info(ctx);
     VkInstanceCreateInfo ici{};
     ici.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
-    ici.pNext = messenger_wanted ? &messenger : nullptr;
+    ici.pNext = setup.messenger_wanted ? &messenger : nullptr;
     ici.pApplicationInfo = &app;
-    ici.enabledLayerCount = static_cast<uint32_t>(layers.size());
-    ici.ppEnabledLayerNames = layers.data();
-    ici.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
-    ici.ppEnabledExtensionNames = extensions.data();
+    ici.enabledLayerCount = static_cast<uint32_t>(setup.layers.size());
+    ici.ppEnabledLayerNames = setup.layers.data();
+    ici.enabledExtensionCount = static_cast<uint32_t>(setup.extensions.size());
+    ici.ppEnabledExtensionNames = setup.extensions.data();
     VkResult r = vkCreateInstance(&ici, nullptr, &ctx->instance);
     if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
         throw RunnerError(
@@ -237,7 +249,7 @@ void build_context(Context* ctx, const RunnerOptions& options) {
             "VK_ERROR_INCOMPATIBLE_DRIVER); install mesa-vulkan-drivers for lavapipe");
     vk_check(r, "vkCreateInstance");
 
-    if (messenger_wanted) {
+    if (setup.messenger_wanted) {
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(ctx->instance, "vkCreateDebugUtilsMessengerEXT"));
         ctx->destroy_messenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
@@ -247,26 +259,33 @@ void build_context(Context* ctx, const RunnerOptions& options) {
         vk_check(create(ctx->instance, &messenger, nullptr, &ctx->messenger),
                  "vkCreateDebugUtilsMessengerEXT");
     }
+}
 
+std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
     // Broken ICDs (e.g. intel/radeon with no matching hardware) are skipped by the loader;
     // only a failure of the whole enumeration is an error.
     // When every ICD fails, the loader returns VK_ERROR_INITIALIZATION_FAILED.
     const char* no_device = "no Vulkan physical device found (is mesa-vulkan-drivers installed? "
                             "does VK_ICD_FILENAMES / VK_DRIVER_FILES include lvp_icd?)";
     uint32_t count = 0;
-    r = vkEnumeratePhysicalDevices(ctx->instance, &count, nullptr);
+    VkResult r = vkEnumeratePhysicalDevices(instance, &count, nullptr);
     if (r == VK_ERROR_INITIALIZATION_FAILED)
         throw RunnerError(
             fmt::format("{}; vkEnumeratePhysicalDevices failed: {}", no_device, result_name(r)));
     vk_check(r, "vkEnumeratePhysicalDevices");
     std::vector<VkPhysicalDevice> devices(count);
-    r = vkEnumeratePhysicalDevices(ctx->instance, &count, devices.data());
+    r = vkEnumeratePhysicalDevices(instance, &count, devices.data());
     if (r != VK_INCOMPLETE) vk_check(r, "vkEnumeratePhysicalDevices");
     devices.resize(count);
     if (devices.empty()) throw RunnerError(no_device);
+    return devices;
+}
 
+// Picks the device (options, else lavapipe) and records what it is in ctx.
+void choose_physical_device(Context* ctx, const RunnerOptions& options, uint32_t instance_api,
+                            bool validation) {
     std::vector<Candidate> candidates;
-    for (VkPhysicalDevice pd : devices)
+    for (VkPhysicalDevice pd : physical_devices(ctx->instance))
         candidates.push_back(describe(pd, instance_api));
     const Candidate& chosen = pick_device(candidates, options);
     if (chosen.props.apiVersion < VK_API_VERSION_1_1)
@@ -283,7 +302,10 @@ void build_context(Context* ctx, const RunnerOptions& options) {
     ctx->info.driver_version = chosen.props.driverVersion;
     ctx->info.api_version = chosen.props.apiVersion;
     ctx->info.validation_enabled = validation;
+}
 
+// Creates the logical device, its one queue and the command pool.
+void create_device(Context* ctx, const std::vector<const char*>& layers) {
     ctx->queue_family = pick_queue_family(ctx->physical, &ctx->timestamp_mask);
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo qci{};
@@ -306,6 +328,14 @@ void build_context(Context* ctx, const RunnerOptions& options) {
     pci.queueFamilyIndex = ctx->queue_family;
     vk_check(vkCreateCommandPool(ctx->device, &pci, nullptr, &ctx->command_pool),
              "vkCreateCommandPool");
+}
+
+void build_context(Context* ctx, const RunnerOptions& options) {
+    const uint32_t instance_api = instance_api_version();
+    const InstanceLayers setup = choose_layers(options);
+    create_instance(ctx, setup, instance_api);
+    choose_physical_device(ctx, options, instance_api, setup.validation);
+    create_device(ctx, setup.layers);
 }
 
 } // namespace

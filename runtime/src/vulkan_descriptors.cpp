@@ -134,16 +134,10 @@ Image texture(Scope& scope, const DescriptorBinding& b, const DescriptorInputs& 
     return create_texture(scope, b.name, *data, b.image_dim == "Cube");
 }
 
-} // namespace
+using MergedBindings = std::map<std::pair<uint32_t, uint32_t>, Merged>;
 
-BoundDescriptors bind_descriptors(Scope& scope, const std::vector<StageReflection>& stages,
-                                  const DescriptorInputs& inputs) {
-    Context& ctx = scope.ctx();
-    const auto merged = merge(stages);
-    BoundDescriptors out;
-    if (merged.empty()) return out;
-
-    const uint32_t set_count = merged.rbegin()->first.first + 1;
+// Throws when the device or the job cannot serve the bindings.
+void check_bindings(const Context& ctx, const MergedBindings& merged, uint32_t set_count) {
     if (set_count > ctx.limits.maxBoundDescriptorSets)
         throw RunnerError(fmt::format("shader uses descriptor set {}; the device binds at most {}",
                                       set_count - 1, ctx.limits.maxBoundDescriptorSets));
@@ -158,7 +152,11 @@ BoundDescriptors bind_descriptors(Scope& scope, const std::vector<StageReflectio
         throw RunnerError(fmt::format("shaders declare {} uniform blocks ({}); the job's uniforms "
                                       "bytes can feed only one",
                                       uniform_names.size(), fmt::join(uniform_names, ", ")));
+}
 
+// One layout per set number (gaps get empty ones), a pool sized for them, and the sets.
+void allocate_sets(Scope& scope, const MergedBindings& merged, uint32_t set_count,
+                   BoundDescriptors& out) {
     std::vector<std::vector<VkDescriptorSetLayoutBinding>> per_set(set_count);
     std::map<VkDescriptorType, uint32_t> type_counts;
     for (const auto& [key, m] : merged) {
@@ -171,7 +169,7 @@ BoundDescriptors bind_descriptors(Scope& scope, const std::vector<StageReflectio
         ++type_counts[lb.descriptorType];
     }
 
-    VkDevice device = ctx.device;
+    VkDevice device = scope.ctx().device;
     for (const auto& bindings : per_set) {
         VkDescriptorSetLayoutCreateInfo lci{};
         lci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
@@ -203,7 +201,11 @@ BoundDescriptors bind_descriptors(Scope& scope, const std::vector<StageReflectio
     ai.pSetLayouts = out.layouts.data();
     out.sets.resize(set_count);
     vk_check(vkAllocateDescriptorSets(device, &ai, out.sets.data()), "vkAllocateDescriptorSets");
+}
 
+// Creates every resource the bindings point at and writes it into the sets.
+void write_descriptors(Scope& scope, const MergedBindings& merged, const DescriptorInputs& inputs,
+                       BoundDescriptors& out) {
     // Infos are referenced by pointer from the writes: size the vectors up front so they
     // never reallocate.
     std::vector<VkDescriptorBufferInfo> buffer_infos;
@@ -257,7 +259,21 @@ BoundDescriptors bind_descriptors(Scope& scope, const std::vector<StageReflectio
         }
         writes.push_back(w);
     }
-    vkUpdateDescriptorSets(device, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+    vkUpdateDescriptorSets(scope.ctx().device, static_cast<uint32_t>(writes.size()),
+                           writes.data(), 0, nullptr);
+}
+
+} // namespace
+
+BoundDescriptors bind_descriptors(Scope& scope, const std::vector<StageReflection>& stages,
+                                  const DescriptorInputs& inputs) {
+    const MergedBindings merged = merge(stages);
+    BoundDescriptors out;
+    if (merged.empty()) return out;
+    const uint32_t set_count = merged.rbegin()->first.first + 1;
+    check_bindings(scope.ctx(), merged, set_count);
+    allocate_sets(scope, merged, set_count, out);
+    write_descriptors(scope, merged, inputs, out);
     return out;
 }
 

@@ -192,65 +192,53 @@ double median(std::vector<double> v) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-} // namespace
+// What one draw of a job binds.
+struct DrawState {
+    VkRenderPass pass = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    const BoundDescriptors* descriptors = nullptr;
+    const MeshBuffers* mesh = nullptr;
+    VkQueryPool queries = VK_NULL_HANDLE; // null without timestamp support
+};
 
-void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
-    if (job.timed_draws > kMaxTimedDraws)
-        throw RunnerError(
-            fmt::format("timed_draws {} exceeds {}", job.timed_draws, kMaxTimedDraws));
-    Scope scope(ctx);
-
-    Image target = create_color_target(scope, job.width, job.height);
-    DescriptorInputs inputs;
-    inputs.uniforms = &job.uniforms;
-    inputs.textures = &job.textures;
-    inputs.filter = job.filter;
-    BoundDescriptors descriptors =
-        bind_descriptors(scope,
-                         {{&job.vertex_reflection, VK_SHADER_STAGE_VERTEX_BIT},
-                          {&job.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}},
-                         inputs);
-    VkPipelineLayout layout = create_pipeline_layout(scope, descriptors);
-    VkRenderPass pass = create_render_pass(scope);
-    VkFramebuffer framebuffer = create_framebuffer(scope, pass, target);
-    Pipeline pipeline = create_pipeline(scope, job, layout, pass);
-    result.pipeline_ms = pipeline.create_ms;
-    const MeshBuffers mesh = upload_mesh(scope, job.mesh); // index_count 0 without a mesh
-
-    const bool timestamps = ctx.timestamp_mask != 0;
-    VkQueryPool queries = timestamps ? create_timestamp_pool(scope) : VK_NULL_HANDLE;
-
-    // One recorded command buffer, resubmitted for the first and every timed draw.
+// One recorded command buffer, resubmitted for the first and every timed draw.
+VkCommandBuffer record_draw(Scope& scope, const RenderJob& job, const DrawState& d) {
     VkCommandBuffer draw = allocate_command_buffer(scope);
     begin_reusable(draw);
-    if (timestamps) {
-        vkCmdResetQueryPool(draw, queries, 0, 2);
-        vkCmdWriteTimestamp(draw, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries, 0);
+    if (d.queries) {
+        vkCmdResetQueryPool(draw, d.queries, 0, 2);
+        vkCmdWriteTimestamp(draw, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, d.queries, 0);
     }
     VkClearValue clear{};
     VkRenderPassBeginInfo rbi{};
     rbi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
-    rbi.renderPass = pass;
-    rbi.framebuffer = framebuffer;
+    rbi.renderPass = d.pass;
+    rbi.framebuffer = d.framebuffer;
     rbi.renderArea = {{0, 0}, {job.width, job.height}};
     rbi.clearValueCount = 1;
     rbi.pClearValues = &clear;
     vkCmdBeginRenderPass(draw, &rbi, VK_SUBPASS_CONTENTS_INLINE);
-    vkCmdBindPipeline(draw, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
-    if (!descriptors.sets.empty())
-        vkCmdBindDescriptorSets(draw, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0,
-                                static_cast<uint32_t>(descriptors.sets.size()),
-                                descriptors.sets.data(), 0, nullptr);
-    if (mesh.index_count)
-        record_mesh_draw(draw, mesh);
+    vkCmdBindPipeline(draw, VK_PIPELINE_BIND_POINT_GRAPHICS, d.pipeline);
+    if (!d.descriptors->sets.empty())
+        vkCmdBindDescriptorSets(draw, VK_PIPELINE_BIND_POINT_GRAPHICS, d.layout, 0,
+                                static_cast<uint32_t>(d.descriptors->sets.size()),
+                                d.descriptors->sets.data(), 0, nullptr);
+    if (d.mesh->index_count)
+        record_mesh_draw(draw, *d.mesh);
     else
         vkCmdDraw(draw, 3, 1, 0, 0);
     vkCmdEndRenderPass(draw);
     // Bottom of pipe: the sample is taken once the draw has fully completed.
-    if (timestamps) vkCmdWriteTimestamp(draw, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);
+    if (d.queries) vkCmdWriteTimestamp(draw, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, d.queries, 1);
     vk_check(vkEndCommandBuffer(draw), "vkEndCommandBuffer");
+    return draw;
+}
 
-    VkFence fence = create_fence(scope);
+// Submits the draw once, then job.timed_draws times more, timing each.
+void run_draws(Context& ctx, const RenderJob& job, VkCommandBuffer draw, VkFence fence,
+               VkQueryPool queries, RenderResult& result) {
     auto start = Clock::now();
     submit_and_wait(ctx, draw, fence);
     result.first_draw_ms = ms_since(start);
@@ -259,7 +247,7 @@ void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
         start = Clock::now();
         submit_and_wait(ctx, draw, fence);
         const double wall_ms = ms_since(start);
-        if (!timestamps) { // no timestamp support: CPU wall time is the best we have
+        if (!queries) { // no timestamp support: CPU wall time is the best we have
             result.draw_ms.push_back(wall_ms);
             continue;
         }
@@ -272,9 +260,13 @@ void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
         result.draw_ms.push_back(static_cast<double>(delta) * ctx.limits.timestampPeriod * 1e-6);
     }
     result.steady_draw_ms = median(result.draw_ms);
+}
 
-    // Readback. The render pass left the image in TRANSFER_SRC_OPTIMAL and its outgoing
-    // dependency orders the colour writes before this copy.
+// Copies the colour target into result.rgba. The render pass left the image in
+// TRANSFER_SRC_OPTIMAL and its outgoing dependency orders the colour writes before this copy.
+void read_back(Scope& scope, const RenderJob& job, const Image& target, VkFence fence,
+               RenderResult& result) {
+    Context& ctx = scope.ctx();
     const VkDeviceSize bytes = VkDeviceSize{job.width} * job.height * 4 * sizeof(float);
     Buffer readback = create_buffer(scope, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     VkCommandBuffer copy = allocate_command_buffer(scope);
@@ -303,6 +295,42 @@ void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
     read_buffer(ctx, readback, result.rgba.data(), bytes);
     result.width = job.width;
     result.height = job.height;
+}
+
+} // namespace
+
+void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
+    if (job.timed_draws > kMaxTimedDraws)
+        throw RunnerError(
+            fmt::format("timed_draws {} exceeds {}", job.timed_draws, kMaxTimedDraws));
+    Scope scope(ctx);
+
+    Image target = create_color_target(scope, job.width, job.height);
+    DescriptorInputs inputs;
+    inputs.uniforms = &job.uniforms;
+    inputs.textures = &job.textures;
+    inputs.filter = job.filter;
+    BoundDescriptors descriptors =
+        bind_descriptors(scope,
+                         {{&job.vertex_reflection, VK_SHADER_STAGE_VERTEX_BIT},
+                          {&job.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}},
+                         inputs);
+    DrawState state;
+    state.descriptors = &descriptors;
+    state.layout = create_pipeline_layout(scope, descriptors);
+    state.pass = create_render_pass(scope);
+    state.framebuffer = create_framebuffer(scope, state.pass, target);
+    Pipeline pipeline = create_pipeline(scope, job, state.layout, state.pass);
+    state.pipeline = pipeline.pipeline;
+    result.pipeline_ms = pipeline.create_ms;
+    const MeshBuffers mesh = upload_mesh(scope, job.mesh); // index_count 0 without a mesh
+    state.mesh = &mesh;
+    if (ctx.timestamp_mask != 0) state.queries = create_timestamp_pool(scope);
+
+    VkCommandBuffer draw = record_draw(scope, job, state);
+    VkFence fence = create_fence(scope);
+    run_draws(ctx, job, draw, fence, state.queries, result);
+    read_back(scope, job, target, fence, result);
 }
 
 } // namespace watergen::vk_detail

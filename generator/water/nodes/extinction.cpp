@@ -82,15 +82,9 @@ namespace {
 
 // A choice whose node turns the refracted colour into the water colour.
 ChoiceInfo extinction_choice(ChoiceInfo info, Expr (*node)(Graph&, const ExtinctionInputs&)) {
-    info.node =
-        ChoiceNode{{{"depth", Type::Float}, {"path", Type::Float}, {"refraction", Type::Vec3}},
-                   [node](Graph& g, const std::vector<Expr>& in) {
-                       return node(g, {in[0], in[1], in[2]});
-                   }};
-    info.compose = [node](Surface& s) {
-        s.water_color = node(s.g, {s.depth, s.path, s.refracted});
-    };
-    return info;
+    return feature_choice(
+        std::move(info), {{"depth", Type::Float}, {"path", Type::Float}, {"refraction", Type::Vec3}},
+        node, [node](Surface& s) { s.water_color = node(s.g, {s.depth, s.path, s.refracted}); });
 }
 
 } // namespace

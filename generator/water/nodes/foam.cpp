@@ -130,17 +130,13 @@ void compose_foam(Surface& s, FoamNode node, const std::string& origin) {
 }
 
 ChoiceInfo foam_choice(ChoiceInfo info, FoamNode node) {
-    info.node = ChoiceNode{{{"color", Type::Vec3},
-                            {"pattern", Type::Float},
-                            {"depth", Type::Float},
-                            {"height", Type::Float}},
-                           [node](Graph& g, const std::vector<Expr>& in) {
-                               return node(g, {in[0], in[1], in[2], in[3]});
-                           }};
-    info.compose = [node, origin = "foam." + info.name](Surface& s) {
-        compose_foam(s, node, origin);
-    };
-    return info;
+    const std::string origin = "foam." + info.name;
+    return feature_choice(std::move(info),
+                          {{"color", Type::Vec3},
+                           {"pattern", Type::Float},
+                           {"depth", Type::Float},
+                           {"height", Type::Float}},
+                          node, [node, origin](Surface& s) { compose_foam(s, node, origin); });
 }
 
 SceneNeed shoreline_need() {

@@ -58,11 +58,8 @@ namespace {
 
 // A choice whose node reads c = N.V and sets the surface's Fresnel term.
 ChoiceInfo fresnel_choice(ChoiceInfo info, Expr (*node)(Graph&, Expr)) {
-    info.node = ChoiceNode{{{"c", Type::Float}}, [node](Graph& g, const std::vector<Expr>& in) {
-                               return node(g, in[0]);
-                           }};
-    info.compose = [node](Surface& s) { s.fresnel = node(s.g, s.n_dot_v); };
-    return info;
+    return feature_choice(std::move(info), {{"c", Type::Float}}, node,
+                          [node](Surface& s) { s.fresnel = node(s.g, s.n_dot_v); });
 }
 
 } // namespace

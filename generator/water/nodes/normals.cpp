@@ -88,17 +88,17 @@ ChoiceInfo normals_choice(ChoiceInfo info, std::vector<NodeInput> inputs,
                           std::function<Expr(Graph&, const std::vector<Expr>&)> node,
                           std::function<Expr(Surface&)> compose, std::string note = "") {
     const std::string origin = "normals." + info.name;
-    info.node = ChoiceNode{std::move(inputs),
-                           [origin, node](Graph& g, const std::vector<Expr>& in) {
-                               OriginScope scope(g, origin);
-                               return node(g, in);
-                           },
-                           std::move(note)};
-    info.compose = [origin, compose](Surface& s) {
-        OriginScope scope(s.g, origin);
-        if (Expr n = compose(s); n.valid()) s.normal = n;
-    };
-    return info;
+    return feature_choice(std::move(info),
+                          ChoiceNode{std::move(inputs),
+                                     [origin, node](Graph& g, const std::vector<Expr>& in) {
+                                         OriginScope scope(g, origin);
+                                         return node(g, in);
+                                     },
+                                     std::move(note)},
+                          [origin, compose](Surface& s) {
+                              OriginScope scope(s.g, origin);
+                              if (Expr n = compose(s); n.valid()) s.normal = n;
+                          });
 }
 
 Expr analytic_normal(Surface& s) {

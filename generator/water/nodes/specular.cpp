@@ -132,20 +132,18 @@ namespace {
 
 // A sun lobe: the node gives the intensity, the surface's specular is that times the sun colour.
 ChoiceInfo specular_choice(ChoiceInfo info, Expr (*node)(Graph&, const SpecularInputs&)) {
-    info.node = ChoiceNode{{{"normal", Type::Vec3},
-                            {"to_eye", Type::Vec3},
-                            {"sun_direction", Type::Vec3},
-                            {"fresnel", Type::Float}},
-                           [node](Graph& g, const std::vector<Expr>& in) {
-                               return node(g, {in[0], in[1], in[2], in[3]});
-                           }};
-    info.compose = [node, origin = "specular." + info.name](Surface& s) {
-        OriginScope scope(s.g, origin);
-        Expr intensity = node(s.g, {s.normal, s.to_eye, s.sun_travel, s.fresnel});
-        s.specular = named(intensity * s.sun_color, "specular");
-    };
     info.scene_needs = {{SceneFact::SunAboveHorizon, "", "there is no sun highlight"}};
-    return info;
+    const std::string origin = "specular." + info.name;
+    return feature_choice(std::move(info),
+                          {{"normal", Type::Vec3},
+                           {"to_eye", Type::Vec3},
+                           {"sun_direction", Type::Vec3},
+                           {"fresnel", Type::Float}},
+                          node, [node, origin](Surface& s) {
+                              OriginScope scope(s.g, origin);
+                              Expr intensity = node(s.g, {s.normal, s.to_eye, s.sun_travel, s.fresnel});
+                              s.specular = named(intensity * s.sun_color, "specular");
+                          });
 }
 
 } // namespace

@@ -196,7 +196,7 @@ void compose_waves(Surface& s, const std::string& origin, const WaveSearch& sear
 // The catalog node of a choice: where a view ray from `eye` meets the water -> (point, distance).
 ChoiceInfo waves_choice(ChoiceInfo info, WaveSearch search, const std::string& reads = "") {
     const std::string origin = "waves." + info.name;
-    info.node = ChoiceNode{
+    ChoiceNode node{
         {{"eye", Type::Vec3},
          {"view_ray", Type::Vec3},
          {"level", Type::Float},
@@ -212,8 +212,8 @@ ChoiceInfo waves_choice(ChoiceInfo info, WaveSearch search, const std::string& r
             return vec4(hit.point, hit.distance);
         },
         "surface point and ray distance (vec4) where the view ray meets the water" + reads};
-    info.compose = [origin, search](Surface& s) { compose_waves(s, origin, search); };
-    return info;
+    return feature_choice(std::move(info), std::move(node),
+                          [origin, search](Surface& s) { compose_waves(s, origin, search); });
 }
 
 // The families' own nodes at full detail (no footprint): the catalog evaluates points, not pixels.

@@ -32,4 +32,7 @@ struct CompileBench {
 //         files go to a directory under the system's temporary directory, removed at the end.
 CompileBench run_compile_bench(int repeat);
 
+// The median of timed repetitions (0 for none), as every bench reports them.
+double median(std::vector<double> v);
+
 } // namespace watergen

@@ -24,6 +24,10 @@ std::optional<std::string> write_directory_atomically(const std::filesystem::pat
 // A fresh, empty staging directory beside `dir` for writers that produce files themselves;
 // publish it with commit_directory(staging, dir), or remove it on failure.
 std::filesystem::path make_staging_directory(const std::filesystem::path& dir, std::string* error);
+// make_staging_directory with `files` written into it (write_tree); on failure "" and the error
+// in `error`, nothing left behind.
+std::filesystem::path write_staged_tree(const std::filesystem::path& dir,
+                                        const std::map<std::string, std::string>& files, std::string* error);
 // Replaces `dir` with `staging` by rename; the old `dir` stays complete until then.
 std::optional<std::string> commit_directory(const std::filesystem::path& staging, const std::filesystem::path& dir);
 

@@ -3,12 +3,14 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/emitter.h"
 #include "watergen/runtime/vulkan_runner.h"
+#include "watergen/water/node_catalog.h"
 
 namespace watergen {
 
@@ -40,5 +42,18 @@ bool uses_derivatives(const Graph& g);
 // The synthetic scene's textures (make_synthetic_scene(64, 64).textures: every TextureInput the
 // catalog nodes read), made once: what `watergen probe` and the stress tests supply.
 const std::map<std::string, TextureData>& probe_scene_textures();
+
+// What `watergen probe` runs, read and checked before any device is touched.
+struct ProbeInputs {
+    Graph graph;                                         // probe_graph of the node
+    ProbeLayout layout;                                  // probe_layout of the graph
+    std::vector<double> tuples;                          // read from the CSV, layout.input_stride each
+    std::map<std::string, std::vector<double>> params;   // the --param overrides
+};
+// The node's graph, the tuples of the CSV file at `csv_path` (whole 2x2 quads when the node
+// takes derivatives) and the parameter overrides, checked as check_probe_parameters does.
+std::optional<ProbeInputs> prepare_probe(const CatalogNode& node, const std::string& csv_path,
+                                         const std::vector<std::string>& param_specs,
+                                         bool allow_out_of_range, std::string& error);
 
 } // namespace watergen

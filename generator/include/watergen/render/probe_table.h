@@ -33,6 +33,11 @@ std::string probe_results_csv(const ProbeRun& run, const std::vector<double>& in
 std::optional<std::string> check_probe_parameters(const Graph& g, const std::map<std::string, std::vector<double>>& params,
                                                   bool allow_out_of_range);
 
+// Parameter overrides from `--param name=v[,v...]` specs; values are checked against the node
+// later (check_probe_parameters). Errors name the spec and what was expected.
+std::optional<std::map<std::string, std::vector<double>>> parse_probe_parameters(
+    const std::vector<std::string>& specs, std::string& error);
+
 struct ProbeSideCount {
     size_t nan = 0, inf = 0;
     size_t non_finite() const { return nan + inf; }

@@ -8,6 +8,8 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "watergen/water/node_catalog.h"
@@ -64,6 +66,23 @@ struct ChoiceInfo {
     std::vector<SceneNeed> scene_needs{};
     std::vector<ChoiceRequirement> requirements{};
 };
+
+// A choice with its own feature node: `node` is its catalog entry, `compose` what it does to the
+// surface. Each axis file wraps this once with the inputs and surface fields of its nodes.
+ChoiceInfo feature_choice(ChoiceInfo info, ChoiceNode node, std::function<void(Surface&)> compose);
+
+// The same for a node taking one Expr, or a struct of Exprs in member order: the catalog entry
+// passes it the values of `inputs`, in order.
+template <class Inputs, std::size_t N>
+ChoiceInfo feature_choice(ChoiceInfo info, const NodeInput (&inputs)[N], Expr (*node)(Graph&, Inputs),
+                          std::function<void(Surface&)> compose) {
+    auto build = [node](Graph& g, const std::vector<Expr>& in) {
+        return [&]<std::size_t... I>(std::index_sequence<I...>) {
+            return node(g, std::remove_cvref_t<Inputs>{in[I]...});
+        }(std::make_index_sequence<N>{});
+    };
+    return feature_choice(std::move(info), ChoiceNode{{inputs, inputs + N}, build}, std::move(compose));
+}
 
 struct AxisInfo {
     std::string name{}; // e.g. "fresnel"

@@ -1,0 +1,66 @@
+// The fold pass over one graph (ir_fold.h), shared by its two halves: the pass driver, report
+// and cause refinement (ir_fold.cpp) and the rewrite rules (ir_fold_rules.cpp). Private to ir/.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "watergen/ir/ir_fold.h"
+
+namespace watergen::fold {
+
+// How a node reads in explain output: its name when it has one, else its operation.
+std::string label(const Node& n);
+
+class Folder {
+public:
+    Folder(const Graph& in, const FoldFacts& facts);
+
+    void rewrite_all();
+    std::vector<FoldEvent>& events() { return report_.events; }
+    FoldResult finish();
+
+    // Only the live nodes, renumbered in order: variants that fold to the same computation
+    // get the same graph (and the same emitted text, whose temporaries are named by id).
+    static Graph compact(const Graph& g);
+
+private:
+    // The pass (ir_fold.cpp).
+    void resolve_quantities();
+    void declare_inputs();
+    void attribute(const std::vector<uint32_t>& live);
+
+    // The rewrite rules (ir_fold_rules.cpp).
+    uint32_t rewrite(uint32_t in_id);
+    std::pair<Intervals, FactSet> bounds(const Node& n, uint32_t in_id) const;
+    void narrow_by_assumption(uint32_t in_id, Type t, Intervals& v, FactSet& facts) const;
+    std::optional<uint32_t> fold_to_constant(const Node& n, uint32_t in_id, const Intervals& v,
+                                             const FactSet& facts);
+    std::optional<uint32_t> identity(const Node& n, uint32_t in_id, const FactSet& all_facts);
+    uint32_t emit(Node n, Intervals v, FactSet facts);
+    uint32_t constant(const Node& like, std::vector<double> values, FactSet facts);
+    void event(uint32_t in_id, std::string what, FactSet facts);
+    Intervals bounds_of(const FoldFacts::Bounds& b, Type t) const;
+    FactSet single(size_t fact) const;
+    std::pair<Intervals, FactSet> leaf_bounds(const Node& n, uint32_t in_id) const;
+    bool is_constant(uint32_t id, double x) const;
+    bool all_finite(uint32_t id) const;
+    std::optional<uint32_t> as_type(uint32_t id, const Node& like);
+    bool all_ge(const Intervals& a, const Intervals& b) const;
+
+    const Graph& in_;
+    FoldFacts f_; // with the bound quantities resolved
+    std::map<uint32_t, FoldFacts::Bounds> node_ranges_; // computed nodes bound to a quantity
+    Graph out_;
+    std::vector<uint32_t> map_;
+    std::vector<Intervals> values_;
+    std::vector<FactSet> facts_;
+    std::vector<int> event_of_;
+    std::vector<uint32_t> live_;
+    FoldReport report_;
+};
+
+} // namespace watergen::fold
