@@ -23,11 +23,13 @@ int main(int argc, char** argv) {
     request.material = default_material();
     for (int i = 2; i < argc && !has_errors(ds); ++i)
         if (auto scene = load_scene(argv[i], ds)) request.scenes.push_back(*scene);
-    for (const auto& d : ds) std::fprintf(stderr, "%s\n", format_diagnostic(d).c_str());
+    for (const auto& d : ds)
+        std::fprintf(stderr, "%s\n", format_diagnostic(d).c_str());
     if (has_errors(ds)) return 2;
     request.out = argv[1];
     const BuildSummary summary = build_material(request);
-    for (const auto& d : summary.diagnostics) std::fprintf(stderr, "%s\n", format_diagnostic(d).c_str());
+    for (const auto& d : summary.diagnostics)
+        std::fprintf(stderr, "%s\n", format_diagnostic(d).c_str());
     std::printf("%zu variants, %zu files -> %s\n", summary.variants, summary.files, argv[1]);
     return summary.ok() ? 0 : 1;
 }

@@ -20,9 +20,11 @@ Runner add_bench_build_command(CLI::App& app, const Common& common) {
         size_t sample = 48;
     };
     auto o = std::make_shared<Options>();
-    app.add_option("material", o->material, "material of the pruned example (default: the built-in default material)");
+    app.add_option("material", o->material,
+                   "material of the pruned example (default: the built-in default material)");
     app.add_option("--scene", o->scenes, "scenes of the pruned example (repeatable)");
-    app.add_option("--jobs,-j", o->threads, "threads of the 'all threads' runs (default: every hardware thread)");
+    app.add_option("--jobs,-j", o->threads,
+                   "threads of the 'all threads' runs (default: every hardware thread)");
     app.add_option("--sample", o->sample,
                    "full-space variants to build, evenly spaced (default 48)")
         ->check(CLI::Validator(
@@ -31,7 +33,9 @@ Runner add_bench_build_command(CLI::App& app, const Common& common) {
     app.add_option("--out", o->out, "directory for build.csv and build.json (default out/bench)");
     return [o, &common]() {
         BuildBenchRequest request;
-        if (!load_material_and_scenes(o->material, o->scenes, request.example, request.scenes, common)) return kUsage;
+        if (!load_material_and_scenes(o->material, o->scenes, request.example, request.scenes,
+                                      common))
+            return kUsage;
         request.threads = o->threads;
         request.sample = o->sample;
         const BuildBenchResult result = bench_build(request);
@@ -44,12 +48,20 @@ Runner add_bench_build_command(CLI::App& app, const Common& common) {
         nlohmann::ordered_json json = nlohmann::ordered_json::array();
         for (const auto& r : result.rows) {
             const double rate = r.seconds > 0 ? r.variants / r.seconds : 0.0;
-            std::printf("%-78s %9zu %9.3f %12.1f  %s\n", r.what.c_str(), r.variants, r.seconds, rate, r.note.c_str());
-            csv += fmt::format("\"{}\",{},{:.4f},{:.1f},\"{}\"\n", r.what, r.variants, r.seconds, rate, r.note);
-            json.push_back({{"what", r.what}, {"variants", r.variants}, {"seconds", r.seconds}, {"variants_per_second", rate}, {"note", r.note}});
+            std::printf("%-78s %9zu %9.3f %12.1f  %s\n", r.what.c_str(), r.variants, r.seconds,
+                        rate, r.note.c_str());
+            csv += fmt::format("\"{}\",{},{:.4f},{:.1f},\"{}\"\n", r.what, r.variants, r.seconds,
+                               rate, r.note);
+            json.push_back({{"what", r.what},
+                            {"variants", r.variants},
+                            {"seconds", r.seconds},
+                            {"variants_per_second", rate},
+                            {"note", r.note}});
         }
-        std::printf("cold: empty cache, every distinct shader through glslang (GLSL + HLSL), spirv-val, spirv-opt, SPIRV-Cross "
-                    "and reflection; warm: the same build again (no-op: every variant from the cache); %u hardware threads\n",
+        std::printf("cold: empty cache, every distinct shader through glslang (GLSL + HLSL), "
+                    "spirv-val, spirv-opt, SPIRV-Cross "
+                    "and reflection; warm: the same build again (no-op: every variant from the "
+                    "cache); %u hardware threads\n",
                     hardware_threads());
         if (!write_bench_files(o->out, "build", csv, json.dump(2) + "\n")) return kFailed;
         return kOk;

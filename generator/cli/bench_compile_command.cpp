@@ -16,25 +16,36 @@ Runner add_bench_compile_command(CLI::App& app, const Common& common) {
         std::string out = "out/bench";
     };
     auto o = std::make_shared<Options>();
-    app.add_option("--repeat", o->repeat, "timed repetitions per variant and chain; the median is reported (default 5)")
+    app.add_option("--repeat", o->repeat,
+                   "timed repetitions per variant and chain; the median is reported (default 5)")
         ->check(CLI::Range(1, 100));
-    app.add_option("--out", o->out, "directory for compile.csv and compile.json (default out/bench)");
+    app.add_option("--out", o->out,
+                   "directory for compile.csv and compile.json (default out/bench)");
     return [o, &common]() {
         const CompileBench bench = run_compile_bench(o->repeat);
         if (!bench_succeeded(bench.diagnostics, bench.error, common)) return kFailed;
-        std::printf("%-46s %14s %14s %8s\n", "variant (4 shaders: GLSL+HLSL, vert+frag)", "in-process ms", "processes ms", "ratio");
+        std::printf("%-46s %14s %14s %8s\n", "variant (4 shaders: GLSL+HLSL, vert+frag)",
+                    "in-process ms", "processes ms", "ratio");
         std::string csv = "variant,in_process_ms,processes_ms,ratio\n";
         nlohmann::ordered_json json = nlohmann::ordered_json::array();
         for (const auto& r : bench.rows) {
             const double ratio = r.ratio();
-            std::printf("%-46s %14.2f %14.2f %7.1fx\n", r.key.c_str(), r.in_process_ms, r.processes_ms, ratio);
-            csv += fmt::format("\"{}\",{:.3f},{:.3f},{:.2f}\n", r.key, r.in_process_ms, r.processes_ms, ratio);
-            json.push_back({{"variant", r.key}, {"in_process_ms", r.in_process_ms}, {"processes_ms", r.processes_ms}, {"ratio", ratio}});
+            std::printf("%-46s %14.2f %14.2f %7.1fx\n", r.key.c_str(), r.in_process_ms,
+                        r.processes_ms, ratio);
+            csv += fmt::format("\"{}\",{:.3f},{:.3f},{:.2f}\n", r.key, r.in_process_ms,
+                               r.processes_ms, ratio);
+            json.push_back({{"variant", r.key},
+                            {"in_process_ms", r.in_process_ms},
+                            {"processes_ms", r.processes_ms},
+                            {"ratio", ratio}});
         }
-        std::printf("%-46s %14.2f %14.2f %7.1fx\n", "median over variants", bench.median_in_process_ms,
-                    bench.median_processes_ms, bench.median_ratio);
-        std::printf("chain: glslang -> spirv-val -> spirv-opt -O -> spirv-val -> SPIRV-Cross (GLSL 330, ESSL 300, MSL) + round trip + reflection; median of %d runs\n", o->repeat);
-        nlohmann::ordered_json doc = {{"repeat", o->repeat}, {"median_ratio", bench.median_ratio}, {"variants", json}};
+        std::printf("%-46s %14.2f %14.2f %7.1fx\n", "median over variants",
+                    bench.median_in_process_ms, bench.median_processes_ms, bench.median_ratio);
+        std::printf("chain: glslang -> spirv-val -> spirv-opt -O -> spirv-val -> SPIRV-Cross (GLSL "
+                    "330, ESSL 300, MSL) + round trip + reflection; median of %d runs\n",
+                    o->repeat);
+        nlohmann::ordered_json doc = {
+            {"repeat", o->repeat}, {"median_ratio", bench.median_ratio}, {"variants", json}};
         if (!write_bench_files(o->out, "compile", csv, doc.dump(2) + "\n")) return kFailed;
         return kOk;
     };

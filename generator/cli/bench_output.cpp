@@ -6,7 +6,8 @@
 
 namespace watergen::cli {
 
-bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error, const Common& common) {
+bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error,
+                     const Common& common) {
     if (has_errors(diagnostics)) {
         print_diagnostics(diagnostics, common);
         return false;
@@ -18,7 +19,8 @@ bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error, c
     return true;
 }
 
-bool write_bench_files(const std::string& out, const std::string& stem, const std::string& csv, const std::string& json) {
+bool write_bench_files(const std::string& out, const std::string& stem, const std::string& csv,
+                       const std::string& json) {
     namespace fs = std::filesystem;
     fs::create_directories(out);
     const fs::path dir = out;
@@ -27,7 +29,8 @@ bool write_bench_files(const std::string& out, const std::string& stem, const st
             std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
             return false;
         }
-    std::printf("wrote %s and %s\n", (dir / (stem + ".csv")).string().c_str(), (dir / (stem + ".json")).string().c_str());
+    std::printf("wrote %s and %s\n", (dir / (stem + ".csv")).string().c_str(),
+                (dir / (stem + ".json")).string().c_str());
     return true;
 }
 

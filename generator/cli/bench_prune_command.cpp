@@ -15,27 +15,34 @@ namespace {
 
 void print_row(const std::string& scene, const PruneBenchRow& row) {
     const PruneMeasurement& r = row.measurement;
-    std::printf("%-14s %-58s %4zu->%-4zu %4zu->%-4zu %4zu->%-4zu %9.4f %9.4f %10.2g\n", scene.c_str(),
-                row.short_key.substr(0, 58).c_str(), r.live_before, r.live_after, r.spirv_unpruned, r.spirv_pruned,
-                r.spirv_opt_unpruned, r.spirv_opt_pruned, r.gpu_ms_pruned / r.gpu_ms_unpruned,
-                r.gpu_ms_pruned_hlsl / r.gpu_ms_unpruned_hlsl, row.max_diff);
+    std::printf("%-14s %-58s %4zu->%-4zu %4zu->%-4zu %4zu->%-4zu %9.4f %9.4f %10.2g\n",
+                scene.c_str(), row.short_key.substr(0, 58).c_str(), r.live_before, r.live_after,
+                r.spirv_unpruned, r.spirv_pruned, r.spirv_opt_unpruned, r.spirv_opt_pruned,
+                r.gpu_ms_pruned / r.gpu_ms_unpruned, r.gpu_ms_pruned_hlsl / r.gpu_ms_unpruned_hlsl,
+                row.max_diff);
 }
 
 std::string csv_row(const std::string& scene, const PruneBenchRow& row) {
     const PruneMeasurement& r = row.measurement;
-    return fmt::format("{},\"{}\",{},{},{},{},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.3g},{:.3g},{:.3g}\n", scene, row.key,
-                       r.live_before, r.live_after, r.spirv_unpruned, r.spirv_pruned, r.spirv_opt_unpruned, r.spirv_opt_pruned,
-                       r.gpu_ms_unpruned, r.gpu_ms_pruned, r.gpu_ms_unpruned_hlsl, r.gpu_ms_pruned_hlsl, r.max_abs_glsl,
-                       r.max_abs_hlsl, r.max_abs_cpu);
+    return fmt::format(
+        "{},\"{}\",{},{},{},{},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.3g},{:.3g},{:.3g}\n", scene,
+        row.key, r.live_before, r.live_after, r.spirv_unpruned, r.spirv_pruned,
+        r.spirv_opt_unpruned, r.spirv_opt_pruned, r.gpu_ms_unpruned, r.gpu_ms_pruned,
+        r.gpu_ms_unpruned_hlsl, r.gpu_ms_pruned_hlsl, r.max_abs_glsl, r.max_abs_hlsl,
+        r.max_abs_cpu);
 }
 
 nlohmann::ordered_json json_row(const std::string& scene, const PruneBenchRow& row) {
     const PruneMeasurement& r = row.measurement;
-    return {{"scene", scene}, {"variant", row.key}, {"ir_nodes", {r.live_before, r.live_after}},
-            {"spirv", {r.spirv_unpruned, r.spirv_pruned}}, {"spirv_opt", {r.spirv_opt_unpruned, r.spirv_opt_pruned}},
-            {"gpu_ms_glsl", {r.gpu_ms_unpruned, r.gpu_ms_pruned}},
-            {"gpu_ms_hlsl", {r.gpu_ms_unpruned_hlsl, r.gpu_ms_pruned_hlsl}},
-            {"max_abs", {{"glsl", r.max_abs_glsl}, {"hlsl", r.max_abs_hlsl}, {"cpu", r.max_abs_cpu}}}};
+    return {
+        {"scene", scene},
+        {"variant", row.key},
+        {"ir_nodes", {r.live_before, r.live_after}},
+        {"spirv", {r.spirv_unpruned, r.spirv_pruned}},
+        {"spirv_opt", {r.spirv_opt_unpruned, r.spirv_opt_pruned}},
+        {"gpu_ms_glsl", {r.gpu_ms_unpruned, r.gpu_ms_pruned}},
+        {"gpu_ms_hlsl", {r.gpu_ms_unpruned_hlsl, r.gpu_ms_pruned_hlsl}},
+        {"max_abs", {{"glsl", r.max_abs_glsl}, {"hlsl", r.max_abs_hlsl}, {"cpu", r.max_abs_cpu}}}};
 }
 
 } // namespace
@@ -53,13 +60,19 @@ Runner add_bench_prune_command(CLI::App& app, const Common& common) {
     auto o = std::make_shared<Options>();
     app.add_option("material", o->material, "material (default: the built-in default material)");
     app.add_option("--scene", o->scenes, "scene description (repeatable)")->required();
-    app.add_option("--size", o->size, "image width and height in pixels (default 256)")->check(CLI::Range(16, 4096));
-    app.add_option("--draws", o->draws, "timed draws per render and language (default 21); the fastest of all is reported")
+    app.add_option("--size", o->size, "image width and height in pixels (default 256)")
+        ->check(CLI::Range(16, 4096));
+    app.add_option(
+           "--draws", o->draws,
+           "timed draws per render and language (default 21); the fastest of all is reported")
         ->check(CLI::Range(1, 1000));
-    app.add_option("--rounds", o->rounds, "renders per shader, alternating pruned and unpruned (default 3)")
+    app.add_option("--rounds", o->rounds,
+                   "renders per shader, alternating pruned and unpruned (default 3)")
         ->check(CLI::Range(1, 100));
-    app.add_option("--variants", o->per_scene, "at most this many distinct shaders per scene (default: all)");
-    app.add_option("--tolerance", o->tolerance, "largest accepted image difference, pruned vs unpruned (default 1e-4)");
+    app.add_option("--variants", o->per_scene,
+                   "at most this many distinct shaders per scene (default: all)");
+    app.add_option("--tolerance", o->tolerance,
+                   "largest accepted image difference, pruned vs unpruned (default 1e-4)");
     app.add_option("--out", o->out, "directory for prune.csv and prune.json (default out/bench)");
     add_runner_options(app, o->runner);
     return [o, &common]() {
@@ -75,12 +88,16 @@ Runner add_bench_prune_command(CLI::App& app, const Common& common) {
         std::string cache_used;
         auto runner = create_runner(o->runner, &cache_used);
         if (!runner) return kNoDevice;
-        const PruneBenchResult result = bench_prune(*runner, m, plan->scenes, {o->size, o->draws, o->rounds, o->per_scene});
+        const PruneBenchResult result =
+            bench_prune(*runner, m, plan->scenes, {o->size, o->draws, o->rounds, o->per_scene});
 
-        std::printf("%-14s %-58s %11s %11s %11s %9s %9s %10s\n", "scene", "variant (the material's varying axes)", "IR nodes", "SPIR-V", "SPIR-V opt",
+        std::printf("%-14s %-58s %11s %11s %11s %9s %9s %10s\n", "scene",
+                    "variant (the material's varying axes)", "IR nodes", "SPIR-V", "SPIR-V opt",
                     "GPU glsl", "GPU hlsl", "max |diff|");
-        std::string csv = "scene,variant,ir_before,ir_after,spirv_unpruned,spirv_pruned,spirv_opt_unpruned,spirv_opt_pruned,"
-                          "gpu_ms_unpruned,gpu_ms_pruned,gpu_ms_unpruned_hlsl,gpu_ms_pruned_hlsl,max_abs_glsl,max_abs_hlsl,max_abs_cpu\n";
+        std::string csv = "scene,variant,ir_before,ir_after,spirv_unpruned,spirv_pruned,spirv_opt_"
+                          "unpruned,spirv_opt_pruned,"
+                          "gpu_ms_unpruned,gpu_ms_pruned,gpu_ms_unpruned_hlsl,gpu_ms_pruned_hlsl,"
+                          "max_abs_glsl,max_abs_hlsl,max_abs_cpu\n";
         nlohmann::ordered_json json = nlohmann::ordered_json::array();
         for (const PruneBenchScene& s : result.scenes) {
             std::printf("%s: %s\n", s.name.c_str(), s.notes.c_str());
@@ -90,21 +107,28 @@ Runner add_bench_prune_command(CLI::App& app, const Common& common) {
                 json.push_back(json_row(s.name, row));
             }
             if (!s.complete) break;
-            std::printf("%-14s median ratio pruned/unpruned over %zu shaders: IR nodes %.3f, SPIR-V %.3f, SPIR-V opt %.3f, "
+            std::printf("%-14s median ratio pruned/unpruned over %zu shaders: IR nodes %.3f, "
+                        "SPIR-V %.3f, SPIR-V opt %.3f, "
                         "GPU time %.3f (GLSL) %.3f (HLSL); max |diff| %.2g\n",
-                        s.name.c_str(), s.rows.size(), s.ir, s.spirv, s.spirv_opt, s.gpu_glsl, s.gpu_hlsl, s.worst);
+                        s.name.c_str(), s.rows.size(), s.ir, s.spirv, s.spirv_opt, s.gpu_glsl,
+                        s.gpu_hlsl, s.worst);
         }
         if (!result.ok()) {
             std::fprintf(stderr, "watergen: error: %s\n", result.error.c_str());
             return kFailed;
         }
-        std::printf("ratios are pruned / unpruned (below 1: pruning saves); SPIR-V = fragment instructions of the GLSL path as "
-                    "compiled and after spirv-opt -O; GPU = fastest of %u x %u timed draws at %ux%u on %s; max |diff| over the "
+        std::printf("ratios are pruned / unpruned (below 1: pruning saves); SPIR-V = fragment "
+                    "instructions of the GLSL path as "
+                    "compiled and after spirv-opt -O; GPU = fastest of %u x %u timed draws at "
+                    "%ux%u on %s; max |diff| over the "
                     "GLSL, HLSL and CPU images\n",
                     o->rounds, o->draws, o->size, o->size, runner->device_info().name.c_str());
         if (!write_bench_files(o->out, "prune", csv, json.dump(2) + "\n")) return kFailed;
         if (!result.within(o->tolerance)) {
-            std::fprintf(stderr, "watergen: error: a pruned image differs from its unpruned one by more than %g\n", o->tolerance);
+            std::fprintf(
+                stderr,
+                "watergen: error: a pruned image differs from its unpruned one by more than %g\n",
+                o->tolerance);
             return kFailed;
         }
         return kOk;

@@ -10,8 +10,9 @@
 
 namespace watergen::cli {
 
-bool load_material_and_scenes(const std::string& material_path, const std::vector<std::string>& scene_paths,
-                              Material& material, std::vector<SceneFacts>& scenes, const Common& common) {
+bool load_material_and_scenes(const std::string& material_path,
+                              const std::vector<std::string>& scene_paths, Material& material,
+                              std::vector<SceneFacts>& scenes, const Common& common) {
     Diagnostics ds;
     if (material_path.empty()) {
         material = default_material();
@@ -44,31 +45,42 @@ Runner add_build_command(CLI::App& app, const Common& common) {
     };
     auto o = std::make_shared<Options>();
     app.add_option("material", o->material,
-                   "material description (JSON, see README \"Material files\"); default: the built-in default material, "
+                   "material description (JSON, see README \"Material files\"); default: the "
+                   "built-in default material, "
                    "the same as examples/materials/default.json");
     app.add_option("--scene", o->scenes,
-                   "scene description (JSON, repeatable); with scenes only the variants they reach are built, each folded "
-                   "under the scene's facts into <out>/<scene>/<variant>/; without, every variant of the material goes "
+                   "scene description (JSON, repeatable); with scenes only the variants they reach "
+                   "are built, each folded "
+                   "under the scene's facts into <out>/<scene>/<variant>/; without, every variant "
+                   "of the material goes "
                    "unfolded into <out>/unpruned/<variant>/");
     app.add_option("--out", o->out,
-                   "output directory, replaced as a whole when the build succeeds; it must be an earlier output of "
+                   "output directory, replaced as a whole when the build succeeds; it must be an "
+                   "earlier output of "
                    "watergen build, an empty directory or a path that does not exist")
         ->required();
-    app.add_option("--jobs,-j", o->jobs, "worker threads (default: every hardware thread); output is the same for any count");
-    app.add_option("--cache", o->cache, "cache directory (default: $XDG_CACHE_HOME/watergen or ~/.cache/watergen)");
+    app.add_option(
+        "--jobs,-j", o->jobs,
+        "worker threads (default: every hardware thread); output is the same for any count");
+    app.add_option("--cache", o->cache,
+                   "cache directory (default: $XDG_CACHE_HOME/watergen or ~/.cache/watergen)");
     app.add_flag("--no-cache", o->no_cache, "build every variant, and store nothing");
     app.add_flag("--quiet,-q", o->quiet, "no progress line, only the summary");
     return [o, &common]() {
         BuildRequest request;
-        if (!load_material_and_scenes(o->material, o->scenes, request.material, request.scenes, common)) return kUsage;
+        if (!load_material_and_scenes(o->material, o->scenes, request.material, request.scenes,
+                                      common))
+            return kUsage;
         request.out = o->out;
         request.options.threads = o->jobs;
-        if (!o->no_cache) request.options.cache = BuildCache(o->cache.empty() ? default_cache_dir() : std::filesystem::path(o->cache));
+        if (!o->no_cache)
+            request.options.cache = BuildCache(o->cache.empty() ? default_cache_dir()
+                                                                : std::filesystem::path(o->cache));
         const bool tty = !o->quiet && ::isatty(STDERR_FILENO);
         if (tty)
             request.options.progress = [](const BuildProgress& p) {
-                std::fprintf(stderr, "\r\033[K[%zu/%zu] %zu cached, %zu failed  %s", p.done, p.total, p.cached, p.failed,
-                             p.key.substr(0, 60).c_str());
+                std::fprintf(stderr, "\r\033[K[%zu/%zu] %zu cached, %zu failed  %s", p.done,
+                             p.total, p.cached, p.failed, p.key.substr(0, 60).c_str());
                 std::fflush(stderr);
             };
         const BuildSummary s = build_material(request);
@@ -77,16 +89,20 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         if (s.bad_input) return kUsage;
         const unsigned threads = o->jobs ? o->jobs : hardware_threads();
         const std::string rejected =
-            s.cache_rejected == 0 ? std::string()
-                                  : fmt::format("; {} cache entr{} failed verification, rebuilt", s.cache_rejected,
-                                                s.cache_rejected == 1 ? "y" : "ies");
-        std::printf("%s\n", fmt::format("build: {} variants ({} built, {} cached, {} shared between scenes, {} same shader as another variant, {} failed{}) "
-                                        "in {:.2f} s on {} thread{}{}",
-                                        s.variants, s.built, s.cached, s.shared, s.same, s.failed, rejected, s.seconds, threads,
-                                        threads == 1 ? "" : "s",
-                                        s.ok() ? fmt::format(" -> {} ({} files)", o->out, s.files)
-                                               : std::string("; nothing written, ") + o->out + " is unchanged")
-                                .c_str());
+            s.cache_rejected == 0
+                ? std::string()
+                : fmt::format("; {} cache entr{} failed verification, rebuilt", s.cache_rejected,
+                              s.cache_rejected == 1 ? "y" : "ies");
+        std::printf("%s\n",
+                    fmt::format("build: {} variants ({} built, {} cached, {} shared between "
+                                "scenes, {} same shader as another variant, {} failed{}) "
+                                "in {:.2f} s on {} thread{}{}",
+                                s.variants, s.built, s.cached, s.shared, s.same, s.failed, rejected,
+                                s.seconds, threads, threads == 1 ? "" : "s",
+                                s.ok()
+                                    ? fmt::format(" -> {} ({} files)", o->out, s.files)
+                                    : std::string("; nothing written, ") + o->out + " is unchanged")
+                        .c_str());
         return s.ok() ? kOk : kFailed;
     };
 }

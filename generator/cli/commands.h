@@ -9,17 +9,17 @@
 #include "watergen/ir/diagnostic.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
-#include "watergen/water/presets.h"
 #include "watergen/runtime/vulkan_runner.h"
+#include "watergen/water/presets.h"
 #include "watergen/water/variant.h"
 
 namespace watergen::cli {
 
 // Exit codes shared by every subcommand.
 constexpr int kOk = 0;
-constexpr int kFailed = 1;     // a shader failed to build or validate, or output could not be written
-constexpr int kUsage = 2;      // bad flags or values
-constexpr int kNoDevice = 3;   // no Vulkan device (runner commands)
+constexpr int kFailed = 1;   // a shader failed to build or validate, or output could not be written
+constexpr int kUsage = 2;    // bad flags or values
+constexpr int kNoDevice = 3; // no Vulkan device (runner commands)
 
 struct Common {
     DiagnosticFormat format = DiagnosticFormat::Gcc;
@@ -54,8 +54,9 @@ Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 // Material and scene files of build, explain and bench build / prune (build_command.cpp).
 // An empty material path means the built-in default material. Prints the error and returns
 // false on bad input (exit with kUsage).
-bool load_material_and_scenes(const std::string& material_path, const std::vector<std::string>& scene_paths,
-                              Material& material, std::vector<SceneFacts>& scenes, const Common& common);
+bool load_material_and_scenes(const std::string& material_path,
+                              const std::vector<std::string>& scene_paths, Material& material,
+                              std::vector<SceneFacts>& scenes, const Common& common);
 Runner add_build_command(CLI::App& app, const Common& common);
 Runner add_explain_command(CLI::App& app, const Common& common);
 Runner add_bench_build_command(CLI::App& bench, const Common& common);
@@ -63,10 +64,12 @@ Runner add_bench_prune_command(CLI::App& bench, const Common& common);
 Runner add_bench_accuracy_command(CLI::App& bench, const Common& common);
 
 // Prints a bench's error diagnostics, or else its error; false when there was either.
-bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error, const Common& common);
+bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error,
+                     const Common& common);
 
 // Writes <out>/<stem>.csv and <out>/<stem>.json (each atomically) and says so; prints the
 // error and returns false when one cannot be written (exit with kFailed).
-bool write_bench_files(const std::string& out, const std::string& stem, const std::string& csv, const std::string& json);
+bool write_bench_files(const std::string& out, const std::string& stem, const std::string& csv,
+                       const std::string& json);
 
 } // namespace watergen::cli

@@ -2,10 +2,10 @@
 #include <filesystem>
 
 #include "commands.h"
-#include "watergen/water/presets.h"
-#include "watergen/plan/covering_array.h"
 #include "watergen/pipeline/output_writer.h"
 #include "watergen/pipeline/variant_build.h"
+#include "watergen/plan/covering_array.h"
+#include "watergen/water/presets.h"
 
 namespace watergen::cli {
 
@@ -18,20 +18,25 @@ Runner add_emit_command(CLI::App& app, const Common& common) {
     };
     auto o = std::make_shared<Options>();
     add_variant_options(app, o->variant, o->preset);
-    app.add_flag("--covering", o->covering,
-                 "emit the pairwise covering set: every pair of choices on two axes in at least one variant "
-                 "(axis options are ignored)");
-    app.add_option("--out", o->out, "output directory; each variant goes to <out>/<variant>/ (default out/emit)");
+    app.add_flag(
+        "--covering", o->covering,
+        "emit the pairwise covering set: every pair of choices on two axes in at least one variant "
+        "(axis options are ignored)");
+    app.add_option("--out", o->out,
+                   "output directory; each variant goes to <out>/<variant>/ (default out/emit)");
     return [o, &common]() {
         const Preset* preset = nullptr;
-        if (!resolve_variant(o->covering ? default_variant() : o->variant, o->preset, &preset)) return kUsage;
-        const std::vector<Variant> variants = o->covering ? pairwise_covering_variants() : std::vector<Variant>{o->variant};
+        if (!resolve_variant(o->covering ? default_variant() : o->variant, o->preset, &preset))
+            return kUsage;
+        const std::vector<Variant> variants =
+            o->covering ? pairwise_covering_variants() : std::vector<Variant>{o->variant};
         int failed = 0;
         for (const Variant& v : variants) {
             const VariantBuild build = build_variant(v, preset);
             print_diagnostics(build.diagnostics, common);
             if (!build.ok()) {
-                std::fprintf(stderr, "watergen: error: %s failed; nothing written for it\n", v.key().c_str());
+                std::fprintf(stderr, "watergen: error: %s failed; nothing written for it\n",
+                             v.key().c_str());
                 ++failed;
                 continue;
             }
@@ -42,7 +47,8 @@ Runner add_emit_command(CLI::App& app, const Common& common) {
                 ++failed;
                 continue;
             }
-            std::printf("%s -> %s (%zu files)\n", v.key().c_str(), dir.string().c_str(), files.size());
+            std::printf("%s -> %s (%zu files)\n", v.key().c_str(), dir.string().c_str(),
+                        files.size());
         }
         return failed ? kFailed : kOk;
     };

@@ -16,7 +16,8 @@ CLI::Validator finite_range(double lo, double hi) {
             const double v = std::strtod(text.c_str(), &end);
             if (text.empty() || *end != '\0') return fmt::format("'{}' is not a number", text);
             if (!std::isfinite(v) || v < lo || v > hi)
-                return fmt::format("{} is out of range; expected a finite number in [{}, {}]", text, lo, hi);
+                return fmt::format("{} is out of range; expected a finite number in [{}, {}]", text,
+                                   lo, hi);
             return "";
         },
         fmt::format("FLOAT in [{} - {}]", lo, hi));

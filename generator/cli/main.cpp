@@ -9,8 +9,10 @@ namespace watergen::cli {
 
 void add_variant_options(CLI::App& app, Variant& variant, std::string& preset) {
     std::vector<std::string> preset_list;
-    for (const auto& p : presets()) preset_list.push_back(p.name);
-    app.add_option("--preset", preset, "parameter preset: " + preset_names())->check(CLI::IsMember(preset_list));
+    for (const auto& p : presets())
+        preset_list.push_back(p.name);
+    app.add_option("--preset", preset, "parameter preset: " + preset_names())
+        ->check(CLI::IsMember(preset_list));
     const auto& list = axes();
     for (size_t i = 0; i < list.size(); ++i) {
         std::vector<std::string> names;
@@ -21,7 +23,8 @@ void add_variant_options(CLI::App& app, Variant& variant, std::string& preset) {
     }
 }
 
-bool resolve_variant(const Variant& variant, const std::string& preset_name, const Preset** preset) {
+bool resolve_variant(const Variant& variant, const std::string& preset_name,
+                     const Preset** preset) {
     if (auto e = check_constraints(variant)) {
         std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
         return false;
@@ -31,43 +34,56 @@ bool resolve_variant(const Variant& variant, const std::string& preset_name, con
 }
 
 void print_diagnostics(const Diagnostics& ds, const Common& common) {
-    for (const auto& d : ds) std::fprintf(stderr, "%s\n", format_diagnostic(d, common.format).c_str());
+    for (const auto& d : ds)
+        std::fprintf(stderr, "%s\n", format_diagnostic(d, common.format).c_str());
 }
 
 } // namespace watergen::cli
 
 int main(int argc, char** argv) {
     using namespace watergen::cli;
-    CLI::App app{"watergen: generates real-time water shaders (GLSL + HLSL) from one C++ description,\n"
-                 "validates them with glslang and spirv-val, and cross-compiles them with SPIRV-Cross."};
+    CLI::App app{
+        "watergen: generates real-time water shaders (GLSL + HLSL) from one C++ description,\n"
+        "validates them with glslang and spirv-val, and cross-compiles them with SPIRV-Cross."};
     app.require_subcommand(1);
     Common common;
     std::string format = "gcc";
-    app.add_option("--diagnostics-format", format, "how errors are printed: gcc (file:line:col) or msvc (file(line,col))")
+    app.add_option("--diagnostics-format", format,
+                   "how errors are printed: gcc (file:line:col) or msvc (file(line,col))")
         ->check(CLI::IsMember({"gcc", "msvc"}));
     std::map<CLI::App*, Runner> runners;
-    CLI::App* emit = app.add_subcommand("emit", "emit one variant (or --all) in GLSL and HLSL, validated and cross-compiled");
+    CLI::App* emit = app.add_subcommand(
+        "emit", "emit one variant (or --all) in GLSL and HLSL, validated and cross-compiled");
     runners[emit] = add_emit_command(*emit, common);
-    CLI::App* render = app.add_subcommand("render", "render one variant on Vulkan (lavapipe) through both languages and compare with the CPU");
+    CLI::App* render = app.add_subcommand(
+        "render",
+        "render one variant on Vulkan (lavapipe) through both languages and compare with the CPU");
     runners[render] = add_render_command(*render, common);
-    CLI::App* probe = app.add_subcommand("probe", "numeric harness: one node over CSV input tuples on the GPU and the CPU");
+    CLI::App* probe = app.add_subcommand(
+        "probe", "numeric harness: one node over CSV input tuples on the GPU and the CPU");
     runners[probe] = add_probe_command(*probe, common);
     CLI::App* bench = app.add_subcommand("bench", "benchmarks (print a table, write CSV and JSON)");
     bench->require_subcommand(1);
-    CLI::App* compile = bench->add_subcommand("compile", "in-process toolchain vs the same chain through command-line tools");
+    CLI::App* compile = bench->add_subcommand(
+        "compile", "in-process toolchain vs the same chain through command-line tools");
     runners[compile] = add_bench_compile_command(*compile, common);
-    CLI::App* build = app.add_subcommand("build", "build every variant a material's scenes need: pruned, folded, validated, "
-                                                  "cross-compiled, cached, in parallel; writes manifest.json");
+    CLI::App* build = app.add_subcommand(
+        "build", "build every variant a material's scenes need: pruned, folded, validated, "
+                 "cross-compiled, cached, in parallel; writes manifest.json");
     runners[build] = add_build_command(*build, common);
-    CLI::App* explain = app.add_subcommand("explain", "which variants each scene skips and which terms it folds away, and why");
+    CLI::App* explain = app.add_subcommand(
+        "explain", "which variants each scene skips and which terms it folds away, and why");
     runners[explain] = add_explain_command(*explain, common);
-    CLI::App* bench_build = bench->add_subcommand("build", "variants per second of watergen build: cold and warm cache, "
-                                                           "one thread and all threads");
+    CLI::App* bench_build = bench->add_subcommand(
+        "build", "variants per second of watergen build: cold and warm cache, "
+                 "one thread and all threads");
     runners[bench_build] = add_bench_build_command(*bench_build, common);
-    CLI::App* bench_prune = bench->add_subcommand("prune", "pruned against unpruned shaders per scene: SPIR-V size, GPU time, "
-                                                           "image difference");
+    CLI::App* bench_prune = bench->add_subcommand(
+        "prune", "pruned against unpruned shaders per scene: SPIR-V size, GPU time, "
+                 "image difference");
     runners[bench_prune] = add_bench_prune_command(*bench_prune, common);
-    CLI::App* accuracy = bench->add_subcommand("accuracy", "every cheaper choice against its axis' gold: GPU time ratio and image error");
+    CLI::App* accuracy = bench->add_subcommand(
+        "accuracy", "every cheaper choice against its axis' gold: GPU time ratio and image error");
     runners[accuracy] = add_bench_accuracy_command(*accuracy, common);
     try {
         app.parse(argc, argv);
@@ -79,7 +95,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "watergen: error: %s (see --help)\n", e.what());
         return kUsage;
     }
-    common.format = format == "msvc" ? watergen::DiagnosticFormat::Msvc : watergen::DiagnosticFormat::Gcc;
+    common.format =
+        format == "msvc" ? watergen::DiagnosticFormat::Msvc : watergen::DiagnosticFormat::Gcc;
     for (auto& [sub, run] : runners)
         if (sub->parsed()) return run();
     return kUsage;

@@ -2,8 +2,8 @@
 #include <filesystem>
 
 #include "commands.h"
-#include "watergen/water/presets.h"
 #include "watergen/render/render_report.h"
+#include "watergen/water/presets.h"
 
 namespace watergen::cli {
 
@@ -18,13 +18,18 @@ Runner add_render_command(CLI::App& app, const Common& common) {
     };
     auto o = std::make_shared<Options>();
     add_variant_options(app, o->variant, o->preset);
-    app.add_option("--width", o->width, "image width in pixels (default 256)")->check(CLI::Range(8, 4096));
-    app.add_option("--height", o->height, "image height in pixels (default 256)")->check(CLI::Range(8, 4096));
-    app.add_option("--draws", o->draws, "timed draws after the first (JIT) draw; the median is reported (default 10)")
+    app.add_option("--width", o->width, "image width in pixels (default 256)")
+        ->check(CLI::Range(8, 4096));
+    app.add_option("--height", o->height, "image height in pixels (default 256)")
+        ->check(CLI::Range(8, 4096));
+    app.add_option("--draws", o->draws,
+                   "timed draws after the first (JIT) draw; the median is reported (default 10)")
         ->check(CLI::Range(1, 1000));
-    app.add_option("--exposure", o->exposure, "exposure applied before the sRGB PNG encoding (default 1)")
+    app.add_option("--exposure", o->exposure,
+                   "exposure applied before the sRGB PNG encoding (default 1)")
         ->check(finite_range(1e-6, 1e6));
-    app.add_option("--out", o->out, "output directory; files go to <out>/<variant>/ (default out/render)");
+    app.add_option("--out", o->out,
+                   "output directory; files go to <out>/<variant>/ (default out/render)");
     add_runner_options(app, o->runner);
     return [o, &common]() {
         const Preset* preset = nullptr;
@@ -37,8 +42,10 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         if (!runner) return kNoDevice;
         SyntheticScene scene = make_synthetic_scene(o->width, o->height);
         if (preset)
-            for (const auto& [name, values] : preset->values) scene.uniforms[name] = values; // lighting follows the preset
-        const VariantRender r = render_variant(*runner, build, scene, {o->width, o->height, o->draws, true});
+            for (const auto& [name, values] : preset->values)
+                scene.uniforms[name] = values; // lighting follows the preset
+        const VariantRender r =
+            render_variant(*runner, build, scene, {o->width, o->height, o->draws, true});
         if (!r.ok()) {
             std::fprintf(stderr, "watergen: error: %s: %s\n", r.key.c_str(), r.error.c_str());
             return kFailed;
@@ -50,23 +57,33 @@ Runner add_render_command(CLI::App& app, const Common& common) {
             std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
             return kFailed;
         }
-        std::printf("%s on %s (%s), %ux%u, Mesa shader cache %s\n", r.key.c_str(), dev.name.c_str(), dev.driver_info.c_str(),
-                    o->width, o->height, cache.c_str());
-        std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median of %u)\n", "glsl",
-                    r.gpu[0].pipeline_ms, r.gpu[0].first_draw_ms, r.gpu[0].steady_draw_ms, o->draws);
-        std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median of %u)\n", "hlsl",
-                    r.gpu[1].pipeline_ms, r.gpu[1].first_draw_ms, r.gpu[1].steady_draw_ms, o->draws);
-        std::printf("  max abs: glsl-hlsl %.3g, gpu-cpu(float) %.3g, gpu-cpu(double) %.3g (over pixels finite on "
+        std::printf("%s on %s (%s), %ux%u, Mesa shader cache %s\n", r.key.c_str(), dev.name.c_str(),
+                    dev.driver_info.c_str(), o->width, o->height, cache.c_str());
+        std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median "
+                    "of %u)\n",
+                    "glsl", r.gpu[0].pipeline_ms, r.gpu[0].first_draw_ms, r.gpu[0].steady_draw_ms,
+                    o->draws);
+        std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median "
+                    "of %u)\n",
+                    "hlsl", r.gpu[1].pipeline_ms, r.gpu[1].first_draw_ms, r.gpu[1].steady_draw_ms,
+                    o->draws);
+        std::printf("  max abs: glsl-hlsl %.3g, gpu-cpu(float) %.3g, gpu-cpu(double) %.3g (over "
+                    "pixels finite on "
                     "both sides)\n",
-                    r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs, r.glsl_vs_cpu_double.max_abs);
+                    r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs,
+                    r.glsl_vs_cpu_double.max_abs);
         std::printf("  NaN/Inf pixels: glsl %llu, hlsl %llu, cpu float %llu\n",
                     static_cast<unsigned long long>(r.glsl_vs_cpu_float.nan_inf_pixels),
                     static_cast<unsigned long long>(r.hlsl_vs_cpu_float.nan_inf_pixels),
                     static_cast<unsigned long long>(r.glsl_vs_cpu_float.reference_nan_inf_pixels));
-        std::printf("  wrote %s/{glsl,hlsl}.png, .pfm, cpu_float.pfm, render.json\n", dir.string().c_str());
+        std::printf("  wrote %s/{glsl,hlsl}.png, .pfm, cpu_float.pfm, render.json\n",
+                    dir.string().c_str());
         if (const uint64_t broken = gpu_only_non_finite_pixels(r); broken > 0) {
-            std::fprintf(stderr, "watergen: error: %s: %llu pixel%s NaN/Inf on the GPU where the CPU float image is finite\n",
-                         r.key.c_str(), static_cast<unsigned long long>(broken), broken == 1 ? " is" : "s are");
+            std::fprintf(stderr,
+                         "watergen: error: %s: %llu pixel%s NaN/Inf on the GPU where the CPU float "
+                         "image is finite\n",
+                         r.key.c_str(), static_cast<unsigned long long>(broken),
+                         broken == 1 ? " is" : "s are");
             return kFailed;
         }
         return kOk;

@@ -7,9 +7,11 @@ namespace watergen::cli {
 
 void add_runner_options(CLI::App& app, RunnerSetup& setup) {
     app.add_option("--shader-cache", setup.shader_cache,
-                   "Mesa shader cache: 'off' (default: every pipeline is JIT-compiled afresh, so first-draw times "
+                   "Mesa shader cache: 'off' (default: every pipeline is JIT-compiled afresh, so "
+                   "first-draw times "
                    "are honest) or a directory of its own");
-    app.add_option("--device", setup.device, "Vulkan device name substring (default: lavapipe / llvmpipe)");
+    app.add_option("--device", setup.device,
+                   "Vulkan device name substring (default: lavapipe / llvmpipe)");
 }
 
 std::unique_ptr<VulkanRunner> create_runner(const RunnerSetup& setup, std::string* cache_used) {
@@ -28,7 +30,11 @@ std::unique_ptr<VulkanRunner> create_runner(const RunnerSetup& setup, std::strin
     options.device = setup.device;
     options.validation = false; // commands measure; the tests run with validation on
     auto runner = VulkanRunner::create(options, &error);
-    if (!runner) std::fprintf(stderr, "watergen: error: no Vulkan device: %s (install mesa-vulkan-drivers for lavapipe)\n", error.c_str());
+    if (!runner)
+        std::fprintf(
+            stderr,
+            "watergen: error: no Vulkan device: %s (install mesa-vulkan-drivers for lavapipe)\n",
+            error.c_str());
     return runner;
 }
 

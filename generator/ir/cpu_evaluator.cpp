@@ -8,9 +8,12 @@ namespace watergen {
 
 const char* to_string(EvalPrecision p) {
     switch (p) {
-    case EvalPrecision::Double: return "double";
-    case EvalPrecision::Float: return "float";
-    case EvalPrecision::Half: return "half";
+    case EvalPrecision::Double:
+        return "double";
+    case EvalPrecision::Float:
+        return "float";
+    case EvalPrecision::Half:
+        return "half";
     }
     return "?";
 }
@@ -21,17 +24,20 @@ double round_to_half(double v) {
     // 65504 is the largest half; values from the midpoint to 65536 upwards round to infinity.
     if (a >= 65520.0) return std::copysign(std::numeric_limits<double>::infinity(), v);
     int e = 0;
-    std::frexp(a, &e);                           // a in [2^(e-1), 2^e)
-    const int exponent = std::max(e - 1, -14);  // below 2^-14 the spacing stays 2^-24
+    std::frexp(a, &e);                         // a in [2^(e-1), 2^e)
+    const int exponent = std::max(e - 1, -14); // below 2^-14 the spacing stays 2^-24
     const double ulp = std::ldexp(1.0, exponent - 10);
     return std::copysign(std::nearbyint(a / ulp) * ulp, v);
 }
 
 double round_to(double v, EvalPrecision p) {
     switch (p) {
-    case EvalPrecision::Double: return v;
-    case EvalPrecision::Float: return static_cast<double>(static_cast<float>(v));
-    case EvalPrecision::Half: return round_to_half(static_cast<double>(static_cast<float>(v)));
+    case EvalPrecision::Double:
+        return v;
+    case EvalPrecision::Float:
+        return static_cast<double>(static_cast<float>(v));
+    case EvalPrecision::Half:
+        return round_to_half(static_cast<double>(static_cast<float>(v)));
     }
     return v;
 }
@@ -55,7 +61,8 @@ void sample_2d(const TextureView& t, Filter filter, double u, double v, double o
     if (filter == Filter::Nearest) {
         const long x = static_cast<long>(std::floor(u * t.width));
         const long y = static_cast<long>(std::floor(v * t.height));
-        for (int c = 0; c < 4; ++c) out[c] = fetch(t, x, y, c);
+        for (int c = 0; c < 4; ++c)
+            out[c] = fetch(t, x, y, c);
         return;
     }
     const double fu = u * t.width - 0.5, fv = v * t.height - 0.5;
@@ -72,7 +79,10 @@ double cube_fetch(const TextureView& t, int face, long i, long j, int c) {
     const long n = static_cast<long>(t.width);
     i = std::clamp<long>(i, 0, n - 1);
     j = std::clamp<long>(j, 0, n - 1);
-    return t.rgba[((static_cast<size_t>(face) * t.width + static_cast<size_t>(j)) * t.width + static_cast<size_t>(i)) * 4 + c];
+    return t.rgba[((static_cast<size_t>(face) * t.width + static_cast<size_t>(j)) * t.width +
+                   static_cast<size_t>(i)) *
+                      4 +
+                  c];
 }
 
 // Texel (i, j) of `face`, where at most one of i, j lies one texel past the face: such a texel
@@ -86,7 +96,8 @@ double cube_texel(const TextureView& t, int face, long i, long j, int c) {
     double d[3];
     cube_face_direction(face, (i + 0.5) / n, (j + 0.5) / n, d);
     const CubeFaceCoord a = cube_face_coord(d[0], d[1], d[2]);
-    return cube_fetch(t, a.face, static_cast<long>(std::floor(a.s * n)), static_cast<long>(std::floor(a.t * n)), c);
+    return cube_fetch(t, a.face, static_cast<long>(std::floor(a.s * n)),
+                      static_cast<long>(std::floor(a.t * n)), c);
 }
 
 void sample_cube(const TextureView& t, Filter filter, double x, double y, double z, double out[4]) {
@@ -95,7 +106,8 @@ void sample_cube(const TextureView& t, Filter filter, double x, double y, double
     if (filter == Filter::Nearest) {
         // Vulkan: nearest filtering of a cube clamps to the edge of the selected face.
         for (int c = 0; c < 4; ++c)
-            out[c] = cube_fetch(t, f.face, static_cast<long>(std::floor(f.s * n)), static_cast<long>(std::floor(f.t * n)), c);
+            out[c] = cube_fetch(t, f.face, static_cast<long>(std::floor(f.s * n)),
+                                static_cast<long>(std::floor(f.t * n)), c);
         return;
     }
     const double fu = f.s * n - 0.5, fv = f.t * n - 0.5;
@@ -122,14 +134,15 @@ void sample_cube(const TextureView& t, Filter filter, double x, double y, double
             const double sum = texel[0][0] + texel[0][1] + texel[1][0] + texel[1][1];
             texel[corner_j][corner_i] = sum / 3.0;
         }
-        out[c] = (1 - a) * (1 - b) * texel[0][0] + a * (1 - b) * texel[0][1] + (1 - a) * b * texel[1][0] +
-                 a * b * texel[1][1];
+        out[c] = (1 - a) * (1 - b) * texel[0][0] + a * (1 - b) * texel[0][1] +
+                 (1 - a) * b * texel[1][0] + a * b * texel[1][1];
     }
 }
 
 class BlockEvaluator {
-public:
-    BlockEvaluator(const Graph& g, const std::vector<uint32_t>& live, const EvalInputs& in, EvalPrecision p)
+  public:
+    BlockEvaluator(const Graph& g, const std::vector<uint32_t>& live, const EvalInputs& in,
+                   EvalPrecision p)
         : g_(g), live_(live), in_(in), p_(p), values_(g.size()) {}
 
     // Evaluates lanes [begin, begin + count); returns false and sets error on bad input.
@@ -143,15 +156,17 @@ public:
             if (!compute(id, node, comps, begin, out, error)) return false;
             // Half mode: relaxed nodes are binary16, the rest binary32, as a GPU that honours
             // mediump at 16 bits would compute them.
-            const EvalPrecision p = (p_ == EvalPrecision::Half && !node.relaxed) ? EvalPrecision::Float : p_;
-            for (double& v : out) v = round_to(v, p);
+            const EvalPrecision p =
+                (p_ == EvalPrecision::Half && !node.relaxed) ? EvalPrecision::Float : p_;
+            for (double& v : out)
+                v = round_to(v, p);
         }
         return true;
     }
 
     const std::vector<double>& values(uint32_t id) const { return values_[id]; }
 
-private:
+  private:
     // Component c of argument i at lane l, broadcasting scalars.
     double arg(const Node& n, size_t i, size_t l, int c) const {
         const uint32_t a = n.args[i];
@@ -159,11 +174,13 @@ private:
         return values_[a][l * comps + (comps == 1 ? 0 : c)];
     }
 
-    bool compute(uint32_t id, const Node& n, int comps, size_t begin, std::vector<double>& out, std::string& error) {
+    bool compute(uint32_t id, const Node& n, int comps, size_t begin, std::vector<double>& out,
+                 std::string& error) {
         (void)id;
         auto each = [&](auto f) {
             for (size_t l = 0; l < n_; ++l)
-                for (int c = 0; c < comps; ++c) out[l * comps + c] = f(l, c);
+                for (int c = 0; c < comps; ++c)
+                    out[l * comps + c] = f(l, c);
         };
         auto a0 = [&](size_t l, int c) { return arg(n, 0, l, c); };
         auto a1 = [&](size_t l, int c) { return arg(n, 1, l, c); };
@@ -171,7 +188,8 @@ private:
         auto reduce_dot = [&](size_t l, size_t i, size_t j) {
             const int k = component_count(g_.node(n.args[i]).type);
             double s = 0;
-            for (int c = 0; c < k; ++c) s += arg(n, i, l, c) * arg(n, j, l, c);
+            for (int c = 0; c < k; ++c)
+                s += arg(n, i, l, c) * arg(n, j, l, c);
             return s;
         };
         switch (n.op) {
@@ -184,10 +202,13 @@ private:
             return true;
         case Op::Uniform: {
             const std::vector<double>* v = nullptr;
-            if (auto it = in_.uniforms.find(n.name); it != in_.uniforms.end()) v = &it->second;
-            else if (const Parameter* p = g_.find_parameter(n.name)) v = &p->default_value;
+            if (auto it = in_.uniforms.find(n.name); it != in_.uniforms.end())
+                v = &it->second;
+            else if (const Parameter* p = g_.find_parameter(n.name))
+                v = &p->default_value;
             if (!v || static_cast<int>(v->size()) != comps) {
-                error = "uniform '" + n.name + "': no value with " + std::to_string(comps) + " components";
+                error = "uniform '" + n.name + "': no value with " + std::to_string(comps) +
+                        " components";
                 return false;
             }
             each([&](size_t, int c) { return (*v)[c]; });
@@ -202,37 +223,77 @@ private:
             each([&](size_t l, int c) { return it->second[(begin + l) * comps + c]; });
             return true;
         }
-        case Op::Texture: return true;
-        case Op::Add: each([&](size_t l, int c) { return a0(l, c) + a1(l, c); }); return true;
-        case Op::Sub: each([&](size_t l, int c) { return a0(l, c) - a1(l, c); }); return true;
-        case Op::Mul: each([&](size_t l, int c) { return a0(l, c) * a1(l, c); }); return true;
-        case Op::Div: each([&](size_t l, int c) { return a0(l, c) / a1(l, c); }); return true;
-        case Op::Neg: each([&](size_t l, int c) { return -a0(l, c); }); return true;
-        case Op::Less: each([&](size_t l, int) { return double(a0(l, 0) < a1(l, 0)); }); return true;
-        case Op::LessEqual: each([&](size_t l, int) { return double(a0(l, 0) <= a1(l, 0)); }); return true;
-        case Op::Greater: each([&](size_t l, int) { return double(a0(l, 0) > a1(l, 0)); }); return true;
-        case Op::GreaterEqual: each([&](size_t l, int) { return double(a0(l, 0) >= a1(l, 0)); }); return true;
-        case Op::Equal: each([&](size_t l, int) { return double(a0(l, 0) == a1(l, 0)); }); return true;
-        case Op::NotEqual: each([&](size_t l, int) { return double(a0(l, 0) != a1(l, 0)); }); return true;
-        case Op::And: each([&](size_t l, int) { return double(a0(l, 0) != 0 && a1(l, 0) != 0); }); return true;
-        case Op::Or: each([&](size_t l, int) { return double(a0(l, 0) != 0 || a1(l, 0) != 0); }); return true;
-        case Op::Not: each([&](size_t l, int) { return double(a0(l, 0) == 0); }); return true;
-        case Op::Select: each([&](size_t l, int c) { return a0(l, 0) != 0 ? a1(l, c) : a2(l, c); }); return true;
-        case Op::Swizzle: each([&](size_t l, int c) { return a0(l, static_cast<int>(n.values[c])); }); return true;
-        case Op::Splat: each([&](size_t l, int) { return a0(l, 0); }); return true;
+        case Op::Texture:
+            return true;
+        case Op::Add:
+            each([&](size_t l, int c) { return a0(l, c) + a1(l, c); });
+            return true;
+        case Op::Sub:
+            each([&](size_t l, int c) { return a0(l, c) - a1(l, c); });
+            return true;
+        case Op::Mul:
+            each([&](size_t l, int c) { return a0(l, c) * a1(l, c); });
+            return true;
+        case Op::Div:
+            each([&](size_t l, int c) { return a0(l, c) / a1(l, c); });
+            return true;
+        case Op::Neg:
+            each([&](size_t l, int c) { return -a0(l, c); });
+            return true;
+        case Op::Less:
+            each([&](size_t l, int) { return double(a0(l, 0) < a1(l, 0)); });
+            return true;
+        case Op::LessEqual:
+            each([&](size_t l, int) { return double(a0(l, 0) <= a1(l, 0)); });
+            return true;
+        case Op::Greater:
+            each([&](size_t l, int) { return double(a0(l, 0) > a1(l, 0)); });
+            return true;
+        case Op::GreaterEqual:
+            each([&](size_t l, int) { return double(a0(l, 0) >= a1(l, 0)); });
+            return true;
+        case Op::Equal:
+            each([&](size_t l, int) { return double(a0(l, 0) == a1(l, 0)); });
+            return true;
+        case Op::NotEqual:
+            each([&](size_t l, int) { return double(a0(l, 0) != a1(l, 0)); });
+            return true;
+        case Op::And:
+            each([&](size_t l, int) { return double(a0(l, 0) != 0 && a1(l, 0) != 0); });
+            return true;
+        case Op::Or:
+            each([&](size_t l, int) { return double(a0(l, 0) != 0 || a1(l, 0) != 0); });
+            return true;
+        case Op::Not:
+            each([&](size_t l, int) { return double(a0(l, 0) == 0); });
+            return true;
+        case Op::Select:
+            each([&](size_t l, int c) { return a0(l, 0) != 0 ? a1(l, c) : a2(l, c); });
+            return true;
+        case Op::Swizzle:
+            each([&](size_t l, int c) { return a0(l, static_cast<int>(n.values[c])); });
+            return true;
+        case Op::Splat:
+            each([&](size_t l, int) { return a0(l, 0); });
+            return true;
         case Op::Construct: {
             // Flatten arguments in order (Mat3: three columns, column-major).
             for (size_t l = 0; l < n_; ++l) {
                 int c = 0;
                 for (size_t i = 0; i < n.args.size(); ++i) {
                     const int k = component_count(g_.node(n.args[i]).type);
-                    for (int j = 0; j < k; ++j) out[l * comps + c++] = arg(n, i, l, j);
+                    for (int j = 0; j < k; ++j)
+                        out[l * comps + c++] = arg(n, i, l, j);
                 }
             }
             return true;
         }
-        case Op::Dot: each([&](size_t l, int) { return reduce_dot(l, 0, 1); }); return true;
-        case Op::Length: each([&](size_t l, int) { return std::sqrt(reduce_dot(l, 0, 0)); }); return true;
+        case Op::Dot:
+            each([&](size_t l, int) { return reduce_dot(l, 0, 1); });
+            return true;
+        case Op::Length:
+            each([&](size_t l, int) { return std::sqrt(reduce_dot(l, 0, 0)); });
+            return true;
         case Op::Normalize:
             each([&](size_t l, int c) { return a0(l, c) / std::sqrt(reduce_dot(l, 0, 0)); });
             return true;
@@ -242,30 +303,78 @@ private:
                 return a0(l, i) * a1(l, j) - a0(l, j) * a1(l, i);
             });
             return true;
-        case Op::Mix: each([&](size_t l, int c) { return a0(l, c) + (a1(l, c) - a0(l, c)) * a2(l, c); }); return true;
+        case Op::Mix:
+            each([&](size_t l, int c) { return a0(l, c) + (a1(l, c) - a0(l, c)) * a2(l, c); });
+            return true;
         // GPUs return the non-NaN operand of min/max (IEEE minNum); fmin/fmax do the same.
-        case Op::Clamp: each([&](size_t l, int c) { return std::fmin(std::fmax(a0(l, c), a1(l, c)), a2(l, c)); }); return true;
-        case Op::Saturate: each([&](size_t l, int c) { return std::fmin(std::fmax(a0(l, c), 0.0), 1.0); }); return true;
-        case Op::Min: each([&](size_t l, int c) { return std::fmin(a0(l, c), a1(l, c)); }); return true;
-        case Op::Max: each([&](size_t l, int c) { return std::fmax(a0(l, c), a1(l, c)); }); return true;
-        case Op::Pow: each([&](size_t l, int c) { return std::pow(a0(l, c), a1(l, c)); }); return true;
-        case Op::Exp: each([&](size_t l, int c) { return std::exp(a0(l, c)); }); return true;
-        case Op::Exp2: each([&](size_t l, int c) { return std::exp2(a0(l, c)); }); return true;
-        case Op::Log: each([&](size_t l, int c) { return std::log(a0(l, c)); }); return true;
-        case Op::Sqrt: each([&](size_t l, int c) { return std::sqrt(a0(l, c)); }); return true;
-        case Op::Rsqrt: each([&](size_t l, int c) { return 1.0 / std::sqrt(a0(l, c)); }); return true;
-        case Op::Abs: each([&](size_t l, int c) { return std::fabs(a0(l, c)); }); return true;
-        case Op::Sign: each([&](size_t l, int c) { const double x = a0(l, c); return double((x > 0) - (x < 0)); }); return true;
-        case Op::Sin: each([&](size_t l, int c) { return std::sin(a0(l, c)); }); return true;
-        case Op::Cos: each([&](size_t l, int c) { return std::cos(a0(l, c)); }); return true;
-        case Op::Atan2: each([&](size_t l, int c) { return std::atan2(a0(l, c), a1(l, c)); }); return true;
-        case Op::Fract: each([&](size_t l, int c) { return a0(l, c) - std::floor(a0(l, c)); }); return true;
-        case Op::Floor: each([&](size_t l, int c) { return std::floor(a0(l, c)); }); return true;
-        case Op::Mod: each([&](size_t l, int c) { return a0(l, c) - a1(l, c) * std::floor(a0(l, c) / a1(l, c)); }); return true;
-        case Op::Step: each([&](size_t l, int c) { return a1(l, c) < a0(l, c) ? 0.0 : 1.0; }); return true;
+        case Op::Clamp:
+            each([&](size_t l, int c) {
+                return std::fmin(std::fmax(a0(l, c), a1(l, c)), a2(l, c));
+            });
+            return true;
+        case Op::Saturate:
+            each([&](size_t l, int c) { return std::fmin(std::fmax(a0(l, c), 0.0), 1.0); });
+            return true;
+        case Op::Min:
+            each([&](size_t l, int c) { return std::fmin(a0(l, c), a1(l, c)); });
+            return true;
+        case Op::Max:
+            each([&](size_t l, int c) { return std::fmax(a0(l, c), a1(l, c)); });
+            return true;
+        case Op::Pow:
+            each([&](size_t l, int c) { return std::pow(a0(l, c), a1(l, c)); });
+            return true;
+        case Op::Exp:
+            each([&](size_t l, int c) { return std::exp(a0(l, c)); });
+            return true;
+        case Op::Exp2:
+            each([&](size_t l, int c) { return std::exp2(a0(l, c)); });
+            return true;
+        case Op::Log:
+            each([&](size_t l, int c) { return std::log(a0(l, c)); });
+            return true;
+        case Op::Sqrt:
+            each([&](size_t l, int c) { return std::sqrt(a0(l, c)); });
+            return true;
+        case Op::Rsqrt:
+            each([&](size_t l, int c) { return 1.0 / std::sqrt(a0(l, c)); });
+            return true;
+        case Op::Abs:
+            each([&](size_t l, int c) { return std::fabs(a0(l, c)); });
+            return true;
+        case Op::Sign:
+            each([&](size_t l, int c) {
+                const double x = a0(l, c);
+                return double((x > 0) - (x < 0));
+            });
+            return true;
+        case Op::Sin:
+            each([&](size_t l, int c) { return std::sin(a0(l, c)); });
+            return true;
+        case Op::Cos:
+            each([&](size_t l, int c) { return std::cos(a0(l, c)); });
+            return true;
+        case Op::Atan2:
+            each([&](size_t l, int c) { return std::atan2(a0(l, c), a1(l, c)); });
+            return true;
+        case Op::Fract:
+            each([&](size_t l, int c) { return a0(l, c) - std::floor(a0(l, c)); });
+            return true;
+        case Op::Floor:
+            each([&](size_t l, int c) { return std::floor(a0(l, c)); });
+            return true;
+        case Op::Mod:
+            each([&](size_t l, int c) {
+                return a0(l, c) - a1(l, c) * std::floor(a0(l, c) / a1(l, c));
+            });
+            return true;
+        case Op::Step:
+            each([&](size_t l, int c) { return a1(l, c) < a0(l, c) ? 0.0 : 1.0; });
+            return true;
         case Op::Smoothstep:
             each([&](size_t l, int c) {
-                const double t = std::fmin(std::fmax((a2(l, c) - a0(l, c)) / (a1(l, c) - a0(l, c)), 0.0), 1.0);
+                const double t =
+                    std::fmin(std::fmax((a2(l, c) - a0(l, c)) / (a1(l, c) - a0(l, c)), 0.0), 1.0);
                 return t * t * (3.0 - 2.0 * t);
             });
             return true;
@@ -282,7 +391,8 @@ private:
         case Op::MatMulVec:
             each([&](size_t l, int r) {
                 double s = 0;
-                for (int k = 0; k < 3; ++k) s += arg(n, 0, l, k * 3 + r) * arg(n, 1, l, k);
+                for (int k = 0; k < 3; ++k)
+                    s += arg(n, 0, l, k * 3 + r) * arg(n, 1, l, k);
                 return s;
             });
             return true;
@@ -298,19 +408,24 @@ private:
             const bool cube = tex.type == Type::TextureCube;
             const uint32_t layers = cube ? 6u : 1u;
             if (view.layers != 0 && view.layers != layers) {
-                error = "texture '" + tex.name + "' has " + std::to_string(view.layers) + " layers; the " +
-                        (cube ? "cube" : "2D") + " binding needs " + std::to_string(layers);
+                error = "texture '" + tex.name + "' has " + std::to_string(view.layers) +
+                        " layers; the " + (cube ? "cube" : "2D") + " binding needs " +
+                        std::to_string(layers);
                 return false;
             }
             if (view.width == 0 || view.height == 0 || (cube && view.width != view.height)) {
-                error = "texture '" + tex.name + "': bad size" + (cube ? " (cube faces must be square)" : "");
+                error = "texture '" + tex.name + "': bad size" +
+                        (cube ? " (cube faces must be square)" : "");
                 return false;
             }
             for (size_t l = 0; l < n_; ++l) {
                 double texel[4];
-                if (cube) sample_cube(view, in_.filter, a1(l, 0), a1(l, 1), a1(l, 2), texel);
-                else sample_2d(view, in_.filter, a1(l, 0), a1(l, 1), texel);
-                for (int c = 0; c < 4; ++c) out[l * 4 + c] = texel[c];
+                if (cube)
+                    sample_cube(view, in_.filter, a1(l, 0), a1(l, 1), a1(l, 2), texel);
+                else
+                    sample_2d(view, in_.filter, a1(l, 0), a1(l, 1), texel);
+                for (int c = 0; c < 4; ++c)
+                    out[l * 4 + c] = texel[c];
             }
             return true;
         }
@@ -354,7 +469,8 @@ std::vector<uint32_t> live_from(const Graph& g, uint32_t root) {
         stack.pop_back();
         if (live[id]) continue;
         live[id] = 1;
-        for (uint32_t a : g.node(id).args) stack.push_back(a);
+        for (uint32_t a : g.node(id).args)
+            stack.push_back(a);
     }
     std::vector<uint32_t> ids;
     for (uint32_t i = 0; i < g.size(); ++i)
@@ -393,16 +509,29 @@ CubeFaceCoord cube_face_coord(double x, double y, double z) {
 void cube_face_direction(int face, double s, double t, double d[3]) {
     const double sc = 2.0 * s - 1.0, tc = 2.0 * t - 1.0;
     switch (face) { // the table of cube_face_coord, solved for the direction
-    case 0: d[0] = 1, d[1] = -tc, d[2] = -sc; return;   // +X: sc = -z, tc = -y
-    case 1: d[0] = -1, d[1] = -tc, d[2] = sc; return;   // -X: sc = +z, tc = -y
-    case 2: d[0] = sc, d[1] = 1, d[2] = tc; return;     // +Y: sc = +x, tc = +z
-    case 3: d[0] = sc, d[1] = -1, d[2] = -tc; return;   // -Y: sc = +x, tc = -z
-    case 4: d[0] = sc, d[1] = -tc, d[2] = 1; return;    // +Z: sc = +x, tc = -y
-    default: d[0] = -sc, d[1] = -tc, d[2] = -1; return; // -Z: sc = -x, tc = -y
+    case 0:
+        d[0] = 1, d[1] = -tc, d[2] = -sc;
+        return; // +X: sc = -z, tc = -y
+    case 1:
+        d[0] = -1, d[1] = -tc, d[2] = sc;
+        return; // -X: sc = +z, tc = -y
+    case 2:
+        d[0] = sc, d[1] = 1, d[2] = tc;
+        return; // +Y: sc = +x, tc = +z
+    case 3:
+        d[0] = sc, d[1] = -1, d[2] = -tc;
+        return; // -Y: sc = +x, tc = -z
+    case 4:
+        d[0] = sc, d[1] = -tc, d[2] = 1;
+        return; // +Z: sc = +x, tc = -y
+    default:
+        d[0] = -sc, d[1] = -tc, d[2] = -1;
+        return; // -Z: sc = -x, tc = -y
     }
 }
 
-EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs& inputs, EvalPrecision precision) {
+EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs& inputs,
+                    EvalPrecision precision) {
     EvalResult result;
     const auto root = find_output(g, output);
     if (!root) {
@@ -427,8 +556,8 @@ EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs&
     return result;
 }
 
-EvalResult evaluate_image(const Graph& g, const std::string& output, EvalInputs inputs, uint32_t width,
-                          uint32_t height, EvalPrecision precision) {
+EvalResult evaluate_image(const Graph& g, const std::string& output, EvalInputs inputs,
+                          uint32_t width, uint32_t height, EvalPrecision precision) {
     // Lanes in 2x2 quads so derivatives see their neighbours; odd edges are padded.
     const uint32_t qw = (width + 1) / 2, qh = (height + 1) / 2;
     inputs.lanes = static_cast<size_t>(qw) * qh * 4;
@@ -448,7 +577,8 @@ EvalResult evaluate_image(const Graph& g, const std::string& output, EvalInputs 
     image.values.resize(static_cast<size_t>(width) * height * quads.components);
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x) {
-            const size_t lane = (static_cast<size_t>(y / 2) * qw + x / 2) * 4 + (x & 1) + 2 * (y & 1);
+            const size_t lane =
+                (static_cast<size_t>(y / 2) * qw + x / 2) * 4 + (x & 1) + 2 * (y & 1);
             for (int c = 0; c < quads.components; ++c)
                 image.values[(static_cast<size_t>(y) * width + x) * quads.components + c] =
                     quads.values[lane * quads.components + c];

@@ -18,16 +18,38 @@ std::string types_of(const std::vector<Expr>& args) {
 
 int expected_arity(Op op) {
     switch (op) {
-    case Op::Neg: case Op::Not: case Op::Normalize: case Op::Length: case Op::Saturate:
-    case Op::Exp: case Op::Exp2: case Op::Log: case Op::Sqrt: case Op::Rsqrt: case Op::Abs:
-    case Op::Sign: case Op::Sin: case Op::Cos: case Op::Fract: case Op::Floor: case Op::Ddx:
-    case Op::Ddy: case Op::Swizzle: case Op::Splat:
+    case Op::Neg:
+    case Op::Not:
+    case Op::Normalize:
+    case Op::Length:
+    case Op::Saturate:
+    case Op::Exp:
+    case Op::Exp2:
+    case Op::Log:
+    case Op::Sqrt:
+    case Op::Rsqrt:
+    case Op::Abs:
+    case Op::Sign:
+    case Op::Sin:
+    case Op::Cos:
+    case Op::Fract:
+    case Op::Floor:
+    case Op::Ddx:
+    case Op::Ddy:
+    case Op::Swizzle:
+    case Op::Splat:
         return 1;
-    case Op::Select: case Op::Mix: case Op::Clamp: case Op::Refract: case Op::Smoothstep:
+    case Op::Select:
+    case Op::Mix:
+    case Op::Clamp:
+    case Op::Refract:
+    case Op::Smoothstep:
     case Op::SampleLevel:
         return 3;
-    case Op::Construct: return -1;
-    default: return 2;
+    case Op::Construct:
+        return -1;
+    default:
+        return 2;
     }
 }
 
@@ -46,7 +68,10 @@ Type infer(Op op, const std::vector<Expr>& args, std::string& why) {
         return true;
     };
     switch (op) {
-    case Op::Add: case Op::Sub: case Op::Mul: case Op::Div:
+    case Op::Add:
+    case Op::Sub:
+    case Op::Mul:
+    case Op::Div:
         if (t(0) == Type::Int && t(1) == Type::Int) return Type::Int;
         if (op == Op::Mul && t(0) == Type::Mat3 && t(1) == Type::Vec3) return Type::Vec3;
         if (is_float_numeric(t(0)) && is_float_numeric(t(1))) {
@@ -57,18 +82,35 @@ Type infer(Op op, const std::vector<Expr>& args, std::string& why) {
         why = "operand types differ";
         return Type::Error;
     case Op::Neg:
-    case Op::Normalize: case Op::Saturate: case Op::Exp: case Op::Exp2: case Op::Log:
-    case Op::Sqrt: case Op::Rsqrt: case Op::Abs: case Op::Sign: case Op::Sin: case Op::Cos:
-    case Op::Fract: case Op::Floor: case Op::Ddx: case Op::Ddy:
+    case Op::Normalize:
+    case Op::Saturate:
+    case Op::Exp:
+    case Op::Exp2:
+    case Op::Log:
+    case Op::Sqrt:
+    case Op::Rsqrt:
+    case Op::Abs:
+    case Op::Sign:
+    case Op::Sin:
+    case Op::Cos:
+    case Op::Fract:
+    case Op::Floor:
+    case Op::Ddx:
+    case Op::Ddy:
         if (is_float_numeric(t(0)) || (op == Op::Neg && t(0) == Type::Int)) return t(0);
         why = "expects a float scalar or vector";
         return Type::Error;
-    case Op::Less: case Op::LessEqual: case Op::Greater: case Op::GreaterEqual: case Op::Equal:
+    case Op::Less:
+    case Op::LessEqual:
+    case Op::Greater:
+    case Op::GreaterEqual:
+    case Op::Equal:
     case Op::NotEqual:
         if (t(0) == t(1) && (t(0) == Type::Float || t(0) == Type::Int)) return Type::Bool;
         why = "compares two scalars of one type";
         return Type::Error;
-    case Op::And: case Op::Or:
+    case Op::And:
+    case Op::Or:
         if (t(0) == Type::Bool && t(1) == Type::Bool) return Type::Bool;
         why = "expects two bools";
         return Type::Error;
@@ -104,8 +146,15 @@ Type infer(Op op, const std::vector<Expr>& args, std::string& why) {
         if (is_vector(t(0)) && t(0) == t(1) && t(2) == Type::Float) return t(0);
         why = "expects (vecN incident, vecN normal, float eta)";
         return Type::Error;
-    case Op::Mix: case Op::Clamp: case Op::Min: case Op::Max: case Op::Pow: case Op::Step:
-    case Op::Smoothstep: case Op::Mod: case Op::Atan2:
+    case Op::Mix:
+    case Op::Clamp:
+    case Op::Min:
+    case Op::Max:
+    case Op::Pow:
+    case Op::Step:
+    case Op::Smoothstep:
+    case Op::Mod:
+    case Op::Atan2:
         if (same_float(0)) return t(0);
         why = "operand types differ";
         return Type::Error;
@@ -187,7 +236,8 @@ Expr make(Op op, std::initializer_list<Expr> list) {
     Node n;
     n.op = (op == Op::Mul && args[0].type() == Type::Mat3) ? Op::MatMulVec : op;
     n.type = type;
-    for (const auto& a : args) n.args.push_back(a.id());
+    for (const auto& a : args)
+        n.args.push_back(a.id());
     return Expr(&g, g.add(std::move(n)));
 }
 
@@ -207,11 +257,24 @@ Expr Expr::swizzle(std::string_view components) const {
     for (char c : components) {
         int idx = -1;
         switch (c) {
-        case 'x': case 'r': idx = 0; break;
-        case 'y': case 'g': idx = 1; break;
-        case 'z': case 'b': idx = 2; break;
-        case 'w': case 'a': idx = 3; break;
-        default: break;
+        case 'x':
+        case 'r':
+            idx = 0;
+            break;
+        case 'y':
+        case 'g':
+            idx = 1;
+            break;
+        case 'z':
+        case 'b':
+            idx = 2;
+            break;
+        case 'w':
+        case 'a':
+            idx = 3;
+            break;
+        default:
+            break;
         }
         if (idx < 0 || idx >= available) {
             g.error("swizzle '" + std::string(components) + "' reads past a " + type_name(type()));
@@ -221,20 +284,24 @@ Expr Expr::swizzle(std::string_view components) const {
     }
     if (n.values.size() == static_cast<size_t>(available)) {
         bool identity = true;
-        for (int i = 0; i < available; ++i) identity &= n.values[i] == i;
+        for (int i = 0; i < available; ++i)
+            identity &= n.values[i] == i;
         if (identity) return *this;
     }
     return Expr(&g, g.add(std::move(n)));
 }
 
-Expr constant(Graph& g, double v) { return constant(g, {v}); }
+Expr constant(Graph& g, double v) {
+    return constant(g, {v});
+}
 
 Expr constant(Graph& g, std::initializer_list<double> components) {
     Node n;
     n.op = Op::Constant;
     n.type = float_type(static_cast<int>(components.size()));
     n.values.assign(components);
-    if (n.type == Type::Error) g.error("constant with " + std::to_string(components.size()) + " components");
+    if (n.type == Type::Error)
+        g.error("constant with " + std::to_string(components.size()) + " components");
     return Expr(&g, g.add(std::move(n)));
 }
 
@@ -281,53 +348,116 @@ Expr bind(const Quantity& quantity, Expr e) {
     if (n.type == Type::Error) return e;
     const std::string id(quantity.id);
     if (n.type != quantity.type)
-        g.error("quantity '" + id + "' is a " + type_name(quantity.type) + "; bound to a " + type_name(n.type));
+        g.error("quantity '" + id + "' is a " + type_name(quantity.type) + "; bound to a " +
+                type_name(n.type));
     else if (!quantity.parameter.empty() && (n.op != Op::Uniform || n.name != quantity.parameter))
-        g.error("quantity '" + id + "' stands for parameter '" + std::string(quantity.parameter) + "'; bound to " +
-                (n.op == Op::Uniform ? "parameter '" + n.name + "'" : std::string("a computed value")));
+        g.error(
+            "quantity '" + id + "' stands for parameter '" + std::string(quantity.parameter) +
+            "'; bound to " +
+            (n.op == Op::Uniform ? "parameter '" + n.name + "'" : std::string("a computed value")));
     else
         g.bind(quantity, e.id());
     return e;
 }
 
 namespace {
-Expr c(Expr like, double v) { return like.valid() ? constant(like.graph(), v) : Expr(); }
+Expr c(Expr like, double v) {
+    return like.valid() ? constant(like.graph(), v) : Expr();
+}
 } // namespace
 
-Expr operator+(Expr a, Expr b) { return make(Op::Add, {a, b}); }
-Expr operator-(Expr a, Expr b) { return make(Op::Sub, {a, b}); }
-Expr operator*(Expr a, Expr b) { return make(Op::Mul, {a, b}); }
-Expr operator/(Expr a, Expr b) { return make(Op::Div, {a, b}); }
-Expr operator-(Expr a) { return make(Op::Neg, {a}); }
-Expr operator+(Expr a, double b) { return a + c(a, b); }
-Expr operator+(double a, Expr b) { return c(b, a) + b; }
-Expr operator-(Expr a, double b) { return a - c(a, b); }
-Expr operator-(double a, Expr b) { return c(b, a) - b; }
-Expr operator*(Expr a, double b) { return a * c(a, b); }
-Expr operator*(double a, Expr b) { return c(b, a) * b; }
-Expr operator/(Expr a, double b) { return a / c(a, b); }
-Expr operator/(double a, Expr b) { return c(b, a) / b; }
+Expr operator+(Expr a, Expr b) {
+    return make(Op::Add, {a, b});
+}
+Expr operator-(Expr a, Expr b) {
+    return make(Op::Sub, {a, b});
+}
+Expr operator*(Expr a, Expr b) {
+    return make(Op::Mul, {a, b});
+}
+Expr operator/(Expr a, Expr b) {
+    return make(Op::Div, {a, b});
+}
+Expr operator-(Expr a) {
+    return make(Op::Neg, {a});
+}
+Expr operator+(Expr a, double b) {
+    return a + c(a, b);
+}
+Expr operator+(double a, Expr b) {
+    return c(b, a) + b;
+}
+Expr operator-(Expr a, double b) {
+    return a - c(a, b);
+}
+Expr operator-(double a, Expr b) {
+    return c(b, a) - b;
+}
+Expr operator*(Expr a, double b) {
+    return a * c(a, b);
+}
+Expr operator*(double a, Expr b) {
+    return c(b, a) * b;
+}
+Expr operator/(Expr a, double b) {
+    return a / c(a, b);
+}
+Expr operator/(double a, Expr b) {
+    return c(b, a) / b;
+}
 
-Expr operator<(Expr a, Expr b) { return make(Op::Less, {a, b}); }
-Expr operator<=(Expr a, Expr b) { return make(Op::LessEqual, {a, b}); }
-Expr operator>(Expr a, Expr b) { return make(Op::Greater, {a, b}); }
-Expr operator>=(Expr a, Expr b) { return make(Op::GreaterEqual, {a, b}); }
-Expr operator<(Expr a, double b) { return a < c(a, b); }
-Expr operator<=(Expr a, double b) { return a <= c(a, b); }
-Expr operator>(Expr a, double b) { return a > c(a, b); }
-Expr operator>=(Expr a, double b) { return a >= c(a, b); }
-Expr operator&&(Expr a, Expr b) { return make(Op::And, {a, b}); }
-Expr operator||(Expr a, Expr b) { return make(Op::Or, {a, b}); }
-Expr operator!(Expr a) { return make(Op::Not, {a}); }
+Expr operator<(Expr a, Expr b) {
+    return make(Op::Less, {a, b});
+}
+Expr operator<=(Expr a, Expr b) {
+    return make(Op::LessEqual, {a, b});
+}
+Expr operator>(Expr a, Expr b) {
+    return make(Op::Greater, {a, b});
+}
+Expr operator>=(Expr a, Expr b) {
+    return make(Op::GreaterEqual, {a, b});
+}
+Expr operator<(Expr a, double b) {
+    return a < c(a, b);
+}
+Expr operator<=(Expr a, double b) {
+    return a <= c(a, b);
+}
+Expr operator>(Expr a, double b) {
+    return a > c(a, b);
+}
+Expr operator>=(Expr a, double b) {
+    return a >= c(a, b);
+}
+Expr operator&&(Expr a, Expr b) {
+    return make(Op::And, {a, b});
+}
+Expr operator||(Expr a, Expr b) {
+    return make(Op::Or, {a, b});
+}
+Expr operator!(Expr a) {
+    return make(Op::Not, {a});
+}
 
 Expr select(Expr condition, Expr if_true, Expr if_false) {
     return make(Op::Select, {condition, if_true, if_false});
 }
-Expr vec2(Expr a, Expr b) { return make(Op::Construct, {a, b}); }
-Expr vec3(Expr a, Expr b, Expr c3) { return make(Op::Construct, {a, b, c3}); }
-Expr vec3(Expr xy, Expr z) { return make(Op::Construct, {xy, z}); }
-Expr vec4(Expr xyz, Expr w) { return make(Op::Construct, {xyz, w}); }
-Expr vec4(Expr a, Expr b, Expr c3, Expr d) { return make(Op::Construct, {a, b, c3, d}); }
+Expr vec2(Expr a, Expr b) {
+    return make(Op::Construct, {a, b});
+}
+Expr vec3(Expr a, Expr b, Expr c3) {
+    return make(Op::Construct, {a, b, c3});
+}
+Expr vec3(Expr xy, Expr z) {
+    return make(Op::Construct, {xy, z});
+}
+Expr vec4(Expr xyz, Expr w) {
+    return make(Op::Construct, {xyz, w});
+}
+Expr vec4(Expr a, Expr b, Expr c3, Expr d) {
+    return make(Op::Construct, {a, b, c3, d});
+}
 
 Expr mat3(Expr c0, Expr c1, Expr c2) {
     if (!c0.valid()) return make(Op::Construct, {c0, c1, c2});
@@ -351,7 +481,8 @@ Expr splat(Expr scalar, Type vector_type) {
     Graph& g = scalar.graph();
     if (scalar.type() == Type::Error) return scalar;
     if (scalar.type() != Type::Float || !is_vector(vector_type)) {
-        g.error(std::string("splat: needs a float and a vector type (got ") + type_name(scalar.type()) + ")");
+        g.error(std::string("splat: needs a float and a vector type (got ") +
+                type_name(scalar.type()) + ")");
         return error_expr(g);
     }
     Node n;
@@ -361,42 +492,116 @@ Expr splat(Expr scalar, Type vector_type) {
     return Expr(&g, g.add(std::move(n)));
 }
 
-Expr dot(Expr a, Expr b) { return make(Op::Dot, {a, b}); }
-Expr cross(Expr a, Expr b) { return make(Op::Cross, {a, b}); }
-Expr normalize(Expr a) { return make(Op::Normalize, {a}); }
-Expr length(Expr a) { return make(Op::Length, {a}); }
-Expr mix(Expr a, Expr b, Expr t) { return make(Op::Mix, {a, b, t}); }
-Expr mix(Expr a, Expr b, double t) { return mix(a, b, c(a, t)); }
-Expr clamp(Expr x, Expr lo, Expr hi) { return make(Op::Clamp, {x, lo, hi}); }
-Expr clamp(Expr x, double lo, double hi) { return clamp(x, c(x, lo), c(x, hi)); }
-Expr saturate(Expr x) { return make(Op::Saturate, {x}); }
-Expr pow(Expr x, Expr y) { return make(Op::Pow, {x, y}); }
-Expr pow(Expr x, double y) { return pow(x, c(x, y)); }
-Expr exp(Expr x) { return make(Op::Exp, {x}); }
-Expr exp2(Expr x) { return make(Op::Exp2, {x}); }
-Expr log(Expr x) { return make(Op::Log, {x}); }
-Expr sqrt(Expr x) { return make(Op::Sqrt, {x}); }
-Expr rsqrt(Expr x) { return make(Op::Rsqrt, {x}); }
-Expr abs(Expr x) { return make(Op::Abs, {x}); }
-Expr sign(Expr x) { return make(Op::Sign, {x}); }
-Expr min(Expr a, Expr b) { return make(Op::Min, {a, b}); }
-Expr max(Expr a, Expr b) { return make(Op::Max, {a, b}); }
-Expr min(Expr a, double b) { return min(a, c(a, b)); }
-Expr max(Expr a, double b) { return max(a, c(a, b)); }
-Expr sin(Expr x) { return make(Op::Sin, {x}); }
-Expr cos(Expr x) { return make(Op::Cos, {x}); }
-Expr atan2(Expr y, Expr x) { return make(Op::Atan2, {y, x}); }
-Expr reflect(Expr incident, Expr normal) { return make(Op::Reflect, {incident, normal}); }
-Expr refract(Expr incident, Expr normal, Expr eta) { return make(Op::Refract, {incident, normal, eta}); }
-Expr step(Expr edge, Expr x) { return make(Op::Step, {edge, x}); }
-Expr smoothstep(Expr e0, Expr e1, Expr x) { return make(Op::Smoothstep, {e0, e1, x}); }
-Expr fract(Expr x) { return make(Op::Fract, {x}); }
-Expr floor(Expr x) { return make(Op::Floor, {x}); }
-Expr mod(Expr x, Expr y) { return make(Op::Mod, {x, y}); }
-Expr square(Expr x) { return x * x; }
-Expr sample(Expr tex, Expr coordinate) { return make(Op::Sample, {tex, coordinate}); }
-Expr sample_level(Expr tex, Expr coordinate, Expr lod) { return make(Op::SampleLevel, {tex, coordinate, lod}); }
-Expr ddx(Expr x) { return make(Op::Ddx, {x}); }
-Expr ddy(Expr x) { return make(Op::Ddy, {x}); }
+Expr dot(Expr a, Expr b) {
+    return make(Op::Dot, {a, b});
+}
+Expr cross(Expr a, Expr b) {
+    return make(Op::Cross, {a, b});
+}
+Expr normalize(Expr a) {
+    return make(Op::Normalize, {a});
+}
+Expr length(Expr a) {
+    return make(Op::Length, {a});
+}
+Expr mix(Expr a, Expr b, Expr t) {
+    return make(Op::Mix, {a, b, t});
+}
+Expr mix(Expr a, Expr b, double t) {
+    return mix(a, b, c(a, t));
+}
+Expr clamp(Expr x, Expr lo, Expr hi) {
+    return make(Op::Clamp, {x, lo, hi});
+}
+Expr clamp(Expr x, double lo, double hi) {
+    return clamp(x, c(x, lo), c(x, hi));
+}
+Expr saturate(Expr x) {
+    return make(Op::Saturate, {x});
+}
+Expr pow(Expr x, Expr y) {
+    return make(Op::Pow, {x, y});
+}
+Expr pow(Expr x, double y) {
+    return pow(x, c(x, y));
+}
+Expr exp(Expr x) {
+    return make(Op::Exp, {x});
+}
+Expr exp2(Expr x) {
+    return make(Op::Exp2, {x});
+}
+Expr log(Expr x) {
+    return make(Op::Log, {x});
+}
+Expr sqrt(Expr x) {
+    return make(Op::Sqrt, {x});
+}
+Expr rsqrt(Expr x) {
+    return make(Op::Rsqrt, {x});
+}
+Expr abs(Expr x) {
+    return make(Op::Abs, {x});
+}
+Expr sign(Expr x) {
+    return make(Op::Sign, {x});
+}
+Expr min(Expr a, Expr b) {
+    return make(Op::Min, {a, b});
+}
+Expr max(Expr a, Expr b) {
+    return make(Op::Max, {a, b});
+}
+Expr min(Expr a, double b) {
+    return min(a, c(a, b));
+}
+Expr max(Expr a, double b) {
+    return max(a, c(a, b));
+}
+Expr sin(Expr x) {
+    return make(Op::Sin, {x});
+}
+Expr cos(Expr x) {
+    return make(Op::Cos, {x});
+}
+Expr atan2(Expr y, Expr x) {
+    return make(Op::Atan2, {y, x});
+}
+Expr reflect(Expr incident, Expr normal) {
+    return make(Op::Reflect, {incident, normal});
+}
+Expr refract(Expr incident, Expr normal, Expr eta) {
+    return make(Op::Refract, {incident, normal, eta});
+}
+Expr step(Expr edge, Expr x) {
+    return make(Op::Step, {edge, x});
+}
+Expr smoothstep(Expr e0, Expr e1, Expr x) {
+    return make(Op::Smoothstep, {e0, e1, x});
+}
+Expr fract(Expr x) {
+    return make(Op::Fract, {x});
+}
+Expr floor(Expr x) {
+    return make(Op::Floor, {x});
+}
+Expr mod(Expr x, Expr y) {
+    return make(Op::Mod, {x, y});
+}
+Expr square(Expr x) {
+    return x * x;
+}
+Expr sample(Expr tex, Expr coordinate) {
+    return make(Op::Sample, {tex, coordinate});
+}
+Expr sample_level(Expr tex, Expr coordinate, Expr lod) {
+    return make(Op::SampleLevel, {tex, coordinate, lod});
+}
+Expr ddx(Expr x) {
+    return make(Op::Ddx, {x});
+}
+Expr ddy(Expr x) {
+    return make(Op::Ddy, {x});
+}
 
 } // namespace watergen

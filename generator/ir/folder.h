@@ -16,7 +16,7 @@ namespace watergen::fold {
 std::string label(const Node& n);
 
 class Folder {
-public:
+  public:
     Folder(const Graph& in, const FoldFacts& facts);
 
     void rewrite_all();
@@ -27,7 +27,7 @@ public:
     // get the same graph (and the same emitted text, whose temporaries are named by id).
     static Graph compact(const Graph& g);
 
-private:
+  private:
     // The pass (ir_fold.cpp).
     void resolve_quantities();
     void declare_inputs();
@@ -52,7 +52,7 @@ private:
     bool all_ge(const Intervals& a, const Intervals& b) const;
 
     const Graph& in_;
-    FoldFacts f_; // with the bound quantities resolved
+    FoldFacts f_;                                       // with the bound quantities resolved
     std::map<uint32_t, FoldFacts::Bounds> node_ranges_; // computed nodes bound to a quantity
     Graph out_;
     std::vector<uint32_t> map_;

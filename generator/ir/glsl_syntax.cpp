@@ -6,7 +6,9 @@
 
 namespace watergen {
 
-std::string GlslSyntax::type(Type t) const { return type_name(t); }
+std::string GlslSyntax::type(Type t) const {
+    return type_name(t);
+}
 
 std::string GlslSyntax::temp_type(Type t, bool relaxed) const {
     return (relaxed && t != Type::Bool ? "mediump " : "") + type(t);
@@ -15,7 +17,8 @@ std::string GlslSyntax::temp_type(Type t, bool relaxed) const {
 std::string GlslSyntax::literal(double v) const {
     const float f = static_cast<float>(v);
     if (std::isnan(f)) return "uintBitsToFloat(0x7fc00000u)";
-    if (std::isinf(f)) return f > 0 ? "uintBitsToFloat(0x7f800000u)" : "uintBitsToFloat(0xff800000u)";
+    if (std::isinf(f))
+        return f > 0 ? "uintBitsToFloat(0x7f800000u)" : "uintBitsToFloat(0xff800000u)";
     // Shortest text that reads back as the same float: output is exact and stable.
     std::string s = fmt::format("{}", f);
     if (s.find_first_of(".e") == std::string::npos) s += ".0";
@@ -25,14 +28,18 @@ std::string GlslSyntax::literal(double v) const {
 std::string GlslSyntax::constant(const Node& n) const {
     if (n.values.size() == 1) return literal(n.values[0]);
     bool all_same = true;
-    for (double v : n.values) all_same = all_same && v == n.values[0];
+    for (double v : n.values)
+        all_same = all_same && v == n.values[0];
     if (all_same) return type(n.type) + "(" + literal(n.values[0]) + ")";
     std::vector<std::string> parts;
-    for (double v : n.values) parts.push_back(literal(v));
+    for (double v : n.values)
+        parts.push_back(literal(v));
     return construct(n.type, parts);
 }
 
-std::string GlslSyntax::uniform_ref(const std::string& name) const { return "params." + name; }
+std::string GlslSyntax::uniform_ref(const std::string& name) const {
+    return "params." + name;
+}
 
 std::string GlslSyntax::splat(Type t, const std::string& scalar) const {
     return type(t) + "(" + scalar + ")";
@@ -44,22 +51,32 @@ std::string GlslSyntax::construct(Type t, const std::vector<std::string>& args) 
 
 std::string GlslSyntax::call(Op op, Type result, const std::vector<std::string>& a,
                              const std::vector<Type>& arg_types) const {
-    auto fn = [&](const char* name) { return std::string(name) + "(" + fmt::format("{}", fmt::join(a, ", ")) + ")"; };
+    auto fn = [&](const char* name) {
+        return std::string(name) + "(" + fmt::format("{}", fmt::join(a, ", ")) + ")";
+    };
     switch (op) {
-    case Op::Saturate: return "clamp(" + a[0] + ", 0.0, 1.0)";
-    case Op::Rsqrt: return fn("inversesqrt");
-    case Op::Atan2: return fn("atan");
-    case Op::MatMulVec: return "(" + a[0] + " * " + a[1] + ")";
-    case Op::Ddx: return fn("dFdx");
-    case Op::Ddy: return fn("dFdy");
+    case Op::Saturate:
+        return "clamp(" + a[0] + ", 0.0, 1.0)";
+    case Op::Rsqrt:
+        return fn("inversesqrt");
+    case Op::Atan2:
+        return fn("atan");
+    case Op::MatMulVec:
+        return "(" + a[0] + " * " + a[1] + ")";
+    case Op::Ddx:
+        return fn("dFdx");
+    case Op::Ddy:
+        return fn("dFdy");
     case Op::Sample:
     case Op::SampleLevel: {
-        const std::string sampler = (arg_types[0] == Type::TextureCube ? "samplerCube(" : "sampler2D(") +
-                                    a[0] + ", linear_clamp)";
+        const std::string sampler =
+            (arg_types[0] == Type::TextureCube ? "samplerCube(" : "sampler2D(") + a[0] +
+            ", linear_clamp)";
         if (op == Op::Sample) return "texture(" + sampler + ", " + a[1] + ")";
         return "textureLod(" + sampler + ", " + a[1] + ", " + a[2] + ")";
     }
-    default: break;
+    default:
+        break;
     }
     (void)result;
     return fn(op_name(op));
@@ -68,38 +85,49 @@ std::string GlslSyntax::call(Op op, Type result, const std::vector<std::string>&
 std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) const {
     std::vector<std::string> lines;
     if (!in.uniforms.members.empty()) {
-        lines.push_back(fmt::format("layout(set = 0, binding = {}, std140) uniform WaterParams {{", kParamsBinding));
+        lines.push_back(fmt::format("layout(set = 0, binding = {}, std140) uniform WaterParams {{",
+                                    kParamsBinding));
         for (const auto& m : in.uniforms.members)
-            lines.push_back(fmt::format("    layout(offset = {}) {} {};", m.offset, type(m.type), m.name));
+            lines.push_back(
+                fmt::format("    layout(offset = {}) {} {};", m.offset, type(m.type), m.name));
         lines.push_back("} params;");
     }
     if (!in.textures.empty())
-        lines.push_back(fmt::format("layout(set = 0, binding = {}) uniform sampler linear_clamp;", kSamplerBinding));
+        lines.push_back(fmt::format("layout(set = 0, binding = {}) uniform sampler linear_clamp;",
+                                    kSamplerBinding));
     for (const auto& t : in.textures)
         lines.push_back(fmt::format("layout(set = 0, binding = {}) uniform {} {};", t.binding,
-                                    t.type == Type::TextureCube ? "textureCube" : "texture2D", t.name));
+                                    t.type == Type::TextureCube ? "textureCube" : "texture2D",
+                                    t.name));
     for (size_t i = 0; i < in.varyings.size(); ++i)
-        lines.push_back(fmt::format("layout(location = {}) in {} {};", i, type(in.varyings[i].second),
-                                    in.varyings[i].first));
+        lines.push_back(fmt::format("layout(location = {}) in {} {};", i,
+                                    type(in.varyings[i].second), in.varyings[i].first));
     return lines;
 }
 
-std::vector<std::string> GlslSyntax::prelude(const std::set<Op>&) const { return {}; }
+std::vector<std::string> GlslSyntax::prelude(const std::set<Op>&) const {
+    return {};
+}
 
 std::vector<std::string> GlslSyntax::quad_difference_helpers(const std::set<Type>& types) const {
     std::vector<std::string> lines = {
-        "// ddx / ddy of a fragment quad: tuples 4k..4k+3 are the pixels (0,0), (1,0), (0,1), (1,1), as",
-        "// the CPU evaluator's lanes; axis 1 = x, 2 = y. Each lane's value goes through shared memory.",
+        "// ddx / ddy of a fragment quad: tuples 4k..4k+3 are the pixels (0,0), (1,0), (0,1), "
+        "(1,1), as",
+        "// the CPU evaluator's lanes; axis 1 = x, 2 = y. Each lane's value goes through shared "
+        "memory.",
     };
     for (Type t : types) {
         const std::string ty = type(t), array = "probe_quad_" + ty;
-        lines.push_back(fmt::format("{} {} {}[{}];", workgroup_shared(), ty, array, kProbeWorkgroupSize));
-        lines.push_back(fmt::format("{} probe_quad_difference({} v, uint lane, uint axis) {{", ty, ty));
+        lines.push_back(
+            fmt::format("{} {} {}[{}];", workgroup_shared(), ty, array, kProbeWorkgroupSize));
+        lines.push_back(
+            fmt::format("{} probe_quad_difference({} v, uint lane, uint axis) {{", ty, ty));
         lines.push_back(fmt::format("    {}[lane] = v;", array));
         lines.push_back(fmt::format("    {};", workgroup_barrier()));
         lines.push_back("    uint lo = lane & ~axis;");
         lines.push_back(fmt::format("    {} d = {}[lo | axis] - {}[lo];", ty, array, array));
-        lines.push_back(fmt::format("    {}; // every lane has read before the next call writes", workgroup_barrier()));
+        lines.push_back(fmt::format("    {}; // every lane has read before the next call writes",
+                                    workgroup_barrier()));
         lines.push_back("    return d;");
         lines.push_back("}");
     }

@@ -6,20 +6,28 @@ namespace watergen {
 
 std::string HlslSyntax::type(Type t) const {
     switch (t) {
-    case Type::Vec2: return "float2";
-    case Type::Vec3: return "float3";
-    case Type::Vec4: return "float4";
-    case Type::Mat3: return "float3x3";
-    case Type::Texture2D: return "Texture2D";
-    case Type::TextureCube: return "TextureCube";
-    default: return GlslSyntax::type(t);
+    case Type::Vec2:
+        return "float2";
+    case Type::Vec3:
+        return "float3";
+    case Type::Vec4:
+        return "float4";
+    case Type::Mat3:
+        return "float3x3";
+    case Type::Texture2D:
+        return "Texture2D";
+    case Type::TextureCube:
+        return "TextureCube";
+    default:
+        return GlslSyntax::type(t);
     }
 }
 
 std::string HlslSyntax::constant(const Node& n) const {
     if (n.values.size() == 1) return literal(n.values[0]);
     std::vector<std::string> parts;
-    for (double v : n.values) parts.push_back(literal(v));
+    for (double v : n.values)
+        parts.push_back(literal(v));
     return construct(n.type, parts);
 }
 
@@ -28,7 +36,9 @@ std::string HlslSyntax::temp_type(Type t, bool relaxed) const {
 }
 
 // cbuffer members are globals in HLSL.
-std::string HlslSyntax::uniform_ref(const std::string& name) const { return name; }
+std::string HlslSyntax::uniform_ref(const std::string& name) const {
+    return name;
+}
 
 std::string HlslSyntax::splat(Type t, const std::string& scalar) const {
     return "((" + type(t) + ")(" + scalar + "))";
@@ -42,27 +52,42 @@ std::string HlslSyntax::construct(Type t, const std::vector<std::string>& args) 
 
 std::string HlslSyntax::call(Op op, Type result, const std::vector<std::string>& a,
                              const std::vector<Type>& arg_types) const {
-    auto fn = [&](const char* name) { return std::string(name) + "(" + fmt::format("{}", fmt::join(a, ", ")) + ")"; };
+    auto fn = [&](const char* name) {
+        return std::string(name) + "(" + fmt::format("{}", fmt::join(a, ", ")) + ")";
+    };
     switch (op) {
-    case Op::Mix: return fn("lerp");
-    case Op::Saturate: return fn("saturate");
-    case Op::Rsqrt: return fn("rsqrt");
-    case Op::Atan2: return fn("atan2");
-    case Op::Fract: return fn("frac");
-    case Op::Mod: return fn("wg_mod"); // fmod truncates; GLSL mod floors
-    case Op::MatMulVec: return "mul(" + a[1] + ", " + a[0] + ")";
-    case Op::Ddx: return fn("ddx");
-    case Op::Ddy: return fn("ddy");
-    case Op::Sample: return a[0] + ".Sample(linear_clamp, " + a[1] + ")";
-    case Op::SampleLevel: return a[0] + ".SampleLevel(linear_clamp, " + a[1] + ", " + a[2] + ")";
-    default: return GlslSyntax::call(op, result, a, arg_types);
+    case Op::Mix:
+        return fn("lerp");
+    case Op::Saturate:
+        return fn("saturate");
+    case Op::Rsqrt:
+        return fn("rsqrt");
+    case Op::Atan2:
+        return fn("atan2");
+    case Op::Fract:
+        return fn("frac");
+    case Op::Mod:
+        return fn("wg_mod"); // fmod truncates; GLSL mod floors
+    case Op::MatMulVec:
+        return "mul(" + a[1] + ", " + a[0] + ")";
+    case Op::Ddx:
+        return fn("ddx");
+    case Op::Ddy:
+        return fn("ddy");
+    case Op::Sample:
+        return a[0] + ".Sample(linear_clamp, " + a[1] + ")";
+    case Op::SampleLevel:
+        return a[0] + ".SampleLevel(linear_clamp, " + a[1] + ", " + a[2] + ")";
+    default:
+        return GlslSyntax::call(op, result, a, arg_types);
     }
 }
 
 std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) const {
     std::vector<std::string> lines;
     if (!in.uniforms.members.empty()) {
-        lines.push_back(fmt::format("[[vk::binding({}, 0)]] cbuffer WaterParams : register(b0) {{", kParamsBinding));
+        lines.push_back(fmt::format("[[vk::binding({}, 0)]] cbuffer WaterParams : register(b0) {{",
+                                    kParamsBinding));
         for (const auto& m : in.uniforms.members) {
             const char component = "xyzw"[(m.offset % 16) / 4];
             lines.push_back(fmt::format("    {} {} : packoffset(c{}.{});", type(m.type), m.name,
@@ -71,10 +96,11 @@ std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) con
         lines.push_back("};");
     }
     if (!in.textures.empty())
-        lines.push_back(fmt::format("[[vk::binding({}, 0)]] SamplerState linear_clamp : register(s0);", kSamplerBinding));
+        lines.push_back(fmt::format(
+            "[[vk::binding({}, 0)]] SamplerState linear_clamp : register(s0);", kSamplerBinding));
     for (const auto& t : in.textures)
-        lines.push_back(fmt::format("[[vk::binding({}, 0)]] {} {} : register(t{});", t.binding, type(t.type),
-                                    t.name, t.binding - kFirstTextureBinding));
+        lines.push_back(fmt::format("[[vk::binding({}, 0)]] {} {} : register(t{});", t.binding,
+                                    type(t.type), t.name, t.binding - kFirstTextureBinding));
     return lines;
 }
 
@@ -82,14 +108,16 @@ std::vector<std::string> HlslSyntax::prelude(const std::set<Op>& used) const {
     if (!used.count(Op::Mod)) return {};
     std::vector<std::string> lines = {"// GLSL mod(): x - y * floor(x / y)"};
     for (const char* t : {"float", "float2", "float3", "float4"})
-        lines.push_back(fmt::format("{0} wg_mod({0} x, {0} y) {{ return x - y * floor(x / y); }}", t));
+        lines.push_back(
+            fmt::format("{0} wg_mod({0} x, {0} y) {{ return x - y * floor(x / y); }}", t));
     return lines;
 }
 
 std::string HlslSyntax::entry_inputs(const ShaderInterface& in) const {
     std::vector<std::string> params;
     for (size_t i = 0; i < in.varyings.size(); ++i)
-        params.push_back(fmt::format("{} {} : TEXCOORD{}", type(in.varyings[i].second), in.varyings[i].first, i));
+        params.push_back(fmt::format("{} {} : TEXCOORD{}", type(in.varyings[i].second),
+                                     in.varyings[i].first, i));
     return fmt::format("{}", fmt::join(params, ", "));
 }
 

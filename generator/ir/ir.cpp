@@ -9,22 +9,33 @@ int component_count(Type t) {
     switch (t) {
     case Type::Bool:
     case Type::Int:
-    case Type::Float: return 1;
-    case Type::Vec2: return 2;
-    case Type::Vec3: return 3;
-    case Type::Vec4: return 4;
-    case Type::Mat3: return 9;
-    default: return 0;
+    case Type::Float:
+        return 1;
+    case Type::Vec2:
+        return 2;
+    case Type::Vec3:
+        return 3;
+    case Type::Vec4:
+        return 4;
+    case Type::Mat3:
+        return 9;
+    default:
+        return 0;
     }
 }
 
 Type float_type(int components) {
     switch (components) {
-    case 1: return Type::Float;
-    case 2: return Type::Vec2;
-    case 3: return Type::Vec3;
-    case 4: return Type::Vec4;
-    default: return Type::Error;
+    case 1:
+        return Type::Float;
+    case 2:
+        return Type::Vec2;
+    case 3:
+        return Type::Vec3;
+    case 4:
+        return Type::Vec4;
+    default:
+        return Type::Error;
     }
 }
 
@@ -32,80 +43,146 @@ bool is_float_numeric(Type t) {
     return t == Type::Float || t == Type::Vec2 || t == Type::Vec3 || t == Type::Vec4;
 }
 
-bool is_vector(Type t) { return t == Type::Vec2 || t == Type::Vec3 || t == Type::Vec4; }
+bool is_vector(Type t) {
+    return t == Type::Vec2 || t == Type::Vec3 || t == Type::Vec4;
+}
 
 const char* type_name(Type t) {
     switch (t) {
-    case Type::Error: return "<error>";
-    case Type::Bool: return "bool";
-    case Type::Int: return "int";
-    case Type::Float: return "float";
-    case Type::Vec2: return "vec2";
-    case Type::Vec3: return "vec3";
-    case Type::Vec4: return "vec4";
-    case Type::Mat3: return "mat3";
-    case Type::Texture2D: return "texture2D";
-    case Type::TextureCube: return "textureCube";
+    case Type::Error:
+        return "<error>";
+    case Type::Bool:
+        return "bool";
+    case Type::Int:
+        return "int";
+    case Type::Float:
+        return "float";
+    case Type::Vec2:
+        return "vec2";
+    case Type::Vec3:
+        return "vec3";
+    case Type::Vec4:
+        return "vec4";
+    case Type::Mat3:
+        return "mat3";
+    case Type::Texture2D:
+        return "texture2D";
+    case Type::TextureCube:
+        return "textureCube";
     }
     return "?";
 }
 
 const char* op_name(Op op) {
     switch (op) {
-    case Op::Constant: return "constant";
-    case Op::Uniform: return "uniform";
-    case Op::Varying: return "varying";
-    case Op::Texture: return "texture";
-    case Op::Add: return "+";
-    case Op::Sub: return "-";
-    case Op::Mul: return "*";
-    case Op::Div: return "/";
-    case Op::Neg: return "negate";
-    case Op::Less: return "<";
-    case Op::LessEqual: return "<=";
-    case Op::Greater: return ">";
-    case Op::GreaterEqual: return ">=";
-    case Op::Equal: return "==";
-    case Op::NotEqual: return "!=";
-    case Op::And: return "&&";
-    case Op::Or: return "||";
-    case Op::Not: return "!";
-    case Op::Select: return "select";
-    case Op::Swizzle: return "swizzle";
-    case Op::Construct: return "construct";
-    case Op::Splat: return "splat";
-    case Op::Dot: return "dot";
-    case Op::Cross: return "cross";
-    case Op::Normalize: return "normalize";
-    case Op::Length: return "length";
-    case Op::Mix: return "mix";
-    case Op::Clamp: return "clamp";
-    case Op::Saturate: return "saturate";
-    case Op::Pow: return "pow";
-    case Op::Exp: return "exp";
-    case Op::Exp2: return "exp2";
-    case Op::Log: return "log";
-    case Op::Sqrt: return "sqrt";
-    case Op::Rsqrt: return "rsqrt";
-    case Op::Abs: return "abs";
-    case Op::Sign: return "sign";
-    case Op::Min: return "min";
-    case Op::Max: return "max";
-    case Op::Sin: return "sin";
-    case Op::Cos: return "cos";
-    case Op::Atan2: return "atan2";
-    case Op::Reflect: return "reflect";
-    case Op::Refract: return "refract";
-    case Op::Step: return "step";
-    case Op::Smoothstep: return "smoothstep";
-    case Op::Fract: return "fract";
-    case Op::Floor: return "floor";
-    case Op::Mod: return "mod";
-    case Op::MatMulVec: return "matrix * vector";
-    case Op::Sample: return "sample";
-    case Op::SampleLevel: return "sampleLevel";
-    case Op::Ddx: return "ddx";
-    case Op::Ddy: return "ddy";
+    case Op::Constant:
+        return "constant";
+    case Op::Uniform:
+        return "uniform";
+    case Op::Varying:
+        return "varying";
+    case Op::Texture:
+        return "texture";
+    case Op::Add:
+        return "+";
+    case Op::Sub:
+        return "-";
+    case Op::Mul:
+        return "*";
+    case Op::Div:
+        return "/";
+    case Op::Neg:
+        return "negate";
+    case Op::Less:
+        return "<";
+    case Op::LessEqual:
+        return "<=";
+    case Op::Greater:
+        return ">";
+    case Op::GreaterEqual:
+        return ">=";
+    case Op::Equal:
+        return "==";
+    case Op::NotEqual:
+        return "!=";
+    case Op::And:
+        return "&&";
+    case Op::Or:
+        return "||";
+    case Op::Not:
+        return "!";
+    case Op::Select:
+        return "select";
+    case Op::Swizzle:
+        return "swizzle";
+    case Op::Construct:
+        return "construct";
+    case Op::Splat:
+        return "splat";
+    case Op::Dot:
+        return "dot";
+    case Op::Cross:
+        return "cross";
+    case Op::Normalize:
+        return "normalize";
+    case Op::Length:
+        return "length";
+    case Op::Mix:
+        return "mix";
+    case Op::Clamp:
+        return "clamp";
+    case Op::Saturate:
+        return "saturate";
+    case Op::Pow:
+        return "pow";
+    case Op::Exp:
+        return "exp";
+    case Op::Exp2:
+        return "exp2";
+    case Op::Log:
+        return "log";
+    case Op::Sqrt:
+        return "sqrt";
+    case Op::Rsqrt:
+        return "rsqrt";
+    case Op::Abs:
+        return "abs";
+    case Op::Sign:
+        return "sign";
+    case Op::Min:
+        return "min";
+    case Op::Max:
+        return "max";
+    case Op::Sin:
+        return "sin";
+    case Op::Cos:
+        return "cos";
+    case Op::Atan2:
+        return "atan2";
+    case Op::Reflect:
+        return "reflect";
+    case Op::Refract:
+        return "refract";
+    case Op::Step:
+        return "step";
+    case Op::Smoothstep:
+        return "smoothstep";
+    case Op::Fract:
+        return "fract";
+    case Op::Floor:
+        return "floor";
+    case Op::Mod:
+        return "mod";
+    case Op::MatMulVec:
+        return "matrix * vector";
+    case Op::Sample:
+        return "sample";
+    case Op::SampleLevel:
+        return "sampleLevel";
+    case Op::Ddx:
+        return "ddx";
+    case Op::Ddy:
+        return "ddy";
     }
     return "?";
 }
@@ -116,10 +193,21 @@ bool is_leaf(Op op) {
 
 bool is_infix(Op op) {
     switch (op) {
-    case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: case Op::Less: case Op::LessEqual:
-    case Op::Greater: case Op::GreaterEqual: case Op::Equal: case Op::NotEqual: case Op::And:
-    case Op::Or: return true;
-    default: return false;
+    case Op::Add:
+    case Op::Sub:
+    case Op::Mul:
+    case Op::Div:
+    case Op::Less:
+    case Op::LessEqual:
+    case Op::Greater:
+    case Op::GreaterEqual:
+    case Op::Equal:
+    case Op::NotEqual:
+    case Op::And:
+    case Op::Or:
+        return true;
+    default:
+        return false;
     }
 }
 
@@ -133,9 +221,11 @@ std::string node_key(const Node& n) {
     key.push_back(static_cast<char>(n.op));
     key.push_back(static_cast<char>(n.type));
     key.push_back(n.relaxed ? 'r' : 'f');
-    for (uint32_t a : n.args) key.append(reinterpret_cast<const char*>(&a), sizeof a);
+    for (uint32_t a : n.args)
+        key.append(reinterpret_cast<const char*>(&a), sizeof a);
     key.push_back('|');
-    for (double v : n.values) key.append(reinterpret_cast<const char*>(&v), sizeof v);
+    for (double v : n.values)
+        key.append(reinterpret_cast<const char*>(&v), sizeof v);
     if (is_leaf(n.op)) {
         key.push_back('|');
         key += n.name;
@@ -148,7 +238,8 @@ std::string node_key(const Node& n) {
 uint32_t Graph::add(Node node) {
     // Leaves (parameters, inputs) keep full precision; operations follow the current scope.
     if (!is_leaf(node.op) || node.op == Op::Constant) node.relaxed = node.relaxed || relaxed_;
-    if (node.type == Type::Bool || node.type == Type::Texture2D || node.type == Type::TextureCube) node.relaxed = false;
+    if (node.type == Type::Bool || node.type == Type::Texture2D || node.type == Type::TextureCube)
+        node.relaxed = false;
     std::string key = node_key(node);
     if (auto it = index_.find(key); it != index_.end()) {
         Node& existing = nodes_[it->second];
@@ -169,16 +260,17 @@ void Graph::error(std::string message) {
 void Graph::declare_parameter(const Parameter& p) {
     if (const Parameter* existing = find_parameter(p.name)) {
         if (existing->type != p.type || existing->default_value != p.default_value)
-            error("parameter '" + p.name + "' declared twice with different type or default (first by " +
-                  existing->origin + ")");
+            error("parameter '" + p.name +
+                  "' declared twice with different type or default (first by " + existing->origin +
+                  ")");
         return;
     }
     Parameter copy = p;
     if (copy.origin.empty()) copy.origin = origin_;
     if (static_cast<int>(copy.default_value.size()) != component_count(copy.type))
-        error("parameter '" + p.name + "': default has " + std::to_string(copy.default_value.size()) +
-              " components, " + type_name(copy.type) + " needs " +
-              std::to_string(component_count(copy.type)));
+        error("parameter '" + p.name + "': default has " +
+              std::to_string(copy.default_value.size()) + " components, " + type_name(copy.type) +
+              " needs " + std::to_string(component_count(copy.type)));
     parameters_.push_back(std::move(copy));
 }
 
@@ -224,13 +316,15 @@ void Graph::bind(const Quantity& quantity, uint32_t node) {
 std::vector<uint32_t> Graph::live_nodes() const {
     std::vector<char> live(nodes_.size(), 0);
     std::vector<uint32_t> stack;
-    for (const auto& o : outputs_) stack.push_back(o.node);
+    for (const auto& o : outputs_)
+        stack.push_back(o.node);
     while (!stack.empty()) {
         uint32_t id = stack.back();
         stack.pop_back();
         if (live[id]) continue;
         live[id] = 1;
-        for (uint32_t a : nodes_[id].args) stack.push_back(a);
+        for (uint32_t a : nodes_[id].args)
+            stack.push_back(a);
     }
     std::vector<uint32_t> ids;
     for (uint32_t i = 0; i < nodes_.size(); ++i)

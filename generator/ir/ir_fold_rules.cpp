@@ -13,26 +13,38 @@ namespace watergen::fold {
 
 namespace {
 
-bool is_float_valued(Type t) { return is_float_numeric(t) || t == Type::Mat3; }
+bool is_float_valued(Type t) {
+    return is_float_numeric(t) || t == Type::Mat3;
+}
 
 bool pure(Op op) {
     switch (op) {
-    case Op::Constant: case Op::Uniform: case Op::Varying: case Op::Texture: case Op::Sample:
-    case Op::SampleLevel: case Op::Ddx: case Op::Ddy: return false;
-    default: return true;
+    case Op::Constant:
+    case Op::Uniform:
+    case Op::Varying:
+    case Op::Texture:
+    case Op::Sample:
+    case Op::SampleLevel:
+    case Op::Ddx:
+    case Op::Ddy:
+        return false;
+    default:
+        return true;
     }
 }
 
 std::string spell_values(const std::vector<double>& v) {
     if (v.size() == 1) return fmt::format("{:g}", v[0]);
     std::string s = "(";
-    for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fmt::format("{:g}", v[i]);
+    for (size_t i = 0; i < v.size(); ++i)
+        s += (i ? ", " : "") + fmt::format("{:g}", v[i]);
     return s + ")";
 }
 
 // Evaluates one operation on constant arguments with the CPU evaluator, so folding and the
 // reference evaluation agree by construction.
-std::optional<std::vector<double>> evaluate_constant(const Node& n, const std::vector<const Node*>& args) {
+std::optional<std::vector<double>> evaluate_constant(const Node& n,
+                                                     const std::vector<const Node*>& args) {
     Graph g;
     Node op = n;
     op.args.clear();
@@ -75,7 +87,8 @@ uint32_t Folder::emit(Node n, Intervals v, FactSet facts) {
         // bounds hold, so keep their intersection (when they overlap, as they must).
         bool overlap = true;
         for (size_t c = 0; c < v.size(); ++c)
-            overlap = overlap && std::max(values_[id][c].lo, v[c].lo) <= std::min(values_[id][c].hi, v[c].hi);
+            overlap = overlap &&
+                      std::max(values_[id][c].lo, v[c].lo) <= std::min(values_[id][c].hi, v[c].hi);
         for (size_t c = 0; overlap && c < v.size(); ++c) {
             Interval& e = values_[id][c];
             e.lo = std::max(e.lo, v[c].lo);
@@ -95,7 +108,8 @@ uint32_t Folder::constant(const Node& like, std::vector<double> values, FactSet 
     c.origin = like.origin;
     c.relaxed = like.relaxed;
     Intervals v;
-    for (double x : c.values) v.push_back(make_interval(x, x));
+    for (double x : c.values)
+        v.push_back(make_interval(x, x));
     return emit(std::move(c), std::move(v), facts);
 }
 
@@ -122,12 +136,15 @@ std::pair<Intervals, FactSet> Folder::leaf_bounds(const Node& n, uint32_t in_id)
         if (auto it = f_.parameter_ranges.find(n.name); it != f_.parameter_ranges.end())
             return {bounds_of(it->second, n.type), single(it->second.fact)};
         if (const Parameter* p = in_.find_parameter(n.name))
-            return {Intervals(static_cast<size_t>(component_count(n.type)), make_interval(p->min, p->max)), {}};
+            return {Intervals(static_cast<size_t>(component_count(n.type)),
+                              make_interval(p->min, p->max)),
+                    {}};
         return {unknown_intervals(n.type, false), {}};
     }
     // Varyings and samples: the scene's input contract; unknown inputs are assumed finite.
     std::string name = n.name;
-    if (n.op == Op::Sample || n.op == Op::SampleLevel) name = in_.node(in_.node(in_id).args[0]).name;
+    if (n.op == Op::Sample || n.op == Op::SampleLevel)
+        name = in_.node(in_.node(in_id).args[0]).name;
     if (auto it = f_.input_ranges.find(name); it != f_.input_ranges.end())
         return {bounds_of(it->second, n.type), single(it->second.fact)};
     return {unknown_intervals(n.type, true), {}};
@@ -175,7 +192,8 @@ bool Folder::all_ge(const Intervals& a, const Intervals& b) const {
 
 std::optional<uint32_t> Folder::identity(const Node& n, uint32_t in_id, const FactSet& all_facts) {
     const auto& a = n.args;
-    auto take = [&](uint32_t arg, const std::string& what, FactSet facts) -> std::optional<uint32_t> {
+    auto take = [&](uint32_t arg, const std::string& what,
+                    FactSet facts) -> std::optional<uint32_t> {
         auto r = as_type(arg, n);
         if (r) event(in_id, label(in_.node(in_id)) + ": " + what, facts);
         return r;
@@ -196,7 +214,8 @@ std::optional<uint32_t> Folder::identity(const Node& n, uint32_t in_id, const Fa
             neg.relaxed = n.relaxed;
             event(in_id, label(in_.node(in_id)) + ": 0 - x -> -x", facts_[a[0]]);
             Intervals v;
-            for (const auto& c : values_[a[1]]) v.push_back({-c.hi, -c.lo, c.finite});
+            for (const auto& c : values_[a[1]])
+                v.push_back({-c.hi, -c.lo, c.finite});
             return emit(std::move(neg), std::move(v), facts_[a[0]] | facts_[a[1]]);
         }
         break;
@@ -206,7 +225,9 @@ std::optional<uint32_t> Folder::identity(const Node& n, uint32_t in_id, const Fa
         for (int z = 0; z < 2; ++z)
             if (is_constant(a[z], 0.0) && all_finite(a[1 - z])) {
                 event(in_id, label(in_.node(in_id)) + ": x * 0 -> 0 (x is finite)", facts_[a[z]]);
-                return constant(n, std::vector<double>(static_cast<size_t>(component_count(n.type)), 0.0), facts_[a[z]]);
+                return constant(
+                    n, std::vector<double>(static_cast<size_t>(component_count(n.type)), 0.0),
+                    facts_[a[z]]);
             }
         break;
     case Op::Div:
@@ -222,16 +243,21 @@ std::optional<uint32_t> Folder::identity(const Node& n, uint32_t in_id, const Fa
         break;
     case Op::Select:
         if (decided_true(values_[a[0]])) return take(a[1], "select(true, a, b) -> a", facts_[a[0]]);
-        if (decided_false(values_[a[0]])) return take(a[2], "select(false, a, b) -> b", facts_[a[0]]);
+        if (decided_false(values_[a[0]]))
+            return take(a[2], "select(false, a, b) -> b", facts_[a[0]]);
         if (a[1] == a[2]) return take(a[1], "select(c, a, a) -> a", {});
         break;
     case Op::Max:
-        if (all_ge(values_[a[0]], values_[a[1]])) return take(a[0], "max(a, b) -> a (a >= b)", all_facts);
-        if (all_ge(values_[a[1]], values_[a[0]])) return take(a[1], "max(a, b) -> b (b >= a)", all_facts);
+        if (all_ge(values_[a[0]], values_[a[1]]))
+            return take(a[0], "max(a, b) -> a (a >= b)", all_facts);
+        if (all_ge(values_[a[1]], values_[a[0]]))
+            return take(a[1], "max(a, b) -> b (b >= a)", all_facts);
         break;
     case Op::Min:
-        if (all_ge(values_[a[1]], values_[a[0]])) return take(a[0], "min(a, b) -> a (a <= b)", all_facts);
-        if (all_ge(values_[a[0]], values_[a[1]])) return take(a[1], "min(a, b) -> b (b <= a)", all_facts);
+        if (all_ge(values_[a[1]], values_[a[0]]))
+            return take(a[0], "min(a, b) -> a (a <= b)", all_facts);
+        if (all_ge(values_[a[0]], values_[a[1]]))
+            return take(a[1], "min(a, b) -> b (b <= a)", all_facts);
         break;
     case Op::Clamp:
         if (all_ge(values_[a[0]], values_[a[1]]) && all_ge(values_[a[2]], values_[a[0]]))
@@ -246,7 +272,8 @@ std::optional<uint32_t> Folder::identity(const Node& n, uint32_t in_id, const Fa
     case Op::Pow:
         if (is_constant(a[1], 1.0)) return take(a[0], "pow(x, 1) -> x", facts_[a[1]]);
         break;
-    default: break;
+    default:
+        break;
     }
     return std::nullopt;
 }
@@ -296,26 +323,33 @@ std::optional<uint32_t> Folder::fold_to_constant(const Node& n, uint32_t in_id, 
     }
     if (constant_args)
         if (auto value = evaluate_constant(n, arg_nodes)) {
-            if (facts.any()) event(in_id, label(in_.node(in_id)) + " of constants -> " + spell_values(*value), facts);
+            if (facts.any())
+                event(in_id, label(in_.node(in_id)) + " of constants -> " + spell_values(*value),
+                      facts);
             return constant(n, std::move(*value), facts);
         }
     // Bounds that pin the value down.
     bool point = !v.empty(), vanishing = !v.empty(), zero = true;
     for (const auto& c : v) {
         point = point && c.is_point();
-        vanishing = vanishing && c.finite && std::fabs(c.lo) <= f_.vanish && std::fabs(c.hi) <= f_.vanish;
+        vanishing =
+            vanishing && c.finite && std::fabs(c.lo) <= f_.vanish && std::fabs(c.hi) <= f_.vanish;
         zero = zero && c.lo == 0.0 && c.hi == 0.0;
     }
     if (point) {
         std::vector<double> values;
-        for (const auto& c : v) values.push_back(c.lo);
+        for (const auto& c : v)
+            values.push_back(c.lo);
         event(in_id, label(in_.node(in_id)) + " is always " + spell_values(values), facts);
         return constant(n, std::move(values), facts);
     }
     if (vanishing && !zero) {
         double bound = 0.0;
-        for (const auto& c : v) bound = std::max({bound, std::fabs(c.lo), std::fabs(c.hi)});
-        event(in_id, label(in_.node(in_id)) + fmt::format(" vanishes (|value| <= {:.2g}) -> 0", bound), facts);
+        for (const auto& c : v)
+            bound = std::max({bound, std::fabs(c.lo), std::fabs(c.hi)});
+        event(in_id,
+              label(in_.node(in_id)) + fmt::format(" vanishes (|value| <= {:.2g}) -> 0", bound),
+              facts);
         return constant(n, std::vector<double>(v.size(), 0.0), facts);
     }
     return std::nullopt;
@@ -323,13 +357,16 @@ std::optional<uint32_t> Folder::fold_to_constant(const Node& n, uint32_t in_id, 
 
 uint32_t Folder::rewrite(uint32_t in_id) {
     Node n = in_.node(in_id);
-    for (auto& a : n.args) a = map_[a];
+    for (auto& a : n.args)
+        a = map_[a];
 
     if (n.op == Op::Uniform) {
-        if (auto it = f_.fixed.find(n.name); it != f_.fixed.end() &&
+        if (auto it = f_.fixed.find(n.name);
+            it != f_.fixed.end() &&
             it->second.value.size() == static_cast<size_t>(component_count(n.type))) {
             report_.folded_parameters[n.name] = it->second.value;
-            event(in_id, n.name + " is fixed to " + spell_values(it->second.value), single(it->second.fact));
+            event(in_id, n.name + " is fixed to " + spell_values(it->second.value),
+                  single(it->second.fact));
             return constant(n, it->second.value, single(it->second.fact));
         }
     }

@@ -10,7 +10,7 @@
 namespace watergen {
 
 class GlslSyntax {
-public:
+  public:
     virtual ~GlslSyntax() = default;
     virtual std::string type(Type t) const;
     virtual std::string literal(double v) const;
@@ -35,7 +35,7 @@ public:
 };
 
 class HlslSyntax final : public GlslSyntax {
-public:
+  public:
     std::string type(Type t) const override;
     std::string constant(const Node& n) const override;
     std::string temp_type(Type t, bool relaxed) const override;

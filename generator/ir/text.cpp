@@ -6,10 +6,13 @@ namespace watergen {
 
 std::string join(const std::vector<std::string>& names, const std::string& separator) {
     std::string s;
-    for (size_t i = 0; i < names.size(); ++i) s += (i == 0 ? "" : separator) + names[i];
+    for (size_t i = 0; i < names.size(); ++i)
+        s += (i == 0 ? "" : separator) + names[i];
     return s;
 }
 
-std::string spell_number(double value) { return fmt::format("{}", value); }
+std::string spell_number(double value) {
+    return fmt::format("{}", value);
+}
 
 } // namespace watergen

@@ -9,10 +9,13 @@ namespace {
 
 uint32_t alignment_of(Type t) {
     switch (t) {
-    case Type::Vec2: return 8;
+    case Type::Vec2:
+        return 8;
     case Type::Vec3:
-    case Type::Vec4: return 16;
-    default: return 4;
+    case Type::Vec4:
+        return 16;
+    default:
+        return 4;
     }
 }
 
@@ -42,11 +45,13 @@ UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnost
         for (;; w += align_words) {
             if (w / 4 != (w + words - 1) / 4) continue; // would straddle a 16-byte register
             bool free = true;
-            for (uint32_t i = w; i < w + words; ++i) free = free && (i >= used.size() || !used[i]);
+            for (uint32_t i = w; i < w + words; ++i)
+                free = free && (i >= used.size() || !used[i]);
             if (free) break;
         }
         if (used.size() < w + words) used.resize(w + words, false);
-        for (uint32_t i = w; i < w + words; ++i) used[i] = true;
+        for (uint32_t i = w; i < w + words; ++i)
+            used[i] = true;
         layout.members.push_back({p->name, p->type, w * 4});
     }
     std::sort(layout.members.begin(), layout.members.end(),
@@ -55,14 +60,16 @@ UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnost
     return layout;
 }
 
-std::vector<uint8_t> pack_uniforms(const UniformLayout& layout, const std::vector<Parameter>& parameters,
+std::vector<uint8_t> pack_uniforms(const UniformLayout& layout,
+                                   const std::vector<Parameter>& parameters,
                                    const std::map<std::string, std::vector<double>>& overrides) {
     std::vector<uint8_t> bytes(layout.size, 0);
     for (const auto& slot : layout.members)
         for (const auto& p : parameters) {
             if (p.name != slot.name) continue;
             const std::vector<double>* values = &p.default_value;
-            if (auto it = overrides.find(p.name); it != overrides.end() && it->second.size() == p.default_value.size())
+            if (auto it = overrides.find(p.name);
+                it != overrides.end() && it->second.size() == p.default_value.size())
                 values = &it->second;
             for (size_t i = 0; i < values->size(); ++i) {
                 const float f = static_cast<float>((*values)[i]);

@@ -23,15 +23,18 @@ template <class F> double seconds_of(F&& f) {
 
 Material full_material() {
     MaterialBuilder b("full");
-    for (const auto& a : axes()) b.offer_all(a.name);
+    for (const auto& a : axes())
+        b.offer_all(a.name);
     Diagnostics ds;
     return *b.build(ds);
 }
 
 // Enumerating the full space and planning each scene over it; returns the space's size.
-size_t measure_planning(const Material& full, const std::vector<SceneFacts>& scenes, std::vector<BuildBenchRow>& rows) {
+size_t measure_planning(const Material& full, const std::vector<SceneFacts>& scenes,
+                        std::vector<BuildBenchRow>& rows) {
     size_t n = 0;
-    rows.push_back({"full space: enumerate + check rules", 0, seconds_of([&] { n = count_variants(full.space); }), ""});
+    rows.push_back({"full space: enumerate + check rules", 0,
+                    seconds_of([&] { n = count_variants(full.space); }), ""});
     rows.back().variants = n;
     for (const auto& s : scenes) {
         Diagnostics ds;
@@ -39,19 +42,21 @@ size_t measure_planning(const Material& full, const std::vector<SceneFacts>& sce
         const double t = seconds_of([&] {
             if (auto p = plan_scene(full, s, ds)) reached = p->variants.size();
         });
-        rows.push_back({"full space: plan scene " + s.name, n, t, fmt::format("reaches {}", reached)});
+        rows.push_back(
+            {"full space: plan scene " + s.name, n, t, fmt::format("reaches {}", reached)});
     }
     return n;
 }
 
 // An evenly spaced sample of the full space built as jobs (nothing written), cold and warm.
-void measure_sample(const Material& full, size_t n, size_t wanted, unsigned all, const fs::path& work,
-                    std::vector<BuildBenchRow>& rows) {
+void measure_sample(const Material& full, size_t n, size_t wanted, unsigned all,
+                    const fs::path& work, std::vector<BuildBenchRow>& rows) {
     std::vector<BuildJob> sample;
     const size_t step = std::max<size_t>(1, n / wanted);
     size_t i = 0;
     enumerate(full.space, [&](const Variant& v) {
-        if (i++ % step == 0 && sample.size() < wanted) sample.push_back({"sample", v, nullptr, all_targets()});
+        if (i++ % step == 0 && sample.size() < wanted)
+            sample.push_back({"sample", v, nullptr, all_targets()});
     });
     for (unsigned threads : {1u, all}) {
         const BuildCache cache(work / fmt::format("cache-sample-{}", threads));
@@ -66,17 +71,21 @@ void measure_sample(const Material& full, size_t n, size_t wanted, unsigned all,
                 failed += !r.ok();
                 cached += r.cached;
             }
-            rows.push_back({fmt::format("full space, sample of {} (every {}-th): build {}, {} thread{}", sample.size(), step,
-                                        temperature, threads, threads == 1 ? "" : "s"),
-                            sample.size(), t, fmt::format("{} cached, {} failed", cached, failed)});
+            rows.push_back(
+                {fmt::format("full space, sample of {} (every {}-th): build {}, {} thread{}",
+                             sample.size(), step, temperature, threads, threads == 1 ? "" : "s"),
+                 sample.size(), t, fmt::format("{} cached, {} failed", cached, failed)});
         }
     }
 }
 
 // The pruned example: complete builds, output written. False (diagnostics set) when one fails.
-bool measure_example(const BuildBenchRequest& r, unsigned all, const fs::path& work, BuildBenchResult& out) {
-    const std::string label = "pruned example (" + r.example.name +
-                              (r.scenes.empty() ? ", unpruned" : ", " + std::to_string(r.scenes.size()) + " scenes") + ")";
+bool measure_example(const BuildBenchRequest& r, unsigned all, const fs::path& work,
+                     BuildBenchResult& out) {
+    const std::string label =
+        "pruned example (" + r.example.name +
+        (r.scenes.empty() ? ", unpruned" : ", " + std::to_string(r.scenes.size()) + " scenes") +
+        ")";
     for (unsigned threads : {1u, all}) {
         const fs::path cache = work / fmt::format("cache-example-{}", threads);
         const fs::path dir = work / fmt::format("out-example-{}", threads);
@@ -89,9 +98,11 @@ bool measure_example(const BuildBenchRequest& r, unsigned all, const fs::path& w
                 out.diagnostics = std::move(s.diagnostics);
                 return false;
             }
-            out.rows.push_back({fmt::format("{}: build {}, {} thread{}", label, temperature, threads, threads == 1 ? "" : "s"),
+            out.rows.push_back({fmt::format("{}: build {}, {} thread{}", label, temperature,
+                                            threads, threads == 1 ? "" : "s"),
                                 s.variants, s.seconds,
-                                fmt::format("{} built, {} cached, {} shared, {} same shader", s.built, s.cached, s.shared, s.same)});
+                                fmt::format("{} built, {} cached, {} shared, {} same shader",
+                                            s.built, s.cached, s.shared, s.same)});
         }
     }
     return true;
@@ -102,9 +113,10 @@ bool measure_example(const BuildBenchRequest& r, unsigned all, const fs::path& w
 BuildBenchResult bench_build(const BuildBenchRequest& request) {
     BuildBenchResult out;
     const unsigned all = request.threads ? request.threads : hardware_threads();
-    const fs::path work = request.work.empty()
-                              ? fs::temp_directory_path() / fmt::format("watergen-bench-build-{}", ::getpid())
-                              : request.work;
+    const fs::path work =
+        request.work.empty()
+            ? fs::temp_directory_path() / fmt::format("watergen-bench-build-{}", ::getpid())
+            : request.work;
     fs::remove_all(work);
     const Material full = full_material();
     const size_t n = measure_planning(full, request.scenes, out.rows);

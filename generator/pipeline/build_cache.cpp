@@ -50,7 +50,9 @@ bool next_line(const std::string& data, size_t& pos, std::string& line) {
 
 // "<digits>" no larger than `limit`.
 std::optional<size_t> parse_size(const std::string& text, size_t limit) {
-    if (text.empty() || text.size() > 12 || text.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+    if (text.empty() || text.size() > 12 ||
+        text.find_first_not_of("0123456789") != std::string::npos)
+        return std::nullopt;
     const unsigned long long n = std::stoull(text);
     if (n > limit) return std::nullopt;
     return static_cast<size_t>(n);
@@ -58,8 +60,8 @@ std::optional<size_t> parse_size(const std::string& text, size_t limit) {
 
 // The files of the entry for `key` if it is exactly `expected`, every record named plainly and
 // of the recorded size and hash; otherwise nullopt and the first problem in `why`.
-std::optional<FileMap> verify_entry(const std::string& data, const std::string& key, const std::vector<std::string>& expected,
-                                    std::string& why) {
+std::optional<FileMap> verify_entry(const std::string& data, const std::string& key,
+                                    const std::vector<std::string>& expected, std::string& why) {
     const std::string magic = kMagic;
     if (data.compare(0, magic.size(), magic) != 0) {
         why = "not a version-2 cache entry";
@@ -75,16 +77,21 @@ std::optional<FileMap> verify_entry(const std::string& data, const std::string& 
     FileMap files;
     while (pos < data.size()) {
         std::string path, size_text, digest;
-        if (!next_line(data, pos, path) || !next_line(data, pos, size_text) || !next_line(data, pos, digest)) {
+        if (!next_line(data, pos, path) || !next_line(data, pos, size_text) ||
+            !next_line(data, pos, digest)) {
             why = "truncated record header";
             return std::nullopt;
         }
         const std::string name = "record '" + printable(path) + "'";
-        if (!is_plain_relative_path(path)) why = name + " is not a plain relative path";
-        else if (!wanted.count(path)) why = "unexpected " + name;
-        else if (files.count(path)) why = name + " appears twice";
+        if (!is_plain_relative_path(path))
+            why = name + " is not a plain relative path";
+        else if (!wanted.count(path))
+            why = "unexpected " + name;
+        else if (files.count(path))
+            why = name + " appears twice";
         const std::optional<size_t> size = parse_size(size_text, data.size() - pos);
-        if (why.empty() && !size) why = name + ": size '" + printable(size_text) + "' is not a number within the entry";
+        if (why.empty() && !size)
+            why = name + ": size '" + printable(size_text) + "' is not a number within the entry";
         if (!why.empty()) return std::nullopt;
         std::string bytes = data.substr(pos, *size);
         pos += *size;
@@ -105,12 +112,12 @@ std::optional<FileMap> verify_entry(const std::string& data, const std::string& 
 } // namespace
 
 const std::string& toolchain_fingerprint() {
-    static const std::string text = std::string("watergen ") + WATERGEN_VERSION + "; glslang " +
-                                    std::to_string(GLSLANG_VERSION_MAJOR) + "." + std::to_string(GLSLANG_VERSION_MINOR) +
-                                    "." + std::to_string(GLSLANG_VERSION_PATCH) + "; SPIRV-Tools " +
-                                    spvSoftwareVersionString() + "; SPIRV-Cross C API " +
-                                    std::to_string(SPVC_C_API_VERSION_MAJOR) + "." + std::to_string(SPVC_C_API_VERSION_MINOR) +
-                                    "." + std::to_string(SPVC_C_API_VERSION_PATCH);
+    static const std::string text =
+        std::string("watergen ") + WATERGEN_VERSION + "; glslang " +
+        std::to_string(GLSLANG_VERSION_MAJOR) + "." + std::to_string(GLSLANG_VERSION_MINOR) + "." +
+        std::to_string(GLSLANG_VERSION_PATCH) + "; SPIRV-Tools " + spvSoftwareVersionString() +
+        "; SPIRV-Cross C API " + std::to_string(SPVC_C_API_VERSION_MAJOR) + "." +
+        std::to_string(SPVC_C_API_VERSION_MINOR) + "." + std::to_string(SPVC_C_API_VERSION_PATCH);
     return text;
 }
 
@@ -123,7 +130,8 @@ std::string content_hash(const std::vector<std::string>& parts) {
         XXH64_update(state, s.data(), s.size());
     };
     feed(toolchain_fingerprint());
-    for (const auto& p : parts) feed(p);
+    for (const auto& p : parts)
+        feed(p);
     const uint64_t h = XXH64_digest(state);
     XXH64_freeState(state);
     return hex16(h);
@@ -138,17 +146,23 @@ std::string cache_record(const std::string& path, const std::string& bytes) {
     return path + "\n" + std::to_string(bytes.size()) + "\n" + file_digest(bytes) + "\n" + bytes;
 }
 
-fs::path BuildCache::entry(const std::string& hash) const { return dir_ / hash.substr(0, 2) / (hash + ".wgc"); }
+fs::path BuildCache::entry(const std::string& hash) const {
+    return dir_ / hash.substr(0, 2) / (hash + ".wgc");
+}
 
-CacheLookup BuildCache::load(const std::string& hash, const std::vector<std::string>& expected) const {
+CacheLookup BuildCache::load(const std::string& hash,
+                             const std::vector<std::string>& expected) const {
     CacheLookup lookup;
     if (!enabled()) return lookup;
     const fs::path path = entry(hash);
     const SafeRead read = read_regular_file(path, kMaxCacheEntryBytes);
-    // An entry of the previous format is outdated, not damaged: a quiet miss, overwritten by the store.
+    // An entry of the previous format is outdated, not damaged: a quiet miss, overwritten by the
+    // store.
     if (read.missing || (read.bytes && read.bytes->rfind(kPreviousMagic, 0) == 0)) return lookup;
-    if (read.bytes) lookup.files = verify_entry(*read.bytes, hash, expected, lookup.rejected);
-    else lookup.rejected = read.why;
+    if (read.bytes)
+        lookup.files = verify_entry(*read.bytes, hash, expected, lookup.rejected);
+    else
+        lookup.rejected = read.why;
     if (!lookup.rejected.empty()) remove_if_same(path, read);
     return lookup;
 }
@@ -156,7 +170,8 @@ CacheLookup BuildCache::load(const std::string& hash, const std::vector<std::str
 std::optional<std::string> BuildCache::store(const std::string& hash, const FileMap& files) const {
     if (!enabled()) return std::nullopt;
     std::string data = kMagic + hash + "\n";
-    for (const auto& [path, bytes] : files) data += cache_record(path, bytes);
+    for (const auto& [path, bytes] : files)
+        data += cache_record(path, bytes);
     const fs::path target = entry(hash);
     std::error_code ec;
     fs::create_directories(target.parent_path(), ec);
@@ -164,8 +179,8 @@ std::optional<std::string> BuildCache::store(const std::string& hash, const File
     // Unique per process and thread: two jobs may store the same entry at once.
     static std::atomic<unsigned> counter{0};
     const fs::path tmp = target.string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                         std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id())) + "-" +
-                         std::to_string(counter++);
+                         std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id())) +
+                         "-" + std::to_string(counter++);
     if (auto e = write_new_file(tmp, data)) {
         fs::remove(tmp, ec);
         return e;
@@ -181,8 +196,10 @@ std::optional<std::string> BuildCache::store(const std::string& hash, const File
 }
 
 fs::path default_cache_dir() {
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "watergen";
-    if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "watergen";
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+        return fs::path(xdg) / "watergen";
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return fs::path(home) / ".cache" / "watergen";
     return {};
 }
 

@@ -1,10 +1,10 @@
 #include "watergen/pipeline/build_output.h"
 
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <fcntl.h>
 
 #include "watergen/pipeline/output_target.h"
@@ -14,18 +14,22 @@ namespace watergen {
 
 namespace fs = std::filesystem;
 
-std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes, Diagnostics& ds) {
+std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes,
+                                    Diagnostics& ds) {
     BuildPlan plan;
     std::vector<SceneFacts> sorted = scenes;
-    std::stable_sort(sorted.begin(), sorted.end(), [](const SceneFacts& a, const SceneFacts& b) { return a.name < b.name; });
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const SceneFacts& a, const SceneFacts& b) { return a.name < b.name; });
     for (size_t i = 0; i < sorted.size(); ++i) {
         if (i > 0 && sorted[i].name == sorted[i - 1].name) {
-            ds.push_back(sorted[i].where.error("name", "scene name '" + sorted[i].name + "' is used by " + sorted[i - 1].file +
-                                                           " too; expected one name per scene (it names a directory)"));
+            ds.push_back(sorted[i].where.error(
+                "name", "scene name '" + sorted[i].name + "' is used by " + sorted[i - 1].file +
+                            " too; expected one name per scene (it names a directory)"));
             return std::nullopt;
         }
         if (sorted[i].name == kUnprunedScene) {
-            ds.push_back(sorted[i].where.error("name", std::string("scene name '") + kUnprunedScene + "' is reserved"));
+            ds.push_back(sorted[i].where.error("name", std::string("scene name '") +
+                                                           kUnprunedScene + "' is reserved"));
             return std::nullopt;
         }
         auto p = plan_scene(material, sorted[i], ds);
@@ -34,12 +38,15 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
     }
     if (plan.scenes.empty()) {
         enumerate(material.space, [&](const Variant& v) { plan.unpruned.push_back(v); });
-        std::sort(plan.unpruned.begin(), plan.unpruned.end(), [](const Variant& a, const Variant& b) { return a.key() < b.key(); });
-        for (const Variant& v : plan.unpruned) plan.jobs.push_back({kUnprunedScene, v, nullptr, material.targets});
+        std::sort(plan.unpruned.begin(), plan.unpruned.end(),
+                  [](const Variant& a, const Variant& b) { return a.key() < b.key(); });
+        for (const Variant& v : plan.unpruned)
+            plan.jobs.push_back({kUnprunedScene, v, nullptr, material.targets});
         plan.manifest_scenes.push_back({kUnprunedScene, nullptr, plan.unpruned.size()});
     }
     for (const ScenePlan& s : plan.scenes) {
-        for (const Variant& v : s.variants) plan.jobs.push_back({s.scene.name, v, &s.facts, s.targets});
+        for (const Variant& v : s.variants)
+            plan.jobs.push_back({s.scene.name, v, &s.facts, s.targets});
         plan.manifest_scenes.push_back({s.scene.name, &s, s.variants.size()});
     }
     return plan;
@@ -60,7 +67,8 @@ std::optional<std::string> swap_into_place(const fs::path& staging, const fs::pa
             return std::nullopt;
         }
         if (errno != ENOENT) break;
-        if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_NOREPLACE) == 0) return std::nullopt;
+        if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_NOREPLACE) == 0)
+            return std::nullopt;
         if (errno != EEXIST) break;
     }
     return commit_directory(staging, dir);
@@ -78,12 +86,15 @@ void remove_stale_staging(const fs::path& out) {
         for (const std::string& prefix : {name + ".tmp-", name + ".old.tmp-"}) {
             if (entry.rfind(prefix, 0) != 0) continue;
             const std::string digits = entry.substr(prefix.size());
-            if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+            if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
+                continue;
             const long pid = std::stol(digits);
-            if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) stale.push_back(e.path());
+            if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+                stale.push_back(e.path());
         }
     }
-    for (const auto& p : stale) fs::remove_all(p, ec);
+    for (const auto& p : stale)
+        fs::remove_all(p, ec);
 }
 
 // The output directory, resolved, if a build may replace it; else "" and the refusal in `s`.
@@ -96,7 +107,8 @@ fs::path accepted_output(const fs::path& out, BuildSummary& s) {
 }
 
 // Writes `files` beside the output directory `out` and swaps them in.
-std::optional<std::string> publish(const fs::path& out, const std::map<std::string, std::string>& files) {
+std::optional<std::string> publish(const fs::path& out,
+                                   const std::map<std::string, std::string>& files) {
     // Staging beside the output, then one rename: readers never see a mix of two builds.
     remove_stale_staging(out);
     std::string error;
@@ -110,13 +122,16 @@ void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, B
              std::map<std::string, std::string>& files) {
     if (!r.cache_rejected.empty()) {
         ++s.cache_rejected;
-        s.diagnostics.push_back({Severity::Warning, cache.entry(r.content_hash).string(), 0, 0, "",
-                                 "cache entry failed verification (" + r.cache_rejected + "); evicted and rebuilt"});
+        s.diagnostics.push_back(
+            {Severity::Warning, cache.entry(r.content_hash).string(), 0, 0, "",
+             "cache entry failed verification (" + r.cache_rejected + "); evicted and rebuilt"});
     }
     if (!r.ok()) {
         ++s.failed;
-        for (const auto& d : r.diagnostics) s.diagnostics.push_back(d);
-        s.diagnostics.push_back({Severity::Error, "", 0, 0, "", job.scene + ": " + job.variant.key() + " failed to build"});
+        for (const auto& d : r.diagnostics)
+            s.diagnostics.push_back(d);
+        s.diagnostics.push_back({Severity::Error, "", 0, 0, "",
+                                 job.scene + ": " + job.variant.key() + " failed to build"});
         return;
     }
     if (!r.same_as.empty()) {
@@ -125,7 +140,8 @@ void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, B
     }
     (r.shared ? s.shared : r.cached ? s.cached : s.built) += 1;
     const std::string dir = variant_directory(job.scene, job.variant);
-    for (const auto& [path, bytes] : r.files) files[dir + "/" + path] = bytes;
+    for (const auto& [path, bytes] : r.files)
+        files[dir + "/" + path] = bytes;
 }
 
 } // namespace
@@ -140,12 +156,15 @@ BuildSummary build_material(const BuildRequest& request) {
     }
     // Refuse an output that is not ours before spending time on the build.
     if (accepted_output(request.out, s).empty()) return s;
-    const std::vector<JobResult> results = run_build_jobs(request.material, plan->jobs, request.options);
+    const std::vector<JobResult> results =
+        run_build_jobs(request.material, plan->jobs, request.options);
     s.variants = plan->jobs.size();
     std::map<std::string, std::string> files;
-    for (size_t i = 0; i < results.size(); ++i) collect(plan->jobs[i], results[i], request.options.cache, s, files);
+    for (size_t i = 0; i < results.size(); ++i)
+        collect(plan->jobs[i], results[i], request.options.cache, s, files);
     if (s.failed == 0) {
-        files["manifest.json"] = manifest_json(request.material, plan->manifest_scenes, plan->jobs, results);
+        files["manifest.json"] =
+            manifest_json(request.material, plan->manifest_scenes, plan->jobs, results);
         s.files = files.size();
         const fs::path out = accepted_output(request.out, s); // again: the build took a while
         if (auto failure = out.empty() ? std::nullopt : publish(out, files))

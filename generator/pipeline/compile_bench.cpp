@@ -42,13 +42,14 @@ std::vector<CompileRequest> compile_requests(const Variant& v, Diagnostics& ds) 
 }
 
 // Times both chains on one variant's shaders; "" or what failed.
-std::string time_chains(const std::vector<CompileRequest>& requests, int repeat, const std::filesystem::path& work,
-                        CompileBenchRow& row) {
+std::string time_chains(const std::vector<CompileRequest>& requests, int repeat,
+                        const std::filesystem::path& work, CompileBenchRow& row) {
     std::vector<double> in_process, processes;
     for (int r = 0; r < repeat; ++r) {
         bool ok = true;
         in_process.push_back(time_ms([&] {
-            for (const auto& req : requests) ok = run_toolchain(req).ok() && ok;
+            for (const auto& req : requests)
+                ok = run_toolchain(req).ok() && ok;
         }));
         std::string error;
         processes.push_back(time_ms([&] {
@@ -68,7 +69,8 @@ std::string time_chains(const std::vector<CompileRequest>& requests, int repeat,
 
 CompileBench run_compile_bench(int repeat) {
     glslang_warm_up();
-    const std::filesystem::path work = std::filesystem::temp_directory_path() / "watergen-bench-compile";
+    const std::filesystem::path work =
+        std::filesystem::temp_directory_path() / "watergen-bench-compile";
     std::filesystem::create_directories(work);
     CompileBench bench;
     for (const Variant& v : pairwise_covering_variants()) {

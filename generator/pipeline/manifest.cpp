@@ -8,7 +8,9 @@
 
 namespace watergen {
 
-std::string variant_directory(const std::string& scene, const Variant& v) { return scene + "/" + v.file_stem(); }
+std::string variant_directory(const std::string& scene, const Variant& v) {
+    return scene + "/" + v.file_stem();
+}
 
 namespace {
 
@@ -30,14 +32,16 @@ OJson material_json(const Material& m) {
     j["description"] = m.description;
     j["preset"] = m.preset;
     OJson ax = OJson::object();
-    for (size_t i = 0; i < axes().size(); ++i) ax[axes()[i].name] = m.space.choices[i];
+    for (size_t i = 0; i < axes().size(); ++i)
+        ax[axes()[i].name] = m.space.choices[i];
     j["axes"] = ax;
     OJson rules = OJson::array();
     const size_t builtin = builtin_rules().size();
     for (size_t i = builtin; i < m.space.rules.size(); ++i) {
         const Rule& r = m.space.rules[i];
         rules.push_back({{"if", r.axis + "=" + r.choice},
-                         {r.kind == Rule::Kind::Requires ? "requires" : "excludes", {{r.other_axis, r.other_choices}}},
+                         {r.kind == Rule::Kind::Requires ? "requires" : "excludes",
+                          {{r.other_axis, r.other_choices}}},
                          {"why", r.why}});
     }
     j["rules"] = rules;
@@ -51,7 +55,8 @@ OJson material_json(const Material& m) {
     }
     j["parameters"] = params;
     OJson targets = OJson::array();
-    for (Target t : m.targets) targets.push_back(to_string(t));
+    for (Target t : m.targets)
+        targets.push_back(to_string(t));
     j["targets"] = targets;
     return j;
 }
@@ -80,10 +85,12 @@ OJson scene_json(const ManifestScene& s) {
     j["variants"] = s.plan->variants.size();
     j["skipped"] = s.plan->skipped;
     OJson fixed = OJson::object();
-    for (const auto& [name, v] : s.plan->fixed) fixed[name] = v;
+    for (const auto& [name, v] : s.plan->fixed)
+        fixed[name] = v;
     j["fixed"] = fixed;
     OJson targets = OJson::array();
-    for (Target t : s.plan->targets) targets.push_back(to_string(t));
+    for (Target t : s.plan->targets)
+        targets.push_back(to_string(t));
     j["targets"] = targets;
     return j;
 }
@@ -97,17 +104,26 @@ OJson files_json(const std::string& dir, const FileMap& files) {
         auto ends = [&](const std::string& s) {
             return path.size() > s.size() && path.compare(path.size() - s.size(), s.size(), s) == 0;
         };
-        if (path == "variant.json") kind = "description";
-        else if (ends(".330.glsl")) kind = "glsl330";
-        else if (ends(".300es.glsl")) kind = "essl300";
-        else if (ends(".metal")) kind = "msl";
-        else if (ends(".spv")) kind = "spirv";
-        else if (ends(".reflect.json")) kind = "reflection";
-        else if (ends(".hlsl")) kind = "hlsl";
-        else kind = "glsl";
+        if (path == "variant.json")
+            kind = "description";
+        else if (ends(".330.glsl"))
+            kind = "glsl330";
+        else if (ends(".300es.glsl"))
+            kind = "essl300";
+        else if (ends(".metal"))
+            kind = "msl";
+        else if (ends(".spv"))
+            kind = "spirv";
+        else if (ends(".reflect.json"))
+            kind = "reflection";
+        else if (ends(".hlsl"))
+            kind = "hlsl";
+        else
+            kind = "glsl";
         by[kind].push_back(dir + "/" + path);
     }
-    for (const char* kind : {"description", "glsl", "hlsl", "spirv", "glsl330", "essl300", "msl", "reflection"})
+    for (const char* kind :
+         {"description", "glsl", "hlsl", "spirv", "glsl330", "essl300", "msl", "reflection"})
         if (by.count(kind)) j[kind] = by[kind];
     return j;
 }
@@ -115,17 +131,21 @@ OJson files_json(const std::string& dir, const FileMap& files) {
 } // namespace
 
 std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
-                          const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results) {
+                          const std::vector<BuildJob>& jobs,
+                          const std::vector<JobResult>& results) {
     OJson doc;
     doc["generator"] = std::string("watergen ") + WATERGEN_VERSION;
     doc["material"] = material_json(material);
-    doc["space"] = {{"full", count_variants(full_space())}, {"material", count_variants(material.space)}};
+    doc["space"] = {{"full", count_variants(full_space())},
+                    {"material", count_variants(material.space)}};
     OJson sc = OJson::array();
-    for (const auto& s : scenes) sc.push_back(scene_json(s));
+    for (const auto& s : scenes)
+        sc.push_back(scene_json(s));
     doc["scenes"] = sc;
 
     std::map<std::pair<std::string, std::string>, size_t> index;
-    for (size_t i = 0; i < jobs.size(); ++i) index[{jobs[i].scene, jobs[i].variant.key()}] = i;
+    for (size_t i = 0; i < jobs.size(); ++i)
+        index[{jobs[i].scene, jobs[i].variant.key()}] = i;
     OJson variants = OJson::array();
     for (const auto& [scene_key, i] : index) {
         const BuildJob& job = jobs[i];
@@ -137,21 +157,30 @@ std::string manifest_json(const Material& material, const std::vector<ManifestSc
         v["content_hash"] = r.content_hash;
         const std::string dir = variant_directory(job.scene, job.variant);
         OJson nodes = OJson::object();
-        for (const auto& a : axes()) nodes[a.name] = a.name + "." + job.variant.choice(a.name);
+        for (const auto& a : axes())
+            nodes[a.name] = a.name + "." + job.variant.choice(a.name);
         v["nodes"] = nodes;
         OJson folded = OJson::object();
-        for (const auto& [name, value] : r.fold.folded_parameters) folded[name] = value;
+        for (const auto& [name, value] : r.fold.folded_parameters)
+            folded[name] = value;
         v["folded_parameters"] = folded;
         if (r.folded) {
-            OJson removed_params = OJson::array(), removed_textures = OJson::array(), terms = OJson::array();
+            OJson removed_params = OJson::array(), removed_textures = OJson::array(),
+                  terms = OJson::array();
             for (const auto& p : r.fold.removed_parameters)
-                removed_params.push_back({{"name", p.name}, {"because", fact_texts(job.facts, p.facts)}});
+                removed_params.push_back(
+                    {{"name", p.name}, {"because", fact_texts(job.facts, p.facts)}});
             for (const auto& t : r.fold.removed_textures)
-                removed_textures.push_back({{"name", t.name}, {"because", fact_texts(job.facts, t.facts)}});
+                removed_textures.push_back(
+                    {{"name", t.name}, {"because", fact_texts(job.facts, t.facts)}});
             for (const auto& t : r.fold.removed)
                 if (t.named) {
-                    const FactSet fs = t.event >= 0 ? r.fold.events[static_cast<size_t>(t.event)].facts : FactSet{};
-                    terms.push_back({{"node", t.origin}, {"term", t.name}, {"because", fact_texts(job.facts, fs)}});
+                    const FactSet fs = t.event >= 0
+                                           ? r.fold.events[static_cast<size_t>(t.event)].facts
+                                           : FactSet{};
+                    terms.push_back({{"node", t.origin},
+                                     {"term", t.name},
+                                     {"because", fact_texts(job.facts, fs)}});
                 }
             v["removed_parameters"] = removed_params;
             v["removed_textures"] = removed_textures;
@@ -176,9 +205,10 @@ std::string manifest_json(const Material& material, const std::vector<ManifestSc
         const JobResult& built = canonical == index.end() ? r : results[canonical->second];
         if (auto it = built.files.find("variant.json"); it != built.files.end()) {
             const OJson d = OJson::parse(it->second);
-            v["reflection"] = {{"uniform_block", d.value("uniform_block", OJson::object())},
-                               {"sampler", {{"name", "linear_clamp"}, {"set", 0}, {"binding", kSamplerBinding}}},
-                               {"textures", d.value("textures", OJson::array())}};
+            v["reflection"] = {
+                {"uniform_block", d.value("uniform_block", OJson::object())},
+                {"sampler", {{"name", "linear_clamp"}, {"set", 0}, {"binding", kSamplerBinding}}},
+                {"textures", d.value("textures", OJson::array())}};
             v["spirv_instructions"] = d.value("spirv_instructions", OJson::object());
         }
         variants.push_back(v);

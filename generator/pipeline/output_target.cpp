@@ -15,9 +15,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kReplaceable =
-    "a build replaces only a directory watergen wrote (with its manifest.json), an empty directory or a path that "
-    "does not exist; it was left untouched";
+constexpr const char* kReplaceable = "a build replaces only a directory watergen wrote (with its "
+                                     "manifest.json), an empty directory or a path that "
+                                     "does not exist; it was left untouched";
 
 // A manifest is a few hundred KB; anything far larger is not one.
 constexpr size_t kMaxManifestBytes = size_t(256) << 20;
@@ -30,7 +30,8 @@ fs::path normal_absolute(const fs::path& out, std::error_code& ec) {
 }
 
 bool holds(const fs::path& outer, const fs::path& inner) {
-    return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first == outer.end();
+    return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first ==
+           outer.end();
 }
 
 // Why the existing directory `dir` may not be replaced; "" when it may.
@@ -41,7 +42,8 @@ std::string refusal_for_directory(const fs::path& dir) {
     if (it == fs::directory_iterator()) return ""; // empty
     const SafeRead manifest = read_regular_file(dir / "manifest.json", kMaxManifestBytes);
     if (manifest.bytes && is_watergen_manifest(*manifest.bytes)) return "";
-    return std::string("is a directory of files watergen did not write (no manifest.json of a watergen build); ") +
+    return std::string("is a directory of files watergen did not write (no manifest.json of a "
+                       "watergen build); ") +
            kReplaceable;
 }
 
@@ -56,7 +58,8 @@ bool is_watergen_manifest(const std::string& bytes) {
 OutputTarget check_output_target(const fs::path& out) {
     OutputTarget t;
     if (out.empty()) {
-        t.error = "the output directory is an empty path; expected a directory to create or replace";
+        t.error =
+            "the output directory is an empty path; expected a directory to create or replace";
         return t;
     }
     std::error_code ec;
@@ -65,16 +68,20 @@ OutputTarget check_output_target(const fs::path& out) {
         t.error = "cannot resolve the output directory: " + ec.message();
         return t;
     }
-    // Name the resolved directory where the given path does not show it plainly ("out/", ".", "a/../b").
+    // Name the resolved directory where the given path does not show it plainly ("out/", ".",
+    // "a/../b").
     const fs::path last = out.filename();
-    const bool plain = out.lexically_normal() == out && !last.empty() && last != "." && last != "..";
-    const std::string subject = "the output directory" + (plain ? "" : " (" + t.path.string() + ")");
+    const bool plain =
+        out.lexically_normal() == out && !last.empty() && last != "." && last != "..";
+    const std::string subject =
+        "the output directory" + (plain ? "" : " (" + t.path.string() + ")");
     // Replacing the current directory (or one above it) would leave the shell in a deleted one.
     std::error_code cwd_ec, real_ec;
     const fs::path cwd = fs::current_path(cwd_ec);
     const fs::path real = fs::weakly_canonical(t.path, real_ec);
     if (!cwd_ec && !real_ec && holds(real, cwd)) {
-        t.error = subject + " is the current directory or holds it; name one outside the current directory";
+        t.error = subject +
+                  " is the current directory or holds it; name one outside the current directory";
         return t;
     }
     struct stat st {};
@@ -87,7 +94,8 @@ OutputTarget check_output_target(const fs::path& out) {
         t.error = subject + " is " + file_kind(st.st_mode) + "; " + kReplaceable;
         return t;
     }
-    if (std::string why = refusal_for_directory(t.path); !why.empty()) t.error = subject + " " + why;
+    if (std::string why = refusal_for_directory(t.path); !why.empty())
+        t.error = subject + " " + why;
     return t;
 }
 

@@ -12,7 +12,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string unique_suffix() { return ".tmp-" + std::to_string(::getpid()); }
+std::string unique_suffix() {
+    return ".tmp-" + std::to_string(::getpid());
+}
 
 } // namespace
 
@@ -45,14 +47,16 @@ bool is_plain_relative_path(const std::string& path) {
     size_t start = 0;
     for (;;) {
         const size_t slash = path.find('/', start);
-        const std::string part = path.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+        const std::string part =
+            path.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
         if (part.empty() || part == "." || part == "..") return false;
         if (slash == std::string::npos) return true;
         start = slash + 1;
     }
 }
 
-std::optional<std::string> write_file_atomically(const fs::path& path, const std::string& contents) {
+std::optional<std::string> write_file_atomically(const fs::path& path,
+                                                 const std::string& contents) {
     const fs::path tmp = path.string() + unique_suffix();
     std::error_code ec;
     fs::remove(tmp, ec); // left by a killed process of the same pid
@@ -107,9 +111,11 @@ std::optional<std::string> commit_directory(const fs::path& staging, const fs::p
     return std::nullopt;
 }
 
-std::optional<std::string> write_tree(const fs::path& root, const std::map<std::string, std::string>& files) {
+std::optional<std::string> write_tree(const fs::path& root,
+                                      const std::map<std::string, std::string>& files) {
     for (const auto& [relative, contents] : files)
-        if (!is_plain_relative_path(relative)) return "'" + relative + "' is not a plain relative path inside " + root.string();
+        if (!is_plain_relative_path(relative))
+            return "'" + relative + "' is not a plain relative path inside " + root.string();
     std::error_code ec;
     for (const auto& [relative, contents] : files) {
         const fs::path target = root / relative;
@@ -120,7 +126,8 @@ std::optional<std::string> write_tree(const fs::path& root, const std::map<std::
     return std::nullopt;
 }
 
-fs::path write_staged_tree(const fs::path& dir, const std::map<std::string, std::string>& files, std::string* error) {
+fs::path write_staged_tree(const fs::path& dir, const std::map<std::string, std::string>& files,
+                           std::string* error) {
     const fs::path staging = make_staging_directory(dir, error);
     if (staging.empty()) return {};
     if (auto e = write_tree(staging, files)) {
@@ -132,7 +139,8 @@ fs::path write_staged_tree(const fs::path& dir, const std::map<std::string, std:
     return staging;
 }
 
-std::optional<std::string> write_directory_atomically(const fs::path& dir, const std::map<std::string, std::string>& files) {
+std::optional<std::string>
+write_directory_atomically(const fs::path& dir, const std::map<std::string, std::string>& files) {
     std::string error;
     const fs::path staging = write_staged_tree(dir, files, &error);
     if (staging.empty()) return error;

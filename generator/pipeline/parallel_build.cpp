@@ -9,8 +9,8 @@
 
 #include <fmt/format.h>
 
-#include "watergen/toolchain/glslang_stage.h"
 #include "watergen/pipeline/variant_build.h"
+#include "watergen/toolchain/glslang_stage.h"
 
 namespace watergen {
 
@@ -18,12 +18,15 @@ namespace {
 
 // Kinds of file a target keeps, by suffix after "water.<stage>".
 bool wanted(const std::string& path, const std::vector<Target>& targets) {
-    auto has = [&](Target t) { return std::find(targets.begin(), targets.end(), t) != targets.end(); };
+    auto has = [&](Target t) {
+        return std::find(targets.begin(), targets.end(), t) != targets.end();
+    };
     if (path == "variant.json") return true;
     const bool glsl_dir = path.rfind("glsl/", 0) == 0, hlsl_dir = path.rfind("hlsl/", 0) == 0;
     auto ends = [&](const char* s) {
         const std::string suffix = s;
-        return path.size() > suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+        return path.size() > suffix.size() &&
+               path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
     };
     // The HLSL path's SPIR-V and reflection come with the HLSL target; cross-compiled text
     // comes from the GLSL path only (the HLSL path's would be the same program again).
@@ -50,16 +53,22 @@ std::string emitted_name(Language lang, ShaderStage stage) {
 
 // What the files of a variant depend on besides the toolchain: its sources (which carry the
 // key in their stamp) and the metadata of the parameters they read, which variant.json reports.
-std::vector<std::string> hash_inputs(const WaterShader& shader, const std::string& stamp_key, Diagnostics& ds) {
+std::vector<std::string> hash_inputs(const WaterShader& shader, const std::string& stamp_key,
+                                     Diagnostics& ds) {
     std::vector<std::string> parts{shader.variant.key(), shader.preset};
     for (Language lang : {Language::Glsl, Language::Hlsl}) {
-        const EmittedShader frag = emit_fragment(shader.fragment, lang, emitted_name(lang, ShaderStage::Fragment), stamp_key, ds);
+        const EmittedShader frag = emit_fragment(
+            shader.fragment, lang, emitted_name(lang, ShaderStage::Fragment), stamp_key, ds);
         parts.push_back(frag.source);
-        parts.push_back(emit_fullscreen_vertex(lang, emitted_name(lang, ShaderStage::Vertex), stamp_key).source);
+        parts.push_back(
+            emit_fullscreen_vertex(lang, emitted_name(lang, ShaderStage::Vertex), stamp_key)
+                .source);
         if (lang != Language::Glsl) continue;
         for (const Parameter& p : frag.interface.parameters) {
-            std::string s = fmt::format("{}|{}|{}|{}|{}|{}|{}", p.name, static_cast<int>(p.type), p.min, p.max, p.unit, p.seed, p.origin);
-            for (double v : p.default_value) s += fmt::format("|{}", v);
+            std::string s = fmt::format("{}|{}|{}|{}|{}|{}|{}", p.name, static_cast<int>(p.type),
+                                        p.min, p.max, p.unit, p.seed, p.origin);
+            for (double v : p.default_value)
+                s += fmt::format("|{}", v);
             parts.push_back(s);
         }
     }
@@ -67,7 +76,8 @@ std::vector<std::string> hash_inputs(const WaterShader& shader, const std::strin
 }
 
 // Phase 1 for one job: compose, fold, hash (no compiler involved).
-void compose_and_hash(const Material& material, const BuildJob& job, JobResult& r, WaterShader& out) {
+void compose_and_hash(const Material& material, const BuildJob& job, JobResult& r,
+                      WaterShader& out) {
     WaterShader shader = material.compose(job.variant);
     const Diagnostics& graph_errors = shader.fragment.diagnostics();
     r.diagnostics.insert(r.diagnostics.end(), graph_errors.begin(), graph_errors.end());
@@ -99,14 +109,17 @@ BuildPlan plan_builds(const std::vector<BuildJob>& jobs, std::vector<JobResult>&
     std::map<std::string, size_t> builder;
     for (size_t i = 0; i < jobs.size(); ++i) {
         if (!results[i].ok()) continue;
-        auto [it, inserted] = first.emplace(std::make_pair(jobs[i].scene, results[i].shape_hash), i);
+        auto [it, inserted] =
+            first.emplace(std::make_pair(jobs[i].scene, results[i].shape_hash), i);
         if (!inserted) {
             results[i].same_as = jobs[it->second].variant.key();
             continue;
         }
         auto [b, fresh] = builder.emplace(results[i].content_hash, i);
-        if (fresh) plan.to_build.push_back(i);
-        else plan.copies.emplace_back(i, b->second);
+        if (fresh)
+            plan.to_build.push_back(i);
+        else
+            plan.copies.emplace_back(i, b->second);
     }
     return plan;
 }
@@ -120,10 +133,12 @@ std::optional<FileMap> load_or_build(const BuildOptions& options, WaterShader sh
     r.cache_rejected = std::move(lookup.rejected);
     if (!all) {
         const VariantBuild build = build_shader(std::move(shader));
-        r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(), build.diagnostics.end());
+        r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(),
+                             build.diagnostics.end());
         if (build.ok()) {
             all = variant_files(build);
-            options.cache.store(r.content_hash, *all); // a cache that cannot be written only costs time
+            options.cache.store(r.content_hash,
+                                *all); // a cache that cannot be written only costs time
         }
     }
     return all;
@@ -131,21 +146,27 @@ std::optional<FileMap> load_or_build(const BuildOptions& options, WaterShader sh
 
 } // namespace
 
-unsigned hardware_threads() { return std::max(1u, std::thread::hardware_concurrency()); }
+unsigned hardware_threads() {
+    return std::max(1u, std::thread::hardware_concurrency());
+}
 
 void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& task) {
-    const unsigned workers = static_cast<unsigned>(std::min<size_t>(threads == 0 ? hardware_threads() : threads, std::max<size_t>(n, 1)));
+    const unsigned workers = static_cast<unsigned>(
+        std::min<size_t>(threads == 0 ? hardware_threads() : threads, std::max<size_t>(n, 1)));
     if (workers <= 1) {
-        for (size_t i = 0; i < n; ++i) task(i);
+        for (size_t i = 0; i < n; ++i)
+            task(i);
         return;
     }
     std::atomic<size_t> next{0};
     std::vector<std::thread> pool;
     for (unsigned w = 0; w < workers; ++w)
         pool.emplace_back([&] {
-            for (size_t i; (i = next++) < n;) task(i);
+            for (size_t i; (i = next++) < n;)
+                task(i);
         });
-    for (auto& t : pool) t.join();
+    for (auto& t : pool)
+        t.join();
 }
 
 FileMap filter_targets(const FileMap& all, const std::vector<Target>& targets) {
@@ -155,7 +176,8 @@ FileMap filter_targets(const FileMap& all, const std::vector<Target>& targets) {
     return kept;
 }
 
-std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs, const BuildOptions& options) {
+std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs,
+                                      const BuildOptions& options) {
     std::vector<JobResult> results(jobs.size());
     std::vector<WaterShader> shaders(jobs.size());
     // glslang builds its tables once per process; do it before the threads race for it.
@@ -186,9 +208,12 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
         const size_t i = plan.to_build[k];
         JobResult& r = results[i];
         const auto t0 = std::chrono::steady_clock::now();
-        std::optional<FileMap> all = load_or_build(options, std::move(shaders[i]), r, expected_files);
+        std::optional<FileMap> all =
+            load_or_build(options, std::move(shaders[i]), r, expected_files);
         if (all) r.files = filter_targets(*all, jobs[i].targets);
-        r.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        r.milliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
         if (all) {
             std::lock_guard<std::mutex> lock(shared_lock);
             shared[i] = std::move(*all);
@@ -200,7 +225,8 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
         r.diagnostics = results[from].diagnostics;
         r.cached = results[from].cached;
         r.shared = true;
-        if (auto it = shared.find(from); it != shared.end()) r.files = filter_targets(it->second, jobs[i].targets);
+        if (auto it = shared.find(from); it != shared.end())
+            r.files = filter_targets(it->second, jobs[i].targets);
         report(i);
     }
     return results;

@@ -10,7 +10,9 @@ namespace watergen {
 
 namespace {
 
-std::string errno_text(int e) { return std::strerror(e); }
+std::string errno_text(int e) {
+    return std::strerror(e);
+}
 
 // Reads at most max_bytes + 1 bytes, so a file that grew past the bound is noticed.
 std::optional<std::string> read_bounded(int fd, size_t max_bytes, std::string& why) {
@@ -62,7 +64,8 @@ SafeRead read_regular_file(const std::filesystem::path& path, size_t max_bytes) 
         return r;
     }
     if (static_cast<unsigned long long>(seen.st_size) > max_bytes) {
-        r.why = "is " + std::to_string(seen.st_size) + " bytes, more than " + std::to_string(max_bytes);
+        r.why =
+            "is " + std::to_string(seen.st_size) + " bytes, more than " + std::to_string(max_bytes);
         return r;
     }
     // O_NOFOLLOW and O_NONBLOCK: whatever was swapped in since the lstat, opening it neither
@@ -77,7 +80,8 @@ SafeRead read_regular_file(const std::filesystem::path& path, size_t max_bytes) 
     if (::fstat(fd, &opened) != 0) {
         const int e = errno;
         r.why = "cannot inspect: " + errno_text(e);
-    } else if (!S_ISREG(opened.st_mode) || opened.st_dev != seen.st_dev || opened.st_ino != seen.st_ino) {
+    } else if (!S_ISREG(opened.st_mode) || opened.st_dev != seen.st_dev ||
+               opened.st_ino != seen.st_ino) {
         r.why = "was replaced while being opened";
     } else {
         r.bytes = read_bounded(fd, max_bytes, r.why);

@@ -21,8 +21,13 @@ struct StageFileNames {
 StageFileNames stage_file_names(Language lang, ShaderStage stage) {
     const std::string dir = std::string(to_string(lang)) + "/";
     const std::string base = dir + kStem + "." + (stage == ShaderStage::Vertex ? "vert" : "frag");
-    return {dir + kStem + "." + file_extension(lang, stage), base + ".spv", base + ".opt.spv", base + ".330.glsl",
-            base + ".300es.glsl", base + ".metal", base + ".reflect.json"};
+    return {dir + kStem + "." + file_extension(lang, stage),
+            base + ".spv",
+            base + ".opt.spv",
+            base + ".330.glsl",
+            base + ".300es.glsl",
+            base + ".metal",
+            base + ".reflect.json"};
 }
 
 constexpr Language kLanguages[] = {Language::Glsl, Language::Hlsl};
@@ -30,13 +35,15 @@ constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment};
 
 StageBuild build_stage(EmittedShader source, Diagnostics& all) {
     StageBuild stage{std::move(source), {}};
-    CompileRequest request{stage.source.language == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl,
+    CompileRequest request{stage.source.language == Language::Glsl ? SourceLanguage::Glsl
+                                                                   : SourceLanguage::Hlsl,
                            stage.source.stage, stage.source.source, stage.source.file_name, "main"};
     stage.toolchain = run_toolchain(request);
     Diagnostics ds = stage.toolchain.diagnostics;
     // Only glslang's diagnostics point at lines of our emitted source.
     Diagnostics own, rest;
-    for (auto& d : ds) (d.file == stage.source.file_name ? own : rest).push_back(d);
+    for (auto& d : ds)
+        (d.file == stage.source.file_name ? own : rest).push_back(d);
     attribute_to_nodes(stage.source, own);
     all.insert(all.end(), own.begin(), own.end());
     all.insert(all.end(), rest.begin(), rest.end());
@@ -44,10 +51,13 @@ StageBuild build_stage(EmittedShader source, Diagnostics& all) {
 }
 
 std::string spirv_bytes(const std::vector<uint32_t>& words) {
-    return std::string(reinterpret_cast<const char*>(words.data()), words.size() * sizeof(uint32_t));
+    return std::string(reinterpret_cast<const char*>(words.data()),
+                       words.size() * sizeof(uint32_t));
 }
 
-std::string with_stamp(const std::string& stamp, const std::string& text) { return "// " + stamp + "\n" + text; }
+std::string with_stamp(const std::string& stamp, const std::string& text) {
+    return "// " + stamp + "\n" + text;
+}
 
 nlohmann::ordered_json describe(const VariantBuild& b) {
     nlohmann::ordered_json j;
@@ -55,26 +65,38 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
     j["key"] = b.shader.variant.key();
     j["preset"] = b.shader.preset;
     nlohmann::ordered_json choices = nlohmann::ordered_json::object();
-    for (const auto& a : axes()) choices[a.name] = b.shader.variant.choice(a.name);
+    for (const auto& a : axes())
+        choices[a.name] = b.shader.variant.choice(a.name);
     j["choices"] = choices;
     const ShaderInterface& in = b.languages[0].fragment.source.interface;
     nlohmann::ordered_json params = nlohmann::ordered_json::array();
     for (const auto& slot : in.uniforms.members)
         for (const auto& p : in.parameters)
             if (p.name == slot.name)
-                params.push_back({{"name", p.name}, {"type", type_name(p.type)}, {"offset", slot.offset},
-                                  {"default", p.default_value}, {"min", p.min}, {"max", p.max},
-                                  {"unit", p.unit}, {"seed", p.seed}, {"node", p.origin}});
-    j["uniform_block"] = {{"name", "WaterParams"}, {"set", 0}, {"binding", kParamsBinding},
-                          {"size", in.uniforms.size}, {"members", params}};
+                params.push_back({{"name", p.name},
+                                  {"type", type_name(p.type)},
+                                  {"offset", slot.offset},
+                                  {"default", p.default_value},
+                                  {"min", p.min},
+                                  {"max", p.max},
+                                  {"unit", p.unit},
+                                  {"seed", p.seed},
+                                  {"node", p.origin}});
+    j["uniform_block"] = {{"name", "WaterParams"},
+                          {"set", 0},
+                          {"binding", kParamsBinding},
+                          {"size", in.uniforms.size},
+                          {"members", params}};
     nlohmann::ordered_json textures = nlohmann::ordered_json::array();
-    for (const auto& t : in.textures) textures.push_back({{"name", t.name}, {"binding", t.binding}, {"type", type_name(t.type)}});
+    for (const auto& t : in.textures)
+        textures.push_back({{"name", t.name}, {"binding", t.binding}, {"type", type_name(t.type)}});
     j["textures"] = textures;
     nlohmann::ordered_json counts = nlohmann::ordered_json::object();
     for (const auto& lang : b.languages)
-        counts[to_string(lang.language)] = {{"fragment", lang.fragment.toolchain.instruction_count},
-                                            {"fragment_optimized", lang.fragment.toolchain.instruction_count_optimized},
-                                            {"vertex", lang.vertex.toolchain.instruction_count}};
+        counts[to_string(lang.language)] = {
+            {"fragment", lang.fragment.toolchain.instruction_count},
+            {"fragment_optimized", lang.fragment.toolchain.instruction_count_optimized},
+            {"vertex", lang.vertex.toolchain.instruction_count}};
     j["spirv_instructions"] = counts;
     return j;
 }
@@ -96,12 +118,14 @@ VariantBuild build_shader(WaterShader shader) {
         const Language lang = kLanguages[i];
         LanguageBuild& out = b.languages[i];
         out.language = lang;
-        EmittedShader frag = emit_fragment(b.shader.fragment, lang, stage_file_names(lang, ShaderStage::Fragment).source,
-                                           key, b.diagnostics);
+        EmittedShader frag =
+            emit_fragment(b.shader.fragment, lang,
+                          stage_file_names(lang, ShaderStage::Fragment).source, key, b.diagnostics);
         if (has_errors(b.diagnostics)) return b;
         out.fragment = build_stage(std::move(frag), b.diagnostics);
-        out.vertex = build_stage(emit_fullscreen_vertex(lang, stage_file_names(lang, ShaderStage::Vertex).source, key),
-                                 b.diagnostics);
+        out.vertex = build_stage(
+            emit_fullscreen_vertex(lang, stage_file_names(lang, ShaderStage::Vertex).source, key),
+            b.diagnostics);
     }
     return b;
 }
@@ -132,7 +156,8 @@ std::vector<std::string> variant_file_names() {
     for (Language lang : kLanguages)
         for (ShaderStage stage : kStages) {
             const StageFileNames n = stage_file_names(lang, stage);
-            names.insert(names.end(), {n.source, n.spirv, n.spirv_optimized, n.glsl330, n.essl300, n.msl, n.reflection});
+            names.insert(names.end(), {n.source, n.spirv, n.spirv_optimized, n.glsl330, n.essl300,
+                                       n.msl, n.reflection});
         }
     std::sort(names.begin(), names.end());
     return names;

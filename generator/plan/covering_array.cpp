@@ -69,7 +69,9 @@ std::vector<Variant> pairwise_covering_variants() {
                 if (!ok) continue;
                 size_t gain = 0;
                 for (size_t b = 0; b < n; ++b)
-                    if (set[b]) gain += uncovered.count(b < a ? Pair{b, pick[b], a, i} : Pair{a, i, b, pick[b]});
+                    if (set[b])
+                        gain += uncovered.count(b < a ? Pair{b, pick[b], a, i}
+                                                      : Pair{a, i, b, pick[b]});
                 if (best == SIZE_MAX || gain > best_gain) {
                     best = i;
                     best_gain = gain;
@@ -80,7 +82,8 @@ std::vector<Variant> pairwise_covering_variants() {
             set[a] = true;
         }
         for (size_t a = 0; a < n; ++a)
-            for (size_t b = a + 1; b < n; ++b) uncovered.erase({a, pick[a], b, pick[b]});
+            for (size_t b = a + 1; b < n; ++b)
+                uncovered.erase({a, pick[a], b, pick[b]});
         result.push_back(v);
     }
     return result;

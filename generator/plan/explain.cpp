@@ -9,15 +9,18 @@ namespace watergen {
 namespace {
 
 MaterialOverview overview(const Material& m) {
-    MaterialOverview o{m.name, m.file, count_variants(m.space), count_variants(full_space()), "", {}};
+    MaterialOverview o{m.name, m.file, count_variants(m.space), count_variants(full_space()),
+                       "",     {}};
     for (size_t i = 0; i < axes().size(); ++i)
         if (m.space.choices[i].size() > 1)
-            o.offered += fmt::format("{}{} {}", o.offered.empty() ? "" : " x ", axes()[i].name, m.space.choices[i].size());
+            o.offered += fmt::format("{}{} {}", o.offered.empty() ? "" : " x ", axes()[i].name,
+                                     m.space.choices[i].size());
     for (size_t i = builtin_rules().size(); i < m.space.rules.size(); ++i) {
         const Rule& r = m.space.rules[i];
         o.rules.push_back(fmt::format("{}={} {} {} in {{{}}}: {}{}", r.axis, r.choice,
-                                      r.kind == Rule::Kind::Requires ? "requires" : "excludes", r.other_axis,
-                                      fmt::join(r.other_choices, ", "), r.why, r.where.empty() ? "" : " [" + r.where + "]"));
+                                      r.kind == Rule::Kind::Requires ? "requires" : "excludes",
+                                      r.other_axis, fmt::join(r.other_choices, ", "), r.why,
+                                      r.where.empty() ? "" : " [" + r.where + "]"));
     }
     return o;
 }
@@ -29,31 +32,40 @@ std::string shape_of(const Graph& g) {
 }
 
 // What folding removed from one variant, one line per term, parameter and texture.
-void count_removals(const FoldResult& r, const FoldFacts& facts, std::map<std::string, size_t>& removals) {
+void count_removals(const FoldResult& r, const FoldFacts& facts,
+                    std::map<std::string, size_t>& removals) {
     for (const auto& t : r.report.removed) {
         if (!t.named) continue;
-        const FactSet fs = t.event >= 0 ? r.report.events[static_cast<size_t>(t.event)].facts : FactSet{};
-        ++removals[fmt::format("removes term {} ({}): {}", t.name, t.origin, describe_facts(facts, fs))];
+        const FactSet fs =
+            t.event >= 0 ? r.report.events[static_cast<size_t>(t.event)].facts : FactSet{};
+        ++removals[fmt::format("removes term {} ({}): {}", t.name, t.origin,
+                               describe_facts(facts, fs))];
     }
     for (const auto& p : r.report.removed_parameters)
-        ++removals[fmt::format("no longer reads parameter {}: {}", p.name, describe_facts(facts, p.facts))];
+        ++removals[fmt::format("no longer reads parameter {}: {}", p.name,
+                               describe_facts(facts, p.facts))];
     for (const auto& p : r.report.removed_textures)
-        ++removals[fmt::format("no longer reads texture {}: {}", p.name, describe_facts(facts, p.facts))];
+        ++removals[fmt::format("no longer reads texture {}: {}", p.name,
+                               describe_facts(facts, p.facts))];
 }
 
 VariantRewrites rewrites_of(const std::string& key, const FoldResult& r, const FoldFacts& facts) {
     VariantRewrites d{key, r.report.live_before, r.report.live_after, {}};
-    for (const auto& e : r.report.events) d.rewrites.push_back({e.origin, e.what, describe_facts(facts, e.facts)});
+    for (const auto& e : r.report.events)
+        d.rewrites.push_back({e.origin, e.what, describe_facts(facts, e.facts)});
     return d;
 }
 
-SceneExplanation explain_scene(const Material& m, const ScenePlan& plan, const std::string& detail_key, size_t sample) {
+SceneExplanation explain_scene(const Material& m, const ScenePlan& plan,
+                               const std::string& detail_key, size_t sample) {
     SceneExplanation x;
     x.plan = &plan;
     const FoldFacts& facts = plan.facts;
-    for (const auto& [name, fixed] : facts.fixed) x.fixes[name] = describe_facts(facts, FactSet().set(fixed.fact));
+    for (const auto& [name, fixed] : facts.fixed)
+        x.fixes[name] = describe_facts(facts, FactSet().set(fixed.fact));
     for (const auto& [q, fixed] : facts.fixed_quantities)
-        x.fixes[std::string(q.parameter.empty() ? q.id : q.parameter)] = describe_facts(facts, FactSet().set(fixed.fact));
+        x.fixes[std::string(q.parameter.empty() ? q.id : q.parameter)] =
+            describe_facts(facts, FactSet().set(fixed.fact));
     std::map<std::string, std::string> first_of_shape;
     // Folding takes a few milliseconds a variant: large spaces are explained from an evenly
     // spaced sample (the detailed variant always included).
@@ -80,7 +92,8 @@ SceneExplanation explain_scene(const Material& m, const ScenePlan& plan, const s
 }
 
 // Variants every plan skips, from the plans' skipped ordinals (one walk over the space).
-std::vector<UnreachedVariant> unreached_variants(const Material& m, const std::vector<ScenePlan>& scenes) {
+std::vector<UnreachedVariant> unreached_variants(const Material& m,
+                                                 const std::vector<ScenePlan>& scenes) {
     std::vector<UnreachedVariant> out;
     std::vector<size_t> cursor(scenes.size(), 0);
     uint32_t ordinal = 0;
@@ -90,9 +103,11 @@ std::vector<UnreachedVariant> unreached_variants(const Material& m, const std::v
         for (size_t s = 0; s < scenes.size(); ++s) {
             const auto& skipped = scenes[s].skipped_variants;
             size_t& c = cursor[s];
-            while (c < skipped.size() && skipped[c].ordinal < here) ++c;
+            while (c < skipped.size() && skipped[c].ordinal < here)
+                ++c;
             if (c == skipped.size() || skipped[c].ordinal != here) return;
-            u.reasons.push_back({scenes[s].scene.name, scenes[s].skipped_groups[skipped[c].group].text()});
+            u.reasons.push_back(
+                {scenes[s].scene.name, scenes[s].skipped_groups[skipped[c].group].text()});
         }
         u.key = v.key();
         out.push_back(std::move(u));
@@ -102,10 +117,12 @@ std::vector<UnreachedVariant> unreached_variants(const Material& m, const std::v
 
 } // namespace
 
-Explanation explain_plans(const Material& m, const std::vector<ScenePlan>& scenes, const std::string& detail_key, size_t sample) {
+Explanation explain_plans(const Material& m, const std::vector<ScenePlan>& scenes,
+                          const std::string& detail_key, size_t sample) {
     Explanation e;
     e.material = overview(m);
-    for (const ScenePlan& s : scenes) e.scenes.push_back(explain_scene(m, s, detail_key, sample));
+    for (const ScenePlan& s : scenes)
+        e.scenes.push_back(explain_scene(m, s, detail_key, sample));
     e.unreached = unreached_variants(m, scenes);
     return e;
 }

@@ -19,25 +19,35 @@ bool JsonReader::fail(const std::string& pointer, const std::string& what) {
     return false;
 }
 
-bool JsonReader::has(const std::string& pointer) const { return source_.root().contains(Json::json_pointer(pointer)); }
+bool JsonReader::has(const std::string& pointer) const {
+    return source_.root().contains(Json::json_pointer(pointer));
+}
 
-const Json& JsonReader::at(const std::string& pointer) const { return source_.root().at(Json::json_pointer(pointer)); }
+const Json& JsonReader::at(const std::string& pointer) const {
+    return source_.root().at(Json::json_pointer(pointer));
+}
 
 std::vector<std::string> JsonReader::members(const std::string& pointer) const {
     std::vector<std::string> names;
-    for (const auto& [k, _] : at(pointer).items()) names.push_back(k);
+    for (const auto& [k, _] : at(pointer).items())
+        names.push_back(k);
     return names;
 }
 
 bool JsonReader::keys(const std::string& pointer, const std::vector<std::string>& allowed,
                       const std::vector<std::string>& required, const std::string& missing_note) {
     const Json& v = at(pointer);
-    if (!v.is_object()) return fail(pointer, "expected an object with keys " + join(allowed) + ", got " + json_describe(v));
+    if (!v.is_object())
+        return fail(pointer,
+                    "expected an object with keys " + join(allowed) + ", got " + json_describe(v));
     for (const auto& [k, _] : v.items())
         if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
-            return fail(json_child(pointer, k), "unknown key '" + k + "'; expected one of " + join(allowed));
+            return fail(json_child(pointer, k),
+                        "unknown key '" + k + "'; expected one of " + join(allowed));
     for (const auto& k : required)
-        if (!v.contains(k)) return fail(pointer, "missing key '" + k + "'" + (missing_note.empty() ? "" : " " + missing_note));
+        if (!v.contains(k))
+            return fail(pointer, "missing key '" + k + "'" +
+                                     (missing_note.empty() ? "" : " " + missing_note));
     return true;
 }
 
@@ -72,7 +82,8 @@ bool JsonReader::number(const std::string& pointer, double& out) {
     return read(pointer);
 }
 
-bool JsonReader::string_in(const std::string& pointer, const std::vector<std::string>& allowed, std::string& out) {
+bool JsonReader::string_in(const std::string& pointer, const std::vector<std::string>& allowed,
+                           std::string& out) {
     if (!string(pointer, out)) return false;
     if (std::find(allowed.begin(), allowed.end(), out) == allowed.end())
         return fail(pointer, "unknown value '" + out + "'; expected one of " + join(allowed));
@@ -81,7 +92,8 @@ bool JsonReader::string_in(const std::string& pointer, const std::vector<std::st
 
 bool JsonReader::strings(const std::string& pointer, std::vector<std::string>& out) {
     const Json& v = at(pointer);
-    if (!v.is_array()) return fail(pointer, "expected an array of strings, got " + json_describe(v));
+    if (!v.is_array())
+        return fail(pointer, "expected an array of strings, got " + json_describe(v));
     out.assign(v.size(), "");
     for (size_t i = 0; i < v.size(); ++i)
         if (!string(json_child(pointer, i), out[i])) return false;
@@ -91,12 +103,15 @@ bool JsonReader::strings(const std::string& pointer, std::vector<std::string>& o
 bool JsonReader::strings_in(const std::string& pointer, const std::vector<std::string>& allowed,
                             std::vector<std::string>& out) {
     const Json& v = at(pointer);
-    if (!v.is_array()) return fail(pointer, "expected an array of strings (" + join(allowed) + "), got " + json_describe(v));
+    if (!v.is_array())
+        return fail(pointer, "expected an array of strings (" + join(allowed) + "), got " +
+                                 json_describe(v));
     out.assign(v.size(), "");
     std::set<std::string> seen;
     for (size_t i = 0; i < v.size(); ++i) {
         if (!string_in(json_child(pointer, i), allowed, out[i])) return false;
-        if (!seen.insert(out[i]).second) return fail(json_child(pointer, i), "'" + out[i] + "' is listed twice");
+        if (!seen.insert(out[i]).second)
+            return fail(json_child(pointer, i), "'" + out[i] + "' is listed twice");
     }
     return read(pointer);
 }
@@ -115,11 +130,15 @@ bool JsonReader::numbers(const std::string& pointer, std::vector<double>& out, s
     return read(pointer);
 }
 
-bool JsonReader::range(const std::string& pointer, double& min, double& max, const NumberBounds* bounds) {
+bool JsonReader::range(const std::string& pointer, double& min, double& max,
+                       const NumberBounds* bounds) {
     const Json& v = at(pointer);
-    if (!v.is_object()) return fail(pointer, "expected an object {\"min\": number, \"max\": number}, got " + json_describe(v));
+    if (!v.is_object())
+        return fail(pointer, "expected an object {\"min\": number, \"max\": number}, got " +
+                                 json_describe(v));
     for (const auto& [k, _] : v.items())
-        if (k != "min" && k != "max") return fail(json_child(pointer, k), "unknown key '" + k + "'; expected min or max");
+        if (k != "min" && k != "max")
+            return fail(json_child(pointer, k), "unknown key '" + k + "'; expected min or max");
     for (const char* k : {"min", "max"})
         if (!v.contains(k)) return fail(pointer, std::string("missing key '") + k + "'");
     if (!number(pointer + "/min", min) || !number(pointer + "/max", max)) return false;
@@ -128,11 +147,14 @@ bool JsonReader::range(const std::string& pointer, double& min, double& max, con
         const std::string unit = bounds->unit.empty() ? "" : " " + bounds->unit;
         for (const auto& [k, x] : {std::pair{"/min", min}, std::pair{"/max", max}})
             if (x < bounds->min || x > bounds->max)
-                return fail(pointer + k, spell_number(x) + unit + " is out of range; expected a value in [" +
-                                             spell_number(bounds->min) + ", " + spell_number(bounds->max) + "]" + unit);
+                return fail(pointer + k, spell_number(x) + unit +
+                                             " is out of range; expected a value in [" +
+                                             spell_number(bounds->min) + ", " +
+                                             spell_number(bounds->max) + "]" + unit);
     }
     if (min > max)
-        return fail(pointer, "min " + spell_number(min) + " is above max " + spell_number(max) + "; expected min <= max");
+        return fail(pointer, "min " + spell_number(min) + " is above max " + spell_number(max) +
+                                 "; expected min <= max");
     return true;
 }
 

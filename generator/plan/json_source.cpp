@@ -39,17 +39,23 @@ struct CountingIterator {
     bool operator!=(const CountingIterator& o) const { return p != o.p; }
 };
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
 bool is_scalar_char(char c) {
-    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '.' || c == '+' || c == '-';
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '.' ||
+           c == '+' || c == '-';
 }
 
 std::string escape_pointer_token(const std::string& key) {
     std::string s;
     for (char c : key) {
-        if (c == '~') s += "~0";
-        else if (c == '/') s += "~1";
-        else s += c;
+        if (c == '~')
+            s += "~0";
+        else if (c == '/')
+            s += "~1";
+        else
+            s += c;
     }
     return s;
 }
@@ -69,27 +75,38 @@ JsonPosition position_of_offset(const std::string& text, size_t offset) {
     return p;
 }
 
-std::string json_child(const std::string& parent, const std::string& key) { return parent + "/" + escape_pointer_token(key); }
-std::string json_child(const std::string& parent, size_t index) { return parent + "/" + std::to_string(index); }
+std::string json_child(const std::string& parent, const std::string& key) {
+    return parent + "/" + escape_pointer_token(key);
+}
+std::string json_child(const std::string& parent, size_t index) {
+    return parent + "/" + std::to_string(index);
+}
 
 std::string json_describe(const Json& v) {
     switch (v.type()) {
-    case Json::value_t::null: return "null";
-    case Json::value_t::boolean: return std::string("a boolean (") + (v.get<bool>() ? "true" : "false") + ")";
+    case Json::value_t::null:
+        return "null";
+    case Json::value_t::boolean:
+        return std::string("a boolean (") + (v.get<bool>() ? "true" : "false") + ")";
     case Json::value_t::number_integer:
     case Json::value_t::number_unsigned:
-    case Json::value_t::number_float: return "a number (" + v.dump() + ")";
-    case Json::value_t::string: return "a string (" + v.dump() + ")";
-    case Json::value_t::array: return "an array";
-    case Json::value_t::object: return "an object";
-    default: return "a " + std::string(v.type_name());
+    case Json::value_t::number_float:
+        return "a number (" + v.dump() + ")";
+    case Json::value_t::string:
+        return "a string (" + v.dump() + ")";
+    case Json::value_t::array:
+        return "an array";
+    case Json::value_t::object:
+        return "an object";
+    default:
+        return "a " + std::string(v.type_name());
     }
 }
 
 // Builds the DOM and records, per JSON pointer, where its key (object members) or its value
 // (array elements, the root) starts.
 class JsonSaxBuilder {
-public:
+  public:
     JsonSaxBuilder(JsonSource& out, const std::string& text, const size_t& consumed)
         : out_(out), text_(text), consumed_(consumed) {}
 
@@ -114,7 +131,11 @@ public:
         Frame& f = stack_.back();
         if (f.node->contains(k)) {
             const JsonPosition p = token_start(true);
-            error_ = Diagnostic{Severity::Error, out_.file_, p.line, p.column, "",
+            error_ = Diagnostic{Severity::Error,
+                                out_.file_,
+                                p.line,
+                                p.column,
+                                "",
                                 json_child(f.pointer, k) + ": duplicate key '" + k + "'"};
             return false;
         }
@@ -122,19 +143,23 @@ public:
         out_.positions_[json_child(f.pointer, k)] = token_start(true);
         return true;
     }
-    bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) {
-        // nlohmann's message: "[json.exception.parse_error.101] parse error at line L, column C: what".
+    bool parse_error(std::size_t position, const std::string&,
+                     const nlohmann::detail::exception& ex) {
+        // nlohmann's message: "[json.exception.parse_error.101] parse error at line L, column C:
+        // what".
         std::string what = ex.what();
-        if (const size_t colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
+        if (const size_t colon = what.find(": "); colon != std::string::npos)
+            what = what.substr(colon + 2);
         const size_t offset = position > 0 ? position - 1 : 0;
         const JsonPosition p = position_of_offset(text_, offset);
-        error_ = Diagnostic{Severity::Error, out_.file_, p.line, p.column, "", "invalid JSON: " + what};
+        error_ =
+            Diagnostic{Severity::Error, out_.file_, p.line, p.column, "", "invalid JSON: " + what};
         return false;
     }
 
     const std::optional<Diagnostic>& error() const { return error_; }
 
-private:
+  private:
     struct Frame {
         Json* node;
         std::string pointer;
@@ -145,9 +170,15 @@ private:
     bool too_deep() {
         if (stack_.size() < kMaxJsonDepth) return false;
         const JsonPosition p = token_start(false, true);
-        error_ = Diagnostic{Severity::Error, out_.file_, p.line, p.column, "",
-                            fmt::format("invalid JSON: nested deeper than {} levels, the limit for description files",
-                                        kMaxJsonDepth)};
+        error_ = Diagnostic{
+            Severity::Error,
+            out_.file_,
+            p.line,
+            p.column,
+            "",
+            fmt::format(
+                "invalid JSON: nested deeper than {} levels, the limit for description files",
+                kMaxJsonDepth)};
         return true;
     }
 
@@ -162,14 +193,16 @@ private:
     JsonPosition token_start(bool quoted, bool container = false) const {
         size_t i = consumed_;
         if (container) return position_of_offset(text_, i > 0 ? i - 1 : 0);
-        while (i > 0 && is_space(text_[i - 1])) --i;
+        while (i > 0 && is_space(text_[i - 1]))
+            --i;
         if (quoted) {
             // text_[i - 1] is the closing quote; find the opening one (not escaped).
             size_t j = i >= 2 ? i - 2 : 0;
             while (j > 0) {
                 if (text_[j] == '"') {
                     size_t slashes = 0;
-                    while (j >= slashes + 1 && text_[j - slashes - 1] == '\\') ++slashes;
+                    while (j >= slashes + 1 && text_[j - slashes - 1] == '\\')
+                        ++slashes;
                     if (slashes % 2 == 0) break;
                 }
                 --j;
@@ -179,9 +212,11 @@ private:
         // Numbers are read one character past their end: step back over that look-ahead.
         if (i > 0 && !is_scalar_char(text_[i - 1])) {
             --i;
-            while (i > 0 && is_space(text_[i - 1])) --i;
+            while (i > 0 && is_space(text_[i - 1]))
+                --i;
         }
-        while (i > 0 && is_scalar_char(text_[i - 1])) --i;
+        while (i > 0 && is_scalar_char(text_[i - 1]))
+            --i;
         return position_of_offset(text_, i);
     }
 
@@ -223,14 +258,22 @@ constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
 
 Diagnostic too_large(const std::string& text, const std::string& file) {
     const JsonPosition p = position_of_offset(text, kMaxJsonBytes);
-    return Diagnostic{Severity::Error, file, p.line, p.column, "",
-                      fmt::format("the file is larger than {} bytes (4 MiB), the limit for description files", kMaxJsonBytes)};
+    return Diagnostic{
+        Severity::Error,
+        file,
+        p.line,
+        p.column,
+        "",
+        fmt::format("the file is larger than {} bytes (4 MiB), the limit for description files",
+                    kMaxJsonBytes)};
 }
 
 } // namespace
 
-std::optional<JsonSource> JsonSource::parse(const std::string& input, const std::string& file, Diagnostic* error) {
-    const bool bom = std::string_view(input).substr(0, kUtf8ByteOrderMark.size()) == kUtf8ByteOrderMark;
+std::optional<JsonSource> JsonSource::parse(const std::string& input, const std::string& file,
+                                            Diagnostic* error) {
+    const bool bom =
+        std::string_view(input).substr(0, kUtf8ByteOrderMark.size()) == kUtf8ByteOrderMark;
     const std::string text = bom ? input.substr(kUtf8ByteOrderMark.size()) : input;
     if (text.size() > kMaxJsonBytes) {
         if (error) *error = too_large(text, file);
@@ -245,7 +288,8 @@ std::optional<JsonSource> JsonSource::parse(const std::string& input, const std:
     const bool ok = Json::sax_parse(first, last, &sax);
     if (!ok || sax.error()) {
         if (error)
-            *error = sax.error() ? *sax.error() : Diagnostic{Severity::Error, file, 0, 0, "", "invalid JSON"};
+            *error = sax.error() ? *sax.error()
+                                 : Diagnostic{Severity::Error, file, 0, 0, "", "invalid JSON"};
         return std::nullopt;
     }
     return src;
@@ -254,7 +298,8 @@ std::optional<JsonSource> JsonSource::parse(const std::string& input, const std:
 std::optional<JsonSource> JsonSource::load(const std::filesystem::path& path, Diagnostic* error) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        if (error) *error = Diagnostic{Severity::Error, path.string(), 0, 0, "", "cannot open the file"};
+        if (error)
+            *error = Diagnostic{Severity::Error, path.string(), 0, 0, "", "cannot open the file"};
         return std::nullopt;
     }
     // One byte past the limit (and the byte order mark) is enough to tell that a file is too large.
@@ -286,7 +331,8 @@ std::string JsonSource::where(const std::string& pointer) const {
 
 Diagnostic JsonSource::error(const std::string& pointer, const std::string& what) const {
     const JsonPosition p = position(pointer);
-    return Diagnostic{Severity::Error, file_, p.line, p.column, "", (pointer.empty() ? "/" : pointer) + ": " + what};
+    return Diagnostic{Severity::Error, file_, p.line,
+                      p.column,        "",    (pointer.empty() ? "/" : pointer) + ": " + what};
 }
 
 } // namespace watergen

@@ -10,31 +10,44 @@ namespace {
 // A copy of `g` whose parameter declarations carry `params` (same nodes, same ids).
 Graph with_parameters(const Graph& g, const std::vector<Parameter>& params) {
     Graph out;
-    for (const Parameter& p : params) out.declare_parameter(p);
-    for (const auto& t : g.textures()) out.declare_texture(t);
-    for (uint32_t id = 0; id < g.size(); ++id) out.add(g.node(id));
-    for (const auto& o : g.outputs()) out.set_output(o.name, o.node);
-    for (const auto& b : g.bindings()) out.bind(b.quantity, b.node); // same ids: the scene facts still apply
+    for (const Parameter& p : params)
+        out.declare_parameter(p);
+    for (const auto& t : g.textures())
+        out.declare_texture(t);
+    for (uint32_t id = 0; id < g.size(); ++id)
+        out.add(g.node(id));
+    for (const auto& o : g.outputs())
+        out.set_output(o.name, o.node);
+    for (const auto& b : g.bindings())
+        out.bind(b.quantity, b.node); // same ids: the scene facts still apply
     return out;
 }
 
 } // namespace
 
 const std::vector<Target>& all_targets() {
-    static const std::vector<Target> list = {Target::Glsl, Target::Hlsl, Target::Spirv, Target::Glsl330,
-                                             Target::Essl300, Target::Msl, Target::Reflection};
+    static const std::vector<Target> list = {Target::Glsl,      Target::Hlsl,    Target::Spirv,
+                                             Target::Glsl330,   Target::Essl300, Target::Msl,
+                                             Target::Reflection};
     return list;
 }
 
 const char* to_string(Target t) {
     switch (t) {
-    case Target::Glsl: return "glsl";
-    case Target::Hlsl: return "hlsl";
-    case Target::Spirv: return "spirv";
-    case Target::Glsl330: return "glsl330";
-    case Target::Essl300: return "essl300";
-    case Target::Msl: return "msl";
-    case Target::Reflection: return "reflection";
+    case Target::Glsl:
+        return "glsl";
+    case Target::Hlsl:
+        return "hlsl";
+    case Target::Spirv:
+        return "spirv";
+    case Target::Glsl330:
+        return "glsl330";
+    case Target::Essl300:
+        return "essl300";
+    case Target::Msl:
+        return "msl";
+    case Target::Reflection:
+        return "reflection";
     }
     return "?";
 }
@@ -47,7 +60,8 @@ std::optional<Target> parse_target(const std::string& name) {
 
 std::string target_names() {
     std::vector<std::string> names;
-    for (Target t : all_targets()) names.push_back(to_string(t));
+    for (Target t : all_targets())
+        names.push_back(to_string(t));
     return join(names);
 }
 

@@ -15,13 +15,15 @@ namespace {
 
 std::vector<std::string> choice_names(const AxisInfo& a) {
     std::vector<std::string> names;
-    for (const auto& c : a.choices) names.push_back(c.name);
+    for (const auto& c : a.choices)
+        names.push_back(c.name);
     return names;
 }
 
 std::string axis_names() {
     std::vector<std::string> names;
-    for (const auto& a : axes()) names.push_back(a.name);
+    for (const auto& a : axes())
+        names.push_back(a.name);
     return join(names);
 }
 
@@ -37,11 +39,14 @@ bool has_choice(const AxisInfo& a, const std::string& choice) {
     return false;
 }
 
-std::string unit_suffix(const Parameter& p) { return p.unit.empty() ? "" : " " + p.unit; }
+std::string unit_suffix(const Parameter& p) {
+    return p.unit.empty() ? "" : " " + p.unit;
+}
 
 // The rule that rules `choice` of `axis` out: the first one broken with that choice fixed.
 // *subject tells whether the rule is about that choice.
-std::string why_unusable(const VariantSpace& space, size_t axis, const std::string& choice, bool* subject) {
+std::string why_unusable(const VariantSpace& space, size_t axis, const std::string& choice,
+                         bool* subject) {
     VariantSpace probe = space;
     probe.choices[axis] = {choice};
     probe.rules.clear();
@@ -59,31 +64,36 @@ std::string why_unusable(const VariantSpace& space, size_t axis, const std::stri
 // Parameters the offered nodes declare, found by composing one valid variant per offered choice.
 std::map<std::string, Parameter> declared_parameters(const VariantSpace& space) {
     std::vector<std::set<std::string>> pending(axes().size());
-    for (size_t i = 0; i < axes().size(); ++i) pending[i] = {space.choices[i].begin(), space.choices[i].end()};
+    for (size_t i = 0; i < axes().size(); ++i)
+        pending[i] = {space.choices[i].begin(), space.choices[i].end()};
     std::vector<Variant> probes;
     enumerate(space, [&](const Variant& v) {
         bool fresh = false;
-        for (size_t i = 0; i < axes().size(); ++i) fresh = pending[i].erase(v.choices[i]) > 0 || fresh;
+        for (size_t i = 0; i < axes().size(); ++i)
+            fresh = pending[i].erase(v.choices[i]) > 0 || fresh;
         if (fresh) probes.push_back(v);
     });
     std::map<std::string, Parameter> declared;
     for (const Variant& v : probes) {
         const WaterShader s = build_water_shader(v, nullptr);
-        for (const Parameter& p : s.fragment.parameters()) declared.emplace(p.name, p);
+        for (const Parameter& p : s.fragment.parameters())
+            declared.emplace(p.name, p);
     }
     return declared;
 }
 
 } // namespace
 
-MaterialBuilder::MaterialBuilder(std::string name, SourceRef at) : name_(std::move(name)), name_at_(std::move(at)) {}
+MaterialBuilder::MaterialBuilder(std::string name, SourceRef at)
+    : name_(std::move(name)), name_at_(std::move(at)) {}
 
 MaterialBuilder& MaterialBuilder::description(std::string text) {
     description_ = std::move(text);
     return *this;
 }
 
-MaterialBuilder& MaterialBuilder::offer(const std::string& axis, const std::vector<std::string>& choices, SourceRef at) {
+MaterialBuilder& MaterialBuilder::offer(const std::string& axis,
+                                        const std::vector<std::string>& choices, SourceRef at) {
     offers_.push_back({axis, choices, false, std::move(at)});
     return *this;
 }
@@ -93,19 +103,25 @@ MaterialBuilder& MaterialBuilder::offer_all(const std::string& axis, SourceRef a
     return *this;
 }
 
-MaterialBuilder& MaterialBuilder::requires_choice(const std::string& axis, const std::string& choice,
+MaterialBuilder& MaterialBuilder::requires_choice(const std::string& axis,
+                                                  const std::string& choice,
                                                   const std::string& other_axis,
-                                                  const std::vector<std::string>& other_choices, std::string why,
-                                                  SourceRef at) {
-    rules_.push_back({{Rule::Kind::Requires, axis, choice, other_axis, other_choices, std::move(why), at.where()}, at});
+                                                  const std::vector<std::string>& other_choices,
+                                                  std::string why, SourceRef at) {
+    rules_.push_back({{Rule::Kind::Requires, axis, choice, other_axis, other_choices,
+                       std::move(why), at.where()},
+                      at});
     return *this;
 }
 
-MaterialBuilder& MaterialBuilder::excludes_choice(const std::string& axis, const std::string& choice,
+MaterialBuilder& MaterialBuilder::excludes_choice(const std::string& axis,
+                                                  const std::string& choice,
                                                   const std::string& other_axis,
-                                                  const std::vector<std::string>& other_choices, std::string why,
-                                                  SourceRef at) {
-    rules_.push_back({{Rule::Kind::Excludes, axis, choice, other_axis, other_choices, std::move(why), at.where()}, at});
+                                                  const std::vector<std::string>& other_choices,
+                                                  std::string why, SourceRef at) {
+    rules_.push_back({{Rule::Kind::Excludes, axis, choice, other_axis, other_choices,
+                       std::move(why), at.where()},
+                      at});
     return *this;
 }
 
@@ -114,12 +130,14 @@ MaterialBuilder& MaterialBuilder::preset(const std::string& name, SourceRef at) 
     return *this;
 }
 
-MaterialBuilder& MaterialBuilder::parameter(const std::string& name, const std::vector<double>& value, SourceRef at) {
+MaterialBuilder& MaterialBuilder::parameter(const std::string& name,
+                                            const std::vector<double>& value, SourceRef at) {
     parameters_.push_back({name, value, std::nullopt, std::move(at)});
     return *this;
 }
 
-MaterialBuilder& MaterialBuilder::range(const std::string& name, double min, double max, SourceRef at) {
+MaterialBuilder& MaterialBuilder::range(const std::string& name, double min, double max,
+                                        SourceRef at) {
     parameters_.push_back({name, std::nullopt, std::make_pair(min, max), std::move(at)});
     return *this;
 }
@@ -136,10 +154,11 @@ MaterialBuilder& MaterialBuilder::targets(const std::vector<std::string>& names,
 // ranges; the targets.
 std::optional<Material> MaterialBuilder::build(Diagnostics& diagnostics) const {
     using Step = std::optional<Diagnostic> (MaterialBuilder::*)(Material&) const;
-    static constexpr Step kSteps[] = {&MaterialBuilder::check_name,       &MaterialBuilder::check_offers,
-                                      &MaterialBuilder::check_rules,      &MaterialBuilder::check_usable,
-                                      &MaterialBuilder::check_preset,     &MaterialBuilder::check_parameters,
-                                      &MaterialBuilder::check_values,     &MaterialBuilder::check_targets};
+    static constexpr Step kSteps[] = {
+        &MaterialBuilder::check_name,   &MaterialBuilder::check_offers,
+        &MaterialBuilder::check_rules,  &MaterialBuilder::check_usable,
+        &MaterialBuilder::check_preset, &MaterialBuilder::check_parameters,
+        &MaterialBuilder::check_values, &MaterialBuilder::check_targets};
     Material m;
     m.name = name_;
     m.description = description_;
@@ -153,19 +172,23 @@ std::optional<Material> MaterialBuilder::build(Diagnostics& diagnostics) const {
 }
 
 std::optional<Diagnostic> MaterialBuilder::check_name(Material&) const {
-    if (name_.empty() || name_.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
-        return name_at_.error("material name '" + name_ + "': expected lower-case letters, digits, '_' or '-'");
+    if (name_.empty() ||
+        name_.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
+        return name_at_.error("material name '" + name_ +
+                              "': expected lower-case letters, digits, '_' or '-'");
     return std::nullopt;
 }
 
 // The default of every axis, replaced by what the material offers.
 std::optional<Diagnostic> MaterialBuilder::check_offers(Material& m) const {
     m.space.choices.resize(axes().size());
-    for (size_t i = 0; i < axes().size(); ++i) m.space.choices[i] = {axes()[i].default_choice};
+    for (size_t i = 0; i < axes().size(); ++i)
+        m.space.choices[i] = {axes()[i].default_choice};
     std::vector<bool> offered(axes().size(), false);
     for (const Offer& o : offers_) {
         const size_t i = axis_index(o.axis);
-        if (i == axes().size()) return o.at.error("unknown axis '" + o.axis + "'; expected one of " + axis_names());
+        if (i == axes().size())
+            return o.at.error("unknown axis '" + o.axis + "'; expected one of " + axis_names());
         if (offered[i]) return o.at.error("axis '" + o.axis + "' is offered twice");
         offered[i] = true;
         if (auto error = offered_choices(o, m.space.choices[i])) return error;
@@ -175,20 +198,24 @@ std::optional<Diagnostic> MaterialBuilder::check_offers(Material& m) const {
 
 // The choices of one offer, in documentation order whatever the order of the call: the space
 // is canonical.
-std::optional<Diagnostic> MaterialBuilder::offered_choices(const Offer& o, std::vector<std::string>& choices) {
+std::optional<Diagnostic> MaterialBuilder::offered_choices(const Offer& o,
+                                                           std::vector<std::string>& choices) {
     const AxisInfo& a = axes()[axis_index(o.axis)];
     if (o.all) {
         choices = choice_names(a);
         return std::nullopt;
     }
     if (o.choices.empty())
-        return o.at.error("axis '" + o.axis + "' offers no choice; expected at least one of " + join(choice_names(a)));
+        return o.at.error("axis '" + o.axis + "' offers no choice; expected at least one of " +
+                          join(choice_names(a)));
     std::set<std::string> seen;
     for (size_t k = 0; k < o.choices.size(); ++k) {
         const std::string& c = o.choices[k];
         if (!has_choice(a, c))
-            return o.at.child(k).error("unknown " + o.axis + " choice '" + c + "'; expected one of " + join(choice_names(a)));
-        if (!seen.insert(c).second) return o.at.child(k).error(o.axis + " choice '" + c + "' is listed twice");
+            return o.at.child(k).error("unknown " + o.axis + " choice '" + c +
+                                       "'; expected one of " + join(choice_names(a)));
+        if (!seen.insert(c).second)
+            return o.at.child(k).error(o.axis + " choice '" + c + "' is listed twice");
     }
     choices.clear();
     for (const auto& c : a.choices)
@@ -206,17 +233,22 @@ std::optional<Diagnostic> MaterialBuilder::check_rules(Material& m) const {
         const AxisInfo& a = axes()[axis_index(r.rule.axis)];
         const AxisInfo& b = axes()[axis_index(r.rule.other_axis)];
         if (!has_choice(a, r.rule.choice))
-            return r.at.error("unknown " + a.name + " choice '" + r.rule.choice + "'; expected one of " + join(choice_names(a)));
-        if (r.rule.axis == r.rule.other_axis) return r.at.error("a rule relates two different axes; got " + a.name + " twice");
+            return r.at.error("unknown " + a.name + " choice '" + r.rule.choice +
+                              "'; expected one of " + join(choice_names(a)));
+        if (r.rule.axis == r.rule.other_axis)
+            return r.at.error("a rule relates two different axes; got " + a.name + " twice");
         const auto& on_offer = m.space.choices[axis_index(r.rule.axis)];
         if (std::find(on_offer.begin(), on_offer.end(), r.rule.choice) == on_offer.end())
-            return r.at.error("rule about " + a.name + "=" + r.rule.choice + ", which the material does not offer (offered: " +
-                              join(on_offer) + ")");
+            return r.at.error("rule about " + a.name + "=" + r.rule.choice +
+                              ", which the material does not offer (offered: " + join(on_offer) +
+                              ")");
         if (r.rule.other_choices.empty())
-            return r.at.error("rule lists no " + b.name + " choice; expected at least one of " + join(choice_names(b)));
+            return r.at.error("rule lists no " + b.name + " choice; expected at least one of " +
+                              join(choice_names(b)));
         for (const auto& c : r.rule.other_choices)
             if (!has_choice(b, c))
-                return r.at.error("unknown " + b.name + " choice '" + c + "'; expected one of " + join(choice_names(b)));
+                return r.at.error("unknown " + b.name + " choice '" + c + "'; expected one of " +
+                                  join(choice_names(b)));
         m.space.rules.push_back(r.rule);
     }
     return std::nullopt;
@@ -229,7 +261,8 @@ std::optional<Diagnostic> MaterialBuilder::check_usable(Material& m) const {
     size_t count = 0;
     enumerate(m.space, [&](const Variant& v) {
         ++count;
-        for (size_t i = 0; i < axes().size(); ++i) used[i].insert(v.choices[i]);
+        for (size_t i = 0; i < axes().size(); ++i)
+            used[i].insert(v.choices[i]);
     });
     std::optional<Diagnostic> first_unusable;
     for (size_t i = 0; i < axes().size(); ++i)
@@ -237,13 +270,15 @@ std::optional<Diagnostic> MaterialBuilder::check_usable(Material& m) const {
             if (used[i].count(c)) continue;
             bool subject = false;
             const std::string why = why_unusable(m.space, i, c, &subject);
-            Diagnostic d = offered_at(i, c).error("contradictory constraints: " + axes()[i].name + "=" + c +
-                                                  " is offered but no valid variant can use it: " + why);
+            Diagnostic d =
+                offered_at(i, c).error("contradictory constraints: " + axes()[i].name + "=" + c +
+                                       " is offered but no valid variant can use it: " + why);
             if (subject) return d;
             if (!first_unusable) first_unusable = d;
         }
     if (first_unusable) return first_unusable;
-    if (count == 0) return name_at_.error("contradictory constraints: the material has no valid variant");
+    if (count == 0)
+        return name_at_.error("contradictory constraints: the material has no valid variant");
     return std::nullopt;
 }
 
@@ -261,7 +296,8 @@ SourceRef MaterialBuilder::offered_at(size_t axis, const std::string& choice) co
 std::optional<Diagnostic> MaterialBuilder::check_preset(Material& m) const {
     if (!preset_) return std::nullopt;
     if (!find_preset(preset_->first))
-        return preset_->second.error("unknown preset '" + preset_->first + "'; expected one of " + preset_names());
+        return preset_->second.error("unknown preset '" + preset_->first + "'; expected one of " +
+                                     preset_names());
     m.preset = preset_->first;
     return std::nullopt;
 }
@@ -270,11 +306,13 @@ std::optional<Diagnostic> MaterialBuilder::check_preset(Material& m) const {
 std::optional<Diagnostic> MaterialBuilder::check_parameters(Material& m) const {
     m.declared = declared_parameters(m.space);
     std::vector<std::string> declared_names;
-    for (const auto& [n, p] : m.declared) declared_names.push_back(n);
+    for (const auto& [n, p] : m.declared)
+        declared_names.push_back(n);
     for (const ParameterCall& call : parameters_) {
         auto it = m.declared.find(call.name);
         if (it == m.declared.end())
-            return call.at.error("unknown parameter '" + call.name + "'; the offered nodes read " + join(declared_names));
+            return call.at.error("unknown parameter '" + call.name + "'; the offered nodes read " +
+                                 join(declared_names));
         ParameterSetting& s = m.parameters[call.name];
         if (s.where.empty()) s.where = call.at.where();
         if (auto error = apply_setting(call, it->second, s)) return error;
@@ -282,25 +320,28 @@ std::optional<Diagnostic> MaterialBuilder::check_parameters(Material& m) const {
     return std::nullopt;
 }
 
-std::optional<Diagnostic> MaterialBuilder::apply_setting(const ParameterCall& call, const Parameter& p, ParameterSetting& s) {
+std::optional<Diagnostic> MaterialBuilder::apply_setting(const ParameterCall& call,
+                                                         const Parameter& p, ParameterSetting& s) {
     if (call.value) {
         if (s.value) return call.at.error("parameter '" + call.name + "' is given a value twice");
         const size_t n = static_cast<size_t>(component_count(p.type));
         if (call.value->size() != n)
-            return call.at.error(fmt::format("parameter '{}' is a {}: expected {} number{}, got {}", call.name,
-                                             type_name(p.type), n, n == 1 ? "" : "s", call.value->size()));
+            return call.at.error(fmt::format("parameter '{}' is a {}: expected {} number{}, got {}",
+                                             call.name, type_name(p.type), n, n == 1 ? "" : "s",
+                                             call.value->size()));
         s.value = *call.value;
     }
     if (call.range) {
         if (s.min) return call.at.error("parameter '" + call.name + "' is given a range twice");
         const auto [lo, hi] = *call.range;
         if (lo > hi)
-            return call.at.error("range of '" + call.name + "': min " + spell_number(lo) + " is above max " +
-                                 spell_number(hi) + "; expected min <= max");
+            return call.at.error("range of '" + call.name + "': min " + spell_number(lo) +
+                                 " is above max " + spell_number(hi) + "; expected min <= max");
         if (lo < p.min || hi > p.max)
-            return call.at.error("range of '" + call.name + "' [" + spell_number(lo) + ", " + spell_number(hi) +
-                                 "] leaves the range its node declares; expected within [" + spell_number(p.min) + ", " +
-                                 spell_number(p.max) + "]" + unit_suffix(p));
+            return call.at.error(
+                "range of '" + call.name + "' [" + spell_number(lo) + ", " + spell_number(hi) +
+                "] leaves the range its node declares; expected within [" + spell_number(p.min) +
+                ", " + spell_number(p.max) + "]" + unit_suffix(p));
         s.min = lo;
         s.max = hi;
     }
@@ -316,8 +357,9 @@ std::optional<Diagnostic> MaterialBuilder::check_values(Material& m) const {
             const double x = (*call.value)[k];
             if (x >= lo && x <= hi) continue;
             const SourceRef at = call.value->size() > 1 ? call.at.child(k) : call.at;
-            return at.error("value " + spell_number(x) + " of '" + call.name + "' is out of range; expected a value in [" +
-                            spell_number(lo) + ", " + spell_number(hi) + "]" + unit_suffix(m.declared[call.name]));
+            return at.error("value " + spell_number(x) + " of '" + call.name +
+                            "' is out of range; expected a value in [" + spell_number(lo) + ", " +
+                            spell_number(hi) + "]" + unit_suffix(m.declared[call.name]));
         }
     }
     return std::nullopt;
@@ -333,8 +375,11 @@ std::optional<Diagnostic> MaterialBuilder::check_targets(Material& m) const {
     std::set<Target> chosen;
     for (size_t k = 0; k < names.size(); ++k) {
         const auto t = parse_target(names[k]);
-        if (!t) return at.child(k).error("unknown target '" + names[k] + "'; expected one of " + target_names());
-        if (!chosen.insert(*t).second) return at.child(k).error("target '" + names[k] + "' is listed twice");
+        if (!t)
+            return at.child(k).error("unknown target '" + names[k] + "'; expected one of " +
+                                     target_names());
+        if (!chosen.insert(*t).second)
+            return at.child(k).error("target '" + names[k] + "' is listed twice");
     }
     for (Target t : all_targets())
         if (chosen.count(t)) m.targets.push_back(t);

@@ -43,21 +43,25 @@ bool read_axes(JsonReader& r, MaterialBuilder& b) {
 bool read_rule(JsonReader& r, const std::string& p, MaterialBuilder& b) {
     if (!r.keys(p, {"if", "requires", "excludes", "why"}, {"if"})) return false;
     const bool is_requires = r.has(p + "/requires");
-    if (is_requires == r.has(p + "/excludes")) return r.fail(p, "expected exactly one of 'requires' or 'excludes'");
+    if (is_requires == r.has(p + "/excludes"))
+        return r.fail(p, "expected exactly one of 'requires' or 'excludes'");
     std::string axis, choice, why;
     if (!split_item(r, p + "/if", axis, choice)) return false;
     if (r.has(p + "/why") && !r.string(p + "/why", why)) return false;
     const std::string kp = p + (is_requires ? "/requires" : "/excludes");
     const Json& others = r.at(kp);
     if (!others.is_object() || others.empty())
-        return r.fail(kp, "expected an object mapping an axis to a list of choices, e.g. {\"waves\": [\"gerstner\"]}, got " +
+        return r.fail(kp, "expected an object mapping an axis to a list of choices, e.g. "
+                          "{\"waves\": [\"gerstner\"]}, got " +
                               json_describe(others));
     for (const std::string& other : r.members(kp)) {
         std::vector<std::string> choices;
         if (!r.strings(json_child(kp, other), choices)) return false;
         const SourceRef at{&r.source(), json_child(kp, other)};
-        if (is_requires) b.requires_choice(axis, choice, other, choices, why, at);
-        else b.excludes_choice(axis, choice, other, choices, why, at);
+        if (is_requires)
+            b.requires_choice(axis, choice, other, choices, why, at);
+        else
+            b.excludes_choice(axis, choice, other, choices, why, at);
     }
     return true;
 }
@@ -76,7 +80,8 @@ bool read_parameters(JsonReader& r, MaterialBuilder& b) {
         }
         const bool has_min = r.has(p + "/min");
         if (has_min != r.has(p + "/max"))
-            return r.fail(p, std::string("missing key '") + (has_min ? "max" : "min") + "': a range needs both");
+            return r.fail(p, std::string("missing key '") + (has_min ? "max" : "min") +
+                                 "': a range needs both");
         if (has_min) {
             double lo = 0, hi = 0;
             if (!r.number(p + "/min", lo) || !r.number(p + "/max", hi)) return false;
@@ -117,7 +122,8 @@ bool read_material(JsonReader& r, MaterialBuilder& b) {
 std::optional<Material> parse_material(const JsonSource& src, Diagnostics& diagnostics) {
     JsonReader r(src, diagnostics);
     std::string name;
-    if (!r.keys("", {"name", "description", "preset", "axes", "rules", "parameters", "targets"}, {"name"}) ||
+    if (!r.keys("", {"name", "description", "preset", "axes", "rules", "parameters", "targets"},
+                {"name"}) ||
         !r.string("/name", name))
         return std::nullopt;
     MaterialBuilder b(name, {&src, "/name"});

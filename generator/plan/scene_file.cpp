@@ -34,24 +34,32 @@ Diagnostic SceneWhere::error(const std::string& key, const std::string& what) co
     auto it = fact.find(key);
     if (it == fact.end()) return Diagnostic{Severity::Error, "", 0, 0, "", what};
     const Location& l = it->second;
-    return Diagnostic{Severity::Error, l.file, l.position.line, l.position.column, "", l.pointer + ": " + what};
+    return Diagnostic{Severity::Error,   l.file, l.position.line,
+                      l.position.column, "",     l.pointer + ": " + what};
 }
 
 std::optional<SceneFacts> parse_scene(const JsonSource& src, Diagnostics& ds) {
     SceneFacts s;
     s.file = std::filesystem::path(src.file()).filename().string();
     JsonReader r(src, ds);
-    r.on_read([&](const std::string& pointer) { s.where.fact[pointer.substr(1)] = {src.file(), pointer, src.position(pointer)}; });
-    const std::vector<std::string> allowed = {"name", "description", "shoreline", "water_depth", "camera_height",
-                                              "camera_pitch", "sun_elevation", "reflection_sources", "waves",
-                                              "precision", "platforms", "fixed"};
+    r.on_read([&](const std::string& pointer) {
+        s.where.fact[pointer.substr(1)] = {src.file(), pointer, src.position(pointer)};
+    });
+    const std::vector<std::string> allowed = {"name",          "description",        "shoreline",
+                                              "water_depth",   "camera_height",      "camera_pitch",
+                                              "sun_elevation", "reflection_sources", "waves",
+                                              "precision",     "platforms",          "fixed"};
     std::vector<std::string> required;
     std::copy_if(allowed.begin(), allowed.end(), std::back_inserter(required),
                  [](const std::string& k) { return k != "description" && k != "fixed"; });
-    if (!r.keys("", allowed, required, "(a scene states every fact; see README \"Scene files\")")) return std::nullopt;
+    if (!r.keys("", allowed, required, "(a scene states every fact; see README \"Scene files\")"))
+        return std::nullopt;
     if (!r.string("/name", s.name)) return std::nullopt;
-    if (s.name.empty() || s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos) {
-        r.fail("/name", "scene name '" + s.name + "': expected lower-case letters, digits, '_' or '-' (it names a directory)");
+    if (s.name.empty() ||
+        s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos) {
+        r.fail("/name",
+               "scene name '" + s.name +
+                   "': expected lower-case letters, digits, '_' or '-' (it names a directory)");
         return std::nullopt;
     }
     if (r.has("/description") && !r.string("/description", s.description)) return std::nullopt;
@@ -68,18 +76,22 @@ std::optional<SceneFacts> parse_scene(const JsonSource& src, Diagnostics& ds) {
     s.waves_animated = waves == "animated";
     std::vector<std::string> sources_vocabulary = kReflectionSources;
     sources_vocabulary.push_back("none");
-    if (!r.strings_in("/reflection_sources", sources_vocabulary, s.reflection_sources)) return std::nullopt;
-    if (std::find(s.reflection_sources.begin(), s.reflection_sources.end(), "none") != s.reflection_sources.end()) {
+    if (!r.strings_in("/reflection_sources", sources_vocabulary, s.reflection_sources))
+        return std::nullopt;
+    if (std::find(s.reflection_sources.begin(), s.reflection_sources.end(), "none") !=
+        s.reflection_sources.end()) {
         if (s.reflection_sources.size() > 1) {
-            r.fail("/reflection_sources", "'none' cannot be listed with a source; expected [\"none\"] or sources from " +
-                                              join(kReflectionSources));
+            r.fail("/reflection_sources",
+                   "'none' cannot be listed with a source; expected [\"none\"] or sources from " +
+                       join(kReflectionSources));
             return std::nullopt;
         }
         s.reflection_sources.clear();
     }
     if (!r.strings_in("/platforms", kPlatforms, s.platforms)) return std::nullopt;
     if (s.platforms.empty()) {
-        r.fail("/platforms", "no platform: the scene needs nothing; expected at least one of " + join(kPlatforms));
+        r.fail("/platforms", "no platform: the scene needs nothing; expected at least one of " +
+                                 join(kPlatforms));
         return std::nullopt;
     }
     if (r.has("/fixed")) {

@@ -16,9 +16,9 @@ namespace watergen {
 
 namespace {
 
-
 bool has_source(const SceneFacts& s, const std::string& source) {
-    return std::find(s.reflection_sources.begin(), s.reflection_sources.end(), source) != s.reflection_sources.end();
+    return std::find(s.reflection_sources.begin(), s.reflection_sources.end(), source) !=
+           s.reflection_sources.end();
 }
 
 // A choice's scene need (axis_registry.h), checked on variants where the axis holds the choice.
@@ -94,7 +94,8 @@ void reach_variants(const Material& m, ScenePlan& plan) {
     enumerate(m.space, [&](const Variant& v) {
         if (auto e = scene_excludes(plan.scene, v)) {
             SkippedGroup group{std::move(*e), 0};
-            auto [it, fresh] = group_of.emplace(group.text(), static_cast<uint32_t>(plan.skipped_groups.size()));
+            auto [it, fresh] =
+                group_of.emplace(group.text(), static_cast<uint32_t>(plan.skipped_groups.size()));
             if (fresh) plan.skipped_groups.push_back(std::move(group));
             ++plan.skipped_groups[it->second].variants;
             plan.skipped_variants.push_back({ordinal, it->second});
@@ -114,13 +115,15 @@ void reach_variants(const Material& m, ScenePlan& plan) {
         sorted.push_back(std::move(plan.skipped_groups[index]));
     }
     plan.skipped_groups = std::move(sorted);
-    for (auto& s : plan.skipped_variants) s.group = renumber[s.group];
+    for (auto& s : plan.skipped_variants)
+        s.group = renumber[s.group];
 }
 
 } // namespace
 
 std::string SkippedGroup::text() const {
-    return fmt::format("{}={}: {} [{}]", exclusion.axis, exclusion.choice, exclusion.reason, exclusion.where);
+    return fmt::format("{}={}: {} [{}]", exclusion.axis, exclusion.choice, exclusion.reason,
+                       exclusion.where);
 }
 
 std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& v) {
@@ -139,14 +142,16 @@ FoldFacts base_facts(const Material& m) {
     // The renderer's contract for the water pass inputs (synthetic_scene.h honours it).
     const size_t uv = f.add_fact("v_uv lies in [0, 1]", "");
     f.input_ranges["v_uv"] = {{make_interval(0.0, 1.0)}, uv};
-    const size_t tex = f.add_fact("scene textures are finite: colour in [0, 65504], positions within 100 km", "");
+    const size_t tex =
+        f.add_fact("scene textures are finite: colour in [0, 65504], positions within 100 km", "");
     f.input_ranges["scene_color"] = {{make_interval(0.0, 65504.0)}, tex};
-    f.input_ranges["scene_position"] = {{make_interval(-1e5, 1e5), make_interval(-1e5, 1e5), make_interval(-1e5, 1e5),
-                                         make_interval(0.0, 1e6)},
+    f.input_ranges["scene_position"] = {{make_interval(-1e5, 1e5), make_interval(-1e5, 1e5),
+                                         make_interval(-1e5, 1e5), make_interval(0.0, 1e6)},
                                         tex};
     for (const auto& [name, s] : m.parameters) {
         if (!s.min) continue;
-        const size_t id = f.add_fact(fmt::format("{} in [{:g}, {:g}] (material {})", name, *s.min, *s.max, m.name), s.where);
+        const size_t id = f.add_fact(
+            fmt::format("{} in [{:g}, {:g}] (material {})", name, *s.min, *s.max, m.name), s.where);
         f.parameter_ranges[name] = {{make_interval(*s.min, *s.max)}, id};
     }
     return f;
@@ -162,37 +167,46 @@ std::optional<ScenePlan> plan_scene(const Material& m, const SceneFacts& scene, 
     plan.facts = base_facts(m);
     const SceneWhere& w = scene.where;
     // In order: fixed values first (the camera and sun checks read them), then the ranges.
-    for (auto step : {scene_bounds::fix_parameters, scene_bounds::bound_time, scene_bounds::bound_camera,
-                      scene_bounds::bound_sun})
+    for (auto step : {scene_bounds::fix_parameters, scene_bounds::bound_time,
+                      scene_bounds::bound_camera, scene_bounds::bound_sun})
         if (auto error = step(m, plan)) return fail(std::move(*error));
     scene_bounds::bound_depth(plan);
 
     reach_variants(m, plan);
     if (plan.variants.empty()) {
         std::set<std::string> reasons;
-        for (const auto& g : plan.skipped_groups) reasons.insert(g.exclusion.axis + "=" + g.exclusion.choice + ": " + g.exclusion.reason);
+        for (const auto& g : plan.skipped_groups)
+            reasons.insert(g.exclusion.axis + "=" + g.exclusion.choice + ": " + g.exclusion.reason);
         std::string why;
-        for (const auto& r : reasons) why += (why.empty() ? "" : "; ") + r;
-        return fail(Diagnostic{Severity::Error, w.fact.count("name") ? w.fact.at("name").file : scene.file,
+        for (const auto& r : reasons)
+            why += (why.empty() ? "" : "; ") + r;
+        return fail(Diagnostic{Severity::Error,
+                               w.fact.count("name") ? w.fact.at("name").file : scene.file,
                                w.fact.count("name") ? w.fact.at("name").position.line : 0,
                                w.fact.count("name") ? w.fact.at("name").position.column : 0, "",
                                "scene '" + scene.name + "' needs nothing: it reaches none of the " +
-                                   std::to_string(plan.skipped) + " variants of material '" + m.name + "' (" + why + ")"});
+                                   std::to_string(plan.skipped) + " variants of material '" +
+                                   m.name + "' (" + why + ")"});
     }
     // Targets its platforms need that the material emits.
     std::vector<std::string> wanted;
     for (Target t : all_targets()) {
         bool needed = false;
         for (const auto& p : scene.platforms)
-            for (Target pt : platform_targets(p)) needed = needed || pt == t;
+            for (Target pt : platform_targets(p))
+                needed = needed || pt == t;
         if (needed) wanted.push_back(to_string(t));
-        if (needed && std::find(m.targets.begin(), m.targets.end(), t) != m.targets.end()) plan.targets.push_back(t);
+        if (needed && std::find(m.targets.begin(), m.targets.end(), t) != m.targets.end())
+            plan.targets.push_back(t);
     }
     if (plan.targets.empty()) {
         std::vector<std::string> emitted;
-        for (Target t : m.targets) emitted.push_back(to_string(t));
-        return fail(w.error("platforms", "scene '" + scene.name + "' needs nothing material '" + m.name + "' emits: its platforms need " +
-                                             join(wanted) + "; the material emits " + join(emitted)));
+        for (Target t : m.targets)
+            emitted.push_back(to_string(t));
+        return fail(w.error("platforms", "scene '" + scene.name + "' needs nothing material '" +
+                                             m.name + "' emits: its platforms need " +
+                                             join(wanted) + "; the material emits " +
+                                             join(emitted)));
     }
     return plan;
 }

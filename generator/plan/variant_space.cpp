@@ -26,7 +26,8 @@ VariantSpace full_space() {
     VariantSpace s;
     for (const auto& a : axes()) {
         std::vector<std::string> names;
-        for (const auto& c : a.choices) names.push_back(c.name);
+        for (const auto& c : a.choices)
+            names.push_back(c.name);
         s.choices.push_back(std::move(names));
     }
     s.rules = builtin_rules();
@@ -38,7 +39,8 @@ const Rule* find_broken_rule(const std::vector<Rule>& rules, const Variant& v) {
         if (v.choice(r.axis) != r.choice) continue;
         const std::string& other = v.choice(r.other_axis);
         bool listed = false;
-        for (const auto& c : r.other_choices) listed = listed || c == other;
+        for (const auto& c : r.other_choices)
+            listed = listed || c == other;
         if (listed != (r.kind == Rule::Kind::Requires)) return &r;
     }
     return nullptr;
@@ -48,9 +50,11 @@ std::optional<std::string> broken_rule(const std::vector<Rule>& rules, const Var
     const Rule* r = find_broken_rule(rules, v);
     if (!r) return std::nullopt;
     const std::string list = join(r->other_choices);
-    return r->axis + "=" + r->choice + (r->kind == Rule::Kind::Requires ? " requires " : " excludes ") + r->other_axis +
-           " in {" + list + "}" + (r->why.empty() ? "" : " (" + r->why + ")") + "; got " + r->other_axis + "=" +
-           v.choice(r->other_axis) + (r->where.empty() ? "" : " [" + r->where + "]");
+    return r->axis + "=" + r->choice +
+           (r->kind == Rule::Kind::Requires ? " requires " : " excludes ") + r->other_axis +
+           " in {" + list + "}" + (r->why.empty() ? "" : " (" + r->why + ")") + "; got " +
+           r->other_axis + "=" + v.choice(r->other_axis) +
+           (r->where.empty() ? "" : " [" + r->where + "]");
 }
 
 std::optional<std::string> check_constraints(const Variant& v) {
@@ -66,7 +70,8 @@ void enumerate(const VariantSpace& space, const std::function<void(const Variant
     Variant v = default_variant();
     std::vector<size_t> index(n, 0);
     for (;;) {
-        for (size_t a = 0; a < n; ++a) v.choices[a] = space.choices[a][index[a]];
+        for (size_t a = 0; a < n; ++a)
+            v.choices[a] = space.choices[a][index[a]];
         if (!broken_rule(space.rules, v)) visit(v);
         size_t a = n;
         while (a > 0) {

@@ -22,21 +22,23 @@ namespace {
 
 // One axis measured: its gold first, so every other row compares against it.
 class AxisMeasure {
-public:
-    AxisMeasure(VulkanRunner& runner, const SyntheticScene& scene, const RenderSettings& settings, AccuracyBench& out)
+  public:
+    AxisMeasure(VulkanRunner& runner, const SyntheticScene& scene, const RenderSettings& settings,
+                AccuracyBench& out)
         : runner_(runner), scene_(scene), settings_(settings), out_(out) {}
 
     // False at the first failure (recorded in the bench).
     bool run(const AxisInfo& axis, const ChoiceInfo& gold) {
         Variant base = accuracy_reference_variant();
-        if (axis.name == "waves") set_choice(base, "normals", "detail_map"); // valid for every wave model
+        if (axis.name == "waves")
+            set_choice(base, "normals", "detail_map"); // valid for every wave model
         if (!measure(axis, gold, base)) return false;
         for (const auto& c : axis.choices)
             if (&c != &gold && !measure(axis, c, base)) return false;
         return true;
     }
 
-private:
+  private:
     bool measure(const AxisInfo& axis, const ChoiceInfo& choice, const Variant& base) {
         Variant v = base;
         set_choice(v, axis.name, choice.name);
@@ -70,16 +72,20 @@ private:
             // The gold is timed again right after each candidate: this machine's speed
             // drifts, and a ratio of back-to-back medians cancels most of that.
             const VariantRender again = render_variant(runner_, *gold_build_, scene_, settings_);
-            row.time_ratio = row.steady_ms / (again.ok() ? again.gpu[0].steady_draw_ms : gold_render_.gpu[0].steady_draw_ms);
+            row.time_ratio = row.steady_ms / (again.ok() ? again.gpu[0].steady_draw_ms
+                                                         : gold_render_.gpu[0].steady_draw_ms);
             row.error = compare_images(r.gpu_image[0], gold_render_.gpu_image[0]);
         }
         if (axis.name == "precision" && !choice.gold) {
             // lavapipe runs mediump at 32 bits: the GPU images agree. What half would cost is
             // the CPU evaluator's half mode against double.
-            const EvalResult half = evaluate_image(build.shader.fragment, "color", scene_.eval_inputs(), settings_.width,
-                                                   settings_.height, EvalPrecision::Half);
-            row.error = compare_images(to_image(half, settings_.width, settings_.height), gold_render_.cpu_double);
-            row.note = "error: CPU half evaluation vs double (lavapipe computes mediump in 32 bits)";
+            const EvalResult half =
+                evaluate_image(build.shader.fragment, "color", scene_.eval_inputs(),
+                               settings_.width, settings_.height, EvalPrecision::Half);
+            row.error = compare_images(to_image(half, settings_.width, settings_.height),
+                                       gold_render_.cpu_double);
+            row.note =
+                "error: CPU half evaluation vs double (lavapipe computes mediump in 32 bits)";
         }
         out_.rows.push_back(row);
         return true;

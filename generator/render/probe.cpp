@@ -20,7 +20,8 @@ std::string binding_name(const Reflection& r, uint32_t binding) {
 }
 
 // The textures the shader reads, taken from `supplied`; an error names the first one missing.
-bool pick_textures(const ShaderInterface& interface, const std::map<std::string, TextureData>& supplied,
+bool pick_textures(const ShaderInterface& interface,
+                   const std::map<std::string, TextureData>& supplied,
                    std::map<std::string, TextureData>& picked, std::string& error) {
     for (const auto& t : interface.textures) {
         auto it = supplied.find(t.name);
@@ -34,8 +35,8 @@ bool pick_textures(const ShaderInterface& interface, const std::map<std::string,
 }
 
 // Runs the compiled probe over every tuple, in dispatches of at most 65535 workgroups.
-void run_on_gpu(VulkanRunner& runner, const ToolchainOutputs& built, ComputeJob& job, const std::vector<double>& inputs,
-                ProbeRun& run) {
+void run_on_gpu(VulkanRunner& runner, const ToolchainOutputs& built, ComputeJob& job,
+                const std::vector<double>& inputs, ProbeRun& run) {
     const uint32_t in_stride = run.layout.input_stride, out_stride = run.layout.output_stride;
     job.spirv = built.spirv_optimized;
     job.reflection = built.reflection;
@@ -81,7 +82,8 @@ void run_on_gpu(VulkanRunner& runner, const ToolchainOutputs& built, ComputeJob&
 }
 
 // The same tuples, uniforms and textures on the CPU evaluator in double, float and half.
-void run_on_cpu(const Graph& g, const std::vector<double>& inputs, const std::map<std::string, std::vector<double>>& uniforms,
+void run_on_cpu(const Graph& g, const std::vector<double>& inputs,
+                const std::map<std::string, std::vector<double>>& uniforms,
                 const std::map<std::string, TextureData>& textures, ProbeRun& run) {
     const uint32_t in_stride = run.layout.input_stride, out_stride = run.layout.output_stride;
     EvalInputs eval;
@@ -93,7 +95,8 @@ void run_on_cpu(const Graph& g, const std::vector<double>& inputs, const std::ma
         const int n = component_count(field.type);
         auto& v = eval.varyings[field.name];
         for (size_t t = 0; t < run.tuples; ++t)
-            for (int c = 0; c < n; ++c) v.push_back(inputs[t * in_stride + field.offset + static_cast<uint32_t>(c)]);
+            for (int c = 0; c < n; ++c)
+                v.push_back(inputs[t * in_stride + field.offset + static_cast<uint32_t>(c)]);
     }
     for (auto [precision, target] : {std::pair{EvalPrecision::Double, &run.cpu_double},
                                      std::pair{EvalPrecision::Float, &run.cpu_float},
@@ -107,14 +110,16 @@ void run_on_cpu(const Graph& g, const std::vector<double>& inputs, const std::ma
             }
             for (size_t t = 0; t < run.tuples; ++t)
                 for (int c = 0; c < r.components; ++c)
-                    (*target)[t * out_stride + field.offset + static_cast<uint32_t>(c)] = r.values[t * r.components + c];
+                    (*target)[t * out_stride + field.offset + static_cast<uint32_t>(c)] =
+                        r.values[t * r.components + c];
         }
     }
 }
 
 } // namespace
 
-ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, const std::vector<double>& inputs,
+ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language,
+                   const std::vector<double>& inputs,
                    const std::map<std::string, std::vector<double>>& uniforms,
                    const std::map<std::string, TextureData>& textures) {
     ProbeRun run;
@@ -123,8 +128,8 @@ ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, cons
     run.layout = probe_layout(g);
     const uint32_t in_stride = run.layout.input_stride;
     if (in_stride == 0 || inputs.size() % in_stride != 0) {
-        run.error = "input holds " + std::to_string(inputs.size()) + " values, not a whole number of " +
-                    std::to_string(in_stride) + "-value tuples";
+        run.error = "input holds " + std::to_string(inputs.size()) +
+                    " values, not a whole number of " + std::to_string(in_stride) + "-value tuples";
         return run;
     }
     run.tuples = inputs.size() / in_stride;
@@ -134,8 +139,8 @@ ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, cons
     }
 
     if (uses_derivatives(g) && run.tuples % 4 != 0) {
-        run.error = "the graph takes ddx / ddy over quads of tuples 4k..4k+3; " + std::to_string(run.tuples) +
-                    " tuples are not whole quads";
+        run.error = "the graph takes ddx / ddy over quads of tuples 4k..4k+3; " +
+                    std::to_string(run.tuples) + " tuples are not whole quads";
         return run;
     }
 
@@ -144,11 +149,13 @@ ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, cons
     if (has_errors(run.diagnostics)) return run;
     ComputeJob job;
     if (!pick_textures(shader.interface, textures, job.textures, run.error)) return run;
-    const ToolchainOutputs built = run_toolchain(
-        {language == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl, ShaderStage::Compute, shader.source, file, "main"});
+    const ToolchainOutputs built =
+        run_toolchain({language == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl,
+                       ShaderStage::Compute, shader.source, file, "main"});
     Diagnostics ds;
     for (const auto& d : built.diagnostics)
-        if (d.severity != Severity::Note) ds.push_back(d); // e.g. "no compute in GLSL 330": expected here
+        if (d.severity != Severity::Note)
+            ds.push_back(d); // e.g. "no compute in GLSL 330": expected here
     attribute_to_nodes(shader, ds);
     run.diagnostics.insert(run.diagnostics.end(), ds.begin(), ds.end());
     if (!built.ok()) return run;
@@ -169,7 +176,8 @@ bool uses_derivatives(const Graph& g) {
 const std::map<std::string, TextureData>& probe_scene_textures() {
     // Only the scene's own images depend on the size; the node textures (height map, normal
     // map, sky cube, ...) are made at their fixed sizes.
-    static const std::map<std::string, TextureData> textures = make_synthetic_scene(64, 64).textures;
+    static const std::map<std::string, TextureData> textures =
+        make_synthetic_scene(64, 64).textures;
     return textures;
 }
 

@@ -47,12 +47,14 @@ std::vector<std::string> probe_columns(const std::vector<ProbeField>& fields) {
     std::vector<std::string> names;
     for (const auto& f : fields) {
         const int n = component_count(f.type);
-        for (int c = 0; c < n; ++c) names.push_back(n == 1 ? f.name : f.name + "." + "xyzw"[c]);
+        for (int c = 0; c < n; ++c)
+            names.push_back(n == 1 ? f.name : f.name + "." + "xyzw"[c]);
     }
     return names;
 }
 
-std::optional<std::vector<double>> read_probe_csv(const std::string& path, const std::vector<std::string>& columns,
+std::optional<std::vector<double>> read_probe_csv(const std::string& path,
+                                                  const std::vector<std::string>& columns,
                                                   std::string& error) {
     std::ifstream file(path, std::ios::binary);
     if (!file) {
@@ -65,7 +67,8 @@ std::optional<std::vector<double>> read_probe_csv(const std::string& path, const
 }
 
 std::optional<std::vector<double>> parse_probe_csv(const std::string& text, const std::string& path,
-                                                   const std::vector<std::string>& columns, std::string& error) {
+                                                   const std::vector<std::string>& columns,
+                                                   std::string& error) {
     std::istringstream in(text);
     const std::string expected = fmt::format("{}", fmt::join(columns, ","));
     std::vector<double> values;
@@ -84,27 +87,29 @@ std::optional<std::vector<double>> parse_probe_csv(const std::string& text, cons
             continue;
         }
         if (cells.size() != columns.size()) {
-            error = fmt::format("{}:{}: expected {} values ({}), got {}", path, line_no, columns.size(), expected,
-                                cells.size());
+            error = fmt::format("{}:{}: expected {} values ({}), got {}", path, line_no,
+                                columns.size(), expected, cells.size());
             return std::nullopt;
         }
         for (size_t i = 0; i < cells.size(); ++i) {
             char* end = nullptr;
             const double v = std::strtod(cells[i].c_str(), &end);
             if (cells[i].empty() || *end != '\0') {
-                error = fmt::format("{}:{}: column '{}': expected a number, got '{}'", path, line_no, columns[i],
-                                    cells[i]);
+                error = fmt::format("{}:{}: column '{}': expected a number, got '{}'", path,
+                                    line_no, columns[i], cells[i]);
                 return std::nullopt;
             }
             values.push_back(v);
         }
     }
     if (!header) {
-        error = fmt::format("{}: empty; expected the header '{}' and at least one row", path, expected);
+        error =
+            fmt::format("{}: empty; expected the header '{}' and at least one row", path, expected);
         return std::nullopt;
     }
     if (values.empty()) {
-        error = fmt::format("{}:{}: no rows after the header; expected at least one row of {}", path, line_no, expected);
+        error = fmt::format("{}:{}: no rows after the header; expected at least one row of {}",
+                            path, line_no, expected);
         return std::nullopt;
     }
     return values;
@@ -114,7 +119,8 @@ std::string probe_results_csv(const ProbeRun& run, const std::vector<double>& in
     const ProbeLayout& layout = run.layout;
     std::string csv = fmt::format("{}", fmt::join(probe_columns(layout.inputs), ","));
     const auto outputs = probe_columns(layout.outputs);
-    for (const auto& name : outputs) csv += fmt::format(",gpu.{0},cpu_double.{0},cpu_float.{0},cpu_half.{0}", name);
+    for (const auto& name : outputs)
+        csv += fmt::format(",gpu.{0},cpu_double.{0},cpu_float.{0},cpu_half.{0}", name);
     csv += "\n";
     for (size_t t = 0; t < run.tuples; ++t) {
         for (uint32_t k = 0; k < layout.input_stride; ++k)
@@ -129,25 +135,29 @@ std::string probe_results_csv(const ProbeRun& run, const std::vector<double>& in
     return csv;
 }
 
-std::optional<std::string> check_probe_parameters(const Graph& g, const std::map<std::string, std::vector<double>>& params,
-                                                  bool allow_out_of_range) {
+std::optional<std::string>
+check_probe_parameters(const Graph& g, const std::map<std::string, std::vector<double>>& params,
+                       bool allow_out_of_range) {
     for (const auto& [name, values] : params) {
         const Parameter* p = g.find_parameter(name);
         if (!p || values.size() != p->default_value.size()) {
             std::vector<std::string> known;
-            for (const auto& q : g.parameters()) known.push_back(q.name);
-            return fmt::format("--param {}: {} (parameters of the node: {})", name,
-                               p ? fmt::format("expected {} value{}, got {}", p->default_value.size(),
-                                               p->default_value.size() == 1 ? "" : "s", values.size())
-                                 : "unknown parameter",
-                               fmt::join(known, ", "));
+            for (const auto& q : g.parameters())
+                known.push_back(q.name);
+            return fmt::format(
+                "--param {}: {} (parameters of the node: {})", name,
+                p ? fmt::format("expected {} value{}, got {}", p->default_value.size(),
+                                p->default_value.size() == 1 ? "" : "s", values.size())
+                  : "unknown parameter",
+                fmt::join(known, ", "));
         }
         if (allow_out_of_range) continue;
         for (double v : values)
             if (!std::isfinite(v) || v < p->min || v > p->max)
-                return fmt::format("--param {}: {} is out of range; expected a value in [{}, {}]{}{} "
-                                   "(--allow-out-of-range passes it to GPU and CPU unchecked)",
-                                   name, v, p->min, p->max, p->unit.empty() ? "" : " ", p->unit);
+                return fmt::format(
+                    "--param {}: {} is out of range; expected a value in [{}, {}]{}{} "
+                    "(--allow-out-of-range passes it to GPU and CPU unchecked)",
+                    name, v, p->min, p->max, p->unit.empty() ? "" : " ", p->unit);
     }
     return std::nullopt;
 }
@@ -173,8 +183,8 @@ ProbeSummary summarize_probe(const ProbeRun& run) {
     return s;
 }
 
-std::optional<std::map<std::string, std::vector<double>>> parse_probe_parameters(
-    const std::vector<std::string>& specs, std::string& error) {
+std::optional<std::map<std::string, std::vector<double>>>
+parse_probe_parameters(const std::vector<std::string>& specs, std::string& error) {
     std::map<std::string, std::vector<double>> out;
     for (const auto& spec : specs) {
         const auto eq = spec.find('=');

@@ -46,8 +46,8 @@ bool PruneBenchResult::within(double tolerance) const {
     return true;
 }
 
-PruneBenchResult bench_prune(VulkanRunner& runner, const Material& m, const std::vector<ScenePlan>& plans,
-                             const PruneBenchOptions& o) {
+PruneBenchResult bench_prune(VulkanRunner& runner, const Material& m,
+                             const std::vector<ScenePlan>& plans, const PruneBenchOptions& o) {
     PruneBenchResult out;
     const SyntheticScene base = make_synthetic_scene(o.size, o.size);
     const RenderSettings settings{o.size, o.size, o.draws, false};
@@ -63,7 +63,9 @@ PruneBenchResult bench_prune(VulkanRunner& runner, const Material& m, const std:
             if (has_errors(shader.fragment.diagnostics())) continue;
             Diagnostics ignored;
             const FoldResult folded = fold_graph(shader.fragment, sp.facts);
-            if (!shapes.insert(emit_fragment(folded.graph, Language::Glsl, "f", "", ignored).source).second) continue;
+            if (!shapes.insert(emit_fragment(folded.graph, Language::Glsl, "f", "", ignored).source)
+                     .second)
+                continue;
             PruneMeasurement r = measure_pruning(runner, m, sp, v, scene, settings, o.rounds);
             if (!r.ok()) {
                 out.error = sp.scene.name + ": " + v.key() + ": " + r.error;

@@ -14,16 +14,19 @@ namespace {
 
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 
-std::vector<double> uniform_value(const SyntheticScene& s, const Material& m, const std::string& name) {
+std::vector<double> uniform_value(const SyntheticScene& s, const Material& m,
+                                  const std::string& name) {
     if (auto it = s.uniforms.find(name); it != s.uniforms.end()) return it->second;
-    if (auto it = m.parameters.find(name); it != m.parameters.end() && it->second.value) return *it->second.value;
+    if (auto it = m.parameters.find(name); it != m.parameters.end() && it->second.value)
+        return *it->second.value;
     if (auto it = m.declared.find(name); it != m.declared.end()) return it->second.default_value;
     return {};
 }
 
 // Timed draws only: the later rounds need no images and no CPU reference.
-std::vector<double> timed_draws(VulkanRunner& runner, const LanguageBuild& lang, const SyntheticScene& scene,
-                                const RenderSettings& settings, std::string* error) {
+std::vector<double> timed_draws(VulkanRunner& runner, const LanguageBuild& lang,
+                                const SyntheticScene& scene, const RenderSettings& settings,
+                                std::string* error) {
     const RenderResult r = runner.render(make_render_job(lang, scene, settings));
     if (!r.ok) *error = r.error;
     return r.draw_ms;
@@ -31,17 +34,20 @@ std::vector<double> timed_draws(VulkanRunner& runner, const LanguageBuild& lang,
 
 } // namespace
 
-SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, const Material& m, std::string* notes) {
+SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, const Material& m,
+                             std::string* notes) {
     SyntheticScene s = base;
     std::string log;
     const SceneFacts& f = plan.scene;
-    for (const auto& [name, value] : plan.fixed) s.uniforms[name] = value;
+    for (const auto& [name, value] : plan.fixed)
+        s.uniforms[name] = value;
 
     const std::vector<double> level_v = uniform_value(s, m, "water_level");
     const double level = level_v.empty() ? 0.0 : level_v[0];
     std::vector<double> eye = uniform_value(s, m, "eye_position");
     if (eye.size() == 3 && !plan.fixed.count("eye_position")) {
-        const double y = std::clamp(eye[1], level + f.camera_height.min, level + f.camera_height.max);
+        const double y =
+            std::clamp(eye[1], level + f.camera_height.min, level + f.camera_height.max);
         if (y != eye[1]) log += fmt::format("eye height {:g} -> {:g} m; ", eye[1], y);
         eye[1] = y;
         s.uniforms["eye_position"] = eye;
@@ -55,7 +61,8 @@ SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, 
             // Same azimuth, new elevation; the sunlight travels downwards by day.
             const double horizontal = std::hypot(sun[0], sun[2]);
             const double c = std::cos(e * kDegrees);
-            const double ax = horizontal > 0 ? sun[0] / horizontal : 1.0, az = horizontal > 0 ? sun[2] / horizontal : 0.0;
+            const double ax = horizontal > 0 ? sun[0] / horizontal : 1.0,
+                         az = horizontal > 0 ? sun[2] / horizontal : 0.0;
             sun = {ax * c, -std::sin(e * kDegrees), az * c};
             log += fmt::format("sun elevation {:.3g} -> {:g} degrees; ", elevation, e);
         }
@@ -71,27 +78,35 @@ SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, 
             // so that the depth under a displaced surface still obeys the fact.
             const double depth = level - py;
             const double margin = std::min(2.0, (f.water_depth.max - f.water_depth.min) / 4);
-            const double d = std::clamp(depth, f.water_depth.min > 0 ? f.water_depth.min + margin : 0.0,
-                                        f.water_depth.max - margin);
+            const double d =
+                std::clamp(depth, f.water_depth.min > 0 ? f.water_depth.min + margin : 0.0,
+                           f.water_depth.max - margin);
             if (d == depth) continue; // depth does not depend on where the eye is
             // Slide along the ray from the eye through the point until the depth is d.
             const double t = (eye[1] - (level - d)) / (eye[1] - py);
-            const double nx = eye[0] + (px - eye[0]) * t, ny = level - d, nz = eye[2] + (pz - eye[2]) * t;
+            const double nx = eye[0] + (px - eye[0]) * t, ny = level - d,
+                         nz = eye[2] + (pz - eye[2]) * t;
             rgba[i] = static_cast<float>(nx);
             rgba[i + 1] = static_cast<float>(ny);
             rgba[i + 2] = static_cast<float>(nz);
-            rgba[i + 3] = static_cast<float>(std::sqrt((nx - eye[0]) * (nx - eye[0]) + (ny - eye[1]) * (ny - eye[1]) +
-                                                      (nz - eye[2]) * (nz - eye[2])));
+            rgba[i + 3] = static_cast<float>(std::sqrt((nx - eye[0]) * (nx - eye[0]) +
+                                                       (ny - eye[1]) * (ny - eye[1]) +
+                                                       (nz - eye[2]) * (nz - eye[2])));
             ++moved;
         }
-        if (moved) log += fmt::format("{} water texels moved into depth {:g}..{:g} m; ", moved, f.water_depth.min, f.water_depth.max);
+        if (moved)
+            log += fmt::format("{} water texels moved into depth {:g}..{:g} m; ", moved,
+                               f.water_depth.min, f.water_depth.max);
     }
-    if (notes) *notes = log.empty() ? "the synthetic scene already obeys the facts" : log.substr(0, log.size() - 2);
+    if (notes)
+        *notes = log.empty() ? "the synthetic scene already obeys the facts"
+                             : log.substr(0, log.size() - 2);
     return s;
 }
 
-PruneMeasurement measure_pruning(VulkanRunner& runner, const Material& m, const ScenePlan& plan, const Variant& v,
-                                 const SyntheticScene& scene, const RenderSettings& settings, unsigned rounds) {
+PruneMeasurement measure_pruning(VulkanRunner& runner, const Material& m, const ScenePlan& plan,
+                                 const Variant& v, const SyntheticScene& scene,
+                                 const RenderSettings& settings, unsigned rounds) {
     PruneMeasurement out;
     out.scene = plan.scene.name;
     out.key = v.key();
@@ -111,7 +126,8 @@ PruneMeasurement measure_pruning(VulkanRunner& runner, const Material& m, const 
     if (!a.ok() || !b.ok()) {
         const VariantBuild& bad = a.ok() ? b : a;
         out.error = std::string(a.ok() ? "pruned" : "unpruned") + " build failed: " +
-                    (bad.diagnostics.empty() ? std::string("?") : format_diagnostic(bad.diagnostics.front()));
+                    (bad.diagnostics.empty() ? std::string("?")
+                                             : format_diagnostic(bad.diagnostics.front()));
         return out;
     }
     out.spirv_unpruned = a.languages[0].fragment.toolchain.instruction_count;
@@ -136,13 +152,15 @@ PruneMeasurement measure_pruning(VulkanRunner& runner, const Material& m, const 
                     return out;
                 }
                 for (int lang = 0; lang < 2; ++lang)
-                    for (double ms : r.gpu[lang].draw_ms) fastest[which][lang] = std::min(fastest[which][lang], ms);
+                    for (double ms : r.gpu[lang].draw_ms)
+                        fastest[which][lang] = std::min(fastest[which][lang], ms);
                 (which == 0 ? ra : rb) = std::move(r);
                 continue;
             }
             for (int lang = 0; lang < 2; ++lang) {
                 std::string error;
-                for (double ms : timed_draws(runner, build.languages[static_cast<size_t>(lang)], scene, timed, &error))
+                for (double ms : timed_draws(runner, build.languages[static_cast<size_t>(lang)],
+                                             scene, timed, &error))
                     fastest[which][lang] = std::min(fastest[which][lang], ms);
                 if (!error.empty()) {
                     out.error = "render: " + error;
@@ -160,7 +178,8 @@ PruneMeasurement measure_pruning(VulkanRunner& runner, const Material& m, const 
     const ImageErrorStats c = compare_images(rb.cpu_float, ra.cpu_float);
     for (const ImageErrorStats* s : {&g, &h, &c})
         if (!s->error.empty() || s->nan_inf_pixels != s->reference_nan_inf_pixels) {
-            out.error = "images cannot be compared: " + (s->error.empty() ? std::string("non-finite pixels differ") : s->error);
+            out.error = "images cannot be compared: " +
+                        (s->error.empty() ? std::string("non-finite pixels differ") : s->error);
             return out;
         }
     out.max_abs_glsl = g.max_abs;

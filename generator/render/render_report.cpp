@@ -31,13 +31,14 @@ nlohmann::ordered_json timing_json(const RenderResult& r) {
             {"draw_ms", r.draw_ms}};
 }
 
-std::optional<std::string> write_images(const std::filesystem::path& staging, const VariantRender& r,
-                                        const RenderReportInfo& info) {
+std::optional<std::string> write_images(const std::filesystem::path& staging,
+                                        const VariantRender& r, const RenderReportInfo& info) {
     std::string error;
     const char* names[2] = {"glsl", "hlsl"};
     for (int i = 0; i < 2; ++i) {
         const auto rgba8 = tone_map_to_srgb8(r.gpu_image[i], static_cast<float>(info.exposure));
-        if (!write_png(staging / (std::string(names[i]) + ".png"), info.width, info.height, rgba8, &error) ||
+        if (!write_png(staging / (std::string(names[i]) + ".png"), info.width, info.height, rgba8,
+                       &error) ||
             !write_pfm(staging / (std::string(names[i]) + ".pfm"), r.gpu_image[i], &error))
             return error;
     }
@@ -74,13 +75,16 @@ nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderRe
     return j;
 }
 
-std::optional<std::string> write_render_report(const std::filesystem::path& dir, const VariantRender& r,
+std::optional<std::string> write_render_report(const std::filesystem::path& dir,
+                                               const VariantRender& r,
                                                const RenderReportInfo& info) {
     std::string error;
     const auto staging = make_staging_directory(dir, &error);
     if (staging.empty()) return error;
     auto result = write_images(staging, r, info);
-    if (!result) result = write_file_atomically(staging / "render.json", render_report_json(r, info).dump(2) + "\n");
+    if (!result)
+        result = write_file_atomically(staging / "render.json",
+                                       render_report_json(r, info).dump(2) + "\n");
     if (!result) result = commit_directory(staging, dir);
     if (result) {
         std::error_code ec;

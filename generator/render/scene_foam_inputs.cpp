@@ -1,5 +1,5 @@
-#include "watergen/water/nodes/foam.h"
 #include "watergen/render/synthetic_scene.h"
+#include "watergen/water/nodes/foam.h"
 
 namespace watergen {
 
@@ -9,7 +9,8 @@ void add_foam_inputs(SyntheticScene& scene) {
     TextureData pattern{n, n, 1, std::vector<float>(size_t(n) * n * 4)};
     for (uint32_t y = 0; y < n; ++y)
         for (uint32_t x = 0; x < n; ++x) {
-            const float value = static_cast<float>(foam_pattern_value(double(x) / (n - 1), double(y) / (n - 1)));
+            const float value =
+                static_cast<float>(foam_pattern_value(double(x) / (n - 1), double(y) / (n - 1)));
             const size_t i = (size_t(y) * n + x) * 4;
             pattern.rgba[i + 0] = pattern.rgba[i + 1] = pattern.rgba[i + 2] = value;
             pattern.rgba[i + 3] = 1.0f;

@@ -7,8 +7,8 @@
 
 #include <glm/glm.hpp>
 
-#include "watergen/water/nodes/reflection.h"
 #include "watergen/render/synthetic_scene.h"
+#include "watergen/water/nodes/reflection.h"
 
 namespace watergen {
 
@@ -26,7 +26,9 @@ const dvec3 kSeabedNormal{0.0, 1.0, 0.25}; // n . p = -1 on the seabed
 constexpr double kSeabedOffset = -1.0;
 const dvec3 kSandAlbedo{0.71, 0.63, 0.46};
 
-double seabed_height(double z) { return kSeabedOffset - kSeabedNormal.z * z; }
+double seabed_height(double z) {
+    return kSeabedOffset - kSeabedNormal.z * z;
+}
 
 dvec3 uniform_vec3(const SyntheticScene& scene, const char* name, dvec3 fallback) {
     auto it = scene.uniforms.find(name);
@@ -42,7 +44,9 @@ double uniform_float(const SyntheticScene& scene, const char* name, double fallb
 // The scene's value of a parameter the textures depend on, else the parameter's default.
 std::vector<double> scene_value(const SyntheticScene& scene, const Parameter& p) {
     auto it = scene.uniforms.find(p.name);
-    return it == scene.uniforms.end() || it->second.size() != p.default_value.size() ? p.default_value : it->second;
+    return it == scene.uniforms.end() || it->second.size() != p.default_value.size()
+               ? p.default_value
+               : it->second;
 }
 
 double smooth01(double x) {
@@ -67,12 +71,14 @@ dvec3 lit_sand(const dvec3& to_sun) {
 }
 
 void put(TextureData& t, size_t texel, const dvec3& c, double a = 1.0) {
-    for (int k = 0; k < 3; ++k) t.rgba[texel * 4 + k] = static_cast<float>(c[k]);
+    for (int k = 0; k < 3; ++k)
+        t.rgba[texel * 4 + k] = static_cast<float>(c[k]);
     t.rgba[texel * 4 + 3] = static_cast<float>(a);
 }
 
 TextureData make_sky_cube(const dvec3& to_sun) {
-    TextureData t{kSkyFaceSize, kSkyFaceSize, 6, std::vector<float>(size_t(kSkyFaceSize) * kSkyFaceSize * 6 * 4)};
+    TextureData t{kSkyFaceSize, kSkyFaceSize, 6,
+                  std::vector<float>(size_t(kSkyFaceSize) * kSkyFaceSize * 6 * 4)};
     for (int face = 0; face < 6; ++face)
         for (uint32_t y = 0; y < kSkyFaceSize; ++y)
             for (uint32_t x = 0; x < kSkyFaceSize; ++x) {
@@ -92,11 +98,13 @@ struct Camera {
 // View-projection columns in uv orientation: uv = 0.5 q.xy / q.w + 0.5 with v down, q.w the
 // distance in front of the camera (projective_uv in nodes/reflection.h).
 void set_view_proj(SyntheticScene& scene, const std::string& prefix, const Camera& c) {
-    const dvec3 row_x = c.right / (c.tan_half_fov_y * c.aspect), row_y = -c.up / c.tan_half_fov_y, row_w = c.forward;
+    const dvec3 row_x = c.right / (c.tan_half_fov_y * c.aspect), row_y = -c.up / c.tan_half_fov_y,
+                row_w = c.forward;
     for (int k = 0; k < 3; ++k)
-        scene.uniforms[prefix + "_view_proj_c" + std::to_string(k)] = {row_x[k], row_y[k], 0.0, row_w[k]};
-    scene.uniforms[prefix + "_view_proj_c3"] = {-glm::dot(row_x, c.eye), -glm::dot(row_y, c.eye), 0.0,
-                                                -glm::dot(row_w, c.eye)};
+        scene.uniforms[prefix + "_view_proj_c" + std::to_string(k)] = {row_x[k], row_y[k], 0.0,
+                                                                       row_w[k]};
+    scene.uniforms[prefix + "_view_proj_c3"] = {-glm::dot(row_x, c.eye), -glm::dot(row_y, c.eye),
+                                                0.0, -glm::dot(row_w, c.eye)};
 }
 
 // What the mirrored camera sees with the water plane as its clip plane (001, 002): only the
@@ -115,8 +123,8 @@ dvec3 mirrored_view(const dvec3& origin, const dvec3& d, double level, const dve
     return sky_radiance(d, to_sun);
 }
 
-TextureData make_reflection_map(uint32_t width, uint32_t height, const Camera& mirrored, double fov_extension,
-                                double level, const dvec3& to_sun) {
+TextureData make_reflection_map(uint32_t width, uint32_t height, const Camera& mirrored,
+                                double fov_extension, double level, const dvec3& to_sun) {
     TextureData t{width, height, 1, std::vector<float>(size_t(width) * height * 4)};
     const double sx_scale = mirrored.tan_half_fov_y * mirrored.aspect * fov_extension;
     const double sy_scale = mirrored.tan_half_fov_y * fov_extension;
@@ -124,7 +132,8 @@ TextureData make_reflection_map(uint32_t width, uint32_t height, const Camera& m
         for (uint32_t x = 0; x < width; ++x) {
             // Texel centre -> direction: the inverse of set_view_proj's uv with the extended FOV.
             const double nx = 2.0 * (x + 0.5) / width - 1.0, ny = 2.0 * (y + 0.5) / height - 1.0;
-            const dvec3 d = glm::normalize(mirrored.forward + mirrored.right * (nx * sx_scale) - mirrored.up * (ny * sy_scale));
+            const dvec3 d = glm::normalize(mirrored.forward + mirrored.right * (nx * sx_scale) -
+                                           mirrored.up * (ny * sy_scale));
             put(t, size_t(y) * width + x, mirrored_view(mirrored.eye, d, level, to_sun));
         }
     return t;
@@ -146,8 +155,10 @@ double horizon_tangent(double x, double z, double a) {
 
 // 003: eight Fourier coefficients of the horizon per texel (a0, a1, b1, a2 | b2, a3, b3, a4),
 // projected by numerical integration over the azimuth.
-void make_fourier_maps(SyntheticScene& scene, const std::vector<double>& origin, const std::vector<double>& size) {
-    TextureData c1{kFourierSize, kFourierSize, 1, std::vector<float>(size_t(kFourierSize) * kFourierSize * 4)};
+void make_fourier_maps(SyntheticScene& scene, const std::vector<double>& origin,
+                       const std::vector<double>& size) {
+    TextureData c1{kFourierSize, kFourierSize, 1,
+                   std::vector<float>(size_t(kFourierSize) * kFourierSize * 4)};
     TextureData c2 = c1;
     constexpr int kSteps = 720;
     for (uint32_t j = 0; j < kFourierSize; ++j)
@@ -163,7 +174,8 @@ void make_fourier_maps(SyntheticScene& scene, const std::vector<double>& origin,
                 }
             }
             a[0] /= kSteps;
-            for (int n = 1; n <= 4; ++n) a[n] *= 2.0 / kSteps, b[n] *= 2.0 / kSteps;
+            for (int n = 1; n <= 4; ++n)
+                a[n] *= 2.0 / kSteps, b[n] *= 2.0 / kSteps;
             const size_t texel = size_t(j) * kFourierSize + i;
             put(c1, texel, {a[0], a[1], b[1]}, a[2]);
             put(c2, texel, {b[2], a[3], b[3]}, a[4]);
@@ -183,7 +195,8 @@ void add_optics_inputs(SyntheticScene& scene) {
                         sc.tan_half_fov_y,
                         sc.aspect};
     const double level = uniform_float(scene, "water_level", 0.0);
-    const dvec3 to_sun = -glm::normalize(uniform_vec3(scene, "sun_direction", {-0.35, -0.75, 0.55}));
+    const dvec3 to_sun =
+        -glm::normalize(uniform_vec3(scene, "sun_direction", {-0.35, -0.75, 0.55}));
 
     // Refraction samples the scene colour where the main camera sees W.
     set_view_proj(scene, "refraction", camera);
@@ -198,9 +211,11 @@ void add_optics_inputs(SyntheticScene& scene) {
 
     // Textures and the uniforms that locate them agree: made for the scene's values.
     const double fov_extension = scene_value(scene, reflection_fov_extension())[0];
-    scene.textures["reflection_map"] = make_reflection_map(scene.width, scene.height, mirrored, fov_extension, level, to_sun);
+    scene.textures["reflection_map"] =
+        make_reflection_map(scene.width, scene.height, mirrored, fov_extension, level, to_sun);
     scene.textures["sky_cube"] = make_sky_cube(to_sun);
-    make_fourier_maps(scene, scene_value(scene, fourier_map_origin()), scene_value(scene, fourier_map_size()));
+    make_fourier_maps(scene, scene_value(scene, fourier_map_origin()),
+                      scene_value(scene, fourier_map_size()));
 }
 
 } // namespace watergen

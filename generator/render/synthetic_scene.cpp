@@ -18,7 +18,6 @@ constexpr double kFarDistance = 1000.0;
 // Direction the sunlight travels (000's convention: -L points at the sun).
 const dvec3 kSunTravel = glm::normalize(dvec3{-0.35, -0.75, 0.55});
 
-
 struct Hit {
     double t = kFarDistance;
     dvec3 normal{0.0, 1.0, 0.0};
@@ -64,8 +63,9 @@ dvec3 shade(const Hit& hit, const dvec3& p) {
         albedo = {0.45, 0.22, 0.15};
     } else {
         // Smooth ripples in the sand: two long-wavelength waves, no noise.
-        const double ripple = 0.5 + 0.25 * std::sin(2 * kPi * p.z / 3.0 + 0.7 * std::sin(2 * kPi * p.x / 9.0)) +
-                              0.25 * std::sin(2 * kPi * (p.x + 0.5 * p.z) / 7.0);
+        const double ripple =
+            0.5 + 0.25 * std::sin(2 * kPi * p.z / 3.0 + 0.7 * std::sin(2 * kPi * p.x / 9.0)) +
+            0.25 * std::sin(2 * kPi * (p.x + 0.5 * p.z) / 7.0);
         albedo = glm::mix(dvec3{0.62, 0.55, 0.40}, dvec3{0.80, 0.72, 0.52}, ripple);
     }
     const double lambert = std::max(glm::dot(hit.normal, -kSunTravel), 0.0);
@@ -74,7 +74,8 @@ dvec3 shade(const Hit& hit, const dvec3& p) {
 
 } // namespace
 
-std::map<std::string, TextureView> texture_views(const std::map<std::string, TextureData>& textures) {
+std::map<std::string, TextureView>
+texture_views(const std::map<std::string, TextureData>& textures) {
     std::map<std::string, TextureView> views;
     for (const auto& [name, t] : textures) {
         TextureView view{t.width, t.height, t.rgba.data()};
@@ -97,8 +98,9 @@ SceneCamera scene_camera(uint32_t width, uint32_t height) {
     const dvec3 forward{0.0, std::sin(pitch), std::cos(pitch)};
     const dvec3 right{1.0, 0.0, 0.0};
     const dvec3 up = glm::cross(forward, right);
-    return {{kEye.x, kEye.y, kEye.z}, {forward.x, forward.y, forward.z}, {right.x, right.y, right.z},
-            {up.x, up.y, up.z}, std::tan(half_fov), double(width) / height};
+    return {{kEye.x, kEye.y, kEye.z},    {forward.x, forward.y, forward.z},
+            {right.x, right.y, right.z}, {up.x, up.y, up.z},
+            std::tan(half_fov),          double(width) / height};
 }
 
 SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height) {

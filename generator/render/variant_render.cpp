@@ -15,7 +15,8 @@ ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height) {
     return img;
 }
 
-RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene, const RenderSettings& settings) {
+RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene,
+                          const RenderSettings& settings) {
     RenderJob job;
     job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
     job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
@@ -26,14 +27,15 @@ RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene
     const ShaderInterface& in = lang.fragment.source.interface;
     job.uniforms = pack_uniforms(in.uniforms, in.parameters, scene.uniforms);
     for (const auto& t : in.textures)
-        if (auto it = scene.textures.find(t.name); it != scene.textures.end()) job.textures[t.name] = it->second;
+        if (auto it = scene.textures.find(t.name); it != scene.textures.end())
+            job.textures[t.name] = it->second;
     job.filter = TextureFilter::Linear;
     job.timed_draws = settings.timed_draws;
     return job;
 }
 
-VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build, const SyntheticScene& scene,
-                             const RenderSettings& settings) {
+VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
+                             const SyntheticScene& scene, const RenderSettings& settings) {
     VariantRender out;
     out.key = build.shader.variant.key();
     if (!build.ok()) {
@@ -48,7 +50,8 @@ VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build, co
     for (size_t i = 0; i < 2; ++i) {
         out.gpu[i] = runner.render(make_render_job(build.languages[i], scene, settings));
         if (!out.gpu[i].ok) {
-            out.error = std::string(to_string(build.languages[i].language)) + " path: " + out.gpu[i].error;
+            out.error =
+                std::string(to_string(build.languages[i].language)) + " path: " + out.gpu[i].error;
             return out;
         }
         out.gpu_image[i] = ImageRGBA32F{settings.width, settings.height, out.gpu[i].rgba};
@@ -56,9 +59,10 @@ VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build, co
     out.validation_messages = runner.validation_messages();
 
     const auto t0 = std::chrono::steady_clock::now();
-    const EvalResult f = evaluate_image(build.shader.fragment, "color", scene.eval_inputs(), settings.width,
-                                        settings.height, EvalPrecision::Float);
-    out.cpu_float_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const EvalResult f = evaluate_image(build.shader.fragment, "color", scene.eval_inputs(),
+                                        settings.width, settings.height, EvalPrecision::Float);
+    out.cpu_float_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!f.ok()) {
         out.error = "CPU evaluator: " + f.error;
         return out;
@@ -68,8 +72,8 @@ VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build, co
     out.glsl_vs_cpu_float = compare_images(out.gpu_image[0], out.cpu_float);
     out.hlsl_vs_cpu_float = compare_images(out.gpu_image[1], out.cpu_float);
     if (settings.cpu_double) {
-        const EvalResult d = evaluate_image(build.shader.fragment, "color", scene.eval_inputs(), settings.width,
-                                            settings.height, EvalPrecision::Double);
+        const EvalResult d = evaluate_image(build.shader.fragment, "color", scene.eval_inputs(),
+                                            settings.width, settings.height, EvalPrecision::Double);
         if (!d.ok()) {
             out.error = "CPU evaluator: " + d.error;
             return out;

@@ -112,7 +112,8 @@ std::string axis_help(const AxisInfo& axis) {
         if (!c.approximates.empty()) help += "; approximates " + c.approximates;
         for (const auto& r : c.requirements) {
             std::string list;
-            for (const auto& name : r.choices) list += (list.empty() ? "" : ", ") + name;
+            for (const auto& name : r.choices)
+                list += (list.empty() ? "" : ", ") + name;
             help += "; needs " + r.axis + " in {" + list + "}";
         }
         if (!c.seed.empty()) help += " [seed " + c.seed + "]";

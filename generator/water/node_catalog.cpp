@@ -36,7 +36,8 @@ std::string catalog_names() {
 Graph probe_graph(const CatalogNode& node) {
     Graph g;
     std::vector<Expr> inputs;
-    for (const auto& in : node.inputs) inputs.push_back(varying(g, in.name, in.type));
+    for (const auto& in : node.inputs)
+        inputs.push_back(varying(g, in.name, in.type));
     RelaxedScope relaxed(g, true); // the half mode of a probe rounds every operation of the node
     g.set_output("value", node.build(g, inputs).id());
     return g;

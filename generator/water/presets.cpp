@@ -45,7 +45,8 @@ const std::vector<Preset>& presets() {
              {"scatter_coefficient", {0.4}},
              {"scatter_color", {0.01, 0.015, 0.02}},
              {"sky_color", {0.02, 0.03, 0.06}},
-             {"sun_direction", {0.2, 0.3, 0.93}}, // travelling upwards: the sun is below the horizon
+             {"sun_direction",
+              {0.2, 0.3, 0.93}}, // travelling upwards: the sun is below the horizon
              {"sun_color", {0.05, 0.05, 0.08}},
              {"incident_light", {0.08, 0.08, 0.12}},
          }},
@@ -66,7 +67,8 @@ std::string preset_names() {
 std::vector<std::string> apply_preset(Graph& g, const Preset& preset) {
     std::vector<std::string> mismatched;
     for (const auto& [name, values] : preset.values)
-        if (!g.set_parameter_default(name, values) && g.find_parameter(name)) mismatched.push_back(name);
+        if (!g.set_parameter_default(name, values) && g.find_parameter(name))
+            mismatched.push_back(name);
     return mismatched;
 }
 

@@ -33,30 +33,35 @@ const std::string& Variant::choice(const std::string& axis) const {
 
 std::string Variant::key() const {
     std::vector<std::string> parts;
-    for (size_t i = 0; i < axes().size(); ++i) parts.push_back(axes()[i].name + "=" + choices[i]);
+    for (size_t i = 0; i < axes().size(); ++i)
+        parts.push_back(axes()[i].name + "=" + choices[i]);
     return join(parts, ",");
 }
 
 std::string Variant::file_stem() const {
     std::vector<std::string> parts;
-    for (size_t i = 0; i < axes().size(); ++i) parts.push_back(axes()[i].name + "-" + choices[i]);
+    for (size_t i = 0; i < axes().size(); ++i)
+        parts.push_back(axes()[i].name + "-" + choices[i]);
     return join(parts, "_");
 }
 
 std::string Variant::short_hash() const {
     const std::string k = key();
     char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(XXH64(k.data(), k.size(), 0)));
+    std::snprintf(hex, sizeof hex, "%016llx",
+                  static_cast<unsigned long long>(XXH64(k.data(), k.size(), 0)));
     return hex;
 }
 
 Variant default_variant() {
     Variant v;
-    for (const auto& a : axes()) v.choices.push_back(a.default_choice);
+    for (const auto& a : axes())
+        v.choices.push_back(a.default_choice);
     return v;
 }
 
-std::optional<std::string> set_choice(Variant& v, const std::string& axis, const std::string& choice) {
+std::optional<std::string> set_choice(Variant& v, const std::string& axis,
+                                      const std::string& choice) {
     const size_t i = axis_index(axis);
     if (i == axes().size()) {
         const std::string names = join(axes(), [](const AxisInfo& a) { return a.name; });

@@ -8,7 +8,8 @@
 namespace watergen {
 
 TextureInput scene_color_texture() {
-    return {"scene_color", Type::Texture2D, "lit colour of the scene under the water, linear rgb", ""};
+    return {"scene_color", Type::Texture2D, "lit colour of the scene under the water, linear rgb",
+            ""};
 }
 
 TextureInput scene_position_texture() {
@@ -24,15 +25,19 @@ WaterShader build_water_shader(const Variant& variant, const Preset* preset) {
         s.uv = varying(g, "v_uv", Type::Vec2);
         s.scene_rgb = named(sample(texture(g, scene_color_texture()), s.uv).xyz(), "scene_rgb");
         s.scene_pos = named(sample(texture(g, scene_position_texture()), s.uv).xyz(), "scene_pos");
-        s.eye = bind(scene_quantity::eye_position,
-                     uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""}));
+        s.eye = bind(
+            scene_quantity::eye_position,
+            uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""}));
         s.level = bind(scene_quantity::water_level,
                        uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""}));
         s.time = bind(scene_quantity::time,
                       uniform(g, {"time", Type::Float, {0.0}, 0.0, 86400.0, "s", "000", ""}));
-        s.sun_travel = bind(scene_quantity::sun_direction,
-                            uniform(g, {"sun_direction", Type::Vec3, {-0.35, -0.75, 0.55}, -1.0, 1.0, "", "000", ""}));
-        s.sun_color = uniform(g, {"sun_color", Type::Vec3, {1.0, 0.95, 0.85}, 0.0, 1e3, "", "000", ""});
+        s.sun_travel = bind(
+            scene_quantity::sun_direction,
+            uniform(g,
+                    {"sun_direction", Type::Vec3, {-0.35, -0.75, 0.55}, -1.0, 1.0, "", "000", ""}));
+        s.sun_color =
+            uniform(g, {"sun_color", Type::Vec3, {1.0, 0.95, 0.85}, 0.0, 1e3, "", "000", ""});
         Expr to_scene = s.scene_pos - s.eye;
         s.scene_distance = named(length(to_scene), "scene_distance");
         s.view_ray = named(to_scene / max(s.scene_distance, 1e-6), "view_ray");
@@ -64,7 +69,8 @@ WaterShader build_water_shader(const Variant& variant, const Preset* preset) {
     Expr rgb = select(s.is_water, s.color, s.scene_rgb);
     g.set_output("color", vec4(rgb, constant(g, 1.0)).id());
     if (preset)
-        for (const auto& name : apply_preset(g, *preset)) g.error("preset '" + preset->name + "': parameter '" + name + "' has another size");
+        for (const auto& name : apply_preset(g, *preset))
+            g.error("preset '" + preset->name + "': parameter '" + name + "' has another size");
     return shader;
 }
 

@@ -315,7 +315,8 @@ std::optional<ImageRGBA32F> read_pfm(const fs::path& path, std::string* error) n
         }
         if (std::ferror(file.get())) return fail(fmt::format("read failed: {}", errno_text(errno)));
         PfmHeader header;
-        if (const std::string cause = parse_pfm_header(bytes, header); !cause.empty()) return fail(cause);
+        if (const std::string cause = parse_pfm_header(bytes, header); !cause.empty())
+            return fail(cause);
         return decode_pfm_pixels(bytes.data() + header.data_offset, header);
     });
 }

@@ -212,10 +212,9 @@ InstanceLayers choose_layers(const RunnerOptions& options) {
     // validation layer: then it only hears the loader, which explains device-less failures.
     const bool loader_debug_utils =
         has_instance_extension(nullptr, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    out.validation =
-        options.validation && has_layer(kValidationLayer) &&
-        (loader_debug_utils ||
-         has_instance_extension(kValidationLayer, VK_EXT_DEBUG_UTILS_EXTENSION_NAME));
+    out.validation = options.validation && has_layer(kValidationLayer) &&
+                     (loader_debug_utils ||
+                      has_instance_extension(kValidationLayer, VK_EXT_DEBUG_UTILS_EXTENSION_NAME));
     out.messenger_wanted = out.validation || loader_debug_utils;
     if (out.validation) out.layers.push_back(kValidationLayer);
     if (out.messenger_wanted) out.extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);

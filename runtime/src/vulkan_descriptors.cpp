@@ -259,8 +259,8 @@ void write_descriptors(Scope& scope, const MergedBindings& merged, const Descrip
         }
         writes.push_back(w);
     }
-    vkUpdateDescriptorSets(scope.ctx().device, static_cast<uint32_t>(writes.size()),
-                           writes.data(), 0, nullptr);
+    vkUpdateDescriptorSets(scope.ctx().device, static_cast<uint32_t>(writes.size()), writes.data(),
+                           0, nullptr);
 }
 
 } // namespace

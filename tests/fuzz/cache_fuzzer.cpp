@@ -15,11 +15,13 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string kHash = "0123456789abcdef";
-const std::vector<std::string> kExpected = {"glsl/water.frag.glsl", "glsl/water.frag.spv", "variant.json"};
+const std::vector<std::string> kExpected = {"glsl/water.frag.glsl", "glsl/water.frag.spv",
+                                            "variant.json"};
 
 // A directory of this process's own, removed when the fuzzer exits.
 struct WorkDir {
-    fs::path path = fs::temp_directory_path() / ("watergen-cache-fuzz-" + std::to_string(::getpid()));
+    fs::path path =
+        fs::temp_directory_path() / ("watergen-cache-fuzz-" + std::to_string(::getpid()));
     WorkDir() { fs::create_directories(path); }
     ~WorkDir() {
         std::error_code ec;
@@ -40,7 +42,8 @@ std::string valid_entry(const watergen::BuildCache& cache) {
     std::string bytes;
     if (FILE* f = std::fopen(cache.entry(kHash).c_str(), "rb")) {
         char buf[4096];
-        for (size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) bytes.append(buf, n);
+        for (size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;)
+            bytes.append(buf, n);
         std::fclose(f);
     }
     return bytes;
@@ -58,8 +61,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         entry = valid_entry(cache);
         for (size_t i = 1; i + 2 < size; i += 3) {
             const size_t at = (size_t(data[i]) << 8 | data[i + 1]) % (entry.size() + 1);
-            if (data[i + 2] == 0xFF) entry.erase(at, 1);
-            else entry.insert(at, 1, static_cast<char>(data[i + 2]));
+            if (data[i + 2] == 0xFF)
+                entry.erase(at, 1);
+            else
+                entry.insert(at, 1, static_cast<char>(data[i + 2]));
         }
     }
     fs::create_directories(cache.entry(kHash).parent_path());

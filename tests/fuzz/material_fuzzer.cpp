@@ -9,7 +9,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace watergen;
     Diagnostic error;
-    const auto source = JsonSource::parse(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json", &error);
+    const auto source = JsonSource::parse(std::string(reinterpret_cast<const char*>(data), size),
+                                          "fuzz.json", &error);
     if (!source) return 0;
     Diagnostics ds;
     const auto material = parse_material(*source, ds);

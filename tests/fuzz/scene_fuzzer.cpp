@@ -11,7 +11,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace watergen;
     static const Material material = default_material();
     Diagnostic error;
-    const auto source = JsonSource::parse(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json", &error);
+    const auto source = JsonSource::parse(std::string(reinterpret_cast<const char*>(data), size),
+                                          "fuzz.json", &error);
     if (!source) return 0;
     Diagnostics ds;
     const auto scene = parse_scene(*source, ds);

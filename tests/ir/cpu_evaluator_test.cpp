@@ -36,7 +36,8 @@ TEST_CASE("linear_sampling_follows_the_vulkan_formula", "[evaluator]") {
     auto r = evaluate(g, "out", in, EvalPrecision::Double);
     REQUIRE(r.ok());
     const std::vector<double> expected = {0.0, 0.5, 1.0, 0.0, 1.0, 0.7};
-    for (size_t i = 0; i < expected.size(); ++i) CHECK(r.values[i] == Approx(expected[i]).margin(1e-12));
+    for (size_t i = 0; i < expected.size(); ++i)
+        CHECK(r.values[i] == Approx(expected[i]).margin(1e-12));
     in.filter = Filter::Nearest;
     r = evaluate(g, "out", in, EvalPrecision::Double);
     CHECK(r.values == std::vector<double>{0.0, 1.0, 1.0, 0.0, 1.0, 1.0});

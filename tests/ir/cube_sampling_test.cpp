@@ -24,14 +24,18 @@ struct LabelledCube {
     LabelledCube() {
         for (uint32_t f = 0; f < 6; ++f)
             for (uint32_t j = 0; j < kN; ++j)
-                for (uint32_t i = 0; i < kN; ++i) rgba[((f * kN + j) * kN + i) * 4] = static_cast<float>(label(f, i, j));
+                for (uint32_t i = 0; i < kN; ++i)
+                    rgba[((f * kN + j) * kN + i) * 4] = static_cast<float>(label(f, i, j));
     }
-    static double label(uint32_t face, uint32_t i, uint32_t j) { return 100.0 * face + 10.0 * j + i; }
+    static double label(uint32_t face, uint32_t i, uint32_t j) {
+        return 100.0 * face + 10.0 * j + i;
+    }
     TextureView view() const { return {kN, kN, rgba.data(), 6}; }
 };
 
 // Red channel of the cube sampled along each direction (x, y, z triples).
-std::vector<double> sample_red(const TextureView& cube, const std::vector<double>& dirs, Filter filter = Filter::Linear) {
+std::vector<double> sample_red(const TextureView& cube, const std::vector<double>& dirs,
+                               Filter filter = Filter::Linear) {
     Graph g;
     Expr d = varying(g, "d", Type::Vec3);
     g.set_output("out", sample(texture(g, {"cube", Type::TextureCube, "", ""}), d).x().id());
@@ -106,7 +110,8 @@ TEST_CASE("cube_texel_centres_return_their_texels_on_every_face", "[cube]") {
             }
     for (Filter filter : {Filter::Linear, Filter::Nearest}) {
         const auto r = sample_red(cube.view(), dirs, filter);
-        for (size_t k = 0; k < r.size(); ++k) CHECK(r[k] == Approx(expected[k]).margin(1e-9));
+        for (size_t k = 0; k < r.size(); ++k)
+            CHECK(r[k] == Approx(expected[k]).margin(1e-9));
     }
 }
 
@@ -119,11 +124,13 @@ TEST_CASE("linear_cube_filtering_blends_across_an_edge_with_the_adjacent_face", 
     const auto on_edge = direction(4, 1.0, t);
     CHECK(on_edge[0] == Approx(1.0));
     const auto r = sample_red(cube.view(), on_edge);
-    CHECK(r[0] == Approx(0.5 * (LabelledCube::label(4, 3, 1) + LabelledCube::label(0, 0, 1))).margin(1e-9));
+    CHECK(r[0] ==
+          Approx(0.5 * (LabelledCube::label(4, 3, 1) + LabelledCube::label(0, 0, 1))).margin(1e-9));
     // Quarter of a texel inside +X from that edge: 3/4 of +X (0, 1), 1/4 of +Z (3, 1).
     const auto inside_x = direction(0, 0.25 / kN, t);
     const auto q = sample_red(cube.view(), inside_x);
-    CHECK(q[0] == Approx(0.75 * LabelledCube::label(0, 0, 1) + 0.25 * LabelledCube::label(4, 3, 1)).margin(1e-9));
+    CHECK(q[0] == Approx(0.75 * LabelledCube::label(0, 0, 1) + 0.25 * LabelledCube::label(4, 3, 1))
+                      .margin(1e-9));
     // Per-face clamp to edge would have returned texels of one face only.
     CHECK(q[0] != Approx(LabelledCube::label(0, 0, 1)).margin(1.0));
 }
@@ -134,7 +141,9 @@ TEST_CASE("linear_cube_filtering_averages_the_three_texels_at_a_corner", "[cube]
     // across the side edge +X (0, 0); the fourth texel lies past both edges and is the mean of
     // those three, so the result is their mean.
     const auto r = sample_red(cube.view(), {1.0, 1.0, 1.0});
-    const double mean = (LabelledCube::label(4, 3, 0) + LabelledCube::label(2, 3, 3) + LabelledCube::label(0, 0, 0)) / 3.0;
+    const double mean = (LabelledCube::label(4, 3, 0) + LabelledCube::label(2, 3, 3) +
+                         LabelledCube::label(0, 0, 0)) /
+                        3.0;
     CHECK(r[0] == Approx(mean).margin(1e-9));
     // And the same seen from the other two faces: the corner is one point.
     const auto rx = sample_red(cube.view(), {1.0, 1.0 - 1e-12, 1.0 - 1e-12});
@@ -152,7 +161,8 @@ TEST_CASE("linear_cube_sampling_of_smooth_content_is_continuous_across_every_edg
                 double d[3];
                 cube_face_direction(f, (i + 0.5) / n, (j + 0.5) / n, d);
                 const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-                rgba[((f * n + j) * n + i) * 4] = static_cast<float>(0.5 + 0.3 * d[0] / len + 0.2 * d[1] / len - 0.4 * d[2] / len);
+                rgba[((f * n + j) * n + i) * 4] = static_cast<float>(
+                    0.5 + 0.3 * d[0] / len + 0.2 * d[1] / len - 0.4 * d[2] / len);
             }
     const TextureView view{n, n, rgba.data(), 6};
     const double eps = 1e-9;
@@ -199,7 +209,8 @@ TEST_CASE("a_texture_with_the_wrong_layer_count_is_an_error", "[cube]") {
     in.textures["cube"] = as_2d;
     in.varyings["d"] = {1, 0, 0};
     in.lanes = 1;
-    CHECK(evaluate(g, "out", in, EvalPrecision::Float).error == "texture 'cube' has 1 layers; the cube binding needs 6");
+    CHECK(evaluate(g, "out", in, EvalPrecision::Float).error ==
+          "texture 'cube' has 1 layers; the cube binding needs 6");
     // layers = 0 (unspecified, as SyntheticScene::eval_inputs leaves it) takes the binding's.
     in.textures["cube"].layers = 0;
     CHECK(evaluate(g, "out", in, EvalPrecision::Float).ok());

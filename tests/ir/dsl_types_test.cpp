@@ -7,7 +7,9 @@ using namespace watergen;
 namespace {
 bool mentions(const Diagnostics& ds, const std::string& node, const std::string& text) {
     for (const auto& d : ds)
-        if (d.severity == Severity::Error && d.node == node && d.message.find(text) != std::string::npos) return true;
+        if (d.severity == Severity::Error && d.node == node &&
+            d.message.find(text) != std::string::npos)
+            return true;
     return false;
 }
 } // namespace

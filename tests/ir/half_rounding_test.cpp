@@ -9,8 +9,9 @@ using namespace watergen;
 // binary16: 10 fraction bits, exponent -14..15, subnormal spacing 2^-24, max 65504.
 TEST_CASE("half_rounding_matches_binary16", "[half]") {
     CHECK(round_to_half(1.0) == 1.0);
-    CHECK(round_to_half(1.0 + std::ldexp(1.0, -11)) == 1.0);                             // tie -> even
-    CHECK(round_to_half(1.0 + 3 * std::ldexp(1.0, -11)) == 1.0 + std::ldexp(1.0, -9));   // tie -> even (up)
+    CHECK(round_to_half(1.0 + std::ldexp(1.0, -11)) == 1.0); // tie -> even
+    CHECK(round_to_half(1.0 + 3 * std::ldexp(1.0, -11)) ==
+          1.0 + std::ldexp(1.0, -9)); // tie -> even (up)
     CHECK(round_to_half(0.1) == 0.0999755859375);
     CHECK(round_to_half(65504.0) == 65504.0);
     CHECK(round_to_half(65519.0) == 65504.0);

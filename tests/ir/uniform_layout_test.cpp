@@ -8,7 +8,8 @@ using namespace watergen;
 
 namespace {
 Parameter p(const char* name, Type t) {
-    return {name, t, std::vector<double>(static_cast<size_t>(component_count(t)), 0.0), 0, 1, "", "", ""};
+    return {name, t, std::vector<double>(static_cast<size_t>(component_count(t)), 0.0), 0, 1, "",
+            "",   ""};
 }
 uint32_t offset_of(const UniformLayout& l, const std::string& name) {
     for (const auto& m : l.members)
@@ -19,7 +20,8 @@ uint32_t offset_of(const UniformLayout& l, const std::string& name) {
 
 TEST_CASE("floats_fill_the_tail_of_vec3_registers", "[layout]") {
     Diagnostics ds;
-    const auto l = layout_uniforms({p("a", Type::Float), p("v", Type::Vec3), p("b", Type::Float), p("w", Type::Vec3)}, ds);
+    const auto l = layout_uniforms(
+        {p("a", Type::Float), p("v", Type::Vec3), p("b", Type::Float), p("w", Type::Vec3)}, ds);
     CHECK(ds.empty());
     CHECK(offset_of(l, "v") == 0);
     CHECK(offset_of(l, "w") == 16);
@@ -30,8 +32,9 @@ TEST_CASE("floats_fill_the_tail_of_vec3_registers", "[layout]") {
 
 TEST_CASE("no_member_straddles_a_16_byte_register", "[layout]") {
     Diagnostics ds;
-    const auto l = layout_uniforms({p("f", Type::Float), p("u", Type::Vec2), p("g", Type::Float), p("q", Type::Vec2),
-                                    p("h", Type::Float), p("c", Type::Vec4)}, ds);
+    const auto l = layout_uniforms({p("f", Type::Float), p("u", Type::Vec2), p("g", Type::Float),
+                                    p("q", Type::Vec2), p("h", Type::Float), p("c", Type::Vec4)},
+                                   ds);
     for (const auto& m : l.members) {
         const uint32_t size = static_cast<uint32_t>(component_count(m.type)) * 4;
         CHECK(m.offset / 16 == (m.offset + size - 1) / 16);
@@ -39,8 +42,9 @@ TEST_CASE("no_member_straddles_a_16_byte_register", "[layout]") {
         CHECK(m.offset % (m.type == Type::Vec2 ? 8 : m.type == Type::Float ? 4 : 16) == 0);
     }
     CHECK(l.size % 16 == 0);
-    CHECK(std::is_sorted(l.members.begin(), l.members.end(),
-                         [](const UniformSlot& a, const UniformSlot& b) { return a.offset < b.offset; }));
+    CHECK(std::is_sorted(
+        l.members.begin(), l.members.end(),
+        [](const UniformSlot& a, const UniformSlot& b) { return a.offset < b.offset; }));
 }
 
 TEST_CASE("matrix_parameters_are_rejected", "[layout]") {

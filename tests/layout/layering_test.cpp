@@ -62,7 +62,8 @@ TEST_CASE("generator_layers_include_only_the_layers_above_them", "[layout]") {
                 if (!e.is_regular_file()) continue;
                 const std::string text = read_text(e.path());
                 ++files;
-                for (std::sregex_iterator it(text.begin(), text.end(), include_re), end; it != end; ++it) {
+                for (std::sregex_iterator it(text.begin(), text.end(), include_re), end; it != end;
+                     ++it) {
                     const std::string included = (*it)[1];
                     INFO(e.path().string() << " includes watergen/" << included);
                     CHECK(include_allowed(allowed, included));
@@ -77,14 +78,18 @@ TEST_CASE("every_layer_has_its_public_header_folder_and_nothing_else_does", "[la
     const fs::path gen = source_dir() / "generator";
     std::set<std::string> layers, header_folders;
     for (const auto& e : fs::directory_iterator(gen))
-        if (e.is_directory() && e.path().filename() != "include") layers.insert(e.path().filename());
+        if (e.is_directory() && e.path().filename() != "include")
+            layers.insert(e.path().filename());
     for (const auto& e : fs::directory_iterator(gen / "include" / "watergen"))
-        if (e.is_directory()) header_folders.insert(e.path().filename());
-    else FAIL_CHECK("a header outside every layer folder: " << e.path());
+        if (e.is_directory())
+            header_folders.insert(e.path().filename());
+        else
+            FAIL_CHECK("a header outside every layer folder: " << e.path());
     layers.erase("cli"); // the command has no public headers
     CHECK(layers == header_folders);
     std::set<std::string> known;
-    for (const auto& [layer, allowed] : allowed_includes()) known.insert(layer);
+    for (const auto& [layer, allowed] : allowed_includes())
+        known.insert(layer);
     known.erase("cli");
     CHECK(layers == known);
 }
@@ -97,17 +102,21 @@ TEST_CASE("readme_layout_table_names_every_folder", "[layout]") {
     const std::string table = readme.substr(start, readme.find("\n## ", start + 1) - start);
     std::set<std::string> listed;
     const std::regex row_re(R"re(\n\| `([a-z_./]+?)/?` \|)re");
-    for (std::sregex_iterator it(table.begin(), table.end(), row_re), end; it != end; ++it) listed.insert((*it)[1]);
+    for (std::sregex_iterator it(table.begin(), table.end(), row_re), end; it != end; ++it)
+        listed.insert((*it)[1]);
     std::set<std::string> folders;
     for (const auto& e : fs::directory_iterator(root / "generator"))
-        if (e.is_directory() && e.path().filename() != "include") folders.insert("generator/" + e.path().filename().string());
-    for (const char* top : {"runtime", "templates", "examples", "generated", "tests"}) folders.insert(top);
+        if (e.is_directory() && e.path().filename() != "include")
+            folders.insert("generator/" + e.path().filename().string());
+    for (const char* top : {"runtime", "templates", "examples", "generated", "tests"})
+        folders.insert(top);
     CHECK(listed == folders);
     std::set<std::string> test_folders;
     for (const auto& e : fs::directory_iterator(root / "tests"))
         if (e.is_directory()) test_folders.insert(e.path().filename());
     for (const auto& t : test_folders) {
         INFO("tests/" << t << " is not named in the README's tests row");
-        CHECK((table.find("`" + t + "`") != std::string::npos || table.find("`tests/" + t + "`") != std::string::npos));
+        CHECK((table.find("`" + t + "`") != std::string::npos ||
+               table.find("`tests/" + t + "`") != std::string::npos));
     }
 }

@@ -22,7 +22,9 @@ TEST_CASE("content_hash_covers_parts_their_boundaries_and_the_toolchain", "[cach
 TEST_CASE("cache_round_trips_binary_files_and_treats_damage_as_a_miss", "[cache]") {
     const TempDir tmp("cache-unit");
     const BuildCache cache(tmp.path);
-    const FileMap files = {{"glsl/a.spv", std::string("\x03\x02\x23\x07\0\n\nxyz", 10)}, {"variant.json", "{}\n"}, {"empty", ""}};
+    const FileMap files = {{"glsl/a.spv", std::string("\x03\x02\x23\x07\0\n\nxyz", 10)},
+                           {"variant.json", "{}\n"},
+                           {"empty", ""}};
     const std::vector<std::string> names = {"empty", "glsl/a.spv", "variant.json"};
     const auto miss = cache.load("0123456789abcdef", names);
     CHECK_FALSE(miss.files);
@@ -34,7 +36,8 @@ TEST_CASE("cache_round_trips_binary_files_and_treats_damage_as_a_miss", "[cache]
     // A truncated entry (a crash while writing cannot leave one, but a full disk might).
     const auto entry = tmp.path / "01" / "0123456789abcdef.wgc";
     CHECK(cache.entry("0123456789abcdef") == entry);
-    std::ofstream(entry, std::ios::binary | std::ios::trunc) << "watergen-cache 2\n0123456789abcdef\nglsl/a.spv\n999\nabc";
+    std::ofstream(entry, std::ios::binary | std::ios::trunc)
+        << "watergen-cache 2\n0123456789abcdef\nglsl/a.spv\n999\nabc";
     const auto truncated = cache.load("0123456789abcdef", names);
     CHECK_FALSE(truncated.files);
     CHECK(truncated.rejected == "truncated record header");
@@ -48,20 +51,32 @@ TEST_CASE("cache_round_trips_binary_files_and_treats_damage_as_a_miss", "[cache]
 }
 
 TEST_CASE("targets_choose_the_files_of_a_variant", "[cache]") {
-    const FileMap all = {{"variant.json", ""},         {"glsl/water.frag.glsl", ""},       {"glsl/water.frag.spv", ""},
-                         {"glsl/water.frag.opt.spv", ""}, {"glsl/water.frag.330.glsl", ""},  {"glsl/water.frag.300es.glsl", ""},
-                         {"glsl/water.frag.metal", ""},   {"glsl/water.frag.reflect.json", ""}, {"hlsl/water.frag.hlsl", ""},
-                         {"hlsl/water.frag.spv", ""},     {"hlsl/water.frag.330.glsl", ""},  {"hlsl/water.frag.reflect.json", ""}};
+    const FileMap all = {{"variant.json", ""},
+                         {"glsl/water.frag.glsl", ""},
+                         {"glsl/water.frag.spv", ""},
+                         {"glsl/water.frag.opt.spv", ""},
+                         {"glsl/water.frag.330.glsl", ""},
+                         {"glsl/water.frag.300es.glsl", ""},
+                         {"glsl/water.frag.metal", ""},
+                         {"glsl/water.frag.reflect.json", ""},
+                         {"hlsl/water.frag.hlsl", ""},
+                         {"hlsl/water.frag.spv", ""},
+                         {"hlsl/water.frag.330.glsl", ""},
+                         {"hlsl/water.frag.reflect.json", ""}};
     auto names = [](const FileMap& m) {
         std::vector<std::string> v;
-        for (const auto& [k, _] : m) v.push_back(k);
+        for (const auto& [k, _] : m)
+            v.push_back(k);
         return v;
     };
     CHECK(names(filter_targets(all, {Target::Essl300})) ==
           std::vector<std::string>{"glsl/water.frag.300es.glsl", "variant.json"});
     CHECK(names(filter_targets(all, {Target::Glsl, Target::Spirv})) ==
-          std::vector<std::string>{"glsl/water.frag.glsl", "glsl/water.frag.opt.spv", "glsl/water.frag.spv", "variant.json"});
+          std::vector<std::string>{"glsl/water.frag.glsl", "glsl/water.frag.opt.spv",
+                                   "glsl/water.frag.spv", "variant.json"});
     CHECK(names(filter_targets(all, {Target::Hlsl, Target::Spirv, Target::Reflection})) ==
-          std::vector<std::string>{"glsl/water.frag.opt.spv", "glsl/water.frag.reflect.json", "glsl/water.frag.spv",
-                                   "hlsl/water.frag.hlsl", "hlsl/water.frag.reflect.json", "hlsl/water.frag.spv", "variant.json"});
+          std::vector<std::string>{"glsl/water.frag.opt.spv", "glsl/water.frag.reflect.json",
+                                   "glsl/water.frag.spv", "hlsl/water.frag.hlsl",
+                                   "hlsl/water.frag.reflect.json", "hlsl/water.frag.spv",
+                                   "variant.json"});
 }

@@ -24,7 +24,8 @@ TEST_CASE("a_build_killed_midway_leaves_the_previous_output_intact", "[build]") 
     const auto complete = reference_build();
     REQUIRE(previous != complete);
 
-    std::vector<std::string> args = {"build", "-q", "--no-cache", source_dir() + "/examples/materials/default.json"};
+    std::vector<std::string> args = {"build", "-q", "--no-cache",
+                                     source_dir() + "/examples/materials/default.json"};
     for (const auto& p : example_scene_paths()) {
         args.push_back("--scene");
         args.push_back(p);

@@ -69,21 +69,26 @@ TEST_CASE("manifest_lists_every_variant_sorted_with_reflection_and_counts", "[bu
         CHECK(v["spirv_instructions"]["glsl"]["fragment"].get<int>() > 0);
         // Every listed file exists.
         for (const auto& [kind, files] : v["files"].items())
-            for (const auto& f : files) CHECK(tree.count(f.get<std::string>()) == 1);
+            for (const auto& f : files)
+                CHECK(tree.count(f.get<std::string>()) == 1);
     }
     // The mountain lake targets phones: ESSL, no HLSL.
     for (const auto& v : m["variants"])
         if (v["scene"] == "mountain_lake") {
             CHECK(v["files"].contains("essl300"));
             CHECK_FALSE(v["files"].contains("hlsl"));
-            CHECK(v["folded_parameters"].contains("water_level")); // read by every variant; time is not (flat water)
+            CHECK(v["folded_parameters"].contains(
+                "water_level")); // read by every variant; time is not (flat water)
         }
 }
 
 TEST_CASE("a_build_without_scenes_builds_the_whole_material_unfolded", "[build]") {
     const TempDir tmp("unpruned");
     Diagnostics ds;
-    auto small = MaterialBuilder("small").offer("fresnel", {"schlick", "exact"}).offer("shore", {"hard", "soft"}).build(ds);
+    auto small = MaterialBuilder("small")
+                     .offer("fresnel", {"schlick", "exact"})
+                     .offer("shore", {"hard", "soft"})
+                     .build(ds);
     REQUIRE(small);
     BuildRequest r{*small, {}, tmp.path / "out", {}};
     const BuildSummary s = build_material(r);
@@ -104,7 +109,8 @@ TEST_CASE("a_failing_variant_leaves_the_previous_output_untouched", "[build]") {
     const fs::path out = tmp.path / "out";
     fs::create_directories(out);
     std::ofstream(out / "previous.txt") << "previous\n";
-    const std::string manifest = "{\"generator\": \"watergen 0.1.0\"}\n"; // a build may replace only its own output
+    const std::string manifest =
+        "{\"generator\": \"watergen 0.1.0\"}\n"; // a build may replace only its own output
     std::ofstream(out / "manifest.json") << manifest;
     Material broken = default_material();
     broken.space.offered("fresnel").push_back("bogus"); // no node: the variant cannot compose
@@ -112,8 +118,10 @@ TEST_CASE("a_failing_variant_leaves_the_previous_output_untouched", "[build]") {
     const BuildSummary s = build_material(r);
     CHECK_FALSE(s.ok());
     CHECK(s.failed > 0);
-    CHECK(read_tree(out) == std::map<std::string, std::string>{{"manifest.json", manifest}, {"previous.txt", "previous\n"}});
-    for (const auto& e : fs::directory_iterator(tmp.path)) CHECK(e.path().filename() == "out"); // no staging left
+    CHECK(read_tree(out) == std::map<std::string, std::string>{{"manifest.json", manifest},
+                                                               {"previous.txt", "previous\n"}});
+    for (const auto& e : fs::directory_iterator(tmp.path))
+        CHECK(e.path().filename() == "out"); // no staging left
 }
 
 TEST_CASE("bad_scene_input_leaves_the_previous_output_untouched", "[build]") {
@@ -138,10 +146,11 @@ TEST_CASE("the_cpp_example_program_and_the_json_file_build_the_same_bytes", "[bu
         scene_args += " " + path;
         scene_flags += " --scene " + path;
     }
-    const std::string cpp = std::string(WATERGEN_EXAMPLE) + " " + (tmp.path / "cpp").string() + scene_args + " > /dev/null";
+    const std::string cpp = std::string(WATERGEN_EXAMPLE) + " " + (tmp.path / "cpp").string() +
+                            scene_args + " > /dev/null";
     const std::string json = std::string(WATERGEN_CLI) + " build -q --no-cache " + source_dir() +
-                             "/examples/materials/default.json" + scene_flags + " --out " + (tmp.path / "json").string() +
-                             " > /dev/null";
+                             "/examples/materials/default.json" + scene_flags + " --out " +
+                             (tmp.path / "json").string() + " > /dev/null";
     REQUIRE(std::system(cpp.c_str()) == 0);
     REQUIRE(std::system(json.c_str()) == 0);
     const auto a = read_tree(tmp.path / "cpp"), b = read_tree(tmp.path / "json");

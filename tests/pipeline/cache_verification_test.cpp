@@ -55,7 +55,8 @@ struct PoisonedCache {
     TempDir tmp;
     fs::path cache, out, entry;
 
-    explicit PoisonedCache(const std::string& name) : tmp("poison-" + name), cache(tmp.path / "cache"), out(tmp.path / "out") {
+    explicit PoisonedCache(const std::string& name)
+        : tmp("poison-" + name), cache(tmp.path / "cache"), out(tmp.path / "out") {
         fs::copy(fixture().cache, cache, fs::copy_options::recursive);
         std::vector<fs::path> entries;
         for (const auto& e : fs::recursive_directory_iterator(cache))
@@ -66,7 +67,9 @@ struct PoisonedCache {
     }
 
     std::string read_entry() const { return read_file(entry); }
-    void write_entry(const std::string& bytes) const { std::ofstream(entry, std::ios::binary | std::ios::trunc) << bytes; }
+    void write_entry(const std::string& bytes) const {
+        std::ofstream(entry, std::ios::binary | std::ios::trunc) << bytes;
+    }
 
     BuildSummary build() const {
         BuildRequest r{fixture().material, {}, out, {}};
@@ -93,11 +96,13 @@ struct RecordSpan {
     size_t header, body, size; // where its name line starts, where its bytes start, how many
 };
 
-// The record `name` of an entry: "watergen-cache 2\n<key>\n", then "<name>\n<size>\n<hash>\n<bytes>"...
+// The record `name` of an entry: "watergen-cache 2\n<key>\n", then
+// "<name>\n<size>\n<hash>\n<bytes>"...
 RecordSpan find_record(const std::string& entry, const std::string& name) {
     size_t pos = entry.find('\n', entry.find('\n') + 1) + 1;
     while (pos < entry.size()) {
-        const size_t size_line = entry.find('\n', pos) + 1, hash_line = entry.find('\n', size_line) + 1;
+        const size_t size_line = entry.find('\n', pos) + 1,
+                     hash_line = entry.find('\n', size_line) + 1;
         const size_t body = entry.find('\n', hash_line) + 1;
         const size_t size = std::stoul(entry.substr(size_line, hash_line - 1 - size_line));
         if (entry.compare(pos, size_line - 1 - pos, name) == 0) return {pos, body, size};
@@ -109,7 +114,8 @@ RecordSpan find_record(const std::string& entry, const std::string& name) {
 
 // Replaces the first `from` inside the record `name` by `to`, of the same length, so that
 // only the hash can tell.
-std::string edit_record(std::string entry, const std::string& name, const std::string& from, const std::string& to) {
+std::string edit_record(std::string entry, const std::string& name, const std::string& from,
+                        const std::string& to) {
     REQUIRE(from.size() == to.size());
     const RecordSpan r = find_record(entry, name);
     const size_t at = entry.find(from, r.body);
@@ -127,7 +133,8 @@ TEST_CASE("variant_file_names_are_the_files_every_build_writes", "[cache]") {
     const VariantBuild b = build_variant(variants.back());
     REQUIRE(b.ok());
     std::vector<std::string> names;
-    for (const auto& [path, bytes] : variant_files(b)) names.push_back(path);
+    for (const auto& [path, bytes] : variant_files(b))
+        names.push_back(path);
     CHECK(names == variant_file_names());
     CHECK(names.size() == 29);
 }
@@ -137,26 +144,31 @@ TEST_CASE("flipped_bytes_in_a_cached_spirv_binary_are_rebuilt", "[cache]") {
     std::string entry = p.read_entry();
     const RecordSpan r = find_record(entry, "glsl/water.frag.opt.spv");
     REQUIRE(r.size > 100);
-    for (size_t i = 40; i < 44; ++i) entry[r.body + i] = static_cast<char>(entry[r.body + i] ^ 0x5a);
+    for (size_t i = 40; i < 44; ++i)
+        entry[r.body + i] = static_cast<char>(entry[r.body + i] ^ 0x5a);
     p.write_entry(entry);
     p.check_rebuilt(p.build());
 }
 
 TEST_CASE("a_renamed_main_in_cached_glsl_is_rebuilt", "[cache]") {
     const PoisonedCache p("main");
-    p.write_entry(edit_record(p.read_entry(), "glsl/water.frag.glsl", "void main()", "void mian()"));
+    p.write_entry(
+        edit_record(p.read_entry(), "glsl/water.frag.glsl", "void main()", "void mian()"));
     const BuildSummary s = p.build();
     p.check_rebuilt(s);
     bool warned = false;
     for (const auto& d : s.diagnostics)
-        warned |= d.severity == Severity::Warning && d.file == p.entry.string() &&
-                  d.message.find("record 'glsl/water.frag.glsl': content does not match its hash") != std::string::npos;
+        warned |=
+            d.severity == Severity::Warning && d.file == p.entry.string() &&
+            d.message.find("record 'glsl/water.frag.glsl': content does not match its hash") !=
+                std::string::npos;
     CHECK(warned);
 }
 
 TEST_CASE("an_edited_cached_variant_json_is_rebuilt", "[cache]") {
     const PoisonedCache p("json");
-    p.write_entry(edit_record(p.read_entry(), "variant.json", "\"fresnel\": \"", "\"fresnel\":\"\""));
+    p.write_entry(
+        edit_record(p.read_entry(), "variant.json", "\"fresnel\": \"", "\"fresnel\":\"\""));
     p.check_rebuilt(p.build());
 }
 
@@ -178,11 +190,13 @@ TEST_CASE("an_extra_record_in_an_entry_is_rebuilt_not_added", "[cache]") {
 TEST_CASE("a_record_named_to_escape_the_output_writes_nothing_outside", "[cache]") {
     const PoisonedCache p("escape");
     // From <out>/unpruned/<variant>/ four levels up is the test's directory.
-    p.write_entry(p.read_entry() + cache_record("glsl/../../../../escaped/x.spv", "\x03\x02\x23\x07"));
+    p.write_entry(p.read_entry() +
+                  cache_record("glsl/../../../../escaped/x.spv", "\x03\x02\x23\x07"));
     p.check_rebuilt(p.build());
     CHECK_FALSE(fs::exists(p.tmp.path / "escaped"));
     std::vector<std::string> beside;
-    for (const auto& e : fs::directory_iterator(p.tmp.path)) beside.push_back(e.path().filename().string());
+    for (const auto& e : fs::directory_iterator(p.tmp.path))
+        beside.push_back(e.path().filename().string());
     std::sort(beside.begin(), beside.end());
     CHECK(beside == std::vector<std::string>{"cache", "out"});
 }
@@ -202,11 +216,13 @@ TEST_CASE("a_fifo_in_place_of_an_entry_does_not_hang_the_build", "[cache]") {
     fs::remove(p.entry);
     REQUIRE(::mkfifo(p.entry.c_str(), 0644) == 0);
     // In a child process with a deadline: a build that opens the FIFO for reading waits forever.
-    const WatergenRun run = run_watergen(
-        {"build", "-q", fixture().material_file.string(), "--cache", p.cache.string(), "--out", p.out.string()}, 60);
+    const WatergenRun run = run_watergen({"build", "-q", fixture().material_file.string(),
+                                          "--cache", p.cache.string(), "--out", p.out.string()},
+                                         60);
     REQUIRE_FALSE(run.timed_out);
     CHECK(run.exit_code == 0);
-    CHECK(run.out.find("(1 built, 3 cached, 0 shared between scenes, 0 same shader as another variant, 0 failed; "
+    CHECK(run.out.find("(1 built, 3 cached, 0 shared between scenes, 0 same shader as another "
+                       "variant, 0 failed; "
                        "1 cache entry failed verification, rebuilt)") != std::string::npos);
     CHECK(run.err.find("is a FIFO, not a regular file") != std::string::npos);
     CHECK(read_tree(p.out) == fixture().no_cache_output);
@@ -217,13 +233,15 @@ TEST_CASE("a_symlink_to_dev_zero_is_evicted_without_reading_it", "[cache]") {
     const PoisonedCache p("zero");
     fs::remove(p.entry);
     fs::create_symlink("/dev/zero", p.entry);
-    const WatergenRun run = run_watergen(
-        {"build", "-q", fixture().material_file.string(), "--cache", p.cache.string(), "--out", p.out.string()}, 60);
+    const WatergenRun run = run_watergen({"build", "-q", fixture().material_file.string(),
+                                          "--cache", p.cache.string(), "--out", p.out.string()},
+                                         60);
     REQUIRE_FALSE(run.timed_out);
     CHECK(run.exit_code == 0);
     CHECK(run.out.find("1 cache entry failed verification, rebuilt") != std::string::npos);
     CHECK(run.err.find("is a symbolic link, not a regular file") != std::string::npos);
-    CHECK(run.max_rss_kb < 1024 * 1024); // reading /dev/zero up to any bound of a GB would show here
+    CHECK(run.max_rss_kb <
+          1024 * 1024); // reading /dev/zero up to any bound of a GB would show here
     CHECK(read_tree(p.out) == fixture().no_cache_output);
     CHECK(fs::is_regular_file(fs::symlink_status(p.entry))); // the link is gone, not followed
     CHECK(fs::is_character_file("/dev/zero"));
@@ -232,8 +250,9 @@ TEST_CASE("a_symlink_to_dev_zero_is_evicted_without_reading_it", "[cache]") {
 TEST_CASE("two_builds_at_once_into_one_output_and_one_cache_finish_identical", "[cache]") {
     const PoisonedCache p("concurrent");
     p.write_entry("garbage"); // both builds find it damaged, evict it and store it again
-    const std::vector<std::string> args = {"build", "-q", fixture().material_file.string(), "--cache", p.cache.string(),
-                                           "--out", p.out.string()};
+    const std::vector<std::string> args = {
+        "build", "-q",          fixture().material_file.string(), "--cache", p.cache.string(),
+        "--out", p.out.string()};
     const pid_t a = start_watergen(args), b = start_watergen(args);
     REQUIRE(a > 0);
     REQUIRE(b > 0);

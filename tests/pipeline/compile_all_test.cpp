@@ -10,7 +10,8 @@ using namespace watergen;
 TEST_CASE("every_wired_variant_compiles_validates_and_round_trips_in_both_languages", "[compile]") {
     for (const VariantBuild& b : test::covering_builds()) {
         INFO(b.shader.variant.key());
-        for (const auto& d : b.diagnostics) INFO(format_diagnostic(d));
+        for (const auto& d : b.diagnostics)
+            INFO(format_diagnostic(d));
         REQUIRE(b.ok());
         for (const auto& lang : b.languages)
             for (const StageBuild* s : {&lang.vertex, &lang.fragment}) {

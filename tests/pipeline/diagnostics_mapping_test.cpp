@@ -3,9 +3,9 @@
 #include <filesystem>
 
 #include "watergen/ir/dsl.h"
-#include "watergen/toolchain/glslang_stage.h"
 #include "watergen/pipeline/output_writer.h"
 #include "watergen/pipeline/variant_build.h"
+#include "watergen/toolchain/glslang_stage.h"
 
 using namespace watergen;
 
@@ -23,7 +23,8 @@ TEST_CASE("ill_typed_description_names_the_node_and_writes_nothing", "[diagnosti
     REQUIRE_FALSE(b.diagnostics.empty());
     CHECK(b.diagnostics[0].node == "foam.broken");
     CHECK(b.diagnostics[0].message == "+: operand types differ (got vec3, vec2)");
-    CHECK(format_diagnostic(b.diagnostics[0]) == "watergen: error: +: operand types differ (got vec3, vec2) [node: foam.broken]");
+    CHECK(format_diagnostic(b.diagnostics[0]) ==
+          "watergen: error: +: operand types differ (got vec3, vec2) [node: foam.broken]");
     CHECK(variant_files(b).empty());
     CHECK(b.languages[0].fragment.source.source.empty()); // never emitted
 }
@@ -31,15 +32,19 @@ TEST_CASE("ill_typed_description_names_the_node_and_writes_nothing", "[diagnosti
 TEST_CASE("glslang_errors_map_back_to_the_emitting_node", "[diagnostics]") {
     const WaterShader shader = build_water_shader(default_variant());
     Diagnostics ds;
-    EmittedShader frag = emit_fragment(shader.fragment, Language::Glsl, "water.frag.glsl", "test", ds);
+    EmittedShader frag =
+        emit_fragment(shader.fragment, Language::Glsl, "water.frag.glsl", "test", ds);
     REQUIRE(ds.empty());
     // Break the line that computes Schlick's R0, as an emitter bug would.
     const std::string needle = "float fresnel_r0 = ";
     const size_t at = frag.source.find(needle);
     REQUIRE(at != std::string::npos);
     frag.source.insert(at + needle.size(), "undeclared_symbol + ");
-    const int line = 1 + static_cast<int>(std::count(frag.source.begin(), frag.source.begin() + static_cast<long>(at), '\n'));
-    SpirvResult r = compile_to_spirv({SourceLanguage::Glsl, ShaderStage::Fragment, frag.source, frag.file_name, "main"});
+    const int line =
+        1 + static_cast<int>(
+                std::count(frag.source.begin(), frag.source.begin() + static_cast<long>(at), '\n'));
+    SpirvResult r = compile_to_spirv(
+        {SourceLanguage::Glsl, ShaderStage::Fragment, frag.source, frag.file_name, "main"});
     REQUIRE_FALSE(r.ok());
     attribute_to_nodes(frag, r.diagnostics);
     bool found = false;
@@ -65,7 +70,8 @@ TEST_CASE("failed_write_leaves_previous_output_intact", "[diagnostics]") {
     CHECK(fs::exists(dir / "c.txt"));
     CHECK_FALSE(fs::exists(dir / "a.txt"));
     int leftovers = 0;
-    for (const auto& entry : fs::directory_iterator(dir.parent_path())) leftovers += entry.path() != dir;
+    for (const auto& entry : fs::directory_iterator(dir.parent_path()))
+        leftovers += entry.path() != dir;
     CHECK(leftovers == 0);
     fs::remove_all(dir.parent_path());
 }

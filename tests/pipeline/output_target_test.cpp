@@ -16,16 +16,20 @@ namespace fs = std::filesystem;
 namespace {
 
 // One variant: a build takes a fraction of a second.
-std::string small_material() { return source_dir() + "/tests/cli/data/full_precision.json"; }
+std::string small_material() {
+    return source_dir() + "/tests/cli/data/full_precision.json";
+}
 
 WatergenRun build_into(const std::string& out, const fs::path& working_directory = {}) {
-    return run_watergen({"build", "-q", "--no-cache", small_material(), "--out", out}, 120, working_directory);
+    return run_watergen({"build", "-q", "--no-cache", small_material(), "--out", out}, 120,
+                        working_directory);
 }
 
 // Names in `dir`, sorted: a refused build leaves no staging directory beside the output.
 std::vector<std::string> names_in(const fs::path& dir) {
     std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    for (const auto& e : fs::directory_iterator(dir))
+        names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
 }
@@ -42,7 +46,8 @@ void check_refused(const WatergenRun& run, const std::string& why) {
 TEST_CASE("out_refuses_a_regular_file_and_leaves_it", "[out]") {
     const TempDir tmp("out-file");
     std::ofstream(tmp.path / "notes.txt") << "not a directory\n";
-    check_refused(build_into((tmp.path / "notes.txt").string()), "the output directory is a regular file; a build replaces only");
+    check_refused(build_into((tmp.path / "notes.txt").string()),
+                  "the output directory is a regular file; a build replaces only");
     CHECK(read_file(tmp.path / "notes.txt") == "not a directory\n");
     CHECK(names_in(tmp.path) == std::vector<std::string>{"notes.txt"});
 }
@@ -61,9 +66,11 @@ TEST_CASE("out_refuses_a_directory_of_unrelated_files_and_leaves_it", "[out]") {
     const TempDir tmp("out-unrelated");
     fs::create_directories(tmp.path / "photos" / "2023");
     std::ofstream(tmp.path / "photos" / "2023" / "beach.jpg") << "jpeg";
-    std::ofstream(tmp.path / "photos" / "manifest.json") << "{\"generator\": \"someone else\"}\n"; // not watergen's
+    std::ofstream(tmp.path / "photos" / "manifest.json")
+        << "{\"generator\": \"someone else\"}\n"; // not watergen's
     const auto before = read_tree(tmp.path);
-    check_refused(build_into((tmp.path / "photos").string()), "is a directory of files watergen did not write");
+    check_refused(build_into((tmp.path / "photos").string()),
+                  "is a directory of files watergen did not write");
     CHECK(read_tree(tmp.path) == before);
     CHECK(names_in(tmp.path) == std::vector<std::string>{"photos"});
 }
@@ -73,7 +80,8 @@ TEST_CASE("out_refuses_a_symbolic_link_even_to_an_earlier_output", "[out]") {
     REQUIRE(build_into((tmp.path / "real").string()).exit_code == 0);
     const auto real = read_tree(tmp.path / "real");
     fs::create_directory_symlink(tmp.path / "real", tmp.path / "link");
-    check_refused(build_into((tmp.path / "link").string()), "the output directory is a symbolic link");
+    check_refused(build_into((tmp.path / "link").string()),
+                  "the output directory is a symbolic link");
     CHECK(fs::is_symlink(tmp.path / "link"));
     CHECK(read_tree(tmp.path / "real") == real);
 }
@@ -83,8 +91,9 @@ TEST_CASE("out_dot_and_dotdot_inside_unrelated_files_are_refused", "[out]") {
     fs::create_directories(tmp.path / "work");
     std::ofstream(tmp.path / "work" / "thesis.tex") << "\\documentclass{article}\n";
     const auto before = read_tree(tmp.path);
-    check_refused(build_into(".", tmp.path / "work"),
-                  ".: error: the output directory (" + (tmp.path / "work").string() + ") is the current directory or holds it");
+    check_refused(build_into(".", tmp.path / "work"), ".: error: the output directory (" +
+                                                          (tmp.path / "work").string() +
+                                                          ") is the current directory or holds it");
     check_refused(build_into("..", tmp.path / "work"), "is the current directory or holds it");
     CHECK(read_tree(tmp.path) == before);
     CHECK(names_in(tmp.path) == std::vector<std::string>{"work"});
@@ -97,7 +106,8 @@ TEST_CASE("out_empty_is_a_usage_error", "[out]") {
 TEST_CASE("out_below_a_regular_file_names_the_errno", "[out]") {
     const TempDir tmp("out-enotdir");
     std::ofstream(tmp.path / "file") << "x";
-    check_refused(build_into((tmp.path / "file" / "out").string()), "cannot be inspected: Not a directory");
+    check_refused(build_into((tmp.path / "file" / "out").string()),
+                  "cannot be inspected: Not a directory");
     CHECK(read_file(tmp.path / "file") == "x");
 }
 
@@ -149,7 +159,8 @@ TEST_CASE("a_failed_commit_names_the_errno_of_the_failing_call", "[out]") {
     // "out/" moves aside into itself: EINVAL, which the old code reported as "Success".
     const auto e = commit_directory(staging, out.string() + "/");
     REQUIRE(e);
-    CHECK(e->find("cannot move aside " + out.string() + "/: Invalid argument") != std::string::npos);
+    CHECK(e->find("cannot move aside " + out.string() + "/: Invalid argument") !=
+          std::string::npos);
     CHECK(read_tree(out) == std::map<std::string, std::string>{{"kept.txt", "kept\n"}});
     CHECK(names_in(tmp.path) == std::vector<std::string>{"out"});
 }

@@ -16,8 +16,9 @@ JsonSource parsed(const std::string& text) {
 } // namespace
 
 TEST_CASE("json_reader_reads_typed_values_and_reports_where_each_was", "[json]") {
-    const JsonSource src = parsed("{\"s\": \"a\", \"b\": true, \"n\": 2.5, \"list\": [\"x\", \"y\"],\n"
-                                  " \"v\": [1, 2], \"one\": 3, \"r\": {\"min\": 1, \"max\": 2}}");
+    const JsonSource src =
+        parsed("{\"s\": \"a\", \"b\": true, \"n\": 2.5, \"list\": [\"x\", \"y\"],\n"
+               " \"v\": [1, 2], \"one\": 3, \"r\": {\"min\": 1, \"max\": 2}}");
     Diagnostics ds;
     JsonReader r(src, ds);
     std::vector<std::string> read;
@@ -46,12 +47,13 @@ TEST_CASE("json_reader_reads_typed_values_and_reports_where_each_was", "[json]")
     CHECK(lo == 1);
     CHECK(hi == 2);
     CHECK(r.members("") == std::vector<std::string>{"s", "b", "n", "list", "v", "one", "r"});
-    CHECK(read == std::vector<std::string>{"/s", "/b", "/n", "/list/0", "/list/1", "/list", "/v/0", "/v/1", "/v", "/one",
-                                           "/r/min", "/r/max", "/r"});
+    CHECK(read == std::vector<std::string>{"/s", "/b", "/n", "/list/0", "/list/1", "/list", "/v/0",
+                                           "/v/1", "/v", "/one", "/r/min", "/r/max", "/r"});
 }
 
 TEST_CASE("json_reader_errors_name_the_value_and_what_was_expected", "[json]") {
-    const JsonSource src = parsed("{\"s\": 1, \"list\": [\"x\", \"x\"], \"v\": [], \"r\": {\"min\": 1, \"max\": 20}}");
+    const JsonSource src =
+        parsed("{\"s\": 1, \"list\": [\"x\", \"x\"], \"v\": [], \"r\": {\"min\": 1, \"max\": 20}}");
     auto error_of = [&](const std::function<bool(JsonReader&)>& read) {
         Diagnostics ds;
         JsonReader r(src, ds);
@@ -63,18 +65,23 @@ TEST_CASE("json_reader_errors_name_the_value_and_what_was_expected", "[json]") {
     std::vector<std::string> list;
     std::vector<double> v;
     double lo = 0, hi = 0;
-    CHECK(error_of([&](JsonReader& r) { return r.keys("", {"s", "list", "v", "r"}, {"s", "t"}, "(see README)"); }) ==
-          "r.json:1:1: error: /: missing key 't' (see README)");
-    CHECK(error_of([&](JsonReader& r) { return r.keys("", {"s", "v"}, {}); }) ==
-          "r.json:1:10: error: /list: unknown key 'list'; expected one of s, v");
-    CHECK(error_of([&](JsonReader& r) { return r.string("/s", s); }) == "r.json:1:2: error: /s: expected a string, got a number (1)");
-    CHECK(error_of([&](JsonReader& r) { return r.strings_in("/list", {"x", "y"}, list); }) ==
-          "r.json:1:24: error: /list/1: 'x' is listed twice");
+    CHECK(error_of([&](JsonReader& r) {
+              return r.keys("", {"s", "list", "v", "r"}, {"s", "t"}, "(see README)");
+          }) == "r.json:1:1: error: /: missing key 't' (see README)");
+    CHECK(error_of([&](JsonReader& r) {
+              return r.keys("", {"s", "v"}, {});
+          }) == "r.json:1:10: error: /list: unknown key 'list'; expected one of s, v");
+    CHECK(error_of([&](JsonReader& r) { return r.string("/s", s); }) ==
+          "r.json:1:2: error: /s: expected a string, got a number (1)");
+    CHECK(error_of([&](JsonReader& r) {
+              return r.strings_in("/list", {"x", "y"}, list);
+          }) == "r.json:1:24: error: /list/1: 'x' is listed twice");
     CHECK(error_of([&](JsonReader& r) { return r.numbers("/v", v, 1); }) ==
           "r.json:1:30: error: /v: expected a number or an array of numbers, got an array");
     const NumberBounds bounds{0, 10, "m"};
     CHECK(error_of([&](JsonReader& r) { return r.range("/r", lo, hi, &bounds); }) ==
           "r.json:1:55: error: /r/max: 20 m is out of range; expected a value in [0, 10] m");
-    CHECK(error_of([&](JsonReader& r) { return r.object("/v", "an object mapping names to values"); }) ==
-          "r.json:1:30: error: /v: expected an object mapping names to values, got an array");
+    CHECK(error_of([&](JsonReader& r) {
+              return r.object("/v", "an object mapping names to values");
+          }) == "r.json:1:30: error: /v: expected an object mapping names to values, got an array");
 }

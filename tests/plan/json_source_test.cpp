@@ -78,7 +78,9 @@ long peak_rss_kib() {
     return usage.ru_maxrss;
 }
 
-std::string nested_arrays(size_t depth) { return std::string(depth, '[') + std::string(depth, ']'); }
+std::string nested_arrays(size_t depth) {
+    return std::string(depth, '[') + std::string(depth, ']');
+}
 
 } // namespace
 
@@ -90,8 +92,8 @@ TEST_CASE("json_nested_past_the_depth_limit_is_an_error_found_early", "[json]") 
     CHECK_FALSE(JsonSource::parse(text, "deep.json", &error));
     CHECK(peak_rss_kib() - before < 64 * 1024);
     // Stops at the first bracket past the limit: the 65th, on line 2 after two spaces.
-    CHECK(format_diagnostic(error) ==
-          "deep.json:2:67: error: invalid JSON: nested deeper than 64 levels, the limit for description files");
+    CHECK(format_diagnostic(error) == "deep.json:2:67: error: invalid JSON: nested deeper than 64 "
+                                      "levels, the limit for description files");
 }
 
 TEST_CASE("json_nested_up_to_the_depth_limit_parses", "[json]") {
@@ -102,7 +104,8 @@ TEST_CASE("json_nested_up_to_the_depth_limit_parses", "[json]") {
     CHECK_FALSE(JsonSource::parse(nested_arrays(kMaxJsonDepth + 1), "deep.json", &error));
     // Objects count alike.
     std::string objects;
-    for (size_t i = 0; i < kMaxJsonDepth; ++i) objects += "{\"a\":";
+    for (size_t i = 0; i < kMaxJsonDepth; ++i)
+        objects += "{\"a\":";
     CHECK(JsonSource::parse(objects + "1" + std::string(kMaxJsonDepth, '}'), "deep.json", &error));
 }
 
@@ -112,8 +115,8 @@ TEST_CASE("json_text_past_the_size_limit_is_an_error", "[json]") {
     Diagnostic error;
     CHECK(JsonSource::parse(fits, "big.json", &error));
     CHECK_FALSE(JsonSource::parse(fits + " ", "big.json", &error));
-    CHECK(format_diagnostic(error) ==
-          "big.json:1:4194305: error: the file is larger than 4194304 bytes (4 MiB), the limit for description files");
+    CHECK(format_diagnostic(error) == "big.json:1:4194305: error: the file is larger than 4194304 "
+                                      "bytes (4 MiB), the limit for description files");
 }
 
 TEST_CASE("json_file_past_the_size_limit_is_an_error", "[json]") {

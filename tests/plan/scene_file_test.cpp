@@ -69,39 +69,54 @@ TEST_CASE("scene_errors_name_file_line_path_and_what_was_expected", "[scene]") {
     CHECK(error_of(scene_text("shoreline", "  \"shoreline\": \"yes\",")) ==
           "s.json:3:3: error: /shoreline: expected true or false, got a string (\"yes\")");
     CHECK(error_of(scene_text("shoreline")) ==
-          "s.json:1:1: error: /: missing key 'shoreline' (a scene states every fact; see README \"Scene files\")");
+          "s.json:1:1: error: /: missing key 'shoreline' (a scene states every fact; see README "
+          "\"Scene files\")");
     CHECK(error_of(scene_text("waves", "  \"waves\": \"choppy\",")) ==
           "s.json:9:3: error: /waves: unknown value 'choppy'; expected one of static, animated");
     CHECK(error_of(scene_text("water_depth", "  \"water_depth\": {\"min\": 30, \"max\": 3},")) ==
           "s.json:4:3: error: /water_depth: min 30 is above max 3; expected min <= max");
-    CHECK(error_of(scene_text("water_depth", "  \"water_depth\": {\"min\": 3.0000001, \"max\": 3},")) ==
+    CHECK(error_of(
+              scene_text("water_depth", "  \"water_depth\": {\"min\": 3.0000001, \"max\": 3},")) ==
           "s.json:4:3: error: /water_depth: min 3.0000001 is above max 3; expected min <= max");
-    CHECK(error_of(scene_text("water_depth", "  \"water_depth\": {\"min\": 0, \"max\": 30, \"mean\": 4},")) ==
+    CHECK(error_of(scene_text("water_depth",
+                              "  \"water_depth\": {\"min\": 0, \"max\": 30, \"mean\": 4},")) ==
           "s.json:4:40: error: /water_depth/mean: unknown key 'mean'; expected min or max");
-    CHECK(error_of(scene_text("sun_elevation", "  \"sun_elevation\": {\"min\": 5, \"max\": 90.5},")) ==
-          "s.json:7:31: error: /sun_elevation/max: 90.5 degrees is out of range; expected a value in [-90, 90] degrees");
-    CHECK(error_of(scene_text("camera_pitch", "  \"camera_pitch\": {\"min\": -120, \"max\": 10},")) ==
-          "s.json:6:20: error: /camera_pitch/min: -120 degrees is out of range; expected a value in [-90, 90] degrees");
+    CHECK(error_of(
+              scene_text("sun_elevation", "  \"sun_elevation\": {\"min\": 5, \"max\": 90.5},")) ==
+          "s.json:7:31: error: /sun_elevation/max: 90.5 degrees is out of range; expected a value "
+          "in [-90, 90] degrees");
+    CHECK(
+        error_of(scene_text("camera_pitch", "  \"camera_pitch\": {\"min\": -120, \"max\": 10},")) ==
+        "s.json:6:20: error: /camera_pitch/min: -120 degrees is out of range; expected a value in "
+        "[-90, 90] degrees");
     CHECK(error_of(scene_text("platforms", "  \"platforms\": [\"vulkan\", \"playstation\"]")) ==
-          "s.json:11:27: error: /platforms/1: unknown value 'playstation'; expected one of vulkan, d3d, opengl, gles, metal");
+          "s.json:11:27: error: /platforms/1: unknown value 'playstation'; expected one of vulkan, "
+          "d3d, opengl, gles, metal");
     CHECK(error_of(scene_text("platforms", "  \"platforms\": []")) ==
-          "s.json:11:3: error: /platforms: no platform: the scene needs nothing; expected at least one of vulkan, d3d, "
+          "s.json:11:3: error: /platforms: no platform: the scene needs nothing; expected at least "
+          "one of vulkan, d3d, "
           "opengl, gles, metal");
-    CHECK(error_of(scene_text("reflection_sources", "  \"reflection_sources\": [\"none\", \"planar\"],")) ==
-          "s.json:8:3: error: /reflection_sources: 'none' cannot be listed with a source; expected [\"none\"] or sources "
+    CHECK(error_of(scene_text("reflection_sources",
+                              "  \"reflection_sources\": [\"none\", \"planar\"],")) ==
+          "s.json:8:3: error: /reflection_sources: 'none' cannot be listed with a source; expected "
+          "[\"none\"] or sources "
           "from planar, cubemap, horizon_map");
     CHECK(error_of(scene_text("name", "  \"name\": \"lake\", \"colour\": 1,")) ==
-          "s.json:2:19: error: /colour: unknown key 'colour'; expected one of name, description, shoreline, water_depth, "
-          "camera_height, camera_pitch, sun_elevation, reflection_sources, waves, precision, platforms, fixed");
-    CHECK(error_of(scene_text("name", "  \"name\": \"Lake One\",")).find("/name: scene name 'Lake One': expected lower-case") !=
-          std::string::npos);
+          "s.json:2:19: error: /colour: unknown key 'colour'; expected one of name, description, "
+          "shoreline, water_depth, "
+          "camera_height, camera_pitch, sun_elevation, reflection_sources, waves, precision, "
+          "platforms, fixed");
+    CHECK(error_of(scene_text("name", "  \"name\": \"Lake One\","))
+              .find("/name: scene name 'Lake One': expected lower-case") != std::string::npos);
     CHECK(error_of(scene_text("water_depth", "  \"water_depth\": [0, 30],")) ==
-          "s.json:4:3: error: /water_depth: expected an object {\"min\": number, \"max\": number}, got an array");
+          "s.json:4:3: error: /water_depth: expected an object {\"min\": number, \"max\": number}, "
+          "got an array");
 }
 
 TEST_CASE("reflection_source_none_means_no_source", "[scene]") {
     Diagnostic e;
-    const auto src = JsonSource::parse(scene_text("reflection_sources", "  \"reflection_sources\": [\"none\"],"), "s.json", &e);
+    const auto src = JsonSource::parse(
+        scene_text("reflection_sources", "  \"reflection_sources\": [\"none\"],"), "s.json", &e);
     REQUIRE(src);
     Diagnostics ds;
     const auto s = parse_scene(*src, ds);

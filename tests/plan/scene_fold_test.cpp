@@ -7,8 +7,8 @@
 #include "watergen/ir/dsl.h"
 #include "watergen/ir/emitter.h"
 #include "watergen/ir/ir_fold.h"
-#include "watergen/render/prune_measure.h"
 #include "watergen/plan/scene_pruning.h"
+#include "watergen/render/prune_measure.h"
 
 using namespace watergen;
 
@@ -30,7 +30,9 @@ struct Fixture {
     }
 };
 
-const Node& output(const FoldResult& r) { return r.graph.node(r.graph.outputs().front().node); }
+const Node& output(const FoldResult& r) {
+    return r.graph.node(r.graph.outputs().front().node);
+}
 
 bool is_constant(const FoldResult& r, double v) {
     const Node& n = output(r);
@@ -42,7 +44,8 @@ bool is_constant(const FoldResult& r, double v) {
 
 std::string events(const FoldResult& r) {
     std::string s;
-    for (const auto& e : r.report.events) s += e.what + "; ";
+    for (const auto& e : r.report.events)
+        s += e.what + "; ";
     return s;
 }
 
@@ -57,7 +60,8 @@ TEST_CASE("fixed_parameters_become_constants_and_fold", "[fold]") {
     CHECK(r.report.folded_parameters.at("t") == std::vector<double>{1.0});
     REQUIRE(r.report.removed_parameters.size() == 1);
     CHECK(r.report.removed_parameters[0].name == "t");
-    CHECK(describe_facts(facts, r.report.removed_parameters[0].facts) == "t = 1 [s.json:3:4 /fixed/t]");
+    CHECK(describe_facts(facts, r.report.removed_parameters[0].facts) ==
+          "t = 1 [s.json:3:4 /fixed/t]");
     CHECK(r.graph.find_parameter("t") == nullptr); // no longer declared
     CHECK(events(r) == "t is fixed to 1; (... * ...): x * 1 -> x; ");
 }
@@ -149,8 +153,10 @@ TEST_CASE("terms_that_vanish_at_depth_fold_to_zero", "[fold]") {
     Expr k = uniform(f.g, {"k", Type::Float, {0.1}, 0.0, 10.0, "1/m", "", "test"});
     Expr trans = named(exp(-k * depth), "transmittance");
     FoldFacts facts;
-    facts.parameter_ranges["k"] = {{make_interval(0.05, 2.0)}, facts.add_fact("k in [0.05, 2]", "")};
-    facts.quantity_ranges[kDepth] = {{make_interval(400.0, 4000.0)}, facts.add_fact("depth 400..4000 m", "d.json:5:3")};
+    facts.parameter_ranges["k"] = {{make_interval(0.05, 2.0)},
+                                   facts.add_fact("k in [0.05, 2]", "")};
+    facts.quantity_ranges[kDepth] = {{make_interval(400.0, 4000.0)},
+                                     facts.add_fact("depth 400..4000 m", "d.json:5:3")};
     const FoldResult r = f.fold(f.tex + f.tex * trans, facts);
     CHECK(output(r).op == Op::Swizzle); // tex + tex * 0 -> tex
     bool found = false;
@@ -161,7 +167,8 @@ TEST_CASE("terms_that_vanish_at_depth_fold_to_zero", "[fold]") {
             const FoldEvent& e = r.report.events[static_cast<size_t>(t.event)];
             CHECK(e.what.find("transmittance vanishes") == 0);
             // The cause: the depth and the absorption range, not every fact near it.
-            CHECK(describe_facts(facts, e.facts) == "k in [0.05, 2]; depth 400..4000 m [d.json:5:3]");
+            CHECK(describe_facts(facts, e.facts) ==
+                  "k in [0.05, 2]; depth 400..4000 m [d.json:5:3]");
         }
     CHECK(found);
     // Without the depth fact nothing vanishes.
@@ -170,7 +177,8 @@ TEST_CASE("terms_that_vanish_at_depth_fold_to_zero", "[fold]") {
     Fixture g2;
     Expr d2 = bind(kDepth, named(max(g2.x - g2.y, 0.0), "water_depth"));
     Expr k2 = uniform(g2.g, {"k", Type::Float, {0.1}, 0.0, 10.0, "1/m", "", "test"});
-    CHECK(output(g2.fold(g2.tex + g2.tex * named(exp(-k2 * d2), "transmittance"), shallow)).op == Op::Add);
+    CHECK(output(g2.fold(g2.tex + g2.tex * named(exp(-k2 * d2), "transmittance"), shallow)).op ==
+          Op::Add);
 }
 
 TEST_CASE("constant_subexpressions_are_evaluated_like_the_cpu_evaluator", "[fold]") {
@@ -190,7 +198,8 @@ TEST_CASE("bools_are_never_made_constants", "[fold]") {
     facts.input_ranges["x"] = {{make_interval(2.0, 3.0)}, facts.add_fact("x in [2, 3]", "")};
     // The comparison is decided but only its select folds; no bool literal is emitted.
     const FoldResult r = f.fold(select(f.x > constant(f.g, 1.0), f.y, f.x) + f.t, facts);
-    for (uint32_t id : r.graph.live_nodes()) CHECK_FALSE((r.graph.node(id).op == Op::Constant && r.graph.node(id).type == Type::Bool));
+    for (uint32_t id : r.graph.live_nodes())
+        CHECK_FALSE((r.graph.node(id).op == Op::Constant && r.graph.node(id).type == Type::Bool));
 }
 
 TEST_CASE("folded_example_shaders_compute_what_the_unfolded_ones_compute", "[fold]") {
@@ -213,12 +222,15 @@ TEST_CASE("folded_example_shaders_compute_what_the_unfolded_ones_compute", "[fol
             REQUIRE_FALSE(has_errors(s.fragment.diagnostics()));
             const FoldResult r = fold_graph(s.fragment, plan->facts);
             CHECK(r.report.live_after < r.report.live_before);
-            const EvalResult a = evaluate_image(s.fragment, "color", scene.eval_inputs(), 32, 32, EvalPrecision::Double);
-            const EvalResult b = evaluate_image(r.graph, "color", scene.eval_inputs(), 32, 32, EvalPrecision::Double);
+            const EvalResult a = evaluate_image(s.fragment, "color", scene.eval_inputs(), 32, 32,
+                                                EvalPrecision::Double);
+            const EvalResult b = evaluate_image(r.graph, "color", scene.eval_inputs(), 32, 32,
+                                                EvalPrecision::Double);
             REQUIRE(a.ok());
             REQUIRE(b.ok());
             double worst = 0;
-            for (size_t i = 0; i < a.values.size(); ++i) worst = std::max(worst, std::fabs(a.values[i] - b.values[i]));
+            for (size_t i = 0; i < a.values.size(); ++i)
+                worst = std::max(worst, std::fabs(a.values[i] - b.values[i]));
             CHECK(worst < 1e-6);
         }
     }

@@ -31,21 +31,25 @@ Material full() {
 
 Variant with(std::initializer_list<std::pair<const char*, const char*>> choices) {
     Variant v = default_variant();
-    for (const auto& [axis, choice] : choices) REQUIRE_FALSE(set_choice(v, axis, choice));
+    for (const auto& [axis, choice] : choices)
+        REQUIRE_FALSE(set_choice(v, axis, choice));
     return v;
 }
 
 } // namespace
 
 TEST_CASE("scene_facts_rule_out_choices_with_their_reason", "[pruning]") {
-    const SceneFacts ocean = scene("open_ocean"), harbour = scene("harbour_night"), lake = scene("mountain_lake");
+    const SceneFacts ocean = scene("open_ocean"), harbour = scene("harbour_night"),
+                     lake = scene("mountain_lake");
     auto e = scene_excludes(ocean, with({{"foam", "shore"}}));
     REQUIRE(e);
     CHECK(e->reason == "no shoreline, so shore foam never shows");
     CHECK(e->where.find("open_ocean.json:4:3 /shoreline") != std::string::npos);
     CHECK(scene_excludes(ocean, with({{"foam", "both"}, {"waves", "gerstner"}})));
     CHECK_FALSE(scene_excludes(ocean, with({{"foam", "crest"}, {"waves", "gerstner"}})));
-    CHECK_FALSE(scene_excludes(harbour, with({{"foam", "shore"}, {"reflection", "planar_projective"}, {"specular", "none"}})));
+    CHECK_FALSE(scene_excludes(
+        harbour,
+        with({{"foam", "shore"}, {"reflection", "planar_projective"}, {"specular", "none"}})));
 
     e = scene_excludes(harbour, with({{"reflection", "sky_cubemap"}}));
     REQUIRE(e);
@@ -56,7 +60,8 @@ TEST_CASE("scene_facts_rule_out_choices_with_their_reason", "[pruning]") {
 
     e = scene_excludes(harbour, with({{"reflection", "none"}, {"specular", "ggx_sun"}}));
     REQUIRE(e);
-    CHECK(e->reason == "the sun never rises (elevation at most -6 degrees), so there is no sun highlight");
+    CHECK(e->reason ==
+          "the sun never rises (elevation at most -6 degrees), so there is no sun highlight");
 
     e = scene_excludes(lake, with({{"precision", "full"}}));
     REQUIRE(e);
@@ -74,23 +79,28 @@ TEST_CASE("plans_of_the_example_scenes", "[pruning]") {
     CHECK(ocean->fixed.count("water_level"));
     CHECK_FALSE(ocean->fixed.count("time")); // animated waves keep time
     std::vector<std::string> targets;
-    for (Target t : ocean->targets) targets.push_back(to_string(t));
+    for (Target t : ocean->targets)
+        targets.push_back(to_string(t));
     CHECK(targets == std::vector<std::string>{"glsl", "hlsl", "spirv", "msl", "reflection"});
     CHECK(ocean->facts.quantity_ranges.at(scene_quantity::water_depth).bounds[0].lo == 400);
-    for (size_t i = 1; i < ocean->variants.size(); ++i) CHECK(ocean->variants[i - 1].key() < ocean->variants[i].key());
+    for (size_t i = 1; i < ocean->variants.size(); ++i)
+        CHECK(ocean->variants[i - 1].key() < ocean->variants[i].key());
 
     auto lake = plan_scene(m, scene("mountain_lake"), ds);
     REQUIRE(lake);
-    CHECK(lake->variants.size() == 16); // half precision, Schlick only (the material's rule), cubemap
+    CHECK(lake->variants.size() ==
+          16); // half precision, Schlick only (the material's rule), cubemap
     CHECK(lake->fixed.at("time") == std::vector<double>{0.0});
-    for (const Variant& v : lake->variants) CHECK((v.choice("fresnel") == "schlick" && v.choice("reflection") == "sky_cubemap"));
+    for (const Variant& v : lake->variants)
+        CHECK((v.choice("fresnel") == "schlick" && v.choice("reflection") == "sky_cubemap"));
 
     auto harbour = plan_scene(m, scene("harbour_night"), ds);
     REQUIRE(harbour);
     for (const Variant& v : harbour->variants)
         CHECK((v.choice("specular") == "none" && v.choice("reflection") == "planar_projective"));
     // Night: the sun travels upwards, 0.10..0.64 of its direction.
-    const Interval sun_y = harbour->facts.quantity_ranges.at(scene_quantity::sun_direction).bounds[1];
+    const Interval sun_y =
+        harbour->facts.quantity_ranges.at(scene_quantity::sun_direction).bounds[1];
     CHECK(sun_y.lo == Approx(0.104528).epsilon(1e-5));
     CHECK(sun_y.hi == Approx(0.642788).epsilon(1e-5));
 }
@@ -116,11 +126,16 @@ TEST_CASE("the_full_space_per_example_scene", "[pruning]") {
 
 TEST_CASE("scene_parameter_errors_name_the_scene_file", "[pruning]") {
     const Material m = default_material();
-    auto check = [&](const std::string& fixed, const std::string& waves, const std::string& expected) {
-        const std::string text = "{\"name\": \"s\", \"shoreline\": true, \"water_depth\": {\"min\": 0, \"max\": 9},\n"
-                                 "\"camera_height\": {\"min\": 1, \"max\": 9}, \"camera_pitch\": {\"min\": -9, \"max\": 0},\n"
-                                 "\"sun_elevation\": {\"min\": 5, \"max\": 9}, \"reflection_sources\": [], \"waves\": \"" +
-                                 waves + "\",\n\"precision\": \"any\", \"platforms\": [\"vulkan\"],\n\"fixed\": {" + fixed + "}}";
+    auto check = [&](const std::string& fixed, const std::string& waves,
+                     const std::string& expected) {
+        const std::string text =
+            "{\"name\": \"s\", \"shoreline\": true, \"water_depth\": {\"min\": 0, \"max\": 9},\n"
+            "\"camera_height\": {\"min\": 1, \"max\": 9}, \"camera_pitch\": {\"min\": -9, \"max\": "
+            "0},\n"
+            "\"sun_elevation\": {\"min\": 5, \"max\": 9}, \"reflection_sources\": [], \"waves\": "
+            "\"" +
+            waves + "\",\n\"precision\": \"any\", \"platforms\": [\"vulkan\"],\n\"fixed\": {" +
+            fixed + "}}";
         Diagnostic e;
         const auto src = JsonSource::parse(text, "s.json", &e);
         REQUIRE(src);
@@ -132,37 +147,50 @@ TEST_CASE("scene_parameter_errors_name_the_scene_file", "[pruning]") {
         INFO(format_diagnostic(ds[0]));
         CHECK(format_diagnostic(ds[0]).find(expected) == 0);
     };
-    check("\"colour\": 1", "animated", "s.json:5:11: error: /fixed/colour: unknown parameter 'colour'; the nodes of material 'default' read ");
+    check("\"colour\": 1", "animated",
+          "s.json:5:11: error: /fixed/colour: unknown parameter 'colour'; the nodes of material "
+          "'default' read ");
     check("\"eye_position\": [1, 2]", "animated",
-          "s.json:5:11: error: /fixed/eye_position: parameter 'eye_position' is a vec3: expected 3 numbers, got 2");
+          "s.json:5:11: error: /fixed/eye_position: parameter 'eye_position' is a vec3: expected 3 "
+          "numbers, got 2");
     check("\"shore_hardness\": 9", "animated",
-          "s.json:5:11: error: /fixed/shore_hardness: shore_hardness = 9 is out of range; expected a value in [0.5, 4] 1/m");
+          "s.json:5:11: error: /fixed/shore_hardness: shore_hardness = 9 is out of range; expected "
+          "a value in [0.5, 4] 1/m");
     check("\"time\": 3", "animated",
-          "s.json:5:11: error: /fixed/time: time is fixed but the scene's waves are animated; expected \"waves\": \"static\"");
+          "s.json:5:11: error: /fixed/time: time is fixed but the scene's waves are animated; "
+          "expected \"waves\": \"static\"");
     check("\"sun_direction\": [0, -1, 0]", "animated",
-          "s.json:5:11: error: /fixed/sun_direction: the fixed sun direction has elevation 90 degrees; expected one within "
+          "s.json:5:11: error: /fixed/sun_direction: the fixed sun direction has elevation 90 "
+          "degrees; expected one within "
           "sun_elevation [5, 9]");
     // A fixed value must obey the scene's own ranges, not only the parameter's: an eye 50 km
     // below the water with a camera 1..9 m above it, a zero sun direction (which would fold
     // every sun term away), and bounds printed exactly (4.0000001 is not "4").
     check("\"water_level\": 0, \"eye_position\": [0, -50000, 0]", "animated",
-          "s.json:5:29: error: /fixed/eye_position: the fixed eye position is -50000 m above the water (eye y -50000, "
+          "s.json:5:29: error: /fixed/eye_position: the fixed eye position is -50000 m above the "
+          "water (eye y -50000, "
           "water level 0..0 m); expected a height within camera_height [1, 9] m");
-    check("\"water_level\": 2, \"eye_position\": [0, 12, 0]", "animated",
-          "s.json:5:29: error: /fixed/eye_position: the fixed eye position is 10 m above the water");
+    check(
+        "\"water_level\": 2, \"eye_position\": [0, 12, 0]", "animated",
+        "s.json:5:29: error: /fixed/eye_position: the fixed eye position is 10 m above the water");
     check("\"sun_direction\": [0, 0, 0]", "animated",
-          "s.json:5:11: error: /fixed/sun_direction: the fixed sun direction (0, 0, 0) has length 0; expected a direction");
+          "s.json:5:11: error: /fixed/sun_direction: the fixed sun direction (0, 0, 0) has length "
+          "0; expected a direction");
     check("\"shore_hardness\": 4.0000001", "animated",
-          "s.json:5:11: error: /fixed/shore_hardness: shore_hardness = 4.0000001 is out of range; expected a value in "
+          "s.json:5:11: error: /fixed/shore_hardness: shore_hardness = 4.0000001 is out of range; "
+          "expected a value in "
           "[0.5, 4] 1/m");
 }
 
 TEST_CASE("a_fixed_eye_within_the_camera_height_plans", "[pruning]") {
-    const std::string text = "{\"name\": \"s\", \"shoreline\": true, \"water_depth\": {\"min\": 0, \"max\": 9},\n"
-                             "\"camera_height\": {\"min\": 1, \"max\": 9}, \"camera_pitch\": {\"min\": -9, \"max\": 0},\n"
-                             "\"sun_elevation\": {\"min\": 5, \"max\": 9}, \"reflection_sources\": [\"cubemap\"], \"waves\": \"animated\",\n"
-                             "\"precision\": \"any\", \"platforms\": [\"vulkan\"],\n"
-                             "\"fixed\": {\"water_level\": 2, \"eye_position\": [0, 7, -3]}}";
+    const std::string text =
+        "{\"name\": \"s\", \"shoreline\": true, \"water_depth\": {\"min\": 0, \"max\": 9},\n"
+        "\"camera_height\": {\"min\": 1, \"max\": 9}, \"camera_pitch\": {\"min\": -9, \"max\": "
+        "0},\n"
+        "\"sun_elevation\": {\"min\": 5, \"max\": 9}, \"reflection_sources\": [\"cubemap\"], "
+        "\"waves\": \"animated\",\n"
+        "\"precision\": \"any\", \"platforms\": [\"vulkan\"],\n"
+        "\"fixed\": {\"water_level\": 2, \"eye_position\": [0, 7, -3]}}";
     Diagnostic e;
     const auto src = JsonSource::parse(text, "s.json", &e);
     REQUIRE(src);
@@ -171,7 +199,8 @@ TEST_CASE("a_fixed_eye_within_the_camera_height_plans", "[pruning]") {
     REQUIRE(s);
     const auto plan = plan_scene(default_material(), *s, ds);
     std::string errors;
-    for (const auto& d : ds) errors += format_diagnostic(d) + "\n";
+    for (const auto& d : ds)
+        errors += format_diagnostic(d) + "\n";
     INFO(errors);
     REQUIRE(plan);
     CHECK(plan->fixed.at("eye_position") == std::vector<double>{0, 7, -3});

@@ -32,32 +32,41 @@ ScenePlan plan(const Material& m, const std::string& name) {
 }
 
 // `g` with every node named `from` named `to` instead; bindings kept unless `drop_bindings`.
-Graph renamed(const Graph& g, const std::string& from, const std::string& to, bool drop_bindings = false) {
+Graph renamed(const Graph& g, const std::string& from, const std::string& to,
+              bool drop_bindings = false) {
     Graph out;
-    for (const Parameter& p : g.parameters()) out.declare_parameter(p);
-    for (const auto& t : g.textures()) out.declare_texture(t);
+    for (const Parameter& p : g.parameters())
+        out.declare_parameter(p);
+    for (const auto& t : g.textures())
+        out.declare_texture(t);
     for (uint32_t id = 0; id < g.size(); ++id) {
         Node n = g.node(id);
         if (n.name == from) n.name = to;
         REQUIRE(out.add(std::move(n)) == id);
     }
-    for (const auto& o : g.outputs()) out.set_output(o.name, o.node);
+    for (const auto& o : g.outputs())
+        out.set_output(o.name, o.node);
     if (!drop_bindings)
-        for (const auto& b : g.bindings()) out.bind(b.quantity, b.node);
+        for (const auto& b : g.bindings())
+            out.bind(b.quantity, b.node);
     return out;
 }
 
 // Removed terms as (input node id, name), the renamed temporary under its old name.
-std::set<std::pair<uint32_t, std::string>> removed_terms(const FoldResult& r, const std::string& alias, const std::string& name) {
+std::set<std::pair<uint32_t, std::string>>
+removed_terms(const FoldResult& r, const std::string& alias, const std::string& name) {
     std::set<std::pair<uint32_t, std::string>> out;
-    for (const auto& t : r.report.removed) out.insert({t.node, t.name == alias ? name : t.name});
+    for (const auto& t : r.report.removed)
+        out.insert({t.node, t.name == alias ? name : t.name});
     return out;
 }
 
 std::set<std::string> quantities_of(const FoldFacts& f) {
     std::set<std::string> ids;
-    for (const auto& [q, fixed] : f.fixed_quantities) ids.insert(std::string(q.id));
-    for (const auto& [q, bounds] : f.quantity_ranges) ids.insert(std::string(q.id));
+    for (const auto& [q, fixed] : f.fixed_quantities)
+        ids.insert(std::string(q.id));
+    for (const auto& [q, bounds] : f.quantity_ranges)
+        ids.insert(std::string(q.id));
     return ids;
 }
 
@@ -71,11 +80,14 @@ TEST_CASE("renaming_a_temporary_cannot_turn_a_scene_fold_off", "[quantity]") {
         INFO(v.key());
         const Graph g = m.compose(v).fragment;
         const FoldResult as_built = fold_graph(g, ocean.facts);
-        const FoldResult renamed_depth = fold_graph(renamed(g, "water_depth", "column_height"), ocean.facts);
+        const FoldResult renamed_depth =
+            fold_graph(renamed(g, "water_depth", "column_height"), ocean.facts);
         CHECK(renamed_depth.report.live_after == as_built.report.live_after);
         CHECK(renamed_depth.report.events.size() == as_built.report.events.size());
-        CHECK(removed_terms(renamed_depth, "column_height", "water_depth") == removed_terms(as_built, "", ""));
-        for (const auto& t : as_built.report.removed) transmittance_removed += t.name == "transmittance";
+        CHECK(removed_terms(renamed_depth, "column_height", "water_depth") ==
+              removed_terms(as_built, "", ""));
+        for (const auto& t : as_built.report.removed)
+            transmittance_removed += t.name == "transmittance";
         // The binding, not the name, carries the depth fact: without it the deep-water terms stay.
         if (v.choice("extinction") == "absorb_scatter") {
             const FoldResult unbound = fold_graph(renamed(g, "", "", true), ocean.facts);
@@ -96,7 +108,8 @@ TEST_CASE("every_scene_fact_about_a_quantity_reaches_the_ir", "[quantity]") {
         const std::set<std::string> attached = quantities_of(p.facts);
         CHECK(attached.count("water_depth"));
         CHECK(attached.count("eye_position"));
-        CHECK(attached.count("time") == (std::string(name) == "mountain_lake")); // static waves only
+        CHECK(attached.count("time") ==
+              (std::string(name) == "mountain_lake")); // static waves only
         std::set<std::string> read, bound_after_fold;
         for (const Variant& v : p.variants) {
             INFO(name << ": " << v.key());
@@ -107,7 +120,8 @@ TEST_CASE("every_scene_fact_about_a_quantity_reaches_the_ir", "[quantity]") {
                 reported.insert(id);
                 CHECK(use.reach != QuantityReach::Unbound);
                 if (use.reach == QuantityReach::Read) read.insert(id);
-                if (id == "water_depth" || id == "eye_position") CHECK(use.reach == QuantityReach::Read);
+                if (id == "water_depth" || id == "eye_position")
+                    CHECK(use.reach == QuantityReach::Read);
             }
             CHECK(reported == attached);
             for (const auto& b : r.graph.bindings()) {
@@ -116,17 +130,21 @@ TEST_CASE("every_scene_fact_about_a_quantity_reaches_the_ir", "[quantity]") {
             }
         }
         std::set<std::string> expected = attached;
-        if (std::string(name) == "harbour_night") expected.erase("sun_direction"); // night: no variant has a highlight
+        if (std::string(name) == "harbour_night")
+            expected.erase("sun_direction"); // night: no variant has a highlight
         CHECK(read == expected);
-        CHECK(bound_after_fold.count("water_depth")); // some variants keep the depth: its binding moved with it
+        CHECK(bound_after_fold.count(
+            "water_depth")); // some variants keep the depth: its binding moved with it
     }
 }
 
 TEST_CASE("a_quantity_bound_to_a_renamed_parameter_is_an_error", "[quantity]") {
     Graph g;
-    bind(scene_quantity::time, uniform(g, {"seconds", Type::Float, {0.0}, 0.0, 10.0, "s", "", "test"}));
+    bind(scene_quantity::time,
+         uniform(g, {"seconds", Type::Float, {0.0}, 0.0, 10.0, "s", "", "test"}));
     REQUIRE(g.diagnostics().size() == 1);
-    CHECK(g.diagnostics()[0].message == "quantity 'time' stands for parameter 'time'; bound to parameter 'seconds'");
+    CHECK(g.diagnostics()[0].message ==
+          "quantity 'time' stands for parameter 'time'; bound to parameter 'seconds'");
     CHECK(g.bindings().empty());
     Graph h;
     bind(scene_quantity::water_depth, varying(h, "v", Type::Vec2) * 2.0);
@@ -138,12 +156,15 @@ TEST_CASE("a_scene_plan_keeps_why_it_skips_each_variant", "[quantity]") {
     const Material m = default_material();
     const ScenePlan ocean = plan(m, "open_ocean"), lake = plan(m, "mountain_lake");
     REQUIRE(ocean.skipped_groups.size() == 3);
-    CHECK(ocean.skipped_groups[0].text().find("foam=shore: no shoreline, so shore foam never shows [") == 0);
+    CHECK(ocean.skipped_groups[0].text().find(
+              "foam=shore: no shoreline, so shore foam never shows [") == 0);
     CHECK(ocean.skipped_groups[0].variants == 48);
-    CHECK(ocean.skipped_groups[1].text().find("precision=half: the scene targets precision full [") == 0);
+    CHECK(ocean.skipped_groups[1].text().find(
+              "precision=half: the scene targets precision full [") == 0);
     CHECK(ocean.skipped_variants.size() == ocean.skipped);
     size_t total = 0;
-    for (const auto& g : ocean.skipped_groups) total += g.variants;
+    for (const auto& g : ocean.skipped_groups)
+        total += g.variants;
     CHECK(total == ocean.skipped);
     // Each kept reason is the one scene_excludes gives, and the unreached variants of two
     // plans are those both exclude.

@@ -82,23 +82,39 @@ TEST_CASE("builtin_rules_are_the_requirements_of_the_choices", "[space]") {
 
 TEST_CASE("requires_and_excludes_rules", "[space]") {
     VariantSpace s = full_space();
-    for (auto& c : s.choices) c.resize(1); // one choice per axis ...
+    for (auto& c : s.choices)
+        c.resize(1);                                     // one choice per axis ...
     s.offered("fresnel") = {"none", "schlick", "exact"}; // ... but three Fresnel terms
     s.offered("precision") = {"full", "half"};           // and two precisions
     CHECK(count_variants(s) == 6);
-    s.rules.push_back({Rule::Kind::Excludes, "precision", "half", "fresnel", {"exact"}, "reference only", "m.json:3:4"});
+    s.rules.push_back({Rule::Kind::Excludes,
+                       "precision",
+                       "half",
+                       "fresnel",
+                       {"exact"},
+                       "reference only",
+                       "m.json:3:4"});
     CHECK(count_variants(s) == 5);
-    s.rules.push_back({Rule::Kind::Requires, "fresnel", "none", "precision", {"half"}, "cheapest on mobile only", ""});
+    s.rules.push_back({Rule::Kind::Requires,
+                       "fresnel",
+                       "none",
+                       "precision",
+                       {"half"},
+                       "cheapest on mobile only",
+                       ""});
     CHECK(count_variants(s) == 4);
     Variant v = default_variant();
     REQUIRE_FALSE(set_choice(v, "fresnel", "exact"));
     REQUIRE_FALSE(set_choice(v, "precision", "half"));
     const auto broken = broken_rule(s.rules, v);
     REQUIRE(broken);
-    CHECK(*broken == "precision=half excludes fresnel in {exact} (reference only); got fresnel=exact [m.json:3:4]");
+    CHECK(*broken == "precision=half excludes fresnel in {exact} (reference only); got "
+                     "fresnel=exact [m.json:3:4]");
     REQUIRE_FALSE(set_choice(v, "precision", "full"));
     REQUIRE_FALSE(set_choice(v, "fresnel", "none"));
-    CHECK(*broken_rule(s.rules, v) == "fresnel=none requires precision in {half} (cheapest on mobile only); got precision=full");
+    CHECK(
+        *broken_rule(s.rules, v) ==
+        "fresnel=none requires precision in {half} (cheapest on mobile only); got precision=full");
 }
 
 TEST_CASE("short_hash_is_16_hex_digits_stable_and_distinct", "[space]") {

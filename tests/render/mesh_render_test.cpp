@@ -8,8 +8,8 @@
 
 #include "shared_runner.h"
 #include "watergen/ir/dsl.h"
-#include "watergen/render/mesh_render.h"
 #include "watergen/ir/vertex_emitter.h"
+#include "watergen/render/mesh_render.h"
 
 using namespace watergen;
 

@@ -66,7 +66,8 @@ std::vector<double> stress_tuples(const ProbeLayout& layout, uint64_t seed) {
 // FNV-1a of the node's name: a node gets the same tuples wherever it stands in the catalog.
 uint64_t name_seed(const std::string& name) {
     uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
+    for (unsigned char c : name)
+        h = (h ^ c) * 1099511628211ull;
     return h;
 }
 

@@ -17,11 +17,12 @@ TEST_CASE("pruned_and_unpruned_shaders_draw_the_same_image", "[render]") {
     const auto plan = plan_scene(m, *ocean, ds);
     REQUIRE(plan);
     Variant v = plan->variants.front();
-    for (auto [axis, choice] : {std::pair{"fresnel", "schlick"}, std::pair{"specular", "none"}, std::pair{"waves", "flat"},
-                                std::pair{"shore", "soft"}})
+    for (auto [axis, choice] : {std::pair{"fresnel", "schlick"}, std::pair{"specular", "none"},
+                                std::pair{"waves", "flat"}, std::pair{"shore", "soft"}})
         REQUIRE_FALSE(set_choice(v, axis, choice));
     const SyntheticScene scene = conform_scene(make_synthetic_scene(64, 64), *plan, m);
-    const PruneMeasurement r = measure_pruning(shared_runner(), m, *plan, v, scene, RenderSettings{64, 64, 2, false});
+    const PruneMeasurement r =
+        measure_pruning(shared_runner(), m, *plan, v, scene, RenderSettings{64, 64, 2, false});
     REQUIRE(r.ok());
     CHECK(r.spirv_pruned < r.spirv_unpruned);
     CHECK(r.spirv_opt_pruned < r.spirv_opt_unpruned);

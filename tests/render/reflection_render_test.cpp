@@ -18,7 +18,8 @@ namespace {
 
 Variant optics_variant(const std::string& choices) {
     std::string error;
-    const auto v = parse_variant_key("waves=flat,normals=flat,specular=none,foam=none," + choices, &error);
+    const auto v =
+        parse_variant_key("waves=flat,normals=flat,specular=none,foam=none," + choices, &error);
     INFO(error);
     REQUIRE(v.has_value());
     REQUIRE_FALSE(check_constraints(*v).has_value());
@@ -26,7 +27,8 @@ Variant optics_variant(const std::string& choices) {
 }
 
 void check_render(const VariantRender& r, double gpu_vs_cpu) {
-    for (const auto& m : r.validation_messages) UNSCOPED_INFO(m);
+    for (const auto& m : r.validation_messages)
+        UNSCOPED_INFO(m);
     CHECK(r.validation_messages.empty());
     CHECK(r.glsl_vs_hlsl.max_abs <= 1e-6);
     CHECK(r.glsl_vs_cpu_float.max_abs <= gpu_vs_cpu);
@@ -39,7 +41,8 @@ void check_render(const VariantRender& r, double gpu_vs_cpu) {
 
 } // namespace
 
-TEST_CASE("every_reflection_and_refraction_choice_renders_the_same_on_glsl_hlsl_and_cpu", "[render][reflection]") {
+TEST_CASE("every_reflection_and_refraction_choice_renders_the_same_on_glsl_hlsl_and_cpu",
+          "[render][reflection]") {
     const RenderSettings settings{128, 128, 0, false};
     const SyntheticScene scene = make_synthetic_scene(settings.width, settings.height);
     // Measured max |GPU - CPU float| over linear rgb at 128x128 (see the printed figures):
@@ -59,13 +62,15 @@ TEST_CASE("every_reflection_and_refraction_choice_renders_the_same_on_glsl_hlsl_
         const Variant v = optics_variant(choices);
         INFO(v.key());
         const VariantBuild build = build_variant(v);
-        for (const auto& d : build.diagnostics) UNSCOPED_INFO(format_diagnostic(d));
+        for (const auto& d : build.diagnostics)
+            UNSCOPED_INFO(format_diagnostic(d));
         REQUIRE(build.ok());
         const VariantRender r = render_variant(test::shared_runner(), build, scene, settings);
         INFO(r.error);
         REQUIRE(r.ok());
-        std::printf("%-70s glsl-hlsl %.3g  gpu-cpu(float) %.3g at (%u,%u)  first draw %.0f ms\n", choices, r.glsl_vs_hlsl.max_abs,
-                    r.glsl_vs_cpu_float.max_abs, r.glsl_vs_cpu_float.max_abs_location.x, r.glsl_vs_cpu_float.max_abs_location.y,
+        std::printf("%-70s glsl-hlsl %.3g  gpu-cpu(float) %.3g at (%u,%u)  first draw %.0f ms\n",
+                    choices, r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs,
+                    r.glsl_vs_cpu_float.max_abs_location.x, r.glsl_vs_cpu_float.max_abs_location.y,
                     r.gpu[0].first_draw_ms);
         check_render(r, 1e-4);
     }
@@ -80,23 +85,28 @@ TEST_CASE("normal_displaced_lookups_render_the_same_on_glsl_hlsl_and_cpu", "[ren
                                 "reflection=sky_cubemap,refraction=refracted_ray",
                                 "reflection=fourier_horizon,refraction=screen_distort"}) {
         std::string error;
-        const auto v = parse_variant_key(std::string("waves=flat,normals=detail_map,specular=none,foam=none,") + choices, &error);
+        const auto v = parse_variant_key(
+            std::string("waves=flat,normals=detail_map,specular=none,foam=none,") + choices,
+            &error);
         INFO(error);
         REQUIRE(v.has_value());
         INFO(v->key());
         const VariantBuild build = build_variant(*v);
-        for (const auto& d : build.diagnostics) UNSCOPED_INFO(format_diagnostic(d));
+        for (const auto& d : build.diagnostics)
+            UNSCOPED_INFO(format_diagnostic(d));
         REQUIRE(build.ok());
         const VariantRender r = render_variant(test::shared_runner(), build, scene, settings);
         INFO(r.error);
         REQUIRE(r.ok());
-        std::printf("normals=detail_map %-55s glsl-hlsl %.3g  gpu-cpu(float) %.3g at (%u,%u)\n", choices, r.glsl_vs_hlsl.max_abs,
-                    r.glsl_vs_cpu_float.max_abs, r.glsl_vs_cpu_float.max_abs_location.x, r.glsl_vs_cpu_float.max_abs_location.y);
+        std::printf("normals=detail_map %-55s glsl-hlsl %.3g  gpu-cpu(float) %.3g at (%u,%u)\n",
+                    choices, r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs,
+                    r.glsl_vs_cpu_float.max_abs_location.x, r.glsl_vs_cpu_float.max_abs_location.y);
         check_render(r, 1e-4);
     }
 }
 
-TEST_CASE("lavapipe_filters_cube_maps_like_the_cpu_evaluator_across_edges_and_corners", "[render][cube]") {
+TEST_CASE("lavapipe_filters_cube_maps_like_the_cpu_evaluator_across_edges_and_corners",
+          "[render][cube]") {
     // A custom pass: 3 x 2 tiles, tile k looks at cube face k through face coordinates
     // sc, tc in [-1.2, 1.2], so every edge and corner of every face is crossed. Texels are
     // deliberately not smooth (each differs from its neighbours by up to 0.9), so a wrong
@@ -107,7 +117,8 @@ TEST_CASE("lavapipe_filters_cube_maps_like_the_cpu_evaluator_across_edges_and_co
         for (uint32_t j = 0; j < n; ++j)
             for (uint32_t i = 0; i < n; ++i) {
                 const size_t texel = (size_t(f) * n + j) * n + i;
-                cube.rgba[texel * 4 + 0] = static_cast<float>(((i * 7 + j * 3 + f * 5) % 10) / 10.0);
+                cube.rgba[texel * 4 + 0] =
+                    static_cast<float>(((i * 7 + j * 3 + f * 5) % 10) / 10.0);
                 cube.rgba[texel * 4 + 1] = static_cast<float>(f / 6.0 + i / 64.0);
                 cube.rgba[texel * 4 + 2] = static_cast<float>(j / 8.0);
             }
@@ -140,7 +151,8 @@ TEST_CASE("lavapipe_filters_cube_maps_like_the_cpu_evaluator_across_edges_and_co
         g.set_output("color", vec4(texel.xyz(), constant(g, 1.0)).id());
     }
     const VariantBuild build = build_shader(std::move(shader));
-    for (const auto& d : build.diagnostics) UNSCOPED_INFO(format_diagnostic(d));
+    for (const auto& d : build.diagnostics)
+        UNSCOPED_INFO(format_diagnostic(d));
     REQUIRE(build.ok());
     SyntheticScene scene;
     scene.width = w;
@@ -149,7 +161,8 @@ TEST_CASE("lavapipe_filters_cube_maps_like_the_cpu_evaluator_across_edges_and_co
     const VariantRender r = render_variant(test::shared_runner(), build, scene, {w, h, 0, false});
     INFO(r.error);
     REQUIRE(r.ok());
-    std::printf("cube filtering probe: glsl-hlsl %.3g  gpu-cpu(float) %.3g at (%u,%u)\n", r.glsl_vs_hlsl.max_abs,
-                r.glsl_vs_cpu_float.max_abs, r.glsl_vs_cpu_float.max_abs_location.x, r.glsl_vs_cpu_float.max_abs_location.y);
+    std::printf("cube filtering probe: glsl-hlsl %.3g  gpu-cpu(float) %.3g at (%u,%u)\n",
+                r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs,
+                r.glsl_vs_cpu_float.max_abs_location.x, r.glsl_vs_cpu_float.max_abs_location.y);
     check_render(r, 1e-5);
 }

@@ -20,8 +20,9 @@ TEST_CASE("optics_inputs_have_their_documented_shapes_and_are_deterministic", "[
         const char* name;
         uint32_t width, height, layers;
     };
-    for (const Shape& s : {Shape{"sky_cube", 32, 32, 6}, Shape{"reflection_map", 40, 24, 1}, Shape{"fourier_coefs1", 16, 16, 1},
-                           Shape{"fourier_coefs2", 16, 16, 1}}) {
+    for (const Shape& s :
+         {Shape{"sky_cube", 32, 32, 6}, Shape{"reflection_map", 40, 24, 1},
+          Shape{"fourier_coefs1", 16, 16, 1}, Shape{"fourier_coefs2", 16, 16, 1}}) {
         INFO(s.name);
         REQUIRE(a.textures.count(s.name) == 1);
         const TextureData& t = a.textures.at(s.name);
@@ -29,7 +30,8 @@ TEST_CASE("optics_inputs_have_their_documented_shapes_and_are_deterministic", "[
         CHECK(t.height == s.height);
         CHECK(t.layers == s.layers);
         REQUIRE(t.rgba.size() == size_t(s.width) * s.height * s.layers * 4);
-        for (float v : t.rgba) CHECK(std::isfinite(v));
+        for (float v : t.rgba)
+            CHECK(std::isfinite(v));
         CHECK(t.rgba == b.textures.at(s.name).rgba);
     }
     for (const char* prefix : {"reflection", "refraction"})
@@ -52,7 +54,8 @@ TEST_CASE("planar_reflection_map_agrees_with_the_sky_cube_along_the_mirrored_ray
     std::vector<double> rays, points;
     for (double u : {0.1, 0.3, 0.5, 0.7, 0.9})
         for (double v : {0.5, 0.6, 0.75, 0.9}) {
-            const double sx = (2 * u - 1) * cam.tan_half_fov_y * cam.aspect, sy = (1 - 2 * v) * cam.tan_half_fov_y;
+            const double sx = (2 * u - 1) * cam.tan_half_fov_y * cam.aspect,
+                         sy = (1 - 2 * v) * cam.tan_half_fov_y;
             double d[3], len = 0;
             for (int k = 0; k < 3; ++k) {
                 d[k] = cam.forward[k] + cam.right[k] * sx + cam.up[k] * sy;
@@ -85,7 +88,8 @@ TEST_CASE("planar_reflection_map_agrees_with_the_sky_cube_along_the_mirrored_ray
     REQUIRE(p.ok());
     REQUIRE(c.ok());
     double worst = 0;
-    for (size_t i = 0; i < p.values.size(); ++i) worst = std::max(worst, std::fabs(p.values[i] - c.values[i]));
+    for (size_t i = 0; i < p.values.size(); ++i)
+        worst = std::max(worst, std::fabs(p.values[i] - c.values[i]));
     // Measured 3.4e-4: bilinear filtering of a 32-texel face (2.8 degrees a texel) against a
     // map at 64 px over a 1.5x wider view.
     CHECK(worst < 2e-3);
@@ -103,8 +107,10 @@ TEST_CASE("fourier_coefficients_put_the_beach_behind_and_the_ridge_ahead", "[sce
         INFO("texel " << texel);
         std::vector<double> tuples;
         for (const auto& ray : {std::vector<double>{0, 0, -1}, {0, 0, 1}, {1, 0, 0}}) {
-            for (int k = 0; k < 4; ++k) tuples.push_back(c1.rgba[texel * 4 + static_cast<size_t>(k)]);
-            for (int k = 0; k < 4; ++k) tuples.push_back(c2.rgba[texel * 4 + static_cast<size_t>(k)]);
+            for (int k = 0; k < 4; ++k)
+                tuples.push_back(c1.rgba[texel * 4 + static_cast<size_t>(k)]);
+            for (int k = 0; k < 4; ++k)
+                tuples.push_back(c2.rgba[texel * 4 + static_cast<size_t>(k)]);
             tuples.insert(tuples.end(), ray.begin(), ray.end());
         }
         const auto r = test::eval_catalog("reflection.fourier_series", tuples);
@@ -121,15 +127,19 @@ TEST_CASE("half_precision_variants_stay_finite_and_close_to_float", "[scene][pre
     // float (the skeleton's rule): the image stays within half's few 1e-3 of the float one
     // (measured 1.4e-3, 4.3e-3, 3.3e-3 for the three cases).
     const SyntheticScene scene = make_synthetic_scene(64, 64);
-    for (const char* choices : {"reflection=sky_cubemap,refraction=none", "reflection=planar_projective,refraction=refracted_ray",
+    for (const char* choices : {"reflection=sky_cubemap,refraction=none",
+                                "reflection=planar_projective,refraction=refracted_ray",
                                 "reflection=fourier_horizon,refraction=screen_distort"}) {
         INFO(choices);
         std::string error;
-        const auto v = parse_variant_key(std::string("precision=half,specular=none,foam=none,") + choices, &error);
+        const auto v = parse_variant_key(
+            std::string("precision=half,specular=none,foam=none,") + choices, &error);
         REQUIRE(v.has_value());
         const WaterShader shader = build_water_shader(*v);
-        const EvalResult f = evaluate_image(shader.fragment, "color", scene.eval_inputs(), 64, 64, EvalPrecision::Float);
-        const EvalResult h = evaluate_image(shader.fragment, "color", scene.eval_inputs(), 64, 64, EvalPrecision::Half);
+        const EvalResult f = evaluate_image(shader.fragment, "color", scene.eval_inputs(), 64, 64,
+                                            EvalPrecision::Float);
+        const EvalResult h = evaluate_image(shader.fragment, "color", scene.eval_inputs(), 64, 64,
+                                            EvalPrecision::Half);
         REQUIRE(f.ok());
         REQUIRE(h.ok());
         double worst = 0;

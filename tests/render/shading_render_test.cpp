@@ -12,12 +12,14 @@ using namespace watergen;
 
 namespace {
 
-Variant simple_variant(const std::string& fresnel, const std::string& extinction, const std::string& specular,
-                       const std::string& foam) {
+Variant simple_variant(const std::string& fresnel, const std::string& extinction,
+                       const std::string& specular, const std::string& foam) {
     std::string error;
-    auto v = parse_variant_key("fresnel=" + fresnel + ",extinction=" + extinction + ",specular=" + specular + ",foam=" + foam +
-                                   ",reflection=none,refraction=none,normals=flat,waves=flat,shore=hard,precision=full",
-                               &error);
+    auto v = parse_variant_key(
+        "fresnel=" + fresnel + ",extinction=" + extinction + ",specular=" + specular +
+            ",foam=" + foam +
+            ",reflection=none,refraction=none,normals=flat,waves=flat,shore=hard,precision=full",
+        &error);
     INFO(error);
     REQUIRE(v.has_value());
     return *v;
@@ -42,14 +44,16 @@ SyntheticScene optics_scene(uint32_t size) {
 ImageRGBA32F cpu_image(const Variant& v, const SyntheticScene& scene) {
     const WaterShader shader = build_water_shader(v);
     REQUIRE_FALSE(has_errors(shader.fragment.diagnostics()));
-    const EvalResult r = evaluate_image(shader.fragment, "color", scene.eval_inputs(), scene.width, scene.height, EvalPrecision::Float);
+    const EvalResult r = evaluate_image(shader.fragment, "color", scene.eval_inputs(), scene.width,
+                                        scene.height, EvalPrecision::Float);
     REQUIRE(r.ok());
     return to_image(r, scene.width, scene.height);
 }
 
 double max_difference(const ImageRGBA32F& a, const ImageRGBA32F& b) {
     double worst = 0;
-    for (size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, double(std::fabs(a.rgba[i] - b.rgba[i])));
+    for (size_t i = 0; i < a.rgba.size(); ++i)
+        worst = std::max(worst, double(std::fabs(a.rgba[i] - b.rgba[i])));
     return worst;
 }
 
@@ -58,19 +62,22 @@ double max_difference(const ImageRGBA32F& a, const ImageRGBA32F& b) {
 TEST_CASE("optics_choices_render_alike_in_glsl_hlsl_and_on_the_cpu", "[render]") {
     const RenderSettings settings{128, 128, 1, false};
     const SyntheticScene scene = optics_scene(settings.width);
-    const std::vector<Variant> variants = {simple_variant("power", "linear", "toman_glare", "shore"),
-                                           simple_variant("schlick", "exponential", "blinn_phong", "crest"),
-                                           simple_variant("exact", "beer_lambert", "ggx_sun", "both")};
+    const std::vector<Variant> variants = {
+        simple_variant("power", "linear", "toman_glare", "shore"),
+        simple_variant("schlick", "exponential", "blinn_phong", "crest"),
+        simple_variant("exact", "beer_lambert", "ggx_sun", "both")};
     for (const Variant& v : variants) {
         INFO(v.key());
         const VariantBuild build = build_variant(v);
-        for (const auto& d : build.diagnostics) INFO(format_diagnostic(d));
+        for (const auto& d : build.diagnostics)
+            INFO(format_diagnostic(d));
         REQUIRE(build.ok());
         const VariantRender r = render_variant(test::shared_runner(), build, scene, settings);
         INFO(r.error);
         REQUIRE(r.ok());
-        std::printf("%-60s glsl-hlsl %.3g  gpu-cpu(float) glsl %.3g hlsl %.3g  NaN/Inf %llu %llu\n", v.key().c_str(),
-                    r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs, r.hlsl_vs_cpu_float.max_abs,
+        std::printf("%-60s glsl-hlsl %.3g  gpu-cpu(float) glsl %.3g hlsl %.3g  NaN/Inf %llu %llu\n",
+                    v.key().c_str(), r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs,
+                    r.hlsl_vs_cpu_float.max_abs,
                     static_cast<unsigned long long>(r.glsl_vs_cpu_float.nan_inf_pixels),
                     static_cast<unsigned long long>(r.hlsl_vs_cpu_float.nan_inf_pixels));
         CHECK(r.validation_messages.empty());
@@ -88,7 +95,8 @@ TEST_CASE("optics_choices_render_alike_in_glsl_hlsl_and_on_the_cpu", "[render]")
         REQUIRE_FALSE(set_choice(no_foam, "foam", "none"));
         const double highlight = max_difference(r.cpu_float, cpu_image(no_specular, scene));
         const double foam = max_difference(r.cpu_float, cpu_image(no_foam, scene));
-        std::printf("    largest change from the highlight %.3g, from the foam %.3g\n", highlight, foam);
+        std::printf("    largest change from the highlight %.3g, from the foam %.3g\n", highlight,
+                    foam);
         CHECK(highlight > 0.05);
         CHECK(foam > 0.1);
     }
@@ -99,11 +107,14 @@ TEST_CASE("optics_choices_render_alike_in_glsl_hlsl_and_on_the_cpu", "[render]")
 TEST_CASE("specular_adds_nothing_with_the_sun_below_the_horizon", "[render][specular]") {
     SyntheticScene scene = optics_scene(64);
     scene.uniforms["sun_direction"] = {0.2, 0.3, 0.93};
-    const ImageRGBA32F dark = cpu_image(simple_variant("schlick", "beer_lambert", "none", "none"), scene);
+    const ImageRGBA32F dark =
+        cpu_image(simple_variant("schlick", "beer_lambert", "none", "none"), scene);
     for (const char* specular : {"toman_glare", "blinn_phong", "ggx_sun"}) {
         INFO(specular);
-        const ImageRGBA32F image = cpu_image(simple_variant("schlick", "beer_lambert", specular, "none"), scene);
-        for (float x : image.rgba) REQUIRE(std::isfinite(x));
+        const ImageRGBA32F image =
+            cpu_image(simple_variant("schlick", "beer_lambert", specular, "none"), scene);
+        for (float x : image.rgba)
+            REQUIRE(std::isfinite(x));
         CHECK(image.rgba == dark.rgba);
     }
 }

@@ -20,9 +20,10 @@ TEST_CASE("glsl_hlsl_and_cpu_agree_for_every_variant", "[render]") {
         REQUIRE(build.ok());
         const VariantRender r = render_variant(test::shared_runner(), build, scene, settings);
         REQUIRE(r.ok());
-        std::printf("%-44s glsl-hlsl %.3g  gpu-cpu(float) %.3g / %.3g  pipeline %.1f ms first %.1f ms\n",
-                    v.key().c_str(), r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs, r.hlsl_vs_cpu_float.max_abs,
-                    r.gpu[0].pipeline_ms, r.gpu[0].first_draw_ms);
+        std::printf(
+            "%-44s glsl-hlsl %.3g  gpu-cpu(float) %.3g / %.3g  pipeline %.1f ms first %.1f ms\n",
+            v.key().c_str(), r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs,
+            r.hlsl_vs_cpu_float.max_abs, r.gpu[0].pipeline_ms, r.gpu[0].first_draw_ms);
         CHECK(r.validation_messages.empty());
         // Both paths run the same IR through spirv-opt; measured: bit-identical (0). The bound
         // leaves room for a front end ordering one operation differently (a few float ulps).

@@ -7,8 +7,8 @@
 #include <cstdio>
 
 #include "shared_runner.h"
-#include "watergen/water/mesh_shader.h"
 #include "watergen/render/probe.h"
+#include "watergen/water/mesh_shader.h"
 #include "waves_support.h"
 
 using namespace watergen;

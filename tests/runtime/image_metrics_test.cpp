@@ -93,7 +93,8 @@ TEST_CASE("a NaN pixel in the test image is counted and excluded from the error 
     CHECK(s.nan_inf_where_reference_finite == 2);
 }
 
-TEST_CASE("non_finite_pixels_of_both_sides_are_not_counted_as_the_test_side_breaking", "[unit][metrics]") {
+TEST_CASE("non_finite_pixels_of_both_sides_are_not_counted_as_the_test_side_breaking",
+          "[unit][metrics]") {
     ImageRGBA32F ref = gradient(4, 4);
     ImageRGBA32F test = ref;
     at(test, 1, 3, 0) = std::numeric_limits<float>::quiet_NaN(); // test only

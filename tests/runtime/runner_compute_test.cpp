@@ -117,7 +117,8 @@ TEST_CASE("compute shader samples a job texture with float filter weights", "[re
     test::CompiledStage cs = test::compile_glsl(ShaderStage::Compute, kSampleRamp);
     const uint32_t n = 1024;
     std::vector<float> u(n);
-    for (uint32_t i = 0; i < n; ++i) u[i] = static_cast<float>(i) / (n - 1);
+    for (uint32_t i = 0; i < n; ++i)
+        u[i] = static_cast<float>(i) / (n - 1);
     for (TextureFilter filter : {TextureFilter::Linear, TextureFilter::Nearest}) {
         ComputeJob job;
         job.spirv = cs.spirv;
@@ -135,8 +136,9 @@ TEST_CASE("compute shader samples a job texture with float filter weights", "[re
         double max_error = 0;
         for (uint32_t i = 0; i < n; ++i) {
             const double x = double(u[i]) * 2.0 - 0.5; // texel space, texel centres at 0 and 1
-            const double expected = filter == TextureFilter::Linear ? 1000.0 * std::clamp(x, 0.0, 1.0)
-                                                                    : (u[i] < 0.5f ? 0.0 : 1000.0);
+            const double expected = filter == TextureFilter::Linear
+                                        ? 1000.0 * std::clamp(x, 0.0, 1.0)
+                                        : (u[i] < 0.5f ? 0.0 : 1000.0);
             max_error = std::max(max_error, std::fabs(r[i] - expected));
         }
         CHECK(max_error <= (filter == TextureFilter::Linear ? 6.1e-5 : 0.0));
@@ -150,6 +152,7 @@ TEST_CASE("compute shader samples a job texture with float filter weights", "[re
     missing.output_sizes["Outputs"] = uint64_t{n} * sizeof(float);
     const ComputeResult failed = runner.run_compute(missing);
     CHECK_FALSE(failed.ok);
-    CHECK(failed.error.find("texture sampled_image 'ramp' (set 0, binding 2) is not supplied") != std::string::npos);
+    CHECK(failed.error.find("texture sampled_image 'ramp' (set 0, binding 2) is not supplied") !=
+          std::string::npos);
     INFO(failed.error);
 }

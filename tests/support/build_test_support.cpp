@@ -1,8 +1,8 @@
 #include "build_test_support.h"
 
 #include <chrono>
-#include <cstdio>
 #include <csignal>
+#include <cstdio>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <thread>
@@ -24,17 +24,21 @@ std::map<std::string, std::string> reference_build() {
     return tree;
 }
 
-pid_t start_watergen(const std::vector<std::string>& args, const std::string& stdout_path, const std::string& stderr_path,
+pid_t start_watergen(const std::vector<std::string>& args, const std::string& stdout_path,
+                     const std::string& stderr_path,
                      const std::filesystem::path& working_directory) {
     std::string cli = WATERGEN_CLI;
     std::vector<std::string> copy = args;
     std::vector<char*> argv{cli.data()};
-    for (auto& a : copy) argv.push_back(a.data());
+    for (auto& a : copy)
+        argv.push_back(a.data());
     argv.push_back(nullptr);
     std::fflush(nullptr); // or the child flushes the parent's buffered output a second time
     const pid_t pid = ::fork();
     if (pid == 0) {
-        if (!std::freopen(stdout_path.c_str(), "w", stdout) || !std::freopen(stderr_path.c_str(), "w", stderr)) ::_exit(126);
+        if (!std::freopen(stdout_path.c_str(), "w", stdout) ||
+            !std::freopen(stderr_path.c_str(), "w", stderr))
+            ::_exit(126);
         if (!working_directory.empty() && ::chdir(working_directory.c_str()) != 0) ::_exit(126);
         ::execv(cli.c_str(), argv.data());
         ::_exit(127);
@@ -42,9 +46,11 @@ pid_t start_watergen(const std::vector<std::string>& args, const std::string& st
     return pid;
 }
 
-WatergenRun run_watergen(const std::vector<std::string>& args, int timeout_seconds, const std::filesystem::path& working_directory) {
+WatergenRun run_watergen(const std::vector<std::string>& args, int timeout_seconds,
+                         const std::filesystem::path& working_directory) {
     const TempDir logs("run-logs");
-    const pid_t pid = start_watergen(args, (logs.path / "out").string(), (logs.path / "err").string(), working_directory);
+    const pid_t pid = start_watergen(args, (logs.path / "out").string(),
+                                     (logs.path / "err").string(), working_directory);
     REQUIRE(pid > 0);
     WatergenRun run;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeout_seconds);

@@ -27,7 +27,8 @@ inline std::string source_dir() {
 struct TempDir {
     std::filesystem::path path;
     explicit TempDir(const std::string& name)
-        : path(std::filesystem::temp_directory_path() / ("watergen-test-" + name + "-" + std::to_string(::getpid()))) {
+        : path(std::filesystem::temp_directory_path() /
+               ("watergen-test-" + name + "-" + std::to_string(::getpid()))) {
         std::filesystem::remove_all(path);
         std::filesystem::create_directories(path);
     }
@@ -83,14 +84,16 @@ inline std::string read_file(const std::filesystem::path& path) {
 
 // Starts the watergen binary with `args` in a child process, its stdout and stderr going to the
 // given files, in `working_directory` unless that is empty; returns its pid.
-pid_t start_watergen(const std::vector<std::string>& args, const std::string& stdout_path = "/dev/null",
-                     const std::string& stderr_path = "/dev/null", const std::filesystem::path& working_directory = {});
+pid_t start_watergen(const std::vector<std::string>& args,
+                     const std::string& stdout_path = "/dev/null",
+                     const std::string& stderr_path = "/dev/null",
+                     const std::filesystem::path& working_directory = {});
 
 struct WatergenRun {
     bool timed_out = false; // then killed
     int exit_code = -1;     // -1 when killed by a signal
     std::string out, err;
-    long max_rss_kb = 0;    // of the child: what it read into memory shows here
+    long max_rss_kb = 0; // of the child: what it read into memory shows here
 };
 
 // Runs the watergen binary to completion, killing it after `timeout_seconds`.

@@ -4,15 +4,16 @@
 
 #include <vector>
 
-#include "watergen/plan/covering_array.h"
 #include "watergen/pipeline/variant_build.h"
+#include "watergen/plan/covering_array.h"
 
 namespace watergen::test {
 
 inline const std::vector<VariantBuild>& covering_builds() {
     static const std::vector<VariantBuild> builds = [] {
         std::vector<VariantBuild> out;
-        for (const Variant& v : pairwise_covering_variants()) out.push_back(build_variant(v));
+        for (const Variant& v : pairwise_covering_variants())
+            out.push_back(build_variant(v));
         return out;
     }();
     return builds;

@@ -9,7 +9,8 @@
 
 namespace watergen::test {
 
-inline std::vector<double> eval_scalar_node(const std::function<Expr(Graph&, Expr)>& node, const std::vector<double>& xs,
+inline std::vector<double> eval_scalar_node(const std::function<Expr(Graph&, Expr)>& node,
+                                            const std::vector<double>& xs,
                                             EvalPrecision precision = EvalPrecision::Double) {
     Graph g;
     Expr x = varying(g, "x", Type::Float);

@@ -20,7 +20,8 @@ using NodeBuild = std::function<Expr(Graph&, const std::vector<Expr>&)>;
 // Builds `build` over varyings named after `inputs` (relaxed, so half mode rounds every
 // operation) and evaluates it. Returns tuples x components values.
 inline std::vector<double> eval_node(const std::vector<NodeInput>& inputs, const NodeBuild& build,
-                                     const std::vector<double>& tuples, EvalPrecision precision = EvalPrecision::Double,
+                                     const std::vector<double>& tuples,
+                                     EvalPrecision precision = EvalPrecision::Double,
                                      const Uniforms& uniforms = {}) {
     Graph g;
     std::vector<Expr> vars;
@@ -31,7 +32,8 @@ inline std::vector<double> eval_node(const std::vector<NodeInput>& inputs, const
     }
     RelaxedScope relaxed(g, true);
     g.set_output("out", build(g, vars).id());
-    if (!g.diagnostics().empty()) throw std::runtime_error("node has diagnostics: " + g.diagnostics().front().message);
+    if (!g.diagnostics().empty())
+        throw std::runtime_error("node has diagnostics: " + g.diagnostics().front().message);
     EvalInputs eval;
     eval.uniforms = uniforms;
     eval.lanes = tuples.size() / stride;
@@ -40,7 +42,8 @@ inline std::vector<double> eval_node(const std::vector<NodeInput>& inputs, const
         const int n = component_count(in.type);
         auto& v = eval.varyings[in.name];
         for (size_t t = 0; t < eval.lanes; ++t)
-            for (int c = 0; c < n; ++c) v.push_back(tuples[t * stride + offset + static_cast<size_t>(c)]);
+            for (int c = 0; c < n; ++c)
+                v.push_back(tuples[t * stride + offset + static_cast<size_t>(c)]);
         offset += static_cast<size_t>(n);
     }
     const EvalResult r = evaluate(g, "out", eval, precision);
@@ -48,8 +51,10 @@ inline std::vector<double> eval_node(const std::vector<NodeInput>& inputs, const
     return r.values;
 }
 
-inline std::vector<double> eval_catalog_node(const std::string& name, const std::vector<double>& tuples,
-                                             EvalPrecision precision = EvalPrecision::Double, const Uniforms& uniforms = {}) {
+inline std::vector<double> eval_catalog_node(const std::string& name,
+                                             const std::vector<double>& tuples,
+                                             EvalPrecision precision = EvalPrecision::Double,
+                                             const Uniforms& uniforms = {}) {
     const CatalogNode* node = find_catalog_node(name);
     if (!node) throw std::runtime_error("no catalog node " + name);
     return eval_node(node->inputs, node->build, tuples, precision, uniforms);

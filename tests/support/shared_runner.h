@@ -23,7 +23,8 @@ inline ProbeRun checked_probe(const Graph& g, Language lang, const std::vector<d
                               const std::map<std::string, std::vector<double>>& uniforms = {},
                               const std::map<std::string, TextureData>& textures = {}) {
     ProbeRun run = run_probe(shared_runner(), g, lang, inputs, uniforms, textures);
-    for (const auto& d : run.diagnostics) INFO(format_diagnostic(d));
+    for (const auto& d : run.diagnostics)
+        INFO(format_diagnostic(d));
     INFO(run.error);
     REQUIRE(run.ok());
     CHECK(run.validation_messages.empty());

@@ -11,8 +11,8 @@
 
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/emitter.h"
-#include "watergen/water/node_catalog.h"
 #include "watergen/render/scene_wave_inputs.h"
+#include "watergen/water/node_catalog.h"
 
 namespace watergen::test {
 

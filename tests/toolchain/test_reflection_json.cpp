@@ -3,9 +3,9 @@
 
 #include <string>
 
+#include "watergen/runtime/reflection.h"
 #include "watergen/toolchain/glslang_stage.h"
 #include "watergen/toolchain/reflection_stage.h"
-#include "watergen/runtime/reflection.h"
 
 using namespace watergen;
 

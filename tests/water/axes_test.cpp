@@ -121,8 +121,9 @@ TEST_CASE("constraints_name_both_axes", "[variant]") {
     REQUIRE_FALSE(set_choice(v, "normals", "analytic"));
     const auto broken = check_constraints(v);
     REQUIRE(broken);
-    CHECK(*broken == "normals=analytic requires waves in {sum_of_sines, gerstner} (analytic normals are the "
-                     "derivatives of a closed-form wave model); got waves=flat");
+    CHECK(*broken ==
+          "normals=analytic requires waves in {sum_of_sines, gerstner} (analytic normals are the "
+          "derivatives of a closed-form wave model); got waves=flat");
     REQUIRE_FALSE(set_choice(v, "waves", "gerstner"));
     CHECK_FALSE(check_constraints(v));
 }
@@ -134,7 +135,9 @@ TEST_CASE("covering_set_holds_every_feasible_pair_and_only_valid_variants", "[va
     for (const auto& v : set) {
         CHECK_FALSE(check_constraints(v));
         for (size_t a = 0; a < axes().size(); ++a)
-            for (size_t b = a + 1; b < axes().size(); ++b) pairs.insert(axes()[a].name + "=" + v.choices[a] + "," + axes()[b].name + "=" + v.choices[b]);
+            for (size_t b = a + 1; b < axes().size(); ++b)
+                pairs.insert(axes()[a].name + "=" + v.choices[a] + "," + axes()[b].name + "=" +
+                             v.choices[b]);
     }
     size_t feasible = 0;
     for (size_t a = 0; a < axes().size(); ++a)
@@ -155,8 +158,10 @@ TEST_CASE("covering_set_holds_every_feasible_pair_and_only_valid_variants", "[va
                     }
                     if (!ok) continue;
                     ++feasible;
-                    INFO(axes()[a].name << "=" << ca.name << ", " << axes()[b].name << "=" << cb.name);
-                    CHECK(pairs.count(axes()[a].name + "=" + ca.name + "," + axes()[b].name + "=" + cb.name) == 1);
+                    INFO(axes()[a].name << "=" << ca.name << ", " << axes()[b].name << "="
+                                        << cb.name);
+                    CHECK(pairs.count(axes()[a].name + "=" + ca.name + "," + axes()[b].name + "=" +
+                                      cb.name) == 1);
                 }
     CHECK(pairs.size() == feasible);
     CHECK(pairwise_covering_variants().front().key() == set.front().key()); // deterministic
@@ -178,7 +183,8 @@ TEST_CASE("unknown_axis_or_choice_names_the_allowed_ones", "[variant]") {
 TEST_CASE("short_hash_is_xxh64_of_the_key", "[variant]") {
     // Pinned: a key's hash never changes, so logs, caches and manifests stay comparable.
     const Variant v = default_variant();
-    CHECK(v.key() == "fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,"
+    CHECK(v.key() == "fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,"
+                     "reflection=sky_cubemap,"
                      "refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=full");
     CHECK(v.short_hash() == "3dc847c87f7a124c");
     Variant other = v;

@@ -9,7 +9,8 @@
 using namespace watergen;
 
 namespace {
-EvalResult absorb_scatter(const std::vector<double>& depth, const std::vector<double>& path, EvalPrecision p) {
+EvalResult absorb_scatter(const std::vector<double>& depth, const std::vector<double>& path,
+                          EvalPrecision p) {
     Graph g;
     Expr d = varying(g, "depth", Type::Float);
     Expr a = varying(g, "path", Type::Float);
@@ -63,7 +64,8 @@ TEST_CASE("absorb_scatter_is_finite_at_stress_depths", "[extinction][stress]") {
         for (double v : r.values) {
             CHECK(std::isfinite(v));
             lowest = std::min(lowest, v);
-            CHECK(v <= 0.5 + 1e-3); // never brighter than the refracted colour (-1e-3 m adds < 0.05 %)
+            CHECK(v <=
+                  0.5 + 1e-3); // never brighter than the refracted colour (-1e-3 m adds < 0.05 %)
         }
         CHECK(lowest >= -slack);
     }
@@ -72,7 +74,8 @@ TEST_CASE("absorb_scatter_is_finite_at_stress_depths", "[extinction][stress]") {
 TEST_CASE("zero_absorption_over_an_infinite_path_is_finite", "[extinction][stress]") {
     // 0 * inf is NaN: without the distance cap every model returned NaN here.
     const std::map<std::string, std::vector<std::pair<std::string, std::vector<double>>>> zeroed = {
-        {"extinction.absorb_scatter", {{"absorb_coefficients", {0, 0, 0}}, {"scatter_coefficient", {0}}}},
+        {"extinction.absorb_scatter",
+         {{"absorb_coefficients", {0, 0, 0}}, {"scatter_coefficient", {0}}}},
         {"extinction.beer_lambert", {{"extinction_pure_water_absorption", {0, 0, 0}}}},
         {"extinction.exponential", {{"extinction_density", {0}}}},
     };
@@ -84,11 +87,13 @@ TEST_CASE("zero_absorption_over_an_infinite_path_is_finite", "[extinction][stres
         in.varyings["depth"] = {INFINITY, 1.0};
         in.varyings["path"] = {INFINITY, INFINITY};
         in.varyings["refraction"] = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5};
-        for (const auto& [name, value] : params) in.uniforms[name] = value;
+        for (const auto& [name, value] : params)
+            in.uniforms[name] = value;
         for (auto p : {EvalPrecision::Double, EvalPrecision::Float, EvalPrecision::Half}) {
             const auto r = evaluate(g, "value", in, p);
             REQUIRE(r.ok());
-            for (double v : r.values) CHECK(std::isfinite(v));
+            for (double v : r.values)
+                CHECK(std::isfinite(v));
         }
     }
 }

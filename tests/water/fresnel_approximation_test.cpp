@@ -19,14 +19,15 @@ struct WorstError {
 WorstError worst_against_exact(const std::string& node) {
     std::vector<double> cs;
     const int n = 200000;
-    for (int i = 0; i <= n; ++i) cs.push_back(static_cast<double>(i) / n);
+    for (int i = 0; i <= n; ++i)
+        cs.push_back(static_cast<double>(i) / n);
     const auto approx = test::eval_catalog_node(node, cs);
     const auto exact = test::eval_catalog_node("fresnel.exact", cs);
     WorstError w;
     for (size_t i = 0; i < cs.size(); ++i)
         if (std::fabs(approx[i] - exact[i]) > w.error) w = {std::fabs(approx[i] - exact[i]), cs[i]};
-    std::printf("%s vs exact: max error %.9f at c = %.6f (%.2f degrees)\n", node.c_str(), w.error, w.at_c,
-                std::acos(w.at_c) * 180.0 / M_PI);
+    std::printf("%s vs exact: max error %.9f at c = %.6f (%.2f degrees)\n", node.c_str(), w.error,
+                w.at_c, std::acos(w.at_c) * 180.0 / M_PI);
     return w;
 }
 

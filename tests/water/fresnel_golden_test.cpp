@@ -25,7 +25,8 @@ TEST_CASE("exact_fresnel_is_one_past_the_critical_angle_from_below", "[fresnel]"
     EvalInputs in;
     const double critical = std::asin(1.0 / 1.33333);
     const double deg = M_PI / 180.0;
-    in.varyings["x"] = {std::cos(critical - 0.01 * deg), std::cos(critical + 0.01 * deg), std::cos(80 * deg), 0.0};
+    in.varyings["x"] = {std::cos(critical - 0.01 * deg), std::cos(critical + 0.01 * deg),
+                        std::cos(80 * deg), 0.0};
     in.lanes = 4;
     in.uniforms["ior_air"] = {1.33333};
     in.uniforms["ior_water"] = {1.0};
@@ -47,7 +48,8 @@ TEST_CASE("schlick_matches_exact_at_normal_incidence", "[fresnel]") {
 TEST_CASE("schlick_max_error_against_exact_is_0_059_near_83_8_degrees", "[fresnel]") {
     std::vector<double> cs;
     const int n = 200000;
-    for (int i = 0; i <= n; ++i) cs.push_back(static_cast<double>(i) / n);
+    for (int i = 0; i <= n; ++i)
+        cs.push_back(static_cast<double>(i) / n);
     const auto s = eval_scalar_node(fresnel_schlick, cs);
     const auto e = eval_scalar_node(fresnel_exact, cs);
     double worst = 0, at = 0;
@@ -69,7 +71,8 @@ TEST_CASE("fresnel_none_is_the_constant", "[fresnel]") {
 
 TEST_CASE("fresnel_stays_in_unit_range_at_stress_cosines", "[fresnel][stress]") {
     // water-models.md stress set for c.
-    const std::vector<double> cs = {-1, -1e-7, 0, 1e-7, 1e-3, 0.5, 1 - std::ldexp(1.0, -24), 1, 1 + std::ldexp(1.0, -23)};
+    const std::vector<double> cs = {
+        -1, -1e-7, 0, 1e-7, 1e-3, 0.5, 1 - std::ldexp(1.0, -24), 1, 1 + std::ldexp(1.0, -23)};
     for (auto precision : {EvalPrecision::Double, EvalPrecision::Float, EvalPrecision::Half})
         for (auto node : {fresnel_schlick, fresnel_exact}) {
             const auto r = eval_scalar_node(node, cs, precision);

@@ -14,7 +14,8 @@ TEST_CASE("presets_name_existing_parameters_within_their_ranges", "[presets]") {
     std::map<std::string, Parameter> declared;
     for (const Variant& v : pairwise_covering_variants()) {
         const WaterShader shader = build_water_shader(v);
-        for (const auto& p : shader.fragment.parameters()) declared.emplace(p.name, p);
+        for (const auto& p : shader.fragment.parameters())
+            declared.emplace(p.name, p);
     }
     for (const char* name : {"tropical_ocean", "muddy_river", "mountain_lake", "harbour_at_night"})
         REQUIRE(find_preset(name) != nullptr);

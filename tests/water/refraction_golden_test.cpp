@@ -24,7 +24,8 @@ std::pair<double, double> screen_uv(const SceneCamera& c, const double p[3]) {
         y += d * c.up[k];
         w += d * c.forward[k];
     }
-    return {0.5 + 0.5 * x / (w * c.tan_half_fov_y * c.aspect), 0.5 - 0.5 * y / (w * c.tan_half_fov_y)};
+    return {0.5 + 0.5 * x / (w * c.tan_half_fov_y * c.aspect),
+            0.5 - 0.5 * y / (w * c.tan_half_fov_y)};
 }
 
 test::Uniforms clip_matrix(double qx, double w) {
@@ -38,8 +39,9 @@ test::Uniforms clip_matrix(double qx, double w) {
 
 TEST_CASE("screen_distort_displaces_uv_by_the_horizontal_normal", "[refraction][golden]") {
     // uv + N.xz * 0.03 * saturate(depth / 1 m).
-    const auto r = eval_catalog("refraction.screen_distort_uv",
-                                {0.5, 0.5, 0.1, 1, -0.2, 5.0, 0.5, 0.5, 0.1, 1, -0.2, 0.5, 0.5, 0.5, 0.1, 1, -0.2, INFINITY});
+    const auto r =
+        eval_catalog("refraction.screen_distort_uv", {0.5, 0.5, 0.1, 1, -0.2, 5.0, 0.5, 0.5, 0.1, 1,
+                                                      -0.2, 0.5, 0.5, 0.5, 0.1, 1, -0.2, INFINITY});
     CHECK(r.at(0, 0) == Approx(0.503).margin(1e-12));
     CHECK(r.at(0, 1) == Approx(0.494).margin(1e-12));
     CHECK(r.at(1, 0) == Approx(0.5015).margin(1e-12));
@@ -50,7 +52,8 @@ TEST_CASE("screen_distort_displaces_uv_by_the_horizontal_normal", "[refraction][
 TEST_CASE("screen_distort_does_not_displace_at_the_shoreline", "[refraction][guard]") {
     // Guard (003's "artifacts along water edges"): at depth 0 (and a scene a hair above the
     // plane) the displacement fades out, so dry land is not smeared into the water.
-    const auto r = eval_catalog("refraction.screen_distort_uv", {0.5, 0.5, 0.1, 1, -0.2, 0.0, 0.5, 0.5, 0.1, 1, -0.2, -1e-3});
+    const auto r = eval_catalog("refraction.screen_distort_uv",
+                                {0.5, 0.5, 0.1, 1, -0.2, 0.0, 0.5, 0.5, 0.1, 1, -0.2, -1e-3});
     for (size_t i = 0; i < 2; ++i) {
         CHECK(r.at(i, 0) == 0.5);
         CHECK(r.at(i, 1) == 0.5);
@@ -61,7 +64,8 @@ TEST_CASE("screen_distort_with_a_zero_fade_depth_displaces_everywhere", "[refrac
     // Guard: a fade depth of 0 turns the fade off; depth / 0 would be 0 / 0 at the shoreline
     // (NaN, and clamp(NaN) is undefined on GPUs; the CPU's gives 0, no displacement).
     for (auto p : {EvalPrecision::Double, EvalPrecision::Float, EvalPrecision::Half}) {
-        const auto r = eval_catalog("refraction.screen_distort_uv", {0.5, 0.5, 0.1, 1, -0.2, 1e-3, 0.5, 0.5, 0.1, 1, -0.2, 0.0}, p,
+        const auto r = eval_catalog("refraction.screen_distort_uv",
+                                    {0.5, 0.5, 0.1, 1, -0.2, 1e-3, 0.5, 0.5, 0.1, 1, -0.2, 0.0}, p,
                                     {{"refraction_shore_fade_depth", {0.0}}});
         const double m = p == EvalPrecision::Half ? 1e-3 : 1e-7;
         for (size_t i = 0; i < 2; ++i) {
@@ -72,8 +76,8 @@ TEST_CASE("screen_distort_with_a_zero_fade_depth_displaces_everywhere", "[refrac
 }
 
 TEST_CASE("screen_distort_keeps_uv_on_the_screen", "[refraction][golden]") {
-    const auto r = eval_catalog("refraction.screen_distort_uv", {0.999, 0.001, 1, 0, -1, 5.0}, EvalPrecision::Double,
-                                {{"refraction_distortion", {1.0}}});
+    const auto r = eval_catalog("refraction.screen_distort_uv", {0.999, 0.001, 1, 0, -1, 5.0},
+                                EvalPrecision::Double, {{"refraction_distortion", {1.0}}});
     CHECK(r.at(0, 0) == 1.0);
     CHECK(r.at(0, 1) == 0.0);
 }
@@ -81,13 +85,14 @@ TEST_CASE("screen_distort_keeps_uv_on_the_screen", "[refraction][golden]") {
 TEST_CASE("refracted_ray_point_follows_snells_law_with_the_clamped_dv", "[refraction][golden]") {
     // 002: dv = clamp(depth, 0, 2) / 3; R = refract(-V, N, 1 / 1.33333).
     const double s = std::sin(40 * kDeg), c = std::cos(40 * kDeg);
-    const auto r = eval_catalog("refraction.refracted_ray_point", {
-                                                                      1, 0, 5, 0, -1, 0, 0, 1, 0, 1.2,      // normal incidence
-                                                                      1, 0, 5, 0, -1, 0, 0, 1, 0, INFINITY, // bottomless: dv = 2/3
-                                                                      1, 0, 5, 0, -1, 0, 0, 1, 0, 1e30,     //
-                                                                      1, 0, 5, 0, -1, 0, 0, 1, 0, -1.0,     // above the plane: W = U
-                                                                      1, 0, 5, s, -c, 0, 0, 1, 0, 0.9,      // 40 degrees
-                                                                  });
+    const auto r = eval_catalog("refraction.refracted_ray_point",
+                                {
+                                    1, 0, 5, 0, -1, 0, 0, 1, 0, 1.2,      // normal incidence
+                                    1, 0, 5, 0, -1, 0, 0, 1, 0, INFINITY, // bottomless: dv = 2/3
+                                    1, 0, 5, 0, -1, 0, 0, 1, 0, 1e30,     //
+                                    1, 0, 5, 0, -1, 0, 0, 1, 0, -1.0,     // above the plane: W = U
+                                    1, 0, 5, s, -c, 0, 0, 1, 0, 0.9,      // 40 degrees
+                                });
     CHECK(r.at(0, 1) == Approx(-0.4).margin(1e-12));
     CHECK(r.at(1, 1) == Approx(-2.0 / 3.0).margin(1e-12));
     CHECK(r.at(2, 1) == Approx(-2.0 / 3.0).margin(1e-12));
@@ -104,7 +109,8 @@ TEST_CASE("refracted_ray_uv_projects_w_with_the_scene_camera", "[refraction][gol
     const SyntheticScene scene = make_synthetic_scene(16, 16);
     const SceneCamera cam = scene_camera(16, 16);
     // The water point seen at pixel uv (0.4, 0.8), 1.5 m deep: W = U + 0.5 R.
-    const double sx = (2 * 0.4 - 1) * cam.tan_half_fov_y * cam.aspect, sy = (1 - 2 * 0.8) * cam.tan_half_fov_y;
+    const double sx = (2 * 0.4 - 1) * cam.tan_half_fov_y * cam.aspect,
+                 sy = (1 - 2 * 0.8) * cam.tan_half_fov_y;
     double d[3], u[3];
     double len = 0;
     for (int k = 0; k < 3; ++k) {
@@ -112,13 +118,17 @@ TEST_CASE("refracted_ray_uv_projects_w_with_the_scene_camera", "[refraction][gol
         len += d[k] * d[k];
     }
     len = std::sqrt(len);
-    for (double& x : d) x /= len;
+    for (double& x : d)
+        x /= len;
     const double t = -cam.eye[1] / d[1];
-    for (int k = 0; k < 3; ++k) u[k] = cam.eye[k] + d[k] * t;
-    const auto w = eval_catalog("refraction.refracted_ray_point", {u[0], u[1], u[2], d[0], d[1], d[2], 0, 1, 0, 1.5});
+    for (int k = 0; k < 3; ++k)
+        u[k] = cam.eye[k] + d[k] * t;
+    const auto w = eval_catalog("refraction.refracted_ray_point",
+                                {u[0], u[1], u[2], d[0], d[1], d[2], 0, 1, 0, 1.5});
     const double wp[3] = {w.at(0, 0), w.at(0, 1), w.at(0, 2)};
     const auto expected = screen_uv(cam, wp);
-    const auto r = eval_catalog("refraction.refracted_ray_uv", {0.4, 0.8, u[0], u[1], u[2], d[0], d[1], d[2], 0, 1, 0, 1.5},
+    const auto r = eval_catalog("refraction.refracted_ray_uv",
+                                {0.4, 0.8, u[0], u[1], u[2], d[0], d[1], d[2], 0, 1, 0, 1.5},
                                 EvalPrecision::Double, scene.uniforms);
     CHECK(r.at(0, 0) == Approx(expected.first).margin(1e-12));
     CHECK(r.at(0, 1) == Approx(expected.second).margin(1e-12));
@@ -126,7 +136,8 @@ TEST_CASE("refracted_ray_uv_projects_w_with_the_scene_camera", "[refraction][gol
     CHECK(r.at(0, 1) > 0.8);
 }
 
-TEST_CASE("refracted_ray_falls_back_to_the_undistorted_uv_under_total_internal_reflection", "[refraction][guard]") {
+TEST_CASE("refracted_ray_falls_back_to_the_undistorted_uv_under_total_internal_reflection",
+          "[refraction][guard]") {
     // Guard (002 via refract()): from the water side (n1 = 1.33333, n2 = 1) at 60 degrees
     // refract() returns 0 and no light crosses: W = U, and the uv is the pixel's own, not
     // where U happens to project.
@@ -135,24 +146,28 @@ TEST_CASE("refracted_ray_falls_back_to_the_undistorted_uv_under_total_internal_r
     uniforms["ior_air"] = {1.33333};
     uniforms["ior_water"] = {1.0};
     const double s = std::sin(60 * kDeg), c = std::cos(60 * kDeg);
-    const auto w = eval_catalog("refraction.refracted_ray_point", {3, 0, 9, s, -c, 0, 0, 1, 0, 1.5}, EvalPrecision::Double, uniforms);
+    const auto w = eval_catalog("refraction.refracted_ray_point", {3, 0, 9, s, -c, 0, 0, 1, 0, 1.5},
+                                EvalPrecision::Double, uniforms);
     CHECK(w.at(0, 0) == 3.0);
     CHECK(w.at(0, 1) == 0.0);
     CHECK(w.at(0, 2) == 9.0);
     for (auto p : {EvalPrecision::Double, EvalPrecision::Float, EvalPrecision::Half}) {
-        const auto r = eval_catalog("refraction.refracted_ray_uv", {0.2, 0.7, 3, 0, 9, s, -c, 0, 0, 1, 0, 1.5}, p, uniforms);
+        const auto r = eval_catalog("refraction.refracted_ray_uv",
+                                    {0.2, 0.7, 3, 0, 9, s, -c, 0, 0, 1, 0, 1.5}, p, uniforms);
         CHECK(r.at(0, 0) == Approx(0.2).margin(1e-3));
         CHECK(r.at(0, 1) == Approx(0.7).margin(1e-3));
     }
 }
 
-TEST_CASE("refracted_ray_falls_back_to_the_undistorted_uv_on_and_behind_the_camera_plane", "[refraction][guard]") {
+TEST_CASE("refracted_ray_falls_back_to_the_undistorted_uv_on_and_behind_the_camera_plane",
+          "[refraction][guard]") {
     // water-models.md stress: q.w in {-1, -1e-6, 0, 1e-6} (and 0 / 0 with q.x = 0).
     for (auto p : {EvalPrecision::Double, EvalPrecision::Float, EvalPrecision::Half})
         for (double qx : {0.3, 0.0})
             for (double w : {-1.0, -1e-6, 0.0, 1e-6, 1.0}) {
                 INFO(to_string(p) << " q.x " << qx << " w " << w);
-                const auto r = eval_catalog("refraction.refracted_ray_uv", {0.2, 0.7, 1, 0, 5, 0, -1, 0, 0, 1, 0, 1.0}, p,
+                const auto r = eval_catalog("refraction.refracted_ray_uv",
+                                            {0.2, 0.7, 1, 0, 5, 0, -1, 0, 0, 1, 0, 1.0}, p,
                                             clip_matrix(qx, w));
                 const double m = p == EvalPrecision::Half ? 1e-3 : 1e-7;
                 CHECK(std::isfinite(r.at(0, 0)));
@@ -163,7 +178,8 @@ TEST_CASE("refracted_ray_falls_back_to_the_undistorted_uv_on_and_behind_the_came
 }
 
 TEST_CASE("refracted_ray_uv_stays_on_the_screen", "[refraction][golden]") {
-    const auto r = eval_catalog("refraction.refracted_ray_uv", {0.2, 0.7, 1, 0, 5, 0, -1, 0, 0, 1, 0, 1.0}, EvalPrecision::Double,
-                                clip_matrix(3.0, 1.0));
+    const auto r =
+        eval_catalog("refraction.refracted_ray_uv", {0.2, 0.7, 1, 0, 5, 0, -1, 0, 0, 1, 0, 1.0},
+                     EvalPrecision::Double, clip_matrix(3.0, 1.0));
     CHECK(r.at(0, 0) == 1.0);
 }

@@ -16,7 +16,9 @@ Expr saturated_ratio(Expr x, Expr width) {
 // plane) mean no water: they would make transmittance exceed 1. Distances are capped at 30 km
 // (depth + path stays below binary16's 65504), where exp(-k d) is 0 for any k above 3e-3 / m:
 // an infinite distance times a zero coefficient would otherwise be NaN.
-Expr water_distance(Expr d) { return clamp(d, 0.0, 3.0e4); }
+Expr water_distance(Expr d) {
+    return clamp(d, 0.0, 3.0e4);
+}
 
 Expr extinction_none(Graph& g, const ExtinctionInputs& in) {
     OriginScope scope(g, "extinction.none");
@@ -25,13 +27,20 @@ Expr extinction_none(Graph& g, const ExtinctionInputs& in) {
 
 Expr extinction_linear(Graph& g, const ExtinctionInputs& in) {
     OriginScope scope(g, "extinction.linear");
-    // 000: "extinction = [4.5; 75.0; 300.0]", the depths (m) at which r, g, b die out in clear water.
-    Expr ext = uniform(g, {"extinction_distances", Type::Vec3, {4.5, 75.0, 300.0}, 0.0, 1e6, "m", "000", ""});
+    // 000: "extinction = [4.5; 75.0; 300.0]", the depths (m) at which r, g, b die out in clear
+    // water.
+    Expr ext = uniform(
+        g, {"extinction_distances", Type::Vec3, {4.5, 75.0, 300.0}, 0.0, 1e6, "m", "000", ""});
     // 000 names visibility, surfaceColor and depthColor without giving values; chosen: 4 m of
     // horizontal visibility, a clear blue-green surface colour, a dark blue deep colour.
-    Expr visibility = uniform(g, {"extinction_visibility", Type::Float, {4.0}, 0.0, 1e6, "m", "000", ""});
-    Expr surface_color = uniform(g, {"extinction_surface_color", Type::Vec3, {0.0078, 0.5176, 0.7}, 0.0, 1.0, "", "000", ""});
-    Expr deep_color = uniform(g, {"extinction_deep_color", Type::Vec3, {0.0039, 0.00196, 0.145}, 0.0, 1.0, "", "000", ""});
+    Expr visibility =
+        uniform(g, {"extinction_visibility", Type::Float, {4.0}, 0.0, 1e6, "m", "000", ""});
+    Expr surface_color = uniform(
+        g,
+        {"extinction_surface_color", Type::Vec3, {0.0078, 0.5176, 0.7}, 0.0, 1.0, "", "000", ""});
+    Expr deep_color = uniform(
+        g,
+        {"extinction_deep_color", Type::Vec3, {0.0039, 0.00196, 0.145}, 0.0, 1.0, "", "000", ""});
     Expr depth = water_distance(in.depth);
     Expr path = water_distance(in.path);
     Expr horizontal = named(saturated_ratio(path, visibility), "visibility_fade");
@@ -46,7 +55,8 @@ Expr extinction_exponential(Graph& g, const ExtinctionInputs& in) {
     OriginScope scope(g, "extinction.exponential");
     // 002: "float a = exp(-d*k); newrefrcol = watercol + a*(refrcol-watercol);"
     Expr k = uniform(g, {"extinction_density", Type::Float, {0.5}, 0.0, 100.0, "1/m", "002", ""});
-    Expr water = uniform(g, {"extinction_water_color", Type::Vec3, {0.0, 0.2, 0.1}, 0.0, 1.0, "", "002", ""});
+    Expr water = uniform(
+        g, {"extinction_water_color", Type::Vec3, {0.0, 0.2, 0.1}, 0.0, 1.0, "", "002", ""});
     // d is 002's "length from surface to bottom" along the ray: our water path.
     Expr a = named(exp(-k * water_distance(in.path)), "fog_transmittance");
     return named(water + a * (in.refraction - water), "water_color");
@@ -55,24 +65,35 @@ Expr extinction_exponential(Graph& g, const ExtinctionInputs& in) {
 Expr extinction_absorb_scatter(Graph& g, const ExtinctionInputs& in) {
     OriginScope scope(g, "extinction.absorb_scatter");
     // 003, tropical ocean: K = (0.46, 0.09, 0.06), b = 0.11, scatter = (0.05, 0.05, 0.10).
-    Expr k = uniform(g, {"absorb_coefficients", Type::Vec3, {0.46, 0.09, 0.06}, 0.0, 100.0, "1/m", "003", ""});
+    Expr k = uniform(
+        g, {"absorb_coefficients", Type::Vec3, {0.46, 0.09, 0.06}, 0.0, 100.0, "1/m", "003", ""});
     Expr b = uniform(g, {"scatter_coefficient", Type::Float, {0.11}, 0.0, 100.0, "1/m", "003", ""});
-    Expr scatter = uniform(g, {"scatter_color", Type::Vec3, {0.05, 0.05, 0.10}, 0.0, 1.0, "", "003", ""});
+    Expr scatter =
+        uniform(g, {"scatter_color", Type::Vec3, {0.05, 0.05, 0.10}, 0.0, 1.0, "", "003", ""});
     // 003: "WorldUnitsToMeters" scales K and b once for the game world.
-    Expr scale = uniform(g, {"world_to_meters", Type::Float, {1.0}, 1e-6, 1e6, "m/unit", "003", ""});
-    Expr light = uniform(g, {"incident_light", Type::Vec3, {1.0, 1.0, 1.0}, 0.0, 1e3, "", "003", ""});
+    Expr scale =
+        uniform(g, {"world_to_meters", Type::Float, {1.0}, 1e-6, 1e6, "m/unit", "003", ""});
+    Expr light =
+        uniform(g, {"incident_light", Type::Vec3, {1.0, 1.0, 1.0}, 0.0, 1e3, "", "003", ""});
     Expr depth = water_distance(in.depth);
     Expr path = water_distance(in.path);
     Expr transmittance = named(exp(-(k * scale) * (depth + path)), "transmittance");
     Expr inverse_scatter = named(exp(-(b * scale) * path), "inverse_scatter");
-    return named(mix(scatter, in.refraction * transmittance, inverse_scatter) * light, "water_color");
+    return named(mix(scatter, in.refraction * transmittance, inverse_scatter) * light,
+                 "water_color");
 }
 
 Expr extinction_beer_lambert(Graph& g, const ExtinctionInputs& in) {
     OriginScope scope(g, "extinction.beer_lambert");
     // Pope and Fry (1997), pure water absorption at 650 / 550 / 450 nm (r, g, b).
-    Expr a = uniform(g, {"extinction_pure_water_absorption", Type::Vec3, {0.340, 0.0565, 0.00922}, 0.0, 100.0, "1/m",
-                         "Pope and Fry 1997", ""});
+    Expr a = uniform(g, {"extinction_pure_water_absorption",
+                         Type::Vec3,
+                         {0.340, 0.0565, 0.00922},
+                         0.0,
+                         100.0,
+                         "1/m",
+                         "Pope and Fry 1997",
+                         ""});
     // Light goes down to the bed (depth) and back up along the view ray (path).
     Expr distance = named(water_distance(in.depth) + water_distance(in.path), "water_distance");
     return named(in.refraction * exp(-a * distance), "water_color");
@@ -83,8 +104,11 @@ namespace {
 // A choice whose node turns the refracted colour into the water colour.
 ChoiceInfo extinction_choice(ChoiceInfo info, Expr (*node)(Graph&, const ExtinctionInputs&)) {
     return feature_choice(
-        std::move(info), {{"depth", Type::Float}, {"path", Type::Float}, {"refraction", Type::Vec3}},
-        node, [node](Surface& s) { s.water_color = node(s.g, {s.depth, s.path, s.refracted}); });
+        std::move(info),
+        {{"depth", Type::Float}, {"path", Type::Float}, {"refraction", Type::Vec3}}, node,
+        [node](Surface& s) {
+            s.water_color = node(s.g, {s.depth, s.path, s.refracted});
+        });
 }
 
 } // namespace

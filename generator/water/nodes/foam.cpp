@@ -24,13 +24,13 @@ Parameter foam_pattern_scale() {
 
 // Turns relaxed precision off for geometry, whatever scope the caller is in.
 class UnrelaxedScope {
-public:
+  public:
     explicit UnrelaxedScope(Graph& g) : g_(g), previous_(g.relaxed()) { g.set_relaxed(false); }
     ~UnrelaxedScope() { g_.set_relaxed(previous_); }
     UnrelaxedScope(const UnrelaxedScope&) = delete;
     UnrelaxedScope& operator=(const UnrelaxedScope&) = delete;
 
-private:
+  private:
     Graph& g_;
     bool previous_;
 };
@@ -38,14 +38,16 @@ private:
 Expr blend_foam(Graph& g, const FoamInputs& in, Expr coverage) {
     // 000 multiplies a greyscale foam photo by the coverage; tinted and blended here so the
     // colour stays between the water colour and the foam colour.
-    Expr foam_color = uniform(g, {"foam_color", Type::Vec3, {1.0, 1.0, 1.0}, 0.0, 1e3, "", "000", ""});
+    Expr foam_color =
+        uniform(g, {"foam_color", Type::Vec3, {1.0, 1.0, 1.0}, 0.0, 1e3, "", "000", ""});
     return named(mix(in.color, foam_color * in.pattern, coverage), "foam_rgb");
 }
 
 } // namespace
 
 TextureInput foam_pattern_texture() {
-    return {"foam_pattern", Type::Texture2D, "foam pattern, periodic smooth sines, value in r", "foam"};
+    return {"foam_pattern", Type::Texture2D, "foam pattern, periodic smooth sines, value in r",
+            "foam"};
 }
 
 double foam_pattern_value(double u, double v) {
@@ -53,13 +55,15 @@ double foam_pattern_value(double u, double v) {
     // the default 10 m tile), so it is smooth at the texel scale. |sum| <= 1.
     const double tau = 2.0 * std::numbers::pi;
     const double s = 0.35 * std::sin(tau * (2 * u + v)) + 0.25 * std::sin(tau * (3 * v - u) + 1.1) +
-                     0.2 * std::sin(tau * (4 * u - 2 * v) + 2.3) + 0.2 * std::sin(tau * (3 * u + 4 * v) + 0.6);
+                     0.2 * std::sin(tau * (4 * u - 2 * v) + 2.3) +
+                     0.2 * std::sin(tau * (3 * u + 4 * v) + 0.6);
     return kFoamPatternMean + 0.4 * s;
 }
 
 Expr foam_pattern_coordinate(Graph& g, Expr world_xz, Expr time) {
     Expr scale = uniform(g, foam_pattern_scale());
-    Expr drift = uniform(g, {"foam_pattern_drift", Type::Vec2, {0.003, 0.002}, -1.0, 1.0, "1/s", "000", ""});
+    Expr drift =
+        uniform(g, {"foam_pattern_drift", Type::Vec2, {0.003, 0.002}, -1.0, 1.0, "1/s", "000", ""});
     Expr wrapped = fract(world_xz * scale + drift * time);
     const double n = kFoamPatternSize;
     return named((wrapped * (n - 1.0) + 0.5) / n, "foam_uv");
@@ -88,7 +92,8 @@ Expr foam_crest_coverage(Graph& g, Expr height) {
     Expr span = h_max - e.z();
     // 000 draws no crest foam unless Hmax > e.z; saturated_ratio alone would turn a
     // non-positive span into foam everywhere above e.z.
-    return named(select(span > 0.0, saturated_ratio(height - e.z(), span), constant(g, 0.0)), "crest_foam");
+    return named(select(span > 0.0, saturated_ratio(height - e.z(), span), constant(g, 0.0)),
+                 "crest_foam");
 }
 
 Expr foam_shore(Graph& g, const FoamInputs& in) {
@@ -125,7 +130,9 @@ void compose_foam(Surface& s, FoamNode node, const std::string& origin) {
         footprint = named(max(length(ddx(xz)), length(ddy(xz))), "foam_footprint");
     }
     // Explicit level 0: the single-level texture needs no derivatives, which fract breaks.
-    Expr raw = named(sample_level(texture(s.g, foam_pattern_texture()), coordinate, constant(s.g, 0.0)).x(), "foam_texel");
+    Expr raw = named(
+        sample_level(texture(s.g, foam_pattern_texture()), coordinate, constant(s.g, 0.0)).x(),
+        "foam_texel");
     s.color = node(s.g, {s.color, foam_pattern_filtered(s.g, raw, footprint), s.depth, height});
 }
 

@@ -10,22 +10,26 @@ Parameter sky_color() {
 }
 
 TextureInput sky_cube_texture() {
-    return {"sky_cube", Type::TextureCube, "environment cube map around the water, linear rgb (001)", ""};
+    return {"sky_cube", Type::TextureCube,
+            "environment cube map around the water, linear rgb (001)", ""};
 }
 
 TextureInput reflection_map_texture() {
     return {"reflection_map", Type::Texture2D,
-            "scene above the water seen from the eye mirrored in the water plane, field of view x reflection_fov_extension, "
+            "scene above the water seen from the eye mirrored in the water plane, field of view x "
+            "reflection_fov_extension, "
             "linear rgb (001, 002)",
             ""};
 }
 
 TextureInput fourier_coefs1_texture() {
-    return {"fourier_coefs1", Type::Texture2D, "horizon Fourier coefficients a0, a1, b1, a2 over the water plane (003)", ""};
+    return {"fourier_coefs1", Type::Texture2D,
+            "horizon Fourier coefficients a0, a1, b1, a2 over the water plane (003)", ""};
 }
 
 TextureInput fourier_coefs2_texture() {
-    return {"fourier_coefs2", Type::Texture2D, "horizon Fourier coefficients b2, a3, b3, a4 over the water plane (003)", ""};
+    return {"fourier_coefs2", Type::Texture2D,
+            "horizon Fourier coefficients b2, a3, b3, a4 over the water plane (003)", ""};
 }
 
 Parameter reflection_fov_extension() {
@@ -46,7 +50,8 @@ Parameter view_proj_column(const std::string& prefix, int k, const std::string& 
     // Identity until the engine sets the camera: finite lookups, never NaN.
     std::vector<double> column(4, 0.0);
     column[static_cast<size_t>(k)] = 1.0;
-    return {prefix + "_view_proj_c" + std::to_string(k), Type::Vec4, column, -1e6, 1e6, "", seed, ""};
+    return {
+        prefix + "_view_proj_c" + std::to_string(k), Type::Vec4, column, -1e6, 1e6, "", seed, ""};
 }
 
 // A unit-length horizontal direction (x, z) of `v`, or (1, 0) when v is vertical: the seed's
@@ -55,12 +60,14 @@ Parameter view_proj_column(const std::string& prefix, int k, const std::string& 
 Expr horizontal_direction(Graph& g, Expr v) {
     Expr xz = v.xz();
     Expr len2 = named(dot(xz, xz), "horizontal_length2");
-    return named(select(len2 > constant(g, 1e-12), xz * rsqrt(len2), constant(g, {1.0, 0.0})), "azimuth");
+    return named(select(len2 > constant(g, 1e-12), xz * rsqrt(len2), constant(g, {1.0, 0.0})),
+                 "azimuth");
 }
 
 } // namespace
 
-ProjectiveUv projective_uv(Graph& g, Expr point, const std::string& prefix, const std::string& seed, Expr fov_scale) {
+ProjectiveUv projective_uv(Graph& g, Expr point, const std::string& prefix, const std::string& seed,
+                           Expr fov_scale) {
     FullPrecisionScope geometry(g);
     Expr c0 = uniform(g, view_proj_column(prefix, 0, seed));
     Expr c1 = uniform(g, view_proj_column(prefix, 1, seed));
@@ -81,12 +88,14 @@ Expr sky_cube_lookup(Graph& g, Expr view_ray, Expr normal) {
     OriginScope scope(g, "reflection.sky_cubemap");
     // 001 blurs the seam between the sky and the tinted mirror image: a band of 0.2 in -R.y
     // (about 12 degrees) stands in for the blur and keeps the colour's slope in R.y small.
-    Expr band = uniform(g, {"reflection_horizon_band", Type::Float, {0.2}, 1e-3, 1.0, "", "001", ""});
+    Expr band =
+        uniform(g, {"reflection_horizon_band", Type::Float, {0.2}, 1e-3, 1.0, "", "001", ""});
     Expr r = named(reflect(view_ray, normal), "reflected_ray");
     // 001: the lower half of the cube would show the water itself, which a cube cannot hold;
     // mirror it into the upper half so every lookup finds sky.
     Expr mirrored = vec3(r.x(), abs(r.y()), r.z());
-    Expr dir = named(select(dot(r, r) > constant(g, 1e-12), mirrored, constant(g, {0.0, 1.0, 0.0})), "sky_direction");
+    Expr dir = named(select(dot(r, r) > constant(g, 1e-12), mirrored, constant(g, {0.0, 1.0, 0.0})),
+                     "sky_direction");
     // The band is >= 1e-3 by its range; at 0 smoothstep would divide 0 by 0.
     Expr below = named(smoothstep(constant(g, 0.0), max(band, 1e-3), -r.y()), "below_horizon");
     return vec4(dir, below);
@@ -101,7 +110,8 @@ Expr planar_reflection_uv(Graph& g, Expr surface_point, Expr normal) {
     Expr displaced;
     {
         FullPrecisionScope geometry(g);
-        displaced = named(surface_point + d * vec3(normal.x(), constant(g, 0.0), normal.z()), "displaced_point");
+        displaced = named(surface_point + d * vec3(normal.x(), constant(g, 0.0), normal.z()),
+                          "displaced_point");
     }
     const ProjectiveUv p = projective_uv(g, displaced, "reflection", "001", fov);
     return vec3(p.uv, select(p.valid, constant(g, 1.0), constant(g, 0.0)));
@@ -114,8 +124,9 @@ Expr fourier_series(Graph& g, Expr coefs1, Expr coefs2, Expr ray) {
     // cos 3t = x^3 - 3xy^2, sin 3t = 3x^2 y - y^3, cos 4t = x^4 - 6x^2 y^2 + y^4.
     Expr x = dir.x(), y = dir.y();
     Expr xx = x * x, yy = y * y;
-    Expr v = coefs1.x() + coefs1.y() * x + coefs1.z() * y + coefs1.w() * (xx - yy) + coefs2.x() * (2.0 * x * y) +
-             coefs2.y() * (x * xx - 3.0 * x * yy) + coefs2.z() * (3.0 * xx * y - yy * y) +
+    Expr v = coefs1.x() + coefs1.y() * x + coefs1.z() * y + coefs1.w() * (xx - yy) +
+             coefs2.x() * (2.0 * x * y) + coefs2.y() * (x * xx - 3.0 * x * yy) +
+             coefs2.z() * (3.0 * xx * y - yy * y) +
              coefs2.w() * (xx * xx - 6.0 * xx * yy + yy * yy);
     return named(v, "horizon_tangent");
 }
@@ -125,7 +136,8 @@ Expr fourier_sky_weight(Graph& g, Expr coefs1, Expr coefs2, Expr ray) {
     OriginScope scope(g, "reflection.fourier_horizon");
     // 003 compares hard; +-0.05 (about 3 degrees) anti-aliases the horizon line and bounds the
     // weight's slope in the angle above the horizon to 1.5 / (2 * 0.05) = 15 per radian.
-    Expr transition = uniform(g, {"fourier_transition", Type::Float, {0.05}, 1e-3, 1.0, "", "003", ""});
+    Expr transition =
+        uniform(g, {"fourier_transition", Type::Float, {0.05}, 1e-3, 1.0, "", "003", ""});
     Expr horizontal = length(ray.xz());
     Expr above = named((ray.y() - v * horizontal) * rsqrt(1.0 + v * v), "above_horizon");
     // The transition is >= 1e-3 by its range; at 0 smoothstep would divide 0 by 0.
@@ -137,7 +149,8 @@ Expr fourier_horizon_color(Graph& g, Expr coefs1, Expr coefs2, Expr ray) {
     Expr weight = fourier_sky_weight(g, coefs1, coefs2, ray);
     OriginScope scope(g, "reflection.fourier_horizon");
     // 003: the reflection is dark below the horizon (hills, shore), sky above.
-    Expr dark = uniform(g, {"fourier_below_color", Type::Vec3, {0.05, 0.07, 0.06}, 0.0, 1e3, "", "003", ""});
+    Expr dark = uniform(
+        g, {"fourier_below_color", Type::Vec3, {0.05, 0.07, 0.06}, 0.0, 1e3, "", "003", ""});
     return named(mix(dark, uniform(g, sky_color()), weight), "reflected");
 }
 
@@ -147,7 +160,8 @@ Expr reflection_sky_cubemap(Surface& s) {
     Expr lookup = sky_cube_lookup(s.g, s.view_ray, s.normal);
     OriginScope scope(s.g, "reflection.sky_cubemap");
     // 001 tints the mirrored lower half with the general water colour (and blurs it offline).
-    Expr tint = uniform(s.g, {"reflection_lower_tint", Type::Vec3, {0.5, 0.62, 0.66}, 0.0, 1.0, "", "001", ""});
+    Expr tint = uniform(
+        s.g, {"reflection_lower_tint", Type::Vec3, {0.5, 0.62, 0.66}, 0.0, 1.0, "", "001", ""});
     Expr sky = sample(texture(s.g, sky_cube_texture()), lookup.xyz()).xyz();
     return named(sky * mix(constant(s.g, {1.0, 1.0, 1.0}), tint, lookup.w()), "reflected");
 }
@@ -172,7 +186,8 @@ Expr reflection_fourier_horizon(Surface& s) {
     OriginScope scope(s.g, "reflection.fourier_horizon");
     Expr coefs1 = sample(texture(s.g, fourier_coefs1_texture()), uv);
     Expr coefs2 = sample(texture(s.g, fourier_coefs2_texture()), uv);
-    return fourier_horizon_color(s.g, coefs1, coefs2, named(reflect(s.view_ray, s.normal), "reflected_ray"));
+    return fourier_horizon_color(s.g, coefs1, coefs2,
+                                 named(reflect(s.view_ray, s.normal), "reflected_ray"));
 }
 
 // A choice that reads `source` from the engine and sets the reflected colour with `node`.

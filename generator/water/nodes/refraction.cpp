@@ -12,13 +12,16 @@ namespace watergen {
 Expr screen_distort_uv(Graph& g, Expr uv, Expr normal, Expr depth) {
     OriginScope scope(g, "refraction.screen_distort");
     // Screen-space offset per unit of horizontal normal; artistic in both seeds.
-    Expr strength = uniform(g, {"refraction_distortion", Type::Float, {0.03}, 0.0, 1.0, "", "003", ""});
-    Expr fade_depth = uniform(g, {"refraction_shore_fade_depth", Type::Float, {1.0}, 0.0, 100.0, "m", "000", ""});
+    Expr strength =
+        uniform(g, {"refraction_distortion", Type::Float, {0.03}, 0.0, 1.0, "", "003", ""});
+    Expr fade_depth =
+        uniform(g, {"refraction_shore_fade_depth", Type::Float, {1.0}, 0.0, 100.0, "m", "000", ""});
     // A negative depth (scene a hair above the plane) gives no displacement. A fade depth of
     // 0 turns the fade off; dividing by it would give 0 / 0 at the shoreline, and clamp(NaN)
     // is undefined on GPUs.
-    Expr fade = named(select(fade_depth > constant(g, 0.0), saturate(depth / fade_depth), constant(g, 1.0)),
-                      "distortion_fade");
+    Expr fade =
+        named(select(fade_depth > constant(g, 0.0), saturate(depth / fade_depth), constant(g, 1.0)),
+              "distortion_fade");
     return named(saturate(uv + normal.xz() * (strength * fade)), "refraction_uv");
 }
 
@@ -42,14 +45,16 @@ Expr refracted_ray_point(Graph& g, Expr surface_point, Expr view_ray, Expr norma
     OriginScope scope(g, "refraction.refracted_ray");
     // 002: clamp(dv, 0.0, 2.0) / 3.0.
     Expr dv_max = uniform(g, {"refraction_dv_max", Type::Float, {2.0}, 0.0, 100.0, "m", "002", ""});
-    Expr dv_scale = uniform(g, {"refraction_dv_scale", Type::Float, {1.0 / 3.0}, 0.0, 10.0, "", "002", ""});
+    Expr dv_scale =
+        uniform(g, {"refraction_dv_scale", Type::Float, {1.0 / 3.0}, 0.0, 10.0, "", "002", ""});
     FullPrecisionScope geometry(g);
     // clamp(+inf, 0, max) = max: a bottomless pixel still lands a bounded step away.
     Expr dv = named(clamp(depth, constant(g, 0.0), dv_max) * dv_scale, "refraction_dv");
     return named(surface_point + r * dv, "refracted_point");
 }
 
-Expr refracted_ray_uv(Graph& g, Expr uv, Expr surface_point, Expr view_ray, Expr normal, Expr depth) {
+Expr refracted_ray_uv(Graph& g, Expr uv, Expr surface_point, Expr view_ray, Expr normal,
+                      Expr depth) {
     Expr w_point = refracted_ray_point(g, surface_point, view_ray, normal, depth);
     Expr r = refracted_direction(g, view_ray, normal); // the same node as inside W
     OriginScope scope(g, "refraction.refracted_ray");
@@ -60,7 +65,9 @@ Expr refracted_ray_uv(Graph& g, Expr uv, Expr surface_point, Expr view_ray, Expr
 
 namespace {
 
-Expr scene_color_at(Graph& g, Expr uv) { return sample(texture(g, scene_color_texture()), uv).xyz(); }
+Expr scene_color_at(Graph& g, Expr uv) {
+    return sample(texture(g, scene_color_texture()), uv).xyz();
+}
 
 // The refracted colour: the scene colour at `uv`.
 void compose_refraction(Surface& s, const std::string& origin, Expr uv) {

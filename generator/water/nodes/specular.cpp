@@ -18,7 +18,9 @@ constexpr double kLobeFloor = 0x1p-14;
 constexpr double kMinAlpha = 0.02;
 
 // The sun is above the horizon and in front of the surface.
-Expr sun_lights(Expr to_sun, Expr n_dot_l) { return (to_sun.y() > 0.0) && (n_dot_l > 0.0); }
+Expr sun_lights(Expr to_sun, Expr n_dot_l) {
+    return (to_sun.y() > 0.0) && (n_dot_l > 0.0);
+}
 
 } // namespace
 
@@ -26,7 +28,8 @@ Expr specular_lobe(Expr x, Expr exponent) {
     // Never pow(0, s): lavapipe, GPUs and C++ disagree on pow(0, 0) (water-models.md), and a
     // GPU that flushes denormals reads a tiny base as 0 while the CPU does not.
     Expr base = saturate(x);
-    return select(base > kLobeFloor, pow(max(base, kLobeFloor), exponent), constant(x.graph(), 0.0));
+    return select(base > kLobeFloor, pow(max(base, kLobeFloor), exponent),
+                  constant(x.graph(), 0.0));
 }
 
 Expr half_vector(Expr a, Expr b) {
@@ -49,7 +52,9 @@ Expr ggx_distribution(Expr n_dot_h, Expr sin2_h, Expr alpha) {
     return named(k * k / (std::numbers::pi * a2), "ggx_d");
 }
 
-Expr ggx_distribution(Expr n_dot_h, Expr alpha) { return ggx_distribution(n_dot_h, 1.0 - n_dot_h * n_dot_h, alpha); }
+Expr ggx_distribution(Expr n_dot_h, Expr alpha) {
+    return ggx_distribution(n_dot_h, 1.0 - n_dot_h * n_dot_h, alpha);
+}
 
 Expr beckmann_distribution(Expr n_dot_h, Expr alpha) {
     // Below ch = 0.1 the lobe is < 1e-39 for every a <= 1 (exponent <= -99) while ch^4 would
@@ -64,7 +69,8 @@ Expr beckmann_distribution(Expr n_dot_h, Expr alpha) {
 Expr specular_toman_glare(Graph& g, const SpecularInputs& in) {
     OriginScope scope(g, "specular.toman_glare");
     // 000 suggests 0.5..0.7; the default is its upper end, 0.7.
-    Expr shininess = uniform(g, {"specular_shininess", Type::Float, {0.7}, 0.0, 1.0, "", "000", ""});
+    Expr shininess =
+        uniform(g, {"specular_shininess", Type::Float, {0.7}, 0.0, 1.0, "", "000", ""});
     // 000's eyeVecNorm here points from the surface to the camera (V): M = 2 (V.N) N - V is the
     // mirrored view ray, and the glare peaks where it points at the sun (-L). With the
     // eye-to-point vector the glare would sit opposite the sun.
@@ -76,17 +82,21 @@ Expr specular_toman_glare(Graph& g, const SpecularInputs& in) {
     // y <- y (2 - y) (= 1 - (1 - y)^2) with no cancellation either, nine times for 512.
     Expr gap = named(saturate(0.25 * dot(mirrored - to_sun, mirrored - to_sun)), "glare_gap");
     Expr y = gap;
-    for (int i = 0; i < 9; ++i) y = y * (2.0 - y);
+    for (int i = 0; i < 9; ++i)
+        y = y * (2.0 - y);
     Expr d512 = named(1.0 - y, "glare_lobe");
     // sat(-L.y) fades the glare out as the sun sets: 0 below the horizon.
-    Expr s = named((1.0 - saturate(in.fresnel)) * saturate(to_sun.y()) * d512 * (shininess * 1.8 + 0.2), "glare");
+    Expr s =
+        named((1.0 - saturate(in.fresnel)) * saturate(to_sun.y()) * d512 * (shininess * 1.8 + 0.2),
+              "glare");
     return named(s + s * 25.0 * saturate(shininess - 0.05), "specular_intensity");
 }
 
 Expr specular_blinn_phong(Graph& g, const SpecularInputs& in) {
     OriginScope scope(g, "specular.blinn_phong");
     // No seed gives one; 256 keeps the sun a small bright disc on calm water.
-    Expr exponent = uniform(g, {"specular_exponent", Type::Float, {256.0}, 1.0, 8192.0, "", "", ""});
+    Expr exponent =
+        uniform(g, {"specular_exponent", Type::Float, {256.0}, 1.0, 8192.0, "", "", ""});
     Expr to_sun = -in.sun_travel;
     // sun_travel = V (water-models.md's "L = -V", L pointing at the light: the sun straight
     // opposite the eye, below the surface) makes -L + V zero: half_vector returns 0 there.
@@ -99,7 +109,8 @@ Expr specular_blinn_phong(Graph& g, const SpecularInputs& in) {
 Expr specular_ggx_sun(Graph& g, const SpecularInputs& in) {
     OriginScope scope(g, "specular.ggx_sun");
     // GGX width a (not squared); 0.3, the roughness of water-models.md's microfacet goldens.
-    Expr roughness = uniform(g, {"specular_roughness", Type::Float, {0.3}, kMinAlpha, 1.0, "", "", ""});
+    Expr roughness =
+        uniform(g, {"specular_roughness", Type::Float, {0.3}, kMinAlpha, 1.0, "", "", ""});
     Expr n1 = uniform(g, ior_air());
     Expr n2 = uniform(g, ior_water());
     // Roughness 0 is a delta lobe (0 / 0 at N = H): clamp to the smallest width half can carry.
@@ -134,16 +145,17 @@ namespace {
 ChoiceInfo specular_choice(ChoiceInfo info, Expr (*node)(Graph&, const SpecularInputs&)) {
     info.scene_needs = {{SceneFact::SunAboveHorizon, "", "there is no sun highlight"}};
     const std::string origin = "specular." + info.name;
-    return feature_choice(std::move(info),
-                          {{"normal", Type::Vec3},
-                           {"to_eye", Type::Vec3},
-                           {"sun_direction", Type::Vec3},
-                           {"fresnel", Type::Float}},
-                          node, [node, origin](Surface& s) {
-                              OriginScope scope(s.g, origin);
-                              Expr intensity = node(s.g, {s.normal, s.to_eye, s.sun_travel, s.fresnel});
-                              s.specular = named(intensity * s.sun_color, "specular");
-                          });
+    return feature_choice(
+        std::move(info),
+        {{"normal", Type::Vec3},
+         {"to_eye", Type::Vec3},
+         {"sun_direction", Type::Vec3},
+         {"fresnel", Type::Float}},
+        node, [node, origin](Surface& s) {
+            OriginScope scope(s.g, origin);
+            Expr intensity = node(s.g, {s.normal, s.to_eye, s.sun_travel, s.fresnel});
+            s.specular = named(intensity * s.sun_color, "specular");
+        });
 }
 
 } // namespace

@@ -196,22 +196,22 @@ void compose_waves(Surface& s, const std::string& origin, const WaveSearch& sear
 // The catalog node of a choice: where a view ray from `eye` meets the water -> (point, distance).
 ChoiceInfo waves_choice(ChoiceInfo info, WaveSearch search, const std::string& reads = "") {
     const std::string origin = "waves." + info.name;
-    ChoiceNode node{
-        {{"eye", Type::Vec3},
-         {"view_ray", Type::Vec3},
-         {"level", Type::Float},
-         {"time", Type::Float}},
-        [origin, search](Graph& g, const std::vector<Expr>& in) {
-            FullPrecisionScope full(g); // points 5e6 m away overflow half
-            Surface s(g);
-            s.eye = in[0];
-            s.view_ray = in[1];
-            s.level = in[2];
-            s.time = in[3];
-            const WaveHit hit = find_wave_surface(s, origin, search, Expr());
-            return vec4(hit.point, hit.distance);
-        },
-        "surface point and ray distance (vec4) where the view ray meets the water" + reads};
+    ChoiceNode node{{{"eye", Type::Vec3},
+                     {"view_ray", Type::Vec3},
+                     {"level", Type::Float},
+                     {"time", Type::Float}},
+                    [origin, search](Graph& g, const std::vector<Expr>& in) {
+                        FullPrecisionScope full(g); // points 5e6 m away overflow half
+                        Surface s(g);
+                        s.eye = in[0];
+                        s.view_ray = in[1];
+                        s.level = in[2];
+                        s.time = in[3];
+                        const WaveHit hit = find_wave_surface(s, origin, search, Expr());
+                        return vec4(hit.point, hit.distance);
+                    },
+                    "surface point and ray distance (vec4) where the view ray meets the water" +
+                        reads};
     return feature_choice(std::move(info), std::move(node),
                           [origin, search](Surface& s) { compose_waves(s, origin, search); });
 }
@@ -243,8 +243,7 @@ std::vector<CatalogNode> wave_family_nodes() {
         // normals").
         node("waves.gerstner.normal_gpugems", "GPU Gems' closed-form normal at grid point xz",
              &gerstner_normal_gpugems, "waves.gerstner.normal"),
-        node("waves.heightmap.height",
-             "height-map height at xz, m; reads texture height_map",
+        node("waves.heightmap.height", "height-map height at xz, m; reads texture height_map",
              heightmap),
     };
 }

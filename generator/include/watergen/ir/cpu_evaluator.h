@@ -66,11 +66,12 @@ struct EvalResult {
 // Evaluates output `output` for every lane. Derivatives (ddx, ddy) treat lanes 4k..4k+3 as a
 // 2x2 quad (x, y) = (0,0), (1,0), (0,1), (1,1), with per-row / per-column differences.
 // Cost: live nodes x lanes; lanes are processed in blocks of 1024.
-EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs& inputs, EvalPrecision precision);
+EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs& inputs,
+                    EvalPrecision precision);
 
 // Evaluates a fullscreen fragment graph over width x height pixels with v_uv at pixel centres,
 // like the runner's fullscreen triangle. Result is row-major, row 0 = top.
-EvalResult evaluate_image(const Graph& g, const std::string& output, EvalInputs inputs, uint32_t width,
-                          uint32_t height, EvalPrecision precision);
+EvalResult evaluate_image(const Graph& g, const std::string& output, EvalInputs inputs,
+                          uint32_t width, uint32_t height, EvalPrecision precision);
 
 } // namespace watergen

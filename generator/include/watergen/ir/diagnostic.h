@@ -10,10 +10,10 @@ enum class Severity { Note, Warning, Error };
 
 struct Diagnostic {
     Severity severity = Severity::Error;
-    std::string file;   // generated file name, description file, or "" when not tied to a file
-    int line = 0;       // 1-based; 0 = unknown
-    int column = 0;     // 1-based; 0 = unknown
-    std::string node;   // feature node that produced the offending code, "" when unknown
+    std::string file; // generated file name, description file, or "" when not tied to a file
+    int line = 0;     // 1-based; 0 = unknown
+    int column = 0;   // 1-based; 0 = unknown
+    std::string node; // feature node that produced the offending code, "" when unknown
     std::string message;
 };
 

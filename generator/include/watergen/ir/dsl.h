@@ -16,7 +16,7 @@
 namespace watergen {
 
 class Expr {
-public:
+  public:
     Expr() = default;
     Expr(Graph* g, uint32_t id) : g_(g), id_(id) {}
 
@@ -35,14 +35,14 @@ public:
     Expr xz() const { return swizzle("xz"); }
     Expr xyz() const { return swizzle("xyz"); }
 
-private:
+  private:
     Graph* g_ = nullptr;
     uint32_t id_ = 0;
 };
 
 // Sets the graph's current feature node for the lifetime of the scope.
 class OriginScope {
-public:
+  public:
     OriginScope(Graph& g, std::string origin) : g_(g), previous_(g.origin()) {
         g.set_origin(std::move(origin));
     }
@@ -50,20 +50,22 @@ public:
     OriginScope(const OriginScope&) = delete;
     OriginScope& operator=(const OriginScope&) = delete;
 
-private:
+  private:
     Graph& g_;
     std::string previous_;
 };
 
 // Marks subsequent operations relaxed precision (mediump / min16float) when `relaxed`.
 class RelaxedScope {
-public:
-    RelaxedScope(Graph& g, bool relaxed) : g_(g), previous_(g.relaxed()) { g.set_relaxed(relaxed || previous_); }
+  public:
+    RelaxedScope(Graph& g, bool relaxed) : g_(g), previous_(g.relaxed()) {
+        g.set_relaxed(relaxed || previous_);
+    }
     ~RelaxedScope() { g_.set_relaxed(previous_); }
     RelaxedScope(const RelaxedScope&) = delete;
     RelaxedScope& operator=(const RelaxedScope&) = delete;
 
-private:
+  private:
     Graph& g_;
     bool previous_;
 };
@@ -71,13 +73,13 @@ private:
 // Forces 32-bit operations for its lifetime whatever the enclosing RelaxedScope says: geometry
 // (positions up to 1e5 m, times up to a day) overflows or loses all precision in binary16.
 class FullPrecisionScope {
-public:
+  public:
     explicit FullPrecisionScope(Graph& g) : g_(g), previous_(g.relaxed()) { g.set_relaxed(false); }
     ~FullPrecisionScope() { g_.set_relaxed(previous_); }
     FullPrecisionScope(const FullPrecisionScope&) = delete;
     FullPrecisionScope& operator=(const FullPrecisionScope&) = delete;
 
-private:
+  private:
     Graph& g_;
     bool previous_;
 };

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "watergen/ir/ir.h"
-#include "watergen/runtime/reflection.h"
 #include "watergen/ir/uniform_layout.h"
+#include "watergen/runtime/reflection.h"
 
 namespace watergen {
 
@@ -17,8 +17,8 @@ const char* to_string(Language l);
 const char* file_extension(Language l, ShaderStage s); // "frag.glsl", "frag.hlsl", ...
 
 // Fixed descriptor numbering shared by both languages (set 0).
-constexpr uint32_t kParamsBinding = 0;      // uniform block "WaterParams"
-constexpr uint32_t kSamplerBinding = 1;     // sampler "linear_clamp"
+constexpr uint32_t kParamsBinding = 0;       // uniform block "WaterParams"
+constexpr uint32_t kSamplerBinding = 1;      // sampler "linear_clamp"
 constexpr uint32_t kFirstTextureBinding = 2; // textures in declaration order
 
 struct TextureBinding {
@@ -28,8 +28,8 @@ struct TextureBinding {
 };
 
 struct ShaderInterface {
-    UniformLayout uniforms;              // empty when the shader reads no parameter
-    std::vector<Parameter> parameters;   // the parameters placed in `uniforms`
+    UniformLayout uniforms;            // empty when the shader reads no parameter
+    std::vector<Parameter> parameters; // the parameters placed in `uniforms`
     std::vector<TextureBinding> textures;
     std::vector<std::pair<std::string, Type>> varyings; // fragment inputs, location = index
 };
@@ -57,14 +57,15 @@ EmittedShader emit_fullscreen_vertex(Language language, const std::string& file_
                                      const std::string& variant_key);
 
 // The numeric harness: a compute shader that evaluates every output of `g` for a batch of
-// input tuples. Each Varying of `g` (in creation order) is an input read from the storage buffer probe_in
-// (binding kProbeInputBinding) and each output is written to probe_out (kProbeOutputBinding),
-// tuple-major, floats only. One invocation per tuple, 64 per workgroup; the caller pads the
-// tuple count to a multiple of 64. Textures and linear_clamp are bound as in the fragment stage
-// (at most kProbeInputBinding - kFirstTextureBinding textures). A compute stage has no implicit
-// LOD and no derivatives: samples read level 0 (what a one-level texture gives a fragment too),
-// and ddx / ddy are fine differences over quads of tuples 4k..4k+3 = pixels (0,0), (1,0), (0,1),
-// (1,1) of a 2x2 quad, exchanged through workgroup memory: the CPU evaluator's lane quads.
+// input tuples. Each Varying of `g` (in creation order) is an input read from the storage buffer
+// probe_in (binding kProbeInputBinding) and each output is written to probe_out
+// (kProbeOutputBinding), tuple-major, floats only. One invocation per tuple, 64 per workgroup; the
+// caller pads the tuple count to a multiple of 64. Textures and linear_clamp are bound as in the
+// fragment stage (at most kProbeInputBinding - kFirstTextureBinding textures). A compute stage has
+// no implicit LOD and no derivatives: samples read level 0 (what a one-level texture gives a
+// fragment too), and ddx / ddy are fine differences over quads of tuples 4k..4k+3 = pixels (0,0),
+// (1,0), (0,1), (1,1) of a 2x2 quad, exchanged through workgroup memory: the CPU evaluator's lane
+// quads.
 constexpr uint32_t kProbeInputBinding = 8;
 constexpr uint32_t kProbeOutputBinding = 9;
 constexpr uint32_t kProbeWorkgroupSize = 64;

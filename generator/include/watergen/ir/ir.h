@@ -43,22 +43,59 @@ enum class Op : uint8_t {
     Varying,  // name = fragment input
     Texture,  // name = texture binding
     // arithmetic (scalar operands broadcast against vectors)
-    Add, Sub, Mul, Div, Neg,
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Neg,
     // logic (scalars)
-    Less, LessEqual, Greater, GreaterEqual, Equal, NotEqual, And, Or, Not,
+    Less,
+    LessEqual,
+    Greater,
+    GreaterEqual,
+    Equal,
+    NotEqual,
+    And,
+    Or,
+    Not,
     Select, // args: condition (Bool), if_true, if_false
     // shape
     Swizzle,   // values = component indices
     Construct, // vector from scalars/vectors, or Mat3 from three Vec3 columns
     Splat,     // scalar -> vector of `type`
     // intrinsics
-    Dot, Cross, Normalize, Length, Mix, Clamp, Saturate, Pow, Exp, Exp2, Log, Sqrt, Rsqrt,
-    Abs, Sign, Min, Max, Sin, Cos, Atan2, Reflect, Refract, Step, Smoothstep, Fract, Floor,
+    Dot,
+    Cross,
+    Normalize,
+    Length,
+    Mix,
+    Clamp,
+    Saturate,
+    Pow,
+    Exp,
+    Exp2,
+    Log,
+    Sqrt,
+    Rsqrt,
+    Abs,
+    Sign,
+    Min,
+    Max,
+    Sin,
+    Cos,
+    Atan2,
+    Reflect,
+    Refract,
+    Step,
+    Smoothstep,
+    Fract,
+    Floor,
     Mod, // GLSL semantics: x - y * floor(x / y)
     MatMulVec,
     Sample,      // args: texture, coordinate
     SampleLevel, // args: texture, coordinate, lod
-    Ddx, Ddy,
+    Ddx,
+    Ddy,
 };
 
 const char* op_name(Op op);
@@ -80,7 +117,7 @@ struct Node {
 // A uniform parameter a feature node reads. Parameters are data: defaults and ranges travel
 // with the node that declares them, so presets and validation need no shader knowledge.
 struct Parameter {
-    std::string name;    // member name in the parameter block, e.g. "absorb_coefficients"
+    std::string name; // member name in the parameter block, e.g. "absorb_coefficients"
     Type type = Type::Float;
     std::vector<double> default_value;
     double min = 0.0, max = 0.0; // valid range, per component
@@ -106,7 +143,7 @@ struct Output {
 // parameter cannot detach a fact from the node it bounds. Handles are declared once, as
 // constants, by the layer that knows the quantity; `id` and `parameter` are string literals.
 struct Quantity {
-    std::string_view id;        // identity, e.g. "water_depth"
+    std::string_view id; // identity, e.g. "water_depth"
     Type type = Type::Float;
     std::string_view parameter; // the uniform it stands for, "" for a computed value
 
@@ -122,7 +159,7 @@ struct QuantityBinding {
 // Owns the DAG. Identical nodes (op, type, args, payload) are created once. Ill-typed
 // operations record a Diagnostic naming the current feature node and yield an Error node.
 class Graph {
-public:
+  public:
     uint32_t add(Node node);
     const Node& node(uint32_t id) const { return nodes_[id]; }
     size_t size() const { return nodes_.size(); }
@@ -160,7 +197,7 @@ public:
     void bind(const Quantity& quantity, uint32_t node);
     const std::vector<QuantityBinding>& bindings() const { return bindings_; }
 
-private:
+  private:
     struct KeyHash {
         size_t operator()(const std::string& s) const { return std::hash<std::string>{}(s); }
     };

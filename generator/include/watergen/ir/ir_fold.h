@@ -53,13 +53,14 @@ struct FoldFacts {
     };
     std::map<std::string, Fixed> fixed;             // parameter -> constant value
     std::map<std::string, Bounds> parameter_ranges; // parameter -> range (else its declared one)
-    std::map<std::string, Bounds> input_ranges;     // varying or texture name -> range of what it yields
+    std::map<std::string, Bounds>
+        input_ranges; // varying or texture name -> range of what it yields
     // Facts about bound quantities (Graph::bind), whatever their nodes or parameters are
     // called: a quantity bound to a uniform is fixed or ranged like that parameter (over the
     // ones above); one bound to a computed node narrows that node's bounds.
     std::map<Quantity, Fixed> fixed_quantities;
     std::map<Quantity, Bounds> quantity_ranges;
-    double vanish = 1e-7;                           // |value| <= vanish folds to 0
+    double vanish = 1e-7; // |value| <= vanish folds to 0
     // Narrow each rewrite's facts to those without which it would not happen (one extra
     // fold per fact in use): explain names causes, not every fact that touched a bound.
     bool refine_causes = true;
@@ -75,7 +76,7 @@ struct FoldEvent {
 };
 
 struct RemovedTerm {
-    uint32_t node = 0;  // id in the input graph
+    uint32_t node = 0; // id in the input graph
     std::string origin;
     std::string name;   // the node's name, or its operation
     bool named = false; // an operation the node author named (a term), not a leaf or a temporary
@@ -83,8 +84,8 @@ struct RemovedTerm {
 };
 
 struct RemovedInput {
-    std::string name;   // parameter or texture
-    FactSet facts;      // why it is no longer read
+    std::string name; // parameter or texture
+    FactSet facts;    // why it is no longer read
 };
 
 // Whether a quantity the facts speak of reached the graph.
@@ -102,7 +103,7 @@ struct QuantityUse {
 struct FoldReport {
     std::vector<FoldEvent> events;
     std::vector<QuantityUse> quantities; // every quantity of fixed_quantities and quantity_ranges
-    std::vector<RemovedTerm> removed;        // nodes live before, dead after, ascending id
+    std::vector<RemovedTerm> removed;    // nodes live before, dead after, ascending id
     std::vector<RemovedInput> removed_parameters, removed_textures;
     std::map<std::string, std::vector<double>> folded_parameters; // fixed parameters that were read
     size_t live_before = 0, live_after = 0;

@@ -14,7 +14,8 @@ std::string join(const std::vector<std::string>& names, const std::string& separ
 template <class Items, std::invocable<const typename Items::value_type&> Name>
 std::string join(const Items& items, Name name, const std::string& separator = ", ") {
     std::vector<std::string> names;
-    for (const auto& item : items) names.push_back(name(item));
+    for (const auto& item : items)
+        names.push_back(name(item));
     return join(names, separator);
 }
 

@@ -30,7 +30,8 @@ UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnost
 
 // Writes parameter values (double -> float) at their offsets: the value in `overrides` when
 // present (and of the right size), else the parameter's default.
-std::vector<uint8_t> pack_uniforms(const UniformLayout& layout, const std::vector<Parameter>& parameters,
-                                   const std::map<std::string, std::vector<double>>& overrides = {});
+std::vector<uint8_t>
+pack_uniforms(const UniformLayout& layout, const std::vector<Parameter>& parameters,
+              const std::map<std::string, std::vector<double>>& overrides = {});
 
 } // namespace watergen

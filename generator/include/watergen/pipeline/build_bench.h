@@ -31,12 +31,13 @@ struct BuildBenchRequest {
     std::vector<SceneFacts> scenes; // and its scenes (none: unpruned)
     unsigned threads = 0;           // threads of the "all threads" runs; 0: every hardware thread
     size_t sample = 48;             // full-space variants to build, evenly spaced
-    std::filesystem::path work;     // scratch directory, removed at the end; "" for one under the temp dir
+    std::filesystem::path
+        work; // scratch directory, removed at the end; "" for one under the temp dir
 };
 
 struct BuildBenchResult {
     std::vector<BuildBenchRow> rows; // in the order measured
-    Diagnostics diagnostics;         // why the pruned example failed to build (then rows are incomplete)
+    Diagnostics diagnostics; // why the pruned example failed to build (then rows are incomplete)
     bool ok() const { return !has_errors(diagnostics); }
 };
 

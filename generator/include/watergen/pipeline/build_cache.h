@@ -34,11 +34,12 @@ constexpr size_t kMaxCacheEntryBytes = size_t(64) << 20;
 
 struct CacheLookup {
     std::optional<FileMap> files; // on a hit: exactly the expected files, verified
-    std::string rejected;         // non-empty: an entry was there, failed verification (why) and was evicted
+    std::string
+        rejected; // non-empty: an entry was there, failed verification (why) and was evicted
 };
 
 class BuildCache {
-public:
+  public:
     BuildCache() = default; // disabled
     explicit BuildCache(std::filesystem::path dir) : dir_(std::move(dir)) {}
     bool enabled() const { return !dir_.empty(); }
@@ -54,7 +55,7 @@ public:
     // The file that holds the entry for `hash`.
     std::filesystem::path entry(const std::string& hash) const;
 
-private:
+  private:
     std::filesystem::path dir_;
 };
 

@@ -19,28 +19,30 @@ namespace watergen {
 constexpr const char* kUnprunedScene = "unpruned";
 
 struct BuildPlan {
-    std::vector<ScenePlan> scenes;     // sorted by name; empty: unpruned
-    std::vector<Variant> unpruned;     // the material's space, when there are no scenes
-    std::vector<BuildJob> jobs;        // sorted by (scene, key); facts point into `scenes`
+    std::vector<ScenePlan> scenes; // sorted by name; empty: unpruned
+    std::vector<Variant> unpruned; // the material's space, when there are no scenes
+    std::vector<BuildJob> jobs;    // sorted by (scene, key); facts point into `scenes`
     std::vector<ManifestScene> manifest_scenes;
 };
 
 // Plans every scene against the material; nullopt with one error on bad input (unknown
 // parameters, duplicate scene names, a scene that needs nothing). The plan must not be
 // copied after this (jobs point at its scenes' facts).
-std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes, Diagnostics& ds);
+std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes,
+                                    Diagnostics& ds);
 
 struct BuildSummary {
-    size_t variants = 0;  // jobs: reached (scene, variant) pairs
-    size_t built = 0;     // compiled now
-    size_t cached = 0;    // copied from the cache
-    size_t shared = 0;    // same files as a variant of another scene, built once for both
-    size_t same = 0;      // same shader as another variant of the scene (not built again)
+    size_t variants = 0; // jobs: reached (scene, variant) pairs
+    size_t built = 0;    // compiled now
+    size_t cached = 0;   // copied from the cache
+    size_t shared = 0;   // same files as a variant of another scene, built once for both
+    size_t same = 0;     // same shader as another variant of the scene (not built again)
     size_t failed = 0;
     size_t cache_rejected = 0; // cache entries that failed verification: evicted and rebuilt
-    size_t files = 0;     // written
+    size_t files = 0;          // written
     double seconds = 0;
-    bool bad_input = false; // the error is in the description files or the output path (exit 2), not in a shader
+    bool bad_input =
+        false; // the error is in the description files or the output path (exit 2), not in a shader
     Diagnostics diagnostics;
     bool ok() const { return !bad_input && failed == 0 && !has_errors(diagnostics); }
 };

@@ -14,12 +14,14 @@ bool is_plain_relative_path(const std::string& path);
 
 // Writes `files` (relative path -> contents) under `root`, a fresh directory. A name that is not
 // a plain relative path fails before anything is written.
-std::optional<std::string> write_tree(const std::filesystem::path& root, const std::map<std::string, std::string>& files);
+std::optional<std::string> write_tree(const std::filesystem::path& root,
+                                      const std::map<std::string, std::string>& files);
 
 // Writes `files` into a fresh sibling of `dir` (write_tree), then replaces `dir` with it by
 // rename. On failure `dir` is left as it was and the error names the path.
-std::optional<std::string> write_directory_atomically(const std::filesystem::path& dir,
-                                                      const std::map<std::string, std::string>& files);
+std::optional<std::string>
+write_directory_atomically(const std::filesystem::path& dir,
+                           const std::map<std::string, std::string>& files);
 
 // A fresh, empty staging directory beside `dir` for writers that produce files themselves;
 // publish it with commit_directory(staging, dir), or remove it on failure.
@@ -27,15 +29,19 @@ std::filesystem::path make_staging_directory(const std::filesystem::path& dir, s
 // make_staging_directory with `files` written into it (write_tree); on failure "" and the error
 // in `error`, nothing left behind.
 std::filesystem::path write_staged_tree(const std::filesystem::path& dir,
-                                        const std::map<std::string, std::string>& files, std::string* error);
+                                        const std::map<std::string, std::string>& files,
+                                        std::string* error);
 // Replaces `dir` with `staging` by rename; the old `dir` stays complete until then.
-std::optional<std::string> commit_directory(const std::filesystem::path& staging, const std::filesystem::path& dir);
+std::optional<std::string> commit_directory(const std::filesystem::path& staging,
+                                            const std::filesystem::path& dir);
 
 // Creates `path` and writes `contents` to it; never through an existing name or a link
 // (O_EXCL | O_NOFOLLOW). The error names the path and carries errno's text.
-std::optional<std::string> write_new_file(const std::filesystem::path& path, const std::string& contents);
+std::optional<std::string> write_new_file(const std::filesystem::path& path,
+                                          const std::string& contents);
 
 // Writes one file through a temporary in the same directory and a rename.
-std::optional<std::string> write_file_atomically(const std::filesystem::path& path, const std::string& contents);
+std::optional<std::string> write_file_atomically(const std::filesystem::path& path,
+                                                 const std::string& contents);
 
 } // namespace watergen

@@ -9,29 +9,30 @@
 #include <string>
 #include <vector>
 
-#include "watergen/pipeline/build_cache.h"
 #include "watergen/ir/ir_fold.h"
+#include "watergen/pipeline/build_cache.h"
 #include "watergen/plan/material.h"
 
 namespace watergen {
 
 struct BuildJob {
-    std::string scene;                // output directory of the scene
+    std::string scene; // output directory of the scene
     Variant variant;
     const FoldFacts* facts = nullptr; // fold under these; nullptr builds the variant as composed
     std::vector<Target> targets;
 };
 
 struct JobResult {
-    std::string content_hash;         // cache key of the files
-    std::string shape_hash;           // of the sources without the variant key
-    std::string same_as;              // key of the earlier variant of the scene with the same shader
+    std::string content_hash; // cache key of the files
+    std::string shape_hash;   // of the sources without the variant key
+    std::string same_as;      // key of the earlier variant of the scene with the same shader
     bool folded = false;
     FoldReport fold;
-    FileMap files;                    // relative to the variant directory, filtered by targets
+    FileMap files; // relative to the variant directory, filtered by targets
     bool cached = false;
-    std::string cache_rejected;       // why its cache entry failed verification (evicted, rebuilt); "" if it did not
-    bool shared = false;              // same content as a job of another scene, built once for both
+    std::string cache_rejected; // why its cache entry failed verification (evicted, rebuilt); "" if
+                                // it did not
+    bool shared = false;        // same content as a job of another scene, built once for both
     Diagnostics diagnostics;
     double milliseconds = 0;
     bool ok() const { return !has_errors(diagnostics); }

@@ -15,8 +15,8 @@ namespace watergen {
 struct SafeRead {
     std::optional<std::string> bytes; // the whole file, when it passed every check
     bool missing = false;             // nothing at the path (ENOENT): a miss, not damage
-    std::string why;                  // why it was not read, with the errno text where a call failed
-    dev_t device = 0;                 // of what lstat found, so a caller may remove exactly that
+    std::string why;  // why it was not read, with the errno text where a call failed
+    dev_t device = 0; // of what lstat found, so a caller may remove exactly that
     ino_t inode = 0;
 };
 

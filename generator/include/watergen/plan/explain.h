@@ -14,10 +14,11 @@
 namespace watergen {
 
 struct MaterialOverview {
-    std::string name, file;          // file "" when built in
+    std::string name, file; // file "" when built in
     size_t variants = 0, full_space = 0;
-    std::string offered;             // "fresnel 2 x specular 2", "" when every axis has one choice
-    std::vector<std::string> rules;  // the material's own: "precision=half excludes fresnel in {exact}: why [where]"
+    std::string offered; // "fresnel 2 x specular 2", "" when every axis has one choice
+    std::vector<std::string>
+        rules; // the material's own: "precision=half excludes fresnel in {exact}: why [where]"
 };
 
 struct ExplainedRewrite {
@@ -32,13 +33,13 @@ struct VariantRewrites {
 };
 
 struct SceneExplanation {
-    const ScenePlan* plan = nullptr; // name, file, platforms, targets, skipped groups
-    std::map<std::string, std::string> fixes; // parameter -> the fact that fixes it
-    size_t folded = 0, step = 1;              // variants folded: every step-th of plan->variants
-    std::map<std::string, size_t> removals;   // "removes term t (node): because" -> variants
-    std::vector<std::string> same;            // "key\n      is the same shader as key"
+    const ScenePlan* plan = nullptr;            // name, file, platforms, targets, skipped groups
+    std::map<std::string, std::string> fixes;   // parameter -> the fact that fixes it
+    size_t folded = 0, step = 1;                // variants folded: every step-th of plan->variants
+    std::map<std::string, size_t> removals;     // "removes term t (node): because" -> variants
+    std::vector<std::string> same;              // "key\n      is the same shader as key"
     std::map<std::string, size_t> uncomposable; // first diagnostic -> variants
-    size_t live_before = 0, live_after = 0;   // over the folded variants
+    size_t live_before = 0, live_after = 0;     // over the folded variants
     std::optional<VariantRewrites> detail;
 };
 
@@ -50,14 +51,14 @@ struct UnreachedVariant {
 
 struct Explanation {
     MaterialOverview material;
-    std::vector<SceneExplanation> scenes; // in the order of the plans
+    std::vector<SceneExplanation> scenes;    // in the order of the plans
     std::vector<UnreachedVariant> unreached; // enumeration order
 };
 
 // Explains the plans of `scenes` (planned against `material`, which must outlive the
 // result's plan pointers). Folds at most `sample` variants per scene, evenly spaced (0: all),
 // always including `detail_key` ("" for none), whose rewrites are listed one by one.
-Explanation explain_plans(const Material& material, const std::vector<ScenePlan>& scenes, const std::string& detail_key,
-                          size_t sample);
+Explanation explain_plans(const Material& material, const std::vector<ScenePlan>& scenes,
+                          const std::string& detail_key, size_t sample);
 
 } // namespace watergen

@@ -26,12 +26,15 @@ struct NumberBounds {
 };
 
 class JsonReader {
-public:
-    JsonReader(const JsonSource& source, Diagnostics& diagnostics) : source_(source), diagnostics_(diagnostics) {}
+  public:
+    JsonReader(const JsonSource& source, Diagnostics& diagnostics)
+        : source_(source), diagnostics_(diagnostics) {}
 
     // Called with the pointer of every value a getter read successfully (a scene records
     // where each fact stands, for explain).
-    void on_read(std::function<void(const std::string& pointer)> observer) { observer_ = std::move(observer); }
+    void on_read(std::function<void(const std::string& pointer)> observer) {
+        observer_ = std::move(observer);
+    }
 
     const JsonSource& source() const { return source_; }
     // Records "<pointer>: <what>" at the value; returns false.
@@ -43,8 +46,8 @@ public:
 
     // An object whose keys are among `allowed` and include every `required` one; a missing
     // key reads "missing key 'k'" followed by `missing_note` when one is given.
-    bool keys(const std::string& pointer, const std::vector<std::string>& allowed, const std::vector<std::string>& required,
-              const std::string& missing_note = "");
+    bool keys(const std::string& pointer, const std::vector<std::string>& allowed,
+              const std::vector<std::string>& required, const std::string& missing_note = "");
     // An object (an array), else "expected <expected>, got ..."; `expected` says what it maps.
     bool object(const std::string& pointer, const std::string& expected);
     bool array(const std::string& pointer, const std::string& expected);
@@ -53,17 +56,20 @@ public:
     bool boolean(const std::string& pointer, bool& out);
     bool number(const std::string& pointer, double& out);
     // A string from `allowed`.
-    bool string_in(const std::string& pointer, const std::vector<std::string>& allowed, std::string& out);
+    bool string_in(const std::string& pointer, const std::vector<std::string>& allowed,
+                   std::string& out);
     // An array of strings (duplicates allowed; the caller knows what they mean).
     bool strings(const std::string& pointer, std::vector<std::string>& out);
     // An array of distinct strings from `allowed`.
-    bool strings_in(const std::string& pointer, const std::vector<std::string>& allowed, std::vector<std::string>& out);
+    bool strings_in(const std::string& pointer, const std::vector<std::string>& allowed,
+                    std::vector<std::string>& out);
     // A number, or an array of at least `min_count` numbers.
     bool numbers(const std::string& pointer, std::vector<double>& out, size_t min_count = 0);
     // {"min": a, "max": b} with a <= b, both within `bounds` when given.
-    bool range(const std::string& pointer, double& min, double& max, const NumberBounds* bounds = nullptr);
+    bool range(const std::string& pointer, double& min, double& max,
+               const NumberBounds* bounds = nullptr);
 
-private:
+  private:
     bool read(const std::string& pointer) {
         if (observer_) observer_(pointer);
         return true;

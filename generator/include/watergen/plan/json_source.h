@@ -14,7 +14,8 @@
 
 namespace watergen {
 
-using Json = nlohmann::ordered_json; // keeps file order, so the first error is the first in the file
+using Json =
+    nlohmann::ordered_json; // keeps file order, so the first error is the first in the file
 
 struct JsonPosition {
     int line = 0, column = 0; // 1-based; 0 when unknown
@@ -23,16 +24,17 @@ struct JsonPosition {
 // Limits of a description file, checked while reading: materials and scenes nest 5 containers
 // deep and weigh a few KiB, and without a bound a 120 KB file of 60k nested brackets takes
 // quadratic memory (a JSON pointer per level) until allocation fails.
-constexpr size_t kMaxJsonDepth = 64;               // nested objects and arrays
-constexpr size_t kMaxJsonBytes = size_t(4) << 20;  // 4 MiB
+constexpr size_t kMaxJsonDepth = 64;              // nested objects and arrays
+constexpr size_t kMaxJsonBytes = size_t(4) << 20; // 4 MiB
 
 class JsonSource {
-public:
+  public:
     // Parses `text` (named `file` in diagnostics). Syntax errors, duplicate keys, empty input
     // and text beyond the limits above yield nullopt with one Error diagnostic carrying the
     // line and column. A leading UTF-8 byte order mark is skipped; lines and columns count
     // from after it, as if it were not there.
-    static std::optional<JsonSource> parse(const std::string& text, const std::string& file, Diagnostic* error);
+    static std::optional<JsonSource> parse(const std::string& text, const std::string& file,
+                                           Diagnostic* error);
     // Reads and parses a file; a missing or unreadable file is an error naming the path. Reads
     // no more than kMaxJsonBytes + 1 bytes, whatever the file's size.
     static std::optional<JsonSource> load(const std::filesystem::path& path, Diagnostic* error);
@@ -47,7 +49,7 @@ public:
     // Error at the value: message reads "<pointer>: <what>".
     Diagnostic error(const std::string& pointer, const std::string& what) const;
 
-private:
+  private:
     std::string file_;
     Json root_;
     std::map<std::string, JsonPosition> positions_;

@@ -63,20 +63,26 @@ struct Material {
 };
 
 class MaterialBuilder {
-public:
+  public:
     explicit MaterialBuilder(std::string name, SourceRef at = {});
 
     MaterialBuilder& description(std::string text);
     // Offers these choices on the axis (the axes never offered keep their default choice).
-    MaterialBuilder& offer(const std::string& axis, const std::vector<std::string>& choices, SourceRef at = {});
+    MaterialBuilder& offer(const std::string& axis, const std::vector<std::string>& choices,
+                           SourceRef at = {});
     MaterialBuilder& offer_all(const std::string& axis, SourceRef at = {});
     // axis=choice needs / cannot have other_axis in other_choices.
-    MaterialBuilder& requires_choice(const std::string& axis, const std::string& choice, const std::string& other_axis,
-                                     const std::vector<std::string>& other_choices, std::string why, SourceRef at = {});
-    MaterialBuilder& excludes_choice(const std::string& axis, const std::string& choice, const std::string& other_axis,
-                                     const std::vector<std::string>& other_choices, std::string why, SourceRef at = {});
+    MaterialBuilder& requires_choice(const std::string& axis, const std::string& choice,
+                                     const std::string& other_axis,
+                                     const std::vector<std::string>& other_choices, std::string why,
+                                     SourceRef at = {});
+    MaterialBuilder& excludes_choice(const std::string& axis, const std::string& choice,
+                                     const std::string& other_axis,
+                                     const std::vector<std::string>& other_choices, std::string why,
+                                     SourceRef at = {});
     MaterialBuilder& preset(const std::string& name, SourceRef at = {});
-    MaterialBuilder& parameter(const std::string& name, const std::vector<double>& value, SourceRef at = {});
+    MaterialBuilder& parameter(const std::string& name, const std::vector<double>& value,
+                               SourceRef at = {});
     MaterialBuilder& range(const std::string& name, double min, double max, SourceRef at = {});
     MaterialBuilder& targets(const std::vector<std::string>& names, SourceRef at = {});
 
@@ -84,7 +90,7 @@ public:
     // and returns the material, or nullopt with the first error in `diagnostics`.
     std::optional<Material> build(Diagnostics& diagnostics) const;
 
-private:
+  private:
     struct Offer {
         std::string axis;
         std::vector<std::string> choices;
@@ -119,8 +125,10 @@ private:
     std::optional<Diagnostic> check_parameters(Material& m) const;
     std::optional<Diagnostic> check_values(Material& m) const;
     std::optional<Diagnostic> check_targets(Material& m) const;
-    static std::optional<Diagnostic> offered_choices(const Offer& o, std::vector<std::string>& choices);
-    static std::optional<Diagnostic> apply_setting(const ParameterCall& call, const Parameter& p, ParameterSetting& s);
+    static std::optional<Diagnostic> offered_choices(const Offer& o,
+                                                     std::vector<std::string>& choices);
+    static std::optional<Diagnostic> apply_setting(const ParameterCall& call, const Parameter& p,
+                                                   ParameterSetting& s);
     SourceRef offered_at(size_t axis, const std::string& choice) const;
 };
 

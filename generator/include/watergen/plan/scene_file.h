@@ -30,18 +30,18 @@ struct SceneWhere {
 };
 
 struct SceneFacts {
-    std::string name;        // also the scene's directory in the build output
+    std::string name; // also the scene's directory in the build output
     std::string description;
-    std::string file;        // the file's name (no directories), for reports
-    bool shoreline = true;             // water meets land somewhere in view
-    FactRange water_depth{0.0, 1e4};   // m, on water pixels
-    FactRange camera_height{0.0, 1e5}; // m above the water level
-    FactRange camera_pitch{-90, 90};   // degrees, negative looks down
-    FactRange sun_elevation{-90, 90};  // degrees above the horizon
+    std::string file;                            // the file's name (no directories), for reports
+    bool shoreline = true;                       // water meets land somewhere in view
+    FactRange water_depth{0.0, 1e4};             // m, on water pixels
+    FactRange camera_height{0.0, 1e5};           // m above the water level
+    FactRange camera_pitch{-90, 90};             // degrees, negative looks down
+    FactRange sun_elevation{-90, 90};            // degrees above the horizon
     std::vector<std::string> reflection_sources; // of kReflectionSources; empty = none
     bool waves_animated = true;
-    std::string precision = "any";     // "full", "half" or "any"
-    std::vector<std::string> platforms; // of kPlatforms
+    std::string precision = "any";                    // "full", "half" or "any"
+    std::vector<std::string> platforms;               // of kPlatforms
     std::map<std::string, std::vector<double>> fixed; // parameters the scene fixes
     SceneWhere where;
 };

@@ -29,7 +29,8 @@ std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& 
 struct SkippedGroup {
     Exclusion exclusion;
     size_t variants = 0;
-    std::string text() const; // "precision=half: the scene targets precision full [open_ocean.json:11:3 /precision]"
+    std::string text() const; // "precision=half: the scene targets precision full
+                              // [open_ocean.json:11:3 /precision]"
 };
 
 // A skipped variant: its place in enumerate(material.space) order and its group.
@@ -40,19 +41,20 @@ struct SkippedVariant {
 
 struct ScenePlan {
     SceneFacts scene;
-    FoldFacts facts;              // for fold_graph; scene facts about quantities keyed by handle
+    FoldFacts facts;               // for fold_graph; scene facts about quantities keyed by handle
     std::vector<Variant> variants; // reached, sorted by key
-    size_t skipped = 0;           // material variants the scene does not reach
+    size_t skipped = 0;            // material variants the scene does not reach
     std::vector<SkippedGroup> skipped_groups;     // one per reason, sorted by text()
     std::vector<SkippedVariant> skipped_variants; // ascending ordinal
-    std::vector<Target> targets;  // material targets its platforms need, all_targets() order
+    std::vector<Target> targets; // material targets its platforms need, all_targets() order
     std::map<std::string, std::vector<double>> fixed; // parameters that become constants
 };
 
 // Plans one scene against a material. Errors (exit 2): a fixed parameter the material's
 // nodes do not read, of the wrong size or out of range; time fixed with animated waves; a
 // scene that reaches no variant or needs no target the material emits ("needs nothing").
-std::optional<ScenePlan> plan_scene(const Material& material, const SceneFacts& scene, Diagnostics& diagnostics);
+std::optional<ScenePlan> plan_scene(const Material& material, const SceneFacts& scene,
+                                    Diagnostics& diagnostics);
 
 // The facts every build assumes about its inputs (uv in [0, 1], finite scene textures within
 // the world's extent), and the material's parameter ranges; plan_scene adds the scene's.

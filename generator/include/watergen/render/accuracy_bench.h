@@ -14,9 +14,10 @@ struct AccuracyRow {
     std::string axis, choice;
     bool gold = false;
     double steady_ms = 0, time_ratio = 0;
-    size_t instructions = 0; // optimised fragment SPIR-V, GLSL path: a cost proxy free of timing noise
-    ImageErrorStats error;   // against the gold image of the same axis
-    std::string note;        // why the row was skipped, or how its error was measured
+    size_t instructions =
+        0; // optimised fragment SPIR-V, GLSL path: a cost proxy free of timing noise
+    ImageErrorStats error; // against the gold image of the same axis
+    std::string note;      // why the row was skipped, or how its error was measured
     bool skipped() const { return !note.empty() && steady_ms == 0; }
 };
 

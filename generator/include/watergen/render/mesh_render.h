@@ -5,10 +5,10 @@
 #include <array>
 #include <string>
 
-#include "watergen/water/mesh_shader.h"
-#include "watergen/runtime/image_metrics.h"
-#include "watergen/render/synthetic_scene.h"
 #include "watergen/pipeline/variant_build.h"
+#include "watergen/render/synthetic_scene.h"
+#include "watergen/runtime/image_metrics.h"
+#include "watergen/water/mesh_shader.h"
 
 namespace watergen {
 

@@ -32,7 +32,8 @@ struct ProbeRun {
 // Derivatives pair tuples 4k..4k+3 as a 2x2 quad (emit_probe): a graph that uses them takes
 // whole quads (a tuple count that is a multiple of 4). Cost: one toolchain run, one
 // pipeline (JIT) and one dispatch, plus three CPU evaluations.
-ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language, const std::vector<double>& inputs,
+ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language,
+                   const std::vector<double>& inputs,
                    const std::map<std::string, std::vector<double>>& uniforms = {},
                    const std::map<std::string, TextureData>& textures = {});
 
@@ -45,10 +46,10 @@ const std::map<std::string, TextureData>& probe_scene_textures();
 
 // What `watergen probe` runs, read and checked before any device is touched.
 struct ProbeInputs {
-    Graph graph;                                         // probe_graph of the node
-    ProbeLayout layout;                                  // probe_layout of the graph
-    std::vector<double> tuples;                          // read from the CSV, layout.input_stride each
-    std::map<std::string, std::vector<double>> params;   // the --param overrides
+    Graph graph;                // probe_graph of the node
+    ProbeLayout layout;         // probe_layout of the graph
+    std::vector<double> tuples; // read from the CSV, layout.input_stride each
+    std::map<std::string, std::vector<double>> params; // the --param overrides
 };
 // The node's graph, the tuples of the CSV file at `csv_path` (whole 2x2 quads when the node
 // takes derivatives) and the parameter overrides, checked as check_probe_parameters does.

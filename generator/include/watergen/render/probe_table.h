@@ -19,24 +19,27 @@ std::vector<std::string> probe_columns(const std::vector<ProbeField>& fields);
 // Reads tuples of `columns` from a CSV file: a header naming the columns exactly, then one row
 // per tuple ('#' comments and blank lines skipped, a UTF-8 byte order mark accepted as in
 // JSON files). Errors read "file:line: what was expected"; a file without data rows is one.
-std::optional<std::vector<double>> read_probe_csv(const std::string& path, const std::vector<std::string>& columns,
+std::optional<std::vector<double>> read_probe_csv(const std::string& path,
+                                                  const std::vector<std::string>& columns,
                                                   std::string& error);
 // The same for text already in memory, named `name` in errors.
 std::optional<std::vector<double>> parse_probe_csv(const std::string& text, const std::string& name,
-                                                   const std::vector<std::string>& columns, std::string& error);
+                                                   const std::vector<std::string>& columns,
+                                                   std::string& error);
 
 // The inputs, then per output component gpu, cpu_double, cpu_float, cpu_half.
 std::string probe_results_csv(const ProbeRun& run, const std::vector<double>& inputs);
 
 // Checks parameter overrides against the graph: known name, right size, and (unless
 // `allow_out_of_range`) every value finite and within the parameter's declared range.
-std::optional<std::string> check_probe_parameters(const Graph& g, const std::map<std::string, std::vector<double>>& params,
-                                                  bool allow_out_of_range);
+std::optional<std::string>
+check_probe_parameters(const Graph& g, const std::map<std::string, std::vector<double>>& params,
+                       bool allow_out_of_range);
 
 // Parameter overrides from `--param name=v[,v...]` specs; values are checked against the node
 // later (check_probe_parameters). Errors name the spec and what was expected.
-std::optional<std::map<std::string, std::vector<double>>> parse_probe_parameters(
-    const std::vector<std::string>& specs, std::string& error);
+std::optional<std::map<std::string, std::vector<double>>>
+parse_probe_parameters(const std::vector<std::string>& specs, std::string& error);
 
 struct ProbeSideCount {
     size_t nan = 0, inf = 0;

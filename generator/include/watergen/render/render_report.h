@@ -29,7 +29,8 @@ nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderRe
 
 // Writes the files into `dir` (replacing a previous render of the variant); an error message
 // on failure, with nothing half-written.
-std::optional<std::string> write_render_report(const std::filesystem::path& dir, const VariantRender& r,
+std::optional<std::string> write_render_report(const std::filesystem::path& dir,
+                                               const VariantRender& r,
                                                const RenderReportInfo& info);
 
 } // namespace watergen

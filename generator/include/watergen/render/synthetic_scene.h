@@ -6,9 +6,10 @@
 // z < -4, the shoreline at z = -4, 10 m deep at z = 36 and deeper beyond. A sphere of radius
 // 1 m at (1.5, -1.3, 3) sits half buried in the seabed, its top 0.3 m under the surface. Rays
 // that hit nothing see a smooth sky gradient; their "position" is 1000 m along the ray (above
-// the water, so the water pass leaves them alone). Sand is lit by the sun (Lambert + ambient) and carries a smooth,
-// band-limited ripple pattern (wavelengths >= 2 m) so the image is not flat but no texel is
-// noise: outputs must not be hypersensitive to sub-texel differences between GPU and CPU.
+// the water, so the water pass leaves them alone). Sand is lit by the sun (Lambert + ambient) and
+// carries a smooth, band-limited ripple pattern (wavelengths >= 2 m) so the image is not flat but
+// no texel is noise: outputs must not be hypersensitive to sub-texel differences between GPU and
+// CPU.
 //
 // Every texture is made at the render resolution, so the fullscreen pass samples texel
 // centres and linear filtering returns texels unchanged (exactly so for power-of-two sizes,
@@ -26,7 +27,7 @@ namespace watergen {
 
 struct SyntheticScene {
     uint32_t width = 0, height = 0;
-    std::map<std::string, TextureData> textures;         // by binding name (scene_color, scene_position)
+    std::map<std::string, TextureData> textures; // by binding name (scene_color, scene_position)
     std::map<std::string, std::vector<double>> uniforms; // camera, sun: override parameter defaults
 
     // CPU views of the same textures for the evaluator.
@@ -34,7 +35,8 @@ struct SyntheticScene {
 };
 
 // CPU evaluator views of runner textures (the map must outlive the views).
-std::map<std::string, TextureView> texture_views(const std::map<std::string, TextureData>& textures);
+std::map<std::string, TextureView>
+texture_views(const std::map<std::string, TextureData>& textures);
 
 // Deterministic: the same size always yields the same bytes.
 SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height);

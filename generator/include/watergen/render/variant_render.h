@@ -5,11 +5,11 @@
 #include <array>
 #include <string>
 
+#include "watergen/pipeline/variant_build.h"
+#include "watergen/render/synthetic_scene.h"
 #include "watergen/runtime/image_io.h"
 #include "watergen/runtime/image_metrics.h"
 #include "watergen/runtime/vulkan_runner.h"
-#include "watergen/render/synthetic_scene.h"
-#include "watergen/pipeline/variant_build.h"
 
 namespace watergen {
 
@@ -21,9 +21,9 @@ struct RenderSettings {
 
 struct VariantRender {
     std::string key;
-    std::array<RenderResult, 2> gpu;           // GLSL path, HLSL path (optimised SPIR-V)
+    std::array<RenderResult, 2> gpu; // GLSL path, HLSL path (optimised SPIR-V)
     std::array<ImageRGBA32F, 2> gpu_image;
-    ImageRGBA32F cpu_float, cpu_double;        // CPU evaluator of the same graph and inputs
+    ImageRGBA32F cpu_float, cpu_double; // CPU evaluator of the same graph and inputs
     ImageErrorStats glsl_vs_hlsl, glsl_vs_cpu_float, hlsl_vs_cpu_float, glsl_vs_cpu_double;
     double cpu_float_ms = 0;
     std::vector<std::string> validation_messages; // raised while rendering this variant
@@ -33,12 +33,13 @@ struct VariantRender {
 
 // Cost: two pipelines (each JIT-compiled by lavapipe at first draw, 0.1-0.5 s) plus
 // 1 + timed_draws draws per path, plus one CPU evaluation per precision.
-VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build, const SyntheticScene& scene,
-                             const RenderSettings& settings);
+VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
+                             const SyntheticScene& scene, const RenderSettings& settings);
 
 // The runner job for one language path of a built variant over `scene`: optimised SPIR-V, the
 // scene's textures by binding name, uniforms packed from the scene's values over the defaults.
-RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene, const RenderSettings& settings);
+RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene,
+                          const RenderSettings& settings);
 
 ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height);
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "watergen/ir/diagnostic.h"
-#include "watergen/toolchain/glslang_stage.h"
 #include "watergen/runtime/reflection.h"
+#include "watergen/toolchain/glslang_stage.h"
 
 namespace watergen {
 

@@ -74,14 +74,16 @@ ChoiceInfo feature_choice(ChoiceInfo info, ChoiceNode node, std::function<void(S
 // The same for a node taking one Expr, or a struct of Exprs in member order: the catalog entry
 // passes it the values of `inputs`, in order.
 template <class Inputs, std::size_t N>
-ChoiceInfo feature_choice(ChoiceInfo info, const NodeInput (&inputs)[N], Expr (*node)(Graph&, Inputs),
-                          std::function<void(Surface&)> compose) {
+ChoiceInfo feature_choice(ChoiceInfo info, const NodeInput (&inputs)[N],
+                          Expr (*node)(Graph&, Inputs), std::function<void(Surface&)> compose) {
     auto build = [node](Graph& g, const std::vector<Expr>& in) {
         return [&]<std::size_t... I>(std::index_sequence<I...>) {
             return node(g, std::remove_cvref_t<Inputs>{in[I]...});
-        }(std::make_index_sequence<N>{});
+        }
+        (std::make_index_sequence<N>{});
     };
-    return feature_choice(std::move(info), ChoiceNode{{inputs, inputs + N}, build}, std::move(compose));
+    return feature_choice(std::move(info), ChoiceNode{{inputs, inputs + N}, build},
+                          std::move(compose));
 }
 
 struct AxisInfo {

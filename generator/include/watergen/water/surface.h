@@ -26,29 +26,30 @@ struct Surface {
     Expr sun_color;      // vec3, sun radiance scale
 
     // 1. waves: where the view ray meets the water surface.
-    Expr surface_point;  // vec3, m
-    Expr path;           // float, water path along the view ray from surface to scene, m (>= 0)
-    Expr depth;          // float, vertical water depth under the surface point, m (>= 0)
-    Expr is_water;       // bool, the pixel shows water (scene below the surface)
-    Expr wave_slope;     // vec2 (dh/dx, dh/dz) at surface_point when the wave model has it, else invalid
+    Expr surface_point; // vec3, m
+    Expr path;          // float, water path along the view ray from surface to scene, m (>= 0)
+    Expr depth;         // float, vertical water depth under the surface point, m (>= 0)
+    Expr is_water;      // bool, the pixel shows water (scene below the surface)
+    Expr
+        wave_slope; // vec2 (dh/dx, dh/dz) at surface_point when the wave model has it, else invalid
 
     // 2. normals
-    Expr normal;         // vec3, unit, surface normal at surface_point
-    Expr to_eye;         // vec3, unit, V (set by the skeleton after normals)
-    Expr n_dot_v;        // float, c = dot(N, V)
+    Expr normal;  // vec3, unit, surface normal at surface_point
+    Expr to_eye;  // vec3, unit, V (set by the skeleton after normals)
+    Expr n_dot_v; // float, c = dot(N, V)
 
     // 3. refraction: colour seen through the surface, before extinction.
-    Expr refracted;      // vec3
+    Expr refracted; // vec3
     // 4. extinction: what the water column does to it.
-    Expr water_color;    // vec3
+    Expr water_color; // vec3
     // 5. reflection
-    Expr reflected;      // vec3
+    Expr reflected; // vec3
     // 6. fresnel
-    Expr fresnel;        // float in [0, 1]
+    Expr fresnel; // float in [0, 1]
     // 7. specular
-    Expr specular;       // vec3, added after the Fresnel blend
+    Expr specular; // vec3, added after the Fresnel blend
     // 8. foam and 9. shore work on the composed colour.
-    Expr color;          // vec3
+    Expr color; // vec3
 };
 
 // Where the view ray meets the horizontal plane y = height: the point, and its distance along

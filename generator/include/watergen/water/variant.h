@@ -23,7 +23,8 @@ struct Variant {
 
 Variant default_variant();
 // Sets one axis; returns an error message naming the allowed choices on a bad axis or choice.
-std::optional<std::string> set_choice(Variant& v, const std::string& axis, const std::string& choice);
+std::optional<std::string> set_choice(Variant& v, const std::string& axis,
+                                      const std::string& choice);
 // Parses a key as produced by Variant::key(); axes left out keep their default.
 std::optional<Variant> parse_variant_key(const std::string& key, std::string* error);
 

@@ -16,7 +16,7 @@ struct Preset;
 struct WaterShader {
     Variant variant;
     std::string preset; // name of the preset applied to the parameter defaults, "" for none
-    Graph fragment; // inputs: varying v_uv; output "color" (vec4, linear HDR)
+    Graph fragment;     // inputs: varying v_uv; output "color" (vec4, linear HDR)
 };
 
 // Builds the fragment graph; type errors end up in fragment.diagnostics().

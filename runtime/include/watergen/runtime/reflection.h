@@ -13,22 +13,28 @@ namespace watergen {
 enum class ShaderStage { Vertex, Fragment, Compute };
 
 struct UniformMember {
-    std::string name;   // as declared in the source, e.g. "sun_direction"
-    std::string type;   // GLSL spelling: float, vec2, vec3, vec4, mat3, mat4, int, uint
+    std::string name;    // as declared in the source, e.g. "sun_direction"
+    std::string type;    // GLSL spelling: float, vec2, vec3, vec4, mat3, mat4, int, uint
     uint32_t offset = 0; // bytes from the start of the block
     uint32_t size = 0;   // bytes
 };
 
-enum class DescriptorKind { UniformBuffer, StorageBuffer, SampledImage, Sampler, CombinedImageSampler };
+enum class DescriptorKind {
+    UniformBuffer,
+    StorageBuffer,
+    SampledImage,
+    Sampler,
+    CombinedImageSampler
+};
 
 struct DescriptorBinding {
-    std::string name;    // variable or block name in the source
+    std::string name; // variable or block name in the source
     uint32_t set = 0;
     uint32_t binding = 0;
     DescriptorKind kind = DescriptorKind::UniformBuffer;
-    std::string image_dim;                // "2D" or "Cube" for images, "" otherwise
-    uint32_t block_size = 0;              // bytes, for buffers
-    std::vector<UniformMember> members;   // for buffers
+    std::string image_dim;              // "2D" or "Cube" for images, "" otherwise
+    uint32_t block_size = 0;            // bytes, for buffers
+    std::vector<UniformMember> members; // for buffers
 };
 
 struct StageVariable {
@@ -40,9 +46,9 @@ struct StageVariable {
 struct Reflection {
     ShaderStage stage = ShaderStage::Fragment;
     std::string entry_point = "main";
-    std::vector<DescriptorBinding> bindings;  // sorted by (set, binding)
-    std::vector<StageVariable> inputs;        // sorted by location
-    std::vector<StageVariable> outputs;       // sorted by location
+    std::vector<DescriptorBinding> bindings; // sorted by (set, binding)
+    std::vector<StageVariable> inputs;       // sorted by location
+    std::vector<StageVariable> outputs;      // sorted by location
 };
 
 // Deterministic JSON (sorted, 2-space indent, trailing newline).

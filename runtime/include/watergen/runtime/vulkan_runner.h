@@ -90,7 +90,7 @@ struct RenderResult {
     uint32_t height = 0;
     // RGBA32F, width*height*4 floats; row 0 is the top of the image (framebuffer y = 0).
     std::vector<float> rgba;
-    double pipeline_ms = 0;    // CPU time of vkCreateGraphicsPipelines
+    double pipeline_ms = 0; // CPU time of vkCreateGraphicsPipelines
     // CPU wall time of the first submit + wait. Includes lavapipe's LLVM JIT, unless
     // Mesa's own on-disk shader cache already holds the shader (MESA_SHADER_CACHE_DIR);
     // MESA_SHADER_CACHE_DISABLE=true makes this independent of earlier runs.

@@ -37,7 +37,8 @@ struct ProjectiveUv {
     Expr uv;    // vec2
     Expr valid; // bool
 };
-ProjectiveUv projective_uv(Graph& g, Expr point, const std::string& prefix, const std::string& seed, Expr fov_scale);
+ProjectiveUv projective_uv(Graph& g, Expr point, const std::string& prefix, const std::string& seed,
+                           Expr fov_scale);
 
 // 001 cube lookup: R = reflect(-V, N) with -V = view_ray; the lower hemisphere (R.y < 0) has
 // no sky, so the lookup mirrors it into the upper half (001: "mirror the upper half of the

@@ -1,7 +1,8 @@
 // Refraction: the colour seen through the surface, before extinction (000 Toman, 002 Mihalik,
 // 003 IceFall). The source is the lit scene itself (000: the frame buffer, no extra pass),
 // sampled at a displaced screen uv. The catalog names the sampling-free parts
-// ("refraction.screen_distort_uv", "refraction.refracted_ray_point", "refraction.refracted_ray_uv").
+// ("refraction.screen_distort_uv", "refraction.refracted_ray_point",
+// "refraction.refracted_ray_uv").
 #pragma once
 
 #include "watergen/ir/dsl.h"
@@ -22,6 +23,7 @@ Expr refracted_ray_point(Graph& g, Expr surface_point, Expr view_ray, Expr norma
 // 002: where W lands on the screen (projected with `refraction_view_proj_c0..c3`, the scene
 // camera), clamped to [0, 1]; the undistorted `uv` under total internal reflection (no light
 // crosses the surface) and when W is on or behind the camera plane (q.w <= 1e-4).
-Expr refracted_ray_uv(Graph& g, Expr uv, Expr surface_point, Expr view_ray, Expr normal, Expr depth);
+Expr refracted_ray_uv(Graph& g, Expr uv, Expr surface_point, Expr view_ray, Expr normal,
+                      Expr depth);
 
 } // namespace watergen
