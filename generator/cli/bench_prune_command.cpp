@@ -45,6 +45,32 @@ nlohmann::ordered_json json_row(const std::string& scene, const PruneBenchRow& r
         {"max_abs", {{"glsl", r.max_abs_glsl}, {"hlsl", r.max_abs_hlsl}, {"cpu", r.max_abs_cpu}}}};
 }
 
+// Prints the table and fills the CSV and JSON forms of it.
+void print_tables(const PruneBenchResult& result, std::string& csv, nlohmann::ordered_json& json) {
+    std::printf("%-14s %-58s %11s %11s %11s %9s %9s %10s\n", "scene",
+                "variant (the material's varying axes)", "IR nodes", "SPIR-V", "SPIR-V opt",
+                "GPU glsl", "GPU hlsl", "max |diff|");
+    csv = "scene,variant,ir_before,ir_after,spirv_unpruned,spirv_pruned,spirv_opt_"
+          "unpruned,spirv_opt_pruned,"
+          "gpu_ms_unpruned,gpu_ms_pruned,gpu_ms_unpruned_hlsl,gpu_ms_pruned_hlsl,"
+          "max_abs_glsl,max_abs_hlsl,max_abs_cpu\n";
+    json = nlohmann::ordered_json::array();
+    for (const PruneBenchScene& s : result.scenes) {
+        std::printf("%s: %s\n", s.name.c_str(), s.notes.c_str());
+        for (const PruneBenchRow& row : s.rows) {
+            print_row(s.name, row);
+            csv += csv_row(s.name, row);
+            json.push_back(json_row(s.name, row));
+        }
+        if (!s.complete) break;
+        std::printf("%-14s median ratio pruned/unpruned over %zu shaders: IR nodes %.3f, "
+                    "SPIR-V %.3f, SPIR-V opt %.3f, "
+                    "GPU time %.3f (GLSL) %.3f (HLSL); max |diff| %.2g\n",
+                    s.name.c_str(), s.rows.size(), s.ir, s.spirv, s.spirv_opt, s.gpu_glsl,
+                    s.gpu_hlsl, s.worst);
+    }
+}
+
 } // namespace
 
 Runner add_bench_prune_command(CLI::App& app, const Common& common) {
@@ -72,7 +98,8 @@ Runner add_bench_prune_command(CLI::App& app, const Common& common) {
     app.add_option("--variants", o->per_scene,
                    "at most this many distinct shaders per scene (default: all)");
     app.add_option("--tolerance", o->tolerance,
-                   "largest accepted image difference, pruned vs unpruned (default 1e-4)");
+                   "largest accepted image difference, pruned vs unpruned (default 1e-4)")
+        ->check(finite_range(0.0, 1.0));
     app.add_option("--out", o->out, "directory for prune.csv and prune.json (default out/bench)");
     add_runner_options(app, o->runner);
     return [o, &common]() {
@@ -91,28 +118,9 @@ Runner add_bench_prune_command(CLI::App& app, const Common& common) {
         const PruneBenchResult result =
             bench_prune(*runner, m, plan->scenes, {o->size, o->draws, o->rounds, o->per_scene});
 
-        std::printf("%-14s %-58s %11s %11s %11s %9s %9s %10s\n", "scene",
-                    "variant (the material's varying axes)", "IR nodes", "SPIR-V", "SPIR-V opt",
-                    "GPU glsl", "GPU hlsl", "max |diff|");
-        std::string csv = "scene,variant,ir_before,ir_after,spirv_unpruned,spirv_pruned,spirv_opt_"
-                          "unpruned,spirv_opt_pruned,"
-                          "gpu_ms_unpruned,gpu_ms_pruned,gpu_ms_unpruned_hlsl,gpu_ms_pruned_hlsl,"
-                          "max_abs_glsl,max_abs_hlsl,max_abs_cpu\n";
-        nlohmann::ordered_json json = nlohmann::ordered_json::array();
-        for (const PruneBenchScene& s : result.scenes) {
-            std::printf("%s: %s\n", s.name.c_str(), s.notes.c_str());
-            for (const PruneBenchRow& row : s.rows) {
-                print_row(s.name, row);
-                csv += csv_row(s.name, row);
-                json.push_back(json_row(s.name, row));
-            }
-            if (!s.complete) break;
-            std::printf("%-14s median ratio pruned/unpruned over %zu shaders: IR nodes %.3f, "
-                        "SPIR-V %.3f, SPIR-V opt %.3f, "
-                        "GPU time %.3f (GLSL) %.3f (HLSL); max |diff| %.2g\n",
-                        s.name.c_str(), s.rows.size(), s.ir, s.spirv, s.spirv_opt, s.gpu_glsl,
-                        s.gpu_hlsl, s.worst);
-        }
+        std::string csv;
+        nlohmann::ordered_json json;
+        print_tables(result, csv, json);
         if (!result.ok()) {
             std::fprintf(stderr, "watergen: error: %s\n", result.error.c_str());
             return kFailed;

@@ -7,6 +7,35 @@
 
 namespace watergen::cli {
 
+namespace {
+
+void print_render(const VariantRender& r, const RenderReportInfo& info, uint32_t draws,
+                  const std::filesystem::path& dir) {
+    const DeviceInfo& dev = info.device;
+    std::printf("%s on %s (%s), %ux%u, Mesa shader cache %s\n", r.key.c_str(), dev.name.c_str(),
+                dev.driver_info.c_str(), info.width, info.height, info.shader_cache.c_str());
+    std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median "
+                "of %u)\n",
+                "glsl", r.gpu[0].pipeline_ms, r.gpu[0].first_draw_ms, r.gpu[0].steady_draw_ms,
+                draws);
+    std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median "
+                "of %u)\n",
+                "hlsl", r.gpu[1].pipeline_ms, r.gpu[1].first_draw_ms, r.gpu[1].steady_draw_ms,
+                draws);
+    std::printf("  max abs: glsl-hlsl %.3g, gpu-cpu(float) %.3g, gpu-cpu(double) %.3g (over "
+                "pixels finite on "
+                "both sides)\n",
+                r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs, r.glsl_vs_cpu_double.max_abs);
+    std::printf("  NaN/Inf pixels: glsl %llu, hlsl %llu, cpu float %llu\n",
+                static_cast<unsigned long long>(r.glsl_vs_cpu_float.nan_inf_pixels),
+                static_cast<unsigned long long>(r.hlsl_vs_cpu_float.nan_inf_pixels),
+                static_cast<unsigned long long>(r.glsl_vs_cpu_float.reference_nan_inf_pixels));
+    std::printf("  wrote %s/{glsl,hlsl}.png, .pfm, cpu_float.pfm, render.json\n",
+                dir.string().c_str());
+}
+
+} // namespace
+
 Runner add_render_command(CLI::App& app, const Common& common) {
     struct Options {
         Variant variant = default_variant();
@@ -57,27 +86,7 @@ Runner add_render_command(CLI::App& app, const Common& common) {
             std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
             return kFailed;
         }
-        std::printf("%s on %s (%s), %ux%u, Mesa shader cache %s\n", r.key.c_str(), dev.name.c_str(),
-                    dev.driver_info.c_str(), o->width, o->height, cache.c_str());
-        std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median "
-                    "of %u)\n",
-                    "glsl", r.gpu[0].pipeline_ms, r.gpu[0].first_draw_ms, r.gpu[0].steady_draw_ms,
-                    o->draws);
-        std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median "
-                    "of %u)\n",
-                    "hlsl", r.gpu[1].pipeline_ms, r.gpu[1].first_draw_ms, r.gpu[1].steady_draw_ms,
-                    o->draws);
-        std::printf("  max abs: glsl-hlsl %.3g, gpu-cpu(float) %.3g, gpu-cpu(double) %.3g (over "
-                    "pixels finite on "
-                    "both sides)\n",
-                    r.glsl_vs_hlsl.max_abs, r.glsl_vs_cpu_float.max_abs,
-                    r.glsl_vs_cpu_double.max_abs);
-        std::printf("  NaN/Inf pixels: glsl %llu, hlsl %llu, cpu float %llu\n",
-                    static_cast<unsigned long long>(r.glsl_vs_cpu_float.nan_inf_pixels),
-                    static_cast<unsigned long long>(r.hlsl_vs_cpu_float.nan_inf_pixels),
-                    static_cast<unsigned long long>(r.glsl_vs_cpu_float.reference_nan_inf_pixels));
-        std::printf("  wrote %s/{glsl,hlsl}.png, .pfm, cpu_float.pfm, render.json\n",
-                    dir.string().c_str());
+        print_render(r, info, o->draws, dir);
         if (const uint64_t broken = gpu_only_non_finite_pixels(r); broken > 0) {
             std::fprintf(stderr,
                          "watergen: error: %s: %llu pixel%s NaN/Inf on the GPU where the CPU float "

@@ -1,0 +1,12 @@
+// What dsl.cpp and dsl_operators.cpp share. Private to ir/.
+#pragma once
+
+#include "watergen/ir/dsl.h"
+
+namespace watergen {
+
+// A node of type Error: what a builder returns after recording a type error on the graph, so
+// that composition goes on and reports every error at once.
+Expr error_expr(Graph& g);
+
+} // namespace watergen
