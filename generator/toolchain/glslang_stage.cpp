@@ -183,6 +183,7 @@ SpirvResult compile_impl(const CompileRequest& request) {
     // The same message set glslangValidator uses for -V (plus -D for HLSL).
     int flags = EShMsgSpvRules | EShMsgVulkanRules;
     if (hlsl) flags |= EShMsgReadHlsl;
+    if (hlsl && request.hlsl_16bit_types) flags |= EShMsgHlslEnable16BitTypes;
     const auto messages = static_cast<EShMessages>(flags);
 
     const bool parsed = shader.parse(GetDefaultResources(), hlsl ? 100 : 450,

@@ -36,18 +36,6 @@ bool has_instance_extension(const char* layer, const char* name) {
     });
 }
 
-bool has_device_extension(VkPhysicalDevice pd, const char* name) {
-    uint32_t count = 0;
-    if (vkEnumerateDeviceExtensionProperties(pd, nullptr, &count, nullptr) != VK_SUCCESS)
-        return false;
-    std::vector<VkExtensionProperties> exts(count);
-    if (vkEnumerateDeviceExtensionProperties(pd, nullptr, &count, exts.data()) != VK_SUCCESS)
-        return false;
-    return std::any_of(exts.begin(), exts.end(), [&](const VkExtensionProperties& e) {
-        return std::strcmp(e.extensionName, name) == 0;
-    });
-}
-
 const char* severity_name(VkDebugUtilsMessageSeverityFlagBitsEXT s) {
     if (s & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) return "error";
     if (s & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return "warning";
@@ -172,6 +160,18 @@ uint32_t pick_queue_family(VkPhysicalDevice pd, uint64_t* timestamp_mask) {
 }
 
 } // namespace
+
+bool has_device_extension(VkPhysicalDevice pd, const char* name) {
+    uint32_t count = 0;
+    if (vkEnumerateDeviceExtensionProperties(pd, nullptr, &count, nullptr) != VK_SUCCESS)
+        return false;
+    std::vector<VkExtensionProperties> exts(count);
+    if (vkEnumerateDeviceExtensionProperties(pd, nullptr, &count, exts.data()) != VK_SUCCESS)
+        return false;
+    return std::any_of(exts.begin(), exts.end(), [&](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, name) == 0;
+    });
+}
 
 Context::~Context() {
     // After a timeout the device may still be executing a job's commands; destroying the
@@ -303,8 +303,11 @@ void choose_physical_device(Context* ctx, const RunnerOptions& options, uint32_t
     ctx->info.validation_enabled = validation;
 }
 
-// Creates the logical device, its one queue and the command pool.
-void create_device(Context* ctx, const std::vector<const char*>& layers) {
+// Creates the logical device (with the optional features it has), its one queue and the
+// command pool.
+void create_device(Context* ctx, const std::vector<const char*>& layers, uint32_t instance_api) {
+    DeviceFeatures features;
+    choose_device_features(ctx, std::min(instance_api, ctx->info.api_version), &features);
     ctx->queue_family = pick_queue_family(ctx->physical, &ctx->timestamp_mask);
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo qci{};
@@ -316,6 +319,9 @@ void create_device(Context* ctx, const std::vector<const char*>& layers) {
     dci.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
+    dci.pNext = &features.core; // VkPhysicalDeviceFeatures2 in place of pEnabledFeatures
+    dci.enabledExtensionCount = static_cast<uint32_t>(features.extensions.size());
+    dci.ppEnabledExtensionNames = features.extensions.data();
     // Device layers are deprecated and ignored by current loaders; set for old ones.
     dci.enabledLayerCount = static_cast<uint32_t>(layers.size());
     dci.ppEnabledLayerNames = layers.data();
@@ -334,7 +340,7 @@ void build_context(Context* ctx, const RunnerOptions& options) {
     const InstanceLayers setup = choose_layers(options);
     create_instance(ctx, setup, instance_api);
     choose_physical_device(ctx, options, instance_api, setup.validation);
-    create_device(ctx, setup.layers);
+    create_device(ctx, setup.layers, instance_api);
 }
 
 } // namespace

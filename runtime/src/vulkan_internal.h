@@ -60,6 +60,28 @@ struct Context {
 // Builds instance, picks the device, creates device/queue/pool. Throws RunnerError.
 std::unique_ptr<Context> create_context(const RunnerOptions& options);
 
+bool has_device_extension(VkPhysicalDevice pd, const char* name);
+
+// ---- optional device features (vulkan_features.cpp) ----
+
+// The features the runner enables when the device has them: 16-bit shader arithmetic and
+// 16-bit storage-buffer access, so a half-precision probe can run in true binary16. The
+// structs point at each other (pNext), so an instance stays where it was filled.
+struct DeviceFeatures {
+    VkPhysicalDeviceFeatures2 core{};
+    VkPhysicalDevice16BitStorageFeatures storage16{};
+    VkPhysicalDeviceShaderFloat16Int8Features float16_int8{};
+    std::vector<const char*> extensions; // device extensions the chain needs (before 1.2)
+    DeviceFeatures() = default;
+    DeviceFeatures(const DeviceFeatures&) = delete;
+    DeviceFeatures& operator=(const DeviceFeatures&) = delete;
+};
+
+// Queries ctx->physical, keeps only the wanted features it supports (every other feature
+// stays off, as before), and records them in ctx->info. `api` is the version both the
+// instance and the device support.
+void choose_device_features(Context* ctx, uint32_t api, DeviceFeatures* out);
+
 // Reverse-order destruction of everything a job created.
 class Scope {
   public:

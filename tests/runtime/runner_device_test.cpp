@@ -47,6 +47,20 @@ TEST_CASE("runner picks lavapipe and reports it", "[render][device]") {
     CHECK(runner.validation_messages().empty());
 }
 
+TEST_CASE("runner enables lavapipe's 16-bit shader features", "[render][device]") {
+    // Mesa 22.3's lavapipe has float16 / int16 arithmetic and 16-bit storage-buffer access;
+    // the runner enables what the device has, so float16_t shaders run without validation
+    // errors (tests/render/float16_probe_test.cpp measures what that arithmetic does).
+    const DeviceInfo& info = test::shared_runner().device_info();
+    CHECK(info.shader_float16);
+    CHECK(info.shader_int16);
+    CHECK(info.storage_buffer_16bit);
+    CHECK(info.uniform_storage_16bit);
+    // Not asserted: Mesa 22.3 does not promise shaderDenormPreserveFloat16 (false), though
+    // the probe's binary16 subnormals (2^-14 * 0.5, 1023 * 2^-24 * 0.5) do survive.
+    INFO("shaderDenormPreserveFloat16 " << info.float16_denorms_preserved);
+}
+
 TEST_CASE("device overrides select by name substring or fail clearly", "[render][device]") {
     // Validation off: these runners only test selection, and skipping the layer keeps
     // each creation cheap.

@@ -190,3 +190,66 @@ TEST_CASE("toolchain_stops_at_the_failing_stage_and_names_it") {
     CHECK(first_error(out.diagnostics)->file == "water.frag");
     CHECK(first_error(out.diagnostics)->line == 2);
 }
+
+namespace {
+
+// min16float and half arithmetic, as a water shader's precision=half variant would write it.
+const char* const kHalfHlsl = R"(float4 main(float4 v : TEXCOORD0) : SV_Target0 {
+    min16float a = (min16float)v.x;
+    min16float b = (min16float)v.y;
+    half c = (half)v.z;
+    half d = (half)v.w;
+    return float4(a * b, c + d, 0.0, 1.0);
+}
+)";
+
+std::string hlsl_disassembly(const std::string& source, bool sixteen_bit_types) {
+    CompileRequest req;
+    req.language = SourceLanguage::Hlsl;
+    req.stage = ShaderStage::Fragment;
+    req.file_name = "half.hlsl";
+    req.source = source;
+    req.hlsl_16bit_types = sixteen_bit_types;
+    const SpirvResult r = compile_to_spirv(req);
+    for (const auto& d : r.diagnostics)
+        UNSCOPED_INFO(d.message);
+    REQUIRE(r.ok());
+    return disassemble_spirv(r.spirv);
+}
+
+} // namespace
+
+TEST_CASE("hlsl_16bit_types_make_half_and_min16float_binary16") {
+    // Without the option glslang 12 computes both in 32 bits (min16float only as a
+    // RelaxedPrecision hint); with it, both are OpTypeFloat 16 and the arithmetic is 16-bit.
+    const std::string relaxed = hlsl_disassembly(kHalfHlsl, false);
+    CHECK(relaxed.find("OpTypeFloat 16") == std::string::npos);
+    CHECK(relaxed.find("RelaxedPrecision") != std::string::npos);
+    CHECK(relaxed.find("OpFMul %float") != std::string::npos);
+
+    const std::string sixteen = hlsl_disassembly(kHalfHlsl, true);
+    CHECK(sixteen.find("OpCapability Float16") != std::string::npos);
+    CHECK(sixteen.find("%half = OpTypeFloat 16") != std::string::npos);
+    CHECK(sixteen.find("OpFMul %half") != std::string::npos);
+    CHECK(sixteen.find("OpFAdd %half") != std::string::npos);
+}
+
+TEST_CASE("hlsl_float16_t_is_unknown_to_glslang_12") {
+    // dxc spells the type float16_t; glslang 12's HLSL front end does not, with or without
+    // 16-bit types, so emitted HLSL must say `half` (or min16float) to get binary16.
+    for (bool sixteen_bit_types : {false, true}) {
+        CompileRequest req;
+        req.language = SourceLanguage::Hlsl;
+        req.stage = ShaderStage::Fragment;
+        req.file_name = "half.hlsl";
+        req.source = "float4 main(float4 v : TEXCOORD0) : SV_Target0 {\n"
+                     "    float16_t a = (float16_t)v.x;\n    return float4(a, 0.0, 0.0, 1.0);\n}\n";
+        req.hlsl_16bit_types = sixteen_bit_types;
+        const SpirvResult r = compile_to_spirv(req);
+        CHECK_FALSE(r.ok());
+        const Diagnostic* error = first_error(r.diagnostics);
+        REQUIRE(error != nullptr);
+        CHECK(error->line == 2);
+        CHECK(error->message.find("float16_t") != std::string::npos);
+    }
+}

@@ -19,6 +19,11 @@ struct CompileRequest {
     std::string source;
     std::string file_name;            // used as Diagnostic::file
     std::string entry_point = "main"; // HLSL function to compile; GLSL always uses main()
+    // HLSL only (dxc's -enable-16bit-types): `half` and `min16float` become binary16
+    // (OpTypeFloat 16, capability Float16) instead of 32-bit floats (min16float marked
+    // RelaxedPrecision). glslang 12 does not know `float16_t` in HLSL either way. GLSL asks
+    // for 16-bit types itself, with GL_EXT_shader_explicit_arithmetic_types_float16.
+    bool hlsl_16bit_types = false;
 };
 
 struct SpirvResult {

@@ -33,6 +33,13 @@ struct DeviceInfo {
     uint32_t driver_version = 0; // raw, vendor-specific encoding
     uint32_t api_version = 0;    // VK_MAKE_API_VERSION encoding
     bool validation_enabled = false;
+    // 16-bit shader features, enabled on the device whenever it supports them (so a shader
+    // may use float16_t / int16_t arithmetic and 16-bit storage-buffer members).
+    bool shader_float16 = false;            // VkPhysicalDeviceShaderFloat16Int8Features
+    bool shader_int16 = false;              // VkPhysicalDeviceFeatures::shaderInt16
+    bool storage_buffer_16bit = false;      // VkPhysicalDevice16BitStorageFeatures
+    bool uniform_storage_16bit = false;     // ... uniformAndStorageBuffer16BitAccess
+    bool float16_denorms_preserved = false; // FloatControls shaderDenormPreserveFloat16
 };
 
 // "1.3.230" from a VK_MAKE_API_VERSION value.
