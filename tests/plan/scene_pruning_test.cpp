@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "readme_text.h"
 #include "watergen/plan/scene_pruning.h"
 #include "watergen/water/scene_quantities.h"
 
@@ -122,6 +123,15 @@ TEST_CASE("the_full_space_per_example_scene", "[pruning]") {
     CHECK(harbour->variants.size() * 16 == all);
     CHECK(lake->variants.size() * 4 == all);
     CHECK(ocean->variants.size() + ocean->skipped == all);
+    // The README's sentence, as computed (a new choice changes it).
+    const std::string sentence =
+        "Of the " + std::to_string(all) +
+        " variants of the full space (`examples/materials/full.json`), open_ocean reaches " +
+        std::to_string(ocean->variants.size()) + ", harbour_night " +
+        std::to_string(harbour->variants.size()) + " and mountain_lake " +
+        std::to_string(lake->variants.size()) + ";";
+    INFO(sentence);
+    CHECK(test::readme_prose().find(sentence) != std::string::npos);
 }
 
 TEST_CASE("scene_parameter_errors_name_the_scene_file", "[pruning]") {

@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "readme_text.h"
 #include "watergen/plan/variant_space.h"
 
 using namespace watergen;
@@ -19,13 +20,7 @@ size_t combinations(const VariantSpace& s) {
 }
 
 std::string readme() {
-    const char* root = std::getenv("WATERGEN_SOURCE_DIR");
-    REQUIRE(root);
-    std::ifstream in(std::string(root) + "/README.md");
-    REQUIRE(in);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
+    return test::readme_text();
 }
 
 } // namespace
