@@ -7,6 +7,7 @@
 
 #include "watergen/ir/ir_fold.h"
 #include "watergen/ir/uniform_layout.h"
+#include "watergen/water/scene_quantities.h"
 
 namespace watergen {
 
@@ -42,18 +43,22 @@ SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, 
     for (const auto& [name, value] : plan.fixed)
         s.uniforms[name] = value;
 
-    const std::vector<double> level_v = uniform_value(s, m, "water_level");
+    // The parameters the scene's facts bound, by their handles (scene_quantities.h).
+    const std::string level_name(scene_quantity::water_level.parameter);
+    const std::string eye_name(scene_quantity::eye_position.parameter);
+    const std::string sun_name(scene_quantity::sun_direction.parameter);
+    const std::vector<double> level_v = uniform_value(s, m, level_name);
     const double level = level_v.empty() ? 0.0 : level_v[0];
-    std::vector<double> eye = uniform_value(s, m, "eye_position");
-    if (eye.size() == 3 && !plan.fixed.count("eye_position")) {
+    std::vector<double> eye = uniform_value(s, m, eye_name);
+    if (eye.size() == 3 && !plan.fixed.count(eye_name)) {
         const double y =
             std::clamp(eye[1], level + f.camera_height.min, level + f.camera_height.max);
         if (y != eye[1]) log += fmt::format("eye height {:g} -> {:g} m; ", eye[1], y);
         eye[1] = y;
-        s.uniforms["eye_position"] = eye;
+        s.uniforms[eye_name] = eye;
     }
-    std::vector<double> sun = uniform_value(s, m, "sun_direction");
-    if (sun.size() == 3 && !plan.fixed.count("sun_direction")) {
+    std::vector<double> sun = uniform_value(s, m, sun_name);
+    if (sun.size() == 3 && !plan.fixed.count(sun_name)) {
         const double len = std::sqrt(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
         const double elevation = std::asin(std::clamp(-sun[1] / len, -1.0, 1.0)) / kDegrees;
         const double e = std::clamp(elevation, f.sun_elevation.min, f.sun_elevation.max);
@@ -66,7 +71,7 @@ SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, 
             sun = {ax * c, -std::sin(e * kDegrees), az * c};
             log += fmt::format("sun elevation {:.3g} -> {:g} degrees; ", elevation, e);
         }
-        s.uniforms["sun_direction"] = sun;
+        s.uniforms[sun_name] = sun;
     }
     if (auto it = s.textures.find("scene_position"); it != s.textures.end() && eye.size() == 3) {
         size_t moved = 0;

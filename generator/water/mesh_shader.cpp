@@ -4,6 +4,7 @@
 
 #include "watergen/ir/dsl.h"
 #include "watergen/water/nodes/waves.h"
+#include "watergen/water/scene_quantities.h"
 
 namespace watergen {
 
@@ -14,10 +15,14 @@ void build_vertex(Graph& g, const std::string& model) {
     Expr grid = varying(g, "grid_xz", Type::Vec2);
     // Same names and defaults as the post-process pass (water_shader.cpp), so one uniform set
     // drives both.
-    Expr eye =
-        uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""});
-    Expr level = uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""});
-    Expr time = uniform(g, {"time", Type::Float, {0.0}, 0.0, 86400.0, "s", "000", ""});
+    // Bound to the scene quantities as in the water pass, so scene facts would reach them.
+    Expr eye = bind(
+        scene_quantity::eye_position,
+        uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""}));
+    Expr level = bind(scene_quantity::water_level,
+                      uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""}));
+    Expr time = bind(scene_quantity::time,
+                     uniform(g, {"time", Type::Float, {0.0}, 0.0, 86400.0, "s", "000", ""}));
     Expr right =
         uniform(g, {"mesh_camera_right", Type::Vec3, {1.0, 0.0, 0.0}, -1.0, 1.0, "", "", ""});
     Expr up = uniform(g, {"mesh_camera_up", Type::Vec3, {0.0, 1.0, 0.0}, -1.0, 1.0, "", "", ""});
