@@ -8,6 +8,7 @@
 
 #include "folder.h"
 #include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/text.h"
 
 namespace watergen::fold {
 
@@ -31,14 +32,6 @@ bool pure(Op op) {
     default:
         return true;
     }
-}
-
-std::string spell_values(const std::vector<double>& v) {
-    if (v.size() == 1) return fmt::format("{:g}", v[0]);
-    std::string s = "(";
-    for (size_t i = 0; i < v.size(); ++i)
-        s += (i ? ", " : "") + fmt::format("{:g}", v[i]);
-    return s + ")";
 }
 
 // Evaluates one operation on constant arguments with the CPU evaluator, so folding and the

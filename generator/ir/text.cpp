@@ -15,4 +15,12 @@ std::string spell_number(double value) {
     return fmt::format("{}", value);
 }
 
+std::string spell_values(const std::vector<double>& values) {
+    if (values.size() == 1) return fmt::format("{:g}", values[0]);
+    std::string s = "(";
+    for (size_t i = 0; i < values.size(); ++i)
+        s += (i ? ", " : "") + fmt::format("{:g}", values[i]);
+    return s + ")";
+}
+
 } // namespace watergen

@@ -14,16 +14,6 @@ namespace {
 
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 
-// Fact texts keep {:g}: they are part of the manifest, and the example scenes' values print
-// alike either way. Error messages use spell_number (exact, never two values alike).
-std::string spell(const std::vector<double>& v) {
-    if (v.size() == 1) return fmt::format("{:g}", v[0]);
-    std::string s = "(";
-    for (size_t i = 0; i < v.size(); ++i)
-        s += (i ? ", " : "") + fmt::format("{:g}", v[i]);
-    return s + ")";
-}
-
 std::string parameter_of(const Quantity& q) {
     return std::string(q.parameter);
 }
@@ -64,9 +54,9 @@ std::optional<Diagnostic> fix_parameters(const Material& m, ScenePlan& plan) {
                                      name, spell_number(x), spell_number(lo), spell_number(hi),
                                      it->second.unit));
         plan.fixed[name] = value;
-        plan.facts.fixed[name] = {
-            value, plan.facts.add_fact(name + " = " + spell(value) + " (scene " + scene.name + ")",
-                                       w.of(key))};
+        plan.facts.fixed[name] = {value, plan.facts.add_fact(name + " = " + spell_values(value) +
+                                                                 " (scene " + scene.name + ")",
+                                                             w.of(key))};
     }
     return std::nullopt;
 }

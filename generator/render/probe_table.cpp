@@ -21,6 +21,14 @@ std::vector<std::string> split_cells(const std::string& line) {
     return cells;
 }
 
+// A whole cell as a number (strtod), or nullopt when it is empty or has anything after it.
+std::optional<double> parse_number(const std::string& cell) {
+    char* end = nullptr;
+    const double v = std::strtod(cell.c_str(), &end);
+    if (cell.empty() || *end != '\0') return std::nullopt;
+    return v;
+}
+
 bool blank_or_comment(const std::string& line) {
     return line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#';
 }
@@ -92,14 +100,13 @@ std::optional<std::vector<double>> parse_probe_csv(const std::string& text, cons
             return std::nullopt;
         }
         for (size_t i = 0; i < cells.size(); ++i) {
-            char* end = nullptr;
-            const double v = std::strtod(cells[i].c_str(), &end);
-            if (cells[i].empty() || *end != '\0') {
+            const auto v = parse_number(cells[i]);
+            if (!v) {
                 error = fmt::format("{}:{}: column '{}': expected a number, got '{}'", path,
                                     line_no, columns[i], cells[i]);
                 return std::nullopt;
             }
-            values.push_back(v);
+            values.push_back(*v);
         }
     }
     if (!header) {
@@ -195,12 +202,12 @@ parse_probe_parameters(const std::vector<std::string>& specs, std::string& error
         std::vector<double> values;
         std::stringstream cells(spec.substr(eq + 1));
         for (std::string cell; std::getline(cells, cell, ',');) {
-            char* end = nullptr;
-            values.push_back(std::strtod(cell.c_str(), &end));
-            if (cell.empty() || *end != '\0') {
+            const auto v = parse_number(cell);
+            if (!v) {
                 error = "--param '" + spec + "': '" + cell + "' is not a number";
                 return std::nullopt;
             }
+            values.push_back(*v);
         }
         out[spec.substr(0, eq)] = values;
     }

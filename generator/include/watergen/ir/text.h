@@ -23,4 +23,8 @@ std::string join(const Items& items, Name name, const std::string& separator = "
 // messages such as "min 4.0000001 is above max 4" never round two different numbers alike.
 std::string spell_number(double value);
 
+// "1.5" or "(0, 8, -30)" with 6 significant digits ({:g}): values as fact texts and fold
+// reports print them (the manifest holds these texts, so their form is stable).
+std::string spell_values(const std::vector<double>& values);
+
 } // namespace watergen
