@@ -13,7 +13,7 @@ Runner add_emit_command(CLI::App& app, const Common& common) {
     struct Options {
         Variant variant = default_variant();
         std::string preset;
-        bool covering = false;
+        bool covering = false, strict_half = false;
         std::string out = "out/emit";
     };
     auto o = std::make_shared<Options>();
@@ -22,6 +22,9 @@ Runner add_emit_command(CLI::App& app, const Common& common) {
         "--covering", o->covering,
         "emit the pairwise covering set: every pair of choices on two axes in at least one variant "
         "(axis options are ignored)");
+    app.add_flag("--strict-half", o->strict_half,
+                 "write a half variant's relaxed math in explicit 16-bit types (GLSL float16_t, "
+                 "HLSL half) instead of mediump / min16float hints; needs shaderFloat16");
     app.add_option("--out", o->out,
                    "output directory; each variant goes to <out>/<variant>/ (default out/emit)");
     return [o, &common]() {
@@ -32,7 +35,7 @@ Runner add_emit_command(CLI::App& app, const Common& common) {
             o->covering ? pairwise_covering_variants() : std::vector<Variant>{o->variant};
         int failed = 0;
         for (const Variant& v : variants) {
-            const VariantBuild build = build_variant(v, preset);
+            const VariantBuild build = build_variant(v, preset, EmitOptions{o->strict_half});
             print_diagnostics(build.diagnostics, common);
             if (!build.ok()) {
                 std::fprintf(stderr, "watergen: error: %s failed; nothing written for it\n",

@@ -30,12 +30,20 @@ void print_summary(const ProbeSummary& s) {
                 "double| %.3g "
                 "(over values finite on both sides)\n",
                 s.max_gpu_vs_cpu_float, s.max_gpu_vs_cpu_double, s.max_half_vs_double);
+    if (s.gpu_vs_cpu_half.values > 0) {
+        const HalfAgreement& a = s.gpu_vs_cpu_half;
+        const double n = static_cast<double>(a.values);
+        std::printf("  strict half, gpu vs cpu half: %.2f%% of values equal, %.2f%% within 1 ulp, "
+                    "max %lld ulps, max |gpu - cpu half| %.3g\n",
+                    100.0 * a.equal / n, 100.0 * a.within_1 / n, static_cast<long long>(a.max_ulps),
+                    s.max_gpu_vs_cpu_half);
+    }
 }
 
 struct ProbeOptions {
     std::string node, in, out, language = "glsl";
     std::vector<std::string> params;
-    bool allow_out_of_range = false;
+    bool allow_out_of_range = false, strict_half = false;
     RunnerSetup runner;
 };
 
@@ -51,9 +59,14 @@ int run_probe_command(const ProbeOptions& o, const Common& common) {
     std::string cache;
     auto runner = create_runner(o.runner, &cache);
     if (!runner) return kNoDevice;
+    if (o.strict_half && !runner->device_info().shader_float16) {
+        std::fprintf(stderr, "watergen: error: %s has no shaderFloat16; --strict-half needs it\n",
+                     runner->device_info().name.c_str());
+        return kNoDevice;
+    }
     const ProbeRun run =
         run_probe(*runner, g, o.language == "hlsl" ? Language::Hlsl : Language::Glsl, probe->tuples,
-                  probe->params, probe_scene_textures());
+                  probe->params, probe_scene_textures(), EmitOptions{o.strict_half});
     print_diagnostics(run.diagnostics, common);
     if (!run.ok()) {
         if (!run.error.empty()) std::fprintf(stderr, "watergen: error: %s\n", run.error.c_str());
@@ -64,10 +77,11 @@ int run_probe_command(const ProbeOptions& o, const Common& common) {
         std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
         return kFailed;
     }
-    std::printf("%s (%s path) on %s: %zu tuples, dispatch %.2f ms (pipeline %.2f ms, Mesa shader "
-                "cache %s)\n",
-                o.node.c_str(), o.language.c_str(), runner->device_info().name.c_str(), run.tuples,
-                run.dispatch_ms, run.pipeline_ms, cache.c_str());
+    std::printf("%s (%s path%s) on %s: %zu tuples, dispatch %.2f ms (pipeline %.2f ms, Mesa "
+                "shader cache %s)\n",
+                o.node.c_str(), o.language.c_str(), o.strict_half ? ", strict half" : "",
+                runner->device_info().name.c_str(), run.tuples, run.dispatch_ms, run.pipeline_ms,
+                cache.c_str());
     for (const auto& t : g.textures()) {
         const TextureData& data = probe_scene_textures().at(t.name);
         std::printf("  texture %s: %ux%u%s from the synthetic scene, linear, clamp to edge\n",
@@ -78,12 +92,11 @@ int run_probe_command(const ProbeOptions& o, const Common& common) {
     std::printf("  wrote %s\n", o.out.c_str());
     if (!summary.gpu_stable()) {
         std::fprintf(stderr,
-                     "watergen: error: %s: %zu tuple%s non-finite on the GPU where the CPU float "
-                     "result is finite "
-                     "(first: data row %zu)\n",
+                     "watergen: error: %s: %zu tuple%s non-finite on the GPU where the CPU %s "
+                     "result is finite (first: data row %zu)\n",
                      o.node.c_str(), summary.gpu_only_non_finite,
                      summary.gpu_only_non_finite == 1 ? " is" : "s are",
-                     summary.first_gpu_only_tuple + 1);
+                     o.strict_half ? "half" : "float", summary.first_gpu_only_tuple + 1);
         return kFailed;
     }
     return kOk;
@@ -118,6 +131,9 @@ Runner add_probe_command(CLI::App& app, const Common& common) {
                  "pass --param values outside the declared range (or non-finite) to GPU and CPU "
                  "unchecked, for "
                  "stress tests");
+    app.add_flag("--strict-half", o->strict_half,
+                 "run the node in 16-bit arithmetic on the GPU (GLSL float16_t, HLSL half) and "
+                 "compare with the CPU half evaluator, in binary16 ulps");
     add_runner_options(app, o->runner);
     return [o, &common]() { return run_probe_command(*o, common); };
 }

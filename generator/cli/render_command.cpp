@@ -34,18 +34,101 @@ void print_render(const VariantRender& r, const RenderReportInfo& info, uint32_t
                 dir.string().c_str());
 }
 
+void print_stats_line(const char* label, const ImageErrorStats& s) {
+    std::printf("  %-22s max abs %10.3g   dE00 mean %7.4f   p99 %7.4f   NaN/Inf pixels %llu\n",
+                label, s.max_abs, s.ciede2000_mean, s.ciede2000_p99,
+                static_cast<unsigned long long>(s.nan_inf_pixels));
+}
+
+void print_half_render(const HalfRender& h, const RenderReportInfo& info,
+                       const std::filesystem::path& dir) {
+    const DeviceInfo& dev = info.device;
+    std::printf("%s, strict half (16-bit arithmetic) on %s (%s), %ux%u\n", h.key.c_str(),
+                dev.name.c_str(), dev.driver_info.c_str(), info.width, info.height);
+    const char* names[2] = {"glsl", "hlsl"};
+    for (int i = 0; i < 2; ++i)
+        std::printf("  %-5s first draw %8.2f ms   steady draw %7.3f ms\n", names[i],
+                    h.strict.gpu[i].first_draw_ms, h.strict.gpu[i].steady_draw_ms);
+    std::printf("  %-5s first draw %8.2f ms   steady draw %7.3f ms (precision=full)\n", "glsl",
+                h.full.gpu[0].first_draw_ms, h.full.gpu[0].steady_draw_ms);
+    print_stats_line("glsl vs hlsl", h.strict.glsl_vs_hlsl);
+    for (int i = 0; i < 2; ++i) {
+        const HalfAgreement& u = h.ulps_vs_cpu_half[i];
+        const double n = static_cast<double>(std::max<uint64_t>(u.values, 1));
+        std::printf("  %s vs cpu half: %.2f%% of channels equal, %.2f%% within 1 ulp, max %lld "
+                    "ulps at (%zu, %zu), max abs %.3g\n",
+                    names[i], 100.0 * u.equal / n, 100.0 * u.within_1 / n,
+                    static_cast<long long>(u.max_ulps), u.max_index % info.width,
+                    u.max_index / info.width, h.vs_cpu_half[i].max_abs);
+    }
+    print_stats_line("glsl vs full precision", h.vs_full[0]);
+    print_stats_line("hlsl vs full precision", h.vs_full[1]);
+    print_stats_line("cpu half vs full", h.cpu_half_vs_full);
+    std::printf("  wrote %s/{glsl,hlsl}.png, .pfm, cpu_half.pfm, full_precision.pfm, "
+                "render.json\n",
+                dir.string().c_str());
+}
+
+struct RenderOptions {
+    Variant variant = default_variant();
+    std::string preset;
+    uint32_t width = 256, height = 256, draws = 10;
+    double exposure = 1.0;
+    bool strict_half = false;
+    std::string out = "out/render";
+    RunnerSetup runner;
+};
+
+int run_strict_half(const RenderOptions& o, const Preset* preset, const Common& common) {
+    if (o.variant.choice("precision") != "half") {
+        std::fprintf(stderr, "watergen: error: --strict-half renders a precision=half variant; "
+                             "add --precision half\n");
+        return kUsage;
+    }
+    std::string cache;
+    auto runner = create_runner(o.runner, &cache);
+    if (!runner) return kNoDevice;
+    if (!runner->device_info().shader_float16) {
+        std::fprintf(stderr, "watergen: error: %s has no shaderFloat16; strict half needs it\n",
+                     runner->device_info().name.c_str());
+        return kNoDevice;
+    }
+    SyntheticScene scene = make_synthetic_scene(o.width, o.height);
+    if (preset)
+        for (const auto& [name, values] : preset->values)
+            scene.uniforms[name] = values;
+    const HalfRender h =
+        render_strict_half(*runner, o.variant, preset, scene, {o.width, o.height, o.draws});
+    print_diagnostics(h.diagnostics, common);
+    if (!h.ok()) {
+        std::fprintf(stderr, "watergen: error: %s: %s\n", h.key.c_str(), h.error.c_str());
+        return kFailed;
+    }
+    const std::filesystem::path dir = std::filesystem::path(o.out) / o.variant.file_stem();
+    const RenderReportInfo info{o.preset, cache,    runner->device_info(),
+                                o.width,  o.height, o.exposure};
+    if (auto e = write_half_render_report(dir, h, info)) {
+        std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
+        return kFailed;
+    }
+    print_half_render(h, info, dir);
+    const uint64_t broken = std::max(h.vs_cpu_half[0].nan_inf_where_reference_finite,
+                                     h.vs_cpu_half[1].nan_inf_where_reference_finite);
+    if (broken > 0) {
+        std::fprintf(stderr,
+                     "watergen: error: %s: %llu pixel%s NaN/Inf in 16-bit arithmetic on the GPU "
+                     "where the CPU half image is finite\n",
+                     h.key.c_str(), static_cast<unsigned long long>(broken),
+                     broken == 1 ? " is" : "s are");
+        return kFailed;
+    }
+    return kOk;
+}
+
 } // namespace
 
 Runner add_render_command(CLI::App& app, const Common& common) {
-    struct Options {
-        Variant variant = default_variant();
-        std::string preset;
-        uint32_t width = 256, height = 256, draws = 10;
-        double exposure = 1.0;
-        std::string out = "out/render";
-        RunnerSetup runner;
-    };
-    auto o = std::make_shared<Options>();
+    auto o = std::make_shared<RenderOptions>();
     add_variant_options(app, o->variant, o->preset);
     app.add_option("--width", o->width, "image width in pixels (default 256)")
         ->check(CLI::Range(8, 4096));
@@ -57,12 +140,17 @@ Runner add_render_command(CLI::App& app, const Common& common) {
     app.add_option("--exposure", o->exposure,
                    "exposure applied before the sRGB PNG encoding (default 1)")
         ->check(finite_range(1e-6, 1e6));
+    app.add_flag("--strict-half", o->strict_half,
+                 "render a precision=half variant in 16-bit arithmetic (GLSL float16_t, HLSL "
+                 "half) and compare it with the CPU half evaluator and with the variant at "
+                 "precision=full");
     app.add_option("--out", o->out,
                    "output directory; files go to <out>/<variant>/ (default out/render)");
     add_runner_options(app, o->runner);
     return [o, &common]() {
         const Preset* preset = nullptr;
         if (!resolve_variant(o->variant, o->preset, &preset)) return kUsage;
+        if (o->strict_half) return run_strict_half(*o, preset, common);
         const VariantBuild build = build_variant(o->variant, preset);
         print_diagnostics(build.diagnostics, common);
         if (!build.ok()) return kFailed;

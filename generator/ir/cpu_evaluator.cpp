@@ -32,6 +32,45 @@ double round_to_half(double v) {
     return std::copysign(std::nearbyint(a / ulp) * ulp, v);
 }
 
+namespace {
+
+// Position of a binary16 value on the number line in ulps: the count of binary16 values between
+// +0 and it (negative below zero), infinity one past 65504.
+int64_t half_ordinal(double v) {
+    const double a = std::fabs(round_to_half(v));
+    int64_t n = 0;
+    if (std::isinf(a)) {
+        n = 31 * 1024; // exponents 0..30 hold 1024 values each
+    } else if (a < 0x1p-14) {
+        n = static_cast<int64_t>(a / 0x1p-24); // subnormals: spacing 2^-24
+    } else {
+        int e = 0;
+        const double m = std::frexp(a, &e); // a = m 2^e, m in [0.5, 1)
+        n = int64_t(e + 14) * 1024 + static_cast<int64_t>((m * 2 - 1) * 1024);
+    }
+    return std::signbit(v) ? -n : n;
+}
+
+} // namespace
+
+int64_t half_ulp_distance(double a, double b) {
+    if (std::isnan(a) || std::isnan(b)) return -1;
+    const int64_t d = half_ordinal(a) - half_ordinal(b);
+    return d < 0 ? -d : d;
+}
+
+void HalfAgreement::add(double test, double reference, size_t index) {
+    if (!std::isfinite(test) || !std::isfinite(reference)) return;
+    const int64_t d = half_ulp_distance(test, reference);
+    ++values;
+    equal += d == 0;
+    within_1 += d <= 1;
+    if (d > max_ulps) {
+        max_ulps = d;
+        max_index = index;
+    }
+}
+
 double round_to(double v, EvalPrecision p) {
     switch (p) {
     case EvalPrecision::Double:
@@ -78,14 +117,34 @@ class BlockEvaluator {
   private:
     // Component c of argument i at lane l, broadcasting scalars.
     double arg(const Node& n, size_t i, size_t l, int c) const {
-        const uint32_t a = n.args[i];
-        const int comps = component_count(g_.node(a).type);
-        return values_[a][l * comps + (comps == 1 ? 0 : c)];
+        const int comps = component_count(g_.node(n.args[i]).type);
+        return (*sources_[i])[l * comps + (comps == 1 ? 0 : c)];
+    }
+
+    // Where arg() reads each argument of `n`. In half mode a relaxed node reads its 32-bit
+    // arguments (parameters, inputs, full-precision islands) converted to binary16, as the GPU
+    // converts them where 16-bit arithmetic begins; a texture sample keeps 32-bit coordinates.
+    void bind_arguments(const Node& n) {
+        sources_.resize(n.args.size());
+        narrowed_.resize(n.args.size());
+        const bool narrow =
+            p_ == EvalPrecision::Half && n.relaxed && n.op != Op::Sample && n.op != Op::SampleLevel;
+        for (size_t i = 0; i < n.args.size(); ++i) {
+            const Node& a = g_.node(n.args[i]);
+            sources_[i] = &values_[n.args[i]];
+            if (!narrow || a.relaxed || !(is_float_numeric(a.type) || a.type == Type::Mat3))
+                continue;
+            narrowed_[i] = values_[n.args[i]];
+            for (double& v : narrowed_[i])
+                v = round_to_half(v);
+            sources_[i] = &narrowed_[i];
+        }
     }
 
     bool compute(uint32_t id, const Node& n, int comps, size_t begin, std::vector<double>& out,
                  std::string& error) {
         (void)id;
+        bind_arguments(n);
         auto each = [&](auto f) {
             for (size_t l = 0; l < n_; ++l)
                 for (int c = 0; c < comps; ++c)
@@ -94,11 +153,18 @@ class BlockEvaluator {
         auto a0 = [&](size_t l, int c) { return arg(n, 0, l, c); };
         auto a1 = [&](size_t l, int c) { return arg(n, 1, l, c); };
         auto a2 = [&](size_t l, int c) { return arg(n, 2, l, c); };
+        // Half mode computes a relaxed node in binary16 steps, as a GPU does in 16-bit
+        // arithmetic: r() rounds each intermediate of a composite built-in (dot, normalize,
+        // mix, smoothstep, ...) in the order lavapipe's lowering uses (measured per operation
+        // by tests/render/strict_half_ops_test.cpp); elsewhere r() is the identity and a
+        // node is rounded once, after it is computed exactly.
+        const bool stepwise = p_ == EvalPrecision::Half && n.relaxed;
+        auto r = [stepwise](double v) { return stepwise ? round_to_half(v) : v; };
         auto reduce_dot = [&](size_t l, size_t i, size_t j) {
             const int k = component_count(g_.node(n.args[i]).type);
-            double s = 0;
-            for (int c = 0; c < k; ++c)
-                s += arg(n, i, l, c) * arg(n, j, l, c);
+            double s = r(arg(n, i, l, 0) * arg(n, j, l, 0));
+            for (int c = 1; c < k; ++c)
+                s = r(s + r(arg(n, i, l, c) * arg(n, j, l, c)));
             return s;
         };
         switch (n.op) {
@@ -204,16 +270,20 @@ class BlockEvaluator {
             each([&](size_t l, int) { return std::sqrt(reduce_dot(l, 0, 0)); });
             return true;
         case Op::Normalize:
-            each([&](size_t l, int c) { return a0(l, c) / std::sqrt(reduce_dot(l, 0, 0)); });
+            each([&](size_t l, int c) { return a0(l, c) / r(std::sqrt(reduce_dot(l, 0, 0))); });
             return true;
         case Op::Cross:
             each([&](size_t l, int c) {
                 const int i = (c + 1) % 3, j = (c + 2) % 3;
-                return a0(l, i) * a1(l, j) - a0(l, j) * a1(l, i);
+                return r(a0(l, i) * a1(l, j)) - r(a0(l, j) * a1(l, i));
             });
             return true;
         case Op::Mix:
-            each([&](size_t l, int c) { return a0(l, c) + (a1(l, c) - a0(l, c)) * a2(l, c); });
+            each([&](size_t l, int c) {
+                // x + (y - x) a exactly; in binary16 steps x (1 - a) + y a, as lavapipe does.
+                if (!stepwise) return a0(l, c) + (a1(l, c) - a0(l, c)) * a2(l, c);
+                return r(a0(l, c) * r(1.0 - a2(l, c))) + r(a1(l, c) * a2(l, c));
+            });
             return true;
         // GPUs return the non-NaN operand of min/max (IEEE minNum); fmin/fmax do the same.
         case Op::Clamp:
@@ -231,22 +301,32 @@ class BlockEvaluator {
             each([&](size_t l, int c) { return std::fmax(a0(l, c), a1(l, c)); });
             return true;
         case Op::Pow:
-            each([&](size_t l, int c) { return std::pow(a0(l, c), a1(l, c)); });
+            // Binary16 steps: exp2(y log2(x)), exp2(x log2(e)), log2(x) ln(2), 1 / sqrt(x).
+            each([&](size_t l, int c) {
+                if (!stepwise) return std::pow(a0(l, c), a1(l, c));
+                return std::exp2(r(a1(l, c) * r(std::log2(a0(l, c)))));
+            });
             return true;
         case Op::Exp:
-            each([&](size_t l, int c) { return std::exp(a0(l, c)); });
+            each([&](size_t l, int c) {
+                return stepwise ? std::exp2(r(a0(l, c) * r(1.4426950408889634)))
+                                : std::exp(a0(l, c));
+            });
             return true;
         case Op::Exp2:
             each([&](size_t l, int c) { return std::exp2(a0(l, c)); });
             return true;
         case Op::Log:
-            each([&](size_t l, int c) { return std::log(a0(l, c)); });
+            each([&](size_t l, int c) {
+                return stepwise ? r(std::log2(a0(l, c))) * r(0.69314718055994531)
+                                : std::log(a0(l, c));
+            });
             return true;
         case Op::Sqrt:
             each([&](size_t l, int c) { return std::sqrt(a0(l, c)); });
             return true;
         case Op::Rsqrt:
-            each([&](size_t l, int c) { return 1.0 / std::sqrt(a0(l, c)); });
+            each([&](size_t l, int c) { return 1.0 / r(std::sqrt(a0(l, c))); });
             return true;
         case Op::Abs:
             each([&](size_t l, int c) { return std::fabs(a0(l, c)); });
@@ -274,7 +354,7 @@ class BlockEvaluator {
             return true;
         case Op::Mod:
             each([&](size_t l, int c) {
-                return a0(l, c) - a1(l, c) * std::floor(a0(l, c) / a1(l, c));
+                return a0(l, c) - r(a1(l, c) * std::floor(r(a0(l, c) / a1(l, c))));
             });
             return true;
         case Op::Step:
@@ -282,26 +362,37 @@ class BlockEvaluator {
             return true;
         case Op::Smoothstep:
             each([&](size_t l, int c) {
-                const double t =
-                    std::fmin(std::fmax((a2(l, c) - a0(l, c)) / (a1(l, c) - a0(l, c)), 0.0), 1.0);
-                return t * t * (3.0 - 2.0 * t);
+                const double t = std::fmin(
+                    std::fmax(r(r(a2(l, c) - a0(l, c)) / r(a1(l, c) - a0(l, c))), 0.0), 1.0);
+                return stepwise ? t * r(t * r(3.0 - r(2.0 * t))) : t * t * (3.0 - 2.0 * t);
             });
             return true;
         case Op::Reflect:
-            each([&](size_t l, int c) { return a0(l, c) - 2.0 * reduce_dot(l, 1, 0) * a1(l, c); });
+            each([&](size_t l, int c) {
+                return a0(l, c) - r(2.0 * r(reduce_dot(l, 1, 0) * a1(l, c)));
+            });
             return true;
         case Op::Refract:
             each([&](size_t l, int c) {
                 const double ni = reduce_dot(l, 1, 0), eta = a2(l, 0);
-                const double k = 1.0 - eta * eta * (1.0 - ni * ni);
-                return k < 0 ? 0.0 : eta * a0(l, c) - (eta * ni + std::sqrt(k)) * a1(l, c);
+                const double k = stepwise ? r(1.0 - r(eta * r(eta * r(1.0 - r(ni * ni)))))
+                                          : 1.0 - eta * eta * (1.0 - ni * ni);
+                if (k < 0) return 0.0;
+                return r(eta * a0(l, c)) - r(r(r(eta * ni) + r(std::sqrt(k))) * a1(l, c));
             });
             return true;
         case Op::MatMulVec:
-            each([&](size_t l, int r) {
+            each([&](size_t l, int row) {
                 double s = 0;
-                for (int k = 0; k < 3; ++k)
-                    s += arg(n, 0, l, k * 3 + r) * arg(n, 1, l, k);
+                if (!stepwise) {
+                    for (int k = 0; k < 3; ++k)
+                        s += arg(n, 0, l, k * 3 + row) * arg(n, 1, l, k);
+                    return s;
+                }
+                // Column 2 first: the order of lavapipe's binary16 steps.
+                s = r(arg(n, 0, l, 6 + row) * arg(n, 1, l, 2));
+                for (int k = 1; k >= 0; --k)
+                    s = r(s + r(arg(n, 0, l, k * 3 + row) * arg(n, 1, l, k)));
                 return s;
             });
             return true;
@@ -361,6 +452,8 @@ class BlockEvaluator {
     EvalPrecision p_;
     std::vector<std::vector<double>> values_;
     size_t n_ = 0;
+    std::vector<const std::vector<double>*> sources_; // of the node being computed
+    std::vector<std::vector<double>> narrowed_;
 };
 
 std::optional<uint32_t> find_output(const Graph& g, const std::string& name) {

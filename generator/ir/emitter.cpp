@@ -54,8 +54,23 @@ class FragmentWriter {
   public:
     // `compute`: written for a compute stage (the probe), which has neither implicit-LOD sampling
     // nor derivatives: samples read level 0, ddx / ddy become quad differences (emit_probe).
-    FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool compute = false)
-        : g_(g), syntax_(syntax), compute_(compute) {}
+    // `strict_half`: relaxed float nodes are written in explicit 16-bit types (EmitOptions).
+    FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool compute = false,
+                   bool strict_half = false)
+        : g_(g), syntax_(syntax), compute_(compute), strict_half_(strict_half) {}
+
+    // Whether node `id` is spelled in a binary16 type: strict half, relaxed, and a float.
+    bool is_half(uint32_t id) const {
+        const Node& n = g_.node(id);
+        return strict_half_ && n.relaxed && (is_float_numeric(n.type) || n.type == Type::Mat3);
+    }
+
+    // Whether any live node is spelled in a binary16 type (the shader needs the extension).
+    bool writes_half() const {
+        for (uint32_t id : g_.live_nodes())
+            if (is_half(id)) return true;
+        return false;
+    }
 
     // Lines of the body; results[i] spells output i.
     std::vector<Line> body(std::vector<std::string>& results, std::set<Op>& used_ops) {
@@ -97,12 +112,14 @@ class FragmentWriter {
                     {syntax_.comment(n.origin.empty() ? "(unnamed)" : n.origin), n.origin});
                 current_origin = n.origin;
             }
-            lines.push_back({syntax_.temp_type(n.type, n.relaxed) + " " + it->second + " = " +
-                                 strip_outer(spell(id, true)) + ";",
-                             n.origin});
+            const std::string type = !strict_half_ ? syntax_.temp_type(n.type, n.relaxed)
+                                     : is_half(id) ? syntax_.half_type(n.type)
+                                                   : syntax_.type(n.type);
+            lines.push_back(
+                {type + " " + it->second + " = " + strip_outer(spell(id)) + ";", n.origin});
         }
         for (const auto& out : g_.outputs())
-            results.push_back(strip_outer(expr(out.node)));
+            results.push_back(strip_outer(expr_as(out.node, false)));
         return lines;
     }
 
@@ -132,21 +149,43 @@ class FragmentWriter {
 
     std::string expr(uint32_t id) {
         if (auto it = temp_.find(id); it != temp_.end()) return it->second;
-        return spell(id, false);
+        return spell(id);
     }
 
-    // The node's own operation with its arguments spelled (inline or by temporary name).
-    std::string spell(uint32_t id, bool) {
+    // Node `id` at 16 bits (`half`) or 32: converted where its own width differs.
+    std::string expr_as(uint32_t id, bool half) {
+        const Type t = g_.node(id).type;
+        if (is_half(id) == half || !(is_float_numeric(t) || t == Type::Mat3)) return expr(id);
+        return syntax_.convert(t, half, strip_outer(expr(id)));
+    }
+
+    // The node's own operation with its arguments spelled (inline or by temporary name). In a
+    // strict-half shader the arguments take the node's width, except the coordinates and level
+    // of a texture sample: sampling is 32-bit and its result is converted.
+    std::string spell(uint32_t id) {
+        const Node& n = g_.node(id);
+        const bool half = is_half(id);
+        const bool sample = n.op == Op::Sample || n.op == Op::SampleLevel;
+        if (half && sample) {
+            const bool compute_sample = compute_ && n.op == Op::Sample;
+            return syntax_.convert(n.type, true, strip_outer(spell_at(id, false, compute_sample)));
+        }
+        return spell_at(id, half, compute_ && n.op == Op::Sample);
+    }
+
+    // `half`: the width of the arguments and the result. `level0`: a compute stage's sample,
+    // which reads level 0 explicitly.
+    std::string spell_at(uint32_t id, bool half, bool level0) {
         const Node& n = g_.node(id);
         std::vector<std::string> a;
         std::vector<Type> types;
         for (uint32_t arg : n.args) {
-            a.push_back(expr(arg));
+            a.push_back(expr_as(arg, half));
             types.push_back(g_.node(arg).type);
         }
         switch (n.op) {
         case Op::Constant:
-            return syntax_.constant(n);
+            return half ? syntax_.convert(n.type, true, syntax_.constant(n)) : syntax_.constant(n);
         case Op::Uniform:
             return syntax_.uniform_ref(n.name);
         case Op::Varying:
@@ -165,16 +204,16 @@ class FragmentWriter {
             return a[0] + "." + s;
         }
         case Op::Construct:
-            return syntax_.construct(n.type, a);
+            return syntax_.construct(n.type, a, half);
         case Op::Splat:
-            return syntax_.splat(n.type, strip_outer(a[0]));
+            return syntax_.splat(n.type, strip_outer(a[0]), half);
         default:
             break;
         }
         if (compute_ && (n.op == Op::Ddx || n.op == Op::Ddy))
             return fmt::format("probe_quad_difference({}, probe_lane, {}u)", strip_outer(a[0]),
                                n.op == Op::Ddx ? 1 : 2);
-        if (compute_ && n.op == Op::Sample) {
+        if (level0) {
             // One mip level and the same filter for magnification and minification: level 0 is
             // what the fragment stage's implicit LOD samples too.
             a.push_back(syntax_.literal(0.0));
@@ -186,12 +225,13 @@ class FragmentWriter {
         if (is_infix(n.op)) return "(" + a[0] + " " + op_name(n.op) + " " + a[1] + ")";
         for (auto& s : a)
             s = strip_outer(s);
-        return syntax_.call(n.op, n.type, a, types);
+        return syntax_.call(n.op, n.type, a, types, half);
     }
 
     const Graph& g_;
     const GlslSyntax& syntax_;
     bool compute_ = false;
+    bool strict_half_ = false;
     std::map<uint32_t, std::string> temp_;
 };
 
@@ -260,7 +300,8 @@ std::vector<Line> as_lines(const std::vector<std::string>& texts) {
 } // namespace
 
 EmittedShader emit_fragment(const Graph& g, Language language, const std::string& file_name,
-                            const std::string& variant_key, Diagnostics& diagnostics) {
+                            const std::string& variant_key, Diagnostics& diagnostics,
+                            const EmitOptions& options) {
     EmittedShader out;
     out.language = language;
     out.stage = ShaderStage::Fragment;
@@ -274,13 +315,14 @@ EmittedShader emit_fragment(const Graph& g, Language language, const std::string
     out.interface = interface_of(g, diagnostics);
     std::vector<std::string> results;
     std::set<Op> used_ops;
-    FragmentWriter writer(g, syntax);
+    FragmentWriter writer(g, syntax, false, options.strict_half);
     std::vector<Line> body = writer.body(results, used_ops);
     fill(out,
          template_text(language == Language::Glsl ? "glsl/fragment.glsl" : "hlsl/fragment.hlsl"),
          {{"stamp", {{stamp_text(variant_key), ""}}},
+          {"extensions", as_lines(syntax.extensions(writer.writes_half()))},
           {"declarations", as_lines(syntax.declarations(out.interface))},
-          {"prelude", as_lines(syntax.prelude(used_ops))},
+          {"prelude", as_lines(syntax.prelude(used_ops, options.strict_half))},
           {"inputs", {{syntax.entry_inputs(out.interface), ""}}},
           {"body", body},
           {"result", {{results.front(), ""}}}});
@@ -306,15 +348,19 @@ ProbeLayout probe_layout(const Graph& g) {
 }
 
 EmittedShader emit_probe(const Graph& g, Language language, const std::string& file_name,
-                         const std::string& variant_key, Diagnostics& diagnostics) {
+                         const std::string& variant_key, Diagnostics& diagnostics,
+                         const EmitOptions& options) {
     EmittedShader out;
     out.language = language;
     out.stage = ShaderStage::Compute;
     out.file_name = file_name;
-    std::set<Type> differenced; // types of ddx / ddy arguments
+    const GlslSyntax& syntax = syntax_for(language);
+    FragmentWriter writer(g, syntax, true, options.strict_half);
+    std::set<std::string> differenced; // spelled types of ddx / ddy arguments
     for (uint32_t id : g.live_nodes()) {
         const Node& n = g.node(id);
-        if (n.op == Op::Ddx || n.op == Op::Ddy) differenced.insert(n.type);
+        if (n.op == Op::Ddx || n.op == Op::Ddy)
+            differenced.insert(writer.is_half(id) ? syntax.half_type(n.type) : syntax.type(n.type));
     }
     for (const auto& o : g.outputs())
         if (!is_float_numeric(g.node(o.node).type))
@@ -325,7 +371,6 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
         diagnostics.push_back({Severity::Error, file_name, 0, 0, "", "probe graph has no output"});
     if (has_errors(diagnostics)) return out;
 
-    const GlslSyntax& syntax = syntax_for(language);
     out.interface = interface_of(g, diagnostics);
     out.interface.varyings.clear(); // probe inputs come from the buffer, not the rasteriser
     if (!out.interface.textures.empty() &&
@@ -340,9 +385,8 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
     const ProbeLayout layout = probe_layout(g);
     std::vector<std::string> results;
     std::set<Op> used_ops;
-    FragmentWriter writer(g, syntax, true);
     std::vector<Line> body = writer.body(results, used_ops);
-    std::vector<std::string> prelude = syntax.prelude(used_ops);
+    std::vector<std::string> prelude = syntax.prelude(used_ops, options.strict_half);
     if (!differenced.empty()) {
         const std::vector<std::string> helpers = syntax.quad_difference_helpers(differenced);
         prelude.insert(prelude.end(), helpers.begin(), helpers.end());
@@ -375,6 +419,7 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
         out,
         template_text(language == Language::Glsl ? "glsl/probe.comp.glsl" : "hlsl/probe.comp.hlsl"),
         {{"stamp", {{stamp_text(variant_key), ""}}},
+         {"extensions", as_lines(syntax.extensions(writer.writes_half()))},
          {"declarations", as_lines(syntax.declarations(out.interface))},
          {"prelude", as_lines(prelude)},
          {"input_stride", {{std::to_string(layout.input_stride), ""}}},

@@ -14,6 +14,32 @@ std::string GlslSyntax::temp_type(Type t, bool relaxed) const {
     return (relaxed && t != Type::Bool ? "mediump " : "") + type(t);
 }
 
+std::string GlslSyntax::half_type(Type t) const {
+    switch (t) {
+    case Type::Float:
+        return "float16_t";
+    case Type::Vec2:
+        return "f16vec2";
+    case Type::Vec3:
+        return "f16vec3";
+    case Type::Vec4:
+        return "f16vec4";
+    case Type::Mat3:
+        return "f16mat3";
+    default:
+        return type(t);
+    }
+}
+
+std::string GlslSyntax::convert(Type t, bool to_half, const std::string& expr) const {
+    return (to_half ? half_type(t) : type(t)) + "(" + expr + ")";
+}
+
+std::vector<std::string> GlslSyntax::extensions(bool strict_half) const {
+    if (!strict_half) return {};
+    return {"#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require"};
+}
+
 std::string GlslSyntax::literal(double v) const {
     const float f = static_cast<float>(v);
     if (std::isnan(f)) return "uintBitsToFloat(0x7fc00000u)";
@@ -41,21 +67,22 @@ std::string GlslSyntax::uniform_ref(const std::string& name) const {
     return "params." + name;
 }
 
-std::string GlslSyntax::splat(Type t, const std::string& scalar) const {
-    return type(t) + "(" + scalar + ")";
+std::string GlslSyntax::splat(Type t, const std::string& scalar, bool half) const {
+    return (half ? half_type(t) : type(t)) + "(" + scalar + ")";
 }
 
-std::string GlslSyntax::construct(Type t, const std::vector<std::string>& args) const {
-    return type(t) + "(" + fmt::format("{}", fmt::join(args, ", ")) + ")";
+std::string GlslSyntax::construct(Type t, const std::vector<std::string>& args, bool half) const {
+    return (half ? half_type(t) : type(t)) + "(" + fmt::format("{}", fmt::join(args, ", ")) + ")";
 }
 
 std::string GlslSyntax::call(Op op, Type result, const std::vector<std::string>& a,
-                             const std::vector<Type>& arg_types) const {
+                             const std::vector<Type>& arg_types, bool half) const {
     auto fn = [&](const char* name) {
         return std::string(name) + "(" + fmt::format("{}", fmt::join(a, ", ")) + ")";
     };
     switch (op) {
     case Op::Saturate:
+        if (half) return "clamp(" + a[0] + ", float16_t(0.0), float16_t(1.0))";
         return "clamp(" + a[0] + ", 0.0, 1.0)";
     case Op::Rsqrt:
         return fn("inversesqrt");
@@ -105,19 +132,20 @@ std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) con
     return lines;
 }
 
-std::vector<std::string> GlslSyntax::prelude(const std::set<Op>&) const {
+std::vector<std::string> GlslSyntax::prelude(const std::set<Op>&, bool) const {
     return {};
 }
 
-std::vector<std::string> GlslSyntax::quad_difference_helpers(const std::set<Type>& types) const {
+std::vector<std::string>
+GlslSyntax::quad_difference_helpers(const std::set<std::string>& types) const {
     std::vector<std::string> lines = {
         "// ddx / ddy of a fragment quad: tuples 4k..4k+3 are the pixels (0,0), (1,0), (0,1), "
         "(1,1), as",
         "// the CPU evaluator's lanes; axis 1 = x, 2 = y. Each lane's value goes through shared "
         "memory.",
     };
-    for (Type t : types) {
-        const std::string ty = type(t), array = "probe_quad_" + ty;
+    for (const std::string& ty : types) {
+        const std::string array = "probe_quad_" + ty;
         lines.push_back(
             fmt::format("{} {} {}[{}];", workgroup_shared(), ty, array, kProbeWorkgroupSize));
         lines.push_back(

@@ -35,23 +35,55 @@ std::string HlslSyntax::temp_type(Type t, bool relaxed) const {
     return (relaxed && (is_float_numeric(t) || t == Type::Mat3) ? "min16" : "") + type(t);
 }
 
+std::string HlslSyntax::half_type(Type t) const {
+    switch (t) {
+    case Type::Float:
+        return "half";
+    case Type::Vec2:
+        return "half2";
+    case Type::Vec3:
+        return "half3";
+    case Type::Vec4:
+        return "half4";
+    case Type::Mat3:
+        return "half3x3";
+    default:
+        return type(t);
+    }
+}
+
+std::string HlslSyntax::convert(Type t, bool to_half, const std::string& expr) const {
+    return "((" + (to_half ? half_type(t) : type(t)) + ")(" + expr + "))";
+}
+
 // cbuffer members are globals in HLSL.
 std::string HlslSyntax::uniform_ref(const std::string& name) const {
     return name;
 }
 
-std::string HlslSyntax::splat(Type t, const std::string& scalar) const {
-    return "((" + type(t) + ")(" + scalar + "))";
+std::string HlslSyntax::splat(Type t, const std::string& scalar, bool half) const {
+    return convert(t, half, scalar);
 }
 
 // float3x3(c0, c1, c2) takes rows, so the GLSL columns become HLSL rows and products are
 // written mul(v, M): both compute c0 * v.x + c1 * v.y + c2 * v.z.
-std::string HlslSyntax::construct(Type t, const std::vector<std::string>& args) const {
-    return GlslSyntax::construct(t, args);
+std::string HlslSyntax::construct(Type t, const std::vector<std::string>& args, bool half) const {
+    return GlslSyntax::construct(t, args, half);
 }
 
 std::string HlslSyntax::call(Op op, Type result, const std::vector<std::string>& a,
-                             const std::vector<Type>& arg_types) const {
+                             const std::vector<Type>& arg_types, bool half) const {
+    if (half) {
+        // glslang 12's HLSL front end has no 16-bit overloads of the intrinsics: a call with
+        // half arguments resolves to the float one (arguments widened exactly), so it runs at
+        // 32 bits and its result is rounded to half here; mul() has no half3x3 overload at all.
+        // Arithmetic and wg_mod stay 16-bit.
+        if (op == Op::MatMulVec)
+            return convert(result, true,
+                           "mul(" + convert(Type::Vec3, false, a[1]) + ", " +
+                               convert(Type::Mat3, false, a[0]) + ")");
+        return convert(result, true, call(op, result, a, arg_types, false));
+    }
     auto fn = [&](const char* name) {
         return std::string(name) + "(" + fmt::format("{}", fmt::join(a, ", ")) + ")";
     };
@@ -79,7 +111,7 @@ std::string HlslSyntax::call(Op op, Type result, const std::vector<std::string>&
     case Op::SampleLevel:
         return a[0] + ".SampleLevel(linear_clamp, " + a[1] + ", " + a[2] + ")";
     default:
-        return GlslSyntax::call(op, result, a, arg_types);
+        return GlslSyntax::call(op, result, a, arg_types, half);
     }
 }
 
@@ -104,12 +136,19 @@ std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) con
     return lines;
 }
 
-std::vector<std::string> HlslSyntax::prelude(const std::set<Op>& used) const {
+std::vector<std::string> HlslSyntax::prelude(const std::set<Op>& used, bool strict_half) const {
     if (!used.count(Op::Mod)) return {};
     std::vector<std::string> lines = {"// GLSL mod(): x - y * floor(x / y)"};
-    for (const char* t : {"float", "float2", "float3", "float4"})
-        lines.push_back(
-            fmt::format("{0} wg_mod({0} x, {0} y) {{ return x - y * floor(x / y); }}", t));
+    for (Type t : {Type::Float, Type::Vec2, Type::Vec3, Type::Vec4})
+        for (bool half : {false, true})
+            if (!half || strict_half)
+                lines.push_back(
+                    half
+                        ? fmt::format("{0} wg_mod({0} x, {0} y) {{ return x - y * ({0})(floor(x "
+                                      "/ y)); }}",
+                                      half_type(t))
+                        : fmt::format("{0} wg_mod({0} x, {0} y) {{ return x - y * floor(x / y); }}",
+                                      type(t)));
     return lines;
 }
 

@@ -33,11 +33,12 @@ StageFileNames stage_file_names(Language lang, ShaderStage stage) {
 constexpr Language kLanguages[] = {Language::Glsl, Language::Hlsl};
 constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment};
 
-StageBuild build_stage(EmittedShader source, Diagnostics& all) {
+StageBuild build_stage(EmittedShader source, Diagnostics& all, bool strict_half = false) {
     StageBuild stage{std::move(source), {}};
     CompileRequest request{stage.source.language == Language::Glsl ? SourceLanguage::Glsl
                                                                    : SourceLanguage::Hlsl,
                            stage.source.stage, stage.source.source, stage.source.file_name, "main"};
+    request.hlsl_16bit_types = strict_half;
     stage.toolchain = run_toolchain(request);
     Diagnostics ds = stage.toolchain.diagnostics;
     // Only glslang's diagnostics point at lines of our emitted source.
@@ -103,11 +104,12 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
 
 } // namespace
 
-VariantBuild build_variant(const Variant& variant, const Preset* preset) {
-    return build_shader(build_water_shader(variant, preset));
+VariantBuild build_variant(const Variant& variant, const Preset* preset,
+                           const EmitOptions& options) {
+    return build_shader(build_water_shader(variant, preset), options);
 }
 
-VariantBuild build_shader(WaterShader shader) {
+VariantBuild build_shader(WaterShader shader, const EmitOptions& options) {
     VariantBuild b{std::move(shader), {}, {}};
     const Variant& variant = b.shader.variant;
     const Diagnostics& graph_errors = b.shader.fragment.diagnostics();
@@ -118,11 +120,11 @@ VariantBuild build_shader(WaterShader shader) {
         const Language lang = kLanguages[i];
         LanguageBuild& out = b.languages[i];
         out.language = lang;
-        EmittedShader frag =
-            emit_fragment(b.shader.fragment, lang,
-                          stage_file_names(lang, ShaderStage::Fragment).source, key, b.diagnostics);
+        EmittedShader frag = emit_fragment(b.shader.fragment, lang,
+                                           stage_file_names(lang, ShaderStage::Fragment).source,
+                                           key, b.diagnostics, options);
         if (has_errors(b.diagnostics)) return b;
-        out.fragment = build_stage(std::move(frag), b.diagnostics);
+        out.fragment = build_stage(std::move(frag), b.diagnostics, options.strict_half);
         out.vertex = build_stage(
             emit_fullscreen_vertex(lang, stage_file_names(lang, ShaderStage::Vertex).source, key),
             b.diagnostics);

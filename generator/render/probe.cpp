@@ -121,8 +121,9 @@ void run_on_cpu(const Graph& g, const std::vector<double>& inputs,
 ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language,
                    const std::vector<double>& inputs,
                    const std::map<std::string, std::vector<double>>& uniforms,
-                   const std::map<std::string, TextureData>& textures) {
+                   const std::map<std::string, TextureData>& textures, const EmitOptions& options) {
     ProbeRun run;
+    run.strict_half = options.strict_half;
     run.diagnostics = g.diagnostics();
     if (has_errors(run.diagnostics)) return run;
     run.layout = probe_layout(g);
@@ -145,13 +146,14 @@ ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language,
     }
 
     const std::string file = std::string("probe.") + file_extension(language, ShaderStage::Compute);
-    const EmittedShader shader = emit_probe(g, language, file, "probe", run.diagnostics);
+    const EmittedShader shader = emit_probe(g, language, file, "probe", run.diagnostics, options);
     if (has_errors(run.diagnostics)) return run;
     ComputeJob job;
     if (!pick_textures(shader.interface, textures, job.textures, run.error)) return run;
-    const ToolchainOutputs built =
-        run_toolchain({language == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl,
-                       ShaderStage::Compute, shader.source, file, "main"});
+    CompileRequest request{language == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl,
+                           ShaderStage::Compute, shader.source, file, "main"};
+    request.hlsl_16bit_types = options.strict_half;
+    const ToolchainOutputs built = run_toolchain(request);
     Diagnostics ds;
     for (const auto& d : built.diagnostics)
         if (d.severity != Severity::Note)

@@ -176,17 +176,22 @@ ProbeSummary summarize_probe(const ProbeRun& run) {
     s.cpu_float = count(run.cpu_float);
     s.cpu_half = count(run.cpu_half);
     const size_t stride = run.layout.output_stride;
+    const std::vector<double>& reference = run.strict_half ? run.cpu_half : run.cpu_float;
     for (size_t t = 0; t < run.tuples && stride > 0; ++t) {
         bool unstable = false;
         for (size_t k = 0; k < stride; ++k) {
             const size_t i = t * stride + k;
-            unstable = unstable || (!std::isfinite(run.gpu[i]) && std::isfinite(run.cpu_float[i]));
+            unstable = unstable || (!std::isfinite(run.gpu[i]) && std::isfinite(reference[i]));
         }
         if (unstable && s.gpu_only_non_finite++ == 0) s.first_gpu_only_tuple = t;
     }
     s.max_gpu_vs_cpu_float = max_abs_diff(run.gpu, run.cpu_float);
     s.max_gpu_vs_cpu_double = max_abs_diff(run.gpu, run.cpu_double);
     s.max_half_vs_double = max_abs_diff(run.cpu_half, run.cpu_double);
+    s.max_gpu_vs_cpu_half = max_abs_diff(run.gpu, run.cpu_half);
+    if (run.strict_half)
+        for (size_t i = 0; i < run.gpu.size(); ++i)
+            s.gpu_vs_cpu_half.add(run.gpu[i], run.cpu_half[i], i);
     return s;
 }
 

@@ -31,8 +31,11 @@ nlohmann::ordered_json timing_json(const RenderResult& r) {
             {"draw_ms", r.draw_ms}};
 }
 
-std::optional<std::string> write_images(const std::filesystem::path& staging,
-                                        const VariantRender& r, const RenderReportInfo& info) {
+// The GPU images as <name>.png and .pfm, then each reference image as <name>.pfm.
+std::optional<std::string>
+write_images(const std::filesystem::path& staging, const VariantRender& r,
+             const RenderReportInfo& info,
+             const std::vector<std::pair<std::string, const ImageRGBA32F*>>& references) {
     std::string error;
     const char* names[2] = {"glsl", "hlsl"};
     for (int i = 0; i < 2; ++i) {
@@ -42,8 +45,42 @@ std::optional<std::string> write_images(const std::filesystem::path& staging,
             !write_pfm(staging / (std::string(names[i]) + ".pfm"), r.gpu_image[i], &error))
             return error;
     }
-    if (!write_pfm(staging / "cpu_float.pfm", r.cpu_float, &error)) return error;
+    for (const auto& [name, image] : references)
+        if (!write_pfm(staging / (name + ".pfm"), *image, &error)) return error;
     return std::nullopt;
+}
+
+nlohmann::ordered_json device_json(const DeviceInfo& dev) {
+    return {{"name", dev.name},
+            {"driver", dev.driver_name},
+            {"driver_info", dev.driver_info},
+            {"api_version", format_api_version(dev.api_version)}};
+}
+
+nlohmann::ordered_json ulps_json(const HalfAgreement& a, uint32_t width) {
+    return {{"channels", a.values},
+            {"equal", a.equal},
+            {"within_1_ulp", a.within_1},
+            {"max_ulps", a.max_ulps},
+            {"max_at", {a.max_index % width, a.max_index / width}}};
+}
+
+// Stages the images and render.json, then swaps the directory in whole.
+std::optional<std::string>
+write_report(const std::filesystem::path& dir, const VariantRender& r, const RenderReportInfo& info,
+             const std::vector<std::pair<std::string, const ImageRGBA32F*>>& references,
+             const nlohmann::ordered_json& json) {
+    std::string error;
+    const auto staging = make_staging_directory(dir, &error);
+    if (staging.empty()) return error;
+    auto result = write_images(staging, r, info, references);
+    if (!result) result = write_file_atomically(staging / "render.json", json.dump(2) + "\n");
+    if (!result) result = commit_directory(staging, dir);
+    if (result) {
+        std::error_code ec;
+        std::filesystem::remove_all(staging, ec);
+    }
+    return result;
 }
 
 } // namespace
@@ -59,10 +96,7 @@ nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderRe
     j["variant"] = r.key;
     j["preset"] = info.preset;
     j["image"] = {{"width", info.width}, {"height", info.height}, {"format", "RGBA32F"}};
-    j["device"] = {{"name", dev.name},
-                   {"driver", dev.driver_name},
-                   {"driver_info", dev.driver_info},
-                   {"api_version", format_api_version(dev.api_version)}};
+    j["device"] = device_json(dev);
     j["mesa_shader_cache"] = info.shader_cache;
     j["spirv"] = "spirv-opt -O output of each language path";
     j["gpu"] = {{"glsl", timing_json(r.gpu[0])}, {"hlsl", timing_json(r.gpu[1])}};
@@ -78,19 +112,39 @@ nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderRe
 std::optional<std::string> write_render_report(const std::filesystem::path& dir,
                                                const VariantRender& r,
                                                const RenderReportInfo& info) {
-    std::string error;
-    const auto staging = make_staging_directory(dir, &error);
-    if (staging.empty()) return error;
-    auto result = write_images(staging, r, info);
-    if (!result)
-        result = write_file_atomically(staging / "render.json",
-                                       render_report_json(r, info).dump(2) + "\n");
-    if (!result) result = commit_directory(staging, dir);
-    if (result) {
-        std::error_code ec;
-        std::filesystem::remove_all(staging, ec);
-    }
-    return result;
+    return write_report(dir, r, info, {{"cpu_float", &r.cpu_float}}, render_report_json(r, info));
+}
+
+nlohmann::ordered_json half_render_report_json(const HalfRender& h, const RenderReportInfo& info) {
+    const VariantRender& r = h.strict;
+    nlohmann::ordered_json j;
+    j["variant"] = h.key;
+    j["preset"] = info.preset;
+    j["strict_half"] = "relaxed math in explicit 16-bit types (GLSL float16_t, HLSL half); "
+                       "reference: the same variant at precision=full, GLSL path";
+    j["image"] = {{"width", info.width}, {"height", info.height}, {"format", "RGBA32F"}};
+    j["device"] = device_json(info.device);
+    j["mesa_shader_cache"] = info.shader_cache;
+    j["gpu"] = {{"glsl", timing_json(r.gpu[0])},
+                {"hlsl", timing_json(r.gpu[1])},
+                {"full_precision_glsl", timing_json(h.full.gpu[0])}};
+    j["errors"] = {{"glsl_vs_hlsl", stats_json(r.glsl_vs_hlsl)},
+                   {"glsl_vs_cpu_half", stats_json(h.vs_cpu_half[0])},
+                   {"hlsl_vs_cpu_half", stats_json(h.vs_cpu_half[1])},
+                   {"glsl_vs_full", stats_json(h.vs_full[0])},
+                   {"hlsl_vs_full", stats_json(h.vs_full[1])},
+                   {"cpu_half_vs_full", stats_json(h.cpu_half_vs_full)}};
+    j["ulps_vs_cpu_half"] = {{"glsl", ulps_json(h.ulps_vs_cpu_half[0], info.width)},
+                             {"hlsl", ulps_json(h.ulps_vs_cpu_half[1], info.width)}};
+    return j;
+}
+
+std::optional<std::string> write_half_render_report(const std::filesystem::path& dir,
+                                                    const HalfRender& h,
+                                                    const RenderReportInfo& info) {
+    return write_report(dir, h.strict, info,
+                        {{"cpu_half", &h.cpu_half}, {"full_precision", &h.full.gpu_image[0]}},
+                        half_render_report_json(h, info));
 }
 
 } // namespace watergen

@@ -57,6 +57,8 @@ VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
         out.gpu_image[i] = ImageRGBA32F{settings.width, settings.height, out.gpu[i].rgba};
     }
     out.validation_messages = runner.validation_messages();
+    out.glsl_vs_hlsl = compare_images(out.gpu_image[0], out.gpu_image[1]);
+    if (!settings.cpu_float) return out;
 
     const auto t0 = std::chrono::steady_clock::now();
     const EvalResult f = evaluate_image(build.shader.fragment, "color", scene.eval_inputs(),
@@ -68,7 +70,6 @@ VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
         return out;
     }
     out.cpu_float = to_image(f, settings.width, settings.height);
-    out.glsl_vs_hlsl = compare_images(out.gpu_image[0], out.gpu_image[1]);
     out.glsl_vs_cpu_float = compare_images(out.gpu_image[0], out.cpu_float);
     out.hlsl_vs_cpu_float = compare_images(out.gpu_image[1], out.cpu_float);
     if (settings.cpu_double) {

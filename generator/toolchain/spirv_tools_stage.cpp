@@ -87,6 +87,19 @@ size_t count_instructions(const std::vector<uint32_t>& spirv) {
     return count;
 }
 
+bool declares_capability(const std::vector<uint32_t>& spirv, uint32_t capability) {
+    constexpr uint32_t kOpCapability = 17;
+    for (size_t i = 5; i < spirv.size();) {
+        const uint32_t words = spirv[i] >> 16;
+        if (words == 0 || i + words > spirv.size()) break;
+        // Capabilities come first (SPIR-V 2.4, logical layout): stop at the first other opcode.
+        if ((spirv[i] & 0xffff) != kOpCapability) break;
+        if (words >= 2 && spirv[i + 1] == capability) return true;
+        i += words;
+    }
+    return false;
+}
+
 std::string disassemble_spirv(const std::vector<uint32_t>& spirv) {
     spvtools::SpirvTools tools(kEnv);
     std::string text;

@@ -34,12 +34,19 @@ ToolchainOutputs run_toolchain(const CompileRequest& request) {
     out.spirv_optimized = std::move(optimized.spirv);
     out.instruction_count_optimized = count_instructions(out.spirv_optimized);
 
-    // GLSL 330 and ESSL 300 predate compute shaders, so compute only gets MSL.
-    const bool gl_targets = request.stage != ShaderStage::Compute;
-    if (!gl_targets)
+    // GLSL 330 and ESSL 300 predate compute shaders, so compute only gets MSL; neither has
+    // 16-bit arithmetic types (a strict-half module), which MSL has (`half`).
+    const bool compute = request.stage == ShaderStage::Compute;
+    const bool float16 = declares_capability(out.spirv, kCapabilityFloat16);
+    const bool gl_targets = !compute && !float16;
+    if (compute)
         out.diagnostics.push_back(
             {Severity::Note, f, 0, 0, "",
              "GLSL 330 and ESSL 300 have no compute shaders; those outputs are skipped"});
+    else if (float16)
+        out.diagnostics.push_back(
+            {Severity::Note, f, 0, 0, "",
+             "GLSL 330 and ESSL 300 have no 16-bit float type; those outputs are skipped"});
 
     // The back ends are independent: report all of their errors before stopping.
     bool cross_failed = false;

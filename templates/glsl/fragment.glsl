@@ -1,4 +1,5 @@
 #version 450
+{{extensions}}
 // {{stamp}}
 
 {{declarations}}

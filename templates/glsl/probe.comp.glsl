@@ -1,4 +1,5 @@
 #version 450
+{{extensions}}
 // {{stamp}}
 
 // Numeric harness: one invocation evaluates one input tuple.

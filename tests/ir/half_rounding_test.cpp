@@ -27,3 +27,16 @@ TEST_CASE("float_rounding_is_binary32", "[half]") {
     CHECK(round_to(0.1, EvalPrecision::Float) == static_cast<double>(0.1f));
     CHECK(round_to(0.1, EvalPrecision::Double) == 0.1);
 }
+
+TEST_CASE("half_ulp_distance_counts_binary16_steps", "[half]") {
+    CHECK(half_ulp_distance(1.0, 1.0) == 0);
+    CHECK(half_ulp_distance(0.0, -0.0) == 0);
+    CHECK(half_ulp_distance(1.0, 1.0 + 0x1p-10) == 1);         // spacing 2^-10 in [1, 2)
+    CHECK(half_ulp_distance(1.0, 1.0 - 0x1p-11) == 1);         // spacing 2^-11 in [0.5, 1)
+    CHECK(half_ulp_distance(2048.0, 2050.0) == 1);             // spacing 2 in [2048, 4096)
+    CHECK(half_ulp_distance(0x1p-24, -0x1p-24) == 2);          // the two smallest subnormals
+    CHECK(half_ulp_distance(0x1p-14, 0x1p-14 - 0x1p-24) == 1); // normal to largest subnormal
+    CHECK(half_ulp_distance(65504.0, INFINITY) == 1);
+    CHECK(half_ulp_distance(-1.0, 1.0) == 2 * 15 * 1024); // 15 binades of 1024 below 1
+    CHECK(half_ulp_distance(NAN, 1.0) == -1);
+}

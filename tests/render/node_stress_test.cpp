@@ -12,64 +12,15 @@
 #include <utility>
 
 #include "shared_runner.h"
+#include "stress_tuples.h"
 #include "watergen/render/probe.h"
 #include "watergen/render/probe_table.h"
 #include "watergen/water/node_catalog.h"
 
 using namespace watergen;
+using namespace watergen::test;
 
 namespace {
-
-constexpr size_t kTuplesPerNode = 256; // whole 2x2 quads, for the nodes that take ddx / ddy
-
-const double kExtreme[] = {0.0, 1e-30, -1e-30, 1e-7, -1e-7, 1.0, -1.0, 1e4, -1e4, 1e30, -1e30};
-const double kOrdinary[] = {0.3, -0.6, 0.8, 2.5, -7.0, 12.0, 0.05, -0.25, 100.0, 0.5};
-const double kDirectionLength[] = {0.0, 1e-20, 1e20};
-
-// A 64-bit LCG (Knuth's MMIX constants): the same tuples on every platform and library.
-struct Lcg {
-    uint64_t state;
-    uint32_t next(uint32_t n) {
-        state = state * 6364136223846793005ull + 1442695040888963407ull;
-        return static_cast<uint32_t>((state >> 33) % n);
-    }
-    template <size_t N> double pick(const double (&values)[N]) { return values[next(N)]; }
-};
-
-// Tuple 0 is all ordinary; every later field is, with equal odds, per-component extreme or
-// ordinary values, or (vectors) a zero vector or a direction of length 1e-20 or 1e20 (with an
-// ordinary direction), or an ordinary vector.
-std::vector<double> stress_tuples(const ProbeLayout& layout, uint64_t seed) {
-    Lcg rng{seed};
-    std::vector<double> tuples;
-    for (size_t t = 0; t < kTuplesPerNode; ++t)
-        for (const auto& field : layout.inputs) {
-            const int n = component_count(field.type);
-            const uint32_t kind = t == 0 ? 2 : rng.next(n > 1 ? 4 : 3);
-            double v[4];
-            for (int c = 0; c < n; ++c)
-                v[c] = kind == 0 ? rng.pick(kExtreme) : rng.pick(kOrdinary);
-            if (kind == 1 && n == 1) v[0] = rng.pick(kExtreme) * (rng.next(2) ? 1.0 : 0.37);
-            if (kind == 3) { // a direction of extreme length
-                double len2 = 0;
-                for (int c = 0; c < n; ++c)
-                    len2 += v[c] * v[c];
-                const double scale = rng.pick(kDirectionLength) / std::sqrt(len2);
-                for (int c = 0; c < n; ++c)
-                    v[c] *= scale;
-            }
-            tuples.insert(tuples.end(), v, v + n);
-        }
-    return tuples;
-}
-
-// FNV-1a of the node's name: a node gets the same tuples wherever it stands in the catalog.
-uint64_t name_seed(const std::string& name) {
-    uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : name)
-        h = (h ^ c) * 1099511628211ull;
-    return h;
-}
 
 // Node -> the input that breaks it on the GPU and why (the CPU float stays finite). Each entry
 // is a guard to write; an entry whose node no longer breaks fails the test, so the list shrinks
@@ -92,27 +43,6 @@ std::pair<double, size_t> max_relative_gap(const ProbeRun& run) {
             if (gap > m.first) m = {gap, i / run.layout.output_stride};
         }
     return m;
-}
-
-// "(a,b,c)" of n values at `values`.
-std::string components(const double* values, int n) {
-    std::string s = "(";
-    for (int c = 0; c < n; ++c) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, c ? ",%.9g" : "%.9g", values[c]);
-        s += buf;
-    }
-    return s + ")";
-}
-
-std::string describe_tuple(const ProbeRun& run, const std::vector<double>& in, size_t t) {
-    std::string s;
-    for (const auto& f : run.layout.inputs)
-        s += " " + f.name + "=" +
-             components(&in[t * run.layout.input_stride + f.offset], component_count(f.type));
-    const int n = static_cast<int>(run.layout.output_stride);
-    return s + " -> gpu " + components(&run.gpu[t * n], n) + " cpu float " +
-           components(&run.cpu_float[t * n], n);
 }
 
 } // namespace

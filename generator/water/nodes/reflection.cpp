@@ -1,6 +1,7 @@
 #include "watergen/water/nodes/reflection.h"
 
 #include "axis_tables.h"
+#include "watergen/water/nodes/waves.h"
 #include "watergen/water/surface.h"
 
 namespace watergen {
@@ -90,7 +91,13 @@ Expr sky_cube_lookup(Graph& g, Expr view_ray, Expr normal) {
     // (about 12 degrees) stands in for the blur and keeps the colour's slope in R.y small.
     Expr band =
         uniform(g, {"reflection_horizon_band", Type::Float, {0.2}, 1e-3, 1.0, "", "001", ""});
-    Expr r = named(reflect(view_ray, normal), "reflected_ray");
+    // reflect() needs a unit normal, and the mirrored direction's y is compared with the band
+    // as a unit ray's would be. Both are normalised scale-first (robust_normalize, waves.h):
+    // dot(N, I) overflows once |N| |I| passes 65504 in 16-bit arithmetic (a view ray of length
+    // 1e4 and a normal of length 100 gave inf) and 3.4e38 in 32 bits.
+    Expr v = robust_normalize(view_ray, constant(g, {0.0, -1.0, 0.0}));
+    Expr n = robust_normalize(normal, constant(g, {0.0, 1.0, 0.0}));
+    Expr r = named(reflect(v, n), "reflected_ray");
     // 001: the lower half of the cube would show the water itself, which a cube cannot hold;
     // mirror it into the upper half so every lookup finds sky.
     Expr mirrored = vec3(r.x(), abs(r.y()), r.z());

@@ -61,42 +61,48 @@ void main() {
     mediump vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    mediump float t71 = reflected_ray.y;
-    mediump vec3 t74 = vec3(reflected_ray.x, abs(t71), reflected_ray.z);
-    bool t78 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t78 ? t74 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t71);
-    mediump vec4 t82 = vec4(sky_direction, below_horizon);
-    mediump vec3 t84 = t82.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t84).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t82.w));
+    mediump vec3 t70 = abs(view_ray);
+    mediump vec3 t78 = view_ray / max(max(max(t70.x, t70.y), t70.z), 1e-30);
+    mediump float t79 = dot(t78, t78);
+    mediump vec3 t82 = t78 * inversesqrt(max(t79, 1e-30));
+    bool t83 = t79 > 1e-30;
+    mediump vec3 t84 = t83 ? t82 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t84, vec3(0.0, 1.0, 0.0));
+    mediump float t88 = reflected_ray.y;
+    mediump vec3 t91 = vec3(reflected_ray.x, abs(t88), reflected_ray.z);
+    bool t94 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t94 ? t91 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t88);
+    mediump vec4 t98 = vec4(sky_direction, below_horizon);
+    mediump vec3 t100 = t98.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t100).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t98.w));
 
     // fresnel.schlick
-    mediump float t97 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t97 * t97;
+    mediump float t113 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t113 * t113;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t101 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t101 * t101) * one_minus_c));
+    mediump float t117 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t117 * t117) * one_minus_c));
 
     // specular.blinn_phong
-    mediump vec3 t108 = -params.sun_direction;
-    mediump vec3 t109 = t108 + t34;
-    mediump float t117 = max(max(abs(t109.x), abs(t109.y)), abs(t109.z));
-    mediump vec3 t120 = t109 / max(t117, 5.9604645e-08);
-    mediump vec3 t123 = t120 / max(length(t120), 1.0);
-    bool t125 = t117 > 5.9604645e-08;
-    mediump vec3 half_vector = t125 ? t123 : vec3(0.0);
-    mediump float t128 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
-    mediump float t131 = pow(max(t128, 6.1035156e-05), params.specular_exponent);
-    bool t132 = t128 > 6.1035156e-05;
-    mediump float t133 = t132 ? t131 : 0.0;
-    bool t138 = (t108.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t108) > 0.0);
-    mediump float specular_intensity = t138 ? t133 : 0.0;
+    mediump vec3 t124 = -params.sun_direction;
+    mediump vec3 t125 = t124 + t34;
+    mediump float t133 = max(max(abs(t125.x), abs(t125.y)), abs(t125.z));
+    mediump vec3 t136 = t125 / max(t133, 5.9604645e-08);
+    mediump vec3 t139 = t136 / max(length(t136), 1.0);
+    bool t141 = t133 > 5.9604645e-08;
+    mediump vec3 half_vector = t141 ? t139 : vec3(0.0);
+    mediump float t144 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
+    mediump float t147 = pow(max(t144, 6.1035156e-05), params.specular_exponent);
+    bool t148 = t144 > 6.1035156e-05;
+    mediump float t149 = t148 ? t147 : 0.0;
+    bool t154 = (t124.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t124) > 0.0);
+    mediump float specular_intensity = t154 ? t149 : 0.0;
     mediump vec3 specular = specular_intensity * params.sun_color;
 
     // compose
     mediump vec3 water_rgb = mix(water_color, reflected, vec3(fresnel)) + specular;
-    mediump vec3 t144 = t32 ? water_rgb : scene_rgb;
+    mediump vec3 t160 = t32 ? water_rgb : scene_rgb;
 
-    out_color = vec4(t144, 1.0);
+    out_color = vec4(t160, 1.0);
 }

@@ -49,19 +49,22 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _108 = -_56;
     float3 _149 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
     float _153 = fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0);
-    float3 _188 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _191 = _188.y;
-    float _220 = smoothstep(0.0, params.reflection_horizon_band, -_191);
-    float _266 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _274 = 1.0 - fast::clamp(_108.y, 0.0, 1.0);
-    float _278 = _274 * _274;
-    float3 _294 = -float3(params.sun_direction);
-    float3 _298 = _294 + _108;
-    float _310 = fast::max(fast::max(abs(_298.x), abs(_298.y)), abs(_298.z));
-    float3 _317 = _298 / float3(fast::max(_310, 5.9604644775390625e-08));
-    float _337 = fast::clamp(select(float3(0.0), _317 / float3(fast::max(length(_317), 1.0)), bool3(_310 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _391 = mix(_149, mix(mix(float3(params.scatter_color), _149 * exp((-float3(params.absorb_coefficients)) * (_96 + _153)), float3(exp((-params.scatter_coefficient) * _153))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_188.x, abs(_191), _188.z), bool3(dot(_188, _188) > 9.9999999600419720025001879548654e-13)), _220).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_220)), float3(fma(_266, _266, fma(-_266, _266, 1.0) * ((_278 * _278) * _274)))) + (float3(params.sun_color) * ((_294.y > 0.0) ? ((_337 > 6.103515625e-05) ? pow(fast::max(_337, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(fast::clamp(_96 * params.shore_hardness, 0.0, 1.0)));
-    out.out_color = float4(select(scene_color.sample(linear_clamp, in.v_uv).xyz, _391, bool3((_88 < _91) && (_61 < 0.0))), 1.0);
+    float3 _188 = abs(_56);
+    float3 _204 = _56 / float3(fast::max(fast::max(fast::max(_188.x, _188.y), _188.z), 1.0000000031710768509710513471353e-30));
+    float _208 = dot(_204, _204);
+    float3 _228 = reflect(select(float3(0.0, -1.0, 0.0), _204 * rsqrt(fast::max(_208, 1.0000000031710768509710513471353e-30)), bool3(_208 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _231 = _228.y;
+    float _257 = smoothstep(0.0, params.reflection_horizon_band, -_231);
+    float _303 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _311 = 1.0 - fast::clamp(_108.y, 0.0, 1.0);
+    float _315 = _311 * _311;
+    float3 _331 = -float3(params.sun_direction);
+    float3 _335 = _331 + _108;
+    float _347 = fast::max(fast::max(abs(_335.x), abs(_335.y)), abs(_335.z));
+    float3 _354 = _335 / float3(fast::max(_347, 5.9604644775390625e-08));
+    float _374 = fast::clamp(select(float3(0.0), _354 / float3(fast::max(length(_354), 1.0)), bool3(_347 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _428 = mix(_149, mix(mix(float3(params.scatter_color), _149 * exp((-float3(params.absorb_coefficients)) * (_96 + _153)), float3(exp((-params.scatter_coefficient) * _153))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_228.x, abs(_231), _228.z), bool3(dot(_228, _228) > 9.9999999600419720025001879548654e-13)), _257).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_257)), float3(fma(_303, _303, fma(-_303, _303, 1.0) * ((_315 * _315) * _311)))) + (float3(params.sun_color) * ((_331.y > 0.0) ? ((_374 > 6.103515625e-05) ? pow(fast::max(_374, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(fast::clamp(_96 * params.shore_hardness, 0.0, 1.0)));
+    out.out_color = float4(select(scene_color.sample(linear_clamp, in.v_uv).xyz, _428, bool3((_88 < _91) && (_61 < 0.0))), 1.0);
     return out;
 }
 

@@ -705,42 +705,48 @@ void main() {
     mediump vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    mediump float t1913 = reflected_ray.y;
-    mediump vec3 t1916 = vec3(reflected_ray.x, abs(t1913), reflected_ray.z);
-    bool t1920 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t1920 ? t1916 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1913);
-    mediump vec4 t1924 = vec4(sky_direction, below_horizon);
-    mediump vec3 t1926 = t1924.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1926).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1924.w));
+    mediump vec3 t1912 = abs(view_ray);
+    mediump vec3 t1920 = view_ray / max(max(max(t1912.x, t1912.y), t1912.z), 1e-30);
+    mediump float t1921 = dot(t1920, t1920);
+    mediump vec3 t1924 = t1920 * inversesqrt(max(t1921, 1e-30));
+    bool t1925 = t1921 > 1e-30;
+    mediump vec3 t1926 = t1925 ? t1924 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t1926, vec3(0.0, 1.0, 0.0));
+    mediump float t1930 = reflected_ray.y;
+    mediump vec3 t1933 = vec3(reflected_ray.x, abs(t1930), reflected_ray.z);
+    bool t1936 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t1936 ? t1933 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1930);
+    mediump vec4 t1940 = vec4(sky_direction, below_horizon);
+    mediump vec3 t1942 = t1940.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1942).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1940.w));
 
     // fresnel.schlick
-    mediump float t1939 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t1939 * t1939;
+    mediump float t1955 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t1955 * t1955;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t1943 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1943 * t1943) * one_minus_c));
+    mediump float t1959 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1959 * t1959) * one_minus_c));
 
     // specular.blinn_phong
-    mediump vec3 t1950 = -params.sun_direction;
-    mediump vec3 t1951 = t1950 + t1876;
-    mediump float t1959 = max(max(abs(t1951.x), abs(t1951.y)), abs(t1951.z));
-    mediump vec3 t1962 = t1951 / max(t1959, 5.9604645e-08);
-    mediump vec3 t1965 = t1962 / max(length(t1962), 1.0);
-    bool t1967 = t1959 > 5.9604645e-08;
-    mediump vec3 half_vector = t1967 ? t1965 : vec3(0.0);
-    mediump float t1970 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
-    mediump float t1973 = pow(max(t1970, 6.1035156e-05), params.specular_exponent);
-    bool t1974 = t1970 > 6.1035156e-05;
-    mediump float t1975 = t1974 ? t1973 : 0.0;
-    bool t1980 = (t1950.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t1950) > 0.0);
-    mediump float specular_intensity = t1980 ? t1975 : 0.0;
+    mediump vec3 t1966 = -params.sun_direction;
+    mediump vec3 t1967 = t1966 + t1876;
+    mediump float t1975 = max(max(abs(t1967.x), abs(t1967.y)), abs(t1967.z));
+    mediump vec3 t1978 = t1967 / max(t1975, 5.9604645e-08);
+    mediump vec3 t1981 = t1978 / max(length(t1978), 1.0);
+    bool t1983 = t1975 > 5.9604645e-08;
+    mediump vec3 half_vector = t1983 ? t1981 : vec3(0.0);
+    mediump float t1986 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
+    mediump float t1989 = pow(max(t1986, 6.1035156e-05), params.specular_exponent);
+    bool t1990 = t1986 > 6.1035156e-05;
+    mediump float t1991 = t1990 ? t1989 : 0.0;
+    bool t1996 = (t1966.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t1966) > 0.0);
+    mediump float specular_intensity = t1996 ? t1991 : 0.0;
     mediump vec3 specular = specular_intensity * params.sun_color;
 
     // compose
     mediump vec3 water_rgb = mix(water_color, reflected, vec3(fresnel)) + specular;
-    mediump vec3 t1986 = t1875 ? water_rgb : scene_rgb;
+    mediump vec3 t2002 = t1875 ? water_rgb : scene_rgb;
 
-    out_color = vec4(t1986, 1.0);
+    out_color = vec4(t2002, 1.0);
 }

@@ -602,19 +602,23 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _4760 = -_56;
     float3 _4798 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
     float _4802 = fast::clamp(fast::max(_49 - _4727, 0.0), 0.0, 30000.0);
-    float3 _4837 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _4840 = _4837.y;
-    float _4867 = smoothstep(0.0, params.reflection_horizon_band, -_4840);
-    float _4913 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _4921 = 1.0 - fast::clamp(_4760.y, 0.0, 1.0);
-    float _4925 = _4921 * _4921;
-    float3 _4941 = -float3(params.sun_direction);
-    float3 _4945 = _4941 + _4760;
-    float _4957 = fast::max(fast::max(abs(_4945.x), abs(_4945.y)), abs(_4945.z));
-    float3 _4964 = _4945 / float3(fast::max(_4957, 5.9604644775390625e-08));
-    float _4984 = fast::clamp(select(float3(0.0), _4964 / float3(fast::max(length(_4964), 1.0)), bool3(_4957 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _5038 = mix(_4798, mix(mix(float3(params.scatter_color), _4798 * exp((-float3(params.absorb_coefficients)) * (_4750 + _4802)), float3(exp((-params.scatter_coefficient) * _4802))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4837.x, abs(_4840), _4837.z), bool3(dot(_4837, _4837) > 9.9999999600419720025001879548654e-13)), _4867).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_4867)), float3(fma(_4913, _4913, fma(-_4913, _4913, 1.0) * ((_4925 * _4925) * _4921)))) + (float3(params.sun_color) * ((_4941.y > 0.0) ? ((_4984 > 6.103515625e-05) ? pow(fast::max(_4984, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(fast::clamp(_4750 * params.shore_hardness, 0.0, 1.0)));
-    out.out_color = float4(select(scene_color.sample(linear_clamp, in.v_uv).xyz, _5038, bool3((_4742 < _4745) && (_161 < 0.0))), 1.0);
+    float3 _4837 = abs(_56);
+    float3 _4851 = _56 / float3(fast::max(fast::max(fast::max(_4837.x, _4837.y), _4837.z), 1.0000000031710768509710513471353e-30));
+    float _4855 = dot(_4851, _4851);
+    float3 _4874 = reflect(select(float3(0.0, -1.0, 0.0), _4851 * rsqrt(fast::max(_4855, 1.0000000031710768509710513471353e-30)), bool3(_4855 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _4877 = _4874.y;
+    float _4903 = smoothstep(0.0, params.reflection_horizon_band, -_4877);
+    float _4949 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _4957 = 1.0 - fast::clamp(_4760.y, 0.0, 1.0);
+    float _4961 = _4957 * _4957;
+    float3 _4977 = -float3(params.sun_direction);
+    float3 _4981 = _4977 + _4760;
+    float _4993 = fast::max(fast::max(abs(_4981.x), abs(_4981.y)), abs(_4981.z));
+    float3 _5000 = _4981 / float3(fast::max(_4993, 5.9604644775390625e-08));
+    float _5020 = fast::clamp(select(float3(0.0), _5000 / float3(fast::max(length(_5000), 1.0)), bool3(_4993 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _5074 = mix(_4798, mix(mix(float3(params.scatter_color), _4798 * exp((-float3(params.absorb_coefficients)) * (_4750 + _4802)), float3(exp((-params.scatter_coefficient) * _4802))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4874.x, abs(_4877), _4874.z), bool3(dot(_4874, _4874) > 9.9999999600419720025001879548654e-13)), _4903).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_4903)), float3(fma(_4949, _4949, fma(-_4949, _4949, 1.0) * ((_4961 * _4961) * _4957)))) + (float3(params.sun_color) * ((_4977.y > 0.0) ? ((_5020 > 6.103515625e-05) ? pow(fast::max(_5020, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(fast::clamp(_4750 * params.shore_hardness, 0.0, 1.0)));
+    float3 _5080 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, _5074, bool3((_4742 < _4745) && (_161 < 0.0)));
+    out.out_color = float4(_5080, 1.0);
     return out;
 }
 

@@ -711,37 +711,43 @@ void main() {
     mediump vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    mediump float t1914 = reflected_ray.y;
-    mediump vec3 t1917 = vec3(reflected_ray.x, abs(t1914), reflected_ray.z);
-    bool t1921 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t1921 ? t1917 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1914);
-    mediump vec4 t1925 = vec4(sky_direction, below_horizon);
-    mediump vec3 t1927 = t1925.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1927).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1925.w));
+    mediump vec3 t1913 = abs(view_ray);
+    mediump vec3 t1921 = view_ray / max(max(max(t1913.x, t1913.y), t1913.z), 1e-30);
+    mediump float t1922 = dot(t1921, t1921);
+    mediump vec3 t1925 = t1921 * inversesqrt(max(t1922, 1e-30));
+    bool t1926 = t1922 > 1e-30;
+    mediump vec3 t1927 = t1926 ? t1925 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t1927, vec3(0.0, 1.0, 0.0));
+    mediump float t1931 = reflected_ray.y;
+    mediump vec3 t1934 = vec3(reflected_ray.x, abs(t1931), reflected_ray.z);
+    bool t1937 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t1937 ? t1934 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1931);
+    mediump vec4 t1941 = vec4(sky_direction, below_horizon);
+    mediump vec3 t1943 = t1941.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1943).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1941.w));
 
     // fresnel.schlick
-    mediump float t1940 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t1940 * t1940;
+    mediump float t1956 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t1956 * t1956;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t1944 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1944 * t1944) * one_minus_c));
+    mediump float t1960 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1960 * t1960) * one_minus_c));
 
     // specular.blinn_phong
-    mediump vec3 t1951 = -params.sun_direction;
-    mediump vec3 t1952 = t1951 + t1877;
-    mediump float t1960 = max(max(abs(t1952.x), abs(t1952.y)), abs(t1952.z));
-    mediump vec3 t1963 = t1952 / max(t1960, 5.9604645e-08);
-    mediump vec3 t1966 = t1963 / max(length(t1963), 1.0);
-    bool t1968 = t1960 > 5.9604645e-08;
-    mediump vec3 half_vector = t1968 ? t1966 : vec3(0.0);
-    mediump float t1971 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
-    mediump float t1974 = pow(max(t1971, 6.1035156e-05), params.specular_exponent);
-    bool t1975 = t1971 > 6.1035156e-05;
-    mediump float t1976 = t1975 ? t1974 : 0.0;
-    bool t1981 = (t1951.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t1951) > 0.0);
-    mediump float specular_intensity = t1981 ? t1976 : 0.0;
+    mediump vec3 t1967 = -params.sun_direction;
+    mediump vec3 t1968 = t1967 + t1877;
+    mediump float t1976 = max(max(abs(t1968.x), abs(t1968.y)), abs(t1968.z));
+    mediump vec3 t1979 = t1968 / max(t1976, 5.9604645e-08);
+    mediump vec3 t1982 = t1979 / max(length(t1979), 1.0);
+    bool t1984 = t1976 > 5.9604645e-08;
+    mediump vec3 half_vector = t1984 ? t1982 : vec3(0.0);
+    mediump float t1987 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
+    mediump float t1990 = pow(max(t1987, 6.1035156e-05), params.specular_exponent);
+    bool t1991 = t1987 > 6.1035156e-05;
+    mediump float t1992 = t1991 ? t1990 : 0.0;
+    bool t1997 = (t1967.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t1967) > 0.0);
+    mediump float specular_intensity = t1997 ? t1992 : 0.0;
     mediump vec3 specular = specular_intensity * params.sun_color;
 
     // compose
@@ -753,22 +759,22 @@ void main() {
     mediump float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     mediump float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
     mediump float foam_pattern = mix(foam_texel, 0.6, foam_aliasing);
-    mediump float t2013 = params.foam_existence.x;
-    mediump float t2014 = water_depth - t2013;
-    mediump float t2016 = params.foam_existence.y - t2013;
-    mediump float t2019 = clamp(t2014 / max(t2016, 5.9604645e-08), 0.0, 1.0);
-    bool t2020 = t2014 >= t2016;
-    mediump float t2021 = t2020 ? 1.0 : t2019;
-    mediump float t2022 = 1.0 - t2021;
-    bool t2023 = t2014 < 0.0;
-    mediump float shore_foam = t2023 ? 1.0 : t2022;
+    mediump float t2029 = params.foam_existence.x;
+    mediump float t2030 = water_depth - t2029;
+    mediump float t2032 = params.foam_existence.y - t2029;
+    mediump float t2035 = clamp(t2030 / max(t2032, 5.9604645e-08), 0.0, 1.0);
+    bool t2036 = t2030 >= t2032;
+    mediump float t2037 = t2036 ? 1.0 : t2035;
+    mediump float t2038 = 1.0 - t2037;
+    bool t2039 = t2030 < 0.0;
+    mediump float shore_foam = t2039 ? 1.0 : t2038;
     mediump vec3 foam_rgb = mix(water_rgb, params.foam_color * foam_pattern, vec3(shore_foam));
 
     // shore.soft
     mediump vec3 shore_color = mix(refracted, foam_rgb, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));
 
     // compose
-    mediump vec3 t2034 = t1876 ? shore_color : scene_rgb;
+    mediump vec3 t2050 = t1876 ? shore_color : scene_rgb;
 
-    out_color = vec4(t2034, 1.0);
+    out_color = vec4(t2050, 1.0);
 }

@@ -57,26 +57,32 @@ void main() {
     mediump vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    mediump float t69 = reflected_ray.y;
-    mediump vec3 t72 = vec3(reflected_ray.x, abs(t69), reflected_ray.z);
-    bool t76 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t76 ? t72 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t69);
-    mediump vec4 t80 = vec4(sky_direction, below_horizon);
-    mediump vec3 t82 = t80.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t82).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t80.w));
+    mediump vec3 t68 = abs(view_ray);
+    mediump vec3 t76 = view_ray / max(max(max(t68.x, t68.y), t68.z), 1e-30);
+    mediump float t77 = dot(t76, t76);
+    mediump vec3 t80 = t76 * inversesqrt(max(t77, 1e-30));
+    bool t81 = t77 > 1e-30;
+    mediump vec3 t82 = t81 ? t80 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t82, vec3(0.0, 1.0, 0.0));
+    mediump float t86 = reflected_ray.y;
+    mediump vec3 t89 = vec3(reflected_ray.x, abs(t86), reflected_ray.z);
+    bool t92 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t92 ? t89 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t86);
+    mediump vec4 t96 = vec4(sky_direction, below_horizon);
+    mediump vec3 t98 = t96.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t98).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t96.w));
 
     // fresnel.schlick
-    mediump float t95 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t95 * t95;
+    mediump float t111 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t111 * t111;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t99 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t99 * t99) * one_minus_c));
+    mediump float t115 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t115 * t115) * one_minus_c));
 
     // compose
-    mediump vec3 t106 = mix(water_color, reflected, vec3(fresnel));
-    mediump vec3 t107 = t30 ? t106 : scene_rgb;
+    mediump vec3 t122 = mix(water_color, reflected, vec3(fresnel));
+    mediump vec3 t123 = t30 ? t122 : scene_rgb;
 
-    out_color = vec4(t107, 1.0);
+    out_color = vec4(t123, 1.0);
 }

@@ -42,14 +42,17 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float _88 = _33.y;
     float _91 = _79.y;
     float _151 = fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0);
-    float3 _186 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _189 = _186.y;
-    float _218 = smoothstep(0.0, params.reflection_horizon_band, -_189);
-    float _264 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _272 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
-    float _276 = _272 * _272;
-    float3 _299 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_91 - _88, 0.0) + _151)), float3(exp((-params.scatter_coefficient) * _151))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_186.x, abs(_189), _186.z), bool3(dot(_186, _186) > 9.9999999600419720025001879548654e-13)), _218).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_218)), float3(fma(_264, _264, fma(-_264, _264, 1.0) * ((_276 * _276) * _272)))), bool3((_88 < _91) && (_61 < 0.0)));
-    out.out_color = float4(_299, 1.0);
+    float3 _186 = abs(_56);
+    float3 _202 = _56 / float3(fast::max(fast::max(fast::max(_186.x, _186.y), _186.z), 1.0000000031710768509710513471353e-30));
+    float _206 = dot(_202, _202);
+    float3 _226 = reflect(select(float3(0.0, -1.0, 0.0), _202 * rsqrt(fast::max(_206, 1.0000000031710768509710513471353e-30)), bool3(_206 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _229 = _226.y;
+    float _255 = smoothstep(0.0, params.reflection_horizon_band, -_229);
+    float _301 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _309 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
+    float _313 = _309 * _309;
+    float3 _336 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_91 - _88, 0.0) + _151)), float3(exp((-params.scatter_coefficient) * _151))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_226.x, abs(_229), _226.z), bool3(dot(_226, _226) > 9.9999999600419720025001879548654e-13)), _255).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_255)), float3(fma(_301, _301, fma(-_301, _301, 1.0) * ((_313 * _313) * _309)))), bool3((_88 < _91) && (_61 < 0.0)));
+    out.out_color = float4(_336, 1.0);
     return out;
 }
 

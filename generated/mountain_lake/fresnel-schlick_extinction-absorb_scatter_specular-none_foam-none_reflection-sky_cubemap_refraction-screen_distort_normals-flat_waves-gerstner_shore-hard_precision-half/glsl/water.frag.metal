@@ -595,14 +595,17 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float _4742 = _33.y;
     float _4745 = _4734.y;
     float _4800 = fast::clamp(fast::max(_49 - _4727, 0.0), 0.0, 30000.0);
-    float3 _4835 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _4838 = _4835.y;
-    float _4865 = smoothstep(0.0, params.reflection_horizon_band, -_4838);
-    float _4911 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _4919 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
-    float _4923 = _4919 * _4919;
-    float3 _4946 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_4745 - _4742, 0.0) + _4800)), float3(exp((-params.scatter_coefficient) * _4800))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4835.x, abs(_4838), _4835.z), bool3(dot(_4835, _4835) > 9.9999999600419720025001879548654e-13)), _4865).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_4865)), float3(fma(_4911, _4911, fma(-_4911, _4911, 1.0) * ((_4923 * _4923) * _4919)))), bool3((_4742 < _4745) && (_161 < 0.0)));
-    out.out_color = float4(_4946, 1.0);
+    float3 _4835 = abs(_56);
+    float3 _4849 = _56 / float3(fast::max(fast::max(fast::max(_4835.x, _4835.y), _4835.z), 1.0000000031710768509710513471353e-30));
+    float _4853 = dot(_4849, _4849);
+    float3 _4872 = reflect(select(float3(0.0, -1.0, 0.0), _4849 * rsqrt(fast::max(_4853, 1.0000000031710768509710513471353e-30)), bool3(_4853 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _4875 = _4872.y;
+    float _4901 = smoothstep(0.0, params.reflection_horizon_band, -_4875);
+    float _4947 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _4955 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
+    float _4959 = _4955 * _4955;
+    float3 _4982 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_4745 - _4742, 0.0) + _4800)), float3(exp((-params.scatter_coefficient) * _4800))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4872.x, abs(_4875), _4872.z), bool3(dot(_4872, _4872) > 9.9999999600419720025001879548654e-13)), _4901).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_4901)), float3(fma(_4947, _4947, fma(-_4947, _4947, 1.0) * ((_4959 * _4959) * _4955)))), bool3((_4742 < _4745) && (_161 < 0.0)));
+    out.out_color = float4(_4982, 1.0);
     return out;
 }
 

@@ -702,31 +702,37 @@ void main() {
     mediump vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    mediump float t1911 = reflected_ray.y;
-    mediump vec3 t1914 = vec3(reflected_ray.x, abs(t1911), reflected_ray.z);
-    bool t1918 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t1918 ? t1914 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1911);
-    mediump vec4 t1922 = vec4(sky_direction, below_horizon);
-    mediump vec3 t1924 = t1922.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1924).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1922.w));
+    mediump vec3 t1910 = abs(view_ray);
+    mediump vec3 t1918 = view_ray / max(max(max(t1910.x, t1910.y), t1910.z), 1e-30);
+    mediump float t1919 = dot(t1918, t1918);
+    mediump vec3 t1922 = t1918 * inversesqrt(max(t1919, 1e-30));
+    bool t1923 = t1919 > 1e-30;
+    mediump vec3 t1924 = t1923 ? t1922 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t1924, vec3(0.0, 1.0, 0.0));
+    mediump float t1928 = reflected_ray.y;
+    mediump vec3 t1931 = vec3(reflected_ray.x, abs(t1928), reflected_ray.z);
+    bool t1934 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t1934 ? t1931 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1928);
+    mediump vec4 t1938 = vec4(sky_direction, below_horizon);
+    mediump vec3 t1940 = t1938.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1940).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1938.w));
 
     // fresnel.schlick
-    mediump float t1937 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t1937 * t1937;
+    mediump float t1953 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t1953 * t1953;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t1941 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1941 * t1941) * one_minus_c));
+    mediump float t1957 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1957 * t1957) * one_minus_c));
 
     // compose
-    mediump vec3 t1948 = mix(water_color, reflected, vec3(fresnel));
+    mediump vec3 t1964 = mix(water_color, reflected, vec3(fresnel));
 
     // shore.soft
-    mediump vec3 shore_color = mix(refracted, t1948, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));
+    mediump vec3 shore_color = mix(refracted, t1964, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));
 
     // compose
-    mediump vec3 t1954 = t1873 ? shore_color : scene_rgb;
+    mediump vec3 t1970 = t1873 ? shore_color : scene_rgb;
 
-    out_color = vec4(t1954, 1.0);
+    out_color = vec4(t1970, 1.0);
 }

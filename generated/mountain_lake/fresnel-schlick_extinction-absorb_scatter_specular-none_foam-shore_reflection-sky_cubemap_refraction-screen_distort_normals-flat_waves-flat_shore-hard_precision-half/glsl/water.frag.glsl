@@ -61,46 +61,52 @@ void main() {
     mediump vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    mediump float t69 = reflected_ray.y;
-    mediump vec3 t72 = vec3(reflected_ray.x, abs(t69), reflected_ray.z);
-    bool t76 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t76 ? t72 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t69);
-    mediump vec4 t80 = vec4(sky_direction, below_horizon);
-    mediump vec3 t82 = t80.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t82).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t80.w));
+    mediump vec3 t68 = abs(view_ray);
+    mediump vec3 t76 = view_ray / max(max(max(t68.x, t68.y), t68.z), 1e-30);
+    mediump float t77 = dot(t76, t76);
+    mediump vec3 t80 = t76 * inversesqrt(max(t77, 1e-30));
+    bool t81 = t77 > 1e-30;
+    mediump vec3 t82 = t81 ? t80 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t82, vec3(0.0, 1.0, 0.0));
+    mediump float t86 = reflected_ray.y;
+    mediump vec3 t89 = vec3(reflected_ray.x, abs(t86), reflected_ray.z);
+    bool t92 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t92 ? t89 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t86);
+    mediump vec4 t96 = vec4(sky_direction, below_horizon);
+    mediump vec3 t98 = t96.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t98).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t96.w));
 
     // fresnel.schlick
-    mediump float t95 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t95 * t95;
+    mediump float t111 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t111 * t111;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t99 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t99 * t99) * one_minus_c));
+    mediump float t115 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t115 * t115) * one_minus_c));
 
     // compose
-    mediump vec3 t106 = mix(water_color, reflected, vec3(fresnel));
+    mediump vec3 t122 = mix(water_color, reflected, vec3(fresnel));
 
     // foam.shore
-    vec2 t107 = surface_point.xz;
-    vec2 foam_uv = ((fract(t107 * params.foam_pattern_scale) * 255.0) + 0.5) / 256.0;
-    float foam_footprint = max(length(dFdx(t107)), length(dFdy(t107)));
+    vec2 t123 = surface_point.xz;
+    vec2 foam_uv = ((fract(t123 * params.foam_pattern_scale) * 255.0) + 0.5) / 256.0;
+    float foam_footprint = max(length(dFdx(t123)), length(dFdy(t123)));
     mediump float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     mediump float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
     mediump float foam_pattern = mix(foam_texel, 0.6, foam_aliasing);
-    mediump float t135 = params.foam_existence.x;
-    mediump float t136 = water_depth - t135;
-    mediump float t138 = params.foam_existence.y - t135;
-    mediump float t142 = clamp(t136 / max(t138, 5.9604645e-08), 0.0, 1.0);
-    bool t143 = t136 >= t138;
-    mediump float t144 = t143 ? 1.0 : t142;
-    mediump float t145 = 1.0 - t144;
-    bool t146 = t136 < 0.0;
-    mediump float shore_foam = t146 ? 1.0 : t145;
-    mediump vec3 foam_rgb = mix(t106, params.foam_color * foam_pattern, vec3(shore_foam));
+    mediump float t151 = params.foam_existence.x;
+    mediump float t152 = water_depth - t151;
+    mediump float t154 = params.foam_existence.y - t151;
+    mediump float t158 = clamp(t152 / max(t154, 5.9604645e-08), 0.0, 1.0);
+    bool t159 = t152 >= t154;
+    mediump float t160 = t159 ? 1.0 : t158;
+    mediump float t161 = 1.0 - t160;
+    bool t162 = t152 < 0.0;
+    mediump float shore_foam = t162 ? 1.0 : t161;
+    mediump vec3 foam_rgb = mix(t122, params.foam_color * foam_pattern, vec3(shore_foam));
 
     // compose
-    mediump vec3 t152 = t30 ? foam_rgb : scene_rgb;
+    mediump vec3 t168 = t30 ? foam_rgb : scene_rgb;
 
-    out_color = vec4(t152, 1.0);
+    out_color = vec4(t168, 1.0);
 }

@@ -46,17 +46,20 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float _91 = _79.y;
     float _96 = fast::max(_91 - _88, 0.0);
     float _151 = fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0);
-    float3 _186 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _189 = _186.y;
-    float _218 = smoothstep(0.0, params.reflection_horizon_band, -_189);
-    float _264 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _272 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
-    float _276 = _272 * _272;
-    float2 _296 = _79.xz;
-    float _351 = _96 - params.foam_existence[0u];
-    float _356 = params.foam_existence[1u] - params.foam_existence[0u];
-    float3 _397 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (_96 + _151)), float3(exp((-params.scatter_coefficient) * _151))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_186.x, abs(_189), _186.z), bool3(dot(_186, _186) > 9.9999999600419720025001879548654e-13)), _218).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_218)), float3(fma(_264, _264, fma(-_264, _264, 1.0) * ((_276 * _276) * _272)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_296 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_296)), length(dfdy(_296))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_351 < 0.0) ? 1.0 : (1.0 - ((_351 >= _356) ? 1.0 : fast::clamp(_351 / fast::max(_356, 5.9604644775390625e-08), 0.0, 1.0))))), bool3((_88 < _91) && (_61 < 0.0)));
-    out.out_color = float4(_397, 1.0);
+    float3 _186 = abs(_56);
+    float3 _202 = _56 / float3(fast::max(fast::max(fast::max(_186.x, _186.y), _186.z), 1.0000000031710768509710513471353e-30));
+    float _206 = dot(_202, _202);
+    float3 _226 = reflect(select(float3(0.0, -1.0, 0.0), _202 * rsqrt(fast::max(_206, 1.0000000031710768509710513471353e-30)), bool3(_206 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _229 = _226.y;
+    float _255 = smoothstep(0.0, params.reflection_horizon_band, -_229);
+    float _301 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _309 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
+    float _313 = _309 * _309;
+    float2 _333 = _79.xz;
+    float _388 = _96 - params.foam_existence[0u];
+    float _393 = params.foam_existence[1u] - params.foam_existence[0u];
+    float3 _434 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (_96 + _151)), float3(exp((-params.scatter_coefficient) * _151))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_226.x, abs(_229), _226.z), bool3(dot(_226, _226) > 9.9999999600419720025001879548654e-13)), _255).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_255)), float3(fma(_301, _301, fma(-_301, _301, 1.0) * ((_313 * _313) * _309)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_333 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_333)), length(dfdy(_333))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_388 < 0.0) ? 1.0 : (1.0 - ((_388 >= _393) ? 1.0 : fast::clamp(_388 / fast::max(_393, 5.9604644775390625e-08), 0.0, 1.0))))), bool3((_88 < _91) && (_61 < 0.0)));
+    out.out_color = float4(_434, 1.0);
     return out;
 }
 

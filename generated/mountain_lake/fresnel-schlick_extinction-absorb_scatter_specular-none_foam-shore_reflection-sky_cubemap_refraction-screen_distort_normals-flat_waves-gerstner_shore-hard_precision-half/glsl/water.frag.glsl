@@ -706,25 +706,31 @@ void main() {
     mediump vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    mediump float t1912 = reflected_ray.y;
-    mediump vec3 t1915 = vec3(reflected_ray.x, abs(t1912), reflected_ray.z);
-    bool t1919 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t1919 ? t1915 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1912);
-    mediump vec4 t1923 = vec4(sky_direction, below_horizon);
-    mediump vec3 t1925 = t1923.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1925).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1923.w));
+    mediump vec3 t1911 = abs(view_ray);
+    mediump vec3 t1919 = view_ray / max(max(max(t1911.x, t1911.y), t1911.z), 1e-30);
+    mediump float t1920 = dot(t1919, t1919);
+    mediump vec3 t1923 = t1919 * inversesqrt(max(t1920, 1e-30));
+    bool t1924 = t1920 > 1e-30;
+    mediump vec3 t1925 = t1924 ? t1923 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t1925, vec3(0.0, 1.0, 0.0));
+    mediump float t1929 = reflected_ray.y;
+    mediump vec3 t1932 = vec3(reflected_ray.x, abs(t1929), reflected_ray.z);
+    bool t1935 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t1935 ? t1932 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1929);
+    mediump vec4 t1939 = vec4(sky_direction, below_horizon);
+    mediump vec3 t1941 = t1939.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1941).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1939.w));
 
     // fresnel.schlick
-    mediump float t1938 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t1938 * t1938;
+    mediump float t1954 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t1954 * t1954;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t1942 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1942 * t1942) * one_minus_c));
+    mediump float t1958 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1958 * t1958) * one_minus_c));
 
     // compose
-    mediump vec3 t1949 = mix(water_color, reflected, vec3(fresnel));
+    mediump vec3 t1965 = mix(water_color, reflected, vec3(fresnel));
 
     // foam.shore
     vec2 foam_uv = ((fract(t1865 * params.foam_pattern_scale) * 255.0) + 0.5) / 256.0;
@@ -732,19 +738,19 @@ void main() {
     mediump float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     mediump float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
     mediump float foam_pattern = mix(foam_texel, 0.6, foam_aliasing);
-    mediump float t1976 = params.foam_existence.x;
-    mediump float t1977 = water_depth - t1976;
-    mediump float t1979 = params.foam_existence.y - t1976;
-    mediump float t1983 = clamp(t1977 / max(t1979, 5.9604645e-08), 0.0, 1.0);
-    bool t1984 = t1977 >= t1979;
-    mediump float t1985 = t1984 ? 1.0 : t1983;
-    mediump float t1986 = 1.0 - t1985;
-    bool t1987 = t1977 < 0.0;
-    mediump float shore_foam = t1987 ? 1.0 : t1986;
-    mediump vec3 foam_rgb = mix(t1949, params.foam_color * foam_pattern, vec3(shore_foam));
+    mediump float t1992 = params.foam_existence.x;
+    mediump float t1993 = water_depth - t1992;
+    mediump float t1995 = params.foam_existence.y - t1992;
+    mediump float t1999 = clamp(t1993 / max(t1995, 5.9604645e-08), 0.0, 1.0);
+    bool t2000 = t1993 >= t1995;
+    mediump float t2001 = t2000 ? 1.0 : t1999;
+    mediump float t2002 = 1.0 - t2001;
+    bool t2003 = t1993 < 0.0;
+    mediump float shore_foam = t2003 ? 1.0 : t2002;
+    mediump vec3 foam_rgb = mix(t1965, params.foam_color * foam_pattern, vec3(shore_foam));
 
     // compose
-    mediump vec3 t1993 = t1874 ? foam_rgb : scene_rgb;
+    mediump vec3 t2009 = t1874 ? foam_rgb : scene_rgb;
 
-    out_color = vec4(t1993, 1.0);
+    out_color = vec4(t2009, 1.0);
 }

@@ -602,16 +602,20 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float _4753 = fast::max(_4748 - _4745, 0.0);
     float3 _4799 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
     float _4803 = fast::clamp(fast::max(_49 - _4727, 0.0), 0.0, 30000.0);
-    float3 _4838 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _4841 = _4838.y;
-    float _4868 = smoothstep(0.0, params.reflection_horizon_band, -_4841);
-    float _4914 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _4922 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
-    float _4926 = _4922 * _4922;
-    float _4996 = _4753 - params.foam_existence[0u];
-    float _5001 = params.foam_existence[1u] - params.foam_existence[0u];
-    float3 _5047 = mix(_4799, mix(mix(mix(float3(params.scatter_color), _4799 * exp((-float3(params.absorb_coefficients)) * (_4753 + _4803)), float3(exp((-params.scatter_coefficient) * _4803))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4838.x, abs(_4841), _4838.z), bool3(dot(_4838, _4838) > 9.9999999600419720025001879548654e-13)), _4868).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_4868)), float3(fma(_4914, _4914, fma(-_4914, _4914, 1.0) * ((_4926 * _4926) * _4922)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_4737 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_4737)), length(dfdy(_4737))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_4996 < 0.0) ? 1.0 : (1.0 - ((_4996 >= _5001) ? 1.0 : fast::clamp(_4996 / fast::max(_5001, 5.9604644775390625e-08), 0.0, 1.0))))), float3(fast::clamp(_4753 * params.shore_hardness, 0.0, 1.0)));
-    out.out_color = float4(select(scene_color.sample(linear_clamp, in.v_uv).xyz, _5047, bool3((_4745 < _4748) && (_161 < 0.0))), 1.0);
+    float3 _4838 = abs(_56);
+    float3 _4852 = _56 / float3(fast::max(fast::max(fast::max(_4838.x, _4838.y), _4838.z), 1.0000000031710768509710513471353e-30));
+    float _4856 = dot(_4852, _4852);
+    float3 _4875 = reflect(select(float3(0.0, -1.0, 0.0), _4852 * rsqrt(fast::max(_4856, 1.0000000031710768509710513471353e-30)), bool3(_4856 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _4878 = _4875.y;
+    float _4904 = smoothstep(0.0, params.reflection_horizon_band, -_4878);
+    float _4950 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _4958 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
+    float _4962 = _4958 * _4958;
+    float _5032 = _4753 - params.foam_existence[0u];
+    float _5037 = params.foam_existence[1u] - params.foam_existence[0u];
+    float3 _5083 = mix(_4799, mix(mix(mix(float3(params.scatter_color), _4799 * exp((-float3(params.absorb_coefficients)) * (_4753 + _4803)), float3(exp((-params.scatter_coefficient) * _4803))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4875.x, abs(_4878), _4875.z), bool3(dot(_4875, _4875) > 9.9999999600419720025001879548654e-13)), _4904).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_4904)), float3(fma(_4950, _4950, fma(-_4950, _4950, 1.0) * ((_4962 * _4962) * _4958)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_4737 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_4737)), length(dfdy(_4737))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_5032 < 0.0) ? 1.0 : (1.0 - ((_5032 >= _5037) ? 1.0 : fast::clamp(_5032 / fast::max(_5037, 5.9604644775390625e-08), 0.0, 1.0))))), float3(fast::clamp(_4753 * params.shore_hardness, 0.0, 1.0)));
+    float3 _5089 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, _5083, bool3((_4745 < _4748) && (_161 < 0.0)));
+    out.out_color = float4(_5089, 1.0);
     return out;
 }
 

@@ -43,47 +43,53 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float3 water_color = lerp(scatter_color, float3(0.0, 0.0, 0.0), (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 reflected_ray = reflect(view_ray, float3(0.0, 1.0, 0.0));
-    float t50 = reflected_ray.y;
-    float3 t53 = float3(reflected_ray.x, abs(t50), reflected_ray.z);
-    bool t56 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t56 ? t53 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t50);
-    float4 t60 = float4(sky_direction, below_horizon);
-    float3 t62 = t60.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t62).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t60.w));
+    float3 t49 = abs(view_ray);
+    float3 t57 = view_ray / max(max(max(t49.x, t49.y), t49.z), 1e-30);
+    float t58 = dot(t57, t57);
+    float3 t61 = t57 * rsqrt(max(t58, 1e-30));
+    bool t62 = t58 > 1e-30;
+    float3 t63 = t62 ? t61 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t63, float3(0.0, 1.0, 0.0));
+    float t66 = reflected_ray.y;
+    float3 t69 = float3(reflected_ray.x, abs(t66), reflected_ray.z);
+    bool t72 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t72 ? t69 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t66);
+    float4 t76 = float4(sky_direction, below_horizon);
+    float3 t78 = t76.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t78).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t76.w));
 
     // fresnel.exact
     float cos_incident = saturate(n_dot_v);
-    float t76 = ior_air / ior_water;
-    float sin2_transmitted = (t76 * t76) * (1.0 - (cos_incident * cos_incident));
+    float t92 = ior_air / ior_water;
+    float sin2_transmitted = (t92 * t92) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t82 = ior_water * cos_transmitted;
-    float t83 = ior_air * cos_incident;
-    float t88 = (t83 - t82) / max(t83 + t82, 1e-30);
-    float t89 = ior_air * cos_transmitted;
-    float t90 = ior_water * cos_incident;
-    float t94 = (t90 - t89) / max(t90 + t89, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t88 * t88) + (t94 * t94));
-    bool t100 = sin2_transmitted >= 1.0;
-    float fresnel = t100 ? 1.0 : fresnel_unpolarised;
+    float t98 = ior_water * cos_transmitted;
+    float t99 = ior_air * cos_incident;
+    float t103 = (t99 - t98) / max(t99 + t98, 1e-30);
+    float t104 = ior_air * cos_transmitted;
+    float t105 = ior_water * cos_incident;
+    float t109 = (t105 - t104) / max(t105 + t104, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t103 * t103) + (t109 * t109));
+    bool t115 = sin2_transmitted >= 1.0;
+    float fresnel = t115 ? 1.0 : fresnel_unpolarised;
 
     // specular.blinn_phong
-    float3 t104 = (-sun_direction) + t32;
-    float t112 = max(max(abs(t104.x), abs(t104.y)), abs(t104.z));
-    float3 t115 = t104 / max(t112, 5.9604645e-08);
-    float3 t118 = t115 / max(length(t115), 1.0);
-    bool t119 = t112 > 5.9604645e-08;
-    float3 half_vector = t119 ? t118 : float3(0.0, 0.0, 0.0);
-    float t122 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
-    float t125 = pow(max(t122, 6.1035156e-05), specular_exponent);
-    bool t126 = t122 > 6.1035156e-05;
-    float t127 = t126 ? t125 : 0.0;
-    float3 specular = t127 * sun_color;
+    float3 t119 = (-sun_direction) + t32;
+    float t127 = max(max(abs(t119.x), abs(t119.y)), abs(t119.z));
+    float3 t130 = t119 / max(t127, 5.9604645e-08);
+    float3 t133 = t130 / max(length(t130), 1.0);
+    bool t134 = t127 > 5.9604645e-08;
+    float3 half_vector = t134 ? t133 : float3(0.0, 0.0, 0.0);
+    float t137 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
+    float t140 = pow(max(t137, 6.1035156e-05), specular_exponent);
+    bool t141 = t137 > 6.1035156e-05;
+    float t142 = t141 ? t140 : 0.0;
+    float3 specular = t142 * sun_color;
 
     // compose
     float3 water_rgb = lerp(water_color, reflected, (float3)(fresnel)) + specular;
-    float3 t132 = t30 ? water_rgb : scene_rgb;
+    float3 t147 = t30 ? water_rgb : scene_rgb;
 
-    return float4(t132, 1.0);
+    return float4(t147, 1.0);
 }

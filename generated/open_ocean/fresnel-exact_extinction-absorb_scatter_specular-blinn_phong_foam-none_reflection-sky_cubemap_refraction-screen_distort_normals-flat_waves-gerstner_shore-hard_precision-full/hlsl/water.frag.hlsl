@@ -708,47 +708,53 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float3 water_color = lerp(scatter_color, refracted * transmittance, (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 reflected_ray = reflect(view_ray, float3(0.0, 1.0, 0.0));
-    float t1957 = reflected_ray.y;
-    float3 t1960 = float3(reflected_ray.x, abs(t1957), reflected_ray.z);
-    bool t1963 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t1963 ? t1960 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t1957);
-    float4 t1967 = float4(sky_direction, below_horizon);
-    float3 t1969 = t1967.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t1969).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t1967.w));
+    float3 t1956 = abs(view_ray);
+    float3 t1963 = view_ray / max(max(max(t1956.x, t1956.y), t1956.z), 1e-30);
+    float t1964 = dot(t1963, t1963);
+    float3 t1967 = t1963 * rsqrt(max(t1964, 1e-30));
+    bool t1968 = t1964 > 1e-30;
+    float3 t1969 = t1968 ? t1967 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t1969, float3(0.0, 1.0, 0.0));
+    float t1972 = reflected_ray.y;
+    float3 t1975 = float3(reflected_ray.x, abs(t1972), reflected_ray.z);
+    bool t1978 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t1978 ? t1975 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t1972);
+    float4 t1982 = float4(sky_direction, below_horizon);
+    float3 t1984 = t1982.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t1984).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t1982.w));
 
     // fresnel.exact
     float cos_incident = saturate(n_dot_v);
-    float t1983 = ior_air / ior_water;
-    float sin2_transmitted = (t1983 * t1983) * (1.0 - (cos_incident * cos_incident));
+    float t1998 = ior_air / ior_water;
+    float sin2_transmitted = (t1998 * t1998) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t1989 = ior_water * cos_transmitted;
-    float t1990 = ior_air * cos_incident;
-    float t1994 = (t1990 - t1989) / max(t1990 + t1989, 1e-30);
-    float t1995 = ior_air * cos_transmitted;
-    float t1996 = ior_water * cos_incident;
-    float t2000 = (t1996 - t1995) / max(t1996 + t1995, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t1994 * t1994) + (t2000 * t2000));
-    bool t2005 = sin2_transmitted >= 1.0;
-    float fresnel = t2005 ? 1.0 : fresnel_unpolarised;
+    float t2004 = ior_water * cos_transmitted;
+    float t2005 = ior_air * cos_incident;
+    float t2009 = (t2005 - t2004) / max(t2005 + t2004, 1e-30);
+    float t2010 = ior_air * cos_transmitted;
+    float t2011 = ior_water * cos_incident;
+    float t2015 = (t2011 - t2010) / max(t2011 + t2010, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t2009 * t2009) + (t2015 * t2015));
+    bool t2020 = sin2_transmitted >= 1.0;
+    float fresnel = t2020 ? 1.0 : fresnel_unpolarised;
 
     // specular.blinn_phong
-    float3 t2009 = (-sun_direction) + t1922;
-    float t2017 = max(max(abs(t2009.x), abs(t2009.y)), abs(t2009.z));
-    float3 t2020 = t2009 / max(t2017, 5.9604645e-08);
-    float3 t2023 = t2020 / max(length(t2020), 1.0);
-    bool t2025 = t2017 > 5.9604645e-08;
-    float3 half_vector = t2025 ? t2023 : float3(0.0, 0.0, 0.0);
-    float t2028 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
-    float t2031 = pow(max(t2028, 6.1035156e-05), specular_exponent);
-    bool t2032 = t2028 > 6.1035156e-05;
-    float t2033 = t2032 ? t2031 : 0.0;
-    float3 specular = t2033 * sun_color;
+    float3 t2024 = (-sun_direction) + t1922;
+    float t2032 = max(max(abs(t2024.x), abs(t2024.y)), abs(t2024.z));
+    float3 t2035 = t2024 / max(t2032, 5.9604645e-08);
+    float3 t2038 = t2035 / max(length(t2035), 1.0);
+    bool t2040 = t2032 > 5.9604645e-08;
+    float3 half_vector = t2040 ? t2038 : float3(0.0, 0.0, 0.0);
+    float t2043 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
+    float t2046 = pow(max(t2043, 6.1035156e-05), specular_exponent);
+    bool t2047 = t2043 > 6.1035156e-05;
+    float t2048 = t2047 ? t2046 : 0.0;
+    float3 specular = t2048 * sun_color;
 
     // compose
     float3 water_rgb = lerp(water_color, reflected, (float3)(fresnel)) + specular;
-    float3 t2038 = t1921 ? water_rgb : scene_rgb;
+    float3 t2053 = t1921 ? water_rgb : scene_rgb;
 
-    return float4(t2038, 1.0);
+    return float4(t2053, 1.0);
 }

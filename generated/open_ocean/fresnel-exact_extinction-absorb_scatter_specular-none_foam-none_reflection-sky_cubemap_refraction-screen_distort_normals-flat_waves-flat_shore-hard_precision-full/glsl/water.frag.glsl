@@ -42,34 +42,40 @@ void main() {
     vec3 water_color = mix(params.scatter_color, vec3(0.0), vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    float t48 = reflected_ray.y;
-    vec3 t51 = vec3(reflected_ray.x, abs(t48), reflected_ray.z);
-    bool t54 = dot(reflected_ray, reflected_ray) > 1e-12;
-    vec3 sky_direction = t54 ? t51 : vec3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t48);
-    vec4 t58 = vec4(sky_direction, below_horizon);
-    vec3 t60 = t58.xyz;
-    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t60).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t58.w));
+    vec3 t47 = abs(view_ray);
+    vec3 t55 = view_ray / max(max(max(t47.x, t47.y), t47.z), 1e-30);
+    float t56 = dot(t55, t55);
+    vec3 t59 = t55 * inversesqrt(max(t56, 1e-30));
+    bool t60 = t56 > 1e-30;
+    vec3 t61 = t60 ? t59 : vec3(0.0, (-1.0), 0.0);
+    vec3 reflected_ray = reflect(t61, vec3(0.0, 1.0, 0.0));
+    float t64 = reflected_ray.y;
+    vec3 t67 = vec3(reflected_ray.x, abs(t64), reflected_ray.z);
+    bool t70 = dot(reflected_ray, reflected_ray) > 1e-12;
+    vec3 sky_direction = t70 ? t67 : vec3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t64);
+    vec4 t74 = vec4(sky_direction, below_horizon);
+    vec3 t76 = t74.xyz;
+    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t76).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t74.w));
 
     // fresnel.exact
     float cos_incident = clamp(n_dot_v, 0.0, 1.0);
-    float t74 = params.ior_air / params.ior_water;
-    float sin2_transmitted = (t74 * t74) * (1.0 - (cos_incident * cos_incident));
+    float t90 = params.ior_air / params.ior_water;
+    float sin2_transmitted = (t90 * t90) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t80 = params.ior_water * cos_transmitted;
-    float t81 = params.ior_air * cos_incident;
-    float t86 = (t81 - t80) / max(t81 + t80, 1e-30);
-    float t87 = params.ior_air * cos_transmitted;
-    float t88 = params.ior_water * cos_incident;
-    float t92 = (t88 - t87) / max(t88 + t87, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t86 * t86) + (t92 * t92));
-    bool t98 = sin2_transmitted >= 1.0;
-    float fresnel = t98 ? 1.0 : fresnel_unpolarised;
+    float t96 = params.ior_water * cos_transmitted;
+    float t97 = params.ior_air * cos_incident;
+    float t101 = (t97 - t96) / max(t97 + t96, 1e-30);
+    float t102 = params.ior_air * cos_transmitted;
+    float t103 = params.ior_water * cos_incident;
+    float t107 = (t103 - t102) / max(t103 + t102, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t101 * t101) + (t107 * t107));
+    bool t113 = sin2_transmitted >= 1.0;
+    float fresnel = t113 ? 1.0 : fresnel_unpolarised;
 
     // compose
-    vec3 t101 = mix(water_color, reflected, vec3(fresnel));
-    vec3 t102 = t28 ? t101 : scene_rgb;
+    vec3 t116 = mix(water_color, reflected, vec3(fresnel));
+    vec3 t117 = t28 ? t116 : scene_rgb;
 
-    out_color = vec4(t102, 1.0);
+    out_color = vec4(t117, 1.0);
 }

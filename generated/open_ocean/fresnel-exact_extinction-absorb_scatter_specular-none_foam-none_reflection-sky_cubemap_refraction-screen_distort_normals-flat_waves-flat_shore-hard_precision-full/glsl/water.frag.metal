@@ -35,20 +35,23 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _56 = _45 / float3(fast::max(_49, 9.9999999747524270787835121154785e-07));
     float _61 = _56.y;
     float _72 = (-params.eye_position[1u]) / fast::min(_61, -9.9999999747524270787835121154785e-07);
-    float3 _127 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _130 = _127.y;
-    float _159 = smoothstep(0.0, params.reflection_horizon_band, -_130);
-    float _194 = fast::clamp((-_56).y, 0.0, 1.0);
-    float _202 = params.ior_air / params.ior_water;
-    float _206 = _202 * _202;
-    float _210 = fma(-_194, _194, 1.0);
-    float _216 = sqrt(fast::max(fma(-_206, _210, 1.0), 0.0));
-    float _221 = params.ior_water * _216;
-    float _236 = fma(params.ior_air, _194, -_221) / fast::max(fma(params.ior_air, _194, _221), 1.0000000031710768509710513471353e-30);
-    float _241 = params.ior_air * _216;
-    float _255 = fma(params.ior_water, _194, -_241) / fast::max(fma(params.ior_water, _194, _241), 1.0000000031710768509710513471353e-30);
-    float3 _284 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_127.x, abs(_130), _127.z), bool3(dot(_127, _127) > 9.9999999600419720025001879548654e-13)), _159).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_159)), float3(((_206 * _210) >= 1.0) ? 1.0 : (0.5 * fma(_236, _236, _255 * _255)))), bool3((_33.y < (float3(params.eye_position) + (_56 * _72)).y) && (_61 < 0.0)));
-    out.out_color = float4(_284, 1.0);
+    float3 _127 = abs(_56);
+    float3 _143 = _56 / float3(fast::max(fast::max(fast::max(_127.x, _127.y), _127.z), 1.0000000031710768509710513471353e-30));
+    float _147 = dot(_143, _143);
+    float3 _167 = reflect(select(float3(0.0, -1.0, 0.0), _143 * rsqrt(fast::max(_147, 1.0000000031710768509710513471353e-30)), bool3(_147 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _170 = _167.y;
+    float _196 = smoothstep(0.0, params.reflection_horizon_band, -_170);
+    float _231 = fast::clamp((-_56).y, 0.0, 1.0);
+    float _239 = params.ior_air / params.ior_water;
+    float _243 = _239 * _239;
+    float _247 = fma(-_231, _231, 1.0);
+    float _253 = sqrt(fast::max(fma(-_243, _247, 1.0), 0.0));
+    float _258 = params.ior_water * _253;
+    float _272 = fma(params.ior_air, _231, -_258) / fast::max(fma(params.ior_air, _231, _258), 1.0000000031710768509710513471353e-30);
+    float _277 = params.ior_air * _253;
+    float _291 = fma(params.ior_water, _231, -_277) / fast::max(fma(params.ior_water, _231, _277), 1.0000000031710768509710513471353e-30);
+    float3 _320 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_167.x, abs(_170), _167.z), bool3(dot(_167, _167) > 9.9999999600419720025001879548654e-13)), _196).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_196)), float3(((_243 * _247) >= 1.0) ? 1.0 : (0.5 * fma(_272, _272, _291 * _291)))), bool3((_33.y < (float3(params.eye_position) + (_56 * _72)).y) && (_61 < 0.0)));
+    out.out_color = float4(_320, 1.0);
     return out;
 }
 

@@ -39,34 +39,40 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float3 water_color = lerp(scatter_color, float3(0.0, 0.0, 0.0), (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 reflected_ray = reflect(view_ray, float3(0.0, 1.0, 0.0));
-    float t48 = reflected_ray.y;
-    float3 t51 = float3(reflected_ray.x, abs(t48), reflected_ray.z);
-    bool t54 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t54 ? t51 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t48);
-    float4 t58 = float4(sky_direction, below_horizon);
-    float3 t60 = t58.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t60).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t58.w));
+    float3 t47 = abs(view_ray);
+    float3 t55 = view_ray / max(max(max(t47.x, t47.y), t47.z), 1e-30);
+    float t56 = dot(t55, t55);
+    float3 t59 = t55 * rsqrt(max(t56, 1e-30));
+    bool t60 = t56 > 1e-30;
+    float3 t61 = t60 ? t59 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t61, float3(0.0, 1.0, 0.0));
+    float t64 = reflected_ray.y;
+    float3 t67 = float3(reflected_ray.x, abs(t64), reflected_ray.z);
+    bool t70 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t70 ? t67 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t64);
+    float4 t74 = float4(sky_direction, below_horizon);
+    float3 t76 = t74.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t76).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t74.w));
 
     // fresnel.exact
     float cos_incident = saturate(n_dot_v);
-    float t74 = ior_air / ior_water;
-    float sin2_transmitted = (t74 * t74) * (1.0 - (cos_incident * cos_incident));
+    float t90 = ior_air / ior_water;
+    float sin2_transmitted = (t90 * t90) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t80 = ior_water * cos_transmitted;
-    float t81 = ior_air * cos_incident;
-    float t86 = (t81 - t80) / max(t81 + t80, 1e-30);
-    float t87 = ior_air * cos_transmitted;
-    float t88 = ior_water * cos_incident;
-    float t92 = (t88 - t87) / max(t88 + t87, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t86 * t86) + (t92 * t92));
-    bool t98 = sin2_transmitted >= 1.0;
-    float fresnel = t98 ? 1.0 : fresnel_unpolarised;
+    float t96 = ior_water * cos_transmitted;
+    float t97 = ior_air * cos_incident;
+    float t101 = (t97 - t96) / max(t97 + t96, 1e-30);
+    float t102 = ior_air * cos_transmitted;
+    float t103 = ior_water * cos_incident;
+    float t107 = (t103 - t102) / max(t103 + t102, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t101 * t101) + (t107 * t107));
+    bool t113 = sin2_transmitted >= 1.0;
+    float fresnel = t113 ? 1.0 : fresnel_unpolarised;
 
     // compose
-    float3 t101 = lerp(water_color, reflected, (float3)(fresnel));
-    float3 t102 = t28 ? t101 : scene_rgb;
+    float3 t116 = lerp(water_color, reflected, (float3)(fresnel));
+    float3 t117 = t28 ? t116 : scene_rgb;
 
-    return float4(t102, 1.0);
+    return float4(t117, 1.0);
 }

@@ -707,34 +707,40 @@ void main() {
     vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    float t1955 = reflected_ray.y;
-    vec3 t1958 = vec3(reflected_ray.x, abs(t1955), reflected_ray.z);
-    bool t1961 = dot(reflected_ray, reflected_ray) > 1e-12;
-    vec3 sky_direction = t1961 ? t1958 : vec3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1955);
-    vec4 t1965 = vec4(sky_direction, below_horizon);
-    vec3 t1967 = t1965.xyz;
-    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1967).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1965.w));
+    vec3 t1954 = abs(view_ray);
+    vec3 t1961 = view_ray / max(max(max(t1954.x, t1954.y), t1954.z), 1e-30);
+    float t1962 = dot(t1961, t1961);
+    vec3 t1965 = t1961 * inversesqrt(max(t1962, 1e-30));
+    bool t1966 = t1962 > 1e-30;
+    vec3 t1967 = t1966 ? t1965 : vec3(0.0, (-1.0), 0.0);
+    vec3 reflected_ray = reflect(t1967, vec3(0.0, 1.0, 0.0));
+    float t1970 = reflected_ray.y;
+    vec3 t1973 = vec3(reflected_ray.x, abs(t1970), reflected_ray.z);
+    bool t1976 = dot(reflected_ray, reflected_ray) > 1e-12;
+    vec3 sky_direction = t1976 ? t1973 : vec3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1970);
+    vec4 t1980 = vec4(sky_direction, below_horizon);
+    vec3 t1982 = t1980.xyz;
+    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1982).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1980.w));
 
     // fresnel.exact
     float cos_incident = clamp(n_dot_v, 0.0, 1.0);
-    float t1981 = params.ior_air / params.ior_water;
-    float sin2_transmitted = (t1981 * t1981) * (1.0 - (cos_incident * cos_incident));
+    float t1996 = params.ior_air / params.ior_water;
+    float sin2_transmitted = (t1996 * t1996) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t1987 = params.ior_water * cos_transmitted;
-    float t1988 = params.ior_air * cos_incident;
-    float t1992 = (t1988 - t1987) / max(t1988 + t1987, 1e-30);
-    float t1993 = params.ior_air * cos_transmitted;
-    float t1994 = params.ior_water * cos_incident;
-    float t1998 = (t1994 - t1993) / max(t1994 + t1993, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t1992 * t1992) + (t1998 * t1998));
-    bool t2003 = sin2_transmitted >= 1.0;
-    float fresnel = t2003 ? 1.0 : fresnel_unpolarised;
+    float t2002 = params.ior_water * cos_transmitted;
+    float t2003 = params.ior_air * cos_incident;
+    float t2007 = (t2003 - t2002) / max(t2003 + t2002, 1e-30);
+    float t2008 = params.ior_air * cos_transmitted;
+    float t2009 = params.ior_water * cos_incident;
+    float t2013 = (t2009 - t2008) / max(t2009 + t2008, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t2007 * t2007) + (t2013 * t2013));
+    bool t2018 = sin2_transmitted >= 1.0;
+    float fresnel = t2018 ? 1.0 : fresnel_unpolarised;
 
     // compose
-    vec3 t2006 = mix(water_color, reflected, vec3(fresnel));
-    vec3 t2007 = t1919 ? t2006 : scene_rgb;
+    vec3 t2021 = mix(water_color, reflected, vec3(fresnel));
+    vec3 t2022 = t1919 ? t2021 : scene_rgb;
 
-    out_color = vec4(t2007, 1.0);
+    out_color = vec4(t2022, 1.0);
 }

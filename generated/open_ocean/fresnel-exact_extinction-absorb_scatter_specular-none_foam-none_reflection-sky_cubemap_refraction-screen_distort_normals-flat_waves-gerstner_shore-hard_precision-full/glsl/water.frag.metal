@@ -603,20 +603,23 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float _4842 = _33.y;
     float _4845 = _4834.y;
     float _4900 = fast::clamp(fast::max(_49 - _4827, 0.0), 0.0, 30000.0);
-    float3 _4935 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _4938 = _4935.y;
-    float _4964 = smoothstep(0.0, params.reflection_horizon_band, -_4938);
-    float _4998 = fast::clamp((-_56).y, 0.0, 1.0);
-    float _5006 = params.ior_air / params.ior_water;
-    float _5010 = _5006 * _5006;
-    float _5014 = fma(-_4998, _4998, 1.0);
-    float _5020 = sqrt(fast::max(fma(-_5010, _5014, 1.0), 0.0));
-    float _5025 = params.ior_water * _5020;
-    float _5039 = fma(params.ior_air, _4998, -_5025) / fast::max(fma(params.ior_air, _4998, _5025), 1.0000000031710768509710513471353e-30);
-    float _5044 = params.ior_air * _5020;
-    float _5058 = fma(params.ior_water, _4998, -_5044) / fast::max(fma(params.ior_water, _4998, _5044), 1.0000000031710768509710513471353e-30);
-    float3 _5086 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_4845 - _4842, 0.0) + _4900)), float3(exp((-params.scatter_coefficient) * _4900))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4935.x, abs(_4938), _4935.z), bool3(dot(_4935, _4935) > 9.9999999600419720025001879548654e-13)), _4964).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_4964)), float3(((_5010 * _5014) >= 1.0) ? 1.0 : (0.5 * fma(_5039, _5039, _5058 * _5058)))), bool3((_4842 < _4845) && (_190 < 0.0)));
-    out.out_color = float4(_5086, 1.0);
+    float3 _4935 = abs(_56);
+    float3 _4948 = _56 / float3(fast::max(fast::max(fast::max(_4935.x, _4935.y), _4935.z), 1.0000000031710768509710513471353e-30));
+    float _4952 = dot(_4948, _4948);
+    float3 _4971 = reflect(select(float3(0.0, -1.0, 0.0), _4948 * rsqrt(fast::max(_4952, 1.0000000031710768509710513471353e-30)), bool3(_4952 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _4974 = _4971.y;
+    float _5000 = smoothstep(0.0, params.reflection_horizon_band, -_4974);
+    float _5034 = fast::clamp((-_56).y, 0.0, 1.0);
+    float _5042 = params.ior_air / params.ior_water;
+    float _5046 = _5042 * _5042;
+    float _5050 = fma(-_5034, _5034, 1.0);
+    float _5056 = sqrt(fast::max(fma(-_5046, _5050, 1.0), 0.0));
+    float _5061 = params.ior_water * _5056;
+    float _5075 = fma(params.ior_air, _5034, -_5061) / fast::max(fma(params.ior_air, _5034, _5061), 1.0000000031710768509710513471353e-30);
+    float _5080 = params.ior_air * _5056;
+    float _5094 = fma(params.ior_water, _5034, -_5080) / fast::max(fma(params.ior_water, _5034, _5080), 1.0000000031710768509710513471353e-30);
+    float3 _5122 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_4845 - _4842, 0.0) + _4900)), float3(exp((-params.scatter_coefficient) * _4900))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4971.x, abs(_4974), _4971.z), bool3(dot(_4971, _4971) > 9.9999999600419720025001879548654e-13)), _5000).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_5000)), float3(((_5046 * _5050) >= 1.0) ? 1.0 : (0.5 * fma(_5075, _5075, _5094 * _5094)))), bool3((_4842 < _4845) && (_190 < 0.0)));
+    out.out_color = float4(_5122, 1.0);
     return out;
 }
 

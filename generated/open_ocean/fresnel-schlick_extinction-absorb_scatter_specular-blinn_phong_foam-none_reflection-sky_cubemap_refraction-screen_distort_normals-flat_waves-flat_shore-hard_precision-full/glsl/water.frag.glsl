@@ -46,39 +46,45 @@ void main() {
     vec3 water_color = mix(params.scatter_color, vec3(0.0), vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    float t50 = reflected_ray.y;
-    vec3 t53 = vec3(reflected_ray.x, abs(t50), reflected_ray.z);
-    bool t56 = dot(reflected_ray, reflected_ray) > 1e-12;
-    vec3 sky_direction = t56 ? t53 : vec3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t50);
-    vec4 t60 = vec4(sky_direction, below_horizon);
-    vec3 t62 = t60.xyz;
-    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t62).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t60.w));
+    vec3 t49 = abs(view_ray);
+    vec3 t57 = view_ray / max(max(max(t49.x, t49.y), t49.z), 1e-30);
+    float t58 = dot(t57, t57);
+    vec3 t61 = t57 * inversesqrt(max(t58, 1e-30));
+    bool t62 = t58 > 1e-30;
+    vec3 t63 = t62 ? t61 : vec3(0.0, (-1.0), 0.0);
+    vec3 reflected_ray = reflect(t63, vec3(0.0, 1.0, 0.0));
+    float t66 = reflected_ray.y;
+    vec3 t69 = vec3(reflected_ray.x, abs(t66), reflected_ray.z);
+    bool t72 = dot(reflected_ray, reflected_ray) > 1e-12;
+    vec3 sky_direction = t72 ? t69 : vec3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t66);
+    vec4 t76 = vec4(sky_direction, below_horizon);
+    vec3 t78 = t76.xyz;
+    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t78).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t76.w));
 
     // fresnel.schlick
-    float t75 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float fresnel_r0 = t75 * t75;
+    float t91 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float fresnel_r0 = t91 * t91;
     float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    float t79 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t79 * t79) * one_minus_c));
+    float t95 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t95 * t95) * one_minus_c));
 
     // specular.blinn_phong
-    vec3 t87 = (-params.sun_direction) + t32;
-    float t95 = max(max(abs(t87.x), abs(t87.y)), abs(t87.z));
-    vec3 t98 = t87 / max(t95, 5.9604645e-08);
-    vec3 t101 = t98 / max(length(t98), 1.0);
-    bool t102 = t95 > 5.9604645e-08;
-    vec3 half_vector = t102 ? t101 : vec3(0.0);
-    float t105 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
-    float t108 = pow(max(t105, 6.1035156e-05), params.specular_exponent);
-    bool t109 = t105 > 6.1035156e-05;
-    float t110 = t109 ? t108 : 0.0;
-    vec3 specular = t110 * params.sun_color;
+    vec3 t103 = (-params.sun_direction) + t32;
+    float t111 = max(max(abs(t103.x), abs(t103.y)), abs(t103.z));
+    vec3 t114 = t103 / max(t111, 5.9604645e-08);
+    vec3 t117 = t114 / max(length(t114), 1.0);
+    bool t118 = t111 > 5.9604645e-08;
+    vec3 half_vector = t118 ? t117 : vec3(0.0);
+    float t121 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
+    float t124 = pow(max(t121, 6.1035156e-05), params.specular_exponent);
+    bool t125 = t121 > 6.1035156e-05;
+    float t126 = t125 ? t124 : 0.0;
+    vec3 specular = t126 * params.sun_color;
 
     // compose
     vec3 water_rgb = mix(water_color, reflected, vec3(fresnel)) + specular;
-    vec3 t115 = t30 ? water_rgb : scene_rgb;
+    vec3 t131 = t30 ? water_rgb : scene_rgb;
 
-    out_color = vec4(t115, 1.0);
+    out_color = vec4(t131, 1.0);
 }

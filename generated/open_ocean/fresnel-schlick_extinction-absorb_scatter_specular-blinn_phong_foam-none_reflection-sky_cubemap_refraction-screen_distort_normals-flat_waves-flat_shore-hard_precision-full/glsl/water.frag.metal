@@ -39,18 +39,21 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float _61 = _56.y;
     float _72 = (-params.eye_position[1u]) / fast::min(_61, -9.9999999747524270787835121154785e-07);
     float3 _99 = -_56;
-    float3 _129 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _132 = _129.y;
-    float _161 = smoothstep(0.0, params.reflection_horizon_band, -_132);
-    float _207 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _215 = 1.0 - fast::clamp(_99.y, 0.0, 1.0);
-    float _219 = _215 * _215;
-    float3 _237 = (-float3(params.sun_direction)) + _99;
-    float _249 = fast::max(fast::max(abs(_237.x), abs(_237.y)), abs(_237.z));
-    float3 _256 = _237 / float3(fast::max(_249, 5.9604644775390625e-08));
-    float _275 = fast::clamp(select(float3(0.0), _256 / float3(fast::max(length(_256), 1.0)), bool3(_249 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _310 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_129.x, abs(_132), _129.z), bool3(dot(_129, _129) > 9.9999999600419720025001879548654e-13)), _161).xyz).xyz * mix(float3(1.0), params.reflection_lower_tint, float3(_161)), float3(fma(_207, _207, fma(-_207, _207, 1.0) * ((_219 * _219) * _215)))) + (float3(params.sun_color) * ((_275 > 6.103515625e-05) ? pow(fast::max(_275, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_33.y < (float3(params.eye_position) + (_56 * _72)).y) && (_61 < 0.0)));
-    out.out_color = float4(_310, 1.0);
+    float3 _129 = abs(_56);
+    float3 _145 = _56 / float3(fast::max(fast::max(fast::max(_129.x, _129.y), _129.z), 1.0000000031710768509710513471353e-30));
+    float _149 = dot(_145, _145);
+    float3 _169 = reflect(select(float3(0.0, -1.0, 0.0), _145 * rsqrt(fast::max(_149, 1.0000000031710768509710513471353e-30)), bool3(_149 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _172 = _169.y;
+    float _198 = smoothstep(0.0, params.reflection_horizon_band, -_172);
+    float _244 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _252 = 1.0 - fast::clamp(_99.y, 0.0, 1.0);
+    float _256 = _252 * _252;
+    float3 _274 = (-float3(params.sun_direction)) + _99;
+    float _286 = fast::max(fast::max(abs(_274.x), abs(_274.y)), abs(_274.z));
+    float3 _293 = _274 / float3(fast::max(_286, 5.9604644775390625e-08));
+    float _312 = fast::clamp(select(float3(0.0), _293 / float3(fast::max(length(_293), 1.0)), bool3(_286 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _347 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_169.x, abs(_172), _169.z), bool3(dot(_169, _169) > 9.9999999600419720025001879548654e-13)), _198).xyz).xyz * mix(float3(1.0), params.reflection_lower_tint, float3(_198)), float3(fma(_244, _244, fma(-_244, _244, 1.0) * ((_256 * _256) * _252)))) + (float3(params.sun_color) * ((_312 > 6.103515625e-05) ? pow(fast::max(_312, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_33.y < (float3(params.eye_position) + (_56 * _72)).y) && (_61 < 0.0)));
+    out.out_color = float4(_347, 1.0);
     return out;
 }
 

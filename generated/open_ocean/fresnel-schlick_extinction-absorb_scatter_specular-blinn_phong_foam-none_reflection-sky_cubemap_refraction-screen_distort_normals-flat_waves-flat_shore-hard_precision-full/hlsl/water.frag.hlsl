@@ -43,39 +43,45 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float3 water_color = lerp(scatter_color, float3(0.0, 0.0, 0.0), (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 reflected_ray = reflect(view_ray, float3(0.0, 1.0, 0.0));
-    float t50 = reflected_ray.y;
-    float3 t53 = float3(reflected_ray.x, abs(t50), reflected_ray.z);
-    bool t56 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t56 ? t53 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t50);
-    float4 t60 = float4(sky_direction, below_horizon);
-    float3 t62 = t60.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t62).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t60.w));
+    float3 t49 = abs(view_ray);
+    float3 t57 = view_ray / max(max(max(t49.x, t49.y), t49.z), 1e-30);
+    float t58 = dot(t57, t57);
+    float3 t61 = t57 * rsqrt(max(t58, 1e-30));
+    bool t62 = t58 > 1e-30;
+    float3 t63 = t62 ? t61 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t63, float3(0.0, 1.0, 0.0));
+    float t66 = reflected_ray.y;
+    float3 t69 = float3(reflected_ray.x, abs(t66), reflected_ray.z);
+    bool t72 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t72 ? t69 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t66);
+    float4 t76 = float4(sky_direction, below_horizon);
+    float3 t78 = t76.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t78).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t76.w));
 
     // fresnel.schlick
-    float t75 = (ior_air - ior_water) / (ior_air + ior_water);
-    float fresnel_r0 = t75 * t75;
+    float t91 = (ior_air - ior_water) / (ior_air + ior_water);
+    float fresnel_r0 = t91 * t91;
     float one_minus_c = 1.0 - saturate(n_dot_v);
-    float t79 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t79 * t79) * one_minus_c));
+    float t95 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t95 * t95) * one_minus_c));
 
     // specular.blinn_phong
-    float3 t87 = (-sun_direction) + t32;
-    float t95 = max(max(abs(t87.x), abs(t87.y)), abs(t87.z));
-    float3 t98 = t87 / max(t95, 5.9604645e-08);
-    float3 t101 = t98 / max(length(t98), 1.0);
-    bool t102 = t95 > 5.9604645e-08;
-    float3 half_vector = t102 ? t101 : float3(0.0, 0.0, 0.0);
-    float t105 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
-    float t108 = pow(max(t105, 6.1035156e-05), specular_exponent);
-    bool t109 = t105 > 6.1035156e-05;
-    float t110 = t109 ? t108 : 0.0;
-    float3 specular = t110 * sun_color;
+    float3 t103 = (-sun_direction) + t32;
+    float t111 = max(max(abs(t103.x), abs(t103.y)), abs(t103.z));
+    float3 t114 = t103 / max(t111, 5.9604645e-08);
+    float3 t117 = t114 / max(length(t114), 1.0);
+    bool t118 = t111 > 5.9604645e-08;
+    float3 half_vector = t118 ? t117 : float3(0.0, 0.0, 0.0);
+    float t121 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
+    float t124 = pow(max(t121, 6.1035156e-05), specular_exponent);
+    bool t125 = t121 > 6.1035156e-05;
+    float t126 = t125 ? t124 : 0.0;
+    float3 specular = t126 * sun_color;
 
     // compose
     float3 water_rgb = lerp(water_color, reflected, (float3)(fresnel)) + specular;
-    float3 t115 = t30 ? water_rgb : scene_rgb;
+    float3 t131 = t30 ? water_rgb : scene_rgb;
 
-    return float4(t115, 1.0);
+    return float4(t131, 1.0);
 }

@@ -711,39 +711,45 @@ void main() {
     vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    float t1957 = reflected_ray.y;
-    vec3 t1960 = vec3(reflected_ray.x, abs(t1957), reflected_ray.z);
-    bool t1963 = dot(reflected_ray, reflected_ray) > 1e-12;
-    vec3 sky_direction = t1963 ? t1960 : vec3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1957);
-    vec4 t1967 = vec4(sky_direction, below_horizon);
-    vec3 t1969 = t1967.xyz;
-    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1969).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1967.w));
+    vec3 t1956 = abs(view_ray);
+    vec3 t1963 = view_ray / max(max(max(t1956.x, t1956.y), t1956.z), 1e-30);
+    float t1964 = dot(t1963, t1963);
+    vec3 t1967 = t1963 * inversesqrt(max(t1964, 1e-30));
+    bool t1968 = t1964 > 1e-30;
+    vec3 t1969 = t1968 ? t1967 : vec3(0.0, (-1.0), 0.0);
+    vec3 reflected_ray = reflect(t1969, vec3(0.0, 1.0, 0.0));
+    float t1972 = reflected_ray.y;
+    vec3 t1975 = vec3(reflected_ray.x, abs(t1972), reflected_ray.z);
+    bool t1978 = dot(reflected_ray, reflected_ray) > 1e-12;
+    vec3 sky_direction = t1978 ? t1975 : vec3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1972);
+    vec4 t1982 = vec4(sky_direction, below_horizon);
+    vec3 t1984 = t1982.xyz;
+    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1984).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1982.w));
 
     // fresnel.schlick
-    float t1982 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float fresnel_r0 = t1982 * t1982;
+    float t1997 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float fresnel_r0 = t1997 * t1997;
     float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    float t1986 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1986 * t1986) * one_minus_c));
+    float t2001 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t2001 * t2001) * one_minus_c));
 
     // specular.blinn_phong
-    vec3 t1994 = (-params.sun_direction) + t1922;
-    float t2002 = max(max(abs(t1994.x), abs(t1994.y)), abs(t1994.z));
-    vec3 t2005 = t1994 / max(t2002, 5.9604645e-08);
-    vec3 t2008 = t2005 / max(length(t2005), 1.0);
-    bool t2010 = t2002 > 5.9604645e-08;
-    vec3 half_vector = t2010 ? t2008 : vec3(0.0);
-    float t2013 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
-    float t2016 = pow(max(t2013, 6.1035156e-05), params.specular_exponent);
-    bool t2017 = t2013 > 6.1035156e-05;
-    float t2018 = t2017 ? t2016 : 0.0;
-    vec3 specular = t2018 * params.sun_color;
+    vec3 t2009 = (-params.sun_direction) + t1922;
+    float t2017 = max(max(abs(t2009.x), abs(t2009.y)), abs(t2009.z));
+    vec3 t2020 = t2009 / max(t2017, 5.9604645e-08);
+    vec3 t2023 = t2020 / max(length(t2020), 1.0);
+    bool t2025 = t2017 > 5.9604645e-08;
+    vec3 half_vector = t2025 ? t2023 : vec3(0.0);
+    float t2028 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
+    float t2031 = pow(max(t2028, 6.1035156e-05), params.specular_exponent);
+    bool t2032 = t2028 > 6.1035156e-05;
+    float t2033 = t2032 ? t2031 : 0.0;
+    vec3 specular = t2033 * params.sun_color;
 
     // compose
     vec3 water_rgb = mix(water_color, reflected, vec3(fresnel)) + specular;
-    vec3 t2023 = t1921 ? water_rgb : scene_rgb;
+    vec3 t2038 = t1921 ? water_rgb : scene_rgb;
 
-    out_color = vec4(t2023, 1.0);
+    out_color = vec4(t2038, 1.0);
 }

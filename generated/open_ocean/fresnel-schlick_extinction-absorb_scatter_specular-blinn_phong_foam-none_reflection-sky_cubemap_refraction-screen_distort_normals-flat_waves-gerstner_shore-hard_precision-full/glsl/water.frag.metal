@@ -607,18 +607,21 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float _4845 = _4834.y;
     float3 _4860 = -_56;
     float _4902 = fast::clamp(fast::max(_49 - _4827, 0.0), 0.0, 30000.0);
-    float3 _4937 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _4940 = _4937.y;
-    float _4966 = smoothstep(0.0, params.reflection_horizon_band, -_4940);
-    float _5011 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _5019 = 1.0 - fast::clamp(_4860.y, 0.0, 1.0);
-    float _5023 = _5019 * _5019;
-    float3 _5041 = (-float3(params.sun_direction)) + _4860;
-    float _5053 = fast::max(fast::max(abs(_5041.x), abs(_5041.y)), abs(_5041.z));
-    float3 _5060 = _5041 / float3(fast::max(_5053, 5.9604644775390625e-08));
-    float _5080 = fast::clamp(select(float3(0.0), _5060 / float3(fast::max(length(_5060), 1.0)), bool3(_5053 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _5115 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_4845 - _4842, 0.0) + _4902)), float3(exp((-params.scatter_coefficient) * _4902))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4937.x, abs(_4940), _4937.z), bool3(dot(_4937, _4937) > 9.9999999600419720025001879548654e-13)), _4966).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_4966)), float3(fma(_5011, _5011, fma(-_5011, _5011, 1.0) * ((_5023 * _5023) * _5019)))) + (float3(params.sun_color) * ((_5080 > 6.103515625e-05) ? pow(fast::max(_5080, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_4842 < _4845) && (_190 < 0.0)));
-    out.out_color = float4(_5115, 1.0);
+    float3 _4937 = abs(_56);
+    float3 _4950 = _56 / float3(fast::max(fast::max(fast::max(_4937.x, _4937.y), _4937.z), 1.0000000031710768509710513471353e-30));
+    float _4954 = dot(_4950, _4950);
+    float3 _4973 = reflect(select(float3(0.0, -1.0, 0.0), _4950 * rsqrt(fast::max(_4954, 1.0000000031710768509710513471353e-30)), bool3(_4954 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _4976 = _4973.y;
+    float _5002 = smoothstep(0.0, params.reflection_horizon_band, -_4976);
+    float _5047 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _5055 = 1.0 - fast::clamp(_4860.y, 0.0, 1.0);
+    float _5059 = _5055 * _5055;
+    float3 _5077 = (-float3(params.sun_direction)) + _4860;
+    float _5089 = fast::max(fast::max(abs(_5077.x), abs(_5077.y)), abs(_5077.z));
+    float3 _5096 = _5077 / float3(fast::max(_5089, 5.9604644775390625e-08));
+    float _5116 = fast::clamp(select(float3(0.0), _5096 / float3(fast::max(length(_5096), 1.0)), bool3(_5089 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _5151 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_4845 - _4842, 0.0) + _4902)), float3(exp((-params.scatter_coefficient) * _4902))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4973.x, abs(_4976), _4973.z), bool3(dot(_4973, _4973) > 9.9999999600419720025001879548654e-13)), _5002).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_5002)), float3(fma(_5047, _5047, fma(-_5047, _5047, 1.0) * ((_5059 * _5059) * _5055)))) + (float3(params.sun_color) * ((_5116 > 6.103515625e-05) ? pow(fast::max(_5116, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_4842 < _4845) && (_190 < 0.0)));
+    out.out_color = float4(_5151, 1.0);
     return out;
 }
 

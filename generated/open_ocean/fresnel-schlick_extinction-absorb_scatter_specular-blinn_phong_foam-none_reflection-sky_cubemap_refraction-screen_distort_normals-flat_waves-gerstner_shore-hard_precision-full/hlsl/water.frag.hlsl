@@ -708,39 +708,45 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float3 water_color = lerp(scatter_color, refracted * transmittance, (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 reflected_ray = reflect(view_ray, float3(0.0, 1.0, 0.0));
-    float t1957 = reflected_ray.y;
-    float3 t1960 = float3(reflected_ray.x, abs(t1957), reflected_ray.z);
-    bool t1963 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t1963 ? t1960 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t1957);
-    float4 t1967 = float4(sky_direction, below_horizon);
-    float3 t1969 = t1967.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t1969).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t1967.w));
+    float3 t1956 = abs(view_ray);
+    float3 t1963 = view_ray / max(max(max(t1956.x, t1956.y), t1956.z), 1e-30);
+    float t1964 = dot(t1963, t1963);
+    float3 t1967 = t1963 * rsqrt(max(t1964, 1e-30));
+    bool t1968 = t1964 > 1e-30;
+    float3 t1969 = t1968 ? t1967 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t1969, float3(0.0, 1.0, 0.0));
+    float t1972 = reflected_ray.y;
+    float3 t1975 = float3(reflected_ray.x, abs(t1972), reflected_ray.z);
+    bool t1978 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t1978 ? t1975 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t1972);
+    float4 t1982 = float4(sky_direction, below_horizon);
+    float3 t1984 = t1982.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t1984).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t1982.w));
 
     // fresnel.schlick
-    float t1982 = (ior_air - ior_water) / (ior_air + ior_water);
-    float fresnel_r0 = t1982 * t1982;
+    float t1997 = (ior_air - ior_water) / (ior_air + ior_water);
+    float fresnel_r0 = t1997 * t1997;
     float one_minus_c = 1.0 - saturate(n_dot_v);
-    float t1986 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1986 * t1986) * one_minus_c));
+    float t2001 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t2001 * t2001) * one_minus_c));
 
     // specular.blinn_phong
-    float3 t1994 = (-sun_direction) + t1922;
-    float t2002 = max(max(abs(t1994.x), abs(t1994.y)), abs(t1994.z));
-    float3 t2005 = t1994 / max(t2002, 5.9604645e-08);
-    float3 t2008 = t2005 / max(length(t2005), 1.0);
-    bool t2010 = t2002 > 5.9604645e-08;
-    float3 half_vector = t2010 ? t2008 : float3(0.0, 0.0, 0.0);
-    float t2013 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
-    float t2016 = pow(max(t2013, 6.1035156e-05), specular_exponent);
-    bool t2017 = t2013 > 6.1035156e-05;
-    float t2018 = t2017 ? t2016 : 0.0;
-    float3 specular = t2018 * sun_color;
+    float3 t2009 = (-sun_direction) + t1922;
+    float t2017 = max(max(abs(t2009.x), abs(t2009.y)), abs(t2009.z));
+    float3 t2020 = t2009 / max(t2017, 5.9604645e-08);
+    float3 t2023 = t2020 / max(length(t2020), 1.0);
+    bool t2025 = t2017 > 5.9604645e-08;
+    float3 half_vector = t2025 ? t2023 : float3(0.0, 0.0, 0.0);
+    float t2028 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
+    float t2031 = pow(max(t2028, 6.1035156e-05), specular_exponent);
+    bool t2032 = t2028 > 6.1035156e-05;
+    float t2033 = t2032 ? t2031 : 0.0;
+    float3 specular = t2033 * sun_color;
 
     // compose
     float3 water_rgb = lerp(water_color, reflected, (float3)(fresnel)) + specular;
-    float3 t2023 = t1921 ? water_rgb : scene_rgb;
+    float3 t2038 = t1921 ? water_rgb : scene_rgb;
 
-    return float4(t2023, 1.0);
+    return float4(t2038, 1.0);
 }

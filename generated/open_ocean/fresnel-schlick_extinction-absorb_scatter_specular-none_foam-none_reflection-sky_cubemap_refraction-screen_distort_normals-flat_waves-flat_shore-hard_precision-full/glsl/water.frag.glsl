@@ -42,26 +42,32 @@ void main() {
     vec3 water_color = mix(params.scatter_color, vec3(0.0), vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    float t48 = reflected_ray.y;
-    vec3 t51 = vec3(reflected_ray.x, abs(t48), reflected_ray.z);
-    bool t54 = dot(reflected_ray, reflected_ray) > 1e-12;
-    vec3 sky_direction = t54 ? t51 : vec3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t48);
-    vec4 t58 = vec4(sky_direction, below_horizon);
-    vec3 t60 = t58.xyz;
-    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t60).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t58.w));
+    vec3 t47 = abs(view_ray);
+    vec3 t55 = view_ray / max(max(max(t47.x, t47.y), t47.z), 1e-30);
+    float t56 = dot(t55, t55);
+    vec3 t59 = t55 * inversesqrt(max(t56, 1e-30));
+    bool t60 = t56 > 1e-30;
+    vec3 t61 = t60 ? t59 : vec3(0.0, (-1.0), 0.0);
+    vec3 reflected_ray = reflect(t61, vec3(0.0, 1.0, 0.0));
+    float t64 = reflected_ray.y;
+    vec3 t67 = vec3(reflected_ray.x, abs(t64), reflected_ray.z);
+    bool t70 = dot(reflected_ray, reflected_ray) > 1e-12;
+    vec3 sky_direction = t70 ? t67 : vec3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t64);
+    vec4 t74 = vec4(sky_direction, below_horizon);
+    vec3 t76 = t74.xyz;
+    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t76).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t74.w));
 
     // fresnel.schlick
-    float t73 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float fresnel_r0 = t73 * t73;
+    float t89 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float fresnel_r0 = t89 * t89;
     float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    float t77 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t77 * t77) * one_minus_c));
+    float t93 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t93 * t93) * one_minus_c));
 
     // compose
-    vec3 t84 = mix(water_color, reflected, vec3(fresnel));
-    vec3 t85 = t28 ? t84 : scene_rgb;
+    vec3 t100 = mix(water_color, reflected, vec3(fresnel));
+    vec3 t101 = t28 ? t100 : scene_rgb;
 
-    out_color = vec4(t85, 1.0);
+    out_color = vec4(t101, 1.0);
 }

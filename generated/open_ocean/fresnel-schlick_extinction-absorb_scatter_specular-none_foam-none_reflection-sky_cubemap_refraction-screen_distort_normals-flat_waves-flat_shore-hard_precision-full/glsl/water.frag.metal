@@ -35,14 +35,17 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _56 = _45 / float3(fast::max(_49, 9.9999999747524270787835121154785e-07));
     float _61 = _56.y;
     float _72 = (-params.eye_position[1u]) / fast::min(_61, -9.9999999747524270787835121154785e-07);
-    float3 _127 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _130 = _127.y;
-    float _159 = smoothstep(0.0, params.reflection_horizon_band, -_130);
-    float _205 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _213 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
-    float _217 = _213 * _213;
-    float3 _240 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_127.x, abs(_130), _127.z), bool3(dot(_127, _127) > 9.9999999600419720025001879548654e-13)), _159).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_159)), float3(fma(_205, _205, fma(-_205, _205, 1.0) * ((_217 * _217) * _213)))), bool3((_33.y < (float3(params.eye_position) + (_56 * _72)).y) && (_61 < 0.0)));
-    out.out_color = float4(_240, 1.0);
+    float3 _127 = abs(_56);
+    float3 _143 = _56 / float3(fast::max(fast::max(fast::max(_127.x, _127.y), _127.z), 1.0000000031710768509710513471353e-30));
+    float _147 = dot(_143, _143);
+    float3 _167 = reflect(select(float3(0.0, -1.0, 0.0), _143 * rsqrt(fast::max(_147, 1.0000000031710768509710513471353e-30)), bool3(_147 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _170 = _167.y;
+    float _196 = smoothstep(0.0, params.reflection_horizon_band, -_170);
+    float _242 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _250 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
+    float _254 = _250 * _250;
+    float3 _277 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_167.x, abs(_170), _167.z), bool3(dot(_167, _167) > 9.9999999600419720025001879548654e-13)), _196).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_196)), float3(fma(_242, _242, fma(-_242, _242, 1.0) * ((_254 * _254) * _250)))), bool3((_33.y < (float3(params.eye_position) + (_56 * _72)).y) && (_61 < 0.0)));
+    out.out_color = float4(_277, 1.0);
     return out;
 }
 

@@ -39,26 +39,32 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float3 water_color = lerp(scatter_color, float3(0.0, 0.0, 0.0), (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 reflected_ray = reflect(view_ray, float3(0.0, 1.0, 0.0));
-    float t48 = reflected_ray.y;
-    float3 t51 = float3(reflected_ray.x, abs(t48), reflected_ray.z);
-    bool t54 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t54 ? t51 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t48);
-    float4 t58 = float4(sky_direction, below_horizon);
-    float3 t60 = t58.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t60).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t58.w));
+    float3 t47 = abs(view_ray);
+    float3 t55 = view_ray / max(max(max(t47.x, t47.y), t47.z), 1e-30);
+    float t56 = dot(t55, t55);
+    float3 t59 = t55 * rsqrt(max(t56, 1e-30));
+    bool t60 = t56 > 1e-30;
+    float3 t61 = t60 ? t59 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t61, float3(0.0, 1.0, 0.0));
+    float t64 = reflected_ray.y;
+    float3 t67 = float3(reflected_ray.x, abs(t64), reflected_ray.z);
+    bool t70 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t70 ? t67 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t64);
+    float4 t74 = float4(sky_direction, below_horizon);
+    float3 t76 = t74.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t76).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t74.w));
 
     // fresnel.schlick
-    float t73 = (ior_air - ior_water) / (ior_air + ior_water);
-    float fresnel_r0 = t73 * t73;
+    float t89 = (ior_air - ior_water) / (ior_air + ior_water);
+    float fresnel_r0 = t89 * t89;
     float one_minus_c = 1.0 - saturate(n_dot_v);
-    float t77 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t77 * t77) * one_minus_c));
+    float t93 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t93 * t93) * one_minus_c));
 
     // compose
-    float3 t84 = lerp(water_color, reflected, (float3)(fresnel));
-    float3 t85 = t28 ? t84 : scene_rgb;
+    float3 t100 = lerp(water_color, reflected, (float3)(fresnel));
+    float3 t101 = t28 ? t100 : scene_rgb;
 
-    return float4(t85, 1.0);
+    return float4(t101, 1.0);
 }

@@ -707,26 +707,32 @@ void main() {
     vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    vec3 reflected_ray = reflect(view_ray, vec3(0.0, 1.0, 0.0));
-    float t1955 = reflected_ray.y;
-    vec3 t1958 = vec3(reflected_ray.x, abs(t1955), reflected_ray.z);
-    bool t1961 = dot(reflected_ray, reflected_ray) > 1e-12;
-    vec3 sky_direction = t1961 ? t1958 : vec3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1955);
-    vec4 t1965 = vec4(sky_direction, below_horizon);
-    vec3 t1967 = t1965.xyz;
-    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1967).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1965.w));
+    vec3 t1954 = abs(view_ray);
+    vec3 t1961 = view_ray / max(max(max(t1954.x, t1954.y), t1954.z), 1e-30);
+    float t1962 = dot(t1961, t1961);
+    vec3 t1965 = t1961 * inversesqrt(max(t1962, 1e-30));
+    bool t1966 = t1962 > 1e-30;
+    vec3 t1967 = t1966 ? t1965 : vec3(0.0, (-1.0), 0.0);
+    vec3 reflected_ray = reflect(t1967, vec3(0.0, 1.0, 0.0));
+    float t1970 = reflected_ray.y;
+    vec3 t1973 = vec3(reflected_ray.x, abs(t1970), reflected_ray.z);
+    bool t1976 = dot(reflected_ray, reflected_ray) > 1e-12;
+    vec3 sky_direction = t1976 ? t1973 : vec3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t1970);
+    vec4 t1980 = vec4(sky_direction, below_horizon);
+    vec3 t1982 = t1980.xyz;
+    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t1982).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t1980.w));
 
     // fresnel.schlick
-    float t1980 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float fresnel_r0 = t1980 * t1980;
+    float t1995 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float fresnel_r0 = t1995 * t1995;
     float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    float t1984 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1984 * t1984) * one_minus_c));
+    float t1999 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1999 * t1999) * one_minus_c));
 
     // compose
-    vec3 t1991 = mix(water_color, reflected, vec3(fresnel));
-    vec3 t1992 = t1919 ? t1991 : scene_rgb;
+    vec3 t2006 = mix(water_color, reflected, vec3(fresnel));
+    vec3 t2007 = t1919 ? t2006 : scene_rgb;
 
-    out_color = vec4(t1992, 1.0);
+    out_color = vec4(t2007, 1.0);
 }

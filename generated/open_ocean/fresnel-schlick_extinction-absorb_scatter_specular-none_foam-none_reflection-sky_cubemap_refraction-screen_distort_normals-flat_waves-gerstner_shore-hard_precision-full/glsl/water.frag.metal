@@ -603,14 +603,17 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float _4842 = _33.y;
     float _4845 = _4834.y;
     float _4900 = fast::clamp(fast::max(_49 - _4827, 0.0), 0.0, 30000.0);
-    float3 _4935 = reflect(_56, float3(0.0, 1.0, 0.0));
-    float _4938 = _4935.y;
-    float _4964 = smoothstep(0.0, params.reflection_horizon_band, -_4938);
-    float _5009 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _5017 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
-    float _5021 = _5017 * _5017;
-    float3 _5044 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_4845 - _4842, 0.0) + _4900)), float3(exp((-params.scatter_coefficient) * _4900))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4935.x, abs(_4938), _4935.z), bool3(dot(_4935, _4935) > 9.9999999600419720025001879548654e-13)), _4964).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_4964)), float3(fma(_5009, _5009, fma(-_5009, _5009, 1.0) * ((_5021 * _5021) * _5017)))), bool3((_4842 < _4845) && (_190 < 0.0)));
-    out.out_color = float4(_5044, 1.0);
+    float3 _4935 = abs(_56);
+    float3 _4948 = _56 / float3(fast::max(fast::max(fast::max(_4935.x, _4935.y), _4935.z), 1.0000000031710768509710513471353e-30));
+    float _4952 = dot(_4948, _4948);
+    float3 _4971 = reflect(select(float3(0.0, -1.0, 0.0), _4948 * rsqrt(fast::max(_4952, 1.0000000031710768509710513471353e-30)), bool3(_4952 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _4974 = _4971.y;
+    float _5000 = smoothstep(0.0, params.reflection_horizon_band, -_4974);
+    float _5045 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _5053 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
+    float _5057 = _5053 * _5053;
+    float3 _5080 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_4845 - _4842, 0.0) + _4900)), float3(exp((-params.scatter_coefficient) * _4900))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_4971.x, abs(_4974), _4971.z), bool3(dot(_4971, _4971) > 9.9999999600419720025001879548654e-13)), _5000).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_5000)), float3(fma(_5045, _5045, fma(-_5045, _5045, 1.0) * ((_5057 * _5057) * _5053)))), bool3((_4842 < _4845) && (_190 < 0.0)));
+    out.out_color = float4(_5080, 1.0);
     return out;
 }
 

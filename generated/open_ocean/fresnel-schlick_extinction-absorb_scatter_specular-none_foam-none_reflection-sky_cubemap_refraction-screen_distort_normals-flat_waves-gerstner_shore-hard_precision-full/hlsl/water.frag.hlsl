@@ -704,26 +704,32 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float3 water_color = lerp(scatter_color, refracted * transmittance, (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 reflected_ray = reflect(view_ray, float3(0.0, 1.0, 0.0));
-    float t1955 = reflected_ray.y;
-    float3 t1958 = float3(reflected_ray.x, abs(t1955), reflected_ray.z);
-    bool t1961 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t1961 ? t1958 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t1955);
-    float4 t1965 = float4(sky_direction, below_horizon);
-    float3 t1967 = t1965.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t1967).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t1965.w));
+    float3 t1954 = abs(view_ray);
+    float3 t1961 = view_ray / max(max(max(t1954.x, t1954.y), t1954.z), 1e-30);
+    float t1962 = dot(t1961, t1961);
+    float3 t1965 = t1961 * rsqrt(max(t1962, 1e-30));
+    bool t1966 = t1962 > 1e-30;
+    float3 t1967 = t1966 ? t1965 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t1967, float3(0.0, 1.0, 0.0));
+    float t1970 = reflected_ray.y;
+    float3 t1973 = float3(reflected_ray.x, abs(t1970), reflected_ray.z);
+    bool t1976 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t1976 ? t1973 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t1970);
+    float4 t1980 = float4(sky_direction, below_horizon);
+    float3 t1982 = t1980.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t1982).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t1980.w));
 
     // fresnel.schlick
-    float t1980 = (ior_air - ior_water) / (ior_air + ior_water);
-    float fresnel_r0 = t1980 * t1980;
+    float t1995 = (ior_air - ior_water) / (ior_air + ior_water);
+    float fresnel_r0 = t1995 * t1995;
     float one_minus_c = 1.0 - saturate(n_dot_v);
-    float t1984 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1984 * t1984) * one_minus_c));
+    float t1999 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t1999 * t1999) * one_minus_c));
 
     // compose
-    float3 t1991 = lerp(water_color, reflected, (float3)(fresnel));
-    float3 t1992 = t1919 ? t1991 : scene_rgb;
+    float3 t2006 = lerp(water_color, reflected, (float3)(fresnel));
+    float3 t2007 = t1919 ? t2006 : scene_rgb;
 
-    return float4(t1992, 1.0);
+    return float4(t2007, 1.0);
 }

@@ -4,6 +4,7 @@
 // that runs mediump at 16 bits would (lavapipe runs it at 32).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -19,6 +20,18 @@ const char* to_string(EvalPrecision p);
 // Rounds to the nearest binary16 value (ties to even; overflow to infinity; subnormals kept).
 double round_to_half(double v);
 double round_to(double v, EvalPrecision p);
+// Distance in binary16 steps between two binary16 values (0 when equal, +0 and -0 equal; 1 from
+// 65504 to infinity); -1 when either is NaN. Values that are not binary16 are rounded first.
+int64_t half_ulp_distance(double a, double b);
+
+// How closely values computed in binary16 (GPU strict half) agree with their model (the CPU's
+// half mode), over pairs finite on both sides.
+struct HalfAgreement {
+    uint64_t values = 0, equal = 0, within_1 = 0; // compared; 0 and at most 1 ulp apart
+    int64_t max_ulps = 0;
+    size_t max_index = 0; // the caller's index of the first pair max_ulps apart
+    void add(double test, double reference, size_t index);
+};
 
 // RGBA32F texels laid out like the runner's TextureData: layer-major, then rows (row 0 = v = 0),
 // then columns. A cube holds 6 square faces in Vulkan order +X, -X, +Y, -Y, +Z, -Z.

@@ -1,6 +1,6 @@
 // Walks a Graph and writes shader source: GLSL 450 for Vulkan, or HLSL (SM 5 syntax, as
 // glslang's HLSL front end reads it). Language differences live in the syntax classes
-// (core/glsl_syntax.cpp, core/hlsl_syntax.cpp) and in the skeletons under templates/.
+// (ir/glsl_syntax.cpp, ir/hlsl_syntax.cpp) and in the skeletons under templates/.
 #pragma once
 
 #include <string>
@@ -44,13 +44,25 @@ struct EmittedShader {
     ShaderInterface interface;
 };
 
+// How relaxed-precision nodes are written. By default they are a precision hint (GLSL mediump,
+// HLSL min16float) that desktop drivers, lavapipe included, run at 32 bits. strict_half writes
+// them in explicit binary16 types instead (GLSL float16_t / f16vecN with
+// GL_EXT_shader_explicit_arithmetic_types_float16, HLSL half / halfN, which need
+// CompileRequest::hlsl_16bit_types), converting explicitly wherever 16- and 32-bit values meet
+// (parameters, inputs, texture coordinates, the output): the GPU then computes what a mobile
+// GPU computes for mediump, every operation rounded to binary16 (needs shaderFloat16).
+struct EmitOptions {
+    bool strict_half = false;
+};
+
 // The stamp line every generated file carries.
 std::string stamp_text(const std::string& variant_key);
 
 // Emits the fragment stage of `g` (output "color"). Only live nodes are written, and only the
 // parameters and textures they read are declared. Cost: linear in the live graph.
 EmittedShader emit_fragment(const Graph& g, Language language, const std::string& file_name,
-                            const std::string& variant_key, Diagnostics& diagnostics);
+                            const std::string& variant_key, Diagnostics& diagnostics,
+                            const EmitOptions& options = {});
 
 // The fullscreen-triangle vertex stage that feeds v_uv to the water pass.
 EmittedShader emit_fullscreen_vertex(Language language, const std::string& file_name,
@@ -83,7 +95,8 @@ struct ProbeLayout {
 
 ProbeLayout probe_layout(const Graph& g);
 EmittedShader emit_probe(const Graph& g, Language language, const std::string& file_name,
-                         const std::string& variant_key, Diagnostics& diagnostics);
+                         const std::string& variant_key, Diagnostics& diagnostics,
+                         const EmitOptions& options = {});
 
 // Fills Diagnostic::node from the line each diagnostic points at in `shader`.
 void attribute_to_nodes(const EmittedShader& shader, Diagnostics& diagnostics);

@@ -32,9 +32,12 @@ struct VariantBuild {
 
 // Builds both languages of one variant. A graph with type errors stops before emission.
 // Cost: two toolchain runs per stage (a few ms each); thread-safe.
-VariantBuild build_variant(const Variant& variant, const Preset* preset = nullptr);
+// `options.strict_half` writes a half variant's relaxed math in explicit 16-bit types (see
+// EmitOptions), for rendering at 16 bits on the GPU; builds written to disk use the default.
+VariantBuild build_variant(const Variant& variant, const Preset* preset = nullptr,
+                           const EmitOptions& options = {});
 // Same for an already composed shader (a custom description, or a test's ill-typed one).
-VariantBuild build_shader(WaterShader shader);
+VariantBuild build_shader(WaterShader shader, const EmitOptions& options = {});
 
 // The files a build writes, relative path -> contents, e.g. "glsl/water.frag.spv".
 // Empty when the build failed.

@@ -19,6 +19,7 @@ struct ProbeRun {
     size_t tuples = 0;
     // tuples x layout.output_stride, tuple-major.
     std::vector<double> gpu, cpu_double, cpu_float, cpu_half;
+    bool strict_half = false; // the GPU ran the relaxed nodes in 16-bit arithmetic
     double pipeline_ms = 0, dispatch_ms = 0;
     std::vector<std::string> validation_messages;
     Diagnostics diagnostics;
@@ -31,11 +32,14 @@ struct ProbeRun {
 // both sides, linearly filtered, clamped to edge: every texture the graph reads must be there.
 // Derivatives pair tuples 4k..4k+3 as a 2x2 quad (emit_probe): a graph that uses them takes
 // whole quads (a tuple count that is a multiple of 4). Cost: one toolchain run, one
-// pipeline (JIT) and one dispatch, plus three CPU evaluations.
+// pipeline (JIT) and one dispatch, plus three CPU evaluations. `options.strict_half` runs the
+// graph's relaxed nodes in 16-bit arithmetic on the GPU (needs shaderFloat16): `gpu` is then
+// what cpu_half models.
 ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language,
                    const std::vector<double>& inputs,
                    const std::map<std::string, std::vector<double>>& uniforms = {},
-                   const std::map<std::string, TextureData>& textures = {});
+                   const std::map<std::string, TextureData>& textures = {},
+                   const EmitOptions& options = {});
 
 // Whether the graph's live nodes take ddx / ddy (then the probe needs whole quads of tuples).
 bool uses_derivatives(const Graph& g);

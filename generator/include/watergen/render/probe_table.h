@@ -48,12 +48,14 @@ struct ProbeSideCount {
 
 struct ProbeSummary {
     ProbeSideCount gpu, cpu_double, cpu_float, cpu_half;
-    // Tuples with a component the GPU gives as NaN/Inf where the CPU float reference is
-    // finite: the node is not stable on the GPU there.
+    // Tuples with a component the GPU gives as NaN/Inf where the CPU reference is finite (CPU
+    // float; CPU half for a strict-half run): the node is not stable on the GPU there.
     size_t gpu_only_non_finite = 0;
     size_t first_gpu_only_tuple = 0; // valid when gpu_only_non_finite > 0
     // Over components finite on both sides.
     double max_gpu_vs_cpu_float = 0, max_gpu_vs_cpu_double = 0, max_half_vs_double = 0;
+    double max_gpu_vs_cpu_half = 0;
+    HalfAgreement gpu_vs_cpu_half; // strict-half runs only; max_index is a component index
     bool gpu_stable() const { return gpu_only_non_finite == 0; }
 };
 

@@ -1,6 +1,6 @@
 // What `watergen render` writes for one variant: the two GPU images as PNG (tone-mapped sRGB)
-// and PFM (raw float), the CPU float image, and render.json (device, times, error figures and
-// NaN/Inf counts per side). Written into a staging directory and swapped in whole.
+// and PFM (raw float), the CPU reference image, and render.json (device, times, error figures
+// and NaN/Inf counts per side). Written into a staging directory and swapped in whole.
 #pragma once
 
 #include <filesystem>
@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "watergen/render/half_render.h"
 #include "watergen/render/variant_render.h"
 
 namespace watergen {
@@ -32,5 +33,12 @@ nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderRe
 std::optional<std::string> write_render_report(const std::filesystem::path& dir,
                                                const VariantRender& r,
                                                const RenderReportInfo& info);
+
+// `watergen render --strict-half`: the strict-half GPU images (glsl, hlsl as .png and .pfm),
+// cpu_half.pfm, full_precision.pfm (GPU, GLSL) and render.json with every comparison.
+nlohmann::ordered_json half_render_report_json(const HalfRender& h, const RenderReportInfo& info);
+std::optional<std::string> write_half_render_report(const std::filesystem::path& dir,
+                                                    const HalfRender& h,
+                                                    const RenderReportInfo& info);
 
 } // namespace watergen

@@ -17,6 +17,7 @@ struct RenderSettings {
     uint32_t width = 256, height = 256;
     uint32_t timed_draws = 5;
     bool cpu_double = true; // also evaluate in double (costs about as much as the float pass)
+    bool cpu_float = true;  // evaluate on the CPU in float at all (about 30 us per pixel)
 };
 
 struct VariantRender {

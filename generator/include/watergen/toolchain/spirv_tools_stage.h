@@ -44,6 +44,13 @@ OptimizeResult legalize_spirv(const std::vector<uint32_t>& spirv, const std::str
 // Cost:   one pass over the words.
 size_t count_instructions(const std::vector<uint32_t>& spirv);
 
+// What:   whether the module declares OpCapability `capability` (e.g. kCapabilityFloat16:
+//         it computes in binary16, as a strict-half shader does).
+// Inputs: a SPIR-V module. Output: true when declared; a malformed module stops the walk.
+// Cost:   one pass over the capability section at the head of the module.
+constexpr uint32_t kCapabilityFloat16 = 9;
+bool declares_capability(const std::vector<uint32_t>& spirv, uint32_t capability);
+
 // What:   spirv-dis text with friendly names and indentation.
 // Inputs: a SPIR-V module. Output: the text, or "" if the module cannot be disassembled.
 // Cost:   ~1 ms per 1000 instructions.
