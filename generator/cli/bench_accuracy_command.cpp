@@ -61,6 +61,9 @@ Runner add_bench_accuracy_command(CLI::App& app, const Common& common) {
                             {"ciede2000_p99", r.error.ciede2000_p99},
                             {"note", r.note}});
         }
+        for (const auto& r : bench.rows)
+            if (!r.skipped() && !r.note.empty())
+                std::printf("* %s=%s: %s\n", r.axis.c_str(), r.choice.c_str(), r.note.c_str());
         std::printf("reference: %s\n%ux%u, median of %u timed draws, %s; Mesa shader cache %s\n",
                     accuracy_reference_variant().key().c_str(), o->size, o->size, o->draws,
                     runner->device_info().name.c_str(), cache.c_str());

@@ -85,6 +85,10 @@ int main(int argc, char** argv) {
     CLI::App* accuracy = bench->add_subcommand(
         "accuracy", "every cheaper choice against its axis' gold: GPU time ratio and image error");
     runners[accuracy] = add_bench_accuracy_command(*accuracy, common);
+    CLI::App* half = bench->add_subcommand(
+        "half", "the covering set's half variants in 16-bit arithmetic on the GPU: agreement "
+                "with the CPU half model, error against full precision");
+    runners[half] = add_bench_half_command(*half, common);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

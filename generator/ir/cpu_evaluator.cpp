@@ -71,6 +71,19 @@ void HalfAgreement::add(double test, double reference, size_t index) {
     }
 }
 
+double round_to_half_toward_zero(double v) {
+    const double r = round_to_half(v);
+    if (!std::isfinite(v) || std::fabs(r) <= std::fabs(v)) return r;
+    if (std::isinf(r)) return std::copysign(65504.0, v);
+    // Rounded away from zero: one binary16 step back. Below a power of two the spacing is
+    // half the one above it.
+    const double a = std::fabs(r);
+    int e = 0;
+    const double m = std::frexp(a, &e); // a = m 2^e, m in [0.5, 1)
+    const int exponent = std::max(e - 1 - (m == 0.5 ? 1 : 0), -14);
+    return std::copysign(a - std::ldexp(1.0, exponent - 10), v);
+}
+
 double round_to(double v, EvalPrecision p) {
     switch (p) {
     case EvalPrecision::Double:
@@ -106,6 +119,11 @@ class BlockEvaluator {
             // mediump at 16 bits would compute them.
             const EvalPrecision p =
                 (p_ == EvalPrecision::Half && !node.relaxed) ? EvalPrecision::Float : p_;
+            if (p == EvalPrecision::Half && texture_result(id)) {
+                for (double& v : out)
+                    v = round_to_half_toward_zero(static_cast<float>(v));
+                continue;
+            }
             for (double& v : out)
                 v = round_to(v, p);
         }
@@ -135,10 +153,19 @@ class BlockEvaluator {
             if (!narrow || a.relaxed || !(is_float_numeric(a.type) || a.type == Type::Mat3))
                 continue;
             narrowed_[i] = values_[n.args[i]];
+            const bool toward_zero = texture_result(n.args[i]);
             for (double& v : narrowed_[i])
-                v = round_to_half(v);
+                v = toward_zero ? round_to_half_toward_zero(v) : round_to_half(v);
             sources_[i] = &narrowed_[i];
         }
+    }
+
+    // A texture sample, or components of one. lavapipe converts these to binary16 rounding
+    // toward zero (NIR folds the conversion into the sampler), other values to nearest.
+    bool texture_result(uint32_t id) const {
+        const Node& n = g_.node(id);
+        if (n.op == Op::Swizzle) return texture_result(n.args[0]);
+        return n.op == Op::Sample || n.op == Op::SampleLevel;
     }
 
     bool compute(uint32_t id, const Node& n, int comps, size_t begin, std::vector<double>& out,

@@ -40,3 +40,14 @@ TEST_CASE("half_ulp_distance_counts_binary16_steps", "[half]") {
     CHECK(half_ulp_distance(-1.0, 1.0) == 2 * 15 * 1024); // 15 binades of 1024 below 1
     CHECK(half_ulp_distance(NAN, 1.0) == -1);
 }
+
+TEST_CASE("half_rounding_toward_zero_truncates", "[half]") {
+    CHECK(round_to_half_toward_zero(1.0 + 0x1p-11) == 1.0);        // nearest would tie to 1 too
+    CHECK(round_to_half_toward_zero(1.0 + 0x1p-10 * 0.75) == 1.0); // nearest: 1 + 2^-10
+    CHECK(round_to_half_toward_zero(-(1.0 + 0x1p-10 * 0.75)) == -1.0);
+    CHECK(round_to_half_toward_zero(2.0 - 0x1p-13) == 2.0 - 0x1p-10); // below a power of two
+    CHECK(round_to_half_toward_zero(0.712686658) == 1459.0 / 2048);   // a sample lavapipe gave
+    CHECK(round_to_half_toward_zero(70000.0) == 65504.0);
+    CHECK(round_to_half_toward_zero(0.75) == 0.75);
+    CHECK(std::isinf(round_to_half_toward_zero(INFINITY)));
+}

@@ -63,14 +63,16 @@ inline uint64_t name_seed(const std::string& name) {
     return h;
 }
 
-// kTuplesPerNode tuples of ordinary values only: every component from kOrdinary.
+// kTuplesPerNode tuples of ordinary values only: each component, with equal odds, from
+// kOrdinary or uniform in [-1, 1] (cosines, colours, unit-vector components).
 inline std::vector<double> ordinary_tuples(const ProbeLayout& layout, uint64_t seed) {
     Lcg rng{seed};
     std::vector<double> tuples;
     for (size_t t = 0; t < kTuplesPerNode; ++t)
         for (const auto& field : layout.inputs)
             for (int c = 0; c < component_count(field.type); ++c)
-                tuples.push_back(rng.pick(kOrdinary));
+                tuples.push_back(rng.next(2) ? rng.pick(kOrdinary)
+                                             : rng.next(1u << 20) / double(1u << 19) - 1.0);
     return tuples;
 }
 

@@ -19,6 +19,9 @@ const char* to_string(EvalPrecision p);
 
 // Rounds to the nearest binary16 value (ties to even; overflow to infinity; subnormals kept).
 double round_to_half(double v);
+// Rounds to the binary16 value nearest to v that is not farther from zero than v (65504 for
+// finite values beyond it).
+double round_to_half_toward_zero(double v);
 double round_to(double v, EvalPrecision p);
 // Distance in binary16 steps between two binary16 values (0 when equal, +0 and -0 equal; 1 from
 // 65504 to infinity); -1 when either is NaN. Values that are not binary16 are rounded first.

@@ -35,8 +35,8 @@ Variant accuracy_reference_variant();
 // What:   per axis with a gold choice, the reference with each of the axis' choices, built,
 //         rendered on `runner` over the synthetic scene of `size` x `size` and compared with the
 //         gold; the gold is rendered again right after each candidate and the time ratio taken
-//         against that. On the precision axis the error is the CPU evaluator's half mode against
-//         double, since lavapipe computes mediump in 32 bits.
+//         against that. The precision axis' half row is built strict half (EmitOptions), so
+//         lavapipe computes it in 16-bit arithmetic; its note gives the CPU half model's figures.
 // Output: the rows, or the first failure (the rows measured so far stay).
 // Cost:   about two variant builds and three renders of `draws` timed draws per choice.
 AccuracyBench run_accuracy_bench(VulkanRunner& runner, uint32_t size, uint32_t draws);
