@@ -69,6 +69,14 @@ void print_half_render(const HalfRender& h, const RenderReportInfo& info,
                 dir.string().c_str());
 }
 
+// kOk, or kFailed after saying how many pixels are NaN/Inf `where`.
+int check_gpu_finite(const std::string& key, uint64_t broken, const char* where) {
+    if (broken == 0) return kOk;
+    std::fprintf(stderr, "watergen: error: %s: %llu pixel%s NaN/Inf %s\n", key.c_str(),
+                 static_cast<unsigned long long>(broken), broken == 1 ? " is" : "s are", where);
+    return kFailed;
+}
+
 struct RenderOptions {
     Variant variant = default_variant();
     std::string preset;
@@ -112,17 +120,10 @@ int run_strict_half(const RenderOptions& o, const Preset* preset, const Common& 
         return kFailed;
     }
     print_half_render(h, info, dir);
-    const uint64_t broken = std::max(h.vs_cpu_half[0].nan_inf_where_reference_finite,
-                                     h.vs_cpu_half[1].nan_inf_where_reference_finite);
-    if (broken > 0) {
-        std::fprintf(stderr,
-                     "watergen: error: %s: %llu pixel%s NaN/Inf in 16-bit arithmetic on the GPU "
-                     "where the CPU half image is finite\n",
-                     h.key.c_str(), static_cast<unsigned long long>(broken),
-                     broken == 1 ? " is" : "s are");
-        return kFailed;
-    }
-    return kOk;
+    return check_gpu_finite(h.key,
+                            std::max(h.vs_cpu_half[0].nan_inf_where_reference_finite,
+                                     h.vs_cpu_half[1].nan_inf_where_reference_finite),
+                            "in 16-bit arithmetic on the GPU where the CPU half image is finite");
 }
 
 } // namespace
@@ -175,15 +176,8 @@ Runner add_render_command(CLI::App& app, const Common& common) {
             return kFailed;
         }
         print_render(r, info, o->draws, dir);
-        if (const uint64_t broken = gpu_only_non_finite_pixels(r); broken > 0) {
-            std::fprintf(stderr,
-                         "watergen: error: %s: %llu pixel%s NaN/Inf on the GPU where the CPU float "
-                         "image is finite\n",
-                         r.key.c_str(), static_cast<unsigned long long>(broken),
-                         broken == 1 ? " is" : "s are");
-            return kFailed;
-        }
-        return kOk;
+        return check_gpu_finite(r.key, gpu_only_non_finite_pixels(r),
+                                "on the GPU where the CPU float image is finite");
     };
 }
 

@@ -27,35 +27,28 @@ HalfRender render_strict_half(VulkanRunner& runner, const Variant& variant, cons
     RenderSettings gpu_only = settings;
     gpu_only.cpu_float = false;
     gpu_only.cpu_double = false;
-
-    const VariantBuild strict = build_variant(variant, preset, EmitOptions{true});
-    if (!strict.ok()) {
-        out.diagnostics = strict.diagnostics;
-        out.error = "the strict-half build failed";
-        return out;
-    }
-    out.strict = render_variant(runner, strict, scene, gpu_only);
-    if (!out.strict.ok()) {
-        out.error = "strict half: " + out.strict.error;
-        return out;
-    }
-
+    // Builds and renders one variant into `render`; false (and out's error) on failure.
+    auto build_and_render = [&](const Variant& v, bool strict, const char* what,
+                                VariantRender& render) {
+        const VariantBuild build = build_variant(v, preset, EmitOptions{strict});
+        if (!build.ok()) {
+            out.diagnostics = build.diagnostics;
+            out.error = std::string("the ") + what + " build failed";
+            return false;
+        }
+        render = render_variant(runner, build, scene, gpu_only);
+        if (!render.ok()) out.error = std::string(what) + ": " + render.error;
+        return render.ok();
+    };
+    if (!build_and_render(variant, true, "strict-half", out.strict)) return out;
     Variant full_variant = variant;
     set_choice(full_variant, "precision", "full");
-    const VariantBuild full = build_variant(full_variant, preset);
-    if (!full.ok()) {
-        out.diagnostics = full.diagnostics;
-        out.error = "the precision=full build failed";
-        return out;
-    }
-    out.full = render_variant(runner, full, scene, gpu_only);
-    if (!out.full.ok()) {
-        out.error = "precision=full: " + out.full.error;
-        return out;
-    }
+    if (!build_and_render(full_variant, false, "precision=full", out.full)) return out;
 
-    const EvalResult half = evaluate_image(strict.shader.fragment, "color", scene.eval_inputs(),
-                                           settings.width, settings.height, EvalPrecision::Half);
+    // The graph of the strict build is the variant's own: strict half changes only emission.
+    const EvalResult half =
+        evaluate_image(build_water_shader(variant, preset).fragment, "color", scene.eval_inputs(),
+                       settings.width, settings.height, EvalPrecision::Half);
     if (!half.ok()) {
         out.error = "CPU evaluator: " + half.error;
         return out;
