@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 namespace watergen {
 
@@ -98,23 +99,57 @@ double round_to(double v, EvalPrecision p) {
 
 namespace {
 
-constexpr size_t kBlock = 1024; // lanes per block: a multiple of 4 (whole quads)
+constexpr size_t kBlock = 256; // lanes per block: a multiple of 4 (whole quads)
 
+// Evaluates the live nodes of a graph over a block of lanes. A node whose arguments are all the
+// same on every lane (constants, parameters and what is computed from them alone) is computed
+// once, for one lane, and read by every lane after that: a lane-invariant node.
 class BlockEvaluator {
   public:
     BlockEvaluator(const Graph& g, const std::vector<uint32_t>& live, const EvalInputs& in,
                    EvalPrecision p)
-        : g_(g), live_(live), in_(in), p_(p), values_(g.size()) {}
-
-    // Evaluates lanes [begin, begin + count); returns false and sets error on bad input.
-    bool run(size_t begin, size_t count, std::string& error) {
-        n_ = count;
+        : g_(g), live_(live), in_(in), p_(p), values_(g.size()), invariant_(g.size(), 0),
+          done_(g.size(), 0), comps_(g.size(), 1) {
+        // A per-lane value's storage goes back to the pool after its last user: the working
+        // set is the values alive at once, not the whole graph (2304 nodes for Gerstner).
+        last_use_.assign(g.size(), 0);
+        for (size_t k = 0; k < live_.size(); ++k)
+            for (uint32_t a : g_.node(live_[k]).args)
+                last_use_[a] = k;
         for (uint32_t id : live_) {
+            const Node& n = g_.node(id);
+            comps_[id] = component_count(n.type);
+            // Derivatives stay per lane: a quad's difference of the same value is 0, or NaN
+            // for an infinite one, and 0 past the end of a block.
+            bool invariant = n.op != Op::Varying && n.op != Op::Ddx && n.op != Op::Ddy;
+            for (uint32_t a : n.args)
+                invariant = invariant && invariant_[a];
+            invariant_[id] = invariant;
+        }
+    }
+
+    // Evaluates lanes [begin, begin + count) and keeps node `keep` (the output) until the
+    // next run; returns false and sets error on bad input.
+    bool run(size_t begin, size_t count, uint32_t keep, std::string& error) {
+        for (size_t k = 0; k < live_.size(); ++k) {
+            const uint32_t id = live_[k];
+            if (invariant_[id] && done_[id]) continue; // the same for every block
             const Node& node = g_.node(id);
-            const int comps = component_count(node.type);
+            n_ = invariant_[id] ? 1 : count;
+            const int comps = comps_[id];
             auto& out = values_[id];
-            out.assign(n_ * static_cast<size_t>(std::max(comps, 1)), 0.0);
+            if (out.capacity() == 0 && !pool_.empty()) {
+                out.swap(pool_.back());
+                pool_.pop_back();
+            }
+            out.resize(n_ * static_cast<size_t>(std::max(comps, 1)));
             if (!compute(id, node, comps, begin, out, error)) return false;
+            done_[id] = 1;
+            for (uint32_t a : node.args)
+                if (last_use_[a] == k && !invariant_[a] && a != keep) {
+                    pool_.emplace_back();
+                    pool_.back().swap(values_[a]);
+                }
             // Half mode: relaxed nodes are binary16, the rest binary32, as a GPU that honours
             // mediump at 16 bits would compute them.
             const EvalPrecision p =
@@ -122,41 +157,78 @@ class BlockEvaluator {
             if (p == EvalPrecision::Half && texture_result(id)) {
                 for (double& v : out)
                     v = round_to_half_toward_zero(static_cast<float>(v));
-                continue;
+            } else if (p == EvalPrecision::Float) {
+                for (double& v : out)
+                    v = static_cast<double>(static_cast<float>(v));
+            } else if (p == EvalPrecision::Half) {
+                for (double& v : out)
+                    v = round_to(v, p);
             }
-            for (double& v : out)
-                v = round_to(v, p);
         }
         return true;
     }
 
-    const std::vector<double>& values(uint32_t id) const { return values_[id]; }
+    // The values of node id, lane-major; a lane-invariant node holds one lane.
+    const double* values(uint32_t id) const { return values_[id].data(); }
+    bool invariant(uint32_t id) const { return invariant_[id]; }
 
   private:
-    // Component c of argument i at lane l, broadcasting scalars.
-    double arg(const Node& n, size_t i, size_t l, int c) const {
-        const int comps = component_count(g_.node(n.args[i]).type);
-        return (*sources_[i])[l * comps + (comps == 1 ? 0 : c)];
+    // Component c of argument i at lane l, broadcasting scalars and lane-invariant arguments.
+    double arg(const Node&, size_t i, size_t l, int c) const {
+        return sources_[i][l * lane_stride_[i] + static_cast<size_t>(c) * component_stride_[i]];
+    }
+
+    // out = f(argument 0, argument 1) component by component, broadcasting scalars and
+    // lane-invariant arguments; the common shapes run as flat loops the compiler vectorises.
+    template <class F> void map2(std::vector<double>& out, int comps, F f) const {
+        const double *a = sources_[0], *b = sources_[1];
+        const size_t la = lane_stride_[0], ca = component_stride_[0];
+        const size_t lb = lane_stride_[1], cb = component_stride_[1];
+        const size_t k = static_cast<size_t>(comps), total = n_ * k;
+        double* o = out.data();
+        if (la == k && ca == (k > 1) && lb == k && cb == (k > 1)) {
+            for (size_t i = 0; i < total; ++i)
+                o[i] = f(a[i], b[i]);
+        } else if (la == k && ca == (k > 1) && lb == 0 && cb == 0) {
+            const double y = b[0];
+            for (size_t i = 0; i < total; ++i)
+                o[i] = f(a[i], y);
+        } else if (la == 0 && ca == 0 && lb == k && cb == (k > 1)) {
+            const double x = a[0];
+            for (size_t i = 0; i < total; ++i)
+                o[i] = f(x, b[i]);
+        } else {
+            for (size_t l = 0; l < n_; ++l)
+                for (size_t c = 0; c < k; ++c)
+                    o[l * k + c] = f(a[l * la + c * ca], b[l * lb + c * cb]);
+        }
     }
 
     // Where arg() reads each argument of `n`. In half mode a relaxed node reads its 32-bit
     // arguments (parameters, inputs, full-precision islands) converted to binary16, as the GPU
     // converts them where 16-bit arithmetic begins; a texture sample keeps 32-bit coordinates.
     void bind_arguments(const Node& n) {
-        sources_.resize(n.args.size());
-        narrowed_.resize(n.args.size());
+        const size_t count = n.args.size();
+        sources_.resize(count);
+        lane_stride_.resize(count);
+        component_stride_.resize(count);
+        narrowed_.resize(count);
         const bool narrow =
             p_ == EvalPrecision::Half && n.relaxed && n.op != Op::Sample && n.op != Op::SampleLevel;
-        for (size_t i = 0; i < n.args.size(); ++i) {
-            const Node& a = g_.node(n.args[i]);
-            sources_[i] = &values_[n.args[i]];
+        for (size_t i = 0; i < count; ++i) {
+            const uint32_t id = n.args[i];
+            const Node& a = g_.node(id);
+            const size_t comps = static_cast<size_t>(std::max(comps_[id], 1));
+            sources_[i] = values_[id].data();
+            lane_stride_[i] = invariant_[id] ? 0 : comps;
+            component_stride_[i] = comps == 1 ? 0 : 1;
             if (!narrow || a.relaxed || !(is_float_numeric(a.type) || a.type == Type::Mat3))
                 continue;
-            narrowed_[i] = values_[n.args[i]];
-            const bool toward_zero = texture_result(n.args[i]);
+            narrowed_[i] = values_[id];
+            const bool toward_zero = texture_result(id);
             for (double& v : narrowed_[i])
                 v = toward_zero ? round_to_half_toward_zero(v) : round_to_half(v);
-            sources_[i] = &narrowed_[i];
+            sources_[i] = narrowed_[i].data();
         }
     }
 
@@ -188,7 +260,7 @@ class BlockEvaluator {
         const bool stepwise = p_ == EvalPrecision::Half && n.relaxed;
         auto r = [stepwise](double v) { return stepwise ? round_to_half(v) : v; };
         auto reduce_dot = [&](size_t l, size_t i, size_t j) {
-            const int k = component_count(g_.node(n.args[i]).type);
+            const int k = comps_[n.args[i]];
             double s = r(arg(n, i, l, 0) * arg(n, j, l, 0));
             for (int c = 1; c < k; ++c)
                 s = r(s + r(arg(n, i, l, c) * arg(n, j, l, c)));
@@ -228,16 +300,16 @@ class BlockEvaluator {
         case Op::Texture:
             return true;
         case Op::Add:
-            each([&](size_t l, int c) { return a0(l, c) + a1(l, c); });
+            map2(out, comps, [](double a, double b) { return a + b; });
             return true;
         case Op::Sub:
-            each([&](size_t l, int c) { return a0(l, c) - a1(l, c); });
+            map2(out, comps, [](double a, double b) { return a - b; });
             return true;
         case Op::Mul:
-            each([&](size_t l, int c) { return a0(l, c) * a1(l, c); });
+            map2(out, comps, [](double a, double b) { return a * b; });
             return true;
         case Op::Div:
-            each([&](size_t l, int c) { return a0(l, c) / a1(l, c); });
+            map2(out, comps, [](double a, double b) { return a / b; });
             return true;
         case Op::Neg:
             each([&](size_t l, int c) { return -a0(l, c); });
@@ -283,7 +355,7 @@ class BlockEvaluator {
             for (size_t l = 0; l < n_; ++l) {
                 int c = 0;
                 for (size_t i = 0; i < n.args.size(); ++i) {
-                    const int k = component_count(g_.node(n.args[i]).type);
+                    const int k = comps_[n.args[i]];
                     for (int j = 0; j < k; ++j)
                         out[l * comps + c++] = arg(n, i, l, j);
                 }
@@ -478,8 +550,15 @@ class BlockEvaluator {
     const EvalInputs& in_;
     EvalPrecision p_;
     std::vector<std::vector<double>> values_;
-    size_t n_ = 0;
-    std::vector<const std::vector<double>*> sources_; // of the node being computed
+    std::vector<char> invariant_, done_;    // per node: lane-invariant; computed already
+    std::vector<size_t> last_use_;          // per node: position in live_ of its last user
+    std::vector<int> comps_;                // per node: component_count of its type
+    std::vector<std::vector<double>> pool_; // storage of values no longer needed
+    size_t n_ = 0;                          // lanes of the node being computed
+    // Of the node being computed, per argument: its values, and the steps between lanes (0 for
+    // a lane-invariant argument) and between components (0 for a scalar).
+    std::vector<const double*> sources_;
+    std::vector<size_t> lane_stride_, component_stride_;
     std::vector<std::vector<double>> narrowed_;
 };
 
@@ -524,14 +603,39 @@ EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs&
     result.components = component_count(g.node(*root).type);
     result.values.resize(inputs.lanes * static_cast<size_t>(result.components));
     const std::vector<uint32_t> live = live_from(g, *root);
-    BlockEvaluator block(g, live, inputs, precision);
-    for (size_t begin = 0; begin < inputs.lanes; begin += kBlock) {
-        const size_t count = std::min(kBlock, inputs.lanes - begin);
-        if (!block.run(begin, count, result.error)) return result;
-        const auto& v = block.values(*root);
-        std::copy(v.begin(), v.begin() + static_cast<long>(count * result.components),
-                  result.values.begin() + static_cast<long>(begin * result.components));
-    }
+    // Blocks are shared out to the threads in turn; each thread has its own evaluator, and a
+    // lane's value does not depend on which thread computes it.
+    const size_t blocks = (inputs.lanes + kBlock - 1) / kBlock;
+    const size_t wanted = inputs.threads ? inputs.threads : std::thread::hardware_concurrency();
+    const size_t threads = std::max<size_t>(1, std::min<size_t>(wanted, blocks));
+    std::vector<std::string> errors(blocks);
+    auto work = [&](size_t first) {
+        BlockEvaluator block(g, live, inputs, precision);
+        const size_t comps = static_cast<size_t>(result.components);
+        for (size_t b = first; b < blocks; b += threads) {
+            const size_t begin = b * kBlock, count = std::min(kBlock, inputs.lanes - begin);
+            if (!block.run(begin, count, *root, errors[b])) return;
+            const double* v = block.values(*root);
+            double* to = result.values.data() + begin * comps;
+            if (block.invariant(*root)) {
+                for (size_t l = 0; l < count; ++l)
+                    std::copy_n(v, comps, to + l * comps);
+            } else {
+                std::copy_n(v, count * comps, to);
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < threads; ++t)
+        pool.emplace_back(work, t);
+    work(0);
+    for (auto& t : pool)
+        t.join();
+    for (const auto& e : errors)
+        if (!e.empty()) {
+            result.error = e; // the first failing block's, whatever thread found it
+            break;
+        }
     return result;
 }
 

@@ -67,3 +67,50 @@ TEST_CASE("float_and_half_modes_round_every_intermediate", "[evaluator]") {
     CHECK(evaluate(g, "out", in, EvalPrecision::Float).values[0] == 0.0001220703125);
     CHECK(evaluate(g, "out", in, EvalPrecision::Half).values[0] == 0.0);
 }
+
+TEST_CASE("results_do_not_depend_on_the_thread_count", "[evaluator]") {
+    // 1001 lanes: four blocks of 256 and a partial one, not whole quads at the end.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    Expr k = uniform(g, {"k", Type::Float, {0.37}, 0.0, 1.0, "", "", ""});
+    Expr shared = sin(k * 3.0) + k * k; // the same on every lane: computed once per thread
+    Expr f = sin(x * shared) * exp(-x * k) + ddx(x * x) + ddy(x);
+    g.set_output("f", f.id());
+    EvalInputs in;
+    for (size_t l = 0; l < 1001; ++l)
+        in.varyings["x"].push_back(static_cast<double>(l % 37) * 0.25 - 3.0);
+    in.lanes = 1001;
+    for (EvalPrecision p : {EvalPrecision::Double, EvalPrecision::Float, EvalPrecision::Half}) {
+        INFO(to_string(p));
+        in.threads = 1;
+        const EvalResult one = evaluate(g, "f", in, p);
+        in.threads = 3;
+        const EvalResult three = evaluate(g, "f", in, p);
+        REQUIRE(one.ok());
+        REQUIRE(three.ok());
+        CHECK(one.values == three.values);
+        // Lane 0 by hand (double): x = -3; ddx pairs lanes 0 and 1 (x = -2.75), ddy 0 and 2.
+        if (p == EvalPrecision::Double) {
+            const double s = std::sin(0.37 * 3.0) + 0.37 * 0.37;
+            const double expected =
+                std::sin(-3.0 * s) * std::exp(3.0 * 0.37) + (2.75 * 2.75 - 9.0) + (-2.5 + 3.0);
+            CHECK(one.values[0] == Approx(expected).epsilon(1e-14));
+        }
+    }
+}
+
+TEST_CASE("derivative_of_an_infinite_parameter_is_nan_on_every_lane", "[evaluator]") {
+    // A parameter is the same on every lane, yet its quad difference is inf - inf = NaN, as on
+    // the GPU; and 0 for a finite one.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    Expr k = uniform(g, {"k", Type::Float, {1.0}, 0.0, 1.0, "", "", ""});
+    g.set_output("d", (ddx(k) + x * 0.0).id());
+    EvalInputs in;
+    in.varyings["x"] = {1, 2, 3, 4};
+    in.lanes = 4;
+    CHECK(evaluate(g, "d", in, EvalPrecision::Float).values == std::vector<double>(4, 0.0));
+    in.uniforms["k"] = {INFINITY};
+    for (double v : evaluate(g, "d", in, EvalPrecision::Float).values)
+        CHECK(std::isnan(v));
+}
