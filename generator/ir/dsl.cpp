@@ -333,6 +333,8 @@ Expr constant(Graph& g, std::initializer_list<double> components) {
 }
 
 Expr uniform(Graph& g, const Parameter& p) {
+    // A loop body reads parameters and inputs through the enclosing code (Graph::capture).
+    if (g.enclosing()) return bring_into(uniform(*g.enclosing(), p), g);
     g.declare_parameter(p);
     Node n;
     n.op = Op::Uniform;
@@ -342,6 +344,7 @@ Expr uniform(Graph& g, const Parameter& p) {
 }
 
 Expr varying(Graph& g, const std::string& name, Type type) {
+    if (g.enclosing()) return bring_into(varying(*g.enclosing(), name, type), g);
     Node n;
     n.op = Op::Varying;
     n.type = type;

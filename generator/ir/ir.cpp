@@ -280,8 +280,11 @@ void Graph::error(std::string message) {
 
 uint32_t Graph::capture(uint32_t outer) {
     const Node& o = enclosing_->node(outer);
-    if (o.op == Op::Constant || o.op == Op::Uniform || o.op == Op::Varying || o.op == Op::Texture) {
-        Node copy = o; // the same leaf, read directly in the body
+    // Constants and texture handles are the same in the body. Parameters and inputs are
+    // captured like computed values: a pass over the enclosing graph (the scene fold) then
+    // sees every read of them.
+    if (o.op == Op::Constant || o.op == Op::Texture) {
+        Node copy = o;
         copy.origin.clear();
         return add(std::move(copy));
     }

@@ -22,63 +22,11 @@ Expr search_relaxation(Graph& g, Expr view_ray, Expr max_slope) {
     return named(1.0 / (1.0 + max_slope * run / ray_down), "search_relaxation");
 }
 
-namespace {
-
-// surface_search as two loops, a safe phase and a Newton phase, with the same operations in
-// the same order as the unrolled search below, which documents them.
-WaveHit surface_search_loops(const Surface& s, const SurfaceModel& model, int steps, int safe_steps,
-                             Expr pixel_angle) {
-    Graph& g = s.g;
-    Expr r_safe = search_relaxation(g, s.view_ray, model.max_slope);
-    Expr ray_down = max(-s.view_ray.y(), 1e-6);
-    auto footprint = [&](const PlaneHit& h) {
-        return pixel_angle.valid() ? named(pixel_angle * h.distance / ray_down, "pixel_footprint")
-                                   : Expr();
-    };
-    auto target_at = [&](const PlaneHit& hit) {
-        return named(s.level + model.height(hit.point.xz(), footprint(hit)), "search_target");
-    };
-    Expr level = named(s.level + model.top, "search_level");
-    Expr hi = level, lo = named(s.level - model.top, "search_low");
-    if (safe_steps > 0) {
-        const auto safe = loop(g, safe_steps, {level, hi}, [&](Expr, const std::vector<Expr>& c) {
-            Expr f = target_at(intersect_plane(s, c[0])) - c[0];
-            return LoopStep{{named(c[0] + r_safe * f, "search_level"), c[0]}, Expr()};
-        });
-        level = safe[0];
-        hi = safe[1];
-    }
-    if (steps > safe_steps) {
-        const auto newton =
-            loop(g, steps - safe_steps, {level, hi, lo}, [&](Expr, const std::vector<Expr>& c) {
-                const PlaneHit hit = intersect_plane(s, c[0]);
-                Expr target = target_at(hit);
-                Expr t_slope =
-                    -dot(model.slope(hit.point.xz(), footprint(hit)), s.view_ray.xz()) / ray_down;
-                Expr step = 1.0 / max(1.0 - t_slope, 1e-6);
-                Expr r = named(clamp(step, r_safe, constant(g, 1.0)), "search_step");
-                Expr f = target - c[0];
-                Expr next = named(c[0] + r * f, "search_level");
-                Expr above = f < 0.0;
-                Expr high = named(select(above, c[0], c[1]), "search_high");
-                Expr low = named(select(above, c[2], c[0]), "search_low");
-                Expr outside = (next < low) || (next > high) || (t_slope >= 1.0);
-                next = named(select(outside, 0.5 * (low + high), next), "search_level");
-                return LoopStep{{next, high, low}, Expr()};
-            });
-        level = newton[0];
-    }
-    const PlaneHit hit = intersect_plane(s, level);
-    return {hit.point, hit.distance, model.slope(hit.point.xz(), footprint(hit))};
-}
-
-} // namespace
-
+// Two loops: `safe_steps` safe steps, then Newton steps.
 WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, int safe_steps,
                        Expr pixel_angle) {
     Graph& g = s.g;
     FullPrecisionScope full(g);
-    if (!model.stateful) return surface_search_loops(s, model, steps, safe_steps, pixel_angle);
     // Along the ray, S(level) moves ray.xz / ray.y metres per metre of level, so the target
     // T(level) = water_level + h(S(level)) has T' = grad h . ray.xz / ray.y, |T'| <= G =
     // K |ray.xz| / |ray.y|. level += r (T - level) with r = 1 / (1 + G) has a derivative
@@ -99,8 +47,18 @@ WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, i
         return pixel_angle.valid() ? named(pixel_angle * h.distance / ray_down, "pixel_footprint")
                                    : Expr();
     };
+    // The model at a hit: its height and slope, and its state there (carried by the loops).
+    const bool stateful = static_cast<bool>(model.state.advance);
+    struct At {
+        Expr height, slope, state;
+    };
+    auto at = [&](const PlaneHit& hit, Expr state) {
+        Expr xz = hit.point.xz(), fp = footprint(hit);
+        if (!stateful) return At{model.height(xz, fp), model.slope(xz, fp), state};
+        Expr here = model.state.advance(xz, fp, state);
+        return At{model.state.height_at(xz, fp, here), model.state.slope_at(xz, fp, here), here};
+    };
     Expr level = named(s.level + model.top, "search_level");
-    PlaneHit hit = intersect_plane(s, level);
     // The bracket [lo, hi] of the first crossing: hi is the last level found above the surface
     // (every safe step is), lo the last found below it (at first the bottom of the slab, where
     // T >= level holds for every model). A Newton step that leaves the bracket bisects it
@@ -112,34 +70,46 @@ WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, i
     // the crossing, and the remaining steps converge into it from both branches.
     // A NaN height compares false everywhere and stays NaN (see set_water_column).
     Expr hi = level, lo = named(s.level - model.top, "search_low");
-    for (int i = 0; i < steps; ++i) {
-        Expr fp = footprint(hit);
-        Expr target = named(s.level + model.height(hit.point.xz(), fp), "search_target");
-        Expr r = r_safe;
-        Expr t_slope;
-        if (i >= safe_steps) {
-            t_slope = -dot(model.slope(hit.point.xz(), fp), s.view_ray.xz()) / ray_down;
-            Expr newton = 1.0 / max(1.0 - t_slope, 1e-6);
-            r = named(clamp(newton, r_safe, constant(g, 1.0)), "search_step");
-        }
-        Expr f = target - level;
-        Expr next = named(level + r * f, "search_level");
-        if (i >= safe_steps) {
-            Expr above = f < 0.0;
-            hi = named(select(above, level, hi), "search_high");
-            lo = named(select(above, lo, level), "search_low");
-            // T' >= 1: Newton would step away from the bracket's crossing (towards one where
-            // the ray leaves the surface); the clamped step r = 1 then expands errors by T'
-            // per step (measured: float and double apart by 2x per step, 2.6e-4 at the end).
-            Expr outside = (next < lo) || (next > hi) || (t_slope >= 1.0);
-            next = named(select(outside, 0.5 * (lo + hi), next), "search_level");
-        } else {
-            hi = level; // a safe step never leaves the region above the first crossing
-        }
-        level = next;
-        hit = intersect_plane(s, level);
+    // A stateless model carries a constant 0 that nothing reads (the compilers drop it).
+    Expr state =
+        stateful ? model.state.start(intersect_plane(s, level).point.xz()) : constant(g, 0.0);
+    if (safe_steps > 0) {
+        const auto safe =
+            loop(g, safe_steps, {level, hi, state}, [&](Expr, const std::vector<Expr>& c) {
+                const At m = at(intersect_plane(s, c[0]), c[2]);
+                Expr f = named(s.level + m.height, "search_target") - c[0];
+                return LoopStep{{named(c[0] + r_safe * f, "search_level"), c[0], m.state}, Expr()};
+            });
+        level = safe[0];
+        hi = safe[1];
+        state = safe[2];
     }
-    return {hit.point, hit.distance, model.slope(hit.point.xz(), footprint(hit))};
+    if (steps > safe_steps) {
+        const auto newton = loop(
+            g, steps - safe_steps, {level, hi, lo, state}, [&](Expr, const std::vector<Expr>& c) {
+                const PlaneHit hit = intersect_plane(s, c[0]);
+                const At m = at(hit, c[3]);
+                Expr target = named(s.level + m.height, "search_target");
+                Expr t_slope = -dot(m.slope, s.view_ray.xz()) / ray_down;
+                Expr step = 1.0 / max(1.0 - t_slope, 1e-6);
+                Expr r = named(clamp(step, r_safe, constant(g, 1.0)), "search_step");
+                Expr f = target - c[0];
+                Expr next = named(c[0] + r * f, "search_level");
+                Expr above = f < 0.0;
+                Expr high = named(select(above, c[0], c[1]), "search_high");
+                Expr low = named(select(above, c[2], c[0]), "search_low");
+                // T' >= 1: Newton would step away from the bracket's crossing (towards one where
+                // the ray leaves the surface); the clamped step r = 1 then expands errors by T'
+                // per step (measured: float and double apart by 2x per step, 2.6e-4 at the end).
+                Expr outside = (next < low) || (next > high) || (t_slope >= 1.0);
+                next = named(select(outside, 0.5 * (low + high), next), "search_level");
+                return LoopStep{{next, high, low, m.state}, Expr()};
+            });
+        level = newton[0];
+        state = newton[3];
+    }
+    const PlaneHit hit = intersect_plane(s, level);
+    return {hit.point, hit.distance, at(hit, state).slope};
 }
 
 SurfaceModel sum_of_sines_surface(Graph& g, Expr time) {
@@ -165,36 +135,33 @@ SurfaceModel gerstner_surface(Graph& g, Expr time) {
     // the search's bracket on the wrong side of the surface (residuals up to 1.3 cm on rays
     // 20 degrees down). Crests bunch the grid by up to 1 / (1 - Q), which steepens the world
     // slope by as much. Height and slope at the same S share one step.
-    struct Grid {
-        Expr x0;
-        uint32_t xz = UINT32_MAX;
-    };
-    auto state = std::make_shared<Grid>();
-    auto grid = [&g, time, state](Expr xz, Expr fp) {
-        if (state->xz != xz.id()) {
-            FullPrecisionScope full(g);
-            OriginScope scope(g, "waves.gerstner");
-            state->x0 = gerstner_grid_newton(g, xz, time, state->x0.valid() ? state->x0 : xz, fp);
-            state->xz = xz.id();
-        }
-        return state->x0;
-    };
     auto world_slope = [&g, time](Expr x0, Expr fp) {
         Expr n = gerstner_normal(g, x0, time, fp);
         // dh/dx = -n.x / n.y; n.y > 0 unless a steepness-1 crest folds, where the
         // max() caps the slope instead of dividing by zero.
         return named(-n.xz() / max(n.y(), 1e-4), "wave_slope");
     };
-    return {top, named(slope / max(1.0 - steepness, 0.2), "gerstner_max_slope"),
-            [&g, time, grid, world_slope](Expr xz, Expr fp) {
-                Expr x0 = grid(xz, fp);
-                Expr d = gerstner_displacement(g, x0, time, fp);
-                FullPrecisionScope full(g);
-                OriginScope scope(g, "waves.gerstner");
-                Expr miss = xz - (x0 + d.swizzle("xz"));
-                return named(d.y() + dot(world_slope(x0, fp), miss), "gerstner_height");
-            },
-            [grid, world_slope](Expr xz, Expr fp) { return world_slope(grid(xz, fp), fp); }, true};
+    auto height_at = [&g, time, world_slope](Expr xz, Expr fp, Expr x0) {
+        Expr d = gerstner_displacement(g, x0, time, fp);
+        FullPrecisionScope full(g);
+        OriginScope scope(g, "waves.gerstner");
+        Expr miss = xz - (x0 + d.swizzle("xz"));
+        return named(d.y() + dot(world_slope(x0, fp), miss), "gerstner_height");
+    };
+    // The search carries the grid point (SurfaceModel::State); height and slope from one
+    // Newton step at xz from `start` serve callers that ask once.
+    auto advance = [&g, time](Expr xz, Expr fp, Expr x0) {
+        FullPrecisionScope full(g);
+        OriginScope scope(g, "waves.gerstner");
+        return gerstner_grid_newton(g, xz, time, x0, fp);
+    };
+    SurfaceModel model{
+        top, named(slope / max(1.0 - steepness, 0.2), "gerstner_max_slope"),
+        [height_at, advance](Expr xz, Expr fp) { return height_at(xz, fp, advance(xz, fp, xz)); },
+        [world_slope, advance](Expr xz, Expr fp) { return world_slope(advance(xz, fp, xz), fp); }};
+    model.state = {[](Expr xz) { return xz; }, advance, height_at,
+                   [world_slope](Expr, Expr fp, Expr x0) { return world_slope(x0, fp); }};
+    return model;
 }
 
 SurfaceModel heightmap_surface(Graph& g, Expr time) {

@@ -212,8 +212,8 @@ class Graph {
 
     // While this graph is a loop body being built (dsl.h, loop()): the enclosing graph, which
     // holds the parameters and textures the body declares, and the outer values the body
-    // captures. capture() gives the body's node for an outer one: leaves are copied, other
-    // values become Captured leaves, one per outer node.
+    // captures. capture() gives the body's node for an outer one: constants and textures are
+    // copied, other values become Captured leaves, one per outer node.
     void begin_body(Graph* enclosing) { enclosing_ = enclosing; }
     void end_body() { enclosing_ = nullptr; }
     Graph* enclosing() const { return enclosing_; }
@@ -237,13 +237,13 @@ class Graph {
     std::vector<uint32_t> captures_; // outer node per Captured index
 };
 
-// A bounded loop: at most `trip_count` iterations of `body`, a graph whose leaves may be
-// LoopIndex, Carried k (k < carried) and Captured m (an outer value, argument carried + m of
-// the Loop node) besides constants, parameters, inputs and textures (which it shares with the
-// enclosing graph). Its outputs "next0", "next1", ... are the carried values of the next
-// iteration, typed like the initial values; an optional Bool output "continue" ends the loop
-// where it is false (per pixel, after the carried values are updated). The enclosing graph's
-// parameters hold the body's: a body never declares its own.
+// A bounded loop: at most `trip_count` iterations of `body`, a graph whose leaves are
+// LoopIndex, Carried k (k < carried), Captured m (an outer value, argument carried + m of the
+// Loop node; parameters and inputs come in this way too), constants and textures. Its outputs
+// "next0", "next1", ... are the carried values of the next iteration, typed like the initial
+// values; an optional Bool output "continue" ends the loop where it is false (per pixel, after the
+// carried values are updated). The enclosing graph's parameters hold the body's: a body never
+// declares its own.
 struct LoopBody {
     std::shared_ptr<const Graph> body;
     std::vector<Type> carried_types; // one per carried value

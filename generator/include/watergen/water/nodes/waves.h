@@ -116,12 +116,17 @@ struct SurfaceModel {
     // (world xz, footprint or invalid) -> height above the water level (m), or (dh/dx, dh/dz)
     std::function<Expr(Expr, Expr)> height;
     std::function<Expr(Expr, Expr)> slope;
-    // The model keeps state between calls (gerstner's grid point): its search is unrolled;
-    // the others run as loops.
-    bool stateful = false;
+    // A model that carries a value from one search step to the next (gerstner: the grid point
+    // under the searched xz) says so here; the search then keeps it as a loop-carried value.
+    // start(first xz) -> state; advance(xz, footprint, state) -> the state at xz, which
+    // height_at / slope_at (xz, footprint, state) read. Empty for stateless models.
+    struct State {
+        std::function<Expr(Expr)> start;
+        std::function<Expr(Expr, Expr, Expr)> advance, height_at, slope_at;
+    } state{};
 };
 SurfaceModel sum_of_sines_surface(Graph& g, Expr time);
-// Stateful: reuses its last grid point, refined by one Newton step (2x2 Jacobian of the
+// Stateful: the search carries the grid point, refined by one Newton step (2x2 Jacobian of the
 // horizontal displacement, determinant floored at 0.04) per new world xz; the height is
 // corrected to first order (world slope at x0) for what that step leaves of the miss.
 SurfaceModel gerstner_surface(Graph& g, Expr time);
