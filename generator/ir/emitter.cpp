@@ -65,6 +65,12 @@ class FragmentWriter {
         return strict_half_ && n.relaxed && (is_float_numeric(n.type) || n.type == Type::Mat3);
     }
 
+    // Parameters of `in` that are specialization constants: read by their own name.
+    void read_as_constants(const ShaderInterface& in) {
+        for (const auto& p : in.parameters)
+            if (p.specialization) constants_.insert(p.name);
+    }
+
     // Whether any live node is spelled in a binary16 type (the shader needs the extension).
     bool writes_half() const {
         for (uint32_t id : g_.live_nodes())
@@ -187,7 +193,7 @@ class FragmentWriter {
         case Op::Constant:
             return half ? syntax_.convert(n.type, true, syntax_.constant(n)) : syntax_.constant(n);
         case Op::Uniform:
-            return syntax_.uniform_ref(n.name);
+            return constants_.count(n.name) ? n.name : syntax_.uniform_ref(n.name);
         case Op::Varying:
         case Op::Texture:
             return n.name;
@@ -232,6 +238,7 @@ class FragmentWriter {
     const GlslSyntax& syntax_;
     bool compute_ = false;
     bool strict_half_ = false;
+    std::set<std::string> constants_;
     std::map<uint32_t, std::string> temp_;
 };
 
@@ -241,7 +248,9 @@ const GlslSyntax& syntax_for(Language l) {
     return l == Language::Glsl ? glsl : static_cast<const GlslSyntax&>(hlsl);
 }
 
-ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics) {
+// `specialized`: EmitOptions::specialization_constants.
+ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics,
+                             const std::set<std::string>& specialized = {}) {
     ShaderInterface in;
     std::set<std::string> used_uniforms, used_textures;
     for (uint32_t id : g.live_nodes()) {
@@ -250,9 +259,14 @@ ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics) {
         if (n.op == Op::Texture) used_textures.insert(n.name);
         if (n.op == Op::Varying) in.varyings.emplace_back(n.name, n.type);
     }
-    for (const auto& p : g.parameters())
-        if (used_uniforms.count(p.name)) in.parameters.push_back(p);
+    check_specialization_names(g.parameters(), specialized, diagnostics);
+    for (Parameter p : g.parameters())
+        if (used_uniforms.count(p.name)) {
+            p.specialization = is_specialized(p, specialized);
+            in.parameters.push_back(std::move(p));
+        }
     in.uniforms = layout_uniforms(in.parameters, diagnostics);
+    in.specialization = specialization_slots(in.parameters, diagnostics);
     uint32_t binding = kFirstTextureBinding;
     for (const auto& t : g.textures())
         if (used_textures.count(t.name)) in.textures.push_back({t.name, t.type, binding++});
@@ -312,10 +326,11 @@ EmittedShader emit_fragment(const Graph& g, Language language, const std::string
         return out;
     }
     const GlslSyntax& syntax = syntax_for(language);
-    out.interface = interface_of(g, diagnostics);
+    out.interface = interface_of(g, diagnostics, options.specialization_constants);
     std::vector<std::string> results;
     std::set<Op> used_ops;
     FragmentWriter writer(g, syntax, false, options.strict_half);
+    writer.read_as_constants(out.interface);
     std::vector<Line> body = writer.body(results, used_ops);
     fill(out,
          template_text(language == Language::Glsl ? "glsl/fragment.glsl" : "hlsl/fragment.hlsl"),
@@ -371,7 +386,8 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
         diagnostics.push_back({Severity::Error, file_name, 0, 0, "", "probe graph has no output"});
     if (has_errors(diagnostics)) return out;
 
-    out.interface = interface_of(g, diagnostics);
+    out.interface = interface_of(g, diagnostics, options.specialization_constants);
+    writer.read_as_constants(out.interface);
     out.interface.varyings.clear(); // probe inputs come from the buffer, not the rasteriser
     if (!out.interface.textures.empty() &&
         out.interface.textures.back().binding >= kProbeInputBinding) {
@@ -465,6 +481,7 @@ EmittedShader emit_from_skeleton(const Graph& g, Language language, ShaderStage 
     std::vector<std::string> results;
     std::set<Op> used_ops;
     FragmentWriter writer(g, syntax);
+    writer.read_as_constants(out.interface);
     std::map<std::string, std::vector<Line>> blocks = {
         {"stamp", {{stamp_text(variant_key), ""}}},
         {"declarations", as_lines(syntax.declarations(out.interface))},

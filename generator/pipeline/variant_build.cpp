@@ -40,6 +40,7 @@ StageBuild build_stage(EmittedShader source, Diagnostics& all, bool strict_half 
                            stage.source.stage, stage.source.source, stage.source.file_name, "main"};
     request.hlsl_16bit_types = strict_half;
     stage.toolchain = run_toolchain(request);
+    add_specialization_ranges(stage.toolchain.reflection, stage.source.interface.specialization);
     Diagnostics ds = stage.toolchain.diagnostics;
     // Only glslang's diagnostics point at lines of our emitted source.
     Diagnostics own, rest;
@@ -92,6 +93,19 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
     for (const auto& t : in.textures)
         textures.push_back({{"name", t.name}, {"binding", t.binding}, {"type", type_name(t.type)}});
     j["textures"] = textures;
+    // Only when there are some, so variants without them keep their form.
+    if (!in.specialization.empty()) {
+        nlohmann::ordered_json constants = nlohmann::ordered_json::array();
+        for (const auto& s : in.specialization)
+            constants.push_back({{"id", s.id},
+                                 {"name", s.name},
+                                 {"parameter", s.parameter},
+                                 {"component", s.component},
+                                 {"default", s.default_value},
+                                 {"min", s.min},
+                                 {"max", s.max}});
+        j["specialization_constants"] = constants;
+    }
     nlohmann::ordered_json counts = nlohmann::ordered_json::object();
     for (const auto& lang : b.languages)
         counts[to_string(lang.language)] = {
