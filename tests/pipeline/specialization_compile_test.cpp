@@ -23,9 +23,9 @@ std::vector<Parameter> read_parameters(const Preset* preset) {
     return plain.languages[0].fragment.source.interface.parameters;
 }
 
-std::string diagnostics_text(const VariantBuild& b) {
+std::string diagnostics_text(const Diagnostics& ds) {
     std::string text;
-    for (const auto& d : b.diagnostics)
+    for (const auto& d : ds)
         text += format_diagnostic(d) + "\n";
     return text;
 }
@@ -105,7 +105,7 @@ TEST_CASE("specialized_parameters_compile_and_reflect_in_both_languages", "[comp
     REQUIRE(names.count("sun_direction")); // a preset value: the default is the preset's
 
     const VariantBuild b = build_variant(default_variant(), preset, EmitOptions{false, names});
-    INFO(diagnostics_text(b));
+    INFO(diagnostics_text(b.diagnostics));
     REQUIRE(b.ok());
     const std::vector<SpecializationConstant> want = expected_constants(parameters, names);
     // glslang's GLSL front end keeps every declared constant; the HLSL path (legalisation) and
@@ -170,7 +170,7 @@ TEST_CASE("every_float_parameter_can_be_a_specialization_constant", "[compile]")
     for (const auto& p : parameters)
         names.insert(p.name);
     const VariantBuild b = build_variant(default_variant(), nullptr, EmitOptions{false, names});
-    INFO(diagnostics_text(b));
+    INFO(diagnostics_text(b.diagnostics));
     REQUIRE(b.ok());
     for (const auto& lang : b.languages) {
         const Reflection& r = lang.fragment.toolchain.reflection;
@@ -184,7 +184,8 @@ TEST_CASE("a_specialization_constant_naming_no_parameter_is_an_error", "[compile
     const VariantBuild b =
         build_variant(default_variant(), nullptr, EmitOptions{false, {"sun_directoin"}});
     CHECK_FALSE(b.ok());
-    CHECK(diagnostics_text(b).find("specialization constant 'sun_directoin' names no parameter") !=
+    CHECK(diagnostics_text(b.diagnostics)
+              .find("specialization constant 'sun_directoin' names no parameter") !=
           std::string::npos);
 }
 
@@ -199,8 +200,7 @@ TEST_CASE("a_parameter_marked_specialization_compiles_as_constants_in_both_langu
         CompileRequest request{lang == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl,
                                ShaderStage::Fragment, s.source, s.file_name, "main"};
         ToolchainOutputs t = run_toolchain(request);
-        for (const auto& d : t.diagnostics)
-            INFO(format_diagnostic(d));
+        INFO(diagnostics_text(t.diagnostics));
         REQUIRE(t.ok());
         add_specialization_ranges(t.reflection, s.interface.specialization);
         Parameter tint = test::tint_parameter();
