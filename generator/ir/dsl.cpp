@@ -199,15 +199,40 @@ Expr error_expr(Graph& g) {
     return Expr(&g, g.add(std::move(n)));
 }
 
+namespace {
+
+// Whether `inner` is `outer` or a loop body being built inside it.
+bool inside(const Graph* inner, const Graph* outer) {
+    for (const Graph* g = inner; g; g = g->enclosing())
+        if (g == outer) return true;
+    return false;
+}
+
+} // namespace
+
+Expr bring_into(Expr e, Graph& g) {
+    if (!e.valid() || &e.graph() == &g) return e;
+    if (!g.enclosing()) {
+        e.graph().error("a value of one graph used in another that does not enclose it");
+        return Expr();
+    }
+    Expr outer = bring_into(e, *g.enclosing());
+    if (!outer.valid()) return outer;
+    return Expr(&g, g.capture(outer.id()));
+}
+
 Expr make(Op op, std::initializer_list<Expr> list) {
     std::vector<Expr> args(list);
     // An argument no node produced (an axis that failed earlier) poisons the result; the
     // failure itself has been reported already.
     Graph* graph = nullptr;
     for (const auto& a : args)
-        if (a.valid()) graph = &a.graph();
+        if (a.valid() && (!graph || inside(&a.graph(), graph))) graph = &a.graph();
     if (!graph) return Expr();
     Graph& g = *graph;
+    // Values of enclosing code used in a loop body are captured into it.
+    for (auto& a : args)
+        if (a.valid() && &a.graph() != &g) a = bring_into(a, g);
     for (const auto& a : args)
         if (!a.valid()) return error_expr(g);
     const int arity = expected_arity(op);
@@ -336,9 +361,7 @@ Expr texture(Graph& g, const TextureInput& t) {
 Expr named(Expr e, const std::string& name) {
     if (!e.valid()) return e;
     Node copy = e.graph().node(e.id());
-    if (copy.op == Op::Constant || copy.op == Op::Uniform || copy.op == Op::Varying ||
-        copy.op == Op::Texture || copy.type == Type::Error)
-        return e;
+    if (is_leaf(copy.op) || copy.type == Type::Error || copy.type == Type::Tuple) return e;
     copy.name = name;
     return Expr(&e.graph(), e.graph().add(std::move(copy)));
 }

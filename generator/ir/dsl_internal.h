@@ -9,4 +9,8 @@ namespace watergen {
 // that composition goes on and reports every error at once.
 Expr error_expr(Graph& g);
 
+// `e` as a value of `g`: itself, or (when `e` belongs to code enclosing the loop body `g`)
+// captured into `g`, through every body in between.
+Expr bring_into(Expr e, Graph& g);
+
 } // namespace watergen

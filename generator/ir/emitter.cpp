@@ -1,11 +1,13 @@
 #include "watergen/ir/emitter.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
 #include <fmt/format.h>
 
 #include "emitter_internal.h"
+#include "fragment_writer.h"
 #include "shader_syntax.h"
 
 namespace watergen {
@@ -34,218 +36,24 @@ std::string stamp_text(const std::string& variant_key) {
 
 namespace {
 
-struct Line {
-    std::string text;
-    std::string origin;
-};
-
-// Removes one pair of parentheses that encloses the whole text.
-std::string strip_outer(const std::string& s) {
-    if (s.size() < 2 || s.front() != '(' || s.back() != ')') return s;
-    int depth = 0;
-    for (size_t i = 0; i < s.size(); ++i) {
-        depth += s[i] == '(' ? 1 : s[i] == ')' ? -1 : 0;
-        if (depth == 0 && i + 1 < s.size()) return s;
-    }
-    return s.substr(1, s.size() - 2);
-}
-
-class FragmentWriter {
-  public:
-    // `compute`: written for a compute stage (the probe), which has neither implicit-LOD sampling
-    // nor derivatives: samples read level 0, ddx / ddy become quad differences (emit_probe).
-    // `strict_half`: relaxed float nodes are written in explicit 16-bit types (EmitOptions).
-    FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool compute = false,
-                   bool strict_half = false)
-        : g_(g), syntax_(syntax), compute_(compute), strict_half_(strict_half) {}
-
-    // Whether node `id` is spelled in a binary16 type: strict half, relaxed, and a float.
-    bool is_half(uint32_t id) const {
-        const Node& n = g_.node(id);
-        return strict_half_ && n.relaxed && (is_float_numeric(n.type) || n.type == Type::Mat3);
-    }
-
-    // Parameters of `in` that are specialization constants: read by their own name.
-    void read_as_constants(const ShaderInterface& in) {
-        for (const auto& p : in.parameters)
-            if (p.specialization) constants_.insert(p.name);
-    }
-
-    // Whether any live node is spelled in a binary16 type (the shader needs the extension).
-    bool writes_half() const {
-        for (uint32_t id : g_.live_nodes())
-            if (is_half(id)) return true;
-        return false;
-    }
-
-    // Lines of the body; results[i] spells output i.
-    std::vector<Line> body(std::vector<std::string>& results, std::set<Op>& used_ops) {
-        const std::vector<uint32_t> live = g_.live_nodes();
-        std::vector<int> uses(g_.size(), 0);
-        for (uint32_t id : live)
-            for (uint32_t a : g_.node(id).args)
-                ++uses[a];
-        for (const auto& o : g_.outputs())
-            ++uses[o.node];
-
-        // A node gets a named temporary when it is shared, carries a name, or its user belongs
-        // to another feature node: every line then belongs to exactly one feature node.
-        std::vector<uint32_t> single_user(g_.size(), UINT32_MAX);
-        for (uint32_t id : live)
-            for (uint32_t a : g_.node(id).args)
-                single_user[a] = id;
-        std::set<std::string> taken;
-        for (uint32_t id : live) {
-            const Node& n = g_.node(id);
-            used_ops.insert(n.op);
-            if (is_leaf(n.op) || n.type == Type::Texture2D || n.type == Type::TextureCube) continue;
-            const bool cross_origin =
-                single_user[id] != UINT32_MAX && g_.node(single_user[id]).origin != n.origin;
-            if (uses[id] > 1 || !n.name.empty() || cross_origin ||
-                must_be_named(id, single_user[id]))
-                temp_[id] = unique_name(n, id, taken);
-        }
-
-        std::vector<Line> lines;
-        std::string current_origin = "\x01";
-        for (uint32_t id : live) {
-            auto it = temp_.find(id);
-            if (it == temp_.end()) continue;
-            const Node& n = g_.node(id);
-            if (n.origin != current_origin) {
-                if (!lines.empty()) lines.push_back({"", ""});
-                lines.push_back(
-                    {syntax_.comment(n.origin.empty() ? "(unnamed)" : n.origin), n.origin});
-                current_origin = n.origin;
-            }
-            const std::string type = !strict_half_ ? syntax_.temp_type(n.type, n.relaxed)
-                                     : is_half(id) ? syntax_.half_type(n.type)
-                                                   : syntax_.type(n.type);
-            lines.push_back(
-                {type + " " + it->second + " = " + strip_outer(spell(id)) + ";", n.origin});
-        }
-        for (const auto& out : g_.outputs())
-            results.push_back(strip_outer(expr_as(out.node, false)));
-        return lines;
-    }
-
-  private:
-    // glslang turns ?: into branches unless both operands are plain names, and a branch inside
-    // a texture() argument leaves OpSampledImage in another block than its use (spirv-val
-    // rejects it). Selects, their operands and sample coordinates are therefore temporaries:
-    // every select becomes OpSelect and every sample sees a finished coordinate.
-    // In a compute stage a quad difference synchronises the workgroup, so it must run in main's
-    // straight-line code, never inside a short-circuit operand.
-    bool must_be_named(uint32_t id, uint32_t user) const {
-        const Op own = g_.node(id).op;
-        if (own == Op::Select || (compute_ && (own == Op::Ddx || own == Op::Ddy))) return true;
-        if (user == UINT32_MAX) return false;
-        const Op op = g_.node(user).op;
-        return op == Op::Select || op == Op::Sample || op == Op::SampleLevel;
-    }
-
-    std::string unique_name(const Node& n, uint32_t id, std::set<std::string>& taken) {
-        std::string base = n.name.empty() ? fmt::format("t{}", id) : n.name;
-        std::string name = base;
-        for (int k = 2; taken.count(name); ++k)
-            name = fmt::format("{}_{}", base, k);
-        taken.insert(name);
-        return name;
-    }
-
-    std::string expr(uint32_t id) {
-        if (auto it = temp_.find(id); it != temp_.end()) return it->second;
-        return spell(id);
-    }
-
-    // Node `id` at 16 bits (`half`) or 32: converted where its own width differs.
-    std::string expr_as(uint32_t id, bool half) {
-        const Type t = g_.node(id).type;
-        if (is_half(id) == half || !(is_float_numeric(t) || t == Type::Mat3)) return expr(id);
-        return syntax_.convert(t, half, strip_outer(expr(id)));
-    }
-
-    // The node's own operation with its arguments spelled (inline or by temporary name). In a
-    // strict-half shader the arguments take the node's width, except the coordinates and level
-    // of a texture sample: sampling is 32-bit and its result is converted.
-    std::string spell(uint32_t id) {
-        const Node& n = g_.node(id);
-        const bool half = is_half(id);
-        const bool sample = n.op == Op::Sample || n.op == Op::SampleLevel;
-        if (half && sample) {
-            const bool compute_sample = compute_ && n.op == Op::Sample;
-            return syntax_.convert(n.type, true, strip_outer(spell_at(id, false, compute_sample)));
-        }
-        return spell_at(id, half, compute_ && n.op == Op::Sample);
-    }
-
-    // `half`: the width of the arguments and the result. `level0`: a compute stage's sample,
-    // which reads level 0 explicitly.
-    std::string spell_at(uint32_t id, bool half, bool level0) {
-        const Node& n = g_.node(id);
-        std::vector<std::string> a;
-        std::vector<Type> types;
-        for (uint32_t arg : n.args) {
-            a.push_back(expr_as(arg, half));
-            types.push_back(g_.node(arg).type);
-        }
-        switch (n.op) {
-        case Op::Constant:
-            return half ? syntax_.convert(n.type, true, syntax_.constant(n)) : syntax_.constant(n);
-        case Op::Uniform:
-            return constants_.count(n.name) ? n.name : syntax_.uniform_ref(n.name);
-        case Op::Varying:
-        case Op::Texture:
-            return n.name;
-        case Op::Neg:
-            return "(-" + a[0] + ")";
-        case Op::Not:
-            return "(!" + a[0] + ")";
-        case Op::Select:
-            return "(" + a[0] + " ? " + a[1] + " : " + a[2] + ")";
-        case Op::Swizzle: {
-            std::string s;
-            for (double v : n.values)
-                s += "xyzw"[static_cast<int>(v)];
-            return a[0] + "." + s;
-        }
-        case Op::Construct:
-            return syntax_.construct(n.type, a, half);
-        case Op::Splat:
-            return syntax_.splat(n.type, strip_outer(a[0]), half);
-        default:
-            break;
-        }
-        if (compute_ && (n.op == Op::Ddx || n.op == Op::Ddy))
-            return fmt::format("probe_quad_difference({}, probe_lane, {}u)", strip_outer(a[0]),
-                               n.op == Op::Ddx ? 1 : 2);
-        if (level0) {
-            // One mip level and the same filter for magnification and minification: level 0 is
-            // what the fragment stage's implicit LOD samples too.
-            a.push_back(syntax_.literal(0.0));
-            types.push_back(Type::Float);
-            for (auto& s : a)
-                s = strip_outer(s);
-            return syntax_.call(Op::SampleLevel, n.type, a, types);
-        }
-        if (is_infix(n.op)) return "(" + a[0] + " " + op_name(n.op) + " " + a[1] + ")";
-        for (auto& s : a)
-            s = strip_outer(s);
-        return syntax_.call(n.op, n.type, a, types, half);
-    }
-
-    const Graph& g_;
-    const GlslSyntax& syntax_;
-    bool compute_ = false;
-    bool strict_half_ = false;
-    std::set<std::string> constants_;
-    std::map<uint32_t, std::string> temp_;
-};
-
 const GlslSyntax& syntax_for(Language l) {
     static const GlslSyntax glsl;
     static const HlslSyntax hlsl;
     return l == Language::Glsl ? glsl : static_cast<const GlslSyntax&>(hlsl);
+}
+
+// The parameters, textures and inputs the live nodes of `g` and of its loop bodies read.
+void collect_reads(const Graph& g, std::set<std::string>& uniforms, std::set<std::string>& textures,
+                   std::vector<std::pair<std::string, Type>>& varyings) {
+    for (uint32_t id : g.live_nodes()) {
+        const Node& n = g.node(id);
+        if (n.op == Op::Uniform) uniforms.insert(n.name);
+        if (n.op == Op::Texture) textures.insert(n.name);
+        if (n.op == Op::Varying && std::find(varyings.begin(), varyings.end(),
+                                             std::pair{n.name, n.type}) == varyings.end())
+            varyings.emplace_back(n.name, n.type);
+        if (n.loop) collect_reads(*n.loop->body, uniforms, textures, varyings);
+    }
 }
 
 // `specialized`: EmitOptions::specialization_constants.
@@ -253,12 +61,7 @@ ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics,
                              const std::set<std::string>& specialized = {}) {
     ShaderInterface in;
     std::set<std::string> used_uniforms, used_textures;
-    for (uint32_t id : g.live_nodes()) {
-        const Node& n = g.node(id);
-        if (n.op == Op::Uniform) used_uniforms.insert(n.name);
-        if (n.op == Op::Texture) used_textures.insert(n.name);
-        if (n.op == Op::Varying) in.varyings.emplace_back(n.name, n.type);
-    }
+    collect_reads(g, used_uniforms, used_textures, in.varyings);
     check_specialization_names(g.parameters(), specialized, diagnostics);
     for (Parameter p : g.parameters())
         if (used_uniforms.count(p.name)) {
@@ -335,7 +138,7 @@ EmittedShader emit_fragment(const Graph& g, Language language, const std::string
     fill(out,
          template_text(language == Language::Glsl ? "glsl/fragment.glsl" : "hlsl/fragment.hlsl"),
          {{"stamp", {{stamp_text(variant_key), ""}}},
-          {"extensions", as_lines(syntax.extensions(writer.writes_half()))},
+          {"extensions", as_lines(syntax.extensions(writer.writes_half(), writer.writes_loop()))},
           {"declarations", as_lines(syntax.declarations(out.interface))},
           {"prelude", as_lines(syntax.prelude(used_ops, options.strict_half))},
           {"inputs", {{syntax.entry_inputs(out.interface), ""}}},
@@ -435,7 +238,7 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
         out,
         template_text(language == Language::Glsl ? "glsl/probe.comp.glsl" : "hlsl/probe.comp.hlsl"),
         {{"stamp", {{stamp_text(variant_key), ""}}},
-         {"extensions", as_lines(syntax.extensions(writer.writes_half()))},
+         {"extensions", as_lines(syntax.extensions(writer.writes_half(), writer.writes_loop()))},
          {"declarations", as_lines(syntax.declarations(out.interface))},
          {"prelude", as_lines(prelude)},
          {"input_stride", {{std::to_string(layout.input_stride), ""}}},

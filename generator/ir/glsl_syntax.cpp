@@ -35,9 +35,17 @@ std::string GlslSyntax::convert(Type t, bool to_half, const std::string& expr) c
     return (to_half ? half_type(t) : type(t)) + "(" + expr + ")";
 }
 
-std::vector<std::string> GlslSyntax::extensions(bool strict_half) const {
-    if (!strict_half) return {};
-    return {"#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require"};
+std::vector<std::string> GlslSyntax::extensions(bool strict_half, bool loops) const {
+    std::vector<std::string> lines;
+    if (strict_half)
+        lines.push_back("#extension GL_EXT_shader_explicit_arithmetic_types_float16 : require");
+    if (loops) lines.push_back("#extension GL_EXT_control_flow_attributes : require");
+    return lines;
+}
+
+std::string GlslSyntax::loop_header(const std::string& index, int trip_count, bool unroll) const {
+    return fmt::format("{} for (int {} = 0; {} < {}; ++{}) {{",
+                       unroll ? "[[unroll]]" : "[[dont_unroll]]", index, index, trip_count, index);
 }
 
 std::string GlslSyntax::literal(double v) const {

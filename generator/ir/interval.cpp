@@ -167,6 +167,14 @@ Intervals node_intervals(const Node& n, const std::vector<const Intervals*>& arg
     case Op::Sample:
     case Op::SampleLevel:
         return unknown_intervals(n.type, false);
+    // Loops: no bound is claimed for what a loop computes (sound, if loose); a body's leaves
+    // are as unknown as the values they stand for.
+    case Op::Loop:
+    case Op::LoopResult:
+    case Op::LoopIndex:
+    case Op::Carried:
+    case Op::Captured:
+        return unknown_intervals(n.type, false);
     case Op::Add:
         arith([&](int c) { return add(a(0, c), a(1, c)); });
         return out;

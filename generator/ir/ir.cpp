@@ -69,6 +69,8 @@ const char* type_name(Type t) {
         return "texture2D";
     case Type::TextureCube:
         return "textureCube";
+    case Type::Tuple:
+        return "<loop>";
     }
     return "?";
 }
@@ -183,12 +185,23 @@ const char* op_name(Op op) {
         return "ddx";
     case Op::Ddy:
         return "ddy";
+    case Op::Loop:
+        return "loop";
+    case Op::LoopResult:
+        return "loop result";
+    case Op::LoopIndex:
+        return "loop index";
+    case Op::Carried:
+        return "carried";
+    case Op::Captured:
+        return "captured";
     }
     return "?";
 }
 
 bool is_leaf(Op op) {
-    return op == Op::Constant || op == Op::Uniform || op == Op::Varying || op == Op::Texture;
+    return op == Op::Constant || op == Op::Uniform || op == Op::Varying || op == Op::Texture ||
+           op == Op::LoopIndex || op == Op::Carried || op == Op::Captured;
 }
 
 bool is_infix(Op op) {
@@ -230,6 +243,11 @@ std::string node_key(const Node& n) {
         key.push_back('|');
         key += n.name;
     }
+    if (n.loop) { // every loop is its own
+        const auto* body = n.loop.get();
+        key.push_back('@');
+        key.append(reinterpret_cast<const char*>(&body), sizeof body);
+    }
     return key;
 }
 
@@ -237,8 +255,11 @@ std::string node_key(const Node& n) {
 
 uint32_t Graph::add(Node node) {
     // Leaves (parameters, inputs) keep full precision; operations follow the current scope.
-    if (!is_leaf(node.op) || node.op == Op::Constant) node.relaxed = node.relaxed || relaxed_;
-    if (node.type == Type::Bool || node.type == Type::Texture2D || node.type == Type::TextureCube)
+    // A loop's result has the precision of its carried value, whatever the scope.
+    if ((!is_leaf(node.op) && node.op != Op::LoopResult) || node.op == Op::Constant)
+        node.relaxed = node.relaxed || relaxed_;
+    if (node.type == Type::Bool || node.type == Type::Texture2D || node.type == Type::TextureCube ||
+        node.type == Type::Tuple)
         node.relaxed = false;
     std::string key = node_key(node);
     if (auto it = index_.find(key); it != index_.end()) {
@@ -257,7 +278,33 @@ void Graph::error(std::string message) {
     diagnostics_.push_back(Diagnostic{Severity::Error, "", 0, 0, origin_, std::move(message)});
 }
 
+uint32_t Graph::capture(uint32_t outer) {
+    const Node& o = enclosing_->node(outer);
+    if (o.op == Op::Constant || o.op == Op::Uniform || o.op == Op::Varying || o.op == Op::Texture) {
+        Node copy = o; // the same leaf, read directly in the body
+        copy.origin.clear();
+        return add(std::move(copy));
+    }
+    size_t m = 0;
+    while (m < captures_.size() && captures_[m] != outer)
+        ++m;
+    if (m == captures_.size()) captures_.push_back(outer);
+    Node n;
+    n.op = Op::Captured;
+    n.type = o.type;
+    n.relaxed = o.relaxed;
+    n.values = {static_cast<double>(m)};
+    n.name = o.name;
+    return add(std::move(n));
+}
+
 void Graph::declare_parameter(const Parameter& p) {
+    if (enclosing_) { // a loop body's parameters are its enclosing graph's
+        Parameter copy = p;
+        if (copy.origin.empty()) copy.origin = origin_;
+        enclosing_->declare_parameter(copy);
+        return;
+    }
     if (const Parameter* existing = find_parameter(p.name)) {
         if (existing->type != p.type || existing->default_value != p.default_value ||
             existing->specialization != p.specialization)
@@ -292,6 +339,12 @@ bool Graph::set_parameter_default(const std::string& name, const std::vector<dou
 }
 
 void Graph::declare_texture(const TextureInput& t) {
+    if (enclosing_) {
+        TextureInput copy = t;
+        if (copy.origin.empty()) copy.origin = origin_;
+        enclosing_->declare_texture(copy);
+        return;
+    }
     for (const auto& existing : textures_)
         if (existing.name == t.name) return;
     TextureInput copy = t;

@@ -21,8 +21,15 @@ class GlslSyntax {
     // `expr` converted to `t` at 16 bits (to_half) or 32 bits: the only place where the two
     // widths meet in a strict-half shader, so every conversion is visible in the source.
     virtual std::string convert(Type t, bool to_half, const std::string& expr) const;
-    // Lines after the version line: the float16 extension of a strict-half GLSL shader.
-    virtual std::vector<std::string> extensions(bool strict_half) const;
+    // Lines after the version line: the float16 extension of a strict-half GLSL shader, the
+    // control-flow attributes of one with loops.
+    virtual std::vector<std::string> extensions(bool strict_half, bool loops) const;
+    // `for (int index = 0; index < trip_count; ++index) {` with the unroll hint.
+    virtual std::string loop_header(const std::string& index, int trip_count, bool unroll) const;
+    // An int variable as a float.
+    virtual std::string int_to_float(const std::string& name) const {
+        return "float(" + name + ")";
+    }
     virtual std::string constant(const Node& n) const;
     virtual std::string uniform_ref(const std::string& name) const;
     // `half`: the result is a binary16 type (strict half), and so are the arguments.
@@ -58,7 +65,11 @@ class HlslSyntax final : public GlslSyntax {
     std::string temp_type(Type t, bool relaxed) const override;
     std::string half_type(Type t) const override;
     std::string convert(Type t, bool to_half, const std::string& expr) const override;
-    std::vector<std::string> extensions(bool) const override { return {}; }
+    std::vector<std::string> extensions(bool, bool) const override { return {}; }
+    std::string loop_header(const std::string& index, int trip_count, bool unroll) const override;
+    std::string int_to_float(const std::string& name) const override {
+        return "((float)" + name + ")";
+    }
     std::string uniform_ref(const std::string& name) const override;
     std::string splat(Type t, const std::string& scalar, bool half = false) const override;
     std::string construct(Type t, const std::vector<std::string>& args,

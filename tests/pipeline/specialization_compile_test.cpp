@@ -16,9 +16,10 @@ using namespace watergen;
 
 namespace {
 
-// The float parameters the default variant's fragment stage reads, in declaration order.
-std::vector<Parameter> read_parameters(const Preset* preset) {
-    const VariantBuild plain = build_variant(default_variant(), preset);
+// The float parameters the variant's fragment stage reads, in declaration order.
+std::vector<Parameter> read_parameters(const Preset* preset,
+                                       const Variant& variant = default_variant()) {
+    const VariantBuild plain = build_variant(variant, preset);
     REQUIRE(plain.ok());
     return plain.languages[0].fragment.source.interface.parameters;
 }
@@ -165,18 +166,27 @@ TEST_CASE("specialized_parameters_compile_and_reflect_in_both_languages", "[comp
 }
 
 TEST_CASE("every_float_parameter_can_be_a_specialization_constant", "[compile]") {
-    const std::vector<Parameter> parameters = read_parameters(nullptr);
-    std::set<std::string> names;
-    for (const auto& p : parameters)
-        names.insert(p.name);
-    const VariantBuild b = build_variant(default_variant(), nullptr, EmitOptions{false, names});
-    INFO(diagnostics_text(b.diagnostics));
-    REQUIRE(b.ok());
-    for (const auto& lang : b.languages) {
-        const Reflection& r = lang.fragment.toolchain.reflection;
-        CHECK(uniform_block(r) == nullptr); // nothing left in the block: no binding 0
-        check_constants(r.specialization_constants, expected_constants(parameters, names),
-                        lang.language == Language::Glsl);
+    // The default variant, and one whose surface search reads parameters inside loops.
+    Variant marching = default_variant();
+    REQUIRE_FALSE(set_choice(marching, "waves", "heightmap_march_converged"));
+    for (const Variant& v : {default_variant(), marching}) {
+        INFO(v.key());
+        const std::vector<Parameter> parameters = read_parameters(nullptr, v);
+        std::set<std::string> names;
+        for (const auto& p : parameters)
+            names.insert(p.name);
+        const VariantBuild b = build_variant(v, nullptr, EmitOptions{false, names});
+        INFO(diagnostics_text(b.diagnostics));
+        REQUIRE(b.ok());
+        for (const auto& lang : b.languages) {
+            const Reflection& r = lang.fragment.toolchain.reflection;
+            CHECK(uniform_block(r) == nullptr); // nothing left in the block: no binding 0
+            check_constants(r.specialization_constants, expected_constants(parameters, names),
+                            lang.language == Language::Glsl);
+            CHECK(lang.fragment.source.source.find("params.") == std::string::npos);
+            const bool loops = lang.fragment.source.source.find(" for (int ") != std::string::npos;
+            CHECK(loops == (v.choice("waves") == "heightmap_march_converged"));
+        }
     }
 }
 

@@ -22,10 +22,63 @@ Expr search_relaxation(Graph& g, Expr view_ray, Expr max_slope) {
     return named(1.0 / (1.0 + max_slope * run / ray_down), "search_relaxation");
 }
 
+namespace {
+
+// surface_search as two loops, a safe phase and a Newton phase, with the same operations in
+// the same order as the unrolled search below, which documents them.
+WaveHit surface_search_loops(const Surface& s, const SurfaceModel& model, int steps, int safe_steps,
+                             Expr pixel_angle) {
+    Graph& g = s.g;
+    Expr r_safe = search_relaxation(g, s.view_ray, model.max_slope);
+    Expr ray_down = max(-s.view_ray.y(), 1e-6);
+    auto footprint = [&](const PlaneHit& h) {
+        return pixel_angle.valid() ? named(pixel_angle * h.distance / ray_down, "pixel_footprint")
+                                   : Expr();
+    };
+    auto target_at = [&](const PlaneHit& hit) {
+        return named(s.level + model.height(hit.point.xz(), footprint(hit)), "search_target");
+    };
+    Expr level = named(s.level + model.top, "search_level");
+    Expr hi = level, lo = named(s.level - model.top, "search_low");
+    if (safe_steps > 0) {
+        const auto safe = loop(g, safe_steps, {level, hi}, [&](Expr, const std::vector<Expr>& c) {
+            Expr f = target_at(intersect_plane(s, c[0])) - c[0];
+            return LoopStep{{named(c[0] + r_safe * f, "search_level"), c[0]}, Expr()};
+        });
+        level = safe[0];
+        hi = safe[1];
+    }
+    if (steps > safe_steps) {
+        const auto newton =
+            loop(g, steps - safe_steps, {level, hi, lo}, [&](Expr, const std::vector<Expr>& c) {
+                const PlaneHit hit = intersect_plane(s, c[0]);
+                Expr target = target_at(hit);
+                Expr t_slope =
+                    -dot(model.slope(hit.point.xz(), footprint(hit)), s.view_ray.xz()) / ray_down;
+                Expr step = 1.0 / max(1.0 - t_slope, 1e-6);
+                Expr r = named(clamp(step, r_safe, constant(g, 1.0)), "search_step");
+                Expr f = target - c[0];
+                Expr next = named(c[0] + r * f, "search_level");
+                Expr above = f < 0.0;
+                Expr high = named(select(above, c[0], c[1]), "search_high");
+                Expr low = named(select(above, c[2], c[0]), "search_low");
+                Expr outside = (next < low) || (next > high) || (t_slope >= 1.0);
+                next = named(select(outside, 0.5 * (low + high), next), "search_level");
+                return LoopStep{{next, high, low}, Expr()};
+            });
+        level = newton[0];
+    }
+    const PlaneHit hit = intersect_plane(s, level);
+    return {hit.point, hit.distance, model.slope(hit.point.xz(), footprint(hit))};
+}
+
+} // namespace
+
 WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, int safe_steps,
                        Expr pixel_angle) {
     Graph& g = s.g;
     FullPrecisionScope full(g);
+    if (!model.stateful) return surface_search_loops(s, model, steps, safe_steps, pixel_angle);
     // Along the ray, S(level) moves ray.xz / ray.y metres per metre of level, so the target
     // T(level) = water_level + h(S(level)) has T' = grad h . ray.xz / ray.y, |T'| <= G =
     // K |ray.xz| / |ray.y|. level += r (T - level) with r = 1 / (1 + G) has a derivative
@@ -141,7 +194,7 @@ SurfaceModel gerstner_surface(Graph& g, Expr time) {
                 Expr miss = xz - (x0 + d.swizzle("xz"));
                 return named(d.y() + dot(world_slope(x0, fp), miss), "gerstner_height");
             },
-            [grid, world_slope](Expr xz, Expr fp) { return world_slope(grid(xz, fp), fp); }};
+            [grid, world_slope](Expr xz, Expr fp) { return world_slope(grid(xz, fp), fp); }, true};
 }
 
 SurfaceModel heightmap_surface(Graph& g, Expr time) {

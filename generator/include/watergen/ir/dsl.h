@@ -7,9 +7,11 @@
 //   Expr f = r0 + (1.0 - r0) * pow(1.0 - c, 5.0);
 #pragma once
 
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "watergen/ir/ir.h"
 
@@ -174,5 +176,24 @@ Expr sample(Expr texture, Expr coordinate);
 Expr sample_level(Expr texture, Expr coordinate, Expr lod);
 Expr ddx(Expr x);
 Expr ddy(Expr x);
+
+// Bounded loops. A body is written like any other code: it gets the iteration (0, 1, ... as a
+// float) and the carried values at the iteration's start, may read any value of the enclosing
+// code (computed once, outside the loop, and captured), and returns the carried values of the
+// next iteration plus, optionally, a Bool that ends the loop where it is false (after the
+// carried values are updated). Emitted as a real `for` loop in GLSL and HLSL; the CPU
+// evaluator runs it per pixel. Bodies may not take ddx / ddy, nor (with an exit) sample with
+// implicit LOD: both are undefined in non-uniform control flow.
+struct LoopStep {
+    std::vector<Expr> next;
+    Expr keep_going; // optional
+};
+struct LoopOptions {
+    bool unroll = false; // the compiler hint; the IR keeps the loop either way
+};
+using LoopBodyFn = std::function<LoopStep(Expr index, const std::vector<Expr>& carried)>;
+// The carried values after at most `trip_count` iterations (1..4096), typed like `initial`.
+std::vector<Expr> loop(Graph& g, int trip_count, const std::vector<Expr>& initial,
+                       const LoopBodyFn& body, LoopOptions options = {});
 
 } // namespace watergen

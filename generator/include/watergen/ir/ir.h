@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -25,6 +26,7 @@ enum class Type : uint8_t {
     Mat3,
     Texture2D,
     TextureCube,
+    Tuple, // the carried values of a loop, read one by one with LoopResult
 };
 
 // Components of a value of this type (Mat3 = 9, column-major); 0 for handles and Error.
@@ -96,11 +98,20 @@ enum class Op : uint8_t {
     SampleLevel, // args: texture, coordinate, lod
     Ddx,
     Ddy,
+    // bounded loops (see LoopBody)
+    Loop,       // args: the carried values' initial values, then the captured outer values
+    LoopResult, // args: the Loop; values[0] = carried index; the value after the last iteration
+    LoopIndex,  // in a loop body: the iteration, 0, 1, ... as a float
+    Carried,    // in a loop body: values[0] = carried index; its value at this iteration's start
+    Captured,   // in a loop body: values[0] = capture index; an outer value the body reads
 };
 
 const char* op_name(Op op);
-bool is_leaf(Op op);  // Constant, Uniform, Varying, Texture
+bool is_leaf(Op op);  // Constant, Uniform, Varying, Texture, LoopIndex, Carried, Captured
 bool is_infix(Op op); // written between its operands: + - * / comparisons && ||
+
+class Graph;
+struct LoopBody;
 
 struct Node {
     Op op = Op::Constant;
@@ -112,6 +123,8 @@ struct Node {
     // Relaxed precision (the precision=half axis): mediump in GLSL, min16float in HLSL, and
     // rounded to binary16 by the CPU evaluator's half mode.
     bool relaxed = false;
+    // Op::Loop: what the loop does, shared by every copy of the node (immutable once built).
+    std::shared_ptr<const LoopBody> loop;
 };
 
 // A uniform parameter a feature node reads. Parameters are data: defaults and ranges travel
@@ -201,6 +214,16 @@ class Graph {
     void bind(const Quantity& quantity, uint32_t node);
     const std::vector<QuantityBinding>& bindings() const { return bindings_; }
 
+    // While this graph is a loop body being built (dsl.h, loop()): the enclosing graph, which
+    // holds the parameters and textures the body declares, and the outer values the body
+    // captures. capture() gives the body's node for an outer one: leaves are copied, other
+    // values become Captured leaves, one per outer node.
+    void begin_body(Graph* enclosing) { enclosing_ = enclosing; }
+    void end_body() { enclosing_ = nullptr; }
+    Graph* enclosing() const { return enclosing_; }
+    uint32_t capture(uint32_t outer);
+    const std::vector<uint32_t>& captures() const { return captures_; }
+
   private:
     struct KeyHash {
         size_t operator()(const std::string& s) const { return std::hash<std::string>{}(s); }
@@ -214,6 +237,25 @@ class Graph {
     std::vector<TextureInput> textures_;
     std::vector<Output> outputs_;
     std::vector<QuantityBinding> bindings_;
+    Graph* enclosing_ = nullptr;
+    std::vector<uint32_t> captures_; // outer node per Captured index
+};
+
+// A bounded loop: at most `trip_count` iterations of `body`, a graph whose leaves may be
+// LoopIndex, Carried k (k < carried) and Captured m (an outer value, argument carried + m of
+// the Loop node) besides constants, parameters, inputs and textures (which it shares with the
+// enclosing graph). Its outputs "next0", "next1", ... are the carried values of the next
+// iteration, typed like the initial values; an optional Bool output "continue" ends the loop
+// where it is false (per pixel, after the carried values are updated). The enclosing graph's
+// parameters hold the body's: a body never declares its own.
+struct LoopBody {
+    std::shared_ptr<const Graph> body;
+    std::vector<Type> carried_types; // one per carried value
+    std::vector<bool> carried_relaxed;
+    int trip_count = 0;
+    bool unroll = false; // the hint: [[unroll]] / [unroll], else [[dont_unroll]] / [loop]
+    bool has_exit = false;
+    size_t carried() const { return carried_types.size(); }
 };
 
 } // namespace watergen

@@ -116,6 +116,9 @@ struct SurfaceModel {
     // (world xz, footprint or invalid) -> height above the water level (m), or (dh/dx, dh/dz)
     std::function<Expr(Expr, Expr)> height;
     std::function<Expr(Expr, Expr)> slope;
+    // The model keeps state between calls (gerstner's grid point): its search is unrolled;
+    // the others run as loops.
+    bool stateful = false;
 };
 SurfaceModel sum_of_sines_surface(Graph& g, Expr time);
 // Stateful: reuses its last grid point, refined by one Newton step (2x2 Jacobian of the

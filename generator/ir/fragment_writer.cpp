@@ -1,0 +1,296 @@
+#include "fragment_writer.h"
+
+#include <fmt/format.h>
+
+namespace watergen {
+
+std::string strip_outer(const std::string& s) {
+    if (s.size() < 2 || s.front() != '(' || s.back() != ')') return s;
+    int depth = 0;
+    for (size_t i = 0; i < s.size(); ++i) {
+        depth += s[i] == '(' ? 1 : s[i] == ')' ? -1 : 0;
+        if (depth == 0 && i + 1 < s.size()) return s;
+    }
+    return s.substr(1, s.size() - 2);
+}
+
+FragmentWriter::FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool compute,
+                               bool strict_half)
+    : g_(g), syntax_(syntax), compute_(compute), strict_half_(strict_half) {}
+
+FragmentWriter::FragmentWriter(const Graph& g, const FragmentWriter& enclosing,
+                               const BodyNames& names)
+    : g_(g), syntax_(enclosing.syntax_), compute_(enclosing.compute_),
+      strict_half_(enclosing.strict_half_), constants_(enclosing.constants_),
+      taken_(enclosing.taken_), names_(&names) {}
+
+void FragmentWriter::read_as_constants(const ShaderInterface& in) {
+    for (const auto& p : in.parameters)
+        if (p.specialization) constants_.insert(p.name);
+}
+
+bool FragmentWriter::is_half(uint32_t id) const {
+    const Node& n = g_.node(id);
+    return strict_half_ && n.relaxed && (is_float_numeric(n.type) || n.type == Type::Mat3);
+}
+
+namespace {
+
+// Whether `pred` holds for a live node of `g` or of a loop body in it.
+template <class P> bool any_live(const Graph& g, const P& pred) {
+    for (uint32_t id : g.live_nodes()) {
+        const Node& n = g.node(id);
+        if (pred(g, id) || (n.loop && any_live(*n.loop->body, pred))) return true;
+    }
+    return false;
+}
+
+} // namespace
+
+bool FragmentWriter::writes_half() const {
+    const bool strict = strict_half_;
+    return any_live(g_, [strict](const Graph& g, uint32_t id) {
+        const Node& n = g.node(id);
+        return strict && n.relaxed && (is_float_numeric(n.type) || n.type == Type::Mat3);
+    });
+}
+
+bool FragmentWriter::writes_loop() const {
+    return any_live(g_, [](const Graph& g, uint32_t id) { return g.node(id).op == Op::Loop; });
+}
+
+std::vector<Line> FragmentWriter::body(std::vector<std::string>& results, std::set<Op>& used_ops) {
+    std::vector<Line> out = lines(used_ops);
+    for (const auto& o : g_.outputs())
+        results.push_back(strip_outer(expr_as(o.node, false)));
+    return out;
+}
+
+std::vector<Line> FragmentWriter::lines(std::set<Op>& used_ops) {
+    const std::vector<uint32_t> live = g_.live_nodes();
+    std::vector<int> uses(g_.size(), 0);
+    for (uint32_t id : live)
+        for (uint32_t a : g_.node(id).args)
+            ++uses[a];
+    for (const auto& o : g_.outputs())
+        ++uses[o.node];
+
+    // A node gets a named temporary when it is shared, carries a name, or its user belongs to
+    // another feature node: every line then belongs to exactly one feature node. A loop is a
+    // block of lines named like a temporary; its results are its carried variables.
+    std::vector<uint32_t> single_user(g_.size(), UINT32_MAX);
+    for (uint32_t id : live)
+        for (uint32_t a : g_.node(id).args)
+            single_user[a] = id;
+    for (uint32_t id : live) {
+        const Node& n = g_.node(id);
+        used_ops.insert(n.op);
+        if (is_leaf(n.op) || n.op == Op::LoopResult || n.type == Type::Texture2D ||
+            n.type == Type::TextureCube)
+            continue;
+        const bool cross_origin =
+            single_user[id] != UINT32_MAX && g_.node(single_user[id]).origin != n.origin;
+        if (uses[id] > 1 || !n.name.empty() || cross_origin || n.op == Op::Loop ||
+            must_be_named(id, single_user[id]))
+            temp_[id] = unique_name(n, id);
+    }
+
+    std::vector<Line> out;
+    std::string current_origin = "\x01";
+    for (uint32_t id : live) {
+        auto it = temp_.find(id);
+        if (it == temp_.end()) continue;
+        const Node& n = g_.node(id);
+        if (n.origin != current_origin) {
+            if (!out.empty()) out.push_back({"", ""});
+            out.push_back({syntax_.comment(n.origin.empty() ? "(unnamed)" : n.origin), n.origin});
+            current_origin = n.origin;
+        }
+        if (n.op == Op::Loop) {
+            loop_lines(id, out, used_ops);
+            continue;
+        }
+        out.push_back({declared_type(n.type, n.relaxed, is_half(id)) + " " + it->second + " = " +
+                           strip_outer(spell(id)) + ";",
+                       n.origin});
+    }
+    return out;
+}
+
+std::string FragmentWriter::declared_type(Type t, bool relaxed, bool half) const {
+    if (!strict_half_) return syntax_.temp_type(t, relaxed);
+    return half ? syntax_.half_type(t) : syntax_.type(t);
+}
+
+// T loop_c0 = init0; ...
+// [[dont_unroll]] for (int loop_i = 0; loop_i < N; ++loop_i) {
+//     <body>
+//     T loop_n0 = next0; ...   (every next value before any carried variable changes)
+//     bool loop_go = keep_going;
+//     loop_c0 = loop_n0; ...
+//     if (!loop_go) break;
+// }
+void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op>& used_ops) {
+    const Node& n = g_.node(id);
+    const LoopBody& body = *n.loop;
+    const std::string& base = temp_.at(id);
+    BodyNames names;
+    names.index = base + "_i";
+    std::vector<bool> half(body.carried());
+    std::vector<std::string> types(body.carried());
+    for (size_t k = 0; k < body.carried(); ++k) {
+        const Type t = body.carried_types[k];
+        names.carried.push_back(base + "_c" + std::to_string(k));
+        half[k] =
+            strict_half_ && body.carried_relaxed[k] && (is_float_numeric(t) || t == Type::Mat3);
+        types[k] = declared_type(t, body.carried_relaxed[k], half[k]);
+        out.push_back({types[k] + " " + names.carried[k] + " = " +
+                           strip_outer(expr_as(n.args[k], half[k])) + ";",
+                       n.origin});
+    }
+    for (size_t m = body.carried(); m < n.args.size(); ++m)
+        names.captured.push_back(strip_outer(expr(n.args[m])));
+    out.push_back({syntax_.loop_header(names.index, body.trip_count, body.unroll), n.origin});
+    FragmentWriter inner(*body.body, *this, names);
+    std::vector<Line> inside = inner.lines(used_ops);
+    uint32_t keep_going = UINT32_MAX;
+    std::vector<uint32_t> next;
+    for (const auto& o : body.body->outputs()) {
+        if (o.name == "continue")
+            keep_going = o.node;
+        else
+            next.push_back(o.node); // "next0", "next1", ... in order
+    }
+    for (size_t k = 0; k < body.carried(); ++k)
+        inside.push_back({types[k] + " " + base + "_n" + std::to_string(k) + " = " +
+                              strip_outer(inner.expr_as(next[k], half[k])) + ";",
+                          n.origin});
+    if (keep_going != UINT32_MAX)
+        inside.push_back({syntax_.type(Type::Bool) + " " + base +
+                              "_go = " + strip_outer(inner.expr(keep_going)) + ";",
+                          n.origin});
+    for (size_t k = 0; k < body.carried(); ++k)
+        inside.push_back(
+            {names.carried[k] + " = " + base + "_n" + std::to_string(k) + ";", n.origin});
+    if (keep_going != UINT32_MAX) inside.push_back({"if (!" + base + "_go) break;", n.origin});
+    for (auto& l : inside)
+        out.push_back({l.text.empty() ? "" : "    " + l.text, l.origin});
+    out.push_back({"}", n.origin});
+}
+
+std::string FragmentWriter::unique_name(const Node& n, uint32_t id) {
+    std::string base = !n.name.empty()    ? n.name
+                       : n.op == Op::Loop ? fmt::format("loop{}", id)
+                                          : fmt::format("t{}", id);
+    std::string name = base;
+    for (int k = 2; taken_->count(name); ++k)
+        name = fmt::format("{}_{}", base, k);
+    taken_->insert(name);
+    return name;
+}
+
+// glslang turns ?: into branches unless both operands are plain names, and a branch inside
+// a texture() argument leaves OpSampledImage in another block than its use (spirv-val
+// rejects it). Selects, their operands and sample coordinates are therefore temporaries:
+// every select becomes OpSelect and every sample sees a finished coordinate.
+// In a compute stage a quad difference synchronises the workgroup, so it must run in main's
+// straight-line code, never inside a short-circuit operand.
+bool FragmentWriter::must_be_named(uint32_t id, uint32_t user) const {
+    const Op own = g_.node(id).op;
+    if (own == Op::Select || (compute_ && (own == Op::Ddx || own == Op::Ddy))) return true;
+    if (user == UINT32_MAX) return false;
+    const Op op = g_.node(user).op;
+    // A loop's initial and captured values are read in its declarations and body by name.
+    return op == Op::Select || op == Op::Sample || op == Op::SampleLevel || op == Op::Loop;
+}
+
+std::string FragmentWriter::expr(uint32_t id) {
+    if (auto it = temp_.find(id); it != temp_.end()) return it->second;
+    return spell(id);
+}
+
+// Node `id` at 16 bits (`half`) or 32: converted where its own width differs.
+std::string FragmentWriter::expr_as(uint32_t id, bool half) {
+    const Type t = g_.node(id).type;
+    if (is_half(id) == half || !(is_float_numeric(t) || t == Type::Mat3)) return expr(id);
+    return syntax_.convert(t, half, strip_outer(expr(id)));
+}
+
+// The node's own operation with its arguments spelled (inline or by temporary name). In a
+// strict-half shader the arguments take the node's width, except the coordinates and level
+// of a texture sample: sampling is 32-bit and its result is converted.
+std::string FragmentWriter::spell(uint32_t id) {
+    const Node& n = g_.node(id);
+    const bool half = is_half(id);
+    const bool sample = n.op == Op::Sample || n.op == Op::SampleLevel;
+    if (half && sample) {
+        const bool compute_sample = compute_ && n.op == Op::Sample;
+        return syntax_.convert(n.type, true, strip_outer(spell_at(id, false, compute_sample)));
+    }
+    return spell_at(id, half, compute_ && n.op == Op::Sample);
+}
+
+// `half`: the width of the arguments and the result. `level0`: a compute stage's sample,
+// which reads level 0 explicitly.
+std::string FragmentWriter::spell_at(uint32_t id, bool half, bool level0) {
+    const Node& n = g_.node(id);
+    std::vector<std::string> a;
+    std::vector<Type> types;
+    for (uint32_t arg : n.args) {
+        a.push_back(expr_as(arg, half));
+        types.push_back(g_.node(arg).type);
+    }
+    switch (n.op) {
+    case Op::Constant:
+        return half ? syntax_.convert(n.type, true, syntax_.constant(n)) : syntax_.constant(n);
+    case Op::Uniform:
+        return constants_.count(n.name) ? n.name : syntax_.uniform_ref(n.name);
+    case Op::Varying:
+    case Op::Texture:
+        return n.name;
+    case Op::LoopResult:
+        return temp_.at(n.args[0]) + "_c" + std::to_string(static_cast<int>(n.values[0]));
+    case Op::LoopIndex:
+        return syntax_.int_to_float(names_->index);
+    case Op::Carried:
+        return names_->carried.at(static_cast<size_t>(n.values[0]));
+    case Op::Captured:
+        return names_->captured.at(static_cast<size_t>(n.values[0]));
+    case Op::Neg:
+        return "(-" + a[0] + ")";
+    case Op::Not:
+        return "(!" + a[0] + ")";
+    case Op::Select:
+        return "(" + a[0] + " ? " + a[1] + " : " + a[2] + ")";
+    case Op::Swizzle: {
+        std::string s;
+        for (double v : n.values)
+            s += "xyzw"[static_cast<int>(v)];
+        return a[0] + "." + s;
+    }
+    case Op::Construct:
+        return syntax_.construct(n.type, a, half);
+    case Op::Splat:
+        return syntax_.splat(n.type, strip_outer(a[0]), half);
+    default:
+        break;
+    }
+    if (compute_ && (n.op == Op::Ddx || n.op == Op::Ddy))
+        return fmt::format("probe_quad_difference({}, probe_lane, {}u)", strip_outer(a[0]),
+                           n.op == Op::Ddx ? 1 : 2);
+    if (level0) {
+        // One mip level and the same filter for magnification and minification: level 0 is
+        // what the fragment stage's implicit LOD samples too.
+        a.push_back(syntax_.literal(0.0));
+        types.push_back(Type::Float);
+        for (auto& s : a)
+            s = strip_outer(s);
+        return syntax_.call(Op::SampleLevel, n.type, a, types);
+    }
+    if (is_infix(n.op)) return "(" + a[0] + " " + op_name(n.op) + " " + a[1] + ")";
+    for (auto& s : a)
+        s = strip_outer(s);
+    return syntax_.call(n.op, n.type, a, types, half);
+}
+
+} // namespace watergen

@@ -1,0 +1,119 @@
+// Bounded loops in the IR: the DSL builds them, the emitters write them as `for` loops, the
+// CPU evaluator runs them per lane with per-lane exits.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/dsl.h"
+#include "watergen/ir/emitter.h"
+
+using namespace watergen;
+
+namespace {
+
+EvalInputs lanes_of(const std::string& name, const std::vector<double>& values) {
+    EvalInputs in;
+    in.varyings[name] = values;
+    in.lanes = values.size();
+    return in;
+}
+
+// Heron's square root of x from 1 + x / 2, stopping once a step changes less than 1e-12
+// relative; the second carried value counts the iterations run.
+Graph heron(int trip_count) {
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = loop(g, trip_count, {1.0 + x * 0.5, constant(g, 0.0)},
+                        [&](Expr, const std::vector<Expr>& c) {
+                            Expr next = 0.5 * (c[0] + x / c[0]);
+                            return LoopStep{{next, c[1] + 1.0}, abs(next - c[0]) > 1e-12 * next};
+                        });
+    g.set_output("root", r[0].id());
+    g.set_output("steps", r[1].id());
+    return g;
+}
+
+} // namespace
+
+TEST_CASE("a_loop_sums_over_its_iterations", "[loop]") {
+    // s = sum over i of (i * x + k), k an outer value computed once and captured.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    Expr k = named(sin(x) * 2.0, "outer_k");
+    const auto r = loop(g, 10, {constant(g, 0.0)}, [&](Expr i, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] + i * x + k}, Expr()};
+    });
+    g.set_output("s", r[0].id());
+    REQUIRE(g.diagnostics().empty());
+    const EvalResult e = evaluate(g, "s", lanes_of("x", {0.0, 1.0, -2.5}), EvalPrecision::Double);
+    REQUIRE(e.ok());
+    for (size_t l = 0; l < 3; ++l) {
+        const double xv = std::vector<double>{0.0, 1.0, -2.5}[l];
+        CHECK(e.values[l] == Approx(45.0 * xv + 10.0 * 2.0 * std::sin(xv)).epsilon(1e-14));
+    }
+}
+
+TEST_CASE("each_lane_leaves_a_loop_when_its_condition_fails", "[loop]") {
+    const Graph g = heron(64);
+    const std::vector<double> xs = {1.0, 2.0, 1e6, 1e-6};
+    const EvalResult root = evaluate(g, "root", lanes_of("x", xs), EvalPrecision::Double);
+    const EvalResult steps = evaluate(g, "steps", lanes_of("x", xs), EvalPrecision::Double);
+    REQUIRE(root.ok());
+    for (size_t l = 0; l < xs.size(); ++l) {
+        INFO("x = " << xs[l]);
+        CHECK(root.values[l] == Approx(std::sqrt(xs[l])).epsilon(1e-12));
+        CHECK(steps.values[l] < 64); // left early, each after its own count
+    }
+    CHECK(steps.values[0] < steps.values[2]); // 1e6 starts far from its root
+    // With too few iterations the exit never comes: the trip count bounds the loop.
+    const EvalResult capped = evaluate(heron(3), "steps", lanes_of("x", xs), EvalPrecision::Double);
+    CHECK(capped.values[2] == 3.0);
+}
+
+TEST_CASE("loops_are_emitted_as_for_loops_in_both_languages", "[loop]") {
+    const Graph g = heron(16);
+    Graph frag;
+    Expr uv = varying(frag, "v_uv", Type::Vec2);
+    const auto r = loop(frag, 16, {uv.x() + 1.0}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{0.5 * (c[0] + uv.y() / c[0])}, Expr()};
+    });
+    frag.set_output("color", vec4(r[0], uv.y(), constant(frag, 0.0), constant(frag, 1.0)).id());
+    Diagnostics ds;
+    const EmittedShader glsl = emit_fragment(frag, Language::Glsl, "f.glsl", "k", ds);
+    const EmittedShader hlsl = emit_fragment(frag, Language::Hlsl, "f.hlsl", "k", ds);
+    CHECK(ds.empty());
+    CHECK(glsl.source.find("#extension GL_EXT_control_flow_attributes : require") !=
+          std::string::npos);
+    CHECK(glsl.source.find("[[dont_unroll]] for (int ") != std::string::npos);
+    CHECK(hlsl.source.find("[loop] for (int ") != std::string::npos);
+    // The body is written once, not 16 times.
+    size_t divisions = 0;
+    for (size_t p = glsl.source.find(" / "); p != std::string::npos;
+         p = glsl.source.find(" / ", p + 1))
+        ++divisions;
+    CHECK(divisions == 1);
+}
+
+TEST_CASE("a_malformed_loop_is_a_diagnostic", "[loop]") {
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    loop(g, 4, {x}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{vec2(c[0], c[0])}, Expr()};
+    });
+    loop(g, 4, {x}, [&](Expr, const std::vector<Expr>&) { return LoopStep{{}, Expr()}; });
+    loop(g, 0, {x}, [&](Expr, const std::vector<Expr>& c) { return LoopStep{c, Expr()}; });
+    loop(g, 4, {x}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{ddx(c[0])}, Expr()};
+    });
+    loop(g, 4, {x}, [&](Expr, const std::vector<Expr>& c) { return LoopStep{c, c[0]}; });
+    std::string all;
+    for (const auto& d : g.diagnostics())
+        all += d.message + "\n";
+    INFO(all);
+    CHECK(all.find("carried value 0 starts as float and comes back as vec2") != std::string::npos);
+    CHECK(all.find("the body returns 0 carried values for 1") != std::string::npos);
+    CHECK(all.find("trip count 0 is not in 1..4096") != std::string::npos);
+    CHECK(all.find("may not take ddx / ddy") != std::string::npos);
+    CHECK(all.find("the exit condition is float, not bool") != std::string::npos);
+}
