@@ -145,7 +145,8 @@ std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) con
 std::vector<std::string> GlslSyntax::specialization_declarations(const ShaderInterface& in) const {
     std::vector<std::string> lines;
     for (const auto& slot : in.specialization)
-        lines.push_back(specialization_constant(slot));
+        lines.push_back(fmt::format("{} const float {} = {};", constant_id_attribute(slot.id),
+                                    slot.name, literal(slot.default_value)));
     for (const auto& p : in.parameters) {
         if (!p.specialization || !is_vector(p.type)) continue;
         std::vector<std::string> components;
@@ -156,9 +157,8 @@ std::vector<std::string> GlslSyntax::specialization_declarations(const ShaderInt
     return lines;
 }
 
-std::string GlslSyntax::specialization_constant(const SpecializationSlot& slot) const {
-    return fmt::format("layout(constant_id = {}) const float {} = {};", slot.id, slot.name,
-                       literal(slot.default_value));
+std::string GlslSyntax::constant_id_attribute(uint32_t id) const {
+    return fmt::format("layout(constant_id = {})", id);
 }
 
 // A constant constructor of specialization constants is itself one (OpSpecConstantComposite).

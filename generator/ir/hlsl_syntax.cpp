@@ -143,9 +143,8 @@ std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) con
     return lines;
 }
 
-std::string HlslSyntax::specialization_constant(const SpecializationSlot& slot) const {
-    return fmt::format("[[vk::constant_id({})]] const float {} = {};", slot.id, slot.name,
-                       literal(slot.default_value));
+std::string HlslSyntax::constant_id_attribute(uint32_t id) const {
+    return fmt::format("[[vk::constant_id({})]]", id);
 }
 
 // glslang 12 rejects a constructor of specialization constants as a const initializer

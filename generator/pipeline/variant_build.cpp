@@ -61,6 +61,17 @@ std::string with_stamp(const std::string& stamp, const std::string& text) {
     return "// " + stamp + "\n" + text;
 }
 
+// A parameter as variant.json lists it; `place` says where it lives (a block offset, or the
+// ids of its specialization constants).
+nlohmann::ordered_json describe_parameter(const Parameter& p, const char* place_key,
+                                          const nlohmann::ordered_json& place) {
+    return {{"name", p.name},   {"type", type_name(p.type)},
+            {place_key, place}, {"default", p.default_value},
+            {"min", p.min},     {"max", p.max},
+            {"unit", p.unit},   {"seed", p.seed},
+            {"node", p.origin}};
+}
+
 nlohmann::ordered_json describe(const VariantBuild& b) {
     nlohmann::ordered_json j;
     j["generator"] = stamp_text(b.shader.variant.key());
@@ -74,16 +85,7 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
     nlohmann::ordered_json params = nlohmann::ordered_json::array();
     for (const auto& slot : in.uniforms.members)
         for (const auto& p : in.parameters)
-            if (p.name == slot.name)
-                params.push_back({{"name", p.name},
-                                  {"type", type_name(p.type)},
-                                  {"offset", slot.offset},
-                                  {"default", p.default_value},
-                                  {"min", p.min},
-                                  {"max", p.max},
-                                  {"unit", p.unit},
-                                  {"seed", p.seed},
-                                  {"node", p.origin}});
+            if (p.name == slot.name) params.push_back(describe_parameter(p, "offset", slot.offset));
     j["uniform_block"] = {{"name", "WaterParams"},
                           {"set", 0},
                           {"binding", kParamsBinding},
@@ -96,14 +98,13 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
     // Only when there are some, so variants without them keep their form.
     if (!in.specialization.empty()) {
         nlohmann::ordered_json constants = nlohmann::ordered_json::array();
-        for (const auto& s : in.specialization)
-            constants.push_back({{"id", s.id},
-                                 {"name", s.name},
-                                 {"parameter", s.parameter},
-                                 {"component", s.component},
-                                 {"default", s.default_value},
-                                 {"min", s.min},
-                                 {"max", s.max}});
+        for (const auto& p : in.parameters) {
+            if (!p.specialization) continue;
+            std::vector<uint32_t> ids;
+            for (const auto& s : in.specialization)
+                if (s.parameter == p.name) ids.push_back(s.id);
+            constants.push_back(describe_parameter(p, "constant_ids", ids));
+        }
         j["specialization_constants"] = constants;
     }
     nlohmann::ordered_json counts = nlohmann::ordered_json::object();

@@ -74,29 +74,35 @@ TEST_CASE("a_matrix_cannot_be_a_specialization_constant", "[specialization]") {
     CHECK(ds[0].node == "node.m");
 }
 
-TEST_CASE("glsl_declares_constants_and_composes_vectors", "[specialization]") {
+TEST_CASE("both_languages_declare_constants_and_compose_vectors", "[specialization]") {
+    const struct {
+        Language language;
+        std::vector<std::string> lines;
+    } cases[] = {
+        {Language::Glsl,
+         {"layout(constant_id = 0) const float tint_x = 0.25;",
+          "layout(constant_id = 1) const float tint_y = (-0.5);",
+          "layout(constant_id = 2) const float tint_z = 2.0;",
+          "const vec3 tint = vec3(tint_x, tint_y, tint_z);", "    layout(offset = 0) float gain;"}},
+        {Language::Hlsl,
+         {"[[vk::constant_id(0)]] const float tint_x = 0.25;",
+          "[[vk::constant_id(2)]] const float tint_z = 2.0;",
+          "static const float3 tint = {tint_x, tint_y, tint_z};",
+          "    float gain : packoffset(c0.x);"}}};
+    for (const auto& c : cases) {
+        INFO(to_string(c.language));
+        Diagnostics ds;
+        const EmittedShader s = emit_fragment(test::tint_graph(), c.language, "f", "k", ds);
+        CHECK(ds.empty());
+        for (const auto& line : c.lines)
+            CHECK(has_line(s.source, line));
+        CHECK(s.interface.uniforms.members.size() == 1);
+        CHECK(s.interface.specialization.size() == 3);
+    }
     Diagnostics ds;
-    const EmittedShader s = emit_fragment(test::tint_graph(), Language::Glsl, "f", "k", ds);
-    CHECK(ds.empty());
-    CHECK(has_line(s.source, "layout(constant_id = 0) const float tint_x = 0.25;"));
-    CHECK(has_line(s.source, "layout(constant_id = 1) const float tint_y = (-0.5);"));
-    CHECK(has_line(s.source, "layout(constant_id = 2) const float tint_z = 2.0;"));
-    CHECK(has_line(s.source, "const vec3 tint = vec3(tint_x, tint_y, tint_z);"));
-    CHECK(has_line(s.source, "    layout(offset = 0) float gain;"));
-    CHECK(s.source.find("params.gain") != std::string::npos);
-    CHECK(s.source.find("params.tint") == std::string::npos);
-    CHECK(s.interface.uniforms.members.size() == 1);
-    CHECK(s.interface.specialization.size() == 3);
-}
-
-TEST_CASE("hlsl_declares_constants_and_composes_vectors", "[specialization]") {
-    Diagnostics ds;
-    const EmittedShader s = emit_fragment(test::tint_graph(), Language::Hlsl, "f", "k", ds);
-    CHECK(ds.empty());
-    CHECK(has_line(s.source, "[[vk::constant_id(0)]] const float tint_x = 0.25;"));
-    CHECK(has_line(s.source, "[[vk::constant_id(2)]] const float tint_z = 2.0;"));
-    CHECK(has_line(s.source, "static const float3 tint = {tint_x, tint_y, tint_z};"));
-    CHECK(has_line(s.source, "    float gain : packoffset(c0.x);"));
+    const std::string glsl = emit_fragment(test::tint_graph(), Language::Glsl, "f", "k", ds).source;
+    CHECK(glsl.find("params.gain") != std::string::npos);
+    CHECK(glsl.find("params.tint") == std::string::npos);
 }
 
 TEST_CASE("emit_options_make_named_parameters_constants", "[specialization]") {

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <tuple>
 
 #include "watergen/runtime/reflection.h"
 #include "watergen/toolchain/glslang_stage.h"
@@ -64,17 +65,12 @@ void check_equal(const Reflection& a, const Reflection& b) {
     };
     same_vars(a.inputs, b.inputs);
     same_vars(a.outputs, b.outputs);
+    auto fields = [](const SpecializationConstant& c) {
+        return std::tie(c.id, c.name, c.type, c.default_value, c.min, c.max);
+    };
     REQUIRE(a.specialization_constants.size() == b.specialization_constants.size());
-    for (size_t i = 0; i < a.specialization_constants.size(); ++i) {
-        const auto& x = a.specialization_constants[i];
-        const auto& y = b.specialization_constants[i];
-        CHECK(x.id == y.id);
-        CHECK(x.name == y.name);
-        CHECK(x.type == y.type);
-        CHECK(x.default_value == y.default_value);
-        CHECK(x.min == y.min);
-        CHECK(x.max == y.max);
-    }
+    for (size_t i = 0; i < a.specialization_constants.size(); ++i)
+        CHECK(fields(a.specialization_constants[i]) == fields(b.specialization_constants[i]));
 }
 
 std::string error_for(const std::string& text) {
