@@ -56,13 +56,20 @@ void collect_reads(const Graph& g, std::set<std::string>& uniforms, std::set<std
     }
 }
 
-ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics) {
+// `specialized`: EmitOptions::specialization_constants.
+ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics,
+                             const std::set<std::string>& specialized = {}) {
     ShaderInterface in;
     std::set<std::string> used_uniforms, used_textures;
     collect_reads(g, used_uniforms, used_textures, in.varyings);
-    for (const auto& p : g.parameters())
-        if (used_uniforms.count(p.name)) in.parameters.push_back(p);
+    check_specialization_names(g.parameters(), specialized, diagnostics);
+    for (Parameter p : g.parameters())
+        if (used_uniforms.count(p.name)) {
+            p.specialization = is_specialized(p, specialized);
+            in.parameters.push_back(std::move(p));
+        }
     in.uniforms = layout_uniforms(in.parameters, diagnostics);
+    in.specialization = specialization_slots(in.parameters, diagnostics);
     uint32_t binding = kFirstTextureBinding;
     for (const auto& t : g.textures())
         if (used_textures.count(t.name)) in.textures.push_back({t.name, t.type, binding++});
@@ -122,10 +129,11 @@ EmittedShader emit_fragment(const Graph& g, Language language, const std::string
         return out;
     }
     const GlslSyntax& syntax = syntax_for(language);
-    out.interface = interface_of(g, diagnostics);
+    out.interface = interface_of(g, diagnostics, options.specialization_constants);
     std::vector<std::string> results;
     std::set<Op> used_ops;
     FragmentWriter writer(g, syntax, false, options.strict_half);
+    writer.read_as_constants(out.interface);
     std::vector<Line> body = writer.body(results, used_ops);
     fill(out,
          template_text(language == Language::Glsl ? "glsl/fragment.glsl" : "hlsl/fragment.hlsl"),
@@ -181,7 +189,8 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
         diagnostics.push_back({Severity::Error, file_name, 0, 0, "", "probe graph has no output"});
     if (has_errors(diagnostics)) return out;
 
-    out.interface = interface_of(g, diagnostics);
+    out.interface = interface_of(g, diagnostics, options.specialization_constants);
+    writer.read_as_constants(out.interface);
     out.interface.varyings.clear(); // probe inputs come from the buffer, not the rasteriser
     if (!out.interface.textures.empty() &&
         out.interface.textures.back().binding >= kProbeInputBinding) {
@@ -275,6 +284,7 @@ EmittedShader emit_from_skeleton(const Graph& g, Language language, ShaderStage 
     std::vector<std::string> results;
     std::set<Op> used_ops;
     FragmentWriter writer(g, syntax);
+    writer.read_as_constants(out.interface);
     std::map<std::string, std::vector<Line>> blocks = {
         {"stamp", {{stamp_text(variant_key), ""}}},
         {"declarations", as_lines(syntax.declarations(out.interface))},

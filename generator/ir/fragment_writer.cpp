@@ -21,7 +21,13 @@ FragmentWriter::FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool co
 FragmentWriter::FragmentWriter(const Graph& g, const FragmentWriter& enclosing,
                                const BodyNames& names)
     : g_(g), syntax_(enclosing.syntax_), compute_(enclosing.compute_),
-      strict_half_(enclosing.strict_half_), taken_(enclosing.taken_), names_(&names) {}
+      strict_half_(enclosing.strict_half_), constants_(enclosing.constants_),
+      taken_(enclosing.taken_), names_(&names) {}
+
+void FragmentWriter::read_as_constants(const ShaderInterface& in) {
+    for (const auto& p : in.parameters)
+        if (p.specialization) constants_.insert(p.name);
+}
 
 bool FragmentWriter::is_half(uint32_t id) const {
     const Node& n = g_.node(id);
@@ -238,7 +244,7 @@ std::string FragmentWriter::spell_at(uint32_t id, bool half, bool level0) {
     case Op::Constant:
         return half ? syntax_.convert(n.type, true, syntax_.constant(n)) : syntax_.constant(n);
     case Op::Uniform:
-        return syntax_.uniform_ref(n.name);
+        return constants_.count(n.name) ? n.name : syntax_.uniform_ref(n.name);
     case Op::Varying:
     case Op::Texture:
         return n.name;

@@ -35,6 +35,9 @@ class FragmentWriter {
     FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool compute = false,
                    bool strict_half = false);
 
+    // Parameters of `in` that are specialization constants: read by their own name.
+    void read_as_constants(const ShaderInterface& in);
+
     // Whether node `id` is spelled in a binary16 type: strict half, relaxed, and a float.
     bool is_half(uint32_t id) const;
     // Whether any live node, in loops too, is spelled in a binary16 type / is a loop (the
@@ -61,6 +64,7 @@ class FragmentWriter {
     const GlslSyntax& syntax_;
     bool compute_ = false;
     bool strict_half_ = false;
+    std::set<std::string> constants_; // parameters that are specialization constants
     std::map<uint32_t, std::string> temp_;
     std::set<std::string> own_taken_;
     std::set<std::string>* taken_ = &own_taken_; // names in use, shared with enclosing writers

@@ -127,6 +127,8 @@ std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) con
                 fmt::format("    layout(offset = {}) {} {};", m.offset, type(m.type), m.name));
         lines.push_back("} params;");
     }
+    const std::vector<std::string> constants = specialization_declarations(in);
+    lines.insert(lines.end(), constants.begin(), constants.end());
     if (!in.textures.empty())
         lines.push_back(fmt::format("layout(set = 0, binding = {}) uniform sampler linear_clamp;",
                                     kSamplerBinding));
@@ -138,6 +140,31 @@ std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) con
         lines.push_back(fmt::format("layout(location = {}) in {} {};", i,
                                     type(in.varyings[i].second), in.varyings[i].first));
     return lines;
+}
+
+std::vector<std::string> GlslSyntax::specialization_declarations(const ShaderInterface& in) const {
+    std::vector<std::string> lines;
+    for (const auto& slot : in.specialization)
+        lines.push_back(fmt::format("{} const float {} = {};", constant_id_attribute(slot.id),
+                                    slot.name, literal(slot.default_value)));
+    for (const auto& p : in.parameters) {
+        if (!p.specialization || !is_vector(p.type)) continue;
+        std::vector<std::string> components;
+        for (const auto& slot : in.specialization)
+            if (slot.parameter == p.name) components.push_back(slot.name);
+        lines.push_back(specialization_vector(p.type, p.name, components));
+    }
+    return lines;
+}
+
+std::string GlslSyntax::constant_id_attribute(uint32_t id) const {
+    return fmt::format("layout(constant_id = {})", id);
+}
+
+// A constant constructor of specialization constants is itself one (OpSpecConstantComposite).
+std::string GlslSyntax::specialization_vector(Type t, const std::string& name,
+                                              const std::vector<std::string>& components) const {
+    return fmt::format("const {} {} = {};", type(t), name, construct(t, components));
 }
 
 std::vector<std::string> GlslSyntax::prelude(const std::set<Op>&, bool) const {

@@ -132,6 +132,8 @@ std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) con
         }
         lines.push_back("};");
     }
+    const std::vector<std::string> constants = specialization_declarations(in);
+    lines.insert(lines.end(), constants.begin(), constants.end());
     if (!in.textures.empty())
         lines.push_back(fmt::format(
             "[[vk::binding({}, 0)]] SamplerState linear_clamp : register(s0);", kSamplerBinding));
@@ -139,6 +141,18 @@ std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) con
         lines.push_back(fmt::format("[[vk::binding({}, 0)]] {} {} : register(t{});", t.binding,
                                     type(t.type), t.name, t.binding - kFirstTextureBinding));
     return lines;
+}
+
+std::string HlslSyntax::constant_id_attribute(uint32_t id) const {
+    return fmt::format("[[vk::constant_id({})]]", id);
+}
+
+// glslang 12 rejects a constructor of specialization constants as a const initializer
+// ("non-matching or non-convertible constant type"); an initializer list is accepted and
+// composes the vector where it is read.
+std::string HlslSyntax::specialization_vector(Type t, const std::string& name,
+                                              const std::vector<std::string>& components) const {
+    return fmt::format("static const {} {} = {{{}}};", type(t), name, fmt::join(components, ", "));
 }
 
 std::vector<std::string> HlslSyntax::prelude(const std::set<Op>& used, bool strict_half) const {

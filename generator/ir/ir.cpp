@@ -309,10 +309,11 @@ void Graph::declare_parameter(const Parameter& p) {
         return;
     }
     if (const Parameter* existing = find_parameter(p.name)) {
-        if (existing->type != p.type || existing->default_value != p.default_value)
+        if (existing->type != p.type || existing->default_value != p.default_value ||
+            existing->specialization != p.specialization)
             error("parameter '" + p.name +
-                  "' declared twice with different type or default (first by " + existing->origin +
-                  ")");
+                  "' declared twice with different type, default or specialization (first by " +
+                  existing->origin + ")");
         return;
     }
     Parameter copy = p;

@@ -40,6 +40,12 @@ class GlslSyntax {
     virtual std::string call(Op op, Type result, const std::vector<std::string>& args,
                              const std::vector<Type>& arg_types, bool half = false) const;
     virtual std::vector<std::string> declarations(const ShaderInterface& in) const;
+    // The specialization constants of `in` (one float per slot), then each vector parameter
+    // composed from its components under the parameter's name.
+    std::vector<std::string> specialization_declarations(const ShaderInterface& in) const;
+    virtual std::string constant_id_attribute(uint32_t id) const;
+    virtual std::string specialization_vector(Type t, const std::string& name,
+                                              const std::vector<std::string>& components) const;
     // Helper functions the body calls; `strict_half` adds their binary16 overloads.
     virtual std::vector<std::string> prelude(const std::set<Op>& used,
                                              bool strict_half = false) const;
@@ -71,6 +77,9 @@ class HlslSyntax final : public GlslSyntax {
     std::string call(Op op, Type result, const std::vector<std::string>& args,
                      const std::vector<Type>& arg_types, bool half = false) const override;
     std::vector<std::string> declarations(const ShaderInterface& in) const override;
+    std::string constant_id_attribute(uint32_t id) const override;
+    std::string specialization_vector(Type t, const std::string& name,
+                                      const std::vector<std::string>& components) const override;
     std::vector<std::string> prelude(const std::set<Op>& used,
                                      bool strict_half = false) const override;
     std::string entry_inputs(const ShaderInterface& in) const override;

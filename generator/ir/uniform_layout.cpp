@@ -24,6 +24,7 @@ uint32_t alignment_of(Type t) {
 UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnostics& diagnostics) {
     std::vector<const Parameter*> order;
     for (const auto& p : parameters) {
+        if (p.specialization) continue; // a specialization constant (ir/specialization.h)
         if (!is_float_numeric(p.type)) {
             diagnostics.push_back({Severity::Error, "", 0, 0, p.origin,
                                    "parameter '" + p.name + "' has type " + type_name(p.type) +

@@ -40,6 +40,7 @@ StageBuild build_stage(EmittedShader source, Diagnostics& all, bool strict_half 
                            stage.source.stage, stage.source.source, stage.source.file_name, "main"};
     request.hlsl_16bit_types = strict_half;
     stage.toolchain = run_toolchain(request);
+    add_specialization_ranges(stage.toolchain.reflection, stage.source.interface.specialization);
     Diagnostics ds = stage.toolchain.diagnostics;
     // Only glslang's diagnostics point at lines of our emitted source.
     Diagnostics own, rest;
@@ -60,6 +61,17 @@ std::string with_stamp(const std::string& stamp, const std::string& text) {
     return "// " + stamp + "\n" + text;
 }
 
+// A parameter as variant.json lists it; `place` says where it lives (a block offset, or the
+// ids of its specialization constants).
+nlohmann::ordered_json describe_parameter(const Parameter& p, const char* place_key,
+                                          const nlohmann::ordered_json& place) {
+    return {{"name", p.name},   {"type", type_name(p.type)},
+            {place_key, place}, {"default", p.default_value},
+            {"min", p.min},     {"max", p.max},
+            {"unit", p.unit},   {"seed", p.seed},
+            {"node", p.origin}};
+}
+
 nlohmann::ordered_json describe(const VariantBuild& b) {
     nlohmann::ordered_json j;
     j["generator"] = stamp_text(b.shader.variant.key());
@@ -73,16 +85,7 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
     nlohmann::ordered_json params = nlohmann::ordered_json::array();
     for (const auto& slot : in.uniforms.members)
         for (const auto& p : in.parameters)
-            if (p.name == slot.name)
-                params.push_back({{"name", p.name},
-                                  {"type", type_name(p.type)},
-                                  {"offset", slot.offset},
-                                  {"default", p.default_value},
-                                  {"min", p.min},
-                                  {"max", p.max},
-                                  {"unit", p.unit},
-                                  {"seed", p.seed},
-                                  {"node", p.origin}});
+            if (p.name == slot.name) params.push_back(describe_parameter(p, "offset", slot.offset));
     j["uniform_block"] = {{"name", "WaterParams"},
                           {"set", 0},
                           {"binding", kParamsBinding},
@@ -92,6 +95,18 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
     for (const auto& t : in.textures)
         textures.push_back({{"name", t.name}, {"binding", t.binding}, {"type", type_name(t.type)}});
     j["textures"] = textures;
+    // Only when there are some, so variants without them keep their form.
+    if (!in.specialization.empty()) {
+        nlohmann::ordered_json constants = nlohmann::ordered_json::array();
+        for (const auto& p : in.parameters) {
+            if (!p.specialization) continue;
+            std::vector<uint32_t> ids;
+            for (const auto& s : in.specialization)
+                if (s.parameter == p.name) ids.push_back(s.id);
+            constants.push_back(describe_parameter(p, "constant_ids", ids));
+        }
+        j["specialization_constants"] = constants;
+    }
     nlohmann::ordered_json counts = nlohmann::ordered_json::object();
     for (const auto& lang : b.languages)
         counts[to_string(lang.language)] = {

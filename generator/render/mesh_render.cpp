@@ -89,6 +89,7 @@ MeshRender render_mesh(VulkanRunner& runner, const MeshBuild& build, const Synth
         // Only the vertex stage reads parameters (MeshShader::fragment reads none).
         const ShaderInterface& in = lang.vertex.source.interface;
         job.uniforms = pack_uniforms(in.uniforms, in.parameters, values);
+        job.specialization = specialization_values(in.specialization, values);
         job.timed_draws = settings.timed_draws;
         job.mesh = grid;
         out.gpu[i] = runner.render(job);

@@ -163,6 +163,7 @@ ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language,
     if (!built.ok()) return run;
 
     job.uniforms = pack_uniforms(shader.interface.uniforms, shader.interface.parameters, uniforms);
+    job.specialization = specialization_values(shader.interface.specialization, uniforms);
     run_on_gpu(runner, built, job, inputs, run);
     if (!run.error.empty()) return run;
     run_on_cpu(g, inputs, uniforms, job.textures, run);

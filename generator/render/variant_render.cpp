@@ -26,6 +26,7 @@ RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene
     job.height = settings.height;
     const ShaderInterface& in = lang.fragment.source.interface;
     job.uniforms = pack_uniforms(in.uniforms, in.parameters, scene.uniforms);
+    job.specialization = specialization_values(in.specialization, scene.uniforms);
     for (const auto& t : in.textures)
         if (auto it = scene.textures.find(t.name); it != scene.textures.end())
             job.textures[t.name] = it->second;

@@ -131,6 +131,41 @@ stage_variables(const spirv_cross::Compiler& compiler,
     return vars;
 }
 
+// Scalar specialization constants (a composite of them has no SpecId of its own); the range is
+// not in the module, so it stays 0 for the caller to fill.
+std::vector<SpecializationConstant>
+specialization_constants(const spirv_cross::Compiler& compiler) {
+    using BT = spirv_cross::SPIRType::BaseType;
+    std::vector<SpecializationConstant> out;
+    for (const auto& sc : compiler.get_specialization_constants()) {
+        const spirv_cross::SPIRConstant& value = compiler.get_constant(sc.id);
+        const spirv_cross::SPIRType& type = compiler.get_type(value.constant_type);
+        SpecializationConstant c;
+        c.id = sc.constant_id;
+        c.name = compiler.get_name(sc.id);
+        if (c.name.empty()) c.name = compiler.get_fallback_name(sc.id);
+        c.type = glsl_type(compiler, type);
+        switch (type.basetype) {
+        case BT::Float:
+            c.default_value = value.scalar_f32();
+            break;
+        case BT::Int:
+            c.default_value = value.scalar_i32();
+            break;
+        case BT::UInt:
+        case BT::Boolean:
+            c.default_value = value.scalar();
+            break;
+        default:
+            break;
+        }
+        out.push_back(std::move(c));
+    }
+    std::stable_sort(out.begin(), out.end(),
+                     [](const auto& a, const auto& b) { return a.id < b.id; });
+    return out;
+}
+
 void warn_unsupported(const spirv_cross::Compiler& compiler,
                       const spirv_cross::SmallVector<spirv_cross::Resource>& resources,
                       const char* kind, const std::string& file, Diagnostics& ds) {
@@ -199,6 +234,7 @@ void reflect_into(spirv_cross::Compiler& compiler, ShaderStage stage, const std:
     // Same reason for stage I/O: HLSL legalisation removes an input nobody reads.
     refl.inputs = stage_variables(compiler, res.stage_inputs);
     refl.outputs = stage_variables(compiler, res.stage_outputs);
+    refl.specialization_constants = specialization_constants(compiler);
 }
 
 } // namespace

@@ -24,6 +24,11 @@ json to_json(const StageVariable& v) {
     return json{{"name", v.name}, {"location", v.location}, {"type", v.type}};
 }
 
+json to_json(const SpecializationConstant& c) {
+    return json{{"id", c.id},   {"name", c.name}, {"type", c.type}, {"default", c.default_value},
+                {"min", c.min}, {"max", c.max}};
+}
+
 json to_json(const DescriptorBinding& b) {
     json members = json::array();
     for (const auto& m : b.members)
@@ -65,6 +70,14 @@ class Reader {
         if (!v->is_number_unsigned() || v->get<uint64_t>() > std::numeric_limits<uint32_t>::max())
             return fail(key, "expected an unsigned 32-bit integer");
         out = static_cast<uint32_t>(v->get<uint64_t>());
+        return true;
+    }
+
+    bool number(const char* key, double& out) {
+        const json* v = find(key, true, "a number");
+        if (!v) return false;
+        if (!v->is_number()) return fail(key, "expected a number");
+        out = v->get<double>();
         return true;
     }
 
@@ -136,6 +149,11 @@ bool read_variable(Reader& r, StageVariable& v) {
     return r.string("name", v.name) && r.u32("location", v.location) && r.string("type", v.type);
 }
 
+bool read_specialization_constant(Reader& r, SpecializationConstant& c) {
+    return r.u32("id", c.id) && r.string("name", c.name) && r.string("type", c.type) &&
+           r.number("default", c.default_value) && r.number("min", c.min) && r.number("max", c.max);
+}
+
 bool read_binding(Reader& r, DescriptorBinding& b) {
     // image_dim, block_size and members only matter for some kinds, so they may be omitted.
     return r.string("name", b.name) && r.u32("set", b.set) && r.u32("binding", b.binding) &&
@@ -176,11 +194,14 @@ const char* to_string(DescriptorKind k) {
 
 std::string reflection_to_json(const Reflection& r) {
     // nlohmann::json keeps object keys in a std::map, so the output is sorted by key.
-    const json doc{{"stage", to_string(r.stage)},
-                   {"entry_point", r.entry_point},
-                   {"bindings", to_json_array(r.bindings)},
-                   {"inputs", to_json_array(r.inputs)},
-                   {"outputs", to_json_array(r.outputs)}};
+    json doc{{"stage", to_string(r.stage)},
+             {"entry_point", r.entry_point},
+             {"bindings", to_json_array(r.bindings)},
+             {"inputs", to_json_array(r.inputs)},
+             {"outputs", to_json_array(r.outputs)}};
+    // Only when there are some: a shader without them keeps the form it always had.
+    if (!r.specialization_constants.empty())
+        doc["specialization_constants"] = to_json_array(r.specialization_constants);
     // replace: a name that is not UTF-8 must not make serialisation throw.
     return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
@@ -210,7 +231,9 @@ std::optional<Reflection> reflection_from_json(const std::string& text, std::str
                     reader.string("entry_point", r.entry_point) &&
                     reader.array("bindings", r.bindings, read_binding) &&
                     reader.array("inputs", r.inputs, read_variable) &&
-                    reader.array("outputs", r.outputs, read_variable);
+                    reader.array("outputs", r.outputs, read_variable) &&
+                    reader.array("specialization_constants", r.specialization_constants,
+                                 read_specialization_constant, false);
     if (!ok) return std::nullopt;
     return r;
 }

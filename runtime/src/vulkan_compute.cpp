@@ -32,6 +32,8 @@ void compute_job(Context& ctx, const ComputeJob& job, ComputeResult& result) {
     cci.stage.module = create_shader_module(scope, job.spirv, "compute");
     cci.stage.pName =
         job.reflection.entry_point.empty() ? "main" : job.reflection.entry_point.c_str();
+    const Specialization specialization(job.specialization);
+    cci.stage.pSpecializationInfo = specialization.info();
     cci.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
     const auto start_pipeline = Clock::now();

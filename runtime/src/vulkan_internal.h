@@ -134,6 +134,21 @@ void submit_and_wait(Context& ctx, VkCommandBuffer cmd, VkFence fence);
 VkShaderModule create_shader_module(Scope& scope, const std::vector<uint32_t>& spirv,
                                     const char* what);
 
+// VkSpecializationInfo over float values by constant_id; `info()` is null when there are none.
+// Points into itself, so it stays where it was made while the pipeline is created.
+class Specialization {
+  public:
+    explicit Specialization(const std::map<uint32_t, float>& values);
+    Specialization(const Specialization&) = delete;
+    Specialization& operator=(const Specialization&) = delete;
+    const VkSpecializationInfo* info() const { return entries_.empty() ? nullptr : &info_; }
+
+  private:
+    std::vector<VkSpecializationMapEntry> entries_;
+    std::vector<float> data_;
+    VkSpecializationInfo info_{};
+};
+
 // ---- descriptors (vulkan_descriptors.cpp) ----
 
 struct StageReflection {

@@ -99,6 +99,9 @@ Pipeline create_pipeline(Scope& scope, const RenderJob& job, VkPipelineLayout la
     stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
     stages[1].module = create_shader_module(scope, job.fragment_spirv, "fragment");
     stages[1].pName = entry_point(job.fragment_reflection);
+    const Specialization specialization(job.specialization);
+    stages[0].pSpecializationInfo = specialization.info();
+    stages[1].pSpecializationInfo = specialization.info();
 
     // Fullscreen triangle: positions come from gl_VertexIndex, so no vertex input. An
     // indexed grid mesh (job.mesh) adds its binding/attributes here.

@@ -306,4 +306,16 @@ VkShaderModule create_shader_module(Scope& scope, const std::vector<uint32_t>& s
     return module;
 }
 
+Specialization::Specialization(const std::map<uint32_t, float>& values) {
+    for (const auto& [id, value] : values) {
+        entries_.push_back(
+            {id, static_cast<uint32_t>(data_.size() * sizeof(float)), sizeof(float)});
+        data_.push_back(value);
+    }
+    info_.mapEntryCount = static_cast<uint32_t>(entries_.size());
+    info_.pMapEntries = entries_.data();
+    info_.dataSize = data_.size() * sizeof(float);
+    info_.pData = data_.data();
+}
+
 } // namespace watergen::vk_detail

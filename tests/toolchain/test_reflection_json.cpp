@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <tuple>
 
 #include "watergen/runtime/reflection.h"
 #include "watergen/toolchain/glslang_stage.h"
@@ -28,6 +29,8 @@ Reflection sample_reflection() {
     r.bindings = {ubo, sampler, image, sky};
     r.inputs = {{"uv", 0, "vec2"}, {"world_position", 1, "vec3"}};
     r.outputs = {{"frag_color", 0, "vec4"}};
+    r.specialization_constants = {{0, "water_level", "float", -0.5, -100.0, 100.0},
+                                  {1, "tint_x", "float", double(0.1f), 0.0, 1.0}};
     return r;
 }
 
@@ -62,6 +65,12 @@ void check_equal(const Reflection& a, const Reflection& b) {
     };
     same_vars(a.inputs, b.inputs);
     same_vars(a.outputs, b.outputs);
+    auto fields = [](const SpecializationConstant& c) {
+        return std::tie(c.id, c.name, c.type, c.default_value, c.min, c.max);
+    };
+    REQUIRE(a.specialization_constants.size() == b.specialization_constants.size());
+    for (size_t i = 0; i < a.specialization_constants.size(); ++i)
+        CHECK(fields(a.specialization_constants[i]) == fields(b.specialization_constants[i]));
 }
 
 std::string error_for(const std::string& text) {
@@ -169,4 +178,65 @@ TEST_CASE("reflection_from_json_names_the_bad_key") {
         "bindings[0]: expected an object");
     // A null error pointer is allowed.
     CHECK_FALSE(reflection_from_json("nope", nullptr).has_value());
+}
+
+TEST_CASE("reflection_json_round_trips_specialization_constants_of_a_reflected_shader") {
+    CompileRequest req;
+    req.stage = ShaderStage::Fragment;
+    req.file_name = "t.frag";
+    req.source = R"(#version 450
+layout(constant_id = 7) const float tint_x = -2.5;
+layout(constant_id = 3) const float gain = 0.1;
+layout(constant_id = 5) const int steps = 4;
+layout(location = 0) out vec4 c;
+void main() { c = vec4(tint_x, gain, float(steps), 1.0); }
+)";
+    const SpirvResult spirv = compile_to_spirv(req);
+    REQUIRE(spirv.ok());
+    const ReflectResult refl = reflect_spirv(spirv.spirv, ShaderStage::Fragment, "t.frag.spv");
+    REQUIRE(refl.diagnostics.empty());
+    const auto& constants = refl.reflection.specialization_constants;
+    REQUIRE(constants.size() == 3); // by id
+    CHECK(constants[0].id == 3);
+    CHECK(constants[0].name == "gain");
+    CHECK(constants[0].type == "float");
+    CHECK(constants[0].default_value == double(0.1f));
+    CHECK(constants[1].name == "steps");
+    CHECK(constants[1].type == "int");
+    CHECK(constants[1].default_value == 4.0);
+    CHECK(constants[2].id == 7);
+    CHECK(constants[2].default_value == -2.5);
+    CHECK(constants[2].min == 0.0); // not in SPIR-V
+    const std::string text = reflection_to_json(refl.reflection);
+    CHECK(text.find(R"("name": "tint_x")") != std::string::npos);
+    std::string error;
+    const auto back = reflection_from_json(text, &error);
+    INFO(error);
+    REQUIRE(back.has_value());
+    check_equal(refl.reflection, *back);
+    CHECK(reflection_to_json(*back) == text);
+}
+
+TEST_CASE("reflection_json_without_specialization_constants_keeps_its_form") {
+    Reflection r = sample_reflection();
+    r.specialization_constants.clear();
+    const std::string text = reflection_to_json(r);
+    CHECK(text.find("specialization") == std::string::npos);
+    const auto back = reflection_from_json(kValid, nullptr);
+    REQUIRE(back.has_value());
+    CHECK(back->specialization_constants.empty());
+}
+
+TEST_CASE("reflection_from_json_names_a_bad_specialization_constant") {
+    const std::string base = R"({"stage": "fragment", "entry_point": "main", "bindings": [],
+  "inputs": [], "outputs": [], "specialization_constants": [)";
+    CHECK(error_for(base + R"({"id": 0, "name": "a", "type": "float", "default": "x", "min": 0,
+        "max": 1}]})") == "specialization_constants[0].default: expected a number");
+    CHECK(error_for(base + R"({"id": 0, "name": "a", "type": "float", "default": 1, "min": 0,
+        "max": 1}, {"id": -1}]})") ==
+          "specialization_constants[1].id: expected an unsigned 32-bit integer");
+    CHECK(error_for(base + R"({"id": 0, "name": "a", "type": "float", "default": 1,
+        "min": 0}]})") == "specialization_constants[0].max: missing, expected a number");
+    CHECK(error_for(base + "{}], \"x\": 1}").rfind("specialization_constants[0].id: missing", 0) ==
+          0);
 }

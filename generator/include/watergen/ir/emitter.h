@@ -3,10 +3,12 @@
 // (ir/glsl_syntax.cpp, ir/hlsl_syntax.cpp) and in the skeletons under templates/.
 #pragma once
 
+#include <set>
 #include <string>
 #include <vector>
 
 #include "watergen/ir/ir.h"
+#include "watergen/ir/specialization.h"
 #include "watergen/ir/uniform_layout.h"
 #include "watergen/runtime/reflection.h"
 
@@ -28,8 +30,11 @@ struct TextureBinding {
 };
 
 struct ShaderInterface {
-    UniformLayout uniforms;            // empty when the shader reads no parameter
-    std::vector<Parameter> parameters; // the parameters placed in `uniforms`
+    UniformLayout uniforms; // empty when the shader reads no parameter from the block
+    // Every parameter the shader reads, in declaration order; those marked `specialization`
+    // are the specialization constants in `specialization`, the others are in `uniforms`.
+    std::vector<Parameter> parameters;
+    std::vector<SpecializationSlot> specialization; // ascending id
     std::vector<TextureBinding> textures;
     std::vector<std::pair<std::string, Type>> varyings; // fragment inputs, location = index
 };
@@ -51,8 +56,16 @@ struct EmittedShader {
 // CompileRequest::hlsl_16bit_types), converting explicitly wherever 16- and 32-bit values meet
 // (parameters, inputs, texture coordinates, the output): the GPU then computes what a mobile
 // GPU computes for mediump, every operation rounded to binary16 (needs shaderFloat16).
+//
+// specialization_constants names parameters emitted as Vulkan specialization constants instead
+// of uniform-block members (as if their Parameter::specialization were set): GLSL
+// `layout(constant_id = N) const float`, HLSL `[[vk::constant_id(N)]] const float`, one per
+// component of a vector, ids in declaration order (ir/specialization.h). A name no parameter of
+// the graph declares is an error; one the shader does not read is ignored.
 struct EmitOptions {
     bool strict_half = false;
+    std::set<std::string> specialization_constants =
+        {}; // "= {}": EmitOptions{x} stays warning-free
 };
 
 // The stamp line every generated file carries.

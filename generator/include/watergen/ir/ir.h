@@ -137,6 +137,9 @@ struct Parameter {
     std::string unit;            // "1/m", "m", "" ...
     std::string seed;            // where it comes from, e.g. "003"
     std::string origin;          // declaring feature node
+    // Baked at pipeline creation as specialization constants instead of read from the uniform
+    // block (see ir/specialization.h; EmitOptions can ask the same for a whole shader).
+    bool specialization = false;
 };
 
 struct TextureInput {
@@ -187,7 +190,8 @@ class Graph {
     void error(std::string message);
     const Diagnostics& diagnostics() const { return diagnostics_; }
 
-    // Declares a parameter once; a second declaration must agree on type and default.
+    // Declares a parameter once; a second declaration must agree on type, default and
+    // specialization.
     void declare_parameter(const Parameter& p);
     const std::vector<Parameter>& parameters() const { return parameters_; }
     const Parameter* find_parameter(const std::string& name) const;

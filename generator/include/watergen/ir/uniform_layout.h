@@ -25,7 +25,8 @@ struct UniformLayout {
 
 // Parameters in declaration order; larger members are placed first, each at the lowest offset
 // aligned to its size class (vec3/vec4: 16, vec2: 8, float: 4) that does not straddle a
-// 16-byte register. Deterministic for a given input.
+// 16-byte register. Deterministic for a given input. Parameters marked `specialization` are
+// skipped: they are specialization constants, not block members.
 UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnostics& diagnostics);
 
 // Writes parameter values (double -> float) at their offsets: the value in `overrides` when

@@ -24,7 +24,9 @@ struct ReflectResult {
 //         a GLSL `uniform WaterParams {...} params;` and an HLSL `cbuffer WaterParams`
 //         reflect the same; blocks list all members with declared names and explicit
 //         offsets. Types use GLSL spelling (float, vec3, mat4, int, uint, ...). Bindings
-//         are sorted by (set, binding), inputs/outputs by location.
+//         are sorted by (set, binding), inputs/outputs by location. Scalar
+//         specialization constants are listed by constant id with name, type and default;
+//         their range is left 0 (not in SPIR-V; add_specialization_ranges fills it).
 // Inputs: a SPIR-V module (the toolchain reflects the unoptimised one, which still has
 //         every name glslang emitted), the stage whose entry point to describe, and a
 //         file name for diagnostics.

@@ -43,12 +43,24 @@ struct StageVariable {
     std::string type;
 };
 
+// A scalar specialization constant: set at pipeline creation (VkSpecializationInfo) by id.
+struct SpecializationConstant {
+    uint32_t id = 0;            // constant_id (SpecId)
+    std::string name;           // as declared, e.g. "sun_direction_x" for a vector's component
+    std::string type;           // GLSL spelling: float, int, uint, bool
+    double default_value = 0.0; // the value the module holds (float / int / uint / 0 or 1)
+    // Valid range of the parameter it stands for (generator: Parameter::min / max); both 0
+    // when unknown.
+    double min = 0.0, max = 0.0;
+};
+
 struct Reflection {
     ShaderStage stage = ShaderStage::Fragment;
     std::string entry_point = "main";
-    std::vector<DescriptorBinding> bindings; // sorted by (set, binding)
-    std::vector<StageVariable> inputs;       // sorted by location
-    std::vector<StageVariable> outputs;      // sorted by location
+    std::vector<DescriptorBinding> bindings;                      // sorted by (set, binding)
+    std::vector<StageVariable> inputs;                            // sorted by location
+    std::vector<StageVariable> outputs;                           // sorted by location
+    std::vector<SpecializationConstant> specialization_constants; // sorted by id
 };
 
 // Deterministic JSON (sorted, 2-space indent, trailing newline).

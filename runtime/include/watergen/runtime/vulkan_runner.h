@@ -76,6 +76,10 @@ struct RenderJob {
     // Bytes of the one UniformBuffer binding, laid out by the caller from reflection offsets.
     // Must be at least the block's reflected block_size.
     std::vector<uint8_t> uniforms;
+    // Values of float specialization constants by constant_id (reflection's
+    // specialization_constants), given to both stages at pipeline creation. A constant with no
+    // entry keeps the module's default; an id neither module declares is ignored.
+    std::map<uint32_t, float> specialization;
     // SampledImage / CombinedImageSampler bindings, by reflection binding name. A binding
     // with no entry fails the job (naming the binding); entries no binding uses are
     // ignored, so one set of inputs can serve many variants.
@@ -120,6 +124,8 @@ struct ComputeJob {
     std::map<std::string, uint64_t> output_sizes;
     // Bytes of the UniformBuffer binding, if the shader has one.
     std::vector<uint8_t> uniforms;
+    // Float specialization constants by constant_id, as in RenderJob.
+    std::map<uint32_t, float> specialization;
     // SampledImage / CombinedImageSampler bindings and their sampler, as in RenderJob.
     std::map<std::string, TextureData> textures;
     TextureFilter filter = TextureFilter::Linear;
