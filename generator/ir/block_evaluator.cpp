@@ -207,6 +207,25 @@ bool BlockEvaluator::compute(uint32_t id, const Node& n, int comps, size_t begin
         each([&](size_t, int c) { return (*v)[c]; });
         return true;
     }
+    case Op::UniformElement: {
+        const Parameter* p = params_.find_parameter(n.name);
+        const std::vector<double>* v = p ? &p->default_value : nullptr;
+        if (auto it = in_.uniforms.find(n.name);
+            p && it != in_.uniforms.end() && it->second.size() == v->size())
+            v = &it->second;
+        if (!p || p->array_size == 0 || v->size() != p->array_size * size_t(comps)) {
+            error = "array '" + n.name + "': no value with " + std::to_string(comps) +
+                    " components per element";
+            return false;
+        }
+        const double last = p->array_size - 1;
+        each([&](size_t l, int c) {
+            const double i = std::floor(a0(l, 0));
+            const auto e = static_cast<size_t>(i >= 0.0 ? std::min(i, last) : 0.0); // NaN: 0
+            return (*v)[e * comps + c];
+        });
+        return true;
+    }
     case Op::Varying: {
         auto it = in_.varyings.find(n.name);
         if (it == in_.varyings.end() || it->second.size() < (begin + n_) * comps) {

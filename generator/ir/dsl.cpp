@@ -343,6 +343,27 @@ Expr uniform(Graph& g, const Parameter& p) {
     return Expr(&g, g.add(std::move(n)));
 }
 
+Expr element(const Parameter& array, Expr index) {
+    if (!index.valid()) return index;
+    Graph& g = index.graph(); // a loop body when the index is its LoopIndex
+    if (array.array_size == 0) {
+        g.error("element(): parameter '" + array.name + "' is not an array");
+        return error_expr(g);
+    }
+    if (index.type() != Type::Float) {
+        g.error("element(): index of '" + array.name + "' must be a float, got " +
+                type_name(index.type()));
+        return error_expr(g);
+    }
+    g.declare_parameter(array); // held by the outermost graph
+    Node n;
+    n.op = Op::UniformElement;
+    n.type = array.type;
+    n.name = array.name;
+    n.args = {index.id()};
+    return Expr(&g, g.add(std::move(n)));
+}
+
 Expr varying(Graph& g, const std::string& name, Type type) {
     if (g.enclosing()) return bring_into(varying(*g.enclosing(), name, type), g);
     Node n;

@@ -47,7 +47,7 @@ void collect_reads(const Graph& g, std::set<std::string>& uniforms, std::set<std
                    std::vector<std::pair<std::string, Type>>& varyings) {
     for (uint32_t id : g.live_nodes()) {
         const Node& n = g.node(id);
-        if (n.op == Op::Uniform) uniforms.insert(n.name);
+        if (n.op == Op::Uniform || n.op == Op::UniformElement) uniforms.insert(n.name);
         if (n.op == Op::Texture) textures.insert(n.name);
         if (n.op == Op::Varying && std::find(varyings.begin(), varyings.end(),
                                              std::pair{n.name, n.type}) == varyings.end())

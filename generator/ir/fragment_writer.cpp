@@ -22,11 +22,13 @@ FragmentWriter::FragmentWriter(const Graph& g, const FragmentWriter& enclosing,
                                const BodyNames& names)
     : g_(g), syntax_(enclosing.syntax_), compute_(enclosing.compute_),
       strict_half_(enclosing.strict_half_), constants_(enclosing.constants_),
-      taken_(enclosing.taken_), names_(&names) {}
+      array_sizes_(enclosing.array_sizes_), taken_(enclosing.taken_), names_(&names) {}
 
 void FragmentWriter::read_as_constants(const ShaderInterface& in) {
-    for (const auto& p : in.parameters)
+    for (const auto& p : in.parameters) {
         if (p.specialization) constants_.insert(p.name);
+        if (p.array_size) array_sizes_[p.name] = p.array_size;
+    }
 }
 
 bool FragmentWriter::is_half(uint32_t id) const {
@@ -245,6 +247,13 @@ std::string FragmentWriter::spell_at(uint32_t id, bool half, bool level0) {
         return half ? syntax_.convert(n.type, true, syntax_.constant(n)) : syntax_.constant(n);
     case Op::Uniform:
         return constants_.count(n.name) ? n.name : syntax_.uniform_ref(n.name);
+    case Op::UniformElement: {
+        // Clamped as the CPU evaluator clamps: truncation and floor agree from 0 up.
+        const auto it = array_sizes_.find(n.name);
+        const uint32_t last = it != array_sizes_.end() ? it->second - 1 : 0;
+        return fmt::format("{}[clamp({}, 0, {})]", syntax_.uniform_ref(n.name),
+                           syntax_.float_to_int(strip_outer(a[0])), last);
+    }
     case Op::Varying:
     case Op::Texture:
         return n.name;

@@ -64,7 +64,8 @@ class FragmentWriter {
     const GlslSyntax& syntax_;
     bool compute_ = false;
     bool strict_half_ = false;
-    std::set<std::string> constants_; // parameters that are specialization constants
+    std::set<std::string> constants_;             // parameters that are specialization constants
+    std::map<std::string, uint32_t> array_sizes_; // array parameters' elements
     std::map<uint32_t, std::string> temp_;
     std::set<std::string> own_taken_;
     std::set<std::string>* taken_ = &own_taken_; // names in use, shared with enclosing writers

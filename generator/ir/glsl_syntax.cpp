@@ -123,8 +123,8 @@ std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) con
         lines.push_back(fmt::format("layout(set = 0, binding = {}, std140) uniform WaterParams {{",
                                     kParamsBinding));
         for (const auto& m : in.uniforms.members)
-            lines.push_back(
-                fmt::format("    layout(offset = {}) {} {};", m.offset, type(m.type), m.name));
+            lines.push_back(fmt::format("    layout(offset = {}) {} {}{};", m.offset, type(m.type),
+                                        m.name, array_suffix(m)));
         lines.push_back("} params;");
     }
     const std::vector<std::string> constants = specialization_declarations(in);

@@ -127,8 +127,8 @@ std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) con
                                     kParamsBinding));
         for (const auto& m : in.uniforms.members) {
             const char component = "xyzw"[(m.offset % 16) / 4];
-            lines.push_back(fmt::format("    {} {} : packoffset(c{}.{});", type(m.type), m.name,
-                                        m.offset / 16, component));
+            lines.push_back(fmt::format("    {} {}{} : packoffset(c{}.{});", type(m.type), m.name,
+                                        array_suffix(m), m.offset / 16, component));
         }
         lines.push_back("};");
     }

@@ -162,6 +162,7 @@ Intervals node_intervals(const Node& n, const std::vector<const Intervals*>& arg
         });
         return out;
     case Op::Uniform:
+    case Op::UniformElement:
     case Op::Varying:
     case Op::Texture:
     case Op::Sample:

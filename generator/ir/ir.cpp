@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include <fmt/format.h>
+
 namespace watergen {
 
 int component_count(Type t) {
@@ -195,8 +197,14 @@ const char* op_name(Op op) {
         return "carried";
     case Op::Captured:
         return "captured";
+    case Op::UniformElement:
+        return "element";
     }
     return "?";
+}
+
+size_t value_count(const Parameter& p) {
+    return static_cast<size_t>(component_count(p.type)) * std::max<uint32_t>(1, p.array_size);
 }
 
 bool is_leaf(Op op) {
@@ -239,7 +247,7 @@ std::string node_key(const Node& n) {
     key.push_back('|');
     for (double v : n.values)
         key.append(reinterpret_cast<const char*>(&v), sizeof v);
-    if (is_leaf(n.op)) {
+    if (is_leaf(n.op) || n.op == Op::UniformElement) {
         key.push_back('|');
         key += n.name;
     }
@@ -254,9 +262,11 @@ std::string node_key(const Node& n) {
 } // namespace
 
 uint32_t Graph::add(Node node) {
-    // Leaves (parameters, inputs) keep full precision; operations follow the current scope.
+    // Leaves (parameters, inputs) and array elements keep full precision; operations follow
+    // the current scope.
     // A loop's result has the precision of its carried value, whatever the scope.
-    if ((!is_leaf(node.op) && node.op != Op::LoopResult) || node.op == Op::Constant)
+    if ((!is_leaf(node.op) && node.op != Op::LoopResult && node.op != Op::UniformElement) ||
+        node.op == Op::Constant)
         node.relaxed = node.relaxed || relaxed_;
     if (node.type == Type::Bool || node.type == Type::Texture2D || node.type == Type::TextureCube ||
         node.type == Type::Tuple)
@@ -310,18 +320,20 @@ void Graph::declare_parameter(const Parameter& p) {
     }
     if (const Parameter* existing = find_parameter(p.name)) {
         if (existing->type != p.type || existing->default_value != p.default_value ||
-            existing->specialization != p.specialization)
+            existing->specialization != p.specialization || existing->array_size != p.array_size)
             error("parameter '" + p.name +
-                  "' declared twice with different type, default or specialization (first by " +
+                  "' declared twice with different type, default, specialization or array size "
+                  "(first by " +
                   existing->origin + ")");
         return;
     }
     Parameter copy = p;
     if (copy.origin.empty()) copy.origin = origin_;
-    if (static_cast<int>(copy.default_value.size()) != component_count(copy.type))
-        error("parameter '" + p.name + "': default has " +
-              std::to_string(copy.default_value.size()) + " components, " + type_name(copy.type) +
-              " needs " + std::to_string(component_count(copy.type)));
+    if (copy.default_value.size() != value_count(copy))
+        error(fmt::format("parameter '{}': default has {} components, {}{} needs {}", p.name,
+                          copy.default_value.size(), type_name(copy.type),
+                          copy.array_size ? fmt::format("[{}]", copy.array_size) : "",
+                          value_count(copy)));
     parameters_.push_back(std::move(copy));
 }
 

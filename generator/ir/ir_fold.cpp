@@ -104,7 +104,13 @@ void Folder::resolve_quantities() {
 
 void Folder::declare_inputs() {
     for (Parameter p : in_.parameters()) {
-        if (f_.fixed.count(p.name)) continue;
+        if (auto it = f_.fixed.find(p.name); it != f_.fixed.end()) {
+            // Loop bodies, which the fold leaves alone, read arrays: a fixed array stays a
+            // parameter whose default is the fixed value.
+            if (!p.array_size) continue;
+            if (it->second.value.size() == p.default_value.size())
+                p.default_value = it->second.value;
+        }
         if (auto it = f_.parameter_ranges.find(p.name);
             it != f_.parameter_ranges.end() && it->second.bounds.size() == 1) {
             p.min = it->second.bounds[0].lo;

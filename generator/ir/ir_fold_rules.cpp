@@ -22,6 +22,7 @@ bool pure(Op op) {
     switch (op) {
     case Op::Constant:
     case Op::Uniform:
+    case Op::UniformElement:
     case Op::Varying:
     case Op::Texture:
     case Op::Sample:
@@ -125,7 +126,8 @@ FactSet Folder::single(size_t fact) const {
 
 // Bounds and facts of a leaf read.
 std::pair<Intervals, FactSet> Folder::leaf_bounds(const Node& n, uint32_t in_id) const {
-    if (n.op == Op::Uniform) {
+    // An array element: every element lies in the parameter's range.
+    if (n.op == Op::Uniform || n.op == Op::UniformElement) {
         if (auto it = f_.parameter_ranges.find(n.name); it != f_.parameter_ranges.end())
             return {bounds_of(it->second, n.type), single(it->second.fact)};
         if (const Parameter* p = in_.find_parameter(n.name))
@@ -273,7 +275,8 @@ std::optional<uint32_t> Folder::identity(const Node& n, uint32_t in_id, const Fa
 
 // The bounds of `n` (arguments already rewritten) and the facts behind them.
 std::pair<Intervals, FactSet> Folder::bounds(const Node& n, uint32_t in_id) const {
-    if (n.op == Op::Uniform || n.op == Op::Varying || n.op == Op::Sample || n.op == Op::SampleLevel)
+    if (n.op == Op::Uniform || n.op == Op::UniformElement || n.op == Op::Varying ||
+        n.op == Op::Sample || n.op == Op::SampleLevel)
         return leaf_bounds(n, in_id);
     FactSet facts;
     std::vector<const Intervals*> args;

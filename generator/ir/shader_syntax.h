@@ -5,9 +5,16 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "watergen/ir/emitter.h"
 
 namespace watergen {
+
+// "[N]" after an array member's name, "" for other members.
+inline std::string array_suffix(const UniformSlot& m) {
+    return m.array_size ? fmt::format("[{}]", m.array_size) : std::string();
+}
 
 class GlslSyntax {
   public:
@@ -30,6 +37,8 @@ class GlslSyntax {
     virtual std::string int_to_float(const std::string& name) const {
         return "float(" + name + ")";
     }
+    // A float truncated to an int.
+    virtual std::string float_to_int(const std::string& expr) const { return "int(" + expr + ")"; }
     virtual std::string constant(const Node& n) const;
     virtual std::string uniform_ref(const std::string& name) const;
     // `half`: the result is a binary16 type (strict half), and so are the arguments.
@@ -69,6 +78,9 @@ class HlslSyntax final : public GlslSyntax {
     std::string loop_header(const std::string& index, int trip_count, bool unroll) const override;
     std::string int_to_float(const std::string& name) const override {
         return "((float)" + name + ")";
+    }
+    std::string float_to_int(const std::string& expr) const override {
+        return "((int)" + expr + ")";
     }
     std::string uniform_ref(const std::string& name) const override;
     std::string splat(Type t, const std::string& scalar, bool half = false) const override;

@@ -11,6 +11,13 @@ std::vector<SpecializationSlot> specialization_slots(const std::vector<Parameter
     std::vector<SpecializationSlot> slots;
     for (const auto& p : parameters) {
         if (!p.specialization) continue;
+        if (p.array_size) {
+            // A constant per element would do, but the loop reading the array indexes it.
+            diagnostics.push_back({Severity::Error, "", 0, 0, p.origin,
+                                   "parameter '" + p.name +
+                                       "' is an array; arrays cannot be specialization constants"});
+            continue;
+        }
         if (!is_float_numeric(p.type)) {
             diagnostics.push_back({Severity::Error, "", 0, 0, p.origin,
                                    "parameter '" + p.name + "' has type " + type_name(p.type) +

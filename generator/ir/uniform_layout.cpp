@@ -7,8 +7,9 @@ namespace watergen {
 
 namespace {
 
-uint32_t alignment_of(Type t) {
-    switch (t) {
+uint32_t alignment_of(const Parameter& p) {
+    if (p.array_size) return kArrayStride;
+    switch (p.type) {
     case Type::Vec2:
         return 8;
     case Type::Vec3:
@@ -17,6 +18,13 @@ uint32_t alignment_of(Type t) {
     default:
         return 4;
     }
+}
+
+// 4-byte words a member occupies. An array takes whole registers, its last element's tail too:
+// std140 places nothing there (HLSL could, but then the two layouts would differ).
+uint32_t words_of(const Parameter& p) {
+    return p.array_size ? p.array_size * (kArrayStride / 4)
+                        : static_cast<uint32_t>(component_count(p.type));
 }
 
 } // namespace
@@ -33,18 +41,20 @@ UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnost
         }
         order.push_back(&p);
     }
+    // Larger members first; an array counts its whole registers.
     std::stable_sort(order.begin(), order.end(), [](const Parameter* a, const Parameter* b) {
-        return component_count(a->type) > component_count(b->type);
+        return words_of(*a) > words_of(*b);
     });
 
     std::vector<bool> used; // one flag per 4-byte word
     UniformLayout layout;
     for (const Parameter* p : order) {
-        const uint32_t words = static_cast<uint32_t>(component_count(p->type));
-        const uint32_t align_words = alignment_of(p->type) / 4;
+        const uint32_t words = words_of(*p);
+        const uint32_t align_words = alignment_of(*p) / 4;
         uint32_t w = 0;
         for (;; w += align_words) {
-            if (w / 4 != (w + words - 1) / 4) continue; // would straddle a 16-byte register
+            if (!p->array_size && w / 4 != (w + words - 1) / 4)
+                continue; // would straddle a 16-byte register
             bool free = true;
             for (uint32_t i = w; i < w + words; ++i)
                 free = free && (i >= used.size() || !used[i]);
@@ -53,7 +63,7 @@ UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnost
         if (used.size() < w + words) used.resize(w + words, false);
         for (uint32_t i = w; i < w + words; ++i)
             used[i] = true;
-        layout.members.push_back({p->name, p->type, w * 4});
+        layout.members.push_back({p->name, p->type, w * 4, p->array_size});
     }
     std::sort(layout.members.begin(), layout.members.end(),
               [](const UniformSlot& a, const UniformSlot& b) { return a.offset < b.offset; });
@@ -72,9 +82,13 @@ std::vector<uint8_t> pack_uniforms(const UniformLayout& layout,
             if (auto it = overrides.find(p.name);
                 it != overrides.end() && it->second.size() == p.default_value.size())
                 values = &it->second;
+            // Element e of an array starts at offset + e * kArrayStride.
+            const auto components = static_cast<size_t>(component_count(p.type));
             for (size_t i = 0; i < values->size(); ++i) {
                 const float f = static_cast<float>((*values)[i]);
-                std::memcpy(bytes.data() + slot.offset + 4 * i, &f, 4);
+                const size_t at =
+                    slot.offset + (i / components) * kArrayStride + 4 * (i % components);
+                if (at + 4 <= bytes.size()) std::memcpy(bytes.data() + at, &f, 4);
             }
         }
     return bytes;

@@ -65,11 +65,16 @@ std::string with_stamp(const std::string& stamp, const std::string& text) {
 // ids of its specialization constants).
 nlohmann::ordered_json describe_parameter(const Parameter& p, const char* place_key,
                                           const nlohmann::ordered_json& place) {
-    return {{"name", p.name},   {"type", type_name(p.type)},
-            {place_key, place}, {"default", p.default_value},
-            {"min", p.min},     {"max", p.max},
-            {"unit", p.unit},   {"seed", p.seed},
-            {"node", p.origin}};
+    nlohmann::ordered_json j = {{"name", p.name},   {"type", type_name(p.type)},
+                                {place_key, place}, {"default", p.default_value},
+                                {"min", p.min},     {"max", p.max},
+                                {"unit", p.unit},   {"seed", p.seed},
+                                {"node", p.origin}};
+    if (p.array_size) { // elements kArrayStride bytes apart; "default" holds them all
+        j["array_size"] = p.array_size;
+        j["array_stride"] = kArrayStride;
+    }
+    return j;
 }
 
 nlohmann::ordered_json describe(const VariantBuild& b) {

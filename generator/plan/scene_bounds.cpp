@@ -41,7 +41,7 @@ std::optional<Diagnostic> fix_parameters(const Material& m, ScenePlan& plan) {
             return w.error(key, "unknown parameter '" + name + "'; the nodes of material '" +
                                     m.name + "' read " + join(read));
         }
-        const size_t n = static_cast<size_t>(component_count(it->second.type));
+        const size_t n = value_count(it->second); // every element of an array
         if (value.size() != n)
             return w.error(key, fmt::format("parameter '{}' is a {}: expected {} number{}, got {}",
                                             name, type_name(it->second.type), n, n == 1 ? "" : "s",

@@ -108,6 +108,11 @@ DescriptorBinding block_binding(const spirv_cross::Compiler& compiler,
         m.type = glsl_type(compiler, compiler.get_type(type.member_types[i]));
         m.offset = compiler.type_struct_member_offset(type, i);
         m.size = uint32_t(compiler.get_declared_struct_member_size(type, i));
+        const auto& member_type = compiler.get_type(type.member_types[i]);
+        if (!member_type.array.empty()) {
+            m.array_size = member_type.array.back(); // outermost dimension
+            m.array_stride = compiler.type_struct_member_array_stride(type, i);
+        }
         b.members.push_back(std::move(m));
     }
     return b;

@@ -17,7 +17,12 @@ constexpr DescriptorKind kKinds[] = {DescriptorKind::UniformBuffer, DescriptorKi
                                      DescriptorKind::CombinedImageSampler};
 
 json to_json(const UniformMember& m) {
-    return json{{"name", m.name}, {"type", m.type}, {"offset", m.offset}, {"size", m.size}};
+    json j{{"name", m.name}, {"type", m.type}, {"offset", m.offset}, {"size", m.size}};
+    if (m.array_size) { // absent for the scalars and vectors of older files
+        j["array_size"] = m.array_size;
+        j["array_stride"] = m.array_stride;
+    }
+    return j;
 }
 
 json to_json(const StageVariable& v) {
@@ -142,7 +147,8 @@ class Reader {
 
 bool read_member(Reader& r, UniformMember& m) {
     return r.string("name", m.name) && r.string("type", m.type) && r.u32("offset", m.offset) &&
-           r.u32("size", m.size);
+           r.u32("size", m.size) && r.u32("array_size", m.array_size, false) &&
+           r.u32("array_stride", m.array_stride, false);
 }
 
 bool read_variable(Reader& r, StageVariable& v) {

@@ -19,10 +19,11 @@ Reflection sample_reflection() {
     DescriptorBinding ubo;
     ubo.name = "WaterParams";
     ubo.kind = DescriptorKind::UniformBuffer;
-    ubo.block_size = 32;
+    ubo.block_size = 96;
     ubo.members = {{"eye_position", "vec3", 0, 12},
                    {"water_level", "float", 12, 4},
-                   {"deep_color", "vec4", 16, 16}};
+                   {"deep_color", "vec4", 16, 16},
+                   {"wave_directions", "vec4[4]", 32, 64, 4, 16}};
     DescriptorBinding sampler{"linear_clamp", 0, 1, DescriptorKind::Sampler, "", 0, {}};
     DescriptorBinding image{"scene_color", 0, 2, DescriptorKind::SampledImage, "2D", 0, {}};
     DescriptorBinding sky{"sky", 1, 0, DescriptorKind::CombinedImageSampler, "Cube", 0, {}};
@@ -53,6 +54,8 @@ void check_equal(const Reflection& a, const Reflection& b) {
             CHECK(x.members[m].type == y.members[m].type);
             CHECK(x.members[m].offset == y.members[m].offset);
             CHECK(x.members[m].size == y.members[m].size);
+            CHECK(x.members[m].array_size == y.members[m].array_size);
+            CHECK(x.members[m].array_stride == y.members[m].array_stride);
         }
     }
     auto same_vars = [](const std::vector<StageVariable>& p, const std::vector<StageVariable>& q) {
@@ -104,6 +107,10 @@ TEST_CASE("reflection_json_is_sorted_indented_and_ends_with_a_newline") {
     CHECK(text.rfind("{\n  \"bindings\": [", 0) == 0); // keys sorted, 2-space indent
     CHECK(text.find("\"kind\": \"uniform_buffer\"") != std::string::npos);
     CHECK(text.find("\"stage\": \"fragment\"") != std::string::npos);
+    // Array fields only on array members: older files stay as they were.
+    CHECK(text.find("\"array_size\": 4") != std::string::npos);
+    CHECK(text.find("\"array_stride\": 16") != std::string::npos);
+    CHECK(text.find("\"array_size\": 0") == std::string::npos);
     CHECK(text.find('\t') == std::string::npos);
 }
 
@@ -112,12 +119,12 @@ TEST_CASE("reflection_json_round_trips_a_reflected_shader") {
     req.stage = ShaderStage::Fragment;
     req.file_name = "t.frag";
     req.source = R"(#version 450
-layout(set = 0, binding = 0, std140) uniform WaterParams { layout(offset = 0) vec3 eye; layout(offset = 12) float level; } p;
+layout(set = 0, binding = 0, std140) uniform WaterParams { layout(offset = 0) vec3 eye; layout(offset = 12) float level; layout(offset = 16) float gains[3]; } p;
 layout(set = 0, binding = 1) uniform sampler s;
 layout(set = 0, binding = 2) uniform textureCube sky;
 layout(location = 0) in vec3 dir;
 layout(location = 0) out vec4 c;
-void main() { c = texture(samplerCube(sky, s), dir + p.eye) * p.level; }
+void main() { c = texture(samplerCube(sky, s), dir + p.eye) * p.level * p.gains[int(dir.x)]; }
 )";
     const SpirvResult spirv = compile_to_spirv(req);
     REQUIRE(spirv.ok());
@@ -125,6 +132,16 @@ void main() { c = texture(samplerCube(sky, s), dir + p.eye) * p.level; }
     REQUIRE(refl.diagnostics.empty());
     REQUIRE(refl.reflection.bindings.size() == 3);
     CHECK(refl.reflection.bindings[2].image_dim == "Cube");
+    // A float array: one 16-byte register per element, std140's array stride.
+    const auto& members = refl.reflection.bindings[0].members;
+    REQUIRE(members.size() == 3);
+    CHECK(members[0].array_size == 0);
+    CHECK(members[2].type == "float[3]");
+    CHECK(members[2].offset == 16);
+    CHECK(members[2].size == 48);
+    CHECK(members[2].array_size == 3);
+    CHECK(members[2].array_stride == 16);
+    CHECK(refl.reflection.bindings[0].block_size == 64);
     std::string error;
     const auto back = reflection_from_json(reflection_to_json(refl.reflection), &error);
     INFO(error);

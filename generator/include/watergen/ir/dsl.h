@@ -90,6 +90,9 @@ class FullPrecisionScope {
 Expr constant(Graph& g, double v);
 Expr constant(Graph& g, std::initializer_list<double> components);
 Expr uniform(Graph& g, const Parameter& p); // declares p and reads it
+// Element floor(index), clamped to [0, array_size - 1], of an array parameter (declares it);
+// in a loop body the index is typically the loop index. Arrays are never specialization constants.
+Expr element(const Parameter& array, Expr index);
 Expr varying(Graph& g, const std::string& name, Type type);
 Expr texture(Graph& g, const TextureInput& t);
 

@@ -34,8 +34,9 @@ bool decided_true(const Intervals& v);
 bool decided_false(const Intervals& v);
 
 // Bounds of `n` from the bounds of its arguments (args[i] for n.args[i], types likewise).
-// Leaves (Constant) are handled; Uniform, Varying, Sample and Texture are the caller's, who
-// knows the parameter ranges and the scene's input ranges, and get unknown_intervals here.
+// Leaves (Constant) are handled; Uniform, UniformElement, Varying, Sample and Texture are the
+// caller's, who knows the parameter ranges and the scene's input ranges, and get
+// unknown_intervals here.
 Intervals node_intervals(const Node& n, const std::vector<const Intervals*>& args,
                          const std::vector<Type>& arg_types);
 

@@ -104,6 +104,8 @@ enum class Op : uint8_t {
     LoopIndex,  // in a loop body: the iteration, 0, 1, ... as a float
     Carried,    // in a loop body: values[0] = carried index; its value at this iteration's start
     Captured,   // in a loop body: values[0] = capture index; an outer value the body reads
+    // arrays
+    UniformElement, // name = array parameter, args: index (Float; floored, clamped to the array)
 };
 
 const char* op_name(Op op);
@@ -140,7 +142,13 @@ struct Parameter {
     // Baked at pipeline creation as specialization constants instead of read from the uniform
     // block (see ir/specialization.h; EmitOptions can ask the same for a whole shader).
     bool specialization = false;
+    // 0: not an array. N > 0: N elements of `type` (default_value holds all of them, element
+    // after element), read with element() in dsl.h; min/max bound every element.
+    uint32_t array_size = 0;
 };
+
+// Numbers in a parameter's value: its type's components, times its elements for an array.
+size_t value_count(const Parameter& p);
 
 struct TextureInput {
     std::string name;

@@ -116,7 +116,9 @@ struct FoldResult {
 
 // Folds `g` (which must be free of type errors) under `facts`. Parameters stay declared with
 // their ranges narrowed to facts.parameter_ranges (scalar ranges only; per-component ones
-// are used by the analysis); fixed parameters are no longer declared. Cost: linear in the
+// are used by the analysis); fixed parameters are no longer declared, save arrays (loop
+// bodies, which the fold leaves alone, read them): a fixed array stays declared with the fixed
+// value as its default. Cost: linear in the
 // live graph, plus one tiny CPU evaluation per constant subexpression.
 FoldResult fold_graph(const Graph& g, const FoldFacts& facts);
 

@@ -17,6 +17,9 @@ struct UniformMember {
     std::string type;    // GLSL spelling: float, vec2, vec3, vec4, mat3, mat4, int, uint
     uint32_t offset = 0; // bytes from the start of the block
     uint32_t size = 0;   // bytes
+    // Arrays: elements and bytes between consecutive ones; both 0 for a non-array member.
+    uint32_t array_size = 0;
+    uint32_t array_stride = 0;
 };
 
 enum class DescriptorKind {
