@@ -31,9 +31,17 @@ void FragmentWriter::read_as_constants(const ShaderInterface& in) {
     }
 }
 
+namespace {
+
+// Whether a value is spelled in a binary16 type: strict half, relaxed, and a float.
+bool spelled_half(Type t, bool relaxed, bool strict_half) {
+    return strict_half && relaxed && (is_float_numeric(t) || t == Type::Mat3);
+}
+
+} // namespace
+
 bool FragmentWriter::is_half(uint32_t id) const {
-    const Node& n = g_.node(id);
-    return strict_half_ && n.relaxed && (is_float_numeric(n.type) || n.type == Type::Mat3);
+    return spelled_half(g_.node(id).type, g_.node(id).relaxed, strict_half_);
 }
 
 namespace {
@@ -52,8 +60,7 @@ template <class P> bool any_live(const Graph& g, const P& pred) {
 bool FragmentWriter::writes_half() const {
     const bool strict = strict_half_;
     return any_live(g_, [strict](const Graph& g, uint32_t id) {
-        const Node& n = g.node(id);
-        return strict && n.relaxed && (is_float_numeric(n.type) || n.type == Type::Mat3);
+        return spelled_half(g.node(id).type, g.node(id).relaxed, strict);
     });
 }
 
@@ -143,8 +150,7 @@ void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op
     for (size_t k = 0; k < body.carried(); ++k) {
         const Type t = body.carried_types[k];
         names.carried.push_back(base + "_c" + std::to_string(k));
-        half[k] =
-            strict_half_ && body.carried_relaxed[k] && (is_float_numeric(t) || t == Type::Mat3);
+        half[k] = spelled_half(t, body.carried_relaxed[k], strict_half_);
         types[k] = declared_type(t, body.carried_relaxed[k], half[k]);
         out.push_back({types[k] + " " + names.carried[k] + " = " +
                            strip_outer(expr_as(n.args[k], half[k])) + ";",

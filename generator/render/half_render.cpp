@@ -27,10 +27,12 @@ HalfRender render_strict_half(VulkanRunner& runner, const Variant& variant, cons
     RenderSettings gpu_only = settings;
     gpu_only.cpu_float = false;
     gpu_only.cpu_double = false;
-    // Builds and renders one variant into `render`; false (and out's error) on failure.
+    // Builds and renders one variant into `render`, keeping its graph in `graph`; false (and
+    // out's error) on failure.
+    Graph strict_graph, full_graph;
     auto build_and_render = [&](const Variant& v, bool strict, const char* what,
-                                VariantRender& render) {
-        const VariantBuild build = build_variant(v, preset, EmitOptions{strict});
+                                VariantRender& render, Graph& graph) {
+        VariantBuild build = build_variant(v, preset, EmitOptions{strict});
         if (!build.ok()) {
             out.diagnostics = build.diagnostics;
             out.error = std::string("the ") + what + " build failed";
@@ -38,17 +40,17 @@ HalfRender render_strict_half(VulkanRunner& runner, const Variant& variant, cons
         }
         render = render_variant(runner, build, scene, gpu_only);
         if (!render.ok()) out.error = std::string(what) + ": " + render.error;
+        graph = std::move(build.shader.fragment);
         return render.ok();
     };
-    if (!build_and_render(variant, true, "strict-half", out.strict)) return out;
+    if (!build_and_render(variant, true, "strict-half", out.strict, strict_graph)) return out;
     Variant full_variant = variant;
     set_choice(full_variant, "precision", "full");
-    if (!build_and_render(full_variant, false, "precision=full", out.full)) return out;
+    if (!build_and_render(full_variant, false, "precision=full", out.full, full_graph)) return out;
 
-    // The graph of the strict build is the variant's own: strict half changes only emission.
-    const EvalResult half =
-        evaluate_image(build_water_shader(variant, preset).fragment, "color", scene.eval_inputs(),
-                       settings.width, settings.height, EvalPrecision::Half);
+    // Strict half changes only emission: the CPU model evaluates the same graph.
+    const EvalResult half = evaluate_image(strict_graph, "color", scene.eval_inputs(),
+                                           settings.width, settings.height, EvalPrecision::Half);
     if (!half.ok()) {
         out.error = "CPU evaluator: " + half.error;
         return out;

@@ -7,6 +7,7 @@
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/dsl.h"
 #include "watergen/ir/emitter.h"
+#include "watergen/ir/ir_fold.h"
 
 using namespace watergen;
 
@@ -116,4 +117,20 @@ TEST_CASE("a_malformed_loop_is_a_diagnostic", "[loop]") {
     CHECK(all.find("trip count 0 is not in 1..4096") != std::string::npos);
     CHECK(all.find("may not take ddx / ddy") != std::string::npos);
     CHECK(all.find("the exit condition is float, not bool") != std::string::npos);
+}
+
+TEST_CASE("the_fold_keeps_a_loop_whose_inputs_are_all_constants", "[loop]") {
+    // Nothing but constants go in (a scene fact can make every captured value one); the loop
+    // still runs, and what it computes is unchanged.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = loop(g, 5, {constant(g, 1.0)}, [&](Expr i, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] * 2.0 + i}, Expr()};
+    });
+    g.set_output("v", (r[0] + x * 0.0).id());
+    const FoldResult folded = fold_graph(g, {});
+    REQUIRE(folded.graph.diagnostics().empty());
+    const EvalResult e = evaluate(folded.graph, "v", lanes_of("x", {3.0}), EvalPrecision::Double);
+    REQUIRE(e.ok());
+    CHECK(e.values[0] == 58.0); // c = 2c + i from 1, five times
 }

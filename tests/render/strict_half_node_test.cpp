@@ -19,18 +19,6 @@ using namespace watergen::test;
 
 namespace {
 
-ProbeRun strict_probe(const Graph& g, Language lang, const std::vector<double>& in) {
-    ProbeRun run =
-        run_probe(shared_runner(), g, lang, in, {}, probe_scene_textures(), EmitOptions{true});
-    std::string diagnostics;
-    for (const auto& d : run.diagnostics)
-        diagnostics += format_diagnostic(d) + "\n";
-    INFO(diagnostics << run.error);
-    REQUIRE(run.ok());
-    CHECK(run.validation_messages.empty());
-    return run;
-}
-
 // Nodes whose GLSL strict-half results are not bit-exact with the CPU half model, the largest
 // distance measured (binary16 steps) and why. Every other node with a 16-bit output must agree
 // to the bit; an entry that agrees to the bit fails the test, so the list stays true.
@@ -59,7 +47,8 @@ TEST_CASE("every_node_in_strict_half_against_the_cpu_half_model", "[probe][half]
         const std::vector<double> in = ordinary_tuples(probe_layout(g), name_seed(node.name));
         for (Language lang : {Language::Glsl, Language::Hlsl}) {
             INFO(node.name << " " << to_string(lang));
-            const ProbeRun run = strict_probe(g, lang, in);
+            const ProbeRun run =
+                checked_probe(g, lang, in, {}, probe_scene_textures(), EmitOptions{true});
             const ProbeSummary s = summarize_probe(run);
             const HalfAgreement& a = s.gpu_vs_cpu_half;
             std::printf("%-36s %s %7llu %8.2f %9.2f %6lld %12.3g\n", node.name.c_str(),
@@ -95,37 +84,23 @@ TEST_CASE("every_node_in_strict_half_over_extreme_finite_inputs", "[probe][half]
         const std::vector<double> in = stress_tuples(probe_layout(g), name_seed(node.name));
         for (Language lang : {Language::Glsl, Language::Hlsl}) {
             INFO(node.name << " " << to_string(lang));
-            const ProbeRun run = strict_probe(g, lang, in);
+            const ProbeRun run =
+                checked_probe(g, lang, in, {}, probe_scene_textures(), EmitOptions{true});
             const ProbeSummary s = summarize_probe(run);
-            // Tuples the 16-bit GPU breaks where the CPU float result is finite, among those
-            // whose inputs binary16 holds (|v| <= 65504; larger ones are infinite the moment
-            // they enter 16-bit arithmetic): what half precision costs this node, not a
-            // disagreement with the half model.
-            size_t half_only = 0, first_half_only = 0;
-            const size_t n = run.layout.output_stride, m = run.layout.input_stride;
-            for (size_t t = 0; t < run.tuples; ++t) {
-                bool representable = true;
-                for (size_t k = 0; k < m; ++k)
-                    representable = representable && std::fabs(in[t * m + k]) <= 65504.0;
-                if (!representable) continue;
-                bool broken = false;
-                for (size_t k = 0; k < n; ++k)
-                    broken = broken || (!std::isfinite(run.gpu[t * n + k]) &&
-                                        std::isfinite(run.cpu_float[t * n + k]));
-                if (broken && half_only++ == 0) first_half_only = t;
-            }
+            // What half precision costs this node (not a disagreement with the half model).
+            const BrokenTuples half_only = gpu_breaks_where_float_holds(run, in, true);
             std::printf("%-36s %s %6zu %8zu %9zu %10zu\n", node.name.c_str(), to_string(lang),
-                        run.tuples, s.gpu.non_finite(), s.gpu_only_non_finite, half_only);
-            if (half_only > 0)
+                        run.tuples, s.gpu.non_finite(), s.gpu_only_non_finite, half_only.count);
+            if (half_only.count > 0)
                 std::printf("    first half-only non-finite:%s\n",
-                            describe_tuple(run, in, first_half_only).c_str());
+                            describe_tuple(run, in, half_only.first).c_str());
             if (s.gpu_only_non_finite > 0)
                 std::printf("    first gpu-only non-finite:%s\n",
                             describe_tuple(run, in, s.first_gpu_only_tuple).c_str());
             // reflection.sky_lookup broke here (dot(N, I) overflowed for a view ray of length
             // 1e4) until its inputs were normalised scale-first (nodes/reflection.cpp).
             CHECK(s.gpu_only_non_finite == 0);
-            CHECK(half_only == 0);
+            CHECK(half_only.count == 0);
         }
     }
 }

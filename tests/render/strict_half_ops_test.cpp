@@ -32,22 +32,11 @@ struct OpCase {
     int glsl_max = 0, hlsl_max = 1;
 };
 
-struct UlpCount {
-    size_t values = 0, equal = 0, within_1 = 0;
-    int64_t max = 0;
-};
-
-UlpCount count_ulps(const std::vector<double>& gpu, const std::vector<double>& cpu) {
-    UlpCount u;
-    for (size_t i = 0; i < gpu.size(); ++i) {
-        if (!std::isfinite(gpu[i]) || !std::isfinite(cpu[i])) continue;
-        const int64_t d = half_ulp_distance(gpu[i], cpu[i]);
-        ++u.values;
-        u.equal += d == 0;
-        u.within_1 += d <= 1;
-        u.max = std::max(u.max, d);
-    }
-    return u;
+HalfAgreement agreement(const std::vector<double>& gpu, const std::vector<double>& cpu) {
+    HalfAgreement a;
+    for (size_t i = 0; i < gpu.size(); ++i)
+        a.add(gpu[i], cpu[i], i);
+    return a;
 }
 
 // Inputs already binary16 (so both sides start from the same values), from a 64-bit LCG.
@@ -118,26 +107,20 @@ TEST_CASE("strict_half_operations_on_lavapipe_against_the_cpu_half_model", "[pro
         const std::vector<double> tuples = inputs(c, kTuples);
         for (Language lang : {Language::Glsl, Language::Hlsl}) {
             INFO(c.name << " " << to_string(lang));
-            ProbeRun run =
-                run_probe(test::shared_runner(), g, lang, tuples, {}, {}, EmitOptions{true});
-            std::string d;
-            for (const auto& x : run.diagnostics)
-                d += format_diagnostic(x) + "\n";
-            INFO(d << run.error);
-            REQUIRE(run.ok());
-            const UlpCount u = count_ulps(run.gpu, run.cpu_half);
+            const ProbeRun run = test::checked_probe(g, lang, tuples, {}, {}, EmitOptions{true});
+            const HalfAgreement u = agreement(run.gpu, run.cpu_half);
             std::vector<double> once(run.cpu_double.size());
             for (size_t i = 0; i < once.size(); ++i)
                 once[i] = round_to_half(run.cpu_double[i]);
-            const UlpCount o = count_ulps(run.gpu, once);
+            const HalfAgreement o = agreement(run.gpu, once);
             std::printf("%-16s %4s %8zu %8.2f %9.2f %6lld %8.2f %6lld\n", c.name, to_string(lang),
                         u.values, 100.0 * u.equal / u.values, 100.0 * u.within_1 / u.values,
-                        static_cast<long long>(u.max), 100.0 * o.within_1 / o.values,
-                        static_cast<long long>(o.max));
+                        static_cast<long long>(u.max_ulps), 100.0 * o.within_1 / o.values,
+                        static_cast<long long>(o.max_ulps));
             if (lang == Language::Glsl) {
-                CHECK(u.max <= c.glsl_max);
+                CHECK(u.max_ulps <= c.glsl_max);
             } else if (c.hlsl_max >= 0) {
-                CHECK(o.max <= c.hlsl_max);
+                CHECK(o.max_ulps <= c.hlsl_max);
             }
             CHECK(u.values == run.gpu.size()); // every result finite on both sides
         }

@@ -106,27 +106,17 @@ TEST_CASE("every_node_in_strict_half_survives_the_stress_ranges", "[probe][half]
             }
         for (Language lang : {Language::Glsl, Language::Hlsl}) {
             INFO(node.name << " " << to_string(lang));
-            const ProbeRun run = run_probe(shared_runner(), g, lang, in, {}, probe_scene_textures(),
-                                           EmitOptions{true});
-            INFO(run.error);
-            REQUIRE(run.ok());
+            const ProbeRun run =
+                checked_probe(g, lang, in, {}, probe_scene_textures(), EmitOptions{true});
             const ProbeSummary s = summarize_probe(run);
-            size_t half_only = 0, first = 0;
-            const size_t n = run.layout.output_stride;
-            for (size_t t = 0; t < run.tuples; ++t) {
-                bool broken = false;
-                for (size_t k = 0; k < n; ++k)
-                    broken = broken || (!std::isfinite(run.gpu[t * n + k]) &&
-                                        std::isfinite(run.cpu_float[t * n + k]));
-                if (broken && half_only++ == 0) first = t;
-            }
+            const BrokenTuples half_only = gpu_breaks_where_float_holds(run, in, false);
             std::printf("%-36s %s %6zu %8zu %9zu %10zu\n", node.name.c_str(), to_string(lang),
-                        run.tuples, s.gpu.non_finite(), s.gpu_only_non_finite, half_only);
-            if (half_only > 0)
+                        run.tuples, s.gpu.non_finite(), s.gpu_only_non_finite, half_only.count);
+            if (half_only.count > 0)
                 std::printf("    first half-only non-finite:%s\n",
-                            describe_tuple(run, in, first).c_str());
+                            describe_tuple(run, in, half_only.first).c_str());
             CHECK(s.gpu_only_non_finite == 0);
-            CHECK(half_only == 0);
+            CHECK(half_only.count == 0);
         }
     }
 }

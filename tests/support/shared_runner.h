@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <string>
+
 #include "watergen/render/probe.h"
 #include "watergen/runtime/vulkan_runner.h"
 
@@ -21,11 +23,13 @@ inline VulkanRunner& shared_runner() {
 // run_probe on the shared runner, failing the test on diagnostics, errors or validation messages.
 inline ProbeRun checked_probe(const Graph& g, Language lang, const std::vector<double>& inputs,
                               const std::map<std::string, std::vector<double>>& uniforms = {},
-                              const std::map<std::string, TextureData>& textures = {}) {
-    ProbeRun run = run_probe(shared_runner(), g, lang, inputs, uniforms, textures);
+                              const std::map<std::string, TextureData>& textures = {},
+                              const EmitOptions& options = {}) {
+    ProbeRun run = run_probe(shared_runner(), g, lang, inputs, uniforms, textures, options);
+    std::string diagnostics;
     for (const auto& d : run.diagnostics)
-        INFO(format_diagnostic(d));
-    INFO(run.error);
+        diagnostics += format_diagnostic(d) + "\n";
+    INFO(diagnostics << run.error);
     REQUIRE(run.ok());
     CHECK(run.validation_messages.empty());
     return run;

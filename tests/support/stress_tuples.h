@@ -100,4 +100,27 @@ inline std::string describe_tuple(const ProbeRun& run, const std::vector<double>
            (run.strict_half ? " cpu half " : " cpu float ") + components(&cpu[t * n], n);
 }
 
+// Tuples whose GPU result has a NaN/Inf component where the CPU float result is finite, and
+// the first of them; with `binary16_inputs`, only tuples whose inputs binary16 holds
+// (|v| <= 65504: larger ones are infinite the moment they enter 16-bit arithmetic).
+struct BrokenTuples {
+    size_t count = 0, first = 0;
+};
+inline BrokenTuples gpu_breaks_where_float_holds(const ProbeRun& run, const std::vector<double>& in,
+                                                 bool binary16_inputs) {
+    BrokenTuples b;
+    const size_t n = run.layout.output_stride, m = run.layout.input_stride;
+    for (size_t t = 0; t < run.tuples; ++t) {
+        bool representable = true;
+        for (size_t k = 0; k < m && binary16_inputs; ++k)
+            representable = representable && std::fabs(in[t * m + k]) <= 65504.0;
+        bool broken = false;
+        for (size_t k = 0; k < n; ++k)
+            broken = broken || (!std::isfinite(run.gpu[t * n + k]) &&
+                                std::isfinite(run.cpu_float[t * n + k]));
+        if (representable && broken && b.count++ == 0) b.first = t;
+    }
+    return b;
+}
+
 } // namespace watergen::test
