@@ -1,201 +1,99 @@
-// BlockEvaluator's driver: node order, lane-invariant nodes, storage reuse, and loops (the
-// operations themselves are in block_evaluator_ops.cpp).
+// BlockEvaluator: the run over a program's instructions, and loops.
 #include "block_evaluator.h"
 
 #include <algorithm>
 
-namespace watergen {
+#include "block_kernels.h"
 
-// A Loop node's body: its live nodes, the frame its leaves read and the evaluator that runs it
-// (kept across blocks, so its lane-invariant nodes are computed once).
-struct BlockEvaluator::LoopState {
-    std::vector<uint32_t> live;
-    LoopFrame frame;
-    std::unique_ptr<BlockEvaluator> body;
-    std::vector<uint32_t> next; // body node of each carried value's next value
-    uint32_t keep_going = UINT32_MAX;
-};
+namespace watergen {
 
 namespace {
 
-// Leaves whose values change from block to block, or from iteration to iteration of a loop.
-bool varies(Op op) {
-    return op == Op::Varying || op == Op::Ddx || op == Op::Ddy || op == Op::Loop ||
-           op == Op::LoopIndex || op == Op::Carried || op == Op::Captured;
-}
-
-} // namespace
-
-BlockEvaluator::BlockEvaluator(const Graph& g, const Graph& params,
-                               const std::vector<uint32_t>& live, const EvalInputs& in,
-                               EvalPrecision p, const std::vector<uint32_t>& keep,
-                               const LoopFrame* frame)
-    : g_(g), params_(params), live_(live), in_(in), p_(p), frame_(frame), values_(g.size()),
-      invariant_(g.size(), 0), done_(g.size(), 0), comps_(g.size(), 1) {
-    // A per-lane value's storage goes back to the pool after its last user: the working set is
-    // the values alive at once, not the whole graph (2304 nodes for Gerstner).
-    last_use_.assign(g.size(), 0);
-    for (size_t k = 0; k < live_.size(); ++k)
-        for (uint32_t a : g_.node(live_[k]).args)
-            last_use_[a] = k;
-    for (uint32_t id : keep)
-        last_use_[id] = SIZE_MAX;
-    for (uint32_t id : live_) {
-        const Node& n = g_.node(id);
-        comps_[id] = component_count(n.type);
-        if (n.op == Op::Loop) {
-            comps_[id] = 0; // the carried values side by side
-            for (Type t : n.loop->carried_types)
-                comps_[id] += component_count(t);
-        }
-        // Derivatives stay per lane: a quad's difference of the same value is 0, or NaN for an
-        // infinite one, and 0 past the end of a block.
-        bool invariant = !varies(n.op);
-        for (uint32_t a : n.args)
-            invariant = invariant && invariant_[a];
-        invariant_[id] = invariant;
+void run_list(const std::vector<Instr>& list, Exec& ex) {
+    for (const Instr& ins : list) {
+        const size_t lanes = ins.per_lane ? ex.lanes : 1;
+        ins.kernel(ins, ex, lanes);
+        if (ins.round != Rounding::None) round_result(ins, ex, lanes);
     }
 }
 
-BlockEvaluator::~BlockEvaluator() = default;
-
-bool BlockEvaluator::run(size_t begin, size_t count, std::string& error) {
-    for (size_t k = 0; k < live_.size(); ++k) {
-        const uint32_t id = live_[k];
-        if (invariant_[id] && done_[id]) continue; // the same for every block
-        const Node& node = g_.node(id);
-        n_ = invariant_[id] ? 1 : count;
-        const int comps = comps_[id];
-        auto& out = values_[id];
-        if (out.capacity() == 0 && !pool_.empty()) {
-            out.swap(pool_.back());
-            pool_.pop_back();
+template <class T> void run_loop(const Instr& ins, Exec& ex, size_t n) {
+    const LoopPlan& loop = ex.program->loops[ins.aux];
+    T* m = static_cast<T*>(ex.arena);
+    auto row = [&](const Operand& o, uint32_t c) { return m + o.offset + c * o.comp_step; };
+    for (const auto& k : loop.carried)
+        for (uint32_t c = 0; c < k.comps; ++c) {
+            const T* from = row(k.initial, c);
+            T* to = row(k.storage, c);
+            for (size_t l = 0; l < n; ++l)
+                to[l] = from[l * k.initial.lane_step];
         }
-        out.resize(n_ * static_cast<size_t>(std::max(comps, 1)));
-        if (!compute(id, node, comps, begin, out, error)) return false;
-        done_[id] = 1;
-        for (uint32_t a : node.args)
-            if (last_use_[a] == k && !invariant_[a]) {
-                pool_.emplace_back();
-                pool_.back().swap(values_[a]);
+    unsigned char active[kBlock];
+    std::fill_n(active, n, 1);
+    size_t remaining = n;
+    const double outer_index = ex.loop_index;
+    for (int i = 0; i < loop.trip_count && remaining > 0; ++i) {
+        ex.loop_index = i;
+        run_list(loop.body, ex);
+        for (const auto& k : loop.carried)
+            for (uint32_t c = 0; c < k.comps; ++c) {
+                const T* __restrict from = row(k.next, c);
+                T* __restrict to = row(k.storage, c);
+                const size_t step = k.next.lane_step;
+                if (remaining == n) {
+                    for (size_t l = 0; l < n; ++l)
+                        to[l] = from[l * step];
+                } else {
+                    for (size_t l = 0; l < n; ++l)
+                        to[l] = active[l] ? from[l * step] : to[l];
+                }
             }
-        // Half mode: relaxed nodes are binary16, the rest binary32, as a GPU that honours
-        // mediump at 16 bits would compute them.
-        const EvalPrecision p =
-            (p_ == EvalPrecision::Half && !node.relaxed) ? EvalPrecision::Float : p_;
-        if (p == EvalPrecision::Half && texture_result(id)) {
-            for (double& v : out)
-                v = round_to_half_toward_zero(static_cast<float>(v));
-        } else if (p == EvalPrecision::Float) {
-            for (double& v : out)
-                v = static_cast<double>(static_cast<float>(v));
-        } else if (p == EvalPrecision::Half) {
-            for (double& v : out)
-                v = round_to(v, p);
-        }
-    }
-    return true;
-}
-
-void BlockEvaluator::bind_arguments(const Node& n) {
-    const size_t count = n.args.size();
-    sources_.resize(count);
-    lane_stride_.resize(count);
-    component_stride_.resize(count);
-    narrowed_.resize(count);
-    const bool narrow =
-        p_ == EvalPrecision::Half && n.relaxed && n.op != Op::Sample && n.op != Op::SampleLevel;
-    for (size_t i = 0; i < count; ++i) {
-        const uint32_t id = n.args[i];
-        const Node& a = g_.node(id);
-        const size_t comps = static_cast<size_t>(std::max(comps_[id], 1));
-        sources_[i] = values_[id].data();
-        lane_stride_[i] = invariant_[id] ? 0 : comps;
-        component_stride_[i] = comps == 1 ? 0 : 1;
-        if (!narrow || a.relaxed || !(is_float_numeric(a.type) || a.type == Type::Mat3)) continue;
-        narrowed_[i] = values_[id];
-        const bool toward_zero = texture_result(id);
-        for (double& v : narrowed_[i])
-            v = toward_zero ? round_to_half_toward_zero(v) : round_to_half(v);
-        sources_[i] = narrowed_[i].data();
-    }
-}
-
-// A texture sample, or components of one. lavapipe converts these to binary16 rounding
-// toward zero (NIR folds the conversion into the sampler), other values to nearest.
-bool BlockEvaluator::texture_result(uint32_t id) const {
-    const Node& n = g_.node(id);
-    if (n.op == Op::Swizzle) return texture_result(n.args[0]);
-    return n.op == Op::Sample || n.op == Op::SampleLevel;
-}
-
-// Runs the loop over the block: every lane iterates until the trip count or until its exit
-// condition is false; the body is evaluated for all lanes, and a lane that has left keeps its
-// carried values (the GPU's per-pixel break).
-bool BlockEvaluator::run_loop(uint32_t id, const Node& n, size_t begin, std::vector<double>& out,
-                              std::string& error) {
-    const LoopBody& body = *n.loop;
-    auto& state = loops_[id];
-    if (!state) {
-        state = std::make_unique<LoopState>();
-        const Graph& bg = *body.body;
-        state->live = bg.live_nodes();
-        std::vector<uint32_t> keep;
-        for (const auto& o : bg.outputs()) {
-            keep.push_back(o.node);
-            if (o.name == "continue")
-                state->keep_going = o.node;
-            else
-                state->next.push_back(o.node);
-        }
-        size_t offset = 0;
-        for (Type t : body.carried_types) {
-            state->frame.carried_offset.push_back(offset);
-            offset += static_cast<size_t>(component_count(t));
-        }
-        state->body = std::make_unique<BlockEvaluator>(bg, params_, state->live, in_, p_, keep,
-                                                       &state->frame);
-    }
-    const size_t total = static_cast<size_t>(comps_[id]), carried = body.carried();
-    // The initial values.
-    for (size_t l = 0; l < n_; ++l)
-        for (size_t k = 0, c0 = 0; k < carried; ++k) {
-            const int ck = component_count(body.carried_types[k]);
-            for (int c = 0; c < ck; ++c)
-                out[l * total + c0 + static_cast<size_t>(c)] = arg(n, k, l, c);
-            c0 += static_cast<size_t>(ck);
-        }
-    LoopFrame& frame = state->frame;
-    frame.carried = out.data();
-    frame.carried_lane_stride = total;
-    frame.captured.clear();
-    for (size_t m = carried; m < n.args.size(); ++m)
-        frame.captured.push_back({sources_[m], lane_stride_[m], component_stride_[m]});
-    std::vector<char> active(n_, 1);
-    size_t remaining = n_;
-    for (int i = 0; i < body.trip_count && remaining > 0; ++i) {
-        frame.index = i;
-        if (!state->body->run(begin, n_, error)) return false;
-        for (size_t k = 0; k < carried; ++k) {
-            const uint32_t next = state->next[k];
-            const double* v = state->body->values(next);
-            const size_t ck = static_cast<size_t>(component_count(body.carried_types[k]));
-            const size_t stride = state->body->invariant(next) ? 0 : ck;
-            for (size_t l = 0; l < n_; ++l)
-                if (active[l])
-                    std::copy_n(v + l * stride, ck,
-                                out.data() + l * total + frame.carried_offset[k]);
-        }
-        if (state->keep_going == UINT32_MAX) continue;
-        const double* go = state->body->values(state->keep_going);
-        const size_t stride = state->body->invariant(state->keep_going) ? 0 : 1;
-        for (size_t l = 0; l < n_; ++l)
-            if (active[l] && go[l * stride] == 0) {
+        if (!loop.has_exit) continue;
+        const T* go = m + loop.keep_going.offset;
+        for (size_t l = 0; l < n; ++l)
+            if (active[l] && go[l * loop.keep_going.lane_step] == 0) {
                 active[l] = 0;
                 --remaining;
             }
     }
-    return true;
+    ex.loop_index = outer_index;
+}
+
+} // namespace
+
+Kernel loop_kernel(bool wide) {
+    return wide ? run_loop<double> : run_loop<float>;
+}
+
+BlockEvaluator::BlockEvaluator(const Program& program, const EvalInputs& in) : program_(program) {
+    if (program.wide)
+        wide_.assign(program.arena, 0.0);
+    else
+        narrow_.assign(program.arena, 0.0f);
+    exec_.arena = program.wide ? static_cast<void*>(wide_.data()) : narrow_.data();
+    exec_.program = &program;
+    exec_.inputs = &in;
+    run_list(program.prologue, exec_);
+}
+
+void BlockEvaluator::run(size_t begin, size_t count) {
+    exec_.begin = begin;
+    exec_.lanes = count;
+    run_list(program_.main, exec_);
+}
+
+void BlockEvaluator::read_root(size_t count, double* to) const {
+    const Operand& o = program_.root;
+    const size_t comps = program_.root_comps;
+    auto read = [&](const auto* values) {
+        for (size_t l = 0; l < count; ++l)
+            for (size_t c = 0; c < comps; ++c)
+                to[l * comps + c] = double(values[o.offset + l * o.lane_step + c * o.comp_step]);
+    };
+    if (program_.wide)
+        read(wide_.data());
+    else
+        read(narrow_.data());
 }
 
 } // namespace watergen

@@ -1,6 +1,7 @@
 #include "watergen/ir/cpu_evaluator.h"
 
 #include "block_evaluator.h"
+#include "block_program.h"
 
 #include <algorithm>
 #include <cmath>
@@ -105,24 +106,6 @@ std::optional<uint32_t> find_output(const Graph& g, const std::string& name) {
     return std::nullopt;
 }
 
-// Ids reachable from one node, ascending.
-std::vector<uint32_t> live_from(const Graph& g, uint32_t root) {
-    std::vector<char> live(g.size(), 0);
-    std::vector<uint32_t> stack{root};
-    while (!stack.empty()) {
-        const uint32_t id = stack.back();
-        stack.pop_back();
-        if (live[id]) continue;
-        live[id] = 1;
-        for (uint32_t a : g.node(id).args)
-            stack.push_back(a);
-    }
-    std::vector<uint32_t> ids;
-    for (uint32_t i = 0; i < g.size(); ++i)
-        if (live[i]) ids.push_back(i);
-    return ids;
-}
-
 } // namespace
 
 EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs& inputs,
@@ -139,27 +122,26 @@ EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs&
     }
     result.components = component_count(g.node(*root).type);
     result.values.resize(inputs.lanes * static_cast<size_t>(result.components));
-    const std::vector<uint32_t> live = live_from(g, *root);
+    const Program program = compile_program(g, *root, inputs, precision);
+    // The first block that cannot be evaluated fails the evaluation, before any is.
+    const size_t blocks = (inputs.lanes + kBlock - 1) / kBlock;
+    for (size_t b = 0; b < blocks && !program.checks.empty(); ++b) {
+        const size_t begin = b * kBlock;
+        result.error = block_error(program, begin, std::min(kBlock, inputs.lanes - begin));
+        if (!result.error.empty()) return result;
+    }
     // Blocks are shared out to the threads in turn; each thread has its own evaluator, and a
     // lane's value does not depend on which thread computes it.
-    const size_t blocks = (inputs.lanes + kBlock - 1) / kBlock;
     const size_t wanted = inputs.threads ? inputs.threads : std::thread::hardware_concurrency();
     const size_t threads = std::max<size_t>(1, std::min<size_t>(wanted, blocks));
-    std::vector<std::string> errors(blocks);
     auto work = [&](size_t first) {
-        BlockEvaluator block(g, g, live, inputs, precision, {*root});
+        if (first >= blocks) return;
+        BlockEvaluator block(program, inputs);
         const size_t comps = static_cast<size_t>(result.components);
         for (size_t b = first; b < blocks; b += threads) {
             const size_t begin = b * kBlock, count = std::min(kBlock, inputs.lanes - begin);
-            if (!block.run(begin, count, errors[b])) return;
-            const double* v = block.values(*root);
-            double* to = result.values.data() + begin * comps;
-            if (block.invariant(*root)) {
-                for (size_t l = 0; l < count; ++l)
-                    std::copy_n(v, comps, to + l * comps);
-            } else {
-                std::copy_n(v, count * comps, to);
-            }
+            block.run(begin, count);
+            block.read_root(count, result.values.data() + begin * comps);
         }
     };
     std::vector<std::thread> pool;
@@ -168,11 +150,6 @@ EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs&
     work(0);
     for (auto& t : pool)
         t.join();
-    for (const auto& e : errors)
-        if (!e.empty()) {
-            result.error = e; // the first failing block's, whatever thread found it
-            break;
-        }
     return result;
 }
 
