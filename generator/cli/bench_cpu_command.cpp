@@ -104,6 +104,10 @@ Runner add_bench_cpu_command(CLI::App& app, const Common&) {
             std::printf("%-16s median %.3f, range %.3f..%.3f over %u rounds\n", label, median(r),
                         *lo, *hi, o->rounds);
         }
+        // The reference image's budget: the gold variant in float on every core at 1024x1024
+        // within 3 s.
+        if (o->size == 1024)
+            std::printf("float at 1024x1024: %.2f s (budget 3 s)\n", median(ms[0]) / 1000.0);
         std::printf("%s at %ux%u, synthetic scene, %zu live nodes, %u cores\n",
                     variant.key().c_str(), o->size, o->size, shader.fragment.live_nodes().size(),
                     cores);

@@ -2,10 +2,10 @@
 // float(std::cos(double(x))) of a binary32 x, computed for a row of lanes at once.
 //
 // Both are computed in double, without branches so that they vectorise: x reduced by multiples
-// of pi/2 (Cody-Waite, pi/2 in four parts; exact first steps for |x| <= 2^19) and fdlibm's
-// kernels (k_sin.c, k_cos.c: within 2^-58 on [-pi/4, pi/4]), to within about 2^-52. Where a
-// result lies within 2^-40 (relative) of a binary32 rounding boundary, or |x| > 2^19, or x is
-// not finite, std::sin and std::cos decide, so a lane gets what they would give. Checked against
+// of pi/2 (Cody-Waite, pi/2 in four parts) and fdlibm's kernels (k_sin.c, k_cos.c: within
+// 2^-58 on [-pi/4, pi/4]), to within about 2^-52. Where a result lies within 2^-40 (relative)
+// of a binary32 rounding boundary, or |x| > 2^24 (the phases of the gold variant reach 2^21), or x
+// is not finite, std::sin and std::cos decide, so a lane gets what they would give. Checked against
 // them for every binary32 input (the SSE2 and the AVX2 build), and in tests/ir on a sample.
 #include "block_kernels.h"
 
@@ -17,9 +17,10 @@ namespace {
 
 constexpr double kMagic = 0x1.8p52; // (v + kMagic) - kMagic rounds v to an integer, |v| < 2^51
 constexpr double kInvPio2 = 6.36619772367581382433e-01;
-constexpr double kPio2[4] = {1.57079632673412561417e+00, 6.07710050630396597660e-11,
-                             2.02226624871116645580e-21, 8.47842766036889956997e-32};
-constexpr double kLimit = 0x1p19;
+// pi/2 in four parts, the first three of 29 bits: k * part is exact for |k| < 2^24.
+constexpr double kPio2[4] = {0x1.921fb54p+0, 0x1.10b4612p-30, -0x1.676733bp-60,
+                             0x1.701b839a25205p-92};
+constexpr double kLimit = 0x1p24;
 constexpr double kMargin = 0x1p-40;
 
 [[gnu::always_inline]] inline bool near_boundary(double y) {
@@ -40,8 +41,8 @@ template <unsigned LA>
         const double rs = 8.33333333332248946124e-03 +
                           z * (-1.98412698298579493134e-04 + z * 2.75573137070700676789e-06) +
                           z * w * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10);
-        // sin(-0) is -0, which r + -0 * ... is not.
-        const double sin_r = r == 0.0 ? r : r + z * r * (-1.66666666666666324348e-01 + z * rs);
+        // sin(+-0) is x itself (r may be +0 for x = -0, and r + z r (...) is +0 for r = -0).
+        const double sin_r = x == 0.0 ? x : r + z * r * (-1.66666666666666324348e-01 + z * rs);
         const double rc = z * (4.16666666666666019037e-02 +
                                z * (-1.38888888888741095749e-03 + z * 2.48015872894767294178e-05)) +
                           w * w *
@@ -54,11 +55,12 @@ template <unsigned LA>
         double fh = (h + kMagic) - kMagic;
         fh = fh > h ? fh - 1.0 : fh;
         const double q = k - 4.0 * fh;
-        const bool odd = (q == 1.0) | (q == 3.0);
+        const bool odd = int(q == 1.0) | int(q == 3.0);
         const double sv = odd ? cos_r : sin_r, cv = odd ? sin_r : cos_r;
         ys[l] = q >= 2.0 ? -sv : sv;
-        yc[l] = (q == 1.0) | (q == 2.0) ? -cv : cv;
-        fallback[l] = !(std::fabs(x) <= kLimit) | near_boundary(ys[l]) | near_boundary(yc[l]);
+        yc[l] = (int(q == 1.0) | int(q == 2.0)) ? -cv : cv;
+        fallback[l] = static_cast<unsigned char>(
+            int(!(std::fabs(x) <= kLimit)) | int(near_boundary(ys[l])) | int(near_boundary(yc[l])));
     }
     for (size_t l = 0; l < n; ++l)
         if (fallback[l]) {

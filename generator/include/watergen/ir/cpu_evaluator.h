@@ -83,10 +83,12 @@ struct EvalResult {
 
 // Evaluates output `output` for every lane. Derivatives (ddx, ddy) treat lanes 4k..4k+3 as a
 // 2x2 quad (x, y) = (0,0), (1,0), (0,1), (1,1), with per-row / per-column differences.
-// Cost: live nodes x lanes, in blocks of 256 lanes shared out to inputs.threads threads; nodes
-// that are the same on every lane (parameters and what follows from them alone) once.
-// About 1.8 us per pixel for the 2304-node Gerstner gold variant on this project's 2-core CI
-// machine (watergen bench cpu).
+// The graph is compiled once per call into a flat program (a kernel per node, values stored
+// structure-of-arrays: generator/ir/block_program.h) run over blocks of 256 lanes shared out to
+// inputs.threads threads; nodes that are the same on every lane (parameters and what follows
+// from them alone) are computed once. About 0.7 us per pixel for the Gerstner gold variant in
+// float on this project's 2-core CI machine (watergen bench cpu). When an input is missing or
+// malformed, no block is evaluated and `error` names the first failing node in node order.
 EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs& inputs,
                     EvalPrecision precision);
 
