@@ -30,6 +30,17 @@ double median(std::vector<double> v) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// Paired ratios of two jobs' times, round by round: the A/A one says how large a difference can
+// be noise.
+void print_ratio(const char* label, const std::vector<double>& a, const std::vector<double>& b) {
+    std::vector<double> r;
+    for (size_t i = 0; i < a.size(); ++i)
+        r.push_back(a[i] / b[i]);
+    const auto [lo, hi] = std::minmax_element(r.begin(), r.end());
+    std::printf("%-16s median %.3f, range %.3f..%.3f over %zu rounds\n", label, median(r), *lo, *hi,
+                r.size());
+}
+
 } // namespace
 
 Runner add_bench_cpu_command(CLI::App& app, const Common&) {
@@ -90,20 +101,8 @@ Runner add_bench_cpu_command(CLI::App& app, const Common&) {
                             {"ms", ms[c]},
                             {"median_ms", med}});
         }
-        // Paired ratios, round by round: the A/A one says how large a difference can be noise.
-        auto ratio = [&](size_t a, size_t b) {
-            std::vector<double> r;
-            for (uint32_t i = 0; i < o->rounds; ++i)
-                r.push_back(ms[a][i] / ms[b][i]);
-            return r;
-        };
-        for (auto [label, a, b] :
-             {std::tuple{"A/A' (same job)", 0, 1}, std::tuple{"1 thread / all", 2, 0}}) {
-            const auto r = ratio(a, b);
-            const auto [lo, hi] = std::minmax_element(r.begin(), r.end());
-            std::printf("%-16s median %.3f, range %.3f..%.3f over %u rounds\n", label, median(r),
-                        *lo, *hi, o->rounds);
-        }
+        print_ratio("A/A' (same job)", ms[0], ms[1]);
+        print_ratio("1 thread / all", ms[2], ms[0]);
         // The reference image's budget: the gold variant in float on every core at 1024x1024
         // within 3 s.
         if (o->size == 1024)
