@@ -168,8 +168,8 @@ Intervals node_intervals(const Node& n, const std::vector<const Intervals*>& arg
     case Op::Sample:
     case Op::SampleLevel:
         return unknown_intervals(n.type, false);
-    // Loops: no bound is claimed for what a loop computes (sound, if loose); a body's leaves
-    // are as unknown as the values they stand for.
+    // Loops: no bound here; the fold pass iterates the body's bounds (loop_bounds.cpp), and a
+    // body's leaves are as unknown as the values they stand for.
     case Op::Loop:
     case Op::LoopResult:
     case Op::LoopIndex:

@@ -134,3 +134,97 @@ TEST_CASE("the_fold_keeps_a_loop_whose_inputs_are_all_constants", "[loop]") {
     REQUIRE(e.ok());
     CHECK(e.values[0] == 58.0); // c = 2c + i from 1, five times
 }
+
+namespace {
+
+// The fold of `value` with x in [0, 1]: the rewrites it made, one per line.
+std::string fold_events(Graph& g, Expr value) {
+    g.set_output("v", value.id());
+    FoldFacts facts;
+    facts.input_ranges["x"] = {{make_interval(0.0, 1.0)}, facts.add_fact("x in [0, 1]", "")};
+    const FoldResult folded = fold_graph(g, facts);
+    std::string all;
+    for (const auto& e : folded.report.events)
+        all += e.what + "\n";
+    return all;
+}
+
+} // namespace
+
+TEST_CASE("the_fold_bounds_a_loop_by_running_its_body_over_intervals", "[loop]") {
+    // c = c / 2 + x from c = x, eight times: c stays in [0, 2) for x in [0, 1].
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = loop(g, 8, {x}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] * 0.5 + x}, Expr()};
+    });
+    const std::string events = fold_events(g, min(max(r[0], constant(g, 0.0)), 2.0));
+    INFO(events);
+    CHECK(events.find("max(a, b) -> a (a >= b)") != std::string::npos);
+    CHECK(events.find("min(a, b) -> a (a <= b)") != std::string::npos);
+}
+
+TEST_CASE("a_loop_bound_holds_for_every_iteration_count_an_exit_allows", "[loop]") {
+    // With an exit the loop ends after any of its 64 iterations: the count is in [0, 64] (the
+    // union of every state; each + 1 widened by its rounding margin), so min(count, 64.01)
+    // folds and min(count, 63) must not.
+    for (const double cap : {64.01, 63.0}) {
+        Graph g;
+        Expr x = varying(g, "x", Type::Float);
+        const auto r = loop(g, 64, {constant(g, 0.0), x}, [&](Expr, const std::vector<Expr>& c) {
+            Expr next = c[1] * c[1];
+            return LoopStep{{c[0] + 1.0, next}, next > 1e-6};
+        });
+        const std::string events = fold_events(g, min(r[0], cap));
+        INFO("cap " << cap << "\n" << events);
+        CHECK((events.find("min(a, b) -> a (a <= b)") != std::string::npos) == (cap > 64.0));
+    }
+}
+
+TEST_CASE("a_long_loop_is_widened_then_narrowed_to_a_sound_bound", "[loop]") {
+    // 1000 steps, past what the analysis follows step by step. c / 2 + x converges below 2:
+    // widened to a threshold, then narrowed, its bound ends within 2.5.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = loop(g, 1000, {x}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] * 0.5 + x}, Expr()};
+    });
+    const std::string events = fold_events(g, min(r[0], 2.5));
+    INFO(events);
+    CHECK(events.find("min(a, b) -> a (a <= b)") != std::string::npos);
+}
+
+TEST_CASE("a_growing_loop_is_widened_without_claiming_a_bound_it_cannot_hold", "[loop]") {
+    // c + x grows every step: its upper bound is widened to infinity, so min(c, 999) stays
+    // (c reaches 1000 at x = 1), and so does max(c, 0) (c is not proven finite).
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = loop(g, 1000, {constant(g, 0.0)}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] + x}, Expr()};
+    });
+    const std::string events = fold_events(g, min(max(r[0], constant(g, 0.0)), 999.0));
+    INFO(events);
+    CHECK(events.find("min(a, b)") == std::string::npos);
+    const EvalResult e = evaluate(g, "v", lanes_of("x", {1.0}), EvalPrecision::Double);
+    REQUIRE(e.ok());
+    CHECK(e.values[0] == 999.0);
+}
+
+TEST_CASE("nested_loops_are_bounded_through_both_bodies", "[loop]") {
+    // An outer loop of 4 adds an inner loop's sum of 3 copies of x: at most 12 for x <= 1.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = loop(g, 4, {constant(g, 0.0)}, [&](Expr, const std::vector<Expr>& outer) {
+        const auto inner = loop(outer[0].graph(), 3, {constant(outer[0].graph(), 0.0)},
+                                [&](Expr, const std::vector<Expr>& c) {
+                                    return LoopStep{{c[0] + x}, Expr()};
+                                });
+        return LoopStep{{outer[0] + inner[0]}, Expr()};
+    });
+    const std::string events = fold_events(g, min(r[0], 12.01));
+    INFO(events);
+    CHECK(events.find("min(a, b) -> a (a <= b)") != std::string::npos);
+    const EvalResult e = evaluate(g, "v", lanes_of("x", {1.0}), EvalPrecision::Double);
+    REQUIRE(e.ok());
+    CHECK(e.values[0] == 12.0);
+}
