@@ -89,6 +89,10 @@ int main(int argc, char** argv) {
         "half", "the covering set's half variants in 16-bit arithmetic on the GPU: agreement "
                 "with the CPU half model, error against full precision");
     runners[half] = add_bench_half_command(*half, common);
+    CLI::App* unroll = bench->add_subcommand(
+        "unroll", "kept loops against unrolled ones on lavapipe, per waves choice: shader size, "
+                  "first draw (JIT) and steady draw, interleaved with an A/A pair");
+    runners[unroll] = add_bench_unroll_command(*unroll, common);
     CLI::App* cpu = bench->add_subcommand(
         "cpu", "the CPU evaluator on the gold variant's reference image: per precision and "
                "thread count, interleaved rounds");

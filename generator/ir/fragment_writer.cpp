@@ -21,8 +21,9 @@ FragmentWriter::FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool co
 FragmentWriter::FragmentWriter(const Graph& g, const FragmentWriter& enclosing,
                                const BodyNames& names)
     : g_(g), syntax_(enclosing.syntax_), compute_(enclosing.compute_),
-      strict_half_(enclosing.strict_half_), constants_(enclosing.constants_),
-      array_sizes_(enclosing.array_sizes_), taken_(enclosing.taken_), names_(&names) {}
+      strict_half_(enclosing.strict_half_), unroll_(enclosing.unroll_),
+      constants_(enclosing.constants_), array_sizes_(enclosing.array_sizes_),
+      taken_(enclosing.taken_), names_(&names) {}
 
 void FragmentWriter::read_as_constants(const ShaderInterface& in) {
     for (const auto& p : in.parameters) {
@@ -158,7 +159,9 @@ void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op
     }
     for (size_t m = body.carried(); m < n.args.size(); ++m)
         names.captured.push_back(strip_outer(expr(n.args[m])));
-    out.push_back({syntax_.loop_header(names.index, body.trip_count, body.unroll), n.origin});
+    const bool unroll =
+        unroll_ == LoopUnroll::All || (unroll_ == LoopUnroll::AsHinted && body.unroll);
+    out.push_back({syntax_.loop_header(names.index, body.trip_count, unroll), n.origin});
     FragmentWriter inner(*body.body, *this, names);
     std::vector<Line> inside = inner.lines(used_ops);
     uint32_t keep_going = UINT32_MAX;

@@ -35,6 +35,9 @@ class FragmentWriter {
     FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool compute = false,
                    bool strict_half = false);
 
+    // The unroll hint of every loop (EmitOptions::unroll); loop bodies inherit it.
+    void set_unroll(LoopUnroll unroll) { unroll_ = unroll; }
+
     // Parameters of `in` that are specialization constants: read by their own name.
     void read_as_constants(const ShaderInterface& in);
 
@@ -64,6 +67,7 @@ class FragmentWriter {
     const GlslSyntax& syntax_;
     bool compute_ = false;
     bool strict_half_ = false;
+    LoopUnroll unroll_ = LoopUnroll::AsHinted;
     std::set<std::string> constants_;             // parameters that are specialization constants
     std::map<std::string, uint32_t> array_sizes_; // array parameters' elements
     std::map<uint32_t, std::string> temp_;

@@ -96,6 +96,40 @@ TEST_CASE("loops_are_emitted_as_for_loops_in_both_languages", "[loop]") {
     CHECK(divisions == 1);
 }
 
+TEST_CASE("the_emit_options_override_every_loops_unroll_hint", "[loop]") {
+    // One loop hinted to unroll, one not: "hinted" keeps each, "all" / "none" set both.
+    Graph frag;
+    Expr uv = varying(frag, "v_uv", Type::Vec2);
+    auto step = [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] * 0.5 + uv.y()}, Expr()};
+    };
+    const auto a = loop(frag, 4, {uv.x()}, step, LoopOptions{true});
+    const auto b = loop(frag, 5, {uv.y()}, step);
+    frag.set_output("color", vec4(a[0], b[0], constant(frag, 0.0), constant(frag, 1.0)).id());
+    auto count = [](const std::string& text, const std::string& word) {
+        size_t n = 0;
+        for (size_t p = text.find(word); p != std::string::npos; p = text.find(word, p + 1))
+            ++n;
+        return n;
+    };
+    const std::vector<std::pair<LoopUnroll, std::pair<size_t, size_t>>> cases = {
+        {LoopUnroll::AsHinted, {1, 1}}, {LoopUnroll::All, {2, 0}}, {LoopUnroll::None, {0, 2}}};
+    for (const auto& [policy, expected] : cases) {
+        Diagnostics ds;
+        EmitOptions options;
+        options.unroll = policy;
+        const std::string glsl =
+            emit_fragment(frag, Language::Glsl, "f.glsl", "k", ds, options).source;
+        const std::string hlsl =
+            emit_fragment(frag, Language::Hlsl, "f.hlsl", "k", ds, options).source;
+        CHECK(ds.empty());
+        CHECK(count(glsl, "[[unroll]] for") == expected.first);
+        CHECK(count(glsl, "[[dont_unroll]] for") == expected.second);
+        CHECK(count(hlsl, "[unroll] for") == expected.first);
+        CHECK(count(hlsl, "[loop] for") == expected.second);
+    }
+}
+
 TEST_CASE("a_malformed_loop_is_a_diagnostic", "[loop]") {
     Graph g;
     Expr x = varying(g, "x", Type::Float);
