@@ -52,6 +52,7 @@ std::unique_ptr<VulkanRunner> create_runner(const RunnerSetup& setup, std::strin
 Runner add_emit_command(CLI::App& app, const Common& common);
 Runner add_render_command(CLI::App& app, const Common& common);
 Runner add_probe_command(CLI::App& app, const Common& common);
+Runner add_cost_command(CLI::App& app, const Common& common);
 Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 
 // Material and scene files of build, explain and bench build / prune (build_command.cpp).

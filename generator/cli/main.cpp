@@ -62,6 +62,10 @@ int main(int argc, char** argv) {
     CLI::App* probe = app.add_subcommand(
         "probe", "numeric harness: one node over CSV input tuples on the GPU and the CPU");
     runners[probe] = add_probe_command(*probe, common);
+    CLI::App* cost = app.add_subcommand(
+        "cost", "instructions lavapipe executes for one draw of a variant, counted exactly "
+                "under valgrind: a cost that machine load does not change");
+    runners[cost] = add_cost_command(*cost, common);
     CLI::App* bench = app.add_subcommand("bench", "benchmarks (print a table, write CSV and JSON)");
     bench->require_subcommand(1);
     CLI::App* compile = bench->add_subcommand(
