@@ -57,6 +57,8 @@ Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 bool load_material_and_scenes(const std::string& material_path,
                               const std::vector<std::string>& scene_paths, Material& material,
                               std::vector<SceneFacts>& scenes, const Common& common);
+// --mode permutations|specialized|branching (build, bench modes).
+void add_mode_option(CLI::App& app, std::string& mode);
 Runner add_build_command(CLI::App& app, const Common& common);
 Runner add_explain_command(CLI::App& app, const Common& common);
 Runner add_bench_build_command(CLI::App& bench, const Common& common);

@@ -66,7 +66,7 @@ struct WaterShader {
     Variant variant;    // the variant; for a switched shader, the one its selectors' defaults draw
     std::string preset; // name of the preset applied to the parameter defaults, "" for none
     Graph fragment;     // inputs: varying v_uv; output "color" (vec4, linear HDR)
-    std::optional<ShaderChoices> switched; // set for a shader that serves several variants
+    std::optional<ShaderChoices> switched = std::nullopt; // a shader serving several variants
 
     // The variant's key, or the switched shader's (ShaderChoices::key).
     std::string key() const { return switched ? switched->key() : variant.key(); }
