@@ -66,6 +66,7 @@ Runner add_bench_prune_command(CLI::App& bench, const Common& common);
 Runner add_bench_accuracy_command(CLI::App& bench, const Common& common);
 Runner add_bench_half_command(CLI::App& bench, const Common& common);
 Runner add_bench_cpu_command(CLI::App& bench, const Common& common);
+Runner add_bench_modes_command(CLI::App& bench, const Common& common);
 
 // Prints a bench's error diagnostics, or else its error; false when there was either.
 bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error,
