@@ -161,6 +161,51 @@ void fill_in(Graph& g, std::vector<std::shared_ptr<Graph>>& bodies,
     }
 }
 
+// The Switch node over the cases (rebuilt with the results `kept` only) and its results, written
+// into `out`; quantities every case binds to a result are bound to it.
+void add_switch(Graph& g, const Expr& sel, const std::vector<std::shared_ptr<Graph>>& bodies,
+                const std::vector<std::vector<Expr>>& results, const std::vector<size_t>& kept,
+                std::vector<Expr>& out) {
+    Node sw;
+    sw.op = Op::Switch;
+    sw.type = Type::Tuple;
+    sw.args = {sel.id()};
+    auto cases = std::make_shared<SwitchCases>();
+    std::vector<std::shared_ptr<Graph>> compact;
+    for (size_t c = 0; c < bodies.size(); ++c) {
+        std::vector<uint32_t> keep;
+        for (size_t k : kept)
+            keep.push_back(results[c][k].id());
+        compact.push_back(rebuilt(*bodies[c], g, keep));
+        cases->case_args.push_back(sw.args.size());
+        for (uint32_t outer : compact.back()->captures())
+            sw.args.push_back(outer);
+        cases->cases.push_back(compact.back());
+    }
+    for (size_t j = 0; j < kept.size(); ++j) {
+        cases->result_types.push_back(results[0][kept[j]].type());
+        bool relaxed = true; // relaxed only if every case's value is: no value is ever narrowed
+        for (const auto& c : compact)
+            relaxed = relaxed && c->node(c->outputs()[j].node).relaxed;
+        cases->result_relaxed.push_back(relaxed);
+    }
+    sw.cases = cases;
+    const uint32_t id = g.add(std::move(sw));
+    for (size_t j = 0; j < kept.size(); ++j) {
+        Node r;
+        r.op = Op::SwitchResult;
+        r.type = cases->result_types[j];
+        r.relaxed = cases->result_relaxed[j];
+        r.args = {id};
+        r.values = {static_cast<double>(j)};
+        out[kept[j]] = Expr(&g, g.add(std::move(r)));
+        for (const auto& b : compact[0]->bindings())
+            if (b.node == compact[0]->outputs()[j].node &&
+                bound_in_every_case(compact, b.quantity, j))
+                g.bind(b.quantity, out[kept[j]].id());
+    }
+}
+
 } // namespace
 
 Expr read_in(Graph& body, Expr outer) {
@@ -220,44 +265,7 @@ std::vector<Expr> choose(Graph& g, Expr selector, int count, const CaseFn& case_
     }
     if (kept.empty()) return out;
 
-    Node sw;
-    sw.op = Op::Switch;
-    sw.type = Type::Tuple;
-    sw.args = {sel.id()};
-    auto cases = std::make_shared<SwitchCases>();
-    std::vector<std::shared_ptr<Graph>> compact;
-    for (size_t c = 0; c < bodies.size(); ++c) {
-        std::vector<uint32_t> keep;
-        for (size_t k : kept)
-            keep.push_back(results[c][k].id());
-        compact.push_back(rebuilt(*bodies[c], g, keep));
-        cases->case_args.push_back(sw.args.size());
-        for (uint32_t outer : compact.back()->captures())
-            sw.args.push_back(outer);
-        cases->cases.push_back(compact.back());
-    }
-    for (size_t j = 0; j < kept.size(); ++j) {
-        cases->result_types.push_back(results[0][kept[j]].type());
-        bool relaxed = true; // relaxed only if every case's value is: no value is ever narrowed
-        for (const auto& c : compact)
-            relaxed = relaxed && c->node(c->outputs()[j].node).relaxed;
-        cases->result_relaxed.push_back(relaxed);
-    }
-    sw.cases = cases;
-    const uint32_t id = g.add(std::move(sw));
-    for (size_t j = 0; j < kept.size(); ++j) {
-        Node r;
-        r.op = Op::SwitchResult;
-        r.type = cases->result_types[j];
-        r.relaxed = cases->result_relaxed[j];
-        r.args = {id};
-        r.values = {static_cast<double>(j)};
-        out[kept[j]] = Expr(&g, g.add(std::move(r)));
-        for (const auto& b : compact[0]->bindings())
-            if (b.node == compact[0]->outputs()[j].node &&
-                bound_in_every_case(compact, b.quantity, j))
-                g.bind(b.quantity, out[kept[j]].id());
-    }
+    add_switch(g, sel, bodies, results, kept, out);
     return out;
 }
 
