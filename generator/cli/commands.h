@@ -61,6 +61,8 @@ Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 bool load_material_and_scenes(const std::string& material_path,
                               const std::vector<std::string>& scene_paths, Material& material,
                               std::vector<SceneFacts>& scenes, const Common& common);
+// --mode permutations|specialized|branching (build, bench modes).
+void add_mode_option(CLI::App& app, std::string& mode);
 Runner add_build_command(CLI::App& app, const Common& common);
 Runner add_explain_command(CLI::App& app, const Common& common);
 Runner add_bench_build_command(CLI::App& bench, const Common& common);
@@ -69,6 +71,7 @@ Runner add_bench_accuracy_command(CLI::App& bench, const Common& common);
 Runner add_bench_half_command(CLI::App& bench, const Common& common);
 Runner add_bench_cpu_command(CLI::App& bench, const Common& common);
 Runner add_bench_unroll_command(CLI::App& bench, const Common& common);
+Runner add_bench_modes_command(CLI::App& bench, const Common& common);
 
 // Prints a bench's error diagnostics, or else its error; false when there was either.
 bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error,

@@ -101,6 +101,10 @@ int main(int argc, char** argv) {
         "cpu", "the CPU evaluator on the gold variant's reference image: per precision and "
                "thread count, interleaved rounds");
     runners[cpu] = add_bench_cpu_command(*cpu, common);
+    CLI::App* modes = bench->add_subcommand(
+        "modes", "the build modes side by side: build cost, SPIR-V size, pipeline, first and "
+                 "steady draw per variant, image against the permutation");
+    runners[modes] = add_bench_modes_command(*modes, common);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -21,7 +21,7 @@ namespace {
 // Leaves whose values change from block to block, or from iteration to iteration of a loop.
 bool varies(Op op) {
     return op == Op::Varying || op == Op::Ddx || op == Op::Ddy || op == Op::Loop ||
-           op == Op::LoopIndex || op == Op::Carried || op == Op::Captured;
+           op == Op::LoopIndex || op == Op::Carried || op == Op::Captured || op == Op::Switch;
 }
 
 } // namespace
@@ -46,6 +46,11 @@ BlockEvaluator::BlockEvaluator(const Graph& g, const Graph& params,
         if (n.op == Op::Loop) {
             comps_[id] = 0; // the carried values side by side
             for (Type t : n.loop->carried_types)
+                comps_[id] += component_count(t);
+        }
+        if (n.op == Op::Switch) {
+            comps_[id] = 0; // the results side by side
+            for (Type t : n.cases->result_types)
                 comps_[id] += component_count(t);
         }
         // Derivatives stay per lane: a quad's difference of the same value is 0, or NaN for an
@@ -194,6 +199,45 @@ bool BlockEvaluator::run_loop(uint32_t id, const Node& n, size_t begin, std::vec
                 active[l] = 0;
                 --remaining;
             }
+    }
+    return true;
+}
+
+} // namespace watergen
+
+namespace watergen {
+
+// Runs the case the selector picks (the same on every lane: its first lane's value decides) over
+// the block, and copies its results side by side into the Switch node's storage.
+bool BlockEvaluator::run_switch(uint32_t id, const Node& n, size_t begin, std::vector<double>& out,
+                                std::string& error) {
+    const SwitchCases& cases = *n.cases;
+    const size_t c = cases.case_for(sources_[0][0]);
+    auto& state = cases_[{id, c}];
+    const Graph& body = *cases.cases[c];
+    if (!state) {
+        state = std::make_unique<LoopState>();
+        state->live = body.live_nodes();
+        for (const auto& o : body.outputs())
+            state->next.push_back(o.node);
+        state->body = std::make_unique<BlockEvaluator>(body, params_, state->live, in_, p_,
+                                                       state->next, &state->frame);
+    }
+    LoopFrame& frame = state->frame;
+    frame.captured.clear();
+    const size_t end = c + 1 < cases.cases.size() ? cases.case_args[c + 1] : n.args.size();
+    for (size_t m = cases.case_args[c]; m < end; ++m)
+        frame.captured.push_back({sources_[m], lane_stride_[m], component_stride_[m]});
+    if (!state->body->run(begin, n_, error)) return false;
+    const size_t total = static_cast<size_t>(comps_[id]);
+    for (size_t k = 0, offset = 0; k < cases.results(); ++k) {
+        const uint32_t result = state->next[k];
+        const double* v = state->body->values(result);
+        const size_t ck = static_cast<size_t>(component_count(cases.result_types[k]));
+        const size_t stride = state->body->invariant(result) ? 0 : ck;
+        for (size_t l = 0; l < n_; ++l)
+            std::copy_n(v + l * stride, ck, out.data() + l * total + offset);
+        offset += ck;
     }
     return true;
 }

@@ -14,7 +14,8 @@ namespace watergen {
 constexpr size_t kBlock = 256; // lanes per block: a multiple of 4 (whole quads)
 
 // Where a loop body's leaves read: the iteration, the carried values (the Loop node's storage:
-// lane-major, every carried value's components in turn) and the captured outer values.
+// lane-major, every carried value's components in turn) and the captured outer values. A
+// switch case reads captured values only.
 struct LoopFrame {
     double index = 0;
     const double* carried = nullptr;
@@ -59,6 +60,8 @@ class BlockEvaluator {
                       std::string& error);
     bool run_loop(uint32_t id, const Node& n, size_t begin, std::vector<double>& out,
                   std::string& error);
+    bool run_switch(uint32_t id, const Node& n, size_t begin, std::vector<double>& out,
+                    std::string& error);
 
     const Graph& g_;
     const Graph& params_;
@@ -77,9 +80,11 @@ class BlockEvaluator {
     std::vector<const double*> sources_;
     std::vector<size_t> lane_stride_, component_stride_;
     std::vector<std::vector<double>> narrowed_;
-    // Per Loop node: its body's live nodes, frame and evaluator, made at its first run.
+    // Per Loop node (and per case of a Switch node): its body's live nodes, frame and
+    // evaluator, made at its first run.
     struct LoopState;
     std::map<uint32_t, std::unique_ptr<LoopState>> loops_;
+    std::map<std::pair<uint32_t, size_t>, std::unique_ptr<LoopState>> cases_;
 };
 
 } // namespace watergen

@@ -118,15 +118,20 @@ bool BlockEvaluator::compute(uint32_t id, const Node& n, int comps, size_t begin
         return true;
     case Op::Loop:
         return run_loop(id, n, begin, out, error);
-    case Op::LoopResult: {
-        // Carried value k of the loop: its components at the loop's offset for k.
-        const LoopBody& body = *g_.node(n.args[0]).loop;
+    case Op::LoopResult:
+    case Op::SwitchResult: {
+        // Carried value / result k: its components at the loop's or switch's offset for k.
+        const Node& whole = g_.node(n.args[0]);
+        const std::vector<Type>& types =
+            whole.loop ? whole.loop->carried_types : whole.cases->result_types;
         size_t offset = 0;
         for (size_t k = 0; k < static_cast<size_t>(n.values[0]); ++k)
-            offset += static_cast<size_t>(component_count(body.carried_types[k]));
+            offset += static_cast<size_t>(component_count(types[k]));
         each([&](size_t l, int c) { return sources_[0][l * lane_stride_[0] + offset + c]; });
         return true;
     }
+    case Op::Switch:
+        return run_switch(id, n, begin, out, error);
     case Op::LoopIndex:
         each([&](size_t, int) { return frame_->index; });
         return true;

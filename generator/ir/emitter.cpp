@@ -49,7 +49,8 @@ const GlslSyntax& syntax_for(Language l) {
     return l == Language::Glsl ? glsl : static_cast<const GlslSyntax&>(hlsl);
 }
 
-// The parameters, textures and inputs the live nodes of `g` and of its loop bodies read.
+// The parameters, textures and inputs the live nodes of `g` and of its loop bodies and switch
+// cases read.
 void collect_reads(const Graph& g, std::set<std::string>& uniforms, std::set<std::string>& textures,
                    std::vector<std::pair<std::string, Type>>& varyings) {
     for (uint32_t id : g.live_nodes()) {
@@ -59,7 +60,8 @@ void collect_reads(const Graph& g, std::set<std::string>& uniforms, std::set<std
         if (n.op == Op::Varying && std::find(varyings.begin(), varyings.end(),
                                              std::pair{n.name, n.type}) == varyings.end())
             varyings.emplace_back(n.name, n.type);
-        if (n.loop) collect_reads(*n.loop->body, uniforms, textures, varyings);
+        for (const Graph* body : bodies_of(n))
+            collect_reads(*body, uniforms, textures, varyings);
     }
 }
 

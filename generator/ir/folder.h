@@ -15,6 +15,10 @@ namespace watergen::fold {
 // How a node reads in explain output: its name when it has one, else its operation.
 std::string label(const Node& n);
 
+// `g` with every switch whose selector the facts decide replaced by its selected case
+// (ir_fold_switch.cpp); nullopt when there is none.
+std::optional<Graph> inline_decided_switches(const Graph& g, const FoldFacts& facts);
+
 class Folder {
   public:
     Folder(const Graph& in, const FoldFacts& facts);

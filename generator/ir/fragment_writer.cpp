@@ -47,11 +47,12 @@ bool FragmentWriter::is_half(uint32_t id) const {
 
 namespace {
 
-// Whether `pred` holds for a live node of `g` or of a loop body in it.
+// Whether `pred` holds for a live node of `g` or of a loop body or switch case in it.
 template <class P> bool any_live(const Graph& g, const P& pred) {
     for (uint32_t id : g.live_nodes()) {
-        const Node& n = g.node(id);
-        if (pred(g, id) || (n.loop && any_live(*n.loop->body, pred))) return true;
+        if (pred(g, id)) return true;
+        for (const Graph* body : bodies_of(g.node(id)))
+            if (any_live(*body, pred)) return true;
     }
     return false;
 }
@@ -95,13 +96,13 @@ std::vector<Line> FragmentWriter::lines(std::set<Op>& used_ops) {
     for (uint32_t id : live) {
         const Node& n = g_.node(id);
         used_ops.insert(n.op);
-        if (is_leaf(n.op) || n.op == Op::LoopResult || n.type == Type::Texture2D ||
-            n.type == Type::TextureCube)
+        if (is_leaf(n.op) || n.op == Op::LoopResult || n.op == Op::SwitchResult ||
+            n.type == Type::Texture2D || n.type == Type::TextureCube)
             continue;
         const bool cross_origin =
             single_user[id] != UINT32_MAX && g_.node(single_user[id]).origin != n.origin;
         if (uses[id] > 1 || !n.name.empty() || cross_origin || n.op == Op::Loop ||
-            must_be_named(id, single_user[id]))
+            n.op == Op::Switch || must_be_named(id, single_user[id]))
             temp_[id] = unique_name(n, id);
     }
 
@@ -118,6 +119,10 @@ std::vector<Line> FragmentWriter::lines(std::set<Op>& used_ops) {
         }
         if (n.op == Op::Loop) {
             loop_lines(id, out, used_ops);
+            continue;
+        }
+        if (n.op == Op::Switch) {
+            switch_lines(id, out, used_ops);
             continue;
         }
         out.push_back({declared_type(n.type, n.relaxed, is_half(id)) + " " + it->second + " = " +
@@ -189,10 +194,60 @@ void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op
     out.push_back({"}", n.origin});
 }
 
+// T choice_r0; ...            (every result declared before the cases)
+// if (selector == 0.0) {
+//     <case 0>
+//     choice_r0 = out0; ...
+// } else if (selector == 1.0) {
+//     ...
+// } else {
+//     <last case>
+// }
+void FragmentWriter::switch_lines(uint32_t id, std::vector<Line>& out, std::set<Op>& used_ops) {
+    const Node& n = g_.node(id);
+    const SwitchCases& cases = *n.cases;
+    const std::string& base = temp_.at(id);
+    std::vector<bool> half(cases.results());
+    for (size_t k = 0; k < cases.results(); ++k) {
+        const Type t = cases.result_types[k];
+        half[k] = spelled_half(t, cases.result_relaxed[k], strict_half_);
+        out.push_back({declared_type(t, cases.result_relaxed[k], half[k]) + " " + base + "_r" +
+                           std::to_string(k) + ";",
+                       n.origin});
+    }
+    const std::string selector = strip_outer(expr(n.args[0]));
+    for (size_t c = 0; c < cases.cases.size(); ++c) {
+        const bool last = c + 1 == cases.cases.size();
+        const std::string test =
+            "if (" + selector + " == " + syntax_.literal(static_cast<double>(c)) + ") {";
+        // One case runs whatever the selector says: a plain block.
+        const std::string head = c == 0 ? (last ? "{" : test)
+                                 : last ? "} else {"
+                                        : "} else " + test;
+        out.push_back({head, n.origin});
+        BodyNames names;
+        const size_t first = cases.case_args[c];
+        const size_t end = last ? n.args.size() : cases.case_args[c + 1];
+        for (size_t m = first; m < end; ++m)
+            names.captured.push_back(strip_outer(expr(n.args[m])));
+        const Graph& body = *cases.cases[c];
+        FragmentWriter inner(body, *this, names);
+        std::vector<Line> inside = inner.lines(used_ops);
+        for (size_t k = 0; k < cases.results(); ++k)
+            inside.push_back({base + "_r" + std::to_string(k) + " = " +
+                                  strip_outer(inner.expr_as(body.outputs()[k].node, half[k])) + ";",
+                              n.origin});
+        for (auto& l : inside)
+            out.push_back({l.text.empty() ? "" : "    " + l.text, l.origin});
+    }
+    out.push_back({"}", n.origin});
+}
+
 std::string FragmentWriter::unique_name(const Node& n, uint32_t id) {
-    std::string base = !n.name.empty()    ? n.name
-                       : n.op == Op::Loop ? fmt::format("loop{}", id)
-                                          : fmt::format("t{}", id);
+    std::string base = !n.name.empty()      ? n.name
+                       : n.op == Op::Loop   ? fmt::format("loop{}", id)
+                       : n.op == Op::Switch ? fmt::format("choice{}", id)
+                                            : fmt::format("t{}", id);
     std::string name = base;
     for (int k = 2; taken_->count(name); ++k)
         name = fmt::format("{}_{}", base, k);
@@ -211,8 +266,9 @@ bool FragmentWriter::must_be_named(uint32_t id, uint32_t user) const {
     if (own == Op::Select || (compute_ && (own == Op::Ddx || own == Op::Ddy))) return true;
     if (user == UINT32_MAX) return false;
     const Op op = g_.node(user).op;
-    // A loop's initial and captured values are read in its declarations and body by name.
-    return op == Op::Select || op == Op::Sample || op == Op::SampleLevel || op == Op::Loop;
+    // A loop's initial and captured values, and a switch's, are read in its body by name.
+    return op == Op::Select || op == Op::Sample || op == Op::SampleLevel || op == Op::Loop ||
+           op == Op::Switch;
 }
 
 std::string FragmentWriter::expr(uint32_t id) {
@@ -268,6 +324,8 @@ std::string FragmentWriter::spell_at(uint32_t id, bool half, bool level0) {
         return n.name;
     case Op::LoopResult:
         return temp_.at(n.args[0]) + "_c" + std::to_string(static_cast<int>(n.values[0]));
+    case Op::SwitchResult:
+        return temp_.at(n.args[0]) + "_r" + std::to_string(static_cast<int>(n.values[0]));
     case Op::LoopIndex:
         return syntax_.int_to_float(names_->index);
     case Op::Carried:

@@ -1,5 +1,6 @@
 // Writes a graph's live nodes as the statements of a shader function body, one temporary per
-// shared or named value, every line attributed to its feature node; loops become `for` loops.
+// shared or named value, every line attributed to its feature node; loops become `for` loops,
+// switches `if` / `else if` chains.
 // Shared by the stage emitters (emitter.cpp, vertex_emitter.cpp). Private to ir/.
 #pragma once
 
@@ -22,7 +23,7 @@ std::string strip_outer(const std::string& s);
 
 class FragmentWriter {
   public:
-    // How a loop body's leaves are spelled (set by the writer of the enclosing graph).
+    // How a loop body's or switch case's leaves are spelled (set by the enclosing graph's writer).
     struct BodyNames {
         std::string index;                 // the loop counter, an int
         std::vector<std::string> carried;  // per carried value
@@ -55,6 +56,7 @@ class FragmentWriter {
     FragmentWriter(const Graph& g, const FragmentWriter& enclosing, const BodyNames& names);
     std::vector<Line> lines(std::set<Op>& used_ops);
     void loop_lines(uint32_t id, std::vector<Line>& lines, std::set<Op>& used_ops);
+    void switch_lines(uint32_t id, std::vector<Line>& lines, std::set<Op>& used_ops);
     bool must_be_named(uint32_t id, uint32_t user) const;
     std::string unique_name(const Node& n, uint32_t id);
     std::string declared_type(Type t, bool relaxed, bool half) const;

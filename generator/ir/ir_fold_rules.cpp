@@ -29,6 +29,7 @@ bool pure(Op op) {
     case Op::SampleLevel:
     case Op::Ddx:
     case Op::Ddy:
+    case Op::Switch: // its cases are graphs of their own
         return false;
     default:
         return true;
@@ -278,10 +279,12 @@ std::pair<Intervals, FactSet> Folder::bounds(const Node& n, uint32_t in_id) cons
     if (n.op == Op::Uniform || n.op == Op::UniformElement || n.op == Op::Varying ||
         n.op == Op::Sample || n.op == Op::SampleLevel)
         return leaf_bounds(in_, in_.node(in_id), in_id);
+    // A switch result: from the switch's arguments, through its cases.
+    const Node& from = n.op == Op::SwitchResult ? out_.node(n.args[0]) : n;
     FactSet facts;
     std::vector<const Intervals*> args;
     std::vector<Type> types;
-    for (uint32_t a : n.args) {
+    for (uint32_t a : from.args) {
         args.push_back(&values_[a]);
         types.push_back(out_.node(a).type);
         facts |= facts_[a];
@@ -292,6 +295,8 @@ std::pair<Intervals, FactSet> Folder::bounds(const Node& n, uint32_t in_id) cons
     }
     if (n.op == Op::LoopResult)
         return {loop_result_bounds(n, out_.node(n.args[0]), values_[n.args[0]]), facts};
+    if (n.op == Op::SwitchResult)
+        return {switch_result_intervals(from, static_cast<size_t>(n.values[0]), args), facts};
     return {node_intervals(n, args, types), facts};
 }
 

@@ -199,4 +199,24 @@ using LoopBodyFn = std::function<LoopStep(Expr index, const std::vector<Expr>& c
 std::vector<Expr> loop(Graph& g, int trip_count, const std::vector<Expr>& initial,
                        const LoopBodyFn& body, LoopOptions options = {});
 
+// Uniform choices. choose() builds one graph per case, like a loop body: case_body gets the
+// case's graph and index and returns the results, and may read any value of the enclosing code
+// (captured; read_in() captures one explicitly, so that everything computed from it is the
+// case's own work). The selector must be the same on every pixel of a draw: a Float built from
+// constants and parameters only (a specialization constant or a uniform-block member). Case k
+// runs where the selector is k, the last case for any other value; it is emitted as
+// `if (sel == 0.0) {...} else if ...`, so the other cases do not run, and cases may take
+// derivatives. Every case gives the same number of results, typed alike; a result no case gives
+// (an invalid Expr in every case) comes back invalid, one some cases give and others do not is
+// an error unless fill_missing supplies it. A result every case passes through unchanged is the
+// outer value itself. A quantity every case binds to its result k (Graph::bind) is bound to result
+// k. fill_missing, when given, supplies a result some cases give and another does not, in that
+// case's graph (result index and type); an invalid Expr from it leaves the error.
+using CaseFn = std::function<std::vector<Expr>(Graph& case_graph, int case_index)>;
+using FillFn = std::function<Expr(Graph& case_graph, size_t result, Type type)>;
+std::vector<Expr> choose(Graph& g, Expr selector, int cases, const CaseFn& case_body,
+                         const FillFn& fill_missing = {});
+// `outer` as a value of `body`, a loop body or case being built inside its graph (captured).
+Expr read_in(Graph& body, Expr outer);
+
 } // namespace watergen
