@@ -174,11 +174,18 @@ bool BlockEvaluator::run_loop(uint32_t id, const Node& n, size_t begin, std::vec
     frame.carried = out.data();
     frame.carried_lane_stride = total;
     frame.captured.clear();
-    for (size_t m = carried; m < n.args.size(); ++m)
+    for (size_t m = body.first_capture(); m < n.args.size(); ++m)
         frame.captured.push_back({sources_[m], lane_stride_[m], component_stride_[m]});
+    // A trip count from data is the same on every lane (dsl.h checks it), and floored; a NaN
+    // fails the comparison as it fails the GPU's.
+    int trips = body.trip_count;
+    if (body.counted) {
+        const double count = arg(n, carried, 0, 0);
+        trips = count >= 1.0 ? static_cast<int>(std::min(count, double(trips))) : 0;
+    }
     std::vector<char> active(n_, 1);
     size_t remaining = n_;
-    for (int i = 0; i < body.trip_count && remaining > 0; ++i) {
+    for (int i = 0; i < trips && remaining > 0; ++i) {
         frame.index = i;
         if (!state->body->run(begin, n_, error)) return false;
         for (size_t k = 0; k < carried; ++k) {

@@ -302,6 +302,7 @@ EmittedShader emit_from_skeleton(const Graph& g, Language language, ShaderStage 
         {"inputs", {{syntax.entry_inputs(out.interface), ""}}},
     };
     blocks["body"] = writer.body(results, used_ops);
+    blocks["extensions"] = as_lines(syntax.extensions(false, writer.writes_loop()));
     blocks["prelude"] = as_lines(syntax.prelude(used_ops));
     for (size_t i = 0; i < g.outputs().size(); ++i)
         blocks["output_" + g.outputs()[i].name] = {{results[i], ""}};

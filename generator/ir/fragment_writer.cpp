@@ -101,8 +101,10 @@ std::vector<Line> FragmentWriter::lines(std::set<Op>& used_ops) {
             continue;
         const bool cross_origin =
             single_user[id] != UINT32_MAX && g_.node(single_user[id]).origin != n.origin;
-        if (uses[id] > 1 || !n.name.empty() || cross_origin || n.op == Op::Loop ||
-            n.op == Op::Switch || must_be_named(id, single_user[id]))
+        // An array element's name is its array's (identity, not a naming hint).
+        const bool has_name = !n.name.empty() && n.op != Op::UniformElement;
+        if (uses[id] > 1 || has_name || cross_origin || n.op == Op::Loop || n.op == Op::Switch ||
+            must_be_named(id, single_user[id]))
             temp_[id] = unique_name(n, id);
     }
 
@@ -137,12 +139,61 @@ std::string FragmentWriter::declared_type(Type t, bool relaxed, bool half) const
     return half ? syntax_.half_type(t) : syntax_.type(t);
 }
 
+namespace {
+
+// The order in which a loop's carried variables take their next values, and which of them go
+// through a temporary first. A next value written inline reads some carried variables
+// (`reads[k]`, itself aside): it is assigned before any of those changes. Where such reads form
+// a cycle, the smallest index in it takes a temporary (computed before any assignment).
+std::vector<size_t> assignment_order(const std::vector<std::set<size_t>>& reads,
+                                     std::vector<bool>& via_temp) {
+    const size_t count = reads.size();
+    std::vector<bool> done(count, false);
+    std::vector<size_t> order;
+    // Whether j can change now: no variable still to be assigned inline reads it.
+    auto ready = [&](size_t j) {
+        for (size_t k = 0; k < count; ++k)
+            if (!done[k] && k != j && !via_temp[k] && reads[k].count(j)) return false;
+        return true;
+    };
+    while (order.size() < count) {
+        size_t next = count;
+        for (size_t j = 0; j < count && next == count; ++j)
+            if (!done[j] && ready(j)) next = j;
+        if (next == count) { // a cycle: break it at its smallest index
+            for (size_t j = 0; j < count; ++j)
+                if (!done[j] && !via_temp[j]) {
+                    via_temp[j] = true;
+                    break;
+                }
+            continue;
+        }
+        done[next] = true;
+        order.push_back(next);
+    }
+    return order;
+}
+
+} // namespace
+
+// The carried variables node `id` of a loop body reads where it is written inline (up to the
+// body's temporaries, which hold their values already).
+void FragmentWriter::inline_carried(uint32_t id, std::set<size_t>& out) const {
+    if (temp_.count(id)) return;
+    const Node& n = g_.node(id);
+    if (n.op == Op::Carried) out.insert(static_cast<size_t>(n.values[0]));
+    for (uint32_t a : n.args)
+        inline_carried(a, out);
+}
+
 // T loop_c0 = init0; ...
 // [[dont_unroll]] for (int loop_i = 0; loop_i < N; ++loop_i) {
+//     if (!(float(loop_i) < trip_count)) break;   (a trip count from data)
 //     <body>
-//     T loop_n0 = next0; ...   (every next value before any carried variable changes)
+//     T loop_n1 = next1;   (only where next values read each other's carried variables in a cycle)
 //     bool loop_go = keep_going;
-//     loop_c0 = loop_n0; ...
+//     loop_c0 = next0; loop_c1 = loop_n1; ...   (each before the variables its next value reads
+//                                                change; none where the value stays)
 //     if (!loop_go) break;
 // }
 void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op>& used_ops) {
@@ -162,13 +213,20 @@ void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op
                            strip_outer(expr_as(n.args[k], half[k])) + ";",
                        n.origin});
     }
-    for (size_t m = body.carried(); m < n.args.size(); ++m)
+    for (size_t m = body.first_capture(); m < n.args.size(); ++m)
         names.captured.push_back(strip_outer(expr(n.args[m])));
     const bool unroll =
         unroll_ == LoopUnroll::All || (unroll_ == LoopUnroll::AsHinted && body.unroll);
     out.push_back({syntax_.loop_header(names.index, body.trip_count, unroll), n.origin});
+    std::vector<Line> inside;
+    // A NaN count compares false: no iteration, as the CPU evaluator runs it.
+    if (body.counted)
+        inside.push_back({"if (!(" + syntax_.int_to_float(names.index) + " < " +
+                              strip_outer(expr_as(n.args[body.carried()], false)) + ")) break;",
+                          n.origin});
     FragmentWriter inner(*body.body, *this, names);
-    std::vector<Line> inside = inner.lines(used_ops);
+    for (Line& l : inner.lines(used_ops))
+        inside.push_back(std::move(l));
     uint32_t keep_going = UINT32_MAX;
     std::vector<uint32_t> next;
     for (const auto& o : body.body->outputs()) {
@@ -177,17 +235,28 @@ void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op
         else
             next.push_back(o.node); // "next0", "next1", ... in order
     }
-    for (size_t k = 0; k < body.carried(); ++k)
-        inside.push_back({types[k] + " " + base + "_n" + std::to_string(k) + " = " +
-                              strip_outer(inner.expr_as(next[k], half[k])) + ";",
-                          n.origin});
+    std::vector<std::set<size_t>> reads(body.carried());
+    for (size_t k = 0; k < body.carried(); ++k) {
+        inner.inline_carried(next[k], reads[k]);
+        reads[k].erase(k);
+    }
+    std::vector<bool> via_temp(body.carried(), false);
+    const std::vector<size_t> order = assignment_order(reads, via_temp);
+    std::vector<std::string> value(body.carried());
+    for (size_t k = 0; k < body.carried(); ++k) {
+        value[k] = strip_outer(inner.expr_as(next[k], half[k]));
+        if (!via_temp[k]) continue;
+        inside.push_back(
+            {types[k] + " " + base + "_n" + std::to_string(k) + " = " + value[k] + ";", n.origin});
+        value[k] = base + "_n" + std::to_string(k);
+    }
     if (keep_going != UINT32_MAX)
         inside.push_back({syntax_.type(Type::Bool) + " " + base +
                               "_go = " + strip_outer(inner.expr(keep_going)) + ";",
                           n.origin});
-    for (size_t k = 0; k < body.carried(); ++k)
-        inside.push_back(
-            {names.carried[k] + " = " + base + "_n" + std::to_string(k) + ";", n.origin});
+    for (size_t k : order)
+        if (value[k] != names.carried[k])
+            inside.push_back({names.carried[k] + " = " + value[k] + ";", n.origin});
     if (keep_going != UINT32_MAX) inside.push_back({"if (!" + base + "_go) break;", n.origin});
     for (auto& l : inside)
         out.push_back({l.text.empty() ? "" : "    " + l.text, l.origin});

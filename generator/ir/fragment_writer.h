@@ -57,6 +57,7 @@ class FragmentWriter {
     std::vector<Line> lines(std::set<Op>& used_ops);
     void loop_lines(uint32_t id, std::vector<Line>& lines, std::set<Op>& used_ops);
     void switch_lines(uint32_t id, std::vector<Line>& lines, std::set<Op>& used_ops);
+    void inline_carried(uint32_t id, std::set<size_t>& out) const;
     bool must_be_named(uint32_t id, uint32_t user) const;
     std::string unique_name(const Node& n, uint32_t id);
     std::string declared_type(Type t, bool relaxed, bool half) const;

@@ -115,8 +115,8 @@ std::pair<Intervals, FactSet> Folder::loop_bounds(const Node& n,
     State state(loop.carried());
     for (size_t k = 0; k < loop.carried(); ++k)
         state[k] = *args[k];
-    const std::vector<const Intervals*> captured(args.begin() + static_cast<long>(loop.carried()),
-                                                 args.end());
+    const std::vector<const Intervals*> captured(
+        args.begin() + static_cast<long>(loop.first_capture()), args.end());
     BodyScratch scratch;
     scratch.live = loop.body->live_nodes();
     scratch.values.resize(loop.body->size());
@@ -131,7 +131,8 @@ std::pair<Intervals, FactSet> Folder::loop_bounds(const Node& n,
             all.insert(all.end(), c.begin(), c.end());
         return std::pair<Intervals, FactSet>{std::move(all), facts};
     };
-    if (!loop.has_exit && loop.trip_count <= kStepByStep) {
+    // A loop that may stop early (an exit, or a trip count from data) ends in any state.
+    if (!loop.has_exit && !loop.counted && loop.trip_count <= kStepByStep) {
         for (int i = 0; i < loop.trip_count; ++i) {
             auto [next, f] = body_step(loop, scratch, state, captured);
             state = std::move(next);

@@ -196,7 +196,18 @@ struct LoopOptions {
 };
 using LoopBodyFn = std::function<LoopStep(Expr index, const std::vector<Expr>& carried)>;
 // The carried values after at most `trip_count` iterations (1..4096), typed like `initial`.
+// The loop runs in `g`, or in the innermost loop body being built that an initial value (or the
+// count) belongs to: a loop nested in another's body whose initial values are all outer values
+// is given that body's graph as `g` (the graph of any value of the body, e.g. `xz.graph()`).
 std::vector<Expr> loop(Graph& g, int trip_count, const std::vector<Expr>& initial,
+                       const LoopBodyFn& body, LoopOptions options = {});
+// A trip count from data: `count` (float) runs min(floor(count), max_trip_count) iterations,
+// none where floor(count) < 1 or count is NaN (the initial values come out); max_trip_count is
+// 1..4096. Every pixel runs the same count: `count` may read parameters (uniforms or
+// specialization constants) and constants only; a varying, texture, loop index, carried value or
+// loop result in it is a diagnostic. Emitted as `for (i = 0; i < max; ++i) { if (!(float(i) <
+// floor(count))) break; ... }`.
+std::vector<Expr> loop(Graph& g, Expr count, int max_trip_count, const std::vector<Expr>& initial,
                        const LoopBodyFn& body, LoopOptions options = {});
 
 // Uniform choices. choose() builds one graph per case, like a loop body: case_body gets the

@@ -99,7 +99,7 @@ enum class Op : uint8_t {
     Ddx,
     Ddy,
     // bounded loops (see LoopBody)
-    Loop,       // args: the carried values' initial values, then the captured outer values
+    Loop,       // args: the carried values' initial values, [the trip count,] the captured values
     LoopResult, // args: the Loop; values[0] = carried index; the value after the last iteration
     LoopIndex,  // in a loop body: the iteration, 0, 1, ... as a float
     Carried,    // in a loop body: values[0] = carried index; its value at this iteration's start
@@ -259,12 +259,12 @@ class Graph {
 };
 
 // A bounded loop: at most `trip_count` iterations of `body`, a graph whose leaves are
-// LoopIndex, Carried k (k < carried), Captured m (an outer value, argument carried + m of the
-// Loop node; parameters and inputs come in this way too), constants and textures. Its outputs
-// "next0", "next1", ... are the carried values of the next iteration, typed like the initial
-// values; an optional Bool output "continue" ends the loop where it is false (per pixel, after the
-// carried values are updated). The enclosing graph's parameters hold the body's: a body never
-// declares its own.
+// LoopIndex, Carried k (k < carried), Captured m (an outer value, argument first_capture() + m
+// of the Loop node; parameters and inputs come in this way too), constants and textures. Its
+// outputs "next0", "next1", ... are the carried values of the next iteration, typed like the
+// initial values; an optional Bool output "continue" ends the loop where it is false (per pixel,
+// after the carried values are updated). The enclosing graph's parameters hold the body's: a body
+// never declares its own.
 struct LoopBody {
     std::shared_ptr<const Graph> body;
     std::vector<Type> carried_types; // one per carried value
@@ -272,7 +272,12 @@ struct LoopBody {
     int trip_count = 0;
     bool unroll = false; // the hint: [[unroll]] / [unroll], else [[dont_unroll]] / [loop]
     bool has_exit = false;
+    // A trip count from data: argument carried() of the Loop node, a Float the same for every
+    // pixel and already floored; the loop runs min(it, trip_count) iterations, none when it is
+    // below 1 or NaN.
+    bool counted = false;
     size_t carried() const { return carried_types.size(); }
+    size_t first_capture() const { return carried() + (counted ? 1 : 0); }
 };
 
 // A uniform choice between graphs: case k runs where the selector (a Float the same on every
