@@ -33,6 +33,19 @@ bool load_material_and_scenes(const std::string& material_path,
     return true;
 }
 
+void add_mode_option(CLI::App& app, std::string& mode) {
+    app.add_option("--mode", mode,
+                   "build mode: permutations (default: one shader per variant), specialized (one "
+                   "shader per material and precision, each axis a switch on a specialization "
+                   "constant) or branching (the same, switching on uniform-block members)")
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                if (parse_build_mode(text)) return "";
+                return "unknown build mode '" + text + "'; expected one of " + build_mode_names();
+            },
+            "MODE"));
+}
+
 Runner add_build_command(CLI::App& app, const Common& common) {
     struct Options {
         std::string material;
@@ -42,6 +55,8 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         std::string cache;
         bool no_cache = false;
         bool quiet = false;
+        std::string mode = "permutations";
+        bool freeze = false;
     };
     auto o = std::make_shared<Options>();
     app.add_option("material", o->material,
@@ -66,8 +81,21 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                    "cache directory (default: $XDG_CACHE_HOME/watergen or ~/.cache/watergen)");
     app.add_flag("--no-cache", o->no_cache, "build every variant, and store nothing");
     app.add_flag("--quiet,-q", o->quiet, "no progress line, only the summary");
+    add_mode_option(app, o->mode);
+    app.add_flag("--freeze", o->freeze,
+                 "with --mode specialized: also write each variant's SPIR-V with its selectors "
+                 "frozen offline by spirv-opt (<shader>/<lang>/frozen/<variant>.frag.spv)");
     return [o, &common]() {
         BuildRequest request;
+        request.mode = *parse_build_mode(o->mode);
+        request.freeze = o->freeze;
+        if (o->freeze && request.mode != BuildMode::Specialized) {
+            std::fprintf(stderr,
+                         "watergen: error: --freeze: freezes specialization constants; "
+                         "expected --mode specialized, got --mode %s\n",
+                         o->mode.c_str());
+            return kUsage;
+        }
         if (!load_material_and_scenes(o->material, o->scenes, request.material, request.scenes,
                                       common))
             return kUsage;
@@ -94,11 +122,15 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                 : fmt::format("; {} cache entr{} failed verification, rebuilt", s.cache_rejected,
                               s.cache_rejected == 1 ? "y" : "ies");
         std::printf("%s\n",
-                    fmt::format("build: {} variants ({} built, {} cached, {} shared between "
+                    fmt::format("build: {} variants{} ({} built, {} cached, {} shared between "
                                 "scenes, {} same shader as another variant, {} failed{}) "
                                 "in {:.2f} s on {} thread{}{}",
-                                s.variants, s.built, s.cached, s.shared, s.same, s.failed, rejected,
-                                s.seconds, threads, threads == 1 ? "" : "s",
+                                s.variants,
+                                request.mode == BuildMode::Permutations
+                                    ? std::string()
+                                    : fmt::format(" in {} {} shaders", s.shaders, o->mode),
+                                s.built, s.cached, s.shared, s.same, s.failed, rejected, s.seconds,
+                                threads, threads == 1 ? "" : "s",
                                 s.ok()
                                     ? fmt::format(" -> {} ({} files)", o->out, s.files)
                                     : std::string("; nothing written, ") + o->out + " is unchanged")

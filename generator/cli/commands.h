@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "watergen/ir/diagnostic.h"
+#include "watergen/ir/emitter.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
 #include "watergen/runtime/vulkan_runner.h"
@@ -36,6 +37,8 @@ void add_variant_options(CLI::App& app, Variant& variant, std::string& preset);
 // false on bad input (exit with kUsage).
 bool resolve_variant(const Variant& variant, const std::string& preset_name, const Preset** preset);
 void print_diagnostics(const Diagnostics& ds, const Common& common);
+// Adds --unroll hinted|all|none: the unroll hint every loop is emitted with.
+void add_unroll_option(CLI::App& app, LoopUnroll& unroll);
 
 struct RunnerSetup {
     std::string shader_cache = "off";
@@ -49,6 +52,7 @@ std::unique_ptr<VulkanRunner> create_runner(const RunnerSetup& setup, std::strin
 Runner add_emit_command(CLI::App& app, const Common& common);
 Runner add_render_command(CLI::App& app, const Common& common);
 Runner add_probe_command(CLI::App& app, const Common& common);
+Runner add_cost_command(CLI::App& app, const Common& common);
 Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 
 // Material and scene files of build, explain and bench build / prune (build_command.cpp).
@@ -57,6 +61,8 @@ Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 bool load_material_and_scenes(const std::string& material_path,
                               const std::vector<std::string>& scene_paths, Material& material,
                               std::vector<SceneFacts>& scenes, const Common& common);
+// --mode permutations|specialized|branching (build, bench modes).
+void add_mode_option(CLI::App& app, std::string& mode);
 Runner add_build_command(CLI::App& app, const Common& common);
 Runner add_explain_command(CLI::App& app, const Common& common);
 Runner add_bench_build_command(CLI::App& bench, const Common& common);
@@ -64,6 +70,8 @@ Runner add_bench_prune_command(CLI::App& bench, const Common& common);
 Runner add_bench_accuracy_command(CLI::App& bench, const Common& common);
 Runner add_bench_half_command(CLI::App& bench, const Common& common);
 Runner add_bench_cpu_command(CLI::App& bench, const Common& common);
+Runner add_bench_unroll_command(CLI::App& bench, const Common& common);
+Runner add_bench_modes_command(CLI::App& bench, const Common& common);
 
 // Prints a bench's error diagnostics, or else its error; false when there was either.
 bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error,

@@ -14,6 +14,7 @@ Runner add_emit_command(CLI::App& app, const Common& common) {
         Variant variant = default_variant();
         std::string preset;
         bool covering = false, strict_half = false;
+        LoopUnroll unroll = LoopUnroll::AsHinted;
         std::string out = "out/emit";
     };
     auto o = std::make_shared<Options>();
@@ -25,6 +26,7 @@ Runner add_emit_command(CLI::App& app, const Common& common) {
     app.add_flag("--strict-half", o->strict_half,
                  "write a half variant's relaxed math in explicit 16-bit types (GLSL float16_t, "
                  "HLSL half) instead of mediump / min16float hints; needs shaderFloat16");
+    add_unroll_option(app, o->unroll);
     app.add_option("--out", o->out,
                    "output directory; each variant goes to <out>/<variant>/ (default out/emit)");
     return [o, &common]() {
@@ -35,7 +37,8 @@ Runner add_emit_command(CLI::App& app, const Common& common) {
             o->covering ? pairwise_covering_variants() : std::vector<Variant>{o->variant};
         int failed = 0;
         for (const Variant& v : variants) {
-            const VariantBuild build = build_variant(v, preset, EmitOptions{o->strict_half});
+            const VariantBuild build =
+                build_variant(v, preset, EmitOptions{o->strict_half, {}, o->unroll});
             print_diagnostics(build.diagnostics, common);
             if (!build.ok()) {
                 std::fprintf(stderr, "watergen: error: %s failed; nothing written for it\n",

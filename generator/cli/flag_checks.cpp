@@ -23,4 +23,12 @@ CLI::Validator finite_range(double lo, double hi) {
         fmt::format("FLOAT in [{} - {}]", lo, hi));
 }
 
+void add_unroll_option(CLI::App& app, LoopUnroll& unroll) {
+    app.add_option_function<std::string>(
+           "--unroll", [&unroll](const std::string& word) { unroll = *parse_loop_unroll(word); },
+           "unroll hint of every loop: hinted (each loop's own, default), all ([[unroll]] / "
+           "[unroll]) or none ([[dont_unroll]] / [loop])")
+        ->check(CLI::IsMember({"hinted", "all", "none"}));
+}
+
 } // namespace watergen::cli

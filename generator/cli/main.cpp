@@ -62,6 +62,10 @@ int main(int argc, char** argv) {
     CLI::App* probe = app.add_subcommand(
         "probe", "numeric harness: one node over CSV input tuples on the GPU and the CPU");
     runners[probe] = add_probe_command(*probe, common);
+    CLI::App* cost = app.add_subcommand(
+        "cost", "instructions lavapipe executes for one draw of a variant, counted exactly "
+                "under valgrind: a cost that machine load does not change");
+    runners[cost] = add_cost_command(*cost, common);
     CLI::App* bench = app.add_subcommand("bench", "benchmarks (print a table, write CSV and JSON)");
     bench->require_subcommand(1);
     CLI::App* compile = bench->add_subcommand(
@@ -89,10 +93,18 @@ int main(int argc, char** argv) {
         "half", "the covering set's half variants in 16-bit arithmetic on the GPU: agreement "
                 "with the CPU half model, error against full precision");
     runners[half] = add_bench_half_command(*half, common);
+    CLI::App* unroll = bench->add_subcommand(
+        "unroll", "kept loops against unrolled ones on lavapipe, per waves choice: shader size, "
+                  "first draw (JIT) and steady draw, interleaved with an A/A pair");
+    runners[unroll] = add_bench_unroll_command(*unroll, common);
     CLI::App* cpu = bench->add_subcommand(
         "cpu", "the CPU evaluator on the gold variant's reference image: per precision and "
                "thread count, interleaved rounds");
     runners[cpu] = add_bench_cpu_command(*cpu, common);
+    CLI::App* modes = bench->add_subcommand(
+        "modes", "the build modes side by side: build cost, SPIR-V size, pipeline, first and "
+                 "steady draw per variant, image against the permutation");
+    runners[modes] = add_bench_modes_command(*modes, common);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

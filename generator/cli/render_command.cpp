@@ -83,6 +83,7 @@ struct RenderOptions {
     uint32_t width = 256, height = 256, draws = 10;
     double exposure = 1.0;
     bool strict_half = false;
+    LoopUnroll unroll = LoopUnroll::AsHinted;
     std::string out = "out/render";
     RunnerSetup runner;
 };
@@ -151,14 +152,21 @@ Runner add_render_command(CLI::App& app, const Common& common) {
                  "render a precision=half variant in 16-bit arithmetic (GLSL float16_t, HLSL "
                  "half) and compare it with the CPU half evaluator and with the variant at "
                  "precision=full");
+    add_unroll_option(app, o->unroll);
     app.add_option("--out", o->out,
                    "output directory; files go to <out>/<variant>/ (default out/render)");
     add_runner_options(app, o->runner);
     return [o, &common]() {
         const Preset* preset = nullptr;
         if (!resolve_variant(o->variant, o->preset, &preset)) return kUsage;
+        if (o->strict_half && o->unroll != LoopUnroll::AsHinted) {
+            std::fprintf(stderr, "watergen: error: --strict-half renders with each loop's own "
+                                 "unroll hint; leave out --unroll\n");
+            return kUsage;
+        }
         if (o->strict_half) return run_strict_half(*o, preset, common);
-        const VariantBuild build = build_variant(o->variant, preset);
+        const VariantBuild build =
+            build_variant(o->variant, preset, EmitOptions{false, {}, o->unroll});
         print_diagnostics(build.diagnostics, common);
         if (!build.ok()) return kFailed;
         std::string cache;

@@ -17,37 +17,49 @@ void run_list(const std::vector<Instr>& list, Exec& ex) {
     }
 }
 
+// Lanes [0, n) of a carried value's row from a row that varies per lane (lane step 1) or not
+// (0); with `active`, only the lanes still in the loop. Both forms vectorise.
+template <class T>
+void copy_lanes(T* __restrict to, const T* __restrict from, uint32_t lane_step, size_t n,
+                const unsigned char* active = nullptr) {
+    if (lane_step == 0) {
+        const T v = *from;
+        for (size_t l = 0; l < n; ++l)
+            to[l] = active && !active[l] ? to[l] : v;
+    } else if (!active) {
+        std::copy_n(from, n, to);
+    } else {
+        for (size_t l = 0; l < n; ++l)
+            to[l] = active[l] ? from[l] : to[l];
+    }
+}
+
 template <class T> void run_loop(const Instr& ins, Exec& ex, size_t n) {
     const LoopPlan& loop = ex.program->loops[ins.aux];
     T* m = static_cast<T*>(ex.arena);
     auto row = [&](const Operand& o, uint32_t c) { return m + o.offset + c * o.comp_step; };
     for (const auto& k : loop.carried)
-        for (uint32_t c = 0; c < k.comps; ++c) {
-            const T* from = row(k.initial, c);
-            T* to = row(k.storage, c);
-            for (size_t l = 0; l < n; ++l)
-                to[l] = from[l * k.initial.lane_step];
-        }
+        for (uint32_t c = 0; c < k.comps; ++c) // a lane-invariant value: one lane
+            copy_lanes(row(k.storage, c), row(k.initial, c), k.initial.lane_step,
+                       k.storage.lane_step ? n : 1);
     unsigned char active[kBlock];
     std::fill_n(active, n, 1);
     size_t remaining = n;
+    // A trip count from data is the same on every lane (dsl.h checks it) and floored; a NaN
+    // fails the comparison as it fails the GPU's.
+    int trips = loop.trip_count;
+    if (loop.counted) {
+        const double count = double(m[loop.count.offset]); // the block's first lane
+        trips = count >= 1.0 ? static_cast<int>(std::min(count, double(trips))) : 0;
+    }
     const double outer_index = ex.loop_index;
-    for (int i = 0; i < loop.trip_count && remaining > 0; ++i) {
+    for (int i = 0; i < trips && remaining > 0; ++i) {
         ex.loop_index = i;
         run_list(loop.body, ex);
         for (const auto& k : loop.carried)
-            for (uint32_t c = 0; c < k.comps; ++c) {
-                const T* __restrict from = row(k.next, c);
-                T* __restrict to = row(k.storage, c);
-                const size_t step = k.next.lane_step;
-                if (remaining == n) {
-                    for (size_t l = 0; l < n; ++l)
-                        to[l] = from[l * step];
-                } else {
-                    for (size_t l = 0; l < n; ++l)
-                        to[l] = active[l] ? from[l * step] : to[l];
-                }
-            }
+            for (uint32_t c = 0; c < k.comps; ++c)
+                copy_lanes(row(k.storage, c), row(k.next, c), k.next.lane_step,
+                           k.storage.lane_step ? n : 1, remaining == n ? nullptr : active);
         if (!loop.has_exit) continue;
         const T* go = m + loop.keep_going.offset;
         for (size_t l = 0; l < n; ++l)

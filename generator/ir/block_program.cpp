@@ -10,6 +10,10 @@
 // - Storage: after its last reader a value's place is reused (the working set is the values
 //   alive at once, not the whole graph). Lane-invariant values of the prologue keep theirs.
 // - Errors (a missing input, an ill-typed node) become checks, in node order.
+// - A switch's selector is built from constants and parameters (dsl_switch.cpp checks it), so
+//   it is computed by the prologue: the prologue compiled so far runs once, at compile time,
+//   and only the case it selects is compiled, in line. The program has no switches, and as on
+//   the GPU, only that case's inputs must be supplied.
 #include "block_program.h"
 
 #include <algorithm>
@@ -38,7 +42,7 @@ struct Value {
     Cls cls = Cls::Half;
 };
 
-// A loop body being compiled: where its captured and carried values lie.
+// A loop body or switch case being compiled: where its captured and carried values lie.
 struct LoopScope {
     std::vector<Value> captured, carried;
 };
@@ -49,6 +53,14 @@ bool texture_result(const Graph& g, uint32_t id) {
     const Node& n = g.node(id);
     if (n.op == Op::Swizzle) return texture_result(g, n.args[0]);
     return n.op == Op::Sample || n.op == Op::SampleLevel;
+}
+
+// A value's components, one operand each.
+std::vector<Operand> components(const Value& v) {
+    std::vector<Operand> all;
+    for (uint32_t c = 0; c < v.comps; ++c)
+        all.push_back(v.at.component(c));
+    return all;
 }
 
 // Ids reachable from one node, ascending (a topological order).
@@ -84,12 +96,17 @@ class Compiler {
         std::vector<Value> values;
         std::unordered_map<uint32_t, Value> narrowed;
         std::map<std::tuple<uint32_t, uint32_t, bool>, Value> sincos; // by argument, relaxed
+        std::unordered_map<uint32_t, std::vector<Value>> parts;       // by Loop or Switch node
     };
 
     void compile_graph(Context& ctx, const std::vector<uint32_t>& live);
     Value compile_node(Context& ctx, uint32_t id);
     Value compile_shape(Context& ctx, uint32_t id, const std::vector<Value>& args);
     Value compile_loop(Context& ctx, uint32_t id, const std::vector<Value>& args);
+    Value next_value(Context& inner, uint32_t id, const std::vector<Value>& places);
+    Value compile_switch(Context& ctx, uint32_t id, const std::vector<Value>& args);
+    size_t selected_case(const Node& n, const Value& selector);
+    Value read_through(Context& ctx, uint32_t id, const Value& src);
     Value compile_op(Context& ctx, uint32_t id, const std::vector<Value>& args);
     Value compile_sincos(Context& ctx, uint32_t id, const Value& x);
     Value read_arg(Context& ctx, const Node& consumer, size_t i);
@@ -194,22 +211,13 @@ Value Compiler::compile_node(Context& ctx, uint32_t id) {
     switch (n.op) {
     case Op::Texture:
         return {};
-    case Op::Captured: {
-        const Value& src = ctx.scope->captured[static_cast<size_t>(n.values[0])];
-        if (src.cls <= target(n)) return src; // read in place
-        std::vector<Operand> from;
-        for (uint32_t c = 0; c < src.comps; ++c)
-            from.push_back(src.at.component(c));
-        return copy(ctx, id, from, src.cls, src.uniform, src.hoisted);
-    }
-    case Op::Carried: {
-        const Value& src = ctx.scope->carried[static_cast<size_t>(n.values[0])];
-        if (src.cls <= target(n)) return src;
-        std::vector<Operand> from;
-        for (uint32_t c = 0; c < src.comps; ++c)
-            from.push_back(src.at.component(c));
-        return copy(ctx, id, from, src.cls, false, false);
-    }
+    case Op::Captured:
+        return read_through(ctx, id, ctx.scope->captured[static_cast<size_t>(n.values[0])]);
+    case Op::Carried:
+        return read_through(ctx, id, ctx.scope->carried[static_cast<size_t>(n.values[0])]);
+    case Op::LoopResult:
+    case Op::SwitchResult: // carried value or result k
+        return read_through(ctx, id, ctx.parts.at(n.args[0])[static_cast<size_t>(n.values[0])]);
     default:
         break;
     }
@@ -220,10 +228,11 @@ Value Compiler::compile_node(Context& ctx, uint32_t id) {
     case Op::Swizzle:
     case Op::Splat:
     case Op::Construct:
-    case Op::LoopResult:
         return compile_shape(ctx, id, args);
     case Op::Loop:
         return compile_loop(ctx, id, args);
+    case Op::Switch:
+        return compile_switch(ctx, id, args);
     case Op::Sin:
     case Op::Cos:
         if (!wide_ && args[0].comps == 1) return compile_sincos(ctx, id, args[0]);
@@ -231,6 +240,13 @@ Value Compiler::compile_node(Context& ctx, uint32_t id) {
     default:
         return compile_op(ctx, id, args);
     }
+}
+
+// Node id's value is `src` (a captured, carried or switch result value): read in place when it
+// needs no rounding, else a rounded copy.
+Value Compiler::read_through(Context& ctx, uint32_t id, const Value& src) {
+    if (src.cls <= target(ctx.g.node(id))) return src;
+    return copy(ctx, id, components(src), src.cls, src.uniform, src.hoisted);
 }
 
 // Operations that only move components: read in place where possible, else copied.
@@ -247,22 +263,15 @@ Value Compiler::compile_shape(Context& ctx, uint32_t id, const std::vector<Value
     }
     if (n.op == Op::Construct) {
         for (const Value& v : args)
-            for (uint32_t c = 0; c < v.comps; ++c)
-                from.push_back(v.at.component(c));
+            for (const Operand& o : components(v))
+                from.push_back(o);
         return copy(ctx, id, from, cls, uniform, hoisted);
     }
     // Component source[c] of argument 0 becomes component c.
     std::vector<uint32_t> source(comps, 0);
-    uint32_t first = 0;
-    if (n.op == Op::LoopResult) {
-        const LoopBody& body = *ctx.g.node(n.args[0]).loop;
-        for (size_t k = 0; k < static_cast<size_t>(n.values[0]); ++k)
-            first += static_cast<uint32_t>(component_count(body.carried_types[k]));
-    }
     bool in_place = cls <= target(n);
     for (uint32_t c = 0; c < comps; ++c) {
         if (n.op == Op::Swizzle) source[c] = static_cast<uint32_t>(n.values[c]);
-        if (n.op == Op::LoopResult) source[c] = first + c;
         // In place: one component, a splat, or components in order without gaps (.yz).
         in_place = in_place && (n.op == Op::Splat || source[c] == source[0] + c);
         from.push_back(args[0].at.component(source[c]));
@@ -342,82 +351,121 @@ Value Compiler::compile_sincos(Context& ctx, uint32_t id, const Value& x) {
     return v;
 }
 
-// A loop: the carried values in the Loop node's storage, the body compiled into a list of its
-// own that reads its captured and carried values where they lie.
+// A loop: each carried value in a place of its own, the body compiled into a list of its own that
+// reads its captured and carried values where they lie; LoopResult reads the places after the last
+// iteration.
 Value Compiler::compile_loop(Context& ctx, uint32_t id, const std::vector<Value>& args) {
     const Node& n = ctx.g.node(id);
     const LoopBody& body = *n.loop;
     const Graph& bg = *body.body;
-    const size_t carried = body.carried();
-    uint32_t total = 0;
-    for (Type t : body.carried_types)
-        total += static_cast<uint32_t>(component_count(t));
-    Value storage = define(total, false, false, Cls::Half);
+    std::vector<uint32_t> next; // the body's node of each carried value's next value
+    for (const auto& o : bg.outputs())
+        if (o.name != "continue") next.push_back(o.node);
     LoopPlan plan;
     plan.trip_count = body.trip_count;
     plan.has_exit = body.has_exit;
     const size_t start = storage_.step();
-    storage_.write(storage.at.slot, start);
-    // What the storage holds: the initial values, then the body's next values.
-    for (size_t k = 0; k < carried; ++k)
-        storage.cls = std::max(storage.cls, args[k].cls);
-    for (const auto& o : bg.outputs())
-        if (o.name != "continue") storage.cls = std::max(storage.cls, target(bg.node(o.node)));
     LoopScope scope;
-    for (size_t k = 0, c0 = 0; k < carried; ++k) {
-        Value part = storage;
-        part.comps = static_cast<uint32_t>(component_count(body.carried_types[k]));
-        part.at.offset = storage.at.offset + static_cast<uint32_t>(c0) * storage.at.comp_step;
-        if (part.comps == 1) part.at.comp_step = 0;
-        plan.carried.push_back({part.at, args[k].at, {}, part.comps});
-        scope.carried.push_back(part);
+    for (size_t k = 0; k < body.carried(); ++k) {
+        // What the place holds: the initial value, then the body's next values.
+        const auto comps = static_cast<uint32_t>(component_count(body.carried_types[k]));
+        const Value place =
+            define(comps, false, false, std::max(args[k].cls, target(bg.node(next[k]))));
+        storage_.write(place.at.slot, start);
         storage_.read(args[k].at, start);
-        c0 += part.comps;
+        plan.carried.push_back({place.at, args[k].at, {}, comps});
+        scope.carried.push_back(place);
     }
-    scope.captured.assign(args.begin() + static_cast<std::ptrdiff_t>(carried), args.end());
+    if (body.counted) {
+        plan.counted = true;
+        plan.count = args[body.carried()].at;
+        storage_.read(plan.count, start);
+    }
+    scope.captured.assign(args.begin() + static_cast<std::ptrdiff_t>(body.first_capture()),
+                          args.end());
     if (plan.trip_count > 0) {
         storage_.open_loop();
-        Context inner{bg, plan.body, &scope, std::vector<Value>(bg.size()), {}, {}};
+        Context inner{bg, plan.body, &scope, std::vector<Value>(bg.size()), {}, {}, {}};
         compile_graph(inner, bg.live_nodes());
-        size_t k = 0;
-        for (const auto& o : bg.outputs()) {
-            Value v = inner.values[o.node];
-            if (o.name == "continue") {
-                plan.keep_going = v.at;
-                continue;
-            }
-            // A carried value passed on as it is would be overwritten while the others are
-            // still read from it: a copy first.
-            if (v.at.slot == storage.at.slot) {
-                std::vector<Operand> from;
-                for (uint32_t c = 0; c < v.comps; ++c)
-                    from.push_back(v.at.component(c));
-                v = copy(inner, o.node, from, Cls::Half, false, false);
-            }
-            plan.carried[k++].next = v.at;
-        }
+        for (size_t k = 0; k < next.size(); ++k)
+            plan.carried[k].next = next_value(inner, next[k], scope.carried).at;
+        for (const auto& o : bg.outputs())
+            if (o.name == "continue") plan.keep_going = inner.values[o.node].at;
     }
     const size_t end = storage_.step();
     if (plan.trip_count > 0) storage_.close_loop(start, end);
-    storage_.read(storage.at, end);
-    for (const auto& c : plan.carried)
+    for (const auto& c : plan.carried) {
+        storage_.read(c.storage, end);
         storage_.read(c.next, end);
+    }
     storage_.read(plan.keep_going, end);
     Instr ins;
     ins.kernel = loop_kernel(wide_);
-    ins.out = storage.at;
-    ins.comps = total;
     ins.per_lane = true;
-    ins.round = storage.cls <= target(n) ? Rounding::None : rounding(ctx.g, id);
     ins.aux = static_cast<uint32_t>(program_.loops.size());
     program_.loops.push_back(std::move(plan));
     ctx.list.push_back(ins);
-    storage.cls = std::min(storage.cls, target(n));
-    return storage;
+    std::vector<Value>& results = ctx.parts[id]; // rounded as the Loop node is
+    for (const Value& place : scope.carried)
+        results.push_back(read_through(ctx, id, place));
+    return {};
+}
+
+// The next value of a carried value: body node `id`'s value, or a copy of it if it lies in one
+// of the loop's places (passed on as it is, it would be overwritten while the others are still
+// read from it).
+Value Compiler::next_value(Context& inner, uint32_t id, const std::vector<Value>& places) {
+    const Value& v = inner.values[id];
+    for (const Value& place : places)
+        if (v.at.slot == place.at.slot)
+            return copy(inner, id, components(v), v.cls, v.uniform, false);
+    return v;
+}
+
+// The case a switch runs. Its selector is computed by the prologue compiled so far, which runs
+// here as every evaluator will run it. Once an input is missing the evaluation fails at an
+// earlier check whatever the case (and the prologue may not run): the last case.
+size_t Compiler::selected_case(const Node& n, const Value& selector) {
+    const SwitchCases& cases = *n.cases;
+    if (!selector.hoisted) {
+        fail("switch: the selector is not the same on every lane");
+        return cases.cases.size() - 1;
+    }
+    for (const Check& c : program_.checks)
+        if (c.varying_size == SIZE_MAX) return cases.cases.size() - 1;
+    Program now;
+    now.wide = wide_;
+    now.prologue = program_.prologue;
+    now.gathers = program_.gathers;
+    now.root = selector.at;
+    now.root_comps = 1;
+    storage_.place(now);
+    double value = 0;
+    BlockEvaluator(now, in_).read_root(1, &value);
+    return cases.case_for(value);
+}
+
+// A switch: its selected case compiled in line, reading the Switch node's arguments as its
+// captured values; its results, rounded as the Switch node is, are what SwitchResult reads.
+Value Compiler::compile_switch(Context& ctx, uint32_t id, const std::vector<Value>& args) {
+    const Node& n = ctx.g.node(id);
+    const SwitchCases& cases = *n.cases;
+    const size_t c = selected_case(n, args[0]);
+    const Graph& cg = *cases.cases[c];
+    const size_t end = c + 1 < cases.cases.size() ? cases.case_args[c + 1] : args.size();
+    LoopScope scope;
+    scope.captured.assign(args.begin() + static_cast<std::ptrdiff_t>(cases.case_args[c]),
+                          args.begin() + static_cast<std::ptrdiff_t>(end));
+    Context inner{cg, ctx.list, &scope, std::vector<Value>(cg.size()), {}, {}, {}};
+    compile_graph(inner, cg.live_nodes());
+    std::vector<Value>& results = ctx.parts[id];
+    for (const auto& o : cg.outputs())
+        results.push_back(read_through(ctx, id, inner.values[o.node]));
+    return {};
 }
 
 void Compiler::compile(uint32_t root) {
-    Context ctx{top_, program_.main, nullptr, std::vector<Value>(top_.size()), {}, {}};
+    Context ctx{top_, program_.main, nullptr, std::vector<Value>(top_.size()), {}, {}, {}};
     compile_graph(ctx, live_from(top_, root));
     const Value& v = ctx.values[root];
     program_.root = v.at;

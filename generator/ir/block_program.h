@@ -46,7 +46,8 @@ struct Instr {
     uint32_t aux = 0;           // kernel-specific: a count, an index, a flag
 };
 
-// A loop: the Loop node's storage holds the carried values (component rows in turn).
+// A loop: each carried value has a place of its own (`storage`), set from `initial`, then from
+// `next` after each iteration.
 struct LoopPlan {
     struct Carry {
         Operand storage, initial, next;
@@ -56,7 +57,9 @@ struct LoopPlan {
     std::vector<Carry> carried;
     Operand keep_going;
     bool has_exit = false;
-    int trip_count = 0;
+    int trip_count = 0;   // the most iterations
+    bool counted = false; // fewer from data: the value at `count` (LoopBody::counted)
+    Operand count;
 };
 
 // A reason the evaluation fails: always, or (a varying of `size` values) from the block that

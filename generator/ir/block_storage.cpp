@@ -33,7 +33,9 @@ void StorageTimeline::close_loop(size_t start, size_t end) {
 std::vector<uint32_t> StorageTimeline::offsets() const {
     std::vector<uint32_t> offset(slots_.size(), 0);
     uint32_t top = 0;
-    std::vector<std::vector<uint32_t>> writes(next_), frees(next_);
+    // One position more than used: the program may be placed while it is being compiled, with
+    // slots defined but not yet written (block_program.cpp runs the prologue so far).
+    std::vector<std::vector<uint32_t>> writes(next_ + 1), frees(next_ + 1);
     for (uint32_t s = 0; s < slots_.size(); ++s) {
         if (slots_[s].permanent) {
             offset[s] = top;
@@ -44,7 +46,7 @@ std::vector<uint32_t> StorageTimeline::offsets() const {
         frees[std::max(slots_[s].last_read, slots_[s].written)].push_back(s);
     }
     std::map<uint32_t, std::vector<uint32_t>> free_places; // by size
-    for (size_t at = 0; at < next_; ++at) {
+    for (size_t at = 0; at <= next_; ++at) {
         for (uint32_t s : writes[at]) {
             auto& places = free_places[slots_[s].size];
             if (places.empty()) {
@@ -85,6 +87,7 @@ void StorageTimeline::place(Program& program) const {
             place(c.next);
         }
         place(loop.keep_going);
+        place(loop.count);
     }
     for (Operand& o : program.gathers)
         place(o);

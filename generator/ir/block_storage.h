@@ -29,7 +29,8 @@ class StorageTimeline {
     void close_loop(size_t start, size_t end);
 
     // Places every slot and resolves every operand of the program to its offset; sets
-    // Program::arena.
+    // Program::arena. Permanent slots are placed first, in the order they were added, so their
+    // places are final even when a program is placed before it is compiled to the end.
     void place(Program& program) const;
 
   private:

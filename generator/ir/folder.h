@@ -15,6 +15,10 @@ namespace watergen::fold {
 // How a node reads in explain output: its name when it has one, else its operation.
 std::string label(const Node& n);
 
+// `g` with every switch whose selector the facts decide replaced by its selected case
+// (ir_fold_switch.cpp); nullopt when there is none.
+std::optional<Graph> inline_decided_switches(const Graph& g, const FoldFacts& facts);
+
 class Folder {
   public:
     Folder(const Graph& in, const FoldFacts& facts);
@@ -45,7 +49,23 @@ class Folder {
     void event(uint32_t in_id, std::string what, FactSet facts);
     Intervals bounds_of(const FoldFacts::Bounds& b, Type t) const;
     FactSet single(size_t fact) const;
-    std::pair<Intervals, FactSet> leaf_bounds(const Node& n, uint32_t in_id) const;
+    // A parameter's or input's bounds; `g` is the input graph or a loop body in it.
+    std::pair<Intervals, FactSet> leaf_bounds(const Graph& g, const Node& n, uint32_t id) const;
+
+    // Loops, analysed by iterating their bodies (loop_bounds.cpp).
+    using State = std::vector<Intervals>;
+    std::pair<Intervals, FactSet> loop_bounds(const Node& n,
+                                              const std::vector<const Intervals*>& args) const;
+    struct BodyScratch {
+        std::vector<uint32_t> live;            // the body's live nodes
+        std::vector<uint32_t> next;            // the node of each carried value's next value
+        mutable std::vector<Intervals> values; // per body node, reused round after round
+    };
+    std::pair<State, FactSet> body_step(const LoopBody& loop, const BodyScratch& scratch,
+                                        const State& carried,
+                                        const std::vector<const Intervals*>& captured) const;
+    static Intervals loop_result_bounds(const Node& result, const Node& loop_node,
+                                        const Intervals& loop_bounds);
     bool is_constant(uint32_t id, double x) const;
     bool all_finite(uint32_t id) const;
     std::optional<uint32_t> as_type(uint32_t id, const Node& like);

@@ -21,8 +21,9 @@ FragmentWriter::FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool co
 FragmentWriter::FragmentWriter(const Graph& g, const FragmentWriter& enclosing,
                                const BodyNames& names)
     : g_(g), syntax_(enclosing.syntax_), compute_(enclosing.compute_),
-      strict_half_(enclosing.strict_half_), constants_(enclosing.constants_),
-      array_sizes_(enclosing.array_sizes_), taken_(enclosing.taken_), names_(&names) {}
+      strict_half_(enclosing.strict_half_), unroll_(enclosing.unroll_),
+      constants_(enclosing.constants_), array_sizes_(enclosing.array_sizes_),
+      taken_(enclosing.taken_), names_(&names) {}
 
 void FragmentWriter::read_as_constants(const ShaderInterface& in) {
     for (const auto& p : in.parameters) {
@@ -46,11 +47,12 @@ bool FragmentWriter::is_half(uint32_t id) const {
 
 namespace {
 
-// Whether `pred` holds for a live node of `g` or of a loop body in it.
+// Whether `pred` holds for a live node of `g` or of a loop body or switch case in it.
 template <class P> bool any_live(const Graph& g, const P& pred) {
     for (uint32_t id : g.live_nodes()) {
-        const Node& n = g.node(id);
-        if (pred(g, id) || (n.loop && any_live(*n.loop->body, pred))) return true;
+        if (pred(g, id)) return true;
+        for (const Graph* body : bodies_of(g.node(id)))
+            if (any_live(*body, pred)) return true;
     }
     return false;
 }
@@ -94,12 +96,14 @@ std::vector<Line> FragmentWriter::lines(std::set<Op>& used_ops) {
     for (uint32_t id : live) {
         const Node& n = g_.node(id);
         used_ops.insert(n.op);
-        if (is_leaf(n.op) || n.op == Op::LoopResult || n.type == Type::Texture2D ||
-            n.type == Type::TextureCube)
+        if (is_leaf(n.op) || n.op == Op::LoopResult || n.op == Op::SwitchResult ||
+            n.type == Type::Texture2D || n.type == Type::TextureCube)
             continue;
         const bool cross_origin =
             single_user[id] != UINT32_MAX && g_.node(single_user[id]).origin != n.origin;
-        if (uses[id] > 1 || !n.name.empty() || cross_origin || n.op == Op::Loop ||
+        // An array element's name is its array's (identity, not a naming hint).
+        const bool has_name = !n.name.empty() && n.op != Op::UniformElement;
+        if (uses[id] > 1 || has_name || cross_origin || n.op == Op::Loop || n.op == Op::Switch ||
             must_be_named(id, single_user[id]))
             temp_[id] = unique_name(n, id);
     }
@@ -119,6 +123,10 @@ std::vector<Line> FragmentWriter::lines(std::set<Op>& used_ops) {
             loop_lines(id, out, used_ops);
             continue;
         }
+        if (n.op == Op::Switch) {
+            switch_lines(id, out, used_ops);
+            continue;
+        }
         out.push_back({declared_type(n.type, n.relaxed, is_half(id)) + " " + it->second + " = " +
                            strip_outer(spell(id)) + ";",
                        n.origin});
@@ -131,12 +139,61 @@ std::string FragmentWriter::declared_type(Type t, bool relaxed, bool half) const
     return half ? syntax_.half_type(t) : syntax_.type(t);
 }
 
+namespace {
+
+// The order in which a loop's carried variables take their next values, and which of them go
+// through a temporary first. A next value written inline reads some carried variables
+// (`reads[k]`, itself aside): it is assigned before any of those changes. Where such reads form
+// a cycle, the smallest index in it takes a temporary (computed before any assignment).
+std::vector<size_t> assignment_order(const std::vector<std::set<size_t>>& reads,
+                                     std::vector<bool>& via_temp) {
+    const size_t count = reads.size();
+    std::vector<bool> done(count, false);
+    std::vector<size_t> order;
+    // Whether j can change now: no variable still to be assigned inline reads it.
+    auto ready = [&](size_t j) {
+        for (size_t k = 0; k < count; ++k)
+            if (!done[k] && k != j && !via_temp[k] && reads[k].count(j)) return false;
+        return true;
+    };
+    while (order.size() < count) {
+        size_t next = count;
+        for (size_t j = 0; j < count && next == count; ++j)
+            if (!done[j] && ready(j)) next = j;
+        if (next == count) { // a cycle: break it at its smallest index
+            for (size_t j = 0; j < count; ++j)
+                if (!done[j] && !via_temp[j]) {
+                    via_temp[j] = true;
+                    break;
+                }
+            continue;
+        }
+        done[next] = true;
+        order.push_back(next);
+    }
+    return order;
+}
+
+} // namespace
+
+// The carried variables node `id` of a loop body reads where it is written inline (up to the
+// body's temporaries, which hold their values already).
+void FragmentWriter::inline_carried(uint32_t id, std::set<size_t>& out) const {
+    if (temp_.count(id)) return;
+    const Node& n = g_.node(id);
+    if (n.op == Op::Carried) out.insert(static_cast<size_t>(n.values[0]));
+    for (uint32_t a : n.args)
+        inline_carried(a, out);
+}
+
 // T loop_c0 = init0; ...
 // [[dont_unroll]] for (int loop_i = 0; loop_i < N; ++loop_i) {
+//     if (!(float(loop_i) < trip_count)) break;   (a trip count from data)
 //     <body>
-//     T loop_n0 = next0; ...   (every next value before any carried variable changes)
+//     T loop_n1 = next1;   (only where next values read each other's carried variables in a cycle)
 //     bool loop_go = keep_going;
-//     loop_c0 = loop_n0; ...
+//     loop_c0 = next0; loop_c1 = loop_n1; ...   (each before the variables its next value reads
+//                                                change; none where the value stays)
 //     if (!loop_go) break;
 // }
 void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op>& used_ops) {
@@ -156,11 +213,20 @@ void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op
                            strip_outer(expr_as(n.args[k], half[k])) + ";",
                        n.origin});
     }
-    for (size_t m = body.carried(); m < n.args.size(); ++m)
+    for (size_t m = body.first_capture(); m < n.args.size(); ++m)
         names.captured.push_back(strip_outer(expr(n.args[m])));
-    out.push_back({syntax_.loop_header(names.index, body.trip_count, body.unroll), n.origin});
+    const bool unroll =
+        unroll_ == LoopUnroll::All || (unroll_ == LoopUnroll::AsHinted && body.unroll);
+    out.push_back({syntax_.loop_header(names.index, body.trip_count, unroll), n.origin});
+    std::vector<Line> inside;
+    // A NaN count compares false: no iteration, as the CPU evaluator runs it.
+    if (body.counted)
+        inside.push_back({"if (!(" + syntax_.int_to_float(names.index) + " < " +
+                              strip_outer(expr_as(n.args[body.carried()], false)) + ")) break;",
+                          n.origin});
     FragmentWriter inner(*body.body, *this, names);
-    std::vector<Line> inside = inner.lines(used_ops);
+    for (Line& l : inner.lines(used_ops))
+        inside.push_back(std::move(l));
     uint32_t keep_going = UINT32_MAX;
     std::vector<uint32_t> next;
     for (const auto& o : body.body->outputs()) {
@@ -169,27 +235,88 @@ void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op
         else
             next.push_back(o.node); // "next0", "next1", ... in order
     }
-    for (size_t k = 0; k < body.carried(); ++k)
-        inside.push_back({types[k] + " " + base + "_n" + std::to_string(k) + " = " +
-                              strip_outer(inner.expr_as(next[k], half[k])) + ";",
-                          n.origin});
+    std::vector<std::set<size_t>> reads(body.carried());
+    for (size_t k = 0; k < body.carried(); ++k) {
+        inner.inline_carried(next[k], reads[k]);
+        reads[k].erase(k);
+    }
+    std::vector<bool> via_temp(body.carried(), false);
+    const std::vector<size_t> order = assignment_order(reads, via_temp);
+    std::vector<std::string> value(body.carried());
+    for (size_t k = 0; k < body.carried(); ++k) {
+        value[k] = strip_outer(inner.expr_as(next[k], half[k]));
+        if (!via_temp[k]) continue;
+        inside.push_back(
+            {types[k] + " " + base + "_n" + std::to_string(k) + " = " + value[k] + ";", n.origin});
+        value[k] = base + "_n" + std::to_string(k);
+    }
     if (keep_going != UINT32_MAX)
         inside.push_back({syntax_.type(Type::Bool) + " " + base +
                               "_go = " + strip_outer(inner.expr(keep_going)) + ";",
                           n.origin});
-    for (size_t k = 0; k < body.carried(); ++k)
-        inside.push_back(
-            {names.carried[k] + " = " + base + "_n" + std::to_string(k) + ";", n.origin});
+    for (size_t k : order)
+        if (value[k] != names.carried[k])
+            inside.push_back({names.carried[k] + " = " + value[k] + ";", n.origin});
     if (keep_going != UINT32_MAX) inside.push_back({"if (!" + base + "_go) break;", n.origin});
     for (auto& l : inside)
         out.push_back({l.text.empty() ? "" : "    " + l.text, l.origin});
     out.push_back({"}", n.origin});
 }
 
+// T choice_r0; ...            (every result declared before the cases)
+// if (selector == 0.0) {
+//     <case 0>
+//     choice_r0 = out0; ...
+// } else if (selector == 1.0) {
+//     ...
+// } else {
+//     <last case>
+// }
+void FragmentWriter::switch_lines(uint32_t id, std::vector<Line>& out, std::set<Op>& used_ops) {
+    const Node& n = g_.node(id);
+    const SwitchCases& cases = *n.cases;
+    const std::string& base = temp_.at(id);
+    std::vector<bool> half(cases.results());
+    for (size_t k = 0; k < cases.results(); ++k) {
+        const Type t = cases.result_types[k];
+        half[k] = spelled_half(t, cases.result_relaxed[k], strict_half_);
+        out.push_back({declared_type(t, cases.result_relaxed[k], half[k]) + " " + base + "_r" +
+                           std::to_string(k) + ";",
+                       n.origin});
+    }
+    const std::string selector = strip_outer(expr(n.args[0]));
+    for (size_t c = 0; c < cases.cases.size(); ++c) {
+        const bool last = c + 1 == cases.cases.size();
+        const std::string test =
+            "if (" + selector + " == " + syntax_.literal(static_cast<double>(c)) + ") {";
+        // One case runs whatever the selector says: a plain block.
+        const std::string head = c == 0 ? (last ? "{" : test)
+                                 : last ? "} else {"
+                                        : "} else " + test;
+        out.push_back({head, n.origin});
+        BodyNames names;
+        const size_t first = cases.case_args[c];
+        const size_t end = last ? n.args.size() : cases.case_args[c + 1];
+        for (size_t m = first; m < end; ++m)
+            names.captured.push_back(strip_outer(expr(n.args[m])));
+        const Graph& body = *cases.cases[c];
+        FragmentWriter inner(body, *this, names);
+        std::vector<Line> inside = inner.lines(used_ops);
+        for (size_t k = 0; k < cases.results(); ++k)
+            inside.push_back({base + "_r" + std::to_string(k) + " = " +
+                                  strip_outer(inner.expr_as(body.outputs()[k].node, half[k])) + ";",
+                              n.origin});
+        for (auto& l : inside)
+            out.push_back({l.text.empty() ? "" : "    " + l.text, l.origin});
+    }
+    out.push_back({"}", n.origin});
+}
+
 std::string FragmentWriter::unique_name(const Node& n, uint32_t id) {
-    std::string base = !n.name.empty()    ? n.name
-                       : n.op == Op::Loop ? fmt::format("loop{}", id)
-                                          : fmt::format("t{}", id);
+    std::string base = !n.name.empty()      ? n.name
+                       : n.op == Op::Loop   ? fmt::format("loop{}", id)
+                       : n.op == Op::Switch ? fmt::format("choice{}", id)
+                                            : fmt::format("t{}", id);
     std::string name = base;
     for (int k = 2; taken_->count(name); ++k)
         name = fmt::format("{}_{}", base, k);
@@ -208,8 +335,9 @@ bool FragmentWriter::must_be_named(uint32_t id, uint32_t user) const {
     if (own == Op::Select || (compute_ && (own == Op::Ddx || own == Op::Ddy))) return true;
     if (user == UINT32_MAX) return false;
     const Op op = g_.node(user).op;
-    // A loop's initial and captured values are read in its declarations and body by name.
-    return op == Op::Select || op == Op::Sample || op == Op::SampleLevel || op == Op::Loop;
+    // A loop's initial and captured values, and a switch's, are read in its body by name.
+    return op == Op::Select || op == Op::Sample || op == Op::SampleLevel || op == Op::Loop ||
+           op == Op::Switch;
 }
 
 std::string FragmentWriter::expr(uint32_t id) {
@@ -265,6 +393,8 @@ std::string FragmentWriter::spell_at(uint32_t id, bool half, bool level0) {
         return n.name;
     case Op::LoopResult:
         return temp_.at(n.args[0]) + "_c" + std::to_string(static_cast<int>(n.values[0]));
+    case Op::SwitchResult:
+        return temp_.at(n.args[0]) + "_r" + std::to_string(static_cast<int>(n.values[0]));
     case Op::LoopIndex:
         return syntax_.int_to_float(names_->index);
     case Op::Carried:

@@ -1,5 +1,6 @@
 // Writes a graph's live nodes as the statements of a shader function body, one temporary per
-// shared or named value, every line attributed to its feature node; loops become `for` loops.
+// shared or named value, every line attributed to its feature node; loops become `for` loops,
+// switches `if` / `else if` chains.
 // Shared by the stage emitters (emitter.cpp, vertex_emitter.cpp). Private to ir/.
 #pragma once
 
@@ -22,7 +23,7 @@ std::string strip_outer(const std::string& s);
 
 class FragmentWriter {
   public:
-    // How a loop body's leaves are spelled (set by the writer of the enclosing graph).
+    // How a loop body's or switch case's leaves are spelled (set by the enclosing graph's writer).
     struct BodyNames {
         std::string index;                 // the loop counter, an int
         std::vector<std::string> carried;  // per carried value
@@ -34,6 +35,9 @@ class FragmentWriter {
     // `strict_half`: relaxed float nodes are written in explicit 16-bit types (EmitOptions).
     FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool compute = false,
                    bool strict_half = false);
+
+    // The unroll hint of every loop (EmitOptions::unroll); loop bodies inherit it.
+    void set_unroll(LoopUnroll unroll) { unroll_ = unroll; }
 
     // Parameters of `in` that are specialization constants: read by their own name.
     void read_as_constants(const ShaderInterface& in);
@@ -52,6 +56,8 @@ class FragmentWriter {
     FragmentWriter(const Graph& g, const FragmentWriter& enclosing, const BodyNames& names);
     std::vector<Line> lines(std::set<Op>& used_ops);
     void loop_lines(uint32_t id, std::vector<Line>& lines, std::set<Op>& used_ops);
+    void switch_lines(uint32_t id, std::vector<Line>& lines, std::set<Op>& used_ops);
+    void inline_carried(uint32_t id, std::set<size_t>& out) const;
     bool must_be_named(uint32_t id, uint32_t user) const;
     std::string unique_name(const Node& n, uint32_t id);
     std::string declared_type(Type t, bool relaxed, bool half) const;
@@ -64,6 +70,7 @@ class FragmentWriter {
     const GlslSyntax& syntax_;
     bool compute_ = false;
     bool strict_half_ = false;
+    LoopUnroll unroll_ = LoopUnroll::AsHinted;
     std::set<std::string> constants_;             // parameters that are specialization constants
     std::map<std::string, uint32_t> array_sizes_; // array parameters' elements
     std::map<uint32_t, std::string> temp_;

@@ -168,13 +168,17 @@ Intervals node_intervals(const Node& n, const std::vector<const Intervals*>& arg
     case Op::Sample:
     case Op::SampleLevel:
         return unknown_intervals(n.type, false);
-    // Loops: no bound is claimed for what a loop computes (sound, if loose); a body's leaves
-    // are as unknown as the values they stand for.
+    // Loops: no bound here; the fold pass iterates the body's bounds (loop_bounds.cpp), and a
+    // body's leaves are as unknown as the values they stand for.
     case Op::Loop:
     case Op::LoopResult:
     case Op::LoopIndex:
     case Op::Carried:
     case Op::Captured:
+        return unknown_intervals(n.type, false);
+    // A switch's results need its cases: switch_result_intervals().
+    case Op::Switch:
+    case Op::SwitchResult:
         return unknown_intervals(n.type, false);
     case Op::Add:
         arith([&](int c) { return add(a(0, c), a(1, c)); });
@@ -463,6 +467,40 @@ Intervals node_intervals(const Node& n, const std::vector<const Intervals*>& arg
         return out;
     }
     return unknown_intervals(n.type, false);
+}
+
+Intervals switch_result_intervals(const Node& sw, size_t k,
+                                  const std::vector<const Intervals*>& args) {
+    const SwitchCases& cases = *sw.cases;
+    const Interval& selector = (*args[0])[0];
+    Intervals out;
+    for (size_t c = 0; c < cases.cases.size(); ++c) {
+        if (selector.is_point() && cases.case_for(selector.lo) != c) continue;
+        const Graph& body = *cases.cases[c];
+        std::vector<Intervals> values(body.size());
+        for (uint32_t id : body.live_nodes()) {
+            const Node& n = body.node(id);
+            if (n.op == Op::Captured) {
+                values[id] = *args[cases.case_args[c] + static_cast<size_t>(n.values[0])];
+                continue;
+            }
+            std::vector<const Intervals*> in;
+            std::vector<Type> types;
+            for (uint32_t a : n.args) {
+                in.push_back(&values[a]);
+                types.push_back(body.node(a).type);
+            }
+            values[id] = node_intervals(n, in, types);
+        }
+        const Intervals& result = values[body.outputs()[k].node];
+        if (out.empty()) {
+            out = result;
+            continue;
+        }
+        for (size_t i = 0; i < out.size() && i < result.size(); ++i)
+            out[i] = hull(out[i], result[i]);
+    }
+    return out;
 }
 
 } // namespace watergen

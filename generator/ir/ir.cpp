@@ -72,7 +72,7 @@ const char* type_name(Type t) {
     case Type::TextureCube:
         return "textureCube";
     case Type::Tuple:
-        return "<loop>";
+        return "<tuple>";
     }
     return "?";
 }
@@ -199,8 +199,27 @@ const char* op_name(Op op) {
         return "captured";
     case Op::UniformElement:
         return "element";
+    case Op::Switch:
+        return "switch";
+    case Op::SwitchResult:
+        return "switch result";
     }
     return "?";
+}
+
+std::vector<const Graph*> bodies_of(const Node& n) {
+    std::vector<const Graph*> out;
+    if (n.loop) out.push_back(n.loop->body.get());
+    if (n.cases)
+        for (const auto& c : n.cases->cases)
+            out.push_back(c.get());
+    return out;
+}
+
+size_t SwitchCases::case_for(double selector) const {
+    for (size_t k = 0; k + 1 < cases.size(); ++k)
+        if (selector == static_cast<double>(k)) return k;
+    return cases.empty() ? 0 : cases.size() - 1;
 }
 
 size_t value_count(const Parameter& p) {
@@ -256,6 +275,11 @@ std::string node_key(const Node& n) {
         key.push_back('@');
         key.append(reinterpret_cast<const char*>(&body), sizeof body);
     }
+    if (n.cases) { // and every switch
+        const auto* cases = n.cases.get();
+        key.push_back('#');
+        key.append(reinterpret_cast<const char*>(&cases), sizeof cases);
+    }
     return key;
 }
 
@@ -264,8 +288,9 @@ std::string node_key(const Node& n) {
 uint32_t Graph::add(Node node) {
     // Leaves (parameters, inputs) and array elements keep full precision; operations follow
     // the current scope.
-    // A loop's result has the precision of its carried value, whatever the scope.
-    if ((!is_leaf(node.op) && node.op != Op::LoopResult && node.op != Op::UniformElement) ||
+    // A loop's or a switch's result has the precision of its value, whatever the scope.
+    if ((!is_leaf(node.op) && node.op != Op::LoopResult && node.op != Op::SwitchResult &&
+         node.op != Op::UniformElement) ||
         node.op == Op::Constant)
         node.relaxed = node.relaxed || relaxed_;
     if (node.type == Type::Bool || node.type == Type::Texture2D || node.type == Type::TextureCube ||

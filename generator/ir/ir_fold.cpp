@@ -214,7 +214,9 @@ std::set<std::string> event_keys(const Graph& g, const FoldFacts& f) {
 
 } // namespace
 
-FoldResult fold_graph(const Graph& g, const FoldFacts& facts) {
+FoldResult fold_graph(const Graph& graph, const FoldFacts& facts) {
+    const std::optional<Graph> inlined = fold::inline_decided_switches(graph, facts);
+    const Graph& g = inlined ? *inlined : graph;
     Folder main(g, facts);
     main.rewrite_all();
     if (facts.refine_causes) {

@@ -29,6 +29,7 @@ bool pure(Op op) {
     case Op::SampleLevel:
     case Op::Ddx:
     case Op::Ddy:
+    case Op::Switch: // its cases are graphs of their own
         return false;
     default:
         return true;
@@ -125,7 +126,8 @@ FactSet Folder::single(size_t fact) const {
 }
 
 // Bounds and facts of a leaf read.
-std::pair<Intervals, FactSet> Folder::leaf_bounds(const Node& n, uint32_t in_id) const {
+std::pair<Intervals, FactSet> Folder::leaf_bounds(const Graph& g, const Node& n,
+                                                  uint32_t id) const {
     // An array element: every element lies in the parameter's range.
     if (n.op == Op::Uniform || n.op == Op::UniformElement) {
         if (auto it = f_.parameter_ranges.find(n.name); it != f_.parameter_ranges.end())
@@ -138,8 +140,7 @@ std::pair<Intervals, FactSet> Folder::leaf_bounds(const Node& n, uint32_t in_id)
     }
     // Varyings and samples: the scene's input contract; unknown inputs are assumed finite.
     std::string name = n.name;
-    if (n.op == Op::Sample || n.op == Op::SampleLevel)
-        name = in_.node(in_.node(in_id).args[0]).name;
+    if (n.op == Op::Sample || n.op == Op::SampleLevel) name = g.node(g.node(id).args[0]).name;
     if (auto it = f_.input_ranges.find(name); it != f_.input_ranges.end())
         return {bounds_of(it->second, n.type), single(it->second.fact)};
     return {unknown_intervals(n.type, true), {}};
@@ -277,15 +278,25 @@ std::optional<uint32_t> Folder::identity(const Node& n, uint32_t in_id, const Fa
 std::pair<Intervals, FactSet> Folder::bounds(const Node& n, uint32_t in_id) const {
     if (n.op == Op::Uniform || n.op == Op::UniformElement || n.op == Op::Varying ||
         n.op == Op::Sample || n.op == Op::SampleLevel)
-        return leaf_bounds(n, in_id);
+        return leaf_bounds(in_, in_.node(in_id), in_id);
+    // A switch result: from the switch's arguments, through its cases.
+    const Node& from = n.op == Op::SwitchResult ? out_.node(n.args[0]) : n;
     FactSet facts;
     std::vector<const Intervals*> args;
     std::vector<Type> types;
-    for (uint32_t a : n.args) {
+    for (uint32_t a : from.args) {
         args.push_back(&values_[a]);
         types.push_back(out_.node(a).type);
         facts |= facts_[a];
     }
+    if (n.op == Op::Loop) {
+        auto [v, loop_facts] = loop_bounds(n, args);
+        return {std::move(v), facts | loop_facts};
+    }
+    if (n.op == Op::LoopResult)
+        return {loop_result_bounds(n, out_.node(n.args[0]), values_[n.args[0]]), facts};
+    if (n.op == Op::SwitchResult)
+        return {switch_result_intervals(from, static_cast<size_t>(n.values[0]), args), facts};
     return {node_intervals(n, args, types), facts};
 }
 

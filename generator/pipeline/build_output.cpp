@@ -14,8 +14,28 @@ namespace watergen {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The scene's jobs: one per variant, or one per shader of the mode.
+void add_jobs(BuildPlan& plan, const std::string& scene, const std::vector<Variant>& variants,
+              const FoldFacts* facts, const std::vector<Target>& targets, BuildMode mode) {
+    if (mode == BuildMode::Permutations) {
+        for (const Variant& v : variants)
+            plan.jobs.push_back({scene, v, facts, targets});
+        return;
+    }
+    for (const ShaderChoices& s : shaders_for(variants, mode)) {
+        BuildJob job{scene, s.first_variant(), facts, targets, s, {}};
+        for (const Variant& v : variants)
+            if (s.covers(v)) job.serves.push_back(v);
+        plan.jobs.push_back(std::move(job));
+    }
+}
+
+} // namespace
+
 std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes,
-                                    Diagnostics& ds) {
+                                    Diagnostics& ds, BuildMode mode) {
     BuildPlan plan;
     std::vector<SceneFacts> sorted = scenes;
     std::stable_sort(sorted.begin(), sorted.end(),
@@ -40,13 +60,11 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
         enumerate(material.space, [&](const Variant& v) { plan.unpruned.push_back(v); });
         std::sort(plan.unpruned.begin(), plan.unpruned.end(),
                   [](const Variant& a, const Variant& b) { return a.key() < b.key(); });
-        for (const Variant& v : plan.unpruned)
-            plan.jobs.push_back({kUnprunedScene, v, nullptr, material.targets});
+        add_jobs(plan, kUnprunedScene, plan.unpruned, nullptr, material.targets, mode);
         plan.manifest_scenes.push_back({kUnprunedScene, nullptr, plan.unpruned.size()});
     }
     for (const ScenePlan& s : plan.scenes) {
-        for (const Variant& v : s.variants)
-            plan.jobs.push_back({s.scene.name, v, &s.facts, s.targets});
+        add_jobs(plan, s.scene.name, s.variants, &s.facts, s.targets, mode);
         plan.manifest_scenes.push_back({s.scene.name, &s, s.variants.size()});
     }
     return plan;
@@ -130,8 +148,8 @@ void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, B
         ++s.failed;
         for (const auto& d : r.diagnostics)
             s.diagnostics.push_back(d);
-        s.diagnostics.push_back({Severity::Error, "", 0, 0, "",
-                                 job.scene + ": " + job.variant.key() + " failed to build"});
+        s.diagnostics.push_back(
+            {Severity::Error, "", 0, 0, "", job.scene + ": " + job_key(job) + " failed to build"});
         return;
     }
     if (!r.same_as.empty()) {
@@ -139,9 +157,45 @@ void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, B
         return;
     }
     (r.shared ? s.shared : r.cached ? s.cached : s.built) += 1;
-    const std::string dir = variant_directory(job.scene, job.variant);
+    const std::string dir = job_directory(job);
     for (const auto& [path, bytes] : r.files)
         files[dir + "/" + path] = bytes;
+}
+
+// Specialized mode with freeze: each variant's SPIR-V (both language paths) with the shader's
+// selectors frozen to the variant's values, beside the shader's own.
+void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                unsigned threads, BuildSummary& s, std::map<std::string, std::string>& files) {
+    struct Work {
+        size_t job;
+        Variant variant;
+        std::string lang;
+    };
+    std::vector<Work> work;
+    for (size_t i = 0; i < jobs.size(); ++i)
+        if (jobs[i].shader && results[i].ok() && results[i].same_as.empty())
+            for (const Variant& v : jobs[i].serves)
+                for (const char* lang : {"glsl", "hlsl"})
+                    if (results[i].files.count(std::string(lang) + "/water.frag.opt.spv"))
+                        work.push_back({i, v, lang});
+    std::vector<OptimizeResult> frozen(work.size());
+    parallel_for(work.size(), threads, [&](size_t k) {
+        const Work& w = work[k];
+        frozen[k] = freeze_variant(results[w.job], *jobs[w.job].shader, w.variant, w.lang);
+    });
+    for (size_t k = 0; k < work.size(); ++k) {
+        const Work& w = work[k];
+        const std::string path = job_directory(jobs[w.job]) + "/" + frozen_path(w.lang, w.variant);
+        if (frozen[k].spirv.empty()) {
+            ++s.failed;
+            s.diagnostics.insert(s.diagnostics.end(), frozen[k].diagnostics.begin(),
+                                 frozen[k].diagnostics.end());
+            s.diagnostics.push_back({Severity::Error, path, 0, 0, "", "freezing failed"});
+            continue;
+        }
+        files[path] = std::string(reinterpret_cast<const char*>(frozen[k].spirv.data()),
+                                  frozen[k].spirv.size() * sizeof(uint32_t));
+    }
 }
 
 } // namespace
@@ -149,7 +203,7 @@ void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, B
 BuildSummary build_material(const BuildRequest& request) {
     const auto t0 = std::chrono::steady_clock::now();
     BuildSummary s;
-    auto plan = plan_build(request.material, request.scenes, s.diagnostics);
+    auto plan = plan_build(request.material, request.scenes, s.diagnostics, request.mode);
     if (!plan) {
         s.bad_input = true;
         return s;
@@ -158,13 +212,20 @@ BuildSummary build_material(const BuildRequest& request) {
     if (accepted_output(request.out, s).empty()) return s;
     const std::vector<JobResult> results =
         run_build_jobs(request.material, plan->jobs, request.options);
-    s.variants = plan->jobs.size();
+    s.shaders = plan->jobs.size();
+    for (const BuildJob& job : plan->jobs)
+        s.variants += job.shader ? job.serves.size() : 1;
     std::map<std::string, std::string> files;
     for (size_t i = 0; i < results.size(); ++i)
         collect(plan->jobs[i], results[i], request.options.cache, s, files);
+    if (request.freeze && request.mode == BuildMode::Specialized)
+        add_frozen(plan->jobs, results, request.options.threads, s, files);
     if (s.failed == 0) {
         files["manifest.json"] =
-            manifest_json(request.material, plan->manifest_scenes, plan->jobs, results);
+            request.mode == BuildMode::Permutations
+                ? manifest_json(request.material, plan->manifest_scenes, plan->jobs, results)
+                : modes_manifest_json(request.material, request.mode, request.freeze,
+                                      plan->manifest_scenes, plan->jobs, results);
         s.files = files.size();
         const fs::path out = accepted_output(request.out, s); // again: the build took a while
         if (auto failure = out.empty() ? std::nullopt : publish(out, files))

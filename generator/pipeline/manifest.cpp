@@ -1,10 +1,12 @@
 #include "watergen/pipeline/manifest.h"
 
+#include <cstring>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "watergen/ir/emitter.h"
+#include "watergen/toolchain/spirv_tools_stage.h"
 
 namespace watergen {
 
@@ -128,11 +130,64 @@ OJson files_json(const std::string& dir, const FileMap& files) {
     return j;
 }
 
-} // namespace
+using JobIndex = std::map<std::pair<std::string, std::string>, size_t>; // (scene, key) -> job
 
-std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
-                          const std::vector<BuildJob>& jobs,
-                          const std::vector<JobResult>& results) {
+// What folding did to the job's shader.
+void add_fold(OJson& v, const BuildJob& job, const JobResult& r) {
+    OJson folded = OJson::object();
+    for (const auto& [name, value] : r.fold.folded_parameters)
+        folded[name] = value;
+    v["folded_parameters"] = folded;
+    if (!r.folded) return;
+    OJson removed_params = OJson::array(), removed_textures = OJson::array(),
+          terms = OJson::array();
+    for (const auto& p : r.fold.removed_parameters)
+        removed_params.push_back({{"name", p.name}, {"because", fact_texts(job.facts, p.facts)}});
+    for (const auto& t : r.fold.removed_textures)
+        removed_textures.push_back({{"name", t.name}, {"because", fact_texts(job.facts, t.facts)}});
+    for (const auto& t : r.fold.removed)
+        if (t.named) {
+            const FactSet fs =
+                t.event >= 0 ? r.fold.events[static_cast<size_t>(t.event)].facts : FactSet{};
+            terms.push_back(
+                {{"node", t.origin}, {"term", t.name}, {"because", fact_texts(job.facts, fs)}});
+        }
+    v["removed_parameters"] = removed_params;
+    v["removed_textures"] = removed_textures;
+    v["removed_terms"] = terms;
+    v["live_ir_nodes"] = {{"before", r.fold.live_before}, {"after", r.fold.live_after}};
+}
+
+// Where the job's files are (its own, or those of the earlier job with the same shader), its
+// reflection and SPIR-V counts; returns the job whose files these are.
+size_t add_output(OJson& v, size_t i, const std::vector<BuildJob>& jobs,
+                  const std::vector<JobResult>& results, const JobIndex& index) {
+    const BuildJob& job = jobs[i];
+    const JobResult& r = results[i];
+    size_t built = i;
+    if (!r.same_as.empty()) {
+        // Same shader as an earlier job of the scene: its files are that job's.
+        if (const auto it = index.find({job.scene, r.same_as}); it != index.end())
+            built = it->second;
+        v["same_as"] = r.same_as;
+    }
+    v["directory"] = job_directory(jobs[built]);
+    v["files"] = files_json(job_directory(jobs[built]), results[built].files);
+    const JobResult& b = results[built];
+    if (auto it = b.files.find("variant.json"); it != b.files.end()) {
+        const OJson d = OJson::parse(it->second);
+        v["reflection"] = {
+            {"uniform_block", d.value("uniform_block", OJson::object())},
+            {"sampler", {{"name", "linear_clamp"}, {"set", 0}, {"binding", kSamplerBinding}}},
+            {"textures", d.value("textures", OJson::array())}};
+        if (d.contains("specialization_constants"))
+            v["reflection"]["specialization_constants"] = d["specialization_constants"];
+        v["spirv_instructions"] = d.value("spirv_instructions", OJson::object());
+    }
+    return built;
+}
+
+OJson header_json(const Material& material, const std::vector<ManifestScene>& scenes) {
     OJson doc;
     doc["generator"] = std::string("watergen ") + WATERGEN_VERSION;
     doc["material"] = material_json(material);
@@ -142,79 +197,175 @@ std::string manifest_json(const Material& material, const std::vector<ManifestSc
     for (const auto& s : scenes)
         sc.push_back(scene_json(s));
     doc["scenes"] = sc;
+    return doc;
+}
 
-    std::map<std::pair<std::string, std::string>, size_t> index;
+OJson nodes_json(const Variant& v) {
+    OJson nodes = OJson::object();
+    for (const auto& a : axes())
+        nodes[a.name] = a.name + "." + v.choice(a.name);
+    return nodes;
+}
+
+} // namespace
+
+std::string job_directory(const BuildJob& job) {
+    return job.shader ? job.scene + "/" + job.shader->file_stem()
+                      : variant_directory(job.scene, job.variant);
+}
+
+std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
+                          const std::vector<BuildJob>& jobs,
+                          const std::vector<JobResult>& results) {
+    OJson doc = header_json(material, scenes);
+    JobIndex index;
     for (size_t i = 0; i < jobs.size(); ++i)
-        index[{jobs[i].scene, jobs[i].variant.key()}] = i;
+        index[{jobs[i].scene, job_key(jobs[i])}] = i;
     OJson variants = OJson::array();
     for (const auto& [scene_key, i] : index) {
         const BuildJob& job = jobs[i];
-        const JobResult& r = results[i];
         OJson v;
         v["scene"] = job.scene;
         v["key"] = job.variant.key();
         v["hash"] = job.variant.short_hash();
-        v["content_hash"] = r.content_hash;
-        const std::string dir = variant_directory(job.scene, job.variant);
-        OJson nodes = OJson::object();
-        for (const auto& a : axes())
-            nodes[a.name] = a.name + "." + job.variant.choice(a.name);
-        v["nodes"] = nodes;
-        OJson folded = OJson::object();
-        for (const auto& [name, value] : r.fold.folded_parameters)
-            folded[name] = value;
-        v["folded_parameters"] = folded;
-        if (r.folded) {
-            OJson removed_params = OJson::array(), removed_textures = OJson::array(),
-                  terms = OJson::array();
-            for (const auto& p : r.fold.removed_parameters)
-                removed_params.push_back(
-                    {{"name", p.name}, {"because", fact_texts(job.facts, p.facts)}});
-            for (const auto& t : r.fold.removed_textures)
-                removed_textures.push_back(
-                    {{"name", t.name}, {"because", fact_texts(job.facts, t.facts)}});
-            for (const auto& t : r.fold.removed)
-                if (t.named) {
-                    const FactSet fs = t.event >= 0
-                                           ? r.fold.events[static_cast<size_t>(t.event)].facts
-                                           : FactSet{};
-                    terms.push_back({{"node", t.origin},
-                                     {"term", t.name},
-                                     {"because", fact_texts(job.facts, fs)}});
-                }
-            v["removed_parameters"] = removed_params;
-            v["removed_textures"] = removed_textures;
-            v["removed_terms"] = terms;
-            v["live_ir_nodes"] = {{"before", r.fold.live_before}, {"after", r.fold.live_after}};
-        }
-        if (!r.same_as.empty()) {
-            // Same shader as an earlier variant of the scene: its files are that variant's.
-            Variant other = job.variant;
-            std::string error;
-            if (auto parsed = parse_variant_key(r.same_as, &error)) other = *parsed;
-            v["same_as"] = r.same_as;
-            v["directory"] = variant_directory(job.scene, other);
-            const auto it = index.find({job.scene, r.same_as});
-            const JobResult& first = it != index.end() ? results[it->second] : r;
-            v["files"] = files_json(variant_directory(job.scene, other), first.files);
-        } else {
-            v["directory"] = dir;
-            v["files"] = files_json(dir, r.files);
-        }
-        const auto canonical = r.same_as.empty() ? index.end() : index.find({job.scene, r.same_as});
-        const JobResult& built = canonical == index.end() ? r : results[canonical->second];
-        if (auto it = built.files.find("variant.json"); it != built.files.end()) {
-            const OJson d = OJson::parse(it->second);
-            v["reflection"] = {
-                {"uniform_block", d.value("uniform_block", OJson::object())},
-                {"sampler", {{"name", "linear_clamp"}, {"set", 0}, {"binding", kSamplerBinding}}},
-                {"textures", d.value("textures", OJson::array())}};
-            v["spirv_instructions"] = d.value("spirv_instructions", OJson::object());
-        }
+        v["content_hash"] = results[i].content_hash;
+        v["nodes"] = nodes_json(job.variant);
+        add_fold(v, job, results[i]);
+        add_output(v, i, jobs, results, index);
         variants.push_back(v);
     }
     doc["variants"] = variants;
     return doc.dump(2) + "\n";
+}
+
+namespace {
+
+// Where each selector of a built shader lives: its constant id (specialized) or block offset
+// (branching), from its variant.json; a selector the shader no longer reads is left out.
+std::map<std::string, uint32_t> selector_places(const JobResult& r, BuildMode mode) {
+    std::map<std::string, uint32_t> places;
+    const auto it = r.files.find("variant.json");
+    if (it == r.files.end()) return places;
+    const OJson d = OJson::parse(it->second);
+    if (mode == BuildMode::Specialized) {
+        for (const auto& c : d.value("specialization_constants", OJson::array()))
+            if (c["constant_ids"].size() == 1) places[c["name"]] = c["constant_ids"][0];
+    } else {
+        for (const auto& m : d["uniform_block"].value("members", OJson::array()))
+            places[m["name"]] = m["offset"];
+    }
+    return places;
+}
+
+OJson shader_json(size_t i, const std::vector<BuildJob>& jobs,
+                  const std::vector<JobResult>& results, const JobIndex& index, BuildMode mode) {
+    const BuildJob& job = jobs[i];
+    const ShaderChoices& s = *job.shader;
+    OJson v;
+    v["scene"] = job.scene;
+    v["key"] = s.key();
+    v["content_hash"] = results[i].content_hash;
+    OJson choices = OJson::object();
+    for (const auto& a : axes())
+        choices[a.name] = s.offered(a.name);
+    v["axes"] = choices;
+    const size_t built = add_output(v, i, jobs, results, index);
+    const std::map<std::string, uint32_t> places = selector_places(results[built], mode);
+    OJson selectors = OJson::array();
+    for (const auto& axis : s.switched_axes()) {
+        OJson sel = {
+            {"axis", axis}, {"parameter", selector_parameter(axis)}, {"choices", s.offered(axis)}};
+        if (const auto p = places.find(selector_parameter(axis)); p != places.end())
+            sel[mode == BuildMode::Specialized ? "constant_id" : "offset"] = p->second;
+        selectors.push_back(sel);
+    }
+    v["selectors"] = selectors;
+    v["variants"] = job.serves.size();
+    add_fold(v, job, results[i]);
+    return v;
+}
+
+// A variant as the shader of its job draws it: the selector values, where they go, and (with
+// freeze) the variant's own frozen SPIR-V.
+OJson served_json(const Variant& variant, size_t i, const std::vector<BuildJob>& jobs,
+                  const std::vector<JobResult>& results, const JobIndex& index, BuildMode mode,
+                  bool freeze) {
+    const BuildJob& job = jobs[i];
+    size_t built = i;
+    if (const auto it = index.find({job.scene, results[i].same_as}); it != index.end())
+        built = it->second;
+    const std::map<std::string, uint32_t> places = selector_places(results[built], mode);
+    OJson v;
+    v["scene"] = job.scene;
+    v["key"] = variant.key();
+    v["hash"] = variant.short_hash();
+    v["shader"] = job_directory(jobs[built]);
+    v["nodes"] = nodes_json(variant);
+    OJson values = OJson::object(), placed = OJson::array();
+    for (const auto& [name, value] : job.shader->selector_values(variant)) {
+        values[name] = value;
+        if (const auto p = places.find(name); p != places.end())
+            placed.push_back(mode == BuildMode::Specialized
+                                 ? OJson{{"id", p->second}, {"name", name}, {"value", value}}
+                                 : OJson{{"name", name}, {"offset", p->second}, {"value", value}});
+    }
+    v["selectors"] = values;
+    v[mode == BuildMode::Specialized ? "specialization_constants" : "uniforms"] = placed;
+    if (freeze && mode == BuildMode::Specialized) {
+        OJson frozen = OJson::object();
+        for (const char* lang : {"glsl", "hlsl"})
+            if (results[built].files.count(std::string(lang) + "/water.frag.opt.spv"))
+                frozen[lang] = job_directory(jobs[built]) + "/" + frozen_path(lang, variant);
+        v["frozen"] = frozen;
+    }
+    return v;
+}
+
+} // namespace
+
+std::string modes_manifest_json(const Material& material, BuildMode mode, bool freeze,
+                                const std::vector<ManifestScene>& scenes,
+                                const std::vector<BuildJob>& jobs,
+                                const std::vector<JobResult>& results) {
+    OJson doc = header_json(material, scenes);
+    doc["mode"] = to_string(mode);
+    JobIndex index;
+    for (size_t i = 0; i < jobs.size(); ++i)
+        index[{jobs[i].scene, job_key(jobs[i])}] = i;
+    OJson shaders = OJson::array();
+    std::map<std::pair<std::string, std::string>, OJson> variants; // sorted by (scene, key)
+    for (const auto& [scene_key, i] : index) {
+        if (!jobs[i].shader) continue;
+        shaders.push_back(shader_json(i, jobs, results, index, mode));
+        for (const Variant& v : jobs[i].serves)
+            variants[{jobs[i].scene, v.key()}] =
+                served_json(v, i, jobs, results, index, mode, freeze);
+    }
+    doc["shaders"] = shaders;
+    OJson list = OJson::array();
+    for (auto& [key, v] : variants)
+        list.push_back(std::move(v));
+    doc["variants"] = list;
+    return doc.dump(2) + "\n";
+}
+
+std::string frozen_path(const std::string& language, const Variant& v) {
+    return language + "/frozen/" + v.file_stem() + ".frag.spv";
+}
+
+OptimizeResult freeze_variant(const JobResult& r, const ShaderChoices& shader, const Variant& v,
+                              const std::string& language) {
+    const std::string name = language + "/water.frag.opt.spv";
+    const auto it = r.files.find(name);
+    if (it == r.files.end()) return {{}, {{Severity::Error, name, 0, 0, "", "not built"}}};
+    std::vector<uint32_t> words(it->second.size() / sizeof(uint32_t));
+    std::memcpy(words.data(), it->second.data(), words.size() * sizeof(uint32_t));
+    const std::map<std::string, uint32_t> places = selector_places(r, BuildMode::Specialized);
+    std::map<uint32_t, float> values;
+    for (const auto& [parameter, value] : shader.selector_values(v))
+        if (const auto p = places.find(parameter); p != places.end())
+            values[p->second] = static_cast<float>(value);
+    return freeze_specialization(words, values, frozen_path(language, v));
 }
 
 } // namespace watergen

@@ -55,7 +55,7 @@ std::string emitted_name(Language lang, ShaderStage stage) {
 // key in their stamp) and the metadata of the parameters they read, which variant.json reports.
 std::vector<std::string> hash_inputs(const WaterShader& shader, const std::string& stamp_key,
                                      Diagnostics& ds) {
-    std::vector<std::string> parts{shader.variant.key(), shader.preset};
+    std::vector<std::string> parts{shader.key(), shader.preset};
     for (Language lang : {Language::Glsl, Language::Hlsl}) {
         const EmittedShader frag = emit_fragment(
             shader.fragment, lang, emitted_name(lang, ShaderStage::Fragment), stamp_key, ds);
@@ -78,7 +78,7 @@ std::vector<std::string> hash_inputs(const WaterShader& shader, const std::strin
 // Phase 1 for one job: compose, fold, hash (no compiler involved).
 void compose_and_hash(const Material& material, const BuildJob& job, JobResult& r,
                       WaterShader& out) {
-    WaterShader shader = material.compose(job.variant);
+    WaterShader shader = job.shader ? material.compose(*job.shader) : material.compose(job.variant);
     const Diagnostics& graph_errors = shader.fragment.diagnostics();
     r.diagnostics.insert(r.diagnostics.end(), graph_errors.begin(), graph_errors.end());
     if (has_errors(r.diagnostics)) return;
@@ -88,7 +88,7 @@ void compose_and_hash(const Material& material, const BuildJob& job, JobResult& 
         r.fold = std::move(folded.report);
         r.folded = true;
     }
-    r.content_hash = content_hash(hash_inputs(shader, job.variant.key(), r.diagnostics));
+    r.content_hash = content_hash(hash_inputs(shader, job_key(job), r.diagnostics));
     Diagnostics ignored;
     std::vector<std::string> shape = hash_inputs(shader, "", ignored);
     shape.erase(shape.begin()); // equal shaders under different keys are still equal
@@ -112,7 +112,7 @@ BuildPlan plan_builds(const std::vector<BuildJob>& jobs, std::vector<JobResult>&
         auto [it, inserted] =
             first.emplace(std::make_pair(jobs[i].scene, results[i].shape_hash), i);
         if (!inserted) {
-            results[i].same_as = jobs[it->second].variant.key();
+            results[i].same_as = job_key(jobs[it->second]);
             continue;
         }
         auto [b, fresh] = builder.emplace(results[i].content_hash, i);
@@ -145,6 +145,10 @@ std::optional<FileMap> load_or_build(const BuildOptions& options, WaterShader sh
 }
 
 } // namespace
+
+std::string job_key(const BuildJob& job) {
+    return job.shader ? job.shader->key() : job.variant.key();
+}
 
 unsigned hardware_threads() {
     return std::max(1u, std::thread::hardware_concurrency());
@@ -195,7 +199,7 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
         ++progress.done;
         progress.cached += results[i].cached ? 1 : 0;
         progress.failed += results[i].ok() ? 0 : 1;
-        progress.key = jobs[i].variant.key();
+        progress.key = job_key(jobs[i]);
         options.progress(progress);
     };
     for (size_t i = 0; i < jobs.size(); ++i)

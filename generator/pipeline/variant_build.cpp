@@ -79,13 +79,17 @@ nlohmann::ordered_json describe_parameter(const Parameter& p, const char* place_
 
 nlohmann::ordered_json describe(const VariantBuild& b) {
     nlohmann::ordered_json j;
-    j["generator"] = stamp_text(b.shader.variant.key());
-    j["key"] = b.shader.variant.key();
+    j["generator"] = stamp_text(b.shader.key());
+    j["key"] = b.shader.key();
     j["preset"] = b.shader.preset;
     nlohmann::ordered_json choices = nlohmann::ordered_json::object();
     for (const auto& a : axes())
-        choices[a.name] = b.shader.variant.choice(a.name);
+        if (b.shader.switched)
+            choices[a.name] = b.shader.switched->offered(a.name);
+        else
+            choices[a.name] = b.shader.variant.choice(a.name);
     j["choices"] = choices;
+    if (b.shader.switched) j["mode"] = to_string(b.shader.switched->mode);
     const ShaderInterface& in = b.languages[0].fragment.source.interface;
     nlohmann::ordered_json params = nlohmann::ordered_json::array();
     for (const auto& slot : in.uniforms.members)
@@ -131,11 +135,10 @@ VariantBuild build_variant(const Variant& variant, const Preset* preset,
 
 VariantBuild build_shader(WaterShader shader, const EmitOptions& options) {
     VariantBuild b{std::move(shader), {}, {}};
-    const Variant& variant = b.shader.variant;
     const Diagnostics& graph_errors = b.shader.fragment.diagnostics();
     b.diagnostics.insert(b.diagnostics.end(), graph_errors.begin(), graph_errors.end());
     if (has_errors(b.diagnostics)) return b;
-    const std::string key = variant.key();
+    const std::string key = b.shader.key();
     for (size_t i = 0; i < b.languages.size(); ++i) {
         const Language lang = kLanguages[i];
         LanguageBuild& out = b.languages[i];
@@ -155,7 +158,7 @@ VariantBuild build_shader(WaterShader shader, const EmitOptions& options) {
 std::map<std::string, std::string> variant_files(const VariantBuild& b) {
     std::map<std::string, std::string> files;
     if (!b.ok()) return files;
-    const std::string stamp = stamp_text(b.shader.variant.key());
+    const std::string stamp = stamp_text(b.shader.key());
     for (const auto& lang : b.languages) {
         for (const StageBuild* s : {&lang.vertex, &lang.fragment}) {
             const StageFileNames names = stage_file_names(lang.language, s->source.stage);

@@ -92,7 +92,12 @@ std::pair<double, double> Material::range(const std::string& parameter) const {
 }
 
 WaterShader Material::compose(const Variant& v) const {
-    WaterShader shader = build_water_shader(v, preset.empty() ? nullptr : find_preset(preset));
+    return compose(ShaderChoices::of(v));
+}
+
+WaterShader Material::compose(const ShaderChoices& choices) const {
+    WaterShader shader =
+        build_water_shader(choices, preset.empty() ? nullptr : find_preset(preset));
     if (has_errors(shader.fragment.diagnostics())) return shader;
     std::vector<Parameter> params = shader.fragment.parameters();
     for (Parameter& p : params) {

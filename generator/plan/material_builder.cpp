@@ -324,11 +324,12 @@ std::optional<Diagnostic> MaterialBuilder::apply_setting(const ParameterCall& ca
                                                          const Parameter& p, ParameterSetting& s) {
     if (call.value) {
         if (s.value) return call.at.error("parameter '" + call.name + "' is given a value twice");
-        const size_t n = static_cast<size_t>(component_count(p.type));
+        const size_t n = value_count(p); // every element of an array, as a scene's "fixed"
         if (call.value->size() != n)
-            return call.at.error(fmt::format("parameter '{}' is a {}: expected {} number{}, got {}",
-                                             call.name, type_name(p.type), n, n == 1 ? "" : "s",
-                                             call.value->size()));
+            return call.at.error(fmt::format(
+                "parameter '{}' is a {}{}: expected {} number{}, got {}", call.name,
+                type_name(p.type), p.array_size ? fmt::format("[{}]", p.array_size) : "", n,
+                n == 1 ? "" : "s", call.value->size()));
         s.value = *call.value;
     }
     if (call.range) {

@@ -1,5 +1,8 @@
 #include "watergen/toolchain/spirv_tools_stage.h"
 
+#include <cstring>
+#include <unordered_map>
+
 #include <spirv-tools/libspirv.hpp>
 #include <spirv-tools/optimizer.hpp>
 
@@ -72,6 +75,38 @@ OptimizeResult optimize_spirv(const std::vector<uint32_t>& spirv, const std::str
 
 OptimizeResult legalize_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name) {
     return run_optimizer(spirv, file_name, true);
+}
+
+OptimizeResult freeze_specialization(const std::vector<uint32_t>& spirv,
+                                     const std::map<uint32_t, float>& values,
+                                     const std::string& file_name) {
+    OptimizeResult result;
+    std::unordered_map<uint32_t, std::vector<uint32_t>> bits;
+    for (const auto& [id, v] : values) {
+        uint32_t word = 0;
+        std::memcpy(&word, &v, sizeof word);
+        bits[id] = {word};
+    }
+    spvtools::Optimizer optimizer(kEnv);
+    optimizer.SetMessageConsumer(collect_into(result.diagnostics, file_name, "spirv-opt"));
+    optimizer.RegisterPass(spvtools::CreateSetSpecConstantDefaultValuePass(bits))
+        .RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
+        .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
+        .RegisterPass(spvtools::CreateUnifyConstantPass())
+        .RegisterPerformancePasses();
+    spvtools::OptimizerOptions options;
+    options.set_run_validator(false);
+    if (!optimizer.Run(spirv.data(), spirv.size(), &result.spirv, options)) {
+        result.spirv.clear();
+        if (!has_errors(result.diagnostics))
+            result.diagnostics.push_back(
+                {Severity::Error, file_name, 0, 0, "", "spirv-opt: freezing failed"});
+        return result;
+    }
+    Diagnostics invalid = validate_spirv(result.spirv, file_name);
+    if (has_errors(invalid)) result.spirv.clear();
+    result.diagnostics.insert(result.diagnostics.end(), invalid.begin(), invalid.end());
+    return result;
 }
 
 size_t count_instructions(const std::vector<uint32_t>& spirv) {

@@ -33,12 +33,14 @@ void build_vertex(Graph& g, const std::string& model) {
     Expr near = uniform(g, {"mesh_near", Type::Float, {0.1}, 1e-4, 1e3, "m", "", ""});
     Expr world, normal;
     if (model == "sum_of_sines") {
-        world = vec3(grid.x(), level + sum_of_sines_height(g, grid, time), grid.y());
-        normal = sum_of_sines_normal(g, grid, time);
+        const SurfaceSample at = sum_of_sines_sample(g, grid, time, Expr(), true, true);
+        world = vec3(grid.x(), level + at.height, grid.y());
+        normal = sum_of_sines_normal_from(g, at.slope);
     } else if (model == "gerstner") {
-        Expr d = gerstner_displacement(g, grid, time);
+        const GerstnerPoint at = gerstner_point(g, grid, time, Expr());
+        Expr d = at.displacement;
         world = vec3(grid.x() + d.x(), level + d.y(), grid.y() + d.z());
-        normal = gerstner_normal(g, grid, time);
+        normal = at.normal;
     } else {
         g.error("mesh: no vertex displacement for wave model '" + model +
                 "' (sum_of_sines, gerstner)");

@@ -4,6 +4,18 @@
 
 namespace watergen {
 
+// A field added to Surface must be added to surface_fields() too.
+static_assert(sizeof(Surface) == sizeof(Graph*) + 24 * sizeof(Expr), "surface_fields() is stale");
+
+std::vector<Expr*> surface_fields(Surface& s) {
+    return {&s.uv,         &s.scene_rgb, &s.scene_pos,      &s.eye,
+            &s.level,      &s.view_ray,  &s.scene_distance, &s.time,
+            &s.sun_travel, &s.sun_color, &s.surface_point,  &s.path,
+            &s.depth,      &s.is_water,  &s.wave_slope,     &s.normal,
+            &s.to_eye,     &s.n_dot_v,   &s.refracted,      &s.water_color,
+            &s.reflected,  &s.fresnel,   &s.specular,       &s.color};
+}
+
 PlaneHit intersect_plane(const Surface& s, Expr height) {
     Expr ray_down = named(min(s.view_ray.y(), -1e-6), "view_ray_y");
     Expr t = named(max((height - s.eye.y()) / ray_down, 0.0), "surface_distance");

@@ -1,5 +1,7 @@
 #include "watergen/water/water_shader.h"
 
+#include "watergen/water/axis_registry.h"
+
 #include "watergen/water/nodes.h"
 #include "watergen/water/presets.h"
 #include "watergen/water/scene_quantities.h"
@@ -16,9 +18,48 @@ TextureInput scene_position_texture() {
     return {"scene_position", Type::Texture2D, "world position of the scene surface, xyz in m", ""};
 }
 
+namespace {
+
+// The axis' offered choice, or a switch between several.
+void compose_axis(Surface& s, const ShaderChoices& choices, const std::string& axis) {
+    const std::vector<std::string>& offered = choices.offered(axis);
+    if (offered.size() == 1)
+        compose_choice(s, axis, offered.front());
+    else
+        compose_switch(s, axis, offered, choices.mode == BuildMode::Specialized);
+}
+
+// An error for choices no shader can compose: an axis without a choice, several choices on a
+// permutation-only axis (or in Permutations mode).
+void check_choices(Graph& g, const ShaderChoices& choices) {
+    if (choices.choices.size() != axes().size()) {
+        g.error("shader choices: " + std::to_string(choices.choices.size()) + " axes, expected " +
+                std::to_string(axes().size()));
+        return;
+    }
+    for (size_t i = 0; i < axes().size(); ++i) {
+        const std::string& axis = axes()[i].name;
+        const size_t n = choices.choices[i].size();
+        if (n == 0) g.error(axis + ": no choice offered");
+        if (n > 1 && (permutation_only(axis) || choices.mode == BuildMode::Permutations))
+            g.error(axis + ": one choice per shader " +
+                    (permutation_only(axis) ? std::string("(a permutation-only axis)")
+                                            : std::string("in permutations mode")));
+    }
+}
+
+} // namespace
+
 WaterShader build_water_shader(const Variant& variant, const Preset* preset) {
-    WaterShader shader{variant, preset ? preset->name : "", Graph{}};
+    return build_water_shader(ShaderChoices::of(variant), preset);
+}
+
+WaterShader build_water_shader(const ShaderChoices& choices, const Preset* preset) {
+    WaterShader shader{choices.first_variant(), preset ? preset->name : "", Graph{}, std::nullopt};
+    if (choices.mode != BuildMode::Permutations) shader.switched = choices;
     Graph& g = shader.fragment;
+    check_choices(g, choices);
+    if (has_errors(g.diagnostics())) return shader;
     Surface s(g);
     {
         OriginScope scope(g, "surface");
@@ -42,28 +83,28 @@ WaterShader build_water_shader(const Variant& variant, const Preset* preset) {
         s.scene_distance = named(length(to_scene), "scene_distance");
         s.view_ray = named(to_scene / max(s.scene_distance, 1e-6), "view_ray");
     }
-    const bool relaxed = variant.choice("precision") == "half";
+    const bool relaxed = choices.offered("precision").front() == "half";
     // Geometry (positions, times, wave phases) stays 32-bit: half cannot hold 1e5 m or a day
     // of seconds. The precision axis relaxes the shading math only.
-    compose_choice(s, "waves", variant.choice("waves"));
-    compose_choice(s, "normals", variant.choice("normals"));
+    compose_axis(s, choices, "waves");
+    compose_axis(s, choices, "normals");
     {
         OriginScope scope(g, "surface");
         s.to_eye = -s.view_ray;
         s.n_dot_v = named(dot(s.normal, s.to_eye), "n_dot_v");
     }
     RelaxedScope shading(g, relaxed);
-    compose_choice(s, "refraction", variant.choice("refraction"));
-    compose_choice(s, "extinction", variant.choice("extinction"));
-    compose_choice(s, "reflection", variant.choice("reflection"));
-    compose_choice(s, "fresnel", variant.choice("fresnel"));
-    compose_choice(s, "specular", variant.choice("specular"));
+    compose_axis(s, choices, "refraction");
+    compose_axis(s, choices, "extinction");
+    compose_axis(s, choices, "reflection");
+    compose_axis(s, choices, "fresnel");
+    compose_axis(s, choices, "specular");
     {
         OriginScope scope(g, "compose");
         s.color = named(mix(s.water_color, s.reflected, s.fresnel) + s.specular, "water_rgb");
     }
-    compose_choice(s, "foam", variant.choice("foam"));
-    compose_choice(s, "shore", variant.choice("shore"));
+    compose_axis(s, choices, "foam");
+    compose_axis(s, choices, "shore");
     OriginScope scope(g, "compose");
     if (has_errors(g.diagnostics())) return shader;
     Expr rgb = select(s.is_water, s.color, s.scene_rgb);

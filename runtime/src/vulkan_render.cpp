@@ -8,6 +8,8 @@
 
 #include <algorithm>
 
+#include <valgrind/callgrind.h>
+
 namespace watergen::vk_detail {
 namespace {
 
@@ -263,6 +265,14 @@ void run_draws(Context& ctx, const RenderJob& job, VkCommandBuffer draw, VkFence
         result.draw_ms.push_back(static_cast<double>(delta) * ctx.limits.timestampPeriod * 1e-6);
     }
     result.steady_draw_ms = median(result.draw_ms);
+    if (!job.counted_draw_label.empty() && RUNNING_ON_VALGRIND) {
+        // Only this draw is instrumented: the count is the draw's work, JIT and setup excluded.
+        CALLGRIND_START_INSTRUMENTATION;
+        CALLGRIND_ZERO_STATS;
+        submit_and_wait(ctx, draw, fence);
+        CALLGRIND_DUMP_STATS_AT(job.counted_draw_label.c_str());
+        CALLGRIND_STOP_INSTRUMENTATION;
+    }
 }
 
 // Copies the colour target into result.rgba. The render pass left the image in

@@ -1,4 +1,5 @@
 #version 450
+{{extensions}}
 // {{stamp}}
 
 // Mesh path: one vertex of the wave grid. The wave model displaces the grid point and gives

@@ -169,3 +169,65 @@ TEST_CASE("the_first_block_that_cannot_be_evaluated_names_the_error", "[evaluato
     in.lanes = 0; // nothing to evaluate, nothing to fail
     CHECK(evaluate(g, "out", in, EvalPrecision::Float).ok());
 }
+
+TEST_CASE("only_the_selected_case_needs_its_inputs", "[switch]") {
+    // The program compiles the case the selector picks (its value computed once, at compile
+    // time): a texture only another case samples need not be supplied, as on the GPU.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    Expr sel = uniform(g, {"sel", Type::Float, {0.0}, 0.0, 1.0, "", "", ""});
+    const auto r = choose(g, sel * 1.0, 2, [&](Graph& body, int c) -> std::vector<Expr> {
+        Expr xin = read_in(body, x);
+        if (c == 0) return {xin * 3.0};
+        return {sample_level(texture(body, {"t", Type::Texture2D, "", ""}), vec2(xin, xin),
+                             constant(body, 0.0))
+                    .x()};
+    });
+    REQUIRE(g.diagnostics().empty());
+    g.set_output("out", r[0].id());
+    EvalInputs in;
+    in.varyings["x"] = {0.25, 0.5};
+    in.lanes = 2;
+    const EvalResult first = evaluate(g, "out", in, EvalPrecision::Float);
+    REQUIRE(first.ok());
+    CHECK(first.values == std::vector<double>{0.75, 1.5});
+    in.uniforms["sel"] = {1.0};
+    CHECK(evaluate(g, "out", in, EvalPrecision::Float).error == "texture 't' not supplied");
+    const float texel[4] = {0.5f, 0.f, 0.f, 1.f};
+    in.textures["t"] = TextureView{1, 1, texel};
+    const EvalResult second = evaluate(g, "out", in, EvalPrecision::Float);
+    REQUIRE(second.ok());
+    CHECK(second.values == std::vector<double>{0.5, 0.5});
+}
+
+TEST_CASE("switches_and_loops_nest_in_each_other", "[switch]") {
+    // c <- case 0: c + x; case 1: 4c + 1 by an inner loop (c <- 2c + j, j < 2), three times.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    Expr sel = uniform(g, {"sel", Type::Float, {0.0}, 0.0, 1.0, "", "", ""});
+    const auto r = loop(g, 3, {x}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{choose(c[0].graph(), sel, 2,
+                               [&](Graph& body, int k) -> std::vector<Expr> {
+                                   Expr cin = read_in(body, c[0]);
+                                   if (k == 0) return {cin + read_in(body, x)};
+                                   return loop(body, 2, {cin},
+                                               [](Expr j, const std::vector<Expr>& d) {
+                                                   return LoopStep{{d[0] * 2.0 + j}, {}};
+                                               });
+                               }),
+                        {}};
+    });
+    REQUIRE(g.diagnostics().empty());
+    g.set_output("out", r[0].id());
+    EvalInputs in;
+    in.varyings["x"] = {0.5, -2.0};
+    in.lanes = 2;
+    for (double s : {0.0, 1.0}) {
+        in.uniforms["sel"] = {s};
+        const EvalResult e = evaluate(g, "out", in, EvalPrecision::Double);
+        REQUIRE(e.ok());
+        const std::vector<double> expected =
+            s == 0 ? std::vector<double>{2.0, -8.0} : std::vector<double>{53.0, -107.0};
+        CHECK(e.values == expected);
+    }
+}

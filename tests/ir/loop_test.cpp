@@ -20,6 +20,13 @@ EvalInputs lanes_of(const std::string& name, const std::vector<double>& values) 
     return in;
 }
 
+size_t occurrences(const std::string& text, const std::string& part) {
+    size_t count = 0;
+    for (size_t p = text.find(part); p != std::string::npos; p = text.find(part, p + 1))
+        ++count;
+    return count;
+}
+
 // Heron's square root of x from 1 + x / 2, stopping once a step changes less than 1e-12
 // relative; the second carried value counts the iterations run.
 Graph heron(int trip_count) {
@@ -89,11 +96,41 @@ TEST_CASE("loops_are_emitted_as_for_loops_in_both_languages", "[loop]") {
     CHECK(glsl.source.find("[[dont_unroll]] for (int ") != std::string::npos);
     CHECK(hlsl.source.find("[loop] for (int ") != std::string::npos);
     // The body is written once, not 16 times.
-    size_t divisions = 0;
-    for (size_t p = glsl.source.find(" / "); p != std::string::npos;
-         p = glsl.source.find(" / ", p + 1))
-        ++divisions;
-    CHECK(divisions == 1);
+    CHECK(occurrences(glsl.source, " / ") == 1);
+}
+
+TEST_CASE("the_emit_options_override_every_loops_unroll_hint", "[loop]") {
+    // One loop hinted to unroll, one not: "hinted" keeps each, "all" / "none" set both.
+    Graph frag;
+    Expr uv = varying(frag, "v_uv", Type::Vec2);
+    auto step = [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] * 0.5 + uv.y()}, Expr()};
+    };
+    const auto a = loop(frag, 4, {uv.x()}, step, LoopOptions{true});
+    const auto b = loop(frag, 5, {uv.y()}, step);
+    frag.set_output("color", vec4(a[0], b[0], constant(frag, 0.0), constant(frag, 1.0)).id());
+    auto count = [](const std::string& text, const std::string& word) {
+        size_t n = 0;
+        for (size_t p = text.find(word); p != std::string::npos; p = text.find(word, p + 1))
+            ++n;
+        return n;
+    };
+    const std::vector<std::pair<LoopUnroll, std::pair<size_t, size_t>>> cases = {
+        {LoopUnroll::AsHinted, {1, 1}}, {LoopUnroll::All, {2, 0}}, {LoopUnroll::None, {0, 2}}};
+    for (const auto& [policy, expected] : cases) {
+        Diagnostics ds;
+        EmitOptions options;
+        options.unroll = policy;
+        const std::string glsl =
+            emit_fragment(frag, Language::Glsl, "f.glsl", "k", ds, options).source;
+        const std::string hlsl =
+            emit_fragment(frag, Language::Hlsl, "f.hlsl", "k", ds, options).source;
+        CHECK(ds.empty());
+        CHECK(count(glsl, "[[unroll]] for") == expected.first);
+        CHECK(count(glsl, "[[dont_unroll]] for") == expected.second);
+        CHECK(count(hlsl, "[unroll] for") == expected.first);
+        CHECK(count(hlsl, "[loop] for") == expected.second);
+    }
 }
 
 TEST_CASE("a_malformed_loop_is_a_diagnostic", "[loop]") {
@@ -133,4 +170,274 @@ TEST_CASE("the_fold_keeps_a_loop_whose_inputs_are_all_constants", "[loop]") {
     const EvalResult e = evaluate(folded.graph, "v", lanes_of("x", {3.0}), EvalPrecision::Double);
     REQUIRE(e.ok());
     CHECK(e.values[0] == 58.0); // c = 2c + i from 1, five times
+}
+
+namespace {
+
+// The fold of `value` with x in [0, 1]: the rewrites it made, one per line.
+std::string fold_events(Graph& g, Expr value) {
+    g.set_output("v", value.id());
+    FoldFacts facts;
+    facts.input_ranges["x"] = {{make_interval(0.0, 1.0)}, facts.add_fact("x in [0, 1]", "")};
+    const FoldResult folded = fold_graph(g, facts);
+    std::string all;
+    for (const auto& e : folded.report.events)
+        all += e.what + "\n";
+    return all;
+}
+
+// s = sum of (i + 1) over the iterations run, for a trip count read from parameter "n": the
+// sum tells how many ran.
+Graph counted(Expr (*count)(Graph&)) {
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r =
+        loop(g, count(g), 8, {constant(g, 0.0)}, [&](Expr i, const std::vector<Expr>& c) {
+            return LoopStep{{c[0] + i + 1.0}, Expr()};
+        });
+    g.set_output("s", (r[0] + x * 0.0).id());
+    return g;
+}
+
+Expr count_parameter(Graph& g) {
+    return uniform(g, {"n", Type::Float, {3.0}, 0.0, 100.0, "", "", ""});
+}
+
+double sum_for_count(const Graph& g, double n) {
+    EvalInputs in = lanes_of("x", {1.0, 2.0});
+    in.uniforms["n"] = {n};
+    const EvalResult e = evaluate(g, "s", in, EvalPrecision::Float);
+    REQUIRE(e.ok());
+    CHECK(e.values[0] == e.values[1]); // every lane runs the same count
+    return e.values[0];
+}
+
+} // namespace
+
+TEST_CASE("the_fold_bounds_a_loop_by_running_its_body_over_intervals", "[loop]") {
+    // c = c / 2 + x from c = x, eight times: c stays in [0, 2) for x in [0, 1].
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = loop(g, 8, {x}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] * 0.5 + x}, Expr()};
+    });
+    const std::string events = fold_events(g, min(max(r[0], constant(g, 0.0)), 2.0));
+    INFO(events);
+    CHECK(events.find("max(a, b) -> a (a >= b)") != std::string::npos);
+    CHECK(events.find("min(a, b) -> a (a <= b)") != std::string::npos);
+}
+
+TEST_CASE("a_loop_bound_holds_for_every_iteration_count_an_exit_allows", "[loop]") {
+    // With an exit the loop ends after any of its 64 iterations: the count is in [0, 64] (the
+    // union of every state; each + 1 widened by its rounding margin), so min(count, 64.01)
+    // folds and min(count, 63) must not.
+    for (const double cap : {64.01, 63.0}) {
+        Graph g;
+        Expr x = varying(g, "x", Type::Float);
+        const auto r = loop(g, 64, {constant(g, 0.0), x}, [&](Expr, const std::vector<Expr>& c) {
+            Expr next = c[1] * c[1];
+            return LoopStep{{c[0] + 1.0, next}, next > 1e-6};
+        });
+        const std::string events = fold_events(g, min(r[0], cap));
+        INFO("cap " << cap << "\n" << events);
+        CHECK((events.find("min(a, b) -> a (a <= b)") != std::string::npos) == (cap > 64.0));
+    }
+}
+
+TEST_CASE("a_long_loop_is_widened_then_narrowed_to_a_sound_bound", "[loop]") {
+    // 1000 steps, past what the analysis follows step by step. c / 2 + x converges below 2:
+    // widened to a threshold, then narrowed, its bound ends within 2.5.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = loop(g, 1000, {x}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] * 0.5 + x}, Expr()};
+    });
+    const std::string events = fold_events(g, min(r[0], 2.5));
+    INFO(events);
+    CHECK(events.find("min(a, b) -> a (a <= b)") != std::string::npos);
+}
+
+TEST_CASE("a_growing_loop_is_widened_without_claiming_a_bound_it_cannot_hold", "[loop]") {
+    // c + x grows every step: its upper bound is widened to infinity, so min(c, 999) stays
+    // (c reaches 1000 at x = 1), and so does max(c, 0) (c is not proven finite).
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = loop(g, 1000, {constant(g, 0.0)}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] + x}, Expr()};
+    });
+    const std::string events = fold_events(g, min(max(r[0], constant(g, 0.0)), 999.0));
+    INFO(events);
+    CHECK(events.find("min(a, b)") == std::string::npos);
+    const EvalResult e = evaluate(g, "v", lanes_of("x", {1.0}), EvalPrecision::Double);
+    REQUIRE(e.ok());
+    CHECK(e.values[0] == 999.0);
+}
+
+TEST_CASE("nested_loops_are_bounded_through_both_bodies", "[loop]") {
+    // An outer loop of 4 adds an inner loop's sum of 3 copies of x: at most 12 for x <= 1.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = loop(g, 4, {constant(g, 0.0)}, [&](Expr, const std::vector<Expr>& outer) {
+        const auto inner = loop(outer[0].graph(), 3, {constant(outer[0].graph(), 0.0)},
+                                [&](Expr, const std::vector<Expr>& c) {
+                                    return LoopStep{{c[0] + x}, Expr()};
+                                });
+        return LoopStep{{outer[0] + inner[0]}, Expr()};
+    });
+    const std::string events = fold_events(g, min(r[0], 12.01));
+    INFO(events);
+    CHECK(events.find("min(a, b) -> a (a <= b)") != std::string::npos);
+    const EvalResult e = evaluate(g, "v", lanes_of("x", {1.0}), EvalPrecision::Double);
+    REQUIRE(e.ok());
+    CHECK(e.values[0] == 12.0);
+}
+
+TEST_CASE("a_loop_runs_the_trip_count_its_parameter_gives_floored_and_bounded", "[loop]") {
+    const Graph g = counted(&count_parameter);
+    REQUIRE(g.diagnostics().empty());
+    CHECK(sum_for_count(g, 0.0) == 0.0);
+    CHECK(sum_for_count(g, 1.0) == 1.0);
+    CHECK(sum_for_count(g, 3.0) == 6.0);
+    CHECK(sum_for_count(g, 3.9) == 6.0);  // floored
+    CHECK(sum_for_count(g, 0.5) == 0.0);  // below 1: none
+    CHECK(sum_for_count(g, -2.0) == 0.0); // clamped at 0
+    CHECK(sum_for_count(g, 8.0) == 36.0); // the maximum
+    CHECK(sum_for_count(g, 50.0) == 36.0);
+    CHECK(sum_for_count(g, INFINITY) == 36.0);
+    CHECK(sum_for_count(g, NAN) == 0.0);
+}
+
+TEST_CASE("a_trip_count_from_data_is_emitted_as_a_break_before_the_body", "[loop]") {
+    Graph frag;
+    Expr uv = varying(frag, "v_uv", Type::Vec2);
+    Expr n = uniform(frag, {"n", Type::Float, {3.0}, 0.0, 100.0, "", "", ""});
+    const auto r = loop(frag, n, 8, {uv.x()}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] * uv.y()}, Expr()};
+    });
+    frag.set_output("color", vec4(r[0], uv.y(), constant(frag, 0.0), constant(frag, 1.0)).id());
+    Diagnostics ds;
+    const EmittedShader glsl = emit_fragment(frag, Language::Glsl, "f.glsl", "k", ds);
+    const EmittedShader hlsl = emit_fragment(frag, Language::Hlsl, "f.hlsl", "k", ds);
+    INFO(glsl.source);
+    CHECK(ds.empty());
+    CHECK(glsl.source.find("float trip_count = floor(params.n);") != std::string::npos);
+    CHECK(glsl.source.find("< 8; ++loop") != std::string::npos);
+    CHECK(glsl.source.find(" < trip_count)) break;") != std::string::npos);
+    CHECK(hlsl.source.find("float trip_count = floor(n);") != std::string::npos);
+    CHECK(hlsl.source.find("if (!(((float)loop") != std::string::npos);
+    // As a specialization constant the count is read by name.
+    const EmittedShader spec =
+        emit_fragment(frag, Language::Glsl, "f.glsl", "k", ds, EmitOptions{false, {"n"}});
+    CHECK(ds.empty());
+    CHECK(spec.source.find("float trip_count = floor(n);") != std::string::npos);
+}
+
+TEST_CASE("a_trip_count_that_differs_between_pixels_is_a_diagnostic", "[loop]") {
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    Expr n = uniform(g, {"n", Type::Float, {3.0}, 0.0, 100.0, "", "", ""});
+    auto body = [](Expr, const std::vector<Expr>& c) { return LoopStep{c, Expr()}; };
+    loop(g, n + x, 8, {x}, body);
+    loop(g, vec2(n, n), 8, {x}, body);
+    loop(g, n, 0, {x}, body);
+    // Inside a body: the outer loop's index is not the same for every pixel, a parameter
+    // captured through the body is.
+    loop(g, 4, {x}, [&](Expr i, const std::vector<Expr>& c) {
+        loop(i.graph(), i, 8, {c[0]}, body);
+        return LoopStep{loop(i.graph(), n * 2.0, 8, {c[0]}, body), Expr()};
+    });
+    std::string all;
+    for (const auto& d : g.diagnostics())
+        all += d.message + "\n";
+    INFO(all);
+    CHECK(all.find("the trip count must be the same for every pixel (parameters and constants "
+                   "only), but it reads varying 'x'") != std::string::npos);
+    CHECK(all.find("the trip count is vec2, not float") != std::string::npos);
+    CHECK(all.find("maximum trip count 0 is not in 1..4096") != std::string::npos);
+    CHECK(all.find("but it reads a loop index") != std::string::npos);
+    CHECK(g.diagnostics().size() == 4);
+}
+
+TEST_CASE("nested_loops_capture_across_two_levels", "[loop]") {
+    // s = sum over i < 3 of sum over j < n of (x + k) * (i + 1): the inner body reads x and
+    // k from the outermost graph and the outer loop's index.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    Expr k = named(x * x, "outer_k");
+    Expr n = count_parameter(g);
+    const auto r = loop(g, 3, {constant(g, 0.0)}, [&](Expr i, const std::vector<Expr>& c) {
+        const auto inner = loop(i.graph(), n, 4, {c[0]}, [&](Expr, const std::vector<Expr>& d) {
+            return LoopStep{{d[0] + (x + k) * (i + 1.0)}, Expr()};
+        });
+        return LoopStep{inner, Expr()};
+    });
+    g.set_output("s", r[0].id());
+    REQUIRE(g.diagnostics().empty());
+    for (double count : {0.0, 2.0, 3.0, 9.0}) {
+        EvalInputs in = lanes_of("x", {0.5, -3.0});
+        in.uniforms["n"] = {count};
+        const EvalResult e = evaluate(g, "s", in, EvalPrecision::Double);
+        REQUIRE(e.ok());
+        const double runs = std::min(count, 4.0);
+        for (size_t l = 0; l < 2; ++l) {
+            const double xv = l == 0 ? 0.5 : -3.0;
+            CHECK(e.values[l] == Approx(6.0 * runs * (xv + xv * xv)).epsilon(1e-14));
+        }
+    }
+    Diagnostics ds;
+    Graph frag;
+    Expr uv = varying(frag, "v_uv", Type::Vec2);
+    Expr m = count_parameter(frag);
+    const auto f = loop(frag, 3, {uv.x()}, [&](Expr i, const std::vector<Expr>& c) {
+        return LoopStep{loop(i.graph(), m, 4, {c[0]},
+                             [&](Expr, const std::vector<Expr>& d) {
+                                 return LoopStep{{d[0] * uv.y() + i}, Expr()};
+                             }),
+                        Expr()};
+    });
+    frag.set_output("color", vec4(f[0], uv.y(), constant(frag, 0.0), constant(frag, 1.0)).id());
+    const EmittedShader glsl = emit_fragment(frag, Language::Glsl, "f.glsl", "k", ds);
+    INFO(glsl.source);
+    CHECK(ds.empty());
+    CHECK(occurrences(glsl.source, "for (int ") == 2);
+}
+
+TEST_CASE("the_fold_keeps_a_counted_loop_and_its_count", "[loop]") {
+    const Graph g = counted(&count_parameter);
+    // Unknown count: the loop and the parameter stay.
+    const FoldResult open = fold_graph(g, {});
+    CHECK(open.graph.find_parameter("n") != nullptr);
+    CHECK(sum_for_count(open.graph, 2.0) == 3.0);
+    // A fixed count becomes a constant argument; the loop runs it.
+    FoldFacts facts;
+    facts.fixed["n"] = {{4.0}, 0};
+    const FoldResult fixed = fold_graph(g, facts);
+    REQUIRE(fixed.graph.diagnostics().empty());
+    CHECK(fixed.graph.find_parameter("n") == nullptr);
+    const EvalResult e = evaluate(fixed.graph, "s", lanes_of("x", {1.0}), EvalPrecision::Double);
+    REQUIRE(e.ok());
+    CHECK(e.values[0] == 10.0);
+}
+
+TEST_CASE("a_loop_bound_with_a_trip_count_from_data_holds_for_no_iteration", "[loop]") {
+    // Four halvings from 10 end at 0.625, but a count of 0 runs none and gives 10: the bound
+    // of a counted loop is the union of every state, the initial one included, so
+    // max(result, 5) must stay (a bound of the fourth state alone would fold it to 5).
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    Expr n = uniform(g, {"n", Type::Float, {4.0}, 0.0, 100.0, "", "", ""});
+    const auto r = loop(g, n, 4, {constant(g, 10.0)}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] * 0.5}, Expr()};
+    });
+    const std::string events = fold_events(g, max(r[0] + x * 0.0, constant(g, 5.0)));
+    INFO(events);
+    CHECK(events.find("max(a, b)") == std::string::npos);
+    const FoldResult folded = fold_graph(g, {});
+    for (const double count : {0.0, 4.0}) {
+        EvalInputs in = lanes_of("x", {1.0});
+        in.uniforms["n"] = {count};
+        const EvalResult e = evaluate(folded.graph, "v", in, EvalPrecision::Double);
+        REQUIRE(e.ok());
+        CHECK(e.values[0] == (count == 0.0 ? 10.0 : 5.0));
+    }
 }

@@ -198,3 +198,16 @@ TEST_CASE("default_material_composes_with_its_values_and_ranges", "[material]") 
     CHECK(k->max == 2.0);
     CHECK(s.preset == "tropical_ocean");
 }
+
+TEST_CASE("a_material_gives_an_array_parameter_every_element", "[material]") {
+    // gerstner_wave_speeds is a float[8]: a value is eight numbers, each in range.
+    const std::string waves = "{\"name\": \"x\", \"axes\": {\"waves\": [\"gerstner\"]}, "
+                              "\"parameters\": {\"gerstner_wave_count\": {\"value\": 6}, "
+                              "\"gerstner_wave_speeds\": {\"value\": ";
+    CHECK(error_of(waves + "[1, 2, 3, 4, 5, 6, 7, 8]}}}").empty());
+    CHECK(error_of(waves + "[1, 2, 3, 4]}}}")
+              .find("parameter 'gerstner_wave_speeds' is a float[8]: expected 8 numbers, got 4") !=
+          std::string::npos);
+    CHECK(error_of(waves + "[1, 2, 3, 4, 5, 6, 7, 800]}}}")
+              .find("value 800 of 'gerstner_wave_speeds'") != std::string::npos);
+}

@@ -172,3 +172,27 @@ TEST_CASE("mesh_vertex_stage_math_agrees_between_gpu_and_cpu", "[probe][waves][m
             CHECK(max_gap(run.gpu, run.cpu_float) <= 2e-5);
         }
 }
+
+TEST_CASE("a_wave_count_from_data_agrees_between_gpu_and_cpu_float", "[probe][waves]") {
+    // The loop over the waves runs as many as the uniform says: none (a flat, still surface),
+    // two, or all eight (waves 4..7 at their defaults); the same bound as the default four.
+    const std::vector<double> in = xz_t_tuples(100.0, 100.0, 12);
+    for (double count : {0.0, 2.0, 8.0})
+        for (const std::string family : {"waves", "gerstner"})
+            for (Language lang : {Language::Glsl, Language::Hlsl}) {
+                const std::string node =
+                    family == "waves" ? "waves.sum_of_sines.slope" : "waves.gerstner.normal";
+                INFO(node << " " << to_string(lang) << " count " << count);
+                const ProbeRun run = probe(node, lang, in, {{family + "_wave_count", {count}}});
+                const double gap = max_gap(run.gpu, run.cpu_float);
+                std::printf("%-26s %s  %g waves: max|gpu - cpu float| %.3g\n", node.c_str(),
+                            to_string(lang), count, gap);
+                CHECK(gap <= 1e-5);
+                const std::vector<double> flat = family == "waves"
+                                                     ? std::vector<double>{0.0, 0.0}
+                                                     : std::vector<double>{0.0, 1.0, 0.0};
+                for (size_t t = 0; count == 0 && t < run.tuples; ++t)
+                    for (size_t c = 0; c < flat.size(); ++c)
+                        CHECK(run.gpu[t * flat.size() + c] == flat[c]);
+            }
+}

@@ -76,7 +76,7 @@ TEST_CASE("every_wave_and_normal_choice_renders_the_same_on_glsl_hlsl_and_cpu", 
     // heightmap_march_converged 1.9e-5, flat + detail_map 8.1e-7, heightmap_march + flat 4.3e-7.
     // The rows just under the horizon (surface points ~500 m away, phases ~500 rad) agree
     // because every wave model is band-limited to the pixel footprint in the surface search
-    // (waves_at, heightmap_height): without it a handful of grazing pixels landed on
+    // (sum_over_waves, heightmap_height): without it a handful of grazing pixels landed on
     // different crests on the GPU and the CPU (measured up to 0.6).
     const Case cases[] = {
         {"sum_of_sines", "analytic"},

@@ -47,13 +47,14 @@ inline EvalResult eval_node(const std::string& name, const std::vector<double>& 
     return r;
 }
 
-// ---- 004 in double, with the parameter defaults of core/nodes/waves.cpp ----
+// ---- 004 in double, with the parameter defaults of water/nodes/wave_families.cpp ----
 
 struct WaveModel {
     double amplitude, frequency, amplitude_gain = 0.82, frequency_gain = 1.18;
-    std::array<double, 8> directions;
-    std::array<double, 4> phase_speeds;
+    std::array<double, 16> directions; // (x, z) per wave
+    std::array<double, 8> phase_speeds;
     double steepness = 0.5; // Gerstner only
+    int count = 4;          // <family>_wave_count
 
     double a(int i) const { return amplitude * std::pow(amplitude_gain, i); }
     double f(int i) const { return frequency * std::pow(frequency_gain, i); }
@@ -63,7 +64,7 @@ struct WaveModel {
         return f(i) * (dx(i) * x + dz(i) * z) + t * phase_speeds[i];
     }
     // GPU Gems' Q_i A_i with Q_i = Q / (w_i A_i n).
-    double qa(int i) const { return a(i) == 0 ? 0.0 : steepness / (4.0 * f(i) * a(i)) * a(i); }
+    double qa(int i) const { return a(i) == 0 ? 0.0 : steepness / (count * f(i) * a(i)) * a(i); }
 };
 
 inline WaveModel sines_model() {
@@ -71,23 +72,25 @@ inline WaveModel sines_model() {
             0.9,
             0.82,
             1.18,
-            {0.28, -0.96, -0.6, -0.8, 0.8, -0.6, -0.96, -0.28},
-            {2.97, 3.23, 3.51, 3.81}};
+            {0.28, -0.96, -0.6, -0.8, 0.8, -0.6, -0.96, -0.28, 0.6, -0.8, -0.8, -0.6, 0.96, -0.28,
+             -0.28, -0.96},
+            {2.97, 3.23, 3.51, 3.81, 4.14, 4.49, 4.88, 5.30}};
 }
 inline WaveModel gerstner_model() {
     return {0.2,
             0.7,
             0.82,
             1.18,
-            {0.0, -1.0, 0.6, -0.8, -0.8, -0.6, 0.96, -0.28},
-            {2.62, 2.85, 3.09, 3.36},
+            {0.0, -1.0, 0.6, -0.8, -0.8, -0.6, 0.96, -0.28, -0.6, -0.8, 0.8, -0.6, -0.28, -0.96,
+             0.28, -0.96},
+            {2.62, 2.85, 3.09, 3.36, 3.65, 3.96, 4.30, 4.68},
             0.5};
 }
 
 // 004: h = sum a_i sin(f_i (d_i . p) + t phi_i).
 inline double sines_height(const WaveModel& m, double x, double z, double t) {
     double h = 0;
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < m.count; ++i)
         h += m.a(i) * std::sin(m.theta(i, x, z, t));
     return h;
 }
@@ -95,7 +98,7 @@ inline double sines_height(const WaveModel& m, double x, double z, double t) {
 // 004 / GPU Gems: (sum Q_i A_i D_i.x cos, sum A_i sin, sum Q_i A_i D_i.z cos).
 inline std::array<double, 3> gerstner_offset(const WaveModel& m, double x, double z, double t) {
     std::array<double, 3> d{0, 0, 0};
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < m.count; ++i) {
         const double th = m.theta(i, x, z, t);
         d[0] += m.qa(i) * m.dx(i) * std::cos(th);
         d[1] += m.a(i) * std::sin(th);

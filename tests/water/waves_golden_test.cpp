@@ -69,6 +69,48 @@ TEST_CASE("sum_of_sines_matches_004_in_double", "[golden][waves]") {
     std::printf("sum of sines h(3.7, -2.1, t = 1.5) = %.17g\n", h.values[1]);
 }
 
+TEST_CASE("the_waves_are_data_their_count_and_directions_and_speeds_parameters",
+          "[golden][waves]") {
+    // <family>_wave_count runs min(floor(count), 8) waves, none below 1; Gerstner's Q_i divides
+    // by the waves summed. The defaults of waves 4..7 continue the series.
+    const auto in = points_xzt();
+    for (double count : {0.0, 1.0, 2.5, 6.0, 8.0, 20.0}) {
+        INFO("count " << count);
+        test::WaveModel sines = test::sines_model(), gerstner = test::gerstner_model();
+        sines.count = gerstner.count = static_cast<int>(std::min(std::floor(count), 8.0));
+        const auto h = eval_node("waves.sum_of_sines.height", in, EvalPrecision::Double,
+                                 {{"waves_wave_count", {count}}});
+        const auto d = eval_node("waves.gerstner.displacement", in, EvalPrecision::Double,
+                                 {{"gerstner_wave_count", {count}}});
+        for (size_t k = 0; k < in.size() / 3; ++k) {
+            const double x = in[3 * k], z = in[3 * k + 1], t = in[3 * k + 2];
+            CHECK(h.values[k] ==
+                  Approx(test::sines_height(sines, x, z, t)).epsilon(1e-12).margin(1e-14));
+            const auto expected = test::gerstner_offset(gerstner, x, z, t);
+            for (int c = 0; c < 3; ++c)
+                CHECK(d.values[3 * k + c] == Approx(expected[c]).epsilon(1e-12).margin(1e-14));
+            if (count < 1) CHECK((h.values[k] == 0.0 && d.values[3 * k + 1] == 0.0));
+        }
+    }
+    // Directions and phase speeds are arrays, one element per wave.
+    test::WaveModel m = test::sines_model();
+    std::vector<double> directions(m.directions.begin(), m.directions.end());
+    std::vector<double> speeds(m.phase_speeds.begin(), m.phase_speeds.end());
+    directions[2] = 1.0; // wave 1 now runs along x
+    directions[3] = 0.0;
+    speeds[3] = -1.5;
+    m.directions[2] = 1.0;
+    m.directions[3] = 0.0;
+    m.phase_speeds[3] = -1.5;
+    const auto h =
+        eval_node("waves.sum_of_sines.height", in, EvalPrecision::Double,
+                  {{"waves_wave_directions", directions}, {"waves_wave_speeds", speeds}});
+    for (size_t k = 0; k < in.size() / 3; ++k)
+        CHECK(h.values[k] == Approx(test::sines_height(m, in[3 * k], in[3 * k + 1], in[3 * k + 2]))
+                                 .epsilon(1e-12)
+                                 .margin(1e-14));
+}
+
 TEST_CASE("band_limit_fades_each_wave_between_four_and_two_footprints_per_wavelength",
           "[golden][waves]") {
     // fade_i = clamp(2 - 2 f_i fp / pi, 0, 1): 1 while the wavelength 2 pi / f_i >= 4 fp,

@@ -2,7 +2,9 @@
 // normals and the bounds the surface search (waves.cpp) needs.
 #include "watergen/water/nodes/waves.h"
 
-#include <array>
+#include <functional>
+#include <string>
+#include <vector>
 
 namespace watergen {
 
@@ -25,20 +27,22 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Defaults of one wave family. 004 multiplies frequency by 1.18 and amplitude by 0.82 per
 // wave; directions are unit xz vectors (not normalised in the shader, so a zero direction only
-// freezes that wave in space); phase speeds follow deep-water dispersion, sqrt(9.81 f_i).
+// freezes that wave in space); phase speeds follow deep-water dispersion, sqrt(9.81 f_i). The
+// first kDefaultWaveCount waves are 004's; the rest continue the series in new directions.
 struct WaveDefaults {
-    const char* family; // parameter prefix
-    double amplitude, frequency;
-    std::vector<double> directions_a, directions_b, phase_speeds;
+    const char* family;               // parameter prefix
+    double amplitude, frequency;      // A, F
+    std::vector<double> directions;   // (x, z) per wave, kMaxWaves of them
+    std::vector<double> phase_speeds; // rad/s per wave
 };
 
 const WaveDefaults& sines_defaults() {
     static const WaveDefaults d{"waves",
                                 0.15,
                                 0.9,
-                                {0.28, -0.96, -0.6, -0.8},
-                                {0.8, -0.6, -0.96, -0.28},
-                                {2.97, 3.23, 3.51, 3.81}};
+                                {0.28, -0.96, -0.6, -0.8, 0.8, -0.6, -0.96, -0.28, 0.6, -0.8, -0.8,
+                                 -0.6, 0.96, -0.28, -0.28, -0.96},
+                                {2.97, 3.23, 3.51, 3.81, 4.14, 4.49, 4.88, 5.30}};
     return d;
 }
 
@@ -46,10 +50,28 @@ const WaveDefaults& gerstner_defaults() {
     static const WaveDefaults d{"gerstner",
                                 0.2,
                                 0.7,
-                                {0.0, -1.0, 0.6, -0.8},
-                                {-0.8, -0.6, 0.96, -0.28},
-                                {2.62, 2.85, 3.09, 3.36}};
+                                {0.0, -1.0, 0.6, -0.8, -0.8, -0.6, 0.96, -0.28, -0.6, -0.8, 0.8,
+                                 -0.6, -0.28, -0.96, 0.28, -0.96},
+                                {2.62, 2.85, 3.09, 3.36, 3.65, 3.96, 4.30, 4.68}};
     return d;
+}
+
+Parameter wave_count(const WaveDefaults& d) {
+    return {std::string(d.family) + "_wave_count",
+            Type::Float,
+            {double(kDefaultWaveCount)},
+            0.0,
+            double(kMaxWaves),
+            "",
+            "004",
+            ""};
+}
+
+Parameter wave_array(const WaveDefaults& d, const char* name, Type type,
+                     const std::vector<double>& values, double lo, double hi, const char* unit) {
+    Parameter p{std::string(d.family) + name, type, values, lo, hi, unit, "004", ""};
+    p.array_size = kMaxWaves;
+    return p;
 }
 
 struct Wave {
@@ -58,49 +80,67 @@ struct Wave {
     Expr faded(Expr e) const { return fade.valid() ? e * fade : e; }
 };
 
-std::array<Wave, kWaveCount> waves_at(Graph& g, const WaveDefaults& d, Expr xz, Expr time,
-                                      Expr footprint = Expr()) {
+// Wave i's terms added to the sums so far: the next sums, in the same order.
+using WaveTerms = std::function<std::vector<Expr>(const Wave&, const std::vector<Expr>& sums)>;
+
+// The sums over a family's waves at xz (`initial`, then each wave's terms in wave order) in one
+// loop of <family>_wave_count iterations. The loop carries 004's geometric series: each wave's
+// amplitude and frequency times the gains give the next wave's, in the order the unrolled sums
+// multiplied them, so the float arithmetic is theirs. Inside a search step the loop runs in
+// that step's body (the graph of xz).
+std::vector<Expr> sum_over_waves(Graph& g, const WaveDefaults& d, Expr xz, Expr time,
+                                 Expr footprint, const std::vector<Expr>& initial,
+                                 const WaveTerms& terms) {
     const std::string f = d.family;
-    Expr amplitude =
-        uniform(g, {f + "_amplitude", Type::Float, {d.amplitude}, 0.0, 10.0, "m", "004", ""});
-    Expr frequency =
-        uniform(g, {f + "_frequency", Type::Float, {d.frequency}, 1e-3, 100.0, "rad/m", "004", ""});
+    std::vector<Expr> carried = {
+        uniform(g, {f + "_amplitude", Type::Float, {d.amplitude}, 0.0, 10.0, "m", "004", ""}),
+        uniform(g,
+                {f + "_frequency", Type::Float, {d.frequency}, 1e-3, 100.0, "rad/m", "004", ""})};
+    carried.insert(carried.end(), initial.begin(), initial.end());
     Expr amplitude_gain =
         uniform(g, {f + "_amplitude_gain", Type::Float, {0.82}, 0.1, 2.0, "", "004", ""});
     Expr frequency_gain =
         uniform(g, {f + "_frequency_gain", Type::Float, {1.18}, 0.1, 4.0, "", "004", ""});
-    Expr dirs_a =
-        uniform(g, {f + "_directions_a", Type::Vec4, d.directions_a, -1.0, 1.0, "", "004", ""});
-    Expr dirs_b =
-        uniform(g, {f + "_directions_b", Type::Vec4, d.directions_b, -1.0, 1.0, "", "004", ""});
-    Expr speeds = uniform(
-        g, {f + "_phase_speeds", Type::Vec4, d.phase_speeds, -100.0, 100.0, "rad/s", "004", ""});
-    const std::array<Expr, kWaveCount> dirs = {dirs_a.xy(), dirs_a.swizzle("zw"), dirs_b.xy(),
-                                               dirs_b.swizzle("zw")};
-    const std::array<Expr, kWaveCount> phis = {speeds.x(), speeds.y(), speeds.z(), speeds.w()};
-    std::array<Wave, kWaveCount> out;
-    for (int i = 0; i < kWaveCount; ++i) {
-        if (i > 0) {
-            amplitude = amplitude * amplitude_gain;
-            frequency = frequency * frequency_gain;
-        }
-        // A pixel holds no wave shorter than two footprints (Nyquist): fade wave i out as its
-        // wavelength 2 pi / f_i drops from 4 to 2 footprints, i.e. f_i fp from pi / 2 to pi.
-        Expr fade;
-        if (footprint.valid())
-            fade = named(saturate(2.0 - frequency * footprint * (2.0 / kPi)), "wave_fade");
-        Expr theta = named(frequency * dot(dirs[i], xz) + time * phis[i], "wave_theta");
-        out[i] = {amplitude, frequency, dirs[i], theta, fade};
-    }
-    return out;
-}
-
-Expr accumulate(Expr sum, Expr term) {
-    return sum.valid() ? sum + term : term;
+    const Parameter directions =
+        wave_array(d, "_wave_directions", Type::Vec2, d.directions, -1.0, 1.0, "");
+    const Parameter speeds =
+        wave_array(d, "_wave_speeds", Type::Float, d.phase_speeds, -100.0, 100.0, "rad/s");
+    Graph& where = xz.graph();
+    FullPrecisionScope full(where);
+    const auto sums = loop(
+        where, uniform(g, wave_count(d)), kMaxWaves, carried,
+        [&](Expr i, const std::vector<Expr>& c) {
+            Wave w{c[0], c[1], element(directions, i), Expr(), Expr()};
+            // A pixel holds no wave shorter than two footprints (Nyquist): fade wave i out as its
+            // wavelength 2 pi / f_i drops from 4 to 2 footprints, i.e. f_i fp from pi / 2 to pi.
+            if (footprint.valid())
+                w.fade = named(saturate(2.0 - w.frequency * footprint * (2.0 / kPi)), "wave_fade");
+            w.theta =
+                named(w.frequency * dot(w.direction, xz) + time * element(speeds, i), "wave_theta");
+            std::vector<Expr> next = {c[0] * amplitude_gain, c[1] * frequency_gain};
+            const std::vector<Expr> added = terms(w, std::vector<Expr>(c.begin() + 2, c.end()));
+            next.insert(next.end(), added.begin(), added.end());
+            return LoopStep{next, Expr()};
+        });
+    return std::vector<Expr>(sums.begin() + 2, sums.end());
 }
 
 Expr up(Graph& g) {
     return constant(g, {0.0, 1.0, 0.0});
+}
+
+Expr zero2(Graph& g) {
+    return constant(g, {0.0, 0.0});
+}
+
+// Sum over the waves of a_i (the highest crest) and of a_i f_i (bounds |grad h|).
+WaveBounds wave_bounds(Graph& g, const WaveDefaults& d, Expr time) {
+    const auto sums = sum_over_waves(
+        g, d, zero2(g), time, Expr(), {constant(g, 0.0), constant(g, 0.0)},
+        [](const Wave& w, const std::vector<Expr>& s) {
+            return std::vector<Expr>{s[0] + w.amplitude, s[1] + w.amplitude * w.frequency};
+        });
+    return {sums[0], sums[1]};
 }
 
 struct GerstnerWave {
@@ -109,45 +149,100 @@ struct GerstnerWave {
     Expr frequency, direction, s, c;
 };
 
-std::array<GerstnerWave, kWaveCount> gerstner_waves(Graph& g, Expr grid_xz, Expr time,
-                                                    Expr footprint) {
+using GerstnerTerms =
+    std::function<std::vector<Expr>(const GerstnerWave&, const std::vector<Expr>& sums)>;
+
+std::vector<Expr> sum_over_gerstner_waves(Graph& g, Expr grid_xz, Expr time, Expr footprint,
+                                          const std::vector<Expr>& initial,
+                                          const GerstnerTerms& terms) {
     Expr steepness =
         uniform(g, {"gerstner_steepness", Type::Float, {0.5}, 0.0, 1.0, "", "004", ""});
-    std::array<GerstnerWave, kWaveCount> out;
-    const auto waves = waves_at(g, gerstner_defaults(), grid_xz, time, footprint);
-    for (int i = 0; i < kWaveCount; ++i) {
-        const Wave& w = waves[i];
-        // GPU Gems: Q_i = Q / (w_i A_i n) keeps sum_i w_i Q_i A_i = Q <= 1, so crests never loop.
-        // Amplitude 0 would make Q_i = inf and Q_i A_i = inf * 0 = NaN; the max() keeps Q_i
-        // finite and Q_i A_i -> 0 with A_i (no horizontal motion without a wave).
-        Expr q = named(steepness / (double(kWaveCount) * max(w.frequency * w.amplitude, 1e-6)),
-                       "gerstner_q");
+    // n, the waves summed (the loop runs no wave when floor(count) < 1).
+    Expr n = min(floor(uniform(g, wave_count(gerstner_defaults()))), double(kMaxWaves));
+    auto wave = [&](const Wave& w, const std::vector<Expr>& sums) {
+        // GPU Gems: Q_i = Q / (w_i A_i n) keeps sum_i w_i Q_i A_i = Q <= 1, so crests never
+        // loop. Amplitude 0 would make Q_i = inf and Q_i A_i = inf * 0 = NaN; the max() keeps
+        // Q_i finite and Q_i A_i -> 0 with A_i (no horizontal motion without a wave).
+        Expr q = steepness / (n * max(w.frequency * w.amplitude, 1e-6));
         // The band limit fades the orbit as a whole, horizontal motion included.
-        out[i] = {w.faded(named(q * w.amplitude, "gerstner_qa")),
-                  w.faded(w.amplitude),
-                  w.frequency,
-                  w.direction,
-                  named(sin(w.theta), "gerstner_sin"),
-                  named(cos(w.theta), "gerstner_cos")};
+        const GerstnerWave gw{w.faded(q * w.amplitude),
+                              w.faded(w.amplitude),
+                              w.frequency,
+                              w.direction,
+                              named(sin(w.theta), "gerstner_sin"),
+                              named(cos(w.theta), "gerstner_cos")};
+        return terms(gw, sums);
+    };
+    return sum_over_waves(g, gerstner_defaults(), grid_xz, time, footprint, initial, wave);
+}
+
+// The Gerstner sums a caller asks for, from one loop.
+enum GerstnerSum : unsigned {
+    kHorizontal = 1,   // sum Q_i A_i cos th_i D_i (vec2)
+    kDisplacement = 2, // the same with sum A_i sin th_i between its components (vec3, P - x0)
+    kTangents = 4,     // dP/dx and dP/dz
+    kJacobian = 8,     // sum k_i D_i D_i^T, k_i = Q_i A_i w_i sin th_i, as (xx, xz, zz)
+};
+
+struct GerstnerSums {
+    Expr horizontal, displacement, tx, tz, jacobian;
+};
+
+// Wave w's terms added to the sums `which` asks for, in GerstnerSum order.
+std::vector<Expr> gerstner_terms(unsigned which, const GerstnerWave& w,
+                                 const std::vector<Expr>& s) {
+    std::vector<Expr> next;
+    size_t k = 0;
+    Expr dx = w.direction.x(), dz = w.direction.y();
+    Expr horizontal = w.horizontal * w.c; // times D_i
+    Expr kw = w.horizontal * w.frequency * w.s;
+    if (which & kHorizontal) next.push_back(s[k++] + horizontal * w.direction);
+    if (which & kDisplacement)
+        next.push_back(s[k++] + vec3(horizontal * dx, w.amplitude * w.s, horizontal * dz));
+    if (which & kTangents) {
+        // dP/dx = (1,0,0) + sum_i D_i.x e_i and dP/dz = (0,0,1) + sum_i D_i.z e_i with
+        // e_i = (-k_i D_i.x, m_i, -k_i D_i.z), m_i = A_i w_i cos th_i.
+        Expr m = w.amplitude * w.frequency * w.c;
+        Expr e = vec3(-kw * dx, m, -kw * dz);
+        next.push_back(s[k++] + dx * e);
+        next.push_back(s[k++] + dz * e);
     }
+    if (which & kJacobian) {
+        Expr kx = kw * dx;
+        next.push_back(s[k++] + vec3(kx * dx, kx * dz, (kw * dz) * dz));
+    }
+    return next;
+}
+
+GerstnerSums gerstner_sums(Graph& g, Expr grid_xz, Expr time, Expr footprint, unsigned which) {
+    GerstnerSums out;
+    // The sums in GerstnerSum order: each one's place in the carried values.
+    std::vector<Expr*> slots;
+    std::vector<Expr> initial;
+    auto add = [&](unsigned bit, Expr* slot, Expr start) {
+        if (!(which & bit)) return;
+        slots.push_back(slot);
+        initial.push_back(start);
+    };
+    Expr zero3 = constant(g, {0.0, 0.0, 0.0});
+    add(kHorizontal, &out.horizontal, zero2(g));
+    add(kDisplacement, &out.displacement, zero3);
+    add(kTangents, &out.tx, constant(g, {1.0, 0.0, 0.0}));
+    add(kTangents, &out.tz, constant(g, {0.0, 0.0, 1.0}));
+    add(kJacobian, &out.jacobian, zero3);
+    const auto sums =
+        sum_over_gerstner_waves(g, grid_xz, time, footprint, initial,
+                                [which](const GerstnerWave& w, const std::vector<Expr>& s) {
+                                    return gerstner_terms(which, w, s);
+                                });
+    for (size_t k = 0; k < slots.size(); ++k)
+        *slots[k] = sums[k];
     return out;
 }
 
-Expr gerstner_horizontal(Graph& g, Expr grid_xz, Expr time, Expr footprint) {
-    Expr sum;
-    for (const auto& w : gerstner_waves(g, grid_xz, time, footprint))
-        sum = accumulate(sum, w.horizontal * w.c * w.direction);
-    return sum;
-}
-
-// Sum over the waves of a_i (the highest crest) and of a_i f_i (bounds |grad h|).
-WaveBounds wave_bounds(Graph& g, const WaveDefaults& d, Expr xz, Expr time) {
-    Expr top, slope;
-    for (const Wave& w : waves_at(g, d, xz, time)) {
-        top = accumulate(top, w.amplitude);
-        slope = accumulate(slope, w.amplitude * w.frequency);
-    }
-    return {top, slope};
+Expr gerstner_normal_from(Graph& g, const GerstnerSums& s) {
+    // The tangents are parallel only where a steepness-1 crest folds (dP/dx = 0): keep up.
+    return named(safe_normalize(cross(s.tz, s.tx), up(g)), "gerstner_normal");
 }
 
 } // namespace
@@ -155,35 +250,50 @@ WaveBounds wave_bounds(Graph& g, const WaveDefaults& d, Expr xz, Expr time) {
 // ---- sum of sines ----
 
 WaveBounds sum_of_sines_bounds(Graph& g, Expr time) {
-    return wave_bounds(g, sines_defaults(), constant(g, {0.0, 0.0}), time);
+    return wave_bounds(g, sines_defaults(), time);
+}
+
+SurfaceSample sum_of_sines_sample(Graph& g, Expr xz, Expr time, Expr footprint, bool height,
+                                  bool slope) {
+    FullPrecisionScope full(g);
+    OriginScope scope(g, "waves.sum_of_sines");
+    std::vector<Expr> initial;
+    if (height) initial.push_back(constant(g, 0.0));
+    if (slope) initial.push_back(zero2(g));
+    const auto sums = sum_over_waves(
+        g, sines_defaults(), xz, time, footprint, initial,
+        [height, slope](const Wave& w, const std::vector<Expr>& s) {
+            std::vector<Expr> next;
+            if (height) next.push_back(s[0] + w.faded(w.amplitude) * sin(w.theta));
+            // d/dp of a sin(f (d . p) + t phi) = a f cos(...) d.
+            if (slope)
+                next.push_back(s[height ? 1 : 0] +
+                               (w.faded(w.amplitude) * w.frequency * cos(w.theta)) * w.direction);
+            return next;
+        });
+    SurfaceSample out;
+    if (height) out.height = named(sums[0], "wave_height");
+    if (slope) out.slope = named(sums[height ? 1 : 0], "wave_slope");
+    return out;
 }
 
 Expr sum_of_sines_height(Graph& g, Expr xz, Expr time, Expr footprint) {
-    FullPrecisionScope full(g);
-    OriginScope scope(g, "waves.sum_of_sines");
-    Expr h;
-    for (const Wave& w : waves_at(g, sines_defaults(), xz, time, footprint))
-        h = accumulate(h, w.faded(w.amplitude) * sin(w.theta));
-    return named(h, "wave_height");
+    return sum_of_sines_sample(g, xz, time, footprint, true, false).height;
 }
 
 Expr sum_of_sines_slope(Graph& g, Expr xz, Expr time, Expr footprint) {
-    FullPrecisionScope full(g);
-    OriginScope scope(g, "waves.sum_of_sines");
-    // d/dp of a sin(f (d . p) + t phi) = a f cos(...) d.
-    Expr slope;
-    for (const Wave& w : waves_at(g, sines_defaults(), xz, time, footprint))
-        slope =
-            accumulate(slope, (w.faded(w.amplitude) * w.frequency * cos(w.theta)) * w.direction);
-    return named(slope, "wave_slope");
+    return sum_of_sines_sample(g, xz, time, footprint, false, true).slope;
 }
 
-Expr sum_of_sines_normal(Graph& g, Expr xz, Expr time, Expr footprint) {
-    Expr slope = sum_of_sines_slope(g, xz, time, footprint);
+Expr sum_of_sines_normal_from(Graph& g, Expr slope) {
     FullPrecisionScope full(g);
     OriginScope scope(g, "waves.sum_of_sines");
     // The y component is 1, so the vector never vanishes: a plain normalize is safe.
     return named(normalize(vec3(-slope.x(), constant(g, 1.0), -slope.y())), "wave_normal");
+}
+
+Expr sum_of_sines_normal(Graph& g, Expr xz, Expr time, Expr footprint) {
+    return sum_of_sines_normal_from(g, sum_of_sines_slope(g, xz, time, footprint));
 }
 
 // ---- Gerstner ----
@@ -191,29 +301,23 @@ Expr sum_of_sines_normal(Graph& g, Expr xz, Expr time, Expr footprint) {
 Expr gerstner_displacement(Graph& g, Expr grid_xz, Expr time, Expr footprint) {
     FullPrecisionScope full(g);
     OriginScope scope(g, "waves.gerstner");
-    Expr horizontal, height;
-    for (const auto& w : gerstner_waves(g, grid_xz, time, footprint)) {
-        horizontal = accumulate(horizontal, w.horizontal * w.c * w.direction);
-        height = accumulate(height, w.amplitude * w.s);
-    }
-    return named(vec3(horizontal.x(), height, horizontal.y()), "gerstner_displacement");
+    return named(gerstner_sums(g, grid_xz, time, footprint, kDisplacement).displacement,
+                 "gerstner_displacement");
 }
 
 Expr gerstner_normal(Graph& g, Expr grid_xz, Expr time, Expr footprint) {
     FullPrecisionScope full(g);
     OriginScope scope(g, "waves.gerstner");
-    // dP/dx = (1,0,0) + sum_i D_i.x e_i and dP/dz = (0,0,1) + sum_i D_i.z e_i with
-    // e_i = (-k_i D_i.x, m_i, -k_i D_i.z), k_i = Q_i A_i w_i sin th_i, m_i = A_i w_i cos th_i.
-    Expr tx = constant(g, {1.0, 0.0, 0.0}), tz = constant(g, {0.0, 0.0, 1.0});
-    for (const auto& w : gerstner_waves(g, grid_xz, time, footprint)) {
-        Expr k = w.horizontal * w.frequency * w.s;
-        Expr m = w.amplitude * w.frequency * w.c;
-        Expr e = vec3(-k * w.direction.x(), m, -k * w.direction.y());
-        tx = tx + w.direction.x() * e;
-        tz = tz + w.direction.y() * e;
-    }
-    // The tangents are parallel only where a steepness-1 crest folds (dP/dx = 0): keep up.
-    return named(safe_normalize(cross(tz, tx), up(g)), "gerstner_normal");
+    return gerstner_normal_from(g, gerstner_sums(g, grid_xz, time, footprint, kTangents));
+}
+
+GerstnerPoint gerstner_point(Graph& g, Expr grid_xz, Expr time, Expr footprint, bool displacement) {
+    FullPrecisionScope full(g);
+    OriginScope scope(g, "waves.gerstner");
+    const unsigned which = kTangents | (displacement ? kDisplacement : 0u);
+    const GerstnerSums s = gerstner_sums(g, grid_xz, time, footprint, which);
+    return {displacement ? named(s.displacement, "gerstner_displacement") : Expr(),
+            gerstner_normal_from(g, s)};
 }
 
 Expr gerstner_normal_gpugems(Graph& g, Expr grid_xz, Expr time, Expr footprint) {
@@ -222,11 +326,13 @@ Expr gerstner_normal_gpugems(Graph& g, Expr grid_xz, Expr time, Expr footprint) 
     // GPU Gems ch. 1, eq. 12: N = (-sum D.x w A C, 1 - sum Q w A S, -sum D.z w A C). It drops
     // the products between different waves that the exact cross product keeps (exact for one
     // wave); evaluated here at the grid point, like the exact normal, to isolate that error.
-    Expr xz, y;
-    for (const auto& w : gerstner_waves(g, grid_xz, time, footprint)) {
-        xz = accumulate(xz, (w.amplitude * w.frequency * w.c) * w.direction);
-        y = accumulate(y, w.horizontal * w.frequency * w.s);
-    }
+    const auto sums = sum_over_gerstner_waves(
+        g, grid_xz, time, footprint, {zero2(g), constant(g, 0.0)},
+        [](const GerstnerWave& w, const std::vector<Expr>& s) {
+            return std::vector<Expr>{s[0] + (w.amplitude * w.frequency * w.c) * w.direction,
+                                     s[1] + w.horizontal * w.frequency * w.s};
+        });
+    Expr xz = sums[0], y = sums[1];
     return named(safe_normalize(vec3(-xz.x(), 1.0 - y, -xz.y()), up(g)), "gerstner_normal_gpugems");
 }
 
@@ -236,12 +342,13 @@ Expr gerstner_grid_point(Graph& g, Expr world_xz, Expr time, Expr start, int ite
     OriginScope scope(g, "waves.gerstner");
     Expr x0 = start;
     for (int i = 0; i < iterations; ++i)
-        x0 = named(world_xz - gerstner_horizontal(g, x0, time, footprint), "gerstner_grid_point");
+        x0 = named(world_xz - gerstner_sums(g, x0, time, footprint, kHorizontal).horizontal,
+                   "gerstner_grid_point");
     return x0;
 }
 
 WaveBounds gerstner_bounds(Graph& g, Expr time) {
-    return wave_bounds(g, gerstner_defaults(), constant(g, {0.0, 0.0}), time);
+    return wave_bounds(g, gerstner_defaults(), time);
 }
 
 // One Newton step towards the grid point x0 with x0 + horizontal(x0) = world_xz, from x0.
@@ -250,19 +357,9 @@ WaveBounds gerstner_bounds(Graph& g, Expr time) {
 // where a steep crest nearly folds) so the step stays finite and continuous in its inputs.
 // Same sines and cosines as the displacement and normal at x0: no extra transcendentals.
 Expr gerstner_grid_newton(Graph& g, Expr world_xz, Expr time, Expr x0, Expr footprint) {
-    Expr horizontal, jxx, jxz, jzz;
-    for (const auto& w : gerstner_waves(g, x0, time, footprint)) {
-        horizontal = accumulate(horizontal, w.horizontal * w.c * w.direction);
-        Expr k = w.horizontal * w.frequency * w.s;
-        Expr kx = k * w.direction.x();
-        jxx = accumulate(jxx, kx * w.direction.x());
-        jxz = accumulate(jxz, kx * w.direction.y());
-        jzz = accumulate(jzz, (k * w.direction.y()) * w.direction.y());
-    }
-    jxx = 1.0 - jxx;
-    jzz = 1.0 - jzz;
-    jxz = -jxz;
-    Expr f = named(x0 + horizontal - world_xz, "gerstner_grid_residual");
+    const GerstnerSums s = gerstner_sums(g, x0, time, footprint, kHorizontal | kJacobian);
+    Expr jxx = 1.0 - s.jacobian.x(), jzz = 1.0 - s.jacobian.z(), jxz = -s.jacobian.y();
+    Expr f = named(x0 + s.horizontal - world_xz, "gerstner_grid_residual");
     Expr det = named(max(jxx * jzz - jxz * jxz, 0.04), "gerstner_grid_det");
     Expr step = vec2(jzz * f.x() - jxz * f.y(), jxx * f.y() - jxz * f.x()) / det;
     return named(x0 - step, "gerstner_grid_point");
@@ -305,7 +402,7 @@ Expr heightmap_height(Graph& g, Expr xz, Expr time, Expr footprint) {
     if (footprint.valid()) {
         // Without mip levels the map can only fade as a whole: by its highest frequency
         // (heightmap_max_cycles per tile), between 4 and 2 footprints per wavelength as the
-        // analytic waves do (waves_at).
+        // analytic waves do (sum_over_waves).
         Expr cycles =
             uniform(g, {"heightmap_max_cycles", Type::Float, {3.7}, 0.0, 1e4, "1/tile", "000", ""});
         amplitude =

@@ -22,7 +22,70 @@ Expr search_relaxation(Graph& g, Expr view_ray, Expr max_slope) {
     return named(1.0 / (1.0 + max_slope * run / ray_down), "search_relaxation");
 }
 
-// Two loops: `safe_steps` safe steps, then Newton steps.
+namespace {
+
+// The surface search's steps (see surface_search).
+struct Search {
+    const Surface& s;
+    const SurfaceModel& model;
+    Expr pixel_angle, r_safe, ray_down;
+
+    // What a step carries to the next: the level, the bracket [lo, hi] and the model's state.
+    struct Carry {
+        Expr level, hi, lo, state;
+    };
+    // The model at a hit: what was asked for of its height and slope, and its state there.
+    struct At {
+        Expr height, slope, state;
+    };
+
+    // Extent of the pixel on the water at distance t, along the view direction where the
+    // grazing ray stretches it most (the band limit of the waves, see wave_families.cpp).
+    Expr footprint(const PlaneHit& h) const {
+        return pixel_angle.valid() ? named(pixel_angle * h.distance / ray_down, "pixel_footprint")
+                                   : Expr();
+    }
+
+    // Only what a step reads is asked for: a loop computes every sum it carries, read or not.
+    At at(const PlaneHit& hit, Expr state, bool height, bool slope) const {
+        Expr xz = hit.point.xz(), fp = footprint(hit);
+        if (!model.state.advance) {
+            const SurfaceSample m = model.sample(xz, fp, height, slope);
+            return {m.height, m.slope, state};
+        }
+        Expr here = model.state.advance(xz, fp, state);
+        const SurfaceSample m = model.state.sample_at(xz, fp, here, height, slope);
+        return {m.height, m.slope, here};
+    }
+
+    // The step from `c` with the model `m` at its level: a safe step (`newton` false), a
+    // Newton step (`safe` invalid), or either as the Bool `safe` says.
+    Carry step(const Carry& c, const At& m, Expr safe, bool newton) const {
+        Graph& g = s.g;
+        Expr f = named(s.level + m.height, "search_target") - c.level;
+        const Carry safe_step{named(c.level + r_safe * f, "search_level"), c.level, c.lo, m.state};
+        if (!newton) return safe_step;
+        Expr t_slope = -dot(m.slope, s.view_ray.xz()) / ray_down;
+        Expr r =
+            named(clamp(1.0 / max(1.0 - t_slope, 1e-6), r_safe, constant(g, 1.0)), "search_step");
+        Expr next = named(c.level + r * f, "search_level");
+        Expr above = f < 0.0;
+        Expr high = named(select(above, c.level, c.hi), "search_high");
+        Expr low = named(select(above, c.lo, c.level), "search_low");
+        // T' >= 1: Newton would step away from the bracket's crossing (towards one where
+        // the ray leaves the surface); the clamped step r = 1 then expands errors by T'
+        // per step (measured: float and double apart by 2x per step, 2.6e-4 at the end).
+        Expr outside = (next < low) || (next > high) || (t_slope >= 1.0);
+        next = named(select(outside, 0.5 * (low + high), next), "search_level");
+        if (!safe.valid()) return {next, high, low, m.state};
+        return {named(select(safe, safe_step.level, next), "search_level"),
+                select(safe, c.level, high), select(safe, c.lo, low), m.state};
+    }
+};
+
+} // namespace
+
+// One loop for both phases and the final slope (model.one_loop), else a loop per phase.
 WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, int safe_steps,
                        Expr pixel_angle) {
     Graph& g = s.g;
@@ -39,25 +102,9 @@ WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, i
     // to the pixel footprint (pixel_angle) no pixel resolves the silhouettes of crests far
     // below its size, where the first crossing jumps: without the band limit, GPU and CPU
     // rounding sent a few grazing pixels to different crests.
-    Expr r_safe = search_relaxation(g, s.view_ray, model.max_slope);
-    Expr ray_down = max(-s.view_ray.y(), 1e-6); // guarded as in search_relaxation
-    // Extent of the pixel on the water at distance t, along the view direction where the
-    // grazing ray stretches it most (the band limit of the waves, see waves_at).
-    auto footprint = [&](const PlaneHit& h) {
-        return pixel_angle.valid() ? named(pixel_angle * h.distance / ray_down, "pixel_footprint")
-                                   : Expr();
-    };
-    // The model at a hit: its height and slope, and its state there (carried by the loops).
-    const bool stateful = static_cast<bool>(model.state.advance);
-    struct At {
-        Expr height, slope, state;
-    };
-    auto at = [&](const PlaneHit& hit, Expr state) {
-        Expr xz = hit.point.xz(), fp = footprint(hit);
-        if (!stateful) return At{model.height(xz, fp), model.slope(xz, fp), state};
-        Expr here = model.state.advance(xz, fp, state);
-        return At{model.state.height_at(xz, fp, here), model.state.slope_at(xz, fp, here), here};
-    };
+    // |ray.y| guarded as in search_relaxation.
+    const Search x{s, model, pixel_angle, search_relaxation(g, s.view_ray, model.max_slope),
+                   max(-s.view_ray.y(), 1e-6)};
     Expr level = named(s.level + model.top, "search_level");
     // The bracket [lo, hi] of the first crossing: hi is the last level found above the surface
     // (every safe step is), lo the last found below it (at first the bottom of the slab, where
@@ -69,55 +116,50 @@ WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, i
     // the bracket's edge or where T' = 1; either way the step stays in a bracket that holds
     // the crossing, and the remaining steps converge into it from both branches.
     // A NaN height compares false everywhere and stays NaN (see set_water_column).
-    Expr hi = level, lo = named(s.level - model.top, "search_low");
     // A stateless model carries a constant 0 that nothing reads (the compilers drop it).
-    Expr state =
-        stateful ? model.state.start(intersect_plane(s, level).point.xz()) : constant(g, 0.0);
-    if (safe_steps > 0) {
-        const auto safe =
-            loop(g, safe_steps, {level, hi, state}, [&](Expr, const std::vector<Expr>& c) {
-                const At m = at(intersect_plane(s, c[0]), c[2]);
-                Expr f = named(s.level + m.height, "search_target") - c[0];
-                return LoopStep{{named(c[0] + r_safe * f, "search_level"), c[0], m.state}, Expr()};
-            });
-        level = safe[0];
-        hi = safe[1];
-        state = safe[2];
+    Search::Carry c{level, level, named(s.level - model.top, "search_low"),
+                    model.state.start ? model.state.start(intersect_plane(s, level).point.xz())
+                                      : constant(g, 0.0)};
+    auto carry = [](const std::vector<Expr>& v) { return Search::Carry{v[0], v[1], v[2], v[3]}; };
+    if (model.one_loop && steps > safe_steps) {
+        // The last iteration only samples the model where the steps ended: its slope.
+        const auto r = loop(g, steps + 1, {c.level, c.hi, c.lo, c.state, constant(g, {0.0, 0.0})},
+                            [&](Expr i, const std::vector<Expr>& v) {
+                                const Search::Carry ci = carry(v);
+                                const Search::At m =
+                                    x.at(intersect_plane(s, ci.level), ci.state, true, true);
+                                const Search::Carry n = x.step(ci, m, i < double(safe_steps), true);
+                                Expr level = select(i < double(steps), n.level, ci.level);
+                                return LoopStep{{level, n.hi, n.lo, n.state, m.slope}, Expr()};
+                            });
+        const PlaneHit hit = intersect_plane(s, r[0]);
+        return {hit.point, hit.distance, r[4]};
     }
-    if (steps > safe_steps) {
-        const auto newton = loop(
-            g, steps - safe_steps, {level, hi, lo, state}, [&](Expr, const std::vector<Expr>& c) {
-                const PlaneHit hit = intersect_plane(s, c[0]);
-                const At m = at(hit, c[3]);
-                Expr target = named(s.level + m.height, "search_target");
-                Expr t_slope = -dot(m.slope, s.view_ray.xz()) / ray_down;
-                Expr step = 1.0 / max(1.0 - t_slope, 1e-6);
-                Expr r = named(clamp(step, r_safe, constant(g, 1.0)), "search_step");
-                Expr f = target - c[0];
-                Expr next = named(c[0] + r * f, "search_level");
-                Expr above = f < 0.0;
-                Expr high = named(select(above, c[0], c[1]), "search_high");
-                Expr low = named(select(above, c[2], c[0]), "search_low");
-                // T' >= 1: Newton would step away from the bracket's crossing (towards one where
-                // the ray leaves the surface); the clamped step r = 1 then expands errors by T'
-                // per step (measured: float and double apart by 2x per step, 2.6e-4 at the end).
-                Expr outside = (next < low) || (next > high) || (t_slope >= 1.0);
-                next = named(select(outside, 0.5 * (low + high), next), "search_level");
-                return LoopStep{{next, high, low, m.state}, Expr()};
+    auto phase = [&](int count, bool newton) {
+        if (count <= 0) return;
+        const auto r =
+            loop(g, count, {c.level, c.hi, c.lo, c.state}, [&](Expr, const std::vector<Expr>& v) {
+                const Search::Carry ci = carry(v);
+                const Search::At m = x.at(intersect_plane(s, ci.level), ci.state, true, newton);
+                const Search::Carry n = x.step(ci, m, Expr(), newton);
+                return LoopStep{{n.level, n.hi, n.lo, n.state}, Expr()};
             });
-        level = newton[0];
-        state = newton[3];
-    }
-    const PlaneHit hit = intersect_plane(s, level);
-    return {hit.point, hit.distance, at(hit, state).slope};
+        c = carry(r);
+    };
+    phase(safe_steps, false);
+    phase(steps - safe_steps, true);
+    const PlaneHit hit = intersect_plane(s, c.level);
+    return {hit.point, hit.distance, x.at(hit, c.state, false, true).slope};
 }
 
 SurfaceModel sum_of_sines_surface(Graph& g, Expr time) {
     OriginScope scope(g, "waves.sum_of_sines");
     auto [top, slope] = sum_of_sines_bounds(g, time);
-    return {top, slope,
-            [&g, time](Expr xz, Expr fp) { return sum_of_sines_height(g, xz, time, fp); },
-            [&g, time](Expr xz, Expr fp) { return sum_of_sines_slope(g, xz, time, fp); }};
+    SurfaceModel model{top, slope, [&g, time](Expr xz, Expr fp, bool height, bool slope) {
+                           return sum_of_sines_sample(g, xz, time, fp, height, slope);
+                       }};
+    model.one_loop = true;
+    return model;
 }
 
 SurfaceModel gerstner_surface(Graph& g, Expr time) {
@@ -134,33 +176,35 @@ SurfaceModel gerstner_surface(Graph& g, Expr time) {
     // Newton steps of the search compute anyway: without that, a height from a stale x0 put
     // the search's bracket on the wrong side of the surface (residuals up to 1.3 cm on rays
     // 20 degrees down). Crests bunch the grid by up to 1 / (1 - Q), which steepens the world
-    // slope by as much. Height and slope at the same S share one step.
-    auto world_slope = [&g, time](Expr x0, Expr fp) {
-        Expr n = gerstner_normal(g, x0, time, fp);
-        // dh/dx = -n.x / n.y; n.y > 0 unless a steepness-1 crest folds, where the
-        // max() caps the slope instead of dividing by zero.
-        return named(-n.xz() / max(n.y(), 1e-4), "wave_slope");
-    };
-    auto height_at = [&g, time, world_slope](Expr xz, Expr fp, Expr x0) {
-        Expr d = gerstner_displacement(g, x0, time, fp);
+    // slope by as much. Height and slope at the same S share one loop over the waves.
+    auto sample_at = [&g, time](Expr xz, Expr fp, Expr x0, bool height, bool slope) {
+        const GerstnerPoint p = gerstner_point(g, x0, time, fp, height);
         FullPrecisionScope full(g);
         OriginScope scope(g, "waves.gerstner");
-        Expr miss = xz - (x0 + d.swizzle("xz"));
-        return named(d.y() + dot(world_slope(x0, fp), miss), "gerstner_height");
+        // dh/dx = -n.x / n.y; n.y > 0 unless a steepness-1 crest folds, where the
+        // max() caps the slope instead of dividing by zero.
+        Expr world_slope = named(-p.normal.xz() / max(p.normal.y(), 1e-4), "wave_slope");
+        SurfaceSample out;
+        if (slope) out.slope = world_slope;
+        if (height) {
+            Expr miss = xz - (x0 + p.displacement.swizzle("xz"));
+            out.height = named(p.displacement.y() + dot(world_slope, miss), "gerstner_height");
+        }
+        return out;
     };
-    // The search carries the grid point (SurfaceModel::State); height and slope from one
-    // Newton step at xz from `start` serve callers that ask once.
+    // The search carries the grid point (SurfaceModel::State); a sample from one Newton step
+    // at xz from xz serves callers that ask once.
     auto advance = [&g, time](Expr xz, Expr fp, Expr x0) {
         FullPrecisionScope full(g);
         OriginScope scope(g, "waves.gerstner");
         return gerstner_grid_newton(g, xz, time, x0, fp);
     };
-    SurfaceModel model{
-        top, named(slope / max(1.0 - steepness, 0.2), "gerstner_max_slope"),
-        [height_at, advance](Expr xz, Expr fp) { return height_at(xz, fp, advance(xz, fp, xz)); },
-        [world_slope, advance](Expr xz, Expr fp) { return world_slope(advance(xz, fp, xz), fp); }};
-    model.state = {[](Expr xz) { return xz; }, advance, height_at,
-                   [world_slope](Expr, Expr fp, Expr x0) { return world_slope(x0, fp); }};
+    SurfaceModel model{top, named(slope / max(1.0 - steepness, 0.2), "gerstner_max_slope"),
+                       [sample_at, advance](Expr xz, Expr fp, bool height, bool slope) {
+                           return sample_at(xz, fp, advance(xz, fp, xz), height, slope);
+                       }};
+    model.state = {[](Expr xz) { return xz; }, advance, sample_at};
+    model.one_loop = true;
     return model;
 }
 
@@ -174,8 +218,10 @@ SurfaceModel heightmap_surface(Graph& g, Expr time) {
     Expr gradient =
         uniform(g, {"heightmap_max_gradient", Type::Float, {17.6}, 0.0, 1e4, "1/tile", "000", ""});
     return {amplitude, named(amplitude * scale * gradient, "heightmap_max_slope"),
-            [&g, time](Expr xz, Expr fp) { return heightmap_height(g, xz, time, fp); },
-            [&g, time](Expr xz, Expr fp) { return heightmap_slope(g, xz, time, fp); }};
+            [&g, time](Expr xz, Expr fp, bool height, bool slope) {
+                return SurfaceSample{height ? heightmap_height(g, xz, time, fp) : Expr(),
+                                     slope ? heightmap_slope(g, xz, time, fp) : Expr()};
+            }};
 }
 
 namespace {

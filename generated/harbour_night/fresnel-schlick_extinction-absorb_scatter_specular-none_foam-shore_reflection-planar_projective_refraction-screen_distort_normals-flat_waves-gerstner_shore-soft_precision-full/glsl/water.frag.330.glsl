@@ -15,9 +15,8 @@
 
 layout(std140) uniform WaterParams
 {
-    vec4 gerstner_directions_a;
-    vec4 gerstner_directions_b;
-    vec4 gerstner_phase_speeds;
+    vec2 gerstner_wave_directions[8];
+    float gerstner_wave_speeds[8];
     vec4 reflection_view_proj_c0;
     vec4 reflection_view_proj_c1;
     vec4 reflection_view_proj_c2;
@@ -33,10 +32,11 @@ layout(std140) uniform WaterParams
     vec3 sky_color;
     float gerstner_frequency_gain;
     vec3 foam_existence;
-    float gerstner_steepness;
+    float gerstner_wave_count;
     vec3 foam_color;
-    float refraction_distortion;
+    float gerstner_steepness;
     vec2 foam_pattern_drift;
+    float refraction_distortion;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_fov_extension;
@@ -59,234 +59,183 @@ void main()
     vec4 _25 = texture(scene_color, v_uv);
     vec3 _26 = _25.xyz;
     vec4 _33 = texture(scene_position, v_uv);
-    vec3 _45 = _33.xyz - params.eye_position;
-    float _49 = length(_45);
-    vec3 _56 = _45 / vec3(max(_49, 9.9999999747524270787835121154785e-07));
-    vec3 _59 = dFdx(_56);
-    vec3 _62 = dFdy(_56);
-    float _64 = max(length(_59), length(_62));
-    float _95 = params.time * params.gerstner_phase_speeds.x;
-    float _103 = params.gerstner_amplitude * params.gerstner_amplitude_gain;
-    float _111 = params.gerstner_frequency * params.gerstner_frequency_gain;
-    float _118 = params.time * params.gerstner_phase_speeds.y;
-    float _123 = _103 * params.gerstner_amplitude_gain;
-    float _128 = _111 * params.gerstner_frequency_gain;
-    float _135 = params.time * params.gerstner_phase_speeds.z;
-    float _140 = _123 * params.gerstner_amplitude_gain;
-    float _145 = _128 * params.gerstner_frequency_gain;
-    float _152 = params.time * params.gerstner_phase_speeds.w;
-    float _161 = _123 * params.gerstner_amplitude_gain + (_103 * params.gerstner_amplitude_gain + (params.gerstner_amplitude * params.gerstner_amplitude_gain + params.gerstner_amplitude));
-    float _190 = _56.y;
-    float _194 = max(-_190, 9.9999999747524270787835121154785e-07);
-    vec2 _197 = _56.xz;
-    float _206 = 1.0 / (1.0 + ((((_140 * _145 + (_123 * _128 + (params.gerstner_amplitude * params.gerstner_frequency + (_103 * _111)))) / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_197)) / _194));
-    float _209 = -_161;
-    float _213 = min(_190, -9.9999999747524270787835121154785e-07);
-    float _251 = (params.gerstner_steepness / (4.0 * max(params.gerstner_frequency * params.gerstner_amplitude, 9.9999999747524270787835121154785e-07))) * params.gerstner_amplitude;
-    float _264 = (params.gerstner_steepness / (4.0 * max(_111 * _103, 9.9999999747524270787835121154785e-07))) * _103;
-    float _277 = (params.gerstner_steepness / (4.0 * max(_128 * _123, 9.9999999747524270787835121154785e-07))) * _123;
-    float _290 = (params.gerstner_steepness / (4.0 * max(_145 * _140, 9.9999999747524270787835121154785e-07))) * _140;
-    float _1980;
-    float _1981;
-    vec2 _1982;
-    _1982 = (params.eye_position + (_56 * max((_161 - params.eye_position.y) / _213, 0.0))).xz;
-    _1981 = _161;
-    _1980 = _161;
+    vec3 _49 = _33.xyz - params.eye_position;
+    float _53 = length(_49);
+    vec3 _60 = _49 / vec3(max(_53, 9.9999999747524270787835121154785e-07));
+    vec3 _63 = dFdx(_60);
+    vec3 _66 = dFdy(_60);
+    float _68 = max(length(_63), length(_66));
+    float _74 = floor(params.gerstner_wave_count);
+    float _1096;
+    float _1098;
+    _1098 = 0.0;
+    _1096 = 0.0;
+    float _108;
+    float _113;
+    float _118;
+    float _123;
+    int _1095 = 0;
+    float _1097 = params.gerstner_amplitude;
+    float _1099 = params.gerstner_frequency;
     SPIRV_CROSS_LOOP
-    for (int _1979 = 0; _1979 < 1; )
+    for (; _1095 < 8; _1099 = _123, _1098 = _113, _1097 = _118, _1096 = _108, _1095++)
     {
-        float _337 = max((_1980 - params.eye_position.y) / _213, 0.0);
-        vec2 _347 = (params.eye_position + (_56 * _337)).xz;
-        float _353 = (_64 * _337) / _194;
-        float _363 = clamp((-(params.gerstner_frequency * _353)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-        float _372 = params.gerstner_frequency * dot(params.gerstner_directions_a.xy, _1982) + _95;
-        float _379 = clamp((-(_111 * _353)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-        float _387 = _111 * dot(params.gerstner_directions_a.zw, _1982) + _118;
-        float _394 = clamp((-(_128 * _353)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-        float _402 = _128 * dot(params.gerstner_directions_b.xy, _1982) + _135;
-        float _409 = clamp((-(_145 * _353)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-        float _417 = _145 * dot(params.gerstner_directions_b.zw, _1982) + _152;
-        float _421 = _251 * _363;
-        float _426 = params.gerstner_amplitude * _363;
-        float _436 = _264 * _379;
-        float _440 = _103 * _379;
-        float _450 = _277 * _394;
-        float _454 = _123 * _394;
-        float _464 = _290 * _409;
-        float _468 = _140 * _409;
-        float _479 = _421 * params.gerstner_frequency;
-        float _483 = _479 * sin(_372);
-        float _487 = _483 * params.gerstner_directions_a.x;
-        float _491 = _436 * _111;
-        float _495 = _491 * sin(_387);
-        float _499 = _495 * params.gerstner_directions_a.z;
-        float _503 = _450 * _128;
-        float _507 = _503 * sin(_402);
-        float _511 = _507 * params.gerstner_directions_b.x;
-        float _515 = _464 * _145;
-        float _519 = _515 * sin(_417);
-        float _523 = _519 * params.gerstner_directions_b.z;
-        float _540 = 1.0 - (_523 * params.gerstner_directions_b.z + (_511 * params.gerstner_directions_b.x + (_487 * params.gerstner_directions_a.x + (_499 * params.gerstner_directions_a.z))));
-        float _565 = 1.0 - ((_519 * params.gerstner_directions_b.w) * params.gerstner_directions_b.w + ((_507 * params.gerstner_directions_b.y) * params.gerstner_directions_b.y + ((_483 * params.gerstner_directions_a.y) * params.gerstner_directions_a.y + ((_495 * params.gerstner_directions_a.w) * params.gerstner_directions_a.w))));
-        float _582 = -(_523 * params.gerstner_directions_b.w + (_511 * params.gerstner_directions_b.y + (_487 * params.gerstner_directions_a.y + (_499 * params.gerstner_directions_a.w))));
-        vec2 _610 = (_1982 + ((((params.gerstner_directions_a.xy * (_421 * cos(_372))) + (params.gerstner_directions_a.zw * (_436 * cos(_387)))) + (params.gerstner_directions_b.xy * (_450 * cos(_402)))) + (params.gerstner_directions_b.zw * (_464 * cos(_417))))) - _347;
-        float _623 = _610.x;
-        float _626 = _610.y;
-        vec2 _647 = _1982 - (vec2(_565 * _623 + (-(_582 * _626)), _540 * _626 + (-(_582 * _623))) / vec2(max(_540 * _565 + (-(_582 * _582)), 0.039999999105930328369140625)));
-        float _656 = params.gerstner_frequency * dot(params.gerstner_directions_a.xy, _647) + _95;
-        float _664 = _111 * dot(params.gerstner_directions_a.zw, _647) + _118;
-        float _672 = _128 * dot(params.gerstner_directions_b.xy, _647) + _135;
-        float _680 = _145 * dot(params.gerstner_directions_b.zw, _647) + _152;
-        float _683 = sin(_656);
-        float _686 = cos(_656);
-        float _689 = sin(_664);
-        float _692 = cos(_664);
-        float _695 = sin(_672);
-        float _698 = cos(_672);
-        float _701 = sin(_680);
-        float _704 = cos(_680);
-        vec2 _728 = (((params.gerstner_directions_a.xy * (_421 * _686)) + (params.gerstner_directions_a.zw * (_436 * _692))) + (params.gerstner_directions_b.xy * (_450 * _698))) + (params.gerstner_directions_b.zw * (_464 * _704));
-        float _746 = _468 * _701 + (_454 * _695 + (_426 * _683 + (_440 * _689)));
-        float _754 = -(_479 * _683);
-        vec3 _768 = vec3(_754 * params.gerstner_directions_a.x, (_426 * params.gerstner_frequency) * _686, _754 * params.gerstner_directions_a.y);
-        float _773 = -(_491 * _689);
-        vec3 _786 = vec3(_773 * params.gerstner_directions_a.z, (_440 * _111) * _692, _773 * params.gerstner_directions_a.w);
-        float _791 = -(_503 * _695);
-        vec3 _804 = vec3(_791 * params.gerstner_directions_b.x, (_454 * _128) * _698, _791 * params.gerstner_directions_b.y);
-        float _809 = -(_515 * _701);
-        vec3 _822 = vec3(_809 * params.gerstner_directions_b.z, (_468 * _145) * _704, _809 * params.gerstner_directions_b.w);
-        vec3 _858 = cross((((vec3(0.0, 0.0, 1.0) + (_768 * params.gerstner_directions_a.y)) + (_786 * params.gerstner_directions_a.w)) + (_804 * params.gerstner_directions_b.y)) + (_822 * params.gerstner_directions_b.w), (((vec3(1.0, 0.0, 0.0) + (_768 * params.gerstner_directions_a.x)) + (_786 * params.gerstner_directions_a.z)) + (_804 * params.gerstner_directions_b.x)) + (_822 * params.gerstner_directions_b.z));
-        float _862 = dot(_858, _858);
-        vec3 _869 = _858 * inversesqrt(max(_862, 1.0000000031710768509710513471353e-30));
-        bvec3 _879 = bvec3(_862 > 1.0000000031710768509710513471353e-30);
-        vec3 _880 = vec3(_879.x ? _869.x : vec3(0.0, 1.0, 0.0).x, _879.y ? _869.y : vec3(0.0, 1.0, 0.0).y, _879.z ? _869.z : vec3(0.0, 1.0, 0.0).z);
-        _1982 = _647;
-        _1981 = _1980;
-        _1980 = _206 * ((_746 + dot((-_880.xz) / vec2(max(_880.y, 9.9999997473787516355514526367188e-05)), _347 - (_647 + vec3(_728.x, _746, _728.y).xz))) - _1980) + _1980;
-        _1979++;
-        continue;
+        if (!(float(_1095) < _74))
+        {
+            break;
+        }
+        _108 = _1096 + _1097;
+        _113 = _1097 * _1099 + _1098;
+        _118 = _1097 * params.gerstner_amplitude_gain;
+        _123 = _1099 * params.gerstner_frequency_gain;
     }
-    float _1984;
-    vec2 _1986;
-    _1986 = _1982;
-    _1984 = _1980;
-    int _1983 = 0;
-    float _1987 = _1981;
-    float _1988 = _209;
+    float _140 = _60.y;
+    float _144 = max(-_140, 9.9999999747524270787835121154785e-07);
+    vec2 _148 = _60.xz;
+    float _157 = 1.0 / (1.0 + (((_1098 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
+    float _160 = -_1096;
+    float _164 = min(_140, -9.9999999747524270787835121154785e-07);
+    float _1103;
+    vec2 _1108;
+    _1108 = (params.eye_position + (_60 * max((_1096 - params.eye_position.y) / _164, 0.0))).xz;
+    _1103 = _1096;
+    vec2 _408;
+    float _681;
+    float _686;
+    float _696;
+    int _1102 = 0;
+    float _1136 = _1096;
+    float _1141 = _160;
     SPIRV_CROSS_LOOP
-    for (; _1983 < 7; )
+    for (; _1102 < 9; _1141 = _686, _1136 = _681, _1108 = _408, _1103 = _696, _1102++)
     {
-        float _947 = max((_1984 - params.eye_position.y) / _213, 0.0);
-        vec2 _957 = (params.eye_position + (_56 * _947)).xz;
-        float _963 = (_64 * _947) / _194;
-        float _971 = clamp((-(params.gerstner_frequency * _963)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-        float _980 = params.gerstner_frequency * dot(params.gerstner_directions_a.xy, _1986) + _95;
-        float _987 = clamp((-(_111 * _963)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-        float _995 = _111 * dot(params.gerstner_directions_a.zw, _1986) + _118;
-        float _1002 = clamp((-(_128 * _963)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-        float _1010 = _128 * dot(params.gerstner_directions_b.xy, _1986) + _135;
-        float _1017 = clamp((-(_145 * _963)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-        float _1025 = _145 * dot(params.gerstner_directions_b.zw, _1986) + _152;
-        float _1029 = _251 * _971;
-        float _1034 = params.gerstner_amplitude * _971;
-        float _1044 = _264 * _987;
-        float _1048 = _103 * _987;
-        float _1058 = _277 * _1002;
-        float _1062 = _123 * _1002;
-        float _1072 = _290 * _1017;
-        float _1076 = _140 * _1017;
-        float _1087 = _1029 * params.gerstner_frequency;
-        float _1091 = _1087 * sin(_980);
-        float _1095 = _1091 * params.gerstner_directions_a.x;
-        float _1099 = _1044 * _111;
-        float _1103 = _1099 * sin(_995);
-        float _1107 = _1103 * params.gerstner_directions_a.z;
-        float _1111 = _1058 * _128;
-        float _1115 = _1111 * sin(_1010);
-        float _1119 = _1115 * params.gerstner_directions_b.x;
-        float _1123 = _1072 * _145;
-        float _1127 = _1123 * sin(_1025);
-        float _1131 = _1127 * params.gerstner_directions_b.z;
-        float _1148 = 1.0 - (_1131 * params.gerstner_directions_b.z + (_1119 * params.gerstner_directions_b.x + (_1095 * params.gerstner_directions_a.x + (_1107 * params.gerstner_directions_a.z))));
-        float _1173 = 1.0 - ((_1127 * params.gerstner_directions_b.w) * params.gerstner_directions_b.w + ((_1115 * params.gerstner_directions_b.y) * params.gerstner_directions_b.y + ((_1091 * params.gerstner_directions_a.y) * params.gerstner_directions_a.y + ((_1103 * params.gerstner_directions_a.w) * params.gerstner_directions_a.w))));
-        float _1190 = -(_1131 * params.gerstner_directions_b.w + (_1119 * params.gerstner_directions_b.y + (_1095 * params.gerstner_directions_a.y + (_1107 * params.gerstner_directions_a.w))));
-        vec2 _1218 = (_1986 + ((((params.gerstner_directions_a.xy * (_1029 * cos(_980))) + (params.gerstner_directions_a.zw * (_1044 * cos(_995)))) + (params.gerstner_directions_b.xy * (_1058 * cos(_1010)))) + (params.gerstner_directions_b.zw * (_1072 * cos(_1025))))) - _957;
-        float _1230 = _1218.x;
-        float _1233 = _1218.y;
-        vec2 _1254 = _1986 - (vec2(_1173 * _1230 + (-(_1190 * _1233)), _1148 * _1233 + (-(_1190 * _1230))) / vec2(max(_1148 * _1173 + (-(_1190 * _1190)), 0.039999999105930328369140625)));
-        float _1263 = params.gerstner_frequency * dot(params.gerstner_directions_a.xy, _1254) + _95;
-        float _1271 = _111 * dot(params.gerstner_directions_a.zw, _1254) + _118;
-        float _1279 = _128 * dot(params.gerstner_directions_b.xy, _1254) + _135;
-        float _1287 = _145 * dot(params.gerstner_directions_b.zw, _1254) + _152;
-        float _1290 = sin(_1263);
-        float _1293 = cos(_1263);
-        float _1296 = sin(_1271);
-        float _1299 = cos(_1271);
-        float _1302 = sin(_1279);
-        float _1305 = cos(_1279);
-        float _1308 = sin(_1287);
-        float _1311 = cos(_1287);
-        vec2 _1335 = (((params.gerstner_directions_a.xy * (_1029 * _1293)) + (params.gerstner_directions_a.zw * (_1044 * _1299))) + (params.gerstner_directions_b.xy * (_1058 * _1305))) + (params.gerstner_directions_b.zw * (_1072 * _1311));
-        float _1353 = _1076 * _1308 + (_1062 * _1302 + (_1034 * _1290 + (_1048 * _1296)));
-        float _1361 = -(_1087 * _1290);
-        vec3 _1375 = vec3(_1361 * params.gerstner_directions_a.x, (_1034 * params.gerstner_frequency) * _1293, _1361 * params.gerstner_directions_a.y);
-        float _1380 = -(_1099 * _1296);
-        vec3 _1393 = vec3(_1380 * params.gerstner_directions_a.z, (_1048 * _111) * _1299, _1380 * params.gerstner_directions_a.w);
-        float _1398 = -(_1111 * _1302);
-        vec3 _1411 = vec3(_1398 * params.gerstner_directions_b.x, (_1062 * _128) * _1305, _1398 * params.gerstner_directions_b.y);
-        float _1416 = -(_1123 * _1308);
-        vec3 _1429 = vec3(_1416 * params.gerstner_directions_b.z, (_1076 * _145) * _1311, _1416 * params.gerstner_directions_b.w);
-        vec3 _1463 = cross((((vec3(0.0, 0.0, 1.0) + (_1375 * params.gerstner_directions_a.y)) + (_1393 * params.gerstner_directions_a.w)) + (_1411 * params.gerstner_directions_b.y)) + (_1429 * params.gerstner_directions_b.w), (((vec3(1.0, 0.0, 0.0) + (_1375 * params.gerstner_directions_a.x)) + (_1393 * params.gerstner_directions_a.z)) + (_1411 * params.gerstner_directions_b.x)) + (_1429 * params.gerstner_directions_b.z));
-        float _1467 = dot(_1463, _1463);
-        vec3 _1473 = _1463 * inversesqrt(max(_1467, 1.0000000031710768509710513471353e-30));
-        bvec3 _1480 = bvec3(_1467 > 1.0000000031710768509710513471353e-30);
-        vec3 _1481 = vec3(_1480.x ? _1473.x : vec3(0.0, 1.0, 0.0).x, _1480.y ? _1473.y : vec3(0.0, 1.0, 0.0).y, _1480.z ? _1473.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _1490 = (-_1481.xz) / vec2(max(_1481.y, 9.9999997473787516355514526367188e-05));
-        float _1512 = (-dot(_1490, _197)) / _194;
-        float _1523 = (_1353 + dot(_1490, _957 - (_1254 + vec3(_1335.x, _1353, _1335.y).xz))) - _1984;
-        float _1529 = clamp(1.0 / max(1.0 - _1512, 9.9999999747524270787835121154785e-07), _206, 1.0) * _1523 + _1984;
-        bool _1532 = _1523 < 0.0;
-        float _1537 = _1532 ? _1984 : _1987;
-        float _1542 = _1532 ? _1988 : _1984;
-        _1988 = _1542;
-        _1987 = _1537;
-        _1986 = _1254;
-        _1984 = (((_1529 < _1542) || (_1529 > _1537)) || (_1512 >= 1.0)) ? (0.5 * (_1542 + _1537)) : _1529;
-        _1983++;
-        continue;
+        float _209 = max((_1103 - params.eye_position.y) / _164, 0.0);
+        vec2 _219 = (params.eye_position + (_60 * _209)).xz;
+        float _225 = (_68 * _209) / _144;
+        vec2 _1110;
+        vec3 _1111;
+        _1111 = vec3(0.0);
+        _1110 = vec2(0.0);
+        float _325;
+        float _329;
+        vec2 _336;
+        vec3 _350;
+        int _1105 = 0;
+        float _1106 = params.gerstner_frequency;
+        float _1109 = params.gerstner_amplitude;
+        SPIRV_CROSS_LOOP
+        for (; _1105 < 8; _1111 = _350, _1110 = _336, _1109 = _325, _1106 = _329, _1105++)
+        {
+            float _244 = float(_1105);
+            if (!(_244 < _74))
+            {
+                break;
+            }
+            int _256 = clamp(int(_244), 0, 7);
+            float _284 = _1106 * dot(params.gerstner_wave_directions[_256], _1108) + (params.time * params.gerstner_wave_speeds[_256]);
+            float _298 = ((params.gerstner_steepness / (_74 * max(_1106 * _1109, 9.9999999747524270787835121154785e-07))) * _1109) * clamp((-(_1106 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _317 = (_298 * _1106) * sin(_284);
+            float _321 = _317 * params.gerstner_wave_directions[_256].x;
+            _325 = _1109 * params.gerstner_amplitude_gain;
+            _329 = _1106 * params.gerstner_frequency_gain;
+            _336 = _1110 + (params.gerstner_wave_directions[_256] * (_298 * cos(_284)));
+            _350 = _1111 + vec3(_321 * params.gerstner_wave_directions[_256].x, _321 * params.gerstner_wave_directions[_256].y, (_317 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _356 = 1.0 - _1111.x;
+        float _361 = 1.0 - _1111.z;
+        float _365 = -_1111.y;
+        vec2 _371 = (_1108 + _1110) - _219;
+        float _384 = _371.x;
+        float _387 = _371.y;
+        _408 = _1108 - (vec2(_361 * _384 + (-(_365 * _387)), _356 * _387 + (-(_365 * _384))) / vec2(max(_356 * _361 + (-(_365 * _365)), 0.039999999105930328369140625)));
+        vec3 _1118;
+        vec3 _1119;
+        vec3 _1120;
+        _1120 = vec3(0.0, 0.0, 1.0);
+        _1119 = vec3(1.0, 0.0, 0.0);
+        _1118 = vec3(0.0);
+        float _523;
+        float _527;
+        vec3 _539;
+        vec3 _544;
+        vec3 _549;
+        int _1115 = 0;
+        float _1116 = params.gerstner_frequency;
+        float _1117 = params.gerstner_amplitude;
+        SPIRV_CROSS_LOOP
+        for (; _1115 < 8; _1120 = _549, _1119 = _544, _1118 = _539, _1117 = _523, _1116 = _527, _1115++)
+        {
+            float _429 = float(_1115);
+            if (!(_429 < _74))
+            {
+                break;
+            }
+            int _440 = clamp(int(_429), 0, 7);
+            float _449 = clamp((-(_1116 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _465 = _1116 * dot(params.gerstner_wave_directions[_440], _408) + (params.time * params.gerstner_wave_speeds[_440]);
+            float _479 = ((params.gerstner_steepness / (_74 * max(_1116 * _1117, 9.9999999747524270787835121154785e-07))) * _1117) * _449;
+            float _483 = _1117 * _449;
+            float _486 = sin(_465);
+            float _489 = cos(_465);
+            float _499 = _479 * _489;
+            float _506 = -((_479 * _1116) * _486);
+            vec3 _519 = vec3(_506 * params.gerstner_wave_directions[_440].x, (_483 * _1116) * _489, _506 * params.gerstner_wave_directions[_440].y);
+            _523 = _1117 * params.gerstner_amplitude_gain;
+            _527 = _1116 * params.gerstner_frequency_gain;
+            _539 = _1118 + vec3(_499 * params.gerstner_wave_directions[_440].x, _483 * _486, _499 * params.gerstner_wave_directions[_440].y);
+            _544 = _1119 + (_519 * params.gerstner_wave_directions[_440].x);
+            _549 = _1120 + (_519 * params.gerstner_wave_directions[_440].y);
+        }
+        vec3 _555 = cross(_1120, _1119);
+        float _559 = dot(_555, _555);
+        vec3 _566 = _555 * inversesqrt(max(_559, 1.0000000031710768509710513471353e-30));
+        bvec3 _576 = bvec3(_559 > 1.0000000031710768509710513471353e-30);
+        vec3 _577 = vec3(_576.x ? _566.x : vec3(0.0, 1.0, 0.0).x, _576.y ? _566.y : vec3(0.0, 1.0, 0.0).y, _576.z ? _566.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _587 = (-_577.xz) / vec2(max(_577.y, 9.9999997473787516355514526367188e-05));
+        float _602 = float(_1102);
+        bool _603 = _602 < 1.0;
+        float _610 = (_1118.y + dot(_587, _219 - (_408 + _1118.xz))) - _1103;
+        float _623 = (-dot(_587, _148)) / _144;
+        float _636 = clamp(1.0 / max(1.0 - _623, 9.9999999747524270787835121154785e-07), _157, 1.0) * _610 + _1103;
+        bool _639 = _610 < 0.0;
+        float _644 = _639 ? _1103 : _1136;
+        float _649 = _639 ? _1141 : _1103;
+        _681 = _603 ? _1103 : _644;
+        _686 = _603 ? _1141 : _649;
+        _696 = (_602 < 8.0) ? (_603 ? (_157 * _610 + _1103) : ((((_636 < _649) || (_636 > _644)) || (_623 >= 1.0)) ? (0.5 * (_649 + _644)) : _636)) : _1103;
     }
-    float _1585 = max((_1984 - params.eye_position.y) / _213, 0.0);
-    vec3 _1592 = params.eye_position + (_56 * _1585);
-    vec2 _1595 = _1592.xz;
-    float _1603 = _33.y;
-    float _1606 = _1592.y;
-    float _1611 = max(_1606 - _1603, 0.0);
-    vec4 _1656 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    vec3 _1657 = _1656.xyz;
-    float _1661 = clamp(max(_49 - _1585, 0.0), 0.0, 30000.0);
-    vec4 _1718 = (((params.reflection_view_proj_c0 * _1592.x) + (params.reflection_view_proj_c1 * _1606)) + (params.reflection_view_proj_c2 * _1592.z)) + params.reflection_view_proj_c3;
-    float _1721 = _1718.w;
-    bool _1724 = _1721 > 9.9999997473787516355514526367188e-05;
-    vec2 _1741 = clamp((((_1718.xy / vec2(_1721)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _1747 = bvec2(_1724);
-    float _1751 = float(_1724);
-    vec4 _1767 = texture(reflection_map, vec3(vec2(_1747.x ? _1741.x : vec2(0.5).x, _1747.y ? _1741.y : vec2(0.5).y), _1751).xy);
-    vec3 _1985;
-    if (_1751 > 0.5)
+    float _710 = max((_1103 - params.eye_position.y) / _164, 0.0);
+    vec3 _717 = params.eye_position + (_60 * _710);
+    float _725 = _33.y;
+    float _728 = _717.y;
+    float _733 = max(_728 - _725, 0.0);
+    vec4 _777 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    vec3 _778 = _777.xyz;
+    float _782 = clamp(max(_53 - _710, 0.0), 0.0, 30000.0);
+    vec4 _839 = (((params.reflection_view_proj_c0 * _717.x) + (params.reflection_view_proj_c1 * _728)) + (params.reflection_view_proj_c2 * _717.z)) + params.reflection_view_proj_c3;
+    float _843 = _839.w;
+    bool _846 = _843 > 9.9999997473787516355514526367188e-05;
+    vec2 _863 = clamp((((_839.xy / vec2(_843)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _869 = bvec2(_846);
+    float _873 = float(_846);
+    vec4 _889 = texture(reflection_map, vec3(vec2(_869.x ? _863.x : vec2(0.5).x, _869.y ? _863.y : vec2(0.5).y), _873).xy);
+    vec3 _1104;
+    if (_873 > 0.5)
     {
-        _1985 = _1767.xyz;
+        _1104 = _889.xyz;
     }
     else
     {
-        _1985 = params.sky_color;
+        _1104 = params.sky_color;
     }
-    float _1797 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _1805 = 1.0 - clamp((-_56).y, 0.0, 1.0);
-    float _1809 = _1805 * _1805;
-    float _1887 = _1611 - params.foam_existence.x;
-    float _1892 = params.foam_existence.y - params.foam_existence.x;
-    vec3 _1938 = mix(_1657, mix(mix(mix(params.scatter_color, _1657 * exp((-params.absorb_coefficients) * (_1611 + _1661)), vec3(exp((-params.scatter_coefficient) * _1661))) * params.incident_light, _1985, vec3(_1797 * _1797 + (((-_1797) * _1797 + 1.0) * ((_1809 * _1809) * _1805)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_1595 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_1595)), length(dFdy(_1595))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1887 < 0.0) ? 1.0 : (1.0 - ((_1887 >= _1892) ? 1.0 : clamp(_1887 / max(_1892, 5.9604644775390625e-08), 0.0, 1.0))))), vec3(clamp(_1611 * params.shore_hardness, 0.0, 1.0)));
-    bvec3 _1943 = bvec3((_1603 < _1606) && (_190 < 0.0));
-    out_color = vec4(vec3(_1943.x ? _1938.x : _26.x, _1943.y ? _1938.y : _26.y, _1943.z ? _1938.z : _26.z), 1.0);
+    float _919 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _927 = 1.0 - clamp((-_60).y, 0.0, 1.0);
+    float _931 = _927 * _927;
+    vec2 _951 = _717.xz;
+    float _1012 = _733 - params.foam_existence.x;
+    float _1017 = params.foam_existence.y - params.foam_existence.x;
+    vec3 _1063 = mix(_778, mix(mix(mix(params.scatter_color, _778 * exp((-params.absorb_coefficients) * (_733 + _782)), vec3(exp((-params.scatter_coefficient) * _782))) * params.incident_light, _1104, vec3(_919 * _919 + (((-_919) * _919 + 1.0) * ((_931 * _931) * _927)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_951 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_951)), length(dFdy(_951))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1012 < 0.0) ? 1.0 : (1.0 - ((_1012 >= _1017) ? 1.0 : clamp(_1012 / max(_1017, 5.9604644775390625e-08), 0.0, 1.0))))), vec3(clamp(_733 * params.shore_hardness, 0.0, 1.0)));
+    bvec3 _1068 = bvec3((_725 < _728) && (_140 < 0.0));
+    out_color = vec4(vec3(_1068.x ? _1063.x : _26.x, _1068.y ? _1063.y : _26.y, _1068.z ? _1063.z : _26.z), 1.0);
 }
 

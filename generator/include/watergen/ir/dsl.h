@@ -196,7 +196,38 @@ struct LoopOptions {
 };
 using LoopBodyFn = std::function<LoopStep(Expr index, const std::vector<Expr>& carried)>;
 // The carried values after at most `trip_count` iterations (1..4096), typed like `initial`.
+// The loop runs in `g`, or in the innermost loop body being built that an initial value (or the
+// count) belongs to: a loop nested in another's body whose initial values are all outer values
+// is given that body's graph as `g` (the graph of any value of the body, e.g. `xz.graph()`).
 std::vector<Expr> loop(Graph& g, int trip_count, const std::vector<Expr>& initial,
                        const LoopBodyFn& body, LoopOptions options = {});
+// A trip count from data: `count` (float) runs min(floor(count), max_trip_count) iterations,
+// none where floor(count) < 1 or count is NaN (the initial values come out); max_trip_count is
+// 1..4096. Every pixel runs the same count: `count` may read parameters (uniforms or
+// specialization constants) and constants only; a varying, texture, loop index, carried value or
+// loop result in it is a diagnostic. Emitted as `for (i = 0; i < max; ++i) { if (!(float(i) <
+// floor(count))) break; ... }`.
+std::vector<Expr> loop(Graph& g, Expr count, int max_trip_count, const std::vector<Expr>& initial,
+                       const LoopBodyFn& body, LoopOptions options = {});
+
+// Uniform choices. choose() builds one graph per case, like a loop body: case_body gets the
+// case's graph and index and returns the results, and may read any value of the enclosing code
+// (captured; read_in() captures one explicitly, so that everything computed from it is the
+// case's own work). The selector must be the same on every pixel of a draw: a Float built from
+// constants and parameters only (a specialization constant or a uniform-block member). Case k
+// runs where the selector is k, the last case for any other value; it is emitted as
+// `if (sel == 0.0) {...} else if ...`, so the other cases do not run, and cases may take
+// derivatives. Every case gives the same number of results, typed alike; a result no case gives
+// (an invalid Expr in every case) comes back invalid, one some cases give and others do not is
+// an error unless fill_missing supplies it. A result every case passes through unchanged is the
+// outer value itself. A quantity every case binds to its result k (Graph::bind) is bound to result
+// k. fill_missing, when given, supplies a result some cases give and another does not, in that
+// case's graph (result index and type); an invalid Expr from it leaves the error.
+using CaseFn = std::function<std::vector<Expr>(Graph& case_graph, int case_index)>;
+using FillFn = std::function<Expr(Graph& case_graph, size_t result, Type type)>;
+std::vector<Expr> choose(Graph& g, Expr selector, int cases, const CaseFn& case_body,
+                         const FillFn& fill_missing = {});
+// `outer` as a value of `body`, a loop body or case being built inside its graph (captured).
+Expr read_in(Graph& body, Expr outer);
 
 } // namespace watergen

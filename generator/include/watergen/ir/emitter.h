@@ -3,6 +3,7 @@
 // (ir/glsl_syntax.cpp, ir/hlsl_syntax.cpp) and in the skeletons under templates/.
 #pragma once
 
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -62,11 +63,19 @@ struct EmittedShader {
 // `layout(constant_id = N) const float`, HLSL `[[vk::constant_id(N)]] const float`, one per
 // component of a vector, ids in declaration order (ir/specialization.h). A name no parameter of
 // the graph declares is an error; one the shader does not read is ignored.
+// Which unroll hint each loop is emitted with: its own (LoopOptions::unroll), or one for all
+// (to compare kept loops with unrolled ones on the same shader).
+enum class LoopUnroll { AsHinted, All, None };
+
 struct EmitOptions {
     bool strict_half = false;
     std::set<std::string> specialization_constants =
         {}; // "= {}": EmitOptions{x} stays warning-free
+    LoopUnroll unroll = LoopUnroll::AsHinted;
 };
+
+// "hinted", "all", "none" (the --unroll flag); nullopt for another word.
+std::optional<LoopUnroll> parse_loop_unroll(const std::string& word);
 
 // The stamp line every generated file carries.
 std::string stamp_text(const std::string& variant_key);

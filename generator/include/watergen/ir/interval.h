@@ -40,6 +40,12 @@ bool decided_false(const Intervals& v);
 Intervals node_intervals(const Node& n, const std::vector<const Intervals*>& args,
                          const std::vector<Type>& arg_types);
 
+// Bounds of result k of the Switch node `sw` from the bounds of its arguments (args[i] for
+// sw.args[i]): the union over its cases, or the selected case's alone when the selector is a
+// point. Leaves of a case other than captured values and constants are unknown.
+Intervals switch_result_intervals(const Node& sw, size_t k,
+                                  const std::vector<const Intervals*>& args);
+
 // Largest finite magnitude of the node's precision (binary32, or binary16 when relaxed).
 double largest_finite(bool relaxed);
 

@@ -26,7 +26,7 @@ enum class Type : uint8_t {
     Mat3,
     Texture2D,
     TextureCube,
-    Tuple, // the carried values of a loop, read one by one with LoopResult
+    Tuple, // the carried values of a loop or the results of a switch, read one by one
 };
 
 // Components of a value of this type (Mat3 = 9, column-major); 0 for handles and Error.
@@ -99,13 +99,16 @@ enum class Op : uint8_t {
     Ddx,
     Ddy,
     // bounded loops (see LoopBody)
-    Loop,       // args: the carried values' initial values, then the captured outer values
+    Loop,       // args: the carried values' initial values, [the trip count,] the captured values
     LoopResult, // args: the Loop; values[0] = carried index; the value after the last iteration
     LoopIndex,  // in a loop body: the iteration, 0, 1, ... as a float
     Carried,    // in a loop body: values[0] = carried index; its value at this iteration's start
     Captured,   // in a loop body: values[0] = capture index; an outer value the body reads
     // arrays
     UniformElement, // name = array parameter, args: index (Float; floored, clamped to the array)
+    // uniform choices (see SwitchCases)
+    Switch,       // args: the selector, then each case's captured outer values, case after case
+    SwitchResult, // args: the Switch; values[0] = result index; the selected case's result
 };
 
 const char* op_name(Op op);
@@ -114,6 +117,7 @@ bool is_infix(Op op); // written between its operands: + - * / comparisons && ||
 
 class Graph;
 struct LoopBody;
+struct SwitchCases;
 
 struct Node {
     Op op = Op::Constant;
@@ -127,7 +131,12 @@ struct Node {
     bool relaxed = false;
     // Op::Loop: what the loop does, shared by every copy of the node (immutable once built).
     std::shared_ptr<const LoopBody> loop;
+    // Op::Switch: its cases, shared likewise.
+    std::shared_ptr<const SwitchCases> cases;
 };
+
+// The graphs a node runs inside itself: a loop's body, a switch's cases; none for other nodes.
+std::vector<const Graph*> bodies_of(const Node& n);
 
 // A uniform parameter a feature node reads. Parameters are data: defaults and ranges travel
 // with the node that declares them, so presets and validation need no shader knowledge.
@@ -250,12 +259,12 @@ class Graph {
 };
 
 // A bounded loop: at most `trip_count` iterations of `body`, a graph whose leaves are
-// LoopIndex, Carried k (k < carried), Captured m (an outer value, argument carried + m of the
-// Loop node; parameters and inputs come in this way too), constants and textures. Its outputs
-// "next0", "next1", ... are the carried values of the next iteration, typed like the initial
-// values; an optional Bool output "continue" ends the loop where it is false (per pixel, after the
-// carried values are updated). The enclosing graph's parameters hold the body's: a body never
-// declares its own.
+// LoopIndex, Carried k (k < carried), Captured m (an outer value, argument first_capture() + m
+// of the Loop node; parameters and inputs come in this way too), constants and textures. Its
+// outputs "next0", "next1", ... are the carried values of the next iteration, typed like the
+// initial values; an optional Bool output "continue" ends the loop where it is false (per pixel,
+// after the carried values are updated). The enclosing graph's parameters hold the body's: a body
+// never declares its own.
 struct LoopBody {
     std::shared_ptr<const Graph> body;
     std::vector<Type> carried_types; // one per carried value
@@ -263,7 +272,28 @@ struct LoopBody {
     int trip_count = 0;
     bool unroll = false; // the hint: [[unroll]] / [unroll], else [[dont_unroll]] / [loop]
     bool has_exit = false;
+    // A trip count from data: argument carried() of the Loop node, a Float the same for every
+    // pixel and already floored; the loop runs min(it, trip_count) iterations, none when it is
+    // below 1 or NaN.
+    bool counted = false;
     size_t carried() const { return carried_types.size(); }
+    size_t first_capture() const { return carried() + (counted ? 1 : 0); }
+};
+
+// A uniform choice between graphs: case k runs where the selector (a Float the same on every
+// pixel of a draw: built from constants and parameters only) equals k; any other value (and
+// NaN) runs the last case. Each case is a graph like a loop body, whose leaves are Captured m
+// (argument case_args[k] + m of the Switch node), constants and textures; its outputs "out0",
+// "out1", ... are the results, typed alike in every case. Only the selected case runs, so cases
+// may take derivatives and sample with implicit LOD (the control flow is uniform).
+struct SwitchCases {
+    std::vector<std::shared_ptr<const Graph>> cases;
+    std::vector<size_t> case_args; // per case: index of its first captured value among the args
+    std::vector<Type> result_types;
+    std::vector<bool> result_relaxed;
+    size_t results() const { return result_types.size(); }
+    // The case a selector value runs.
+    size_t case_for(double selector) const;
 };
 
 } // namespace watergen

@@ -10,7 +10,8 @@
 //   clamp / saturate whose outcome the bounds decide
 //                                 are replaced by the surviving operand; 0 - x becomes -x,
 //   x * 0 = 0                     only when x is provably finite (inf * 0 and NaN * 0 are NaN),
-// and what no output reads any more is gone, because emission walks live nodes only. Every
+// and what no output reads any more is gone, because emission walks live nodes only. A switch
+// whose selector is a constant or a fixed parameter is first replaced by its selected case. Every
 // rewrite is recorded with the facts its decision used, for `watergen explain`. The result is
 // compacted (live nodes only, renumbered), so variants that fold alike give the same graph;
 // bindings of live nodes move with them.

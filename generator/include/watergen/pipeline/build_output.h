@@ -28,11 +28,14 @@ struct BuildPlan {
 // Plans every scene against the material; nullopt with one error on bad input (unknown
 // parameters, duplicate scene names, a scene that needs nothing). The plan must not be
 // copied after this (jobs point at its scenes' facts).
+// In the specialized and branching modes the jobs are the shaders of each scene's variants
+// (shaders_for(), water_shader.h), each listing the variants it serves.
 std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes,
-                                    Diagnostics& ds);
+                                    Diagnostics& ds, BuildMode mode = BuildMode::Permutations);
 
 struct BuildSummary {
-    size_t variants = 0; // jobs: reached (scene, variant) pairs
+    size_t variants = 0; // reached (scene, variant) pairs
+    size_t shaders = 0;  // jobs: one per variant, or (specialized, branching) per shared shader
     size_t built = 0;    // compiled now
     size_t cached = 0;   // copied from the cache
     size_t shared = 0;   // same files as a variant of another scene, built once for both
@@ -52,6 +55,10 @@ struct BuildRequest {
     std::vector<SceneFacts> scenes; // none: the material's whole space, unpruned
     std::filesystem::path out;
     BuildOptions options;
+    BuildMode mode = BuildMode::Permutations;
+    // Specialized mode: also write each variant's SPIR-V with its selectors frozen offline
+    // (freeze_specialization(), spirv_tools_stage.h) as <shader>/<lang>/frozen/<variant>.frag.spv.
+    bool freeze = false;
 };
 
 BuildSummary build_material(const BuildRequest& request);

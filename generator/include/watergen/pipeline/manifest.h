@@ -10,6 +10,7 @@
 
 #include "watergen/pipeline/parallel_build.h"
 #include "watergen/plan/scene_pruning.h"
+#include "watergen/toolchain/spirv_tools_stage.h"
 
 namespace watergen {
 
@@ -25,5 +26,24 @@ std::string manifest_json(const Material& material, const std::vector<ManifestSc
 
 // Directory of a variant inside the output, e.g. "open_ocean/fresnel-schlick_...".
 std::string variant_directory(const std::string& scene, const Variant& v);
+// Directory of a job: its variant's, or its shader's ("unpruned/fresnel-schlick+exact_...").
+std::string job_directory(const BuildJob& job);
+
+// manifest.json of the specialized and branching modes: the material and scenes as above, then
+// "shaders" (per job: the choices per axis, the selectors with their constant ids or block
+// offsets, fold, files, reflection) and "variants" (per variant, sorted by scene and key: the
+// shader directory that draws it and its selector values, placed; with freeze, its frozen
+// SPIR-V).
+std::string modes_manifest_json(const Material& material, BuildMode mode, bool freeze,
+                                const std::vector<ManifestScene>& scenes,
+                                const std::vector<BuildJob>& jobs,
+                                const std::vector<JobResult>& results);
+
+// Where a variant's frozen SPIR-V goes in its shader's directory: "glsl/frozen/<stem>.frag.spv".
+std::string frozen_path(const std::string& language, const Variant& v);
+// The variant's fragment SPIR-V of one language path (its optimised module) with the shader's
+// selectors frozen to the variant's values (freeze_specialization()).
+OptimizeResult freeze_variant(const JobResult& r, const ShaderChoices& shader, const Variant& v,
+                              const std::string& language);
 
 } // namespace watergen

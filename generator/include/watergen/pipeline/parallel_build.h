@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,14 @@ struct BuildJob {
     Variant variant;
     const FoldFacts* facts = nullptr; // fold under these; nullptr builds the variant as composed
     std::vector<Target> targets;
+    // Set in the specialized and branching modes: the job builds this shader, which draws the
+    // variants of `serves` (sorted by key); `variant` is the one its selectors' defaults draw.
+    std::optional<ShaderChoices> shader = std::nullopt;
+    std::vector<Variant> serves = {};
 };
+
+// The job's key: its variant's, or its shader's (ShaderChoices::key).
+std::string job_key(const BuildJob& job);
 
 struct JobResult {
     std::string content_hash; // cache key of the files
@@ -55,7 +63,7 @@ unsigned hardware_threads();
 // Runs task(i) for every i in [0, n) on `threads` workers (0: all cores; 1: the calling thread).
 void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& task);
 
-// Jobs must be sorted by (scene, key) for `same_as` to name the first of equal shaders.
+// Jobs must be sorted by (scene, job_key) for `same_as` to name the first of equal shaders.
 std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs,
                                       const BuildOptions& options);
 

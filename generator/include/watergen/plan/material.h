@@ -58,6 +58,8 @@ struct Material {
     // The variant's shader with the preset and the material's values applied; parameter
     // metadata (min / max) narrowed to the material's ranges.
     WaterShader compose(const Variant& v) const;
+    // The same for a shader serving several variants (water_shader.h, ShaderChoices).
+    WaterShader compose(const ShaderChoices& choices) const;
     // Parameter range after the material's narrowing.
     std::pair<double, double> range(const std::string& parameter) const;
 };

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,18 @@ OptimizeResult optimize_spirv(const std::vector<uint32_t>& spirv, const std::str
 // Output: the legal module plus messages (prefixed "spirv-opt: ").
 // Cost:   ~3 ms for a 100-line shader. Thread-safe.
 OptimizeResult legalize_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name);
+
+// What:   offline specialization: the float specialization constants of `values`
+//         (constant_id -> value; the others keep their defaults) set and frozen into plain
+//         constants (SPIRV-Tools' set-spec-const-default-value, freeze-spec-const and
+//         fold-spec-const-op-composite passes), then spirv-opt -O, which folds what the
+//         constants decide and drops the branches they rule out; validated.
+// Inputs: a valid SPIR-V module; file_name for diagnostics.
+// Output: the frozen module (no specialization constants left), or empty with diagnostics.
+// Cost:   one spirv-opt -O run (tens of ms for a water shader). Thread-safe.
+OptimizeResult freeze_specialization(const std::vector<uint32_t>& spirv,
+                                     const std::map<uint32_t, float>& values,
+                                     const std::string& file_name);
 
 // What:   number of instructions in the module, header excluded.
 // Inputs: a SPIR-V module. Output: the count; a malformed tail is not counted.

@@ -105,6 +105,12 @@ std::optional<std::string> register_choice(const std::string& axis, ChoiceInfo c
 
 // Runs the choice's composition on the surface; an unknown choice records a diagnostic.
 void compose_choice(Surface& s, const std::string& axis, const std::string& choice);
+// Composes several choices of one axis, each in its own case of a switch on the axis' selector
+// parameter (selector_parameter(), water_shader.h: a specialization constant when `specialized`,
+// else a uniform-block member); the surface's fields afterwards are the selected case's
+// (axis_switch.cpp).
+void compose_switch(Surface& s, const std::string& axis, const std::vector<std::string>& choices,
+                    bool specialized);
 
 // The --<axis> option's help: default, then one line per choice with gold, what it approximates,
 // the choices of other axes it needs, and its seed.

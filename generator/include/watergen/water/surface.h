@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "watergen/ir/dsl.h"
 
@@ -51,6 +52,10 @@ struct Surface {
     // 8. foam and 9. shore work on the composed colour.
     Expr color; // vec3
 };
+
+// Every field of `s`, in declaration order: what an axis composed as a switch (axis_switch.cpp)
+// carries into and out of its cases.
+std::vector<Expr*> surface_fields(Surface& s);
 
 // Where the view ray meets the horizontal plane y = height: the point, and its distance along
 // the ray (clamped to >= 0). A water pixel's ray points down; its y is clamped to <= -1e-6 so

@@ -88,6 +88,10 @@ struct RenderJob {
     TextureFilter filter = TextureFilter::Linear;
     // Draws after the first one, each timed with GPU timestamp queries.
     uint32_t timed_draws = 5;
+    // Under valgrind's callgrind tool (valgrind --tool=callgrind --instr-atstart=no): one more
+    // draw with instrumentation on, its counts dumped with this label (draw_cost.h reads them);
+    // ignored elsewhere and when empty.
+    std::string counted_draw_label;
     // Geometry is a fullscreen triangle: no vertex buffers, 3 vertices, the vertex shader
     // derives positions from gl_VertexIndex. Unless `mesh` is non-empty: then it is drawn
     // indexed, from its vertex buffer.

@@ -14,11 +14,13 @@ namespace watergen {
 
 struct Surface;
 
-// Waves per model, fixed per variant (004 sums "numberOfWaves" sines; four is enough to break
-// up the pattern over the synthetic scene and keeps the unrolled search small).
-constexpr int kWaveCount = 4;
+// Waves per model: data, parameter <family>_wave_count (004 sums "numberOfWaves" sines), the
+// trip count of a loop over the waves of at most kMaxWaves. Four by default: enough to break up
+// the pattern over the synthetic scene.
+constexpr int kMaxWaves = 8;
+constexpr int kDefaultWaveCount = 4;
 // Post-process surface search for sum_of_sines / gerstner (see surface_search): steps along
-// the view ray, each one height and slope evaluation (sin and cos of 4 phases; Gerstner adds
+// the view ray, each one height and slope evaluation (a loop over the waves; Gerstner adds
 // the grid step and its normal), the first kWaveSurfaceSafeSteps Lipschitz-safe, the rest
 // Newton steps. Measured over the synthetic scene in waves_golden_test.
 constexpr int kWaveSurfaceSteps = 8;
@@ -49,26 +51,47 @@ struct WaveBounds {
     Expr max_slope;
 };
 
-// ---- sum of sines (004) ----
+// A wave model at one point: the height above the water level (m) and (dh/dx, dh/dz); either is
+// invalid when not asked for.
+struct SurfaceSample {
+    Expr height;
+    Expr slope;
+};
+
+// Each family sums its waves in one loop (of <family>_wave_count iterations, at most kMaxWaves)
+// per point; the functions below that return several values at a point share that loop.
+// Parameters per family: <family>_amplitude A (m), <family>_frequency F (rad/m),
+// <family>_amplitude_gain, <family>_frequency_gain (a_i = A gain^i, f_i = F gain^i),
+// <family>_wave_count (0..8, default 4), <family>_wave_directions (vec2[8], d_i, unit xz) and
+// <family>_wave_speeds (float[8], phi_i, rad/s).
+
+// ---- sum of sines (004), family "waves" ----
 // h(p) = sum_i a_i sin(f_i (d_i . p) + t phi_i), a_i = A 0.82^i, f_i = F 1.18^i.
-// Parameters: waves_amplitude A (m), waves_frequency F (rad/m), waves_amplitude_gain,
-// waves_frequency_gain, waves_directions_a/_b (d_0 d_1 / d_2 d_3, unit xz), waves_phase_speeds
-// (phi_i, rad/s).
 Expr sum_of_sines_height(Graph& g, Expr xz, Expr time, Expr footprint = Expr()); // m
 Expr sum_of_sines_slope(Graph& g, Expr xz, Expr time, Expr footprint = Expr());  // dh/dx, dh/dz
 Expr sum_of_sines_normal(Graph& g, Expr xz, Expr time, Expr footprint = Expr()); // unit
+// The height and / or the slope from one loop.
+SurfaceSample sum_of_sines_sample(Graph& g, Expr xz, Expr time, Expr footprint, bool height,
+                                  bool slope);
+// The unit normal of a slope (dh/dx, dh/dz).
+Expr sum_of_sines_normal_from(Graph& g, Expr slope);
 WaveBounds sum_of_sines_bounds(Graph& g, Expr time);
 
-// ---- Gerstner (004, GPU Gems ch. 1) ----
+// ---- Gerstner (004, GPU Gems ch. 1), family "gerstner" ----
 // A grid point x0 moves to P = (x0.x + sum Q_i A_i D_i.x cos th_i, level + sum A_i sin th_i,
-// x0.z + sum Q_i A_i D_i.z cos th_i), th_i = w_i (D_i . x0) + phi_i t, Q_i = Q / (w_i A_i n).
-// Parameters: gerstner_amplitude, gerstner_frequency, gerstner_amplitude_gain,
-// gerstner_frequency_gain, gerstner_steepness Q in [0, 1], gerstner_directions_a/_b,
-// gerstner_phase_speeds.
+// x0.z + sum Q_i A_i D_i.z cos th_i), th_i = w_i (D_i . x0) + phi_i t, Q_i = Q / (w_i A_i n),
+// n the number of waves. Also gerstner_steepness Q in [0, 1].
 // P - (x0.x, level, x0.z), m
 Expr gerstner_displacement(Graph& g, Expr grid_xz, Expr time, Expr footprint = Expr());
 // Exact: normalize(dP/dz x dP/dx).
 Expr gerstner_normal(Graph& g, Expr grid_xz, Expr time, Expr footprint = Expr());
+// Both from one loop (the displacement only when asked for).
+struct GerstnerPoint {
+    Expr displacement;
+    Expr normal;
+};
+GerstnerPoint gerstner_point(Graph& g, Expr grid_xz, Expr time, Expr footprint,
+                             bool displacement = true);
 // GPU Gems' closed form (eq. 12), unit.
 Expr gerstner_normal_gpugems(Graph& g, Expr grid_xz, Expr time, Expr footprint = Expr());
 // Grid point x0 whose displaced position lies above world_xz: `iterations` fixed-point steps
@@ -113,16 +136,19 @@ struct WaveHit {
 struct SurfaceModel {
     Expr top;       // no crest is higher above the water level, m
     Expr max_slope; // no |grad h| is larger (world units)
-    // (world xz, footprint or invalid) -> height above the water level (m), or (dh/dx, dh/dz)
-    std::function<Expr(Expr, Expr)> height;
-    std::function<Expr(Expr, Expr)> slope;
+    // (world xz, footprint or invalid, height?, slope?) -> what was asked, from one evaluation
+    std::function<SurfaceSample(Expr, Expr, bool, bool)> sample;
+    // The slope comes with the height at little cost (one loop over the waves sums both): the
+    // search then runs its safe steps, Newton steps and final slope as one loop.
+    bool one_loop = false;
     // A model that carries a value from one search step to the next (gerstner: the grid point
     // under the searched xz) says so here; the search then keeps it as a loop-carried value.
     // start(first xz) -> state; advance(xz, footprint, state) -> the state at xz, which
-    // height_at / slope_at (xz, footprint, state) read. Empty for stateless models.
+    // sample_at(xz, footprint, state, height?, slope?) reads. Empty for stateless models.
     struct State {
         std::function<Expr(Expr)> start;
-        std::function<Expr(Expr, Expr, Expr)> advance, height_at, slope_at;
+        std::function<Expr(Expr, Expr, Expr)> advance;
+        std::function<SurfaceSample(Expr, Expr, Expr, bool, bool)> sample_at;
     } state{};
 };
 SurfaceModel sum_of_sines_surface(Graph& g, Expr time);
@@ -139,13 +165,16 @@ Expr search_relaxation(Graph& g, Expr view_ray, Expr max_slope);
 // `steps` x { T = water_level + height(S.xz); level += r (T - level); S = the view ray meets
 // level } (r = 1 is 000's "level = level + B H"). The first `safe_steps` use r = 1 / (1 + G),
 // which keeps every step monotone so the levels descend towards the first crossing of the ray
-// with the surface; later steps are Newton steps (from model.slope) kept within [that r, 1]
+// with the surface; later steps are Newton steps (from the model's slope) kept within [that r, 1]
 // and within a bracket [lo, hi] of the crossing (hi: the last level above the surface, lo: the
 // last below it, at first water_level - top); a Newton step leaving the bracket bisects it
 // instead (so does a step where T' >= 1, where Newton points away from the crossing), so a
 // grazing ray cannot end in a crest-trough cycle whose end float rounding picks.
 // The plane intersections go through intersect_plane. Reads s.eye, s.view_ray, s.level.
 // `pixel_angle` (radians per pixel, optional) band-limits the model at each step's footprint.
+// Loops: with model.one_loop one of steps + 1 iterations (safe and Newton steps picked per
+// iteration, the last one only samples the slope where the steps ended), else one per phase
+// and the final slope after them; the values are the same either way.
 WaveHit surface_search(const Surface& s, const SurfaceModel& model, int steps, int safe_steps,
                        Expr pixel_angle = Expr());
 

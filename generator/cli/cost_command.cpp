@@ -1,0 +1,116 @@
+// `watergen cost`: the instructions lavapipe executes for one draw of a variant, counted by
+// valgrind (draw_count.h). The command runs itself under valgrind as the worker (--counted).
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include <valgrind/valgrind.h>
+
+#include "commands.h"
+#include "watergen/pipeline/variant_build.h"
+#include "watergen/render/draw_count.h"
+#include "watergen/render/variant_render.h"
+
+namespace watergen::cli {
+
+namespace {
+
+struct CostOptions {
+    Variant variant = default_variant();
+    std::string preset;
+    uint32_t size = 256, runs = 2;
+    bool counted = false; // the worker, under valgrind
+    std::string scratch;
+};
+
+// The worker: builds the variant and draws each language path once more with the count on.
+int run_worker(const CostOptions& o, const Preset* preset, const Common& common) {
+    if (!RUNNING_ON_VALGRIND) {
+        std::fprintf(stderr, "watergen: error: --counted is the worker of watergen cost and runs "
+                             "under valgrind --tool=callgrind\n");
+        return kUsage;
+    }
+    const VariantBuild build = build_variant(o.variant, preset);
+    print_diagnostics(build.diagnostics, common);
+    if (!build.ok()) return kFailed;
+    std::string cache;
+    auto runner = create_runner(RunnerSetup{}, &cache);
+    if (!runner) return kNoDevice;
+    SyntheticScene scene = make_synthetic_scene(o.size, o.size);
+    if (preset)
+        for (const auto& [name, values] : preset->values)
+            scene.uniforms[name] = values;
+    const char* labels[2] = {"glsl", "hlsl"};
+    for (size_t i = 0; i < 2; ++i) {
+        RenderJob job =
+            make_render_job(build.languages[i], scene, {o.size, o.size, 0, false, false});
+        job.counted_draw_label = labels[i];
+        const RenderResult r = runner->render(job);
+        if (!r.ok) {
+            std::fprintf(stderr, "watergen: error: %s: %s\n", labels[i], r.error.c_str());
+            return kFailed;
+        }
+    }
+    return kOk;
+}
+
+std::vector<std::string> worker_argv(const CostOptions& o) {
+    std::vector<std::string> argv = {std::filesystem::read_symlink("/proc/self/exe").string(),
+                                     "cost", "--counted", "--size", std::to_string(o.size)};
+    const auto& list = axes();
+    for (size_t i = 0; i < list.size(); ++i) {
+        argv.push_back("--" + list[i].name);
+        argv.push_back(o.variant.choices[i]);
+    }
+    if (!o.preset.empty()) argv.insert(argv.end(), {"--preset", o.preset});
+    return argv;
+}
+
+} // namespace
+
+Runner add_cost_command(CLI::App& app, const Common& common) {
+    auto o = std::make_shared<CostOptions>();
+    add_variant_options(app, o->variant, o->preset);
+    app.add_option("--size", o->size, "image width and height (default 256)")
+        ->check(CLI::Range(8, 2048));
+    app.add_option("--runs", o->runs,
+                   "valgrind runs; more than one shows the count repeats (default 2)")
+        ->check(CLI::Range(1, 20));
+    app.add_option("--scratch", o->scratch,
+                   "directory for valgrind's dumps (default: a directory under the system's "
+                   "temporary directory)");
+    app.add_flag("--counted", o->counted, "")->group(""); // the worker; hidden
+    return [o, &common]() {
+        const Preset* preset = nullptr;
+        if (!resolve_variant(o->variant, o->preset, &preset)) return kUsage;
+        if (o->counted) return run_worker(*o, preset, common);
+        const std::filesystem::path scratch =
+            o->scratch.empty() ? std::filesystem::temp_directory_path() / "watergen-cost"
+                               : std::filesystem::path(o->scratch);
+        std::map<std::string, std::vector<uint64_t>> counts;
+        for (uint32_t run = 0; run < o->runs; ++run) {
+            const DrawCountRun r = count_draws_under_valgrind(worker_argv(*o), scratch);
+            if (!r.ok()) {
+                std::fprintf(stderr, "watergen: error: %s\n", r.error.c_str());
+                return kFailed;
+            }
+            for (const auto& c : r.counts)
+                counts[c.label].push_back(c.instructions);
+        }
+        std::printf("%s\ninstructions lavapipe executes for one %ux%u draw (valgrind callgrind, "
+                    "JIT and readback excluded), %u run(s):\n",
+                    o->variant.key().c_str(), o->size, o->size, o->runs);
+        for (const auto& [label, v] : counts) {
+            const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+            std::printf("  %-5s %14llu  %9.1f per pixel  runs differ by %.4f%%\n", label.c_str(),
+                        static_cast<unsigned long long>(*lo),
+                        static_cast<double>(*lo) / (double(o->size) * o->size),
+                        *lo ? 100.0 * static_cast<double>(*hi - *lo) / static_cast<double>(*lo)
+                            : 0.0);
+        }
+        return kOk;
+    };
+}
+
+} // namespace watergen::cli

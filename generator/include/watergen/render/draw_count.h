@@ -1,0 +1,39 @@
+// A draw's cost that does not depend on machine load: the instructions lavapipe executes for
+// it, counted exactly by valgrind's callgrind tool. The draw is bracketed in the runner
+// (RenderJob::counted_draw_label): instrumentation is off while pipelines are created and
+// JIT-compiled and while the image is read back, so only the draw's work is counted.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace watergen {
+
+struct DrawCount {
+    std::string label;         // RenderJob::counted_draw_label
+    uint64_t instructions = 0; // guest instructions executed during the draw (callgrind Ir)
+};
+
+struct DrawCountRun {
+    std::vector<DrawCount> counts; // in the order the worker drew them
+    std::string error;             // "" when the worker ran and every dump was read
+    bool ok() const { return error.empty(); }
+};
+
+// What:   runs `worker_argv` under `valgrind --tool=callgrind --instr-atstart=no` with its
+//         dumps in `scratch` (created; one directory per concurrent call), lavapipe drawing
+//         on the calling thread (LP_NUM_THREADS=0, so thread scheduling cannot change the
+//         count) and Mesa's shader cache off; then reads one count per bracketed draw.
+// Cost:   the worker at valgrind speed: about 5 s per pipeline JIT-compiled under it, plus
+//         the counted draws at callgrind speed (~50x native).
+DrawCountRun count_draws_under_valgrind(const std::vector<std::string>& worker_argv,
+                                        const std::filesystem::path& scratch);
+
+// One callgrind dump ("desc: Trigger: Client Request: <label>" ... "totals: <Ir>"); nullopt
+// for a dump that no client request triggered or that has no totals line.
+std::optional<DrawCount> parse_callgrind_dump(const std::string& text);
+
+} // namespace watergen

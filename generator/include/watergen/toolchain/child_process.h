@@ -1,0 +1,17 @@
+// Runs a program as a child process (posix_spawnp, no shell) and waits for it.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace watergen {
+
+// What:   runs argv[0] (from PATH, or a path) with stdin from /dev/null and stdout / stderr
+//         sent to <dir>/<name>.stdout and .stderr, <name> the file name of argv[0].
+// Output: "" on exit status 0; else "<argv[0]>: exit status N" (or "killed by signal N") and
+//         the start of its stderr (its stdout when stderr is empty).
+std::string run_child_process(const std::vector<std::string>& argv,
+                              const std::filesystem::path& dir);
+
+} // namespace watergen

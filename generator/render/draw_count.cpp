@@ -1,0 +1,67 @@
+#include "watergen/render/draw_count.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "watergen/toolchain/child_process.h"
+
+namespace watergen {
+
+namespace fs = std::filesystem;
+
+std::optional<DrawCount> parse_callgrind_dump(const std::string& text) {
+    static const std::string kTrigger = "desc: Trigger: Client Request: ";
+    static const std::string kTotals = "totals: ";
+    DrawCount count;
+    bool labelled = false, counted = false;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind(kTrigger, 0) == 0) {
+            count.label = line.substr(kTrigger.size());
+            labelled = true;
+        } else if (line.rfind(kTotals, 0) == 0) {
+            // "totals:" sums the dump's cost lines, over every thread. (Its "summary:" line
+            // misses the other threads' work after instrumentation was switched off and on.)
+            const std::string value = line.substr(kTotals.size());
+            char* end = nullptr;
+            count.instructions = std::strtoull(value.c_str(), &end, 10);
+            counted = end != value.c_str();
+        }
+    }
+    if (!labelled || !counted) return std::nullopt;
+    return count;
+}
+
+DrawCountRun count_draws_under_valgrind(const std::vector<std::string>& worker_argv,
+                                        const fs::path& scratch) {
+    DrawCountRun run;
+    std::error_code ec;
+    fs::remove_all(scratch, ec);
+    fs::create_directories(scratch, ec);
+    if (ec) {
+        run.error = "cannot create " + scratch.string() + ": " + ec.message();
+        return run;
+    }
+    const fs::path out = scratch / "callgrind.out";
+    std::vector<std::string> argv = {"valgrind", "--tool=callgrind", "--instr-atstart=no",
+                                     "--callgrind-out-file=" + out.string()};
+    argv.insert(argv.end(), worker_argv.begin(), worker_argv.end());
+    ::setenv("LP_NUM_THREADS", "0", 1);
+    ::setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
+    run.error = run_child_process(argv, scratch);
+    if (!run.ok()) return run;
+    // callgrind.out.1, .2, ...: one per client-request dump, in the order they were taken.
+    for (int k = 1;; ++k) {
+        std::ifstream in(out.string() + "." + std::to_string(k));
+        if (!in) break;
+        std::ostringstream text;
+        text << in.rdbuf();
+        if (auto c = parse_callgrind_dump(text.str())) run.counts.push_back(*c);
+    }
+    if (run.counts.empty()) run.error = "the worker bracketed no draw (no callgrind dump)";
+    return run;
+}
+
+} // namespace watergen

@@ -1,0 +1,78 @@
+// watergen build --mode: the specialized and branching modes build one shader per precision and
+// list every variant with the selector values that draw it; freezing writes per-variant SPIR-V.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "build_test_support.h"
+#include "watergen/pipeline/build_output.h"
+
+using namespace watergen;
+using namespace watergen::test;
+namespace fs = std::filesystem;
+
+TEST_CASE("the_specialized_manifest_lists_each_variant_with_its_constant_values", "[build]") {
+    const TempDir tmp("specialized");
+    BuildRequest r{default_material(), {}, tmp.path / "out", {}};
+    r.mode = BuildMode::Specialized;
+    r.freeze = true;
+    const BuildSummary s = build_material(r);
+    REQUIRE(s.ok());
+    CHECK(s.variants == 96);
+    CHECK(s.shaders == 2); // full and half precision
+    const auto tree = read_tree(r.out);
+    const auto m = nlohmann::json::parse(tree.at("manifest.json"));
+    CHECK(m["mode"] == "specialized");
+    REQUIRE(m["shaders"].size() == 2);
+    REQUIRE(m["variants"].size() == 96);
+    // The full-precision shader switches six axes, each on its own constant.
+    const auto& full = m["shaders"][1];
+    CHECK(full["variants"] == 64);
+    REQUIRE(full["selectors"].size() == 6);
+    std::map<std::string, int> ids;
+    for (const auto& sel : full["selectors"])
+        ids[sel["parameter"]] = sel["constant_id"];
+    for (const auto& v : m["variants"]) {
+        INFO(v["key"]);
+        CHECK(tree.count(v["shader"].get<std::string>() + "/glsl/water.frag.opt.spv") == 1);
+        CHECK(tree.count(v["frozen"]["glsl"].get<std::string>()) == 1);
+        CHECK(tree.count(v["frozen"]["hlsl"].get<std::string>()) == 1);
+        if (v["shader"] != full["directory"]) continue;
+        // Each constant value is the index of the variant's choice among the offered ones.
+        REQUIRE(v["specialization_constants"].size() == 6);
+        for (const auto& c : v["specialization_constants"]) {
+            CHECK(c["id"] == ids[c["name"]]);
+            const std::string axis = c["name"].get<std::string>().substr(5); // "axis_"
+            const std::string choice = v["nodes"][axis].get<std::string>().substr(axis.size() + 1);
+            const auto& offered = full["axes"][axis];
+            CHECK(offered[c["value"].get<size_t>()] == choice);
+        }
+    }
+    // The shader reflects its selectors as specialization constants with their ranges.
+    CHECK(full["reflection"]["specialization_constants"].size() == 6);
+}
+
+TEST_CASE("the_branching_manifest_places_the_selectors_in_the_uniform_block", "[build]") {
+    const TempDir tmp("branching");
+    BuildRequest r{default_material(), example_scenes(), tmp.path / "out", {}};
+    r.mode = BuildMode::Branching;
+    const BuildSummary s = build_material(r);
+    REQUIRE(s.ok());
+    CHECK(s.variants == 48); // the pruned scenes reach 16 variants each
+    CHECK(s.shaders == 3);   // each scene targets one precision
+    const auto m = nlohmann::json::parse(read_tree(r.out).at("manifest.json"));
+    REQUIRE(m["variants"].size() == 48);
+    for (const auto& v : m["variants"]) {
+        INFO(v["key"]);
+        CHECK(v.contains("specialization_constants") == false);
+        for (const auto& u : v["uniforms"]) {
+            CHECK(u["offset"].get<int>() >= 0);
+            CHECK(v["selectors"][u["name"].get<std::string>()] == u["value"]);
+        }
+    }
+    for (const auto& sh : m["shaders"])
+        for (const auto& sel : sh["selectors"])
+            CHECK(sel.contains("offset")); // every switch survived the scene's fold
+}
