@@ -3,7 +3,9 @@
 //
 // - A node whose arguments are all the same on every lane (constants, parameters and what is
 //   computed from them alone) is lane-invariant: computed for one lane, read by every lane. If
-//   it does not depend on a loop's iteration either it is computed once, in the prologue.
+//   it does not depend on a loop's iteration either it is computed once, in the prologue. So
+//   are a loop's carried values that stay the same on every lane (a wave's amplitude and
+//   frequency in the sum over waves), and what a body computes from them alone.
 // - Shape operations that only move values (a contiguous swizzle, a splat, a loop's result, a
 //   loop body's captured and carried values) read their source in place when the values need
 //   no further rounding; other copies are instructions.
@@ -23,6 +25,7 @@
 
 #include "block_evaluator.h"
 #include "block_inputs.h"
+#include "block_invariance.h"
 #include "block_kernels.h"
 #include "block_storage.h"
 
@@ -351,9 +354,9 @@ Value Compiler::compile_sincos(Context& ctx, uint32_t id, const Value& x) {
     return v;
 }
 
-// A loop: each carried value in a place of its own, the body compiled into a list of its own that
-// reads its captured and carried values where they lie; LoopResult reads the places after the last
-// iteration.
+// A loop: each carried value in a place of its own (one lane's worth when it is lane-invariant,
+// block_invariance.h), the body compiled into a list of its own that reads its captured and
+// carried values where they lie; LoopResult reads the places after the last iteration.
 Value Compiler::compile_loop(Context& ctx, uint32_t id, const std::vector<Value>& args) {
     const Node& n = ctx.g.node(id);
     const LoopBody& body = *n.loop;
@@ -361,6 +364,10 @@ Value Compiler::compile_loop(Context& ctx, uint32_t id, const std::vector<Value>
     std::vector<uint32_t> next; // the body's node of each carried value's next value
     for (const auto& o : bg.outputs())
         if (o.name != "continue") next.push_back(o.node);
+    std::vector<char> invariant_args;
+    for (const Value& a : args)
+        invariant_args.push_back(a.uniform);
+    const std::vector<char> invariant = invariant_carried(n, invariant_args);
     LoopPlan plan;
     plan.trip_count = body.trip_count;
     plan.has_exit = body.has_exit;
@@ -370,7 +377,7 @@ Value Compiler::compile_loop(Context& ctx, uint32_t id, const std::vector<Value>
         // What the place holds: the initial value, then the body's next values.
         const auto comps = static_cast<uint32_t>(component_count(body.carried_types[k]));
         const Value place =
-            define(comps, false, false, std::max(args[k].cls, target(bg.node(next[k]))));
+            define(comps, invariant[k], false, std::max(args[k].cls, target(bg.node(next[k]))));
         storage_.write(place.at.slot, start);
         storage_.read(args[k].at, start);
         plan.carried.push_back({place.at, args[k].at, {}, comps});
@@ -387,8 +394,12 @@ Value Compiler::compile_loop(Context& ctx, uint32_t id, const std::vector<Value>
         storage_.open_loop();
         Context inner{bg, plan.body, &scope, std::vector<Value>(bg.size()), {}, {}, {}};
         compile_graph(inner, bg.live_nodes());
-        for (size_t k = 0; k < next.size(); ++k)
-            plan.carried[k].next = next_value(inner, next[k], scope.carried).at;
+        for (size_t k = 0; k < next.size(); ++k) {
+            const Value v = next_value(inner, next[k], scope.carried);
+            // block_invariance.h's promise, checked: a slip would give wrong values silently.
+            if (invariant[k] && !v.uniform) fail("loop: a lane-invariant carried value varies");
+            plan.carried[k].next = v.at;
+        }
         for (const auto& o : bg.outputs())
             if (o.name == "continue") plan.keep_going = inner.values[o.node].at;
     }

@@ -46,8 +46,8 @@ struct Instr {
     uint32_t aux = 0;           // kernel-specific: a count, an index, a flag
 };
 
-// A loop: each carried value has a place of its own (`storage`), set from `initial`, then from
-// `next` after each iteration.
+// A loop: each carried value has a place of its own (`storage`; lane step 0 when it is the same
+// on every lane, block_invariance.h), set from `initial`, then from `next` after each iteration.
 struct LoopPlan {
     struct Carry {
         Operand storage, initial, next;

@@ -231,3 +231,42 @@ TEST_CASE("switches_and_loops_nest_in_each_other", "[switch]") {
         CHECK(e.values == expected);
     }
 }
+
+TEST_CASE("carried_values_vary_per_lane_where_their_next_values_or_an_exit_make_them", "[loop]") {
+    // Every initial value is the same on every lane. a stays so (a <- 2a); b varies from the
+    // first step (b <- b + x); c only through b (c <- c + b), which a single pass over the body
+    // would miss; an inner loop carries d <- d + a (the same) and e <- e + x (varies). A loop
+    // whose lanes leave after different iterations varies even with next = n + 1. The program
+    // checks that a value it holds once for all lanes is computed so.
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    Expr zero = constant(g, 0.0);
+    const auto r = loop(
+        g, 4, {constant(g, 1.0), zero, zero, zero, zero}, [&](Expr, const std::vector<Expr>& v) {
+            const auto inner =
+                loop(v[0].graph(), 2, {v[3], v[4]}, [&](Expr, const std::vector<Expr>& w) {
+                    return LoopStep{{w[0] + v[0], w[1] + x}, {}};
+                });
+            return LoopStep{{v[0] * 2.0, v[1] + x, v[2] + v[1], inner[0], inner[1]}, {}};
+        });
+    const auto left = loop(g, 8, {zero}, [&](Expr i, const std::vector<Expr>& n) {
+        return LoopStep{{n[0] + 1.0}, i < x};
+    });
+    g.set_output("out", vec4(r[0], r[2], r[3] + r[4], left[0]).id());
+    REQUIRE(g.diagnostics().empty());
+    EvalInputs in;
+    in.varyings["x"] = {1.0, 3.0};
+    in.lanes = 2;
+    for (EvalPrecision p : {EvalPrecision::Double, EvalPrecision::Float}) {
+        const EvalResult e = evaluate(g, "out", in, p);
+        REQUIRE(e.ok());
+        // a = 16; c = 0 + x + 2x + 3x; d = 2 (1 + 2 + 4 + 8); e = 8x; left after i = x.
+        for (size_t l = 0; l < 2; ++l) {
+            const double xv = in.varyings["x"][l];
+            CHECK(e.values[4 * l] == 16.0);
+            CHECK(e.values[4 * l + 1] == 6.0 * xv);
+            CHECK(e.values[4 * l + 2] == 30.0 + 8.0 * xv);
+            CHECK(e.values[4 * l + 3] == xv + 1.0);
+        }
+    }
+}
