@@ -30,6 +30,8 @@ class Folder {
     // Only the live nodes, renumbered in order: variants that fold to the same computation
     // get the same graph (and the same emitted text, whose temporaries are named by id).
     static Graph compact(const Graph& g);
+    // Sets `to`'s outputs and quantity bindings from `from`'s, through the node map.
+    static void copy_outputs(const Graph& from, const std::vector<uint32_t>& map, Graph& to);
 
   private:
     // The pass (ir_fold.cpp).

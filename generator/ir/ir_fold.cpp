@@ -63,11 +63,15 @@ Graph Folder::compact(const Graph& g) {
             a = map[a];
         map[id] = out.add(std::move(n));
     }
-    for (const auto& o : g.outputs())
-        out.set_output(o.name, map[o.node]);
-    for (const auto& b : g.bindings())
-        if (map[b.node] != UINT32_MAX) out.bind(b.quantity, map[b.node]);
+    copy_outputs(g, map, out);
     return out;
+}
+
+void Folder::copy_outputs(const Graph& from, const std::vector<uint32_t>& map, Graph& to) {
+    for (const auto& o : from.outputs())
+        to.set_output(o.name, map[o.node]);
+    for (const auto& b : from.bindings())
+        if (map[b.node] != UINT32_MAX) to.bind(b.quantity, map[b.node]);
 }
 
 // Facts about bound quantities become facts about the parameters or nodes bound to them,

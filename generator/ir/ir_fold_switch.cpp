@@ -74,10 +74,7 @@ std::optional<Graph> inline_decided_switches(const Graph& g, const FoldFacts& fa
             a = map[a];
         map[id] = out.add(std::move(n));
     }
-    for (const auto& o : g.outputs())
-        out.set_output(o.name, map[o.node]);
-    for (const auto& b : g.bindings())
-        if (map[b.node] != UINT32_MAX) out.bind(b.quantity, map[b.node]);
+    Folder::copy_outputs(g, map, out);
     return out;
 }
 

@@ -37,25 +37,36 @@ spvtools::MessageConsumer collect_into(Diagnostics& out, const std::string& file
     };
 }
 
-OptimizeResult run_optimizer(const std::vector<uint32_t>& spirv, const std::string& file_name,
-                             bool legalize) {
+// Runs the passes `add_passes` registers on `spirv`; `failure` names the step when it fails
+// without a diagnostic of its own.
+template <class AddPasses>
+OptimizeResult run_passes(const std::vector<uint32_t>& spirv, const std::string& file_name,
+                          const char* failure, AddPasses add_passes) {
     OptimizeResult result;
     spvtools::Optimizer optimizer(kEnv);
     optimizer.SetMessageConsumer(collect_into(result.diagnostics, file_name, "spirv-opt"));
-    if (legalize)
-        optimizer.RegisterLegalizationPasses();
-    else
-        optimizer.RegisterPerformancePasses();
+    add_passes(optimizer);
     spvtools::OptimizerOptions options;
     options.set_run_validator(false);
     if (!optimizer.Run(spirv.data(), spirv.size(), &result.spirv, options)) {
         result.spirv.clear();
         if (!has_errors(result.diagnostics))
-            result.diagnostics.push_back(
-                {Severity::Error, file_name, 0, 0, "",
-                 legalize ? "spirv-opt: legalization failed" : "spirv-opt: optimization failed"});
+            result.diagnostics.push_back({Severity::Error, file_name, 0, 0, "", failure});
     }
     return result;
+}
+
+OptimizeResult run_optimizer(const std::vector<uint32_t>& spirv, const std::string& file_name,
+                             bool legalize) {
+    return run_passes(spirv, file_name,
+                      legalize ? "spirv-opt: legalization failed"
+                               : "spirv-opt: optimization failed",
+                      [legalize](spvtools::Optimizer& o) {
+                          if (legalize)
+                              o.RegisterLegalizationPasses();
+                          else
+                              o.RegisterPerformancePasses();
+                      });
 }
 
 } // namespace
@@ -80,29 +91,21 @@ OptimizeResult legalize_spirv(const std::vector<uint32_t>& spirv, const std::str
 OptimizeResult freeze_specialization(const std::vector<uint32_t>& spirv,
                                      const std::map<uint32_t, float>& values,
                                      const std::string& file_name) {
-    OptimizeResult result;
     std::unordered_map<uint32_t, std::vector<uint32_t>> bits;
     for (const auto& [id, v] : values) {
         uint32_t word = 0;
         std::memcpy(&word, &v, sizeof word);
         bits[id] = {word};
     }
-    spvtools::Optimizer optimizer(kEnv);
-    optimizer.SetMessageConsumer(collect_into(result.diagnostics, file_name, "spirv-opt"));
-    optimizer.RegisterPass(spvtools::CreateSetSpecConstantDefaultValuePass(bits))
-        .RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
-        .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
-        .RegisterPass(spvtools::CreateUnifyConstantPass())
-        .RegisterPerformancePasses();
-    spvtools::OptimizerOptions options;
-    options.set_run_validator(false);
-    if (!optimizer.Run(spirv.data(), spirv.size(), &result.spirv, options)) {
-        result.spirv.clear();
-        if (!has_errors(result.diagnostics))
-            result.diagnostics.push_back(
-                {Severity::Error, file_name, 0, 0, "", "spirv-opt: freezing failed"});
-        return result;
-    }
+    OptimizeResult result =
+        run_passes(spirv, file_name, "spirv-opt: freezing failed", [&bits](spvtools::Optimizer& o) {
+            o.RegisterPass(spvtools::CreateSetSpecConstantDefaultValuePass(bits))
+                .RegisterPass(spvtools::CreateFreezeSpecConstantValuePass())
+                .RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
+                .RegisterPass(spvtools::CreateUnifyConstantPass())
+                .RegisterPerformancePasses();
+        });
+    if (result.spirv.empty()) return result;
     Diagnostics invalid = validate_spirv(result.spirv, file_name);
     if (has_errors(invalid)) result.spirv.clear();
     result.diagnostics.insert(result.diagnostics.end(), invalid.begin(), invalid.end());
