@@ -10,6 +10,7 @@
 
 #include "commands.h"
 #include "watergen/ir/cpu_evaluator.h"
+#include "watergen/pipeline/compile_bench.h"
 #include "watergen/render/accuracy_bench.h"
 #include "watergen/render/synthetic_scene.h"
 #include "watergen/water/water_shader.h"
@@ -23,12 +24,6 @@ struct Config {
     EvalPrecision precision;
     unsigned threads; // 0 = one per core
 };
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Paired ratios of two jobs' times, round by round: the A/A one says how large a difference can
 // be noise.
