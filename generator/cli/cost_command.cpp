@@ -20,6 +20,7 @@ struct CostOptions {
     Variant variant = default_variant();
     std::string preset;
     uint32_t size = 256, runs = 2;
+    LoopUnroll unroll = LoopUnroll::AsHinted;
     bool counted = false; // the worker, under valgrind
     std::string scratch;
 };
@@ -31,7 +32,7 @@ int run_worker(const CostOptions& o, const Preset* preset, const Common& common)
                              "under valgrind --tool=callgrind\n");
         return kUsage;
     }
-    const VariantBuild build = build_variant(o.variant, preset);
+    const VariantBuild build = build_variant(o.variant, preset, EmitOptions{false, {}, o.unroll});
     print_diagnostics(build.diagnostics, common);
     if (!build.ok()) return kFailed;
     std::string cache;
@@ -64,6 +65,7 @@ std::vector<std::string> worker_argv(const CostOptions& o) {
         argv.push_back(o.variant.choices[i]);
     }
     if (!o.preset.empty()) argv.insert(argv.end(), {"--preset", o.preset});
+    argv.insert(argv.end(), {"--unroll", to_string(o.unroll)});
     return argv;
 }
 
@@ -77,6 +79,7 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
     app.add_option("--runs", o->runs,
                    "valgrind runs; more than one shows the count repeats (default 2)")
         ->check(CLI::Range(1, 20));
+    add_unroll_option(app, o->unroll);
     app.add_option("--scratch", o->scratch,
                    "directory for valgrind's dumps (default: a directory under the system's "
                    "temporary directory)");

@@ -76,6 +76,7 @@ struct EmitOptions {
 
 // "hinted", "all", "none" (the --unroll flag); nullopt for another word.
 std::optional<LoopUnroll> parse_loop_unroll(const std::string& word);
+const char* to_string(LoopUnroll unroll); // the word parse_loop_unroll takes
 
 // The stamp line every generated file carries.
 std::string stamp_text(const std::string& variant_key);
