@@ -10,6 +10,7 @@
 #include "watergen/ir/emitter.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
+#include "watergen/render/synthetic_scene.h"
 #include "watergen/runtime/vulkan_runner.h"
 #include "watergen/water/presets.h"
 #include "watergen/water/variant.h"
@@ -37,6 +38,8 @@ void add_variant_options(CLI::App& app, Variant& variant, std::string& preset);
 // false on bad input (exit with kUsage).
 bool resolve_variant(const Variant& variant, const std::string& preset_name, const Preset** preset);
 void print_diagnostics(const Diagnostics& ds, const Common& common);
+// The synthetic scene at width x height, its uniforms (lighting) following the preset if any.
+SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset);
 // Adds --unroll hinted|all|none: the unroll hint every loop is emitted with.
 void add_unroll_option(CLI::App& app, LoopUnroll& unroll);
 

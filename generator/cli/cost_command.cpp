@@ -38,10 +38,7 @@ int run_worker(const CostOptions& o, const Preset* preset, const Common& common)
     std::string cache;
     auto runner = create_runner(RunnerSetup{}, &cache);
     if (!runner) return kNoDevice;
-    SyntheticScene scene = make_synthetic_scene(o.size, o.size);
-    if (preset)
-        for (const auto& [name, values] : preset->values)
-            scene.uniforms[name] = values;
+    const SyntheticScene scene = preset_scene(o.size, o.size, preset);
     const char* labels[2] = {"glsl", "hlsl"};
     for (size_t i = 0; i < 2; ++i) {
         RenderJob job =

@@ -31,4 +31,12 @@ void add_unroll_option(CLI::App& app, LoopUnroll& unroll) {
         ->check(CLI::IsMember({"hinted", "all", "none"}));
 }
 
+SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset) {
+    SyntheticScene scene = make_synthetic_scene(width, height);
+    if (preset)
+        for (const auto& [name, values] : preset->values)
+            scene.uniforms[name] = values;
+    return scene;
+}
+
 } // namespace watergen::cli

@@ -88,15 +88,6 @@ struct RenderOptions {
     RunnerSetup runner;
 };
 
-// The synthetic scene at the render size; its lighting follows the preset.
-SyntheticScene render_scene(const RenderOptions& o, const Preset* preset) {
-    SyntheticScene scene = make_synthetic_scene(o.width, o.height);
-    if (preset)
-        for (const auto& [name, values] : preset->values)
-            scene.uniforms[name] = values;
-    return scene;
-}
-
 int run_strict_half(const RenderOptions& o, const Preset* preset, const Common& common) {
     if (o.variant.choice("precision") != "half") {
         std::fprintf(stderr, "watergen: error: --strict-half renders a precision=half variant; "
@@ -111,7 +102,7 @@ int run_strict_half(const RenderOptions& o, const Preset* preset, const Common& 
                      runner->device_info().name.c_str());
         return kNoDevice;
     }
-    const SyntheticScene scene = render_scene(o, preset);
+    const SyntheticScene scene = preset_scene(o.width, o.height, preset);
     const HalfRender h =
         render_strict_half(*runner, o.variant, preset, scene, {o.width, o.height, o.draws});
     print_diagnostics(h.diagnostics, common);
@@ -172,7 +163,7 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
-        const SyntheticScene scene = render_scene(*o, preset);
+        const SyntheticScene scene = preset_scene(o->width, o->height, preset);
         const VariantRender r =
             render_variant(*runner, build, scene, {o->width, o->height, o->draws, true});
         if (!r.ok()) {

@@ -48,9 +48,8 @@ DrawCountRun count_draws_under_valgrind(const std::vector<std::string>& worker_a
     std::vector<std::string> argv = {"valgrind", "--tool=callgrind", "--instr-atstart=no",
                                      "--callgrind-out-file=" + out.string()};
     argv.insert(argv.end(), worker_argv.begin(), worker_argv.end());
-    ::setenv("LP_NUM_THREADS", "0", 1);
-    ::setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
-    run.error = run_child_process(argv, scratch);
+    run.error =
+        run_child_process(argv, scratch, {"LP_NUM_THREADS=0", "MESA_SHADER_CACHE_DISABLE=true"});
     if (!run.ok()) return run;
     // callgrind.out.1, .2, ...: one per client-request dump, in the order they were taken.
     for (int k = 1;; ++k) {

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 extern char** environ;
 
@@ -29,7 +30,8 @@ std::string read_text(const fs::path& p) {
 
 } // namespace
 
-std::string run_child_process(const std::vector<std::string>& argv, const fs::path& dir) {
+std::string run_child_process(const std::vector<std::string>& argv, const fs::path& dir,
+                              const std::vector<std::string>& env) {
     const std::string name = fs::path(argv[0]).filename().string();
     const fs::path out_path = dir / (name + ".stdout");
     const fs::path err_path = dir / (name + ".stderr");
@@ -46,7 +48,20 @@ std::string run_child_process(const std::vector<std::string>& argv, const fs::pa
     posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(),
                                      O_WRONLY | O_CREAT | O_TRUNC, 0644);
     pid_t pid = 0;
-    const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+    // This environment minus the variables `env` sets, then `env`.
+    std::vector<char*> envp;
+    for (char** e = environ; *e; ++e) {
+        const std::string_view entry(*e);
+        bool overridden = false;
+        for (const auto& set : env)
+            overridden = overridden || entry.substr(0, entry.find('=') + 1) ==
+                                           std::string_view(set).substr(0, set.find('=') + 1);
+        if (!overridden) envp.push_back(*e);
+    }
+    for (const auto& set : env)
+        envp.push_back(const_cast<char*>(set.c_str()));
+    envp.push_back(nullptr);
+    const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) return argv[0] + ": cannot start: " + std::strerror(rc);
 
