@@ -215,8 +215,9 @@ void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op
     }
     for (size_t m = body.first_capture(); m < n.args.size(); ++m)
         names.captured.push_back(strip_outer(expr(n.args[m])));
-    const bool unroll =
-        unroll_ == LoopUnroll::All || (unroll_ == LoopUnroll::AsHinted && body.unroll);
+    const UnrollHint unroll = unroll_ == LoopUnroll::All    ? UnrollHint::Unroll
+                              : unroll_ == LoopUnroll::None ? UnrollHint::Keep
+                                                            : body.unroll;
     out.push_back({syntax_.loop_header(names.index, body.trip_count, unroll), n.origin});
     std::vector<Line> inside;
     // A NaN count compares false: no iteration, as the CPU evaluator runs it.

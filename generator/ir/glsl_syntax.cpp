@@ -43,9 +43,11 @@ std::vector<std::string> GlslSyntax::extensions(bool strict_half, bool loops) co
     return lines;
 }
 
-std::string GlslSyntax::loop_header(const std::string& index, int trip_count, bool unroll) const {
-    return fmt::format("{} for (int {} = 0; {} < {}; ++{}) {{",
-                       unroll ? "[[unroll]]" : "[[dont_unroll]]", index, index, trip_count, index);
+std::string GlslSyntax::loop_header(const std::string& index, int trip_count,
+                                    UnrollHint unroll) const {
+    static const char* const kAttribute[] = {"[[dont_unroll]] ", "[[unroll]] ", ""};
+    return fmt::format("{}for (int {} = 0; {} < {}; ++{}) {{", kAttribute[int(unroll)], index,
+                       index, trip_count, index);
 }
 
 std::string GlslSyntax::literal(double v) const {

@@ -56,9 +56,11 @@ std::string HlslSyntax::convert(Type t, bool to_half, const std::string& expr) c
     return "((" + (to_half ? half_type(t) : type(t)) + ")(" + expr + "))";
 }
 
-std::string HlslSyntax::loop_header(const std::string& index, int trip_count, bool unroll) const {
-    return fmt::format("{} for (int {} = 0; {} < {}; ++{}) {{", unroll ? "[unroll]" : "[loop]",
-                       index, index, trip_count, index);
+std::string HlslSyntax::loop_header(const std::string& index, int trip_count,
+                                    UnrollHint unroll) const {
+    static const char* const kAttribute[] = {"[loop] ", "[unroll] ", ""};
+    return fmt::format("{}for (int {} = 0; {} < {}; ++{}) {{", kAttribute[int(unroll)], index,
+                       index, trip_count, index);
 }
 
 // cbuffer members are globals in HLSL.

@@ -32,7 +32,8 @@ class GlslSyntax {
     // control-flow attributes of one with loops.
     virtual std::vector<std::string> extensions(bool strict_half, bool loops) const;
     // `for (int index = 0; index < trip_count; ++index) {` with the unroll hint.
-    virtual std::string loop_header(const std::string& index, int trip_count, bool unroll) const;
+    virtual std::string loop_header(const std::string& index, int trip_count,
+                                    UnrollHint unroll) const;
     // An int variable as a float.
     virtual std::string int_to_float(const std::string& name) const {
         return "float(" + name + ")";
@@ -75,7 +76,8 @@ class HlslSyntax final : public GlslSyntax {
     std::string half_type(Type t) const override;
     std::string convert(Type t, bool to_half, const std::string& expr) const override;
     std::vector<std::string> extensions(bool, bool) const override { return {}; }
-    std::string loop_header(const std::string& index, int trip_count, bool unroll) const override;
+    std::string loop_header(const std::string& index, int trip_count,
+                            UnrollHint unroll) const override;
     std::string int_to_float(const std::string& name) const override {
         return "((float)" + name + ")";
     }

@@ -106,7 +106,7 @@ TEST_CASE("the_emit_options_override_every_loops_unroll_hint", "[loop]") {
     auto step = [&](Expr, const std::vector<Expr>& c) {
         return LoopStep{{c[0] * 0.5 + uv.y()}, Expr()};
     };
-    const auto a = loop(frag, 4, {uv.x()}, step, LoopOptions{true});
+    const auto a = loop(frag, 4, {uv.x()}, step, LoopOptions{UnrollHint::Unroll});
     const auto b = loop(frag, 5, {uv.y()}, step);
     frag.set_output("color", vec4(a[0], b[0], constant(frag, 0.0), constant(frag, 1.0)).id());
     auto count = [](const std::string& text, const std::string& word) {

@@ -50,8 +50,16 @@ TEST_CASE("the_specialized_manifest_lists_each_variant_with_its_constant_values"
             CHECK(offered[c["value"].get<size_t>()] == choice);
         }
     }
-    // The shader reflects its selectors as specialization constants with their ranges.
-    CHECK(full["reflection"]["specialization_constants"].size() == 6);
+    // The shader reflects its selectors as specialization constants with their ranges, and the
+    // parameters declared as ones: the Gerstner wave count (a loop's trip count).
+    const auto& constants = full["reflection"]["specialization_constants"];
+    CHECK(constants.size() == 7);
+    for (const auto& c : constants) {
+        if (c["name"] != "gerstner_wave_count") continue;
+        CHECK(c["default"][0] == 4.0);
+        CHECK(c["max"] == 8.0);
+        CHECK(ids.count("gerstner_wave_count") == 0); // a parameter, not a selector
+    }
 }
 
 TEST_CASE("the_branching_manifest_places_the_selectors_in_the_uniform_block", "[build]") {

@@ -13,6 +13,11 @@
 #define SPIRV_CROSS_LOOP
 #endif
 
+#ifndef SPIRV_CROSS_CONSTANT_ID_0
+#define SPIRV_CROSS_CONSTANT_ID_0 4.0
+#endif
+const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
+
 layout(std140) uniform WaterParams
 {
     vec2 gerstner_wave_directions[8];
@@ -31,7 +36,6 @@ layout(std140) uniform WaterParams
     float gerstner_amplitude_gain;
     vec3 sky_color;
     float gerstner_frequency_gain;
-    float gerstner_wave_count;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -59,178 +63,175 @@ void main()
     vec3 _63 = dFdx(_60);
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1021;
     float _1023;
-    float _1025;
-    _1025 = 0.0;
     _1023 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1022 = 0;
-    float _1024 = params.gerstner_amplitude;
-    float _1026 = params.gerstner_frequency;
-    SPIRV_CROSS_LOOP
-    for (; _1022 < 8; _1026 = _123, _1025 = _113, _1024 = _118, _1023 = _108, _1022++)
+    _1021 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1020 = 0;
+    float _1022 = params.gerstner_amplitude;
+    float _1024 = params.gerstner_frequency;
+    for (; _1020 < 8; _1024 = _121, _1023 = _111, _1022 = _116, _1021 = _106, _1020++)
     {
-        if (!(float(_1022) < _74))
+        if (!(float(_1020) < _71))
         {
             break;
         }
-        _108 = _1023 + _1024;
-        _113 = _1024 * _1026 + _1025;
-        _118 = _1024 * params.gerstner_amplitude_gain;
-        _123 = _1026 * params.gerstner_frequency_gain;
+        _106 = _1021 + _1022;
+        _111 = _1022 * _1024 + _1023;
+        _116 = _1022 * params.gerstner_amplitude_gain;
+        _121 = _1024 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = max(-_140, 9.9999999747524270787835121154785e-07);
-    vec2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1025 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1023;
-    float _164 = min(_140, -9.9999999747524270787835121154785e-07);
-    float _1030;
-    vec2 _1035;
-    _1035 = (params.eye_position + (_60 * max((_1023 - params.eye_position.y) / _164, 0.0))).xz;
-    _1030 = _1023;
-    vec2 _408;
-    float _681;
-    float _686;
-    float _696;
-    int _1029 = 0;
-    float _1063 = _1023;
-    float _1068 = _160;
+    float _138 = _60.y;
+    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
+    vec2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1023 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1021;
+    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _1028;
+    vec2 _1033;
+    _1033 = (params.eye_position + (_60 * max((_1021 - params.eye_position.y) / _162, 0.0))).xz;
+    _1028 = _1021;
+    vec2 _406;
+    float _679;
+    float _684;
+    float _694;
+    int _1027 = 0;
+    float _1061 = _1021;
+    float _1066 = _158;
     SPIRV_CROSS_LOOP
-    for (; _1029 < 9; _1068 = _686, _1063 = _681, _1035 = _408, _1030 = _696, _1029++)
+    for (; _1027 < 9; _1066 = _684, _1061 = _679, _1033 = _406, _1028 = _694, _1027++)
     {
-        float _209 = max((_1030 - params.eye_position.y) / _164, 0.0);
-        vec2 _219 = (params.eye_position + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        vec2 _1037;
-        vec3 _1038;
-        _1038 = vec3(0.0);
-        _1037 = vec2(0.0);
-        float _325;
-        float _329;
-        vec2 _336;
-        vec3 _350;
-        int _1032 = 0;
-        float _1033 = params.gerstner_frequency;
-        float _1036 = params.gerstner_amplitude;
-        SPIRV_CROSS_LOOP
-        for (; _1032 < 8; _1038 = _350, _1037 = _336, _1036 = _325, _1033 = _329, _1032++)
+        float _207 = max((_1028 - params.eye_position.y) / _162, 0.0);
+        vec2 _217 = (params.eye_position + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        vec2 _1035;
+        vec3 _1036;
+        _1036 = vec3(0.0);
+        _1035 = vec2(0.0);
+        float _323;
+        float _327;
+        vec2 _334;
+        vec3 _348;
+        int _1030 = 0;
+        float _1031 = params.gerstner_frequency;
+        float _1034 = params.gerstner_amplitude;
+        for (; _1030 < 8; _1036 = _348, _1035 = _334, _1034 = _323, _1031 = _327, _1030++)
         {
-            float _244 = float(_1032);
-            if (!(_244 < _74))
+            float _242 = float(_1030);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _256 = clamp(int(_244), 0, 7);
-            float _284 = _1033 * dot(params.gerstner_wave_directions[_256], _1035) + (params.time * params.gerstner_wave_speeds[_256]);
-            float _298 = ((params.gerstner_steepness / (_74 * max(_1033 * _1036, 9.9999999747524270787835121154785e-07))) * _1036) * clamp((-(_1033 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _317 = (_298 * _1033) * sin(_284);
-            float _321 = _317 * params.gerstner_wave_directions[_256].x;
-            _325 = _1036 * params.gerstner_amplitude_gain;
-            _329 = _1033 * params.gerstner_frequency_gain;
-            _336 = _1037 + (params.gerstner_wave_directions[_256] * (_298 * cos(_284)));
-            _350 = _1038 + vec3(_321 * params.gerstner_wave_directions[_256].x, _321 * params.gerstner_wave_directions[_256].y, (_317 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+            int _254 = clamp(int(_242), 0, 7);
+            float _282 = _1031 * dot(params.gerstner_wave_directions[_254], _1033) + (params.time * params.gerstner_wave_speeds[_254]);
+            float _296 = ((params.gerstner_steepness / (_71 * max(_1031 * _1034, 9.9999999747524270787835121154785e-07))) * _1034) * clamp((-(_1031 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _315 = (_296 * _1031) * sin(_282);
+            float _319 = _315 * params.gerstner_wave_directions[_254].x;
+            _323 = _1034 * params.gerstner_amplitude_gain;
+            _327 = _1031 * params.gerstner_frequency_gain;
+            _334 = _1035 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
+            _348 = _1036 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
         }
-        float _356 = 1.0 - _1038.x;
-        float _361 = 1.0 - _1038.z;
-        float _365 = -_1038.y;
-        vec2 _371 = (_1035 + _1037) - _219;
-        float _384 = _371.x;
-        float _387 = _371.y;
-        _408 = _1035 - (vec2(_361 * _384 + (-(_365 * _387)), _356 * _387 + (-(_365 * _384))) / vec2(max(_356 * _361 + (-(_365 * _365)), 0.039999999105930328369140625)));
+        float _354 = 1.0 - _1036.x;
+        float _359 = 1.0 - _1036.z;
+        float _363 = -_1036.y;
+        vec2 _369 = (_1033 + _1035) - _217;
+        float _382 = _369.x;
+        float _385 = _369.y;
+        _406 = _1033 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
+        vec3 _1043;
+        vec3 _1044;
         vec3 _1045;
-        vec3 _1046;
-        vec3 _1047;
-        _1047 = vec3(0.0, 0.0, 1.0);
-        _1046 = vec3(1.0, 0.0, 0.0);
-        _1045 = vec3(0.0);
-        float _523;
-        float _527;
-        vec3 _539;
-        vec3 _544;
-        vec3 _549;
-        int _1042 = 0;
-        float _1043 = params.gerstner_frequency;
-        float _1044 = params.gerstner_amplitude;
-        SPIRV_CROSS_LOOP
-        for (; _1042 < 8; _1047 = _549, _1046 = _544, _1045 = _539, _1044 = _523, _1043 = _527, _1042++)
+        _1045 = vec3(0.0, 0.0, 1.0);
+        _1044 = vec3(1.0, 0.0, 0.0);
+        _1043 = vec3(0.0);
+        float _521;
+        float _525;
+        vec3 _537;
+        vec3 _542;
+        vec3 _547;
+        int _1040 = 0;
+        float _1041 = params.gerstner_frequency;
+        float _1042 = params.gerstner_amplitude;
+        for (; _1040 < 8; _1045 = _547, _1044 = _542, _1043 = _537, _1042 = _521, _1041 = _525, _1040++)
         {
-            float _429 = float(_1042);
-            if (!(_429 < _74))
+            float _427 = float(_1040);
+            if (!(_427 < _71))
             {
                 break;
             }
-            int _440 = clamp(int(_429), 0, 7);
-            float _449 = clamp((-(_1043 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _465 = _1043 * dot(params.gerstner_wave_directions[_440], _408) + (params.time * params.gerstner_wave_speeds[_440]);
-            float _479 = ((params.gerstner_steepness / (_74 * max(_1043 * _1044, 9.9999999747524270787835121154785e-07))) * _1044) * _449;
-            float _483 = _1044 * _449;
-            float _486 = sin(_465);
-            float _489 = cos(_465);
-            float _499 = _479 * _489;
-            float _506 = -((_479 * _1043) * _486);
-            vec3 _519 = vec3(_506 * params.gerstner_wave_directions[_440].x, (_483 * _1043) * _489, _506 * params.gerstner_wave_directions[_440].y);
-            _523 = _1044 * params.gerstner_amplitude_gain;
-            _527 = _1043 * params.gerstner_frequency_gain;
-            _539 = _1045 + vec3(_499 * params.gerstner_wave_directions[_440].x, _483 * _486, _499 * params.gerstner_wave_directions[_440].y);
-            _544 = _1046 + (_519 * params.gerstner_wave_directions[_440].x);
-            _549 = _1047 + (_519 * params.gerstner_wave_directions[_440].y);
+            int _438 = clamp(int(_427), 0, 7);
+            float _447 = clamp((-(_1041 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _463 = _1041 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
+            float _477 = ((params.gerstner_steepness / (_71 * max(_1041 * _1042, 9.9999999747524270787835121154785e-07))) * _1042) * _447;
+            float _481 = _1042 * _447;
+            float _484 = sin(_463);
+            float _487 = cos(_463);
+            float _497 = _477 * _487;
+            float _504 = -((_477 * _1041) * _484);
+            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1041) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1042 * params.gerstner_amplitude_gain;
+            _525 = _1041 * params.gerstner_frequency_gain;
+            _537 = _1043 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1044 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1045 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        vec3 _555 = cross(_1047, _1046);
-        float _559 = dot(_555, _555);
-        vec3 _566 = _555 * inversesqrt(max(_559, 1.0000000031710768509710513471353e-30));
-        bvec3 _576 = bvec3(_559 > 1.0000000031710768509710513471353e-30);
-        vec3 _577 = vec3(_576.x ? _566.x : vec3(0.0, 1.0, 0.0).x, _576.y ? _566.y : vec3(0.0, 1.0, 0.0).y, _576.z ? _566.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _587 = (-_577.xz) / vec2(max(_577.y, 9.9999997473787516355514526367188e-05));
-        float _602 = float(_1029);
-        bool _603 = _602 < 1.0;
-        float _610 = (_1045.y + dot(_587, _219 - (_408 + _1045.xz))) - _1030;
-        float _623 = (-dot(_587, _148)) / _144;
-        float _636 = clamp(1.0 / max(1.0 - _623, 9.9999999747524270787835121154785e-07), _157, 1.0) * _610 + _1030;
-        bool _639 = _610 < 0.0;
-        float _644 = _639 ? _1030 : _1063;
-        float _649 = _639 ? _1068 : _1030;
-        _681 = _603 ? _1030 : _644;
-        _686 = _603 ? _1068 : _649;
-        _696 = (_602 < 8.0) ? (_603 ? (_157 * _610 + _1030) : ((((_636 < _649) || (_636 > _644)) || (_623 >= 1.0)) ? (0.5 * (_649 + _644)) : _636)) : _1030;
+        vec3 _553 = cross(_1045, _1044);
+        float _557 = dot(_553, _553);
+        vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
+        bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
+        vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
+        float _600 = float(_1027);
+        bool _601 = _600 < 1.0;
+        float _608 = (_1043.y + dot(_585, _217 - (_406 + _1043.xz))) - _1028;
+        float _621 = (-dot(_585, _146)) / _142;
+        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0) * _608 + _1028;
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1028 : _1061;
+        float _647 = _637 ? _1066 : _1028;
+        _679 = _601 ? _1028 : _642;
+        _684 = _601 ? _1066 : _647;
+        _694 = (_600 < 8.0) ? (_601 ? (_155 * _608 + _1028) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1028;
     }
-    float _710 = max((_1030 - params.eye_position.y) / _164, 0.0);
-    vec3 _717 = params.eye_position + (_60 * _710);
-    float _725 = _33.y;
-    float _728 = _717.y;
-    vec4 _777 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    float _782 = clamp(max(_53 - _710, 0.0), 0.0, 30000.0);
-    vec4 _839 = (((params.reflection_view_proj_c0 * _717.x) + (params.reflection_view_proj_c1 * _728)) + (params.reflection_view_proj_c2 * _717.z)) + params.reflection_view_proj_c3;
-    float _843 = _839.w;
-    bool _846 = _843 > 9.9999997473787516355514526367188e-05;
-    vec2 _863 = clamp((((_839.xy / vec2(_843)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _869 = bvec2(_846);
-    float _873 = float(_846);
-    vec4 _889 = texture(reflection_map, vec3(vec2(_869.x ? _863.x : vec2(0.5).x, _869.y ? _863.y : vec2(0.5).y), _873).xy);
-    vec3 _1031;
-    if (_873 > 0.5)
+    float _708 = max((_1028 - params.eye_position.y) / _162, 0.0);
+    vec3 _715 = params.eye_position + (_60 * _708);
+    float _723 = _33.y;
+    float _726 = _715.y;
+    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    float _780 = clamp(max(_53 - _708, 0.0), 0.0, 30000.0);
+    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
+    float _841 = _837.w;
+    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
+    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _867 = bvec2(_844);
+    float _871 = float(_844);
+    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
+    vec3 _1029;
+    if (_871 > 0.5)
     {
-        _1031 = _889.xyz;
+        _1029 = _887.xyz;
     }
     else
     {
-        _1031 = params.sky_color;
+        _1029 = params.sky_color;
     }
-    float _908 = clamp((-_60).y, 0.0, 1.0);
-    float _916 = params.ior_air / params.ior_water;
-    float _920 = _916 * _916;
-    float _924 = (-_908) * _908 + 1.0;
-    float _930 = sqrt(max((-_920) * _924 + 1.0, 0.0));
-    float _935 = params.ior_water * _930;
-    float _949 = (params.ior_air * _908 + (-_935)) / max(params.ior_air * _908 + _935, 1.0000000031710768509710513471353e-30);
-    float _954 = params.ior_air * _930;
-    float _968 = (params.ior_water * _908 + (-_954)) / max(params.ior_water * _908 + _954, 1.0000000031710768509710513471353e-30);
-    vec3 _990 = mix(mix(params.scatter_color, _777.xyz * exp((-params.absorb_coefficients) * (max(_728 - _725, 0.0) + _782)), vec3(exp((-params.scatter_coefficient) * _782))) * params.incident_light, _1031, vec3(((_920 * _924) >= 1.0) ? 1.0 : (0.5 * (_949 * _949 + (_968 * _968)))));
-    bvec3 _995 = bvec3((_725 < _728) && (_140 < 0.0));
-    out_color = vec4(vec3(_995.x ? _990.x : _26.x, _995.y ? _990.y : _26.y, _995.z ? _990.z : _26.z), 1.0);
+    float _906 = clamp((-_60).y, 0.0, 1.0);
+    float _914 = params.ior_air / params.ior_water;
+    float _918 = _914 * _914;
+    float _922 = (-_906) * _906 + 1.0;
+    float _928 = sqrt(max((-_918) * _922 + 1.0, 0.0));
+    float _933 = params.ior_water * _928;
+    float _947 = (params.ior_air * _906 + (-_933)) / max(params.ior_air * _906 + _933, 1.0000000031710768509710513471353e-30);
+    float _952 = params.ior_air * _928;
+    float _966 = (params.ior_water * _906 + (-_952)) / max(params.ior_water * _906 + _952, 1.0000000031710768509710513471353e-30);
+    vec3 _988 = mix(mix(params.scatter_color, _775.xyz * exp((-params.absorb_coefficients) * (max(_726 - _723, 0.0) + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _1029, vec3(((_918 * _922) >= 1.0) ? 1.0 : (0.5 * (_947 * _947 + (_966 * _966)))));
+    bvec3 _993 = bvec3((_723 < _726) && (_138 < 0.0));
+    out_color = vec4(vec3(_993.x ? _988.x : _26.x, _993.y ? _988.y : _26.y, _993.z ? _988.z : _26.z), 1.0);
 }
 

@@ -17,15 +17,15 @@
     float gerstner_amplitude_gain : packoffset(c23.w);
     float3 sky_color : packoffset(c24.x);
     float gerstner_frequency_gain : packoffset(c24.w);
-    float gerstner_wave_count : packoffset(c25.x);
-    float gerstner_steepness : packoffset(c25.y);
-    float refraction_distortion : packoffset(c25.z);
-    float refraction_shore_fade_depth : packoffset(c25.w);
-    float scatter_coefficient : packoffset(c26.x);
-    float reflection_fov_extension : packoffset(c26.y);
-    float ior_air : packoffset(c26.z);
-    float ior_water : packoffset(c26.w);
+    float gerstner_steepness : packoffset(c25.x);
+    float refraction_distortion : packoffset(c25.y);
+    float refraction_shore_fade_depth : packoffset(c25.z);
+    float scatter_coefficient : packoffset(c25.w);
+    float reflection_fov_extension : packoffset(c26.x);
+    float ior_air : packoffset(c26.y);
+    float ior_water : packoffset(c26.z);
 };
+[[vk::constant_id(0)]] const float gerstner_wave_count = 4.0;
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0);
 [[vk::binding(2, 0)]] Texture2D scene_color : register(t0);
 [[vk::binding(3, 0)]] Texture2D scene_position : register(t1);
@@ -46,7 +46,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float loop27_c1 = gerstner_frequency;
     float loop27_c2 = 0.0;
     float loop27_c3 = 0.0;
-    [loop] for (int loop27_i = 0; loop27_i < 8; ++loop27_i) {
+    for (int loop27_i = 0; loop27_i < 8; ++loop27_i) {
         if (!(((float)loop27_i) < trip_count)) break;
         loop27_c2 = loop27_c2 + loop27_c0;
         loop27_c3 = loop27_c3 + (loop27_c0 * loop27_c1);
@@ -79,7 +79,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
         float loop31_c1 = gerstner_frequency;
         float2 loop31_c2 = float2(0.0, 0.0);
         float3 loop31_c3 = float3(0.0, 0.0, 0.0);
-        [loop] for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
+        for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
             if (!(((float)loop31_i) < trip_count)) break;
             // waves.gerstner
             float2 gerstner_wave_directions = gerstner_wave_directions[clamp(((int)(float)loop31_i), 0, 7)];
@@ -110,7 +110,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
         float3 loop63_c2 = float3(0.0, 0.0, 0.0);
         float3 loop63_c3 = float3(1.0, 0.0, 0.0);
         float3 loop63_c4 = float3(0.0, 0.0, 1.0);
-        [loop] for (int loop63_i = 0; loop63_i < 8; ++loop63_i) {
+        for (int loop63_i = 0; loop63_i < 8; ++loop63_i) {
             if (!(((float)loop63_i) < trip_count)) break;
             // waves.gerstner
             float2 gerstner_wave_directions_2 = gerstner_wave_directions[clamp(((int)(float)loop63_i), 0, 7)];

@@ -19,16 +19,16 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 380) float gerstner_amplitude_gain;
     layout(offset = 384) vec3 sky_color;
     layout(offset = 396) float gerstner_frequency_gain;
-    layout(offset = 400) float gerstner_wave_count;
-    layout(offset = 404) float gerstner_steepness;
-    layout(offset = 408) float refraction_distortion;
-    layout(offset = 412) float refraction_shore_fade_depth;
-    layout(offset = 416) float scatter_coefficient;
-    layout(offset = 420) float reflection_fov_extension;
-    layout(offset = 424) float ior_air;
-    layout(offset = 428) float ior_water;
-    layout(offset = 432) float shore_hardness;
+    layout(offset = 400) float gerstner_steepness;
+    layout(offset = 404) float refraction_distortion;
+    layout(offset = 408) float refraction_shore_fade_depth;
+    layout(offset = 412) float scatter_coefficient;
+    layout(offset = 416) float reflection_fov_extension;
+    layout(offset = 420) float ior_air;
+    layout(offset = 424) float ior_water;
+    layout(offset = 428) float shore_hardness;
 } params;
+layout(constant_id = 0) const float gerstner_wave_count = 4.0;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
 layout(set = 0, binding = 3) uniform texture2D scene_position;
@@ -46,12 +46,12 @@ void main() {
 
     // waves.gerstner
     float pixel_angle = max(length(dFdx(view_ray)), length(dFdy(view_ray)));
-    float trip_count = floor(params.gerstner_wave_count);
+    float trip_count = floor(gerstner_wave_count);
     float loop27_c0 = params.gerstner_amplitude;
     float loop27_c1 = params.gerstner_frequency;
     float loop27_c2 = 0.0;
     float loop27_c3 = 0.0;
-    [[dont_unroll]] for (int loop27_i = 0; loop27_i < 8; ++loop27_i) {
+    for (int loop27_i = 0; loop27_i < 8; ++loop27_i) {
         if (!(float(loop27_i) < trip_count)) break;
         loop27_c2 = loop27_c2 + loop27_c0;
         loop27_c3 = loop27_c3 + (loop27_c0 * loop27_c1);
@@ -84,7 +84,7 @@ void main() {
         float loop31_c1 = params.gerstner_frequency;
         vec2 loop31_c2 = vec2(0.0);
         vec3 loop31_c3 = vec3(0.0);
-        [[dont_unroll]] for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
+        for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
             if (!(float(loop31_i) < trip_count)) break;
             // waves.gerstner
             vec2 gerstner_wave_directions = params.gerstner_wave_directions[clamp(int(float(loop31_i)), 0, 7)];
@@ -115,7 +115,7 @@ void main() {
         vec3 loop63_c2 = vec3(0.0);
         vec3 loop63_c3 = vec3(1.0, 0.0, 0.0);
         vec3 loop63_c4 = vec3(0.0, 0.0, 1.0);
-        [[dont_unroll]] for (int loop63_i = 0; loop63_i < 8; ++loop63_i) {
+        for (int loop63_i = 0; loop63_i < 8; ++loop63_i) {
             if (!(float(loop63_i) < trip_count)) break;
             // waves.gerstner
             vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop63_i)), 0, 7)];

@@ -13,6 +13,11 @@
 #define SPIRV_CROSS_LOOP
 #endif
 
+#ifndef SPIRV_CROSS_CONSTANT_ID_0
+#define SPIRV_CROSS_CONSTANT_ID_0 4.0
+#endif
+const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
+
 layout(std140) uniform WaterParams
 {
     vec2 gerstner_wave_directions[8];
@@ -32,11 +37,10 @@ layout(std140) uniform WaterParams
     vec3 sky_color;
     float gerstner_frequency_gain;
     vec3 foam_existence;
-    float gerstner_wave_count;
-    vec3 foam_color;
     float gerstner_steepness;
-    vec2 foam_pattern_drift;
+    vec3 foam_color;
     float refraction_distortion;
+    vec2 foam_pattern_drift;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_fov_extension;
@@ -64,182 +68,179 @@ void main()
     vec3 _63 = dFdx(_60);
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1125;
     float _1127;
-    float _1129;
-    _1129 = 0.0;
     _1127 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1126 = 0;
-    float _1128 = params.gerstner_amplitude;
-    float _1130 = params.gerstner_frequency;
-    SPIRV_CROSS_LOOP
-    for (; _1126 < 8; _1130 = _123, _1129 = _113, _1128 = _118, _1127 = _108, _1126++)
+    _1125 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1124 = 0;
+    float _1126 = params.gerstner_amplitude;
+    float _1128 = params.gerstner_frequency;
+    for (; _1124 < 8; _1128 = _121, _1127 = _111, _1126 = _116, _1125 = _106, _1124++)
     {
-        if (!(float(_1126) < _74))
+        if (!(float(_1124) < _71))
         {
             break;
         }
-        _108 = _1127 + _1128;
-        _113 = _1128 * _1130 + _1129;
-        _118 = _1128 * params.gerstner_amplitude_gain;
-        _123 = _1130 * params.gerstner_frequency_gain;
+        _106 = _1125 + _1126;
+        _111 = _1126 * _1128 + _1127;
+        _116 = _1126 * params.gerstner_amplitude_gain;
+        _121 = _1128 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = max(-_140, 9.9999999747524270787835121154785e-07);
-    vec2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1129 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1127;
-    float _164 = min(_140, -9.9999999747524270787835121154785e-07);
-    float _1134;
-    vec2 _1139;
-    _1139 = (params.eye_position + (_60 * max((_1127 - params.eye_position.y) / _164, 0.0))).xz;
-    _1134 = _1127;
-    vec2 _408;
-    float _681;
-    float _686;
-    float _696;
-    int _1133 = 0;
-    float _1167 = _1127;
-    float _1172 = _160;
+    float _138 = _60.y;
+    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
+    vec2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1127 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1125;
+    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _1132;
+    vec2 _1137;
+    _1137 = (params.eye_position + (_60 * max((_1125 - params.eye_position.y) / _162, 0.0))).xz;
+    _1132 = _1125;
+    vec2 _406;
+    float _679;
+    float _684;
+    float _694;
+    int _1131 = 0;
+    float _1165 = _1125;
+    float _1170 = _158;
     SPIRV_CROSS_LOOP
-    for (; _1133 < 9; _1172 = _686, _1167 = _681, _1139 = _408, _1134 = _696, _1133++)
+    for (; _1131 < 9; _1170 = _684, _1165 = _679, _1137 = _406, _1132 = _694, _1131++)
     {
-        float _209 = max((_1134 - params.eye_position.y) / _164, 0.0);
-        vec2 _219 = (params.eye_position + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        vec2 _1141;
-        vec3 _1142;
-        _1142 = vec3(0.0);
-        _1141 = vec2(0.0);
-        float _325;
-        float _329;
-        vec2 _336;
-        vec3 _350;
-        int _1136 = 0;
-        float _1137 = params.gerstner_frequency;
-        float _1140 = params.gerstner_amplitude;
-        SPIRV_CROSS_LOOP
-        for (; _1136 < 8; _1142 = _350, _1141 = _336, _1140 = _325, _1137 = _329, _1136++)
+        float _207 = max((_1132 - params.eye_position.y) / _162, 0.0);
+        vec2 _217 = (params.eye_position + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        vec2 _1139;
+        vec3 _1140;
+        _1140 = vec3(0.0);
+        _1139 = vec2(0.0);
+        float _323;
+        float _327;
+        vec2 _334;
+        vec3 _348;
+        int _1134 = 0;
+        float _1135 = params.gerstner_frequency;
+        float _1138 = params.gerstner_amplitude;
+        for (; _1134 < 8; _1140 = _348, _1139 = _334, _1138 = _323, _1135 = _327, _1134++)
         {
-            float _244 = float(_1136);
-            if (!(_244 < _74))
+            float _242 = float(_1134);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _256 = clamp(int(_244), 0, 7);
-            float _284 = _1137 * dot(params.gerstner_wave_directions[_256], _1139) + (params.time * params.gerstner_wave_speeds[_256]);
-            float _298 = ((params.gerstner_steepness / (_74 * max(_1137 * _1140, 9.9999999747524270787835121154785e-07))) * _1140) * clamp((-(_1137 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _317 = (_298 * _1137) * sin(_284);
-            float _321 = _317 * params.gerstner_wave_directions[_256].x;
-            _325 = _1140 * params.gerstner_amplitude_gain;
-            _329 = _1137 * params.gerstner_frequency_gain;
-            _336 = _1141 + (params.gerstner_wave_directions[_256] * (_298 * cos(_284)));
-            _350 = _1142 + vec3(_321 * params.gerstner_wave_directions[_256].x, _321 * params.gerstner_wave_directions[_256].y, (_317 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+            int _254 = clamp(int(_242), 0, 7);
+            float _282 = _1135 * dot(params.gerstner_wave_directions[_254], _1137) + (params.time * params.gerstner_wave_speeds[_254]);
+            float _296 = ((params.gerstner_steepness / (_71 * max(_1135 * _1138, 9.9999999747524270787835121154785e-07))) * _1138) * clamp((-(_1135 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _315 = (_296 * _1135) * sin(_282);
+            float _319 = _315 * params.gerstner_wave_directions[_254].x;
+            _323 = _1138 * params.gerstner_amplitude_gain;
+            _327 = _1135 * params.gerstner_frequency_gain;
+            _334 = _1139 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
+            _348 = _1140 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
         }
-        float _356 = 1.0 - _1142.x;
-        float _361 = 1.0 - _1142.z;
-        float _365 = -_1142.y;
-        vec2 _371 = (_1139 + _1141) - _219;
-        float _384 = _371.x;
-        float _387 = _371.y;
-        _408 = _1139 - (vec2(_361 * _384 + (-(_365 * _387)), _356 * _387 + (-(_365 * _384))) / vec2(max(_356 * _361 + (-(_365 * _365)), 0.039999999105930328369140625)));
+        float _354 = 1.0 - _1140.x;
+        float _359 = 1.0 - _1140.z;
+        float _363 = -_1140.y;
+        vec2 _369 = (_1137 + _1139) - _217;
+        float _382 = _369.x;
+        float _385 = _369.y;
+        _406 = _1137 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
+        vec3 _1147;
+        vec3 _1148;
         vec3 _1149;
-        vec3 _1150;
-        vec3 _1151;
-        _1151 = vec3(0.0, 0.0, 1.0);
-        _1150 = vec3(1.0, 0.0, 0.0);
-        _1149 = vec3(0.0);
-        float _523;
-        float _527;
-        vec3 _539;
-        vec3 _544;
-        vec3 _549;
-        int _1146 = 0;
-        float _1147 = params.gerstner_frequency;
-        float _1148 = params.gerstner_amplitude;
-        SPIRV_CROSS_LOOP
-        for (; _1146 < 8; _1151 = _549, _1150 = _544, _1149 = _539, _1148 = _523, _1147 = _527, _1146++)
+        _1149 = vec3(0.0, 0.0, 1.0);
+        _1148 = vec3(1.0, 0.0, 0.0);
+        _1147 = vec3(0.0);
+        float _521;
+        float _525;
+        vec3 _537;
+        vec3 _542;
+        vec3 _547;
+        int _1144 = 0;
+        float _1145 = params.gerstner_frequency;
+        float _1146 = params.gerstner_amplitude;
+        for (; _1144 < 8; _1149 = _547, _1148 = _542, _1147 = _537, _1146 = _521, _1145 = _525, _1144++)
         {
-            float _429 = float(_1146);
-            if (!(_429 < _74))
+            float _427 = float(_1144);
+            if (!(_427 < _71))
             {
                 break;
             }
-            int _440 = clamp(int(_429), 0, 7);
-            float _449 = clamp((-(_1147 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _465 = _1147 * dot(params.gerstner_wave_directions[_440], _408) + (params.time * params.gerstner_wave_speeds[_440]);
-            float _479 = ((params.gerstner_steepness / (_74 * max(_1147 * _1148, 9.9999999747524270787835121154785e-07))) * _1148) * _449;
-            float _483 = _1148 * _449;
-            float _486 = sin(_465);
-            float _489 = cos(_465);
-            float _499 = _479 * _489;
-            float _506 = -((_479 * _1147) * _486);
-            vec3 _519 = vec3(_506 * params.gerstner_wave_directions[_440].x, (_483 * _1147) * _489, _506 * params.gerstner_wave_directions[_440].y);
-            _523 = _1148 * params.gerstner_amplitude_gain;
-            _527 = _1147 * params.gerstner_frequency_gain;
-            _539 = _1149 + vec3(_499 * params.gerstner_wave_directions[_440].x, _483 * _486, _499 * params.gerstner_wave_directions[_440].y);
-            _544 = _1150 + (_519 * params.gerstner_wave_directions[_440].x);
-            _549 = _1151 + (_519 * params.gerstner_wave_directions[_440].y);
+            int _438 = clamp(int(_427), 0, 7);
+            float _447 = clamp((-(_1145 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _463 = _1145 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
+            float _477 = ((params.gerstner_steepness / (_71 * max(_1145 * _1146, 9.9999999747524270787835121154785e-07))) * _1146) * _447;
+            float _481 = _1146 * _447;
+            float _484 = sin(_463);
+            float _487 = cos(_463);
+            float _497 = _477 * _487;
+            float _504 = -((_477 * _1145) * _484);
+            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1145) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1146 * params.gerstner_amplitude_gain;
+            _525 = _1145 * params.gerstner_frequency_gain;
+            _537 = _1147 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1148 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1149 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        vec3 _555 = cross(_1151, _1150);
-        float _559 = dot(_555, _555);
-        vec3 _566 = _555 * inversesqrt(max(_559, 1.0000000031710768509710513471353e-30));
-        bvec3 _576 = bvec3(_559 > 1.0000000031710768509710513471353e-30);
-        vec3 _577 = vec3(_576.x ? _566.x : vec3(0.0, 1.0, 0.0).x, _576.y ? _566.y : vec3(0.0, 1.0, 0.0).y, _576.z ? _566.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _587 = (-_577.xz) / vec2(max(_577.y, 9.9999997473787516355514526367188e-05));
-        float _602 = float(_1133);
-        bool _603 = _602 < 1.0;
-        float _610 = (_1149.y + dot(_587, _219 - (_408 + _1149.xz))) - _1134;
-        float _623 = (-dot(_587, _148)) / _144;
-        float _636 = clamp(1.0 / max(1.0 - _623, 9.9999999747524270787835121154785e-07), _157, 1.0) * _610 + _1134;
-        bool _639 = _610 < 0.0;
-        float _644 = _639 ? _1134 : _1167;
-        float _649 = _639 ? _1172 : _1134;
-        _681 = _603 ? _1134 : _644;
-        _686 = _603 ? _1172 : _649;
-        _696 = (_602 < 8.0) ? (_603 ? (_157 * _610 + _1134) : ((((_636 < _649) || (_636 > _644)) || (_623 >= 1.0)) ? (0.5 * (_649 + _644)) : _636)) : _1134;
+        vec3 _553 = cross(_1149, _1148);
+        float _557 = dot(_553, _553);
+        vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
+        bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
+        vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
+        float _600 = float(_1131);
+        bool _601 = _600 < 1.0;
+        float _608 = (_1147.y + dot(_585, _217 - (_406 + _1147.xz))) - _1132;
+        float _621 = (-dot(_585, _146)) / _142;
+        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0) * _608 + _1132;
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1132 : _1165;
+        float _647 = _637 ? _1170 : _1132;
+        _679 = _601 ? _1132 : _642;
+        _684 = _601 ? _1170 : _647;
+        _694 = (_600 < 8.0) ? (_601 ? (_155 * _608 + _1132) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1132;
     }
-    float _710 = max((_1134 - params.eye_position.y) / _164, 0.0);
-    vec3 _717 = params.eye_position + (_60 * _710);
-    float _725 = _33.y;
-    float _728 = _717.y;
-    float _733 = max(_728 - _725, 0.0);
-    vec4 _777 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    float _782 = clamp(max(_53 - _710, 0.0), 0.0, 30000.0);
-    vec4 _839 = (((params.reflection_view_proj_c0 * _717.x) + (params.reflection_view_proj_c1 * _728)) + (params.reflection_view_proj_c2 * _717.z)) + params.reflection_view_proj_c3;
-    float _843 = _839.w;
-    bool _846 = _843 > 9.9999997473787516355514526367188e-05;
-    vec2 _863 = clamp((((_839.xy / vec2(_843)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _869 = bvec2(_846);
-    float _873 = float(_846);
-    vec4 _889 = texture(reflection_map, vec3(vec2(_869.x ? _863.x : vec2(0.5).x, _869.y ? _863.y : vec2(0.5).y), _873).xy);
-    vec3 _1135;
-    if (_873 > 0.5)
+    float _708 = max((_1132 - params.eye_position.y) / _162, 0.0);
+    vec3 _715 = params.eye_position + (_60 * _708);
+    float _723 = _33.y;
+    float _726 = _715.y;
+    float _731 = max(_726 - _723, 0.0);
+    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    float _780 = clamp(max(_53 - _708, 0.0), 0.0, 30000.0);
+    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
+    float _841 = _837.w;
+    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
+    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _867 = bvec2(_844);
+    float _871 = float(_844);
+    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
+    vec3 _1133;
+    if (_871 > 0.5)
     {
-        _1135 = _889.xyz;
+        _1133 = _887.xyz;
     }
     else
     {
-        _1135 = params.sky_color;
+        _1133 = params.sky_color;
     }
-    float _908 = clamp((-_60).y, 0.0, 1.0);
-    float _916 = params.ior_air / params.ior_water;
-    float _920 = _916 * _916;
-    float _924 = (-_908) * _908 + 1.0;
-    float _930 = sqrt(max((-_920) * _924 + 1.0, 0.0));
-    float _935 = params.ior_water * _930;
-    float _949 = (params.ior_air * _908 + (-_935)) / max(params.ior_air * _908 + _935, 1.0000000031710768509710513471353e-30);
-    float _954 = params.ior_air * _930;
-    float _968 = (params.ior_water * _908 + (-_954)) / max(params.ior_water * _908 + _954, 1.0000000031710768509710513471353e-30);
-    vec2 _993 = _717.xz;
-    float _1054 = _733 - params.foam_existence.x;
-    float _1059 = params.foam_existence.y - params.foam_existence.x;
-    vec3 _1094 = mix(mix(mix(params.scatter_color, _777.xyz * exp((-params.absorb_coefficients) * (_733 + _782)), vec3(exp((-params.scatter_coefficient) * _782))) * params.incident_light, _1135, vec3(((_920 * _924) >= 1.0) ? 1.0 : (0.5 * (_949 * _949 + (_968 * _968))))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_993 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_993)), length(dFdy(_993))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1054 < 0.0) ? 1.0 : (1.0 - ((_1054 >= _1059) ? 1.0 : clamp(_1054 / max(_1059, 5.9604644775390625e-08), 0.0, 1.0)))));
-    bvec3 _1099 = bvec3((_725 < _728) && (_140 < 0.0));
-    out_color = vec4(vec3(_1099.x ? _1094.x : _26.x, _1099.y ? _1094.y : _26.y, _1099.z ? _1094.z : _26.z), 1.0);
+    float _906 = clamp((-_60).y, 0.0, 1.0);
+    float _914 = params.ior_air / params.ior_water;
+    float _918 = _914 * _914;
+    float _922 = (-_906) * _906 + 1.0;
+    float _928 = sqrt(max((-_918) * _922 + 1.0, 0.0));
+    float _933 = params.ior_water * _928;
+    float _947 = (params.ior_air * _906 + (-_933)) / max(params.ior_air * _906 + _933, 1.0000000031710768509710513471353e-30);
+    float _952 = params.ior_air * _928;
+    float _966 = (params.ior_water * _906 + (-_952)) / max(params.ior_water * _906 + _952, 1.0000000031710768509710513471353e-30);
+    vec2 _991 = _715.xz;
+    float _1052 = _731 - params.foam_existence.x;
+    float _1057 = params.foam_existence.y - params.foam_existence.x;
+    vec3 _1092 = mix(mix(mix(params.scatter_color, _775.xyz * exp((-params.absorb_coefficients) * (_731 + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _1133, vec3(((_918 * _922) >= 1.0) ? 1.0 : (0.5 * (_947 * _947 + (_966 * _966))))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_991 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_991)), length(dFdy(_991))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1052 < 0.0) ? 1.0 : (1.0 - ((_1052 >= _1057) ? 1.0 : clamp(_1052 / max(_1057, 5.9604644775390625e-08), 0.0, 1.0)))));
+    bvec3 _1097 = bvec3((_723 < _726) && (_138 < 0.0));
+    out_color = vec4(vec3(_1097.x ? _1092.x : _26.x, _1097.y ? _1092.y : _26.y, _1097.z ? _1092.z : _26.z), 1.0);
 }
 

@@ -13,6 +13,11 @@
 #define SPIRV_CROSS_LOOP
 #endif
 
+#ifndef SPIRV_CROSS_CONSTANT_ID_0
+#define SPIRV_CROSS_CONSTANT_ID_0 4.0
+#endif
+const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
+
 layout(std140) uniform WaterParams
 {
     vec2 gerstner_wave_directions[8];
@@ -31,7 +36,6 @@ layout(std140) uniform WaterParams
     float gerstner_amplitude_gain;
     vec3 sky_color;
     float gerstner_frequency_gain;
-    float gerstner_wave_count;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -59,172 +63,169 @@ void main()
     vec3 _63 = dFdx(_60);
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _979;
     float _981;
-    float _983;
-    _983 = 0.0;
     _981 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _980 = 0;
-    float _982 = params.gerstner_amplitude;
-    float _984 = params.gerstner_frequency;
-    SPIRV_CROSS_LOOP
-    for (; _980 < 8; _984 = _123, _983 = _113, _982 = _118, _981 = _108, _980++)
+    _979 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _978 = 0;
+    float _980 = params.gerstner_amplitude;
+    float _982 = params.gerstner_frequency;
+    for (; _978 < 8; _982 = _121, _981 = _111, _980 = _116, _979 = _106, _978++)
     {
-        if (!(float(_980) < _74))
+        if (!(float(_978) < _71))
         {
             break;
         }
-        _108 = _981 + _982;
-        _113 = _982 * _984 + _983;
-        _118 = _982 * params.gerstner_amplitude_gain;
-        _123 = _984 * params.gerstner_frequency_gain;
+        _106 = _979 + _980;
+        _111 = _980 * _982 + _981;
+        _116 = _980 * params.gerstner_amplitude_gain;
+        _121 = _982 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = max(-_140, 9.9999999747524270787835121154785e-07);
-    vec2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_983 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_981;
-    float _164 = min(_140, -9.9999999747524270787835121154785e-07);
-    float _988;
-    vec2 _993;
-    _993 = (params.eye_position + (_60 * max((_981 - params.eye_position.y) / _164, 0.0))).xz;
-    _988 = _981;
-    vec2 _408;
-    float _681;
-    float _686;
-    float _696;
-    int _987 = 0;
-    float _1021 = _981;
-    float _1026 = _160;
+    float _138 = _60.y;
+    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
+    vec2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_981 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_979;
+    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _986;
+    vec2 _991;
+    _991 = (params.eye_position + (_60 * max((_979 - params.eye_position.y) / _162, 0.0))).xz;
+    _986 = _979;
+    vec2 _406;
+    float _679;
+    float _684;
+    float _694;
+    int _985 = 0;
+    float _1019 = _979;
+    float _1024 = _158;
     SPIRV_CROSS_LOOP
-    for (; _987 < 9; _1026 = _686, _1021 = _681, _993 = _408, _988 = _696, _987++)
+    for (; _985 < 9; _1024 = _684, _1019 = _679, _991 = _406, _986 = _694, _985++)
     {
-        float _209 = max((_988 - params.eye_position.y) / _164, 0.0);
-        vec2 _219 = (params.eye_position + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        vec2 _995;
-        vec3 _996;
-        _996 = vec3(0.0);
-        _995 = vec2(0.0);
-        float _325;
-        float _329;
-        vec2 _336;
-        vec3 _350;
-        int _990 = 0;
-        float _991 = params.gerstner_frequency;
-        float _994 = params.gerstner_amplitude;
-        SPIRV_CROSS_LOOP
-        for (; _990 < 8; _996 = _350, _995 = _336, _994 = _325, _991 = _329, _990++)
+        float _207 = max((_986 - params.eye_position.y) / _162, 0.0);
+        vec2 _217 = (params.eye_position + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        vec2 _993;
+        vec3 _994;
+        _994 = vec3(0.0);
+        _993 = vec2(0.0);
+        float _323;
+        float _327;
+        vec2 _334;
+        vec3 _348;
+        int _988 = 0;
+        float _989 = params.gerstner_frequency;
+        float _992 = params.gerstner_amplitude;
+        for (; _988 < 8; _994 = _348, _993 = _334, _992 = _323, _989 = _327, _988++)
         {
-            float _244 = float(_990);
-            if (!(_244 < _74))
+            float _242 = float(_988);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _256 = clamp(int(_244), 0, 7);
-            float _284 = _991 * dot(params.gerstner_wave_directions[_256], _993) + (params.time * params.gerstner_wave_speeds[_256]);
-            float _298 = ((params.gerstner_steepness / (_74 * max(_991 * _994, 9.9999999747524270787835121154785e-07))) * _994) * clamp((-(_991 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _317 = (_298 * _991) * sin(_284);
-            float _321 = _317 * params.gerstner_wave_directions[_256].x;
-            _325 = _994 * params.gerstner_amplitude_gain;
-            _329 = _991 * params.gerstner_frequency_gain;
-            _336 = _995 + (params.gerstner_wave_directions[_256] * (_298 * cos(_284)));
-            _350 = _996 + vec3(_321 * params.gerstner_wave_directions[_256].x, _321 * params.gerstner_wave_directions[_256].y, (_317 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+            int _254 = clamp(int(_242), 0, 7);
+            float _282 = _989 * dot(params.gerstner_wave_directions[_254], _991) + (params.time * params.gerstner_wave_speeds[_254]);
+            float _296 = ((params.gerstner_steepness / (_71 * max(_989 * _992, 9.9999999747524270787835121154785e-07))) * _992) * clamp((-(_989 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _315 = (_296 * _989) * sin(_282);
+            float _319 = _315 * params.gerstner_wave_directions[_254].x;
+            _323 = _992 * params.gerstner_amplitude_gain;
+            _327 = _989 * params.gerstner_frequency_gain;
+            _334 = _993 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
+            _348 = _994 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
         }
-        float _356 = 1.0 - _996.x;
-        float _361 = 1.0 - _996.z;
-        float _365 = -_996.y;
-        vec2 _371 = (_993 + _995) - _219;
-        float _384 = _371.x;
-        float _387 = _371.y;
-        _408 = _993 - (vec2(_361 * _384 + (-(_365 * _387)), _356 * _387 + (-(_365 * _384))) / vec2(max(_356 * _361 + (-(_365 * _365)), 0.039999999105930328369140625)));
+        float _354 = 1.0 - _994.x;
+        float _359 = 1.0 - _994.z;
+        float _363 = -_994.y;
+        vec2 _369 = (_991 + _993) - _217;
+        float _382 = _369.x;
+        float _385 = _369.y;
+        _406 = _991 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
+        vec3 _1001;
+        vec3 _1002;
         vec3 _1003;
-        vec3 _1004;
-        vec3 _1005;
-        _1005 = vec3(0.0, 0.0, 1.0);
-        _1004 = vec3(1.0, 0.0, 0.0);
-        _1003 = vec3(0.0);
-        float _523;
-        float _527;
-        vec3 _539;
-        vec3 _544;
-        vec3 _549;
-        int _1000 = 0;
-        float _1001 = params.gerstner_frequency;
-        float _1002 = params.gerstner_amplitude;
-        SPIRV_CROSS_LOOP
-        for (; _1000 < 8; _1005 = _549, _1004 = _544, _1003 = _539, _1002 = _523, _1001 = _527, _1000++)
+        _1003 = vec3(0.0, 0.0, 1.0);
+        _1002 = vec3(1.0, 0.0, 0.0);
+        _1001 = vec3(0.0);
+        float _521;
+        float _525;
+        vec3 _537;
+        vec3 _542;
+        vec3 _547;
+        int _998 = 0;
+        float _999 = params.gerstner_frequency;
+        float _1000 = params.gerstner_amplitude;
+        for (; _998 < 8; _1003 = _547, _1002 = _542, _1001 = _537, _1000 = _521, _999 = _525, _998++)
         {
-            float _429 = float(_1000);
-            if (!(_429 < _74))
+            float _427 = float(_998);
+            if (!(_427 < _71))
             {
                 break;
             }
-            int _440 = clamp(int(_429), 0, 7);
-            float _449 = clamp((-(_1001 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _465 = _1001 * dot(params.gerstner_wave_directions[_440], _408) + (params.time * params.gerstner_wave_speeds[_440]);
-            float _479 = ((params.gerstner_steepness / (_74 * max(_1001 * _1002, 9.9999999747524270787835121154785e-07))) * _1002) * _449;
-            float _483 = _1002 * _449;
-            float _486 = sin(_465);
-            float _489 = cos(_465);
-            float _499 = _479 * _489;
-            float _506 = -((_479 * _1001) * _486);
-            vec3 _519 = vec3(_506 * params.gerstner_wave_directions[_440].x, (_483 * _1001) * _489, _506 * params.gerstner_wave_directions[_440].y);
-            _523 = _1002 * params.gerstner_amplitude_gain;
-            _527 = _1001 * params.gerstner_frequency_gain;
-            _539 = _1003 + vec3(_499 * params.gerstner_wave_directions[_440].x, _483 * _486, _499 * params.gerstner_wave_directions[_440].y);
-            _544 = _1004 + (_519 * params.gerstner_wave_directions[_440].x);
-            _549 = _1005 + (_519 * params.gerstner_wave_directions[_440].y);
+            int _438 = clamp(int(_427), 0, 7);
+            float _447 = clamp((-(_999 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _463 = _999 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
+            float _477 = ((params.gerstner_steepness / (_71 * max(_999 * _1000, 9.9999999747524270787835121154785e-07))) * _1000) * _447;
+            float _481 = _1000 * _447;
+            float _484 = sin(_463);
+            float _487 = cos(_463);
+            float _497 = _477 * _487;
+            float _504 = -((_477 * _999) * _484);
+            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _999) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1000 * params.gerstner_amplitude_gain;
+            _525 = _999 * params.gerstner_frequency_gain;
+            _537 = _1001 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1002 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1003 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        vec3 _555 = cross(_1005, _1004);
-        float _559 = dot(_555, _555);
-        vec3 _566 = _555 * inversesqrt(max(_559, 1.0000000031710768509710513471353e-30));
-        bvec3 _576 = bvec3(_559 > 1.0000000031710768509710513471353e-30);
-        vec3 _577 = vec3(_576.x ? _566.x : vec3(0.0, 1.0, 0.0).x, _576.y ? _566.y : vec3(0.0, 1.0, 0.0).y, _576.z ? _566.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _587 = (-_577.xz) / vec2(max(_577.y, 9.9999997473787516355514526367188e-05));
-        float _602 = float(_987);
-        bool _603 = _602 < 1.0;
-        float _610 = (_1003.y + dot(_587, _219 - (_408 + _1003.xz))) - _988;
-        float _623 = (-dot(_587, _148)) / _144;
-        float _636 = clamp(1.0 / max(1.0 - _623, 9.9999999747524270787835121154785e-07), _157, 1.0) * _610 + _988;
-        bool _639 = _610 < 0.0;
-        float _644 = _639 ? _988 : _1021;
-        float _649 = _639 ? _1026 : _988;
-        _681 = _603 ? _988 : _644;
-        _686 = _603 ? _1026 : _649;
-        _696 = (_602 < 8.0) ? (_603 ? (_157 * _610 + _988) : ((((_636 < _649) || (_636 > _644)) || (_623 >= 1.0)) ? (0.5 * (_649 + _644)) : _636)) : _988;
+        vec3 _553 = cross(_1003, _1002);
+        float _557 = dot(_553, _553);
+        vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
+        bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
+        vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
+        float _600 = float(_985);
+        bool _601 = _600 < 1.0;
+        float _608 = (_1001.y + dot(_585, _217 - (_406 + _1001.xz))) - _986;
+        float _621 = (-dot(_585, _146)) / _142;
+        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0) * _608 + _986;
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _986 : _1019;
+        float _647 = _637 ? _1024 : _986;
+        _679 = _601 ? _986 : _642;
+        _684 = _601 ? _1024 : _647;
+        _694 = (_600 < 8.0) ? (_601 ? (_155 * _608 + _986) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _986;
     }
-    float _710 = max((_988 - params.eye_position.y) / _164, 0.0);
-    vec3 _717 = params.eye_position + (_60 * _710);
-    float _725 = _33.y;
-    float _728 = _717.y;
-    vec4 _777 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    float _782 = clamp(max(_53 - _710, 0.0), 0.0, 30000.0);
-    vec4 _839 = (((params.reflection_view_proj_c0 * _717.x) + (params.reflection_view_proj_c1 * _728)) + (params.reflection_view_proj_c2 * _717.z)) + params.reflection_view_proj_c3;
-    float _843 = _839.w;
-    bool _846 = _843 > 9.9999997473787516355514526367188e-05;
-    vec2 _863 = clamp((((_839.xy / vec2(_843)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _869 = bvec2(_846);
-    float _873 = float(_846);
-    vec4 _889 = texture(reflection_map, vec3(vec2(_869.x ? _863.x : vec2(0.5).x, _869.y ? _863.y : vec2(0.5).y), _873).xy);
-    vec3 _989;
-    if (_873 > 0.5)
+    float _708 = max((_986 - params.eye_position.y) / _162, 0.0);
+    vec3 _715 = params.eye_position + (_60 * _708);
+    float _723 = _33.y;
+    float _726 = _715.y;
+    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    float _780 = clamp(max(_53 - _708, 0.0), 0.0, 30000.0);
+    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
+    float _841 = _837.w;
+    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
+    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _867 = bvec2(_844);
+    float _871 = float(_844);
+    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
+    vec3 _987;
+    if (_871 > 0.5)
     {
-        _989 = _889.xyz;
+        _987 = _887.xyz;
     }
     else
     {
-        _989 = params.sky_color;
+        _987 = params.sky_color;
     }
-    float _919 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _927 = 1.0 - clamp((-_60).y, 0.0, 1.0);
-    float _931 = _927 * _927;
-    vec3 _948 = mix(mix(params.scatter_color, _777.xyz * exp((-params.absorb_coefficients) * (max(_728 - _725, 0.0) + _782)), vec3(exp((-params.scatter_coefficient) * _782))) * params.incident_light, _989, vec3(_919 * _919 + (((-_919) * _919 + 1.0) * ((_931 * _931) * _927))));
-    bvec3 _953 = bvec3((_725 < _728) && (_140 < 0.0));
-    out_color = vec4(vec3(_953.x ? _948.x : _26.x, _953.y ? _948.y : _26.y, _953.z ? _948.z : _26.z), 1.0);
+    float _917 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _925 = 1.0 - clamp((-_60).y, 0.0, 1.0);
+    float _929 = _925 * _925;
+    vec3 _946 = mix(mix(params.scatter_color, _775.xyz * exp((-params.absorb_coefficients) * (max(_726 - _723, 0.0) + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _987, vec3(_917 * _917 + (((-_917) * _917 + 1.0) * ((_929 * _929) * _925))));
+    bvec3 _951 = bvec3((_723 < _726) && (_138 < 0.0));
+    out_color = vec4(vec3(_951.x ? _946.x : _26.x, _951.y ? _946.y : _26.y, _951.z ? _946.z : _26.z), 1.0);
 }
 

@@ -13,6 +13,11 @@
 #define SPIRV_CROSS_LOOP
 #endif
 
+#ifndef SPIRV_CROSS_CONSTANT_ID_0
+#define SPIRV_CROSS_CONSTANT_ID_0 4.0
+#endif
+const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
+
 layout(std140) uniform WaterParams
 {
     vec2 gerstner_wave_directions[8];
@@ -31,7 +36,6 @@ layout(std140) uniform WaterParams
     float gerstner_amplitude_gain;
     vec3 sky_color;
     float gerstner_frequency_gain;
-    float gerstner_wave_count;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -60,174 +64,171 @@ void main()
     vec3 _63 = dFdx(_60);
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _990;
     float _992;
-    float _994;
-    _994 = 0.0;
     _992 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _991 = 0;
-    float _993 = params.gerstner_amplitude;
-    float _995 = params.gerstner_frequency;
-    SPIRV_CROSS_LOOP
-    for (; _991 < 8; _995 = _123, _994 = _113, _993 = _118, _992 = _108, _991++)
+    _990 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _989 = 0;
+    float _991 = params.gerstner_amplitude;
+    float _993 = params.gerstner_frequency;
+    for (; _989 < 8; _993 = _121, _992 = _111, _991 = _116, _990 = _106, _989++)
     {
-        if (!(float(_991) < _74))
+        if (!(float(_989) < _71))
         {
             break;
         }
-        _108 = _992 + _993;
-        _113 = _993 * _995 + _994;
-        _118 = _993 * params.gerstner_amplitude_gain;
-        _123 = _995 * params.gerstner_frequency_gain;
+        _106 = _990 + _991;
+        _111 = _991 * _993 + _992;
+        _116 = _991 * params.gerstner_amplitude_gain;
+        _121 = _993 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = max(-_140, 9.9999999747524270787835121154785e-07);
-    vec2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_994 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_992;
-    float _164 = min(_140, -9.9999999747524270787835121154785e-07);
-    float _999;
-    vec2 _1004;
-    _1004 = (params.eye_position + (_60 * max((_992 - params.eye_position.y) / _164, 0.0))).xz;
-    _999 = _992;
-    vec2 _408;
-    float _681;
-    float _686;
-    float _696;
-    int _998 = 0;
-    float _1032 = _992;
-    float _1037 = _160;
+    float _138 = _60.y;
+    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
+    vec2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_992 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_990;
+    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _997;
+    vec2 _1002;
+    _1002 = (params.eye_position + (_60 * max((_990 - params.eye_position.y) / _162, 0.0))).xz;
+    _997 = _990;
+    vec2 _406;
+    float _679;
+    float _684;
+    float _694;
+    int _996 = 0;
+    float _1030 = _990;
+    float _1035 = _158;
     SPIRV_CROSS_LOOP
-    for (; _998 < 9; _1037 = _686, _1032 = _681, _1004 = _408, _999 = _696, _998++)
+    for (; _996 < 9; _1035 = _684, _1030 = _679, _1002 = _406, _997 = _694, _996++)
     {
-        float _209 = max((_999 - params.eye_position.y) / _164, 0.0);
-        vec2 _219 = (params.eye_position + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        vec2 _1006;
-        vec3 _1007;
-        _1007 = vec3(0.0);
-        _1006 = vec2(0.0);
-        float _325;
-        float _329;
-        vec2 _336;
-        vec3 _350;
-        int _1001 = 0;
-        float _1002 = params.gerstner_frequency;
-        float _1005 = params.gerstner_amplitude;
-        SPIRV_CROSS_LOOP
-        for (; _1001 < 8; _1007 = _350, _1006 = _336, _1005 = _325, _1002 = _329, _1001++)
+        float _207 = max((_997 - params.eye_position.y) / _162, 0.0);
+        vec2 _217 = (params.eye_position + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        vec2 _1004;
+        vec3 _1005;
+        _1005 = vec3(0.0);
+        _1004 = vec2(0.0);
+        float _323;
+        float _327;
+        vec2 _334;
+        vec3 _348;
+        int _999 = 0;
+        float _1000 = params.gerstner_frequency;
+        float _1003 = params.gerstner_amplitude;
+        for (; _999 < 8; _1005 = _348, _1004 = _334, _1003 = _323, _1000 = _327, _999++)
         {
-            float _244 = float(_1001);
-            if (!(_244 < _74))
+            float _242 = float(_999);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _256 = clamp(int(_244), 0, 7);
-            float _284 = _1002 * dot(params.gerstner_wave_directions[_256], _1004) + (params.time * params.gerstner_wave_speeds[_256]);
-            float _298 = ((params.gerstner_steepness / (_74 * max(_1002 * _1005, 9.9999999747524270787835121154785e-07))) * _1005) * clamp((-(_1002 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _317 = (_298 * _1002) * sin(_284);
-            float _321 = _317 * params.gerstner_wave_directions[_256].x;
-            _325 = _1005 * params.gerstner_amplitude_gain;
-            _329 = _1002 * params.gerstner_frequency_gain;
-            _336 = _1006 + (params.gerstner_wave_directions[_256] * (_298 * cos(_284)));
-            _350 = _1007 + vec3(_321 * params.gerstner_wave_directions[_256].x, _321 * params.gerstner_wave_directions[_256].y, (_317 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+            int _254 = clamp(int(_242), 0, 7);
+            float _282 = _1000 * dot(params.gerstner_wave_directions[_254], _1002) + (params.time * params.gerstner_wave_speeds[_254]);
+            float _296 = ((params.gerstner_steepness / (_71 * max(_1000 * _1003, 9.9999999747524270787835121154785e-07))) * _1003) * clamp((-(_1000 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _315 = (_296 * _1000) * sin(_282);
+            float _319 = _315 * params.gerstner_wave_directions[_254].x;
+            _323 = _1003 * params.gerstner_amplitude_gain;
+            _327 = _1000 * params.gerstner_frequency_gain;
+            _334 = _1004 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
+            _348 = _1005 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
         }
-        float _356 = 1.0 - _1007.x;
-        float _361 = 1.0 - _1007.z;
-        float _365 = -_1007.y;
-        vec2 _371 = (_1004 + _1006) - _219;
-        float _384 = _371.x;
-        float _387 = _371.y;
-        _408 = _1004 - (vec2(_361 * _384 + (-(_365 * _387)), _356 * _387 + (-(_365 * _384))) / vec2(max(_356 * _361 + (-(_365 * _365)), 0.039999999105930328369140625)));
+        float _354 = 1.0 - _1005.x;
+        float _359 = 1.0 - _1005.z;
+        float _363 = -_1005.y;
+        vec2 _369 = (_1002 + _1004) - _217;
+        float _382 = _369.x;
+        float _385 = _369.y;
+        _406 = _1002 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
+        vec3 _1012;
+        vec3 _1013;
         vec3 _1014;
-        vec3 _1015;
-        vec3 _1016;
-        _1016 = vec3(0.0, 0.0, 1.0);
-        _1015 = vec3(1.0, 0.0, 0.0);
-        _1014 = vec3(0.0);
-        float _523;
-        float _527;
-        vec3 _539;
-        vec3 _544;
-        vec3 _549;
-        int _1011 = 0;
-        float _1012 = params.gerstner_frequency;
-        float _1013 = params.gerstner_amplitude;
-        SPIRV_CROSS_LOOP
-        for (; _1011 < 8; _1016 = _549, _1015 = _544, _1014 = _539, _1013 = _523, _1012 = _527, _1011++)
+        _1014 = vec3(0.0, 0.0, 1.0);
+        _1013 = vec3(1.0, 0.0, 0.0);
+        _1012 = vec3(0.0);
+        float _521;
+        float _525;
+        vec3 _537;
+        vec3 _542;
+        vec3 _547;
+        int _1009 = 0;
+        float _1010 = params.gerstner_frequency;
+        float _1011 = params.gerstner_amplitude;
+        for (; _1009 < 8; _1014 = _547, _1013 = _542, _1012 = _537, _1011 = _521, _1010 = _525, _1009++)
         {
-            float _429 = float(_1011);
-            if (!(_429 < _74))
+            float _427 = float(_1009);
+            if (!(_427 < _71))
             {
                 break;
             }
-            int _440 = clamp(int(_429), 0, 7);
-            float _449 = clamp((-(_1012 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _465 = _1012 * dot(params.gerstner_wave_directions[_440], _408) + (params.time * params.gerstner_wave_speeds[_440]);
-            float _479 = ((params.gerstner_steepness / (_74 * max(_1012 * _1013, 9.9999999747524270787835121154785e-07))) * _1013) * _449;
-            float _483 = _1013 * _449;
-            float _486 = sin(_465);
-            float _489 = cos(_465);
-            float _499 = _479 * _489;
-            float _506 = -((_479 * _1012) * _486);
-            vec3 _519 = vec3(_506 * params.gerstner_wave_directions[_440].x, (_483 * _1012) * _489, _506 * params.gerstner_wave_directions[_440].y);
-            _523 = _1013 * params.gerstner_amplitude_gain;
-            _527 = _1012 * params.gerstner_frequency_gain;
-            _539 = _1014 + vec3(_499 * params.gerstner_wave_directions[_440].x, _483 * _486, _499 * params.gerstner_wave_directions[_440].y);
-            _544 = _1015 + (_519 * params.gerstner_wave_directions[_440].x);
-            _549 = _1016 + (_519 * params.gerstner_wave_directions[_440].y);
+            int _438 = clamp(int(_427), 0, 7);
+            float _447 = clamp((-(_1010 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _463 = _1010 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
+            float _477 = ((params.gerstner_steepness / (_71 * max(_1010 * _1011, 9.9999999747524270787835121154785e-07))) * _1011) * _447;
+            float _481 = _1011 * _447;
+            float _484 = sin(_463);
+            float _487 = cos(_463);
+            float _497 = _477 * _487;
+            float _504 = -((_477 * _1010) * _484);
+            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1010) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1011 * params.gerstner_amplitude_gain;
+            _525 = _1010 * params.gerstner_frequency_gain;
+            _537 = _1012 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1013 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1014 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        vec3 _555 = cross(_1016, _1015);
-        float _559 = dot(_555, _555);
-        vec3 _566 = _555 * inversesqrt(max(_559, 1.0000000031710768509710513471353e-30));
-        bvec3 _576 = bvec3(_559 > 1.0000000031710768509710513471353e-30);
-        vec3 _577 = vec3(_576.x ? _566.x : vec3(0.0, 1.0, 0.0).x, _576.y ? _566.y : vec3(0.0, 1.0, 0.0).y, _576.z ? _566.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _587 = (-_577.xz) / vec2(max(_577.y, 9.9999997473787516355514526367188e-05));
-        float _602 = float(_998);
-        bool _603 = _602 < 1.0;
-        float _610 = (_1014.y + dot(_587, _219 - (_408 + _1014.xz))) - _999;
-        float _623 = (-dot(_587, _148)) / _144;
-        float _636 = clamp(1.0 / max(1.0 - _623, 9.9999999747524270787835121154785e-07), _157, 1.0) * _610 + _999;
-        bool _639 = _610 < 0.0;
-        float _644 = _639 ? _999 : _1032;
-        float _649 = _639 ? _1037 : _999;
-        _681 = _603 ? _999 : _644;
-        _686 = _603 ? _1037 : _649;
-        _696 = (_602 < 8.0) ? (_603 ? (_157 * _610 + _999) : ((((_636 < _649) || (_636 > _644)) || (_623 >= 1.0)) ? (0.5 * (_649 + _644)) : _636)) : _999;
+        vec3 _553 = cross(_1014, _1013);
+        float _557 = dot(_553, _553);
+        vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
+        bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
+        vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
+        float _600 = float(_996);
+        bool _601 = _600 < 1.0;
+        float _608 = (_1012.y + dot(_585, _217 - (_406 + _1012.xz))) - _997;
+        float _621 = (-dot(_585, _146)) / _142;
+        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0) * _608 + _997;
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _997 : _1030;
+        float _647 = _637 ? _1035 : _997;
+        _679 = _601 ? _997 : _642;
+        _684 = _601 ? _1035 : _647;
+        _694 = (_600 < 8.0) ? (_601 ? (_155 * _608 + _997) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _997;
     }
-    float _710 = max((_999 - params.eye_position.y) / _164, 0.0);
-    vec3 _717 = params.eye_position + (_60 * _710);
-    float _725 = _33.y;
-    float _728 = _717.y;
-    float _733 = max(_728 - _725, 0.0);
-    vec4 _777 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    vec3 _778 = _777.xyz;
-    float _782 = clamp(max(_53 - _710, 0.0), 0.0, 30000.0);
-    vec4 _839 = (((params.reflection_view_proj_c0 * _717.x) + (params.reflection_view_proj_c1 * _728)) + (params.reflection_view_proj_c2 * _717.z)) + params.reflection_view_proj_c3;
-    float _843 = _839.w;
-    bool _846 = _843 > 9.9999997473787516355514526367188e-05;
-    vec2 _863 = clamp((((_839.xy / vec2(_843)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _869 = bvec2(_846);
-    float _873 = float(_846);
-    vec4 _889 = texture(reflection_map, vec3(vec2(_869.x ? _863.x : vec2(0.5).x, _869.y ? _863.y : vec2(0.5).y), _873).xy);
-    vec3 _1000;
-    if (_873 > 0.5)
+    float _708 = max((_997 - params.eye_position.y) / _162, 0.0);
+    vec3 _715 = params.eye_position + (_60 * _708);
+    float _723 = _33.y;
+    float _726 = _715.y;
+    float _731 = max(_726 - _723, 0.0);
+    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    vec3 _776 = _775.xyz;
+    float _780 = clamp(max(_53 - _708, 0.0), 0.0, 30000.0);
+    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
+    float _841 = _837.w;
+    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
+    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _867 = bvec2(_844);
+    float _871 = float(_844);
+    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
+    vec3 _998;
+    if (_871 > 0.5)
     {
-        _1000 = _889.xyz;
+        _998 = _887.xyz;
     }
     else
     {
-        _1000 = params.sky_color;
+        _998 = params.sky_color;
     }
-    float _919 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _927 = 1.0 - clamp((-_60).y, 0.0, 1.0);
-    float _931 = _927 * _927;
-    vec3 _959 = mix(_778, mix(mix(params.scatter_color, _778 * exp((-params.absorb_coefficients) * (_733 + _782)), vec3(exp((-params.scatter_coefficient) * _782))) * params.incident_light, _1000, vec3(_919 * _919 + (((-_919) * _919 + 1.0) * ((_931 * _931) * _927)))), vec3(clamp(_733 * params.shore_hardness, 0.0, 1.0)));
-    bvec3 _964 = bvec3((_725 < _728) && (_140 < 0.0));
-    out_color = vec4(vec3(_964.x ? _959.x : _26.x, _964.y ? _959.y : _26.y, _964.z ? _959.z : _26.z), 1.0);
+    float _917 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _925 = 1.0 - clamp((-_60).y, 0.0, 1.0);
+    float _929 = _925 * _925;
+    vec3 _957 = mix(_776, mix(mix(params.scatter_color, _776 * exp((-params.absorb_coefficients) * (_731 + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _998, vec3(_917 * _917 + (((-_917) * _917 + 1.0) * ((_929 * _929) * _925)))), vec3(clamp(_731 * params.shore_hardness, 0.0, 1.0)));
+    bvec3 _962 = bvec3((_723 < _726) && (_138 < 0.0));
+    out_color = vec4(vec3(_962.x ? _957.x : _26.x, _962.y ? _957.y : _26.y, _962.z ? _957.z : _26.z), 1.0);
 }
 

@@ -13,6 +13,11 @@
 #define SPIRV_CROSS_LOOP
 #endif
 
+#ifndef SPIRV_CROSS_CONSTANT_ID_0
+#define SPIRV_CROSS_CONSTANT_ID_0 4.0
+#endif
+const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
+
 layout(std140) uniform WaterParams
 {
     vec2 gerstner_wave_directions[8];
@@ -32,11 +37,10 @@ layout(std140) uniform WaterParams
     vec3 sky_color;
     float gerstner_frequency_gain;
     vec3 foam_existence;
-    float gerstner_wave_count;
-    vec3 foam_color;
     float gerstner_steepness;
-    vec2 foam_pattern_drift;
+    vec3 foam_color;
     float refraction_distortion;
+    vec2 foam_pattern_drift;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_fov_extension;
@@ -64,176 +68,173 @@ void main()
     vec3 _63 = dFdx(_60);
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1083;
     float _1085;
-    float _1087;
-    _1087 = 0.0;
     _1085 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1084 = 0;
-    float _1086 = params.gerstner_amplitude;
-    float _1088 = params.gerstner_frequency;
-    SPIRV_CROSS_LOOP
-    for (; _1084 < 8; _1088 = _123, _1087 = _113, _1086 = _118, _1085 = _108, _1084++)
+    _1083 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1082 = 0;
+    float _1084 = params.gerstner_amplitude;
+    float _1086 = params.gerstner_frequency;
+    for (; _1082 < 8; _1086 = _121, _1085 = _111, _1084 = _116, _1083 = _106, _1082++)
     {
-        if (!(float(_1084) < _74))
+        if (!(float(_1082) < _71))
         {
             break;
         }
-        _108 = _1085 + _1086;
-        _113 = _1086 * _1088 + _1087;
-        _118 = _1086 * params.gerstner_amplitude_gain;
-        _123 = _1088 * params.gerstner_frequency_gain;
+        _106 = _1083 + _1084;
+        _111 = _1084 * _1086 + _1085;
+        _116 = _1084 * params.gerstner_amplitude_gain;
+        _121 = _1086 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = max(-_140, 9.9999999747524270787835121154785e-07);
-    vec2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1087 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1085;
-    float _164 = min(_140, -9.9999999747524270787835121154785e-07);
-    float _1092;
-    vec2 _1097;
-    _1097 = (params.eye_position + (_60 * max((_1085 - params.eye_position.y) / _164, 0.0))).xz;
-    _1092 = _1085;
-    vec2 _408;
-    float _681;
-    float _686;
-    float _696;
-    int _1091 = 0;
-    float _1125 = _1085;
-    float _1130 = _160;
+    float _138 = _60.y;
+    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
+    vec2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1085 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1083;
+    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _1090;
+    vec2 _1095;
+    _1095 = (params.eye_position + (_60 * max((_1083 - params.eye_position.y) / _162, 0.0))).xz;
+    _1090 = _1083;
+    vec2 _406;
+    float _679;
+    float _684;
+    float _694;
+    int _1089 = 0;
+    float _1123 = _1083;
+    float _1128 = _158;
     SPIRV_CROSS_LOOP
-    for (; _1091 < 9; _1130 = _686, _1125 = _681, _1097 = _408, _1092 = _696, _1091++)
+    for (; _1089 < 9; _1128 = _684, _1123 = _679, _1095 = _406, _1090 = _694, _1089++)
     {
-        float _209 = max((_1092 - params.eye_position.y) / _164, 0.0);
-        vec2 _219 = (params.eye_position + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        vec2 _1099;
-        vec3 _1100;
-        _1100 = vec3(0.0);
-        _1099 = vec2(0.0);
-        float _325;
-        float _329;
-        vec2 _336;
-        vec3 _350;
-        int _1094 = 0;
-        float _1095 = params.gerstner_frequency;
-        float _1098 = params.gerstner_amplitude;
-        SPIRV_CROSS_LOOP
-        for (; _1094 < 8; _1100 = _350, _1099 = _336, _1098 = _325, _1095 = _329, _1094++)
+        float _207 = max((_1090 - params.eye_position.y) / _162, 0.0);
+        vec2 _217 = (params.eye_position + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        vec2 _1097;
+        vec3 _1098;
+        _1098 = vec3(0.0);
+        _1097 = vec2(0.0);
+        float _323;
+        float _327;
+        vec2 _334;
+        vec3 _348;
+        int _1092 = 0;
+        float _1093 = params.gerstner_frequency;
+        float _1096 = params.gerstner_amplitude;
+        for (; _1092 < 8; _1098 = _348, _1097 = _334, _1096 = _323, _1093 = _327, _1092++)
         {
-            float _244 = float(_1094);
-            if (!(_244 < _74))
+            float _242 = float(_1092);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _256 = clamp(int(_244), 0, 7);
-            float _284 = _1095 * dot(params.gerstner_wave_directions[_256], _1097) + (params.time * params.gerstner_wave_speeds[_256]);
-            float _298 = ((params.gerstner_steepness / (_74 * max(_1095 * _1098, 9.9999999747524270787835121154785e-07))) * _1098) * clamp((-(_1095 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _317 = (_298 * _1095) * sin(_284);
-            float _321 = _317 * params.gerstner_wave_directions[_256].x;
-            _325 = _1098 * params.gerstner_amplitude_gain;
-            _329 = _1095 * params.gerstner_frequency_gain;
-            _336 = _1099 + (params.gerstner_wave_directions[_256] * (_298 * cos(_284)));
-            _350 = _1100 + vec3(_321 * params.gerstner_wave_directions[_256].x, _321 * params.gerstner_wave_directions[_256].y, (_317 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+            int _254 = clamp(int(_242), 0, 7);
+            float _282 = _1093 * dot(params.gerstner_wave_directions[_254], _1095) + (params.time * params.gerstner_wave_speeds[_254]);
+            float _296 = ((params.gerstner_steepness / (_71 * max(_1093 * _1096, 9.9999999747524270787835121154785e-07))) * _1096) * clamp((-(_1093 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _315 = (_296 * _1093) * sin(_282);
+            float _319 = _315 * params.gerstner_wave_directions[_254].x;
+            _323 = _1096 * params.gerstner_amplitude_gain;
+            _327 = _1093 * params.gerstner_frequency_gain;
+            _334 = _1097 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
+            _348 = _1098 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
         }
-        float _356 = 1.0 - _1100.x;
-        float _361 = 1.0 - _1100.z;
-        float _365 = -_1100.y;
-        vec2 _371 = (_1097 + _1099) - _219;
-        float _384 = _371.x;
-        float _387 = _371.y;
-        _408 = _1097 - (vec2(_361 * _384 + (-(_365 * _387)), _356 * _387 + (-(_365 * _384))) / vec2(max(_356 * _361 + (-(_365 * _365)), 0.039999999105930328369140625)));
+        float _354 = 1.0 - _1098.x;
+        float _359 = 1.0 - _1098.z;
+        float _363 = -_1098.y;
+        vec2 _369 = (_1095 + _1097) - _217;
+        float _382 = _369.x;
+        float _385 = _369.y;
+        _406 = _1095 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
+        vec3 _1105;
+        vec3 _1106;
         vec3 _1107;
-        vec3 _1108;
-        vec3 _1109;
-        _1109 = vec3(0.0, 0.0, 1.0);
-        _1108 = vec3(1.0, 0.0, 0.0);
-        _1107 = vec3(0.0);
-        float _523;
-        float _527;
-        vec3 _539;
-        vec3 _544;
-        vec3 _549;
-        int _1104 = 0;
-        float _1105 = params.gerstner_frequency;
-        float _1106 = params.gerstner_amplitude;
-        SPIRV_CROSS_LOOP
-        for (; _1104 < 8; _1109 = _549, _1108 = _544, _1107 = _539, _1106 = _523, _1105 = _527, _1104++)
+        _1107 = vec3(0.0, 0.0, 1.0);
+        _1106 = vec3(1.0, 0.0, 0.0);
+        _1105 = vec3(0.0);
+        float _521;
+        float _525;
+        vec3 _537;
+        vec3 _542;
+        vec3 _547;
+        int _1102 = 0;
+        float _1103 = params.gerstner_frequency;
+        float _1104 = params.gerstner_amplitude;
+        for (; _1102 < 8; _1107 = _547, _1106 = _542, _1105 = _537, _1104 = _521, _1103 = _525, _1102++)
         {
-            float _429 = float(_1104);
-            if (!(_429 < _74))
+            float _427 = float(_1102);
+            if (!(_427 < _71))
             {
                 break;
             }
-            int _440 = clamp(int(_429), 0, 7);
-            float _449 = clamp((-(_1105 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _465 = _1105 * dot(params.gerstner_wave_directions[_440], _408) + (params.time * params.gerstner_wave_speeds[_440]);
-            float _479 = ((params.gerstner_steepness / (_74 * max(_1105 * _1106, 9.9999999747524270787835121154785e-07))) * _1106) * _449;
-            float _483 = _1106 * _449;
-            float _486 = sin(_465);
-            float _489 = cos(_465);
-            float _499 = _479 * _489;
-            float _506 = -((_479 * _1105) * _486);
-            vec3 _519 = vec3(_506 * params.gerstner_wave_directions[_440].x, (_483 * _1105) * _489, _506 * params.gerstner_wave_directions[_440].y);
-            _523 = _1106 * params.gerstner_amplitude_gain;
-            _527 = _1105 * params.gerstner_frequency_gain;
-            _539 = _1107 + vec3(_499 * params.gerstner_wave_directions[_440].x, _483 * _486, _499 * params.gerstner_wave_directions[_440].y);
-            _544 = _1108 + (_519 * params.gerstner_wave_directions[_440].x);
-            _549 = _1109 + (_519 * params.gerstner_wave_directions[_440].y);
+            int _438 = clamp(int(_427), 0, 7);
+            float _447 = clamp((-(_1103 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _463 = _1103 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
+            float _477 = ((params.gerstner_steepness / (_71 * max(_1103 * _1104, 9.9999999747524270787835121154785e-07))) * _1104) * _447;
+            float _481 = _1104 * _447;
+            float _484 = sin(_463);
+            float _487 = cos(_463);
+            float _497 = _477 * _487;
+            float _504 = -((_477 * _1103) * _484);
+            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1103) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1104 * params.gerstner_amplitude_gain;
+            _525 = _1103 * params.gerstner_frequency_gain;
+            _537 = _1105 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1106 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1107 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        vec3 _555 = cross(_1109, _1108);
-        float _559 = dot(_555, _555);
-        vec3 _566 = _555 * inversesqrt(max(_559, 1.0000000031710768509710513471353e-30));
-        bvec3 _576 = bvec3(_559 > 1.0000000031710768509710513471353e-30);
-        vec3 _577 = vec3(_576.x ? _566.x : vec3(0.0, 1.0, 0.0).x, _576.y ? _566.y : vec3(0.0, 1.0, 0.0).y, _576.z ? _566.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _587 = (-_577.xz) / vec2(max(_577.y, 9.9999997473787516355514526367188e-05));
-        float _602 = float(_1091);
-        bool _603 = _602 < 1.0;
-        float _610 = (_1107.y + dot(_587, _219 - (_408 + _1107.xz))) - _1092;
-        float _623 = (-dot(_587, _148)) / _144;
-        float _636 = clamp(1.0 / max(1.0 - _623, 9.9999999747524270787835121154785e-07), _157, 1.0) * _610 + _1092;
-        bool _639 = _610 < 0.0;
-        float _644 = _639 ? _1092 : _1125;
-        float _649 = _639 ? _1130 : _1092;
-        _681 = _603 ? _1092 : _644;
-        _686 = _603 ? _1130 : _649;
-        _696 = (_602 < 8.0) ? (_603 ? (_157 * _610 + _1092) : ((((_636 < _649) || (_636 > _644)) || (_623 >= 1.0)) ? (0.5 * (_649 + _644)) : _636)) : _1092;
+        vec3 _553 = cross(_1107, _1106);
+        float _557 = dot(_553, _553);
+        vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
+        bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
+        vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
+        float _600 = float(_1089);
+        bool _601 = _600 < 1.0;
+        float _608 = (_1105.y + dot(_585, _217 - (_406 + _1105.xz))) - _1090;
+        float _621 = (-dot(_585, _146)) / _142;
+        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0) * _608 + _1090;
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1090 : _1123;
+        float _647 = _637 ? _1128 : _1090;
+        _679 = _601 ? _1090 : _642;
+        _684 = _601 ? _1128 : _647;
+        _694 = (_600 < 8.0) ? (_601 ? (_155 * _608 + _1090) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1090;
     }
-    float _710 = max((_1092 - params.eye_position.y) / _164, 0.0);
-    vec3 _717 = params.eye_position + (_60 * _710);
-    float _725 = _33.y;
-    float _728 = _717.y;
-    float _733 = max(_728 - _725, 0.0);
-    vec4 _777 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    float _782 = clamp(max(_53 - _710, 0.0), 0.0, 30000.0);
-    vec4 _839 = (((params.reflection_view_proj_c0 * _717.x) + (params.reflection_view_proj_c1 * _728)) + (params.reflection_view_proj_c2 * _717.z)) + params.reflection_view_proj_c3;
-    float _843 = _839.w;
-    bool _846 = _843 > 9.9999997473787516355514526367188e-05;
-    vec2 _863 = clamp((((_839.xy / vec2(_843)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _869 = bvec2(_846);
-    float _873 = float(_846);
-    vec4 _889 = texture(reflection_map, vec3(vec2(_869.x ? _863.x : vec2(0.5).x, _869.y ? _863.y : vec2(0.5).y), _873).xy);
-    vec3 _1093;
-    if (_873 > 0.5)
+    float _708 = max((_1090 - params.eye_position.y) / _162, 0.0);
+    vec3 _715 = params.eye_position + (_60 * _708);
+    float _723 = _33.y;
+    float _726 = _715.y;
+    float _731 = max(_726 - _723, 0.0);
+    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    float _780 = clamp(max(_53 - _708, 0.0), 0.0, 30000.0);
+    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
+    float _841 = _837.w;
+    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
+    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _867 = bvec2(_844);
+    float _871 = float(_844);
+    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
+    vec3 _1091;
+    if (_871 > 0.5)
     {
-        _1093 = _889.xyz;
+        _1091 = _887.xyz;
     }
     else
     {
-        _1093 = params.sky_color;
+        _1091 = params.sky_color;
     }
-    float _919 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _927 = 1.0 - clamp((-_60).y, 0.0, 1.0);
-    float _931 = _927 * _927;
-    vec2 _951 = _717.xz;
-    float _1012 = _733 - params.foam_existence.x;
-    float _1017 = params.foam_existence.y - params.foam_existence.x;
-    vec3 _1052 = mix(mix(mix(params.scatter_color, _777.xyz * exp((-params.absorb_coefficients) * (_733 + _782)), vec3(exp((-params.scatter_coefficient) * _782))) * params.incident_light, _1093, vec3(_919 * _919 + (((-_919) * _919 + 1.0) * ((_931 * _931) * _927)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_951 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_951)), length(dFdy(_951))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1012 < 0.0) ? 1.0 : (1.0 - ((_1012 >= _1017) ? 1.0 : clamp(_1012 / max(_1017, 5.9604644775390625e-08), 0.0, 1.0)))));
-    bvec3 _1057 = bvec3((_725 < _728) && (_140 < 0.0));
-    out_color = vec4(vec3(_1057.x ? _1052.x : _26.x, _1057.y ? _1052.y : _26.y, _1057.z ? _1052.z : _26.z), 1.0);
+    float _917 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _925 = 1.0 - clamp((-_60).y, 0.0, 1.0);
+    float _929 = _925 * _925;
+    vec2 _949 = _715.xz;
+    float _1010 = _731 - params.foam_existence.x;
+    float _1015 = params.foam_existence.y - params.foam_existence.x;
+    vec3 _1050 = mix(mix(mix(params.scatter_color, _775.xyz * exp((-params.absorb_coefficients) * (_731 + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _1091, vec3(_917 * _917 + (((-_917) * _917 + 1.0) * ((_929 * _929) * _925)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_949 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_949)), length(dFdy(_949))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1010 < 0.0) ? 1.0 : (1.0 - ((_1010 >= _1015) ? 1.0 : clamp(_1010 / max(_1015, 5.9604644775390625e-08), 0.0, 1.0)))));
+    bvec3 _1055 = bvec3((_723 < _726) && (_138 < 0.0));
+    out_color = vec4(vec3(_1055.x ? _1050.x : _26.x, _1055.y ? _1050.y : _26.y, _1055.z ? _1050.z : _26.z), 1.0);
 }
 

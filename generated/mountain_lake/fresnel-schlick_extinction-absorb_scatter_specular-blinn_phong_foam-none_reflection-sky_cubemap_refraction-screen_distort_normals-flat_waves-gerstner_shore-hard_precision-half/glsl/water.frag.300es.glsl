@@ -3,6 +3,11 @@
 precision highp float;
 precision highp int;
 
+#ifndef SPIRV_CROSS_CONSTANT_ID_0
+#define SPIRV_CROSS_CONSTANT_ID_0 4.0
+#endif
+const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
+
 layout(std140) uniform WaterParams
 {
     vec2 gerstner_wave_directions[8];
@@ -16,11 +21,10 @@ layout(std140) uniform WaterParams
     vec3 absorb_coefficients;
     float gerstner_frequency_gain;
     vec3 scatter_color;
-    float gerstner_wave_count;
-    vec3 incident_light;
     float gerstner_steepness;
-    vec3 reflection_lower_tint;
+    vec3 incident_light;
     float refraction_distortion;
+    vec3 reflection_lower_tint;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -47,185 +51,185 @@ void main()
     vec3 _63 = dFdx(_60);
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1075;
     float _1077;
-    float _1079;
-    _1079 = 0.0;
     _1077 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1076 = 0;
-    float _1078 = params.gerstner_amplitude;
-    float _1080 = params.gerstner_frequency;
-    for (; _1076 < 8; _1080 = _123, _1079 = _113, _1078 = _118, _1077 = _108, _1076++)
+    _1075 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1074 = 0;
+    float _1076 = params.gerstner_amplitude;
+    float _1078 = params.gerstner_frequency;
+    for (; _1074 < 8; _1078 = _121, _1077 = _111, _1076 = _116, _1075 = _106, _1074++)
     {
-        if (!(float(_1076) < _74))
+        if (!(float(_1074) < _71))
         {
             break;
         }
-        _108 = _1077 + _1078;
-        _113 = _1078 * _1080 + _1079;
-        _118 = _1078 * params.gerstner_amplitude_gain;
-        _123 = _1080 * params.gerstner_frequency_gain;
+        _106 = _1075 + _1076;
+        _111 = _1076 * _1078 + _1077;
+        _116 = _1076 * params.gerstner_amplitude_gain;
+        _121 = _1078 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = max(-_140, 9.9999999747524270787835121154785e-07);
-    vec2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1079 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1077;
-    float _164 = min(_140, -9.9999999747524270787835121154785e-07);
-    float _1084;
-    vec2 _1088;
-    _1088 = (params.eye_position + (_60 * max((_1077 - params.eye_position.y) / _164, 0.0))).xz;
-    _1084 = _1077;
-    vec2 _405;
-    float _676;
-    float _681;
-    float _691;
-    int _1083 = 0;
-    float _1116 = _1077;
-    float _1121 = _160;
-    for (; _1083 < 9; _1121 = _681, _1116 = _676, _1088 = _405, _1084 = _691, _1083++)
+    float _138 = _60.y;
+    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
+    vec2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1077 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1075;
+    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _1082;
+    vec2 _1086;
+    _1086 = (params.eye_position + (_60 * max((_1075 - params.eye_position.y) / _162, 0.0))).xz;
+    _1082 = _1075;
+    vec2 _403;
+    float _674;
+    float _679;
+    float _689;
+    int _1081 = 0;
+    float _1114 = _1075;
+    float _1119 = _158;
+    for (; _1081 < 9; _1119 = _679, _1114 = _674, _1086 = _403, _1082 = _689, _1081++)
     {
-        float _209 = max((_1084 - params.eye_position.y) / _164, 0.0);
-        vec2 _219 = (params.eye_position + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        vec2 _1090;
-        vec3 _1091;
-        _1091 = vec3(0.0);
-        _1090 = vec2(0.0);
-        float _322;
-        float _326;
-        vec2 _333;
-        vec3 _347;
-        int _1085 = 0;
-        float _1086 = params.gerstner_frequency;
-        float _1089 = params.gerstner_amplitude;
-        for (; _1085 < 8; _1091 = _347, _1090 = _333, _1089 = _322, _1086 = _326, _1085++)
+        float _207 = max((_1082 - params.eye_position.y) / _162, 0.0);
+        vec2 _217 = (params.eye_position + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        vec2 _1088;
+        vec3 _1089;
+        _1089 = vec3(0.0);
+        _1088 = vec2(0.0);
+        float _320;
+        float _324;
+        vec2 _331;
+        vec3 _345;
+        int _1083 = 0;
+        float _1084 = params.gerstner_frequency;
+        float _1087 = params.gerstner_amplitude;
+        for (; _1083 < 8; _1089 = _345, _1088 = _331, _1087 = _320, _1084 = _324, _1083++)
         {
-            float _244 = float(_1085);
-            if (!(_244 < _74))
+            float _242 = float(_1083);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _255 = clamp(int(_244), 0, 7);
-            float _273 = _1086 * dot(params.gerstner_wave_directions[_255], _1088);
-            float _295 = ((params.gerstner_steepness / (_74 * max(_1086 * _1089, 9.9999999747524270787835121154785e-07))) * _1089) * clamp((-(_1086 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _314 = (_295 * _1086) * sin(_273);
-            float _318 = _314 * params.gerstner_wave_directions[_255].x;
-            _322 = _1089 * params.gerstner_amplitude_gain;
-            _326 = _1086 * params.gerstner_frequency_gain;
-            _333 = _1090 + (params.gerstner_wave_directions[_255] * (_295 * cos(_273)));
-            _347 = _1091 + vec3(_318 * params.gerstner_wave_directions[_255].x, _318 * params.gerstner_wave_directions[_255].y, (_314 * params.gerstner_wave_directions[_255].y) * params.gerstner_wave_directions[_255].y);
+            int _253 = clamp(int(_242), 0, 7);
+            float _271 = _1084 * dot(params.gerstner_wave_directions[_253], _1086);
+            float _293 = ((params.gerstner_steepness / (_71 * max(_1084 * _1087, 9.9999999747524270787835121154785e-07))) * _1087) * clamp((-(_1084 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _312 = (_293 * _1084) * sin(_271);
+            float _316 = _312 * params.gerstner_wave_directions[_253].x;
+            _320 = _1087 * params.gerstner_amplitude_gain;
+            _324 = _1084 * params.gerstner_frequency_gain;
+            _331 = _1088 + (params.gerstner_wave_directions[_253] * (_293 * cos(_271)));
+            _345 = _1089 + vec3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _353 = 1.0 - _1091.x;
-        float _358 = 1.0 - _1091.z;
-        float _362 = -_1091.y;
-        vec2 _368 = (_1088 + _1090) - _219;
-        float _381 = _368.x;
-        float _384 = _368.y;
-        _405 = _1088 - (vec2(_358 * _381 + (-(_362 * _384)), _353 * _384 + (-(_362 * _381))) / vec2(max(_353 * _358 + (-(_362 * _362)), 0.039999999105930328369140625)));
+        float _351 = 1.0 - _1089.x;
+        float _356 = 1.0 - _1089.z;
+        float _360 = -_1089.y;
+        vec2 _366 = (_1086 + _1088) - _217;
+        float _379 = _366.x;
+        float _382 = _366.y;
+        _403 = _1086 - (vec2(_356 * _379 + (-(_360 * _382)), _351 * _382 + (-(_360 * _379))) / vec2(max(_351 * _356 + (-(_360 * _360)), 0.039999999105930328369140625)));
+        vec3 _1096;
+        vec3 _1097;
         vec3 _1098;
-        vec3 _1099;
-        vec3 _1100;
-        _1100 = vec3(0.0, 0.0, 1.0);
-        _1099 = vec3(1.0, 0.0, 0.0);
-        _1098 = vec3(0.0);
-        float _518;
-        float _522;
-        vec3 _534;
-        vec3 _539;
-        vec3 _544;
-        int _1095 = 0;
-        float _1096 = params.gerstner_frequency;
-        float _1097 = params.gerstner_amplitude;
-        for (; _1095 < 8; _1100 = _544, _1099 = _539, _1098 = _534, _1097 = _518, _1096 = _522, _1095++)
+        _1098 = vec3(0.0, 0.0, 1.0);
+        _1097 = vec3(1.0, 0.0, 0.0);
+        _1096 = vec3(0.0);
+        float _516;
+        float _520;
+        vec3 _532;
+        vec3 _537;
+        vec3 _542;
+        int _1093 = 0;
+        float _1094 = params.gerstner_frequency;
+        float _1095 = params.gerstner_amplitude;
+        for (; _1093 < 8; _1098 = _542, _1097 = _537, _1096 = _532, _1095 = _516, _1094 = _520, _1093++)
         {
-            float _426 = float(_1095);
-            if (!(_426 < _74))
+            float _424 = float(_1093);
+            if (!(_424 < _71))
             {
                 break;
             }
-            int _437 = clamp(int(_426), 0, 7);
-            float _446 = clamp((-(_1096 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _452 = _1096 * dot(params.gerstner_wave_directions[_437], _405);
-            float _474 = ((params.gerstner_steepness / (_74 * max(_1096 * _1097, 9.9999999747524270787835121154785e-07))) * _1097) * _446;
-            float _478 = _1097 * _446;
-            float _481 = sin(_452);
-            float _484 = cos(_452);
-            float _494 = _474 * _484;
-            float _501 = -((_474 * _1096) * _481);
-            vec3 _514 = vec3(_501 * params.gerstner_wave_directions[_437].x, (_478 * _1096) * _484, _501 * params.gerstner_wave_directions[_437].y);
-            _518 = _1097 * params.gerstner_amplitude_gain;
-            _522 = _1096 * params.gerstner_frequency_gain;
-            _534 = _1098 + vec3(_494 * params.gerstner_wave_directions[_437].x, _478 * _481, _494 * params.gerstner_wave_directions[_437].y);
-            _539 = _1099 + (_514 * params.gerstner_wave_directions[_437].x);
-            _544 = _1100 + (_514 * params.gerstner_wave_directions[_437].y);
+            int _435 = clamp(int(_424), 0, 7);
+            float _444 = clamp((-(_1094 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _450 = _1094 * dot(params.gerstner_wave_directions[_435], _403);
+            float _472 = ((params.gerstner_steepness / (_71 * max(_1094 * _1095, 9.9999999747524270787835121154785e-07))) * _1095) * _444;
+            float _476 = _1095 * _444;
+            float _479 = sin(_450);
+            float _482 = cos(_450);
+            float _492 = _472 * _482;
+            float _499 = -((_472 * _1094) * _479);
+            vec3 _512 = vec3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1094) * _482, _499 * params.gerstner_wave_directions[_435].y);
+            _516 = _1095 * params.gerstner_amplitude_gain;
+            _520 = _1094 * params.gerstner_frequency_gain;
+            _532 = _1096 + vec3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
+            _537 = _1097 + (_512 * params.gerstner_wave_directions[_435].x);
+            _542 = _1098 + (_512 * params.gerstner_wave_directions[_435].y);
         }
-        vec3 _550 = cross(_1100, _1099);
-        float _554 = dot(_550, _550);
-        vec3 _561 = _550 * inversesqrt(max(_554, 1.0000000031710768509710513471353e-30));
-        bvec3 _571 = bvec3(_554 > 1.0000000031710768509710513471353e-30);
-        vec3 _572 = vec3(_571.x ? _561.x : vec3(0.0, 1.0, 0.0).x, _571.y ? _561.y : vec3(0.0, 1.0, 0.0).y, _571.z ? _561.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _582 = (-_572.xz) / vec2(max(_572.y, 9.9999997473787516355514526367188e-05));
-        float _597 = float(_1083);
-        bool _598 = _597 < 1.0;
-        float _605 = (_1098.y + dot(_582, _219 - (_405 + _1098.xz))) - _1084;
-        float _618 = (-dot(_582, _148)) / _144;
-        float _631 = clamp(1.0 / max(1.0 - _618, 9.9999999747524270787835121154785e-07), _157, 1.0) * _605 + _1084;
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1084 : _1116;
-        float _644 = _634 ? _1121 : _1084;
-        _676 = _598 ? _1084 : _639;
-        _681 = _598 ? _1121 : _644;
-        _691 = (_597 < 8.0) ? (_598 ? (_157 * _605 + _1084) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1084;
+        vec3 _548 = cross(_1098, _1097);
+        float _552 = dot(_548, _548);
+        vec3 _559 = _548 * inversesqrt(max(_552, 1.0000000031710768509710513471353e-30));
+        bvec3 _569 = bvec3(_552 > 1.0000000031710768509710513471353e-30);
+        vec3 _570 = vec3(_569.x ? _559.x : vec3(0.0, 1.0, 0.0).x, _569.y ? _559.y : vec3(0.0, 1.0, 0.0).y, _569.z ? _559.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _580 = (-_570.xz) / vec2(max(_570.y, 9.9999997473787516355514526367188e-05));
+        float _595 = float(_1081);
+        bool _596 = _595 < 1.0;
+        float _603 = (_1096.y + dot(_580, _217 - (_403 + _1096.xz))) - _1082;
+        float _616 = (-dot(_580, _146)) / _142;
+        float _629 = clamp(1.0 / max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0) * _603 + _1082;
+        bool _632 = _603 < 0.0;
+        float _637 = _632 ? _1082 : _1114;
+        float _642 = _632 ? _1119 : _1082;
+        _674 = _596 ? _1082 : _637;
+        _679 = _596 ? _1119 : _642;
+        _689 = (_595 < 8.0) ? (_596 ? (_155 * _603 + _1082) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1082;
     }
-    float _705 = max((_1084 - params.eye_position.y) / _164, 0.0);
-    vec3 _712 = params.eye_position + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    vec3 _738 = -_60;
-    float _779 = clamp(max(_53 - _705, 0.0), 0.0, 30000.0);
-    vec3 _788 = exp((-params.absorb_coefficients) * (max(_723 - _720, 0.0) + _779));
-    mediump vec3 mp_copy_788 = _788;
-    vec3 _810 = mix(params.scatter_color, texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0))).xyz * mp_copy_788, vec3(exp((-params.scatter_coefficient) * _779))) * params.incident_light;
-    mediump vec3 mp_copy_810 = _810;
-    vec3 _813 = abs(_60);
-    vec3 _826 = _60 / vec3(max(max(max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
-    mediump vec3 mp_copy_826 = _826;
-    mediump float _830 = dot(_826, _826);
-    mediump vec3 _836 = mp_copy_826 * inversesqrt(max(_830, 1.0000000031710768509710513471353e-30));
-    bvec3 _845 = bvec3(_830 > 1.0000000031710768509710513471353e-30);
-    vec3 _846 = vec3(_845.x ? _836.x : vec3(0.0, -1.0, 0.0).x, _845.y ? _836.y : vec3(0.0, -1.0, 0.0).y, _845.z ? _836.z : vec3(0.0, -1.0, 0.0).z);
-    mediump vec3 mp_copy_846 = _846;
-    mediump vec3 _849 = reflect(mp_copy_846, vec3(0.0, 1.0, 0.0));
-    mediump float _852 = _849.y;
-    mediump vec3 _860 = vec3(_849.x, abs(_852), _849.z);
-    bvec3 _870 = bvec3(dot(_849, _849) > 9.9999999600419720025001879548654e-13);
-    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
-    vec3 _910 = texture(sky_cube, vec4(vec3(_870.x ? _860.x : vec3(0.0, 1.0, 0.0).x, _870.y ? _860.y : vec3(0.0, 1.0, 0.0).y, _870.z ? _860.z : vec3(0.0, 1.0, 0.0).z), _878).xyz).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(_878));
-    mediump vec3 mp_copy_910 = _910;
-    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float mp_copy_924 = _924;
-    float _932 = 1.0 - clamp(_738.y, 0.0, 1.0);
-    mediump float mp_copy_932 = _932;
-    mediump float _936 = mp_copy_932 * mp_copy_932;
-    float _1125 = -_924;
-    mediump float mp_copy_1125 = _1125;
-    vec3 _952 = -params.sun_direction;
-    vec3 _956 = _952 + _738;
-    mediump vec3 mp_copy_956 = _956;
-    mediump float _968 = max(max(abs(_956.x), abs(_956.y)), abs(_956.z));
-    mediump vec3 _975 = mp_copy_956 / vec3(max(_968, 5.9604644775390625e-08));
-    mediump vec3 _982 = _975 / vec3(max(length(_975), 1.0));
-    bvec3 _989 = bvec3(_968 > 5.9604644775390625e-08);
-    mediump float _994 = clamp(vec3(_989.x ? _982.x : vec3(0.0).x, _989.y ? _982.y : vec3(0.0).y, _989.z ? _982.z : vec3(0.0).z).y, 0.0, 1.0);
-    vec3 _1029 = params.sun_color * ((_952.y > 0.0) ? ((_994 > 6.103515625e-05) ? pow(max(_994, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0);
-    mediump vec3 mp_copy_1029 = _1029;
-    mediump vec3 _1037 = mix(mp_copy_810, mp_copy_910, vec3(mp_copy_924 * mp_copy_924 + ((mp_copy_1125 * mp_copy_924 + 1.0) * ((_936 * _936) * mp_copy_932)))) + mp_copy_1029;
-    bvec3 _1042 = bvec3((_720 < _723) && (_140 < 0.0));
-    out_color = vec4(vec3(_1042.x ? _1037.x : _26.x, _1042.y ? _1037.y : _26.y, _1042.z ? _1037.z : _26.z), 1.0);
+    float _703 = max((_1082 - params.eye_position.y) / _162, 0.0);
+    vec3 _710 = params.eye_position + (_60 * _703);
+    float _718 = _33.y;
+    float _721 = _710.y;
+    vec3 _736 = -_60;
+    float _777 = clamp(max(_53 - _703, 0.0), 0.0, 30000.0);
+    vec3 _786 = exp((-params.absorb_coefficients) * (max(_721 - _718, 0.0) + _777));
+    mediump vec3 mp_copy_786 = _786;
+    vec3 _808 = mix(params.scatter_color, texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0))).xyz * mp_copy_786, vec3(exp((-params.scatter_coefficient) * _777))) * params.incident_light;
+    mediump vec3 mp_copy_808 = _808;
+    vec3 _811 = abs(_60);
+    vec3 _824 = _60 / vec3(max(max(max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
+    mediump vec3 mp_copy_824 = _824;
+    mediump float _828 = dot(_824, _824);
+    mediump vec3 _834 = mp_copy_824 * inversesqrt(max(_828, 1.0000000031710768509710513471353e-30));
+    bvec3 _843 = bvec3(_828 > 1.0000000031710768509710513471353e-30);
+    vec3 _844 = vec3(_843.x ? _834.x : vec3(0.0, -1.0, 0.0).x, _843.y ? _834.y : vec3(0.0, -1.0, 0.0).y, _843.z ? _834.z : vec3(0.0, -1.0, 0.0).z);
+    mediump vec3 mp_copy_844 = _844;
+    mediump vec3 _847 = reflect(mp_copy_844, vec3(0.0, 1.0, 0.0));
+    mediump float _850 = _847.y;
+    mediump vec3 _858 = vec3(_847.x, abs(_850), _847.z);
+    bvec3 _868 = bvec3(dot(_847, _847) > 9.9999999600419720025001879548654e-13);
+    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
+    vec3 _908 = texture(sky_cube, vec4(vec3(_868.x ? _858.x : vec3(0.0, 1.0, 0.0).x, _868.y ? _858.y : vec3(0.0, 1.0, 0.0).y, _868.z ? _858.z : vec3(0.0, 1.0, 0.0).z), _876).xyz).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(_876));
+    mediump vec3 mp_copy_908 = _908;
+    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float mp_copy_922 = _922;
+    float _930 = 1.0 - clamp(_736.y, 0.0, 1.0);
+    mediump float mp_copy_930 = _930;
+    mediump float _934 = mp_copy_930 * mp_copy_930;
+    float _1123 = -_922;
+    mediump float mp_copy_1123 = _1123;
+    vec3 _950 = -params.sun_direction;
+    vec3 _954 = _950 + _736;
+    mediump vec3 mp_copy_954 = _954;
+    mediump float _966 = max(max(abs(_954.x), abs(_954.y)), abs(_954.z));
+    mediump vec3 _973 = mp_copy_954 / vec3(max(_966, 5.9604644775390625e-08));
+    mediump vec3 _980 = _973 / vec3(max(length(_973), 1.0));
+    bvec3 _987 = bvec3(_966 > 5.9604644775390625e-08);
+    mediump float _992 = clamp(vec3(_987.x ? _980.x : vec3(0.0).x, _987.y ? _980.y : vec3(0.0).y, _987.z ? _980.z : vec3(0.0).z).y, 0.0, 1.0);
+    vec3 _1027 = params.sun_color * ((_950.y > 0.0) ? ((_992 > 6.103515625e-05) ? pow(max(_992, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0);
+    mediump vec3 mp_copy_1027 = _1027;
+    mediump vec3 _1035 = mix(mp_copy_808, mp_copy_908, vec3(mp_copy_922 * mp_copy_922 + ((mp_copy_1123 * mp_copy_922 + 1.0) * ((_934 * _934) * mp_copy_930)))) + mp_copy_1027;
+    bvec3 _1040 = bvec3((_718 < _721) && (_138 < 0.0));
+    out_color = vec4(vec3(_1040.x ? _1035.x : _26.x, _1040.y ? _1035.y : _26.y, _1040.z ? _1035.z : _26.z), 1.0);
 }
 

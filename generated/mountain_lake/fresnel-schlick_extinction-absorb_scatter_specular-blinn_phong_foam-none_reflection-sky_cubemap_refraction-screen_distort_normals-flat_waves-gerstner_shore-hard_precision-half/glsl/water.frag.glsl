@@ -14,18 +14,18 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 304) vec3 absorb_coefficients;
     layout(offset = 316) float gerstner_frequency_gain;
     layout(offset = 320) vec3 scatter_color;
-    layout(offset = 332) float gerstner_wave_count;
+    layout(offset = 332) float gerstner_steepness;
     layout(offset = 336) vec3 incident_light;
-    layout(offset = 348) float gerstner_steepness;
+    layout(offset = 348) float refraction_distortion;
     layout(offset = 352) vec3 reflection_lower_tint;
-    layout(offset = 364) float refraction_distortion;
-    layout(offset = 368) float refraction_shore_fade_depth;
-    layout(offset = 372) float scatter_coefficient;
-    layout(offset = 376) float reflection_horizon_band;
-    layout(offset = 380) float ior_air;
-    layout(offset = 384) float ior_water;
-    layout(offset = 388) float specular_exponent;
+    layout(offset = 364) float refraction_shore_fade_depth;
+    layout(offset = 368) float scatter_coefficient;
+    layout(offset = 372) float reflection_horizon_band;
+    layout(offset = 376) float ior_air;
+    layout(offset = 380) float ior_water;
+    layout(offset = 384) float specular_exponent;
 } params;
+layout(constant_id = 0) const float gerstner_wave_count = 4.0;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
 layout(set = 0, binding = 3) uniform texture2D scene_position;
@@ -43,12 +43,12 @@ void main() {
 
     // waves.gerstner
     float pixel_angle = max(length(dFdx(view_ray)), length(dFdy(view_ray)));
-    float trip_count = floor(params.gerstner_wave_count);
+    float trip_count = floor(gerstner_wave_count);
     float loop28_c0 = params.gerstner_amplitude;
     float loop28_c1 = params.gerstner_frequency;
     float loop28_c2 = 0.0;
     float loop28_c3 = 0.0;
-    [[dont_unroll]] for (int loop28_i = 0; loop28_i < 8; ++loop28_i) {
+    for (int loop28_i = 0; loop28_i < 8; ++loop28_i) {
         if (!(float(loop28_i) < trip_count)) break;
         loop28_c2 = loop28_c2 + loop28_c0;
         loop28_c3 = loop28_c3 + (loop28_c0 * loop28_c1);
@@ -81,7 +81,7 @@ void main() {
         float loop31_c1 = params.gerstner_frequency;
         vec2 loop31_c2 = vec2(0.0);
         vec3 loop31_c3 = vec3(0.0);
-        [[dont_unroll]] for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
+        for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
             if (!(float(loop31_i) < trip_count)) break;
             // waves.gerstner
             vec2 gerstner_wave_directions = params.gerstner_wave_directions[clamp(int(float(loop31_i)), 0, 7)];
@@ -112,7 +112,7 @@ void main() {
         vec3 loop63_c2 = vec3(0.0);
         vec3 loop63_c3 = vec3(1.0, 0.0, 0.0);
         vec3 loop63_c4 = vec3(0.0, 0.0, 1.0);
-        [[dont_unroll]] for (int loop63_i = 0; loop63_i < 8; ++loop63_i) {
+        for (int loop63_i = 0; loop63_i < 8; ++loop63_i) {
             if (!(float(loop63_i) < trip_count)) break;
             // waves.gerstner
             vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop63_i)), 0, 7)];

@@ -17,11 +17,10 @@ struct WaterParams
     packed_float3 absorb_coefficients;
     float gerstner_frequency_gain;
     packed_float3 scatter_color;
-    float gerstner_wave_count;
-    packed_float3 incident_light;
     float gerstner_steepness;
-    packed_float3 reflection_lower_tint;
+    packed_float3 incident_light;
     float refraction_distortion;
+    packed_float3 reflection_lower_tint;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -29,6 +28,9 @@ struct WaterParams
     float ior_water;
     float specular_exponent;
 };
+
+constant float gerstner_wave_count_tmp [[function_constant(0)]];
+constant float gerstner_wave_count = is_function_constant_defined(gerstner_wave_count_tmp) ? gerstner_wave_count_tmp : 4.0;
 
 struct main0_out
 {
@@ -51,161 +53,161 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _63 = dfdx(_60);
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1075;
     float _1077;
-    float _1079;
-    _1079 = 0.0;
     _1077 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1076 = 0;
-    float _1078 = params.gerstner_amplitude;
-    float _1080 = params.gerstner_frequency;
-    for (; _1076 < 8; _1080 = _123, _1079 = _113, _1078 = _118, _1077 = _108, _1076++)
+    _1075 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1074 = 0;
+    float _1076 = params.gerstner_amplitude;
+    float _1078 = params.gerstner_frequency;
+    for (; _1074 < 8; _1078 = _121, _1077 = _111, _1076 = _116, _1075 = _106, _1074++)
     {
-        if (!(float(_1076) < _74))
+        if (!(float(_1074) < _71))
         {
             break;
         }
-        _108 = _1077 + _1078;
-        _113 = fma(_1078, _1080, _1079);
-        _118 = _1078 * params.gerstner_amplitude_gain;
-        _123 = _1080 * params.gerstner_frequency_gain;
+        _106 = _1075 + _1076;
+        _111 = fma(_1076, _1078, _1077);
+        _116 = _1076 * params.gerstner_amplitude_gain;
+        _121 = _1078 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = fast::max(-_140, 9.9999999747524270787835121154785e-07);
-    float2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1079 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1077;
-    float _164 = fast::min(_140, -9.9999999747524270787835121154785e-07);
-    float _1084;
-    float2 _1088;
-    _1088 = (float3(params.eye_position) + (_60 * fast::max((_1077 - params.eye_position[1u]) / _164, 0.0))).xz;
-    _1084 = _1077;
-    float2 _405;
-    float _676;
-    float _681;
-    float _691;
-    int _1083 = 0;
-    float _1116 = _1077;
-    float _1121 = _160;
-    for (; _1083 < 9; _1121 = _681, _1116 = _676, _1088 = _405, _1084 = _691, _1083++)
+    float _138 = _60.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1077 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1075;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _1082;
+    float2 _1086;
+    _1086 = (float3(params.eye_position) + (_60 * fast::max((_1075 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1082 = _1075;
+    float2 _403;
+    float _674;
+    float _679;
+    float _689;
+    int _1081 = 0;
+    float _1114 = _1075;
+    float _1119 = _158;
+    for (; _1081 < 9; _1119 = _679, _1114 = _674, _1086 = _403, _1082 = _689, _1081++)
     {
-        float _209 = fast::max((_1084 - params.eye_position[1u]) / _164, 0.0);
-        float2 _219 = (float3(params.eye_position) + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        float2 _1090;
-        float3 _1091;
-        _1091 = float3(0.0);
-        _1090 = float2(0.0);
-        float _322;
-        float _326;
-        float2 _333;
-        float3 _347;
-        int _1085 = 0;
-        float _1086 = params.gerstner_frequency;
-        float _1089 = params.gerstner_amplitude;
-        for (; _1085 < 8; _1091 = _347, _1090 = _333, _1089 = _322, _1086 = _326, _1085++)
+        float _207 = fast::max((_1082 - params.eye_position[1u]) / _162, 0.0);
+        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        float2 _1088;
+        float3 _1089;
+        _1089 = float3(0.0);
+        _1088 = float2(0.0);
+        float _320;
+        float _324;
+        float2 _331;
+        float3 _345;
+        int _1083 = 0;
+        float _1084 = params.gerstner_frequency;
+        float _1087 = params.gerstner_amplitude;
+        for (; _1083 < 8; _1089 = _345, _1088 = _331, _1087 = _320, _1084 = _324, _1083++)
         {
-            float _244 = float(_1085);
-            if (!(_244 < _74))
+            float _242 = float(_1083);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _255 = clamp(int(_244), 0, 7);
-            float _273 = _1086 * dot(params.gerstner_wave_directions[_255].xy, _1088);
-            float _295 = ((params.gerstner_steepness / (_74 * fast::max(_1086 * _1089, 9.9999999747524270787835121154785e-07))) * _1089) * fast::clamp(fma(-(_1086 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _314 = (_295 * _1086) * sin(_273);
-            float _318 = _314 * params.gerstner_wave_directions[_255].x;
-            _322 = _1089 * params.gerstner_amplitude_gain;
-            _326 = _1086 * params.gerstner_frequency_gain;
-            _333 = _1090 + (params.gerstner_wave_directions[_255].xy * (_295 * cos(_273)));
-            _347 = _1091 + float3(_318 * params.gerstner_wave_directions[_255].x, _318 * params.gerstner_wave_directions[_255].y, (_314 * params.gerstner_wave_directions[_255].y) * params.gerstner_wave_directions[_255].y);
+            int _253 = clamp(int(_242), 0, 7);
+            float _271 = _1084 * dot(params.gerstner_wave_directions[_253].xy, _1086);
+            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_1084 * _1087, 9.9999999747524270787835121154785e-07))) * _1087) * fast::clamp(fma(-(_1084 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _312 = (_293 * _1084) * sin(_271);
+            float _316 = _312 * params.gerstner_wave_directions[_253].x;
+            _320 = _1087 * params.gerstner_amplitude_gain;
+            _324 = _1084 * params.gerstner_frequency_gain;
+            _331 = _1088 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
+            _345 = _1089 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _353 = 1.0 - _1091.x;
-        float _358 = 1.0 - _1091.z;
-        float _362 = -_1091.y;
-        float2 _368 = (_1088 + _1090) - _219;
-        float _381 = _368.x;
-        float _384 = _368.y;
-        _405 = _1088 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
+        float _351 = 1.0 - _1089.x;
+        float _356 = 1.0 - _1089.z;
+        float _360 = -_1089.y;
+        float2 _366 = (_1086 + _1088) - _217;
+        float _379 = _366.x;
+        float _382 = _366.y;
+        _403 = _1086 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
+        float3 _1096;
+        float3 _1097;
         float3 _1098;
-        float3 _1099;
-        float3 _1100;
-        _1100 = float3(0.0, 0.0, 1.0);
-        _1099 = float3(1.0, 0.0, 0.0);
-        _1098 = float3(0.0);
-        float _518;
-        float _522;
-        float3 _534;
-        float3 _539;
-        float3 _544;
-        int _1095 = 0;
-        float _1096 = params.gerstner_frequency;
-        float _1097 = params.gerstner_amplitude;
-        for (; _1095 < 8; _1100 = _544, _1099 = _539, _1098 = _534, _1097 = _518, _1096 = _522, _1095++)
+        _1098 = float3(0.0, 0.0, 1.0);
+        _1097 = float3(1.0, 0.0, 0.0);
+        _1096 = float3(0.0);
+        float _516;
+        float _520;
+        float3 _532;
+        float3 _537;
+        float3 _542;
+        int _1093 = 0;
+        float _1094 = params.gerstner_frequency;
+        float _1095 = params.gerstner_amplitude;
+        for (; _1093 < 8; _1098 = _542, _1097 = _537, _1096 = _532, _1095 = _516, _1094 = _520, _1093++)
         {
-            float _426 = float(_1095);
-            if (!(_426 < _74))
+            float _424 = float(_1093);
+            if (!(_424 < _71))
             {
                 break;
             }
-            int _437 = clamp(int(_426), 0, 7);
-            float _446 = fast::clamp(fma(-(_1096 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _452 = _1096 * dot(params.gerstner_wave_directions[_437].xy, _405);
-            float _474 = ((params.gerstner_steepness / (_74 * fast::max(_1096 * _1097, 9.9999999747524270787835121154785e-07))) * _1097) * _446;
-            float _478 = _1097 * _446;
-            float _481 = sin(_452);
-            float _484 = cos(_452);
-            float _494 = _474 * _484;
-            float _501 = -((_474 * _1096) * _481);
-            float3 _514 = float3(_501 * params.gerstner_wave_directions[_437].x, (_478 * _1096) * _484, _501 * params.gerstner_wave_directions[_437].y);
-            _518 = _1097 * params.gerstner_amplitude_gain;
-            _522 = _1096 * params.gerstner_frequency_gain;
-            _534 = _1098 + float3(_494 * params.gerstner_wave_directions[_437].x, _478 * _481, _494 * params.gerstner_wave_directions[_437].y);
-            _539 = _1099 + (_514 * params.gerstner_wave_directions[_437].x);
-            _544 = _1100 + (_514 * params.gerstner_wave_directions[_437].y);
+            int _435 = clamp(int(_424), 0, 7);
+            float _444 = fast::clamp(fma(-(_1094 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _450 = _1094 * dot(params.gerstner_wave_directions[_435].xy, _403);
+            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1094 * _1095, 9.9999999747524270787835121154785e-07))) * _1095) * _444;
+            float _476 = _1095 * _444;
+            float _479 = sin(_450);
+            float _482 = cos(_450);
+            float _492 = _472 * _482;
+            float _499 = -((_472 * _1094) * _479);
+            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1094) * _482, _499 * params.gerstner_wave_directions[_435].y);
+            _516 = _1095 * params.gerstner_amplitude_gain;
+            _520 = _1094 * params.gerstner_frequency_gain;
+            _532 = _1096 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
+            _537 = _1097 + (_512 * params.gerstner_wave_directions[_435].x);
+            _542 = _1098 + (_512 * params.gerstner_wave_directions[_435].y);
         }
-        float3 _550 = cross(_1100, _1099);
-        float _554 = dot(_550, _550);
-        float3 _572 = select(float3(0.0, 1.0, 0.0), _550 * rsqrt(fast::max(_554, 1.0000000031710768509710513471353e-30)), bool3(_554 > 1.0000000031710768509710513471353e-30));
-        float2 _582 = (-_572.xz) / float2(fast::max(_572.y, 9.9999997473787516355514526367188e-05));
-        float _597 = float(_1083);
-        bool _598 = _597 < 1.0;
-        float _605 = (_1098.y + dot(_582, _219 - (_405 + _1098.xz))) - _1084;
-        float _618 = (-dot(_582, _148)) / _144;
-        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _157, 1.0), _605, _1084);
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1084 : _1116;
-        float _644 = _634 ? _1121 : _1084;
-        _676 = _598 ? _1084 : _639;
-        _681 = _598 ? _1121 : _644;
-        _691 = (_597 < 8.0) ? (_598 ? fma(_157, _605, _1084) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1084;
+        float3 _548 = cross(_1098, _1097);
+        float _552 = dot(_548, _548);
+        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
+        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
+        float _595 = float(_1081);
+        bool _596 = _595 < 1.0;
+        float _603 = (_1096.y + dot(_580, _217 - (_403 + _1096.xz))) - _1082;
+        float _616 = (-dot(_580, _146)) / _142;
+        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _1082);
+        bool _632 = _603 < 0.0;
+        float _637 = _632 ? _1082 : _1114;
+        float _642 = _632 ? _1119 : _1082;
+        _674 = _596 ? _1082 : _637;
+        _679 = _596 ? _1119 : _642;
+        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _1082) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1082;
     }
-    float _705 = fast::max((_1084 - params.eye_position[1u]) / _164, 0.0);
-    float3 _712 = float3(params.eye_position) + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float3 _738 = -_60;
-    float _779 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
-    float3 _813 = abs(_60);
-    float3 _826 = _60 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
-    float _830 = dot(_826, _826);
-    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _852 = _849.y;
-    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
-    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _932 = 1.0 - fast::clamp(_738.y, 0.0, 1.0);
-    float _936 = _932 * _932;
-    float3 _952 = -float3(params.sun_direction);
-    float3 _956 = _952 + _738;
-    float _968 = fast::max(fast::max(abs(_956.x), abs(_956.y)), abs(_956.z));
-    float3 _975 = _956 / float3(fast::max(_968, 5.9604644775390625e-08));
-    float _994 = fast::clamp(select(float3(0.0), _975 / float3(fast::max(length(_975), 1.0)), bool3(_968 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1043 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_723 - _720, 0.0) + _779)), float3(exp((-params.scatter_coefficient) * _779))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(fma(_924, _924, fma(-_924, _924, 1.0) * ((_936 * _936) * _932)))) + (float3(params.sun_color) * ((_952.y > 0.0) ? ((_994 > 6.103515625e-05) ? pow(fast::max(_994, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), bool3((_720 < _723) && (_140 < 0.0)));
-    out.out_color = float4(_1043, 1.0);
+    float _703 = fast::max((_1082 - params.eye_position[1u]) / _162, 0.0);
+    float3 _710 = float3(params.eye_position) + (_60 * _703);
+    float _718 = _33.y;
+    float _721 = _710.y;
+    float3 _736 = -_60;
+    float _777 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
+    float3 _811 = abs(_60);
+    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
+    float _828 = dot(_824, _824);
+    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _850 = _847.y;
+    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
+    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _930 = 1.0 - fast::clamp(_736.y, 0.0, 1.0);
+    float _934 = _930 * _930;
+    float3 _950 = -float3(params.sun_direction);
+    float3 _954 = _950 + _736;
+    float _966 = fast::max(fast::max(abs(_954.x), abs(_954.y)), abs(_954.z));
+    float3 _973 = _954 / float3(fast::max(_966, 5.9604644775390625e-08));
+    float _992 = fast::clamp(select(float3(0.0), _973 / float3(fast::max(length(_973), 1.0)), bool3(_966 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1041 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_721 - _718, 0.0) + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(fma(_922, _922, fma(-_922, _922, 1.0) * ((_934 * _934) * _930)))) + (float3(params.sun_color) * ((_950.y > 0.0) ? ((_992 > 6.103515625e-05) ? pow(fast::max(_992, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), bool3((_718 < _721) && (_138 < 0.0)));
+    out.out_color = float4(_1041, 1.0);
     return out;
 }
 

@@ -17,11 +17,10 @@ struct WaterParams
     packed_float3 absorb_coefficients;
     float gerstner_frequency_gain;
     packed_float3 scatter_color;
-    float gerstner_wave_count;
-    packed_float3 incident_light;
     float gerstner_steepness;
-    packed_float3 reflection_lower_tint;
+    packed_float3 incident_light;
     float refraction_distortion;
+    packed_float3 reflection_lower_tint;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -30,6 +29,9 @@ struct WaterParams
     float specular_exponent;
     float shore_hardness;
 };
+
+constant float gerstner_wave_count_tmp [[function_constant(0)]];
+constant float gerstner_wave_count = is_function_constant_defined(gerstner_wave_count_tmp) ? gerstner_wave_count_tmp : 4.0;
 
 struct main0_out
 {
@@ -52,163 +54,163 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _63 = dfdx(_60);
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1086;
     float _1088;
-    float _1090;
-    _1090 = 0.0;
     _1088 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1087 = 0;
-    float _1089 = params.gerstner_amplitude;
-    float _1091 = params.gerstner_frequency;
-    for (; _1087 < 8; _1091 = _123, _1090 = _113, _1089 = _118, _1088 = _108, _1087++)
+    _1086 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1085 = 0;
+    float _1087 = params.gerstner_amplitude;
+    float _1089 = params.gerstner_frequency;
+    for (; _1085 < 8; _1089 = _121, _1088 = _111, _1087 = _116, _1086 = _106, _1085++)
     {
-        if (!(float(_1087) < _74))
+        if (!(float(_1085) < _71))
         {
             break;
         }
-        _108 = _1088 + _1089;
-        _113 = fma(_1089, _1091, _1090);
-        _118 = _1089 * params.gerstner_amplitude_gain;
-        _123 = _1091 * params.gerstner_frequency_gain;
+        _106 = _1086 + _1087;
+        _111 = fma(_1087, _1089, _1088);
+        _116 = _1087 * params.gerstner_amplitude_gain;
+        _121 = _1089 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = fast::max(-_140, 9.9999999747524270787835121154785e-07);
-    float2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1090 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1088;
-    float _164 = fast::min(_140, -9.9999999747524270787835121154785e-07);
-    float _1095;
-    float2 _1099;
-    _1099 = (float3(params.eye_position) + (_60 * fast::max((_1088 - params.eye_position[1u]) / _164, 0.0))).xz;
-    _1095 = _1088;
-    float2 _405;
-    float _676;
-    float _681;
-    float _691;
-    int _1094 = 0;
-    float _1127 = _1088;
-    float _1132 = _160;
-    for (; _1094 < 9; _1132 = _681, _1127 = _676, _1099 = _405, _1095 = _691, _1094++)
+    float _138 = _60.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1088 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1086;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _1093;
+    float2 _1097;
+    _1097 = (float3(params.eye_position) + (_60 * fast::max((_1086 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1093 = _1086;
+    float2 _403;
+    float _674;
+    float _679;
+    float _689;
+    int _1092 = 0;
+    float _1125 = _1086;
+    float _1130 = _158;
+    for (; _1092 < 9; _1130 = _679, _1125 = _674, _1097 = _403, _1093 = _689, _1092++)
     {
-        float _209 = fast::max((_1095 - params.eye_position[1u]) / _164, 0.0);
-        float2 _219 = (float3(params.eye_position) + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        float2 _1101;
-        float3 _1102;
-        _1102 = float3(0.0);
-        _1101 = float2(0.0);
-        float _322;
-        float _326;
-        float2 _333;
-        float3 _347;
-        int _1096 = 0;
-        float _1097 = params.gerstner_frequency;
-        float _1100 = params.gerstner_amplitude;
-        for (; _1096 < 8; _1102 = _347, _1101 = _333, _1100 = _322, _1097 = _326, _1096++)
+        float _207 = fast::max((_1093 - params.eye_position[1u]) / _162, 0.0);
+        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        float2 _1099;
+        float3 _1100;
+        _1100 = float3(0.0);
+        _1099 = float2(0.0);
+        float _320;
+        float _324;
+        float2 _331;
+        float3 _345;
+        int _1094 = 0;
+        float _1095 = params.gerstner_frequency;
+        float _1098 = params.gerstner_amplitude;
+        for (; _1094 < 8; _1100 = _345, _1099 = _331, _1098 = _320, _1095 = _324, _1094++)
         {
-            float _244 = float(_1096);
-            if (!(_244 < _74))
+            float _242 = float(_1094);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _255 = clamp(int(_244), 0, 7);
-            float _273 = _1097 * dot(params.gerstner_wave_directions[_255].xy, _1099);
-            float _295 = ((params.gerstner_steepness / (_74 * fast::max(_1097 * _1100, 9.9999999747524270787835121154785e-07))) * _1100) * fast::clamp(fma(-(_1097 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _314 = (_295 * _1097) * sin(_273);
-            float _318 = _314 * params.gerstner_wave_directions[_255].x;
-            _322 = _1100 * params.gerstner_amplitude_gain;
-            _326 = _1097 * params.gerstner_frequency_gain;
-            _333 = _1101 + (params.gerstner_wave_directions[_255].xy * (_295 * cos(_273)));
-            _347 = _1102 + float3(_318 * params.gerstner_wave_directions[_255].x, _318 * params.gerstner_wave_directions[_255].y, (_314 * params.gerstner_wave_directions[_255].y) * params.gerstner_wave_directions[_255].y);
+            int _253 = clamp(int(_242), 0, 7);
+            float _271 = _1095 * dot(params.gerstner_wave_directions[_253].xy, _1097);
+            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_1095 * _1098, 9.9999999747524270787835121154785e-07))) * _1098) * fast::clamp(fma(-(_1095 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _312 = (_293 * _1095) * sin(_271);
+            float _316 = _312 * params.gerstner_wave_directions[_253].x;
+            _320 = _1098 * params.gerstner_amplitude_gain;
+            _324 = _1095 * params.gerstner_frequency_gain;
+            _331 = _1099 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
+            _345 = _1100 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _353 = 1.0 - _1102.x;
-        float _358 = 1.0 - _1102.z;
-        float _362 = -_1102.y;
-        float2 _368 = (_1099 + _1101) - _219;
-        float _381 = _368.x;
-        float _384 = _368.y;
-        _405 = _1099 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
+        float _351 = 1.0 - _1100.x;
+        float _356 = 1.0 - _1100.z;
+        float _360 = -_1100.y;
+        float2 _366 = (_1097 + _1099) - _217;
+        float _379 = _366.x;
+        float _382 = _366.y;
+        _403 = _1097 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
+        float3 _1107;
+        float3 _1108;
         float3 _1109;
-        float3 _1110;
-        float3 _1111;
-        _1111 = float3(0.0, 0.0, 1.0);
-        _1110 = float3(1.0, 0.0, 0.0);
-        _1109 = float3(0.0);
-        float _518;
-        float _522;
-        float3 _534;
-        float3 _539;
-        float3 _544;
-        int _1106 = 0;
-        float _1107 = params.gerstner_frequency;
-        float _1108 = params.gerstner_amplitude;
-        for (; _1106 < 8; _1111 = _544, _1110 = _539, _1109 = _534, _1108 = _518, _1107 = _522, _1106++)
+        _1109 = float3(0.0, 0.0, 1.0);
+        _1108 = float3(1.0, 0.0, 0.0);
+        _1107 = float3(0.0);
+        float _516;
+        float _520;
+        float3 _532;
+        float3 _537;
+        float3 _542;
+        int _1104 = 0;
+        float _1105 = params.gerstner_frequency;
+        float _1106 = params.gerstner_amplitude;
+        for (; _1104 < 8; _1109 = _542, _1108 = _537, _1107 = _532, _1106 = _516, _1105 = _520, _1104++)
         {
-            float _426 = float(_1106);
-            if (!(_426 < _74))
+            float _424 = float(_1104);
+            if (!(_424 < _71))
             {
                 break;
             }
-            int _437 = clamp(int(_426), 0, 7);
-            float _446 = fast::clamp(fma(-(_1107 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _452 = _1107 * dot(params.gerstner_wave_directions[_437].xy, _405);
-            float _474 = ((params.gerstner_steepness / (_74 * fast::max(_1107 * _1108, 9.9999999747524270787835121154785e-07))) * _1108) * _446;
-            float _478 = _1108 * _446;
-            float _481 = sin(_452);
-            float _484 = cos(_452);
-            float _494 = _474 * _484;
-            float _501 = -((_474 * _1107) * _481);
-            float3 _514 = float3(_501 * params.gerstner_wave_directions[_437].x, (_478 * _1107) * _484, _501 * params.gerstner_wave_directions[_437].y);
-            _518 = _1108 * params.gerstner_amplitude_gain;
-            _522 = _1107 * params.gerstner_frequency_gain;
-            _534 = _1109 + float3(_494 * params.gerstner_wave_directions[_437].x, _478 * _481, _494 * params.gerstner_wave_directions[_437].y);
-            _539 = _1110 + (_514 * params.gerstner_wave_directions[_437].x);
-            _544 = _1111 + (_514 * params.gerstner_wave_directions[_437].y);
+            int _435 = clamp(int(_424), 0, 7);
+            float _444 = fast::clamp(fma(-(_1105 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _450 = _1105 * dot(params.gerstner_wave_directions[_435].xy, _403);
+            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1105 * _1106, 9.9999999747524270787835121154785e-07))) * _1106) * _444;
+            float _476 = _1106 * _444;
+            float _479 = sin(_450);
+            float _482 = cos(_450);
+            float _492 = _472 * _482;
+            float _499 = -((_472 * _1105) * _479);
+            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1105) * _482, _499 * params.gerstner_wave_directions[_435].y);
+            _516 = _1106 * params.gerstner_amplitude_gain;
+            _520 = _1105 * params.gerstner_frequency_gain;
+            _532 = _1107 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
+            _537 = _1108 + (_512 * params.gerstner_wave_directions[_435].x);
+            _542 = _1109 + (_512 * params.gerstner_wave_directions[_435].y);
         }
-        float3 _550 = cross(_1111, _1110);
-        float _554 = dot(_550, _550);
-        float3 _572 = select(float3(0.0, 1.0, 0.0), _550 * rsqrt(fast::max(_554, 1.0000000031710768509710513471353e-30)), bool3(_554 > 1.0000000031710768509710513471353e-30));
-        float2 _582 = (-_572.xz) / float2(fast::max(_572.y, 9.9999997473787516355514526367188e-05));
-        float _597 = float(_1094);
-        bool _598 = _597 < 1.0;
-        float _605 = (_1109.y + dot(_582, _219 - (_405 + _1109.xz))) - _1095;
-        float _618 = (-dot(_582, _148)) / _144;
-        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _157, 1.0), _605, _1095);
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1095 : _1127;
-        float _644 = _634 ? _1132 : _1095;
-        _676 = _598 ? _1095 : _639;
-        _681 = _598 ? _1132 : _644;
-        _691 = (_597 < 8.0) ? (_598 ? fma(_157, _605, _1095) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1095;
+        float3 _548 = cross(_1109, _1108);
+        float _552 = dot(_548, _548);
+        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
+        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
+        float _595 = float(_1092);
+        bool _596 = _595 < 1.0;
+        float _603 = (_1107.y + dot(_580, _217 - (_403 + _1107.xz))) - _1093;
+        float _616 = (-dot(_580, _146)) / _142;
+        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _1093);
+        bool _632 = _603 < 0.0;
+        float _637 = _632 ? _1093 : _1125;
+        float _642 = _632 ? _1130 : _1093;
+        _674 = _596 ? _1093 : _637;
+        _679 = _596 ? _1130 : _642;
+        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _1093) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1093;
     }
-    float _705 = fast::max((_1095 - params.eye_position[1u]) / _164, 0.0);
-    float3 _712 = float3(params.eye_position) + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float _728 = fast::max(_723 - _720, 0.0);
-    float3 _738 = -_60;
-    float3 _775 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
-    float _779 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
-    float3 _813 = abs(_60);
-    float3 _826 = _60 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
-    float _830 = dot(_826, _826);
-    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _852 = _849.y;
-    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
-    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _932 = 1.0 - fast::clamp(_738.y, 0.0, 1.0);
-    float _936 = _932 * _932;
-    float3 _952 = -float3(params.sun_direction);
-    float3 _956 = _952 + _738;
-    float _968 = fast::max(fast::max(abs(_956.x), abs(_956.y)), abs(_956.z));
-    float3 _975 = _956 / float3(fast::max(_968, 5.9604644775390625e-08));
-    float _994 = fast::clamp(select(float3(0.0), _975 / float3(fast::max(length(_975), 1.0)), bool3(_968 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1048 = mix(_775, mix(mix(float3(params.scatter_color), _775 * exp((-float3(params.absorb_coefficients)) * (_728 + _779)), float3(exp((-params.scatter_coefficient) * _779))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(fma(_924, _924, fma(-_924, _924, 1.0) * ((_936 * _936) * _932)))) + (float3(params.sun_color) * ((_952.y > 0.0) ? ((_994 > 6.103515625e-05) ? pow(fast::max(_994, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(fast::clamp(_728 * params.shore_hardness, 0.0, 1.0)));
-    out.out_color = float4(select(_25.xyz, _1048, bool3((_720 < _723) && (_140 < 0.0))), 1.0);
+    float _703 = fast::max((_1093 - params.eye_position[1u]) / _162, 0.0);
+    float3 _710 = float3(params.eye_position) + (_60 * _703);
+    float _718 = _33.y;
+    float _721 = _710.y;
+    float _726 = fast::max(_721 - _718, 0.0);
+    float3 _736 = -_60;
+    float3 _773 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
+    float _777 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
+    float3 _811 = abs(_60);
+    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
+    float _828 = dot(_824, _824);
+    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _850 = _847.y;
+    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
+    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _930 = 1.0 - fast::clamp(_736.y, 0.0, 1.0);
+    float _934 = _930 * _930;
+    float3 _950 = -float3(params.sun_direction);
+    float3 _954 = _950 + _736;
+    float _966 = fast::max(fast::max(abs(_954.x), abs(_954.y)), abs(_954.z));
+    float3 _973 = _954 / float3(fast::max(_966, 5.9604644775390625e-08));
+    float _992 = fast::clamp(select(float3(0.0), _973 / float3(fast::max(length(_973), 1.0)), bool3(_966 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1046 = mix(_773, mix(mix(float3(params.scatter_color), _773 * exp((-float3(params.absorb_coefficients)) * (_726 + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(fma(_922, _922, fma(-_922, _922, 1.0) * ((_934 * _934) * _930)))) + (float3(params.sun_color) * ((_950.y > 0.0) ? ((_992 > 6.103515625e-05) ? pow(fast::max(_992, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(fast::clamp(_726 * params.shore_hardness, 0.0, 1.0)));
+    out.out_color = float4(select(_25.xyz, _1046, bool3((_718 < _721) && (_138 < 0.0))), 1.0);
     return out;
 }
 

@@ -3,6 +3,11 @@
 precision highp float;
 precision highp int;
 
+#ifndef SPIRV_CROSS_CONSTANT_ID_0
+#define SPIRV_CROSS_CONSTANT_ID_0 4.0
+#endif
+const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
+
 layout(std140) uniform WaterParams
 {
     vec2 gerstner_wave_directions[8];
@@ -16,15 +21,14 @@ layout(std140) uniform WaterParams
     vec3 absorb_coefficients;
     float gerstner_frequency_gain;
     vec3 scatter_color;
-    float gerstner_wave_count;
-    vec3 incident_light;
     float gerstner_steepness;
-    vec3 reflection_lower_tint;
+    vec3 incident_light;
     float refraction_distortion;
-    vec3 foam_existence;
+    vec3 reflection_lower_tint;
     float refraction_shore_fade_depth;
-    vec3 foam_color;
+    vec3 foam_existence;
     float scatter_coefficient;
+    vec3 foam_color;
     float reflection_horizon_band;
     float ior_air;
     float ior_water;
@@ -51,196 +55,196 @@ void main()
     vec3 _63 = dFdx(_60);
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1171;
     float _1173;
-    float _1175;
-    _1175 = 0.0;
     _1173 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1172 = 0;
-    float _1174 = params.gerstner_amplitude;
-    float _1176 = params.gerstner_frequency;
-    for (; _1172 < 8; _1176 = _123, _1175 = _113, _1174 = _118, _1173 = _108, _1172++)
+    _1171 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1170 = 0;
+    float _1172 = params.gerstner_amplitude;
+    float _1174 = params.gerstner_frequency;
+    for (; _1170 < 8; _1174 = _121, _1173 = _111, _1172 = _116, _1171 = _106, _1170++)
     {
-        if (!(float(_1172) < _74))
+        if (!(float(_1170) < _71))
         {
             break;
         }
-        _108 = _1173 + _1174;
-        _113 = _1174 * _1176 + _1175;
-        _118 = _1174 * params.gerstner_amplitude_gain;
-        _123 = _1176 * params.gerstner_frequency_gain;
+        _106 = _1171 + _1172;
+        _111 = _1172 * _1174 + _1173;
+        _116 = _1172 * params.gerstner_amplitude_gain;
+        _121 = _1174 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = max(-_140, 9.9999999747524270787835121154785e-07);
-    vec2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1175 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1173;
-    float _164 = min(_140, -9.9999999747524270787835121154785e-07);
-    float _1180;
-    vec2 _1184;
-    _1184 = (params.eye_position + (_60 * max((_1173 - params.eye_position.y) / _164, 0.0))).xz;
-    _1180 = _1173;
-    vec2 _405;
-    float _676;
-    float _681;
-    float _691;
-    int _1179 = 0;
-    float _1212 = _1173;
-    float _1217 = _160;
-    for (; _1179 < 9; _1217 = _681, _1212 = _676, _1184 = _405, _1180 = _691, _1179++)
+    float _138 = _60.y;
+    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
+    vec2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1173 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1171;
+    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _1178;
+    vec2 _1182;
+    _1182 = (params.eye_position + (_60 * max((_1171 - params.eye_position.y) / _162, 0.0))).xz;
+    _1178 = _1171;
+    vec2 _403;
+    float _674;
+    float _679;
+    float _689;
+    int _1177 = 0;
+    float _1210 = _1171;
+    float _1215 = _158;
+    for (; _1177 < 9; _1215 = _679, _1210 = _674, _1182 = _403, _1178 = _689, _1177++)
     {
-        float _209 = max((_1180 - params.eye_position.y) / _164, 0.0);
-        vec2 _219 = (params.eye_position + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        vec2 _1186;
-        vec3 _1187;
-        _1187 = vec3(0.0);
-        _1186 = vec2(0.0);
-        float _322;
-        float _326;
-        vec2 _333;
-        vec3 _347;
-        int _1181 = 0;
-        float _1182 = params.gerstner_frequency;
-        float _1185 = params.gerstner_amplitude;
-        for (; _1181 < 8; _1187 = _347, _1186 = _333, _1185 = _322, _1182 = _326, _1181++)
+        float _207 = max((_1178 - params.eye_position.y) / _162, 0.0);
+        vec2 _217 = (params.eye_position + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        vec2 _1184;
+        vec3 _1185;
+        _1185 = vec3(0.0);
+        _1184 = vec2(0.0);
+        float _320;
+        float _324;
+        vec2 _331;
+        vec3 _345;
+        int _1179 = 0;
+        float _1180 = params.gerstner_frequency;
+        float _1183 = params.gerstner_amplitude;
+        for (; _1179 < 8; _1185 = _345, _1184 = _331, _1183 = _320, _1180 = _324, _1179++)
         {
-            float _244 = float(_1181);
-            if (!(_244 < _74))
+            float _242 = float(_1179);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _255 = clamp(int(_244), 0, 7);
-            float _273 = _1182 * dot(params.gerstner_wave_directions[_255], _1184);
-            float _295 = ((params.gerstner_steepness / (_74 * max(_1182 * _1185, 9.9999999747524270787835121154785e-07))) * _1185) * clamp((-(_1182 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _314 = (_295 * _1182) * sin(_273);
-            float _318 = _314 * params.gerstner_wave_directions[_255].x;
-            _322 = _1185 * params.gerstner_amplitude_gain;
-            _326 = _1182 * params.gerstner_frequency_gain;
-            _333 = _1186 + (params.gerstner_wave_directions[_255] * (_295 * cos(_273)));
-            _347 = _1187 + vec3(_318 * params.gerstner_wave_directions[_255].x, _318 * params.gerstner_wave_directions[_255].y, (_314 * params.gerstner_wave_directions[_255].y) * params.gerstner_wave_directions[_255].y);
+            int _253 = clamp(int(_242), 0, 7);
+            float _271 = _1180 * dot(params.gerstner_wave_directions[_253], _1182);
+            float _293 = ((params.gerstner_steepness / (_71 * max(_1180 * _1183, 9.9999999747524270787835121154785e-07))) * _1183) * clamp((-(_1180 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _312 = (_293 * _1180) * sin(_271);
+            float _316 = _312 * params.gerstner_wave_directions[_253].x;
+            _320 = _1183 * params.gerstner_amplitude_gain;
+            _324 = _1180 * params.gerstner_frequency_gain;
+            _331 = _1184 + (params.gerstner_wave_directions[_253] * (_293 * cos(_271)));
+            _345 = _1185 + vec3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _353 = 1.0 - _1187.x;
-        float _358 = 1.0 - _1187.z;
-        float _362 = -_1187.y;
-        vec2 _368 = (_1184 + _1186) - _219;
-        float _381 = _368.x;
-        float _384 = _368.y;
-        _405 = _1184 - (vec2(_358 * _381 + (-(_362 * _384)), _353 * _384 + (-(_362 * _381))) / vec2(max(_353 * _358 + (-(_362 * _362)), 0.039999999105930328369140625)));
+        float _351 = 1.0 - _1185.x;
+        float _356 = 1.0 - _1185.z;
+        float _360 = -_1185.y;
+        vec2 _366 = (_1182 + _1184) - _217;
+        float _379 = _366.x;
+        float _382 = _366.y;
+        _403 = _1182 - (vec2(_356 * _379 + (-(_360 * _382)), _351 * _382 + (-(_360 * _379))) / vec2(max(_351 * _356 + (-(_360 * _360)), 0.039999999105930328369140625)));
+        vec3 _1192;
+        vec3 _1193;
         vec3 _1194;
-        vec3 _1195;
-        vec3 _1196;
-        _1196 = vec3(0.0, 0.0, 1.0);
-        _1195 = vec3(1.0, 0.0, 0.0);
-        _1194 = vec3(0.0);
-        float _518;
-        float _522;
-        vec3 _534;
-        vec3 _539;
-        vec3 _544;
-        int _1191 = 0;
-        float _1192 = params.gerstner_frequency;
-        float _1193 = params.gerstner_amplitude;
-        for (; _1191 < 8; _1196 = _544, _1195 = _539, _1194 = _534, _1193 = _518, _1192 = _522, _1191++)
+        _1194 = vec3(0.0, 0.0, 1.0);
+        _1193 = vec3(1.0, 0.0, 0.0);
+        _1192 = vec3(0.0);
+        float _516;
+        float _520;
+        vec3 _532;
+        vec3 _537;
+        vec3 _542;
+        int _1189 = 0;
+        float _1190 = params.gerstner_frequency;
+        float _1191 = params.gerstner_amplitude;
+        for (; _1189 < 8; _1194 = _542, _1193 = _537, _1192 = _532, _1191 = _516, _1190 = _520, _1189++)
         {
-            float _426 = float(_1191);
-            if (!(_426 < _74))
+            float _424 = float(_1189);
+            if (!(_424 < _71))
             {
                 break;
             }
-            int _437 = clamp(int(_426), 0, 7);
-            float _446 = clamp((-(_1192 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _452 = _1192 * dot(params.gerstner_wave_directions[_437], _405);
-            float _474 = ((params.gerstner_steepness / (_74 * max(_1192 * _1193, 9.9999999747524270787835121154785e-07))) * _1193) * _446;
-            float _478 = _1193 * _446;
-            float _481 = sin(_452);
-            float _484 = cos(_452);
-            float _494 = _474 * _484;
-            float _501 = -((_474 * _1192) * _481);
-            vec3 _514 = vec3(_501 * params.gerstner_wave_directions[_437].x, (_478 * _1192) * _484, _501 * params.gerstner_wave_directions[_437].y);
-            _518 = _1193 * params.gerstner_amplitude_gain;
-            _522 = _1192 * params.gerstner_frequency_gain;
-            _534 = _1194 + vec3(_494 * params.gerstner_wave_directions[_437].x, _478 * _481, _494 * params.gerstner_wave_directions[_437].y);
-            _539 = _1195 + (_514 * params.gerstner_wave_directions[_437].x);
-            _544 = _1196 + (_514 * params.gerstner_wave_directions[_437].y);
+            int _435 = clamp(int(_424), 0, 7);
+            float _444 = clamp((-(_1190 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _450 = _1190 * dot(params.gerstner_wave_directions[_435], _403);
+            float _472 = ((params.gerstner_steepness / (_71 * max(_1190 * _1191, 9.9999999747524270787835121154785e-07))) * _1191) * _444;
+            float _476 = _1191 * _444;
+            float _479 = sin(_450);
+            float _482 = cos(_450);
+            float _492 = _472 * _482;
+            float _499 = -((_472 * _1190) * _479);
+            vec3 _512 = vec3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1190) * _482, _499 * params.gerstner_wave_directions[_435].y);
+            _516 = _1191 * params.gerstner_amplitude_gain;
+            _520 = _1190 * params.gerstner_frequency_gain;
+            _532 = _1192 + vec3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
+            _537 = _1193 + (_512 * params.gerstner_wave_directions[_435].x);
+            _542 = _1194 + (_512 * params.gerstner_wave_directions[_435].y);
         }
-        vec3 _550 = cross(_1196, _1195);
-        float _554 = dot(_550, _550);
-        vec3 _561 = _550 * inversesqrt(max(_554, 1.0000000031710768509710513471353e-30));
-        bvec3 _571 = bvec3(_554 > 1.0000000031710768509710513471353e-30);
-        vec3 _572 = vec3(_571.x ? _561.x : vec3(0.0, 1.0, 0.0).x, _571.y ? _561.y : vec3(0.0, 1.0, 0.0).y, _571.z ? _561.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _582 = (-_572.xz) / vec2(max(_572.y, 9.9999997473787516355514526367188e-05));
-        float _597 = float(_1179);
-        bool _598 = _597 < 1.0;
-        float _605 = (_1194.y + dot(_582, _219 - (_405 + _1194.xz))) - _1180;
-        float _618 = (-dot(_582, _148)) / _144;
-        float _631 = clamp(1.0 / max(1.0 - _618, 9.9999999747524270787835121154785e-07), _157, 1.0) * _605 + _1180;
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1180 : _1212;
-        float _644 = _634 ? _1217 : _1180;
-        _676 = _598 ? _1180 : _639;
-        _681 = _598 ? _1217 : _644;
-        _691 = (_597 < 8.0) ? (_598 ? (_157 * _605 + _1180) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1180;
+        vec3 _548 = cross(_1194, _1193);
+        float _552 = dot(_548, _548);
+        vec3 _559 = _548 * inversesqrt(max(_552, 1.0000000031710768509710513471353e-30));
+        bvec3 _569 = bvec3(_552 > 1.0000000031710768509710513471353e-30);
+        vec3 _570 = vec3(_569.x ? _559.x : vec3(0.0, 1.0, 0.0).x, _569.y ? _559.y : vec3(0.0, 1.0, 0.0).y, _569.z ? _559.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _580 = (-_570.xz) / vec2(max(_570.y, 9.9999997473787516355514526367188e-05));
+        float _595 = float(_1177);
+        bool _596 = _595 < 1.0;
+        float _603 = (_1192.y + dot(_580, _217 - (_403 + _1192.xz))) - _1178;
+        float _616 = (-dot(_580, _146)) / _142;
+        float _629 = clamp(1.0 / max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0) * _603 + _1178;
+        bool _632 = _603 < 0.0;
+        float _637 = _632 ? _1178 : _1210;
+        float _642 = _632 ? _1215 : _1178;
+        _674 = _596 ? _1178 : _637;
+        _679 = _596 ? _1215 : _642;
+        _689 = (_595 < 8.0) ? (_596 ? (_155 * _603 + _1178) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1178;
     }
-    float _705 = max((_1180 - params.eye_position.y) / _164, 0.0);
-    vec3 _712 = params.eye_position + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float _728 = max(_723 - _720, 0.0);
-    vec3 _738 = -_60;
-    float _779 = clamp(max(_53 - _705, 0.0), 0.0, 30000.0);
-    vec3 _788 = exp((-params.absorb_coefficients) * (_728 + _779));
-    mediump vec3 mp_copy_788 = _788;
-    vec3 _810 = mix(params.scatter_color, texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0))).xyz * mp_copy_788, vec3(exp((-params.scatter_coefficient) * _779))) * params.incident_light;
-    mediump vec3 mp_copy_810 = _810;
-    vec3 _813 = abs(_60);
-    vec3 _826 = _60 / vec3(max(max(max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
-    mediump vec3 mp_copy_826 = _826;
-    mediump float _830 = dot(_826, _826);
-    mediump vec3 _836 = mp_copy_826 * inversesqrt(max(_830, 1.0000000031710768509710513471353e-30));
-    bvec3 _845 = bvec3(_830 > 1.0000000031710768509710513471353e-30);
-    vec3 _846 = vec3(_845.x ? _836.x : vec3(0.0, -1.0, 0.0).x, _845.y ? _836.y : vec3(0.0, -1.0, 0.0).y, _845.z ? _836.z : vec3(0.0, -1.0, 0.0).z);
-    mediump vec3 mp_copy_846 = _846;
-    mediump vec3 _849 = reflect(mp_copy_846, vec3(0.0, 1.0, 0.0));
-    mediump float _852 = _849.y;
-    mediump vec3 _860 = vec3(_849.x, abs(_852), _849.z);
-    bvec3 _870 = bvec3(dot(_849, _849) > 9.9999999600419720025001879548654e-13);
-    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
-    vec3 _910 = texture(sky_cube, vec4(vec3(_870.x ? _860.x : vec3(0.0, 1.0, 0.0).x, _870.y ? _860.y : vec3(0.0, 1.0, 0.0).y, _870.z ? _860.z : vec3(0.0, 1.0, 0.0).z), _878).xyz).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(_878));
-    mediump vec3 mp_copy_910 = _910;
-    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float mp_copy_924 = _924;
-    float _932 = 1.0 - clamp(_738.y, 0.0, 1.0);
-    mediump float mp_copy_932 = _932;
-    mediump float _936 = mp_copy_932 * mp_copy_932;
-    float _1223 = -_924;
-    mediump float mp_copy_1223 = _1223;
-    vec3 _952 = -params.sun_direction;
-    vec3 _956 = _952 + _738;
-    mediump vec3 mp_copy_956 = _956;
-    mediump float _968 = max(max(abs(_956.x), abs(_956.y)), abs(_956.z));
-    mediump vec3 _975 = mp_copy_956 / vec3(max(_968, 5.9604644775390625e-08));
-    mediump vec3 _982 = _975 / vec3(max(length(_975), 1.0));
-    bvec3 _989 = bvec3(_968 > 5.9604644775390625e-08);
-    mediump float _994 = clamp(vec3(_989.x ? _982.x : vec3(0.0).x, _989.y ? _982.y : vec3(0.0).y, _989.z ? _982.z : vec3(0.0).z).y, 0.0, 1.0);
-    vec3 _1029 = params.sun_color * ((_952.y > 0.0) ? ((_994 > 6.103515625e-05) ? pow(max(_994, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0);
-    mediump vec3 mp_copy_1029 = _1029;
-    vec2 _1040 = _712.xz;
-    float _1081 = clamp((max(length(dFdx(_1040)), length(dFdy(_1040))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0);
-    mediump float mp_copy_1081 = _1081;
-    float _1094 = _728 - params.foam_existence.x;
-    mediump float mp_copy_1094 = _1094;
-    float _1099 = params.foam_existence.y - params.foam_existence.x;
-    mediump float mp_copy_1099 = _1099;
-    float _1113 = (_1094 >= _1099) ? 1.0 : clamp(mp_copy_1094 / max(mp_copy_1099, 5.9604644775390625e-08), 0.0, 1.0);
-    mediump float mp_copy_1113 = _1113;
-    vec3 _1133 = mix(mix(mp_copy_810, mp_copy_910, vec3(mp_copy_924 * mp_copy_924 + ((mp_copy_1223 * mp_copy_924 + 1.0) * ((_936 * _936) * mp_copy_932)))) + mp_copy_1029, params.foam_color * mix(textureLod(foam_pattern, ((fract(_1040 * params.foam_pattern_scale) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, mp_copy_1081), vec3((_1094 < 0.0) ? 1.0 : (1.0 - mp_copy_1113)));
-    bvec3 _1138 = bvec3((_720 < _723) && (_140 < 0.0));
-    vec3 _1139 = vec3(_1138.x ? _1133.x : _26.x, _1138.y ? _1133.y : _26.y, _1138.z ? _1133.z : _26.z);
-    out_color = vec4(_1139, 1.0);
+    float _703 = max((_1178 - params.eye_position.y) / _162, 0.0);
+    vec3 _710 = params.eye_position + (_60 * _703);
+    float _718 = _33.y;
+    float _721 = _710.y;
+    float _726 = max(_721 - _718, 0.0);
+    vec3 _736 = -_60;
+    float _777 = clamp(max(_53 - _703, 0.0), 0.0, 30000.0);
+    vec3 _786 = exp((-params.absorb_coefficients) * (_726 + _777));
+    mediump vec3 mp_copy_786 = _786;
+    vec3 _808 = mix(params.scatter_color, texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0))).xyz * mp_copy_786, vec3(exp((-params.scatter_coefficient) * _777))) * params.incident_light;
+    mediump vec3 mp_copy_808 = _808;
+    vec3 _811 = abs(_60);
+    vec3 _824 = _60 / vec3(max(max(max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
+    mediump vec3 mp_copy_824 = _824;
+    mediump float _828 = dot(_824, _824);
+    mediump vec3 _834 = mp_copy_824 * inversesqrt(max(_828, 1.0000000031710768509710513471353e-30));
+    bvec3 _843 = bvec3(_828 > 1.0000000031710768509710513471353e-30);
+    vec3 _844 = vec3(_843.x ? _834.x : vec3(0.0, -1.0, 0.0).x, _843.y ? _834.y : vec3(0.0, -1.0, 0.0).y, _843.z ? _834.z : vec3(0.0, -1.0, 0.0).z);
+    mediump vec3 mp_copy_844 = _844;
+    mediump vec3 _847 = reflect(mp_copy_844, vec3(0.0, 1.0, 0.0));
+    mediump float _850 = _847.y;
+    mediump vec3 _858 = vec3(_847.x, abs(_850), _847.z);
+    bvec3 _868 = bvec3(dot(_847, _847) > 9.9999999600419720025001879548654e-13);
+    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
+    vec3 _908 = texture(sky_cube, vec4(vec3(_868.x ? _858.x : vec3(0.0, 1.0, 0.0).x, _868.y ? _858.y : vec3(0.0, 1.0, 0.0).y, _868.z ? _858.z : vec3(0.0, 1.0, 0.0).z), _876).xyz).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(_876));
+    mediump vec3 mp_copy_908 = _908;
+    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float mp_copy_922 = _922;
+    float _930 = 1.0 - clamp(_736.y, 0.0, 1.0);
+    mediump float mp_copy_930 = _930;
+    mediump float _934 = mp_copy_930 * mp_copy_930;
+    float _1221 = -_922;
+    mediump float mp_copy_1221 = _1221;
+    vec3 _950 = -params.sun_direction;
+    vec3 _954 = _950 + _736;
+    mediump vec3 mp_copy_954 = _954;
+    mediump float _966 = max(max(abs(_954.x), abs(_954.y)), abs(_954.z));
+    mediump vec3 _973 = mp_copy_954 / vec3(max(_966, 5.9604644775390625e-08));
+    mediump vec3 _980 = _973 / vec3(max(length(_973), 1.0));
+    bvec3 _987 = bvec3(_966 > 5.9604644775390625e-08);
+    mediump float _992 = clamp(vec3(_987.x ? _980.x : vec3(0.0).x, _987.y ? _980.y : vec3(0.0).y, _987.z ? _980.z : vec3(0.0).z).y, 0.0, 1.0);
+    vec3 _1027 = params.sun_color * ((_950.y > 0.0) ? ((_992 > 6.103515625e-05) ? pow(max(_992, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0);
+    mediump vec3 mp_copy_1027 = _1027;
+    vec2 _1038 = _710.xz;
+    float _1079 = clamp((max(length(dFdx(_1038)), length(dFdy(_1038))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0);
+    mediump float mp_copy_1079 = _1079;
+    float _1092 = _726 - params.foam_existence.x;
+    mediump float mp_copy_1092 = _1092;
+    float _1097 = params.foam_existence.y - params.foam_existence.x;
+    mediump float mp_copy_1097 = _1097;
+    float _1111 = (_1092 >= _1097) ? 1.0 : clamp(mp_copy_1092 / max(mp_copy_1097, 5.9604644775390625e-08), 0.0, 1.0);
+    mediump float mp_copy_1111 = _1111;
+    vec3 _1131 = mix(mix(mp_copy_808, mp_copy_908, vec3(mp_copy_922 * mp_copy_922 + ((mp_copy_1221 * mp_copy_922 + 1.0) * ((_934 * _934) * mp_copy_930)))) + mp_copy_1027, params.foam_color * mix(textureLod(foam_pattern, ((fract(_1038 * params.foam_pattern_scale) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, mp_copy_1079), vec3((_1092 < 0.0) ? 1.0 : (1.0 - mp_copy_1111)));
+    bvec3 _1136 = bvec3((_718 < _721) && (_138 < 0.0));
+    vec3 _1137 = vec3(_1136.x ? _1131.x : _26.x, _1136.y ? _1131.y : _26.y, _1136.z ? _1131.z : _26.z);
+    out_color = vec4(_1137, 1.0);
 }
 

@@ -17,15 +17,14 @@ struct WaterParams
     packed_float3 absorb_coefficients;
     float gerstner_frequency_gain;
     packed_float3 scatter_color;
-    float gerstner_wave_count;
-    packed_float3 incident_light;
     float gerstner_steepness;
-    packed_float3 reflection_lower_tint;
+    packed_float3 incident_light;
     float refraction_distortion;
-    packed_float3 foam_existence;
+    packed_float3 reflection_lower_tint;
     float refraction_shore_fade_depth;
-    packed_float3 foam_color;
+    packed_float3 foam_existence;
     float scatter_coefficient;
+    packed_float3 foam_color;
     float reflection_horizon_band;
     float ior_air;
     float ior_water;
@@ -33,6 +32,9 @@ struct WaterParams
     float foam_pattern_scale;
     float shore_hardness;
 };
+
+constant float gerstner_wave_count_tmp [[function_constant(0)]];
+constant float gerstner_wave_count = is_function_constant_defined(gerstner_wave_count_tmp) ? gerstner_wave_count_tmp : 4.0;
 
 struct main0_out
 {
@@ -55,166 +57,166 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _63 = dfdx(_60);
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1182;
     float _1184;
-    float _1186;
-    _1186 = 0.0;
     _1184 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1183 = 0;
-    float _1185 = params.gerstner_amplitude;
-    float _1187 = params.gerstner_frequency;
-    for (; _1183 < 8; _1187 = _123, _1186 = _113, _1185 = _118, _1184 = _108, _1183++)
+    _1182 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1181 = 0;
+    float _1183 = params.gerstner_amplitude;
+    float _1185 = params.gerstner_frequency;
+    for (; _1181 < 8; _1185 = _121, _1184 = _111, _1183 = _116, _1182 = _106, _1181++)
     {
-        if (!(float(_1183) < _74))
+        if (!(float(_1181) < _71))
         {
             break;
         }
-        _108 = _1184 + _1185;
-        _113 = fma(_1185, _1187, _1186);
-        _118 = _1185 * params.gerstner_amplitude_gain;
-        _123 = _1187 * params.gerstner_frequency_gain;
+        _106 = _1182 + _1183;
+        _111 = fma(_1183, _1185, _1184);
+        _116 = _1183 * params.gerstner_amplitude_gain;
+        _121 = _1185 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = fast::max(-_140, 9.9999999747524270787835121154785e-07);
-    float2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1186 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1184;
-    float _164 = fast::min(_140, -9.9999999747524270787835121154785e-07);
-    float _1191;
-    float2 _1195;
-    _1195 = (float3(params.eye_position) + (_60 * fast::max((_1184 - params.eye_position[1u]) / _164, 0.0))).xz;
-    _1191 = _1184;
-    float2 _405;
-    float _676;
-    float _681;
-    float _691;
-    int _1190 = 0;
-    float _1223 = _1184;
-    float _1228 = _160;
-    for (; _1190 < 9; _1228 = _681, _1223 = _676, _1195 = _405, _1191 = _691, _1190++)
+    float _138 = _60.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1184 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1182;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _1189;
+    float2 _1193;
+    _1193 = (float3(params.eye_position) + (_60 * fast::max((_1182 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1189 = _1182;
+    float2 _403;
+    float _674;
+    float _679;
+    float _689;
+    int _1188 = 0;
+    float _1221 = _1182;
+    float _1226 = _158;
+    for (; _1188 < 9; _1226 = _679, _1221 = _674, _1193 = _403, _1189 = _689, _1188++)
     {
-        float _209 = fast::max((_1191 - params.eye_position[1u]) / _164, 0.0);
-        float2 _219 = (float3(params.eye_position) + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        float2 _1197;
-        float3 _1198;
-        _1198 = float3(0.0);
-        _1197 = float2(0.0);
-        float _322;
-        float _326;
-        float2 _333;
-        float3 _347;
-        int _1192 = 0;
-        float _1193 = params.gerstner_frequency;
-        float _1196 = params.gerstner_amplitude;
-        for (; _1192 < 8; _1198 = _347, _1197 = _333, _1196 = _322, _1193 = _326, _1192++)
+        float _207 = fast::max((_1189 - params.eye_position[1u]) / _162, 0.0);
+        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        float2 _1195;
+        float3 _1196;
+        _1196 = float3(0.0);
+        _1195 = float2(0.0);
+        float _320;
+        float _324;
+        float2 _331;
+        float3 _345;
+        int _1190 = 0;
+        float _1191 = params.gerstner_frequency;
+        float _1194 = params.gerstner_amplitude;
+        for (; _1190 < 8; _1196 = _345, _1195 = _331, _1194 = _320, _1191 = _324, _1190++)
         {
-            float _244 = float(_1192);
-            if (!(_244 < _74))
+            float _242 = float(_1190);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _255 = clamp(int(_244), 0, 7);
-            float _273 = _1193 * dot(params.gerstner_wave_directions[_255].xy, _1195);
-            float _295 = ((params.gerstner_steepness / (_74 * fast::max(_1193 * _1196, 9.9999999747524270787835121154785e-07))) * _1196) * fast::clamp(fma(-(_1193 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _314 = (_295 * _1193) * sin(_273);
-            float _318 = _314 * params.gerstner_wave_directions[_255].x;
-            _322 = _1196 * params.gerstner_amplitude_gain;
-            _326 = _1193 * params.gerstner_frequency_gain;
-            _333 = _1197 + (params.gerstner_wave_directions[_255].xy * (_295 * cos(_273)));
-            _347 = _1198 + float3(_318 * params.gerstner_wave_directions[_255].x, _318 * params.gerstner_wave_directions[_255].y, (_314 * params.gerstner_wave_directions[_255].y) * params.gerstner_wave_directions[_255].y);
+            int _253 = clamp(int(_242), 0, 7);
+            float _271 = _1191 * dot(params.gerstner_wave_directions[_253].xy, _1193);
+            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_1191 * _1194, 9.9999999747524270787835121154785e-07))) * _1194) * fast::clamp(fma(-(_1191 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _312 = (_293 * _1191) * sin(_271);
+            float _316 = _312 * params.gerstner_wave_directions[_253].x;
+            _320 = _1194 * params.gerstner_amplitude_gain;
+            _324 = _1191 * params.gerstner_frequency_gain;
+            _331 = _1195 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
+            _345 = _1196 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _353 = 1.0 - _1198.x;
-        float _358 = 1.0 - _1198.z;
-        float _362 = -_1198.y;
-        float2 _368 = (_1195 + _1197) - _219;
-        float _381 = _368.x;
-        float _384 = _368.y;
-        _405 = _1195 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
+        float _351 = 1.0 - _1196.x;
+        float _356 = 1.0 - _1196.z;
+        float _360 = -_1196.y;
+        float2 _366 = (_1193 + _1195) - _217;
+        float _379 = _366.x;
+        float _382 = _366.y;
+        _403 = _1193 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
+        float3 _1203;
+        float3 _1204;
         float3 _1205;
-        float3 _1206;
-        float3 _1207;
-        _1207 = float3(0.0, 0.0, 1.0);
-        _1206 = float3(1.0, 0.0, 0.0);
-        _1205 = float3(0.0);
-        float _518;
-        float _522;
-        float3 _534;
-        float3 _539;
-        float3 _544;
-        int _1202 = 0;
-        float _1203 = params.gerstner_frequency;
-        float _1204 = params.gerstner_amplitude;
-        for (; _1202 < 8; _1207 = _544, _1206 = _539, _1205 = _534, _1204 = _518, _1203 = _522, _1202++)
+        _1205 = float3(0.0, 0.0, 1.0);
+        _1204 = float3(1.0, 0.0, 0.0);
+        _1203 = float3(0.0);
+        float _516;
+        float _520;
+        float3 _532;
+        float3 _537;
+        float3 _542;
+        int _1200 = 0;
+        float _1201 = params.gerstner_frequency;
+        float _1202 = params.gerstner_amplitude;
+        for (; _1200 < 8; _1205 = _542, _1204 = _537, _1203 = _532, _1202 = _516, _1201 = _520, _1200++)
         {
-            float _426 = float(_1202);
-            if (!(_426 < _74))
+            float _424 = float(_1200);
+            if (!(_424 < _71))
             {
                 break;
             }
-            int _437 = clamp(int(_426), 0, 7);
-            float _446 = fast::clamp(fma(-(_1203 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _452 = _1203 * dot(params.gerstner_wave_directions[_437].xy, _405);
-            float _474 = ((params.gerstner_steepness / (_74 * fast::max(_1203 * _1204, 9.9999999747524270787835121154785e-07))) * _1204) * _446;
-            float _478 = _1204 * _446;
-            float _481 = sin(_452);
-            float _484 = cos(_452);
-            float _494 = _474 * _484;
-            float _501 = -((_474 * _1203) * _481);
-            float3 _514 = float3(_501 * params.gerstner_wave_directions[_437].x, (_478 * _1203) * _484, _501 * params.gerstner_wave_directions[_437].y);
-            _518 = _1204 * params.gerstner_amplitude_gain;
-            _522 = _1203 * params.gerstner_frequency_gain;
-            _534 = _1205 + float3(_494 * params.gerstner_wave_directions[_437].x, _478 * _481, _494 * params.gerstner_wave_directions[_437].y);
-            _539 = _1206 + (_514 * params.gerstner_wave_directions[_437].x);
-            _544 = _1207 + (_514 * params.gerstner_wave_directions[_437].y);
+            int _435 = clamp(int(_424), 0, 7);
+            float _444 = fast::clamp(fma(-(_1201 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _450 = _1201 * dot(params.gerstner_wave_directions[_435].xy, _403);
+            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1201 * _1202, 9.9999999747524270787835121154785e-07))) * _1202) * _444;
+            float _476 = _1202 * _444;
+            float _479 = sin(_450);
+            float _482 = cos(_450);
+            float _492 = _472 * _482;
+            float _499 = -((_472 * _1201) * _479);
+            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1201) * _482, _499 * params.gerstner_wave_directions[_435].y);
+            _516 = _1202 * params.gerstner_amplitude_gain;
+            _520 = _1201 * params.gerstner_frequency_gain;
+            _532 = _1203 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
+            _537 = _1204 + (_512 * params.gerstner_wave_directions[_435].x);
+            _542 = _1205 + (_512 * params.gerstner_wave_directions[_435].y);
         }
-        float3 _550 = cross(_1207, _1206);
-        float _554 = dot(_550, _550);
-        float3 _572 = select(float3(0.0, 1.0, 0.0), _550 * rsqrt(fast::max(_554, 1.0000000031710768509710513471353e-30)), bool3(_554 > 1.0000000031710768509710513471353e-30));
-        float2 _582 = (-_572.xz) / float2(fast::max(_572.y, 9.9999997473787516355514526367188e-05));
-        float _597 = float(_1190);
-        bool _598 = _597 < 1.0;
-        float _605 = (_1205.y + dot(_582, _219 - (_405 + _1205.xz))) - _1191;
-        float _618 = (-dot(_582, _148)) / _144;
-        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _157, 1.0), _605, _1191);
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1191 : _1223;
-        float _644 = _634 ? _1228 : _1191;
-        _676 = _598 ? _1191 : _639;
-        _681 = _598 ? _1228 : _644;
-        _691 = (_597 < 8.0) ? (_598 ? fma(_157, _605, _1191) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1191;
+        float3 _548 = cross(_1205, _1204);
+        float _552 = dot(_548, _548);
+        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
+        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
+        float _595 = float(_1188);
+        bool _596 = _595 < 1.0;
+        float _603 = (_1203.y + dot(_580, _217 - (_403 + _1203.xz))) - _1189;
+        float _616 = (-dot(_580, _146)) / _142;
+        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _1189);
+        bool _632 = _603 < 0.0;
+        float _637 = _632 ? _1189 : _1221;
+        float _642 = _632 ? _1226 : _1189;
+        _674 = _596 ? _1189 : _637;
+        _679 = _596 ? _1226 : _642;
+        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _1189) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1189;
     }
-    float _705 = fast::max((_1191 - params.eye_position[1u]) / _164, 0.0);
-    float3 _712 = float3(params.eye_position) + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float _728 = fast::max(_723 - _720, 0.0);
-    float3 _738 = -_60;
-    float3 _775 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
-    float _779 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
-    float3 _813 = abs(_60);
-    float3 _826 = _60 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
-    float _830 = dot(_826, _826);
-    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _852 = _849.y;
-    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
-    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _932 = 1.0 - fast::clamp(_738.y, 0.0, 1.0);
-    float _936 = _932 * _932;
-    float3 _952 = -float3(params.sun_direction);
-    float3 _956 = _952 + _738;
-    float _968 = fast::max(fast::max(abs(_956.x), abs(_956.y)), abs(_956.z));
-    float3 _975 = _956 / float3(fast::max(_968, 5.9604644775390625e-08));
-    float _994 = fast::clamp(select(float3(0.0), _975 / float3(fast::max(length(_975), 1.0)), bool3(_968 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float2 _1040 = _712.xz;
-    float _1094 = _728 - params.foam_existence[0u];
-    float _1099 = params.foam_existence[1u] - params.foam_existence[0u];
-    float3 _1133 = mix(mix(mix(float3(params.scatter_color), _775 * exp((-float3(params.absorb_coefficients)) * (_728 + _779)), float3(exp((-params.scatter_coefficient) * _779))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(fma(_924, _924, fma(-_924, _924, 1.0) * ((_936 * _936) * _932)))) + (float3(params.sun_color) * ((_952.y > 0.0) ? ((_994 > 6.103515625e-05) ? pow(fast::max(_994, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_1040 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_1040)), length(dfdy(_1040))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1094 < 0.0) ? 1.0 : (1.0 - ((_1094 >= _1099) ? 1.0 : fast::clamp(_1094 / fast::max(_1099, 5.9604644775390625e-08), 0.0, 1.0)))));
-    out.out_color = float4(select(_25.xyz, mix(_775, _1133, float3(fast::clamp(_728 * params.shore_hardness, 0.0, 1.0))), bool3((_720 < _723) && (_140 < 0.0))), 1.0);
+    float _703 = fast::max((_1189 - params.eye_position[1u]) / _162, 0.0);
+    float3 _710 = float3(params.eye_position) + (_60 * _703);
+    float _718 = _33.y;
+    float _721 = _710.y;
+    float _726 = fast::max(_721 - _718, 0.0);
+    float3 _736 = -_60;
+    float3 _773 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
+    float _777 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
+    float3 _811 = abs(_60);
+    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
+    float _828 = dot(_824, _824);
+    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _850 = _847.y;
+    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
+    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _930 = 1.0 - fast::clamp(_736.y, 0.0, 1.0);
+    float _934 = _930 * _930;
+    float3 _950 = -float3(params.sun_direction);
+    float3 _954 = _950 + _736;
+    float _966 = fast::max(fast::max(abs(_954.x), abs(_954.y)), abs(_954.z));
+    float3 _973 = _954 / float3(fast::max(_966, 5.9604644775390625e-08));
+    float _992 = fast::clamp(select(float3(0.0), _973 / float3(fast::max(length(_973), 1.0)), bool3(_966 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float2 _1038 = _710.xz;
+    float _1092 = _726 - params.foam_existence[0u];
+    float _1097 = params.foam_existence[1u] - params.foam_existence[0u];
+    float3 _1131 = mix(mix(mix(float3(params.scatter_color), _773 * exp((-float3(params.absorb_coefficients)) * (_726 + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(fma(_922, _922, fma(-_922, _922, 1.0) * ((_934 * _934) * _930)))) + (float3(params.sun_color) * ((_950.y > 0.0) ? ((_992 > 6.103515625e-05) ? pow(fast::max(_992, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_1038 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_1038)), length(dfdy(_1038))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1092 < 0.0) ? 1.0 : (1.0 - ((_1092 >= _1097) ? 1.0 : fast::clamp(_1092 / fast::max(_1097, 5.9604644775390625e-08), 0.0, 1.0)))));
+    out.out_color = float4(select(_25.xyz, mix(_773, _1131, float3(fast::clamp(_726 * params.shore_hardness, 0.0, 1.0))), bool3((_718 < _721) && (_138 < 0.0))), 1.0);
     return out;
 }
 

@@ -17,7 +17,6 @@ struct WaterParams
     packed_float3 incident_light;
     float gerstner_frequency_gain;
     packed_float3 reflection_lower_tint;
-    float gerstner_wave_count;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -26,6 +25,9 @@ struct WaterParams
     float ior_air;
     float ior_water;
 };
+
+constant float gerstner_wave_count_tmp [[function_constant(0)]];
+constant float gerstner_wave_count = is_function_constant_defined(gerstner_wave_count_tmp) ? gerstner_wave_count_tmp : 4.0;
 
 struct main0_out
 {
@@ -48,155 +50,155 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _63 = dfdx(_60);
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _985;
     float _987;
-    float _989;
-    _989 = 0.0;
     _987 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _986 = 0;
-    float _988 = params.gerstner_amplitude;
-    float _990 = params.gerstner_frequency;
-    for (; _986 < 8; _990 = _123, _989 = _113, _988 = _118, _987 = _108, _986++)
+    _985 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _984 = 0;
+    float _986 = params.gerstner_amplitude;
+    float _988 = params.gerstner_frequency;
+    for (; _984 < 8; _988 = _121, _987 = _111, _986 = _116, _985 = _106, _984++)
     {
-        if (!(float(_986) < _74))
+        if (!(float(_984) < _71))
         {
             break;
         }
-        _108 = _987 + _988;
-        _113 = fma(_988, _990, _989);
-        _118 = _988 * params.gerstner_amplitude_gain;
-        _123 = _990 * params.gerstner_frequency_gain;
+        _106 = _985 + _986;
+        _111 = fma(_986, _988, _987);
+        _116 = _986 * params.gerstner_amplitude_gain;
+        _121 = _988 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = fast::max(-_140, 9.9999999747524270787835121154785e-07);
-    float2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_989 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_987;
-    float _164 = fast::min(_140, -9.9999999747524270787835121154785e-07);
-    float _994;
-    float2 _998;
-    _998 = (float3(params.eye_position) + (_60 * fast::max((_987 - params.eye_position[1u]) / _164, 0.0))).xz;
-    _994 = _987;
-    float2 _405;
-    float _676;
-    float _681;
-    float _691;
-    int _993 = 0;
-    float _1026 = _987;
-    float _1031 = _160;
-    for (; _993 < 9; _1031 = _681, _1026 = _676, _998 = _405, _994 = _691, _993++)
+    float _138 = _60.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_987 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_985;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _992;
+    float2 _996;
+    _996 = (float3(params.eye_position) + (_60 * fast::max((_985 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _992 = _985;
+    float2 _403;
+    float _674;
+    float _679;
+    float _689;
+    int _991 = 0;
+    float _1024 = _985;
+    float _1029 = _158;
+    for (; _991 < 9; _1029 = _679, _1024 = _674, _996 = _403, _992 = _689, _991++)
     {
-        float _209 = fast::max((_994 - params.eye_position[1u]) / _164, 0.0);
-        float2 _219 = (float3(params.eye_position) + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        float2 _1000;
-        float3 _1001;
-        _1001 = float3(0.0);
-        _1000 = float2(0.0);
-        float _322;
-        float _326;
-        float2 _333;
-        float3 _347;
-        int _995 = 0;
-        float _996 = params.gerstner_frequency;
-        float _999 = params.gerstner_amplitude;
-        for (; _995 < 8; _1001 = _347, _1000 = _333, _999 = _322, _996 = _326, _995++)
+        float _207 = fast::max((_992 - params.eye_position[1u]) / _162, 0.0);
+        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        float2 _998;
+        float3 _999;
+        _999 = float3(0.0);
+        _998 = float2(0.0);
+        float _320;
+        float _324;
+        float2 _331;
+        float3 _345;
+        int _993 = 0;
+        float _994 = params.gerstner_frequency;
+        float _997 = params.gerstner_amplitude;
+        for (; _993 < 8; _999 = _345, _998 = _331, _997 = _320, _994 = _324, _993++)
         {
-            float _244 = float(_995);
-            if (!(_244 < _74))
+            float _242 = float(_993);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _255 = clamp(int(_244), 0, 7);
-            float _273 = _996 * dot(params.gerstner_wave_directions[_255].xy, _998);
-            float _295 = ((params.gerstner_steepness / (_74 * fast::max(_996 * _999, 9.9999999747524270787835121154785e-07))) * _999) * fast::clamp(fma(-(_996 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _314 = (_295 * _996) * sin(_273);
-            float _318 = _314 * params.gerstner_wave_directions[_255].x;
-            _322 = _999 * params.gerstner_amplitude_gain;
-            _326 = _996 * params.gerstner_frequency_gain;
-            _333 = _1000 + (params.gerstner_wave_directions[_255].xy * (_295 * cos(_273)));
-            _347 = _1001 + float3(_318 * params.gerstner_wave_directions[_255].x, _318 * params.gerstner_wave_directions[_255].y, (_314 * params.gerstner_wave_directions[_255].y) * params.gerstner_wave_directions[_255].y);
+            int _253 = clamp(int(_242), 0, 7);
+            float _271 = _994 * dot(params.gerstner_wave_directions[_253].xy, _996);
+            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_994 * _997, 9.9999999747524270787835121154785e-07))) * _997) * fast::clamp(fma(-(_994 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _312 = (_293 * _994) * sin(_271);
+            float _316 = _312 * params.gerstner_wave_directions[_253].x;
+            _320 = _997 * params.gerstner_amplitude_gain;
+            _324 = _994 * params.gerstner_frequency_gain;
+            _331 = _998 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
+            _345 = _999 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _353 = 1.0 - _1001.x;
-        float _358 = 1.0 - _1001.z;
-        float _362 = -_1001.y;
-        float2 _368 = (_998 + _1000) - _219;
-        float _381 = _368.x;
-        float _384 = _368.y;
-        _405 = _998 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
+        float _351 = 1.0 - _999.x;
+        float _356 = 1.0 - _999.z;
+        float _360 = -_999.y;
+        float2 _366 = (_996 + _998) - _217;
+        float _379 = _366.x;
+        float _382 = _366.y;
+        _403 = _996 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
+        float3 _1006;
+        float3 _1007;
         float3 _1008;
-        float3 _1009;
-        float3 _1010;
-        _1010 = float3(0.0, 0.0, 1.0);
-        _1009 = float3(1.0, 0.0, 0.0);
-        _1008 = float3(0.0);
-        float _518;
-        float _522;
-        float3 _534;
-        float3 _539;
-        float3 _544;
-        int _1005 = 0;
-        float _1006 = params.gerstner_frequency;
-        float _1007 = params.gerstner_amplitude;
-        for (; _1005 < 8; _1010 = _544, _1009 = _539, _1008 = _534, _1007 = _518, _1006 = _522, _1005++)
+        _1008 = float3(0.0, 0.0, 1.0);
+        _1007 = float3(1.0, 0.0, 0.0);
+        _1006 = float3(0.0);
+        float _516;
+        float _520;
+        float3 _532;
+        float3 _537;
+        float3 _542;
+        int _1003 = 0;
+        float _1004 = params.gerstner_frequency;
+        float _1005 = params.gerstner_amplitude;
+        for (; _1003 < 8; _1008 = _542, _1007 = _537, _1006 = _532, _1005 = _516, _1004 = _520, _1003++)
         {
-            float _426 = float(_1005);
-            if (!(_426 < _74))
+            float _424 = float(_1003);
+            if (!(_424 < _71))
             {
                 break;
             }
-            int _437 = clamp(int(_426), 0, 7);
-            float _446 = fast::clamp(fma(-(_1006 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _452 = _1006 * dot(params.gerstner_wave_directions[_437].xy, _405);
-            float _474 = ((params.gerstner_steepness / (_74 * fast::max(_1006 * _1007, 9.9999999747524270787835121154785e-07))) * _1007) * _446;
-            float _478 = _1007 * _446;
-            float _481 = sin(_452);
-            float _484 = cos(_452);
-            float _494 = _474 * _484;
-            float _501 = -((_474 * _1006) * _481);
-            float3 _514 = float3(_501 * params.gerstner_wave_directions[_437].x, (_478 * _1006) * _484, _501 * params.gerstner_wave_directions[_437].y);
-            _518 = _1007 * params.gerstner_amplitude_gain;
-            _522 = _1006 * params.gerstner_frequency_gain;
-            _534 = _1008 + float3(_494 * params.gerstner_wave_directions[_437].x, _478 * _481, _494 * params.gerstner_wave_directions[_437].y);
-            _539 = _1009 + (_514 * params.gerstner_wave_directions[_437].x);
-            _544 = _1010 + (_514 * params.gerstner_wave_directions[_437].y);
+            int _435 = clamp(int(_424), 0, 7);
+            float _444 = fast::clamp(fma(-(_1004 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _450 = _1004 * dot(params.gerstner_wave_directions[_435].xy, _403);
+            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1004 * _1005, 9.9999999747524270787835121154785e-07))) * _1005) * _444;
+            float _476 = _1005 * _444;
+            float _479 = sin(_450);
+            float _482 = cos(_450);
+            float _492 = _472 * _482;
+            float _499 = -((_472 * _1004) * _479);
+            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1004) * _482, _499 * params.gerstner_wave_directions[_435].y);
+            _516 = _1005 * params.gerstner_amplitude_gain;
+            _520 = _1004 * params.gerstner_frequency_gain;
+            _532 = _1006 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
+            _537 = _1007 + (_512 * params.gerstner_wave_directions[_435].x);
+            _542 = _1008 + (_512 * params.gerstner_wave_directions[_435].y);
         }
-        float3 _550 = cross(_1010, _1009);
-        float _554 = dot(_550, _550);
-        float3 _572 = select(float3(0.0, 1.0, 0.0), _550 * rsqrt(fast::max(_554, 1.0000000031710768509710513471353e-30)), bool3(_554 > 1.0000000031710768509710513471353e-30));
-        float2 _582 = (-_572.xz) / float2(fast::max(_572.y, 9.9999997473787516355514526367188e-05));
-        float _597 = float(_993);
-        bool _598 = _597 < 1.0;
-        float _605 = (_1008.y + dot(_582, _219 - (_405 + _1008.xz))) - _994;
-        float _618 = (-dot(_582, _148)) / _144;
-        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _157, 1.0), _605, _994);
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _994 : _1026;
-        float _644 = _634 ? _1031 : _994;
-        _676 = _598 ? _994 : _639;
-        _681 = _598 ? _1031 : _644;
-        _691 = (_597 < 8.0) ? (_598 ? fma(_157, _605, _994) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _994;
+        float3 _548 = cross(_1008, _1007);
+        float _552 = dot(_548, _548);
+        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
+        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
+        float _595 = float(_991);
+        bool _596 = _595 < 1.0;
+        float _603 = (_1006.y + dot(_580, _217 - (_403 + _1006.xz))) - _992;
+        float _616 = (-dot(_580, _146)) / _142;
+        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _992);
+        bool _632 = _603 < 0.0;
+        float _637 = _632 ? _992 : _1024;
+        float _642 = _632 ? _1029 : _992;
+        _674 = _596 ? _992 : _637;
+        _679 = _596 ? _1029 : _642;
+        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _992) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _992;
     }
-    float _705 = fast::max((_994 - params.eye_position[1u]) / _164, 0.0);
-    float3 _712 = float3(params.eye_position) + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float _777 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
-    float3 _811 = abs(_60);
-    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
-    float _828 = dot(_824, _824);
-    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _850 = _847.y;
-    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
-    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _930 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
-    float _934 = _930 * _930;
-    float3 _957 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_723 - _720, 0.0) + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(fma(_922, _922, fma(-_922, _922, 1.0) * ((_934 * _934) * _930)))), bool3((_720 < _723) && (_140 < 0.0)));
-    out.out_color = float4(_957, 1.0);
+    float _703 = fast::max((_992 - params.eye_position[1u]) / _162, 0.0);
+    float3 _710 = float3(params.eye_position) + (_60 * _703);
+    float _718 = _33.y;
+    float _721 = _710.y;
+    float _775 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
+    float3 _809 = abs(_60);
+    float3 _822 = _60 / float3(fast::max(fast::max(fast::max(_809.x, _809.y), _809.z), 1.0000000031710768509710513471353e-30));
+    float _826 = dot(_822, _822);
+    float3 _845 = reflect(select(float3(0.0, -1.0, 0.0), _822 * rsqrt(fast::max(_826, 1.0000000031710768509710513471353e-30)), bool3(_826 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _848 = _845.y;
+    float _874 = smoothstep(0.0, params.reflection_horizon_band, -_848);
+    float _920 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _928 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
+    float _932 = _928 * _928;
+    float3 _955 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_721 - _718, 0.0) + _775)), float3(exp((-params.scatter_coefficient) * _775))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_845.x, abs(_848), _845.z), bool3(dot(_845, _845) > 9.9999999600419720025001879548654e-13)), _874).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_874)), float3(fma(_920, _920, fma(-_920, _920, 1.0) * ((_932 * _932) * _928)))), bool3((_718 < _721) && (_138 < 0.0)));
+    out.out_color = float4(_955, 1.0);
     return out;
 }
 

@@ -14,16 +14,16 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 304) vec3 incident_light;
     layout(offset = 316) float gerstner_frequency_gain;
     layout(offset = 320) vec3 reflection_lower_tint;
-    layout(offset = 332) float gerstner_wave_count;
-    layout(offset = 336) float gerstner_steepness;
-    layout(offset = 340) float refraction_distortion;
-    layout(offset = 344) float refraction_shore_fade_depth;
-    layout(offset = 348) float scatter_coefficient;
-    layout(offset = 352) float reflection_horizon_band;
-    layout(offset = 356) float ior_air;
-    layout(offset = 360) float ior_water;
-    layout(offset = 364) float shore_hardness;
+    layout(offset = 332) float gerstner_steepness;
+    layout(offset = 336) float refraction_distortion;
+    layout(offset = 340) float refraction_shore_fade_depth;
+    layout(offset = 344) float scatter_coefficient;
+    layout(offset = 348) float reflection_horizon_band;
+    layout(offset = 352) float ior_air;
+    layout(offset = 356) float ior_water;
+    layout(offset = 360) float shore_hardness;
 } params;
+layout(constant_id = 0) const float gerstner_wave_count = 4.0;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
 layout(set = 0, binding = 3) uniform texture2D scene_position;
@@ -41,12 +41,12 @@ void main() {
 
     // waves.gerstner
     float pixel_angle = max(length(dFdx(view_ray)), length(dFdy(view_ray)));
-    float trip_count = floor(params.gerstner_wave_count);
+    float trip_count = floor(gerstner_wave_count);
     float loop26_c0 = params.gerstner_amplitude;
     float loop26_c1 = params.gerstner_frequency;
     float loop26_c2 = 0.0;
     float loop26_c3 = 0.0;
-    [[dont_unroll]] for (int loop26_i = 0; loop26_i < 8; ++loop26_i) {
+    for (int loop26_i = 0; loop26_i < 8; ++loop26_i) {
         if (!(float(loop26_i) < trip_count)) break;
         loop26_c2 = loop26_c2 + loop26_c0;
         loop26_c3 = loop26_c3 + (loop26_c0 * loop26_c1);
@@ -79,7 +79,7 @@ void main() {
         float loop31_c1 = params.gerstner_frequency;
         vec2 loop31_c2 = vec2(0.0);
         vec3 loop31_c3 = vec3(0.0);
-        [[dont_unroll]] for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
+        for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
             if (!(float(loop31_i) < trip_count)) break;
             // waves.gerstner
             vec2 gerstner_wave_directions = params.gerstner_wave_directions[clamp(int(float(loop31_i)), 0, 7)];
@@ -110,7 +110,7 @@ void main() {
         vec3 loop63_c2 = vec3(0.0);
         vec3 loop63_c3 = vec3(1.0, 0.0, 0.0);
         vec3 loop63_c4 = vec3(0.0, 0.0, 1.0);
-        [[dont_unroll]] for (int loop63_i = 0; loop63_i < 8; ++loop63_i) {
+        for (int loop63_i = 0; loop63_i < 8; ++loop63_i) {
             if (!(float(loop63_i) < trip_count)) break;
             // waves.gerstner
             vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop63_i)), 0, 7)];

@@ -17,11 +17,10 @@ struct WaterParams
     packed_float3 incident_light;
     float gerstner_frequency_gain;
     packed_float3 reflection_lower_tint;
-    float gerstner_wave_count;
-    packed_float3 foam_existence;
     float gerstner_steepness;
-    packed_float3 foam_color;
+    packed_float3 foam_existence;
     float refraction_distortion;
+    packed_float3 foam_color;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -29,6 +28,9 @@ struct WaterParams
     float ior_water;
     float foam_pattern_scale;
 };
+
+constant float gerstner_wave_count_tmp [[function_constant(0)]];
+constant float gerstner_wave_count = is_function_constant_defined(gerstner_wave_count_tmp) ? gerstner_wave_count_tmp : 4.0;
 
 struct main0_out
 {
@@ -51,159 +53,159 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _63 = dfdx(_60);
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1082;
     float _1084;
-    float _1086;
-    _1086 = 0.0;
     _1084 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1083 = 0;
-    float _1085 = params.gerstner_amplitude;
-    float _1087 = params.gerstner_frequency;
-    for (; _1083 < 8; _1087 = _123, _1086 = _113, _1085 = _118, _1084 = _108, _1083++)
+    _1082 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1081 = 0;
+    float _1083 = params.gerstner_amplitude;
+    float _1085 = params.gerstner_frequency;
+    for (; _1081 < 8; _1085 = _121, _1084 = _111, _1083 = _116, _1082 = _106, _1081++)
     {
-        if (!(float(_1083) < _74))
+        if (!(float(_1081) < _71))
         {
             break;
         }
-        _108 = _1084 + _1085;
-        _113 = fma(_1085, _1087, _1086);
-        _118 = _1085 * params.gerstner_amplitude_gain;
-        _123 = _1087 * params.gerstner_frequency_gain;
+        _106 = _1082 + _1083;
+        _111 = fma(_1083, _1085, _1084);
+        _116 = _1083 * params.gerstner_amplitude_gain;
+        _121 = _1085 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = fast::max(-_140, 9.9999999747524270787835121154785e-07);
-    float2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1086 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1084;
-    float _164 = fast::min(_140, -9.9999999747524270787835121154785e-07);
-    float _1091;
-    float2 _1095;
-    _1095 = (float3(params.eye_position) + (_60 * fast::max((_1084 - params.eye_position[1u]) / _164, 0.0))).xz;
-    _1091 = _1084;
-    float2 _405;
-    float _676;
-    float _681;
-    float _691;
-    int _1090 = 0;
-    float _1123 = _1084;
-    float _1128 = _160;
-    for (; _1090 < 9; _1128 = _681, _1123 = _676, _1095 = _405, _1091 = _691, _1090++)
+    float _138 = _60.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1084 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1082;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _1089;
+    float2 _1093;
+    _1093 = (float3(params.eye_position) + (_60 * fast::max((_1082 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1089 = _1082;
+    float2 _403;
+    float _674;
+    float _679;
+    float _689;
+    int _1088 = 0;
+    float _1121 = _1082;
+    float _1126 = _158;
+    for (; _1088 < 9; _1126 = _679, _1121 = _674, _1093 = _403, _1089 = _689, _1088++)
     {
-        float _209 = fast::max((_1091 - params.eye_position[1u]) / _164, 0.0);
-        float2 _219 = (float3(params.eye_position) + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        float2 _1097;
-        float3 _1098;
-        _1098 = float3(0.0);
-        _1097 = float2(0.0);
-        float _322;
-        float _326;
-        float2 _333;
-        float3 _347;
-        int _1092 = 0;
-        float _1093 = params.gerstner_frequency;
-        float _1096 = params.gerstner_amplitude;
-        for (; _1092 < 8; _1098 = _347, _1097 = _333, _1096 = _322, _1093 = _326, _1092++)
+        float _207 = fast::max((_1089 - params.eye_position[1u]) / _162, 0.0);
+        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        float2 _1095;
+        float3 _1096;
+        _1096 = float3(0.0);
+        _1095 = float2(0.0);
+        float _320;
+        float _324;
+        float2 _331;
+        float3 _345;
+        int _1090 = 0;
+        float _1091 = params.gerstner_frequency;
+        float _1094 = params.gerstner_amplitude;
+        for (; _1090 < 8; _1096 = _345, _1095 = _331, _1094 = _320, _1091 = _324, _1090++)
         {
-            float _244 = float(_1092);
-            if (!(_244 < _74))
+            float _242 = float(_1090);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _255 = clamp(int(_244), 0, 7);
-            float _273 = _1093 * dot(params.gerstner_wave_directions[_255].xy, _1095);
-            float _295 = ((params.gerstner_steepness / (_74 * fast::max(_1093 * _1096, 9.9999999747524270787835121154785e-07))) * _1096) * fast::clamp(fma(-(_1093 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _314 = (_295 * _1093) * sin(_273);
-            float _318 = _314 * params.gerstner_wave_directions[_255].x;
-            _322 = _1096 * params.gerstner_amplitude_gain;
-            _326 = _1093 * params.gerstner_frequency_gain;
-            _333 = _1097 + (params.gerstner_wave_directions[_255].xy * (_295 * cos(_273)));
-            _347 = _1098 + float3(_318 * params.gerstner_wave_directions[_255].x, _318 * params.gerstner_wave_directions[_255].y, (_314 * params.gerstner_wave_directions[_255].y) * params.gerstner_wave_directions[_255].y);
+            int _253 = clamp(int(_242), 0, 7);
+            float _271 = _1091 * dot(params.gerstner_wave_directions[_253].xy, _1093);
+            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_1091 * _1094, 9.9999999747524270787835121154785e-07))) * _1094) * fast::clamp(fma(-(_1091 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _312 = (_293 * _1091) * sin(_271);
+            float _316 = _312 * params.gerstner_wave_directions[_253].x;
+            _320 = _1094 * params.gerstner_amplitude_gain;
+            _324 = _1091 * params.gerstner_frequency_gain;
+            _331 = _1095 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
+            _345 = _1096 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _353 = 1.0 - _1098.x;
-        float _358 = 1.0 - _1098.z;
-        float _362 = -_1098.y;
-        float2 _368 = (_1095 + _1097) - _219;
-        float _381 = _368.x;
-        float _384 = _368.y;
-        _405 = _1095 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
+        float _351 = 1.0 - _1096.x;
+        float _356 = 1.0 - _1096.z;
+        float _360 = -_1096.y;
+        float2 _366 = (_1093 + _1095) - _217;
+        float _379 = _366.x;
+        float _382 = _366.y;
+        _403 = _1093 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
+        float3 _1103;
+        float3 _1104;
         float3 _1105;
-        float3 _1106;
-        float3 _1107;
-        _1107 = float3(0.0, 0.0, 1.0);
-        _1106 = float3(1.0, 0.0, 0.0);
-        _1105 = float3(0.0);
-        float _518;
-        float _522;
-        float3 _534;
-        float3 _539;
-        float3 _544;
-        int _1102 = 0;
-        float _1103 = params.gerstner_frequency;
-        float _1104 = params.gerstner_amplitude;
-        for (; _1102 < 8; _1107 = _544, _1106 = _539, _1105 = _534, _1104 = _518, _1103 = _522, _1102++)
+        _1105 = float3(0.0, 0.0, 1.0);
+        _1104 = float3(1.0, 0.0, 0.0);
+        _1103 = float3(0.0);
+        float _516;
+        float _520;
+        float3 _532;
+        float3 _537;
+        float3 _542;
+        int _1100 = 0;
+        float _1101 = params.gerstner_frequency;
+        float _1102 = params.gerstner_amplitude;
+        for (; _1100 < 8; _1105 = _542, _1104 = _537, _1103 = _532, _1102 = _516, _1101 = _520, _1100++)
         {
-            float _426 = float(_1102);
-            if (!(_426 < _74))
+            float _424 = float(_1100);
+            if (!(_424 < _71))
             {
                 break;
             }
-            int _437 = clamp(int(_426), 0, 7);
-            float _446 = fast::clamp(fma(-(_1103 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _452 = _1103 * dot(params.gerstner_wave_directions[_437].xy, _405);
-            float _474 = ((params.gerstner_steepness / (_74 * fast::max(_1103 * _1104, 9.9999999747524270787835121154785e-07))) * _1104) * _446;
-            float _478 = _1104 * _446;
-            float _481 = sin(_452);
-            float _484 = cos(_452);
-            float _494 = _474 * _484;
-            float _501 = -((_474 * _1103) * _481);
-            float3 _514 = float3(_501 * params.gerstner_wave_directions[_437].x, (_478 * _1103) * _484, _501 * params.gerstner_wave_directions[_437].y);
-            _518 = _1104 * params.gerstner_amplitude_gain;
-            _522 = _1103 * params.gerstner_frequency_gain;
-            _534 = _1105 + float3(_494 * params.gerstner_wave_directions[_437].x, _478 * _481, _494 * params.gerstner_wave_directions[_437].y);
-            _539 = _1106 + (_514 * params.gerstner_wave_directions[_437].x);
-            _544 = _1107 + (_514 * params.gerstner_wave_directions[_437].y);
+            int _435 = clamp(int(_424), 0, 7);
+            float _444 = fast::clamp(fma(-(_1101 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _450 = _1101 * dot(params.gerstner_wave_directions[_435].xy, _403);
+            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1101 * _1102, 9.9999999747524270787835121154785e-07))) * _1102) * _444;
+            float _476 = _1102 * _444;
+            float _479 = sin(_450);
+            float _482 = cos(_450);
+            float _492 = _472 * _482;
+            float _499 = -((_472 * _1101) * _479);
+            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1101) * _482, _499 * params.gerstner_wave_directions[_435].y);
+            _516 = _1102 * params.gerstner_amplitude_gain;
+            _520 = _1101 * params.gerstner_frequency_gain;
+            _532 = _1103 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
+            _537 = _1104 + (_512 * params.gerstner_wave_directions[_435].x);
+            _542 = _1105 + (_512 * params.gerstner_wave_directions[_435].y);
         }
-        float3 _550 = cross(_1107, _1106);
-        float _554 = dot(_550, _550);
-        float3 _572 = select(float3(0.0, 1.0, 0.0), _550 * rsqrt(fast::max(_554, 1.0000000031710768509710513471353e-30)), bool3(_554 > 1.0000000031710768509710513471353e-30));
-        float2 _582 = (-_572.xz) / float2(fast::max(_572.y, 9.9999997473787516355514526367188e-05));
-        float _597 = float(_1090);
-        bool _598 = _597 < 1.0;
-        float _605 = (_1105.y + dot(_582, _219 - (_405 + _1105.xz))) - _1091;
-        float _618 = (-dot(_582, _148)) / _144;
-        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _157, 1.0), _605, _1091);
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1091 : _1123;
-        float _644 = _634 ? _1128 : _1091;
-        _676 = _598 ? _1091 : _639;
-        _681 = _598 ? _1128 : _644;
-        _691 = (_597 < 8.0) ? (_598 ? fma(_157, _605, _1091) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1091;
+        float3 _548 = cross(_1105, _1104);
+        float _552 = dot(_548, _548);
+        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
+        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
+        float _595 = float(_1088);
+        bool _596 = _595 < 1.0;
+        float _603 = (_1103.y + dot(_580, _217 - (_403 + _1103.xz))) - _1089;
+        float _616 = (-dot(_580, _146)) / _142;
+        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _1089);
+        bool _632 = _603 < 0.0;
+        float _637 = _632 ? _1089 : _1121;
+        float _642 = _632 ? _1126 : _1089;
+        _674 = _596 ? _1089 : _637;
+        _679 = _596 ? _1126 : _642;
+        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _1089) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1089;
     }
-    float _705 = fast::max((_1091 - params.eye_position[1u]) / _164, 0.0);
-    float3 _712 = float3(params.eye_position) + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float _728 = fast::max(_723 - _720, 0.0);
-    float _777 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
-    float3 _811 = abs(_60);
-    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
-    float _828 = dot(_824, _824);
-    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _850 = _847.y;
-    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
-    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _930 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
-    float _934 = _930 * _930;
-    float2 _954 = _712.xz;
-    float _1008 = _728 - params.foam_existence[0u];
-    float _1013 = params.foam_existence[1u] - params.foam_existence[0u];
-    float3 _1054 = select(_25.xyz, mix(mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (_728 + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(fma(_922, _922, fma(-_922, _922, 1.0) * ((_934 * _934) * _930)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_954 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_954)), length(dfdy(_954))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1008 < 0.0) ? 1.0 : (1.0 - ((_1008 >= _1013) ? 1.0 : fast::clamp(_1008 / fast::max(_1013, 5.9604644775390625e-08), 0.0, 1.0))))), bool3((_720 < _723) && (_140 < 0.0)));
-    out.out_color = float4(_1054, 1.0);
+    float _703 = fast::max((_1089 - params.eye_position[1u]) / _162, 0.0);
+    float3 _710 = float3(params.eye_position) + (_60 * _703);
+    float _718 = _33.y;
+    float _721 = _710.y;
+    float _726 = fast::max(_721 - _718, 0.0);
+    float _775 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
+    float3 _809 = abs(_60);
+    float3 _822 = _60 / float3(fast::max(fast::max(fast::max(_809.x, _809.y), _809.z), 1.0000000031710768509710513471353e-30));
+    float _826 = dot(_822, _822);
+    float3 _845 = reflect(select(float3(0.0, -1.0, 0.0), _822 * rsqrt(fast::max(_826, 1.0000000031710768509710513471353e-30)), bool3(_826 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _848 = _845.y;
+    float _874 = smoothstep(0.0, params.reflection_horizon_band, -_848);
+    float _920 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _928 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
+    float _932 = _928 * _928;
+    float2 _952 = _710.xz;
+    float _1006 = _726 - params.foam_existence[0u];
+    float _1011 = params.foam_existence[1u] - params.foam_existence[0u];
+    float3 _1052 = select(_25.xyz, mix(mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (_726 + _775)), float3(exp((-params.scatter_coefficient) * _775))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_845.x, abs(_848), _845.z), bool3(dot(_845, _845) > 9.9999999600419720025001879548654e-13)), _874).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_874)), float3(fma(_920, _920, fma(-_920, _920, 1.0) * ((_932 * _932) * _928)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_952 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_952)), length(dfdy(_952))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1006 < 0.0) ? 1.0 : (1.0 - ((_1006 >= _1011) ? 1.0 : fast::clamp(_1006 / fast::max(_1011, 5.9604644775390625e-08), 0.0, 1.0))))), bool3((_718 < _721) && (_138 < 0.0)));
+    out.out_color = float4(_1052, 1.0);
     return out;
 }
 

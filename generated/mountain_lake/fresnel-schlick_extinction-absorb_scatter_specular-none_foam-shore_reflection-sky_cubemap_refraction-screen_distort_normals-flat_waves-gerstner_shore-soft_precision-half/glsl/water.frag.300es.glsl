@@ -3,6 +3,11 @@
 precision highp float;
 precision highp int;
 
+#ifndef SPIRV_CROSS_CONSTANT_ID_0
+#define SPIRV_CROSS_CONSTANT_ID_0 4.0
+#endif
+const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
+
 layout(std140) uniform WaterParams
 {
     vec2 gerstner_wave_directions[8];
@@ -16,11 +21,10 @@ layout(std140) uniform WaterParams
     vec3 incident_light;
     float gerstner_frequency_gain;
     vec3 reflection_lower_tint;
-    float gerstner_wave_count;
-    vec3 foam_existence;
     float gerstner_steepness;
-    vec3 foam_color;
+    vec3 foam_existence;
     float refraction_distortion;
+    vec3 foam_color;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -49,187 +53,187 @@ void main()
     vec3 _63 = dFdx(_60);
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1093;
     float _1095;
-    float _1097;
-    _1097 = 0.0;
     _1095 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1094 = 0;
-    float _1096 = params.gerstner_amplitude;
-    float _1098 = params.gerstner_frequency;
-    for (; _1094 < 8; _1098 = _123, _1097 = _113, _1096 = _118, _1095 = _108, _1094++)
+    _1093 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1092 = 0;
+    float _1094 = params.gerstner_amplitude;
+    float _1096 = params.gerstner_frequency;
+    for (; _1092 < 8; _1096 = _121, _1095 = _111, _1094 = _116, _1093 = _106, _1092++)
     {
-        if (!(float(_1094) < _74))
+        if (!(float(_1092) < _71))
         {
             break;
         }
-        _108 = _1095 + _1096;
-        _113 = _1096 * _1098 + _1097;
-        _118 = _1096 * params.gerstner_amplitude_gain;
-        _123 = _1098 * params.gerstner_frequency_gain;
+        _106 = _1093 + _1094;
+        _111 = _1094 * _1096 + _1095;
+        _116 = _1094 * params.gerstner_amplitude_gain;
+        _121 = _1096 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = max(-_140, 9.9999999747524270787835121154785e-07);
-    vec2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1097 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1095;
-    float _164 = min(_140, -9.9999999747524270787835121154785e-07);
-    float _1102;
-    vec2 _1106;
-    _1106 = (params.eye_position + (_60 * max((_1095 - params.eye_position.y) / _164, 0.0))).xz;
-    _1102 = _1095;
-    vec2 _405;
-    float _676;
-    float _681;
-    float _691;
-    int _1101 = 0;
-    float _1134 = _1095;
-    float _1139 = _160;
-    for (; _1101 < 9; _1139 = _681, _1134 = _676, _1106 = _405, _1102 = _691, _1101++)
+    float _138 = _60.y;
+    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
+    vec2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1095 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1093;
+    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _1100;
+    vec2 _1104;
+    _1104 = (params.eye_position + (_60 * max((_1093 - params.eye_position.y) / _162, 0.0))).xz;
+    _1100 = _1093;
+    vec2 _403;
+    float _674;
+    float _679;
+    float _689;
+    int _1099 = 0;
+    float _1132 = _1093;
+    float _1137 = _158;
+    for (; _1099 < 9; _1137 = _679, _1132 = _674, _1104 = _403, _1100 = _689, _1099++)
     {
-        float _209 = max((_1102 - params.eye_position.y) / _164, 0.0);
-        vec2 _219 = (params.eye_position + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        vec2 _1108;
-        vec3 _1109;
-        _1109 = vec3(0.0);
-        _1108 = vec2(0.0);
-        float _322;
-        float _326;
-        vec2 _333;
-        vec3 _347;
-        int _1103 = 0;
-        float _1104 = params.gerstner_frequency;
-        float _1107 = params.gerstner_amplitude;
-        for (; _1103 < 8; _1109 = _347, _1108 = _333, _1107 = _322, _1104 = _326, _1103++)
+        float _207 = max((_1100 - params.eye_position.y) / _162, 0.0);
+        vec2 _217 = (params.eye_position + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        vec2 _1106;
+        vec3 _1107;
+        _1107 = vec3(0.0);
+        _1106 = vec2(0.0);
+        float _320;
+        float _324;
+        vec2 _331;
+        vec3 _345;
+        int _1101 = 0;
+        float _1102 = params.gerstner_frequency;
+        float _1105 = params.gerstner_amplitude;
+        for (; _1101 < 8; _1107 = _345, _1106 = _331, _1105 = _320, _1102 = _324, _1101++)
         {
-            float _244 = float(_1103);
-            if (!(_244 < _74))
+            float _242 = float(_1101);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _255 = clamp(int(_244), 0, 7);
-            float _273 = _1104 * dot(params.gerstner_wave_directions[_255], _1106);
-            float _295 = ((params.gerstner_steepness / (_74 * max(_1104 * _1107, 9.9999999747524270787835121154785e-07))) * _1107) * clamp((-(_1104 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _314 = (_295 * _1104) * sin(_273);
-            float _318 = _314 * params.gerstner_wave_directions[_255].x;
-            _322 = _1107 * params.gerstner_amplitude_gain;
-            _326 = _1104 * params.gerstner_frequency_gain;
-            _333 = _1108 + (params.gerstner_wave_directions[_255] * (_295 * cos(_273)));
-            _347 = _1109 + vec3(_318 * params.gerstner_wave_directions[_255].x, _318 * params.gerstner_wave_directions[_255].y, (_314 * params.gerstner_wave_directions[_255].y) * params.gerstner_wave_directions[_255].y);
+            int _253 = clamp(int(_242), 0, 7);
+            float _271 = _1102 * dot(params.gerstner_wave_directions[_253], _1104);
+            float _293 = ((params.gerstner_steepness / (_71 * max(_1102 * _1105, 9.9999999747524270787835121154785e-07))) * _1105) * clamp((-(_1102 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _312 = (_293 * _1102) * sin(_271);
+            float _316 = _312 * params.gerstner_wave_directions[_253].x;
+            _320 = _1105 * params.gerstner_amplitude_gain;
+            _324 = _1102 * params.gerstner_frequency_gain;
+            _331 = _1106 + (params.gerstner_wave_directions[_253] * (_293 * cos(_271)));
+            _345 = _1107 + vec3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _353 = 1.0 - _1109.x;
-        float _358 = 1.0 - _1109.z;
-        float _362 = -_1109.y;
-        vec2 _368 = (_1106 + _1108) - _219;
-        float _381 = _368.x;
-        float _384 = _368.y;
-        _405 = _1106 - (vec2(_358 * _381 + (-(_362 * _384)), _353 * _384 + (-(_362 * _381))) / vec2(max(_353 * _358 + (-(_362 * _362)), 0.039999999105930328369140625)));
+        float _351 = 1.0 - _1107.x;
+        float _356 = 1.0 - _1107.z;
+        float _360 = -_1107.y;
+        vec2 _366 = (_1104 + _1106) - _217;
+        float _379 = _366.x;
+        float _382 = _366.y;
+        _403 = _1104 - (vec2(_356 * _379 + (-(_360 * _382)), _351 * _382 + (-(_360 * _379))) / vec2(max(_351 * _356 + (-(_360 * _360)), 0.039999999105930328369140625)));
+        vec3 _1114;
+        vec3 _1115;
         vec3 _1116;
-        vec3 _1117;
-        vec3 _1118;
-        _1118 = vec3(0.0, 0.0, 1.0);
-        _1117 = vec3(1.0, 0.0, 0.0);
-        _1116 = vec3(0.0);
-        float _518;
-        float _522;
-        vec3 _534;
-        vec3 _539;
-        vec3 _544;
-        int _1113 = 0;
-        float _1114 = params.gerstner_frequency;
-        float _1115 = params.gerstner_amplitude;
-        for (; _1113 < 8; _1118 = _544, _1117 = _539, _1116 = _534, _1115 = _518, _1114 = _522, _1113++)
+        _1116 = vec3(0.0, 0.0, 1.0);
+        _1115 = vec3(1.0, 0.0, 0.0);
+        _1114 = vec3(0.0);
+        float _516;
+        float _520;
+        vec3 _532;
+        vec3 _537;
+        vec3 _542;
+        int _1111 = 0;
+        float _1112 = params.gerstner_frequency;
+        float _1113 = params.gerstner_amplitude;
+        for (; _1111 < 8; _1116 = _542, _1115 = _537, _1114 = _532, _1113 = _516, _1112 = _520, _1111++)
         {
-            float _426 = float(_1113);
-            if (!(_426 < _74))
+            float _424 = float(_1111);
+            if (!(_424 < _71))
             {
                 break;
             }
-            int _437 = clamp(int(_426), 0, 7);
-            float _446 = clamp((-(_1114 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _452 = _1114 * dot(params.gerstner_wave_directions[_437], _405);
-            float _474 = ((params.gerstner_steepness / (_74 * max(_1114 * _1115, 9.9999999747524270787835121154785e-07))) * _1115) * _446;
-            float _478 = _1115 * _446;
-            float _481 = sin(_452);
-            float _484 = cos(_452);
-            float _494 = _474 * _484;
-            float _501 = -((_474 * _1114) * _481);
-            vec3 _514 = vec3(_501 * params.gerstner_wave_directions[_437].x, (_478 * _1114) * _484, _501 * params.gerstner_wave_directions[_437].y);
-            _518 = _1115 * params.gerstner_amplitude_gain;
-            _522 = _1114 * params.gerstner_frequency_gain;
-            _534 = _1116 + vec3(_494 * params.gerstner_wave_directions[_437].x, _478 * _481, _494 * params.gerstner_wave_directions[_437].y);
-            _539 = _1117 + (_514 * params.gerstner_wave_directions[_437].x);
-            _544 = _1118 + (_514 * params.gerstner_wave_directions[_437].y);
+            int _435 = clamp(int(_424), 0, 7);
+            float _444 = clamp((-(_1112 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _450 = _1112 * dot(params.gerstner_wave_directions[_435], _403);
+            float _472 = ((params.gerstner_steepness / (_71 * max(_1112 * _1113, 9.9999999747524270787835121154785e-07))) * _1113) * _444;
+            float _476 = _1113 * _444;
+            float _479 = sin(_450);
+            float _482 = cos(_450);
+            float _492 = _472 * _482;
+            float _499 = -((_472 * _1112) * _479);
+            vec3 _512 = vec3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1112) * _482, _499 * params.gerstner_wave_directions[_435].y);
+            _516 = _1113 * params.gerstner_amplitude_gain;
+            _520 = _1112 * params.gerstner_frequency_gain;
+            _532 = _1114 + vec3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
+            _537 = _1115 + (_512 * params.gerstner_wave_directions[_435].x);
+            _542 = _1116 + (_512 * params.gerstner_wave_directions[_435].y);
         }
-        vec3 _550 = cross(_1118, _1117);
-        float _554 = dot(_550, _550);
-        vec3 _561 = _550 * inversesqrt(max(_554, 1.0000000031710768509710513471353e-30));
-        bvec3 _571 = bvec3(_554 > 1.0000000031710768509710513471353e-30);
-        vec3 _572 = vec3(_571.x ? _561.x : vec3(0.0, 1.0, 0.0).x, _571.y ? _561.y : vec3(0.0, 1.0, 0.0).y, _571.z ? _561.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _582 = (-_572.xz) / vec2(max(_572.y, 9.9999997473787516355514526367188e-05));
-        float _597 = float(_1101);
-        bool _598 = _597 < 1.0;
-        float _605 = (_1116.y + dot(_582, _219 - (_405 + _1116.xz))) - _1102;
-        float _618 = (-dot(_582, _148)) / _144;
-        float _631 = clamp(1.0 / max(1.0 - _618, 9.9999999747524270787835121154785e-07), _157, 1.0) * _605 + _1102;
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1102 : _1134;
-        float _644 = _634 ? _1139 : _1102;
-        _676 = _598 ? _1102 : _639;
-        _681 = _598 ? _1139 : _644;
-        _691 = (_597 < 8.0) ? (_598 ? (_157 * _605 + _1102) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1102;
+        vec3 _548 = cross(_1116, _1115);
+        float _552 = dot(_548, _548);
+        vec3 _559 = _548 * inversesqrt(max(_552, 1.0000000031710768509710513471353e-30));
+        bvec3 _569 = bvec3(_552 > 1.0000000031710768509710513471353e-30);
+        vec3 _570 = vec3(_569.x ? _559.x : vec3(0.0, 1.0, 0.0).x, _569.y ? _559.y : vec3(0.0, 1.0, 0.0).y, _569.z ? _559.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _580 = (-_570.xz) / vec2(max(_570.y, 9.9999997473787516355514526367188e-05));
+        float _595 = float(_1099);
+        bool _596 = _595 < 1.0;
+        float _603 = (_1114.y + dot(_580, _217 - (_403 + _1114.xz))) - _1100;
+        float _616 = (-dot(_580, _146)) / _142;
+        float _629 = clamp(1.0 / max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0) * _603 + _1100;
+        bool _632 = _603 < 0.0;
+        float _637 = _632 ? _1100 : _1132;
+        float _642 = _632 ? _1137 : _1100;
+        _674 = _596 ? _1100 : _637;
+        _679 = _596 ? _1137 : _642;
+        _689 = (_595 < 8.0) ? (_596 ? (_155 * _603 + _1100) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1100;
     }
-    float _705 = max((_1102 - params.eye_position.y) / _164, 0.0);
-    vec3 _712 = params.eye_position + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float _728 = max(_723 - _720, 0.0);
-    mediump vec3 _773 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0))).xyz;
-    float _777 = clamp(max(_53 - _705, 0.0), 0.0, 30000.0);
-    vec3 _787 = exp((-params.absorb_coefficients) * (_728 + _777));
-    mediump vec3 mp_copy_787 = _787;
-    vec3 _808 = mix(params.scatter_color, _773 * mp_copy_787, vec3(exp((-params.scatter_coefficient) * _777))) * params.incident_light;
-    mediump vec3 mp_copy_808 = _808;
-    vec3 _811 = abs(_60);
-    vec3 _824 = _60 / vec3(max(max(max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
-    mediump vec3 mp_copy_824 = _824;
-    mediump float _828 = dot(_824, _824);
-    mediump vec3 _834 = mp_copy_824 * inversesqrt(max(_828, 1.0000000031710768509710513471353e-30));
-    bvec3 _843 = bvec3(_828 > 1.0000000031710768509710513471353e-30);
-    vec3 _844 = vec3(_843.x ? _834.x : vec3(0.0, -1.0, 0.0).x, _843.y ? _834.y : vec3(0.0, -1.0, 0.0).y, _843.z ? _834.z : vec3(0.0, -1.0, 0.0).z);
-    mediump vec3 mp_copy_844 = _844;
-    mediump vec3 _847 = reflect(mp_copy_844, vec3(0.0, 1.0, 0.0));
-    mediump float _850 = _847.y;
-    mediump vec3 _858 = vec3(_847.x, abs(_850), _847.z);
-    bvec3 _868 = bvec3(dot(_847, _847) > 9.9999999600419720025001879548654e-13);
-    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
-    vec3 _908 = texture(sky_cube, vec4(vec3(_868.x ? _858.x : vec3(0.0, 1.0, 0.0).x, _868.y ? _858.y : vec3(0.0, 1.0, 0.0).y, _868.z ? _858.z : vec3(0.0, 1.0, 0.0).z), _876).xyz).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(_876));
-    mediump vec3 mp_copy_908 = _908;
-    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float mp_copy_922 = _922;
-    float _930 = 1.0 - clamp((-_60).y, 0.0, 1.0);
-    mediump float mp_copy_930 = _930;
-    mediump float _934 = mp_copy_930 * mp_copy_930;
-    float _1145 = -_922;
-    mediump float mp_copy_1145 = _1145;
-    vec2 _954 = _712.xz;
-    float _995 = clamp((max(length(dFdx(_954)), length(dFdy(_954))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0);
-    mediump float mp_copy_995 = _995;
-    float _1008 = _728 - params.foam_existence.x;
-    mediump float mp_copy_1008 = _1008;
-    float _1013 = params.foam_existence.y - params.foam_existence.x;
-    mediump float mp_copy_1013 = _1013;
-    float _1028 = (_1008 >= _1013) ? 1.0 : clamp(mp_copy_1008 / max(mp_copy_1013, 5.9604644775390625e-08), 0.0, 1.0);
-    mediump float mp_copy_1028 = _1028;
-    vec3 _1048 = mix(mix(mp_copy_808, mp_copy_908, vec3(mp_copy_922 * mp_copy_922 + ((mp_copy_1145 * mp_copy_922 + 1.0) * ((_934 * _934) * mp_copy_930)))), params.foam_color * mix(textureLod(foam_pattern, ((fract(_954 * params.foam_pattern_scale) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, mp_copy_995), vec3((_1008 < 0.0) ? 1.0 : (1.0 - mp_copy_1028)));
-    mediump vec3 mp_copy_1048 = _1048;
-    mediump vec3 _1059 = mix(_773, mp_copy_1048, vec3(clamp(_728 * params.shore_hardness, 0.0, 1.0)));
-    bvec3 _1064 = bvec3((_720 < _723) && (_140 < 0.0));
-    out_color = vec4(vec3(_1064.x ? _1059.x : _26.x, _1064.y ? _1059.y : _26.y, _1064.z ? _1059.z : _26.z), 1.0);
+    float _703 = max((_1100 - params.eye_position.y) / _162, 0.0);
+    vec3 _710 = params.eye_position + (_60 * _703);
+    float _718 = _33.y;
+    float _721 = _710.y;
+    float _726 = max(_721 - _718, 0.0);
+    mediump vec3 _771 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0))).xyz;
+    float _775 = clamp(max(_53 - _703, 0.0), 0.0, 30000.0);
+    vec3 _785 = exp((-params.absorb_coefficients) * (_726 + _775));
+    mediump vec3 mp_copy_785 = _785;
+    vec3 _806 = mix(params.scatter_color, _771 * mp_copy_785, vec3(exp((-params.scatter_coefficient) * _775))) * params.incident_light;
+    mediump vec3 mp_copy_806 = _806;
+    vec3 _809 = abs(_60);
+    vec3 _822 = _60 / vec3(max(max(max(_809.x, _809.y), _809.z), 1.0000000031710768509710513471353e-30));
+    mediump vec3 mp_copy_822 = _822;
+    mediump float _826 = dot(_822, _822);
+    mediump vec3 _832 = mp_copy_822 * inversesqrt(max(_826, 1.0000000031710768509710513471353e-30));
+    bvec3 _841 = bvec3(_826 > 1.0000000031710768509710513471353e-30);
+    vec3 _842 = vec3(_841.x ? _832.x : vec3(0.0, -1.0, 0.0).x, _841.y ? _832.y : vec3(0.0, -1.0, 0.0).y, _841.z ? _832.z : vec3(0.0, -1.0, 0.0).z);
+    mediump vec3 mp_copy_842 = _842;
+    mediump vec3 _845 = reflect(mp_copy_842, vec3(0.0, 1.0, 0.0));
+    mediump float _848 = _845.y;
+    mediump vec3 _856 = vec3(_845.x, abs(_848), _845.z);
+    bvec3 _866 = bvec3(dot(_845, _845) > 9.9999999600419720025001879548654e-13);
+    float _874 = smoothstep(0.0, params.reflection_horizon_band, -_848);
+    vec3 _906 = texture(sky_cube, vec4(vec3(_866.x ? _856.x : vec3(0.0, 1.0, 0.0).x, _866.y ? _856.y : vec3(0.0, 1.0, 0.0).y, _866.z ? _856.z : vec3(0.0, 1.0, 0.0).z), _874).xyz).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(_874));
+    mediump vec3 mp_copy_906 = _906;
+    float _920 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float mp_copy_920 = _920;
+    float _928 = 1.0 - clamp((-_60).y, 0.0, 1.0);
+    mediump float mp_copy_928 = _928;
+    mediump float _932 = mp_copy_928 * mp_copy_928;
+    float _1143 = -_920;
+    mediump float mp_copy_1143 = _1143;
+    vec2 _952 = _710.xz;
+    float _993 = clamp((max(length(dFdx(_952)), length(dFdy(_952))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0);
+    mediump float mp_copy_993 = _993;
+    float _1006 = _726 - params.foam_existence.x;
+    mediump float mp_copy_1006 = _1006;
+    float _1011 = params.foam_existence.y - params.foam_existence.x;
+    mediump float mp_copy_1011 = _1011;
+    float _1026 = (_1006 >= _1011) ? 1.0 : clamp(mp_copy_1006 / max(mp_copy_1011, 5.9604644775390625e-08), 0.0, 1.0);
+    mediump float mp_copy_1026 = _1026;
+    vec3 _1046 = mix(mix(mp_copy_806, mp_copy_906, vec3(mp_copy_920 * mp_copy_920 + ((mp_copy_1143 * mp_copy_920 + 1.0) * ((_932 * _932) * mp_copy_928)))), params.foam_color * mix(textureLod(foam_pattern, ((fract(_952 * params.foam_pattern_scale) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, mp_copy_993), vec3((_1006 < 0.0) ? 1.0 : (1.0 - mp_copy_1026)));
+    mediump vec3 mp_copy_1046 = _1046;
+    mediump vec3 _1057 = mix(_771, mp_copy_1046, vec3(clamp(_726 * params.shore_hardness, 0.0, 1.0)));
+    bvec3 _1062 = bvec3((_718 < _721) && (_138 < 0.0));
+    out_color = vec4(vec3(_1062.x ? _1057.x : _26.x, _1062.y ? _1057.y : _26.y, _1062.z ? _1057.z : _26.z), 1.0);
 }
 

@@ -19,9 +19,8 @@ struct WaterParams
     packed_float3 scatter_color;
     float gerstner_frequency_gain;
     packed_float3 incident_light;
-    float gerstner_wave_count;
-    packed_float3 reflection_lower_tint;
     float gerstner_steepness;
+    packed_float3 reflection_lower_tint;
     float refraction_distortion;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
@@ -30,6 +29,9 @@ struct WaterParams
     float ior_water;
     float specular_exponent;
 };
+
+constant float gerstner_wave_count_tmp [[function_constant(0)]];
+constant float gerstner_wave_count = is_function_constant_defined(gerstner_wave_count_tmp) ? gerstner_wave_count_tmp : 4.0;
 
 struct main0_out
 {
@@ -52,160 +54,160 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _63 = dfdx(_60);
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _1063;
     float _1065;
-    float _1067;
-    _1067 = 0.0;
     _1065 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _1064 = 0;
-    float _1066 = params.gerstner_amplitude;
-    float _1068 = params.gerstner_frequency;
-    for (; _1064 < 8; _1068 = _123, _1067 = _113, _1066 = _118, _1065 = _108, _1064++)
+    _1063 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1062 = 0;
+    float _1064 = params.gerstner_amplitude;
+    float _1066 = params.gerstner_frequency;
+    for (; _1062 < 8; _1066 = _121, _1065 = _111, _1064 = _116, _1063 = _106, _1062++)
     {
-        if (!(float(_1064) < _74))
+        if (!(float(_1062) < _71))
         {
             break;
         }
-        _108 = _1065 + _1066;
-        _113 = fma(_1066, _1068, _1067);
-        _118 = _1066 * params.gerstner_amplitude_gain;
-        _123 = _1068 * params.gerstner_frequency_gain;
+        _106 = _1063 + _1064;
+        _111 = fma(_1064, _1066, _1065);
+        _116 = _1064 * params.gerstner_amplitude_gain;
+        _121 = _1066 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = fast::max(-_140, 9.9999999747524270787835121154785e-07);
-    float2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_1067 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_1065;
-    float _164 = fast::min(_140, -9.9999999747524270787835121154785e-07);
-    float _1072;
-    float2 _1076;
-    _1076 = (float3(params.eye_position) + (_60 * fast::max((_1065 - params.eye_position[1u]) / _164, 0.0))).xz;
-    _1072 = _1065;
-    float2 _408;
-    float _681;
-    float _686;
-    float _696;
-    int _1071 = 0;
-    float _1104 = _1065;
-    float _1109 = _160;
-    for (; _1071 < 9; _1109 = _686, _1104 = _681, _1076 = _408, _1072 = _696, _1071++)
+    float _138 = _60.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_1065 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1063;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _1070;
+    float2 _1074;
+    _1074 = (float3(params.eye_position) + (_60 * fast::max((_1063 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1070 = _1063;
+    float2 _406;
+    float _679;
+    float _684;
+    float _694;
+    int _1069 = 0;
+    float _1102 = _1063;
+    float _1107 = _158;
+    for (; _1069 < 9; _1107 = _684, _1102 = _679, _1074 = _406, _1070 = _694, _1069++)
     {
-        float _209 = fast::max((_1072 - params.eye_position[1u]) / _164, 0.0);
-        float2 _219 = (float3(params.eye_position) + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        float2 _1078;
-        float3 _1079;
-        _1079 = float3(0.0);
-        _1078 = float2(0.0);
-        float _325;
-        float _329;
-        float2 _336;
-        float3 _350;
-        int _1073 = 0;
-        float _1074 = params.gerstner_frequency;
-        float _1077 = params.gerstner_amplitude;
-        for (; _1073 < 8; _1079 = _350, _1078 = _336, _1077 = _325, _1074 = _329, _1073++)
+        float _207 = fast::max((_1070 - params.eye_position[1u]) / _162, 0.0);
+        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        float2 _1076;
+        float3 _1077;
+        _1077 = float3(0.0);
+        _1076 = float2(0.0);
+        float _323;
+        float _327;
+        float2 _334;
+        float3 _348;
+        int _1071 = 0;
+        float _1072 = params.gerstner_frequency;
+        float _1075 = params.gerstner_amplitude;
+        for (; _1071 < 8; _1077 = _348, _1076 = _334, _1075 = _323, _1072 = _327, _1071++)
         {
-            float _244 = float(_1073);
-            if (!(_244 < _74))
+            float _242 = float(_1071);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _255 = clamp(int(_244), 0, 7);
-            float _284 = fma(_1074, dot(params.gerstner_wave_directions[_255].xy, _1076), params.time * params.gerstner_wave_speeds[_255].x);
-            float _298 = ((params.gerstner_steepness / (_74 * fast::max(_1074 * _1077, 9.9999999747524270787835121154785e-07))) * _1077) * fast::clamp(fma(-(_1074 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _317 = (_298 * _1074) * sin(_284);
-            float _321 = _317 * params.gerstner_wave_directions[_255].x;
-            _325 = _1077 * params.gerstner_amplitude_gain;
-            _329 = _1074 * params.gerstner_frequency_gain;
-            _336 = _1078 + (params.gerstner_wave_directions[_255].xy * (_298 * cos(_284)));
-            _350 = _1079 + float3(_321 * params.gerstner_wave_directions[_255].x, _321 * params.gerstner_wave_directions[_255].y, (_317 * params.gerstner_wave_directions[_255].y) * params.gerstner_wave_directions[_255].y);
+            int _253 = clamp(int(_242), 0, 7);
+            float _282 = fma(_1072, dot(params.gerstner_wave_directions[_253].xy, _1074), params.time * params.gerstner_wave_speeds[_253].x);
+            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_1072 * _1075, 9.9999999747524270787835121154785e-07))) * _1075) * fast::clamp(fma(-(_1072 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _315 = (_296 * _1072) * sin(_282);
+            float _319 = _315 * params.gerstner_wave_directions[_253].x;
+            _323 = _1075 * params.gerstner_amplitude_gain;
+            _327 = _1072 * params.gerstner_frequency_gain;
+            _334 = _1076 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
+            _348 = _1077 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _356 = 1.0 - _1079.x;
-        float _361 = 1.0 - _1079.z;
-        float _365 = -_1079.y;
-        float2 _371 = (_1076 + _1078) - _219;
-        float _384 = _371.x;
-        float _387 = _371.y;
-        _408 = _1076 - (float2(fma(_361, _384, -(_365 * _387)), fma(_356, _387, -(_365 * _384))) / float2(fast::max(fma(_356, _361, -(_365 * _365)), 0.039999999105930328369140625)));
+        float _354 = 1.0 - _1077.x;
+        float _359 = 1.0 - _1077.z;
+        float _363 = -_1077.y;
+        float2 _369 = (_1074 + _1076) - _217;
+        float _382 = _369.x;
+        float _385 = _369.y;
+        _406 = _1074 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
+        float3 _1084;
+        float3 _1085;
         float3 _1086;
-        float3 _1087;
-        float3 _1088;
-        _1088 = float3(0.0, 0.0, 1.0);
-        _1087 = float3(1.0, 0.0, 0.0);
-        _1086 = float3(0.0);
-        float _523;
-        float _527;
-        float3 _539;
-        float3 _544;
-        float3 _549;
-        int _1083 = 0;
-        float _1084 = params.gerstner_frequency;
-        float _1085 = params.gerstner_amplitude;
-        for (; _1083 < 8; _1088 = _549, _1087 = _544, _1086 = _539, _1085 = _523, _1084 = _527, _1083++)
+        _1086 = float3(0.0, 0.0, 1.0);
+        _1085 = float3(1.0, 0.0, 0.0);
+        _1084 = float3(0.0);
+        float _521;
+        float _525;
+        float3 _537;
+        float3 _542;
+        float3 _547;
+        int _1081 = 0;
+        float _1082 = params.gerstner_frequency;
+        float _1083 = params.gerstner_amplitude;
+        for (; _1081 < 8; _1086 = _547, _1085 = _542, _1084 = _537, _1083 = _521, _1082 = _525, _1081++)
         {
-            float _429 = float(_1083);
-            if (!(_429 < _74))
+            float _427 = float(_1081);
+            if (!(_427 < _71))
             {
                 break;
             }
-            int _440 = clamp(int(_429), 0, 7);
-            float _449 = fast::clamp(fma(-(_1084 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _465 = fma(_1084, dot(params.gerstner_wave_directions[_440].xy, _408), params.time * params.gerstner_wave_speeds[_440].x);
-            float _479 = ((params.gerstner_steepness / (_74 * fast::max(_1084 * _1085, 9.9999999747524270787835121154785e-07))) * _1085) * _449;
-            float _483 = _1085 * _449;
-            float _486 = sin(_465);
-            float _489 = cos(_465);
-            float _499 = _479 * _489;
-            float _506 = -((_479 * _1084) * _486);
-            float3 _519 = float3(_506 * params.gerstner_wave_directions[_440].x, (_483 * _1084) * _489, _506 * params.gerstner_wave_directions[_440].y);
-            _523 = _1085 * params.gerstner_amplitude_gain;
-            _527 = _1084 * params.gerstner_frequency_gain;
-            _539 = _1086 + float3(_499 * params.gerstner_wave_directions[_440].x, _483 * _486, _499 * params.gerstner_wave_directions[_440].y);
-            _544 = _1087 + (_519 * params.gerstner_wave_directions[_440].x);
-            _549 = _1088 + (_519 * params.gerstner_wave_directions[_440].y);
+            int _438 = clamp(int(_427), 0, 7);
+            float _447 = fast::clamp(fma(-(_1082 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _463 = fma(_1082, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
+            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1082 * _1083, 9.9999999747524270787835121154785e-07))) * _1083) * _447;
+            float _481 = _1083 * _447;
+            float _484 = sin(_463);
+            float _487 = cos(_463);
+            float _497 = _477 * _487;
+            float _504 = -((_477 * _1082) * _484);
+            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1082) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1083 * params.gerstner_amplitude_gain;
+            _525 = _1082 * params.gerstner_frequency_gain;
+            _537 = _1084 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1085 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1086 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        float3 _555 = cross(_1088, _1087);
-        float _559 = dot(_555, _555);
-        float3 _577 = select(float3(0.0, 1.0, 0.0), _555 * rsqrt(fast::max(_559, 1.0000000031710768509710513471353e-30)), bool3(_559 > 1.0000000031710768509710513471353e-30));
-        float2 _587 = (-_577.xz) / float2(fast::max(_577.y, 9.9999997473787516355514526367188e-05));
-        float _602 = float(_1071);
-        bool _603 = _602 < 1.0;
-        float _610 = (_1086.y + dot(_587, _219 - (_408 + _1086.xz))) - _1072;
-        float _623 = (-dot(_587, _148)) / _144;
-        float _636 = fma(fast::clamp(1.0 / fast::max(1.0 - _623, 9.9999999747524270787835121154785e-07), _157, 1.0), _610, _1072);
-        bool _639 = _610 < 0.0;
-        float _644 = _639 ? _1072 : _1104;
-        float _649 = _639 ? _1109 : _1072;
-        _681 = _603 ? _1072 : _644;
-        _686 = _603 ? _1109 : _649;
-        _696 = (_602 < 8.0) ? (_603 ? fma(_157, _610, _1072) : ((((_636 < _649) || (_636 > _644)) || (_623 >= 1.0)) ? (0.5 * (_649 + _644)) : _636)) : _1072;
+        float3 _553 = cross(_1086, _1085);
+        float _557 = dot(_553, _553);
+        float3 _575 = select(float3(0.0, 1.0, 0.0), _553 * rsqrt(fast::max(_557, 1.0000000031710768509710513471353e-30)), bool3(_557 > 1.0000000031710768509710513471353e-30));
+        float2 _585 = (-_575.xz) / float2(fast::max(_575.y, 9.9999997473787516355514526367188e-05));
+        float _600 = float(_1069);
+        bool _601 = _600 < 1.0;
+        float _608 = (_1084.y + dot(_585, _217 - (_406 + _1084.xz))) - _1070;
+        float _621 = (-dot(_585, _146)) / _142;
+        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0), _608, _1070);
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1070 : _1102;
+        float _647 = _637 ? _1107 : _1070;
+        _679 = _601 ? _1070 : _642;
+        _684 = _601 ? _1107 : _647;
+        _694 = (_600 < 8.0) ? (_601 ? fma(_155, _608, _1070) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1070;
     }
-    float _710 = fast::max((_1072 - params.eye_position[1u]) / _164, 0.0);
-    float3 _717 = float3(params.eye_position) + (_60 * _710);
-    float _725 = _33.y;
-    float _728 = _717.y;
-    float3 _743 = -_60;
-    float _784 = fast::clamp(fast::max(_53 - _710, 0.0), 0.0, 30000.0);
-    float3 _818 = abs(_60);
-    float3 _831 = _60 / float3(fast::max(fast::max(fast::max(_818.x, _818.y), _818.z), 1.0000000031710768509710513471353e-30));
-    float _835 = dot(_831, _831);
-    float3 _854 = reflect(select(float3(0.0, -1.0, 0.0), _831 * rsqrt(fast::max(_835, 1.0000000031710768509710513471353e-30)), bool3(_835 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _857 = _854.y;
-    float _883 = smoothstep(0.0, params.reflection_horizon_band, -_857);
-    float _929 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _937 = 1.0 - fast::clamp(_743.y, 0.0, 1.0);
-    float _941 = _937 * _937;
-    float3 _959 = (-float3(params.sun_direction)) + _743;
-    float _971 = fast::max(fast::max(abs(_959.x), abs(_959.y)), abs(_959.z));
-    float3 _978 = _959 / float3(fast::max(_971, 5.9604644775390625e-08));
-    float _997 = fast::clamp(select(float3(0.0), _978 / float3(fast::max(length(_978), 1.0)), bool3(_971 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1032 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_728 - _725, 0.0) + _784)), float3(exp((-params.scatter_coefficient) * _784))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_854.x, abs(_857), _854.z), bool3(dot(_854, _854) > 9.9999999600419720025001879548654e-13)), _883).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_883)), float3(fma(_929, _929, fma(-_929, _929, 1.0) * ((_941 * _941) * _937)))) + (float3(params.sun_color) * ((_997 > 6.103515625e-05) ? pow(fast::max(_997, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_725 < _728) && (_140 < 0.0)));
-    out.out_color = float4(_1032, 1.0);
+    float _708 = fast::max((_1070 - params.eye_position[1u]) / _162, 0.0);
+    float3 _715 = float3(params.eye_position) + (_60 * _708);
+    float _723 = _33.y;
+    float _726 = _715.y;
+    float3 _741 = -_60;
+    float _782 = fast::clamp(fast::max(_53 - _708, 0.0), 0.0, 30000.0);
+    float3 _816 = abs(_60);
+    float3 _829 = _60 / float3(fast::max(fast::max(fast::max(_816.x, _816.y), _816.z), 1.0000000031710768509710513471353e-30));
+    float _833 = dot(_829, _829);
+    float3 _852 = reflect(select(float3(0.0, -1.0, 0.0), _829 * rsqrt(fast::max(_833, 1.0000000031710768509710513471353e-30)), bool3(_833 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _855 = _852.y;
+    float _881 = smoothstep(0.0, params.reflection_horizon_band, -_855);
+    float _927 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _935 = 1.0 - fast::clamp(_741.y, 0.0, 1.0);
+    float _939 = _935 * _935;
+    float3 _957 = (-float3(params.sun_direction)) + _741;
+    float _969 = fast::max(fast::max(abs(_957.x), abs(_957.y)), abs(_957.z));
+    float3 _976 = _957 / float3(fast::max(_969, 5.9604644775390625e-08));
+    float _995 = fast::clamp(select(float3(0.0), _976 / float3(fast::max(length(_976), 1.0)), bool3(_969 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1030 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _782)), float3(exp((-params.scatter_coefficient) * _782))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_852.x, abs(_855), _852.z), bool3(dot(_852, _852) > 9.9999999600419720025001879548654e-13)), _881).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_881)), float3(fma(_927, _927, fma(-_927, _927, 1.0) * ((_939 * _939) * _935)))) + (float3(params.sun_color) * ((_995 > 6.103515625e-05) ? pow(fast::max(_995, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_723 < _726) && (_138 < 0.0)));
+    out.out_color = float4(_1030, 1.0);
     return out;
 }
 

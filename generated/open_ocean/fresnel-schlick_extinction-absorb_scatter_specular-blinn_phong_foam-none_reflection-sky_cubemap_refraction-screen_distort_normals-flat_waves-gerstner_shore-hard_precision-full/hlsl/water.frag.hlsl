@@ -14,17 +14,17 @@
     float3 scatter_color : packoffset(c20.x);
     float gerstner_frequency_gain : packoffset(c20.w);
     float3 incident_light : packoffset(c21.x);
-    float gerstner_wave_count : packoffset(c21.w);
+    float gerstner_steepness : packoffset(c21.w);
     float3 reflection_lower_tint : packoffset(c22.x);
-    float gerstner_steepness : packoffset(c22.w);
-    float refraction_distortion : packoffset(c23.x);
-    float refraction_shore_fade_depth : packoffset(c23.y);
-    float scatter_coefficient : packoffset(c23.z);
-    float reflection_horizon_band : packoffset(c23.w);
-    float ior_air : packoffset(c24.x);
-    float ior_water : packoffset(c24.y);
-    float specular_exponent : packoffset(c24.z);
+    float refraction_distortion : packoffset(c22.w);
+    float refraction_shore_fade_depth : packoffset(c23.x);
+    float scatter_coefficient : packoffset(c23.y);
+    float reflection_horizon_band : packoffset(c23.z);
+    float ior_air : packoffset(c23.w);
+    float ior_water : packoffset(c24.x);
+    float specular_exponent : packoffset(c24.y);
 };
+[[vk::constant_id(0)]] const float gerstner_wave_count = 4.0;
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0);
 [[vk::binding(2, 0)]] Texture2D scene_color : register(t0);
 [[vk::binding(3, 0)]] Texture2D scene_position : register(t1);
@@ -45,7 +45,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float loop29_c1 = gerstner_frequency;
     float loop29_c2 = 0.0;
     float loop29_c3 = 0.0;
-    [loop] for (int loop29_i = 0; loop29_i < 8; ++loop29_i) {
+    for (int loop29_i = 0; loop29_i < 8; ++loop29_i) {
         if (!(((float)loop29_i) < trip_count)) break;
         loop29_c2 = loop29_c2 + loop29_c0;
         loop29_c3 = loop29_c3 + (loop29_c0 * loop29_c1);
@@ -78,7 +78,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
         float loop31_c1 = gerstner_frequency;
         float2 loop31_c2 = float2(0.0, 0.0);
         float3 loop31_c3 = float3(0.0, 0.0, 0.0);
-        [loop] for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
+        for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
             if (!(((float)loop31_i) < trip_count)) break;
             // waves.gerstner
             float2 gerstner_wave_directions = gerstner_wave_directions[clamp(((int)(float)loop31_i), 0, 7)];
@@ -109,7 +109,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
         float3 loop63_c2 = float3(0.0, 0.0, 0.0);
         float3 loop63_c3 = float3(1.0, 0.0, 0.0);
         float3 loop63_c4 = float3(0.0, 0.0, 1.0);
-        [loop] for (int loop63_i = 0; loop63_i < 8; ++loop63_i) {
+        for (int loop63_i = 0; loop63_i < 8; ++loop63_i) {
             if (!(((float)loop63_i) < trip_count)) break;
             // waves.gerstner
             float2 gerstner_wave_directions_2 = gerstner_wave_directions[clamp(((int)(float)loop63_i), 0, 7)];

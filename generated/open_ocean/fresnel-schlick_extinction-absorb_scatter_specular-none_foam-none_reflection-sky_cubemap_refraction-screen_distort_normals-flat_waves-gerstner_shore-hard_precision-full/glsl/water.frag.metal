@@ -18,7 +18,6 @@ struct WaterParams
     float gerstner_amplitude_gain;
     packed_float3 reflection_lower_tint;
     float gerstner_frequency_gain;
-    float gerstner_wave_count;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -27,6 +26,9 @@ struct WaterParams
     float ior_air;
     float ior_water;
 };
+
+constant float gerstner_wave_count_tmp [[function_constant(0)]];
+constant float gerstner_wave_count = is_function_constant_defined(gerstner_wave_count_tmp) ? gerstner_wave_count_tmp : 4.0;
 
 struct main0_out
 {
@@ -49,155 +51,155 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _63 = dfdx(_60);
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
-    float _74 = floor(params.gerstner_wave_count);
+    float _71 = floor(gerstner_wave_count);
+    float _990;
     float _992;
-    float _994;
-    _994 = 0.0;
     _992 = 0.0;
-    float _108;
-    float _113;
-    float _118;
-    float _123;
-    int _991 = 0;
-    float _993 = params.gerstner_amplitude;
-    float _995 = params.gerstner_frequency;
-    for (; _991 < 8; _995 = _123, _994 = _113, _993 = _118, _992 = _108, _991++)
+    _990 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _989 = 0;
+    float _991 = params.gerstner_amplitude;
+    float _993 = params.gerstner_frequency;
+    for (; _989 < 8; _993 = _121, _992 = _111, _991 = _116, _990 = _106, _989++)
     {
-        if (!(float(_991) < _74))
+        if (!(float(_989) < _71))
         {
             break;
         }
-        _108 = _992 + _993;
-        _113 = fma(_993, _995, _994);
-        _118 = _993 * params.gerstner_amplitude_gain;
-        _123 = _995 * params.gerstner_frequency_gain;
+        _106 = _990 + _991;
+        _111 = fma(_991, _993, _992);
+        _116 = _991 * params.gerstner_amplitude_gain;
+        _121 = _993 * params.gerstner_frequency_gain;
     }
-    float _140 = _60.y;
-    float _144 = fast::max(-_140, 9.9999999747524270787835121154785e-07);
-    float2 _148 = _60.xz;
-    float _157 = 1.0 / (1.0 + (((_994 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_148)) / _144));
-    float _160 = -_992;
-    float _164 = fast::min(_140, -9.9999999747524270787835121154785e-07);
-    float _999;
-    float2 _1003;
-    _1003 = (float3(params.eye_position) + (_60 * fast::max((_992 - params.eye_position[1u]) / _164, 0.0))).xz;
-    _999 = _992;
-    float2 _408;
-    float _681;
-    float _686;
-    float _696;
-    int _998 = 0;
-    float _1031 = _992;
-    float _1036 = _160;
-    for (; _998 < 9; _1036 = _686, _1031 = _681, _1003 = _408, _999 = _696, _998++)
+    float _138 = _60.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _60.xz;
+    float _155 = 1.0 / (1.0 + (((_992 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_990;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _997;
+    float2 _1001;
+    _1001 = (float3(params.eye_position) + (_60 * fast::max((_990 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _997 = _990;
+    float2 _406;
+    float _679;
+    float _684;
+    float _694;
+    int _996 = 0;
+    float _1029 = _990;
+    float _1034 = _158;
+    for (; _996 < 9; _1034 = _684, _1029 = _679, _1001 = _406, _997 = _694, _996++)
     {
-        float _209 = fast::max((_999 - params.eye_position[1u]) / _164, 0.0);
-        float2 _219 = (float3(params.eye_position) + (_60 * _209)).xz;
-        float _225 = (_68 * _209) / _144;
-        float2 _1005;
-        float3 _1006;
-        _1006 = float3(0.0);
-        _1005 = float2(0.0);
-        float _325;
-        float _329;
-        float2 _336;
-        float3 _350;
-        int _1000 = 0;
-        float _1001 = params.gerstner_frequency;
-        float _1004 = params.gerstner_amplitude;
-        for (; _1000 < 8; _1006 = _350, _1005 = _336, _1004 = _325, _1001 = _329, _1000++)
+        float _207 = fast::max((_997 - params.eye_position[1u]) / _162, 0.0);
+        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
+        float _223 = (_68 * _207) / _142;
+        float2 _1003;
+        float3 _1004;
+        _1004 = float3(0.0);
+        _1003 = float2(0.0);
+        float _323;
+        float _327;
+        float2 _334;
+        float3 _348;
+        int _998 = 0;
+        float _999 = params.gerstner_frequency;
+        float _1002 = params.gerstner_amplitude;
+        for (; _998 < 8; _1004 = _348, _1003 = _334, _1002 = _323, _999 = _327, _998++)
         {
-            float _244 = float(_1000);
-            if (!(_244 < _74))
+            float _242 = float(_998);
+            if (!(_242 < _71))
             {
                 break;
             }
-            int _255 = clamp(int(_244), 0, 7);
-            float _284 = fma(_1001, dot(params.gerstner_wave_directions[_255].xy, _1003), params.time * params.gerstner_wave_speeds[_255].x);
-            float _298 = ((params.gerstner_steepness / (_74 * fast::max(_1001 * _1004, 9.9999999747524270787835121154785e-07))) * _1004) * fast::clamp(fma(-(_1001 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _317 = (_298 * _1001) * sin(_284);
-            float _321 = _317 * params.gerstner_wave_directions[_255].x;
-            _325 = _1004 * params.gerstner_amplitude_gain;
-            _329 = _1001 * params.gerstner_frequency_gain;
-            _336 = _1005 + (params.gerstner_wave_directions[_255].xy * (_298 * cos(_284)));
-            _350 = _1006 + float3(_321 * params.gerstner_wave_directions[_255].x, _321 * params.gerstner_wave_directions[_255].y, (_317 * params.gerstner_wave_directions[_255].y) * params.gerstner_wave_directions[_255].y);
+            int _253 = clamp(int(_242), 0, 7);
+            float _282 = fma(_999, dot(params.gerstner_wave_directions[_253].xy, _1001), params.time * params.gerstner_wave_speeds[_253].x);
+            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_999 * _1002, 9.9999999747524270787835121154785e-07))) * _1002) * fast::clamp(fma(-(_999 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _315 = (_296 * _999) * sin(_282);
+            float _319 = _315 * params.gerstner_wave_directions[_253].x;
+            _323 = _1002 * params.gerstner_amplitude_gain;
+            _327 = _999 * params.gerstner_frequency_gain;
+            _334 = _1003 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
+            _348 = _1004 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _356 = 1.0 - _1006.x;
-        float _361 = 1.0 - _1006.z;
-        float _365 = -_1006.y;
-        float2 _371 = (_1003 + _1005) - _219;
-        float _384 = _371.x;
-        float _387 = _371.y;
-        _408 = _1003 - (float2(fma(_361, _384, -(_365 * _387)), fma(_356, _387, -(_365 * _384))) / float2(fast::max(fma(_356, _361, -(_365 * _365)), 0.039999999105930328369140625)));
+        float _354 = 1.0 - _1004.x;
+        float _359 = 1.0 - _1004.z;
+        float _363 = -_1004.y;
+        float2 _369 = (_1001 + _1003) - _217;
+        float _382 = _369.x;
+        float _385 = _369.y;
+        _406 = _1001 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
+        float3 _1011;
+        float3 _1012;
         float3 _1013;
-        float3 _1014;
-        float3 _1015;
-        _1015 = float3(0.0, 0.0, 1.0);
-        _1014 = float3(1.0, 0.0, 0.0);
-        _1013 = float3(0.0);
-        float _523;
-        float _527;
-        float3 _539;
-        float3 _544;
-        float3 _549;
-        int _1010 = 0;
-        float _1011 = params.gerstner_frequency;
-        float _1012 = params.gerstner_amplitude;
-        for (; _1010 < 8; _1015 = _549, _1014 = _544, _1013 = _539, _1012 = _523, _1011 = _527, _1010++)
+        _1013 = float3(0.0, 0.0, 1.0);
+        _1012 = float3(1.0, 0.0, 0.0);
+        _1011 = float3(0.0);
+        float _521;
+        float _525;
+        float3 _537;
+        float3 _542;
+        float3 _547;
+        int _1008 = 0;
+        float _1009 = params.gerstner_frequency;
+        float _1010 = params.gerstner_amplitude;
+        for (; _1008 < 8; _1013 = _547, _1012 = _542, _1011 = _537, _1010 = _521, _1009 = _525, _1008++)
         {
-            float _429 = float(_1010);
-            if (!(_429 < _74))
+            float _427 = float(_1008);
+            if (!(_427 < _71))
             {
                 break;
             }
-            int _440 = clamp(int(_429), 0, 7);
-            float _449 = fast::clamp(fma(-(_1011 * _225), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _465 = fma(_1011, dot(params.gerstner_wave_directions[_440].xy, _408), params.time * params.gerstner_wave_speeds[_440].x);
-            float _479 = ((params.gerstner_steepness / (_74 * fast::max(_1011 * _1012, 9.9999999747524270787835121154785e-07))) * _1012) * _449;
-            float _483 = _1012 * _449;
-            float _486 = sin(_465);
-            float _489 = cos(_465);
-            float _499 = _479 * _489;
-            float _506 = -((_479 * _1011) * _486);
-            float3 _519 = float3(_506 * params.gerstner_wave_directions[_440].x, (_483 * _1011) * _489, _506 * params.gerstner_wave_directions[_440].y);
-            _523 = _1012 * params.gerstner_amplitude_gain;
-            _527 = _1011 * params.gerstner_frequency_gain;
-            _539 = _1013 + float3(_499 * params.gerstner_wave_directions[_440].x, _483 * _486, _499 * params.gerstner_wave_directions[_440].y);
-            _544 = _1014 + (_519 * params.gerstner_wave_directions[_440].x);
-            _549 = _1015 + (_519 * params.gerstner_wave_directions[_440].y);
+            int _438 = clamp(int(_427), 0, 7);
+            float _447 = fast::clamp(fma(-(_1009 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _463 = fma(_1009, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
+            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1009 * _1010, 9.9999999747524270787835121154785e-07))) * _1010) * _447;
+            float _481 = _1010 * _447;
+            float _484 = sin(_463);
+            float _487 = cos(_463);
+            float _497 = _477 * _487;
+            float _504 = -((_477 * _1009) * _484);
+            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1009) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1010 * params.gerstner_amplitude_gain;
+            _525 = _1009 * params.gerstner_frequency_gain;
+            _537 = _1011 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1012 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1013 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        float3 _555 = cross(_1015, _1014);
-        float _559 = dot(_555, _555);
-        float3 _577 = select(float3(0.0, 1.0, 0.0), _555 * rsqrt(fast::max(_559, 1.0000000031710768509710513471353e-30)), bool3(_559 > 1.0000000031710768509710513471353e-30));
-        float2 _587 = (-_577.xz) / float2(fast::max(_577.y, 9.9999997473787516355514526367188e-05));
-        float _602 = float(_998);
-        bool _603 = _602 < 1.0;
-        float _610 = (_1013.y + dot(_587, _219 - (_408 + _1013.xz))) - _999;
-        float _623 = (-dot(_587, _148)) / _144;
-        float _636 = fma(fast::clamp(1.0 / fast::max(1.0 - _623, 9.9999999747524270787835121154785e-07), _157, 1.0), _610, _999);
-        bool _639 = _610 < 0.0;
-        float _644 = _639 ? _999 : _1031;
-        float _649 = _639 ? _1036 : _999;
-        _681 = _603 ? _999 : _644;
-        _686 = _603 ? _1036 : _649;
-        _696 = (_602 < 8.0) ? (_603 ? fma(_157, _610, _999) : ((((_636 < _649) || (_636 > _644)) || (_623 >= 1.0)) ? (0.5 * (_649 + _644)) : _636)) : _999;
+        float3 _553 = cross(_1013, _1012);
+        float _557 = dot(_553, _553);
+        float3 _575 = select(float3(0.0, 1.0, 0.0), _553 * rsqrt(fast::max(_557, 1.0000000031710768509710513471353e-30)), bool3(_557 > 1.0000000031710768509710513471353e-30));
+        float2 _585 = (-_575.xz) / float2(fast::max(_575.y, 9.9999997473787516355514526367188e-05));
+        float _600 = float(_996);
+        bool _601 = _600 < 1.0;
+        float _608 = (_1011.y + dot(_585, _217 - (_406 + _1011.xz))) - _997;
+        float _621 = (-dot(_585, _146)) / _142;
+        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0), _608, _997);
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _997 : _1029;
+        float _647 = _637 ? _1034 : _997;
+        _679 = _601 ? _997 : _642;
+        _684 = _601 ? _1034 : _647;
+        _694 = (_600 < 8.0) ? (_601 ? fma(_155, _608, _997) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _997;
     }
-    float _710 = fast::max((_999 - params.eye_position[1u]) / _164, 0.0);
-    float3 _717 = float3(params.eye_position) + (_60 * _710);
-    float _725 = _33.y;
-    float _728 = _717.y;
-    float _782 = fast::clamp(fast::max(_53 - _710, 0.0), 0.0, 30000.0);
-    float3 _816 = abs(_60);
-    float3 _829 = _60 / float3(fast::max(fast::max(fast::max(_816.x, _816.y), _816.z), 1.0000000031710768509710513471353e-30));
-    float _833 = dot(_829, _829);
-    float3 _852 = reflect(select(float3(0.0, -1.0, 0.0), _829 * rsqrt(fast::max(_833, 1.0000000031710768509710513471353e-30)), bool3(_833 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _855 = _852.y;
-    float _881 = smoothstep(0.0, params.reflection_horizon_band, -_855);
-    float _927 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _935 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
-    float _939 = _935 * _935;
-    float3 _962 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_728 - _725, 0.0) + _782)), float3(exp((-params.scatter_coefficient) * _782))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_852.x, abs(_855), _852.z), bool3(dot(_852, _852) > 9.9999999600419720025001879548654e-13)), _881).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_881)), float3(fma(_927, _927, fma(-_927, _927, 1.0) * ((_939 * _939) * _935)))), bool3((_725 < _728) && (_140 < 0.0)));
-    out.out_color = float4(_962, 1.0);
+    float _708 = fast::max((_997 - params.eye_position[1u]) / _162, 0.0);
+    float3 _715 = float3(params.eye_position) + (_60 * _708);
+    float _723 = _33.y;
+    float _726 = _715.y;
+    float _780 = fast::clamp(fast::max(_53 - _708, 0.0), 0.0, 30000.0);
+    float3 _814 = abs(_60);
+    float3 _827 = _60 / float3(fast::max(fast::max(fast::max(_814.x, _814.y), _814.z), 1.0000000031710768509710513471353e-30));
+    float _831 = dot(_827, _827);
+    float3 _850 = reflect(select(float3(0.0, -1.0, 0.0), _827 * rsqrt(fast::max(_831, 1.0000000031710768509710513471353e-30)), bool3(_831 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _853 = _850.y;
+    float _879 = smoothstep(0.0, params.reflection_horizon_band, -_853);
+    float _925 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _933 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
+    float _937 = _933 * _933;
+    float3 _960 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _780)), float3(exp((-params.scatter_coefficient) * _780))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_850.x, abs(_853), _850.z), bool3(dot(_850, _850) > 9.9999999600419720025001879548654e-13)), _879).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_879)), float3(fma(_925, _925, fma(-_925, _925, 1.0) * ((_937 * _937) * _933)))), bool3((_723 < _726) && (_138 < 0.0)));
+    out.out_color = float4(_960, 1.0);
     return out;
 }
 

@@ -192,7 +192,7 @@ struct LoopStep {
     Expr keep_going; // optional
 };
 struct LoopOptions {
-    bool unroll = false; // the compiler hint; the IR keeps the loop either way
+    UnrollHint unroll = UnrollHint::Keep; // the compiler hint
 };
 using LoopBodyFn = std::function<LoopStep(Expr index, const std::vector<Expr>& carried)>;
 // The carried values after at most `trip_count` iterations (1..4096), typed like `initial`.

@@ -258,6 +258,16 @@ class Graph {
     std::vector<uint32_t> captures_; // outer node per Captured index
 };
 
+// The compiler hint a loop is written with. The IR keeps the loop whatever the hint.
+enum class UnrollHint {
+    Keep,   // [[dont_unroll]] / [loop]: one copy of the body, short to compile
+    Unroll, // [[unroll]] / [unroll]
+    // No attribute: the driver decides. For a count a specialization constant fixes: after
+    // specialization the driver knows it and unrolls a short loop (lavapipe does), which
+    // [[dont_unroll]] would forbid, and which [[unroll]] cannot promise before then.
+    Driver,
+};
+
 // A bounded loop: at most `trip_count` iterations of `body`, a graph whose leaves are
 // LoopIndex, Carried k (k < carried), Captured m (an outer value, argument first_capture() + m
 // of the Loop node; parameters and inputs come in this way too), constants and textures. Its
@@ -270,7 +280,7 @@ struct LoopBody {
     std::vector<Type> carried_types; // one per carried value
     std::vector<bool> carried_relaxed;
     int trip_count = 0;
-    bool unroll = false; // the hint: [[unroll]] / [unroll], else [[dont_unroll]] / [loop]
+    UnrollHint unroll = UnrollHint::Keep;
     bool has_exit = false;
     // A trip count from data: argument carried() of the Loop node, a Float the same for every
     // pixel and already floored; the loop runs min(it, trip_count) iterations, none when it is
