@@ -1,7 +1,8 @@
 // A draw's cost that does not depend on machine load: the instructions lavapipe executes for
-// it, counted exactly by valgrind's callgrind tool. The draw is bracketed in the runner
-// (RenderJob::counted_draw_label): instrumentation is off while pipelines are created and
-// JIT-compiled and while the image is read back, so only the draw's work is counted.
+// it, counted exactly by valgrind's callgrind tool. The runner brackets two spans
+// (RenderJob::counted_draw_label): pipeline creation through the first draw ("<label> first",
+// lavapipe's JIT compile of the shaders and one draw), and one steady draw ("<label>"), with
+// instrumentation off for everything else (setup, the timed draws, the readback).
 #pragma once
 
 #include <cstdint>
@@ -13,7 +14,7 @@
 namespace watergen {
 
 struct DrawCount {
-    std::string label;         // RenderJob::counted_draw_label
+    std::string label;         // RenderJob::counted_draw_label, with " first" for the JIT span
     uint64_t instructions = 0; // guest instructions executed during the draw (callgrind Ir)
 };
 

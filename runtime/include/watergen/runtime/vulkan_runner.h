@@ -88,9 +88,10 @@ struct RenderJob {
     TextureFilter filter = TextureFilter::Linear;
     // Draws after the first one, each timed with GPU timestamp queries.
     uint32_t timed_draws = 5;
-    // Under valgrind's callgrind tool (valgrind --tool=callgrind --instr-atstart=no): one more
-    // draw with instrumentation on, its counts dumped with this label (draw_cost.h reads them);
-    // ignored elsewhere and when empty.
+    // Under valgrind's callgrind tool (valgrind --tool=callgrind --instr-atstart=no): two counts
+    // (draw_count.h reads them). "<label> first": pipeline creation through the first draw,
+    // which is when lavapipe JIT-compiles the shaders; "<label>": one more draw after the timed
+    // ones, the steady draw's work alone. Ignored elsewhere and when empty.
     std::string counted_draw_label;
     // Geometry is a fullscreen triangle: no vertex buffers, 3 vertices, the vertex shader
     // derives positions from gl_VertexIndex. Unless `mesh` is non-empty: then it is drawn
