@@ -3,6 +3,8 @@
 #pragma once
 
 #include <functional>
+#include <map>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
@@ -56,6 +58,13 @@ Runner add_emit_command(CLI::App& app, const Common& common);
 Runner add_render_command(CLI::App& app, const Common& common);
 Runner add_probe_command(CLI::App& app, const Common& common);
 Runner add_cost_command(CLI::App& app, const Common& common);
+// The instructions lavapipe executes for one size x size draw of each variant's GLSL path, by
+// key, counted under valgrind by a `watergen cost` worker (all variants in one run: about 5 s
+// of JIT per variant); nullopt and *error when the worker failed.
+std::optional<std::map<std::string, uint64_t>>
+count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
+                 std::string* error);
+Runner add_compare_command(CLI::App& app, const Common& common);
 Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 
 // Material and scene files of build, explain and bench build / prune (build_command.cpp).

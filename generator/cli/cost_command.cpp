@@ -21,34 +21,53 @@ struct CostOptions {
     std::string preset;
     uint32_t size = 256, runs = 2;
     LoopUnroll unroll = LoopUnroll::AsHinted;
-    bool counted = false; // the worker, under valgrind
+    bool counted = false;          // the worker, under valgrind
+    std::vector<std::string> keys; // worker: these variants' GLSL paths instead of the variant's
     std::string scratch;
 };
 
-// The worker: builds the variant and draws each language path once more with the count on.
+// Draws `lang` once more with the count on (RenderJob::counted_draw_label).
+bool counted_render(VulkanRunner& runner, const LanguageBuild& lang, const SyntheticScene& scene,
+                    uint32_t size, const std::string& label) {
+    RenderJob job = make_render_job(lang, scene, {size, size, 0, false, false});
+    job.counted_draw_label = label;
+    const RenderResult r = runner.render(job);
+    if (!r.ok) std::fprintf(stderr, "watergen: error: %s: %s\n", label.c_str(), r.error.c_str());
+    return r.ok;
+}
+
+// The worker: builds the variant and draws each language path with the count on; or, given
+// keys, each of those variants' GLSL path, labelled with its key.
 int run_worker(const CostOptions& o, const Preset* preset, const Common& common) {
     if (!RUNNING_ON_VALGRIND) {
         std::fprintf(stderr, "watergen: error: --counted is the worker of watergen cost and runs "
                              "under valgrind --tool=callgrind\n");
         return kUsage;
     }
-    const VariantBuild build = build_variant(o.variant, preset, EmitOptions{false, {}, o.unroll});
-    print_diagnostics(build.diagnostics, common);
-    if (!build.ok()) return kFailed;
+    std::vector<Variant> variants = {o.variant};
+    if (!o.keys.empty()) variants.clear();
+    for (const std::string& key : o.keys) {
+        std::string error;
+        const auto v = parse_variant_key(key, &error);
+        if (!v) {
+            std::fprintf(stderr, "watergen: error: --key: %s\n", error.c_str());
+            return kUsage;
+        }
+        variants.push_back(*v);
+    }
     std::string cache;
     auto runner = create_runner(RunnerSetup{}, &cache);
     if (!runner) return kNoDevice;
     const SyntheticScene scene = preset_scene(o.size, o.size, preset);
-    const char* labels[2] = {"glsl", "hlsl"};
-    for (size_t i = 0; i < 2; ++i) {
-        RenderJob job =
-            make_render_job(build.languages[i], scene, {o.size, o.size, 0, false, false});
-        job.counted_draw_label = labels[i];
-        const RenderResult r = runner->render(job);
-        if (!r.ok) {
-            std::fprintf(stderr, "watergen: error: %s: %s\n", labels[i], r.error.c_str());
-            return kFailed;
-        }
+    for (const Variant& v : variants) {
+        const VariantBuild build = build_variant(v, preset, EmitOptions{false, {}, o.unroll});
+        print_diagnostics(build.diagnostics, common);
+        if (!build.ok()) return kFailed;
+        const bool ok = o.keys.empty()
+                            ? counted_render(*runner, build.languages[0], scene, o.size, "glsl") &&
+                                  counted_render(*runner, build.languages[1], scene, o.size, "hlsl")
+                            : counted_render(*runner, build.languages[0], scene, o.size, v.key());
+        if (!ok) return kFailed;
     }
     return kOk;
 }
@@ -61,12 +80,35 @@ std::vector<std::string> worker_argv(const CostOptions& o) {
         argv.push_back("--" + list[i].name);
         argv.push_back(o.variant.choices[i]);
     }
+    for (const std::string& key : o.keys)
+        argv.insert(argv.end(), {"--key", key});
     if (!o.preset.empty()) argv.insert(argv.end(), {"--preset", o.preset});
     argv.insert(argv.end(), {"--unroll", to_string(o.unroll)});
     return argv;
 }
 
 } // namespace
+
+std::optional<std::map<std::string, uint64_t>>
+count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
+                 std::string* error) {
+    CostOptions o;
+    o.size = size;
+    o.preset = preset;
+    for (const Variant& v : variants)
+        o.keys.push_back(v.key());
+    const DrawCountRun r = count_draws_under_valgrind(
+        worker_argv(o), std::filesystem::temp_directory_path() / "watergen-compare-cost");
+    if (!r.ok()) {
+        *error = r.error;
+        return std::nullopt;
+    }
+    std::map<std::string, uint64_t> out;
+    for (const DrawCount& c : r.counts)
+        if (c.label.size() < 6 || c.label.compare(c.label.size() - 6, 6, " first") != 0)
+            out[c.label] = c.instructions;
+    return out;
+}
 
 Runner add_cost_command(CLI::App& app, const Common& common) {
     auto o = std::make_shared<CostOptions>();
@@ -81,6 +123,7 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
                    "directory for valgrind's dumps (default: a directory under the system's "
                    "temporary directory)");
     app.add_flag("--counted", o->counted, "")->group(""); // the worker; hidden
+    app.add_option("--key", o->keys, "")->group("");      // the worker's variants; hidden
     return [o, &common]() {
         const Preset* preset = nullptr;
         if (!resolve_variant(o->variant, o->preset, &preset)) return kUsage;

@@ -66,6 +66,10 @@ int main(int argc, char** argv) {
         "cost", "instructions lavapipe executes for one draw of a variant, counted exactly "
                 "under valgrind: a cost that machine load does not change");
     runners[cost] = add_cost_command(*cost, common);
+    CLI::App* compare = app.add_subcommand(
+        "compare", "variants side by side against a reference: images, error per view, draw "
+                   "time (interleaved, A/A-checked) and instruction cost");
+    runners[compare] = add_compare_command(*compare, common);
     CLI::App* bench = app.add_subcommand("bench", "benchmarks (print a table, write CSV and JSON)");
     bench->require_subcommand(1);
     CLI::App* compile = bench->add_subcommand(

@@ -187,6 +187,8 @@ inline double ms_since(Clock::time_point start) {
 // ---- jobs (vulkan_render.cpp, vulkan_compute.cpp) ----
 
 void render_job(Context& ctx, const RenderJob& job, RenderResult& result);
+void render_jobs_interleaved(Context& ctx, const std::vector<RenderJob>& jobs, uint32_t rounds,
+                             std::vector<RenderResult>& results);
 void compute_job(Context& ctx, const ComputeJob& job, ComputeResult& result);
 
 } // namespace watergen::vk_detail

@@ -245,33 +245,40 @@ bool counting(const RenderJob& job) {
     return !job.counted_draw_label.empty() && RUNNING_ON_VALGRIND;
 }
 
-// Submits the draw once, then job.timed_draws times more, timing each.
-void run_draws(Context& ctx, const RenderJob& job, VkCommandBuffer draw, VkFence fence,
-               VkQueryPool queries, RenderResult& result) {
-    auto start = Clock::now();
+// One more submit of the recorded draw: its GPU time from the timestamp queries, or the CPU
+// wall time of submit + wait where the queue has no timestamps.
+double timed_draw(Context& ctx, VkCommandBuffer draw, VkFence fence, VkQueryPool queries) {
+    const auto start = Clock::now();
+    submit_and_wait(ctx, draw, fence);
+    const double wall_ms = ms_since(start);
+    if (!queries) return wall_ms;
+    uint64_t ticks[2] = {};
+    vk_check(vkGetQueryPoolResults(ctx.device, queries, 0, 2, sizeof(ticks), ticks,
+                                   sizeof(uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+             "vkGetQueryPoolResults");
+    const uint64_t delta = (ticks[1] - ticks[0]) & ctx.timestamp_mask;
+    return static_cast<double>(delta) * ctx.limits.timestampPeriod * 1e-6;
+}
+
+// The untimed first draw (lavapipe JIT-compiles the shaders there).
+void first_draw(Context& ctx, const RenderJob& job, VkCommandBuffer draw, VkFence fence,
+                RenderResult& result) {
+    const auto start = Clock::now();
     submit_and_wait(ctx, draw, fence);
     result.first_draw_ms = ms_since(start);
-    if (counting(job)) { // switched on before the pipeline was created (render_job)
+    if (counting(job)) { // switched on before the pipeline was created (prepare_render)
         CALLGRIND_DUMP_STATS_AT((job.counted_draw_label + " first").c_str());
         CALLGRIND_STOP_INSTRUMENTATION;
     }
+}
 
-    for (uint32_t i = 0; i < job.timed_draws; ++i) {
-        start = Clock::now();
-        submit_and_wait(ctx, draw, fence);
-        const double wall_ms = ms_since(start);
-        if (!queries) { // no timestamp support: CPU wall time is the best we have
-            result.draw_ms.push_back(wall_ms);
-            continue;
-        }
-        uint64_t ticks[2] = {};
-        vk_check(vkGetQueryPoolResults(ctx.device, queries, 0, 2, sizeof(ticks), ticks,
-                                       sizeof(uint64_t),
-                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-                 "vkGetQueryPoolResults");
-        const uint64_t delta = (ticks[1] - ticks[0]) & ctx.timestamp_mask;
-        result.draw_ms.push_back(static_cast<double>(delta) * ctx.limits.timestampPeriod * 1e-6);
-    }
+// Submits the draw once, then job.timed_draws times more, timing each.
+void run_draws(Context& ctx, const RenderJob& job, VkCommandBuffer draw, VkFence fence,
+               VkQueryPool queries, RenderResult& result) {
+    first_draw(ctx, job, draw, fence, result);
+    for (uint32_t i = 0; i < job.timed_draws; ++i)
+        result.draw_ms.push_back(timed_draw(ctx, draw, fence, queries));
     result.steady_draw_ms = median(result.draw_ms);
     if (counting(job)) {
         // Only this draw is instrumented: the count is the draw's work, JIT and setup excluded.
@@ -318,44 +325,80 @@ void read_back(Scope& scope, const RenderJob& job, const Image& target, VkFence 
     result.height = job.height;
 }
 
-} // namespace
+// One job's target, descriptors, pipeline and recorded draw, alive while it is drawn.
+struct PreparedRender {
+    explicit PreparedRender(Context& ctx) : scope(ctx) {}
+    Scope scope;
+    Image target;
+    BoundDescriptors descriptors;
+    MeshBuffers mesh;
+    DrawState state;
+    VkCommandBuffer draw = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+};
 
-void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
+void prepare_render(PreparedRender& p, const RenderJob& job, RenderResult& result) {
     if (job.timed_draws > kMaxTimedDraws)
         throw RunnerError(
             fmt::format("timed_draws {} exceeds {}", job.timed_draws, kMaxTimedDraws));
-    Scope scope(ctx);
-
-    Image target = create_color_target(scope, job.width, job.height);
+    Scope& scope = p.scope;
+    p.target = create_color_target(scope, job.width, job.height);
     DescriptorInputs inputs;
     inputs.uniforms = &job.uniforms;
     inputs.textures = &job.textures;
     inputs.filter = job.filter;
-    BoundDescriptors descriptors =
-        bind_descriptors(scope,
-                         {{&job.vertex_reflection, VK_SHADER_STAGE_VERTEX_BIT},
-                          {&job.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}},
-                         inputs);
-    DrawState state;
-    state.descriptors = &descriptors;
-    state.layout = create_pipeline_layout(scope, descriptors);
+    p.descriptors = bind_descriptors(scope,
+                                     {{&job.vertex_reflection, VK_SHADER_STAGE_VERTEX_BIT},
+                                      {&job.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}},
+                                     inputs);
+    DrawState& state = p.state;
+    state.descriptors = &p.descriptors;
+    state.layout = create_pipeline_layout(scope, p.descriptors);
     state.pass = create_render_pass(scope);
-    state.framebuffer = create_framebuffer(scope, state.pass, target);
-    if (counting(job)) { // pipeline creation and the first draw: lavapipe's JIT (run_draws)
+    state.framebuffer = create_framebuffer(scope, state.pass, p.target);
+    if (counting(job)) { // pipeline creation and the first draw: lavapipe's JIT (first_draw)
         CALLGRIND_START_INSTRUMENTATION;
         CALLGRIND_ZERO_STATS;
     }
-    Pipeline pipeline = create_pipeline(scope, job, state.layout, state.pass);
+    const Pipeline pipeline = create_pipeline(scope, job, state.layout, state.pass);
     state.pipeline = pipeline.pipeline;
     result.pipeline_ms = pipeline.create_ms;
-    const MeshBuffers mesh = upload_mesh(scope, job.mesh); // index_count 0 without a mesh
-    state.mesh = &mesh;
-    if (ctx.timestamp_mask != 0) state.queries = create_timestamp_pool(scope);
+    p.mesh = upload_mesh(scope, job.mesh); // index_count 0 without a mesh
+    state.mesh = &p.mesh;
+    if (scope.ctx().timestamp_mask != 0) state.queries = create_timestamp_pool(scope);
+    p.draw = record_draw(scope, job, state);
+    p.fence = create_fence(scope);
+}
 
-    VkCommandBuffer draw = record_draw(scope, job, state);
-    VkFence fence = create_fence(scope);
-    run_draws(ctx, job, draw, fence, state.queries, result);
-    read_back(scope, job, target, fence, result);
+} // namespace
+
+void render_job(Context& ctx, const RenderJob& job, RenderResult& result) {
+    PreparedRender p(ctx);
+    prepare_render(p, job, result);
+    run_draws(ctx, job, p.draw, p.fence, p.state.queries, result);
+    read_back(p.scope, job, p.target, p.fence, result);
+}
+
+void render_jobs_interleaved(Context& ctx, const std::vector<RenderJob>& jobs, uint32_t rounds,
+                             std::vector<RenderResult>& results) {
+    results.assign(jobs.size(), RenderResult{});
+    std::vector<std::unique_ptr<PreparedRender>> prepared;
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        prepared.push_back(std::make_unique<PreparedRender>(ctx));
+        prepare_render(*prepared[i], jobs[i], results[i]);
+        first_draw(ctx, jobs[i], prepared[i]->draw, prepared[i]->fence, results[i]);
+    }
+    // A B C A B C ...: a slow spell of the machine lands on every job alike.
+    for (uint32_t r = 0; r < rounds; ++r)
+        for (size_t i = 0; i < jobs.size(); ++i)
+            for (uint32_t d = 0; d < std::max(jobs[i].timed_draws, 1u); ++d)
+                results[i].draw_ms.push_back(timed_draw(ctx, prepared[i]->draw, prepared[i]->fence,
+                                                        prepared[i]->state.queries));
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        results[i].steady_draw_ms = median(results[i].draw_ms);
+        read_back(prepared[i]->scope, jobs[i], prepared[i]->target, prepared[i]->fence, results[i]);
+        results[i].ok = true;
+    }
 }
 
 } // namespace watergen::vk_detail

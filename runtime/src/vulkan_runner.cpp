@@ -66,6 +66,16 @@ RenderResult VulkanRunner::render(const RenderJob& job) {
         *context_, "render", [&](RenderResult& r) { vk_detail::render_job(*context_, job, r); });
 }
 
+std::vector<RenderResult> VulkanRunner::render_interleaved(const std::vector<RenderJob>& jobs,
+                                                           uint32_t rounds) {
+    std::vector<RenderResult> results;
+    const RenderResult all = guarded<RenderResult>(*context_, "render", [&](RenderResult&) {
+        vk_detail::render_jobs_interleaved(*context_, jobs, rounds, results);
+    });
+    if (!all.ok) results.assign(jobs.size(), all);
+    return results;
+}
+
 ComputeResult VulkanRunner::run_compute(const ComputeJob& job) {
     return guarded<ComputeResult>(
         *context_, "compute", [&](ComputeResult& r) { vk_detail::compute_job(*context_, job, r); });

@@ -168,6 +168,13 @@ class VulkanRunner {
     void clear_validation_messages();
 
     RenderResult render(const RenderJob& job);
+    // Several jobs timed side by side: every pipeline is created and drawn once (untimed, the
+    // JIT), then `rounds` rounds each draw job 0, 1, 2, ... in turn, job.timed_draws times
+    // (at least once), so that the machine's slow and fast spells fall on every job alike;
+    // draw_ms holds the samples in round order. Results are in job order; one failure fails
+    // every job (each result's error says what).
+    std::vector<RenderResult> render_interleaved(const std::vector<RenderJob>& jobs,
+                                                 uint32_t rounds);
     ComputeResult run_compute(const ComputeJob& job);
 
   private:

@@ -1,0 +1,194 @@
+// `watergen compare`: variants side by side against one reference (render/compare_run.h), with
+// draw times (interleaved, A/A-checked) and the load-free cost (valgrind instruction counts).
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+#include "commands.h"
+#include "watergen/render/compare_run.h"
+
+namespace watergen::cli {
+
+namespace {
+
+struct CompareOptions {
+    std::vector<std::string> axis_lists; // per axis, "" or a comma list of choices
+    std::vector<std::string> keys;       // --variant
+    std::string preset, reference = "gold", out = "out/compare";
+    uint32_t size = 512, rounds = 15, draws = 3, cost_size = 64;
+    bool cost = true;
+    RunnerSetup runner;
+};
+
+constexpr size_t kMaxVariants = 64;
+
+std::vector<std::string> split_commas(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');)
+        out.push_back(item);
+    return out;
+}
+
+// The variants the options name: every combination of the axis lists (other axes at their
+// defaults), then the --variant keys. Prints the reason and returns nullopt on bad input.
+std::optional<std::vector<Variant>> selected_variants(const CompareOptions& o) {
+    std::vector<Variant> out;
+    const auto& list = axes();
+    bool any_list = false;
+    std::vector<Variant> product = {default_variant()};
+    for (size_t a = 0; a < list.size(); ++a) {
+        if (o.axis_lists[a].empty()) continue;
+        any_list = true;
+        std::vector<Variant> next;
+        for (const Variant& base : product)
+            for (const std::string& choice : split_commas(o.axis_lists[a])) {
+                Variant v = base;
+                if (auto error = set_choice(v, list[a].name, choice)) {
+                    std::fprintf(stderr, "watergen: error: --%s: %s\n", list[a].name.c_str(),
+                                 error->c_str());
+                    return std::nullopt;
+                }
+                next.push_back(v);
+            }
+        product = std::move(next);
+        if (product.size() > kMaxVariants) break;
+    }
+    if (any_list) out = product;
+    for (const std::string& key : o.keys) {
+        std::string error;
+        const auto v = parse_variant_key(key, &error);
+        if (!v) {
+            std::fprintf(stderr, "watergen: error: --variant '%s': %s\n", key.c_str(),
+                         error.c_str());
+            return std::nullopt;
+        }
+        out.push_back(*v);
+    }
+    if (out.empty()) {
+        std::fprintf(stderr, "watergen: error: nothing to compare: give a comma list on an axis "
+                             "flag (--fresnel schlick,exact) or --variant KEY\n");
+        return std::nullopt;
+    }
+    if (out.size() > kMaxVariants) {
+        std::fprintf(stderr, "watergen: error: %zu variants or more to compare; at most %zu\n",
+                     out.size(), kMaxVariants);
+        return std::nullopt;
+    }
+    return out;
+}
+
+// The choices where `v` differs from `base`, "fresnel=schlick extinction=linear", or "(same)".
+std::string differences(const Variant& v, const Variant& base) {
+    std::string out;
+    const auto& list = axes();
+    for (size_t a = 0; a < list.size(); ++a)
+        if (v.choices[a] != base.choices[a])
+            out += (out.empty() ? "" : " ") + list[a].name + "=" + v.choices[a];
+    return out.empty() ? "(the reference)" : out;
+}
+
+void print_table(const CompareRun& run, const std::vector<std::string>& views) {
+    std::printf("reference: %s%s\n", run.reference.key().c_str(),
+                run.reference_on_cpu ? " (CPU, double)" : " (GPU)");
+    std::printf("%-44s %-12s %24s %12s %8s", "variant (differs from the reference in)", "relation",
+                "time ratio [95% CI]", "cost/pixel", "SPIR-V");
+    for (const auto& v : views)
+        std::printf(" %22s", (v + " max|dE p99").c_str());
+    std::printf("\n");
+    for (const CompareEntry& e : run.entries) {
+        const std::string relation = e.relation.substr(0, e.relation.find(' '));
+        char time[64];
+        std::snprintf(time, sizeof time, "%.3f [%.3f, %.3f]", e.time.ratio, e.time.lo, e.time.hi);
+        std::printf("%-44s %-12s %24s %12.1f %8zu", differences(e.variant, run.reference).c_str(),
+                    relation.c_str(), time, e.cost_per_pixel, e.spirv_instructions);
+        for (const CompareView& v : e.views)
+            std::printf("  %9.3g | %8.3f", v.error.max_abs, v.error.ciede2000_p99);
+        std::printf("\n");
+    }
+    std::printf("A/A: the reference against itself %.3f [%.3f, %.3f]: %s\n", run.aa.ratio,
+                run.aa.lo, run.aa.hi,
+                run.timing_trustworthy()
+                    ? "within +-3%, time ratios can be trusted on this machine"
+                    : "NOT within +-3%: time ratios are not trustworthy on this machine now; use "
+                      "the cost column (instructions, independent of load)");
+}
+
+} // namespace
+
+Runner add_compare_command(CLI::App& app, const Common& common) {
+    auto o = std::make_shared<CompareOptions>();
+    const auto& list = axes();
+    o->axis_lists.resize(list.size());
+    for (size_t a = 0; a < list.size(); ++a)
+        app.add_option("--" + list[a].name, o->axis_lists[a],
+                       "choices of " + list[a].name + " to compare, comma-separated (default: " +
+                           list[a].default_choice + " only)");
+    app.add_option("--variant", o->keys, "a variant key to compare (repeatable)");
+    app.add_option("--preset", o->preset, "parameter preset");
+    app.add_option("--reference", o->reference,
+                   "gold (default): the gold of every axis that varies, on the CPU in double; or a "
+                   "variant key, rendered on the GPU");
+    app.add_option("--size", o->size, "image width and height (default 512)")
+        ->check(CLI::Range(16, 2048));
+    app.add_option("--rounds", o->rounds, "timing rounds, interleaved (default 15)")
+        ->check(CLI::Range(3, 1000));
+    app.add_option("--draws", o->draws, "timed draws per variant and round (default 3)")
+        ->check(CLI::Range(1, 100));
+    app.add_option("--cost-size", o->cost_size,
+                   "image size of the instruction count under valgrind (default 64)")
+        ->check(CLI::Range(8, 512));
+    app.add_flag("!--no-cost", o->cost, "skip the instruction count (valgrind, ~5 s per variant)");
+    app.add_option("--out", o->out, "output directory (default out/compare)");
+    add_runner_options(app, o->runner);
+    return [o, &common]() {
+        const auto variants = selected_variants(*o);
+        if (!variants) return kUsage;
+        const Preset* preset = nullptr;
+        for (const Variant& v : *variants)
+            if (!resolve_variant(v, o->preset, &preset)) return kUsage;
+        CompareRequest request;
+        request.variants = *variants;
+        request.preset = preset;
+        if (o->reference != "gold") {
+            std::string error;
+            request.reference = parse_variant_key(o->reference, &error);
+            if (!request.reference) {
+                std::fprintf(stderr, "watergen: error: --reference '%s': %s\n",
+                             o->reference.c_str(), error.c_str());
+                return kUsage;
+            }
+            if (!resolve_variant(*request.reference, o->preset, &preset)) return kUsage;
+        }
+        request.rounds = o->rounds;
+        request.draws = o->draws;
+        request.views.emplace_back("beach", preset_scene(o->size, o->size, preset));
+        std::string cache;
+        auto runner = create_runner(o->runner, &cache);
+        if (!runner) return kNoDevice;
+        CompareRun run = run_compare(*runner, request);
+        if (!bench_succeeded(run.diagnostics, run.error, common)) return kFailed;
+        if (o->cost) {
+            std::vector<Variant> counted;
+            for (const CompareEntry& e : run.entries)
+                counted.push_back(e.variant);
+            std::string error;
+            const auto costs = count_draw_costs(counted, o->cost_size, o->preset, &error);
+            if (!costs) {
+                std::fprintf(stderr, "watergen: error: instruction count: %s\n", error.c_str());
+                return kFailed;
+            }
+            const double pixels = double(o->cost_size) * o->cost_size;
+            for (CompareEntry& e : run.entries)
+                if (auto it = costs->find(e.variant.key()); it != costs->end())
+                    e.cost_per_pixel = double(it->second) / pixels;
+        }
+        std::vector<std::string> views;
+        for (const auto& [name, scene] : request.views)
+            views.push_back(name);
+        print_table(run, views);
+        return kOk;
+    };
+}
+
+} // namespace watergen::cli

@@ -1,0 +1,76 @@
+// `watergen compare`: variants rendered side by side over named views of the synthetic scene,
+// each measured against one reference: image error per view, draw time against the reference
+// (interleaved_timing.h), SPIR-V size, and how the variant relates to the reference (an
+// approximation of it, or a different model, whose error is not an approximation error).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "watergen/render/interleaved_timing.h"
+#include "watergen/render/synthetic_scene.h"
+#include "watergen/runtime/image_metrics.h"
+#include "watergen/water/presets.h"
+#include "watergen/water/variant.h"
+
+namespace watergen {
+
+struct CompareRequest {
+    std::vector<Variant> variants; // in report order; duplicates are dropped
+    // A variant rendered on the GPU, or nullopt: reference_for(variants) evaluated on the CPU
+    // in double precision (the gold of every axis that varies).
+    std::optional<Variant> reference;
+    const Preset* preset = nullptr;
+    std::vector<std::pair<std::string, SyntheticScene>> views; // name, scene (all one size)
+    uint32_t rounds = 15, draws = 3;                           // timing, in the first view
+};
+
+struct CompareView {
+    ImageRGBA32F image;      // GLSL path
+    double glsl_vs_hlsl = 0; // max abs between the two paths (0: bit-identical)
+    ImageErrorStats error;   // against the reference image of the view
+};
+
+struct CompareEntry {
+    Variant variant;
+    bool is_reference = false; // the reference variant itself (GPU reference only)
+    // "reference"; "approximates <axis>=<choice>, ..." when every axis where it differs
+    // from the reference holds an approximation of the reference's choice (axis registry);
+    // else "different model (<axis>: <choice> vs <choice>, ...)".
+    std::string relation;
+    std::vector<CompareView> views; // in request order
+    RatioInterval time;             // steady draw time / the timing reference's
+    double steady_ms = 0;
+    size_t spirv_instructions = 0; // optimised fragment SPIR-V, GLSL path
+    double cost_per_pixel = 0;     // instructions per pixel under valgrind; 0: not measured
+};
+
+struct CompareRun {
+    std::vector<CompareEntry> entries;
+    Variant reference;                          // the reference variant (CPU or GPU)
+    bool reference_on_cpu = false;              // CPU double evaluation
+    std::vector<ImageRGBA32F> reference_images; // per view
+    RatioInterval aa;                           // timing reference against itself
+    bool timing_trustworthy() const { return aa.within(kAATolerance); }
+    Diagnostics diagnostics; // of a variant that did not build
+    std::string error;       // first failure
+    bool ok() const { return error.empty() && !has_errors(diagnostics); }
+};
+
+// The reference a set of variants approximates: the first variant with, on every axis where
+// the variants differ, that axis' gold choice (where the axis has one).
+Variant reference_for(const std::vector<Variant>& variants);
+
+// The relation of `v` to `reference` (see CompareEntry::relation).
+std::string relation_to(const Variant& v, const Variant& reference);
+
+// What:   builds every variant and the reference, renders each over every view on both
+//         language paths, compares each GLSL image with the reference's, and times the
+//         variants interleaved against the reference variant on the GPU in the first view.
+// Cost:   a pipeline per variant, view and path (JIT 0.1-0.5 s each on lavapipe), the
+//         timing rounds, and one CPU double evaluation per view for a CPU reference.
+CompareRun run_compare(VulkanRunner& runner, const CompareRequest& request);
+
+} // namespace watergen
