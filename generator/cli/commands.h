@@ -65,6 +65,7 @@ std::optional<std::map<std::string, uint64_t>>
 count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
                  std::string* error);
 Runner add_compare_command(CLI::App& app, const Common& common);
+Runner add_pick_command(CLI::App& app, const Common& common);
 Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 
 // Material and scene files of build, explain and bench build / prune (build_command.cpp).

@@ -70,6 +70,10 @@ int main(int argc, char** argv) {
         "compare", "variants side by side against a reference: images, error per view, draw "
                    "time (interleaved, A/A-checked) and instruction cost");
     runners[compare] = add_compare_command(*compare, common);
+    CLI::App* pick = app.add_subcommand(
+        "pick", "per scene, the cheapest variant whose error against the scene's gold stays "
+                "within a budget, by instruction cost; writes it as a material file");
+    runners[pick] = add_pick_command(*pick, common);
     CLI::App* bench = app.add_subcommand("bench", "benchmarks (print a table, write CSV and JSON)");
     bench->require_subcommand(1);
     CLI::App* compile = bench->add_subcommand(
