@@ -59,8 +59,9 @@ Runner add_render_command(CLI::App& app, const Common& common);
 Runner add_probe_command(CLI::App& app, const Common& common);
 Runner add_cost_command(CLI::App& app, const Common& common);
 // The instructions lavapipe executes for one size x size draw of each variant's GLSL path, by
-// key, counted under valgrind by a `watergen cost` worker (all variants in one run: about 5 s
-// of JIT per variant); nullopt and *error when the worker failed.
+// key (a key given twice comes back a second time as "<key>#2": each its own pipeline, an A/A
+// pair), counted under valgrind by a `watergen cost` worker (all variants in one run: about
+// 5 s of JIT per variant); nullopt and *error when the worker failed.
 std::optional<std::map<std::string, uint64_t>>
 count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
                  std::string* error);

@@ -106,6 +106,10 @@ void print_table(const CompareRun& run, const std::vector<std::string>& views) {
             std::printf("  %9.3g | %8.3f", v.error.max_abs, v.error.ciede2000_p99);
         std::printf("\n");
     }
+    if (run.cost_aa > 0)
+        std::printf("A/A (instructions): the reference against a second pipeline of itself "
+                    "%.5f\n",
+                    run.cost_aa);
     std::printf("A/A: the reference against itself %.3f [%.3f, %.3f]: %s\n", run.aa.ratio,
                 run.aa.lo, run.aa.hi,
                 run.timing_trustworthy()
@@ -172,6 +176,12 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
             std::vector<Variant> counted;
             for (const CompareEntry& e : run.entries)
                 counted.push_back(e.variant);
+            // The reference once more (twice when it is not an entry): the cost's A/A pair.
+            const std::string key = run.reference.key();
+            counted.push_back(run.reference);
+            if (std::none_of(run.entries.begin(), run.entries.end(),
+                             [&](const CompareEntry& e) { return e.variant.key() == key; }))
+                counted.push_back(run.reference);
             std::string error;
             const auto costs = count_draw_costs(counted, o->cost_size, o->preset, &error);
             if (!costs) {
@@ -182,6 +192,10 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
             for (CompareEntry& e : run.entries)
                 if (auto it = costs->find(e.variant.key()); it != costs->end())
                     e.cost_per_pixel = double(it->second) / pixels;
+            if (costs->count(key) && costs->count(key + "#2") && costs->at(key) > 0) {
+                run.reference_cost_per_pixel = double(costs->at(key)) / pixels;
+                run.cost_aa = double(costs->at(key + "#2")) / double(costs->at(key));
+            }
         }
         std::vector<std::string> views;
         for (const auto& [name, scene] : request.views)

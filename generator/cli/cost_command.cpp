@@ -59,14 +59,17 @@ int run_worker(const CostOptions& o, const Preset* preset, const Common& common)
     auto runner = create_runner(RunnerSetup{}, &cache);
     if (!runner) return kNoDevice;
     const SyntheticScene scene = preset_scene(o.size, o.size, preset);
+    std::map<std::string, int> seen; // a variant given twice is labelled "<key>#2" (an A/A pair)
     for (const Variant& v : variants) {
+        const int n = ++seen[v.key()];
+        const std::string label = n == 1 ? v.key() : v.key() + "#" + std::to_string(n);
         const VariantBuild build = build_variant(v, preset, EmitOptions{false, {}, o.unroll});
         print_diagnostics(build.diagnostics, common);
         if (!build.ok()) return kFailed;
         const bool ok = o.keys.empty()
                             ? counted_render(*runner, build.languages[0], scene, o.size, "glsl") &&
                                   counted_render(*runner, build.languages[1], scene, o.size, "hlsl")
-                            : counted_render(*runner, build.languages[0], scene, o.size, v.key());
+                            : counted_render(*runner, build.languages[0], scene, o.size, label);
         if (!ok) return kFailed;
     }
     return kOk;

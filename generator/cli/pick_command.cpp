@@ -110,7 +110,9 @@ void print_candidates(const PickPlan& pick, const PickBudget& budget) {
     std::printf("  gold: %s\n", pick.gold.key().c_str());
     for (const std::string& h : pick.held)
         std::printf("  held (different models, not traded): %s\n", h.c_str());
-    std::printf("  %zu reached variants differ on a held axis or are other models (not traded); measured:\n", pick.other_looks);
+    std::printf("  %zu reached variants differ on a held axis or are other models (not traded); "
+                "measured:\n",
+                pick.other_looks);
     for (const PickCandidate& c : pick.candidates)
         std::printf("    %s%s\n      cost %8.1f/px  dE00 p99 %6.3f  max abs %9.3g  NaN %llu%s\n",
                     c.variant.key().c_str(), c.reached ? "" : " (not reached: for comparison)",

@@ -53,6 +53,8 @@ struct CompareRun {
     bool reference_on_cpu = false;              // CPU double evaluation
     std::vector<ImageRGBA32F> reference_images; // per view
     RatioInterval aa;                           // timing reference against itself
+    double reference_cost_per_pixel = 0;        // the reference variant's instructions per pixel
+    double cost_aa = 0; // its count against a second pipeline of it (1: the count is exact)
     bool timing_trustworthy() const { return aa.within(kAATolerance); }
     Diagnostics diagnostics; // of a variant that did not build
     std::string error;       // first failure
