@@ -102,7 +102,7 @@ void print_table(const CompareRun& run, const std::vector<std::string>& views) {
         std::snprintf(time, sizeof time, "%.3f [%.3f, %.3f]", e.time.ratio, e.time.lo, e.time.hi);
         std::printf("%-44s %-12s %24s %12.1f %8zu", differences(e.variant, run.reference).c_str(),
                     relation.c_str(), time, e.cost_per_pixel, e.spirv_instructions);
-        for (const CompareView& v : e.views)
+        for (const ComparedView& v : e.views)
             std::printf("  %9.3g | %8.3f", v.error.max_abs, v.error.ciede2000_p99);
         std::printf("\n");
     }

@@ -141,7 +141,7 @@ class Comparison {
             reference = to_image(d, scene.width, scene.height);
         }
         for (size_t k = 0; k < run_.entries.size(); ++k) {
-            CompareView view;
+            ComparedView view;
             view.image = std::move(images[first_ + k]);
             view.glsl_vs_hlsl = path_difference[first_ + k];
             view.error = compare_images(view.image, reference);

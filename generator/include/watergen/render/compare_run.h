@@ -27,7 +27,7 @@ struct CompareRequest {
     uint32_t rounds = 15, draws = 3;                           // timing, in the first view
 };
 
-struct CompareView {
+struct ComparedView {
     ImageRGBA32F image;      // GLSL path
     double glsl_vs_hlsl = 0; // max abs between the two paths (0: bit-identical)
     ImageErrorStats error;   // against the reference image of the view
@@ -40,7 +40,7 @@ struct CompareEntry {
     // from the reference holds an approximation of the reference's choice (axis registry);
     // else "different model (<axis>: <choice> vs <choice>, ...)".
     std::string relation;
-    std::vector<CompareView> views; // in request order
+    std::vector<ComparedView> views; // in request order
     RatioInterval time;             // steady draw time / the timing reference's
     double steady_ms = 0;
     size_t spirv_instructions = 0; // optimised fragment SPIR-V, GLSL path
