@@ -151,31 +151,74 @@ std::vector<uint8_t> tone_map_to_srgb8(const ImageRGBA32F& image, float exposure
     return out;
 }
 
+std::string encode_png(uint32_t width, uint32_t height, std::span<const uint8_t> rgba8,
+                       std::string* error) noexcept {
+    try {
+        const uint64_t expected = uint64_t{width} * height * 4;
+        if (width == 0 || height == 0 || rgba8.size() != expected) {
+            set_error(error, fmt::format("{}x{} RGBA8 needs {} bytes, got {}", width, height,
+                                         expected, rgba8.size()));
+            return {};
+        }
+        // libpng's simplified API keeps its setjmp/longjmp error handling inside libpng, so no
+        // longjmp crosses C++ frames here. The first call measures, the second writes.
+        png_image image;
+        std::memset(&image, 0, sizeof image);
+        image.version = PNG_IMAGE_VERSION;
+        image.width = width;
+        image.height = height;
+        image.format = PNG_FORMAT_RGBA; // 8-bit, sRGB-encoded: libpng tags it sRGB
+        png_alloc_size_t size = 0;
+        std::string bytes;
+        if (png_image_write_to_memory(&image, nullptr, &size, 0, rgba8.data(), 0, nullptr)) {
+            bytes.resize(size);
+            if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, rgba8.data(), 0,
+                                           nullptr))
+                bytes.clear();
+            bytes.resize(size);
+        }
+        if (bytes.empty()) set_error(error, fmt::format("libpng: {}", image.message));
+        png_image_free(&image);
+        return bytes;
+    } catch (const std::exception& e) {
+        set_error(error, e.what());
+    }
+    return {};
+}
+
+std::optional<ImageRGBA8> decode_png(std::string_view bytes, std::string* error) noexcept {
+    try {
+        png_image image;
+        std::memset(&image, 0, sizeof image);
+        image.version = PNG_IMAGE_VERSION;
+        ImageRGBA8 out;
+        if (png_image_begin_read_from_memory(&image, bytes.data(), bytes.size())) {
+            image.format = PNG_FORMAT_RGBA;
+            out.width = image.width;
+            out.height = image.height;
+            out.rgba.resize(PNG_IMAGE_SIZE(image));
+            if (png_image_finish_read(&image, nullptr, out.rgba.data(), 0, nullptr)) return out;
+        }
+        set_error(error, fmt::format("libpng: {}", image.message));
+        png_image_free(&image);
+    } catch (const std::exception& e) {
+        set_error(error, e.what());
+    }
+    return std::nullopt;
+}
+
 bool write_png(const fs::path& path, uint32_t width, uint32_t height,
                std::span<const uint8_t> rgba8, std::string* error) noexcept {
     constexpr const char* action = "cannot write PNG";
     return guarded(action, path, error, [&]() -> bool {
-        const uint64_t expected = uint64_t{width} * height * 4;
-        if (width == 0 || height == 0 || rgba8.size() != expected) {
-            set_error(error, message(action, path,
-                                     fmt::format("{}x{} RGBA8 needs {} bytes, got {}", width,
-                                                 height, expected, rgba8.size())));
-            return false;
+        std::string cause;
+        const std::string bytes = encode_png(width, height, rgba8, &cause);
+        if (cause.empty()) {
+            cause = write_atomically(path, [&](std::FILE* f) -> std::string {
+                if (std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size()) return {};
+                return fmt::format("write failed: {}", errno_text(errno));
+            });
         }
-        // libpng's simplified API keeps its setjmp/longjmp error handling inside libpng, so no
-        // longjmp crosses C++ frames here.
-        const std::string cause = write_atomically(path, [&](std::FILE* f) -> std::string {
-            png_image image;
-            std::memset(&image, 0, sizeof image);
-            image.version = PNG_IMAGE_VERSION;
-            image.width = width;
-            image.height = height;
-            image.format = PNG_FORMAT_RGBA; // 8-bit, sRGB-encoded: libpng tags it sRGB
-            const int ok = png_image_write_to_stdio(&image, f, 0, rgba8.data(), 0, nullptr);
-            std::string cause = ok ? "" : fmt::format("libpng: {}", image.message);
-            png_image_free(&image);
-            return cause;
-        });
         if (!cause.empty()) {
             set_error(error, message(action, path, cause));
             return false;

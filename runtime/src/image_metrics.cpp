@@ -101,6 +101,29 @@ double ciede2000(Lab x, Lab y) {
     return std::sqrt(tl * tl + tc * tc + th * th + rt * tc * th); // (22)
 }
 
+XYZ linear_srgb_to_xyz(double r, double g, double b) {
+    // IEC 61966-2-1 matrix; the white point is its row sums (D65).
+    return XYZ{0.4124 * r + 0.3576 * g + 0.1805 * b, 0.2126 * r + 0.7152 * g + 0.0722 * b,
+               0.0193 * r + 0.1192 * g + 0.9505 * b};
+}
+
+XYZ srgb_white_xyz() {
+    return XYZ{0.4124 + 0.3576 + 0.1805, 1.0, 0.0193 + 0.1192 + 0.9505};
+}
+
+Lab linear_srgb_to_lab(double r, double g, double b) {
+    const XYZ c = linear_srgb_to_xyz(r, g, b);
+    const XYZ white = srgb_white_xyz();
+    // CIE 15:2004 Lab: f(t) = cbrt(t) above (6/29)^3, else the linear segment t/(3 (6/29)^2) +
+    // 4/29.
+    auto f = [](double t) {
+        constexpr double d = 6.0 / 29.0;
+        return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
+    };
+    const double fx = f(c.X / white.X), fy = f(c.Y / white.Y), fz = f(c.Z / white.Z);
+    return Lab{116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
+}
+
 Lab srgb8_to_lab(uint8_t r, uint8_t g, uint8_t b) {
     // 8-bit code -> linear, computed once (exact piecewise decoding, IEC 61966-2-1).
     static const std::array<double, 256> decode = [] {
@@ -109,20 +132,40 @@ Lab srgb8_to_lab(uint8_t r, uint8_t g, uint8_t b) {
             t[i] = srgb_to_linear(i / 255.0);
         return t;
     }();
-    const double rl = decode[r], gl = decode[g], bl = decode[b];
-    // Linear sRGB -> XYZ, IEC 61966-2-1 matrix; the white point is its row sums (D65).
-    const double X = 0.4124 * rl + 0.3576 * gl + 0.1805 * bl;
-    const double Y = 0.2126 * rl + 0.7152 * gl + 0.0722 * bl;
-    const double Z = 0.0193 * rl + 0.1192 * gl + 0.9505 * bl;
-    constexpr double Xn = 0.4124 + 0.3576 + 0.1805, Yn = 1.0, Zn = 0.0193 + 0.1192 + 0.9505;
-    // CIE 15:2004 Lab: f(t) = cbrt(t) above (6/29)^3, else the linear segment t/(3 (6/29)^2) +
-    // 4/29.
-    auto f = [](double t) {
-        constexpr double d = 6.0 / 29.0;
-        return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
-    };
-    const double fx = f(X / Xn), fy = f(Y / Yn), fz = f(Z / Zn);
-    return Lab{116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
+    return linear_srgb_to_lab(decode[r], decode[g], decode[b]);
+}
+
+double nearest_rank_percentile(std::span<double> values, unsigned percent) {
+    if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+    // In integers, so that 0.99 * n cannot round up: rank = ceil(percent * n / 100).
+    const std::size_t rank = (std::size_t{percent} * values.size() + 99) / 100;
+    auto nth = values.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(rank, 1) - 1);
+    std::nth_element(values.begin(), nth, values.end());
+    return *nth;
+}
+
+std::vector<double> ciede2000_map(const ImageRGBA32F& test, const ImageRGBA32F& reference,
+                                  float exposure) {
+    if (test.width != reference.width || test.height != reference.height || !test.well_formed() ||
+        !reference.well_formed())
+        return {};
+    const std::vector<uint8_t> test8 = tone_map_to_srgb8(test, exposure);
+    const std::vector<uint8_t> ref8 = tone_map_to_srgb8(reference, exposure);
+    std::vector<double> map(test.pixel_count());
+    for (std::size_t p = 0; p < map.size(); ++p) {
+        const std::size_t i = p * 4;
+        if (!finite_rgb(&test.rgba[i]) || !finite_rgb(&reference.rgba[i])) {
+            map[p] = std::numeric_limits<double>::quiet_NaN();
+            continue;
+        }
+        const uint8_t* t8 = &test8[i];
+        const uint8_t* r8 = &ref8[i];
+        const bool same = t8[0] == r8[0] && t8[1] == r8[1] && t8[2] == r8[2];
+        map[p] =
+            same ? 0.0
+                 : ciede2000(srgb8_to_lab(t8[0], t8[1], t8[2]), srgb8_to_lab(r8[0], r8[1], r8[2]));
+    }
+    return map;
 }
 
 ImageErrorStats compare_images(const ImageRGBA32F& test, const ImageRGBA32F& reference,
@@ -136,8 +179,7 @@ ImageErrorStats compare_images(const ImageRGBA32F& test, const ImageRGBA32F& ref
     if (s.error = shape_error("test", test); !s.error.empty()) return s;
     if (s.error = shape_error("reference", reference); !s.error.empty()) return s;
 
-    const std::vector<uint8_t> test8 = tone_map_to_srgb8(test, exposure);
-    const std::vector<uint8_t> ref8 = tone_map_to_srgb8(reference, exposure);
+    const std::vector<double> delta_e_map = ciede2000_map(test, reference, exposure);
     std::vector<double> delta_e;
     delta_e.reserve(test.pixel_count());
 
@@ -145,7 +187,7 @@ ImageErrorStats compare_images(const ImageRGBA32F& test, const ImageRGBA32F& ref
     double sum_sq = 0.0;
     for (uint32_t y = 0; y < test.height; ++y) {
         for (uint32_t x = 0; x < test.width; ++x) {
-            const std::size_t i = (std::size_t{y} * test.width + x) * 4;
+            const std::size_t p = std::size_t{y} * test.width + x, i = p * 4;
             const bool test_ok = finite_rgb(&test.rgba[i]);
             const bool ref_ok = finite_rgb(&reference.rgba[i]);
             s.nan_inf_pixels += test_ok ? 0 : 1;
@@ -161,12 +203,7 @@ ImageErrorStats compare_images(const ImageRGBA32F& test, const ImageRGBA32F& ref
                     s.max_abs_location = {x, y};
                 }
             }
-            const uint8_t* t8 = &test8[i];
-            const uint8_t* r8 = &ref8[i];
-            const bool same = t8[0] == r8[0] && t8[1] == r8[1] && t8[2] == r8[2];
-            delta_e.push_back(same ? 0.0
-                                   : ciede2000(srgb8_to_lab(t8[0], t8[1], t8[2]),
-                                               srgb8_to_lab(r8[0], r8[1], r8[2])));
+            delta_e.push_back(delta_e_map[p]);
         }
     }
 
@@ -184,11 +221,7 @@ ImageErrorStats compare_images(const ImageRGBA32F& test, const ImageRGBA32F& ref
     for (double e : delta_e)
         sum_e += e;
     s.ciede2000_mean = sum_e / double(delta_e.size());
-    // Nearest rank, in integers to avoid 0.99 * n rounding up: rank = ceil(99 n / 100).
-    const std::size_t rank = (99 * delta_e.size() + 99) / 100;
-    auto nth = delta_e.begin() + static_cast<std::ptrdiff_t>(rank - 1);
-    std::nth_element(delta_e.begin(), nth, delta_e.end());
-    s.ciede2000_p99 = *nth;
+    s.ciede2000_p99 = nearest_rank_percentile(delta_e, 99);
     return s;
 }
 

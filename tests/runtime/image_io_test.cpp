@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <png.h>
@@ -46,6 +47,14 @@ ImageRGBA32F sample_image(uint32_t w, uint32_t h) {
         img.rgba[i] = (i % 4 == 3) ? 1.0f : static_cast<float>(std::sin(double(i) * 1.7) * 3.0);
     }
     return img;
+}
+
+// n bytes i * step + offset (mod 256): every value differs from its neighbours.
+std::vector<uint8_t> byte_pattern(std::size_t n, unsigned step, unsigned offset) {
+    std::vector<uint8_t> bytes(n);
+    for (std::size_t i = 0; i < n; ++i)
+        bytes[i] = static_cast<uint8_t>(i * step + offset);
+    return bytes;
 }
 
 std::string read_bytes(const fs::path& p) {
@@ -150,9 +159,7 @@ TEST_CASE("write_png produces a PNG that libpng reads back with the same size an
           "[unit][png]") {
     ScratchDir dir("png-write");
     const uint32_t w = 5, h = 3;
-    std::vector<uint8_t> rgba(w * h * 4);
-    for (std::size_t i = 0; i < rgba.size(); ++i)
-        rgba[i] = static_cast<uint8_t>(i * 37 + 11);
+    const std::vector<uint8_t> rgba = byte_pattern(w * h * 4, 37, 11);
     const fs::path file = dir.path / "out.png";
 
     std::string error;
@@ -170,6 +177,44 @@ TEST_CASE("write_png produces a PNG that libpng reads back with the same size an
     std::vector<uint8_t> back(PNG_IMAGE_SIZE(image));
     REQUIRE(png_image_finish_read(&image, nullptr, back.data(), 0, nullptr) != 0);
     CHECK(back == rgba);
+}
+
+TEST_CASE("encode_png bytes are the file write_png writes and decode to the same pixels",
+          "[unit][png]") {
+    ScratchDir dir("png-memory");
+    const uint32_t w = 7, h = 4;
+    const std::vector<uint8_t> rgba = byte_pattern(w * h * 4, 53, 3);
+    std::string error;
+    const std::string bytes = encode_png(w, h, rgba, &error);
+    CHECK(error.empty());
+    REQUIRE(bytes.size() > 8);
+    CHECK(bytes.substr(0, 8) == "\x89PNG\r\n\x1a\n");
+    REQUIRE(write_png(dir.path / "same.png", w, h, rgba, &error));
+    CHECK(read_bytes(dir.path / "same.png") == bytes);
+
+    // The test above reads write_png's file with libpng directly; these are its bytes.
+    const std::optional<ImageRGBA8> decoded = decode_png(bytes, &error);
+    REQUIRE(decoded);
+    CHECK(decoded->width == w);
+    CHECK(decoded->height == h);
+    CHECK(decoded->rgba == rgba);
+}
+
+TEST_CASE("encode_png and decode_png report bad input instead of producing bytes", "[unit][png]") {
+    std::string error;
+    CHECK(encode_png(4, 4, std::vector<uint8_t>(10), &error).empty());
+    CHECK(error == "4x4 RGBA8 needs 64 bytes, got 10");
+    error.clear();
+    CHECK(encode_png(0, 4, {}, &error).empty());
+    CHECK(error == "0x4 RGBA8 needs 0 bytes, got 0");
+    error.clear();
+    CHECK_FALSE(decode_png("not a png at all", &error));
+    CHECK(error.find("libpng") == 0);
+    // A truncated file: the signature and part of the header only.
+    const std::string bytes = encode_png(2, 2, std::vector<uint8_t>(16, 200), nullptr);
+    error.clear();
+    CHECK_FALSE(decode_png(std::string_view(bytes).substr(0, 20), &error));
+    CHECK_FALSE(error.empty());
 }
 
 TEST_CASE("write_png of a tone-mapped image overwrites an existing file", "[unit][png]") {

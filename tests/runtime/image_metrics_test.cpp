@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "watergen/runtime/image_metrics.h"
 
@@ -197,4 +198,37 @@ TEST_CASE("is_degenerate is true for empty, constant and all-zero images only", 
     ImageRGBA32F one_pixel_differs{2, 1, std::vector<float>(8, 0.0f)};
     one_pixel_differs.rgba[6] = 1e-6f;
     CHECK_FALSE(is_degenerate(one_pixel_differs));
+}
+
+TEST_CASE("nearest_rank_percentile picks sorted[ceil(p n / 100) - 1]", "[unit][metrics]") {
+    std::vector<double> hundred;
+    for (int i = 100; i >= 1; --i)
+        hundred.push_back(i);
+    CHECK(nearest_rank_percentile(hundred, 99) == 99.0);
+    CHECK(nearest_rank_percentile(hundred, 50) == 50.0);
+    CHECK(nearest_rank_percentile(hundred, 100) == 100.0);
+    CHECK(nearest_rank_percentile(hundred, 1) == 1.0);
+    // n = 3: the 99th percentile is rank ceil(2.97) = 3, the median rank ceil(1.5) = 2.
+    std::vector<double> three{5.0, 1.0, 3.0};
+    CHECK(nearest_rank_percentile(three, 99) == 5.0);
+    CHECK(nearest_rank_percentile(three, 50) == 3.0);
+    std::vector<double> none;
+    CHECK(std::isnan(nearest_rank_percentile(none, 50)));
+}
+
+TEST_CASE("linear_srgb_to_lab maps greys to a = b = 0 and is what srgb8_to_lab decodes into",
+          "[unit][metrics]") {
+    // Linear 0.18 grey: L = 116 cbrt(0.18) - 16 = 49.4961.
+    const Lab grey = linear_srgb_to_lab(0.18, 0.18, 0.18);
+    CHECK(grey.L == Approx(49.4961).margin(1e-4));
+    CHECK(grey.a == Approx(0.0).margin(1e-12));
+    // The 8-bit path is decoding followed by the linear one.
+    const Lab red8 = srgb8_to_lab(255, 0, 0);
+    const Lab red = linear_srgb_to_lab(1.0, 0.0, 0.0);
+    CHECK(red8.L == red.L);
+    CHECK(red8.a == red.a);
+    CHECK(red8.b == red.b);
+    const XYZ w = srgb_white_xyz();
+    CHECK(w.X == Approx(0.9505));
+    CHECK(w.Z == Approx(1.089));
 }

@@ -17,6 +17,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace watergen {
@@ -28,6 +29,15 @@ struct ImageRGBA32F {
 
     std::size_t pixel_count() const noexcept { return std::size_t{width} * height; }
     // rgba holds exactly width * height * 4 floats.
+    bool well_formed() const noexcept { return rgba.size() == pixel_count() * 4; }
+};
+
+// 8-bit RGBA, sRGB-encoded, 4 bytes per pixel, rows top to bottom, no padding.
+struct ImageRGBA8 {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+
+    std::size_t pixel_count() const noexcept { return std::size_t{width} * height; }
     bool well_formed() const noexcept { return rgba.size() == pixel_count() * 4; }
 };
 
@@ -48,8 +58,17 @@ double srgb_to_linear(double encoded);
 // Returns an empty vector if `image` is not well_formed().
 std::vector<uint8_t> tone_map_to_srgb8(const ImageRGBA32F& image, float exposure = 1.0f);
 
-// Writes 8-bit RGBA (sRGB, row 0 = top) as PNG with libpng. rgba8.size() must be
-// width * height * 4 and both dimensions non-zero.
+// 8-bit RGBA (sRGB, row 0 = top) as the bytes of a PNG file, encoded in memory by libpng.
+// rgba8.size() must be width * height * 4 and both dimensions non-zero; otherwise, or if libpng
+// fails, returns "" and sets *error (if non-null) to the cause.
+std::string encode_png(uint32_t width, uint32_t height, std::span<const uint8_t> rgba8,
+                       std::string* error) noexcept;
+
+// The PNG file in `bytes` (any colour type and bit depth libpng reads) as 8-bit RGBA; nullopt and
+// the cause in *error (if non-null) if it is not a PNG libpng can read.
+std::optional<ImageRGBA8> decode_png(std::string_view bytes, std::string* error) noexcept;
+
+// Writes encode_png's bytes to `path`.
 bool write_png(const std::filesystem::path& path, uint32_t width, uint32_t height,
                std::span<const uint8_t> rgba8, std::string* error) noexcept;
 

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "watergen/runtime/image_io.h"
 
@@ -18,10 +20,26 @@ struct Lab {
 // test data, and mathematical observations", Color Res. Appl. 30(1):21-30, 2005.
 double ciede2000(Lab x, Lab y);
 
-// 8-bit sRGB -> CIELAB: exact sRGB decoding (srgb_to_linear), the IEC 61966-2-1 linear
-// sRGB -> XYZ matrix, and CIE 15 Lab with the D65 white taken as that matrix applied to
-// (1, 1, 1), so every grey maps to a = b = 0.
+// CIE XYZ, scaled so that the sRGB white (1, 1, 1) has Y = 1.
+struct XYZ {
+    double X = 0, Y = 0, Z = 0;
+};
+
+// Linear sRGB -> XYZ with the IEC 61966-2-1 matrix.
+XYZ linear_srgb_to_xyz(double r, double g, double b);
+// The D65 white of that matrix: linear_srgb_to_xyz(1, 1, 1), its row sums.
+XYZ srgb_white_xyz();
+
+// Linear sRGB -> CIELAB: linear_srgb_to_xyz, then CIE 15 Lab relative to srgb_white_xyz(), so
+// every grey maps to a = b = 0.
+Lab linear_srgb_to_lab(double r, double g, double b);
+
+// 8-bit sRGB -> CIELAB: exact sRGB decoding (srgb_to_linear), then linear_srgb_to_lab.
 Lab srgb8_to_lab(uint8_t r, uint8_t g, uint8_t b);
+
+// The nearest-rank percentile: sorted[ceil(percent * n / 100) - 1] for percent in [1, 100];
+// reorders `values` (nth_element). NaN if `values` is empty.
+double nearest_rank_percentile(std::span<double> values, unsigned percent);
 
 struct PixelLocation {
     uint32_t x = 0, y = 0;
@@ -57,6 +75,12 @@ struct ImageErrorStats {
 
     bool ok() const noexcept { return error.empty(); }
 };
+
+// Per-pixel CIEDE2000 between the two images after tone_map_to_srgb8(., exposure) and
+// srgb8_to_lab, row-major; NaN where either image has a non-finite R, G or B. Empty if the
+// images differ in size or are not well_formed().
+std::vector<double> ciede2000_map(const ImageRGBA32F& test, const ImageRGBA32F& reference,
+                                  float exposure = 1.0f);
 
 // Compares two images of the same size. Errors (in .error): different sizes, empty images,
 // or an rgba vector whose length does not match width * height * 4.

@@ -1,0 +1,174 @@
+#include "watergen/render/report_svg.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <fmt/core.h>
+
+#include "watergen/render/report_html.h"
+
+namespace watergen {
+
+namespace {
+
+// matplotlib's "tab10" categorical palette: distinct hues of similar weight.
+constexpr const char* kGroupColors[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                        "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+
+bool finite_point(const ScatterPoint& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y);
+}
+
+bool dominates(const ScatterPoint& a, const ScatterPoint& b) {
+    return a.x <= b.x && a.y <= b.y && (a.x < b.x || a.y < b.y);
+}
+
+// Plot area in pixels and the data range it shows.
+struct Frame {
+    double left, top, right, bottom;
+    AxisTicks xt, yt;
+    double px(double x) const {
+        return left + (x - xt.first) / (xt.last - xt.first) * (right - left);
+    }
+    double py(double y) const {
+        return bottom - (y - yt.first) / (yt.last - yt.first) * (bottom - top);
+    }
+};
+
+std::string axes_svg(const Frame& f, const ScatterPlot& plot) {
+    std::string s;
+    for (double x : f.xt.values) {
+        s += fmt::format(
+            R"(<line x1="{0:.1f}" y1="{1:.1f}" x2="{0:.1f}" y2="{2:.1f}" stroke="#ddd"/>)", f.px(x),
+            f.top, f.bottom);
+        s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle">{:g}</text>)", f.px(x),
+                         f.bottom + 16, x);
+    }
+    for (double y : f.yt.values) {
+        s += fmt::format(
+            R"(<line x1="{1:.1f}" y1="{0:.1f}" x2="{2:.1f}" y2="{0:.1f}" stroke="#ddd"/>)", f.py(y),
+            f.left, f.right);
+        s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="end">{:g}</text>)", f.left - 6,
+                         f.py(y) + 4, y);
+    }
+    s += fmt::format(
+        R"(<rect x="{:.1f}" y="{:.1f}" width="{:.1f}" height="{:.1f}" fill="none" stroke="#444"/>)",
+        f.left, f.top, f.right - f.left, f.bottom - f.top);
+    s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle">{}</text>)",
+                     (f.left + f.right) / 2, f.bottom + 36, html_escape(plot.x_label));
+    s += fmt::format(
+        R"svg(<text transform="translate(14 {:.1f}) rotate(-90)" text-anchor="middle">{}</text>)svg",
+        (f.top + f.bottom) / 2, html_escape(plot.y_label));
+    s += fmt::format(R"(<text x="{:.1f}" y="16" text-anchor="middle" font-weight="bold">{}</text>)",
+                     (f.left + f.right) / 2, html_escape(plot.title));
+    return s;
+}
+
+// The dashed staircase through the front (sorted by x): right, then down to the next point.
+std::string front_svg(const Frame& f, const ScatterPlot& plot,
+                      const std::vector<std::size_t>& front) {
+    if (front.empty()) return {};
+    std::string path =
+        fmt::format("M{:.1f} {:.1f}", f.px(plot.points[front[0]].x), f.py(plot.points[front[0]].y));
+    for (std::size_t i = 1; i < front.size(); ++i) {
+        const ScatterPoint& p = plot.points[front[i]];
+        path += fmt::format(" H{:.1f} V{:.1f}", f.px(p.x), f.py(p.y));
+    }
+    return fmt::format(
+        R"(<path d="{}" fill="none" stroke="#000" stroke-width="1.5" stroke-dasharray="5 3"/>)",
+        path);
+}
+
+} // namespace
+
+std::vector<std::size_t> pareto_front(std::span<const ScatterPoint> points) {
+    std::vector<std::size_t> front;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (!finite_point(points[i])) continue;
+        const bool dominated =
+            std::any_of(points.begin(), points.end(), [&](const ScatterPoint& q) {
+                return finite_point(q) && dominates(q, points[i]);
+            });
+        if (!dominated) front.push_back(i);
+    }
+    std::stable_sort(front.begin(), front.end(), [&](std::size_t a, std::size_t b) {
+        return points[a].x < points[b].x ||
+               (points[a].x == points[b].x && points[a].y < points[b].y);
+    });
+    return front;
+}
+
+AxisTicks nice_ticks(double lo, double hi, int target) {
+    if (!(hi > lo)) hi = lo + 1.0;
+    const double raw = (hi - lo) / std::max(target, 1);
+    const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+    double step = magnitude;
+    for (double m : {1.0, 2.0, 5.0, 10.0}) {
+        step = m * magnitude;
+        if (step >= raw) break;
+    }
+    AxisTicks t;
+    t.step = step;
+    t.first = std::floor(lo / step) * step;
+    t.last = std::ceil(hi / step) * step;
+    for (double v = t.first; v <= t.last + step * 0.5; v += step)
+        t.values.push_back(std::abs(v) < step * 1e-9 ? 0.0 : v);
+    return t;
+}
+
+std::string scatter_svg(const ScatterPlot& plot, uint32_t width, uint32_t height) {
+    std::map<std::string, std::size_t> groups; // name -> colour index, in order of appearance
+    double x_lo = 0, x_hi = 0, y_lo = 0, y_hi = 0;
+    bool any = false;
+    for (const ScatterPoint& p : plot.points) {
+        if (!finite_point(p)) continue;
+        if (!p.group.empty()) groups.emplace(p.group, groups.size());
+        x_lo = std::min(x_lo, p.x), x_hi = std::max(x_hi, p.x);
+        y_lo = std::min(y_lo, p.y), y_hi = std::max(y_hi, p.y);
+        any = true;
+    }
+    const double legend = 200.0;
+    Frame f{64.0,
+            28.0,
+            width - 16.0 - legend,
+            height - 48.0,
+            nice_ticks(x_lo, x_hi),
+            nice_ticks(y_lo, y_hi)};
+    std::string s = fmt::format(
+        R"(<svg width="{0}" height="{1}" viewBox="0 0 {0} {1}" font-family="sans-serif" font-size="12" class="plot">)",
+        width, height);
+    s += axes_svg(f, plot);
+    if (!any) {
+        s += fmt::format(
+            R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle">no measured point</text>)",
+            (f.left + f.right) / 2, (f.top + f.bottom) / 2);
+        return s + "</svg>";
+    }
+    const std::vector<std::size_t> front = pareto_front(plot.points);
+    s += front_svg(f, plot, front);
+    for (std::size_t i = 0; i < plot.points.size(); ++i) {
+        const ScatterPoint& p = plot.points[i];
+        if (!finite_point(p)) continue;
+        const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
+        const char* color = p.group.empty() ? kGroupColors[0] : kGroupColors[groups[p.group] % 10];
+        s += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}"{}/>)", f.px(p.x),
+                         f.py(p.y), color, on_front ? R"( stroke="#000" stroke-width="2.5")" : "");
+        s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11">{}</text>)", f.px(p.x) + 8,
+                         f.py(p.y) - 6, html_escape(p.label));
+    }
+    double ly = f.top + 8;
+    for (const auto& [name, index] : groups) {
+        s += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}"/>)", f.right + 20, ly,
+                         kGroupColors[index % 10]);
+        s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}">{}</text>)", f.right + 30, ly + 4,
+                         html_escape(name));
+        ly += 18;
+    }
+    s += fmt::format(
+        R"(<path d="M{0:.1f} {1:.1f} h20" fill="none" stroke="#000" stroke-width="1.5" stroke-dasharray="5 3"/><text x="{2:.1f}" y="{3:.1f}">Pareto front</text>)",
+        f.right + 10, f.bottom - 8, f.right + 34, f.bottom - 4);
+    return s + "</svg>";
+}
+
+} // namespace watergen

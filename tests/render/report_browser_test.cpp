@@ -1,0 +1,92 @@
+// The comparison report in a real browser: headless Chromium (installed by scripts/setup) opens
+// report.html written from a made-up comparison and takes a screenshot. The page must log
+// nothing to the console, and the images, heat maps and plots must be drawn: each leaves colours
+// in the screenshot that nothing else on the page has.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+#include <fmt/core.h>
+
+#include "compare_report_support.h"
+#include "watergen/render/heat_map.h"
+
+using namespace watergen;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr uint32_t kWindowWidth = 1400, kWindowHeight = 4000;
+
+// Pixels of the screenshot within `tolerance` of `rgb` on every channel.
+std::size_t pixels_near(const ImageRGBA8& shot, std::array<uint8_t, 3> rgb, int tolerance) {
+    std::size_t n = 0;
+    for (std::size_t p = 0; p < shot.pixel_count(); ++p) {
+        bool near = true;
+        for (int c = 0; c < 3; ++c)
+            near = near && std::abs(int(shot.rgba[p * 4 + c]) - int(rgb[c])) <= tolerance;
+        n += near ? 1 : 0;
+    }
+    return n;
+}
+
+// Runs `command` through the shell; its exit status, or -1 if it did not exit normally.
+int run(const std::string& command) {
+    const int status = std::system(command.c_str());
+    return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+} // namespace
+
+TEST_CASE("the_report_renders_in_headless_chromium_without_console_messages", "[browser]") {
+    INFO("headless Chromium comes from scripts/setup (Debian package chromium)");
+    REQUIRE(run("command -v chromium > /dev/null") == 0);
+
+    const fs::path dir = fs::current_path() / "scratch-report-browser";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const CompareReport report = test::synthetic_compare_report();
+    REQUIRE_FALSE(write_compare_report(dir / "out", report));
+
+    // --headless=new renders like the desktop browser; as root it needs --no-sandbox. `timeout`
+    // turns a hang into a failure (exit 124) instead of a stuck test.
+    const fs::path shot_path = dir / "shot.png", log_path = dir / "chromium.log";
+    const std::string command = fmt::format(
+        "timeout 60 chromium --headless=new --no-sandbox --disable-gpu --hide-scrollbars "
+        "--user-data-dir='{}' --window-size={},{} --screenshot='{}' --enable-logging=stderr "
+        "--v=0 'file://{}' > '{}' 2>&1",
+        (dir / "profile").string(), kWindowWidth, kWindowHeight, shot_path.string(),
+        (dir / "out" / kCompareReportHtml).string(), log_path.string());
+    const int status = run(command);
+    const std::string log = test::read_file_text(log_path);
+    INFO(log);
+    REQUIRE(status == 0);
+
+    // Console messages (console.*, uncaught exceptions, blocked resources) show up as
+    // "[...:INFO:CONSOLE:<line>] "<message>", source: <url> (<line>)".
+    CHECK(log.find(":CONSOLE") == std::string::npos);
+
+    std::string why;
+    const auto shot = decode_png(test::read_file_text(shot_path), &why);
+    INFO(why);
+    REQUIRE(shot);
+    CHECK(shot->width == kWindowWidth);
+    CHECK(shot->height == kWindowHeight);
+
+    // The sea of the synthetic views (linear 0.5 green: sRGB 0, 188, 0), shown 3x (192 px) in
+    // the reference and the exact+sprites variant of both views: 4 x 192 x 96 pixels.
+    CHECK(pixels_near(*shot, {0, 188, 0}, 3) >= 4 * 192 * 96 * 95 / 100);
+    // The NaN pixel: magenta in the image, green in the CIEDE2000 map (3x3 pixels each).
+    CHECK(pixels_near(*shot, {255, 0, 255}, 3) >= 9);
+    CHECK(pixels_near(*shot, kHeatNonFiniteColor, 3) >= 9);
+    // The blobs clip the CIEDE2000 maps at magma's top (about 80 pixels x 9 in four maps).
+    CHECK(pixels_near(*shot, magma(1.0), 3) >= 2000);
+    // The plots' first group colour (tab10 blue #1f77b4), points in three plots.
+    CHECK(pixels_near(*shot, {31, 119, 180}, 3) >= 100);
+    // KEEP_REPORT=1 keeps the report, the screenshot and the browser log for a look.
+    if (!std::getenv("KEEP_REPORT")) fs::remove_all(dir);
+}
