@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "watergen/render/compare_report.h"
 #include "watergen/render/compare_run.h"
 
 namespace watergen::cli {
@@ -118,6 +119,56 @@ void print_table(const CompareRun& run, const std::vector<std::string>& views) {
                       "the cost column (instructions, independent of load)");
 }
 
+// The report of a run: images, maps, table and plots (compare_report.h).
+CompareReport make_report(const CompareRun& run, const CompareRequest& request,
+                          const CompareOptions& o) {
+    CompareReport report;
+    report.title = "watergen compare: " + std::to_string(run.entries.size()) + " variants";
+    report.reference_key = run.reference.key() + (run.reference_on_cpu ? " (CPU, double)" : "");
+    for (size_t v = 0; v < request.views.size(); ++v)
+        report.views.push_back({request.views[v].first, run.reference_images[v]});
+    const auto& list = axes();
+    for (const CompareEntry& e : run.entries) {
+        CompareVariant cv;
+        cv.key = e.variant.key();
+        for (size_t a = 0; a < list.size(); ++a)
+            cv.choices[list[a].name] = e.variant.choices[a];
+        cv.reference = e.variant.key() == run.reference.key();
+        cv.relation = e.relation;
+        cv.time_ratio = e.time.ratio;
+        cv.time_ratio_lo = e.time.lo;
+        cv.time_ratio_hi = e.time.hi;
+        cv.cost = e.cost_per_pixel;
+        cv.spirv_instructions = e.spirv_instructions;
+        for (const ComparedView& view : e.views)
+            cv.views.push_back({view.image, std::nullopt});
+        report.variants.push_back(std::move(cv));
+    }
+    char note[400];
+    std::snprintf(note, sizeof note,
+                  "steady draw time on lavapipe (GLSL path, view %s, %ux%u), interleaved: %u "
+                  "rounds x %u draws, the first (JIT) draw excluded; ratio = median over rounds, "
+                  "95%% paired bootstrap interval. A/A (the reference against a second pipeline "
+                  "of itself): %.3f [%.3f, %.3f]%s",
+                  request.views.front().first.c_str(), request.views.front().second.width,
+                  request.views.front().second.height, o.rounds, o.draws, run.aa.ratio, run.aa.lo,
+                  run.aa.hi,
+                  run.timing_trustworthy() ? ", within +-3%"
+                                           : ": NOT within +-3%, times are not trustworthy on "
+                                             "this machine now; use the cost");
+    report.timing_note = note;
+    report.timing_trustworthy = run.timing_trustworthy();
+    if (o.cost) {
+        std::snprintf(note, sizeof note,
+                      "instructions lavapipe executes per pixel for one %ux%u draw of the GLSL "
+                      "path (valgrind callgrind, the draw alone; independent of machine load). "
+                      "A/A: %.5f",
+                      o.cost_size, o.cost_size, run.cost_aa);
+        report.cost_note = note;
+    }
+    return report;
+}
+
 } // namespace
 
 Runner add_compare_command(CLI::App& app, const Common& common) {
@@ -201,6 +252,12 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
         for (const auto& [name, scene] : request.views)
             views.push_back(name);
         print_table(run, views);
+        if (auto failure = write_compare_report(o->out, make_report(run, request, *o))) {
+            std::fprintf(stderr, "watergen: error: %s\n", failure->c_str());
+            return kFailed;
+        }
+        std::printf("wrote %s/%s, %s, %s\n", o->out.c_str(), kCompareReportHtml, kCompareCsv,
+                    kCompareJson);
         return kOk;
     };
 }

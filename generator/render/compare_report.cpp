@@ -77,9 +77,9 @@ std::string summary_table(const CompareReport& report, const ResolvedErrors& err
     for (std::size_t v = 0; v < report.variants.size(); ++v) {
         const CompareVariant& var = report.variants[v];
         s += fmt::format(
-            R"(<tr{}><td class="key">{}</td>{}<td>{}</td><td>{}</td>{}<td class="key">{}</td></tr>)",
+            R"(<tr{}><td class="key" title="{}">{}</td>{}<td>{}</td><td>{}</td>{}<td class="key">{}</td></tr>)",
             var.reference ? R"( class="reference")" : "", html_escape(var.key),
-            time_cell(var, report.timing_trustworthy),
+            html_escape(short_label(report, var)), time_cell(var, report.timing_trustworthy),
             var.cost != 0 ? fmt::format("{:.1f}", var.cost) : "n/a",
             var.spirv_instructions ? std::to_string(var.spirv_instructions) : "n/a",
             error_cells(errors.summaries[v]), html_escape(var.relation));

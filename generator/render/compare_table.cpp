@@ -135,12 +135,21 @@ std::string short_label(const CompareReport& report, const CompareVariant& varia
     const CompareVariant* ref = nullptr;
     for (const CompareVariant& v : report.variants)
         if (v.reference) ref = &v;
-    if (!ref) return variant.key;
+    // Against the reference variant, or (the reference is not among them) the axes whose
+    // choice varies between the variants.
+    auto differs = [&](const std::string& axis, const std::string& choice) {
+        if (ref) {
+            const auto it = ref->choices.find(axis);
+            return it == ref->choices.end() || it->second != choice;
+        }
+        for (const CompareVariant& v : report.variants)
+            if (const auto it = v.choices.find(axis); it == v.choices.end() || it->second != choice)
+                return true;
+        return false;
+    };
     std::vector<std::string> parts;
-    for (const auto& [axis, choice] : variant.choices) {
-        const auto it = ref->choices.find(axis);
-        if (it == ref->choices.end() || it->second != choice) parts.push_back(axis + "=" + choice);
-    }
+    for (const auto& [axis, choice] : variant.choices)
+        if (differs(axis, choice)) parts.push_back(axis + "=" + choice);
     return parts.empty() ? variant.key : fmt::format("{}", fmt::join(parts, ", "));
 }
 

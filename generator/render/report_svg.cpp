@@ -119,7 +119,9 @@ AxisTicks nice_ticks(double lo, double hi, int target) {
 
 std::string scatter_svg(const ScatterPlot& plot, uint32_t width, uint32_t height) {
     std::map<std::string, std::size_t> groups; // name -> colour index, in order of appearance
-    double x_lo = 0, x_hi = 0, y_lo = 0, y_hi = 0;
+    // Error from 0; cost over the data's span (padded), since variants often differ in cost
+    // by a few percent and would sit in one column on an axis from 0.
+    double x_lo = INFINITY, x_hi = -INFINITY, y_lo = 0, y_hi = 0;
     bool any = false;
     for (const ScatterPoint& p : plot.points) {
         if (!finite_point(p)) continue;
@@ -128,6 +130,9 @@ std::string scatter_svg(const ScatterPlot& plot, uint32_t width, uint32_t height
         y_lo = std::min(y_lo, p.y), y_hi = std::max(y_hi, p.y);
         any = true;
     }
+    if (!any) x_lo = x_hi = 0;
+    const double pad = x_hi > x_lo ? 0.08 * (x_hi - x_lo) : std::max(1.0, 0.01 * std::abs(x_lo));
+    x_lo -= pad, x_hi += pad;
     const double legend = 200.0;
     Frame f{64.0,
             28.0,
