@@ -5,8 +5,11 @@
 #include <sstream>
 
 #include "commands.h"
+#include "watergen/plan/scene_pruning.h"
 #include "watergen/render/compare_report.h"
 #include "watergen/render/compare_run.h"
+#include "watergen/render/pick.h"
+#include "watergen/render/prune_measure.h"
 
 namespace watergen::cli {
 
@@ -16,6 +19,7 @@ struct CompareOptions {
     std::vector<std::string> axis_lists; // per axis, "" or a comma list of choices
     std::vector<std::string> keys;       // --variant
     std::string preset, reference = "gold", out = "out/compare";
+    std::string material, scene; // select a material's variants, or a scene's pruned set
     uint32_t size = 512, rounds = 15, draws = 3, cost_size = 64;
     bool cost = true;
     RunnerSetup runner;
@@ -169,6 +173,137 @@ CompareReport make_report(const CompareRun& run, const CompareRequest& request,
     return report;
 }
 
+// What is compared and how it is built: flags and keys (build_variant with the preset), or a
+// material's variants (composed by the material), or a scene's pruned set of them (folded under
+// the scene's facts, rendered in the synthetic scene made to obey them).
+struct Selection {
+    std::vector<Variant> variants;
+    const Preset* preset = nullptr;
+    Material material;
+    std::optional<ScenePlan> plan;
+    bool from_material = false;
+};
+
+bool select_from_material(const CompareOptions& o, Selection& sel, const Common& common) {
+    if (std::any_of(o.axis_lists.begin(), o.axis_lists.end(),
+                    [](const std::string& l) { return !l.empty(); }) ||
+        !o.keys.empty()) {
+        std::fprintf(stderr, "watergen: error: --material / --scene select the variants; give "
+                             "them without axis lists or --variant\n");
+        return false;
+    }
+    std::vector<SceneFacts> scenes;
+    const std::vector<std::string> paths =
+        o.scene.empty() ? std::vector<std::string>{} : std::vector<std::string>{o.scene};
+    if (!load_material_and_scenes(o.material, paths, sel.material, scenes, common)) return false;
+    sel.from_material = true;
+    if (!scenes.empty()) {
+        Diagnostics ds;
+        sel.plan = plan_scene(sel.material, scenes.front(), ds);
+        print_diagnostics(ds, common);
+        if (!sel.plan) return false;
+        sel.variants = sel.plan->variants;
+    } else {
+        enumerate(sel.material.space, [&](const Variant& v) { sel.variants.push_back(v); });
+    }
+    if (sel.variants.size() > kMaxVariants) {
+        std::fprintf(stderr,
+                     "watergen: error: %zu variants to compare; at most %zu (give a "
+                     "--scene to compare its pruned set)\n",
+                     sel.variants.size(), kMaxVariants);
+        return false;
+    }
+    return true;
+}
+
+bool select(const CompareOptions& o, Selection& sel, const Common& common) {
+    if (!o.material.empty() || !o.scene.empty()) return select_from_material(o, sel, common);
+    const auto variants = selected_variants(o);
+    if (!variants) return false;
+    sel.variants = *variants;
+    for (const Variant& v : sel.variants)
+        if (!resolve_variant(v, o.preset, &sel.preset)) return false;
+    return true;
+}
+
+// Fills the variants' cost per pixel and the cost's A/A pair (the reference counted once more,
+// on its own pipeline); false after printing the failure.
+bool add_costs(const CompareOptions& o, const Selection& sel, CompareRun& run) {
+    std::vector<Variant> counted;
+    for (const CompareEntry& e : run.entries)
+        counted.push_back(e.variant);
+    const std::string key = run.reference.key();
+    counted.push_back(run.reference);
+    if (std::none_of(run.entries.begin(), run.entries.end(),
+                     [&](const CompareEntry& e) { return e.variant.key() == key; }))
+        counted.push_back(run.reference);
+    std::string error;
+    const auto costs = sel.from_material
+                           ? count_material_costs(o.material, o.scene, counted, o.cost_size, &error)
+                           : count_draw_costs(counted, o.cost_size, o.preset, &error);
+    if (!costs) {
+        std::fprintf(stderr, "watergen: error: instruction count: %s\n", error.c_str());
+        return false;
+    }
+    const double pixels = double(o.cost_size) * o.cost_size;
+    for (CompareEntry& e : run.entries)
+        if (auto it = costs->find(e.variant.key()); it != costs->end())
+            e.cost_per_pixel = double(it->second) / pixels;
+    if (costs->count(key) && costs->count(key + "#2") && costs->at(key) > 0) {
+        run.reference_cost_per_pixel = double(costs->at(key)) / pixels;
+        run.cost_aa = double(costs->at(key + "#2")) / double(costs->at(key));
+    }
+    return true;
+}
+
+int run_compare_command(const CompareOptions& o, const Common& common) {
+    Selection sel;
+    if (!select(o, sel, common)) return kUsage;
+    CompareRequest request;
+    request.variants = sel.variants;
+    request.preset = sel.preset;
+    if (o.reference != "gold") {
+        std::string error;
+        request.reference = parse_variant_key(o.reference, &error);
+        if (!request.reference) {
+            std::fprintf(stderr, "watergen: error: --reference '%s': %s\n", o.reference.c_str(),
+                         error.c_str());
+            return kUsage;
+        }
+        if (!resolve_variant(*request.reference, o.preset, &sel.preset)) return kUsage;
+    }
+    request.rounds = o.rounds;
+    request.draws = o.draws;
+    if (sel.from_material) {
+        request.build = [&sel](const Variant& v) {
+            return sel.plan ? build_for_scene(sel.material, *sel.plan, v)
+                            : build_shader(sel.material.compose(v));
+        };
+        const SyntheticScene base = make_synthetic_scene(o.size, o.size);
+        request.views.emplace_back("beach",
+                                   sel.plan ? conform_scene(base, *sel.plan, sel.material) : base);
+    } else {
+        request.views.emplace_back("beach", preset_scene(o.size, o.size, sel.preset));
+    }
+    std::string cache;
+    auto runner = create_runner(o.runner, &cache);
+    if (!runner) return kNoDevice;
+    CompareRun run = run_compare(*runner, request);
+    if (!bench_succeeded(run.diagnostics, run.error, common)) return kFailed;
+    if (o.cost && !add_costs(o, sel, run)) return kFailed;
+    std::vector<std::string> views;
+    for (const auto& [name, scene] : request.views)
+        views.push_back(name);
+    print_table(run, views);
+    if (auto failure = write_compare_report(o.out, make_report(run, request, o))) {
+        std::fprintf(stderr, "watergen: error: %s\n", failure->c_str());
+        return kFailed;
+    }
+    std::printf("wrote %s/%s, %s, %s\n", o.out.c_str(), kCompareReportHtml, kCompareCsv,
+                kCompareJson);
+    return kOk;
+}
+
 } // namespace
 
 Runner add_compare_command(CLI::App& app, const Common& common) {
@@ -181,6 +316,11 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
                            list[a].default_choice + " only)");
     app.add_option("--variant", o->keys, "a variant key to compare (repeatable)");
     app.add_option("--preset", o->preset, "parameter preset");
+    app.add_option("--material", o->material,
+                   "compare the variants of this material file (with --scene: its pruned set)");
+    app.add_option("--scene", o->scene,
+                   "compare the variants this scene file reaches of the material (default: the "
+                   "built-in material), built as the scene's build ships them");
     app.add_option("--reference", o->reference,
                    "gold (default): the gold of every axis that varies, on the CPU in double; or a "
                    "variant key, rendered on the GPU");
@@ -196,70 +336,7 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
     app.add_flag("!--no-cost", o->cost, "skip the instruction count (valgrind, ~5 s per variant)");
     app.add_option("--out", o->out, "output directory (default out/compare)");
     add_runner_options(app, o->runner);
-    return [o, &common]() {
-        const auto variants = selected_variants(*o);
-        if (!variants) return kUsage;
-        const Preset* preset = nullptr;
-        for (const Variant& v : *variants)
-            if (!resolve_variant(v, o->preset, &preset)) return kUsage;
-        CompareRequest request;
-        request.variants = *variants;
-        request.preset = preset;
-        if (o->reference != "gold") {
-            std::string error;
-            request.reference = parse_variant_key(o->reference, &error);
-            if (!request.reference) {
-                std::fprintf(stderr, "watergen: error: --reference '%s': %s\n",
-                             o->reference.c_str(), error.c_str());
-                return kUsage;
-            }
-            if (!resolve_variant(*request.reference, o->preset, &preset)) return kUsage;
-        }
-        request.rounds = o->rounds;
-        request.draws = o->draws;
-        request.views.emplace_back("beach", preset_scene(o->size, o->size, preset));
-        std::string cache;
-        auto runner = create_runner(o->runner, &cache);
-        if (!runner) return kNoDevice;
-        CompareRun run = run_compare(*runner, request);
-        if (!bench_succeeded(run.diagnostics, run.error, common)) return kFailed;
-        if (o->cost) {
-            std::vector<Variant> counted;
-            for (const CompareEntry& e : run.entries)
-                counted.push_back(e.variant);
-            // The reference once more (twice when it is not an entry): the cost's A/A pair.
-            const std::string key = run.reference.key();
-            counted.push_back(run.reference);
-            if (std::none_of(run.entries.begin(), run.entries.end(),
-                             [&](const CompareEntry& e) { return e.variant.key() == key; }))
-                counted.push_back(run.reference);
-            std::string error;
-            const auto costs = count_draw_costs(counted, o->cost_size, o->preset, &error);
-            if (!costs) {
-                std::fprintf(stderr, "watergen: error: instruction count: %s\n", error.c_str());
-                return kFailed;
-            }
-            const double pixels = double(o->cost_size) * o->cost_size;
-            for (CompareEntry& e : run.entries)
-                if (auto it = costs->find(e.variant.key()); it != costs->end())
-                    e.cost_per_pixel = double(it->second) / pixels;
-            if (costs->count(key) && costs->count(key + "#2") && costs->at(key) > 0) {
-                run.reference_cost_per_pixel = double(costs->at(key)) / pixels;
-                run.cost_aa = double(costs->at(key + "#2")) / double(costs->at(key));
-            }
-        }
-        std::vector<std::string> views;
-        for (const auto& [name, scene] : request.views)
-            views.push_back(name);
-        print_table(run, views);
-        if (auto failure = write_compare_report(o->out, make_report(run, request, *o))) {
-            std::fprintf(stderr, "watergen: error: %s\n", failure->c_str());
-            return kFailed;
-        }
-        std::printf("wrote %s/%s, %s, %s\n", o->out.c_str(), kCompareReportHtml, kCompareCsv,
-                    kCompareJson);
-        return kOk;
-    };
+    return [o, &common]() { return run_compare_command(*o, common); };
 }
 
 } // namespace watergen::cli

@@ -100,17 +100,10 @@ count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std:
     o.preset = preset;
     for (const Variant& v : variants)
         o.keys.push_back(v.key());
-    const DrawCountRun r = count_draws_under_valgrind(
-        worker_argv(o), std::filesystem::temp_directory_path() / "watergen-compare-cost");
-    if (!r.ok()) {
-        *error = r.error;
-        return std::nullopt;
-    }
-    std::map<std::string, uint64_t> out;
-    for (const DrawCount& c : r.counts)
-        if (c.label.size() < 6 || c.label.compare(c.label.size() - 6, 6, " first") != 0)
-            out[c.label] = c.instructions;
-    return out;
+    return steady_draw_counts(
+        count_draws_under_valgrind(worker_argv(o), std::filesystem::temp_directory_path() /
+                                                       "watergen-compare-cost"),
+        error);
 }
 
 Runner add_cost_command(CLI::App& app, const Common& common) {

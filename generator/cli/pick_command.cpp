@@ -29,8 +29,9 @@ struct PickOptions {
     RunnerSetup runner;
 };
 
-// The worker: the scene's shaders for the given keys, each GLSL path drawn with the count on.
-int run_worker(const PickOptions& o, const Material& m, const ScenePlan& plan,
+// The worker: the given keys' shaders as the material builds them (for a scene: folded under
+// its facts), each GLSL path drawn with the count on; a key given twice is labelled "<key>#2".
+int run_worker(const PickOptions& o, const Material& m, const ScenePlan* plan,
                const Common& common) {
     if (!RUNNING_ON_VALGRIND) {
         std::fprintf(stderr, "watergen: error: --counted is the worker of watergen pick and runs "
@@ -40,44 +41,40 @@ int run_worker(const PickOptions& o, const Material& m, const ScenePlan& plan,
     std::string cache;
     auto runner = create_runner(RunnerSetup{}, &cache);
     if (!runner) return kNoDevice;
-    const SyntheticScene scene =
-        conform_scene(make_synthetic_scene(o.cost_size, o.cost_size), plan, m);
+    const SyntheticScene base = make_synthetic_scene(o.cost_size, o.cost_size);
+    const SyntheticScene scene = plan ? conform_scene(base, *plan, m) : base;
+    std::map<std::string, int> seen;
     for (const std::string& key : o.keys) {
         std::string error;
         const auto v = parse_variant_key(key, &error);
         if (!v) return kUsage;
-        const VariantBuild build = build_for_scene(m, plan, *v);
+        const VariantBuild build =
+            plan ? build_for_scene(m, *plan, *v) : build_shader(m.compose(*v));
         print_diagnostics(build.diagnostics, common);
         if (!build.ok()) return kFailed;
         RenderJob job =
             make_render_job(build.languages[0], scene, {o.cost_size, o.cost_size, 0, false, false});
-        job.counted_draw_label = key;
+        const int n = ++seen[key];
+        job.counted_draw_label = n == 1 ? key : key + "#" + std::to_string(n);
         if (!runner->render(job).ok) return kFailed;
     }
     return kOk;
 }
 
-// Instructions per pixel of every candidate, from one worker run; "" or the failure.
+// Instructions per pixel of every candidate not counted yet, from one worker run; "" or the
+// failure.
 std::string count_costs(const PickOptions& o, const std::string& scene_path, PickPlan& pick) {
-    std::vector<std::string> argv = {std::filesystem::read_symlink("/proc/self/exe").string(),
-                                     "pick",
-                                     "--counted",
-                                     "--scene",
-                                     scene_path,
-                                     "--cost-size",
-                                     std::to_string(o.cost_size)};
-    if (!o.material.empty()) argv.push_back(o.material);
-    const size_t fixed = argv.size();
+    std::vector<Variant> missing;
     for (const PickCandidate& c : pick.candidates)
-        if (c.cost_per_pixel == 0) argv.insert(argv.end(), {"--key", c.variant.key()});
-    if (argv.size() == fixed) return ""; // every candidate counted already
-    const DrawCountRun r = count_draws_under_valgrind(argv, std::filesystem::temp_directory_path() /
-                                                                "watergen-pick-cost");
-    if (!r.ok()) return r.error;
+        if (c.cost_per_pixel == 0) missing.push_back(c.variant);
+    if (missing.empty()) return "";
+    std::string error;
+    const auto counts = count_material_costs(o.material, scene_path, missing, o.cost_size, &error);
+    if (!counts) return error;
     const double pixels = double(o.cost_size) * o.cost_size;
     for (PickCandidate& c : pick.candidates)
-        for (const DrawCount& d : r.counts)
-            if (d.label == c.variant.key()) c.cost_per_pixel = double(d.instructions) / pixels;
+        if (auto it = counts->find(c.variant.key()); it != counts->end())
+            c.cost_per_pixel = double(it->second) / pixels;
     for (const PickCandidate& c : pick.candidates)
         if (c.cost_per_pixel == 0) return c.variant.key() + ": no instruction count";
     return "";
@@ -146,10 +143,25 @@ void print_pick(const PickPlan& pick, const PickCandidate& c) {
 
 } // namespace
 
+std::optional<std::map<std::string, uint64_t>>
+count_material_costs(const std::string& material_path, const std::string& scene_path,
+                     const std::vector<Variant>& variants, uint32_t size, std::string* error) {
+    std::vector<std::string> argv = {std::filesystem::read_symlink("/proc/self/exe").string(),
+                                     "pick", "--counted", "--cost-size", std::to_string(size)};
+    if (!scene_path.empty()) argv.insert(argv.end(), {"--scene", scene_path});
+    if (!material_path.empty()) argv.push_back(material_path);
+    for (const Variant& v : variants)
+        argv.insert(argv.end(), {"--key", v.key()});
+    return steady_draw_counts(
+        count_draws_under_valgrind(argv, std::filesystem::temp_directory_path() /
+                                             "watergen-material-cost"),
+        error);
+}
+
 Runner add_pick_command(CLI::App& app, const Common& common) {
     auto o = std::make_shared<PickOptions>();
     app.add_option("material", o->material, "material file (default: the built-in material)");
-    app.add_option("--scene", o->scenes, "scene file (repeatable)")->required();
+    app.add_option("--scene", o->scenes, "scene file (repeatable; at least one)");
     const auto& list = axes();
     o->holds.resize(list.size());
     for (size_t a = 0; a < list.size(); ++a)
@@ -192,7 +204,11 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
             if (!plan) return kUsage;
             plans.push_back(std::move(*plan));
         }
-        if (o->counted) return run_worker(*o, m, plans.front(), common);
+        if (o->counted) return run_worker(*o, m, plans.empty() ? nullptr : &plans.front(), common);
+        if (plans.empty()) {
+            std::fprintf(stderr, "watergen: error: pick needs a scene: --scene FILE\n");
+            return kUsage;
+        }
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;

@@ -88,7 +88,8 @@ class Comparison {
                              [&](const Variant& o) { return o.key() == v.key(); }))
                 order_.push_back(v);
         for (const Variant& v : order_) {
-            builds_.push_back(build_variant(v, request_.preset));
+            builds_.push_back(request_.build ? request_.build(v)
+                                             : build_variant(v, request_.preset));
             if (!builds_.back().ok()) {
                 run_.diagnostics = builds_.back().diagnostics;
                 run_.error = v.key() + ": did not build";

@@ -63,4 +63,19 @@ DrawCountRun count_draws_under_valgrind(const std::vector<std::string>& worker_a
     return run;
 }
 
+std::optional<std::map<std::string, uint64_t>> steady_draw_counts(const DrawCountRun& run,
+                                                                  std::string* error) {
+    if (!run.ok()) {
+        *error = run.error;
+        return std::nullopt;
+    }
+    static const std::string kFirst = " first";
+    std::map<std::string, uint64_t> out;
+    for (const DrawCount& c : run.counts)
+        if (c.label.size() < kFirst.size() ||
+            c.label.compare(c.label.size() - kFirst.size(), kFirst.size(), kFirst) != 0)
+            out[c.label] = c.instructions;
+    return out;
+}
+
 } // namespace watergen

@@ -4,11 +4,13 @@
 // approximation of it, or a different model, whose error is not an approximation error).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "watergen/pipeline/variant_build.h"
 #include "watergen/render/interleaved_timing.h"
 #include "watergen/render/synthetic_scene.h"
 #include "watergen/runtime/image_metrics.h"
@@ -25,6 +27,10 @@ struct CompareRequest {
     const Preset* preset = nullptr;
     std::vector<std::pair<std::string, SyntheticScene>> views; // name, scene (all one size)
     uint32_t rounds = 15, draws = 3;                           // timing, in the first view
+    // How a variant is built; empty: build_variant(v, preset). A material's variants are
+    // composed by the material (and, for a scene, folded under its facts: pick.h
+    // build_for_scene); the CPU reference evaluates the reference's built fragment graph.
+    std::function<VariantBuild(const Variant&)> build;
 };
 
 struct ComparedView {

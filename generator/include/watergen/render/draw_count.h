@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,11 @@ struct DrawCountRun {
 //         the counted draws at callgrind speed (~50x native).
 DrawCountRun count_draws_under_valgrind(const std::vector<std::string>& worker_argv,
                                         const std::filesystem::path& scratch);
+
+// The steady draws' counts of a run by label (the " first" spans left out); nullopt and
+// *error when the run failed.
+std::optional<std::map<std::string, uint64_t>> steady_draw_counts(const DrawCountRun& run,
+                                                                  std::string* error);
 
 // One callgrind dump ("desc: Trigger: Client Request: <label>" ... "totals: <Ir>"); nullopt
 // for a dump that no client request triggered or that has no totals line.
