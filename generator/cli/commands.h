@@ -40,8 +40,13 @@ void add_variant_options(CLI::App& app, Variant& variant, std::string& preset);
 // false on bad input (exit with kUsage).
 bool resolve_variant(const Variant& variant, const std::string& preset_name, const Preset** preset);
 void print_diagnostics(const Diagnostics& ds, const Common& common);
-// The synthetic scene at width x height, its uniforms (lighting) following the preset if any.
-SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset);
+// Adds --view NAME (scene_views.h), restricted to the registry's names; default beach.
+void add_view_option(CLI::App& app, std::string& view);
+// The synthetic scene at width x height seen from the view named `view` (one add_view_option
+// accepted), its uniforms following the preset if any: a preset's values, its sun_direction
+// among them, replace the view's.
+SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset,
+                            const std::string& view = "beach");
 // Adds --unroll hinted|all|none: the unroll hint every loop is emitted with.
 void add_unroll_option(CLI::App& app, LoopUnroll& unroll);
 

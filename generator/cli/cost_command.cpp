@@ -18,7 +18,7 @@ namespace {
 
 struct CostOptions {
     Variant variant = default_variant();
-    std::string preset;
+    std::string preset, view = "beach";
     uint32_t size = 256, runs = 2;
     LoopUnroll unroll = LoopUnroll::AsHinted;
     bool counted = false;          // the worker, under valgrind
@@ -58,7 +58,7 @@ int run_worker(const CostOptions& o, const Preset* preset, const Common& common)
     std::string cache;
     auto runner = create_runner(RunnerSetup{}, &cache);
     if (!runner) return kNoDevice;
-    const SyntheticScene scene = preset_scene(o.size, o.size, preset);
+    const SyntheticScene scene = preset_scene(o.size, o.size, preset, o.view);
     std::map<std::string, int> seen; // a variant given twice is labelled "<key>#2" (an A/A pair)
     for (const Variant& v : variants) {
         const int n = ++seen[v.key()];
@@ -86,6 +86,7 @@ std::vector<std::string> worker_argv(const CostOptions& o) {
     for (const std::string& key : o.keys)
         argv.insert(argv.end(), {"--key", key});
     if (!o.preset.empty()) argv.insert(argv.end(), {"--preset", o.preset});
+    argv.insert(argv.end(), {"--view", o.view});
     argv.insert(argv.end(), {"--unroll", to_string(o.unroll)});
     return argv;
 }
@@ -115,6 +116,7 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
                    "valgrind runs; more than one shows the count repeats (default 2)")
         ->check(CLI::Range(1, 20));
     add_unroll_option(app, o->unroll);
+    add_view_option(app, o->view);
     app.add_option("--scratch", o->scratch,
                    "directory for valgrind's dumps (default: a directory under the system's "
                    "temporary directory)");
@@ -138,8 +140,9 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
                 counts[c.label].push_back(c.instructions);
         }
         std::printf("%s\ninstructions lavapipe executes (valgrind callgrind), %u run(s): one "
-                    "%ux%u draw, and pipeline creation through the first draw (the JIT):\n",
-                    o->variant.key().c_str(), o->runs, o->size, o->size);
+                    "%ux%u draw in view %s, and pipeline creation through the first draw (the "
+                    "JIT):\n",
+                    o->variant.key().c_str(), o->runs, o->size, o->size, o->view.c_str());
         // The smallest count of a span, and by how much the runs differ (percent).
         auto spread = [](const std::vector<uint64_t>& v) {
             const auto [lo, hi] = std::minmax_element(v.begin(), v.end());

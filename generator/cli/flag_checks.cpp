@@ -31,8 +31,21 @@ void add_unroll_option(CLI::App& app, LoopUnroll& unroll) {
         ->check(CLI::IsMember({"hinted", "all", "none"}));
 }
 
-SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset) {
-    SyntheticScene scene = make_synthetic_scene(width, height);
+void add_view_option(CLI::App& app, std::string& view) {
+    std::vector<std::string> names;
+    for (const SceneView& v : scene_views())
+        names.push_back(v.name);
+    std::string help = "view of the synthetic scene (default beach):";
+    for (const SceneView& v : scene_views())
+        help += "\n  " + v.name + ": " + v.description;
+    app.add_option("--view", view, help)->check(CLI::IsMember(names));
+}
+
+SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset,
+                            const std::string& view) {
+    const SceneView* seen_from = find_scene_view(view);
+    SyntheticScene scene =
+        make_synthetic_scene(width, height, seen_from ? *seen_from : beach_view());
     if (preset)
         for (const auto& [name, values] : preset->values)
             scene.uniforms[name] = values;

@@ -12,8 +12,9 @@ namespace {
 void print_render(const VariantRender& r, const RenderReportInfo& info, uint32_t draws,
                   const std::filesystem::path& dir) {
     const DeviceInfo& dev = info.device;
-    std::printf("%s on %s (%s), %ux%u, Mesa shader cache %s\n", r.key.c_str(), dev.name.c_str(),
-                dev.driver_info.c_str(), info.width, info.height, info.shader_cache.c_str());
+    std::printf("%s on %s (%s), %ux%u, view %s, Mesa shader cache %s\n", r.key.c_str(),
+                dev.name.c_str(), dev.driver_info.c_str(), info.width, info.height,
+                info.view.c_str(), info.shader_cache.c_str());
     std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median "
                 "of %u)\n",
                 "glsl", r.gpu[0].pipeline_ms, r.gpu[0].first_draw_ms, r.gpu[0].steady_draw_ms,
@@ -43,8 +44,9 @@ void print_stats_line(const char* label, const ImageErrorStats& s) {
 void print_half_render(const HalfRender& h, const RenderReportInfo& info,
                        const std::filesystem::path& dir) {
     const DeviceInfo& dev = info.device;
-    std::printf("%s, strict half (16-bit arithmetic) on %s (%s), %ux%u\n", h.key.c_str(),
-                dev.name.c_str(), dev.driver_info.c_str(), info.width, info.height);
+    std::printf("%s, strict half (16-bit arithmetic) on %s (%s), %ux%u, view %s\n", h.key.c_str(),
+                dev.name.c_str(), dev.driver_info.c_str(), info.width, info.height,
+                info.view.c_str());
     const char* names[2] = {"glsl", "hlsl"};
     for (int i = 0; i < 2; ++i)
         std::printf("  %-5s first draw %8.2f ms   steady draw %7.3f ms\n", names[i],
@@ -79,7 +81,7 @@ int check_gpu_finite(const std::string& key, uint64_t broken, const char* where)
 
 struct RenderOptions {
     Variant variant = default_variant();
-    std::string preset;
+    std::string preset, view = "beach";
     uint32_t width = 256, height = 256, draws = 10;
     double exposure = 1.0;
     bool strict_half = false;
@@ -87,6 +89,14 @@ struct RenderOptions {
     std::string out = "out/render";
     RunnerSetup runner;
 };
+
+// <out>/<variant>/, or <out>/<variant>_view-<view>/ for a view other than beach: renders of one
+// variant in several views sit side by side.
+std::filesystem::path output_directory(const RenderOptions& o) {
+    const std::string stem = o.variant.file_stem();
+    return std::filesystem::path(o.out) /
+           (o.view == beach_view().name ? stem : stem + "_view-" + o.view);
+}
 
 int run_strict_half(const RenderOptions& o, const Preset* preset, const Common& common) {
     if (o.variant.choice("precision") != "half") {
@@ -102,7 +112,7 @@ int run_strict_half(const RenderOptions& o, const Preset* preset, const Common& 
                      runner->device_info().name.c_str());
         return kNoDevice;
     }
-    const SyntheticScene scene = preset_scene(o.width, o.height, preset);
+    const SyntheticScene scene = preset_scene(o.width, o.height, preset, o.view);
     const HalfRender h =
         render_strict_half(*runner, o.variant, preset, scene, {o.width, o.height, o.draws});
     print_diagnostics(h.diagnostics, common);
@@ -110,9 +120,9 @@ int run_strict_half(const RenderOptions& o, const Preset* preset, const Common& 
         std::fprintf(stderr, "watergen: error: %s: %s\n", h.key.c_str(), h.error.c_str());
         return kFailed;
     }
-    const std::filesystem::path dir = std::filesystem::path(o.out) / o.variant.file_stem();
-    const RenderReportInfo info{o.preset, cache,    runner->device_info(),
-                                o.width,  o.height, o.exposure};
+    const std::filesystem::path dir = output_directory(o);
+    const RenderReportInfo info{o.preset,   cache, runner->device_info(), o.width, o.height,
+                                o.exposure, o.view};
     if (auto e = write_half_render_report(dir, h, info)) {
         std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
         return kFailed;
@@ -144,8 +154,11 @@ Runner add_render_command(CLI::App& app, const Common& common) {
                  "half) and compare it with the CPU half evaluator and with the variant at "
                  "precision=full");
     add_unroll_option(app, o->unroll);
-    app.add_option("--out", o->out,
-                   "output directory; files go to <out>/<variant>/ (default out/render)");
+    add_view_option(app, o->view);
+    app.add_option(
+        "--out", o->out,
+        "output directory; files go to <out>/<variant>/, or <out>/<variant>_view-<view>/ "
+        "for a view other than beach (default out/render)");
     add_runner_options(app, o->runner);
     return [o, &common]() {
         const Preset* preset = nullptr;
@@ -163,16 +176,17 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
-        const SyntheticScene scene = preset_scene(o->width, o->height, preset);
+        const SyntheticScene scene = preset_scene(o->width, o->height, preset, o->view);
         const VariantRender r =
             render_variant(*runner, build, scene, {o->width, o->height, o->draws, true});
         if (!r.ok()) {
             std::fprintf(stderr, "watergen: error: %s: %s\n", r.key.c_str(), r.error.c_str());
             return kFailed;
         }
-        const std::filesystem::path dir = std::filesystem::path(o->out) / o->variant.file_stem();
+        const std::filesystem::path dir = output_directory(*o);
         const DeviceInfo& dev = runner->device_info();
-        const RenderReportInfo info{o->preset, cache, dev, o->width, o->height, o->exposure};
+        const RenderReportInfo info{o->preset, cache,       dev,    o->width,
+                                    o->height, o->exposure, o->view};
         if (auto e = write_render_report(dir, r, info)) {
             std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
             return kFailed;

@@ -95,6 +95,7 @@ nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderRe
     nlohmann::ordered_json j;
     j["variant"] = r.key;
     j["preset"] = info.preset;
+    j["view"] = info.view;
     j["image"] = {{"width", info.width}, {"height", info.height}, {"format", "RGBA32F"}};
     j["device"] = device_json(dev);
     j["mesa_shader_cache"] = info.shader_cache;
@@ -120,6 +121,7 @@ nlohmann::ordered_json half_render_report_json(const HalfRender& h, const Render
     nlohmann::ordered_json j;
     j["variant"] = h.key;
     j["preset"] = info.preset;
+    j["view"] = info.view;
     j["strict_half"] = "relaxed math in explicit 16-bit types (GLSL float16_t, HLSL half); "
                        "reference: the same variant at precision=full, GLSL path";
     j["image"] = {{"width", info.width}, {"height", info.height}, {"format", "RGBA32F"}};

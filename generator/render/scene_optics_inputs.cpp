@@ -4,9 +4,11 @@
 // deterministic, no noise.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <glm/glm.hpp>
 
+#include "scene_geometry.h"
 #include "watergen/render/synthetic_scene.h"
 #include "watergen/water/nodes/reflection.h"
 
@@ -15,6 +17,8 @@ namespace watergen {
 namespace {
 
 using glm::dvec3;
+using scene_geometry::sphere_entry;
+using scene_geometry::sunlit;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr uint32_t kSkyFaceSize = 32;
@@ -66,8 +70,7 @@ dvec3 sky_radiance(const dvec3& d, const dvec3& to_sun) {
 }
 
 dvec3 lit_sand(const dvec3& to_sun) {
-    const double lambert = std::max(glm::dot(glm::normalize(kSeabedNormal), to_sun), 0.0);
-    return kSandAlbedo * (0.25 + 0.9 * lambert);
+    return sunlit(kSandAlbedo, glm::normalize(kSeabedNormal), to_sun);
 }
 
 void put(TextureData& t, size_t texel, const dvec3& c, double a = 1.0) {
@@ -107,24 +110,42 @@ void set_view_proj(SyntheticScene& scene, const std::string& prefix, const Camer
                                                 0.0, -glm::dot(row_w, c.eye)};
 }
 
+// The world of the mirrored camera: water level, sun, the view's standing sphere.
+struct MirroredScene {
+    double level;
+    dvec3 to_sun;
+    std::optional<StandingSphere> sphere;
+};
+
 // What the mirrored camera sees with the water plane as its clip plane (001, 002): only the
 // part of a ray above the water counts. Over dry land the ray leaves the plane inside the beach
-// and sees sand; over water it sees what lies above (nothing in this scene: the beach is
-// behind these rays and the sphere is submerged) and then the sky.
-dvec3 mirrored_view(const dvec3& origin, const dvec3& d, double level, const dvec3& to_sun) {
+// and sees sand; over water it sees what lies above (the beach where the ray rises towards it,
+// the view's standing sphere if any; the other sphere is submerged) and then the sky.
+dvec3 mirrored_view(const dvec3& origin, const dvec3& d, const MirroredScene& scene) {
+    const dvec3& to_sun = scene.to_sun;
     if (d.y <= 0.0) return sky_radiance(d, to_sun); // never rises above the water
-    const dvec3 p = origin + d * ((level - origin.y) / d.y);
-    if (seabed_height(p.z) > level) return lit_sand(to_sun);
+    const dvec3 p = origin + d * ((scene.level - origin.y) / d.y);
+    if (seabed_height(p.z) > scene.level) return lit_sand(to_sun);
+    double sand = -1.0;
     const double facing = glm::dot(kSeabedNormal, d);
-    if (facing < 0.0) {
-        const double t = (kSeabedOffset - glm::dot(kSeabedNormal, p)) / facing;
-        if (t > 0.0) return lit_sand(to_sun);
+    if (facing < 0.0) sand = (kSeabedOffset - glm::dot(kSeabedNormal, p)) / facing;
+    if (scene.sphere) {
+        const dvec3 centre{scene.sphere->centre[0], scene.sphere->centre[1],
+                           scene.sphere->centre[2]};
+        const std::optional<double> t = sphere_entry(p, d, centre, scene.sphere->radius);
+        if (t && (sand <= 0.0 || *t < sand)) {
+            const StandingSphere& s = *scene.sphere;
+            // t = 0 where the sphere stands in the water at p: shaded with p's normal.
+            return sunlit({s.albedo[0], s.albedo[1], s.albedo[2]},
+                          glm::normalize(p + d * *t - centre), to_sun);
+        }
     }
+    if (sand > 0.0) return lit_sand(to_sun);
     return sky_radiance(d, to_sun);
 }
 
 TextureData make_reflection_map(uint32_t width, uint32_t height, const Camera& mirrored,
-                                double fov_extension, double level, const dvec3& to_sun) {
+                                double fov_extension, const MirroredScene& scene) {
     TextureData t{width, height, 1, std::vector<float>(size_t(width) * height * 4)};
     const double sx_scale = mirrored.tan_half_fov_y * mirrored.aspect * fov_extension;
     const double sy_scale = mirrored.tan_half_fov_y * fov_extension;
@@ -134,11 +155,10 @@ TextureData make_reflection_map(uint32_t width, uint32_t height, const Camera& m
             const double nx = 2.0 * (x + 0.5) / width - 1.0, ny = 2.0 * (y + 0.5) / height - 1.0;
             const dvec3 d = glm::normalize(mirrored.forward + mirrored.right * (nx * sx_scale) -
                                            mirrored.up * (ny * sy_scale));
-            put(t, size_t(y) * width + x, mirrored_view(mirrored.eye, d, level, to_sun));
+            put(t, size_t(y) * width + x, mirrored_view(mirrored.eye, d, scene));
         }
     return t;
 }
-
 // Tangent of the horizon's elevation seen from (x, level, z) towards azimuth `a` (direction
 // (cos a, sin a) in xz): the beach rising towards -z at the seabed's slope 0.25 (its asymptote
 // for a distant eye), or a ridge of hills 300 m across the bay, 25 +- 10 m high.
@@ -187,7 +207,7 @@ void make_fourier_maps(SyntheticScene& scene, const std::vector<double>& origin,
 } // namespace
 
 void add_optics_inputs(SyntheticScene& scene) {
-    const SceneCamera sc = scene_camera(scene.width, scene.height);
+    const SceneCamera sc = scene_camera(scene.view, scene.width, scene.height);
     const Camera camera{{sc.eye[0], sc.eye[1], sc.eye[2]},
                         {sc.forward[0], sc.forward[1], sc.forward[2]},
                         {sc.right[0], sc.right[1], sc.right[2]},
@@ -212,7 +232,8 @@ void add_optics_inputs(SyntheticScene& scene) {
     // Textures and the uniforms that locate them agree: made for the scene's values.
     const double fov_extension = scene_value(scene, reflection_fov_extension())[0];
     scene.textures["reflection_map"] =
-        make_reflection_map(scene.width, scene.height, mirrored, fov_extension, level, to_sun);
+        make_reflection_map(scene.width, scene.height, mirrored, fov_extension,
+                            {level, to_sun, scene.view.standing_sphere});
     scene.textures["sky_cube"] = make_sky_cube(to_sun);
     make_fourier_maps(scene, scene_value(scene, fourier_map_origin()),
                       scene_value(scene, fourier_map_size()));

@@ -19,7 +19,8 @@ struct RenderReportInfo {
     std::string shader_cache; // "off" or the directory
     DeviceInfo device;
     uint32_t width = 0, height = 0;
-    double exposure = 1.0; // of the PNG previews only
+    double exposure = 1.0;      // of the PNG previews only
+    std::string view = "beach"; // of the synthetic scene (scene_views.h)
 };
 
 // Pixels non-finite on the GPU (either path) where the CPU float image is finite: a variant
