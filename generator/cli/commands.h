@@ -63,13 +63,13 @@ Runner add_emit_command(CLI::App& app, const Common& common);
 Runner add_render_command(CLI::App& app, const Common& common);
 Runner add_probe_command(CLI::App& app, const Common& common);
 Runner add_cost_command(CLI::App& app, const Common& common);
-// The instructions lavapipe executes for one size x size draw of each variant's GLSL path, by
-// key (a key given twice comes back a second time as "<key>#2": each its own pipeline, an A/A
-// pair), counted under valgrind by a `watergen cost` worker (all variants in one run: about
-// 5 s of JIT per variant); nullopt and *error when the worker failed.
+// The instructions lavapipe executes for one size x size draw (in the named view) of each
+// variant's GLSL path, by key (a key given twice comes back a second time as "<key>#2": each its
+// own pipeline, an A/A pair), counted under valgrind by a `watergen cost` worker (all variants in
+// one run: about 5 s of JIT per variant); nullopt and *error when the worker failed.
 std::optional<std::map<std::string, uint64_t>>
 count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
-                 std::string* error);
+                 const std::string& view, std::string* error);
 Runner add_compare_command(CLI::App& app, const Common& common);
 Runner add_pick_command(CLI::App& app, const Common& common);
 // count_draw_costs for a material's shaders (path "" = the built-in material) as a build

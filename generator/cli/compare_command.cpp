@@ -10,6 +10,7 @@
 #include "watergen/render/compare_run.h"
 #include "watergen/render/pick.h"
 #include "watergen/render/prune_measure.h"
+#include "watergen/render/scene_views.h"
 
 namespace watergen::cli {
 
@@ -20,6 +21,7 @@ struct CompareOptions {
     std::vector<std::string> keys;       // --variant
     std::string preset, reference = "gold", out = "out/compare";
     std::string material, scene; // select a material's variants, or a scene's pruned set
+    std::string views;           // comma list; "" = every view
     uint32_t size = 512, rounds = 15, draws = 3, cost_size = 64;
     bool cost = true;
     RunnerSetup runner;
@@ -228,7 +230,8 @@ bool select(const CompareOptions& o, Selection& sel, const Common& common) {
 
 // Fills the variants' cost per pixel and the cost's A/A pair (the reference counted once more,
 // on its own pipeline); false after printing the failure.
-bool add_costs(const CompareOptions& o, const Selection& sel, CompareRun& run) {
+bool add_costs(const CompareOptions& o, const Selection& sel, const std::string& first_view,
+               CompareRun& run) {
     std::vector<Variant> counted;
     for (const CompareEntry& e : run.entries)
         counted.push_back(e.variant);
@@ -240,7 +243,7 @@ bool add_costs(const CompareOptions& o, const Selection& sel, CompareRun& run) {
     std::string error;
     const auto costs = sel.from_material
                            ? count_material_costs(o.material, o.scene, counted, o.cost_size, &error)
-                           : count_draw_costs(counted, o.cost_size, o.preset, &error);
+                           : count_draw_costs(counted, o.cost_size, o.preset, first_view, &error);
     if (!costs) {
         std::fprintf(stderr, "watergen: error: instruction count: %s\n", error.c_str());
         return false;
@@ -254,6 +257,17 @@ bool add_costs(const CompareOptions& o, const Selection& sel, CompareRun& run) {
         run.cost_aa = double(costs->at(key + "#2")) / double(costs->at(key));
     }
     return true;
+}
+
+// The views named by --views, or every view.
+std::vector<const SceneView*> chosen_views(const CompareOptions& o) {
+    std::vector<const SceneView*> out;
+    if (o.views.empty())
+        for (const SceneView& v : scene_views())
+            out.push_back(&v);
+    for (const std::string& name : split_commas(o.views))
+        out.push_back(find_scene_view(name));
+    return out;
 }
 
 int run_compare_command(const CompareOptions& o, const Common& common) {
@@ -274,23 +288,27 @@ int run_compare_command(const CompareOptions& o, const Common& common) {
     }
     request.rounds = o.rounds;
     request.draws = o.draws;
-    if (sel.from_material) {
+    if (sel.from_material)
         request.build = [&sel](const Variant& v) {
             return sel.plan ? build_for_scene(sel.material, *sel.plan, v)
                             : build_shader(sel.material.compose(v));
         };
-        const SyntheticScene base = make_synthetic_scene(o.size, o.size);
-        request.views.emplace_back("beach",
+    for (const SceneView* view : chosen_views(o)) {
+        if (!sel.from_material) {
+            request.views.emplace_back(view->name,
+                                       preset_scene(o.size, o.size, sel.preset, view->name));
+            continue;
+        }
+        const SyntheticScene base = make_synthetic_scene(o.size, o.size, *view);
+        request.views.emplace_back(view->name,
                                    sel.plan ? conform_scene(base, *sel.plan, sel.material) : base);
-    } else {
-        request.views.emplace_back("beach", preset_scene(o.size, o.size, sel.preset));
     }
     std::string cache;
     auto runner = create_runner(o.runner, &cache);
     if (!runner) return kNoDevice;
     CompareRun run = run_compare(*runner, request);
     if (!bench_succeeded(run.diagnostics, run.error, common)) return kFailed;
-    if (o.cost && !add_costs(o, sel, run)) return kFailed;
+    if (o.cost && !add_costs(o, sel, request.views.front().first, run)) return kFailed;
     std::vector<std::string> views;
     for (const auto& [name, scene] : request.views)
         views.push_back(name);
@@ -324,6 +342,15 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
     app.add_option("--reference", o->reference,
                    "gold (default): the gold of every axis that varies, on the CPU in double; or a "
                    "variant key, rendered on the GPU");
+    app.add_option("--views", o->views,
+                   "views to render, comma-separated (default: every view: " + scene_view_names() +
+                       "); the first is the one timed")
+        ->check([](const std::string& list) -> std::string {
+            for (const std::string& name : split_commas(list))
+                if (!find_scene_view(name))
+                    return "'" + name + "' is not a view (" + scene_view_names() + ")";
+            return "";
+        });
     app.add_option("--size", o->size, "image width and height (default 512)")
         ->check(CLI::Range(16, 2048));
     app.add_option("--rounds", o->rounds, "timing rounds, interleaved (default 15)")

@@ -95,10 +95,11 @@ std::vector<std::string> worker_argv(const CostOptions& o) {
 
 std::optional<std::map<std::string, uint64_t>>
 count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
-                 std::string* error) {
+                 const std::string& view, std::string* error) {
     CostOptions o;
     o.size = size;
     o.preset = preset;
+    o.view = view;
     for (const Variant& v : variants)
         o.keys.push_back(v.key());
     return steady_draw_counts(

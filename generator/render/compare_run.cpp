@@ -45,8 +45,13 @@ Variant reference_for(const std::vector<Variant>& variants) {
             return v.choices[a] != variants.front().choices[a];
         });
         if (!varies) continue;
+        // The gold, where some variant holds it or an approximation of it (for choices that
+        // are only different models, the first variant's choice stays).
         for (const ChoiceInfo& c : list[a].choices)
-            if (c.gold) ref.choices[a] = c.name;
+            if (c.gold && std::any_of(variants.begin(), variants.end(), [&](const Variant& v) {
+                    return v.choices[a] == c.name || approximates(list[a], v.choices[a], c.name);
+                }))
+                ref.choices[a] = c.name;
     }
     return ref;
 }

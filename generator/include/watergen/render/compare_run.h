@@ -68,7 +68,9 @@ struct CompareRun {
 };
 
 // The reference a set of variants approximates: the first variant with, on every axis where
-// the variants differ, that axis' gold choice (where the axis has one).
+// the variants differ, that axis' gold choice where some variant holds the gold or an
+// approximation of it (fresnel schlick,power -> exact; waves flat,gerstner stay flat: those
+// are different models, not approximations of the converged march).
 Variant reference_for(const std::vector<Variant>& variants);
 
 // The relation of `v` to `reference` (see CompareEntry::relation).
