@@ -13,6 +13,7 @@
 #include "watergen/render/draw_count.h"
 #include "watergen/render/pick.h"
 #include "watergen/render/prune_measure.h"
+#include "watergen/render/scene_views.h"
 
 namespace watergen::cli {
 
@@ -217,8 +218,11 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
             const ScenePlan& plan = plans[s];
             std::printf("%s\n", plan.scene.name.c_str());
             PickPlan pick = plan_pick(plan, hold);
-            const std::vector<std::pair<std::string, SyntheticScene>> views = {
-                {"beach", conform_scene(make_synthetic_scene(o->size, o->size), plan, m)}};
+            std::vector<std::pair<std::string, SyntheticScene>> views; // every view, conformed
+            for (const SceneView& view : scene_views())
+                views.emplace_back(
+                    view.name,
+                    conform_scene(make_synthetic_scene(o->size, o->size, view), plan, m));
             std::string error = measure_pick_errors(*runner, m, plan, views, pick);
             if (error.empty()) error = count_costs(*o, o->scenes[s], pick);
             const int chosen = error.empty() ? cheapest_within(pick.candidates, budget) : -1;
