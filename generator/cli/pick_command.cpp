@@ -239,6 +239,9 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
             print_candidates(pick, budget);
             if (chosen < 0) {
                 std::printf("  no reached variant within the budget\n");
+                const PickCandidate* gold = find_candidate(pick, pick.gold, "", "");
+                if (gold && !gold->reached && gold->within(budget))
+                    std::printf("  the gold is within it: offer its choices in the material\n");
                 continue;
             }
             print_pick(pick, pick.candidates[size_t(chosen)]);

@@ -47,7 +47,7 @@ struct CompareEntry {
     // else "different model (<axis>: <choice> vs <choice>, ...)".
     std::string relation;
     std::vector<ComparedView> views; // in request order
-    RatioInterval time;             // steady draw time / the timing reference's
+    RatioInterval time;              // steady draw time / the timing reference's
     double steady_ms = 0;
     size_t spirv_instructions = 0; // optimised fragment SPIR-V, GLSL path
     double cost_per_pixel = 0;     // instructions per pixel under valgrind; 0: not measured
