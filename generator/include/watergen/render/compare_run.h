@@ -26,7 +26,7 @@ struct CompareRequest {
     std::optional<Variant> reference;
     const Preset* preset = nullptr;
     std::vector<std::pair<std::string, SyntheticScene>> views; // name, scene (all one size)
-    uint32_t rounds = 15, draws = 3;                           // timing, in the first view
+    uint32_t rounds = 40, draws = 3;                           // timing, in the first view
     // How a variant is built; empty: build_variant(v, preset). A material's variants are
     // composed by the material (and, for a scene, folded under its facts: pick.h
     // build_for_scene); the CPU reference evaluates the reference's built fragment graph.
