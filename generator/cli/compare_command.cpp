@@ -2,6 +2,7 @@
 // draw times (interleaved, A/A-checked) and the load-free cost (valgrind instruction counts).
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "commands.h"
@@ -278,6 +279,20 @@ std::vector<const SceneView*> chosen_views(const CompareOptions& o) {
 }
 
 int run_compare_command(const CompareOptions& o, const Common& common) {
+    // The report replaces --out whole: only an empty directory or an earlier report may go.
+    std::error_code ec;
+    const std::filesystem::path out(o.out);
+    if (std::filesystem::exists(out, ec) &&
+        (!std::filesystem::is_directory(out, ec) ||
+         (!std::filesystem::is_empty(out, ec) &&
+          !std::filesystem::exists(out / kCompareReportHtml, ec)))) {
+        std::fprintf(stderr,
+                     "watergen: error: --out %s: exists and is not an earlier watergen compare "
+                     "report (the report replaces the directory whole); give a new or empty "
+                     "directory\n",
+                     o.out.c_str());
+        return kUsage;
+    }
     Selection sel;
     if (!select(o, sel, common)) return kUsage;
     CompareRequest request;
