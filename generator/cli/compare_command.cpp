@@ -189,6 +189,7 @@ CompareReport make_report(const CompareRun& run, const CompareRequest& request,
 struct Selection {
     std::vector<Variant> variants;
     const Preset* preset = nullptr;
+    std::vector<const Preset*> presets; // --preset a,b: each view is rendered under each
     Material material;
     std::optional<ScenePlan> plan;
     bool from_material = false;
@@ -231,8 +232,17 @@ bool select(const CompareOptions& o, Selection& sel, const Common& common) {
     const auto variants = selected_variants(o);
     if (!variants) return false;
     sel.variants = *variants;
-    for (const Variant& v : sel.variants)
-        if (!resolve_variant(v, o.preset, &sel.preset)) return false;
+    // Several presets are views of their own; the variants are built with the first (a preset
+    // sets parameter values, which every view's scene uniforms set again).
+    const std::vector<std::string> presets = split_commas(o.preset);
+    for (const std::string& name : presets) {
+        const Preset* p = nullptr;
+        for (const Variant& v : sel.variants)
+            if (!resolve_variant(v, name, &p)) return false;
+        sel.presets.push_back(p);
+    }
+    if (sel.presets.empty()) sel.presets.push_back(nullptr);
+    sel.preset = sel.presets.front();
     return true;
 }
 
@@ -249,9 +259,11 @@ bool add_costs(const CompareOptions& o, const Selection& sel, const std::string&
                      [&](const CompareEntry& e) { return e.variant.key() == key; }))
         counted.push_back(run.reference);
     std::string error;
-    const auto costs = sel.from_material
-                           ? count_material_costs(o.material, o.scene, counted, o.cost_size, &error)
-                           : count_draw_costs(counted, o.cost_size, o.preset, first_view, &error);
+    const auto costs =
+        sel.from_material
+            ? count_material_costs(o.material, o.scene, counted, o.cost_size, &error)
+            : count_draw_costs(counted, o.cost_size, sel.preset ? sel.preset->name : "",
+                               first_view.substr(0, first_view.find('@')), &error);
     if (!costs) {
         std::fprintf(stderr, "watergen: error: instruction count: %s\n", error.c_str());
         return false;
@@ -306,7 +318,9 @@ int run_compare_command(const CompareOptions& o, const Common& common) {
                          error.c_str());
             return kUsage;
         }
-        if (!resolve_variant(*request.reference, o.preset, &sel.preset)) return kUsage;
+        const Preset* ignored = nullptr;
+        if (!resolve_variant(*request.reference, sel.preset ? sel.preset->name : "", &ignored))
+            return kUsage;
     }
     request.rounds = o.rounds;
     request.draws = o.draws;
@@ -317,8 +331,10 @@ int run_compare_command(const CompareOptions& o, const Common& common) {
         };
     for (const SceneView* view : chosen_views(o)) {
         if (!sel.from_material) {
-            request.views.emplace_back(view->name,
-                                       preset_scene(o.size, o.size, sel.preset, view->name));
+            for (const Preset* p : sel.presets)
+                request.views.emplace_back(sel.presets.size() > 1 ? view->name + "@" + p->name
+                                                                  : view->name,
+                                           preset_scene(o.size, o.size, p, view->name));
             continue;
         }
         const SyntheticScene base = make_synthetic_scene(o.size, o.size, *view);
@@ -355,7 +371,9 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
                        "choices of " + list[a].name + " to compare, comma-separated (default: " +
                            list[a].default_choice + " only)");
     app.add_option("--variant", o->keys, "a variant key to compare (repeatable)");
-    app.add_option("--preset", o->preset, "parameter preset");
+    app.add_option("--preset", o->preset,
+                   "parameter preset, or several comma-separated: each view is rendered under "
+                   "each (views named <view>@<preset>)");
     app.add_option("--material", o->material,
                    "compare the variants of this material file (with --scene: its pruned set)");
     app.add_option("--scene", o->scene,
