@@ -103,9 +103,7 @@ count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std:
     for (const Variant& v : variants)
         o.keys.push_back(v.key());
     return steady_draw_counts(
-        count_draws_under_valgrind(worker_argv(o), std::filesystem::temp_directory_path() /
-                                                       "watergen-compare-cost"),
-        error);
+        count_draws_under_valgrind(worker_argv(o), std::filesystem::temp_directory_path()), error);
 }
 
 Runner add_cost_command(CLI::App& app, const Common& common) {
@@ -119,17 +117,17 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
     add_unroll_option(app, o->unroll);
     add_view_option(app, o->view);
     app.add_option("--scratch", o->scratch,
-                   "directory for valgrind's dumps (default: a directory under the system's "
-                   "temporary directory)");
+                   "directory under which each valgrind run keeps its dumps in a directory of "
+                   "its own, removed afterwards (default: the system's temporary directory)");
     app.add_flag("--counted", o->counted, "")->group(""); // the worker; hidden
     app.add_option("--key", o->keys, "")->group("");      // the worker's variants; hidden
     return [o, &common]() {
         const Preset* preset = nullptr;
         if (!resolve_variant(o->variant, o->preset, &preset)) return kUsage;
         if (o->counted) return run_worker(*o, preset, common);
-        const std::filesystem::path scratch =
-            o->scratch.empty() ? std::filesystem::temp_directory_path() / "watergen-cost"
-                               : std::filesystem::path(o->scratch);
+        const std::filesystem::path scratch = o->scratch.empty()
+                                                  ? std::filesystem::temp_directory_path()
+                                                  : std::filesystem::path(o->scratch);
         std::map<std::string, std::vector<uint64_t>> counts;
         for (uint32_t run = 0; run < o->runs; ++run) {
             const DrawCountRun r = count_draws_under_valgrind(worker_argv(*o), scratch);

@@ -154,9 +154,7 @@ count_material_costs(const std::string& material_path, const std::string& scene_
     for (const Variant& v : variants)
         argv.insert(argv.end(), {"--key", v.key()});
     return steady_draw_counts(
-        count_draws_under_valgrind(argv, std::filesystem::temp_directory_path() /
-                                             "watergen-material-cost"),
-        error);
+        count_draws_under_valgrind(argv, std::filesystem::temp_directory_path()), error);
 }
 
 Runner add_pick_command(CLI::App& app, const Common& common) {

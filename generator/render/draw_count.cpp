@@ -1,9 +1,12 @@
 #include "watergen/render/draw_count.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+
+#include <unistd.h>
 
 #include "watergen/toolchain/child_process.h"
 
@@ -35,8 +38,13 @@ std::optional<DrawCount> parse_callgrind_dump(const std::string& text) {
 }
 
 DrawCountRun count_draws_under_valgrind(const std::vector<std::string>& worker_argv,
-                                        const fs::path& scratch) {
+                                        const fs::path& scratch_root) {
     DrawCountRun run;
+    // A directory of this call's own: two counts at once (two watergen processes, or ctest -j)
+    // must not read or clear each other's dumps, and the caller's directory is never cleared.
+    static std::atomic<unsigned> calls{0};
+    const fs::path scratch = scratch_root / ("watergen-count-" + std::to_string(::getpid()) + "-" +
+                                             std::to_string(calls++));
     std::error_code ec;
     fs::remove_all(scratch, ec);
     fs::create_directories(scratch, ec);
@@ -60,6 +68,7 @@ DrawCountRun count_draws_under_valgrind(const std::vector<std::string>& worker_a
         if (auto c = parse_callgrind_dump(text.str())) run.counts.push_back(*c);
     }
     if (run.counts.empty()) run.error = "the worker bracketed no draw (no callgrind dump)";
+    fs::remove_all(scratch, ec);
     return run;
 }
 

@@ -26,7 +26,8 @@ struct DrawCountRun {
 };
 
 // What:   runs `worker_argv` under `valgrind --tool=callgrind --instr-atstart=no` with its
-//         dumps in `scratch` (created; one directory per concurrent call), lavapipe drawing
+//         dumps in a directory of its own under `scratch` (created, removed afterwards; the
+//         process id and a counter keep concurrent calls apart), lavapipe drawing
 //         on the calling thread (LP_NUM_THREADS=0, so thread scheduling cannot change the
 //         count) and Mesa's shader cache off; then reads one count per bracketed draw.
 // Cost:   the worker at valgrind speed: about 5 s per pipeline JIT-compiled under it, plus
