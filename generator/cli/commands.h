@@ -69,7 +69,7 @@ Runner add_cost_command(CLI::App& app, const Common& common);
 // one run: about 5 s of JIT per variant); nullopt and *error when the worker failed.
 std::optional<std::map<std::string, uint64_t>>
 count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
-                 const std::string& view, std::string* error);
+                 const std::string& view, std::string* error, bool strict_half = false);
 Runner add_compare_command(CLI::App& app, const Common& common);
 Runner add_pick_command(CLI::App& app, const Common& common);
 // count_draw_costs for a material's shaders (path "" = the built-in material) as a build

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <thread>
 
 #include <valgrind/valgrind.h>
 
@@ -23,14 +24,16 @@ struct CostOptions {
     LoopUnroll unroll = LoopUnroll::AsHinted;
     bool counted = false;          // the worker, under valgrind
     std::vector<std::string> keys; // worker: these variants' GLSL paths instead of the variant's
+    bool strict_half = false;      // half variants in explicit 16-bit types (EmitOptions)
     std::string scratch;
 };
 
 // Draws `lang` once more with the count on (RenderJob::counted_draw_label).
 bool counted_render(VulkanRunner& runner, const LanguageBuild& lang, const SyntheticScene& scene,
-                    uint32_t size, const std::string& label) {
+                    uint32_t size, const std::string& label, bool first_draw) {
     RenderJob job = make_render_job(lang, scene, {size, size, 0, false, false});
     job.counted_draw_label = label;
+    job.count_first_draw = first_draw;
     const RenderResult r = runner.render(job);
     if (!r.ok) std::fprintf(stderr, "watergen: error: %s: %s\n", label.c_str(), r.error.c_str());
     return r.ok;
@@ -63,13 +66,15 @@ int run_worker(const CostOptions& o, const Preset* preset, const Common& common)
     for (const Variant& v : variants) {
         const int n = ++seen[v.key()];
         const std::string label = n == 1 ? v.key() : v.key() + "#" + std::to_string(n);
-        const VariantBuild build = build_variant(v, preset, EmitOptions{false, {}, o.unroll});
+        const bool strict = o.strict_half && v.choice("precision") == "half";
+        const VariantBuild build = build_variant(v, preset, EmitOptions{strict, {}, o.unroll});
         print_diagnostics(build.diagnostics, common);
         if (!build.ok()) return kFailed;
-        const bool ok = o.keys.empty()
-                            ? counted_render(*runner, build.languages[0], scene, o.size, "glsl") &&
-                                  counted_render(*runner, build.languages[1], scene, o.size, "hlsl")
-                            : counted_render(*runner, build.languages[0], scene, o.size, label);
+        const bool ok =
+            o.keys.empty()
+                ? counted_render(*runner, build.languages[0], scene, o.size, "glsl", true) &&
+                      counted_render(*runner, build.languages[1], scene, o.size, "hlsl", true)
+                : counted_render(*runner, build.languages[0], scene, o.size, label, false);
         if (!ok) return kFailed;
     }
     return kOk;
@@ -88,6 +93,7 @@ std::vector<std::string> worker_argv(const CostOptions& o) {
     if (!o.preset.empty()) argv.insert(argv.end(), {"--preset", o.preset});
     argv.insert(argv.end(), {"--view", o.view});
     argv.insert(argv.end(), {"--unroll", to_string(o.unroll)});
+    if (o.strict_half) argv.push_back("--strict-half");
     return argv;
 }
 
@@ -95,15 +101,21 @@ std::vector<std::string> worker_argv(const CostOptions& o) {
 
 std::optional<std::map<std::string, uint64_t>>
 count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
-                 const std::string& view, std::string* error) {
-    CostOptions o;
-    o.size = size;
-    o.preset = preset;
-    o.view = view;
+                 const std::string& view, std::string* error, bool strict_half) {
+    std::vector<std::string> keys;
     for (const Variant& v : variants)
-        o.keys.push_back(v.key());
-    return steady_draw_counts(
-        count_draws_under_valgrind(worker_argv(o), std::filesystem::temp_directory_path()), error);
+        keys.push_back(v.key());
+    const KeyedWorker worker = [&](const std::vector<std::string>& part) {
+        CostOptions o;
+        o.size = size;
+        o.preset = preset;
+        o.view = view;
+        o.strict_half = strict_half;
+        o.keys = part;
+        return worker_argv(o);
+    };
+    return count_keys_in_parallel(keys, worker, std::filesystem::temp_directory_path(),
+                                  std::max(1u, std::thread::hardware_concurrency()), error);
 }
 
 Runner add_cost_command(CLI::App& app, const Common& common) {
@@ -121,6 +133,9 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
                    "its own, removed afterwards (default: the system's temporary directory)");
     app.add_flag("--counted", o->counted, "")->group(""); // the worker; hidden
     app.add_option("--key", o->keys, "")->group("");      // the worker's variants; hidden
+    app.add_flag("--strict-half", o->strict_half,
+                 "count a half variant written in explicit 16-bit types (as render --strict-half "
+                 "draws it) instead of with mediump / min16float hints");
     return [o, &common]() {
         const Preset* preset = nullptr;
         if (!resolve_variant(o->variant, o->preset, &preset)) return kUsage;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 #include <valgrind/valgrind.h>
@@ -57,6 +58,7 @@ int run_worker(const PickOptions& o, const Material& m, const ScenePlan* plan,
             make_render_job(build.languages[0], scene, {o.cost_size, o.cost_size, 0, false, false});
         const int n = ++seen[key];
         job.counted_draw_label = n == 1 ? key : key + "#" + std::to_string(n);
+        job.count_first_draw = false;
         if (!runner->render(job).ok) return kFailed;
     }
     return kOk;
@@ -147,14 +149,20 @@ void print_pick(const PickPlan& pick, const PickCandidate& c) {
 std::optional<std::map<std::string, uint64_t>>
 count_material_costs(const std::string& material_path, const std::string& scene_path,
                      const std::vector<Variant>& variants, uint32_t size, std::string* error) {
-    std::vector<std::string> argv = {std::filesystem::read_symlink("/proc/self/exe").string(),
-                                     "pick", "--counted", "--cost-size", std::to_string(size)};
-    if (!scene_path.empty()) argv.insert(argv.end(), {"--scene", scene_path});
-    if (!material_path.empty()) argv.push_back(material_path);
+    std::vector<std::string> keys;
     for (const Variant& v : variants)
-        argv.insert(argv.end(), {"--key", v.key()});
-    return steady_draw_counts(
-        count_draws_under_valgrind(argv, std::filesystem::temp_directory_path()), error);
+        keys.push_back(v.key());
+    const KeyedWorker worker = [&](const std::vector<std::string>& part) {
+        std::vector<std::string> argv = {std::filesystem::read_symlink("/proc/self/exe").string(),
+                                         "pick", "--counted", "--cost-size", std::to_string(size)};
+        if (!scene_path.empty()) argv.insert(argv.end(), {"--scene", scene_path});
+        if (!material_path.empty()) argv.push_back(material_path);
+        for (const std::string& key : part)
+            argv.insert(argv.end(), {"--key", key});
+        return argv;
+    };
+    return count_keys_in_parallel(keys, worker, std::filesystem::temp_directory_path(),
+                                  std::max(1u, std::thread::hardware_concurrency()), error);
 }
 
 Runner add_pick_command(CLI::App& app, const Common& common) {

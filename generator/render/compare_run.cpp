@@ -124,7 +124,7 @@ class Comparison {
         std::vector<double> path_difference;
         for (size_t i = 0; i < order_.size(); ++i) {
             std::array<RenderResult, 2> paths;
-            for (size_t l = 0; l < 2; ++l) {
+            for (size_t l = 0; l < (request_.both_paths ? 2u : 1u); ++l) {
                 paths[l] =
                     runner_.render(make_render_job(builds_[i].languages[l], scene, settings));
                 if (!paths[l].ok) {
@@ -133,7 +133,8 @@ class Comparison {
                 }
             }
             images.push_back(ImageRGBA32F{scene.width, scene.height, paths[0].rgba});
-            path_difference.push_back(max_abs_difference(paths[0].rgba, paths[1].rgba));
+            path_difference.push_back(
+                request_.both_paths ? max_abs_difference(paths[0].rgba, paths[1].rgba) : 0.0);
         }
         ImageRGBA32F reference = images[0];
         if (run_.reference_on_cpu) {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <fstream>
+#include <future>
 #include <sstream>
 
 #include <unistd.h>
@@ -84,6 +85,31 @@ std::optional<std::map<std::string, uint64_t>> steady_draw_counts(const DrawCoun
         if (c.label.size() < kFirst.size() ||
             c.label.compare(c.label.size() - kFirst.size(), kFirst.size(), kFirst) != 0)
             out[c.label] = c.instructions;
+    return out;
+}
+
+std::optional<std::map<std::string, uint64_t>>
+count_keys_in_parallel(const std::vector<std::string>& keys, const KeyedWorker& worker_argv,
+                       const std::filesystem::path& scratch, unsigned workers, std::string* error) {
+    // Distinct keys dealt round-robin; every occurrence goes where its key went.
+    std::map<std::string, size_t> run_of;
+    std::vector<std::vector<std::string>> parts;
+    for (const std::string& key : keys) {
+        auto [it, added] = run_of.emplace(key, run_of.size() % std::max(workers, 1u));
+        if (it->second >= parts.size()) parts.resize(it->second + 1);
+        parts[it->second].push_back(key);
+    }
+    std::vector<std::future<DrawCountRun>> runs;
+    for (const auto& part : parts)
+        runs.push_back(std::async(std::launch::async, [&, part] {
+            return count_draws_under_valgrind(worker_argv(part), scratch);
+        }));
+    std::map<std::string, uint64_t> out;
+    for (auto& run : runs) {
+        const auto counts = steady_draw_counts(run.get(), error);
+        if (!counts) return std::nullopt;
+        out.insert(counts->begin(), counts->end());
+    }
     return out;
 }
 

@@ -267,7 +267,7 @@ void first_draw(Context& ctx, const RenderJob& job, VkCommandBuffer draw, VkFenc
     const auto start = Clock::now();
     submit_and_wait(ctx, draw, fence);
     result.first_draw_ms = ms_since(start);
-    if (counting(job)) { // switched on before the pipeline was created (prepare_render)
+    if (counting(job) && job.count_first_draw) { // switched on in prepare_render
         CALLGRIND_DUMP_STATS_AT((job.counted_draw_label + " first").c_str());
         CALLGRIND_STOP_INSTRUMENTATION;
     }
@@ -356,7 +356,7 @@ void prepare_render(PreparedRender& p, const RenderJob& job, RenderResult& resul
     state.layout = create_pipeline_layout(scope, p.descriptors);
     state.pass = create_render_pass(scope);
     state.framebuffer = create_framebuffer(scope, state.pass, p.target);
-    if (counting(job)) { // pipeline creation and the first draw: lavapipe's JIT (first_draw)
+    if (counting(job) && job.count_first_draw) { // pipeline creation and first draw: the JIT
         CALLGRIND_START_INSTRUMENTATION;
         CALLGRIND_ZERO_STATS;
     }

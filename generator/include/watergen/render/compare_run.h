@@ -31,6 +31,7 @@ struct CompareRequest {
     // composed by the material (and, for a scene, folded under its facts: pick.h
     // build_for_scene); the CPU reference evaluates the reference's built fragment graph.
     std::function<VariantBuild(const Variant&)> build;
+    bool both_paths = true; // false: the GLSL path only (the HLSL image is tested equal elsewhere)
 };
 
 struct ComparedView {

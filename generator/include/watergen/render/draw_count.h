@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -39,6 +40,16 @@ DrawCountRun count_draws_under_valgrind(const std::vector<std::string>& worker_a
 // *error when the run failed.
 std::optional<std::map<std::string, uint64_t>> steady_draw_counts(const DrawCountRun& run,
                                                                   std::string* error);
+
+// The worker argv that counts the draws of the given variant keys.
+using KeyedWorker = std::function<std::vector<std::string>(const std::vector<std::string>& keys)>;
+
+// Counts `keys` (labels = keys, a repeated key "<key>#2") in up to `workers` valgrind runs at
+// once, every occurrence of a key in the same run, and merges their steady draw counts.
+// Instruction counts do not depend on load, so the runs may share the cores.
+std::optional<std::map<std::string, uint64_t>>
+count_keys_in_parallel(const std::vector<std::string>& keys, const KeyedWorker& worker_argv,
+                       const std::filesystem::path& scratch, unsigned workers, std::string* error);
 
 // One callgrind dump ("desc: Trigger: Client Request: <label>" ... "totals: <Ir>"); nullopt
 // for a dump that no client request triggered or that has no totals line.

@@ -93,6 +93,9 @@ struct RenderJob {
     // which is when lavapipe JIT-compiles the shaders; "<label>": one more draw after the timed
     // ones, the steady draw's work alone. Ignored elsewhere and when empty.
     std::string counted_draw_label;
+    // false: only the steady draw is counted (callgrind runs the JIT about twice as fast with
+    // instrumentation off).
+    bool count_first_draw = true;
     // Geometry is a fullscreen triangle: no vertex buffers, 3 vertices, the vertex shader
     // derives positions from gl_VertexIndex. Unless `mesh` is non-empty: then it is drawn
     // indexed, from its vertex buffer.
