@@ -122,12 +122,7 @@ Runner add_bench_accuracy_command(CLI::App& app, const Common& common) {
         ->check(CLI::Range(16, 2048));
     app.add_option("--rounds", o->rounds, "timing rounds, interleaved (default 20)")
         ->check(CLI::Range(3, 1000));
-    app.add_option("--draws", o->draws, "timed draws per variant and round (default 3)")
-        ->check(CLI::Range(1, 100));
-    app.add_option("--cost-size", o->cost_size,
-                   "image size of the instruction count under valgrind (default 64)")
-        ->check(CLI::Range(8, 512));
-    app.add_flag("!--no-cost", o->cost, "skip the instruction count (valgrind)");
+    add_instrument_options(app, o->draws, o->cost_size, o->cost);
     app.add_option("--out", o->out,
                    "directory for accuracy.csv and accuracy.json (default out/bench)");
     add_runner_options(app, o->runner);

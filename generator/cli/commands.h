@@ -47,6 +47,9 @@ void add_view_option(CLI::App& app, std::string& view);
 // among them, replace the view's.
 SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset,
                             const std::string& view = "beach");
+// --draws (per variant and timing round, default 3), --cost-size (default 64) and --no-cost:
+// the options of the commands that measure with compare's instrument.
+void add_instrument_options(CLI::App& app, uint32_t& draws, uint32_t& cost_size, bool& cost);
 // Adds --unroll hinted|all|none: the unroll hint every loop is emitted with.
 void add_unroll_option(CLI::App& app, LoopUnroll& unroll);
 

@@ -397,12 +397,7 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
                    "timing rounds, interleaved (default 40: at 15, the A/A interval came out wider "
                    "than +-3% in 3 of 5 runs on an idle 2-core machine)")
         ->check(CLI::Range(3, 1000));
-    app.add_option("--draws", o->draws, "timed draws per variant and round (default 3)")
-        ->check(CLI::Range(1, 100));
-    app.add_option("--cost-size", o->cost_size,
-                   "image size of the instruction count under valgrind (default 64)")
-        ->check(CLI::Range(8, 512));
-    app.add_flag("!--no-cost", o->cost, "skip the instruction count (valgrind, ~5 s per variant)");
+    add_instrument_options(app, o->draws, o->cost_size, o->cost);
     app.add_option("--out", o->out, "output directory (default out/compare)");
     add_runner_options(app, o->runner);
     return [o, &common]() { return run_compare_command(*o, common); };

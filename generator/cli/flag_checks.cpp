@@ -41,6 +41,17 @@ void add_view_option(CLI::App& app, std::string& view) {
     app.add_option("--view", view, help)->check(CLI::IsMember(names));
 }
 
+void add_instrument_options(CLI::App& app, uint32_t& draws, uint32_t& cost_size, bool& cost) {
+    app.add_option("--draws", draws, "timed draws per variant and round (default 3)")
+        ->check(CLI::Range(1, 100));
+    app.add_option("--cost-size", cost_size,
+                   "image size of the instruction count under valgrind (default 64)")
+        ->check(CLI::Range(8, 512));
+    app.add_flag("!--no-cost", cost,
+                 "skip the instruction count (valgrind: about 5 s of JIT per variant, two "
+                 "workers at once)");
+}
+
 SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset,
                             const std::string& view) {
     const SceneView* seen_from = find_scene_view(view);
