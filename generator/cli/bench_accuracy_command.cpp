@@ -26,15 +26,8 @@ struct Options {
 bool add_costs(const Options& o, AccuracyBench& bench) {
     std::vector<Variant> variants;
     std::set<std::string> keys;
-    auto variant_of = [&](const AccuracyRow& r) {
-        Variant v = accuracy_reference_variant();
-        if (r.axis == "waves") set_choice(v, "normals", "detail_map");
-        set_choice(v, r.axis, r.choice);
-        return v;
-    };
     for (const AccuracyRow& r : bench.rows)
-        if (!r.skipped() && keys.insert(variant_of(r).key()).second)
-            variants.push_back(variant_of(r));
+        if (!r.skipped() && keys.insert(r.variant.key()).second) variants.push_back(r.variant);
     std::string error;
     const auto counts = count_draw_costs(variants, o.cost_size, "", "beach", &error, true);
     if (!counts) {
@@ -42,7 +35,7 @@ bool add_costs(const Options& o, AccuracyBench& bench) {
         return false;
     }
     for (AccuracyRow& r : bench.rows)
-        if (auto it = counts->find(variant_of(r).key()); it != counts->end())
+        if (auto it = counts->find(r.variant.key()); it != counts->end())
             r.cost_per_pixel = double(it->second) / (double(o.cost_size) * o.cost_size);
     return true;
 }

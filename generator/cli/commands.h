@@ -10,6 +10,7 @@
 
 #include "watergen/ir/diagnostic.h"
 #include "watergen/ir/emitter.h"
+#include "watergen/pipeline/variant_build.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
 #include "watergen/render/synthetic_scene.h"
@@ -73,6 +74,12 @@ Runner add_cost_command(CLI::App& app, const Common& common);
 std::optional<std::map<std::string, uint64_t>>
 count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
                  const std::string& view, std::string* error, bool strict_half = false);
+// The body of a counting worker (run under valgrind): builds each key's variant with `build`
+// and draws its GLSL path over `scene` once with the steady draw counted, labelled with the key
+// ("<key>#2" for its second occurrence). Returns the exit code.
+int draw_counted_keys(const std::vector<std::string>& keys, const SyntheticScene& scene,
+                      const std::function<VariantBuild(const Variant&)>& build,
+                      const Common& common);
 Runner add_compare_command(CLI::App& app, const Common& common);
 Runner add_pick_command(CLI::App& app, const Common& common);
 // count_draw_costs for a material's shaders (path "" = the built-in material) as a build

@@ -30,8 +30,8 @@ struct CostOptions {
 
 // Draws `lang` once more with the count on (RenderJob::counted_draw_label).
 bool counted_render(VulkanRunner& runner, const LanguageBuild& lang, const SyntheticScene& scene,
-                    uint32_t size, const std::string& label, bool first_draw) {
-    RenderJob job = make_render_job(lang, scene, {size, size, 0, false, false});
+                    const std::string& label, bool first_draw) {
+    RenderJob job = make_render_job(lang, scene, {scene.width, scene.height, 0, false, false});
     job.counted_draw_label = label;
     job.count_first_draw = first_draw;
     const RenderResult r = runner.render(job);
@@ -40,44 +40,28 @@ bool counted_render(VulkanRunner& runner, const LanguageBuild& lang, const Synth
 }
 
 // The worker: builds the variant and draws each language path with the count on; or, given
-// keys, each of those variants' GLSL path, labelled with its key.
+// keys, each of those variants' GLSL path (draw_counted_keys).
 int run_worker(const CostOptions& o, const Preset* preset, const Common& common) {
     if (!RUNNING_ON_VALGRIND) {
         std::fprintf(stderr, "watergen: error: --counted is the worker of watergen cost and runs "
                              "under valgrind --tool=callgrind\n");
         return kUsage;
     }
-    std::vector<Variant> variants = {o.variant};
-    if (!o.keys.empty()) variants.clear();
-    for (const std::string& key : o.keys) {
-        std::string error;
-        const auto v = parse_variant_key(key, &error);
-        if (!v) {
-            std::fprintf(stderr, "watergen: error: --key: %s\n", error.c_str());
-            return kUsage;
-        }
-        variants.push_back(*v);
-    }
+    const SyntheticScene scene = preset_scene(o.size, o.size, preset, o.view);
+    auto build = [&](const Variant& v) {
+        const bool strict = o.strict_half && v.choice("precision") == "half";
+        return build_variant(v, preset, EmitOptions{strict, {}, o.unroll});
+    };
+    if (!o.keys.empty()) return draw_counted_keys(o.keys, scene, build, common);
     std::string cache;
     auto runner = create_runner(RunnerSetup{}, &cache);
     if (!runner) return kNoDevice;
-    const SyntheticScene scene = preset_scene(o.size, o.size, preset, o.view);
-    std::map<std::string, int> seen; // a variant given twice is labelled "<key>#2" (an A/A pair)
-    for (const Variant& v : variants) {
-        const int n = ++seen[v.key()];
-        const std::string label = n == 1 ? v.key() : v.key() + "#" + std::to_string(n);
-        const bool strict = o.strict_half && v.choice("precision") == "half";
-        const VariantBuild build = build_variant(v, preset, EmitOptions{strict, {}, o.unroll});
-        print_diagnostics(build.diagnostics, common);
-        if (!build.ok()) return kFailed;
-        const bool ok =
-            o.keys.empty()
-                ? counted_render(*runner, build.languages[0], scene, o.size, "glsl", true) &&
-                      counted_render(*runner, build.languages[1], scene, o.size, "hlsl", true)
-                : counted_render(*runner, build.languages[0], scene, o.size, label, false);
-        if (!ok) return kFailed;
-    }
-    return kOk;
+    const VariantBuild b = build(o.variant);
+    print_diagnostics(b.diagnostics, common);
+    if (!b.ok()) return kFailed;
+    const bool ok = counted_render(*runner, b.languages[0], scene, "glsl", true) &&
+                    counted_render(*runner, b.languages[1], scene, "hlsl", true);
+    return ok ? kOk : kFailed;
 }
 
 std::vector<std::string> worker_argv(const CostOptions& o) {
@@ -98,6 +82,30 @@ std::vector<std::string> worker_argv(const CostOptions& o) {
 }
 
 } // namespace
+
+int draw_counted_keys(const std::vector<std::string>& keys, const SyntheticScene& scene,
+                      const std::function<VariantBuild(const Variant&)>& build,
+                      const Common& common) {
+    std::string cache;
+    auto runner = create_runner(RunnerSetup{}, &cache);
+    if (!runner) return kNoDevice;
+    std::map<std::string, int> seen; // a key given twice is labelled "<key>#2" (an A/A pair)
+    for (const std::string& key : keys) {
+        std::string error;
+        const auto v = parse_variant_key(key, &error);
+        if (!v) {
+            std::fprintf(stderr, "watergen: error: --key: %s\n", error.c_str());
+            return kUsage;
+        }
+        const VariantBuild b = build(*v);
+        print_diagnostics(b.diagnostics, common);
+        if (!b.ok()) return kFailed;
+        const int n = ++seen[key];
+        const std::string label = n == 1 ? key : key + "#" + std::to_string(n);
+        if (!counted_render(*runner, b.languages[0], scene, label, false)) return kFailed;
+    }
+    return kOk;
+}
 
 std::optional<std::map<std::string, uint64_t>>
 count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,

@@ -40,28 +40,14 @@ int run_worker(const PickOptions& o, const Material& m, const ScenePlan* plan,
                              "under valgrind --tool=callgrind\n");
         return kUsage;
     }
-    std::string cache;
-    auto runner = create_runner(RunnerSetup{}, &cache);
-    if (!runner) return kNoDevice;
     const SyntheticScene base = make_synthetic_scene(o.cost_size, o.cost_size);
     const SyntheticScene scene = plan ? conform_scene(base, *plan, m) : base;
-    std::map<std::string, int> seen;
-    for (const std::string& key : o.keys) {
-        std::string error;
-        const auto v = parse_variant_key(key, &error);
-        if (!v) return kUsage;
-        const VariantBuild build =
-            plan ? build_for_scene(m, *plan, *v) : build_shader(m.compose(*v));
-        print_diagnostics(build.diagnostics, common);
-        if (!build.ok()) return kFailed;
-        RenderJob job =
-            make_render_job(build.languages[0], scene, {o.cost_size, o.cost_size, 0, false, false});
-        const int n = ++seen[key];
-        job.counted_draw_label = n == 1 ? key : key + "#" + std::to_string(n);
-        job.count_first_draw = false;
-        if (!runner->render(job).ok) return kFailed;
-    }
-    return kOk;
+    return draw_counted_keys(
+        o.keys, scene,
+        [&](const Variant& v) {
+            return plan ? build_for_scene(m, *plan, v) : build_shader(m.compose(v));
+        },
+        common);
 }
 
 // Instructions per pixel of every candidate not counted yet, from one worker run; "" or the

@@ -58,6 +58,7 @@ bool measure_axis(VulkanRunner& runner, const AxisInfo& axis, const ChoiceInfo& 
             AccuracyRow row;
             row.axis = axis.name;
             row.choice = c.name;
+            row.variant = v;
             row.note = "skipped: " + *e;
             skipped.push_back(row);
             continue;
@@ -75,6 +76,7 @@ bool measure_axis(VulkanRunner& runner, const AxisInfo& axis, const ChoiceInfo& 
         AccuracyRow row;
         row.axis = axis.name;
         row.choice = e.variant.choice(axis.name);
+        row.variant = e.variant;
         row.gold = row.choice == gold.name;
         row.relation = e.relation;
         row.time = e.time;

@@ -10,19 +10,6 @@ namespace watergen {
 
 namespace {
 
-// True when `choice` approximates `target` on `axis`, directly or through a chain
-// (power approximates exact; a 4-step march approximates the converged one).
-bool approximates(const AxisInfo& axis, const std::string& choice, const std::string& target) {
-    std::string at = choice;
-    for (size_t hops = 0; hops < axis.choices.size(); ++hops) {
-        const ChoiceInfo* c = find_choice(axis, at);
-        if (!c || c->approximates.empty()) return false;
-        if (c->approximates == target) return true;
-        at = c->approximates;
-    }
-    return false;
-}
-
 double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b) {
     if (a.size() != b.size()) return INFINITY;
     double m = 0;
@@ -35,6 +22,17 @@ double max_abs_difference(const std::vector<float>& a, const std::vector<float>&
 }
 
 } // namespace
+
+bool approximates(const AxisInfo& axis, const std::string& choice, const std::string& target) {
+    std::string at = choice;
+    for (size_t hops = 0; hops < axis.choices.size(); ++hops) {
+        const ChoiceInfo* c = find_choice(axis, at);
+        if (!c || c->approximates.empty()) return false;
+        if (c->approximates == target) return true;
+        at = c->approximates;
+    }
+    return false;
+}
 
 Variant reference_for(const std::vector<Variant>& variants) {
     if (variants.empty()) return default_variant();

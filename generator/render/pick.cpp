@@ -17,13 +17,8 @@ const ChoiceInfo* traded_gold(const AxisInfo& axis, const std::set<std::string>&
     for (const ChoiceInfo& c : axis.choices)
         if (c.gold) gold = &c;
     if (!gold) return nullptr;
-    for (const std::string& r : reached) {
-        if (r == gold->name) return gold;
-        Variant a = default_variant(), b = default_variant();
-        set_choice(a, axis.name, r);
-        set_choice(b, axis.name, gold->name);
-        if (relation_to(a, b).rfind("approximates", 0) == 0) return gold;
-    }
+    for (const std::string& r : reached)
+        if (r == gold->name || approximates(axis, r, gold->name)) return gold;
     return nullptr;
 }
 

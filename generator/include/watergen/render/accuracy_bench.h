@@ -14,6 +14,7 @@ namespace watergen {
 
 struct AccuracyRow {
     std::string axis, choice;
+    Variant variant; // the reference with this choice (waves rows: detail-map normals)
     bool gold = false;
     std::string relation; // "reference", "approximates (...)", "different model (...)"
     bool approximation() const { return relation.rfind("approximates", 0) == 0; }

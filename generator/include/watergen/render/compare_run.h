@@ -68,6 +68,10 @@ struct CompareRun {
     bool ok() const { return error.empty() && !has_errors(diagnostics); }
 };
 
+// True when `choice` approximates `target` on `axis`, directly or through a chain of the
+// registry's `approximates` (power approximates exact; a 4-step march the converged one).
+bool approximates(const AxisInfo& axis, const std::string& choice, const std::string& target);
+
 // The reference a set of variants approximates: the first variant with, on every axis where
 // the variants differ, that axis' gold choice where some variant holds the gold or an
 // approximation of it (fresnel schlick,power -> exact; waves flat,gerstner stay flat: those
