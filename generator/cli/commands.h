@@ -83,11 +83,13 @@ int draw_counted_keys(const std::vector<std::string>& keys, const SyntheticScene
 Runner add_compare_command(CLI::App& app, const Common& common);
 Runner add_pick_command(CLI::App& app, const Common& common);
 // count_draw_costs for a material's shaders (path "" = the built-in material) as a build
-// ships them: composed by the material and, with a scene file, folded under its facts; counted
-// by a `watergen pick` worker (pick_command.cpp), in the scene's synthetic scene.
+// ships them: composed by the material and, with a scene file, folded under its facts (unless
+// `folded` is false: bench prune's unpruned side); counted by `watergen pick` workers
+// (pick_command.cpp), in the scene's conformed synthetic scene.
 std::optional<std::map<std::string, uint64_t>>
 count_material_costs(const std::string& material_path, const std::string& scene_path,
-                     const std::vector<Variant>& variants, uint32_t size, std::string* error);
+                     const std::vector<Variant>& variants, uint32_t size, std::string* error,
+                     bool folded = true);
 Runner add_bench_compile_command(CLI::App& bench, const Common& common);
 
 // Material and scene files of build, explain and bench build / prune (build_command.cpp).

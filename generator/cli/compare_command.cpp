@@ -24,7 +24,7 @@ struct CompareOptions {
     std::string material, scene; // select a material's variants, or a scene's pruned set
     std::string views;           // comma list; "" = every view
     uint32_t size = 512, rounds = 40, draws = 3, cost_size = 64;
-    bool cost = true;
+    bool cost = true, strict_half = false;
     RunnerSetup runner;
 };
 
@@ -171,6 +171,9 @@ CompareReport make_report(const CompareRun& run, const CompareRequest& request,
                                            : ": NOT within +-3%, times are not trustworthy on "
                                              "this machine now; use the cost");
     report.timing_note = note;
+    if (o.strict_half)
+        report.timing_note += ". precision=half variants are built strict: explicit 16-bit types, "
+                              "computed at 16 bits";
     report.timing_trustworthy = run.timing_trustworthy();
     if (o.cost) {
         std::snprintf(note, sizeof note,
@@ -263,7 +266,7 @@ bool add_costs(const CompareOptions& o, const Selection& sel, const std::string&
         sel.from_material
             ? count_material_costs(o.material, o.scene, counted, o.cost_size, &error)
             : count_draw_costs(counted, o.cost_size, sel.preset ? sel.preset->name : "",
-                               first_view.substr(0, first_view.find('@')), &error);
+                               first_view.substr(0, first_view.find('@')), &error, o.strict_half);
     if (!costs) {
         std::fprintf(stderr, "watergen: error: instruction count: %s\n", error.c_str());
         return false;
@@ -324,6 +327,18 @@ int run_compare_command(const CompareOptions& o, const Common& common) {
     }
     request.rounds = o.rounds;
     request.draws = o.draws;
+    if (o.strict_half && sel.from_material) {
+        std::fprintf(stderr, "watergen: error: --strict-half compares variants named by axis "
+                             "flags or --variant; a material's variants are built as its build "
+                             "ships them (relaxed-precision hints)\n");
+        return kUsage;
+    }
+    if (o.strict_half)
+        request.build = [&sel](const Variant& v) {
+            EmitOptions strict;
+            strict.strict_half = true;
+            return build_variant(v, sel.preset, strict);
+        };
     if (sel.from_material)
         request.build = [&sel](const Variant& v) {
             return sel.plan ? build_for_scene(sel.material, *sel.plan, v)
@@ -344,6 +359,11 @@ int run_compare_command(const CompareOptions& o, const Common& common) {
     std::string cache;
     auto runner = create_runner(o.runner, &cache);
     if (!runner) return kNoDevice;
+    if (o.strict_half && !runner->device_info().shader_float16) {
+        std::fprintf(stderr, "watergen: error: %s has no shaderFloat16; strict half needs it\n",
+                     runner->device_info().name.c_str());
+        return kNoDevice;
+    }
     CompareRun run = run_compare(*runner, request);
     if (!bench_succeeded(run.diagnostics, run.error, common)) return kFailed;
     if (o.cost && !add_costs(o, sel, request.views.front().first, run)) return kFailed;
@@ -398,6 +418,10 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
                    "than +-3% in 3 of 5 runs on an idle 2-core machine)")
         ->check(CLI::Range(3, 1000));
     add_instrument_options(app, o->draws, o->cost_size, o->cost);
+    app.add_flag("--strict-half", o->strict_half,
+                 "build precision=half variants in explicit 16-bit types, so that lavapipe "
+                 "computes them at 16 bits (with the default relaxed-precision hints it computes "
+                 "them at 32, and half equals full)");
     app.add_option("--out", o->out, "output directory (default out/compare)");
     add_runner_options(app, o->runner);
     return [o, &common]() { return run_compare_command(*o, common); };

@@ -27,12 +27,13 @@ struct PickOptions {
     double max_de_p99 = 2.0, max_abs = INFINITY;
     uint32_t size = 256, cost_size = 64;
     std::string out = "out/pick";
-    bool counted = false;
+    bool counted = false, unfolded = false;
     RunnerSetup runner;
 };
 
 // The worker: the given keys' shaders as the material builds them (for a scene: folded under
-// its facts), each GLSL path drawn with the count on; a key given twice is labelled "<key>#2".
+// its facts unless --unfolded, drawn in the scene's conformed synthetic scene either way), each
+// GLSL path drawn with the count on; a key given twice is labelled "<key>#2".
 int run_worker(const PickOptions& o, const Material& m, const ScenePlan* plan,
                const Common& common) {
     if (!RUNNING_ON_VALGRIND) {
@@ -45,7 +46,7 @@ int run_worker(const PickOptions& o, const Material& m, const ScenePlan* plan,
     return draw_counted_keys(
         o.keys, scene,
         [&](const Variant& v) {
-            return plan ? build_for_scene(m, *plan, v) : build_shader(m.compose(v));
+            return plan && !o.unfolded ? build_for_scene(m, *plan, v) : build_shader(m.compose(v));
         },
         common);
 }
@@ -134,15 +135,20 @@ void print_pick(const PickPlan& pick, const PickCandidate& c) {
 
 std::optional<std::map<std::string, uint64_t>>
 count_material_costs(const std::string& material_path, const std::string& scene_path,
-                     const std::vector<Variant>& variants, uint32_t size, std::string* error) {
+                     const std::vector<Variant>& variants, uint32_t size, std::string* error,
+                     bool folded) {
     std::vector<std::string> keys;
     for (const Variant& v : variants)
         keys.push_back(v.key());
     const KeyedWorker worker = [&](const std::vector<std::string>& part) {
         std::vector<std::string> argv = {std::filesystem::read_symlink("/proc/self/exe").string(),
                                          "pick", "--counted", "--cost-size", std::to_string(size)};
-        if (!scene_path.empty()) argv.insert(argv.end(), {"--scene", scene_path});
-        if (!material_path.empty()) argv.push_back(material_path);
+        // The worker runs in its scratch directory: paths as given would not resolve there.
+        if (!scene_path.empty())
+            argv.insert(argv.end(), {"--scene", std::filesystem::absolute(scene_path).string()});
+        if (!folded) argv.push_back("--unfolded");
+        if (!material_path.empty())
+            argv.push_back(std::filesystem::absolute(material_path).string());
         for (const std::string& key : part)
             argv.insert(argv.end(), {"--key", key});
         return argv;
@@ -171,8 +177,9 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
     app.add_option("--cost-size", o->cost_size, "image size of the instruction count (default 64)")
         ->check(CLI::Range(8, 512));
     app.add_option("--out", o->out, "directory for <scene>.json material files (default out/pick)");
-    app.add_flag("--counted", o->counted, "")->group(""); // the cost worker; hidden
-    app.add_option("--key", o->keys, "")->group("");      // the worker's variants; hidden
+    app.add_flag("--counted", o->counted, "")->group("");   // the cost worker; hidden
+    app.add_option("--key", o->keys, "")->group("");        // the worker's variants; hidden
+    app.add_flag("--unfolded", o->unfolded, "")->group(""); // the worker draws them unpruned
     add_runner_options(app, o->runner);
     return [o, &common]() {
         Material m;

@@ -24,15 +24,6 @@ std::vector<double> uniform_value(const SyntheticScene& s, const Material& m,
     return {};
 }
 
-// Timed draws only: the later rounds need no images and no CPU reference.
-std::vector<double> timed_draws(VulkanRunner& runner, const LanguageBuild& lang,
-                                const SyntheticScene& scene, const RenderSettings& settings,
-                                std::string* error) {
-    const RenderResult r = runner.render(make_render_job(lang, scene, settings));
-    if (!r.ok) *error = r.error;
-    return r.draw_ms;
-}
-
 } // namespace
 
 SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, const Material& m,
@@ -109,12 +100,8 @@ SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, 
     return s;
 }
 
-PruneMeasurement measure_pruning(VulkanRunner& runner, const Material& m, const ScenePlan& plan,
-                                 const Variant& v, const SyntheticScene& scene,
-                                 const RenderSettings& settings, unsigned rounds) {
-    PruneMeasurement out;
-    out.scene = plan.scene.name;
-    out.key = v.key();
+PrunePair build_prune_pair(const Material& m, const ScenePlan& plan, const Variant& v) {
+    PrunePair out;
     WaterShader unpruned = m.compose(v);
     if (has_errors(unpruned.fragment.diagnostics())) {
         out.error = "variant does not compose: " + unpruned.fragment.diagnostics().front().message;
@@ -125,71 +112,70 @@ PruneMeasurement measure_pruning(VulkanRunner& runner, const Material& m, const 
     out.live_before = folded.report.live_before;
     out.live_after = folded.report.live_after;
     pruned.fragment = std::move(folded.graph);
-
-    const VariantBuild a = build_shader(std::move(unpruned));
-    const VariantBuild b = build_shader(std::move(pruned));
-    if (!a.ok() || !b.ok()) {
-        const VariantBuild& bad = a.ok() ? b : a;
-        out.error = std::string(a.ok() ? "pruned" : "unpruned") + " build failed: " +
+    out.unpruned = build_shader(std::move(unpruned));
+    out.pruned = build_shader(std::move(pruned));
+    if (!out.unpruned.ok() || !out.pruned.ok()) {
+        const VariantBuild& bad = out.unpruned.ok() ? out.pruned : out.unpruned;
+        out.error = std::string(out.unpruned.ok() ? "pruned" : "unpruned") + " build failed: " +
                     (bad.diagnostics.empty() ? std::string("?")
                                              : format_diagnostic(bad.diagnostics.front()));
-        return out;
     }
-    out.spirv_unpruned = a.languages[0].fragment.toolchain.instruction_count;
-    out.spirv_pruned = b.languages[0].fragment.toolchain.instruction_count;
-    out.spirv_opt_unpruned = a.languages[0].fragment.toolchain.instruction_count_optimized;
-    out.spirv_opt_pruned = b.languages[0].fragment.toolchain.instruction_count_optimized;
+    return out;
+}
 
-    // GPU time of a shader: the fastest of all timed draws over `rounds` renders that
-    // alternate between the two shaders. On a shared CPU (lavapipe runs on the host's cores)
-    // slow draws measure the neighbours; the fastest draw measures the shader.
-    RenderSettings timed = settings;
-    timed.cpu_double = false;
-    VariantRender ra, rb;
-    double fastest[2][2] = {{1e300, 1e300}, {1e300, 1e300}};
-    for (unsigned round = 0; round < std::max(1u, rounds); ++round) {
-        for (int which = 0; which < 2; ++which) {
-            const VariantBuild& build = which == 0 ? a : b;
-            if (round == 0) {
-                VariantRender r = render_variant(runner, build, scene, timed);
-                if (!r.ok()) {
-                    out.error = "render: " + r.error;
-                    return out;
-                }
-                for (int lang = 0; lang < 2; ++lang)
-                    for (double ms : r.gpu[lang].draw_ms)
-                        fastest[which][lang] = std::min(fastest[which][lang], ms);
-                (which == 0 ? ra : rb) = std::move(r);
-                continue;
-            }
-            for (int lang = 0; lang < 2; ++lang) {
-                std::string error;
-                for (double ms : timed_draws(runner, build.languages[static_cast<size_t>(lang)],
-                                             scene, timed, &error))
-                    fastest[which][lang] = std::min(fastest[which][lang], ms);
-                if (!error.empty()) {
-                    out.error = "render: " + error;
-                    return out;
-                }
-            }
-        }
+PruneMeasurement pair_sizes(const ScenePlan& plan, const Variant& v, const PrunePair& pair) {
+    PruneMeasurement out;
+    out.scene = plan.scene.name;
+    out.key = v.key();
+    out.live_before = pair.live_before;
+    out.live_after = pair.live_after;
+    const auto& a = pair.unpruned.languages[0].fragment.toolchain;
+    const auto& b = pair.pruned.languages[0].fragment.toolchain;
+    out.spirv_unpruned = a.instruction_count;
+    out.spirv_pruned = b.instruction_count;
+    out.spirv_opt_unpruned = a.instruction_count_optimized;
+    out.spirv_opt_pruned = b.instruction_count_optimized;
+    return out;
+}
+
+std::optional<double> pruned_difference(const ImageRGBA32F& pruned, const ImageRGBA32F& unpruned,
+                                        std::string* error) {
+    const ImageErrorStats s = compare_images(pruned, unpruned);
+    if (!s.error.empty() || s.nan_inf_pixels != s.reference_nan_inf_pixels) {
+        *error = "images cannot be compared: " +
+                 (s.error.empty() ? std::string("non-finite pixels differ") : s.error);
+        return std::nullopt;
     }
-    out.gpu_ms_unpruned = fastest[0][0];
-    out.gpu_ms_pruned = fastest[1][0];
-    out.gpu_ms_unpruned_hlsl = fastest[0][1];
-    out.gpu_ms_pruned_hlsl = fastest[1][1];
-    const ImageErrorStats g = compare_images(rb.gpu_image[0], ra.gpu_image[0]);
-    const ImageErrorStats h = compare_images(rb.gpu_image[1], ra.gpu_image[1]);
-    const ImageErrorStats c = compare_images(rb.cpu_float, ra.cpu_float);
-    for (const ImageErrorStats* s : {&g, &h, &c})
-        if (!s->error.empty() || s->nan_inf_pixels != s->reference_nan_inf_pixels) {
-            out.error = "images cannot be compared: " +
-                        (s->error.empty() ? std::string("non-finite pixels differ") : s->error);
+    return s.max_abs;
+}
+
+PruneMeasurement measure_pruning(VulkanRunner& runner, const Material& m, const ScenePlan& plan,
+                                 const Variant& v, const SyntheticScene& scene,
+                                 const RenderSettings& settings) {
+    const PrunePair pair = build_prune_pair(m, plan, v);
+    PruneMeasurement out = pair_sizes(plan, v, pair);
+    out.error = pair.error;
+    if (!out.ok()) return out;
+    RenderSettings s = settings;
+    s.cpu_double = false;
+    s.cpu_float = true;
+    const VariantRender ra = render_variant(runner, pair.unpruned, scene, s);
+    const VariantRender rb = render_variant(runner, pair.pruned, scene, s);
+    for (const VariantRender* r : {&ra, &rb})
+        if (!r->ok()) {
+            out.error = "render: " + r->error;
             return out;
         }
-    out.max_abs_glsl = g.max_abs;
-    out.max_abs_hlsl = h.max_abs;
-    out.max_abs_cpu = c.max_abs;
+    double* into[3] = {&out.max_abs_glsl, &out.max_abs_hlsl, &out.max_abs_cpu};
+    const std::pair<const ImageRGBA32F*, const ImageRGBA32F*> images[3] = {
+        {&rb.gpu_image[0], &ra.gpu_image[0]},
+        {&rb.gpu_image[1], &ra.gpu_image[1]},
+        {&rb.cpu_float, &ra.cpu_float}};
+    for (int i = 0; i < 3; ++i) {
+        const auto d = pruned_difference(*images[i].first, *images[i].second, &out.error);
+        if (!d) return out;
+        *into[i] = *d;
+    }
     return out;
 }
 

@@ -1,8 +1,10 @@
+#include <set>
+
 #include <catch2/catch.hpp>
 
 #include "build_test_support.h"
 #include "shared_runner.h"
-#include "watergen/render/prune_measure.h"
+#include "watergen/render/prune_bench.h"
 
 using namespace watergen;
 using namespace watergen::test;
@@ -22,7 +24,7 @@ TEST_CASE("pruned_and_unpruned_shaders_draw_the_same_image", "[render]") {
         REQUIRE_FALSE(set_choice(v, axis, choice));
     const SyntheticScene scene = conform_scene(make_synthetic_scene(64, 64), *plan, m);
     const PruneMeasurement r =
-        measure_pruning(shared_runner(), m, *plan, v, scene, RenderSettings{64, 64, 2, false});
+        measure_pruning(shared_runner(), m, *plan, v, scene, RenderSettings{64, 64, 2});
     REQUIRE(r.ok());
     CHECK(r.spirv_pruned < r.spirv_unpruned);
     CHECK(r.spirv_opt_pruned < r.spirv_opt_unpruned);
@@ -30,4 +32,38 @@ TEST_CASE("pruned_and_unpruned_shaders_draw_the_same_image", "[render]") {
     CHECK(r.max_abs_glsl <= 1e-4);
     CHECK(r.max_abs_hlsl <= 1e-4);
     CHECK(r.max_abs_cpu <= 1e-4);
+}
+
+// bench prune measures a few of a scene's distinct folded shaders: with four, every choice of
+// every axis the default material varies that some distinct shader of the scene holds is held
+// by a measured one, and the measured shaders are distinct and in plan order.
+TEST_CASE("prune_bench_measures_shaders_that_cover_the_scene's_choices", "[render]") {
+    const Material m = default_material();
+    for (const char* name : {"harbour_night", "mountain_lake", "open_ocean"}) {
+        Diagnostics ds;
+        const auto scene = load_scene(source_dir() + "/examples/scenes/" + name + ".json", ds);
+        REQUIRE(scene);
+        const auto plan = plan_scene(m, *scene, ds);
+        REQUIRE(plan);
+        size_t distinct = 0;
+        const std::vector<Variant> all = prune_bench_shaders(m, *plan, 0, &distinct);
+        const std::vector<Variant> four = prune_bench_shaders(m, *plan, 4, nullptr);
+        INFO(name);
+        CHECK(all.size() == distinct);
+        CHECK(distinct > 4);
+        REQUIRE(four.size() == 4);
+        std::set<std::pair<size_t, std::string>> held, measured;
+        for (const Variant& v : all)
+            for (size_t a = 0; a < v.choices.size(); ++a)
+                held.insert({a, v.choices[a]});
+        size_t next = 0; // the measured shaders appear in `all` in order
+        for (const Variant& v : four) {
+            while (next < all.size() && all[next].key() != v.key())
+                ++next;
+            CHECK(next < all.size());
+            for (size_t a = 0; a < v.choices.size(); ++a)
+                measured.insert({a, v.choices[a]});
+        }
+        CHECK(measured == held);
+    }
 }
