@@ -1,5 +1,9 @@
-# Runs COMMAND; passes when its exit code is EXPECTED_EXIT and its output matches REGEX.
-execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+# Runs COMMAND; passes when its exit code is EXPECTED_EXIT and its output matches REGEX within
+# TIMEOUT seconds (default 120).
+if(NOT DEFINED TIMEOUT)
+  set(TIMEOUT 120)
+endif()
+execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT ${TIMEOUT})
 set(all "${out}${err}")
 string(REPLACE "\n" " " flat "${all}")
 if(NOT rc STREQUAL "${EXPECTED_EXIT}")
