@@ -34,11 +34,13 @@ const std::map<std::string, std::set<std::string>>& allowed_includes() {
     static const std::map<std::string, std::set<std::string>> allowed = {
         {"ir", {"ir", "runtime/reflection"}},
         {"water", {"ir", "water", "runtime/reflection"}},
+        {"caustics", {"caustics"}},
         {"plan", {"ir", "water", "plan", "runtime/reflection"}},
         {"toolchain", {"ir", "toolchain", "runtime/reflection"}},
         {"pipeline", {"ir", "water", "plan", "toolchain", "pipeline", "runtime/reflection"}},
-        {"render", {"ir", "water", "plan", "toolchain", "pipeline", "render", "runtime"}},
-        {"cli", {"ir", "water", "plan", "toolchain", "pipeline", "render", "runtime"}},
+        {"render",
+         {"ir", "water", "caustics", "plan", "toolchain", "pipeline", "render", "runtime"}},
+        {"cli", {"ir", "water", "caustics", "plan", "toolchain", "pipeline", "render", "runtime"}},
     };
     return allowed;
 }
