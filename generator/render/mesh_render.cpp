@@ -19,27 +19,34 @@ StageBuild build_stage(EmittedShader source, Diagnostics& all) {
 
 } // namespace
 
+std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& fragment,
+                                              const std::string& stage_name,
+                                              const std::string& stem, const std::string& key,
+                                              Diagnostics& diagnostics) {
+    std::array<LanguageBuild, 2> out;
+    for (const Graph* g : {&vertex, &fragment})
+        diagnostics.insert(diagnostics.end(), g->diagnostics().begin(), g->diagnostics().end());
+    if (has_errors(diagnostics)) return out;
+    for (size_t i = 0; i < out.size(); ++i) {
+        const Language lang = i == 0 ? Language::Glsl : Language::Hlsl;
+        const std::string path = std::string(to_string(lang)) + "/" + stem + ".";
+        out[i].language = lang;
+        EmittedShader vert =
+            emit_vertex(vertex, lang, stage_name, path + file_extension(lang, ShaderStage::Vertex),
+                        key, diagnostics);
+        EmittedShader frag = emit_fragment(
+            fragment, lang, path + file_extension(lang, ShaderStage::Fragment), key, diagnostics);
+        if (has_errors(diagnostics)) return out;
+        out[i].vertex = build_stage(std::move(vert), diagnostics);
+        out[i].fragment = build_stage(std::move(frag), diagnostics);
+    }
+    return out;
+}
+
 MeshBuild build_mesh(const std::string& wave_model) {
     MeshBuild b{build_mesh_shader(wave_model), {}, {}};
-    for (const Graph* g : {&b.shader.vertex, &b.shader.fragment})
-        b.diagnostics.insert(b.diagnostics.end(), g->diagnostics().begin(), g->diagnostics().end());
-    if (has_errors(b.diagnostics)) return b;
-    const std::string key = "mesh." + wave_model;
-    for (size_t i = 0; i < b.languages.size(); ++i) {
-        const Language lang = i == 0 ? Language::Glsl : Language::Hlsl;
-        const std::string stem = std::string(to_string(lang)) + "/mesh_" + wave_model + ".";
-        LanguageBuild& out = b.languages[i];
-        out.language = lang;
-        EmittedShader vert =
-            emit_vertex(b.shader.vertex, lang, "mesh",
-                        stem + file_extension(lang, ShaderStage::Vertex), key, b.diagnostics);
-        EmittedShader frag =
-            emit_fragment(b.shader.fragment, lang,
-                          stem + file_extension(lang, ShaderStage::Fragment), key, b.diagnostics);
-        if (has_errors(b.diagnostics)) return b;
-        out.vertex = build_stage(std::move(vert), b.diagnostics);
-        out.fragment = build_stage(std::move(frag), b.diagnostics);
-    }
+    b.languages = build_two_stages(b.shader.vertex, b.shader.fragment, "mesh", "mesh_" + wave_model,
+                                   "mesh." + wave_model, b.diagnostics);
     return b;
 }
 

@@ -135,10 +135,27 @@ Pipeline create_pipeline(Scope& scope, const RenderJob& job, VkPipelineLayout la
     multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
 
-    // Raw shader output, no blending: the test compares exact floats.
+    // Raw shader output, no blending (the tests compare exact floats); or, for passes that
+    // accumulate (caustics), ONE + ONE over the target cleared to 0.
     VkPipelineColorBlendAttachmentState blend_attachment{};
     blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                                       VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    if (job.additive_blend) {
+        VkFormatProperties props{};
+        vkGetPhysicalDeviceFormatProperties(scope.ctx().physical, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                            &props);
+        if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+            throw RunnerError(fmt::format("device '{}' cannot blend into "
+                                          "VK_FORMAT_R32G32B32A32_SFLOAT (additive_blend)",
+                                          scope.ctx().info.name));
+        blend_attachment.blendEnable = VK_TRUE;
+        blend_attachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend_attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend_attachment.colorBlendOp = VK_BLEND_OP_ADD;
+        blend_attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend_attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend_attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
     VkPipelineColorBlendStateCreateInfo blend{};
     blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
     blend.attachmentCount = 1;

@@ -34,7 +34,7 @@ const std::map<std::string, std::set<std::string>>& allowed_includes() {
     static const std::map<std::string, std::set<std::string>> allowed = {
         {"ir", {"ir", "runtime/reflection"}},
         {"water", {"ir", "water", "runtime/reflection"}},
-        {"caustics", {"caustics"}},
+        {"caustics", {"ir", "water", "caustics", "runtime/reflection"}},
         {"plan", {"ir", "water", "plan", "runtime/reflection"}},
         {"toolchain", {"ir", "toolchain", "runtime/reflection"}},
         {"pipeline", {"ir", "water", "plan", "toolchain", "pipeline", "runtime/reflection"}},

@@ -19,7 +19,15 @@ struct MeshBuild {
     bool ok() const { return !has_errors(diagnostics); }
 };
 
-// Emits and runs both stages of both languages through the toolchain (a few ms each).
+// Emits a vertex and a fragment graph in both languages (files <lang>/<stem>.<ext>, the
+// vertex entry named `stage_name`) and runs each through the toolchain (a few ms each); stops
+// at the first graph with errors. The mesh path and the caustics pass share it.
+std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& fragment,
+                                              const std::string& stage_name,
+                                              const std::string& stem, const std::string& key,
+                                              Diagnostics& diagnostics);
+
+// build_two_stages of build_mesh_shader(wave_model).
 MeshBuild build_mesh(const std::string& wave_model);
 
 // n x n vertices with attribute grid_xz spanning [x0, x1] x [z0, z1], two triangles per cell,

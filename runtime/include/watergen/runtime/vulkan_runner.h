@@ -100,6 +100,9 @@ struct RenderJob {
     // derives positions from gl_VertexIndex. Unless `mesh` is non-empty: then it is drawn
     // indexed, from its vertex buffer.
     MeshData mesh;
+    // Blend ONE + ONE into the target cleared to 0, so overlapping triangles add up (the
+    // caustics pass accumulates light this way); false: each fragment replaces the pixel.
+    bool additive_blend = false;
 };
 
 struct RenderResult {

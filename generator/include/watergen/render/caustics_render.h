@@ -1,0 +1,62 @@
+// The caustics pass end to end: build both languages of the area-ratio pass, draw its grid into
+// the caustics texture on the Vulkan runner (additive blending), and the CPU reference set up
+// from the same parameter values, so that the two can be compared texel by texel.
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "watergen/caustics/caustics_pass.h"
+#include "watergen/caustics/caustics_reference.h"
+#include "watergen/pipeline/variant_build.h"
+#include "watergen/runtime/image_metrics.h"
+#include "watergen/runtime/vulkan_runner.h"
+
+namespace watergen {
+
+struct CausticsBuild {
+    CausticsPass pass;
+    std::array<LanguageBuild, 2> languages; // GLSL, HLSL
+    Diagnostics diagnostics;
+    bool ok() const { return !has_errors(diagnostics); }
+};
+
+CausticsBuild build_caustics(const std::string& wave_model);
+
+// Parameter values by name: the pass's defaults (its vertex stage's parameters) overlaid with
+// `values`.
+std::map<std::string, std::vector<double>>
+caustics_values(const CausticsBuild& build,
+                const std::map<std::string, std::vector<double>>& values);
+
+struct CausticsRenderSettings {
+    uint32_t texels = 256;        // texture side
+    uint32_t cells_per_texel = 2; // grid cells per texel side
+    double margin = 0;            // the grid extends this far beyond the window on every side, m
+    uint32_t timed_draws = 0;
+};
+
+struct CausticsRender {
+    std::array<RenderResult, 2> gpu;              // GLSL path, HLSL path
+    std::array<std::vector<double>, 2> intensity; // the r channel, row-major (row = z)
+    ImageErrorStats glsl_vs_hlsl;
+    std::string error;
+    bool ok() const { return error.empty(); }
+};
+
+// Draws both paths with `values` (caustics_values) over a grid covering the window grown by
+// settings.margin, cells_per_texel grid cells per texel side.
+CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
+                               const std::map<std::string, std::vector<double>>& values,
+                               const CausticsRenderSettings& settings);
+
+// The CPU reference for the same values: seed 004's waves restated (a_i = A g_a^i,
+// f_i = F g_f^i, phase t phi_i, Gerstner Q_i = Q / (f_i a_i n)), the sun, ior_water, the depth
+// and window; not periodic, photons over the window grown by `margin`.
+CausticsSetup caustics_reference_setup(const std::string& wave_model,
+                                       const std::map<std::string, std::vector<double>>& values,
+                                       uint32_t texels, double margin);
+
+} // namespace watergen

@@ -1,0 +1,139 @@
+#include "watergen/render/caustics_render.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "watergen/ir/specialization.h"
+#include "watergen/ir/uniform_layout.h"
+#include "watergen/render/mesh_render.h"
+
+namespace watergen {
+
+namespace {
+
+const std::vector<double>& value(const std::map<std::string, std::vector<double>>& values,
+                                 const std::string& name) {
+    static const std::vector<double> none;
+    auto it = values.find(name);
+    return it == values.end() ? none : it->second;
+}
+
+double scalar(const std::map<std::string, std::vector<double>>& values, const std::string& name,
+              double fallback) {
+    const auto& v = value(values, name);
+    return v.empty() ? fallback : v[0];
+}
+
+} // namespace
+
+CausticsBuild build_caustics(const std::string& wave_model) {
+    CausticsBuild b{build_caustics_pass(wave_model), {}, {}};
+    b.languages = build_two_stages(b.pass.vertex, b.pass.fragment, "caustics",
+                                   "caustics_area_ratio_" + wave_model,
+                                   "caustics.area_ratio." + wave_model, b.diagnostics);
+    return b;
+}
+
+std::map<std::string, std::vector<double>>
+caustics_values(const CausticsBuild& build,
+                const std::map<std::string, std::vector<double>>& values) {
+    std::map<std::string, std::vector<double>> out;
+    for (const Parameter& p : build.languages[0].vertex.source.interface.parameters)
+        out[p.name] = p.default_value;
+    for (const auto& [name, v] : values)
+        out[name] = v;
+    return out;
+}
+
+CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
+                               const std::map<std::string, std::vector<double>>& values,
+                               const CausticsRenderSettings& settings) {
+    CausticsRender out;
+    if (!build.ok()) {
+        out.error = "caustics pass did not build";
+        return out;
+    }
+    const std::vector<double>& window = value(values, "caustics_window");
+    if (window.size() != 3 || !(window[2] > 0)) {
+        out.error = "caustics_window must be (x0, z0, size) with size > 0";
+        return out;
+    }
+    const double texel = window[2] / settings.texels;
+    const uint32_t margin_texels = uint32_t(std::ceil(settings.margin / texel));
+    const uint32_t cells = (settings.texels + 2 * margin_texels) * settings.cells_per_texel;
+    const double x0 = window[0] - margin_texels * texel, z0 = window[1] - margin_texels * texel;
+    const double extent = cells * texel / settings.cells_per_texel;
+    const MeshData grid = make_grid(cells + 1, x0, x0 + extent, z0, z0 + extent);
+    for (size_t i = 0; i < 2; ++i) {
+        const LanguageBuild& lang = build.languages[i];
+        RenderJob job;
+        job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
+        job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
+        job.vertex_reflection = lang.vertex.toolchain.reflection;
+        job.fragment_reflection = lang.fragment.toolchain.reflection;
+        job.width = job.height = settings.texels;
+        const ShaderInterface& in = lang.vertex.source.interface; // the fragment reads none
+        job.uniforms = pack_uniforms(in.uniforms, in.parameters, values);
+        job.specialization = specialization_values(in.specialization, values);
+        job.timed_draws = settings.timed_draws;
+        job.mesh = grid;
+        job.additive_blend = true;
+        out.gpu[i] = runner.render(job);
+        if (!out.gpu[i].ok) {
+            out.error = std::string(to_string(lang.language)) + " path: " + out.gpu[i].error;
+            return out;
+        }
+        auto& intensity = out.intensity[i];
+        for (size_t p = 0; p < out.gpu[i].rgba.size(); p += 4)
+            intensity.push_back(out.gpu[i].rgba[p]);
+    }
+    out.glsl_vs_hlsl =
+        compare_images(ImageRGBA32F{settings.texels, settings.texels, out.gpu[0].rgba},
+                       ImageRGBA32F{settings.texels, settings.texels, out.gpu[1].rgba});
+    return out;
+}
+
+CausticsSetup caustics_reference_setup(const std::string& model,
+                                       const std::map<std::string, std::vector<double>>& values,
+                                       uint32_t texels, double margin) {
+    CausticsSetup s;
+    const std::string f = model == "gerstner" ? "gerstner" : "waves";
+    const int count = std::clamp(int(std::floor(scalar(values, f + "_wave_count", 0))), 0, 8);
+    const double time = scalar(values, "time", 0);
+    const std::vector<double>& directions = value(values, f + "_wave_directions");
+    const std::vector<double>& speeds = value(values, f + "_wave_speeds");
+    double a = scalar(values, f + "_amplitude", 0), w = scalar(values, f + "_frequency", 1);
+    const double ga = scalar(values, f + "_amplitude_gain", 1);
+    const double gf = scalar(values, f + "_frequency_gain", 1);
+    const double q = scalar(values, "gerstner_steepness", 0);
+    for (int i = 0; i < count && size_t(2 * i + 1) < directions.size() && size_t(i) < speeds.size();
+         ++i) {
+        CausticsWave wave;
+        wave.amplitude = a;
+        wave.frequency = w;
+        wave.dir_x = directions[size_t(2 * i)];
+        wave.dir_z = directions[size_t(2 * i + 1)];
+        wave.phase = time * speeds[size_t(i)];
+        // GPU Gems' Q_i = Q / (w_i A_i n) (the shader guards w_i A_i from 0 the same way).
+        if (model == "gerstner") wave.steepness = q / (count * std::max(w * a, 1e-6));
+        s.waves.push_back(wave);
+        a *= ga;
+        w *= gf;
+    }
+    const std::vector<double>& sun = value(values, "sun_direction");
+    if (sun.size() == 3) s.sun_direction = {sun[0], sun[1], sun[2]};
+    s.ior = scalar(values, "ior_water", 1.33333);
+    s.depth = scalar(values, "caustics_depth", 5);
+    const std::vector<double>& window = value(values, "caustics_window");
+    if (window.size() == 3) {
+        s.x0 = window[0];
+        s.z0 = window[1];
+        s.size = window[2];
+    }
+    s.texels = texels;
+    s.periodic = false;
+    s.margin = margin;
+    return s;
+}
+
+} // namespace watergen
