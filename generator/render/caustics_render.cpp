@@ -26,11 +26,12 @@ double scalar(const std::map<std::string, std::vector<double>>& values, const st
 
 } // namespace
 
-CausticsBuild build_caustics(const std::string& wave_model) {
-    CausticsBuild b{build_caustics_pass(wave_model), {}, {}};
-    b.languages = build_two_stages(b.pass.vertex, b.pass.fragment, "caustics",
-                                   "caustics_area_ratio_" + wave_model,
-                                   "caustics.area_ratio." + wave_model, b.diagnostics);
+CausticsBuild build_caustics(CausticsMethod method, const std::string& wave_model) {
+    CausticsBuild b{build_caustics_pass(method, wave_model), {}, {}};
+    const std::string name = std::string("caustics_") + to_string(method) + "_" + wave_model;
+    b.languages = build_two_stages(b.pass.vertex, b.pass.fragment, caustics_skeleton(method), name,
+                                   std::string("caustics.") + to_string(method) + "." + wave_model,
+                                   b.diagnostics);
     return b;
 }
 
@@ -63,7 +64,22 @@ CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
     const uint32_t cells = (settings.texels + 2 * margin_texels) * settings.cells_per_texel;
     const double x0 = window[0] - margin_texels * texel, z0 = window[1] - margin_texels * texel;
     const double extent = cells * texel / settings.cells_per_texel;
-    const MeshData grid = make_grid(cells + 1, x0, x0 + extent, z0, z0 + extent);
+    const bool photons = build.pass.method == CausticsMethod::PhotonSplat;
+    // Triangles: cells + 1 vertices per side spanning the area. Photons: one at each cell's
+    // centre, so that under flat water no photon lies on a texel's edge and every texel
+    // catches exactly cells_per_texel^2 of them.
+    const double h = photons ? extent / cells / 2 : 0;
+    MeshData grid =
+        make_grid(photons ? cells : cells + 1, x0 + h, x0 + extent - h, z0 + h, z0 + extent - h);
+    std::map<std::string, std::vector<double>> drawn = values;
+    if (photons) {
+        grid.points = true;
+        grid.indices.resize(grid.vertices.size() / 2);
+        for (uint32_t i = 0; i < grid.indices.size(); ++i)
+            grid.indices[i] = i;
+        const double share = 1.0 / (double(settings.cells_per_texel) * settings.cells_per_texel);
+        drawn["caustics_photon_share"] = {share};
+    }
     for (size_t i = 0; i < 2; ++i) {
         const LanguageBuild& lang = build.languages[i];
         RenderJob job;
@@ -73,8 +89,8 @@ CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
         job.fragment_reflection = lang.fragment.toolchain.reflection;
         job.width = job.height = settings.texels;
         const ShaderInterface& in = lang.vertex.source.interface; // the fragment reads none
-        job.uniforms = pack_uniforms(in.uniforms, in.parameters, values);
-        job.specialization = specialization_values(in.specialization, values);
+        job.uniforms = pack_uniforms(in.uniforms, in.parameters, drawn);
+        job.specialization = specialization_values(in.specialization, drawn);
         job.timed_draws = settings.timed_draws;
         job.mesh = grid;
         job.additive_blend = true;

@@ -113,7 +113,9 @@ Pipeline create_pipeline(Scope& scope, const RenderJob& job, VkPipelineLayout la
     describe_mesh_input(job.mesh, mesh_input, vertex_input); // no-op without a mesh
     VkPipelineInputAssemblyStateCreateInfo assembly{};
     assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    // Points: the vertex stage writes PointSize (Vulkan leaves the size undefined otherwise).
+    assembly.topology =
+        job.mesh.points ? VK_PRIMITIVE_TOPOLOGY_POINT_LIST : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
 
     VkViewport viewport{0.0f, 0.0f, static_cast<float>(job.width), static_cast<float>(job.height),
                         0.0f, 1.0f};

@@ -324,7 +324,7 @@ GerstnerPoint gerstner_point(Graph& g, Expr grid_xz, Expr time, Expr footprint, 
     const unsigned which = kTangents | (displacement ? kDisplacement : 0u);
     const GerstnerSums s = gerstner_sums(g, grid_xz, time, footprint, which);
     return {displacement ? named(s.displacement, "gerstner_displacement") : Expr(),
-            gerstner_normal_from(g, s)};
+            gerstner_normal_from(g, s), cross(s.tz, s.tx)};
 }
 
 Expr gerstner_normal_gpugems(Graph& g, Expr grid_xz, Expr time, Expr footprint) {

@@ -1,10 +1,14 @@
-// The caustics pass (area ratio, after Evan Wallace's method as Unity HDRP's water ships it):
-// a grid over the water surface, displaced by the same wave nodes as the water shader, each
-// vertex moved to where the sunlight refracted through it meets a flat bottom, and drawn into
-// the caustics texture with additive blending; each fragment adds the area ratio of its
-// triangle, old (the beam's cross-section, projected along the light onto the water plane) over
-// new (on the bottom), clamped to caustics_clamp. Overlapping (folded) triangles add up, as the
-// light they carry does. Both stages are DSL graphs, emitted and validated like the water pass.
+// The caustics passes, generated from the same wave nodes as the water shader: a grid over the
+// water surface, each grid point moved to where the sunlight refracted through the surface
+// meets a flat bottom, drawn into the caustics texture with additive blending.
+// - area_ratio (Evan Wallace's method, as Unity HDRP's water ships it): the grid's triangles;
+//   each fragment adds its triangle's area ratio, old (the beam's cross-section, projected
+//   along the light onto the water plane) over new (on the bottom), clamped to
+//   caustics_clamp. Overlapping (folded) triangles add up, as the light they carry does.
+// - photon_splat (seed 002, section 6): the grid's points as photons, each adding the light
+//   its patch of surface intercepts to the texel it lands in (the seed sums on the CPU; here
+//   the GPU's blending sums).
+// Both stages are DSL graphs, emitted and validated like the water pass.
 #pragma once
 
 #include <string>
@@ -13,21 +17,30 @@
 
 namespace watergen {
 
+enum class CausticsMethod { AreaRatio, PhotonSplat };
+
+const char* to_string(CausticsMethod method);
+// The vertex skeleton under templates/<lang>/: "caustics" or "caustics_photons".
+const char* caustics_skeleton(CausticsMethod method);
+
 struct CausticsPass {
+    CausticsMethod method = CausticsMethod::AreaRatio;
     std::string wave_model; // "sum_of_sines" or "gerstner"
     // Attribute grid_xz (vec2: the undisplaced grid point, m); outputs position (Vulkan clip
-    // space of the caustics texture), landing (vec2, where the ray meets the bottom, m) and
-    // offset (vec2, the beam point minus the landing point, m) and clamp (caustics_clamp).
+    // space of the caustics texture) and, for area_ratio, landing (vec2, where the ray meets
+    // the bottom, m), offset (vec2, the beam point minus the landing point, m) and clamp
+    // (caustics_clamp); for photon_splat, weight (the photon's light in texel units).
     Graph vertex;
-    // Varyings v_landing, v_offset, v_clamp; reads no parameter. Output color (vec4: the clamped
-    // area ratio in rgb, 1 in a).
+    // Reads no parameter: area_ratio's varyings v_landing, v_offset, v_clamp, photon_splat's
+    // v_weight. Output color (vec4: the light added in rgb, 1 in a).
     Graph fragment;
 };
 
 // Parameters beside the wave model's and the water pass's (time, sun_direction, ior_water):
 // caustics_depth (m, the bottom below the water level), caustics_window (vec3: the bottom window
-// x0, z0 and size the texture covers, m) and caustics_clamp (the largest ratio a fragment adds;
-// HDRP's 5). An unknown model records a diagnostic on the vertex graph.
-CausticsPass build_caustics_pass(const std::string& wave_model);
+// x0, z0 and size the texture covers, m); area_ratio's caustics_clamp (the largest ratio a
+// fragment adds; HDRP's 5), photon_splat's caustics_photon_share (grid cell area over texel
+// area). An unknown model records a diagnostic on the vertex graph.
+CausticsPass build_caustics_pass(CausticsMethod method, const std::string& wave_model);
 
 } // namespace watergen

@@ -1,4 +1,4 @@
-// The caustics pass end to end: build both languages of the area-ratio pass, draw its grid into
+// The caustics passes end to end: build both languages of a pass, draw its grid into
 // the caustics texture on the Vulkan runner (additive blending), and the CPU reference set up
 // from the same parameter values, so that the two can be compared texel by texel.
 #pragma once
@@ -23,7 +23,7 @@ struct CausticsBuild {
     bool ok() const { return !has_errors(diagnostics); }
 };
 
-CausticsBuild build_caustics(const std::string& wave_model);
+CausticsBuild build_caustics(CausticsMethod method, const std::string& wave_model);
 
 // Parameter values by name: the pass's defaults (its vertex stage's parameters) overlaid with
 // `values`.
@@ -47,7 +47,8 @@ struct CausticsRender {
 };
 
 // Draws both paths with `values` (caustics_values) over a grid covering the window grown by
-// settings.margin, cells_per_texel grid cells per texel side.
+// settings.margin, cells_per_texel grid cells per texel side (photon_splat: one photon per grid
+// point, caustics_photon_share set to match).
 CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
                                const std::map<std::string, std::vector<double>>& values,
                                const CausticsRenderSettings& settings);

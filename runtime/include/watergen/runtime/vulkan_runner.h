@@ -56,13 +56,14 @@ struct TextureData {
     std::vector<float> rgba;
 };
 
-// An indexed triangle list (vulkan_mesh.cpp): one interleaved float vertex buffer, attribute i
-// at location i with attribute_sizes[i] floats (1..4), and 32-bit indices. No depth buffer:
-// later triangles overwrite earlier ones, so order them back to front.
+// An indexed triangle (or point) list (vulkan_mesh.cpp): one interleaved float vertex buffer,
+// attribute i at location i with attribute_sizes[i] floats (1..4), and 32-bit indices. No depth
+// buffer: later triangles overwrite earlier ones, so order them back to front.
 struct MeshData {
     std::vector<float> vertices;
     std::vector<uint32_t> attribute_sizes;
     std::vector<uint32_t> indices;
+    bool points = false; // the indices name points (a point list), not triangles
     bool empty() const { return indices.empty(); }
 };
 

@@ -89,6 +89,7 @@ Expr gerstner_normal(Graph& g, Expr grid_xz, Expr time, Expr footprint = Expr())
 struct GerstnerPoint {
     Expr displacement;
     Expr normal;
+    Expr area_normal; // dP/dz x dP/dx: the normal scaled by the surface area per grid area
 };
 GerstnerPoint gerstner_point(Graph& g, Expr grid_xz, Expr time, Expr footprint,
                              bool displacement = true);
