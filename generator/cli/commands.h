@@ -81,6 +81,7 @@ int draw_counted_keys(const std::vector<std::string>& keys, const SyntheticScene
                       const std::function<VariantBuild(const Variant&)>& build,
                       const Common& common);
 Runner add_compare_command(CLI::App& app, const Common& common);
+Runner add_caustics_command(CLI::App& app, const Common& common);
 Runner add_pick_command(CLI::App& app, const Common& common);
 // count_draw_costs for a material's shaders (path "" = the built-in material) as a build
 // ships them: composed by the material and, with a scene file, folded under its facts (unless

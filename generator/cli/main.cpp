@@ -70,6 +70,10 @@ int main(int argc, char** argv) {
         "compare", "variants side by side against a reference: images, error per view, draw "
                    "time (interleaved, A/A-checked) and instruction cost");
     runners[compare] = add_compare_command(*compare, common);
+    CLI::App* caustics = app.add_subcommand(
+        "caustics", "the caustics passes (area ratio, photon splatting) on the device against "
+                    "the CPU photon reference: textures, pass time, error, energy");
+    runners[caustics] = add_caustics_command(*caustics, common);
     CLI::App* pick = app.add_subcommand(
         "pick", "per scene, the cheapest variant whose error against the scene's gold stays "
                 "within a budget, by instruction cost; writes it as a material file");
