@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "watergen/ir/specialization.h"
-#include "watergen/ir/uniform_layout.h"
 #include "watergen/render/mesh_render.h"
 
 namespace watergen {
@@ -82,17 +80,8 @@ CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
     }
     for (size_t i = 0; i < 2; ++i) {
         const LanguageBuild& lang = build.languages[i];
-        RenderJob job;
-        job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
-        job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
-        job.vertex_reflection = lang.vertex.toolchain.reflection;
-        job.fragment_reflection = lang.fragment.toolchain.reflection;
-        job.width = job.height = settings.texels;
-        const ShaderInterface& in = lang.vertex.source.interface; // the fragment reads none
-        job.uniforms = pack_uniforms(in.uniforms, in.parameters, drawn);
-        job.specialization = specialization_values(in.specialization, drawn);
-        job.timed_draws = settings.timed_draws;
-        job.mesh = grid;
+        RenderJob job =
+            mesh_job(lang, grid, settings.texels, settings.texels, drawn, settings.timed_draws);
         job.additive_blend = true;
         out.gpu[i] = runner.render(job);
         if (!out.gpu[i].ok) {

@@ -1,5 +1,7 @@
 #include "watergen/render/mesh_render.h"
 
+#include "watergen/ir/specialization.h"
+#include "watergen/ir/uniform_layout.h"
 #include "watergen/ir/vertex_emitter.h"
 
 namespace watergen {
@@ -41,6 +43,23 @@ std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& 
         out[i].fragment = build_stage(std::move(frag), diagnostics);
     }
     return out;
+}
+
+RenderJob mesh_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t width, uint32_t height,
+                   const std::map<std::string, std::vector<double>>& values, uint32_t timed_draws) {
+    RenderJob job;
+    job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
+    job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
+    job.vertex_reflection = lang.vertex.toolchain.reflection;
+    job.fragment_reflection = lang.fragment.toolchain.reflection;
+    job.width = width;
+    job.height = height;
+    const ShaderInterface& in = lang.vertex.source.interface;
+    job.uniforms = pack_uniforms(in.uniforms, in.parameters, values);
+    job.specialization = specialization_values(in.specialization, values);
+    job.timed_draws = timed_draws;
+    job.mesh = mesh;
+    return job;
 }
 
 MeshBuild build_mesh(const std::string& wave_model) {
@@ -86,19 +105,8 @@ MeshRender render_mesh(VulkanRunner& runner, const MeshBuild& build, const Synth
     runner.clear_validation_messages();
     for (size_t i = 0; i < 2; ++i) {
         const LanguageBuild& lang = build.languages[i];
-        RenderJob job;
-        job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
-        job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
-        job.vertex_reflection = lang.vertex.toolchain.reflection;
-        job.fragment_reflection = lang.fragment.toolchain.reflection;
-        job.width = settings.width;
-        job.height = settings.height;
-        // Only the vertex stage reads parameters (MeshShader::fragment reads none).
-        const ShaderInterface& in = lang.vertex.source.interface;
-        job.uniforms = pack_uniforms(in.uniforms, in.parameters, values);
-        job.specialization = specialization_values(in.specialization, values);
-        job.timed_draws = settings.timed_draws;
-        job.mesh = grid;
+        const RenderJob job =
+            mesh_job(lang, grid, settings.width, settings.height, values, settings.timed_draws);
         out.gpu[i] = runner.render(job);
         if (!out.gpu[i].ok) {
             out.error = std::string(to_string(lang.language)) + " path: " + out.gpu[i].error;

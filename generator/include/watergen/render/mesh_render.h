@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <string>
 
 #include "watergen/pipeline/variant_build.h"
@@ -26,6 +27,12 @@ std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& 
                                               const std::string& stage_name,
                                               const std::string& stem, const std::string& key,
                                               Diagnostics& diagnostics);
+
+// The runner job of one language of a two-stage build drawing `mesh` at width x height, its
+// parameters packed from `values` over their defaults. Only the vertex stage may read
+// parameters (the pipeline has the one parameter block).
+RenderJob mesh_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t width, uint32_t height,
+                   const std::map<std::string, std::vector<double>>& values, uint32_t timed_draws);
 
 // build_two_stages of build_mesh_shader(wave_model).
 MeshBuild build_mesh(const std::string& wave_model);
