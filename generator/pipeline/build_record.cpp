@@ -1,10 +1,13 @@
 #include "watergen/pipeline/build_record.h"
 
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <fcntl.h>
 #include <fstream>
 #include <sstream>
-
-#include <xxhash.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
@@ -26,6 +29,31 @@ constexpr size_t kMaxRecordBytes = size_t(512) << 20;
 std::optional<std::string> read_whole(const fs::path& path, size_t limit) {
     const SafeRead r = read_regular_file(path, limit);
     return r.bytes;
+}
+
+// Whether `path` is a regular file (not a link, FIFO or device: never followed, never waited
+// on) of exactly `size` bytes with `digest`. One open and one fstat, a size that differs costs
+// no read, and the bytes go into the caller's reused buffer: no allocation per file.
+bool holds_file(const fs::path& path, uint64_t size, const std::string& digest,
+                std::vector<char>& buffer) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return false;
+    struct stat st {};
+    bool same =
+        ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) == size;
+    if (same) {
+        buffer.resize(std::max<size_t>(buffer.size(), size));
+        size_t got = 0;
+        while (got < size) {
+            const ssize_t n = ::read(fd, buffer.data() + got, size - got);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) break;
+            got += static_cast<size_t>(n);
+        }
+        same = got == size && file_digest(std::string_view(buffer.data(), size)) == digest;
+    }
+    ::close(fd);
+    return same;
 }
 
 } // namespace
@@ -51,11 +79,13 @@ std::optional<std::string> build_inputs_hash(const std::string& material_path,
 
 const std::string& executable_digest() {
     static const std::string digest = [] {
-        std::ifstream in("/proc/self/exe", std::ios::binary);
-        std::stringstream ss;
-        ss << in.rdbuf();
+        std::ifstream in("/proc/self/exe", std::ios::binary | std::ios::ate);
+        std::string bytes(in ? static_cast<size_t>(in.tellg()) : 0, '\0');
+        in.seekg(0);
         // Unreadable: a digest no record matches, so every build runs.
-        return in ? file_digest(ss.str()) : std::string("unreadable executable");
+        if (!in || !in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+            return std::string("unreadable executable");
+        return file_digest(bytes);
     }();
     return digest;
 }
@@ -122,10 +152,8 @@ bool outputs_intact(const fs::path& out, const BuildRecord& record, unsigned thr
     parallel_for(record.files.size(), threads, [&](size_t i) {
         if (!intact) return;
         const RecordedFile& f = record.files[i];
-        // read_regular_file checks the size before it reads: a changed size costs no read.
-        const SafeRead r = read_regular_file(out / f.path, f.size);
-        if (!r.bytes || r.bytes->size() != f.size || file_digest(*r.bytes) != f.digest)
-            intact = false;
+        thread_local std::vector<char> buffer;
+        if (!holds_file(out / f.path, f.size, f.digest, buffer)) intact = false;
     });
     return intact;
 }
