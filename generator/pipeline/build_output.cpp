@@ -58,9 +58,13 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
         plan.scenes.push_back(std::move(*p));
     }
     if (plan.scenes.empty()) {
-        enumerate(material.space, [&](const Variant& v) { plan.unpruned.push_back(v); });
-        std::sort(plan.unpruned.begin(), plan.unpruned.end(),
-                  [](const Variant& a, const Variant& b) { return a.key() < b.key(); });
+        // Sorted by key, each key made once (the full space has 238,080).
+        std::vector<std::pair<std::string, Variant>> keyed;
+        enumerate(material.space, [&](const Variant& v) { keyed.emplace_back(v.key(), v); });
+        std::sort(keyed.begin(), keyed.end(),
+                  [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (auto& [key, v] : keyed)
+            plan.unpruned.push_back(std::move(v));
         add_jobs(plan, kUnprunedScene, plan.unpruned, nullptr, material.targets, mode);
         plan.manifest_scenes.push_back({kUnprunedScene, nullptr, plan.unpruned.size()});
     }
