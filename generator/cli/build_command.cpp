@@ -95,7 +95,13 @@ Runner add_build_command(CLI::App& app, const Common& common) {
     app.add_option("--shard", o->shard,
                    "build only shard I of N (I/N, 1 <= I <= N): the variants whose key hashes to "
                    "it, plus shard.json; `watergen merge` joins the N outputs into what one build "
-                   "writes (permutations mode)");
+                   "writes (permutations mode)")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                std::string why;
+                return parse_shard(text, &why) ? std::string() : why;
+            },
+            "I/N"));
     return [o, &common]() {
         BuildRequest request;
         request.mode = *parse_build_mode(o->mode);
@@ -108,12 +114,6 @@ Runner add_build_command(CLI::App& app, const Common& common) {
             return kUsage;
         }
         if (!o->shard.empty()) {
-            std::string why;
-            const auto shard = parse_shard(o->shard, &why);
-            if (!shard) {
-                std::fprintf(stderr, "watergen: error: --shard: %s\n", why.c_str());
-                return kUsage;
-            }
             if (request.mode != BuildMode::Permutations) {
                 std::fprintf(stderr,
                              "watergen: error: --shard: shards a permutations build; expected "
@@ -121,7 +121,7 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                              o->mode.c_str());
                 return kUsage;
             }
-            request.shard = *shard;
+            request.shard = *parse_shard(o->shard, nullptr);
         }
         // Hashed before they are loaded: a file changed in between makes the record stale,
         // never wrong.
