@@ -61,6 +61,9 @@ std::string read_shard(const fs::path& dir, ShardOutput& s) {
         j.value("shapes", OJson()).is_array() && j.value("files", OJson()).is_array();
     if (!shaped) return where + "shard.json is not one watergen build --shard wrote";
     s.shard = {j["index"].get<unsigned>(), j["count"].get<unsigned>()};
+    if (s.shard.index < 1 || s.shard.index > s.shard.count)
+        return where + "shard.json names shard " + std::to_string(s.shard.index) + "/" +
+               std::to_string(s.shard.count) + "; expected I/N with 1 <= I <= N";
     s.toolchain = j["toolchain"];
     s.inputs = j["inputs"];
     s.variants = j["variants"];
