@@ -137,7 +137,7 @@ std::string content_hash(const std::vector<std::string>& parts) {
     return hex16(h);
 }
 
-std::string file_digest(const std::string& bytes) {
+std::string file_digest(std::string_view bytes) {
     const XXH128_hash_t h = XXH3_128bits(bytes.data(), bytes.size());
     return hex16(h.high64) + hex16(h.low64);
 }

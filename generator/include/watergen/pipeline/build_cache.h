@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace watergen {
@@ -25,7 +26,7 @@ const std::string& toolchain_fingerprint();
 std::string content_hash(const std::vector<std::string>& parts);
 
 // XXH3-128 of one file's bytes, as 32 lower-case hex digits: what an entry records per file.
-std::string file_digest(const std::string& bytes);
+std::string file_digest(std::string_view bytes);
 // One file as an entry stores it: "<path>\n<size>\n<file_digest>\n<bytes>".
 std::string cache_record(const std::string& path, const std::string& bytes);
 

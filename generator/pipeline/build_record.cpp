@@ -1,0 +1,185 @@
+#include "watergen/pipeline/build_record.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <fcntl.h>
+#include <fstream>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "watergen/pipeline/output_target.h"
+#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/parallel_build.h"
+#include "watergen/pipeline/safe_read.h"
+
+namespace watergen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kMagic = "watergen-record 1";
+
+// Description files are at most 4 MiB (json_source.h); a record file far below this.
+constexpr size_t kMaxInputBytes = size_t(8) << 20;
+constexpr size_t kMaxRecordBytes = size_t(512) << 20;
+
+std::optional<std::string> read_whole(const fs::path& path, size_t limit) {
+    const SafeRead r = read_regular_file(path, limit);
+    return r.bytes;
+}
+
+// Whether `name` in the directory `dir` is a regular file (not a link, FIFO or device: never
+// followed, never waited on) of exactly `size` bytes with `digest`. One open and one fstat, a size
+// that differs costs no read, and the bytes go into the caller's reused buffer: no allocation per
+// file.
+bool holds_file(int dir, const char* name, uint64_t size, const std::string& digest,
+                std::vector<char>& buffer) {
+    const int fd = ::openat(dir, name, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return false;
+    struct stat st {};
+    bool same =
+        ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) == size;
+    if (same) {
+        buffer.resize(std::max<size_t>(buffer.size(), size));
+        size_t got = 0;
+        while (got < size) {
+            const ssize_t n = ::read(fd, buffer.data() + got, size - got);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) break;
+            got += static_cast<size_t>(n);
+        }
+        same = got == size && file_digest(std::string_view(buffer.data(), size)) == digest;
+    }
+    ::close(fd);
+    return same;
+}
+
+} // namespace
+
+std::optional<std::string> build_inputs_hash(const std::string& material_path,
+                                             const std::vector<std::string>& scene_paths,
+                                             const std::string& options) {
+    std::vector<std::string> parts{"material"};
+    if (!material_path.empty()) {
+        auto bytes = read_whole(material_path, kMaxInputBytes);
+        if (!bytes) return std::nullopt;
+        parts.push_back(std::move(*bytes));
+    }
+    for (const std::string& path : scene_paths) {
+        auto bytes = read_whole(path, kMaxInputBytes);
+        if (!bytes) return std::nullopt;
+        parts.push_back("scene " + fs::path(path).filename().string());
+        parts.push_back(std::move(*bytes));
+    }
+    parts.push_back("options " + options);
+    return content_hash(parts);
+}
+
+const std::string& executable_digest() {
+    static const std::string digest = [] {
+        std::ifstream in("/proc/self/exe", std::ios::binary | std::ios::ate);
+        std::string bytes(in ? static_cast<size_t>(in.tellg()) : 0, '\0');
+        in.seekg(0);
+        // Unreadable: a digest no record matches, so every build runs.
+        if (!in || !in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+            return std::string("unreadable executable");
+        return file_digest(bytes);
+    }();
+    return digest;
+}
+
+std::string record_key(const std::string& inputs_hash, const std::string& shard) {
+    return content_hash({inputs_hash, shard, executable_digest()}); // with the toolchain's
+}
+
+fs::path record_file(const BuildCache& cache, const fs::path& out) {
+    return cache.dir() / "records" / (content_hash({normal_output_path(out).string()}) + ".record");
+}
+
+BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
+                        const FileMap& files) {
+    BuildRecord r{key, variants, shaders, {}};
+    for (const auto& [path, bytes] : files)
+        r.files.push_back({path, bytes.size(), file_digest(bytes)});
+    return r;
+}
+
+std::string record_text(const BuildRecord& r) {
+    std::ostringstream s;
+    s << kMagic << "\nkey " << r.key << "\nvariants " << r.variants << "\nshaders " << r.shaders
+      << "\nfiles " << r.files.size() << "\n";
+    for (const RecordedFile& f : r.files)
+        s << f.size << ' ' << f.digest << ' ' << f.path << '\n';
+    return s.str();
+}
+
+std::optional<BuildRecord> parse_record(const std::string& text) {
+    std::istringstream in(text);
+    std::string line, word;
+    BuildRecord r;
+    size_t count = 0;
+    if (!std::getline(in, line) || line != kMagic) return std::nullopt;
+    if (!(in >> word >> r.key) || word != "key") return std::nullopt;
+    if (!(in >> word >> r.variants) || word != "variants") return std::nullopt;
+    if (!(in >> word >> r.shaders) || word != "shaders") return std::nullopt;
+    if (!(in >> word >> count) || word != "files" || in.get() != '\n') return std::nullopt;
+    for (size_t i = 0; i < count; ++i) {
+        RecordedFile f;
+        if (!(in >> f.size >> f.digest) || in.get() != ' ' || !std::getline(in, f.path) ||
+            !is_plain_relative_path(f.path))
+            return std::nullopt;
+        r.files.push_back(std::move(f));
+    }
+    if (in.peek() != std::char_traits<char>::eof()) return std::nullopt;
+    return r;
+}
+
+std::optional<BuildRecord> read_record(const fs::path& file) {
+    auto text = read_whole(file, kMaxRecordBytes);
+    return text ? parse_record(*text) : std::nullopt;
+}
+
+void store_record(const fs::path& file, const BuildRecord& record) {
+    std::error_code ec;
+    fs::create_directories(file.parent_path(), ec);
+    if (!ec) write_file_atomically(file, record_text(record));
+}
+
+bool outputs_intact(const fs::path& out, const BuildRecord& record, unsigned threads) {
+    // Files by directory (the sorted paths keep each directory's files together): each
+    // directory opened once, its files opened relative to it, so no path is walked twice.
+    std::vector<std::pair<size_t, size_t>> dirs; // [begin, end) in record.files
+    auto parent = [&](size_t i) {
+        const std::string& p = record.files[i].path;
+        return std::string_view(p).substr(0, p.rfind('/') + 1);
+    };
+    for (size_t i = 0; i < record.files.size(); ++i)
+        if (i == 0 || parent(i) != parent(i - 1))
+            dirs.push_back({i, i + 1});
+        else
+            dirs.back().second = i + 1;
+    std::atomic<bool> intact{true};
+    parallel_for(dirs.size(), threads, [&](size_t d) {
+        if (!intact) return;
+        const auto [begin, end] = dirs[d];
+        const std::string_view sub = parent(begin); // "" or "a/b/"
+        const fs::path dir = sub.empty() ? out : out / std::string(sub.substr(0, sub.size() - 1));
+        const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        thread_local std::vector<char> buffer;
+        for (size_t i = begin; fd >= 0 && intact && i < end; ++i) {
+            const RecordedFile& f = record.files[i];
+            const char* name = f.path.c_str() + parent(i).size();
+            if (!holds_file(fd, name, f.size, f.digest, buffer)) intact = false;
+        }
+        if (fd < 0)
+            intact = false;
+        else
+            ::close(fd);
+    });
+    return intact;
+}
+
+} // namespace watergen
