@@ -60,8 +60,9 @@ Runner add_bench_build_command(CLI::App& app, const Common& common) {
         }
         std::printf("cold: empty cache, every distinct shader through glslang (GLSL + HLSL), "
                     "spirv-val, spirv-opt, SPIRV-Cross "
-                    "and reflection; warm: the same build again (no-op: every variant from the "
-                    "cache); %u hardware threads\n",
+                    "and reflection; warm: the same build again (every variant from the cache); "
+                    "no-op: again with the build record (nothing changed: the output's sizes and "
+                    "hashes verified, no IR work); %u hardware threads\n",
                     hardware_threads());
         if (!write_bench_files(o->out, "build", csv, json.dump(2) + "\n")) return kFailed;
         return kOk;

@@ -7,6 +7,8 @@
 
 #include "commands.h"
 #include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build_record.h"
+#include "watergen/pipeline/depfile.h"
 
 namespace watergen::cli {
 
@@ -57,6 +59,8 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         bool quiet = false;
         std::string mode = "permutations";
         bool freeze = false;
+        std::string depfile;
+        std::string shard;
     };
     auto o = std::make_shared<Options>();
     app.add_option("material", o->material,
@@ -85,6 +89,13 @@ Runner add_build_command(CLI::App& app, const Common& common) {
     app.add_flag("--freeze", o->freeze,
                  "with --mode specialized: also write each variant's SPIR-V with its selectors "
                  "frozen offline by spirv-opt (<shader>/<lang>/frozen/<variant>.frag.spv)");
+    app.add_option("--depfile", o->depfile,
+                   "also write a Makefile-style dependency file: target <out>/manifest.json, "
+                   "prerequisites the material and scene files (for make, ninja, CMake DEPFILE)");
+    app.add_option("--shard", o->shard,
+                   "build only shard I of N (I/N, 1 <= I <= N): the variants whose key hashes to "
+                   "it, plus shard.json; `watergen merge` joins the N outputs into what one build "
+                   "writes (permutations mode)");
     return [o, &common]() {
         BuildRequest request;
         request.mode = *parse_build_mode(o->mode);
@@ -96,9 +107,41 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                          o->mode.c_str());
             return kUsage;
         }
+        if (!o->shard.empty()) {
+            std::string why;
+            const auto shard = parse_shard(o->shard, &why);
+            if (!shard) {
+                std::fprintf(stderr, "watergen: error: --shard: %s\n", why.c_str());
+                return kUsage;
+            }
+            if (request.mode != BuildMode::Permutations) {
+                std::fprintf(stderr,
+                             "watergen: error: --shard: shards a permutations build; expected "
+                             "--mode permutations, got --mode %s\n",
+                             o->mode.c_str());
+                return kUsage;
+            }
+            request.shard = *shard;
+        }
+        // Hashed before they are loaded: a file changed in between makes the record stale,
+        // never wrong.
+        request.inputs_hash =
+            build_inputs_hash(o->material, o->scenes, o->mode + (o->freeze ? " freeze" : ""))
+                .value_or("");
         if (!load_material_and_scenes(o->material, o->scenes, request.material, request.scenes,
                                       common))
             return kUsage;
+        // Written before the build: it depends on the inputs only, and a depfile that cannot be
+        // written stops the build before anything else is.
+        if (!o->depfile.empty()) {
+            std::vector<std::string> inputs = o->scenes;
+            if (!o->material.empty()) inputs.insert(inputs.begin(), o->material);
+            const std::string target = (std::filesystem::path(o->out) / "manifest.json").string();
+            if (auto e = write_depfile(o->depfile, target, inputs)) {
+                std::fprintf(stderr, "watergen: error: --depfile: %s\n", e->c_str());
+                return kFailed;
+            }
+        }
         request.out = o->out;
         request.options.threads = o->jobs;
         if (!o->no_cache)
@@ -116,6 +159,13 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         print_diagnostics(s.diagnostics, common);
         if (s.bad_input) return kUsage;
         const unsigned threads = o->jobs ? o->jobs : hardware_threads();
+        if (s.up_to_date) {
+            std::printf("%s\n", fmt::format("build: {} variants up to date ({} files verified, "
+                                            "nothing rebuilt) in {:.3f} s -> {}",
+                                            s.variants, s.files, s.seconds, o->out)
+                                    .c_str());
+            return kOk;
+        }
         const std::string rejected =
             s.cache_rejected == 0
                 ? std::string()

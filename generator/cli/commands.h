@@ -101,6 +101,7 @@ bool load_material_and_scenes(const std::string& material_path,
 // --mode permutations|specialized|branching (build, bench modes).
 void add_mode_option(CLI::App& app, std::string& mode);
 Runner add_build_command(CLI::App& app, const Common& common);
+Runner add_merge_command(CLI::App& app);
 Runner add_explain_command(CLI::App& app, const Common& common);
 Runner add_bench_build_command(CLI::App& bench, const Common& common);
 Runner add_bench_prune_command(CLI::App& bench, const Common& common);

@@ -83,6 +83,10 @@ int main(int argc, char** argv) {
         "build", "build every variant a material's scenes need: pruned, folded, validated, "
                  "cross-compiled, cached, in parallel; writes manifest.json");
     runners[build] = add_build_command(*build, common);
+    CLI::App* merge = app.add_subcommand(
+        "merge", "join the outputs of `watergen build --shard I/N` (I = 1..N) into exactly what "
+                 "one build writes");
+    runners[merge] = add_merge_command(*merge);
     CLI::App* explain = app.add_subcommand(
         "explain", "which variants each scene skips and which terms it folds away, and why");
     runners[explain] = add_explain_command(*explain, common);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fcntl.h>
 
+#include "watergen/pipeline/build_record.h"
 #include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
 
@@ -200,14 +201,63 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
 
 } // namespace
 
+namespace {
+
+// The summary of a build that found its record matching and its output intact; nullopt when
+// it must run.
+std::optional<BuildSummary> up_to_date(const BuildRequest& request, const std::string& key,
+                                       const fs::path& record) {
+    const auto r = read_record(record);
+    if (!r || r->key != key || !outputs_intact(request.out, *r, request.options.threads))
+        return std::nullopt;
+    BuildSummary s;
+    s.up_to_date = true;
+    s.variants = r->variants;
+    s.shaders = r->shaders;
+    s.files = r->files.size();
+    return s;
+}
+
+// The plan's jobs of the shard only (the plan's scenes stay whole: the manifest counts them).
+void keep_shard(BuildPlan& plan, const Shard& shard) {
+    std::vector<BuildJob> kept;
+    for (BuildJob& job : plan.jobs)
+        if (in_shard(shard, job_key(job))) kept.push_back(std::move(job));
+    plan.jobs = std::move(kept);
+}
+
+} // namespace
+
 BuildSummary build_material(const BuildRequest& request) {
     const auto t0 = std::chrono::steady_clock::now();
+    auto elapsed = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
+    // Nothing changed and the output is intact: no IR work, the output untouched.
+    const bool recorded = !request.inputs_hash.empty() && request.options.cache.enabled();
+    const std::string key =
+        recorded ? record_key(request.inputs_hash, shard_text(request.shard)) : "";
+    const fs::path record = recorded ? record_file(request.options.cache, request.out) : fs::path();
+    if (recorded)
+        if (auto done = up_to_date(request, key, record)) {
+            done->seconds = elapsed();
+            return *done;
+        }
     BuildSummary s;
+    if (request.shard.sharded() && request.mode != BuildMode::Permutations) {
+        s.bad_input = true;
+        s.diagnostics.push_back({Severity::Error, "", 0, 0, "",
+                                 "--shard: shards permutations builds; expected --mode "
+                                 "permutations, got --mode " +
+                                     std::string(to_string(request.mode))});
+        return s;
+    }
     auto plan = plan_build(request.material, request.scenes, s.diagnostics, request.mode);
     if (!plan) {
         s.bad_input = true;
         return s;
     }
+    if (request.shard.sharded()) keep_shard(*plan, request.shard);
     // Refuse an output that is not ours before spending time on the build.
     if (accepted_output(request.out, s).empty()) return s;
     const std::vector<JobResult> results =
@@ -226,13 +276,24 @@ BuildSummary build_material(const BuildRequest& request) {
                 ? manifest_json(request.material, plan->manifest_scenes, plan->jobs, results)
                 : modes_manifest_json(request.material, request.mode, request.freeze,
                                       plan->manifest_scenes, plan->jobs, results);
+        if (request.shard.sharded())
+            files[kShardFile] = shard_json(request.shard, request.inputs_hash, plan->jobs, results,
+                                           s.variants, files);
         s.files = files.size();
-        const fs::path out = accepted_output(request.out, s); // again: the build took a while
-        if (auto failure = out.empty() ? std::nullopt : publish(out, files))
+        if (auto failure = publish_output(request.out, files))
             s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
+        else if (recorded)
+            store_record(record, make_record(key, s.variants, s.shaders, files));
     }
-    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    s.seconds = elapsed();
     return s;
+}
+
+std::optional<std::string> publish_output(const fs::path& out, const FileMap& files) {
+    BuildSummary refused;
+    const fs::path resolved = accepted_output(out, refused); // again: the build took a while
+    if (resolved.empty()) return refused.diagnostics.front().message;
+    return publish(resolved, files);
 }
 
 } // namespace watergen

@@ -49,6 +49,11 @@ std::string refusal_for_directory(const fs::path& dir) {
 
 } // namespace
 
+fs::path normal_output_path(const fs::path& out) {
+    std::error_code ec;
+    return normal_absolute(out, ec);
+}
+
 bool is_watergen_manifest(const std::string& bytes) {
     const auto j = nlohmann::json::parse(bytes, nullptr, false);
     if (!j.is_object() || !j.contains("generator") || !j["generator"].is_string()) return false;

@@ -1,5 +1,6 @@
 // Build benchmark as a library call (`watergen bench build` prints it): variants per second of
-// `watergen build`, cold (empty cache) and warm (a no-op rebuild from a full cache), on one
+// `watergen build`, cold (empty cache), warm (the build again, every variant from the cache) and
+// no-op (again, with the build record: nothing changed, the output verified, no IR work), on one
 // thread and on all, for the full space and for a pruned example (a material and its scenes).
 //
 // The full space is far too large to compile in a benchmark, so for it the bench measures

@@ -11,6 +11,7 @@
 
 #include "watergen/pipeline/manifest.h"
 #include "watergen/pipeline/parallel_build.h"
+#include "watergen/pipeline/sharded_build.h"
 #include "watergen/plan/scene_pruning.h"
 
 namespace watergen {
@@ -42,7 +43,8 @@ struct BuildSummary {
     size_t same = 0;     // same shader as another variant of the scene (not built again)
     size_t failed = 0;
     size_t cache_rejected = 0; // cache entries that failed verification: evicted and rebuilt
-    size_t files = 0;          // written
+    size_t files = 0;          // written (or, up to date, verified)
+    bool up_to_date = false;   // the record matched and the output was intact: nothing done
     double seconds = 0;
     bool bad_input =
         false; // the error is in the description files or the output path (exit 2), not in a shader
@@ -59,8 +61,18 @@ struct BuildRequest {
     // Specialized mode: also write each variant's SPIR-V with its selectors frozen offline
     // (freeze_specialization(), spirv_tools_stage.h) as <shader>/<lang>/frozen/<variant>.frag.spv.
     bool freeze = false;
+    // What the material and scene files hash to (build_inputs_hash(), build_record.h). With a
+    // cache, a build whose record matches and whose output is intact does nothing, and a
+    // successful build stores its record. Empty: no record.
+    std::string inputs_hash = "";
+    // Only the jobs of this shard (permutations mode), and shard.json beside the manifest.
+    Shard shard = {};
 };
 
 BuildSummary build_material(const BuildRequest& request);
+
+// Puts `files` in place of the output directory `out` as one atomic step, if `out` may be
+// replaced (check_output_target()); the error otherwise, and `out` untouched.
+std::optional<std::string> publish_output(const std::filesystem::path& out, const FileMap& files);
 
 } // namespace watergen

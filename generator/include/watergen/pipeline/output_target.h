@@ -17,6 +17,8 @@ struct OutputTarget {
 };
 
 OutputTarget check_output_target(const std::filesystem::path& out);
+// `out` absolute and normal, without a trailing separator ("out/" and "./out" are "$PWD/out").
+std::filesystem::path normal_output_path(const std::filesystem::path& out);
 
 // Whether `bytes` are a manifest.json that watergen wrote (a JSON object whose "generator"
 // names watergen).

@@ -1,0 +1,38 @@
+// watergen merge OUT SHARD_DIR...: the outputs of `watergen build --shard I/N` for I = 1..N
+// joined into exactly what one build writes.
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "commands.h"
+#include "watergen/pipeline/sharded_build.h"
+
+namespace watergen::cli {
+
+Runner add_merge_command(CLI::App& app) {
+    struct Options {
+        std::string out;
+        std::vector<std::string> shards;
+    };
+    auto o = std::make_shared<Options>();
+    app.add_option("out", o->out,
+                   "output directory, replaced as a whole as `watergen build --out` replaces it")
+        ->required();
+    app.add_option("shards", o->shards,
+                   "the output directories of `watergen build --shard I/N`, one for each I")
+        ->required();
+    return [o]() {
+        const std::vector<std::filesystem::path> dirs(o->shards.begin(), o->shards.end());
+        const MergeResult m = merge_shards(o->out, dirs);
+        if (!m.error.empty()) {
+            std::fprintf(stderr, "watergen: error: merge: %s; nothing written\n", m.error.c_str());
+            return m.write_failed ? kFailed : kUsage;
+        }
+        std::printf("%s\n", fmt::format("merge: {} shards, {} variants -> {} ({} files)", m.shards,
+                                        m.variants, o->out, m.files)
+                                .c_str());
+        return kOk;
+    };
+}
+
+} // namespace watergen::cli

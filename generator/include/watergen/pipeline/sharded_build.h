@@ -1,0 +1,52 @@
+// Builds spread over machines: `watergen build --shard I/N` builds the variants whose key hashes
+// to slice I of N, and `watergen merge` puts the N outputs together into exactly the output one
+// build writes (the same manifest bytes, the same files). Each shard's output carries shard.json:
+// which shard it is, what it was built from (the inputs hash and toolchain versions, which must
+// agree across shards), the shape hash of each of its variants and every file with its size
+// and hash. Two variants of a scene with the same shape are one shader; a single build writes
+// it once, under the first key, and so does the merge, whichever shards the two landed in.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "watergen/pipeline/build_cache.h"
+#include "watergen/pipeline/parallel_build.h"
+
+namespace watergen {
+
+struct Shard {
+    unsigned index = 0, count = 0; // 1-based; count 0: not sharded
+    bool sharded() const { return count > 0; }
+};
+
+// "I/N" with 1 <= I <= N; nullopt and *error (what was given, what is expected) otherwise.
+std::optional<Shard> parse_shard(const std::string& text, std::string* error);
+// "I/N", or "" when not sharded.
+std::string shard_text(const Shard& shard);
+// Whether the job with this key belongs to the shard: xxHash64 of the key, modulo N, is I - 1.
+bool in_shard(const Shard& shard, const std::string& key);
+
+// The shard.json a shard's output carries (its `files` are the output's, manifest included).
+std::string shard_json(const Shard& shard, const std::string& inputs_hash,
+                       const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                       size_t variants, const FileMap& files);
+
+constexpr const char* kShardFile = "shard.json";
+
+struct MergeResult {
+    std::string error;         // non-empty: nothing was written
+    bool write_failed = false; // the shards were fine, the output could not be written
+    size_t shards = 0, variants = 0, files = 0;
+};
+
+// Merges the outputs of shards 1..N of one build into `out` (replaced as a whole, as a build
+// replaces it). Refused, with nothing written: a directory without shard.json, shards of
+// different inputs or toolchains, a shard missing or given twice, a variant in two shards, a
+// file that does not match its recorded size and hash.
+MergeResult merge_shards(const std::filesystem::path& out,
+                         const std::vector<std::filesystem::path>& shards);
+
+} // namespace watergen

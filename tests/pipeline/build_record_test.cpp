@@ -1,0 +1,128 @@
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include "build_test_support.h"
+#include "watergen/pipeline/build_record.h"
+
+using namespace watergen;
+using namespace watergen::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> build_args(const fs::path& tmp, const std::string& out,
+                                    const std::vector<std::string>& scenes) {
+    std::vector<std::string> args = {"build",
+                                     "-q",
+                                     source_dir() + "/examples/materials/default.json",
+                                     "--out",
+                                     (tmp / out).string(),
+                                     "--cache",
+                                     (tmp / "cache").string()};
+    for (const auto& s : scenes)
+        args.insert(args.end(), {"--scene", s});
+    return args;
+}
+
+// Modification time of a file in nanoseconds: an untouched output keeps it.
+long long mtime_ns(const fs::path& p) {
+    struct stat st {};
+    REQUIRE(::stat(p.c_str(), &st) == 0);
+    return st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec;
+}
+
+} // namespace
+
+TEST_CASE("records_round_trip_and_refuse_anything_else", "[record]") {
+    const BuildRecord r =
+        make_record("0123456789abcdef", 2, 2, {{"a/b.spv", "xyz"}, {"m.json", ""}});
+    const auto back = parse_record(record_text(r));
+    REQUIRE(back);
+    CHECK(back->key == r.key);
+    CHECK(back->variants == 2);
+    REQUIRE(back->files.size() == 2);
+    CHECK(back->files[0].path == "a/b.spv");
+    CHECK(back->files[0].size == 3);
+    CHECK(back->files[0].digest == file_digest("xyz"));
+    CHECK_FALSE(parse_record(record_text(r) + "extra"));
+    CHECK_FALSE(parse_record(record_text(r).substr(0, 60)));
+    std::string escaping = record_text(make_record("k", 1, 1, {{"x", "1"}}));
+    escaping.replace(escaping.rfind(" x"), 2, " ../x");
+    CHECK_FALSE(parse_record(escaping));
+}
+
+// The second build with nothing changed verifies the output and does nothing else; a changed
+// byte of an output file, a missing file or a changed scene each rebuild.
+TEST_CASE("an_unchanged_build_does_nothing_and_a_damaged_output_is_rebuilt", "[record]") {
+    const TempDir tmp("record");
+    const std::string scene = (tmp.path / "open_ocean.json").string();
+    fs::copy_file(source_dir() + "/examples/scenes/open_ocean.json", scene);
+    const auto args = build_args(tmp.path, "out", {scene});
+    const fs::path out = tmp.path / "out";
+    const WatergenRun first = run_watergen(args);
+    REQUIRE(first.exit_code == 0);
+    CHECK(first.out.find("16 variants (16 built") != std::string::npos);
+    const auto tree = read_tree(out);
+    const long long manifest_time = mtime_ns(out / "manifest.json");
+
+    const WatergenRun again = run_watergen(args);
+    REQUIRE(again.exit_code == 0);
+    INFO(again.out);
+    CHECK(again.out.find("build: 16 variants up to date (" + std::to_string(tree.size()) +
+                         " files verified, nothing rebuilt)") != std::string::npos);
+    CHECK(read_tree(out) == tree);
+    CHECK(mtime_ns(out / "manifest.json") == manifest_time);
+
+    // One byte changed in place, the size kept: found by the hash, rebuilt from the cache.
+    std::string victim;
+    for (const auto& [path, bytes] : tree)
+        if (path.size() > 4 && path.compare(path.size() - 4, 4, ".spv") == 0) victim = path;
+    REQUIRE(!victim.empty());
+    {
+        std::fstream f(out / victim, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(20);
+        f.put(static_cast<char>(tree.at(victim)[20] ^ 1));
+    }
+    const WatergenRun damaged = run_watergen(args);
+    REQUIRE(damaged.exit_code == 0);
+    CHECK(damaged.out.find("up to date") == std::string::npos);
+    CHECK(damaged.out.find("16 cached") != std::string::npos);
+    CHECK(read_tree(out) == tree);
+
+    fs::remove(out / "manifest.json");
+    const WatergenRun missing = run_watergen(args);
+    CHECK(missing.out.find("up to date") == std::string::npos);
+    CHECK(read_tree(out) == tree);
+    CHECK(run_watergen(args).out.find("up to date") != std::string::npos);
+
+    std::ofstream(scene, std::ios::app) << " "; // same facts, other bytes: runs, same output
+    const WatergenRun touched = run_watergen(args);
+    CHECK(touched.out.find("up to date") == std::string::npos);
+    CHECK(read_tree(out) == tree);
+}
+
+// Two builds at once on one cache directory (cold): both succeed with the same bytes, and a
+// third build takes every variant from the entries they stored.
+TEST_CASE("two_concurrent_builds_share_one_cache_directory", "[record]") {
+    const TempDir tmp("shared-cache");
+    const auto scenes = example_scene_paths();
+    const pid_t a = start_watergen(build_args(tmp.path, "a", scenes));
+    const pid_t b = start_watergen(build_args(tmp.path, "b", scenes));
+    for (pid_t pid : {a, b}) {
+        int status = 0;
+        REQUIRE(::waitpid(pid, &status, 0) == pid);
+        CHECK((WIFEXITED(status) && WEXITSTATUS(status) == 0));
+    }
+    const auto reference = reference_build();
+    CHECK(read_tree(tmp.path / "a") == reference);
+    CHECK(read_tree(tmp.path / "b") == reference);
+    const WatergenRun third = run_watergen(build_args(tmp.path, "c", scenes));
+    REQUIRE(third.exit_code == 0);
+    INFO(third.out << third.err);
+    CHECK(third.out.find("(0 built, 32 cached") != std::string::npos);
+    CHECK(third.err.find("verification") == std::string::npos);
+    CHECK(read_tree(tmp.path / "c") == reference);
+}
