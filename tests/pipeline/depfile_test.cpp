@@ -51,7 +51,7 @@ TEST_CASE("ninja_reads_the_build_depfile_and_reruns_when_a_scene_changes", "[dep
         REQUIRE(std::system((ninja + args + " > '" + log.string() + "' 2>&1").c_str()) == 0);
         return read_file(log);
     };
-    CHECK(run("").find("wg") != std::string::npos);
+    CHECK(run("").find("sh run.sh") != std::string::npos);
     const std::string deps = run("-t deps");
     INFO(deps);
     CHECK(deps.find("out/manifest.json: #deps 2") != std::string::npos);
@@ -59,5 +59,5 @@ TEST_CASE("ninja_reads_the_build_depfile_and_reruns_when_a_scene_changes", "[dep
     CHECK(deps.find("\n    my inputs #1/open ocean.json\n") != std::string::npos);
     CHECK(run("").find("no work to do") != std::string::npos);
     std::ofstream(scene, std::ios::app) << "\n"; // a changed scene file
-    CHECK(run("").find("wg") != std::string::npos);
+    CHECK(run("").find("sh run.sh") != std::string::npos);
 }

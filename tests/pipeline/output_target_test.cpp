@@ -171,7 +171,10 @@ TEST_CASE("build_material_refuses_an_unrelated_output_before_building", "[out]")
     Diagnostics ds;
     auto material = load_material(small_material(), ds);
     REQUIRE(material);
-    const BuildSummary s = build_material(BuildRequest{*material, {}, tmp.path / "notes.txt", {}});
+    BuildRequest request; // (aggregate-initialised, GCC 12 warns of an uninitialised member)
+    request.material = *material;
+    request.out = tmp.path / "notes.txt";
+    const BuildSummary s = build_material(request);
     CHECK(s.bad_input);
     CHECK(s.variants == 0); // refused before any variant was built
     REQUIRE(s.diagnostics.size() == 1);

@@ -35,7 +35,8 @@ std::string default_material_path() {
 // Directories of variants with files of their own, per the manifest.
 size_t built_directories(const std::map<std::string, std::string>& tree) {
     size_t n = 0;
-    for (const auto& v : nlohmann::json::parse(tree.at("manifest.json"))["variants"])
+    const auto manifest = nlohmann::json::parse(tree.at("manifest.json"));
+    for (const auto& v : manifest["variants"])
         n += v.contains("same_as") ? 0 : 1;
     return n;
 }
@@ -125,5 +126,5 @@ TEST_CASE("four_shards_merged_are_byte_identical_to_one_build", "[shard]") {
     REQUIRE(run_watergen(build_args(tmp.path, other.string(), "other4", "4/4")).exit_code == 0);
     refused({s1, s2, s3, (tmp.path / "other4").string()}, "built from different inputs");
     std::ofstream(tmp.path / "shard3" / "manifest.json", std::ios::app) << " ";
-    refused({s1, s2, s3, s4}, "shard3/manifest.json does not match the size and hash");
+    refused({s1, s2, s3, s4}, "shard3: manifest.json does not match the size and hash");
 }
