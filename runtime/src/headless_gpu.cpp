@@ -10,6 +10,8 @@
 #include <functional>
 #include <stdexcept>
 
+#include "pipeline_state.h"
+
 namespace watergen {
 
 namespace {
@@ -184,14 +186,7 @@ VkImageView upload(Frame& f, VkCommandBuffer cmd, const std::string& name, const
 }
 
 VkSampler linear_clamp(Frame& f) {
-    VkSamplerCreateInfo ci{};
-    ci.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
-    ci.magFilter = VK_FILTER_LINEAR;
-    ci.minFilter = VK_FILTER_LINEAR;
-    ci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    ci.addressModeU = ci.addressModeV = ci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    ci.maxLod = 0.0f;
-    ci.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
+    const VkSamplerCreateInfo ci = vk_state::clamp_sampler_info(VK_FILTER_LINEAR);
     VkSampler s = VK_NULL_HANDLE;
     check(vkCreateSampler(f.device(), &ci, nullptr, &s), "vkCreateSampler");
     VkDevice d = f.device();
@@ -358,37 +353,7 @@ std::unique_ptr<HeadlessGpu> HeadlessGpu::create(std::string* error) {
         pci.queueFamilyIndex = g->family_;
         check(vkCreateCommandPool(g->device_, &pci, nullptr, &g->pool_), "vkCreateCommandPool");
 
-        VkAttachmentDescription color{};
-        color.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-        color.samples = VK_SAMPLE_COUNT_1_BIT;
-        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-        color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-        color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        color.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-        VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-        VkSubpassDescription subpass{};
-        subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-        subpass.colorAttachmentCount = 1;
-        subpass.pColorAttachments = &ref;
-        // The copy out waits for the colour writes.
-        VkSubpassDependency out{};
-        out.srcSubpass = 0;
-        out.dstSubpass = VK_SUBPASS_EXTERNAL;
-        out.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-        out.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-        out.dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-        out.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-        VkRenderPassCreateInfo rci{};
-        rci.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-        rci.attachmentCount = 1;
-        rci.pAttachments = &color;
-        rci.subpassCount = 1;
-        rci.pSubpasses = &subpass;
-        rci.dependencyCount = 1;
-        rci.pDependencies = &out;
-        check(vkCreateRenderPass(g->device_, &rci, nullptr, &g->render_pass_),
+        check(vk_state::create_offscreen_render_pass(g->device_, &g->render_pass_),
               "vkCreateRenderPass");
     } catch (const DrawError& e) {
         *error = e.what();

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <unistd.h>
 
+#include "pipeline_state.h"
+
 namespace watergen {
 
 namespace fs = std::filesystem;
@@ -172,29 +174,11 @@ VariantPipeline::create(VkDevice device, const VariantPipelineDesc& d, std::stri
     }
     VkPipelineVertexInputStateCreateInfo vertex_input{};
     vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-    VkPipelineInputAssemblyStateCreateInfo assembly{};
-    assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    const vk_state::FixedFunction fixed;
     VkPipelineViewportStateCreateInfo viewport{};
     viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
     viewport.viewportCount = 1;
     viewport.scissorCount = 1;
-    VkPipelineRasterizationStateCreateInfo raster{};
-    raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE;
-    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo multisample{};
-    multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-    VkPipelineColorBlendAttachmentState attachment{};
-    attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                                VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    VkPipelineColorBlendStateCreateInfo blend{};
-    blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-    blend.attachmentCount = 1;
-    blend.pAttachments = &attachment;
     const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     VkPipelineDynamicStateCreateInfo dynamic{};
     dynamic.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
@@ -206,11 +190,11 @@ VariantPipeline::create(VkDevice device, const VariantPipelineDesc& d, std::stri
     gci.stageCount = 2;
     gci.pStages = stages;
     gci.pVertexInputState = &vertex_input;
-    gci.pInputAssemblyState = &assembly;
+    gci.pInputAssemblyState = &fixed.assembly;
     gci.pViewportState = &viewport;
-    gci.pRasterizationState = &raster;
-    gci.pMultisampleState = &multisample;
-    gci.pColorBlendState = &blend;
+    gci.pRasterizationState = &fixed.raster;
+    gci.pMultisampleState = &fixed.multisample;
+    gci.pColorBlendState = &fixed.blend;
     gci.pDynamicState = &dynamic;
     gci.layout = p.layout_;
     gci.renderPass = d.render_pass;

@@ -53,6 +53,12 @@ if(NOT EXISTS ${bld}/watergen/water_viewer/manifest.json)
   message(FATAL_ERROR "[first-build] no manifest.json in ${bld}/watergen/water_viewer")
 endif()
 
+# The depfile watergen wrote names the output manifest and the inputs.
+file(READ ${bld}/watergen_water_viewer.d depfile)
+expect_match(depfile "${depfile}" "water_viewer/manifest.json:")
+expect_match(depfile "${depfile}" "water/default.json")
+expect_match(depfile "${depfile}" "water/open_ocean.json")
+
 run(draw ok out ${bld}/water_viewer ${bld}/watergen/water_viewer ${WORK_DIR}/water.ppm)
 expect_match(draw "${out}" "selected fresnel=schlick")
 expect_match(draw "${out}" "nearest kept variant: foam: shore -> none")
