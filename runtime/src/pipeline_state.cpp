@@ -65,6 +65,14 @@ FixedFunction::FixedFunction() {
     blend.pAttachments = &blend_attachment;
 }
 
+void FixedFunction::apply(VkGraphicsPipelineCreateInfo& gci) const {
+    gci.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+    gci.pInputAssemblyState = &assembly;
+    gci.pRasterizationState = &raster;
+    gci.pMultisampleState = &multisample;
+    gci.pColorBlendState = &blend;
+}
+
 VkSamplerCreateInfo clamp_sampler_info(VkFilter filter) {
     VkSamplerCreateInfo sci{};
     sci.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;

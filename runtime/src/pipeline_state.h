@@ -25,6 +25,8 @@ struct FixedFunction {
     VkPipelineMultisampleStateCreateInfo multisample{};
     VkPipelineColorBlendAttachmentState blend_attachment{};
     VkPipelineColorBlendStateCreateInfo blend{};
+    // Sets gci's sType and points its assembly, rasterization, multisample and blend state here.
+    void apply(VkGraphicsPipelineCreateInfo& gci) const;
 };
 
 // Clamp to edge on every axis, one mip level.

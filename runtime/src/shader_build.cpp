@@ -267,18 +267,6 @@ std::map<std::string, std::string> parse_key(const std::string& key, std::string
 
 } // namespace
 
-const char* stage_file_tag(ShaderStage stage) {
-    switch (stage) {
-    case ShaderStage::Vertex:
-        return "vert";
-    case ShaderStage::Fragment:
-        return "frag";
-    case ShaderStage::Compute:
-        return "comp";
-    }
-    return "frag";
-}
-
 std::optional<ShaderBuild> ShaderBuild::open(const fs::path& directory, std::string* error) {
     const fs::path file = directory / "manifest.json";
     const auto bytes = read_bytes(file, error);
@@ -380,13 +368,12 @@ std::optional<std::vector<uint32_t>> ShaderBuild::spirv(const BuildVariant& v,
     if (stage == ShaderStage::Fragment && frozen != v.frozen.end())
         bytes = read(frozen->second, error);
     else
-        bytes = listed(v, "spirv", "/" + language + "/water." + stage_file_tag(stage) + ".opt.spv",
-                       error);
+        bytes =
+            listed(v, "spirv", "/" + language + "/water." + stage_tag(stage) + ".opt.spv", error);
     if (!bytes) return std::nullopt;
     if (bytes->size() % 4 != 0 || bytes->size() < 20) {
-        *error = "variant " + v.key + ": " + language + " " + stage_file_tag(stage) +
-                 " SPIR-V is " + std::to_string(bytes->size()) +
-                 " bytes; expected a whole number of 32-bit words";
+        *error = "variant " + v.key + ": " + language + " " + stage_tag(stage) + " SPIR-V is " +
+                 std::to_string(bytes->size()) + " bytes; expected a whole number of 32-bit words";
         return std::nullopt;
     }
     std::vector<uint32_t> words(bytes->size() / 4);
@@ -396,7 +383,7 @@ std::optional<std::vector<uint32_t>> ShaderBuild::spirv(const BuildVariant& v,
 
 std::optional<std::string> ShaderBuild::source(const BuildVariant& v, const std::string& kind,
                                                ShaderStage stage, std::string* error) const {
-    const std::string tag = std::string("water.") + stage_file_tag(stage);
+    const std::string tag = std::string("water.") + stage_tag(stage);
     const std::map<std::string, std::string> suffix = {{"glsl", "/glsl/" + tag + ".glsl"},
                                                        {"hlsl", "/hlsl/" + tag + ".hlsl"},
                                                        {"glsl330", "/" + tag + ".330.glsl"},
@@ -413,7 +400,7 @@ std::optional<std::string> ShaderBuild::source(const BuildVariant& v, const std:
 std::optional<Reflection> ShaderBuild::reflection(const BuildVariant& v,
                                                   const std::string& language, ShaderStage stage,
                                                   std::string* error) const {
-    const std::string suffix = "/" + language + "/water." + stage_file_tag(stage) + ".reflect.json";
+    const std::string suffix = "/" + language + "/water." + stage_tag(stage) + ".reflect.json";
     const auto text = listed(v, "reflection", suffix, error);
     if (!text) return std::nullopt;
     std::string why;

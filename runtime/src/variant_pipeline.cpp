@@ -186,15 +186,11 @@ VariantPipeline::create(VkDevice device, const VariantPipelineDesc& d, std::stri
     dynamic.pDynamicStates = dynamic_states;
 
     VkGraphicsPipelineCreateInfo gci{};
-    gci.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+    fixed.apply(gci);
     gci.stageCount = 2;
     gci.pStages = stages;
     gci.pVertexInputState = &vertex_input;
-    gci.pInputAssemblyState = &fixed.assembly;
     gci.pViewportState = &viewport;
-    gci.pRasterizationState = &fixed.raster;
-    gci.pMultisampleState = &fixed.multisample;
-    gci.pColorBlendState = &fixed.blend;
     gci.pDynamicState = &dynamic;
     gci.layout = p.layout_;
     gci.renderPass = d.render_pass;

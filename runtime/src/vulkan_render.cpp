@@ -83,15 +83,11 @@ Pipeline create_pipeline(Scope& scope, const RenderJob& job, VkPipelineLayout la
     viewport_state.pScissors = &scissor;
 
     VkGraphicsPipelineCreateInfo gci{};
-    gci.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+    fixed.apply(gci);
     gci.stageCount = 2;
     gci.pStages = stages;
     gci.pVertexInputState = &vertex_input;
-    gci.pInputAssemblyState = &fixed.assembly;
     gci.pViewportState = &viewport_state;
-    gci.pRasterizationState = &fixed.raster;
-    gci.pMultisampleState = &fixed.multisample;
-    gci.pColorBlendState = &fixed.blend;
     gci.layout = layout;
     gci.renderPass = pass;
     gci.subpass = 0;

@@ -116,7 +116,7 @@ TEST_CASE("a variant's files come out byte for byte, and a target the scene did 
             CHECK((*words)[0] == 0x07230203u); // the SPIR-V magic number
             const std::string disk =
                 test::read_file(b.directory() / v.shader_directory / lang /
-                                (std::string("water.") + stage_file_tag(stage) + ".opt.spv"));
+                                (std::string("water.") + stage_tag(stage) + ".opt.spv"));
             CHECK(disk.size() == words->size() * 4);
             CHECK(std::memcmp(disk.data(), words->data(), disk.size()) == 0);
             const auto r = b.reflection(v, lang, stage, &error);

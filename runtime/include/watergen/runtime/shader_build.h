@@ -128,7 +128,4 @@ class ShaderBuild {
     std::vector<BuildVariant> variants_;
 };
 
-// "vert" / "frag" / "comp": the stage's part of generated file names.
-const char* stage_file_tag(ShaderStage stage);
-
 } // namespace watergen
