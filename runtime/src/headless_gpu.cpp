@@ -336,17 +336,8 @@ std::unique_ptr<HeadlessGpu> HeadlessGpu::create(std::string* error) {
         for (uint32_t i = 0; i < families && g->family_ == UINT32_MAX; ++i)
             if (props[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) g->family_ = i;
         if (g->family_ == UINT32_MAX) throw DrawError("the device has no graphics queue");
-        const float priority = 1.0f;
-        VkDeviceQueueCreateInfo qci{};
-        qci.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
-        qci.queueFamilyIndex = g->family_;
-        qci.queueCount = 1;
-        qci.pQueuePriorities = &priority;
-        VkDeviceCreateInfo dci{};
-        dci.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
-        dci.queueCreateInfoCount = 1;
-        dci.pQueueCreateInfos = &qci;
-        check(vkCreateDevice(g->physical_, &dci, nullptr, &g->device_), "vkCreateDevice");
+        check(vk_state::create_device(g->physical_, g->family_, nullptr, {}, {}, &g->device_),
+              "vkCreateDevice");
         vkGetDeviceQueue(g->device_, g->family_, 0, &g->queue_);
         VkCommandPoolCreateInfo pci{};
         pci.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;

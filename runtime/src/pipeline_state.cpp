@@ -2,6 +2,28 @@
 
 namespace watergen::vk_state {
 
+VkResult create_device(VkPhysicalDevice physical, uint32_t family, const void* features,
+                       const std::vector<const char*>& extensions,
+                       const std::vector<const char*>& layers, VkDevice* device) {
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo qci{};
+    qci.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+    qci.queueFamilyIndex = family;
+    qci.queueCount = 1;
+    qci.pQueuePriorities = &priority;
+    VkDeviceCreateInfo dci{};
+    dci.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+    dci.pNext = features; // VkPhysicalDeviceFeatures2 in place of pEnabledFeatures
+    dci.queueCreateInfoCount = 1;
+    dci.pQueueCreateInfos = &qci;
+    dci.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+    dci.ppEnabledExtensionNames = extensions.data();
+    // Device layers are deprecated and ignored by current loaders; set for old ones.
+    dci.enabledLayerCount = static_cast<uint32_t>(layers.size());
+    dci.ppEnabledLayerNames = layers.data();
+    return vkCreateDevice(physical, &dci, nullptr, device);
+}
+
 VkResult create_offscreen_render_pass(VkDevice device, VkRenderPass* pass) {
     VkAttachmentDescription color{};
     color.format = VK_FORMAT_R32G32B32A32_SFLOAT;

@@ -4,9 +4,17 @@
 // watergen_engine, which watergen_runtime links; not installed.
 #pragma once
 
+#include <vector>
+
 #include <vulkan/vulkan.h>
 
 namespace watergen::vk_state {
+
+// The logical device with one queue of `family`; `features` is a VkPhysicalDeviceFeatures2 chain
+// (or null), `layers` for loaders old enough to read device layers.
+VkResult create_device(VkPhysicalDevice physical, uint32_t family, const void* features,
+                       const std::vector<const char*>& extensions,
+                       const std::vector<const char*>& layers, VkDevice* device);
 
 // One RGBA32F colour attachment, cleared, left in TRANSFER_SRC_OPTIMAL. Its dependencies order a
 // draw after the previous draw's writes and copy's reads (the same image drawn again) and the
