@@ -170,3 +170,57 @@ TEST_CASE("the uniform writer names the parameter and the types, and says what f
     CHECK(r.ok);
     CHECK_THAT(r.note, Catch::Contains("is not read by variant"));
 }
+
+TEST_CASE("specialized and branching builds select the same way and carry the selector values") {
+    const std::map<std::string, std::string> wanted = {{"fresnel", "exact"},
+                                                       {"specular", "blinn_phong"},
+                                                       {"waves", "gerstner"},
+                                                       {"shore", "soft"}};
+    std::string error;
+
+    const ShaderBuild spec = test::open_mode_build(BuildMode::Specialized);
+    CHECK(spec.mode() == "specialized");
+    CHECK(spec.variants().size() == 16);
+    Selection s = spec.select("open_ocean", wanted);
+    INFO(s.error);
+    REQUIRE(s.ok());
+    // One shader serves every variant: four selectors as specialization constants, set to this
+    // variant's choices (exact = 1, blinn_phong = 1, gerstner = 1, soft = 1).
+    CHECK(s.variant->specialization.size() == 4);
+    for (const auto& [id, value] : s.variant->specialization)
+        CHECK(value == 1.0);
+    // Frozen: the fragment SPIR-V is the variant's own, with the selectors folded in.
+    REQUIRE(s.variant->frozen.count("glsl"));
+    const auto frozen = spec.spirv(*s.variant, "glsl", ShaderStage::Fragment, &error);
+    REQUIRE(frozen);
+    const std::string on_disk = test::read_file(spec.directory() / s.variant->frozen.at("glsl"));
+    CHECK(on_disk.size() == frozen->size() * 4);
+    CHECK(spec.reflection(*s.variant, "hlsl", ShaderStage::Fragment, &error));
+
+    const ShaderBuild branching = test::open_mode_build(BuildMode::Branching);
+    CHECK(branching.mode() == "branching");
+    s = branching.select("open_ocean", wanted);
+    REQUIRE(s.ok());
+    CHECK(s.variant->selector_uniforms.size() == 4);
+    // The writer presets the selectors (they choose the variant) and refuses to set them.
+    UniformWriter w(*s.variant);
+    REQUIRE(w.value("axis_fresnel"));
+    CHECK(*w.value("axis_fresnel") == std::vector<float>{1.0f});
+    const Write r = w.set("axis_fresnel", 0.0f);
+    CHECK_FALSE(r.ok);
+    CHECK_THAT(r.error, Catch::Contains("selects the variant"));
+    const auto refl = branching.reflection(*s.variant, "glsl", ShaderStage::Fragment, &error);
+    REQUIRE(refl);
+    const auto bytes = w.pack(*refl, &error);
+    INFO(error);
+    REQUIRE(bytes);
+    size_t checked = 0;
+    for (const auto& m : refl->bindings[0].members)
+        if (s.variant->selector_uniforms.count(m.name)) {
+            float f = 0;
+            std::memcpy(&f, bytes->data() + m.offset, 4);
+            CHECK(f == 1.0f);
+            ++checked;
+        }
+    CHECK(checked == 4);
+}

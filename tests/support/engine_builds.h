@@ -7,6 +7,8 @@
 #include "watergen/plan/material.h"
 #include "watergen/runtime/shader_build.h"
 
+#include <memory>
+
 namespace watergen::test {
 
 // `watergen build examples/materials/default.json [--scene examples/scenes/*.json]` into a
@@ -29,6 +31,31 @@ inline const std::filesystem::path& example_build(bool with_scenes) {
     }
     static const std::filesystem::path out[2] = {unpruned.path / "out", scenes.path / "out"};
     return out[with_scenes];
+}
+
+// The example material for open_ocean in a specialized (frozen too) or branching build.
+inline ShaderBuild open_mode_build(BuildMode mode) {
+    static std::map<BuildMode, std::unique_ptr<TempDir>> dirs;
+    auto& dir = dirs[mode];
+    if (!dir) {
+        dir = std::make_unique<TempDir>(std::string("engine-") + to_string(mode));
+        Diagnostics ds;
+        auto material = load_material(source_dir() + "/examples/materials/default.json", ds);
+        REQUIRE(material);
+        BuildRequest request;
+        request.material = *material;
+        for (const SceneFacts& s : example_scenes())
+            if (s.name == "open_ocean") request.scenes.push_back(s);
+        request.out = dir->path / "out";
+        request.mode = mode;
+        request.freeze = mode == BuildMode::Specialized;
+        REQUIRE(build_material(request).ok());
+    }
+    std::string error;
+    auto b = ShaderBuild::open(dir->path / "out", &error);
+    INFO(error);
+    REQUIRE(b);
+    return *b;
 }
 
 inline ShaderBuild open_example_build(bool with_scenes) {
