@@ -9,23 +9,8 @@
 #include <vector>
 
 namespace watergen {
-namespace {
 
 namespace fs = std::filesystem;
-
-const char* stage_flag(ShaderStage stage) {
-    switch (stage) {
-    case ShaderStage::Vertex:
-        return "vert";
-    case ShaderStage::Fragment:
-        return "frag";
-    case ShaderStage::Compute:
-        return "comp";
-    }
-    return "frag";
-}
-
-} // namespace
 
 ProcessChainResult run_tool_process_chain(const CompileRequest& request,
                                           const std::string& work_dir) {
@@ -38,7 +23,7 @@ ProcessChainResult run_tool_process_chain(const CompileRequest& request,
         return result;
     }
     const bool hlsl = request.language == SourceLanguage::Hlsl;
-    const std::string stage = stage_flag(request.stage);
+    const std::string stage = stage_tag(request.stage);
     auto path = [&](const char* name) { return (dir / name).string(); };
     const std::string src = path(hlsl ? "shader.hlsl" : "shader.glsl");
     {

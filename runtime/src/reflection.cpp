@@ -244,4 +244,16 @@ std::optional<Reflection> reflection_from_json(const std::string& text, std::str
     return r;
 }
 
+const char* stage_tag(ShaderStage s) {
+    switch (s) {
+    case ShaderStage::Vertex:
+        return "vert";
+    case ShaderStage::Fragment:
+        return "frag";
+    case ShaderStage::Compute:
+        return "comp";
+    }
+    return "frag";
+}
+
 } // namespace watergen

@@ -1,5 +1,6 @@
 // Instance, validation messenger, device selection (lavapipe unless told otherwise),
 // logical device, queue and command pool.
+#include "pipeline_state.h"
 #include "vulkan_internal.h"
 
 #include <fmt/format.h>
@@ -309,23 +310,9 @@ void create_device(Context* ctx, const std::vector<const char*>& layers, uint32_
     DeviceFeatures features;
     choose_device_features(ctx, std::min(instance_api, ctx->info.api_version), &features);
     ctx->queue_family = pick_queue_family(ctx->physical, &ctx->timestamp_mask);
-    const float priority = 1.0f;
-    VkDeviceQueueCreateInfo qci{};
-    qci.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
-    qci.queueFamilyIndex = ctx->queue_family;
-    qci.queueCount = 1;
-    qci.pQueuePriorities = &priority;
-    VkDeviceCreateInfo dci{};
-    dci.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
-    dci.queueCreateInfoCount = 1;
-    dci.pQueueCreateInfos = &qci;
-    dci.pNext = &features.core; // VkPhysicalDeviceFeatures2 in place of pEnabledFeatures
-    dci.enabledExtensionCount = static_cast<uint32_t>(features.extensions.size());
-    dci.ppEnabledExtensionNames = features.extensions.data();
-    // Device layers are deprecated and ignored by current loaders; set for old ones.
-    dci.enabledLayerCount = static_cast<uint32_t>(layers.size());
-    dci.ppEnabledLayerNames = layers.data();
-    vk_check(vkCreateDevice(ctx->physical, &dci, nullptr, &ctx->device), "vkCreateDevice");
+    vk_check(vk_state::create_device(ctx->physical, ctx->queue_family, &features.core,
+                                     features.extensions, layers, &ctx->device),
+             "vkCreateDevice");
     vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
 
     VkCommandPoolCreateInfo pci{};

@@ -1,6 +1,8 @@
 // Descriptor set layouts from the union of the stages' Reflection bindings, and the
 // buffers, textures and samplers a job supplies for them (matched by binding name).
+#include "pipeline_state.h"
 #include "vulkan_internal.h"
+#include "watergen/runtime/variant_pipeline.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -15,22 +17,6 @@ struct Merged {
     DescriptorBinding binding;
     VkShaderStageFlags stages = 0;
 };
-
-VkDescriptorType descriptor_type(DescriptorKind kind) {
-    switch (kind) {
-    case DescriptorKind::UniformBuffer:
-        return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case DescriptorKind::StorageBuffer:
-        return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    case DescriptorKind::SampledImage:
-        return VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
-    case DescriptorKind::Sampler:
-        return VK_DESCRIPTOR_TYPE_SAMPLER;
-    case DescriptorKind::CombinedImageSampler:
-        return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    }
-    throw RunnerError("unknown DescriptorKind");
-}
 
 std::string where(const DescriptorBinding& b) {
     return fmt::format("{} '{}' (set {}, binding {})", to_string(b.kind), b.name, b.set, b.binding);
@@ -65,17 +51,7 @@ VkSampler create_sampler(Scope& scope, TextureFilter filter) {
                 "device '{}' cannot filter RGBA32F textures linearly; use nearest", ctx.info.name));
     }
     const VkFilter f = filter == TextureFilter::Linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
-    VkSamplerCreateInfo sci{};
-    sci.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
-    sci.magFilter = f;
-    sci.minFilter = f;
-    sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    sci.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    sci.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    sci.minLod = 0.0f;
-    sci.maxLod = 0.0f; // textures have one level
-    sci.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
+    const VkSamplerCreateInfo sci = vk_state::clamp_sampler_info(f);
     VkSampler sampler = VK_NULL_HANDLE;
     vk_check(vkCreateSampler(ctx.device, &sci, nullptr, &sampler), "vkCreateSampler");
     VkDevice device = ctx.device;

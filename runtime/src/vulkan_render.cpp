@@ -1,6 +1,7 @@
 // Render jobs: offscreen RGBA32F target, fullscreen-triangle graphics pipeline, one
 // untimed first draw (lavapipe JITs the shaders there), timestamp-timed steady draws,
 // readback.
+#include "pipeline_state.h"
 #include "vulkan_internal.h"
 #include "vulkan_mesh.h"
 
@@ -16,51 +17,9 @@ namespace {
 constexpr uint32_t kMaxTimedDraws = 1000;
 
 VkRenderPass create_render_pass(Scope& scope) {
-    VkAttachmentDescription color{};
-    color.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    color.samples = VK_SAMPLE_COUNT_1_BIT;
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    // Every draw clears, so the previous contents never matter.
-    color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    color.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    VkSubpassDescription subpass{};
-    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    subpass.colorAttachmentCount = 1;
-    subpass.pColorAttachments = &ref;
-
-    VkSubpassDependency deps[2]{};
-    // The same image is drawn into several times and copied out: this draw's clear must
-    // wait for the previous draw's writes (WAW) and the previous copy's reads (WAR).
-    deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
-    deps[0].dstSubpass = 0;
-    deps[0].srcStageMask =
-        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
-    deps[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    // The readback copy must see the finished colour writes.
-    deps[1].srcSubpass = 0;
-    deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
-    deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-
-    VkRenderPassCreateInfo rci{};
-    rci.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-    rci.attachmentCount = 1;
-    rci.pAttachments = &color;
-    rci.subpassCount = 1;
-    rci.pSubpasses = &subpass;
-    rci.dependencyCount = 2;
-    rci.pDependencies = deps;
     VkRenderPass pass = VK_NULL_HANDLE;
     VkDevice device = scope.ctx().device;
-    vk_check(vkCreateRenderPass(device, &rci, nullptr, &pass), "vkCreateRenderPass");
+    vk_check(vk_state::create_offscreen_render_pass(device, &pass), "vkCreateRenderPass");
     scope.defer([device, pass] { vkDestroyRenderPass(device, pass, nullptr); });
     return pass;
 }
@@ -111,11 +70,24 @@ Pipeline create_pipeline(Scope& scope, const RenderJob& job, VkPipelineLayout la
     vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
     MeshInputState mesh_input;
     describe_mesh_input(job.mesh, mesh_input, vertex_input); // no-op without a mesh
-    VkPipelineInputAssemblyStateCreateInfo assembly{};
-    assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+    vk_state::FixedFunction fixed;
     // Points: the vertex stage writes PointSize (Vulkan leaves the size undefined otherwise).
-    assembly.topology =
-        job.mesh.points ? VK_PRIMITIVE_TOPOLOGY_POINT_LIST : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    if (job.mesh.points) fixed.assembly.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+    // Passes that accumulate (caustics) blend ONE + ONE over the target cleared to 0.
+    if (job.additive_blend) {
+        VkFormatProperties props{};
+        vkGetPhysicalDeviceFormatProperties(scope.ctx().physical, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                            &props);
+        if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+            throw RunnerError(fmt::format("device '{}' cannot blend into "
+                                          "VK_FORMAT_R32G32B32A32_SFLOAT (additive_blend)",
+                                          scope.ctx().info.name));
+        VkPipelineColorBlendAttachmentState& b = fixed.blend_attachment;
+        b.blendEnable = VK_TRUE;
+        b.srcColorBlendFactor = b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+        b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
 
     VkViewport viewport{0.0f, 0.0f, static_cast<float>(job.width), static_cast<float>(job.height),
                         0.0f, 1.0f};
@@ -127,52 +99,12 @@ Pipeline create_pipeline(Scope& scope, const RenderJob& job, VkPipelineLayout la
     viewport_state.scissorCount = 1;
     viewport_state.pScissors = &scissor;
 
-    VkPipelineRasterizationStateCreateInfo raster{};
-    raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE; // winding of the generated triangle is irrelevant
-    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo multisample{};
-    multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-
-    // Raw shader output, no blending (the tests compare exact floats); or, for passes that
-    // accumulate (caustics), ONE + ONE over the target cleared to 0.
-    VkPipelineColorBlendAttachmentState blend_attachment{};
-    blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                                      VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    if (job.additive_blend) {
-        VkFormatProperties props{};
-        vkGetPhysicalDeviceFormatProperties(scope.ctx().physical, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                            &props);
-        if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
-            throw RunnerError(fmt::format("device '{}' cannot blend into "
-                                          "VK_FORMAT_R32G32B32A32_SFLOAT (additive_blend)",
-                                          scope.ctx().info.name));
-        blend_attachment.blendEnable = VK_TRUE;
-        blend_attachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
-        blend_attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
-        blend_attachment.colorBlendOp = VK_BLEND_OP_ADD;
-        blend_attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-        blend_attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-        blend_attachment.alphaBlendOp = VK_BLEND_OP_ADD;
-    }
-    VkPipelineColorBlendStateCreateInfo blend{};
-    blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-    blend.attachmentCount = 1;
-    blend.pAttachments = &blend_attachment;
-
     VkGraphicsPipelineCreateInfo gci{};
-    gci.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+    fixed.apply(gci);
     gci.stageCount = 2;
     gci.pStages = stages;
     gci.pVertexInputState = &vertex_input;
-    gci.pInputAssemblyState = &assembly;
     gci.pViewportState = &viewport_state;
-    gci.pRasterizationState = &raster;
-    gci.pMultisampleState = &multisample;
-    gci.pColorBlendState = &blend;
     gci.layout = layout;
     gci.renderPass = pass;
     gci.subpass = 0;

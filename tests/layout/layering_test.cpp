@@ -110,7 +110,7 @@ TEST_CASE("readme_layout_table_names_every_folder", "[layout]") {
     for (const auto& e : fs::directory_iterator(root / "generator"))
         if (e.is_directory() && e.path().filename() != "include")
             folders.insert("generator/" + e.path().filename().string());
-    for (const char* top : {"runtime", "templates", "examples", "generated", "tests"})
+    for (const char* top : {"runtime", "cmake", "templates", "examples", "generated", "tests"})
         folders.insert(top);
     CHECK(listed == folders);
     std::set<std::string> test_folders;

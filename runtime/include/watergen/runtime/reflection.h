@@ -72,6 +72,8 @@ std::string reflection_to_json(const Reflection& r);
 std::optional<Reflection> reflection_from_json(const std::string& text, std::string* error);
 
 const char* to_string(ShaderStage s);
+// "vert" / "frag" / "comp": the stage in file names (water.frag.spv) and tool flags.
+const char* stage_tag(ShaderStage s);
 const char* to_string(DescriptorKind k);
 
 } // namespace watergen

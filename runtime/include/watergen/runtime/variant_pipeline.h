@@ -1,0 +1,86 @@
+// A small Vulkan helper for an engine: the descriptor set layouts, pipeline layout and graphics
+// pipeline of a built variant, from its reflection, and a VkPipelineCache kept in a file on
+// disk. Part of watergen::runtime. The engine owns the device, render pass and everything drawn.
+//
+// The pipeline draws the generated vertex stage as it is (a fullscreen triangle from
+// gl_VertexIndex: vkCmdDraw(cmd, 3, 1, 0, 0), no vertex buffers), with viewport and scissor as
+// dynamic state, no blending, no depth, no culling. Descriptor layouts are the union of both
+// stages' bindings, one layout per set number (gaps get empty layouts), with the stage flags of
+// the stages that use each binding.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "watergen/runtime/reflection.h"
+
+namespace watergen {
+
+struct VariantPipelineDesc {
+    const std::vector<uint32_t>* vertex_spirv = nullptr;
+    const std::vector<uint32_t>* fragment_spirv = nullptr;
+    const Reflection* vertex_reflection = nullptr;
+    const Reflection* fragment_reflection = nullptr;
+    VkRenderPass render_pass = VK_NULL_HANDLE;
+    uint32_t subpass = 0;
+    // Float specialization constants by constant_id, given to both stages (the variant's
+    // selectors in the specialized build mode).
+    std::map<uint32_t, float> specialization;
+    VkPipelineCache cache = VK_NULL_HANDLE; // may be null
+};
+
+class VariantPipeline {
+  public:
+    // std::nullopt and `error` naming the Vulkan call and its VkResult (or the missing input).
+    static std::optional<VariantPipeline> create(VkDevice device, const VariantPipelineDesc& desc,
+                                                 std::string* error);
+    VariantPipeline(VariantPipeline&& other) noexcept;
+    VariantPipeline& operator=(VariantPipeline&& other) noexcept;
+    VariantPipeline(const VariantPipeline&) = delete;
+    VariantPipeline& operator=(const VariantPipeline&) = delete;
+    ~VariantPipeline();
+
+    VkPipeline pipeline() const { return pipeline_; }
+    VkPipelineLayout layout() const { return layout_; }
+    const std::vector<VkDescriptorSetLayout>& set_layouts() const { return set_layouts_; }
+    // The bindings of set `set` (union of both stages), for writing descriptors.
+    const std::vector<DescriptorBinding>& bindings(uint32_t set) const { return bindings_[set]; }
+    // Descriptor counts for a pool holding `copies` of every set.
+    std::vector<VkDescriptorPoolSize> pool_sizes(uint32_t copies = 1) const;
+
+  private:
+    VariantPipeline() = default;
+    void destroy();
+    VkDevice device_ = VK_NULL_HANDLE;
+    std::vector<VkDescriptorSetLayout> set_layouts_;
+    std::vector<std::vector<DescriptorBinding>> bindings_;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+};
+
+VkDescriptorType descriptor_type(DescriptorKind kind);
+
+// A VkPipelineCache whose initial data comes from a file and that save() writes back. A
+// missing file, or one the driver rejects (another device, driver or version: the header is
+// checked against the device's vendor id, device id and pipelineCacheUUID), starts an empty
+// cache; `loaded` says which.
+struct PipelineCacheFile {
+    VkPipelineCache cache = VK_NULL_HANDLE;
+    bool loaded = false; // the file's data was accepted
+    std::string note;    // why it was not, when it was not
+};
+
+std::optional<PipelineCacheFile> load_pipeline_cache(VkPhysicalDevice physical, VkDevice device,
+                                                     const std::filesystem::path& file,
+                                                     std::string* error);
+// Writes the cache's data to a temporary file beside `file`, then renames it into place: a
+// crash leaves the old file or the new one, never a torn one.
+bool save_pipeline_cache(VkDevice device, VkPipelineCache cache, const std::filesystem::path& file,
+                         std::string* error);
+
+} // namespace watergen

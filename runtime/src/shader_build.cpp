@@ -1,0 +1,520 @@
+// Reads a build's manifest.json (every build mode) into BuildVariants, and selects among them.
+#include "watergen/runtime/shader_build.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace watergen {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// A manifest is a few hundred KB, a shader file far less; anything larger is not one of ours.
+constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(256) << 20;
+
+std::optional<std::string> read_bytes(const fs::path& path, std::string* error) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        *error = path.string() + ": " +
+                 (fs::exists(path, ec) ? "not a regular file" : "no such file") +
+                 "; expected a file of a watergen build";
+        return std::nullopt;
+    }
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (ec || size > kMaxFileBytes) {
+        *error = path.string() + ": " + (ec ? ec.message() : "larger than 256 MiB");
+        return std::nullopt;
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes(static_cast<size_t>(size), '\0');
+    if (!in.read(bytes.data(), static_cast<std::streamsize>(size))) {
+        *error = path.string() + ": cannot be read";
+        return std::nullopt;
+    }
+    return bytes;
+}
+
+// Walks the manifest recording the first problem as "<file>: <key path>: expected ...";
+// every accessor checks the type first, so nlohmann never throws.
+class ManifestReader {
+  public:
+    ManifestReader(std::string file, std::string* error) : file_(std::move(file)), error_(error) {}
+
+    const json* get(const json& object, const std::string& path, const char* key,
+                    json::value_t type, const char* expected, bool required = true) {
+        if (failed_) return nullptr;
+        const std::string where = path.empty() ? key : path + "." + key;
+        if (!object.is_object() || !object.contains(key)) {
+            if (required) fail(where, std::string("missing; expected ") + expected);
+            return nullptr;
+        }
+        const json& v = object[key];
+        const bool number =
+            type == json::value_t::number_float && (v.is_number_float() || v.is_number_integer());
+        if (v.type() != type && !number &&
+            !(type == json::value_t::number_unsigned && v.is_number_unsigned())) {
+            fail(where, std::string("expected ") + expected);
+            return nullptr;
+        }
+        return &v;
+    }
+    std::string text(const json& o, const std::string& path, const char* key,
+                     bool required = true) {
+        const json* v = get(o, path, key, json::value_t::string, "a string", required);
+        return v ? v->get<std::string>() : std::string();
+    }
+    uint32_t u32(const json& o, const std::string& path, const char* key) {
+        const json* v = get(o, path, key, json::value_t::number_unsigned, "an unsigned integer");
+        if (v && v->get<uint64_t>() > UINT32_MAX) fail(path + "." + key, "out of range");
+        return v && !failed_ ? static_cast<uint32_t>(v->get<uint64_t>()) : 0;
+    }
+    std::vector<double> numbers(const json& o, const std::string& path, const char* key,
+                                bool required = true) {
+        std::vector<double> out;
+        const json* v = get(o, path, key, json::value_t::array, "an array of numbers", required);
+        if (!v) return out;
+        for (const json& n : *v) {
+            if (!n.is_number()) {
+                fail(path + "." + key, "expected an array of numbers");
+                return {};
+            }
+            out.push_back(n.get<double>());
+        }
+        return out;
+    }
+    void fail(const std::string& where, const std::string& what) {
+        if (failed_) return;
+        failed_ = true;
+        *error_ = file_ + ": " + where + ": " + what;
+    }
+    bool failed() const { return failed_; }
+
+  private:
+    std::string file_;
+    std::string* error_;
+    bool failed_ = false;
+};
+
+std::string at(const std::string& path, size_t i) {
+    return path + "[" + std::to_string(i) + "]";
+}
+
+void read_files(ManifestReader& r, const json& entry, const std::string& path, BuildVariant& v) {
+    const json* files = r.get(entry, path, "files", json::value_t::object, "an object");
+    if (!files) return;
+    for (const auto& [kind, list] : files->items()) {
+        if (!list.is_array()) return r.fail(path + ".files." + kind, "expected an array");
+        for (const json& p : list) {
+            if (!p.is_string()) return r.fail(path + ".files." + kind, "expected paths");
+            v.files[kind].push_back(p.get<std::string>());
+        }
+    }
+}
+
+void read_reflection(ManifestReader& r, const json& entry, const std::string& path,
+                     BuildVariant& v) {
+    const json* refl = r.get(entry, path, "reflection", json::value_t::object, "an object");
+    if (!refl) return;
+    const std::string rp = path + ".reflection";
+    if (const json* block =
+            r.get(*refl, rp, "uniform_block", json::value_t::object, "an object", false);
+        block && !block->empty()) {
+        const std::string bp = rp + ".uniform_block";
+        v.block_name = r.text(*block, bp, "name");
+        if (const json* members = r.get(*block, bp, "members", json::value_t::array, "an array"))
+            for (size_t i = 0; i < members->size(); ++i) {
+                const json& m = (*members)[i];
+                const std::string mp = at(bp + ".members", i);
+                BlockParameter p;
+                p.name = r.text(m, mp, "name");
+                p.type = r.text(m, mp, "type");
+                if (m.contains("array_size")) p.array_size = r.u32(m, mp, "array_size");
+                p.offset = r.u32(m, mp, "offset");
+                p.default_value = r.numbers(m, mp, "default");
+                if (const json* lo =
+                        r.get(m, mp, "min", json::value_t::number_float, "a number", false))
+                    p.min = lo->get<double>();
+                if (const json* hi =
+                        r.get(m, mp, "max", json::value_t::number_float, "a number", false))
+                    p.max = hi->get<double>();
+                v.parameters.push_back(std::move(p));
+            }
+    }
+    if (const json* tex = r.get(*refl, rp, "textures", json::value_t::array, "an array", false))
+        for (size_t i = 0; i < tex->size(); ++i) {
+            const std::string tp = at(rp + ".textures", i);
+            TextureSlot t;
+            t.name = r.text((*tex)[i], tp, "name");
+            t.binding = r.u32((*tex)[i], tp, "binding");
+            t.type = r.text((*tex)[i], tp, "type");
+            v.textures.push_back(std::move(t));
+        }
+}
+
+void read_fold(ManifestReader& r, const json& entry, const std::string& path, BuildVariant& v) {
+    if (const json* folded =
+            r.get(entry, path, "folded_parameters", json::value_t::object, "an object", false))
+        for (const auto& [name, value] : folded->items())
+            v.folded_parameters[name] =
+                r.numbers(*folded, path + ".folded_parameters", name.c_str());
+    if (const json* removed =
+            r.get(entry, path, "removed_parameters", json::value_t::array, "an array", false))
+        for (size_t i = 0; i < removed->size(); ++i)
+            v.removed_parameters.push_back(
+                r.text((*removed)[i], at(path + ".removed_parameters", i), "name"));
+}
+
+// The variant's own part: scene, key, hash, choices (from "nodes": axis -> "axis.choice").
+void read_identity(ManifestReader& r, const json& entry, const std::string& path, BuildVariant& v) {
+    v.scene = r.text(entry, path, "scene");
+    v.key = r.text(entry, path, "key");
+    v.hash = r.text(entry, path, "hash");
+    const json* nodes = r.get(entry, path, "nodes", json::value_t::object, "an object");
+    if (!nodes) return;
+    for (const auto& [axis, node] : nodes->items()) {
+        const std::string prefix = axis + ".";
+        if (!node.is_string() || node.get<std::string>().rfind(prefix, 0) != 0)
+            return r.fail(path + ".nodes." + axis, "expected \"" + prefix + "<choice>\"");
+        v.choices[axis] = node.get<std::string>().substr(prefix.size());
+    }
+}
+
+// Specialized / branching: the shader a variant is drawn with, and its selector values.
+void read_served(ManifestReader& r, const json& entry, const std::string& path, BuildVariant& v,
+                 const std::map<std::string, BuildVariant>& shaders) {
+    const std::string shader = r.text(entry, path, "shader");
+    if (r.failed()) return;
+    const auto it = shaders.find(shader);
+    if (it == shaders.end())
+        return r.fail(path + ".shader", "'" + shader + "' is not a directory of \"shaders\"");
+    const BuildVariant& s = it->second;
+    v.shader_directory = s.shader_directory;
+    v.files = s.files;
+    v.block_name = s.block_name;
+    v.parameters = s.parameters;
+    v.textures = s.textures;
+    v.folded_parameters = s.folded_parameters;
+    v.removed_parameters = s.removed_parameters;
+    if (const json* sc =
+            r.get(entry, path, "specialization_constants", json::value_t::array, "an array", false))
+        for (size_t i = 0; i < sc->size(); ++i) {
+            const std::string cp = at(path + ".specialization_constants", i);
+            const uint32_t id = r.u32((*sc)[i], cp, "id");
+            if (const json* value =
+                    r.get((*sc)[i], cp, "value", json::value_t::number_float, "a number"))
+                v.specialization[id] = value->get<double>();
+        }
+    if (const json* un = r.get(entry, path, "uniforms", json::value_t::array, "an array", false))
+        for (size_t i = 0; i < un->size(); ++i) {
+            const std::string up = at(path + ".uniforms", i);
+            const std::string name = r.text((*un)[i], up, "name");
+            if (const json* value =
+                    r.get((*un)[i], up, "value", json::value_t::number_float, "a number"))
+                v.selector_uniforms[name] = value->get<double>();
+        }
+    if (const json* frozen =
+            r.get(entry, path, "frozen", json::value_t::object, "an object", false))
+        for (const auto& [lang, file] : frozen->items())
+            v.frozen[lang] = r.text(*frozen, path + ".frozen", lang.c_str());
+}
+
+void read_shader_part(ManifestReader& r, const json& entry, const std::string& path,
+                      BuildVariant& v) {
+    v.shader_directory = r.text(entry, path, "directory");
+    read_files(r, entry, path, v);
+    read_reflection(r, entry, path, v);
+    read_fold(r, entry, path, v);
+}
+
+bool unsafe_relative(const std::string& p) {
+    const fs::path path(p);
+    if (p.empty() || path.is_absolute()) return true;
+    for (const auto& part : path)
+        if (part == "..") return true;
+    return false;
+}
+
+std::string joined(const std::vector<std::string>& items, const char* sep = ", ") {
+    std::string out;
+    for (const auto& s : items)
+        out += (out.empty() ? "" : sep) + s;
+    return out;
+}
+
+std::map<std::string, std::string> parse_key(const std::string& key, std::string* error) {
+    std::map<std::string, std::string> choices;
+    std::stringstream in(key);
+    std::string part;
+    while (std::getline(in, part, ',')) {
+        const size_t eq = part.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == part.size()) {
+            *error = "runtime key '" + key + "': '" + part +
+                     "' is not axis=choice; expected a variant key or short hash";
+            return {};
+        }
+        choices[part.substr(0, eq)] = part.substr(eq + 1);
+    }
+    if (choices.empty()) *error = "runtime key is empty; expected a variant key or short hash";
+    return choices;
+}
+
+} // namespace
+
+std::optional<ShaderBuild> ShaderBuild::open(const fs::path& directory, std::string* error) {
+    const fs::path file = directory / "manifest.json";
+    const auto bytes = read_bytes(file, error);
+    if (!bytes) return std::nullopt;
+    const json doc = json::parse(*bytes, nullptr, false);
+    if (doc.is_discarded() || !doc.is_object()) {
+        *error = file.string() + ": not a JSON object; expected the manifest of a watergen build";
+        return std::nullopt;
+    }
+    ManifestReader r(file.string(), error);
+    ShaderBuild b;
+    b.directory_ = directory;
+    b.generator_ = r.text(doc, "", "generator");
+    if (!r.failed() && b.generator_.rfind("watergen ", 0) != 0)
+        r.fail("generator", "'" + b.generator_ + "'; expected \"watergen <version>\"");
+    if (doc.contains("mode")) b.mode_ = r.text(doc, "", "mode");
+    const json* material = r.get(doc, "", "material", json::value_t::object, "an object");
+    const json* axes =
+        material ? r.get(*material, "material", "axes", json::value_t::object, "an object")
+                 : nullptr;
+    if (axes)
+        for (const auto& [axis, list] : axes->items()) {
+            if (!list.is_array()) r.fail("material.axes." + axis, "expected an array of strings");
+            for (const json& c : list) {
+                if (!c.is_string()) {
+                    r.fail("material.axes." + axis, "expected an array of strings");
+                    break;
+                }
+                b.axes_[axis].push_back(c.get<std::string>());
+            }
+        }
+    if (const json* scenes = r.get(doc, "", "scenes", json::value_t::array, "an array"))
+        for (size_t i = 0; i < scenes->size(); ++i)
+            b.scenes_.push_back(r.text((*scenes)[i], at("scenes", i), "name"));
+    std::map<std::string, BuildVariant> shaders; // by directory (modes)
+    if (b.mode_ != "permutations")
+        if (const json* list = r.get(doc, "", "shaders", json::value_t::array, "an array"))
+            for (size_t i = 0; i < list->size(); ++i) {
+                BuildVariant s;
+                read_shader_part(r, (*list)[i], at("shaders", i), s);
+                shaders[s.shader_directory] = std::move(s);
+            }
+    if (const json* list = r.get(doc, "", "variants", json::value_t::array, "an array"))
+        for (size_t i = 0; i < list->size() && !r.failed(); ++i) {
+            BuildVariant v;
+            read_identity(r, (*list)[i], at("variants", i), v);
+            if (b.mode_ == "permutations")
+                read_shader_part(r, (*list)[i], at("variants", i), v);
+            else
+                read_served(r, (*list)[i], at("variants", i), v, shaders);
+            b.variants_.push_back(std::move(v));
+        }
+    if (r.failed()) return std::nullopt;
+    return b;
+}
+
+std::optional<std::string> ShaderBuild::read(const std::string& relative_path,
+                                             std::string* error) const {
+    if (unsafe_relative(relative_path)) {
+        *error = "'" + relative_path + "': expected a path inside the build directory";
+        return std::nullopt;
+    }
+    bool known = false;
+    for (const BuildVariant& v : variants_) {
+        for (const auto& [kind, list] : v.files)
+            known = known || std::find(list.begin(), list.end(), relative_path) != list.end();
+        for (const auto& [lang, file] : v.frozen)
+            known = known || file == relative_path;
+        if (known) break;
+    }
+    if (!known) {
+        *error =
+            (directory_ / "manifest.json").string() + ": does not list '" + relative_path + "'";
+        return std::nullopt;
+    }
+    return read_bytes(directory_ / relative_path, error);
+}
+
+std::optional<std::string> ShaderBuild::listed(const BuildVariant& v, const std::string& kind,
+                                               const std::string& suffix,
+                                               std::string* error) const {
+    const auto it = v.files.find(kind);
+    if (it != v.files.end())
+        for (const std::string& p : it->second)
+            if (p.size() >= suffix.size() &&
+                p.compare(p.size() - suffix.size(), suffix.size(), suffix) == 0)
+                return read(p, error);
+    *error = "variant " + v.key + " (scene " + v.scene + "): the build has no " + kind + " file '" +
+             suffix + "' (its targets decide which files it writes)";
+    return std::nullopt;
+}
+
+std::optional<std::vector<uint32_t>> ShaderBuild::spirv(const BuildVariant& v,
+                                                        const std::string& language,
+                                                        ShaderStage stage,
+                                                        std::string* error) const {
+    std::optional<std::string> bytes;
+    const auto frozen = v.frozen.find(language);
+    if (stage == ShaderStage::Fragment && frozen != v.frozen.end())
+        bytes = read(frozen->second, error);
+    else
+        bytes =
+            listed(v, "spirv", "/" + language + "/water." + stage_tag(stage) + ".opt.spv", error);
+    if (!bytes) return std::nullopt;
+    if (bytes->size() % 4 != 0 || bytes->size() < 20) {
+        *error = "variant " + v.key + ": " + language + " " + stage_tag(stage) + " SPIR-V is " +
+                 std::to_string(bytes->size()) + " bytes; expected a whole number of 32-bit words";
+        return std::nullopt;
+    }
+    std::vector<uint32_t> words(bytes->size() / 4);
+    std::memcpy(words.data(), bytes->data(), bytes->size());
+    return words;
+}
+
+std::optional<std::string> ShaderBuild::source(const BuildVariant& v, const std::string& kind,
+                                               ShaderStage stage, std::string* error) const {
+    const std::string tag = std::string("water.") + stage_tag(stage);
+    const std::map<std::string, std::string> suffix = {{"glsl", "/glsl/" + tag + ".glsl"},
+                                                       {"hlsl", "/hlsl/" + tag + ".hlsl"},
+                                                       {"glsl330", "/" + tag + ".330.glsl"},
+                                                       {"essl300", "/" + tag + ".300es.glsl"},
+                                                       {"msl", "/" + tag + ".metal"}};
+    const auto it = suffix.find(kind);
+    if (it == suffix.end()) {
+        *error = "source kind '" + kind + "'; expected glsl, hlsl, glsl330, essl300 or msl";
+        return std::nullopt;
+    }
+    return listed(v, kind, it->second, error);
+}
+
+std::optional<Reflection> ShaderBuild::reflection(const BuildVariant& v,
+                                                  const std::string& language, ShaderStage stage,
+                                                  std::string* error) const {
+    const std::string suffix = "/" + language + "/water." + stage_tag(stage) + ".reflect.json";
+    const auto text = listed(v, "reflection", suffix, error);
+    if (!text) return std::nullopt;
+    std::string why;
+    auto r = reflection_from_json(*text, &why);
+    if (!r) *error = (directory_ / v.shader_directory).string() + suffix + ": " + why;
+    return r;
+}
+
+Selection ShaderBuild::select(const std::string& scene_name,
+                              const std::map<std::string, std::string>& choices,
+                              Fallback fallback) const {
+    Selection s;
+    std::string scene = scene_name;
+    if (scene.empty() && scenes_.size() == 1) scene = scenes_[0];
+    if (std::find(scenes_.begin(), scenes_.end(), scene) == scenes_.end()) {
+        s.error = "no scene '" + scene + "' in " + directory_.string() +
+                  "; its scenes: " + joined(scenes_);
+        return s;
+    }
+    for (const auto& [axis, choice] : choices) {
+        const auto a = axes_.find(axis);
+        if (a == axes_.end()) {
+            std::vector<std::string> names;
+            for (const auto& [n, c] : axes_)
+                names.push_back(n);
+            s.error = "no axis '" + axis + "' in the material; its axes: " + joined(names);
+            return s;
+        }
+        if (std::find(a->second.begin(), a->second.end(), choice) == a->second.end()) {
+            s.error = "axis " + axis + " has no choice '" + choice + "' in the material; its " +
+                      "choices: " + joined(a->second);
+            return s;
+        }
+    }
+    std::vector<const BuildVariant*> in_scene, exact;
+    for (const BuildVariant& v : variants_) {
+        if (v.scene != scene) continue;
+        in_scene.push_back(&v);
+        const bool match = std::all_of(choices.begin(), choices.end(), [&](const auto& c) {
+            const auto it = v.choices.find(c.first);
+            return it != v.choices.end() && it->second == c.second;
+        });
+        if (match) exact.push_back(&v);
+    }
+    if (exact.size() == 1 || (exact.size() > 1 && fallback == Fallback::NearestKept)) {
+        s.variant = exact.front();
+        return s;
+    }
+    if (exact.size() > 1) {
+        std::set<std::string> open_axes;
+        for (const BuildVariant* v : exact)
+            for (const auto& [axis, choice] : v->choices)
+                if (exact.front()->choices.count(axis) == 0 ||
+                    choice != exact.front()->choices.find(axis)->second)
+                    open_axes.insert(axis);
+        s.error = std::to_string(exact.size()) + " variants of scene " + scene +
+                  " match; name a choice for " +
+                  joined(std::vector<std::string>(open_axes.begin(), open_axes.end()));
+        return s;
+    }
+    if (fallback == Fallback::Error) {
+        std::vector<std::string> missing;
+        for (const auto& [axis, choice] : choices) {
+            const bool kept = std::any_of(in_scene.begin(), in_scene.end(), [&](const auto* v) {
+                const auto it = v->choices.find(axis);
+                return it != v->choices.end() && it->second == choice;
+            });
+            if (!kept) missing.push_back(axis + "=" + choice);
+        }
+        std::vector<std::string> asked;
+        for (const auto& [axis, choice] : choices)
+            asked.push_back(axis + "=" + choice);
+        s.error = "scene " + scene + " pruned " +
+                  (missing.empty() ? "the combination " + joined(asked, ",")
+                                   : "every variant with " + joined(missing, " or ")) +
+                  "; ask for a kept combination or select with Fallback::NearestKept";
+        return s;
+    }
+    size_t best = SIZE_MAX;
+    for (const BuildVariant* v : in_scene) {
+        size_t differs = 0;
+        for (const auto& [axis, choice] : choices) {
+            const auto it = v->choices.find(axis);
+            differs += it == v->choices.end() || it->second != choice;
+        }
+        if (differs < best) {
+            best = differs;
+            s.variant = v;
+        }
+    }
+    if (!s.variant) {
+        s.error = "scene " + scene + " has no variants";
+        return s;
+    }
+    for (const auto& [axis, choice] : choices)
+        if (const auto it = s.variant->choices.find(axis);
+            it != s.variant->choices.end() && it->second != choice)
+            s.changed.push_back(axis + ": " + choice + " -> " + it->second);
+    return s;
+}
+
+Selection ShaderBuild::select_key(const std::string& scene, const std::string& key,
+                                  Fallback fallback) const {
+    const std::string in = scene.empty() && scenes_.size() == 1 ? scenes_[0] : scene;
+    for (const BuildVariant& v : variants_)
+        if (v.scene == in && v.hash == key && !key.empty()) {
+            Selection s;
+            s.variant = &v;
+            return s;
+        }
+    Selection s;
+    const auto choices = parse_key(key, &s.error);
+    if (choices.empty()) return s;
+    return select(scene, choices, fallback);
+}
+
+} // namespace watergen

@@ -1,0 +1,198 @@
+// Typed parameter values of one variant, packed at the offsets a language's reflection gives.
+#include "watergen/runtime/uniform_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace watergen {
+
+namespace {
+
+std::string type_of(const BlockParameter& p) {
+    return p.array_size ? p.type + "[" + std::to_string(p.array_size) + "]" : p.type;
+}
+
+std::string given_type(size_t n) {
+    switch (n) {
+    case 1:
+        return "float";
+    case 2:
+        return "vec2";
+    case 3:
+        return "vec3";
+    case 4:
+        return "vec4";
+    default:
+        return std::to_string(n) + " floats";
+    }
+}
+
+std::string numbers(const std::vector<double>& v) {
+    std::string out;
+    for (double x : v) {
+        char buf[32];
+        std::snprintf(buf, sizeof(buf), "%g", x);
+        out += (out.empty() ? "" : ", ") + std::string(buf);
+    }
+    return v.size() == 1 ? out : "(" + out + ")";
+}
+
+std::string variant_name(const BuildVariant& v) {
+    return "variant " + v.key + " (scene " + v.scene + ")";
+}
+
+// "vec2[8]" -> "vec2".
+std::string base_type(const std::string& type) {
+    return type.substr(0, type.find('['));
+}
+
+} // namespace
+
+uint32_t type_components(const std::string& type) {
+    if (type == "float" || type == "int" || type == "uint") return 1;
+    if (type == "vec2") return 2;
+    if (type == "vec3") return 3;
+    if (type == "vec4") return 4;
+    return 0;
+}
+
+UniformWriter::UniformWriter(const BuildVariant& variant) : variant_(variant) {
+    for (const BlockParameter& p : variant.parameters) {
+        Slot s{&p, std::vector<float>(p.default_value.begin(), p.default_value.end())};
+        if (const auto sel = variant.selector_uniforms.find(p.name);
+            sel != variant.selector_uniforms.end())
+            s.values.assign(1, static_cast<float>(sel->second));
+        values_[p.name] = std::move(s);
+    }
+}
+
+const std::vector<float>* UniformWriter::value(const std::string& name) const {
+    const auto it = values_.find(name);
+    return it == values_.end() ? nullptr : &it->second.values;
+}
+
+Write UniformWriter::set(const std::string& name, std::span<const float> values) {
+    Write w;
+    const auto it = values_.find(name);
+    if (it == values_.end()) {
+        if (const auto f = variant_.folded_parameters.find(name);
+            f != variant_.folded_parameters.end()) {
+            const bool same = f->second.size() == values.size() &&
+                              std::equal(values.begin(), values.end(), f->second.begin(),
+                                         [](float a, double b) { return a == float(b); });
+            if (same) {
+                w.ok = true;
+                w.note = "parameter '" + name + "' was folded to " + numbers(f->second) +
+                         " by scene " + variant_.scene + "; the same value is a no-op";
+            } else {
+                w.error = "parameter '" + name + "' was folded to " + numbers(f->second) +
+                          " by scene " + variant_.scene + " (" + variant_name(variant_) +
+                          "); the shader cannot take " +
+                          numbers(std::vector<double>(values.begin(), values.end())) +
+                          ": change the scene's facts or leave it unset";
+            }
+            return w;
+        }
+        const auto& removed = variant_.removed_parameters;
+        if (std::find(removed.begin(), removed.end(), name) != removed.end()) {
+            w.ok = true;
+            w.note = "parameter '" + name + "' is not read by " + variant_name(variant_) +
+                     " (removed_parameters); the value has no effect";
+            return w;
+        }
+        std::string known;
+        for (const auto& [n, s] : values_)
+            known += (known.empty() ? "" : ", ") + n;
+        w.error = "unknown parameter '" + name + "' (given " + given_type(values.size()) +
+                  "): " + variant_name(variant_) + " has " + known;
+        return w;
+    }
+    Slot& slot = it->second;
+    const BlockParameter& p = *slot.parameter;
+    if (variant_.selector_uniforms.count(name)) {
+        w.error = "parameter '" + name + "' selects the variant (branching build mode); select " +
+                  "another variant instead of setting it";
+        return w;
+    }
+    const uint32_t comps = type_components(p.type);
+    const size_t expected = size_t(comps) * std::max<uint32_t>(p.array_size, 1);
+    if (comps == 0 || p.type == "int" || p.type == "uint" || values.size() != expected) {
+        w.error = "parameter '" + name + "' is " + type_of(p) + "; given " +
+                  given_type(values.size()) +
+                  (p.array_size ? " (expected " + std::to_string(expected) + " floats)" : "");
+        return w;
+    }
+    for (float v : values)
+        if (!std::isfinite(v)) {
+            w.error = "parameter '" + name + "' (" + type_of(p) + "): value is not finite";
+            return w;
+        }
+    slot.values.assign(values.begin(), values.end());
+    w.ok = true;
+    return w;
+}
+
+std::optional<std::vector<uint8_t>> UniformWriter::pack(const Reflection& reflection,
+                                                        std::string* error) const {
+    const DescriptorBinding* block = nullptr;
+    for (const DescriptorBinding& b : reflection.bindings)
+        if (b.kind == DescriptorKind::UniformBuffer &&
+            (b.name == variant_.block_name || variant_.block_name.empty()))
+            block = &b;
+    if (!block) {
+        if (variant_.parameters.empty()) return std::vector<uint8_t>{};
+        *error = "the reflection has no uniform block '" + variant_.block_name + "' (" +
+                 variant_name(variant_) + ")";
+        return std::nullopt;
+    }
+    std::vector<uint8_t> bytes((block->block_size + 15) / 16 * 16, 0);
+    for (const UniformMember& m : block->members) {
+        const auto it = values_.find(m.name);
+        if (it == values_.end()) {
+            *error = "reflected member '" + m.name + "' of block " + block->name +
+                     " is not a parameter of " + variant_name(variant_);
+            return std::nullopt;
+        }
+        const BlockParameter& p = *it->second.parameter;
+        const std::string base = base_type(m.type);
+        const uint32_t comps = type_components(base);
+        const uint32_t count = std::max<uint32_t>(m.array_size, 1);
+        const uint32_t stride = m.array_size ? m.array_stride : comps * 4;
+        const bool fits =
+            comps != 0 && base == p.type && m.array_size == p.array_size && stride >= comps * 4 &&
+            m.size == (m.array_size ? count * stride : comps * 4) &&
+            uint64_t(m.offset) + uint64_t(count - 1) * stride + comps * 4 <= block->block_size;
+        if (!fits) {
+            *error = "reflected member '" + m.name + "' of block " + block->name + " (" + m.type +
+                     ", offset " + std::to_string(m.offset) + ", size " + std::to_string(m.size) +
+                     ", stride " + std::to_string(m.array_stride) +
+                     ") does not fit parameter type " + type_of(p);
+            return std::nullopt;
+        }
+        const std::vector<float>& values = it->second.values;
+        if (values.size() != size_t(comps) * count) {
+            *error = "parameter '" + m.name + "' has " + std::to_string(values.size()) +
+                     " values in the manifest; " + type_of(p) + " needs " +
+                     std::to_string(comps * count);
+            return std::nullopt;
+        }
+        for (uint32_t e = 0; e < count; ++e)
+            for (uint32_t c = 0; c < comps; ++c) {
+                const float f = values[size_t(e) * comps + c];
+                uint8_t* at = bytes.data() + m.offset + size_t(e) * stride + c * 4;
+                if (base == "int") {
+                    const int32_t i = static_cast<int32_t>(f);
+                    std::memcpy(at, &i, 4);
+                } else if (base == "uint") {
+                    const uint32_t u = static_cast<uint32_t>(f);
+                    std::memcpy(at, &u, 4);
+                } else {
+                    std::memcpy(at, &f, 4);
+                }
+            }
+    }
+    return bytes;
+}
+
+} // namespace watergen

@@ -1,0 +1,283 @@
+// Descriptor set layouts, pipeline layout and graphics pipeline from reflection; the pipeline
+// cache file.
+#include "watergen/runtime/variant_pipeline.h"
+
+#include <cstring>
+#include <fstream>
+#include <unistd.h>
+
+#include "pipeline_state.h"
+
+namespace watergen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string failed(const char* call, VkResult r) {
+    return std::string(call) + " failed: VkResult " + std::to_string(static_cast<int>(r));
+}
+
+VkShaderModule make_module(VkDevice device, const std::vector<uint32_t>& spirv, const char* stage,
+                           std::string* error) {
+    VkShaderModuleCreateInfo ci{};
+    ci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+    ci.codeSize = spirv.size() * sizeof(uint32_t);
+    ci.pCode = spirv.data();
+    VkShaderModule m = VK_NULL_HANDLE;
+    if (VkResult r = vkCreateShaderModule(device, &ci, nullptr, &m); r != VK_SUCCESS) {
+        *error = std::string(stage) + " stage: " + failed("vkCreateShaderModule", r);
+        return VK_NULL_HANDLE;
+    }
+    return m;
+}
+
+} // namespace
+
+VkDescriptorType descriptor_type(DescriptorKind kind) {
+    switch (kind) {
+    case DescriptorKind::UniformBuffer:
+        return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case DescriptorKind::StorageBuffer:
+        return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case DescriptorKind::SampledImage:
+        return VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+    case DescriptorKind::Sampler:
+        return VK_DESCRIPTOR_TYPE_SAMPLER;
+    case DescriptorKind::CombinedImageSampler:
+        return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    }
+    return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+}
+
+VariantPipeline::VariantPipeline(VariantPipeline&& o) noexcept {
+    *this = std::move(o);
+}
+
+VariantPipeline& VariantPipeline::operator=(VariantPipeline&& o) noexcept {
+    if (this == &o) return *this;
+    destroy();
+    device_ = o.device_;
+    set_layouts_ = std::move(o.set_layouts_);
+    bindings_ = std::move(o.bindings_);
+    layout_ = o.layout_;
+    pipeline_ = o.pipeline_;
+    o.set_layouts_.clear();
+    o.layout_ = VK_NULL_HANDLE;
+    o.pipeline_ = VK_NULL_HANDLE;
+    return *this;
+}
+
+VariantPipeline::~VariantPipeline() {
+    destroy();
+}
+
+void VariantPipeline::destroy() {
+    if (!device_) return;
+    if (pipeline_) vkDestroyPipeline(device_, pipeline_, nullptr);
+    if (layout_) vkDestroyPipelineLayout(device_, layout_, nullptr);
+    for (VkDescriptorSetLayout l : set_layouts_)
+        vkDestroyDescriptorSetLayout(device_, l, nullptr);
+    set_layouts_.clear();
+    pipeline_ = VK_NULL_HANDLE;
+    layout_ = VK_NULL_HANDLE;
+}
+
+std::vector<VkDescriptorPoolSize> VariantPipeline::pool_sizes(uint32_t copies) const {
+    std::map<VkDescriptorType, uint32_t> counts;
+    for (const auto& set : bindings_)
+        for (const DescriptorBinding& b : set)
+            counts[descriptor_type(b.kind)] += copies;
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (const auto& [type, n] : counts)
+        sizes.push_back({type, n});
+    return sizes;
+}
+
+std::optional<VariantPipeline>
+VariantPipeline::create(VkDevice device, const VariantPipelineDesc& d, std::string* error) {
+    if (!d.vertex_spirv || !d.fragment_spirv || !d.vertex_reflection || !d.fragment_reflection ||
+        !d.render_pass) {
+        *error = "VariantPipelineDesc: expected both stages' SPIR-V and reflection and a render "
+                 "pass";
+        return std::nullopt;
+    }
+    VariantPipeline p;
+    p.device_ = device;
+    // Union of the stages' bindings by (set, binding), stage flags or-ed together.
+    std::map<std::pair<uint32_t, uint32_t>, std::pair<DescriptorBinding, VkShaderStageFlags>> all;
+    for (const auto& [r, stage] : {std::pair{d.vertex_reflection, VK_SHADER_STAGE_VERTEX_BIT},
+                                   std::pair{d.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}})
+        for (const DescriptorBinding& b : r->bindings) {
+            auto [it, fresh] = all.try_emplace({b.set, b.binding}, b, 0);
+            if (!fresh && it->second.first.kind != b.kind) {
+                *error = "binding " + std::to_string(b.binding) + " of set " +
+                         std::to_string(b.set) + " is " + to_string(it->second.first.kind) +
+                         " in one stage and " + to_string(b.kind) + " in the other";
+                return std::nullopt;
+            }
+            it->second.second |= static_cast<VkShaderStageFlags>(stage);
+        }
+    uint32_t sets = 0;
+    for (const auto& [key, b] : all)
+        sets = std::max(sets, key.first + 1);
+    p.bindings_.resize(sets);
+    std::vector<std::vector<VkDescriptorSetLayoutBinding>> layout_bindings(sets);
+    for (const auto& [key, b] : all) {
+        p.bindings_[key.first].push_back(b.first);
+        layout_bindings[key.first].push_back(
+            {key.second, descriptor_type(b.first.kind), 1, b.second, nullptr});
+    }
+    for (uint32_t s = 0; s < sets; ++s) {
+        VkDescriptorSetLayoutCreateInfo ci{};
+        ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+        ci.bindingCount = static_cast<uint32_t>(layout_bindings[s].size());
+        ci.pBindings = layout_bindings[s].data();
+        VkDescriptorSetLayout l = VK_NULL_HANDLE;
+        if (VkResult r = vkCreateDescriptorSetLayout(device, &ci, nullptr, &l); r != VK_SUCCESS) {
+            *error = failed("vkCreateDescriptorSetLayout", r);
+            return std::nullopt;
+        }
+        p.set_layouts_.push_back(l);
+    }
+    VkPipelineLayoutCreateInfo lci{};
+    lci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    lci.setLayoutCount = sets;
+    lci.pSetLayouts = p.set_layouts_.data();
+    if (VkResult r = vkCreatePipelineLayout(device, &lci, nullptr, &p.layout_); r != VK_SUCCESS) {
+        *error = failed("vkCreatePipelineLayout", r);
+        return std::nullopt;
+    }
+
+    std::vector<VkSpecializationMapEntry> entries;
+    std::vector<float> data;
+    for (const auto& [id, value] : d.specialization) {
+        entries.push_back({id, static_cast<uint32_t>(data.size() * sizeof(float)), sizeof(float)});
+        data.push_back(value);
+    }
+    VkSpecializationInfo spec{static_cast<uint32_t>(entries.size()), entries.data(),
+                              data.size() * sizeof(float), data.data()};
+    VkShaderModule vs = make_module(device, *d.vertex_spirv, "vertex", error);
+    VkShaderModule fs = vs ? make_module(device, *d.fragment_spirv, "fragment", error) : nullptr;
+    if (!fs) {
+        if (vs) vkDestroyShaderModule(device, vs, nullptr);
+        return std::nullopt;
+    }
+    VkPipelineShaderStageCreateInfo stages[2]{};
+    for (int i = 0; i < 2; ++i) {
+        const Reflection& r = i == 0 ? *d.vertex_reflection : *d.fragment_reflection;
+        stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+        stages[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
+        stages[i].module = i == 0 ? vs : fs;
+        stages[i].pName = r.entry_point.empty() ? "main" : r.entry_point.c_str();
+        stages[i].pSpecializationInfo = entries.empty() ? nullptr : &spec;
+    }
+    VkPipelineVertexInputStateCreateInfo vertex_input{};
+    vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+    const vk_state::FixedFunction fixed;
+    VkPipelineViewportStateCreateInfo viewport{};
+    viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+    viewport.viewportCount = 1;
+    viewport.scissorCount = 1;
+    const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dynamic{};
+    dynamic.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
+    dynamic.dynamicStateCount = 2;
+    dynamic.pDynamicStates = dynamic_states;
+
+    VkGraphicsPipelineCreateInfo gci{};
+    fixed.apply(gci);
+    gci.stageCount = 2;
+    gci.pStages = stages;
+    gci.pVertexInputState = &vertex_input;
+    gci.pViewportState = &viewport;
+    gci.pDynamicState = &dynamic;
+    gci.layout = p.layout_;
+    gci.renderPass = d.render_pass;
+    gci.subpass = d.subpass;
+    const VkResult r = vkCreateGraphicsPipelines(device, d.cache, 1, &gci, nullptr, &p.pipeline_);
+    vkDestroyShaderModule(device, vs, nullptr);
+    vkDestroyShaderModule(device, fs, nullptr);
+    if (r != VK_SUCCESS) {
+        p.pipeline_ = VK_NULL_HANDLE;
+        *error = failed("vkCreateGraphicsPipelines", r);
+        return std::nullopt;
+    }
+    return p;
+}
+
+std::optional<PipelineCacheFile> load_pipeline_cache(VkPhysicalDevice physical, VkDevice device,
+                                                     const fs::path& file, std::string* error) {
+    PipelineCacheFile out;
+    std::string data;
+    std::error_code ec;
+    if (fs::is_regular_file(file, ec)) {
+        std::ifstream in(file, std::ios::binary);
+        data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        // The header (VkPipelineCacheHeaderVersionOne): length, version, vendor, device, UUID.
+        VkPhysicalDeviceProperties props{};
+        vkGetPhysicalDeviceProperties(physical, &props);
+        VkPipelineCacheHeaderVersionOne header{};
+        if (data.size() < sizeof(header)) {
+            out.note = file.string() + ": shorter than a pipeline cache header; starting empty";
+            data.clear();
+        } else {
+            std::memcpy(&header, data.data(), sizeof(header));
+            if (header.headerVersion != VK_PIPELINE_CACHE_HEADER_VERSION_ONE ||
+                header.vendorID != props.vendorID || header.deviceID != props.deviceID ||
+                std::memcmp(header.pipelineCacheUUID, props.pipelineCacheUUID, VK_UUID_SIZE)) {
+                out.note = file.string() + ": made by another device or driver; starting empty";
+                data.clear();
+            }
+        }
+    } else {
+        out.note = file.string() + ": no cache file yet; starting empty";
+    }
+    VkPipelineCacheCreateInfo ci{};
+    ci.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO;
+    ci.initialDataSize = data.size();
+    ci.pInitialData = data.empty() ? nullptr : data.data();
+    if (VkResult r = vkCreatePipelineCache(device, &ci, nullptr, &out.cache); r != VK_SUCCESS) {
+        *error = failed("vkCreatePipelineCache", r);
+        return std::nullopt;
+    }
+    out.loaded = !data.empty();
+    return out;
+}
+
+bool save_pipeline_cache(VkDevice device, VkPipelineCache cache, const fs::path& file,
+                         std::string* error) {
+    size_t size = 0;
+    if (VkResult r = vkGetPipelineCacheData(device, cache, &size, nullptr); r != VK_SUCCESS) {
+        *error = failed("vkGetPipelineCacheData", r);
+        return false;
+    }
+    std::string data(size, '\0');
+    if (VkResult r = vkGetPipelineCacheData(device, cache, &size, data.data()); r != VK_SUCCESS) {
+        *error = failed("vkGetPipelineCacheData", r);
+        return false;
+    }
+    data.resize(size);
+    const fs::path temp = file.string() + ".tmp-" + std::to_string(::getpid());
+    {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        out.write(data.data(), static_cast<std::streamsize>(data.size()));
+        out.flush();
+        if (!out) {
+            *error = temp.string() + ": cannot be written";
+            std::error_code ec;
+            fs::remove(temp, ec);
+            return false;
+        }
+    }
+    std::error_code ec;
+    fs::rename(temp, file, ec);
+    if (ec) {
+        *error = "renaming " + temp.string() + " to " + file.string() + ": " + ec.message();
+        fs::remove(temp, ec);
+        return false;
+    }
+    return true;
+}
+
+} // namespace watergen

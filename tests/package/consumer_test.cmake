@@ -1,0 +1,86 @@
+# cmake -P script of the package_consumer test (see CMakeLists.txt). Every step prints what it
+# ran; a failed expectation stops with FATAL_ERROR and the step's output.
+cmake_minimum_required(VERSION 3.25)
+
+set(prefix ${WORK_DIR}/prefix)
+set(src ${WORK_DIR}/src)
+set(bld ${WORK_DIR}/build)
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+# watergen's build cache for this test only.
+set(ENV{XDG_CACHE_HOME} ${WORK_DIR}/cache)
+
+# run(<name> <expect: ok|fail> <output variable> COMMAND...): runs, checks the exit status.
+function(run name expect out)
+  execute_process(COMMAND ${ARGN} WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc
+    OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+  set(text "${stdout}${stderr}")
+  message(STATUS "[${name}] exit ${rc}\n${text}")
+  if(expect STREQUAL "ok" AND NOT rc EQUAL 0)
+    message(FATAL_ERROR "[${name}] failed (exit ${rc})")
+  elseif(expect STREQUAL "fail" AND rc EQUAL 0)
+    message(FATAL_ERROR "[${name}] succeeded; expected it to fail")
+  endif()
+  set(${out} "${text}" PARENT_SCOPE)
+endfunction()
+
+function(expect_match name text regex)
+  if(NOT text MATCHES "${regex}")
+    message(FATAL_ERROR "[${name}] output does not match '${regex}'")
+  endif()
+endfunction()
+
+# Install only the package's components.
+foreach(component runtime generator cmake)
+  run(install-${component} ok out ${CMAKE_COMMAND} --install ${WATERGEN_BUILD_DIR}
+      --prefix ${prefix} --component ${component})
+endforeach()
+
+# The consumer and its material and scene, copied: the test edits them.
+file(COPY ${WATERGEN_SOURCE_DIR}/examples/engine_consumer/ DESTINATION ${src})
+file(COPY ${WATERGEN_SOURCE_DIR}/examples/materials/default.json DESTINATION ${WORK_DIR}/water)
+file(COPY ${WATERGEN_SOURCE_DIR}/examples/scenes/open_ocean.json DESTINATION ${WORK_DIR}/water)
+set(material ${WORK_DIR}/water/default.json)
+set(scene ${WORK_DIR}/water/open_ocean.json)
+
+run(configure ok out ${CMAKE_COMMAND} -S ${src} -B ${bld} -G ${GENERATOR}
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
+    -DCMAKE_PREFIX_PATH=${prefix} -DWATER_MATERIAL=${material} -DWATER_SCENES=${scene})
+
+run(first-build ok out ${CMAKE_COMMAND} --build ${bld})
+expect_match(first-build "${out}" "watergen: shaders of")
+if(NOT EXISTS ${bld}/watergen/water_viewer/manifest.json)
+  message(FATAL_ERROR "[first-build] no manifest.json in ${bld}/watergen/water_viewer")
+endif()
+
+# The depfile watergen wrote names the output manifest and the inputs.
+file(READ ${bld}/watergen_water_viewer.d depfile)
+expect_match(depfile "${depfile}" "water_viewer/manifest.json:")
+expect_match(depfile "${depfile}" "water/default.json")
+expect_match(depfile "${depfile}" "water/open_ocean.json")
+
+run(draw ok out ${bld}/water_viewer ${bld}/watergen/water_viewer ${WORK_DIR}/water.ppm)
+expect_match(draw "${out}" "selected fresnel=schlick")
+expect_match(draw "${out}" "nearest kept variant: foam: shore -> none")
+expect_match(draw "${out}" "0 non-finite")
+
+run(second-build ok out ${CMAKE_COMMAND} --build ${bld})
+expect_match(second-build "${out}" "ninja: no work to do")
+
+file(TOUCH ${scene})
+run(touched-scene ok out ${CMAKE_COMMAND} --build ${bld})
+expect_match(touched-scene "${out}" "watergen: shaders of")
+run(after-touch ok out ${CMAKE_COMMAND} --build ${bld})
+expect_match(after-touch "${out}" "ninja: no work to do")
+
+# A broken material (a misspelt choice): the build fails with the material's file:line:column.
+file(READ ${material} text)
+string(REPLACE "\"schlick\", \"exact\"" "\"schlik\", \"exact\"" text "${text}")
+file(WRITE ${material} "${text}")
+run(broken-material fail out ${CMAKE_COMMAND} --build ${bld})
+expect_match(broken-material "${out}"
+  "default.json:[0-9]+:[0-9]+: error: [^\n]*unknown fresnel choice 'schlik'")
+# The earlier build output is left as it was.
+run(draw-after-failure ok out ${bld}/water_viewer ${bld}/watergen/water_viewer
+    ${WORK_DIR}/water2.ppm)
+message(STATUS "package_consumer: every step as expected")
