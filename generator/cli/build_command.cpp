@@ -12,6 +12,17 @@
 
 namespace watergen::cli {
 
+namespace {
+
+void print_up_to_date(const BuildSummary& s, const std::string& out) {
+    std::printf("%s\n", fmt::format("build: {} variants up to date ({} files verified, nothing "
+                                    "rebuilt) in {:.3f} s -> {}",
+                                    s.variants, s.files, s.seconds, out)
+                            .c_str());
+}
+
+} // namespace
+
 bool load_material_and_scenes(const std::string& material_path,
                               const std::vector<std::string>& scene_paths, Material& material,
                               std::vector<SceneFacts>& scenes, const Common& common) {
@@ -128,9 +139,11 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         request.inputs_hash =
             build_inputs_hash(o->material, o->scenes, o->mode + (o->freeze ? " freeze" : ""))
                 .value_or("");
-        if (!load_material_and_scenes(o->material, o->scenes, request.material, request.scenes,
-                                      common))
-            return kUsage;
+        request.out = o->out;
+        request.options.threads = o->jobs;
+        if (!o->no_cache)
+            request.options.cache = BuildCache(o->cache.empty() ? default_cache_dir()
+                                                                : std::filesystem::path(o->cache));
         // Written before the build: it depends on the inputs only, and a depfile that cannot be
         // written stops the build before anything else is.
         if (!o->depfile.empty()) {
@@ -142,11 +155,14 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                 return kFailed;
             }
         }
-        request.out = o->out;
-        request.options.threads = o->jobs;
-        if (!o->no_cache)
-            request.options.cache = BuildCache(o->cache.empty() ? default_cache_dir()
-                                                                : std::filesystem::path(o->cache));
+        // Nothing changed and the output is intact: not even the material is loaded.
+        if (auto done = build_up_to_date(request)) {
+            print_up_to_date(*done, o->out);
+            return kOk;
+        }
+        if (!load_material_and_scenes(o->material, o->scenes, request.material, request.scenes,
+                                      common))
+            return kUsage;
         const bool tty = !o->quiet && ::isatty(STDERR_FILENO);
         if (tty)
             request.options.progress = [](const BuildProgress& p) {
@@ -160,10 +176,7 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         if (s.bad_input) return kUsage;
         const unsigned threads = o->jobs ? o->jobs : hardware_threads();
         if (s.up_to_date) {
-            std::printf("%s\n", fmt::format("build: {} variants up to date ({} files verified, "
-                                            "nothing rebuilt) in {:.3f} s -> {}",
-                                            s.variants, s.files, s.seconds, o->out)
-                                    .c_str());
+            print_up_to_date(s, o->out);
             return kOk;
         }
         const std::string rejected =

@@ -232,21 +232,28 @@ void keep_shard(BuildPlan& plan, const Shard& shard) {
 
 } // namespace
 
+std::optional<BuildSummary> build_up_to_date(const BuildRequest& request) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (request.inputs_hash.empty() || !request.options.cache.enabled()) return std::nullopt;
+    auto done = up_to_date(request, record_key(request.inputs_hash, shard_text(request.shard)),
+                           record_file(request.options.cache, request.out));
+    if (done)
+        done->seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return done;
+}
+
 BuildSummary build_material(const BuildRequest& request) {
     const auto t0 = std::chrono::steady_clock::now();
     auto elapsed = [&] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     };
     // Nothing changed and the output is intact: no IR work, the output untouched.
+    if (auto done = build_up_to_date(request)) return *done;
     const bool recorded = !request.inputs_hash.empty() && request.options.cache.enabled();
     const std::string key =
         recorded ? record_key(request.inputs_hash, shard_text(request.shard)) : "";
     const fs::path record = recorded ? record_file(request.options.cache, request.out) : fs::path();
-    if (recorded)
-        if (auto done = up_to_date(request, key, record)) {
-            done->seconds = elapsed();
-            return *done;
-        }
     BuildSummary s;
     if (request.shard.sharded() && request.mode != BuildMode::Permutations) {
         s.bad_input = true;

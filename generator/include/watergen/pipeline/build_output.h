@@ -69,6 +69,11 @@ struct BuildRequest {
     Shard shard = {};
 };
 
+// The summary of a no-op build when the request's record (inputs_hash, shard, out, cache)
+// matches and every recorded output file is intact; nullopt when a build must run. Needs no
+// material: a caller may ask before loading one (loading the full space's material alone costs
+// 0.1 s).
+std::optional<BuildSummary> build_up_to_date(const BuildRequest& request);
 BuildSummary build_material(const BuildRequest& request);
 
 // Puts `files` in place of the output directory `out` as one atomic step, if `out` may be
