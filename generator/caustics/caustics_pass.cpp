@@ -1,6 +1,7 @@
 #include "watergen/caustics/caustics_pass.h"
 
 #include "watergen/ir/dsl.h"
+#include "watergen/water/nodes/caustics.h"
 #include "watergen/water/nodes/waves.h"
 #include "watergen/water/scene_quantities.h"
 
@@ -30,8 +31,7 @@ RayToBottom trace(Graph& g, const std::string& model, Expr grid) {
     Expr ior = uniform(g, {"ior_water", Type::Float, {1.33333}, 1.0, 3.0, "", "000", ""});
     Expr depth =
         uniform(g, {"caustics_depth", Type::Float, {5.0}, 0.0, 1e4, "m", "002", "caustics"});
-    Expr window = uniform(
-        g, {"caustics_window", Type::Vec3, {-5.0, -5.0, 10.0}, -1e5, 1e5, "m", "002", "caustics"});
+    Expr window = uniform(g, caustics_window()); // the water pass's caustics axis reads it too
     // The surface point as the grid point moved by `shift` (horizontal) and `height` (above
     // the water level), and its unit normal. Kept as displacements: under flat water they are
     // exactly 0, where differences of positions would carry float rounding.

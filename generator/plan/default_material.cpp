@@ -22,6 +22,7 @@ Material default_material() {
             .offer("waves", {"flat", "gerstner"})
             .offer("shore", {"hard", "soft"})
             .offer("precision", {"full", "half"})
+            .offer("caustics", {"none", "area_ratio"})
             .excludes_choice("precision", "half", "fresnel", {"exact"},
                              "the exact Fresnel term is the reference; mobile builds use Schlick")
             .parameter("absorb_coefficients", {0.46, 0.09, 0.06})

@@ -173,6 +173,7 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const Scene
     add_foam_inputs(s);
     add_optics_inputs(s);
     add_wave_inputs(s);
+    add_caustics_inputs(s);
     return s;
 }
 

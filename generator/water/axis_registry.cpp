@@ -12,9 +12,11 @@ namespace {
 struct Registry {
     // Order is the order of a variant key. Seeds: 000 Toman, 001 Lombard, 002 Mihalik,
     // 003 IceFall, 004 sum of sines / Gerstner / Atlas (../shared/docs/water-models.md).
-    std::vector<AxisInfo> axes = {
-        fresnel_axis(),    extinction_axis(), specular_axis(), foam_axis(),  reflection_axis(),
-        refraction_axis(), normals_axis(),    waves_axis(),    shore_axis(), precision_axis()};
+    // caustics came last, so every key before it reads as it did.
+    std::vector<AxisInfo> axes = {fresnel_axis(),   extinction_axis(), specular_axis(),
+                                  foam_axis(),      reflection_axis(), refraction_axis(),
+                                  normals_axis(),   waves_axis(),      shore_axis(),
+                                  precision_axis(), caustics_axis()};
     bool frozen = false;
 };
 

@@ -16,5 +16,6 @@ AxisInfo normals_axis();
 AxisInfo waves_axis();
 AxisInfo shore_axis();
 AxisInfo precision_axis();
+AxisInfo caustics_axis();
 
 } // namespace watergen

@@ -95,6 +95,8 @@ WaterShader build_water_shader(const ShaderChoices& choices, const Preset* prese
     }
     RelaxedScope shading(g, relaxed);
     compose_axis(s, choices, "refraction");
+    // Caustics light the bottom the refraction sees, before the water column dims it.
+    compose_axis(s, choices, "caustics");
     compose_axis(s, choices, "extinction");
     compose_axis(s, choices, "reflection");
     compose_axis(s, choices, "fresnel");

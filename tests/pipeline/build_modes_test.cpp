@@ -20,17 +20,17 @@ TEST_CASE("the_specialized_manifest_lists_each_variant_with_its_constant_values"
     r.freeze = true;
     const BuildSummary s = build_material(r);
     REQUIRE(s.ok());
-    CHECK(s.variants == 96);
+    CHECK(s.variants == 144);
     CHECK(s.shaders == 2); // full and half precision
     const auto tree = read_tree(r.out);
     const auto m = nlohmann::json::parse(tree.at("manifest.json"));
     CHECK(m["mode"] == "specialized");
     REQUIRE(m["shaders"].size() == 2);
-    REQUIRE(m["variants"].size() == 96);
-    // The full-precision shader switches six axes, each on its own constant.
+    REQUIRE(m["variants"].size() == 144);
+    // The full-precision shader switches seven axes, each on its own constant.
     const auto& full = m["shaders"][1];
-    CHECK(full["variants"] == 64);
-    REQUIRE(full["selectors"].size() == 6);
+    CHECK(full["variants"] == 96);
+    REQUIRE(full["selectors"].size() == 7);
     std::map<std::string, int> ids;
     for (const auto& sel : full["selectors"])
         ids[sel["parameter"]] = sel["constant_id"];
@@ -41,7 +41,7 @@ TEST_CASE("the_specialized_manifest_lists_each_variant_with_its_constant_values"
         CHECK(tree.count(v["frozen"]["hlsl"].get<std::string>()) == 1);
         if (v["shader"] != full["directory"]) continue;
         // Each constant value is the index of the variant's choice among the offered ones.
-        REQUIRE(v["specialization_constants"].size() == 6);
+        REQUIRE(v["specialization_constants"].size() == 7);
         for (const auto& c : v["specialization_constants"]) {
             CHECK(c["id"] == ids[c["name"]]);
             const std::string axis = c["name"].get<std::string>().substr(5); // "axis_"
@@ -53,7 +53,7 @@ TEST_CASE("the_specialized_manifest_lists_each_variant_with_its_constant_values"
     // The shader reflects its selectors as specialization constants with their ranges, and the
     // parameters declared as ones: the Gerstner wave count (a loop's trip count).
     const auto& constants = full["reflection"]["specialization_constants"];
-    CHECK(constants.size() == 7);
+    CHECK(constants.size() == 8);
     for (const auto& c : constants) {
         if (c["name"] != "gerstner_wave_count") continue;
         CHECK(c["default"][0] == 4.0);
@@ -68,10 +68,10 @@ TEST_CASE("the_branching_manifest_places_the_selectors_in_the_uniform_block", "[
     r.mode = BuildMode::Branching;
     const BuildSummary s = build_material(r);
     REQUIRE(s.ok());
-    CHECK(s.variants == 48); // the pruned scenes reach 16 variants each
+    CHECK(s.variants == 64); // the pruned scenes reach 24, 16 and 24 variants
     CHECK(s.shaders == 3);   // each scene targets one precision
     const auto m = nlohmann::json::parse(read_tree(r.out).at("manifest.json"));
-    REQUIRE(m["variants"].size() == 48);
+    REQUIRE(m["variants"].size() == 64);
     for (const auto& v : m["variants"]) {
         INFO(v["key"]);
         CHECK(v.contains("specialization_constants") == false);

@@ -38,7 +38,7 @@ TEST_CASE("builder_and_file_describe_the_same_material", "[material]") {
     // The manifest's material section holds everything a build reads from a material.
     CHECK(manifest_json(*file, {}, {}, {}) == manifest_json(cpp, {}, {}, {}));
     CHECK(file->declared.size() == cpp.declared.size());
-    CHECK(count_variants(cpp.space) == 96);
+    CHECK(count_variants(cpp.space) == 144);
 }
 
 TEST_CASE("material_space_keeps_documentation_order", "[material]") {
@@ -60,7 +60,7 @@ TEST_CASE("material_errors_name_file_line_path_and_what_was_expected", "[materia
     CHECK(error_of("{\"name\": \"x\",\n \"axes\": {\n  \"colour\": [\"blue\"]}}") ==
           "m.json:3:3: error: /axes/colour: unknown axis 'colour'; expected one of fresnel, "
           "extinction, specular, foam, "
-          "reflection, refraction, normals, waves, shore, precision");
+          "reflection, refraction, normals, waves, shore, precision, caustics");
     CHECK(error_of("{\"name\": \"x\",\n \"axes\": {\"fresnel\": [\"schlick\",\n \"fancy\"]}}") ==
           "m.json:3:2: error: /axes/fresnel/1: unknown fresnel choice 'fancy'; expected one of "
           "none, power, schlick, exact");

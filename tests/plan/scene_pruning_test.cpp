@@ -70,13 +70,37 @@ TEST_CASE("scene_facts_rule_out_choices_with_their_reason", "[pruning]") {
     CHECK(e->reason == "the scene targets precision half");
 }
 
+TEST_CASE("a_sun_below_the_horizon_prunes_every_caustics_choice", "[pruning]") {
+    // Caustics are focused sunlight: harbour_night (sun -40..-6 degrees) reaches none of them,
+    // whatever the waves; a sunlit scene keeps them.
+    const SceneFacts harbour = scene("harbour_night"), ocean = scene("open_ocean");
+    for (const char* c : {"texture", "area_ratio", "photon_splat"}) {
+        INFO(c);
+        const Variant v = with({{"reflection", "planar_projective"},
+                                {"specular", "none"},
+                                {"waves", "gerstner"},
+                                {"caustics", c}});
+        auto e = scene_excludes(harbour, v);
+        REQUIRE(e);
+        CHECK(e->axis == "caustics");
+        CHECK(e->reason ==
+              "the sun never rises (elevation at most -6 degrees), so there are no caustics");
+        CHECK(e->where.find("harbour_night.json") != std::string::npos);
+        Variant lit = v;
+        REQUIRE_FALSE(set_choice(lit, "reflection", "sky_cubemap"));
+        CHECK_FALSE(scene_excludes(ocean, lit));
+    }
+    CHECK_FALSE(
+        scene_excludes(harbour, with({{"reflection", "planar_projective"}, {"specular", "none"}})));
+}
+
 TEST_CASE("plans_of_the_example_scenes", "[pruning]") {
     const Material m = default_material();
     Diagnostics ds;
     auto ocean = plan_scene(m, scene("open_ocean"), ds);
     REQUIRE(ocean);
-    CHECK(ocean->variants.size() == 16);
-    CHECK(ocean->skipped == 80);
+    CHECK(ocean->variants.size() == 24); // 16 without caustics, 8 with area_ratio (Gerstner)
+    CHECK(ocean->skipped == 120);
     CHECK(ocean->fixed.count("water_level"));
     CHECK_FALSE(ocean->fixed.count("time")); // animated waves keep time
     std::vector<std::string> targets;
@@ -89,8 +113,8 @@ TEST_CASE("plans_of_the_example_scenes", "[pruning]") {
 
     auto lake = plan_scene(m, scene("mountain_lake"), ds);
     REQUIRE(lake);
-    CHECK(lake->variants.size() ==
-          16); // half precision, Schlick only (the material's rule), cubemap
+    // Half precision, Schlick only (the material's rule), cubemap; caustics with Gerstner only.
+    CHECK(lake->variants.size() == 24);
     CHECK(lake->fixed.at("time") == std::vector<double>{0.0});
     for (const Variant& v : lake->variants)
         CHECK((v.choice("fresnel") == "schlick" && v.choice("reflection") == "sky_cubemap"));
@@ -98,7 +122,9 @@ TEST_CASE("plans_of_the_example_scenes", "[pruning]") {
     auto harbour = plan_scene(m, scene("harbour_night"), ds);
     REQUIRE(harbour);
     for (const Variant& v : harbour->variants)
-        CHECK((v.choice("specular") == "none" && v.choice("reflection") == "planar_projective"));
+        CHECK((v.choice("specular") == "none" && v.choice("reflection") == "planar_projective" &&
+               v.choice("caustics") == "none"));
+    CHECK(harbour->variants.size() == 16);
     // Night: the sun travels upwards, 0.10..0.64 of its direction.
     const Interval sun_y =
         harbour->facts.quantity_ranges.at(scene_quantity::sun_direction).bounds[1];
@@ -120,7 +146,11 @@ TEST_CASE("the_full_space_per_example_scene", "[pruning]") {
     REQUIRE(harbour);
     REQUIRE(lake);
     CHECK(ocean->variants.size() * 8 == all);
-    CHECK(harbour->variants.size() * 16 == all);
+    // The night reaches caustics=none only: a 16th of the variants without caustics, which are
+    // as many as the space had before the axis (238080).
+    CHECK(harbour->variants.size() * 16 == 238080);
+    for (const Variant& v : harbour->variants)
+        REQUIRE(v.choice("caustics") == "none");
     CHECK(lake->variants.size() * 4 == all);
     CHECK(ocean->variants.size() + ocean->skipped == all);
     // The README's sentence, as computed (a new choice changes it).

@@ -158,7 +158,7 @@ TEST_CASE("a_scene_plan_keeps_why_it_skips_each_variant", "[quantity]") {
     REQUIRE(ocean.skipped_groups.size() == 3);
     CHECK(ocean.skipped_groups[0].text().find(
               "foam=shore: no shoreline, so shore foam never shows [") == 0);
-    CHECK(ocean.skipped_groups[0].variants == 48);
+    CHECK(ocean.skipped_groups[0].variants == 72);
     CHECK(ocean.skipped_groups[1].text().find(
               "precision=half: the scene targets precision full [") == 0);
     CHECK(ocean.skipped_variants.size() == ocean.skipped);
@@ -182,5 +182,5 @@ TEST_CASE("a_scene_plan_keeps_why_it_skips_each_variant", "[quantity]") {
     REQUIRE_FALSE(x.unreached.empty());
     CHECK(x.unreached[0].reasons.size() == 2);
     CHECK(x.scenes[0].folded == 4);
-    CHECK(x.scenes[0].step == 4);
+    CHECK(x.scenes[0].step == 6);
 }

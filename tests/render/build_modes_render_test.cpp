@@ -23,8 +23,8 @@ std::vector<Variant> some_variants(const Material& m) {
     enumerate(m.space, [&](const Variant& v) { all.push_back(v); });
     std::sort(all.begin(), all.end(),
               [](const Variant& a, const Variant& b) { return a.key() < b.key(); });
-    REQUIRE(all.size() == 96);
-    return {all[0], all[29], all[58], all[95]};
+    REQUIRE(all.size() == 144);
+    return {all[0], all[47], all[95], all[143]};
 }
 
 VariantBuild checked_build(WaterShader shader) {
@@ -61,9 +61,9 @@ TEST_CASE("specialized_and_branching_shaders_draw_what_the_permutations_draw", "
         // Sorted by key: "fresnel=schlick," (half) before "fresnel=schlick|exact," (full).
         using Axes = std::vector<std::string>;
         CHECK(shaders[1].switched_axes() ==
-              Axes{"fresnel", "specular", "foam", "reflection", "waves", "shore"});
+              Axes{"fresnel", "specular", "foam", "reflection", "waves", "shore", "caustics"});
         CHECK(shaders[0].switched_axes() ==
-              Axes{"specular", "foam", "reflection", "waves", "shore"});
+              Axes{"specular", "foam", "reflection", "waves", "shore", "caustics"});
         std::vector<VariantBuild> shared;
         for (const ShaderChoices& s : shaders)
             shared.push_back(checked_build(m.compose(s)));

@@ -19,7 +19,8 @@ Variant simple_variant(const std::string& fresnel, const std::string& extinction
     auto v = parse_variant_key(
         "fresnel=" + fresnel + ",extinction=" + extinction + ",specular=" + specular +
             ",foam=" + foam +
-            ",reflection=none,refraction=none,normals=flat,waves=flat,shore=hard,precision=full",
+            ",reflection=none,refraction=none,normals=flat,waves=flat,shore=hard,precision=full,"
+            "caustics=none",
         &error);
     INFO(error);
     REQUIRE(v.has_value());

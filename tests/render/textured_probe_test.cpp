@@ -68,6 +68,18 @@ std::vector<double> detail_quad_tuples() {
     return v;
 }
 
+// (color, xz): one colour over a grid across the caustics window (-5..5 m), past its edges and
+// over several caustics tiles, off the texel grid.
+std::vector<double> color_xz_tuples() {
+    std::vector<double> v;
+    const int n = 24;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            v.insert(v.end(), {0.8, 0.5, 0.25, -7.3 + 14.6 * i / (n - 1) + 0.0113 * j,
+                               -7.3 + 14.6 * j / (n - 1) - 0.0059 * i});
+    return v;
+}
+
 double max_gap(const std::vector<double>& a, const std::vector<double>& b) {
     double m = 0;
     for (size_t i = 0; i < a.size(); ++i)
@@ -87,9 +99,10 @@ TEST_CASE("every_catalog_node_that_reads_a_texture_is_probed_here", "[probe][tex
     std::set<std::string> textured;
     for (const auto& node : node_catalog())
         if (!probe_graph(node).textures().empty()) textured.insert(node.name);
-    CHECK(textured == std::set<std::string>{"normals.detail_map", "normals.heightmap_diff",
-                                            "waves.heightmap.height", "waves.heightmap_march",
-                                            "waves.heightmap_march_converged"});
+    CHECK(textured == std::set<std::string>{
+                          "caustics.area_ratio", "caustics.photon_splat", "caustics.texture",
+                          "normals.detail_map", "normals.heightmap_diff", "waves.heightmap.height",
+                          "waves.heightmap_march", "waves.heightmap_march_converged"});
 }
 
 TEST_CASE("textured_nodes_agree_between_gpu_and_cpu_float", "[probe][textures]") {
@@ -105,6 +118,9 @@ TEST_CASE("textured_nodes_agree_between_gpu_and_cpu_float", "[probe][textures]")
         {"waves.heightmap_march", &eye_ray_tuples, 4e-6},
         {"waves.heightmap_march_converged", &eye_ray_tuples, 4e-6},
         {"normals.detail_map", &detail_quad_tuples, 3e-7},
+        {"caustics.texture", &color_xz_tuples, 3e-7},
+        {"caustics.area_ratio", &color_xz_tuples, 3e-7},
+        {"caustics.photon_splat", &color_xz_tuples, 3e-7},
     };
     for (const auto& c : cases)
         for (Language lang : {Language::Glsl, Language::Hlsl}) {

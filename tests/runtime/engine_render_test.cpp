@@ -25,7 +25,7 @@ constexpr uint32_t kSize = 96;
 const std::map<std::string, std::string> kChoices = {
     {"fresnel", "exact"},          {"specular", "blinn_phong"}, {"foam", "shore"},
     {"reflection", "sky_cubemap"}, {"waves", "gerstner"},       {"shore", "soft"},
-    {"precision", "full"}};
+    {"precision", "full"},         {"caustics", "area_ratio"}};
 
 // `watergen render --preset tropical_ocean`'s scene (flag_checks.cpp preset_scene).
 SyntheticScene render_scene(const Preset* preset) {

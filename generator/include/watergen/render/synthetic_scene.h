@@ -52,6 +52,9 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const Scene
 void add_foam_inputs(SyntheticScene& scene);   // scene_foam_inputs.cpp
 void add_optics_inputs(SyntheticScene& scene); // scene_optics_inputs.cpp: reflection, refraction
 void add_wave_inputs(SyntheticScene& scene);   // scene_wave_inputs.cpp: waves, normals
+// scene_caustics_inputs.cpp: caustics_tile and caustics_map from the CPU photon reference
+// (caustics_reference.h); needs the scene's sun_direction and time uniforms.
+void add_caustics_inputs(SyntheticScene& scene);
 
 // The camera of a view (nodes that project world points to the screen read its matrices,
 // scene_optics_inputs.cpp); without a view, the beach camera.

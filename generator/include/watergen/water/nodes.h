@@ -2,6 +2,7 @@
 // from; ../shared/docs/water-models.md has the formulas and golden values.
 #pragma once
 
+#include "watergen/water/nodes/caustics.h"
 #include "watergen/water/nodes/extinction.h"
 #include "watergen/water/nodes/foam.h"
 #include "watergen/water/nodes/fresnel.h"

@@ -39,7 +39,8 @@ struct Surface {
     Expr to_eye;  // vec3, unit, V (set by the skeleton after normals)
     Expr n_dot_v; // float, c = dot(N, V)
 
-    // 3. refraction: colour seen through the surface, before extinction.
+    // 3. refraction: colour seen through the surface, before extinction; the caustics axis
+    // (composed next, last in a variant key) scales it by the light focused on the bottom.
     Expr refracted; // vec3
     // 4. extinction: what the water column does to it.
     Expr water_color; // vec3
