@@ -66,11 +66,15 @@ std::string check(const CausticsSetup& s) {
 
 } // namespace
 
-double CausticsImage::mean() const {
+double mean_intensity(const std::vector<double>& intensity) {
     double sum = 0;
     for (double v : intensity)
         sum += v;
     return intensity.empty() ? 0 : sum / double(intensity.size());
+}
+
+double CausticsImage::mean() const {
+    return mean_intensity(intensity);
 }
 
 double CausticsImage::max() const {

@@ -170,15 +170,11 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                              p.total, p.cached, p.failed, p.key.substr(0, 60).c_str());
                 std::fflush(stderr);
             };
-        const BuildSummary s = build_material(request);
+        const BuildSummary s = build_material_now(request); // checked above
         if (tty) std::fprintf(stderr, "\r\033[K");
         print_diagnostics(s.diagnostics, common);
         if (s.bad_input) return kUsage;
         const unsigned threads = o->jobs ? o->jobs : hardware_threads();
-        if (s.up_to_date) {
-            print_up_to_date(s, o->out);
-            return kOk;
-        }
         const std::string rejected =
             s.cache_rejected == 0
                 ? std::string()

@@ -32,13 +32,6 @@ struct MethodResult {
     std::vector<double> intensity;
 };
 
-double mean_of(const std::vector<double>& v) {
-    double s = 0;
-    for (double x : v)
-        s += x;
-    return v.empty() ? 0 : s / double(v.size());
-}
-
 // The texture as a grey PNG, intensity 4 at white (the peaks of a sunny bottom are 2-5).
 std::string png(const std::vector<double>& intensity, uint32_t size, std::string* error) {
     ImageRGBA32F image{size, size, {}};
@@ -48,15 +41,10 @@ std::string png(const std::vector<double>& intensity, uint32_t size, std::string
 }
 
 // Draws one method; false after printing the failure.
-bool draw_method(VulkanRunner& runner, const Options& o, CausticsMethod method,
+bool draw_method(VulkanRunner& runner, const Options& o, const CausticsBuild& build,
                  const std::map<std::string, std::vector<double>>& given, double margin,
                  const CausticsImage& reference, MethodResult& out) {
-    const CausticsBuild build = build_caustics(method, o.waves);
-    if (!build.ok()) {
-        for (const Diagnostic& d : build.diagnostics)
-            std::fprintf(stderr, "%s\n", format_diagnostic(d).c_str());
-        return false;
-    }
+    const CausticsMethod method = build.pass.method;
     CausticsRenderSettings settings;
     settings.texels = o.size;
     settings.margin = margin;
@@ -71,7 +59,7 @@ bool draw_method(VulkanRunner& runner, const Options& o, CausticsMethod method,
     out.method = method;
     out.steady_ms = r.gpu[0].steady_draw_ms;
     out.intensity = r.intensity[0];
-    out.mean = out.mean_unclamped = mean_of(out.intensity);
+    out.mean = out.mean_unclamped = mean_intensity(out.intensity);
     out.glsl_vs_hlsl = r.glsl_vs_hlsl.max_abs;
     double sq = 0;
     for (size_t i = 0; i < out.intensity.size(); ++i) {
@@ -88,7 +76,7 @@ bool draw_method(VulkanRunner& runner, const Options& o, CausticsMethod method,
             std::fprintf(stderr, "watergen: error: %s: %s\n", to_string(method), u.error.c_str());
             return false;
         }
-        out.mean_unclamped = mean_of(u.intensity[0]);
+        out.mean_unclamped = mean_intensity(u.intensity[0]);
     }
     return true;
 }
@@ -104,9 +92,18 @@ int run(const Options& o) {
     // slopes): the grid and the reference's photons reach that far beyond the window.
     const double margin = 1.2 * o.depth + 1.0;
 
-    const CausticsBuild defaults = build_caustics(CausticsMethod::AreaRatio, o.waves);
+    std::vector<CausticsBuild> builds;
+    for (CausticsMethod m : {CausticsMethod::AreaRatio, CausticsMethod::PhotonSplat}) {
+        if (o.method != "both" && o.method != to_string(m)) continue;
+        builds.push_back(build_caustics(m, o.waves));
+        if (builds.back().ok()) continue;
+        for (const Diagnostic& d : builds.back().diagnostics)
+            std::fprintf(stderr, "%s\n", format_diagnostic(d).c_str());
+        return kFailed;
+    }
+    // Both passes read the same wave, sun and window parameters with the same defaults.
     CausticsSetup setup =
-        caustics_reference_setup(o.waves, caustics_values(defaults, given), o.size, margin);
+        caustics_reference_setup(o.waves, caustics_values(builds.front(), given), o.size, margin);
     setup.photons_per_side = 8;
     std::string error;
     const CausticsImage reference = caustics_reference(setup, &error);
@@ -118,11 +115,9 @@ int run(const Options& o) {
     auto runner = create_runner(o.runner, &cache);
     if (!runner) return kNoDevice;
     std::vector<MethodResult> results;
-    for (CausticsMethod m : {CausticsMethod::AreaRatio, CausticsMethod::PhotonSplat}) {
-        if (o.method != "both" && o.method != to_string(m)) continue;
-        if (!draw_method(*runner, o, m, given, margin, reference, results.emplace_back()))
+    for (const CausticsBuild& build : builds)
+        if (!draw_method(*runner, o, build, given, margin, reference, results.emplace_back()))
             return kFailed;
-    }
 
     std::printf("caustics of %s waves on a bottom %g m deep, %ux%u texels over 10 x 10 m, on %s\n",
                 o.waves.c_str(), o.depth, o.size, o.size, runner->device_info().name.c_str());

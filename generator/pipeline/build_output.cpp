@@ -244,12 +244,16 @@ std::optional<BuildSummary> build_up_to_date(const BuildRequest& request) {
 }
 
 BuildSummary build_material(const BuildRequest& request) {
+    // Nothing changed and the output is intact: no IR work, the output untouched.
+    if (auto done = build_up_to_date(request)) return *done;
+    return build_material_now(request);
+}
+
+BuildSummary build_material_now(const BuildRequest& request) {
     const auto t0 = std::chrono::steady_clock::now();
     auto elapsed = [&] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     };
-    // Nothing changed and the output is intact: no IR work, the output untouched.
-    if (auto done = build_up_to_date(request)) return *done;
     const bool recorded = !request.inputs_hash.empty() && request.options.cache.enabled();
     const std::string key =
         recorded ? record_key(request.inputs_hash, shard_text(request.shard)) : "";

@@ -15,13 +15,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 using Values = std::map<std::string, std::vector<double>>;
 
-double mean(const std::vector<double>& v) {
-    double s = 0;
-    for (double x : v)
-        s += x;
-    return s / double(v.size());
-}
-
 // Two waves periodic over the 10 m window (wavevectors of (3, 4) and (4, -3) cycles), in the
 // parameters of `model`'s family, the sun oblique, no clamp.
 Values periodic_waves(const std::string& model, double depth) {
@@ -113,7 +106,7 @@ TEST_CASE("caustics_passes_conserve_energy_and_match_the_reference", "[render][c
         const uint32_t cells = c.method == CausticsMethod::PhotonSplat ? 8 : 2;
         const Drawn d = draw(c.model, periodic_waves(c.model, 2), true, 3, c.method, cells);
         INFO(to_string(c.method) << " " << c.model);
-        CHECK(mean(d.gpu.intensity[0]) == Approx(1.0).margin(0.01));
+        CHECK(mean_intensity(d.gpu.intensity[0]) == Approx(1.0).margin(0.01));
         CHECK(d.reference.mean() == Approx(1.0).margin(1e-9));
         CHECK(d.reference.standard_deviation() > 0.25); // caustics, not a flat texture
         CHECK(rmse(d.gpu.intensity[0], d.reference.intensity) < c.rmse_bound);
@@ -127,11 +120,11 @@ TEST_CASE("caustics_area_ratio_clamp_loses_only_the_peaks", "[render][caustics]"
     Values sines = periodic_waves("sum_of_sines", 2);
     sines["caustics_clamp"] = {5};
     const Drawn gentle = draw("sum_of_sines", sines, false);
-    CHECK(mean(gentle.gpu.intensity[0]) == Approx(1.0).margin(0.01));
+    CHECK(mean_intensity(gentle.gpu.intensity[0]) == Approx(1.0).margin(0.01));
     Values gerstner = periodic_waves("gerstner", 2);
     gerstner["caustics_clamp"] = {2};
     const Drawn clamped = draw("gerstner", gerstner, false);
-    const double lost = 1 - mean(clamped.gpu.intensity[0]);
+    const double lost = 1 - mean_intensity(clamped.gpu.intensity[0]);
     WARN("energy lost by clamping Gerstner caustics at 2: " << lost);
     CHECK(lost > 0.001);
     CHECK(lost < 0.2);
@@ -143,5 +136,5 @@ TEST_CASE("caustics_area_ratio_clamp_loses_only_the_peaks", "[render][caustics]"
 // At 40 m the oblique sun shifts the light 11.7 m sideways: the grid reaches 15 m beyond.
 TEST_CASE("caustics_area_ratio_stays_finite_where_the_grid_folds", "[render][caustics]") {
     const Drawn d = draw("gerstner", periodic_waves("gerstner", 40), false, 15);
-    CHECK(mean(d.gpu.intensity[0]) == Approx(1.0).margin(0.01));
+    CHECK(mean_intensity(d.gpu.intensity[0]) == Approx(1.0).margin(0.01));
 }

@@ -59,6 +59,10 @@ struct CausticsImage {
     double standard_deviation() const;
 };
 
+// The area-weighted mean of a texture's intensities (0 for none): what energy conservation is
+// judged by, for the reference and the GPU passes alike.
+double mean_intensity(const std::vector<double>& intensity);
+
 // What:   the photon estimate of the caustics texture for `setup`.
 // Cost:   (texels x photons_per_side)^2 photons, each a pass over the waves: 4M photons x 4
 //         waves in about a second. Bad input (no texels, a sun not shining down, ior <= 1,

@@ -74,7 +74,11 @@ struct BuildRequest {
 // material: a caller may ask before loading one (loading the full space's material alone costs
 // 0.1 s).
 std::optional<BuildSummary> build_up_to_date(const BuildRequest& request);
+// build_up_to_date, then (when a build must run) build_material_now.
 BuildSummary build_material(const BuildRequest& request);
+// The build without the no-op check, for a caller that has just made it (the CLI checks before
+// it loads the material): re-reading and re-hashing every recorded output would be done twice.
+BuildSummary build_material_now(const BuildRequest& request);
 
 // Puts `files` in place of the output directory `out` as one atomic step, if `out` may be
 // replaced (check_output_target()); the error otherwise, and `out` untouched.
