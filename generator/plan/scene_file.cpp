@@ -45,13 +45,16 @@ std::optional<SceneFacts> parse_scene(const JsonSource& src, Diagnostics& ds) {
     r.on_read([&](const std::string& pointer) {
         s.where.fact[pointer.substr(1)] = {src.file(), pointer, src.position(pointer)};
     });
-    const std::vector<std::string> allowed = {"name",          "description",        "shoreline",
-                                              "water_depth",   "camera_height",      "camera_pitch",
-                                              "sun_elevation", "reflection_sources", "waves",
-                                              "precision",     "platforms",          "fixed"};
+    const std::vector<std::string> allowed = {
+        "name",          "description",  "shoreline",     "bottom_in_view",     "water_depth",
+        "camera_height", "camera_pitch", "sun_elevation", "reflection_sources", "waves",
+        "precision",     "platforms",    "fixed"};
+    // Optional: description, fixed, and bottom_in_view (most scenes show their bottom).
     std::vector<std::string> required;
     std::copy_if(allowed.begin(), allowed.end(), std::back_inserter(required),
-                 [](const std::string& k) { return k != "description" && k != "fixed"; });
+                 [](const std::string& k) {
+                     return k != "description" && k != "fixed" && k != "bottom_in_view";
+                 });
     if (!r.keys("", allowed, required, "(a scene states every fact; see README \"Scene files\")"))
         return std::nullopt;
     if (!r.string("/name", s.name)) return std::nullopt;
@@ -73,6 +76,8 @@ std::optional<SceneFacts> parse_scene(const JsonSource& src, Diagnostics& ds) {
                     r.string_in("/waves", {"static", "animated"}, waves) &&
                     r.string_in("/precision", {"full", "half", "any"}, s.precision);
     if (!ok) return std::nullopt;
+    if (r.has("/bottom_in_view") && !r.boolean("/bottom_in_view", s.bottom_in_view))
+        return std::nullopt;
     s.waves_animated = waves == "animated";
     std::vector<std::string> sources_vocabulary = kReflectionSources;
     sources_vocabulary.push_back("none");

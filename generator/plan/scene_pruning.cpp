@@ -32,8 +32,9 @@ struct SceneRule {
 const std::vector<SceneRule>& scene_rules() {
     static const std::vector<SceneRule> rules = [] {
         std::vector<SceneRule> list;
-        for (SceneFact fact : {SceneFact::Shoreline, SceneFact::ReflectionSource,
-                               SceneFact::SunAboveHorizon, SceneFact::Precision})
+        for (SceneFact fact :
+             {SceneFact::Shoreline, SceneFact::ReflectionSource, SceneFact::SunAboveHorizon,
+              SceneFact::BottomInView, SceneFact::BottomLit, SceneFact::Precision})
             for (size_t a = 0; a < axes().size(); ++a)
                 for (const auto& c : axes()[a].choices)
                     for (const auto& need : c.scene_needs)
@@ -52,14 +53,36 @@ std::string fact_key(SceneFact fact) {
         return "reflection_sources";
     case SceneFact::SunAboveHorizon:
         return "sun_elevation";
+    case SceneFact::BottomInView:
+        return "bottom_in_view";
+    case SceneFact::BottomLit:
+        return "water_depth";
     case SceneFact::Precision:
         return "precision";
     }
     return "";
 }
 
+// Sunlight below this share of what enters the water lights nothing a float image can show:
+// 2^-24 is binary32's resolution relative to the light at the surface (the water colour's
+// surface-lit terms round away anything smaller).
+constexpr double kSunlightSeen = 0x1p-24;
+
+// Why no sunlight reaches the scene's shallowest bottom under v's extinction model, or "".
+std::string bottom_unlit(const SceneFacts& s, const Variant& v, const ParameterBounds& bounds) {
+    const AxisInfo* axis = find_axis("extinction");
+    const ChoiceInfo* model = axis ? find_choice(*axis, v.choice("extinction")) : nullptr;
+    if (!model || !model->sunlight_at_depth) return "";
+    const double share = model->sunlight_at_depth(bounds, s.water_depth.min);
+    if (share >= kSunlightSeen) return "";
+    return fmt::format("water at least {:g} m deep lets at most {:.2g} of the sunlight reach the "
+                       "bottom (extinction={}, parameters at their most transparent; below 2^-24)",
+                       s.water_depth.min, share, model->name);
+}
+
 // Why the scene lacks what `need` asks for, or "" when it has it.
-std::string unmet(const SceneFacts& s, const SceneNeed& need) {
+std::string unmet(const SceneFacts& s, const Variant& v, const SceneNeed& need,
+                  const ParameterBounds* bounds) {
     std::string missing;
     switch (need.fact) {
     case SceneFact::Shoreline:
@@ -77,6 +100,12 @@ std::string unmet(const SceneFacts& s, const SceneNeed& need) {
             missing = fmt::format("the sun never rises (elevation at most {:g} degrees)",
                                   s.sun_elevation.max);
         break;
+    case SceneFact::BottomInView:
+        if (!s.bottom_in_view) missing = "no bottom in view";
+        break;
+    case SceneFact::BottomLit:
+        if (bounds) missing = bottom_unlit(s, v, *bounds);
+        break;
     case SceneFact::Precision:
         if (s.precision != "any" && s.precision != need.value)
             missing = "the scene targets precision " + s.precision;
@@ -91,8 +120,9 @@ std::string unmet(const SceneFacts& s, const SceneNeed& need) {
 void reach_variants(const Material& m, ScenePlan& plan) {
     std::map<std::string, uint32_t> group_of;
     uint32_t ordinal = 0;
+    const ParameterBounds bounds = parameter_bounds(m, plan.fixed);
     enumerate(m.space, [&](const Variant& v) {
-        if (auto e = scene_excludes(plan.scene, v)) {
+        if (auto e = scene_excludes(plan.scene, v, &bounds)) {
             SkippedGroup group{std::move(*e), 0};
             auto [it, fresh] =
                 group_of.emplace(group.text(), static_cast<uint32_t>(plan.skipped_groups.size()));
@@ -126,10 +156,21 @@ std::string SkippedGroup::text() const {
                        exclusion.where);
 }
 
-std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& v) {
+ParameterBounds parameter_bounds(const Material& m,
+                                 const std::map<std::string, std::vector<double>>& fixed) {
+    return [&m, &fixed](const std::string& name) {
+        auto it = fixed.find(name);
+        if (it == fixed.end() || it->second.empty()) return m.range(name);
+        const auto [lo, hi] = std::minmax_element(it->second.begin(), it->second.end());
+        return std::pair<double, double>{*lo, *hi};
+    };
+}
+
+std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& v,
+                                        const ParameterBounds* bounds) {
     for (const auto& r : scene_rules()) {
         if (v.choices[r.axis] != r.choice) continue;
-        const std::string reason = unmet(scene, r.need);
+        const std::string reason = unmet(scene, v, r.need, bounds);
         if (!reason.empty())
             return Exclusion{axes()[r.axis].name, r.choice, reason,
                              scene.where.of(fact_key(r.need.fact))};

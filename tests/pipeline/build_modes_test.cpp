@@ -68,10 +68,10 @@ TEST_CASE("the_branching_manifest_places_the_selectors_in_the_uniform_block", "[
     r.mode = BuildMode::Branching;
     const BuildSummary s = build_material(r);
     REQUIRE(s.ok());
-    CHECK(s.variants == 64); // the pruned scenes reach 24, 16 and 24 variants
+    CHECK(s.variants == 56); // the pruned scenes reach 16, 16 and 24 variants
     CHECK(s.shaders == 3);   // each scene targets one precision
     const auto m = nlohmann::json::parse(read_tree(r.out).at("manifest.json"));
-    REQUIRE(m["variants"].size() == 64);
+    REQUIRE(m["variants"].size() == 56);
     for (const auto& v : m["variants"]) {
         INFO(v["key"]);
         CHECK(v.contains("specialization_constants") == false);

@@ -103,7 +103,7 @@ TEST_CASE("scene_errors_name_file_line_path_and_what_was_expected", "[scene]") {
           "from planar, cubemap, horizon_map");
     CHECK(error_of(scene_text("name", "  \"name\": \"lake\", \"colour\": 1,")) ==
           "s.json:2:19: error: /colour: unknown key 'colour'; expected one of name, description, "
-          "shoreline, water_depth, "
+          "shoreline, bottom_in_view, water_depth, "
           "camera_height, camera_pitch, sun_elevation, reflection_sources, waves, precision, "
           "platforms, fixed");
     CHECK(error_of(scene_text("name", "  \"name\": \"Lake One\","))

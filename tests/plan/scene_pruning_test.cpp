@@ -94,13 +94,119 @@ TEST_CASE("a_sun_below_the_horizon_prunes_every_caustics_choice", "[pruning]") {
         scene_excludes(harbour, with({{"reflection", "planar_projective"}, {"specular", "none"}})));
 }
 
+namespace {
+
+// open_ocean's facts with the given keys replaced (JSON text of the members).
+SceneFacts ocean_with(const std::string& members) {
+    const std::string text =
+        R"({"name": "deep", "shoreline": false, "camera_height": {"min": 4, "max": 40},
+            "camera_pitch": {"min": -60, "max": 10}, "sun_elevation": {"min": 10, "max": 75},
+            "reflection_sources": ["cubemap"], "waves": "animated", "precision": "full",
+            "platforms": ["vulkan"], )" +
+        members + "}";
+    Diagnostic error;
+    auto src = JsonSource::parse(text, "deep.json", &error);
+    REQUIRE(src);
+    Diagnostics ds;
+    auto s = parse_scene(*src, ds);
+    INFO((ds.empty() ? std::string() : format_diagnostic(ds[0])));
+    REQUIRE(s);
+    return *s;
+}
+
+std::optional<Exclusion> excludes(const Material& m, const SceneFacts& s, const Variant& v) {
+    Diagnostics ds;
+    const auto plan = plan_scene(m, s, ds);
+    INFO((ds.empty() ? std::string() : format_diagnostic(ds[0])));
+    REQUIRE(plan);
+    const ParameterBounds bounds = parameter_bounds(m, plan->fixed);
+    return scene_excludes(s, v, &bounds);
+}
+
+} // namespace
+
+TEST_CASE("a_bottom_out_of_view_prunes_every_caustics_choice", "[pruning]") {
+    const SceneFacts hidden = ocean_with(R"("water_depth": {"min": 1, "max": 5},
+                                            "bottom_in_view": false)");
+    const SceneFacts shown = ocean_with(R"("water_depth": {"min": 1, "max": 5})");
+    CHECK(shown.bottom_in_view); // the default
+    for (const char* c : {"texture", "area_ratio", "photon_splat"}) {
+        INFO(c);
+        const Variant v = with({{"waves", "gerstner"}, {"caustics", c}});
+        auto e = scene_excludes(hidden, v);
+        REQUIRE(e);
+        CHECK(e->reason == "no bottom in view, so caustics never show");
+        CHECK(e->where.find("deep.json:5:") != std::string::npos);
+        CHECK_FALSE(scene_excludes(shown, v));
+    }
+    CHECK_FALSE(scene_excludes(hidden, with({{"waves", "gerstner"}})));
+}
+
+TEST_CASE("water_deeper_than_the_sunlight_reaches_prunes_caustics", "[pruning]") {
+    // absorb_scatter with absorb_coefficients >= 0.05 / m: exp(-0.05 d) falls below 2^-24 at
+    // d = 24 ln 2 / 0.05 = 332.71 m.
+    Diagnostics ds;
+    const Material m = default_material();
+    const Variant v = with({{"waves", "gerstner"}, {"caustics", "area_ratio"}});
+    // world_to_meters scales the coefficients: fixed at 1 (it may be 1e-6 otherwise).
+    const std::string metres = R"("fixed": {"world_to_meters": 1})";
+    auto e = excludes(m, ocean_with(R"("water_depth": {"min": 333, "max": 4000}, )" + metres), v);
+    REQUIRE(e);
+    CHECK(e->axis == "caustics");
+    CHECK(e->reason == "water at least 333 m deep lets at most 5.9e-08 of the sunlight reach the "
+                       "bottom (extinction=absorb_scatter, parameters at their most transparent; "
+                       "below 2^-24), so there are no caustics");
+    CHECK(e->where.find("/water_depth") != std::string::npos);
+    CHECK_FALSE(
+        excludes(m, ocean_with(R"("water_depth": {"min": 332, "max": 4000}, )" + metres), v));
+    CHECK_FALSE(excludes(m, ocean_with(R"("water_depth": {"min": 4000, "max": 4000})"), v));
+    // Without the material's ranges the depth rule cannot tell, and keeps the choice.
+    CHECK_FALSE(scene_excludes(
+        ocean_with(R"("water_depth": {"min": 333, "max": 4000}, "fixed": {"world_to_meters": 1})"),
+        v));
+
+    // Each extinction model by its own coefficients: beer_lambert's pure-water absorption may
+    // be 0 in blue (the node's range), so light reaches any depth unless a material narrows it.
+    Material pure = *MaterialBuilder("pure")
+                         .offer("extinction", {"beer_lambert", "linear", "none"})
+                         .offer("waves", {"gerstner"})
+                         .offer("caustics", {"none", "area_ratio"})
+                         .build(ds);
+    const SceneFacts deep = ocean_with(R"("water_depth": {"min": 400, "max": 4000})");
+    auto model = [](const char* extinction) {
+        return with(
+            {{"waves", "gerstner"}, {"caustics", "area_ratio"}, {"extinction", extinction}});
+    };
+    CHECK_FALSE(excludes(pure, deep, model("beer_lambert")));
+    CHECK_FALSE(excludes(pure, deep, model("none")));
+    CHECK_FALSE(excludes(pure, deep, model("linear"))); // extinction_distances up to 1e6 m
+    Material narrow = *MaterialBuilder("narrow")
+                           .offer("extinction", {"beer_lambert", "linear"})
+                           .offer("waves", {"gerstner"})
+                           .offer("caustics", {"none", "area_ratio"})
+                           .range("extinction_pure_water_absorption", 0.05, 1.0)
+                           .range("extinction_distances", 1.0, 300.0)
+                           .build(ds);
+    INFO((ds.empty() ? std::string() : format_diagnostic(ds[0])));
+    e = excludes(narrow, deep, model("beer_lambert"));
+    REQUIRE(e);
+    CHECK(e->reason.find("at most 2.1e-09 of the sunlight") != std::string::npos);
+    // 000's linear fade is gone at the largest extinction distance (300 m here).
+    e = excludes(narrow, deep, model("linear"));
+    REQUIRE(e);
+    CHECK(e->reason.find("at most 0 of the sunlight") != std::string::npos);
+    CHECK_FALSE(excludes(narrow, ocean_with(R"("water_depth": {"min": 299, "max": 4000})"),
+                         model("linear")));
+}
+
 TEST_CASE("plans_of_the_example_scenes", "[pruning]") {
     const Material m = default_material();
     Diagnostics ds;
     auto ocean = plan_scene(m, scene("open_ocean"), ds);
     REQUIRE(ocean);
-    CHECK(ocean->variants.size() == 24); // 16 without caustics, 8 with area_ratio (Gerstner)
-    CHECK(ocean->skipped == 120);
+    // 400 m and deeper: no sunlight reaches the bottom, so no caustics (16 without them).
+    CHECK(ocean->variants.size() == 16);
+    CHECK(ocean->skipped == 128);
     CHECK(ocean->fixed.count("water_level"));
     CHECK_FALSE(ocean->fixed.count("time")); // animated waves keep time
     std::vector<std::string> targets;

@@ -155,11 +155,15 @@ TEST_CASE("a_quantity_bound_to_a_renamed_parameter_is_an_error", "[quantity]") {
 TEST_CASE("a_scene_plan_keeps_why_it_skips_each_variant", "[quantity]") {
     const Material m = default_material();
     const ScenePlan ocean = plan(m, "open_ocean"), lake = plan(m, "mountain_lake");
-    REQUIRE(ocean.skipped_groups.size() == 3);
+    REQUIRE(ocean.skipped_groups.size() == 4);
     CHECK(ocean.skipped_groups[0].text().find(
-              "foam=shore: no shoreline, so shore foam never shows [") == 0);
-    CHECK(ocean.skipped_groups[0].variants == 72);
+              "caustics=area_ratio: water at least 400 m deep lets at most 2.1e-09 of the "
+              "sunlight reach the bottom") == 0);
+    CHECK(ocean.skipped_groups[0].variants == 12);
     CHECK(ocean.skipped_groups[1].text().find(
+              "foam=shore: no shoreline, so shore foam never shows [") == 0);
+    CHECK(ocean.skipped_groups[1].variants == 72);
+    CHECK(ocean.skipped_groups[2].text().find(
               "precision=half: the scene targets precision full [") == 0);
     CHECK(ocean.skipped_variants.size() == ocean.skipped);
     size_t total = 0;
@@ -171,16 +175,18 @@ TEST_CASE("a_scene_plan_keeps_why_it_skips_each_variant", "[quantity]") {
     std::vector<Variant> all;
     enumerate(m.space, [&](const Variant& v) { all.push_back(v); });
     size_t both = 0;
+    const ParameterBounds in_ocean = parameter_bounds(m, ocean.fixed),
+                          in_lake = parameter_bounds(m, lake.fixed);
     for (const auto& s : ocean.skipped_variants) {
-        const auto e = scene_excludes(ocean.scene, all[s.ordinal]);
+        const auto e = scene_excludes(ocean.scene, all[s.ordinal], &in_ocean);
         REQUIRE(e);
         CHECK(ocean.skipped_groups[s.group].exclusion.reason == e->reason);
-        both += scene_excludes(lake.scene, all[s.ordinal]).has_value();
+        both += scene_excludes(lake.scene, all[s.ordinal], &in_lake).has_value();
     }
     const Explanation x = explain_plans(m, {ocean, lake}, "", 4);
     CHECK(x.unreached.size() == both);
     REQUIRE_FALSE(x.unreached.empty());
     CHECK(x.unreached[0].reasons.size() == 2);
     CHECK(x.scenes[0].folded == 4);
-    CHECK(x.scenes[0].step == 6);
+    CHECK(x.scenes[0].step == 4); // 16 variants, 4 folded
 }

@@ -67,3 +67,52 @@ TEST_CASE("prune_bench_measures_shaders_that_cover_the_scene's_choices", "[rende
         CHECK(measured == held);
     }
 }
+
+// open_ocean skips caustics by its depth (400 m or more; absorb_scatter lets at most 2.1e-9 of
+// the sunlight reach the bottom): in the synthetic scene conformed to its facts, the skipped
+// Gerstner variant with caustics=area_ratio draws what caustics=none draws, so an engine that
+// falls back to none there shows nothing less. Bound 1e-6: the bottom's caustics term is at
+// most 2.1e-9 x scene colour (<= 1 here) x the map's range (<= 3.1), plus float rounding of a
+// pixel near 0.1 (6e-9); 1e-6 is the agreement bound used for images that must match.
+TEST_CASE("caustics_skipped_for_depth_draw_what_no_caustics_draws", "[render]") {
+    Diagnostics ds;
+    const auto ocean = load_scene(source_dir() + "/examples/scenes/open_ocean.json", ds);
+    REQUIRE(ocean);
+    const Material m = default_material();
+    const auto plan = plan_scene(m, *ocean, ds);
+    REQUIRE(plan);
+    Variant none = plan->variants.front();
+    REQUIRE_FALSE(set_choice(none, "waves", "gerstner"));
+    Variant lit = none;
+    REQUIRE_FALSE(set_choice(lit, "caustics", "area_ratio"));
+    const ParameterBounds bounds = parameter_bounds(m, plan->fixed);
+    REQUIRE(scene_excludes(plan->scene, lit, &bounds));
+    REQUIRE_FALSE(scene_excludes(plan->scene, none, &bounds));
+    // The caustics map stretched over 40 km, so that every bottom point in view samples it
+    // (the default 10 m window would leave the 400 m deep bottom at intensity 1).
+    auto everywhere = [](SyntheticScene s) {
+        s.uniforms["caustics_window"] = {-2e4, -2e4, 4e4};
+        return s;
+    };
+    const SyntheticScene shallow = everywhere(make_synthetic_scene(256, 256));
+    const SyntheticScene deep = everywhere(conform_scene(make_synthetic_scene(256, 256), *plan, m));
+    const RenderSettings settings{256, 256, 1, false, false};
+    const VariantBuild a = build_shader(m.compose(lit)), b = build_shader(m.compose(none));
+    REQUIRE(a.ok());
+    REQUIRE(b.ok());
+    auto difference = [&](const SyntheticScene& scene, int lang) {
+        const VariantRender ra = render_variant(shared_runner(), a, scene, settings);
+        const VariantRender rb = render_variant(shared_runner(), b, scene, settings);
+        REQUIRE(ra.ok());
+        REQUIRE(rb.ok());
+        return compare_images(ra.gpu_image[lang], rb.gpu_image[lang]);
+    };
+    for (int lang = 0; lang < 2; ++lang) {
+        const ImageErrorStats d = difference(deep, lang);
+        INFO("language " << lang << ": max abs " << d.max_abs);
+        CHECK(d.nan_inf_pixels == 0);
+        CHECK(d.max_abs <= 1e-6);
+    }
+    // The same pair in the shallow synthetic scene: the caustics show.
+    CHECK(difference(shallow, 0).max_abs > 0.05);
+}

@@ -48,7 +48,7 @@ TEST_CASE("opening a build names the manifest file and the JSON key that is wron
 TEST_CASE("a build lists its variants and selects by choices, scene and runtime key") {
     const ShaderBuild b = test::open_example_build(true);
     CHECK(b.scenes() == std::vector<std::string>{"harbour_night", "mountain_lake", "open_ocean"});
-    CHECK(b.variants().size() == 64);
+    CHECK(b.variants().size() == 56);
     CHECK(b.axes().at("foam") == std::vector<std::string>{"none", "shore"});
     const BuildVariant& first = b.variants()[0];
 
@@ -63,8 +63,8 @@ TEST_CASE("a build lists its variants and selects by choices, scene and runtime 
     // Partial: several match, the error names the axes left open.
     s = b.select("open_ocean", {{"fresnel", "schlick"}});
     CHECK_FALSE(s.ok());
-    CHECK_THAT(s.error, Catch::Contains("12 variants of scene open_ocean match; name a choice for "
-                                        "caustics, shore, specular, waves"));
+    CHECK_THAT(s.error, Catch::Contains("8 variants of scene open_ocean match; name a choice for "
+                                        "shore, specular, waves"));
     s = b.select(
         "open_ocean",
         {{"fresnel", "schlick"}, {"specular", "none"}, {"waves", "flat"}, {"shore", "hard"}});
@@ -175,19 +175,19 @@ TEST_CASE("specialized and branching builds select the same way and carry the se
     const std::map<std::string, std::string> wanted = {{"fresnel", "exact"},
                                                        {"specular", "blinn_phong"},
                                                        {"waves", "gerstner"},
-                                                       {"shore", "soft"},
-                                                       {"caustics", "area_ratio"}};
+                                                       {"shore", "soft"}};
     std::string error;
 
     const ShaderBuild spec = test::open_mode_build(BuildMode::Specialized);
     CHECK(spec.mode() == "specialized");
-    CHECK(spec.variants().size() == 24);
+    CHECK(spec.variants().size() == 16); // 400 m deep: no caustics
+
     Selection s = spec.select("open_ocean", wanted);
     INFO(s.error);
     REQUIRE(s.ok());
-    // One shader serves every variant: five selectors as specialization constants, set to this
-    // variant's choices (exact = 1, blinn_phong = 1, gerstner = 1, soft = 1, area_ratio = 1).
-    CHECK(s.variant->specialization.size() == 5);
+    // One shader serves every variant: four selectors as specialization constants, set to this
+    // variant's choices (exact = 1, blinn_phong = 1, gerstner = 1, soft = 1).
+    CHECK(s.variant->specialization.size() == 4);
     for (const auto& [id, value] : s.variant->specialization)
         CHECK(value == 1.0);
     // Frozen: the fragment SPIR-V is the variant's own, with the selectors folded in.
@@ -202,7 +202,7 @@ TEST_CASE("specialized and branching builds select the same way and carry the se
     CHECK(branching.mode() == "branching");
     s = branching.select("open_ocean", wanted);
     REQUIRE(s.ok());
-    CHECK(s.variant->selector_uniforms.size() == 5);
+    CHECK(s.variant->selector_uniforms.size() == 4);
     // The writer presets the selectors (they choose the variant) and refuses to set them.
     UniformWriter w(*s.variant);
     REQUIRE(w.value("axis_fresnel"));
@@ -223,5 +223,5 @@ TEST_CASE("specialized and branching builds select the same way and carry the se
             CHECK(f == 1.0f);
             ++checked;
         }
-    CHECK(checked == 5);
+    CHECK(checked == 4);
 }

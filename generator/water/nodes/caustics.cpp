@@ -95,8 +95,11 @@ template <IntensityNode Intensity> Expr caustics_node(Graph& g, const CausticsIn
 }
 
 template <IntensityNode Intensity> ChoiceInfo caustics_choice(ChoiceInfo info) {
-    // Caustics are sunlight: a scene whose sun never rises has none.
-    info.scene_needs = {{SceneFact::SunAboveHorizon, "", "there are no caustics"}};
+    // Caustics are sunlight on the bottom: a scene whose sun never rises, that shows no bottom,
+    // or whose water is deeper than its extinction lets the sunlight reach, has none.
+    info.scene_needs = {{SceneFact::SunAboveHorizon, "", "there are no caustics"},
+                        {SceneFact::BottomInView, "", "caustics never show"},
+                        {SceneFact::BottomLit, "", "there are no caustics"}};
     const std::string origin = "caustics." + info.name;
     return feature_choice(
         std::move(info), {{"color", Type::Vec3}, {"xz", Type::Vec2}}, &caustics_node<Intensity>,

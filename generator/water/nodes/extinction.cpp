@@ -1,5 +1,8 @@
 #include "watergen/water/nodes/extinction.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "axis_tables.h"
 #include "watergen/water/surface.h"
 
@@ -101,8 +104,36 @@ Expr extinction_beer_lambert(Graph& g, const ExtinctionInputs& in) {
 
 namespace {
 
+// Sunlight left after `depth` m of water absorbing at least `k` per m, Beer-Lambert's exp(-k d)
+// (SceneFact::BottomLit). Only the way down counts: the view path back up is not bounded below
+// where refraction distorts the scene lookup.
+double transmitted(double k, double depth) {
+    return std::exp(-std::max(k, 0.0) * depth);
+}
+
+double linear_sunlight(const ParameterBounds& bounds, double depth) {
+    // 000: the bottom fades linearly into the deep colour and is gone at extinction_distances.
+    const double reach = bounds("extinction_distances").second;
+    return reach > 0.0 ? std::max(0.0, 1.0 - depth / reach) : 0.0;
+}
+
+double exponential_sunlight(const ParameterBounds& bounds, double depth) {
+    return transmitted(bounds("extinction_density").first, depth);
+}
+
+double absorb_scatter_sunlight(const ParameterBounds& bounds, double depth) {
+    return transmitted(bounds("absorb_coefficients").first * bounds("world_to_meters").first,
+                       depth);
+}
+
+double beer_lambert_sunlight(const ParameterBounds& bounds, double depth) {
+    return transmitted(bounds("extinction_pure_water_absorption").first, depth);
+}
+
 // A choice whose node turns the refracted colour into the water colour.
-ChoiceInfo extinction_choice(ChoiceInfo info, Expr (*node)(Graph&, const ExtinctionInputs&)) {
+ChoiceInfo extinction_choice(ChoiceInfo info, Expr (*node)(Graph&, const ExtinctionInputs&),
+                             SunlightAtDepth sunlight = {}) {
+    info.sunlight_at_depth = std::move(sunlight);
     return feature_choice(
         std::move(info),
         {{"depth", Type::Float}, {"path", Type::Float}, {"refraction", Type::Vec3}}, node,
@@ -127,23 +158,23 @@ AxisInfo extinction_axis() {
                  .seed = "000",
                  .description =
                      "per-channel linear fades with depth and with horizontal visibility"},
-                &extinction_linear),
+                &extinction_linear, &linear_sunlight),
             extinction_choice(
                 {.name = "exponential",
                  .seed = "002",
                  .description = "exponential fog towards the water colour, a = exp(-d k)",
                  .approximates = "beer_lambert"},
-                &extinction_exponential),
+                &extinction_exponential, &exponential_sunlight),
             extinction_choice({.name = "absorb_scatter",
                                .seed = "003",
                                .description = "exponential absorption plus scatter colour",
                                .approximates = "beer_lambert"},
-                              &extinction_absorb_scatter),
+                              &extinction_absorb_scatter, &absorb_scatter_sunlight),
             extinction_choice(
                 {.name = "beer_lambert",
                  .description = "physical per-channel absorption of pure water (Pope and Fry 1997)",
                  .gold = true},
-                &extinction_beer_lambert),
+                &extinction_beer_lambert, &beer_lambert_sunlight),
         }};
 }
 

@@ -34,6 +34,7 @@ struct SceneFacts {
     std::string description;
     std::string file;                            // the file's name (no directories), for reports
     bool shoreline = true;                       // water meets land somewhere in view
+    bool bottom_in_view = true;                  // the refracted scene shows the bottom
     FactRange water_depth{0.0, 1e4};             // m, on water pixels
     FactRange camera_height{0.0, 1e5};           // m above the water level
     FactRange camera_pitch{-90, 90};             // degrees, negative looks down

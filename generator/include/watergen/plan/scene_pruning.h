@@ -11,6 +11,7 @@
 #include "watergen/ir/ir_fold.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
+#include "watergen/water/axis_registry.h"
 
 namespace watergen {
 
@@ -22,8 +23,15 @@ struct Exclusion {
 };
 
 // The first choice of `v` the scene rules out (by the scene needs of the registry's choices,
-// in SceneFact order, then axis order), or nullopt when it reaches v.
-std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& v);
+// in SceneFact order, then axis order), or nullopt when it reaches v. Facts that read parameters
+// (BottomLit: the extinction model's coefficients) are checked only with `bounds`.
+std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& v,
+                                        const ParameterBounds* bounds = nullptr);
+
+// A material's parameter ranges with the scene's fixed values in place of the fixed ones.
+// Keeps references to both.
+ParameterBounds parameter_bounds(const Material& material,
+                                 const std::map<std::string, std::vector<double>>& fixed);
 
 // Material variants a scene does not reach for one reason.
 struct SkippedGroup {

@@ -23,6 +23,8 @@ enum class SceneFact {
     Shoreline,        // water meets land somewhere in view
     ReflectionSource, // the engine provides the reflection source named by SceneNeed::value
     SunAboveHorizon,  // the sun rises above the horizon at some time
+    BottomInView,     // the refracted scene shows the bottom somewhere
+    BottomLit,        // sunlight reaches the bottom (the variant's extinction, the scene's depth)
     Precision,        // the scene targets the precision named by SceneNeed::value (or any)
 };
 
@@ -33,6 +35,14 @@ struct SceneNeed {
     std::string value{};
     std::string consequence{}; // ends the reason: "no shoreline, so <consequence>"; "" for none
 };
+
+// A parameter's range for scene pruning: the scene's fixed value(s), else the material's range;
+// (lowest, highest) over its components.
+using ParameterBounds = std::function<std::pair<double, double>(const std::string& parameter)>;
+
+// The largest share of the sunlight entering the water that reaches `depth` m below the surface,
+// by an extinction model with its parameters anywhere in `bounds` (SceneFact::BottomLit).
+using SunlightAtDepth = std::function<double(const ParameterBounds& bounds, double depth)>;
 
 // axis=choice is valid only with `axis` in `choices`.
 struct ChoiceRequirement {
@@ -65,6 +75,8 @@ struct ChoiceInfo {
     std::function<void(Surface&)> compose{};
     std::vector<SceneNeed> scene_needs{};
     std::vector<ChoiceRequirement> requirements{};
+    // Extinction choices: how much sunlight their model lets reach a depth; unset: all of it.
+    SunlightAtDepth sunlight_at_depth{};
 };
 
 // A choice with its own feature node: `node` is its catalog entry, `compose` what it does to the
