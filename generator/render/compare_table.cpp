@@ -214,6 +214,8 @@ std::string compare_json(const CompareReport& report, const ResolvedErrors& erro
             jv["views"].push_back(view_json(report.views[i].name, errors.maps[v][i]));
         j["variants"].push_back(jv);
     }
+    if (!report.caustics_passes.empty())
+        j["caustics_passes"] = caustics_passes_json(report.caustics_passes, report.caustics_note);
     return j.dump(2) + "\n";
 }
 
