@@ -111,6 +111,12 @@ std::optional<std::string> check_compare_report(const CompareReport& report) {
                                    v.views[i].errors->error);
         }
     }
+    for (const CausticsPassFigures& p : report.caustics_passes) {
+        const std::size_t texels = std::size_t{p.texels} * p.texels;
+        if (texels == 0 || p.pass.size() != texels || p.reference.size() != texels)
+            return fmt::format("caustics pass '{}': {} and {} texels for a {}x{} texture", p.name,
+                               p.pass.size(), p.reference.size(), p.texels, p.texels);
+    }
     return std::nullopt;
 }
 
