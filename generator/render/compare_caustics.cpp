@@ -94,25 +94,23 @@ caustics_pass_figures(const std::vector<ComparedCausticsPass>& passes) {
     std::vector<CausticsPassFigures> out;
     for (const ComparedCausticsPass& c : passes) {
         const SceneCausticsPass& p = c.first;
-        CausticsPassFigures f;
-        f.name = c.name;
-        f.texels = p.texels;
-        f.pass = p.intensity;
-        f.reference = p.reference;
-        f.max_abs = p.vs_reference.max_abs;
-        f.rmse = p.vs_reference.rmse;
-        f.mean_difference = p.vs_reference.mean_difference;
-        f.mean = p.mean;
-        f.reference_mean = p.reference_mean;
-        f.glsl_vs_hlsl = p.glsl_vs_hlsl;
-        f.median_ms = c.median_ms;
-        f.min_ms = c.min_ms;
-        f.max_ms = c.max_ms;
-        f.rounds = uint32_t(c.round_ms.size());
-        f.ratio = c.vs_first_pass.ratio;
-        f.ratio_lo = c.vs_first_pass.lo;
-        f.ratio_hi = c.vs_first_pass.hi;
-        out.push_back(std::move(f));
+        out.push_back({.name = c.name,
+                       .texels = p.texels,
+                       .pass = p.intensity,
+                       .reference = p.reference,
+                       .max_abs = p.vs_reference.max_abs,
+                       .rmse = p.vs_reference.rmse,
+                       .mean_difference = p.vs_reference.mean_difference,
+                       .mean = p.mean,
+                       .reference_mean = p.reference_mean,
+                       .glsl_vs_hlsl = p.glsl_vs_hlsl,
+                       .median_ms = c.median_ms,
+                       .min_ms = c.min_ms,
+                       .max_ms = c.max_ms,
+                       .rounds = uint32_t(c.round_ms.size()),
+                       .ratio = c.vs_first_pass.ratio,
+                       .ratio_lo = c.vs_first_pass.lo,
+                       .ratio_hi = c.vs_first_pass.hi});
     }
     return out;
 }
