@@ -2,7 +2,6 @@
 // runner for one wave model, against the CPU photon reference: the textures as PNG images, the
 // pass time on the device, each method's error against the reference, and the light the clamp
 // loses. Writes <out>/caustics-<waves>/ whole (a staged directory swapped in).
-#include <cmath>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -32,12 +31,10 @@ struct MethodResult {
     std::vector<double> intensity;
 };
 
-// The texture as a grey PNG, intensity 4 at white (the peaks of a sunny bottom are 2-5).
+// The texture as a grey PNG (caustics_image's tone map).
 std::string png(const std::vector<double>& intensity, uint32_t size, std::string* error) {
-    ImageRGBA32F image{size, size, {}};
-    for (double v : intensity)
-        image.rgba.insert(image.rgba.end(), {float(v), float(v), float(v), 1.0f});
-    return encode_png(size, size, tone_map_to_srgb8(image, 0.25f), error);
+    const ImageRGBA8 image = caustics_image(intensity, size);
+    return encode_png(size, size, image.rgba, error);
 }
 
 // Draws one method; false after printing the failure.
@@ -48,7 +45,7 @@ bool draw_method(VulkanRunner& runner, const Options& o, const CausticsBuild& bu
     CausticsRenderSettings settings;
     settings.texels = o.size;
     settings.margin = margin;
-    settings.cells_per_texel = o.cells ? o.cells : method == CausticsMethod::PhotonSplat ? 8 : 2;
+    settings.cells_per_texel = o.cells ? o.cells : default_cells_per_texel(method);
     settings.timed_draws = o.draws;
     auto values = caustics_values(build, given);
     const CausticsRender r = render_caustics(runner, build, values, settings);
@@ -61,13 +58,9 @@ bool draw_method(VulkanRunner& runner, const Options& o, const CausticsBuild& bu
     out.intensity = r.intensity[0];
     out.mean = out.mean_unclamped = mean_intensity(out.intensity);
     out.glsl_vs_hlsl = r.glsl_vs_hlsl.max_abs;
-    double sq = 0;
-    for (size_t i = 0; i < out.intensity.size(); ++i) {
-        const double d = out.intensity[i] - reference.intensity[i];
-        out.max_abs = std::max(out.max_abs, std::abs(d));
-        sq += d * d;
-    }
-    out.rmse = std::sqrt(sq / double(out.intensity.size()));
+    const CausticsError error = caustics_error(out.intensity, reference.intensity);
+    out.max_abs = error.max_abs;
+    out.rmse = error.rmse;
     if (method == CausticsMethod::AreaRatio) {
         values["caustics_clamp"] = {1e30};
         settings.timed_draws = 0;

@@ -5,8 +5,11 @@
 #include <filesystem>
 #include <sstream>
 
+#include <fmt/core.h>
+
 #include "commands.h"
 #include "watergen/plan/scene_pruning.h"
+#include "watergen/render/compare_caustics.h"
 #include "watergen/render/compare_report.h"
 #include "watergen/render/compare_run.h"
 #include "watergen/render/pick.h"
@@ -131,6 +134,29 @@ void print_table(const CompareRun& run, const std::vector<std::string>& views) {
                     ? "within +-3%, time ratios can be trusted on this machine"
                     : "NOT within +-3%: time ratios are not trustworthy on this machine now; use "
                       "the cost column (instructions, independent of load)");
+}
+
+// The caustics passes' lines, and the note the report shows above them.
+std::string print_caustics(const std::vector<ComparedCausticsPass>& passes, const RatioInterval& aa,
+                           const CompareRequest& request, const CompareOptions& o) {
+    const std::string note = fmt::format(
+        "Each caustics variant renders over its own pass's map: the pass of its method and wave "
+        "model drawn on the device for each view ({} m deep, window and sun as the view's). "
+        "Below, in view {}: the texture (GLSL path) against the CPU photon reference of the same "
+        "values ({} photons per texel); draw times interleaved, {} rounds x {} draws, the first "
+        "(JIT) draw excluded, each round's median; A/A of the first pass {:.3f} [{:.3f}, {:.3f}].",
+        kSceneCausticsDepth, request.views.front().first,
+        kSceneCausticsReferencePhotons * kSceneCausticsReferencePhotons, o.rounds, o.draws,
+        aa.ratio, aa.lo, aa.hi);
+    std::printf("caustics passes in view %s, against the CPU photon reference:\n",
+                request.views.front().first.c_str());
+    std::printf("  %-30s %6s %28s %9s %8s %10s\n", "pass", "texels", "draw ms median [min, max]",
+                "max abs", "RMSE", "GLSL-HLSL");
+    for (const ComparedCausticsPass& c : passes)
+        std::printf("  %-30s %6u %8.3f [%8.3f, %8.3f] %9.4f %8.4f %10.3g\n", c.name.c_str(),
+                    c.first.texels, c.median_ms, c.min_ms, c.max_ms, c.first.vs_reference.max_abs,
+                    c.first.vs_reference.rmse, c.first.glsl_vs_hlsl);
+    return note;
 }
 
 // The report of a run: images, maps, table and plots (compare_report.h).
@@ -364,14 +390,30 @@ int run_compare_command(const CompareOptions& o, const Common& common) {
                      runner->device_info().name.c_str());
         return kNoDevice;
     }
+    CompareCaustics caustics(*runner, request.views);
+    request.textures_for = [&caustics](const VariantBuild& water, size_t view, std::string* error) {
+        return caustics.textures_for(water, view, error);
+    };
     CompareRun run = run_compare(*runner, request);
     if (!bench_succeeded(run.diagnostics, run.error, common)) return kFailed;
+    RatioInterval caustics_aa;
+    std::string caustics_error;
+    const auto passes = caustics.time(o.rounds, o.draws, &caustics_aa, &caustics_error);
+    if (!caustics_error.empty()) {
+        std::fprintf(stderr, "watergen: error: %s\n", caustics_error.c_str());
+        return kFailed;
+    }
     if (o.cost && !add_costs(o, sel, request.views.front().first, run)) return kFailed;
     std::vector<std::string> views;
     for (const auto& [name, scene] : request.views)
         views.push_back(name);
     print_table(run, views);
-    if (auto failure = write_compare_report(o.out, make_report(run, request, o))) {
+    CompareReport report = make_report(run, request, o);
+    if (!passes.empty()) {
+        report.caustics_note = print_caustics(passes, caustics_aa, request, o);
+        report.caustics_passes = caustics_pass_figures(passes);
+    }
+    if (auto failure = write_compare_report(o.out, report)) {
         std::fprintf(stderr, "watergen: error: %s\n", failure->c_str());
         return kFailed;
     }

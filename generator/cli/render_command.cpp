@@ -2,6 +2,7 @@
 #include <filesystem>
 
 #include "commands.h"
+#include "watergen/render/render_caustics.h"
 #include "watergen/render/render_report.h"
 #include "watergen/water/presets.h"
 
@@ -33,6 +34,23 @@ void print_render(const VariantRender& r, const RenderReportInfo& info, uint32_t
                 static_cast<unsigned long long>(r.glsl_vs_cpu_float.reference_nan_inf_pixels));
     std::printf("  wrote %s/{glsl,hlsl}.png, .pfm, cpu_float.pfm, render.json\n",
                 dir.string().c_str());
+}
+
+void print_caustics(const RenderCaustics& c, uint32_t draws, const std::filesystem::path& dir) {
+    if (const auto& p = c.pass)
+        std::printf("  caustics %s pass (%s waves), %ux%u texels, %g m deep: steady draw %.3f ms "
+                    "(median of %u); vs the CPU photon reference (%u per texel): max abs %.4f, "
+                    "RMSE %.4f, mean %.4f against %.4f; glsl-hlsl %.3g\n",
+                    to_string(p->method), p->wave_model.c_str(), p->texels, p->texels,
+                    kSceneCausticsDepth, p->glsl.steady_draw_ms, draws,
+                    kSceneCausticsReferencePhotons * kSceneCausticsReferencePhotons,
+                    p->vs_reference.max_abs, p->vs_reference.rmse, p->mean, p->reference_mean,
+                    p->glsl_vs_hlsl);
+    else
+        std::printf("  caustics %s: the %ux%u tile (no pass)\n", c.choice.c_str(), c.texels,
+                    c.texels);
+    std::printf("  wrote %s/caustics.png (%s), bottom_lit.png\n", dir.string().c_str(),
+                kCausticsToneMap);
 }
 
 void print_stats_line(const char* label, const ImageErrorStats& s) {
@@ -176,7 +194,24 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
-        const SyntheticScene scene = preset_scene(o->width, o->height, preset, o->view);
+        SyntheticScene scene = preset_scene(o->width, o->height, preset, o->view);
+        RenderCaustics caustics;
+        RenderExtras extras;
+        if (has_caustics(o->variant)) {
+            caustics = prepare_render_caustics(*runner, o->variant, build, scene, o->draws);
+            print_diagnostics(caustics.pass ? caustics.pass->diagnostics : Diagnostics{}, common);
+            std::string error = caustics.error;
+            const auto files = caustics.ok()
+                                   ? render_caustics_files(caustics, float(o->exposure), &error)
+                                   : std::nullopt;
+            if (!files) {
+                std::fprintf(stderr, "watergen: error: %s: %s\n", o->variant.key().c_str(),
+                             error.c_str());
+                return kFailed;
+            }
+            extras.files = *files;
+            extras.json["caustics"] = render_caustics_json(caustics);
+        }
         const VariantRender r =
             render_variant(*runner, build, scene, {o->width, o->height, o->draws, true});
         if (!r.ok()) {
@@ -187,11 +222,12 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         const DeviceInfo& dev = runner->device_info();
         const RenderReportInfo info{o->preset, cache,       dev,    o->width,
                                     o->height, o->exposure, o->view};
-        if (auto e = write_render_report(dir, r, info)) {
+        if (auto e = write_render_report(dir, r, info, extras)) {
             std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
             return kFailed;
         }
         print_render(r, info, o->draws, dir);
+        if (has_caustics(o->variant)) print_caustics(caustics, o->draws, dir);
         return check_gpu_finite(r.key, gpu_only_non_finite_pixels(r),
                                 "on the GPU where the CPU float image is finite");
     };

@@ -44,18 +44,17 @@ caustics_values(const CausticsBuild& build,
     return out;
 }
 
-CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
-                               const std::map<std::string, std::vector<double>>& values,
-                               const CausticsRenderSettings& settings) {
-    CausticsRender out;
-    if (!build.ok()) {
-        out.error = "caustics pass did not build";
-        return out;
-    }
+uint32_t default_cells_per_texel(CausticsMethod method) {
+    return method == CausticsMethod::PhotonSplat ? 8 : 2;
+}
+
+RenderJob caustics_job(const CausticsBuild& build, size_t language,
+                       const std::map<std::string, std::vector<double>>& values,
+                       const CausticsRenderSettings& settings, std::string* error) {
     const std::vector<double>& window = value(values, "caustics_window");
     if (window.size() != 3 || !(window[2] > 0)) {
-        out.error = "caustics_window must be (x0, z0, size) with size > 0";
-        return out;
+        *error = "caustics_window must be (x0, z0, size) with size > 0";
+        return {};
     }
     const double texel = window[2] / settings.texels;
     const uint32_t margin_texels = uint32_t(std::ceil(settings.margin / texel));
@@ -78,14 +77,27 @@ CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
         const double share = 1.0 / (double(settings.cells_per_texel) * settings.cells_per_texel);
         drawn["caustics_photon_share"] = {share};
     }
+    RenderJob job = mesh_job(build.languages[language], grid, settings.texels, settings.texels,
+                             drawn, settings.timed_draws);
+    job.additive_blend = true;
+    return job;
+}
+
+CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
+                               const std::map<std::string, std::vector<double>>& values,
+                               const CausticsRenderSettings& settings) {
+    CausticsRender out;
+    if (!build.ok()) {
+        out.error = "caustics pass did not build";
+        return out;
+    }
     for (size_t i = 0; i < 2; ++i) {
-        const LanguageBuild& lang = build.languages[i];
-        RenderJob job =
-            mesh_job(lang, grid, settings.texels, settings.texels, drawn, settings.timed_draws);
-        job.additive_blend = true;
+        const RenderJob job = caustics_job(build, i, values, settings, &out.error);
+        if (!out.ok()) return out;
         out.gpu[i] = runner.render(job);
         if (!out.gpu[i].ok) {
-            out.error = std::string(to_string(lang.language)) + " path: " + out.gpu[i].error;
+            out.error =
+                std::string(to_string(build.languages[i].language)) + " path: " + out.gpu[i].error;
             return out;
         }
         auto& intensity = out.intensity[i];
@@ -96,6 +108,29 @@ CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
         compare_images(ImageRGBA32F{settings.texels, settings.texels, out.gpu[0].rgba},
                        ImageRGBA32F{settings.texels, settings.texels, out.gpu[1].rgba});
     return out;
+}
+
+CausticsError caustics_error(const std::vector<double>& pass,
+                             const std::vector<double>& reference) {
+    CausticsError e;
+    if (pass.empty() || pass.size() != reference.size()) return e;
+    double sq = 0, sum = 0;
+    for (size_t i = 0; i < pass.size(); ++i) {
+        const double d = pass[i] - reference[i];
+        e.max_abs = std::max(e.max_abs, std::abs(d));
+        sq += d * d;
+        sum += d;
+    }
+    e.rmse = std::sqrt(sq / double(pass.size()));
+    e.mean_difference = sum / double(pass.size());
+    return e;
+}
+
+ImageRGBA8 caustics_image(const std::vector<double>& intensity, uint32_t texels) {
+    ImageRGBA32F image{texels, texels, {}};
+    for (double v : intensity)
+        image.rgba.insert(image.rgba.end(), {float(v), float(v), float(v), 1.0f});
+    return {texels, texels, tone_map_to_srgb8(image, 0.25f)};
 }
 
 CausticsSetup caustics_reference_setup(const std::string& model,

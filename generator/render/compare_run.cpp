@@ -115,35 +115,55 @@ class Comparison {
         return true;
     }
 
+    // View `view`'s scene as variant i sees it (request.textures_for); nullptr after a failure.
+    const SyntheticScene* scene_for(size_t i, size_t view, const SyntheticScene& scene) {
+        if (!request_.textures_for) return &scene;
+        std::string error;
+        auto textures = request_.textures_for(builds_[i], view, &error);
+        if (!error.empty()) {
+            run_.error = order_[i].key() + ": " + error;
+            return nullptr;
+        }
+        if (textures.empty()) return &scene;
+        own_scene_ = scene;
+        for (auto& [name, texture] : textures)
+            own_scene_.textures[name] = std::move(texture);
+        return &own_scene_;
+    }
+
     // Every variant on both paths in one view, each GLSL image against the reference's.
-    bool render_view(const std::string& name, const SyntheticScene& scene) {
-        const RenderSettings settings{scene.width, scene.height, 0, false, false};
+    bool render_view(size_t view, const std::string& name, const SyntheticScene& view_scene) {
+        const RenderSettings settings{view_scene.width, view_scene.height, 0, false, false};
         std::vector<ImageRGBA32F> images;
         std::vector<double> path_difference;
         for (size_t i = 0; i < order_.size(); ++i) {
+            const SyntheticScene* scene = scene_for(i, view, view_scene);
+            if (!scene) return false;
             std::array<RenderResult, 2> paths;
             for (size_t l = 0; l < (request_.both_paths ? 2u : 1u); ++l) {
                 paths[l] =
-                    runner_.render(make_render_job(builds_[i].languages[l], scene, settings));
+                    runner_.render(make_render_job(builds_[i].languages[l], *scene, settings));
                 if (!paths[l].ok) {
                     run_.error = order_[i].key() + " (" + name + "): " + paths[l].error;
                     return false;
                 }
             }
-            images.push_back(ImageRGBA32F{scene.width, scene.height, paths[0].rgba});
+            images.push_back(ImageRGBA32F{scene->width, scene->height, paths[0].rgba});
             path_difference.push_back(
                 request_.both_paths ? max_abs_difference(paths[0].rgba, paths[1].rgba) : 0.0);
         }
         ImageRGBA32F reference = images[0];
         if (run_.reference_on_cpu) {
+            const SyntheticScene* scene = scene_for(0, view, view_scene);
+            if (!scene) return false;
             const EvalResult d =
-                evaluate_image(builds_[0].shader.fragment, "color", scene.eval_inputs(),
-                               scene.width, scene.height, EvalPrecision::Double);
+                evaluate_image(builds_[0].shader.fragment, "color", scene->eval_inputs(),
+                               scene->width, scene->height, EvalPrecision::Double);
             if (!d.ok()) {
                 run_.error = "CPU reference (" + name + "): " + d.error;
                 return false;
             }
-            reference = to_image(d, scene.width, scene.height);
+            reference = to_image(d, scene->width, scene->height);
         }
         for (size_t k = 0; k < run_.entries.size(); ++k) {
             ComparedView view;
@@ -156,12 +176,15 @@ class Comparison {
         return true;
     }
 
-    // Draw times in `scene`, every variant against the reference variant on the GPU.
-    bool time(const SyntheticScene& scene) {
+    // Draw times in view 0, every variant against the reference variant on the GPU.
+    bool time(const SyntheticScene& view_scene) {
         std::vector<RenderJob> jobs;
-        for (const VariantBuild& b : builds_)
-            jobs.push_back(make_render_job(b.languages[0], scene,
-                                           {scene.width, scene.height, 0, false, false}));
+        for (size_t i = 0; i < builds_.size(); ++i) {
+            const SyntheticScene* scene = scene_for(i, 0, view_scene);
+            if (!scene) return false;
+            jobs.push_back(make_render_job(builds_[i].languages[0], *scene,
+                                           {scene->width, scene->height, 0, false, false}));
+        }
         const InterleavedTiming t =
             time_interleaved(runner_, jobs, request_.rounds, request_.draws);
         if (!t.ok()) {
@@ -183,6 +206,7 @@ class Comparison {
     std::vector<Variant> order_;
     std::vector<VariantBuild> builds_;
     size_t first_ = 0;
+    SyntheticScene own_scene_; // scene_for's copy with a variant's own textures
 };
 
 } // namespace
@@ -195,8 +219,8 @@ CompareRun run_compare(VulkanRunner& runner, const CompareRequest& request) {
     }
     Comparison c(runner, request, run);
     if (!c.build()) return run;
-    for (const auto& [name, scene] : request.views)
-        if (!c.render_view(name, scene)) return run;
+    for (size_t v = 0; v < request.views.size(); ++v)
+        if (!c.render_view(v, request.views[v].first, request.views[v].second)) return run;
     c.time(request.views.front().second);
     return run;
 }

@@ -111,6 +111,12 @@ std::optional<std::string> check_compare_report(const CompareReport& report) {
                                    v.views[i].errors->error);
         }
     }
+    for (const CausticsPassFigures& p : report.caustics_passes) {
+        const std::size_t texels = std::size_t{p.texels} * p.texels;
+        if (texels == 0 || p.pass.size() != texels || p.reference.size() != texels)
+            return fmt::format("caustics pass '{}': {} and {} texels for a {}x{} texture", p.name,
+                               p.pass.size(), p.reference.size(), p.texels, p.texels);
+    }
     return std::nullopt;
 }
 
@@ -214,6 +220,8 @@ std::string compare_json(const CompareReport& report, const ResolvedErrors& erro
             jv["views"].push_back(view_json(report.views[i].name, errors.maps[v][i]));
         j["variants"].push_back(jv);
     }
+    if (!report.caustics_passes.empty())
+        j["caustics_passes"] = caustics_passes_json(report.caustics_passes, report.caustics_note);
     return j.dump(2) + "\n";
 }
 

@@ -69,11 +69,14 @@ nlohmann::ordered_json ulps_json(const HalfAgreement& a, uint32_t width) {
 std::optional<std::string>
 write_report(const std::filesystem::path& dir, const VariantRender& r, const RenderReportInfo& info,
              const std::vector<std::pair<std::string, const ImageRGBA32F*>>& references,
-             const nlohmann::ordered_json& json) {
+             const nlohmann::ordered_json& json,
+             const std::map<std::string, std::string>& extra_files = {}) {
     std::string error;
     const auto staging = make_staging_directory(dir, &error);
     if (staging.empty()) return error;
     auto result = write_images(staging, r, info, references);
+    for (const auto& [name, contents] : extra_files)
+        if (!result) result = write_file_atomically(staging / name, contents);
     if (!result) result = write_file_atomically(staging / "render.json", json.dump(2) + "\n");
     if (!result) result = commit_directory(staging, dir);
     if (result) {
@@ -111,9 +114,12 @@ nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderRe
 }
 
 std::optional<std::string> write_render_report(const std::filesystem::path& dir,
-                                               const VariantRender& r,
-                                               const RenderReportInfo& info) {
-    return write_report(dir, r, info, {{"cpu_float", &r.cpu_float}}, render_report_json(r, info));
+                                               const VariantRender& r, const RenderReportInfo& info,
+                                               const RenderExtras& extras) {
+    nlohmann::ordered_json json = render_report_json(r, info);
+    for (const auto& [key, value] : extras.json.items())
+        json[key] = value;
+    return write_report(dir, r, info, {{"cpu_float", &r.cpu_float}}, json, extras.files);
 }
 
 nlohmann::ordered_json half_render_report_json(const HalfRender& h, const RenderReportInfo& info) {

@@ -1,5 +1,7 @@
 #include "watergen/render/report_html.h"
 
+#include <algorithm>
+
 #include <fmt/core.h>
 
 namespace watergen {
@@ -72,6 +74,24 @@ std::string html_image(const ImageRGBA8& image, std::string_view alt, std::strin
                        html_escape(alt), width, height,
                        css_class.empty() ? std::string()
                                          : fmt::format(R"( class="{}")", css_class));
+}
+
+std::string html_figure(const ImageRGBA8& image, const std::string& caption) {
+    constexpr uint32_t kMinimumDisplayWidth = 192;
+    const uint32_t factor =
+        image.width == 0 ? 1 : std::max(1u, (kMinimumDisplayWidth + image.width - 1) / image.width);
+    return "<figure>" + html_image(image, caption, "pixelated", image.width * factor) +
+           "<figcaption>" + html_escape(caption) + "</figcaption></figure>";
+}
+
+std::string html_color_bar(const HeatScale& scale) {
+    std::string s = "<div class=\"bar\">" +
+                    html_image(color_bar(scale, 256, 12), scale.label + " colour bar", "") +
+                    "<div class=\"ticks\">";
+    for (double t : scale.ticks)
+        s += fmt::format(R"(<span style="left: {:.2f}%">{:g}</span>)",
+                         100.0 * scale_position(scale, t), t);
+    return s + "</div></div>";
 }
 
 } // namespace watergen

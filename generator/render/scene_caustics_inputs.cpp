@@ -20,18 +20,15 @@ constexpr double kTwoPi = 6.283185307179586;
 // defaults) and photons per texel side: 64 x 64 x 9 photons, a few ms each, since
 // make_synthetic_scene runs for every render. Regular photon grids over smooth waves give a
 // smooth estimate, so the GPU and the CPU sampling it a float ulp apart agree.
-constexpr uint32_t kTexels = 64;
+constexpr uint32_t kTexels = kSceneCausticsTexels;
 constexpr uint32_t kPhotonsPerSide = 3;
 
 TextureData intensity_texture(uint32_t texels, auto&& value) {
-    TextureData t{texels, texels, 1, std::vector<float>(size_t(texels) * texels * 4)};
+    std::vector<double> intensity(size_t(texels) * texels);
     for (uint32_t j = 0; j < texels; ++j)
-        for (uint32_t i = 0; i < texels; ++i) {
-            float* out = &t.rgba[(size_t(j) * texels + i) * 4];
-            out[0] = out[1] = out[2] = static_cast<float>(value(i, j));
-            out[3] = 1.0f;
-        }
-    return t;
+        for (uint32_t i = 0; i < texels; ++i)
+            intensity[size_t(j) * texels + i] = value(i, j);
+    return caustics_texture(intensity, texels);
 }
 
 // Crest's stand-in tile: three waves periodic over the 10 m tile (integer cycles per tile),
@@ -63,9 +60,7 @@ TextureData make_caustics_tile() {
 }
 
 // The caustics pass's map for the scene's waves (the Gerstner defaults at the scene's time and
-// sun) over the pass's default window, the bottom 2 m under the water level (the seabed in the
-// window lies 0 to 2.25 m deep); photons over the window grown by 1 m, as light enters
-// from beside it.
+// sun) over the pass's default window, at the scene's caustics depth and margin.
 TextureData make_caustics_map(const SyntheticScene& scene) {
     const CausticsPass pass = build_caustics_pass(CausticsMethod::AreaRatio, "gerstner");
     std::map<std::string, std::vector<double>> values;
@@ -73,8 +68,8 @@ TextureData make_caustics_map(const SyntheticScene& scene) {
         values[p.name] = p.default_value;
     for (const char* name : {"sun_direction", "time"})
         values[name] = scene.uniforms.at(name);
-    values["caustics_depth"] = {2.0};
-    CausticsSetup s = caustics_reference_setup("gerstner", values, kTexels, 1.0);
+    values["caustics_depth"] = {kSceneCausticsDepth};
+    CausticsSetup s = caustics_reference_setup("gerstner", values, kTexels, kSceneCausticsMargin);
     s.photons_per_side = kPhotonsPerSide;
     std::string error;
     const CausticsImage image = caustics_reference(s, &error);
@@ -84,6 +79,16 @@ TextureData make_caustics_map(const SyntheticScene& scene) {
 }
 
 } // namespace
+
+TextureData caustics_texture(const std::vector<double>& intensity, uint32_t texels) {
+    TextureData t{texels, texels, 1, std::vector<float>(size_t(texels) * texels * 4)};
+    for (size_t p = 0; p < intensity.size() && p < size_t(texels) * texels; ++p) {
+        float* out = &t.rgba[p * 4];
+        out[0] = out[1] = out[2] = static_cast<float>(intensity[p]);
+        out[3] = 1.0f;
+    }
+    return t;
+}
 
 void add_caustics_inputs(SyntheticScene& scene) {
     scene.textures[caustics_tile_texture().name] = make_caustics_tile();

@@ -153,6 +153,12 @@ TEST_CASE("an_inconsistent_report_is_refused_with_the_reason", "[unit][report]")
     report.views.clear();
     CHECK_FALSE(compare_report_files(report, &error));
     CHECK(error == "the comparison has no view");
+    report = test::synthetic_compare_report();
+    test::add_synthetic_caustics_pass(report);
+    report.caustics_passes[0].reference.pop_back();
+    CHECK_FALSE(compare_report_files(report, &error));
+    CHECK(error == "caustics pass 'area_ratio, gerstner waves': 4096 and 4095 texels for a 64x64 "
+                   "texture");
 }
 
 TEST_CASE("write_compare_report_replaces_the_directory_whole_or_not_at_all", "[unit][report]") {

@@ -1,7 +1,7 @@
 // The comparison report in a real browser: headless Chromium (installed by scripts/setup) opens
 // report.html written from a made-up comparison and takes a screenshot. The page must log
-// nothing to the console, and the images, heat maps and plots must be drawn: each leaves colours
-// in the screenshot that nothing else on the page has.
+// nothing to the console, and the images, heat maps, plots and caustics textures must be drawn:
+// each leaves colours in the screenshot that nothing else on the page has.
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr uint32_t kWindowWidth = 1400, kWindowHeight = 4000;
+constexpr uint32_t kWindowWidth = 1400, kWindowHeight = 4600;
 
 // Pixels of the screenshot within `tolerance` of `rgb` on every channel.
 std::size_t pixels_near(const ImageRGBA8& shot, std::array<uint8_t, 3> rgb, int tolerance) {
@@ -49,7 +49,8 @@ TEST_CASE("the_report_renders_in_headless_chromium_without_console_messages", "[
     const fs::path dir = fs::current_path() / "scratch-report-browser";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    const CompareReport report = test::synthetic_compare_report();
+    CompareReport report = test::synthetic_compare_report();
+    test::add_synthetic_caustics_pass(report);
     REQUIRE_FALSE(write_compare_report(dir / "out", report));
 
     // --headless=new renders like the desktop browser; as root it needs --no-sandbox. `timeout`
@@ -87,6 +88,9 @@ TEST_CASE("the_report_renders_in_headless_chromium_without_console_messages", "[
     CHECK(pixels_near(*shot, magma(1.0), 3) >= 2000);
     // The plots' first group colour (tab10 blue #1f77b4), points in three plots.
     CHECK(pixels_near(*shot, {31, 119, 180}, 3) >= 100);
+    // The caustics pass (grey 188, shown 3x: 192 x 192) and its difference map (magma(0.5)).
+    CHECK(pixels_near(*shot, {188, 188, 188}, 1) >= 192 * 192 * 95 / 100);
+    CHECK(pixels_near(*shot, magma(0.5), 2) >= 192 * 192 * 95 / 100);
     // KEEP_REPORT=1 keeps the report, the screenshot and the browser log for a look.
     if (!std::getenv("KEEP_REPORT")) fs::remove_all(dir);
 }

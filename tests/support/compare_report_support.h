@@ -112,4 +112,24 @@ inline CompareReport synthetic_compare_report(uint32_t size = 64) {
     return r;
 }
 
+// One made-up caustics pass for the "Caustics passes" section: a 64x64 texture of 2 (sRGB grey
+// 188 under the caustics tone map), a reference of 1.75, so the difference map is magma(0.5).
+inline void add_synthetic_caustics_pass(CompareReport& r) {
+    CausticsPassFigures p;
+    p.name = "area_ratio, gerstner waves";
+    p.texels = 64;
+    p.pass.assign(64 * 64, 2.0);
+    p.reference.assign(64 * 64, 1.75);
+    p.max_abs = p.rmse = p.mean_difference = 0.25;
+    p.mean = 2.0;
+    p.reference_mean = 1.75;
+    p.median_ms = 4.0;
+    p.min_ms = 3.5;
+    p.max_ms = 5.0;
+    p.rounds = 3;
+    p.ratio = p.ratio_lo = p.ratio_hi = 1.0;
+    r.caustics_passes.push_back(p);
+    r.caustics_note = "made up";
+}
+
 } // namespace watergen::test

@@ -11,6 +11,7 @@
 #include "watergen/caustics/caustics_pass.h"
 #include "watergen/caustics/caustics_reference.h"
 #include "watergen/pipeline/variant_build.h"
+#include "watergen/runtime/image_io.h"
 #include "watergen/runtime/image_metrics.h"
 #include "watergen/runtime/vulkan_runner.h"
 
@@ -30,6 +31,11 @@ CausticsBuild build_caustics(CausticsMethod method, const std::string& wave_mode
 std::map<std::string, std::vector<double>>
 caustics_values(const CausticsBuild& build,
                 const std::map<std::string, std::vector<double>>& values);
+
+// Grid cells (photons) per texel side each method is drawn with unless told otherwise: area
+// ratio 2 (its triangles interpolate within a cell), photon splatting 8 (64 photons per texel;
+// the binning noise is RMSE 0.096 at 16 per texel, 0.033-0.038 at 64).
+uint32_t default_cells_per_texel(CausticsMethod method);
 
 struct CausticsRenderSettings {
     uint32_t texels = 256;        // texture side
@@ -52,6 +58,27 @@ struct CausticsRender {
 CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
                                const std::map<std::string, std::vector<double>>& values,
                                const CausticsRenderSettings& settings);
+
+// The runner job that draws one language path (0 GLSL, 1 HLSL) of `build` as render_caustics
+// does (additive blending); timing draws these interleaved. Empty SPIR-V and the reason in
+// *error for a window that is not (x0, z0, size > 0).
+RenderJob caustics_job(const CausticsBuild& build, size_t language,
+                       const std::map<std::string, std::vector<double>>& values,
+                       const CausticsRenderSettings& settings, std::string* error);
+
+// A pass's texture against the reference's, texel by texel: the largest difference, the RMSE,
+// and the mean of pass minus reference (the light the pass gains or loses). Zeros when the sizes
+// differ or are 0.
+struct CausticsError {
+    double max_abs = 0, rmse = 0, mean_difference = 0;
+};
+CausticsError caustics_error(const std::vector<double>& pass, const std::vector<double>& reference);
+
+// A texture as a grey sRGB image, intensity 4 at white (the peaks of a sunny bottom are 2-5):
+// the tone map every caustics PNG uses (kCausticsToneMap says it in words).
+ImageRGBA8 caustics_image(const std::vector<double>& intensity, uint32_t texels);
+inline constexpr const char* kCausticsToneMap =
+    "grey, intensity / 4 at white (1 = flat water at 25%), sRGB-encoded";
 
 // The CPU reference for the same values: seed 004's waves restated (a_i = A g_a^i,
 // f_i = F g_f^i, phase t phi_i, Gerstner Q_i = Q / (f_i a_i n)), the sun, ior_water, the depth

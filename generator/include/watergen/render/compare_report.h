@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "watergen/render/caustics_report.h"
 #include "watergen/render/error_maps.h"
 #include "watergen/runtime/image_io.h"
 
@@ -65,6 +66,10 @@ struct CompareReport {
     // (e.g. the A/A interval is wider than the effects).
     bool timing_trustworthy = true;
     std::string cost_note; // how the cost was measured (e.g. "valgrind, instructions / pixel")
+    // The caustics passes the variants read ("Caustics passes" section, compare.json's
+    // "caustics_passes"); none: neither appears.
+    std::vector<CausticsPassFigures> caustics_passes;
+    std::string caustics_note; // how the passes were drawn, measured and timed
 };
 
 // Names of the files written, for callers that list them.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -32,6 +33,12 @@ struct CompareRequest {
     // build_for_scene); the CPU reference evaluates the reference's built fragment graph.
     std::function<VariantBuild(const Variant&)> build;
     bool both_paths = true; // false: the GLSL path only (the HLSL image is tested equal elsewhere)
+    // Textures that replace a view's (by binding name) for one built variant, e.g. the caustics
+    // map its own pass drew (compare_caustics.h); empty: the view's scene as it is. Used for
+    // the images, the CPU reference and the timing alike. A non-empty *error stops the run.
+    std::function<std::map<std::string, TextureData>(const VariantBuild&, size_t view,
+                                                     std::string* error)>
+        textures_for;
 };
 
 struct ComparedView {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -29,11 +30,18 @@ uint64_t gpu_only_non_finite_pixels(const VariantRender& r);
 
 nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderReportInfo& info);
 
+// What a render adds beside its images (caustics: render_caustics.h): keys appended to
+// render.json and files by name. Empty for most variants: their files stay as they were.
+struct RenderExtras {
+    nlohmann::ordered_json json = nlohmann::ordered_json::object();
+    std::map<std::string, std::string> files;
+};
+
 // Writes the files into `dir` (replacing a previous render of the variant); an error message
 // on failure, with nothing half-written.
 std::optional<std::string> write_render_report(const std::filesystem::path& dir,
-                                               const VariantRender& r,
-                                               const RenderReportInfo& info);
+                                               const VariantRender& r, const RenderReportInfo& info,
+                                               const RenderExtras& extras = {});
 
 // `watergen render --strict-half`: the strict-half GPU images (glsl, hlsl as .png and .pfm),
 // cpu_half.pfm, full_precision.pfm (GPU, GLSL) and render.json with every comparison.

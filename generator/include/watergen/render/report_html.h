@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "watergen/render/heat_map.h"
 #include "watergen/runtime/image_io.h"
 
 namespace watergen {
@@ -22,5 +23,12 @@ std::string png_data_uri(const ImageRGBA8& image);
 // may be empty. The "pixelated" class scales it without smoothing.
 std::string html_image(const ImageRGBA8& image, std::string_view alt, std::string_view css_class,
                        uint32_t display_width = 0);
+
+// A <figure> of `image` with `caption`, scaled up by a whole factor (pixelated) to at least
+// 192 pixels wide, so small images and crops stay legible.
+std::string html_figure(const ImageRGBA8& image, const std::string& caption);
+
+// The colour bar of `scale` (256 pixels wide) with its ticks labelled (CSS class "bar").
+std::string html_color_bar(const HeatScale& scale);
 
 } // namespace watergen

@@ -56,6 +56,18 @@ void add_wave_inputs(SyntheticScene& scene);   // scene_wave_inputs.cpp: waves, 
 // (caustics_reference.h); needs the scene's sun_direction and time uniforms.
 void add_caustics_inputs(SyntheticScene& scene);
 
+// The caustics map's setting, shared by the CPU-made map and the pass drawn for a scene
+// (scene_caustics_pass.h): the bottom 2 m under the water level (the seabed in the default
+// window lies 0 to 2.25 m deep); photons (the pass's grid) over the window grown by 1 m, as
+// light enters from beside it; 64 texels per side, the nodes' caustics_map_texels default.
+inline constexpr double kSceneCausticsDepth = 2.0;
+inline constexpr double kSceneCausticsMargin = 1.0;
+inline constexpr uint32_t kSceneCausticsTexels = 64;
+
+// A caustics texture from intensities (texels x texels, row-major, row = z): r = g = b = the
+// intensity, a = 1, the layout caustics_tile and caustics_map share.
+TextureData caustics_texture(const std::vector<double>& intensity, uint32_t texels);
+
 // The camera of a view (nodes that project world points to the screen read its matrices,
 // scene_optics_inputs.cpp); without a view, the beach camera.
 struct SceneCamera {
