@@ -36,7 +36,9 @@ OJson pass_json(const CausticsPassBuild& b, const CausticsPassKey& key) {
     j["wave_model"] = key.wave_model;
     j["vertex_input"] = OJson::array({{{"name", "grid_xz"}, {"location", 0}, {"type", "vec2"}}});
     // The fragment stage reads no parameter: the one block is the vertex stage's.
-    j["uniform_block"] = uniform_block_json(b.languages[0].vertex.source.interface);
+    const ShaderInterface& in = b.languages[0].vertex.source.interface;
+    j["uniform_block"] = uniform_block_json(in);
+    if (!in.specialization.empty()) j["specialization_constants"] = specialization_json(in);
     OJson counts = OJson::object();
     for (const auto& lang : b.languages)
         counts[to_string(lang.language)] = {

@@ -98,17 +98,7 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
         textures.push_back({{"name", t.name}, {"binding", t.binding}, {"type", type_name(t.type)}});
     j["textures"] = textures;
     // Only when there are some, so variants without them keep their form.
-    if (!in.specialization.empty()) {
-        nlohmann::ordered_json constants = nlohmann::ordered_json::array();
-        for (const auto& p : in.parameters) {
-            if (!p.specialization) continue;
-            std::vector<uint32_t> ids;
-            for (const auto& s : in.specialization)
-                if (s.parameter == p.name) ids.push_back(s.id);
-            constants.push_back(describe_parameter(p, "constant_ids", ids));
-        }
-        j["specialization_constants"] = constants;
-    }
+    if (!in.specialization.empty()) j["specialization_constants"] = specialization_json(in);
     nlohmann::ordered_json counts = nlohmann::ordered_json::object();
     for (const auto& lang : b.languages)
         counts[to_string(lang.language)] = {
@@ -131,6 +121,18 @@ nlohmann::ordered_json uniform_block_json(const ShaderInterface& in) {
             {"binding", kParamsBinding},
             {"size", in.uniforms.size},
             {"members", params}};
+}
+
+nlohmann::ordered_json specialization_json(const ShaderInterface& in) {
+    nlohmann::ordered_json constants = nlohmann::ordered_json::array();
+    for (const auto& p : in.parameters) {
+        if (!p.specialization) continue;
+        std::vector<uint32_t> ids;
+        for (const auto& s : in.specialization)
+            if (s.parameter == p.name) ids.push_back(s.id);
+        constants.push_back(describe_parameter(p, "constant_ids", ids));
+    }
+    return constants;
 }
 
 VariantBuild build_variant(const Variant& variant, const Preset* preset,

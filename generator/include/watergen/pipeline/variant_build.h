@@ -50,6 +50,8 @@ std::vector<std::string> variant_file_names();
 // The uniform block of a stage's interface as variant.json lists it ("uniform_block": name,
 // set, binding, size, members with their offsets, defaults, ranges and units).
 nlohmann::ordered_json uniform_block_json(const ShaderInterface& in);
+// Its parameters held in specialization constants (loop counts), with their constant ids.
+nlohmann::ordered_json specialization_json(const ShaderInterface& in);
 
 // Emits a vertex and a fragment graph in both languages (files <lang>/<stem>.<ext>, the
 // vertex entry named `stage_name`, stamped with `key`) and runs each through the toolchain (a
