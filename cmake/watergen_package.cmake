@@ -12,6 +12,7 @@ install(TARGETS watergen EXPORT watergenTargets
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT generator)
 install(FILES
     runtime/include/watergen/runtime/reflection.h
+    runtime/include/watergen/runtime/build_pass.h
     runtime/include/watergen/runtime/shader_build.h
     runtime/include/watergen/runtime/uniform_writer.h
     runtime/include/watergen/runtime/variant_pipeline.h

@@ -8,6 +8,7 @@
 #include <fcntl.h>
 
 #include "watergen/pipeline/build_record.h"
+#include "watergen/pipeline/caustics_pass_build.h"
 #include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
 
@@ -48,9 +49,10 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
                             " too; expected one name per scene (it names a directory)"));
             return std::nullopt;
         }
-        if (sorted[i].name == kUnprunedScene) {
-            ds.push_back(sorted[i].where.error("name", std::string("scene name '") +
-                                                           kUnprunedScene + "' is reserved"));
+        if (sorted[i].name == kUnprunedScene || sorted[i].name == kPassesDirectory) {
+            ds.push_back(sorted[i].where.error("name", "scene name '" + sorted[i].name +
+                                                           "' is reserved (" + kUnprunedScene +
+                                                           ", " + kPassesDirectory + ")"));
             return std::nullopt;
         }
         auto p = plan_scene(material, sorted[i], ds);
@@ -285,12 +287,19 @@ BuildSummary build_material_now(const BuildRequest& request) {
         collect(plan->jobs[i], results[i], request.options.cache, s, files);
     if (request.freeze && request.mode == BuildMode::Specialized)
         add_frozen(plan->jobs, results, request.options.threads, s, files);
+    // The companion passes the built variants draw with, each once for the whole output.
+    PassesOutput passes =
+        build_needed_passes(request.material, plan->jobs, results, request.options.threads);
+    s.failed += passes.failed;
+    s.diagnostics.insert(s.diagnostics.end(), passes.diagnostics.begin(), passes.diagnostics.end());
+    files.merge(passes.files);
     if (s.failed == 0) {
         files["manifest.json"] =
             request.mode == BuildMode::Permutations
-                ? manifest_json(request.material, plan->manifest_scenes, plan->jobs, results)
+                ? manifest_json(request.material, plan->manifest_scenes, plan->jobs, results,
+                                passes.passes)
                 : modes_manifest_json(request.material, request.mode, request.freeze,
-                                      plan->manifest_scenes, plan->jobs, results);
+                                      plan->manifest_scenes, plan->jobs, results, passes.passes);
         if (request.shard.sharded())
             files[kShardFile] = shard_json(request.shard, request.inputs_hash, plan->jobs, results,
                                            s.variants, files);

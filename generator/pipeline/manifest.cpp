@@ -97,39 +97,6 @@ OJson scene_json(const ManifestScene& s) {
     return j;
 }
 
-// Files per target, as paths relative to the output directory.
-OJson files_json(const std::string& dir, const FileMap& files) {
-    OJson j = OJson::object();
-    std::map<std::string, std::vector<std::string>> by;
-    for (const auto& [path, bytes] : files) {
-        std::string kind;
-        auto ends = [&](const std::string& s) {
-            return path.size() > s.size() && path.compare(path.size() - s.size(), s.size(), s) == 0;
-        };
-        if (path == "variant.json")
-            kind = "description";
-        else if (ends(".330.glsl"))
-            kind = "glsl330";
-        else if (ends(".300es.glsl"))
-            kind = "essl300";
-        else if (ends(".metal"))
-            kind = "msl";
-        else if (ends(".spv"))
-            kind = "spirv";
-        else if (ends(".reflect.json"))
-            kind = "reflection";
-        else if (ends(".hlsl"))
-            kind = "hlsl";
-        else
-            kind = "glsl";
-        by[kind].push_back(dir + "/" + path);
-    }
-    for (const char* kind :
-         {"description", "glsl", "hlsl", "spirv", "glsl330", "essl300", "msl", "reflection"})
-        if (by.count(kind)) j[kind] = by[kind];
-    return j;
-}
-
 using JobIndex = std::map<std::pair<std::string, std::string>, size_t>; // (scene, key) -> job
 
 // What folding did to the job's shader.
@@ -200,6 +167,13 @@ OJson header_json(const Material& material, const std::vector<ManifestScene>& sc
     return doc;
 }
 
+// "passes", for a variant drawn with a companion pass (last: a merge copies it with the files).
+void add_passes(OJson& v, const Material& material, const Variant& variant, const BuildJob& job,
+                const JobResult& r, const CausticsPasses& passes) {
+    OJson entry = passes_entry(material, variant, job.targets, r.fold.folded_parameters, passes);
+    if (!entry.is_null()) v["passes"] = std::move(entry);
+}
+
 OJson nodes_json(const Variant& v) {
     OJson nodes = OJson::object();
     for (const auto& a : axes())
@@ -209,14 +183,46 @@ OJson nodes_json(const Variant& v) {
 
 } // namespace
 
+OJson files_json(const std::string& dir, const FileMap& files) {
+    OJson j = OJson::object();
+    std::map<std::string, std::vector<std::string>> by;
+    for (const auto& [path, bytes] : files) {
+        std::string kind;
+        auto ends = [&](const std::string& s) {
+            return path.size() > s.size() && path.compare(path.size() - s.size(), s.size(), s) == 0;
+        };
+        if (path == "variant.json" || path == "pass.json")
+            kind = "description";
+        else if (ends(".330.glsl"))
+            kind = "glsl330";
+        else if (ends(".300es.glsl"))
+            kind = "essl300";
+        else if (ends(".metal"))
+            kind = "msl";
+        else if (ends(".spv"))
+            kind = "spirv";
+        else if (ends(".reflect.json"))
+            kind = "reflection";
+        else if (ends(".hlsl"))
+            kind = "hlsl";
+        else
+            kind = "glsl";
+        by[kind].push_back(dir + "/" + path);
+    }
+    for (const char* kind :
+         {"description", "glsl", "hlsl", "spirv", "glsl330", "essl300", "msl", "reflection"})
+        if (by.count(kind)) j[kind] = by[kind];
+    return j;
+}
+
 std::string job_directory(const BuildJob& job) {
     return job.shader ? job.scene + "/" + job.shader->file_stem()
                       : variant_directory(job.scene, job.variant);
 }
 
 std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
-                          const std::vector<BuildJob>& jobs,
-                          const std::vector<JobResult>& results) {
+                          const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                          const CausticsPasses& passes) {
     OJson doc = header_json(material, scenes);
     JobIndex index;
     for (size_t i = 0; i < jobs.size(); ++i)
@@ -232,6 +238,7 @@ std::string manifest_json(const Material& material, const std::vector<ManifestSc
         v["nodes"] = nodes_json(job.variant);
         add_fold(v, job, results[i]);
         add_output(v, i, jobs, results, index);
+        add_passes(v, material, job.variant, job, results[i], passes);
         variants.push_back(v);
     }
     doc["variants"] = variants;
@@ -287,9 +294,10 @@ OJson shader_json(size_t i, const std::vector<BuildJob>& jobs,
 
 // A variant as the shader of its job draws it: the selector values, where they go, and (with
 // freeze) the variant's own frozen SPIR-V.
-OJson served_json(const Variant& variant, size_t i, const std::vector<BuildJob>& jobs,
-                  const std::vector<JobResult>& results, const JobIndex& index, BuildMode mode,
-                  bool freeze) {
+OJson served_json(const Material& material, const Variant& variant, size_t i,
+                  const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                  const JobIndex& index, BuildMode mode, bool freeze,
+                  const CausticsPasses& passes) {
     const BuildJob& job = jobs[i];
     size_t built = i;
     if (const auto it = index.find({job.scene, results[i].same_as}); it != index.end())
@@ -318,6 +326,7 @@ OJson served_json(const Variant& variant, size_t i, const std::vector<BuildJob>&
                 frozen[lang] = job_directory(jobs[built]) + "/" + frozen_path(lang, variant);
         v["frozen"] = frozen;
     }
+    add_passes(v, material, variant, job, results[i], passes);
     return v;
 }
 
@@ -326,7 +335,8 @@ OJson served_json(const Variant& variant, size_t i, const std::vector<BuildJob>&
 std::string modes_manifest_json(const Material& material, BuildMode mode, bool freeze,
                                 const std::vector<ManifestScene>& scenes,
                                 const std::vector<BuildJob>& jobs,
-                                const std::vector<JobResult>& results) {
+                                const std::vector<JobResult>& results,
+                                const CausticsPasses& passes) {
     OJson doc = header_json(material, scenes);
     doc["mode"] = to_string(mode);
     JobIndex index;
@@ -339,7 +349,7 @@ std::string modes_manifest_json(const Material& material, BuildMode mode, bool f
         shaders.push_back(shader_json(i, jobs, results, index, mode));
         for (const Variant& v : jobs[i].serves)
             variants[{jobs[i].scene, v.key()}] =
-                served_json(v, i, jobs, results, index, mode, freeze);
+                served_json(material, v, i, jobs, results, index, mode, freeze, passes);
     }
     doc["shaders"] = shaders;
     OJson list = OJson::array();

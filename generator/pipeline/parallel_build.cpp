@@ -21,7 +21,7 @@ bool wanted(const std::string& path, const std::vector<Target>& targets) {
     auto has = [&](Target t) {
         return std::find(targets.begin(), targets.end(), t) != targets.end();
     };
-    if (path == "variant.json") return true;
+    if (path == "variant.json" || path == "pass.json") return true;
     const bool glsl_dir = path.rfind("glsl/", 0) == 0, hlsl_dir = path.rfind("hlsl/", 0) == 0;
     auto ends = [&](const char* s) {
         const std::string suffix = s;

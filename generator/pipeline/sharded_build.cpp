@@ -128,8 +128,8 @@ std::string check_set(const std::vector<ShardOutput>& shards) {
 }
 
 // The fields of a manifest entry that name where its files are.
-const std::set<std::string> kOutputFields = {"same_as", "directory", "files", "reflection",
-                                             "spirv_instructions"};
+const std::set<std::string> kOutputFields = {"same_as",    "directory",          "files",
+                                             "reflection", "spirv_instructions", "passes"};
 
 // `own` pointing at the files of `builder` (same shader), as manifest_json writes such an entry.
 OJson as_same(const OJson& own, const OJson& builder) {

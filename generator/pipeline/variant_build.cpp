@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "watergen/ir/vertex_emitter.h"
 #include "watergen/runtime/reflection.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
 
@@ -18,10 +19,10 @@ struct StageFileNames {
     std::string source, spirv, spirv_optimized, glsl330, essl300, msl, reflection;
 };
 
-StageFileNames stage_file_names(Language lang, ShaderStage stage) {
+StageFileNames stage_file_names(Language lang, ShaderStage stage, const std::string& stem = kStem) {
     const std::string dir = std::string(to_string(lang)) + "/";
-    const std::string base = dir + kStem + "." + (stage == ShaderStage::Vertex ? "vert" : "frag");
-    return {dir + kStem + "." + file_extension(lang, stage),
+    const std::string base = dir + stem + "." + (stage == ShaderStage::Vertex ? "vert" : "frag");
+    return {dir + stem + "." + file_extension(lang, stage),
             base + ".spv",
             base + ".opt.spv",
             base + ".330.glsl",
@@ -91,31 +92,13 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
     j["choices"] = choices;
     if (b.shader.switched) j["mode"] = to_string(b.shader.switched->mode);
     const ShaderInterface& in = b.languages[0].fragment.source.interface;
-    nlohmann::ordered_json params = nlohmann::ordered_json::array();
-    for (const auto& slot : in.uniforms.members)
-        for (const auto& p : in.parameters)
-            if (p.name == slot.name) params.push_back(describe_parameter(p, "offset", slot.offset));
-    j["uniform_block"] = {{"name", "WaterParams"},
-                          {"set", 0},
-                          {"binding", kParamsBinding},
-                          {"size", in.uniforms.size},
-                          {"members", params}};
+    j["uniform_block"] = uniform_block_json(in);
     nlohmann::ordered_json textures = nlohmann::ordered_json::array();
     for (const auto& t : in.textures)
         textures.push_back({{"name", t.name}, {"binding", t.binding}, {"type", type_name(t.type)}});
     j["textures"] = textures;
     // Only when there are some, so variants without them keep their form.
-    if (!in.specialization.empty()) {
-        nlohmann::ordered_json constants = nlohmann::ordered_json::array();
-        for (const auto& p : in.parameters) {
-            if (!p.specialization) continue;
-            std::vector<uint32_t> ids;
-            for (const auto& s : in.specialization)
-                if (s.parameter == p.name) ids.push_back(s.id);
-            constants.push_back(describe_parameter(p, "constant_ids", ids));
-        }
-        j["specialization_constants"] = constants;
-    }
+    if (!in.specialization.empty()) j["specialization_constants"] = specialization_json(in);
     nlohmann::ordered_json counts = nlohmann::ordered_json::object();
     for (const auto& lang : b.languages)
         counts[to_string(lang.language)] = {
@@ -127,6 +110,30 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
 }
 
 } // namespace
+
+nlohmann::ordered_json uniform_block_json(const ShaderInterface& in) {
+    nlohmann::ordered_json params = nlohmann::ordered_json::array();
+    for (const auto& slot : in.uniforms.members)
+        for (const auto& p : in.parameters)
+            if (p.name == slot.name) params.push_back(describe_parameter(p, "offset", slot.offset));
+    return {{"name", "WaterParams"},
+            {"set", 0},
+            {"binding", kParamsBinding},
+            {"size", in.uniforms.size},
+            {"members", params}};
+}
+
+nlohmann::ordered_json specialization_json(const ShaderInterface& in) {
+    nlohmann::ordered_json constants = nlohmann::ordered_json::array();
+    for (const auto& p : in.parameters) {
+        if (!p.specialization) continue;
+        std::vector<uint32_t> ids;
+        for (const auto& s : in.specialization)
+            if (s.parameter == p.name) ids.push_back(s.id);
+        constants.push_back(describe_parameter(p, "constant_ids", ids));
+    }
+    return constants;
+}
 
 VariantBuild build_variant(const Variant& variant, const Preset* preset,
                            const EmitOptions& options) {
@@ -158,10 +165,17 @@ VariantBuild build_shader(WaterShader shader, const EmitOptions& options) {
 std::map<std::string, std::string> variant_files(const VariantBuild& b) {
     std::map<std::string, std::string> files;
     if (!b.ok()) return files;
-    const std::string stamp = stamp_text(b.shader.key());
-    for (const auto& lang : b.languages) {
+    add_stage_files(b.languages, kStem, b.shader.key(), files);
+    files["variant.json"] = describe(b).dump(2) + "\n";
+    return files;
+}
+
+void add_stage_files(const std::array<LanguageBuild, 2>& languages, const std::string& stem,
+                     const std::string& key, std::map<std::string, std::string>& files) {
+    const std::string stamp = stamp_text(key);
+    for (const auto& lang : languages) {
         for (const StageBuild* s : {&lang.vertex, &lang.fragment}) {
-            const StageFileNames names = stage_file_names(lang.language, s->source.stage);
+            const StageFileNames names = stage_file_names(lang.language, s->source.stage, stem);
             const ToolchainOutputs& t = s->toolchain;
             files[names.source] = s->source.source;
             files[names.spirv] = spirv_bytes(t.spirv);
@@ -172,8 +186,6 @@ std::map<std::string, std::string> variant_files(const VariantBuild& b) {
             files[names.reflection] = reflection_to_json(t.reflection);
         }
     }
-    files["variant.json"] = describe(b).dump(2) + "\n";
-    return files;
 }
 
 std::vector<std::string> variant_file_names() {
@@ -186,6 +198,30 @@ std::vector<std::string> variant_file_names() {
         }
     std::sort(names.begin(), names.end());
     return names;
+}
+
+std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& fragment,
+                                              const std::string& stage_name,
+                                              const std::string& stem, const std::string& key,
+                                              Diagnostics& diagnostics) {
+    std::array<LanguageBuild, 2> out;
+    for (const Graph* g : {&vertex, &fragment})
+        diagnostics.insert(diagnostics.end(), g->diagnostics().begin(), g->diagnostics().end());
+    if (has_errors(diagnostics)) return out;
+    for (size_t i = 0; i < out.size(); ++i) {
+        const Language lang = kLanguages[i];
+        out[i].language = lang;
+        EmittedShader vert =
+            emit_vertex(vertex, lang, stage_name,
+                        stage_file_names(lang, ShaderStage::Vertex, stem).source, key, diagnostics);
+        EmittedShader frag = emit_fragment(
+            fragment, lang, stage_file_names(lang, ShaderStage::Fragment, stem).source, key,
+            diagnostics);
+        if (has_errors(diagnostics)) return out;
+        out[i].vertex = build_stage(std::move(vert), diagnostics);
+        out[i].fragment = build_stage(std::move(frag), diagnostics);
+    }
+    return out;
 }
 
 } // namespace watergen

@@ -99,7 +99,12 @@ WaterShader Material::compose(const ShaderChoices& choices) const {
     WaterShader shader =
         build_water_shader(choices, preset.empty() ? nullptr : find_preset(preset));
     if (has_errors(shader.fragment.diagnostics())) return shader;
-    std::vector<Parameter> params = shader.fragment.parameters();
+    shader.fragment = with_settings(shader.fragment);
+    return shader;
+}
+
+Graph Material::with_settings(const Graph& g) const {
+    std::vector<Parameter> params = g.parameters();
     for (Parameter& p : params) {
         auto it = parameters.find(p.name);
         if (it == parameters.end()) continue;
@@ -107,8 +112,7 @@ WaterShader Material::compose(const ShaderChoices& choices) const {
         if (it->second.min) p.min = *it->second.min;
         if (it->second.max) p.max = *it->second.max;
     }
-    shader.fragment = with_parameters(shader.fragment, params);
-    return shader;
+    return with_parameters(g, params);
 }
 
 } // namespace watergen

@@ -2,48 +2,8 @@
 
 #include "watergen/ir/specialization.h"
 #include "watergen/ir/uniform_layout.h"
-#include "watergen/ir/vertex_emitter.h"
 
 namespace watergen {
-
-namespace {
-
-StageBuild build_stage(EmittedShader source, Diagnostics& all) {
-    StageBuild stage{std::move(source), {}};
-    stage.toolchain = run_toolchain(
-        {stage.source.language == Language::Glsl ? SourceLanguage::Glsl : SourceLanguage::Hlsl,
-         stage.source.stage, stage.source.source, stage.source.file_name, "main"});
-    Diagnostics ds = stage.toolchain.diagnostics;
-    attribute_to_nodes(stage.source, ds);
-    all.insert(all.end(), ds.begin(), ds.end());
-    return stage;
-}
-
-} // namespace
-
-std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& fragment,
-                                              const std::string& stage_name,
-                                              const std::string& stem, const std::string& key,
-                                              Diagnostics& diagnostics) {
-    std::array<LanguageBuild, 2> out;
-    for (const Graph* g : {&vertex, &fragment})
-        diagnostics.insert(diagnostics.end(), g->diagnostics().begin(), g->diagnostics().end());
-    if (has_errors(diagnostics)) return out;
-    for (size_t i = 0; i < out.size(); ++i) {
-        const Language lang = i == 0 ? Language::Glsl : Language::Hlsl;
-        const std::string path = std::string(to_string(lang)) + "/" + stem + ".";
-        out[i].language = lang;
-        EmittedShader vert =
-            emit_vertex(vertex, lang, stage_name, path + file_extension(lang, ShaderStage::Vertex),
-                        key, diagnostics);
-        EmittedShader frag = emit_fragment(
-            fragment, lang, path + file_extension(lang, ShaderStage::Fragment), key, diagnostics);
-        if (has_errors(diagnostics)) return out;
-        out[i].vertex = build_stage(std::move(vert), diagnostics);
-        out[i].fragment = build_stage(std::move(frag), diagnostics);
-    }
-    return out;
-}
 
 RenderJob mesh_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t width, uint32_t height,
                    const std::map<std::string, std::vector<double>>& values, uint32_t timed_draws) {

@@ -9,113 +9,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include "manifest_reader.h"
+
 namespace watergen {
 
 namespace fs = std::filesystem;
+using manifest::at;
+using manifest::ManifestReader;
+using manifest::read_bytes;
 using nlohmann::json;
 
 namespace {
 
-// A manifest is a few hundred KB, a shader file far less; anything larger is not one of ours.
-constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(256) << 20;
-
-std::optional<std::string> read_bytes(const fs::path& path, std::string* error) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
-        *error = path.string() + ": " +
-                 (fs::exists(path, ec) ? "not a regular file" : "no such file") +
-                 "; expected a file of a watergen build";
-        return std::nullopt;
-    }
-    const std::uintmax_t size = fs::file_size(path, ec);
-    if (ec || size > kMaxFileBytes) {
-        *error = path.string() + ": " + (ec ? ec.message() : "larger than 256 MiB");
-        return std::nullopt;
-    }
-    std::ifstream in(path, std::ios::binary);
-    std::string bytes(static_cast<size_t>(size), '\0');
-    if (!in.read(bytes.data(), static_cast<std::streamsize>(size))) {
-        *error = path.string() + ": cannot be read";
-        return std::nullopt;
-    }
-    return bytes;
-}
-
-// Walks the manifest recording the first problem as "<file>: <key path>: expected ...";
-// every accessor checks the type first, so nlohmann never throws.
-class ManifestReader {
-  public:
-    ManifestReader(std::string file, std::string* error) : file_(std::move(file)), error_(error) {}
-
-    const json* get(const json& object, const std::string& path, const char* key,
-                    json::value_t type, const char* expected, bool required = true) {
-        if (failed_) return nullptr;
-        const std::string where = path.empty() ? key : path + "." + key;
-        if (!object.is_object() || !object.contains(key)) {
-            if (required) fail(where, std::string("missing; expected ") + expected);
-            return nullptr;
-        }
-        const json& v = object[key];
-        const bool number =
-            type == json::value_t::number_float && (v.is_number_float() || v.is_number_integer());
-        if (v.type() != type && !number &&
-            !(type == json::value_t::number_unsigned && v.is_number_unsigned())) {
-            fail(where, std::string("expected ") + expected);
-            return nullptr;
-        }
-        return &v;
-    }
-    std::string text(const json& o, const std::string& path, const char* key,
-                     bool required = true) {
-        const json* v = get(o, path, key, json::value_t::string, "a string", required);
-        return v ? v->get<std::string>() : std::string();
-    }
-    uint32_t u32(const json& o, const std::string& path, const char* key) {
-        const json* v = get(o, path, key, json::value_t::number_unsigned, "an unsigned integer");
-        if (v && v->get<uint64_t>() > UINT32_MAX) fail(path + "." + key, "out of range");
-        return v && !failed_ ? static_cast<uint32_t>(v->get<uint64_t>()) : 0;
-    }
-    std::vector<double> numbers(const json& o, const std::string& path, const char* key,
-                                bool required = true) {
-        std::vector<double> out;
-        const json* v = get(o, path, key, json::value_t::array, "an array of numbers", required);
-        if (!v) return out;
-        for (const json& n : *v) {
-            if (!n.is_number()) {
-                fail(path + "." + key, "expected an array of numbers");
-                return {};
-            }
-            out.push_back(n.get<double>());
-        }
-        return out;
-    }
-    void fail(const std::string& where, const std::string& what) {
-        if (failed_) return;
-        failed_ = true;
-        *error_ = file_ + ": " + where + ": " + what;
-    }
-    bool failed() const { return failed_; }
-
-  private:
-    std::string file_;
-    std::string* error_;
-    bool failed_ = false;
-};
-
-std::string at(const std::string& path, size_t i) {
-    return path + "[" + std::to_string(i) + "]";
-}
-
 void read_files(ManifestReader& r, const json& entry, const std::string& path, BuildVariant& v) {
-    const json* files = r.get(entry, path, "files", json::value_t::object, "an object");
-    if (!files) return;
-    for (const auto& [kind, list] : files->items()) {
-        if (!list.is_array()) return r.fail(path + ".files." + kind, "expected an array");
-        for (const json& p : list) {
-            if (!p.is_string()) return r.fail(path + ".files." + kind, "expected paths");
-            v.files[kind].push_back(p.get<std::string>());
-        }
-    }
+    manifest::read_file_lists(r, entry, path, v.files);
 }
 
 void read_reflection(ManifestReader& r, const json& entry, const std::string& path,
@@ -123,30 +30,7 @@ void read_reflection(ManifestReader& r, const json& entry, const std::string& pa
     const json* refl = r.get(entry, path, "reflection", json::value_t::object, "an object");
     if (!refl) return;
     const std::string rp = path + ".reflection";
-    if (const json* block =
-            r.get(*refl, rp, "uniform_block", json::value_t::object, "an object", false);
-        block && !block->empty()) {
-        const std::string bp = rp + ".uniform_block";
-        v.block_name = r.text(*block, bp, "name");
-        if (const json* members = r.get(*block, bp, "members", json::value_t::array, "an array"))
-            for (size_t i = 0; i < members->size(); ++i) {
-                const json& m = (*members)[i];
-                const std::string mp = at(bp + ".members", i);
-                BlockParameter p;
-                p.name = r.text(m, mp, "name");
-                p.type = r.text(m, mp, "type");
-                if (m.contains("array_size")) p.array_size = r.u32(m, mp, "array_size");
-                p.offset = r.u32(m, mp, "offset");
-                p.default_value = r.numbers(m, mp, "default");
-                if (const json* lo =
-                        r.get(m, mp, "min", json::value_t::number_float, "a number", false))
-                    p.min = lo->get<double>();
-                if (const json* hi =
-                        r.get(m, mp, "max", json::value_t::number_float, "a number", false))
-                    p.max = hi->get<double>();
-                v.parameters.push_back(std::move(p));
-            }
-    }
+    manifest::read_uniform_block(r, *refl, rp, v);
     if (const json* tex = r.get(*refl, rp, "textures", json::value_t::array, "an array", false))
         for (size_t i = 0; i < tex->size(); ++i) {
             const std::string tp = at(rp + ".textures", i);
@@ -317,6 +201,7 @@ std::optional<ShaderBuild> ShaderBuild::open(const fs::path& directory, std::str
                 read_shader_part(r, (*list)[i], at("variants", i), v);
             else
                 read_served(r, (*list)[i], at("variants", i), v, shaders);
+            manifest::read_passes(r, (*list)[i], at("variants", i), v.passes);
             b.variants_.push_back(std::move(v));
         }
     if (r.failed()) return std::nullopt;
@@ -335,6 +220,9 @@ std::optional<std::string> ShaderBuild::read(const std::string& relative_path,
             known = known || std::find(list.begin(), list.end(), relative_path) != list.end();
         for (const auto& [lang, file] : v.frozen)
             known = known || file == relative_path;
+        for (const auto& [name, pass] : v.passes)
+            for (const auto& [kind, list] : pass.files)
+                known = known || std::find(list.begin(), list.end(), relative_path) != list.end();
         if (known) break;
     }
     if (!known) {
@@ -369,7 +257,8 @@ std::optional<std::vector<uint32_t>> ShaderBuild::spirv(const BuildVariant& v,
         bytes = read(frozen->second, error);
     else
         bytes =
-            listed(v, "spirv", "/" + language + "/water." + stage_tag(stage) + ".opt.spv", error);
+            listed(v, "spirv",
+                   "/" + language + "/" + v.file_stem + "." + stage_tag(stage) + ".opt.spv", error);
     if (!bytes) return std::nullopt;
     if (bytes->size() % 4 != 0 || bytes->size() < 20) {
         *error = "variant " + v.key + ": " + language + " " + stage_tag(stage) + " SPIR-V is " +
@@ -383,7 +272,7 @@ std::optional<std::vector<uint32_t>> ShaderBuild::spirv(const BuildVariant& v,
 
 std::optional<std::string> ShaderBuild::source(const BuildVariant& v, const std::string& kind,
                                                ShaderStage stage, std::string* error) const {
-    const std::string tag = std::string("water.") + stage_tag(stage);
+    const std::string tag = v.file_stem + "." + stage_tag(stage);
     const std::map<std::string, std::string> suffix = {{"glsl", "/glsl/" + tag + ".glsl"},
                                                        {"hlsl", "/hlsl/" + tag + ".hlsl"},
                                                        {"glsl330", "/" + tag + ".330.glsl"},
@@ -400,7 +289,8 @@ std::optional<std::string> ShaderBuild::source(const BuildVariant& v, const std:
 std::optional<Reflection> ShaderBuild::reflection(const BuildVariant& v,
                                                   const std::string& language, ShaderStage stage,
                                                   std::string* error) const {
-    const std::string suffix = "/" + language + "/water." + stage_tag(stage) + ".reflect.json";
+    const std::string suffix =
+        "/" + language + "/" + v.file_stem + "." + stage_tag(stage) + ".reflect.json";
     const auto text = listed(v, "reflection", suffix, error);
     if (!text) return std::nullopt;
     std::string why;

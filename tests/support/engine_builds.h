@@ -58,6 +58,32 @@ inline ShaderBuild open_mode_build(BuildMode mode) {
     return *b;
 }
 
+// Gerstner waves with caustics none, area_ratio and photon_splat (3 variants, 2 passes),
+// unpruned; built once per test binary.
+inline Material caustics_material() {
+    Diagnostics ds;
+    auto m = MaterialBuilder("caustics")
+                 .offer("waves", {"gerstner"})
+                 .offer("caustics", {"none", "area_ratio", "photon_splat"})
+                 .build(ds);
+    REQUIRE(m);
+    return *m;
+}
+
+inline const std::filesystem::path& caustics_build() {
+    static TempDir dir("engine-caustics");
+    static bool built = false;
+    if (!built) {
+        BuildRequest request;
+        request.material = caustics_material();
+        request.out = dir.path / "out";
+        REQUIRE(build_material(request).ok());
+        built = true;
+    }
+    static const std::filesystem::path out = dir.path / "out";
+    return out;
+}
+
 inline ShaderBuild open_example_build(bool with_scenes) {
     std::string error;
     auto b = ShaderBuild::open(example_build(with_scenes), &error);

@@ -22,6 +22,10 @@ Parameter caustics_window() {
     return {"caustics_window", Type::Vec3, {-5.0, -5.0, 10.0}, -1e5, 1e5, "m", "002", "caustics"};
 }
 
+Parameter caustics_map_texels() {
+    return {"caustics_map_texels", Type::Float, {64.0}, 1.0, 16384.0, "texels", "002", "caustics"};
+}
+
 Expr caustics_lit(Graph& g, Expr refracted, Expr intensity) {
     // 0 leaves the bottom as the scene lit it; 1 applies the texture's intensity as it is.
     Expr strength =
@@ -71,8 +75,7 @@ Expr caustics_area_ratio_intensity(Graph& g, Expr bottom_xz) {
 
 Expr caustics_photon_splat_intensity(Graph& g, Expr bottom_xz) {
     const MapPoint p = map_point(g, bottom_xz);
-    Expr texels = uniform(
-        g, {"caustics_map_texels", Type::Float, {64.0}, 1.0, 16384.0, "texels", "002", "caustics"});
+    Expr texels = uniform(g, caustics_map_texels());
     Expr half_texel = 0.5 / texels;
     Expr sum = map_texel(g, p.uv + vec2(-half_texel, -half_texel)) +
                map_texel(g, p.uv + vec2(half_texel, -half_texel)) +

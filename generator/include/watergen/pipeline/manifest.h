@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "watergen/pipeline/caustics_pass_build.h"
 #include "watergen/pipeline/parallel_build.h"
 #include "watergen/plan/scene_pruning.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
@@ -21,8 +24,11 @@ struct ManifestScene {
     size_t variants = 0;
 };
 
+// A variant drawn with a companion pass gets "passes" (passes_entry(), caustics_pass_build.h)
+// after its own files.
 std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
-                          const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results);
+                          const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                          const CausticsPasses& passes = {});
 
 // Directory of a variant inside the output, e.g. "open_ocean/fresnel-schlick_...".
 std::string variant_directory(const std::string& scene, const Variant& v);
@@ -37,7 +43,12 @@ std::string job_directory(const BuildJob& job);
 std::string modes_manifest_json(const Material& material, BuildMode mode, bool freeze,
                                 const std::vector<ManifestScene>& scenes,
                                 const std::vector<BuildJob>& jobs,
-                                const std::vector<JobResult>& results);
+                                const std::vector<JobResult>& results,
+                                const CausticsPasses& passes = {});
+
+// The files of a directory by kind ("description", "glsl", "hlsl", "spirv", "glsl330",
+// "essl300", "msl", "reflection"), as paths relative to the output directory.
+nlohmann::ordered_json files_json(const std::string& dir, const FileMap& files);
 
 // Where a variant's frozen SPIR-V goes in its shader's directory: "glsl/frozen/<stem>.frag.spv".
 std::string frozen_path(const std::string& language, const Variant& v);

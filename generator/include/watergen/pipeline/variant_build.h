@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "watergen/ir/emitter.h"
 #include "watergen/toolchain/toolchain.h"
 #include "watergen/water/water_shader.h"
@@ -44,5 +46,25 @@ VariantBuild build_shader(WaterShader shader, const EmitOptions& options = {});
 std::map<std::string, std::string> variant_files(const VariantBuild& build);
 // The names variant_files gives every successful build, whatever the variant, sorted.
 std::vector<std::string> variant_file_names();
+
+// The uniform block of a stage's interface as variant.json lists it ("uniform_block": name,
+// set, binding, size, members with their offsets, defaults, ranges and units).
+nlohmann::ordered_json uniform_block_json(const ShaderInterface& in);
+// Its parameters held in specialization constants (loop counts), with their constant ids.
+nlohmann::ordered_json specialization_json(const ShaderInterface& in);
+
+// Emits a vertex and a fragment graph in both languages (files <lang>/<stem>.<ext>, the
+// vertex entry named `stage_name`, stamped with `key`) and runs each through the toolchain (a
+// few ms each); stops at the first graph with errors. The mesh path and the caustics pass
+// share it.
+std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& fragment,
+                                              const std::string& stage_name,
+                                              const std::string& stem, const std::string& key,
+                                              Diagnostics& diagnostics);
+// The files of both languages of a build as variant_files writes them, under the names
+// <lang>/<stem>.<stage>.<kind> (sources, SPIR-V plain and optimised, the cross-compiled texts
+// stamped with `key`, reflection).
+void add_stage_files(const std::array<LanguageBuild, 2>& languages, const std::string& stem,
+                     const std::string& key, std::map<std::string, std::string>& files);
 
 } // namespace watergen

@@ -60,6 +60,9 @@ struct Material {
     WaterShader compose(const Variant& v) const;
     // The same for a shader serving several variants (water_shader.h, ShaderChoices).
     WaterShader compose(const ShaderChoices& choices) const;
+    // `g` with the material's parameter values and ranges on its declarations (compose() applies
+    // them to the water shader; a companion pass gets the same, so one uniform set drives both).
+    Graph with_settings(const Graph& g) const;
     // Parameter range after the material's narrowing.
     std::pair<double, double> range(const std::string& parameter) const;
 };

@@ -20,14 +20,6 @@ struct MeshBuild {
     bool ok() const { return !has_errors(diagnostics); }
 };
 
-// Emits a vertex and a fragment graph in both languages (files <lang>/<stem>.<ext>, the
-// vertex entry named `stage_name`) and runs each through the toolchain (a few ms each); stops
-// at the first graph with errors. The mesh path and the caustics pass share it.
-std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& fragment,
-                                              const std::string& stage_name,
-                                              const std::string& stem, const std::string& key,
-                                              Diagnostics& diagnostics);
-
 // The runner job of one language of a two-stage build drawing `mesh` at width x height, its
 // parameters packed from `values` over their defaults. Only the vertex stage may read
 // parameters (the pipeline has the one parameter block).

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "watergen/runtime/build_pass.h"
 #include "watergen/runtime/reflection.h"
 
 namespace watergen {
@@ -69,6 +70,20 @@ struct BuildVariant {
     std::map<std::string, double> selector_uniforms;
     // Specialized mode with freeze: the variant's own fragment SPIR-V per language.
     std::map<std::string, std::string> frozen;
+    // Companion passes the variant needs, by name ("caustics"); ShaderBuild::pass() opens one.
+    std::map<std::string, PassReference> passes;
+    // The stem of the shader's files: "<lang>/<stem>.<stage>...". "water"; a pass's "caustics".
+    std::string file_stem = "water";
+};
+
+// A companion pass opened: the manifest's reference, and the pass as a shader (directory,
+// files, its uniform block from pass.json with the scene's values as folded parameters, so a
+// UniformWriter starts at them and refuses others) for spirv(), source(), reflection() and
+// UniformWriter.
+struct BuildPass {
+    std::string name; // "caustics"
+    PassReference reference;
+    BuildVariant shader;
 };
 
 enum class Fallback { Error, NearestKept };
@@ -105,17 +120,22 @@ class ShaderBuild {
     // absolute paths, "..", and files the manifest does not list.
     std::optional<std::string> read(const std::string& relative_path, std::string* error) const;
 
-    // The variant's SPIR-V of one language path ("glsl" or "hlsl") and stage: the optimised
-    // module ("<lang>/water.<stage>.opt.spv"); for the fragment stage of a frozen specialized
-    // build, the variant's frozen module.
+    // The variant's (or a pass's shader's) SPIR-V of one language path ("glsl" or "hlsl") and
+    // stage: the optimised module ("<lang>/<file_stem>.<stage>.opt.spv"); for the fragment stage of
+    // a frozen specialized build, the variant's frozen module.
     std::optional<std::vector<uint32_t>> spirv(const BuildVariant& v, const std::string& language,
                                                ShaderStage stage, std::string* error) const;
     // The file of kind `kind` for `stage` ("glsl", "hlsl", "glsl330", "essl300", "msl"), as text.
     std::optional<std::string> source(const BuildVariant& v, const std::string& kind,
                                       ShaderStage stage, std::string* error) const;
-    // "<lang>/water.<stage>.reflect.json", parsed.
+    // "<lang>/<file_stem>.<stage>.reflect.json", parsed.
     std::optional<Reflection> reflection(const BuildVariant& v, const std::string& language,
                                          ShaderStage stage, std::string* error) const;
+
+    // The companion pass `name` of a variant (BuildVariant::passes), its pass.json read. Errors
+    // name the file and key: a variant without that pass, a malformed pass.json.
+    std::optional<BuildPass> pass(const BuildVariant& v, const std::string& name,
+                                  std::string* error) const;
 
   private:
     std::optional<std::string> listed(const BuildVariant& v, const std::string& kind,

@@ -17,6 +17,9 @@ TextureInput caustics_map_texture();
 // caustics_window (vec3: x0, z0, size of the bottom window the map covers, m): the caustics
 // pass's parameter (caustics_pass.cpp declares it from here), so one uniform set drives both.
 Parameter caustics_window();
+// caustics_map_texels (the map's side in texels): photon_splat's filter reads it; the build's
+// draw description of the pass takes the map's size from it.
+Parameter caustics_map_texels();
 
 // The inputs of each choice's catalog node ("color" and "xz" there).
 struct CausticsInputs {

@@ -1,0 +1,169 @@
+#include "watergen/pipeline/caustics_pass_build.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "watergen/pipeline/manifest.h"
+
+#include "watergen/water/nodes/caustics.h"
+#include "watergen/water/presets.h"
+
+namespace watergen {
+
+namespace {
+
+using OJson = nlohmann::ordered_json;
+
+constexpr const char* kStem = "caustics";
+
+std::string pass_key(const CausticsPassKey& key) {
+    return std::string("caustics.") + to_string(key.method) + "." + key.wave_model;
+}
+
+// The pass's vertex graph with the material's values, as compose() gives the water shader its.
+Graph settled(const Material& material, Graph g) {
+    if (const Preset* preset = material.preset.empty() ? nullptr : find_preset(material.preset))
+        for (const auto& name : apply_preset(g, *preset))
+            g.error("preset '" + preset->name + "': parameter '" + name + "' has another size");
+    return material.with_settings(g);
+}
+
+OJson pass_json(const CausticsPassBuild& b, const CausticsPassKey& key) {
+    OJson j;
+    j["generator"] = stamp_text(pass_key(key));
+    j["key"] = pass_key(key);
+    j["method"] = to_string(key.method);
+    j["wave_model"] = key.wave_model;
+    j["vertex_input"] = OJson::array({{{"name", "grid_xz"}, {"location", 0}, {"type", "vec2"}}});
+    // The fragment stage reads no parameter: the one block is the vertex stage's.
+    const ShaderInterface& in = b.languages[0].vertex.source.interface;
+    j["uniform_block"] = uniform_block_json(in);
+    if (!in.specialization.empty()) j["specialization_constants"] = specialization_json(in);
+    OJson counts = OJson::object();
+    for (const auto& lang : b.languages)
+        counts[to_string(lang.language)] = {
+            {"vertex", lang.vertex.toolchain.instruction_count},
+            {"vertex_optimized", lang.vertex.toolchain.instruction_count_optimized},
+            {"fragment", lang.fragment.toolchain.instruction_count}};
+    j["spirv_instructions"] = counts;
+    return j;
+}
+
+// What the engine draws: the grid over the window grown by a margin (light drifts sideways
+// by up to ~1.1 x depth: a low sun's refraction plus the waves' slopes), additively into a
+// cleared single-channel float target. The grid densities are `watergen caustics`'s (photons
+// need more per texel: each lands whole in one texel).
+OJson draw_json(CausticsMethod method, uint32_t texels) {
+    const bool photons = method == CausticsMethod::PhotonSplat;
+    OJson d = {{"primitive", photons ? "points" : "triangles"},
+               {"attribute", "grid_xz"},
+               {"cells_per_texel", photons ? 8 : 2},
+               {"margin", {{"parameter", "caustics_depth"}, {"scale", 1.2}, {"add", 1.0}}},
+               {"window", "caustics_window"},
+               {"texels", texels},
+               {"format", "R32_SFLOAT"},
+               {"channel", "r"},
+               {"clear", 0.0},
+               {"blend", "additive"}};
+    if (photons) d["photon_share"] = "caustics_photon_share";
+    return d;
+}
+
+// caustics_map_texels as the variant has it: folded by its scene, set by the material, or the
+// node's default.
+uint32_t map_texels(const Material& material,
+                    const std::map<std::string, std::vector<double>>& folded) {
+    const Parameter p = caustics_map_texels();
+    double texels = p.default_value[0];
+    if (const auto s = material.parameters.find(p.name);
+        s != material.parameters.end() && s->second.value)
+        texels = s->second.value->at(0);
+    if (const auto f = folded.find(p.name); f != folded.end() && !f->second.empty())
+        texels = f->second[0];
+    return static_cast<uint32_t>(std::lround(texels));
+}
+
+} // namespace
+
+std::optional<CausticsPassKey> caustics_pass_for(const Variant& v) {
+    const std::string& c = v.choice("caustics");
+    if (c == "area_ratio") return CausticsPassKey{CausticsMethod::AreaRatio, v.choice("waves")};
+    if (c == "photon_splat") return CausticsPassKey{CausticsMethod::PhotonSplat, v.choice("waves")};
+    return std::nullopt;
+}
+
+std::string caustics_pass_directory(const CausticsPassKey& key) {
+    return std::string(kPassesDirectory) + "/caustics-" + to_string(key.method) + "-" +
+           key.wave_model;
+}
+
+CausticsPassBuild build_caustics_pass_files(const Material& material, const CausticsPassKey& key) {
+    CausticsPassBuild b{build_caustics_pass(key.method, key.wave_model), {}, {}, {}};
+    b.pass.vertex = settled(material, std::move(b.pass.vertex));
+    b.languages = build_two_stages(b.pass.vertex, b.pass.fragment, caustics_skeleton(key.method),
+                                   kStem, pass_key(key), b.diagnostics);
+    if (!b.ok()) return b;
+    add_stage_files(b.languages, kStem, pass_key(key), b.files);
+    b.files["pass.json"] = pass_json(b, key).dump(2) + "\n";
+    return b;
+}
+
+PassesOutput build_needed_passes(const Material& material, const std::vector<BuildJob>& jobs,
+                                 const std::vector<JobResult>& results, unsigned threads) {
+    std::map<CausticsPassKey, std::vector<Target>> needed; // pass -> targets, all_targets() order
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        if (!results[i].ok()) continue;
+        const std::vector<Variant> one{jobs[i].variant};
+        for (const Variant& v : jobs[i].shader ? jobs[i].serves : one)
+            if (const auto key = caustics_pass_for(v)) {
+                std::vector<Target>& t = needed[*key];
+                t.insert(t.end(), jobs[i].targets.begin(), jobs[i].targets.end());
+            }
+    }
+    std::vector<CausticsPassKey> keys;
+    for (auto& [key, targets] : needed) {
+        std::sort(targets.begin(), targets.end());
+        targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
+        keys.push_back(key);
+    }
+    std::vector<CausticsPassBuild> built(keys.size());
+    parallel_for(keys.size(), threads,
+                 [&](size_t k) { built[k] = build_caustics_pass_files(material, keys[k]); });
+    PassesOutput out;
+    for (size_t k = 0; k < keys.size(); ++k) {
+        const std::string dir = caustics_pass_directory(keys[k]);
+        if (!built[k].ok()) {
+            ++out.failed;
+            out.diagnostics.insert(out.diagnostics.end(), built[k].diagnostics.begin(),
+                                   built[k].diagnostics.end());
+            out.diagnostics.push_back({Severity::Error, "", 0, 0, "", dir + " failed to build"});
+        }
+        for (const auto& [path, bytes] : filter_targets(built[k].files, needed[keys[k]]))
+            out.files[dir + "/" + path] = bytes;
+        out.passes.emplace(keys[k], std::move(built[k]));
+    }
+    return out;
+}
+
+OJson passes_entry(const Material& material, const Variant& v, const std::vector<Target>& targets,
+                   const std::map<std::string, std::vector<double>>& folded,
+                   const CausticsPasses& passes) {
+    const auto key = caustics_pass_for(v);
+    if (!key) return nullptr;
+    const auto it = passes.find(*key);
+    if (it == passes.end() || !it->second.ok()) return nullptr;
+    const std::string dir = caustics_pass_directory(*key);
+    OJson values = OJson::object();
+    for (const Parameter& p : it->second.languages[0].vertex.source.interface.parameters)
+        if (const auto f = folded.find(p.name); f != folded.end()) values[p.name] = f->second;
+    OJson c;
+    c["method"] = to_string(key->method);
+    c["wave_model"] = key->wave_model;
+    c["directory"] = dir;
+    c["files"] = files_json(dir, filter_targets(it->second.files, targets));
+    c["draw"] = draw_json(key->method, map_texels(material, folded));
+    c["values"] = values;
+    return {{"caustics", c}};
+}
+
+} // namespace watergen

@@ -1,0 +1,81 @@
+#include "manifest_reader.h"
+
+#include <fstream>
+
+namespace watergen::manifest {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A manifest is a few hundred KB, a shader file far less; anything larger is not one of ours.
+constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(256) << 20;
+
+} // namespace
+
+std::optional<std::string> read_bytes(const fs::path& path, std::string* error) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        *error = path.string() + ": " +
+                 (fs::exists(path, ec) ? "not a regular file" : "no such file") +
+                 "; expected a file of a watergen build";
+        return std::nullopt;
+    }
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (ec || size > kMaxFileBytes) {
+        *error = path.string() + ": " + (ec ? ec.message() : "larger than 256 MiB");
+        return std::nullopt;
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes(static_cast<size_t>(size), '\0');
+    if (!in.read(bytes.data(), static_cast<std::streamsize>(size))) {
+        *error = path.string() + ": cannot be read";
+        return std::nullopt;
+    }
+    return bytes;
+}
+
+std::string at(const std::string& path, size_t i) {
+    return path + "[" + std::to_string(i) + "]";
+}
+
+void read_file_lists(ManifestReader& r, const json& entry, const std::string& path,
+                     std::map<std::string, std::vector<std::string>>& files) {
+    const json* object = r.get(entry, path, "files", json::value_t::object, "an object");
+    if (!object) return;
+    for (const auto& [kind, list] : object->items()) {
+        if (!list.is_array()) return r.fail(path + ".files." + kind, "expected an array");
+        for (const json& p : list) {
+            if (!p.is_string()) return r.fail(path + ".files." + kind, "expected paths");
+            files[kind].push_back(p.get<std::string>());
+        }
+    }
+}
+
+void read_uniform_block(ManifestReader& r, const json& parent, const std::string& path,
+                        BuildVariant& v) {
+    const json* block =
+        r.get(parent, path, "uniform_block", json::value_t::object, "an object", false);
+    if (!block || block->empty()) return;
+    const std::string bp = path.empty() ? "uniform_block" : path + ".uniform_block";
+    v.block_name = r.text(*block, bp, "name");
+    const json* members = r.get(*block, bp, "members", json::value_t::array, "an array");
+    if (!members) return;
+    for (size_t i = 0; i < members->size(); ++i) {
+        const json& m = (*members)[i];
+        const std::string mp = at(bp + ".members", i);
+        BlockParameter p;
+        p.name = r.text(m, mp, "name");
+        p.type = r.text(m, mp, "type");
+        if (m.contains("array_size")) p.array_size = r.u32(m, mp, "array_size");
+        p.offset = r.u32(m, mp, "offset");
+        p.default_value = r.numbers(m, mp, "default");
+        if (const json* lo = r.get(m, mp, "min", json::value_t::number_float, "a number", false))
+            p.min = lo->get<double>();
+        if (const json* hi = r.get(m, mp, "max", json::value_t::number_float, "a number", false))
+            p.max = hi->get<double>();
+        v.parameters.push_back(std::move(p));
+    }
+}
+
+} // namespace watergen::manifest
