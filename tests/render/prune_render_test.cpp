@@ -9,15 +9,24 @@
 using namespace watergen;
 using namespace watergen::test;
 
-// The open ocean folds the absorption of 400 m of water and the shore blend away: the pruned
-// shader is smaller and draws the same image on lavapipe, through GLSL and HLSL, and on the CPU.
-TEST_CASE("pruned_and_unpruned_shaders_draw_the_same_image", "[render]") {
+namespace {
+
+std::optional<ScenePlan> open_ocean_plan(const Material& m) {
     Diagnostics ds;
     const auto ocean = load_scene(source_dir() + "/examples/scenes/open_ocean.json", ds);
     REQUIRE(ocean);
-    const Material m = default_material();
-    const auto plan = plan_scene(m, *ocean, ds);
+    auto plan = plan_scene(m, *ocean, ds);
     REQUIRE(plan);
+    return plan;
+}
+
+} // namespace
+
+// The open ocean folds the absorption of 400 m of water and the shore blend away: the pruned
+// shader is smaller and draws the same image on lavapipe, through GLSL and HLSL, and on the CPU.
+TEST_CASE("pruned_and_unpruned_shaders_draw_the_same_image", "[render]") {
+    const Material m = default_material();
+    const std::optional<ScenePlan> plan = open_ocean_plan(m);
     Variant v = plan->variants.front();
     for (auto [axis, choice] : {std::pair{"fresnel", "schlick"}, std::pair{"specular", "none"},
                                 std::pair{"waves", "flat"}, std::pair{"shore", "soft"}})
@@ -75,12 +84,8 @@ TEST_CASE("prune_bench_measures_shaders_that_cover_the_scene's_choices", "[rende
 // most 2.1e-9 x scene colour (<= 1 here) x the map's range (<= 3.1), plus float rounding of a
 // pixel near 0.1 (6e-9); 1e-6 is the agreement bound used for images that must match.
 TEST_CASE("caustics_skipped_for_depth_draw_what_no_caustics_draws", "[render]") {
-    Diagnostics ds;
-    const auto ocean = load_scene(source_dir() + "/examples/scenes/open_ocean.json", ds);
-    REQUIRE(ocean);
     const Material m = default_material();
-    const auto plan = plan_scene(m, *ocean, ds);
-    REQUIRE(plan);
+    const std::optional<ScenePlan> plan = open_ocean_plan(m);
     Variant none = plan->variants.front();
     REQUIRE_FALSE(set_choice(none, "waves", "gerstner"));
     Variant lit = none;
