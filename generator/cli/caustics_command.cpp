@@ -83,7 +83,7 @@ int run(const Options& o) {
     given["caustics_window"] = {-5, -5, 10};
     // Light drifts sideways by up to ~1.1 x depth (refraction of a low sun plus the waves'
     // slopes): the grid and the reference's photons reach that far beyond the window.
-    const double margin = 1.2 * o.depth + 1.0;
+    const double margin = caustics_margin(o.depth);
 
     std::vector<CausticsBuild> builds;
     for (CausticsMethod m : {CausticsMethod::AreaRatio, CausticsMethod::PhotonSplat}) {

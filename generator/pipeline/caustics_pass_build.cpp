@@ -49,8 +49,7 @@ OJson pass_json(const CausticsPassBuild& b, const CausticsPassKey& key) {
     return j;
 }
 
-// What the engine draws: the grid over the window grown by a margin (light drifts sideways
-// by up to ~1.1 x depth: a low sun's refraction plus the waves' slopes), additively into a
+// What the engine draws: the grid over the window grown by caustics_margin(), additively into a
 // cleared single-channel float target. The grid densities are `watergen caustics`'s (photons
 // need more per texel: each lands whole in one texel).
 OJson draw_json(CausticsMethod method, uint32_t texels) {
@@ -58,7 +57,10 @@ OJson draw_json(CausticsMethod method, uint32_t texels) {
     OJson d = {{"primitive", photons ? "points" : "triangles"},
                {"attribute", "grid_xz"},
                {"cells_per_texel", photons ? 8 : 2},
-               {"margin", {{"parameter", "caustics_depth"}, {"scale", 1.2}, {"add", 1.0}}},
+               {"margin",
+                {{"parameter", "caustics_depth"},
+                 {"scale", kCausticsMarginPerDepth},
+                 {"add", kCausticsMarginAdd}}},
                {"window", "caustics_window"},
                {"texels", texels},
                {"format", "R32_SFLOAT"},

@@ -19,6 +19,16 @@ namespace watergen {
 
 enum class CausticsMethod { AreaRatio, PhotonSplat };
 
+// How far beyond the window the grid must reach, m, for a bottom `depth` m down: sunlight drifts
+// sideways through the water by up to ~1.1 x depth (a low sun's refraction, at most
+// tan(asin(1 / 1.333)) = 1.13, plus the waves' slopes), and 1 m for the waves' horizontal
+// displacement. The build's draw description (`margin`) states the same scale and offset.
+inline constexpr double kCausticsMarginPerDepth = 1.2;
+inline constexpr double kCausticsMarginAdd = 1.0;
+constexpr double caustics_margin(double depth) {
+    return kCausticsMarginPerDepth * depth + kCausticsMarginAdd;
+}
+
 const char* to_string(CausticsMethod method);
 // The vertex skeleton under templates/<lang>/: "caustics" or "caustics_photons".
 const char* caustics_skeleton(CausticsMethod method);

@@ -57,7 +57,7 @@ CausticsRenderSettings scene_caustics_settings(CausticsMethod method, uint32_t t
 // What:   draws `build` (build_caustics) for `scene` on both paths, `timed_draws` timed draws
 //         each, and the CPU reference of the same values.
 // Cost:   two pipelines (JIT about 0.1 s each) and the draws (area ratio at 64 texels: a few ms;
-//         photons: 390k points), plus 64 photons per texel on the CPU (tens of ms).
+//         photons: 746k points), plus 64 photons per texel on the CPU (tens of ms).
 SceneCausticsPass draw_scene_caustics_pass(VulkanRunner& runner, const CausticsBuild& build,
                                            const SyntheticScene& scene, uint32_t texels,
                                            uint32_t timed_draws);

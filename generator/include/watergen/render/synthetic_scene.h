@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "watergen/caustics/caustics_pass.h"
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/render/scene_views.h"
 #include "watergen/runtime/vulkan_runner.h"
@@ -58,10 +59,11 @@ void add_caustics_inputs(SyntheticScene& scene);
 
 // The caustics map's setting, shared by the CPU-made map and the pass drawn for a scene
 // (scene_caustics_pass.h): the bottom 2 m under the water level (the seabed in the default
-// window lies 0 to 2.25 m deep); photons (the pass's grid) over the window grown by 1 m, as
-// light enters from beside it; 64 texels per side, the nodes' caustics_map_texels default.
+// window lies 0 to 2.25 m deep); photons (the pass's grid) over the window grown by
+// caustics_margin() (3.4 m), as light enters from beside it; 64 texels per side, the nodes'
+// caustics_map_texels default.
 inline constexpr double kSceneCausticsDepth = 2.0;
-inline constexpr double kSceneCausticsMargin = 1.0;
+inline constexpr double kSceneCausticsMargin = caustics_margin(kSceneCausticsDepth);
 inline constexpr uint32_t kSceneCausticsTexels = 64;
 
 // A caustics texture from intensities (texels x texels, row-major, row = z): r = g = b = the
