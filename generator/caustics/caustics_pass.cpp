@@ -147,6 +147,12 @@ const char* caustics_skeleton(CausticsMethod method) {
     return method == CausticsMethod::AreaRatio ? "caustics" : "caustics_photons";
 }
 
+std::optional<CausticsMethod> caustics_pass_method(const std::string& caustics_choice) {
+    if (caustics_choice == "area_ratio") return CausticsMethod::AreaRatio;
+    if (caustics_choice == "photon_splat") return CausticsMethod::PhotonSplat;
+    return std::nullopt;
+}
+
 const char* to_string(CausticsMethod method) {
     return method == CausticsMethod::AreaRatio ? "area_ratio" : "photon_splat";
 }

@@ -88,10 +88,9 @@ uint32_t map_texels(const Material& material,
 } // namespace
 
 std::optional<CausticsPassKey> caustics_pass_for(const Variant& v) {
-    const std::string& c = v.choice("caustics");
-    if (c == "area_ratio") return CausticsPassKey{CausticsMethod::AreaRatio, v.choice("waves")};
-    if (c == "photon_splat") return CausticsPassKey{CausticsMethod::PhotonSplat, v.choice("waves")};
-    return std::nullopt;
+    const auto method = caustics_pass_method(v.choice("caustics"));
+    if (!method) return std::nullopt;
+    return CausticsPassKey{*method, v.choice("waves")};
 }
 
 std::string caustics_pass_directory(const CausticsPassKey& key) {

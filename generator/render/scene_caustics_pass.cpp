@@ -7,12 +7,6 @@
 
 namespace watergen {
 
-std::optional<CausticsMethod> caustics_pass_method(const std::string& caustics_choice) {
-    if (caustics_choice == "area_ratio") return CausticsMethod::AreaRatio;
-    if (caustics_choice == "photon_splat") return CausticsMethod::PhotonSplat;
-    return std::nullopt;
-}
-
 uint32_t scene_caustics_texels(const VariantBuild& water, const SyntheticScene& scene) {
     const std::string name = "caustics_map_texels";
     std::vector<double> texels;

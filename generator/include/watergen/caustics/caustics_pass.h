@@ -11,6 +11,7 @@
 // Both stages are DSL graphs, emitted and validated like the water pass.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "watergen/ir/ir.h"
@@ -30,6 +31,9 @@ constexpr double caustics_margin(double depth) {
 }
 
 const char* to_string(CausticsMethod method);
+// The pass a caustics choice of the water shader reads: area_ratio and photon_splat; nullopt
+// for none and texture (no pass).
+std::optional<CausticsMethod> caustics_pass_method(const std::string& caustics_choice);
 // The vertex skeleton under templates/<lang>/: "caustics" or "caustics_photons".
 const char* caustics_skeleton(CausticsMethod method);
 

@@ -18,9 +18,6 @@
 
 namespace watergen {
 
-// The pass a caustics choice reads: area_ratio and photon_splat; nullopt for none and texture.
-std::optional<CausticsMethod> caustics_pass_method(const std::string& caustics_choice);
-
 // Photons per texel side of the reference a scene's pass is measured against (64 per texel,
 // as `watergen caustics` uses; the scene's own CPU map uses 9).
 inline constexpr uint32_t kSceneCausticsReferencePhotons = 8;
