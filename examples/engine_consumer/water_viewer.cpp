@@ -110,13 +110,15 @@ std::optional<HeadlessTexture> draw_caustics(const ShaderBuild& build, const Bui
                 .count();
         if (!texture) return std::nullopt;
     }
-    const auto [lo, hi] = std::minmax_element(texture->rgba.begin(), texture->rgba.end());
+    float lo = INFINITY, hi = -INFINITY; // the intensity (r; g and b repeat it, a = 1)
+    for (size_t i = 0; i < texture->rgba.size(); i += 4)
+        lo = std::fmin(lo, texture->rgba[i]), hi = std::fmax(hi, texture->rgba[i]);
     std::printf("caustics pass %s (%s) drawn first: %ux%u %s, %zu %s, intensity in [%.3f, %.3f], "
                 "%.1f ms first draw, %.1f ms the next; bound as caustics_map\n",
                 pass->reference.method.c_str(), pass->reference.directory.c_str(), d.texels,
                 d.texels, d.format.c_str(),
                 grid->points ? grid->indices.size() : grid->indices.size() / 3,
-                grid->points ? "points" : "triangles", *lo, *hi, ms[0], ms[1]);
+                grid->points ? "points" : "triangles", lo, hi, ms[0], ms[1]);
     return texture;
 }
 
