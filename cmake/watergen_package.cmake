@@ -16,6 +16,7 @@ install(FILES
     runtime/include/watergen/runtime/shader_build.h
     runtime/include/watergen/runtime/uniform_writer.h
     runtime/include/watergen/runtime/variant_pipeline.h
+    runtime/include/watergen/runtime/pass_pipeline.h
     runtime/include/watergen/runtime/headless_gpu.h
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/watergen/runtime COMPONENT runtime)
 install(EXPORT watergenTargets NAMESPACE watergen:: DESTINATION ${WATERGEN_PACKAGE_DIR}

@@ -2,15 +2,22 @@
 // watergen_add_shaders() generated, select the variant for the scene and the features the
 // renderer wants (the nearest kept variant if the scene pruned that combination), set the
 // frame's parameters, pack the uniform block as the GLSL path's reflection lays it out, create
-// the pipeline (with a pipeline cache file) and draw it. Writes water.ppm and checks the pixels.
+// the pipeline (with a pipeline cache file) and draw it. A variant whose caustics read the
+// build's caustics pass (caustics=area_ratio, photon_splat) gets that pass drawn first, its
+// texture bound as caustics_map. Writes water.ppm and checks the pixels.
 //
-//   water_viewer [build-directory] [output.ppm]
+//   water_viewer [build-directory] [output.ppm] [scene] [caustics choice]
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <string>
 
 #include "watergen/runtime/headless_gpu.h"
+#include "watergen/runtime/pass_pipeline.h"
 #include "watergen/runtime/shader_build.h"
 #include "watergen/runtime/uniform_writer.h"
 
@@ -48,11 +55,80 @@ bool write_ppm(const std::string& path, const std::vector<float>& rgba, uint32_t
     return bool(out);
 }
 
+struct Stages {
+    std::vector<uint32_t> vs, fs;
+    Reflection vr, fr;
+};
+
+// The GLSL path's SPIR-V and reflection of a variant or a pass's shader.
+std::optional<Stages> load_stages(const ShaderBuild& build, const BuildVariant& v,
+                                  std::string* error) {
+    const auto vs = build.spirv(v, "glsl", ShaderStage::Vertex, error);
+    const auto fs = vs ? build.spirv(v, "glsl", ShaderStage::Fragment, error) : std::nullopt;
+    const auto vr = fs ? build.reflection(v, "glsl", ShaderStage::Vertex, error) : std::nullopt;
+    const auto fr = vr ? build.reflection(v, "glsl", ShaderStage::Fragment, error) : std::nullopt;
+    if (!fr) return std::nullopt;
+    return Stages{*vs, *fs, *vr, *fr};
+}
+
+// The variant's caustics pass, drawn as the engine would each frame before the water: the grid
+// over the pass's caustics window (its default) at its default depth, the frame's sun. Drawn
+// once more after the first (which JIT-compiles on lavapipe) to time a steady frame.
+std::optional<HeadlessTexture> draw_caustics(const ShaderBuild& build, const BuildVariant& v,
+                                             HeadlessGpu& gpu, VkPipelineCache cache,
+                                             const std::vector<float>& sun, std::string* error) {
+    const auto pass = build.pass(v, "caustics", error);
+    const auto stages = pass ? load_stages(build, pass->shader, error) : std::nullopt;
+    if (!stages) return std::nullopt;
+    const PassDraw& d = pass->reference.draw;
+    UniformWriter uniforms(pass->shader);
+    std::vector<double> window, depth;
+    for (const BlockParameter& p : pass->shader.parameters) {
+        if (p.name == d.window_parameter) window = p.default_value;
+        if (p.name == d.margin_parameter) depth = p.default_value;
+    }
+    const auto grid = pass_grid(d, window, depth.empty() ? 0.0 : depth[0], error);
+    if (!grid) return std::nullopt;
+    for (const auto& [name, value] : grid->values)
+        if (const Write w = uniforms.set(name, value); !w.ok) return *error = w.error, std::nullopt;
+    if (const Write w = uniforms.set("sun_direction", sun); !w.ok)
+        return *error = w.error, std::nullopt;
+    const auto bytes = uniforms.pack(stages->vr, error); // the pass's block is its vertex stage's
+    const auto format = bytes ? pass_format(d, error) : std::nullopt;
+    const VkRenderPass target = format ? gpu.render_pass(*format, error) : VK_NULL_HANDLE;
+    if (!target) return std::nullopt;
+    const VariantPipelineDesc desc{&stages->vs, &stages->fs, &stages->vr, &stages->fr,
+                                   target,      0,           {},          cache};
+    const auto pipeline = create_pass_pipeline(gpu.device(), d, desc, error);
+    if (!pipeline) return std::nullopt;
+    std::optional<HeadlessTexture> texture;
+    double ms[2] = {0, 0};
+    for (double& t : ms) {
+        const auto start = std::chrono::steady_clock::now();
+        texture = gpu.draw_pass(*pipeline, d, *grid, {{pass->shader.block_name, *bytes}}, error);
+        t = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        if (!texture) return std::nullopt;
+    }
+    float lo = INFINITY, hi = -INFINITY; // the intensity (r; g and b repeat it, a = 1)
+    for (size_t i = 0; i < texture->rgba.size(); i += 4)
+        lo = std::fmin(lo, texture->rgba[i]), hi = std::fmax(hi, texture->rgba[i]);
+    std::printf("caustics pass %s (%s) drawn first: %ux%u %s, %zu %s, intensity in [%.3f, %.3f], "
+                "%.1f ms first draw, %.1f ms the next; bound as caustics_map\n",
+                pass->reference.method.c_str(), pass->reference.directory.c_str(), d.texels,
+                d.texels, d.format.c_str(),
+                grid->points ? grid->indices.size() : grid->indices.size() / 3,
+                grid->points ? "points" : "triangles", lo, hi, ms[0], ms[1]);
+    return texture;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     const std::string dir = argc > 1 ? argv[1] : WATER_SHADER_DIR;
     const std::string image = argc > 2 ? argv[2] : "water.ppm";
+    const std::string scene_arg = argc > 3 ? argv[3] : "";
+    const std::string caustics = argc > 4 ? argv[4] : "";
     std::string error;
     const auto build = ShaderBuild::open(dir, &error);
     if (!build) return fail(error);
@@ -61,46 +137,52 @@ int main(int argc, char** argv) {
         std::printf(" %s", s.c_str());
     std::printf("\n");
 
-    // The renderer wants Schlick Fresnel, specular highlights, animated waves and shore foam.
-    const Selection sel = build->select(build->scenes().front(),
-                                        {{"fresnel", "schlick"},
-                                         {"specular", "blinn_phong"},
-                                         {"waves", "gerstner"},
-                                         {"foam", "shore"},
-                                         {"precision", "full"}},
-                                        Fallback::NearestKept);
+    // The renderer wants Schlick Fresnel, specular highlights, animated waves and shore foam
+    // (and the caustics asked for, if any).
+    std::map<std::string, std::string> wanted = {{"fresnel", "schlick"},
+                                                 {"specular", "blinn_phong"},
+                                                 {"waves", "gerstner"},
+                                                 {"foam", "shore"},
+                                                 {"precision", "full"}};
+    if (!caustics.empty()) wanted["caustics"] = caustics;
+    const std::string scene = scene_arg.empty() ? build->scenes().front() : scene_arg;
+    const Selection sel = build->select(scene, wanted, Fallback::NearestKept);
     if (!sel.ok()) return fail(sel.error);
     const BuildVariant& v = *sel.variant;
-    std::printf("selected %s\n", v.key.c_str());
+    std::printf("scene %s: selected %s\n", scene.c_str(), v.key.c_str());
     for (const auto& c : sel.changed)
         std::printf("  pruned by the scene, nearest kept variant: %s\n", c.c_str());
 
-    const auto vs = build->spirv(v, "glsl", ShaderStage::Vertex, &error);
-    const auto fs = vs ? build->spirv(v, "glsl", ShaderStage::Fragment, &error) : std::nullopt;
-    const auto vr = fs ? build->reflection(v, "glsl", ShaderStage::Vertex, &error) : std::nullopt;
-    const auto fr = vr ? build->reflection(v, "glsl", ShaderStage::Fragment, &error) : std::nullopt;
-    if (!fr) return fail(error);
+    const auto stages = load_stages(*build, v, &error);
+    if (!stages) return fail(error);
+    const std::vector<float> sun = {-0.3f, -0.8f, 0.5f};
 
     UniformWriter uniforms(v);
     for (const auto& [name, value] :
          std::initializer_list<std::pair<const char*, std::vector<float>>>{
-             {"eye_position", {0.0f, 6.0f, -20.0f}}, {"sun_direction", {-0.3f, -0.8f, 0.5f}}}) {
+             {"eye_position", {0.0f, 6.0f, -20.0f}}, {"sun_direction", sun}}) {
         const Write w = uniforms.set(name, value);
         if (!w.ok) return fail(w.error);
         if (!w.note.empty()) std::printf("  %s\n", w.note.c_str());
     }
-    const auto bytes = uniforms.pack(*fr, &error);
+    const auto bytes = uniforms.pack(stages->fr, &error);
     if (!bytes) return fail(error);
 
     auto gpu = HeadlessGpu::create(&error);
     if (!gpu) return fail(error);
     auto cache = load_pipeline_cache(gpu->physical(), gpu->device(), "pipelines.bin", &error);
     if (!cache) return fail(error);
-    VariantPipelineDesc desc{&*vs, &*fs, &*vr, &*fr, gpu->render_pass(), 0, {}, cache->cache};
+    VariantPipelineDesc desc{&stages->vs,        &stages->fs, &stages->vr, &stages->fr,
+                             gpu->render_pass(), 0,           {},          cache->cache};
     for (const auto& [id, value] : v.specialization) // specialized build mode: the selectors
         desc.specialization[id] = static_cast<float>(value);
     auto pipeline = VariantPipeline::create(gpu->device(), desc, &error);
     if (!pipeline) return fail(error);
+    std::optional<HeadlessTexture> caustics_map;
+    if (v.passes.count("caustics")) {
+        caustics_map = draw_caustics(*build, v, *gpu, cache->cache, sun, &error);
+        if (!caustics_map) return fail(error);
+    }
     if (!save_pipeline_cache(gpu->device(), cache->cache, "pipelines.bin", &error))
         return fail(error);
     vkDestroyPipelineCache(gpu->device(), cache->cache, nullptr);
@@ -109,7 +191,8 @@ int main(int argc, char** argv) {
     draw.width = draw.height = 128;
     draw.uniforms[v.block_name] = *bytes;
     for (const TextureSlot& t : v.textures)
-        draw.textures[t.name] = texture_for(t);
+        draw.textures[t.name] =
+            t.name == "caustics_map" && caustics_map ? *caustics_map : texture_for(t);
     const std::vector<float> rgba = gpu->draw(*pipeline, draw, &error);
     if (rgba.empty()) return fail(error);
 

@@ -24,9 +24,9 @@ VkResult create_device(VkPhysicalDevice physical, uint32_t family, const void* f
     return vkCreateDevice(physical, &dci, nullptr, device);
 }
 
-VkResult create_offscreen_render_pass(VkDevice device, VkRenderPass* pass) {
+VkResult create_offscreen_render_pass(VkDevice device, VkRenderPass* pass, VkFormat format) {
     VkAttachmentDescription color{};
-    color.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    color.format = format;
     color.samples = VK_SAMPLE_COUNT_1_BIT;
     color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
@@ -85,6 +85,42 @@ FixedFunction::FixedFunction() {
     blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
     blend.attachmentCount = 1;
     blend.pAttachments = &blend_attachment;
+}
+
+void FixedFunction::points() {
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+}
+
+void FixedFunction::additive_blend() {
+    VkPipelineColorBlendAttachmentState& b = blend_attachment;
+    b.blendEnable = VK_TRUE;
+    b.srcColorBlendFactor = b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+    b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
+}
+
+bool blendable(VkPhysicalDevice physical, VkFormat format) {
+    VkFormatProperties props{};
+    vkGetPhysicalDeviceFormatProperties(physical, format, &props);
+    return props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT;
+}
+
+VertexInput::VertexInput(const std::vector<uint32_t>& sizes) {
+    static constexpr VkFormat kFloatFormats[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT,
+                                                 VK_FORMAT_R32G32B32_SFLOAT,
+                                                 VK_FORMAT_R32G32B32A32_SFLOAT};
+    info.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+    if (sizes.empty()) return;
+    uint32_t offset = 0;
+    for (uint32_t i = 0; i < sizes.size(); ++i) {
+        attributes.push_back({i, 0, kFloatFormats[sizes[i] - 1], offset});
+        offset += sizes[i] * uint32_t(sizeof(float));
+    }
+    binding = {0, offset, VK_VERTEX_INPUT_RATE_VERTEX};
+    info.vertexBindingDescriptionCount = 1;
+    info.pVertexBindingDescriptions = &binding;
+    info.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size());
+    info.pVertexAttributeDescriptions = attributes.data();
 }
 
 void FixedFunction::apply(VkGraphicsPipelineCreateInfo& gci) const {

@@ -96,12 +96,25 @@ std::vector<VkDescriptorPoolSize> VariantPipeline::pool_sizes(uint32_t copies) c
 
 std::optional<VariantPipeline>
 VariantPipeline::create(VkDevice device, const VariantPipelineDesc& d, std::string* error) {
+    return create(device, d, PipelineGeometry{}, error);
+}
+
+std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
+                                                       const VariantPipelineDesc& d,
+                                                       const PipelineGeometry& geometry,
+                                                       std::string* error) {
     if (!d.vertex_spirv || !d.fragment_spirv || !d.vertex_reflection || !d.fragment_reflection ||
         !d.render_pass) {
         *error = "VariantPipelineDesc: expected both stages' SPIR-V and reflection and a render "
                  "pass";
         return std::nullopt;
     }
+    for (uint32_t floats : geometry.attribute_sizes)
+        if (floats < 1 || floats > 4) {
+            *error = "PipelineGeometry: a vertex attribute of " + std::to_string(floats) +
+                     " floats; expected 1 to 4";
+            return std::nullopt;
+        }
     VariantPipeline p;
     p.device_ = device;
     // Union of the stages' bindings by (set, binding), stage flags or-ed together.
@@ -172,9 +185,10 @@ VariantPipeline::create(VkDevice device, const VariantPipelineDesc& d, std::stri
         stages[i].pName = r.entry_point.empty() ? "main" : r.entry_point.c_str();
         stages[i].pSpecializationInfo = entries.empty() ? nullptr : &spec;
     }
-    VkPipelineVertexInputStateCreateInfo vertex_input{};
-    vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-    const vk_state::FixedFunction fixed;
+    const vk_state::VertexInput vertex_input(geometry.attribute_sizes);
+    vk_state::FixedFunction fixed;
+    if (geometry.points) fixed.points();
+    if (geometry.additive_blend) fixed.additive_blend();
     VkPipelineViewportStateCreateInfo viewport{};
     viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
     viewport.viewportCount = 1;
@@ -189,7 +203,7 @@ VariantPipeline::create(VkDevice device, const VariantPipelineDesc& d, std::stri
     fixed.apply(gci);
     gci.stageCount = 2;
     gci.pStages = stages;
-    gci.pVertexInputState = &vertex_input;
+    gci.pVertexInputState = &vertex_input.info;
     gci.pViewportState = &viewport;
     gci.pDynamicState = &dynamic;
     gci.layout = p.layout_;

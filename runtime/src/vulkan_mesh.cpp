@@ -8,9 +8,6 @@
 namespace watergen::vk_detail {
 namespace {
 
-constexpr VkFormat kFloatFormats[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT,
-                                      VK_FORMAT_R32G32B32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT};
-
 uint32_t floats_per_vertex(const MeshData& mesh) {
     uint32_t n = 0;
     for (uint32_t a : mesh.attribute_sizes)
@@ -42,22 +39,10 @@ void check(const MeshData& mesh) {
 
 } // namespace
 
-void describe_mesh_input(const MeshData& mesh, MeshInputState& state,
-                         VkPipelineVertexInputStateCreateInfo& info) {
-    if (mesh.empty()) return;
+std::vector<uint32_t> mesh_attribute_sizes(const MeshData& mesh) {
+    if (mesh.empty()) return {};
     check(mesh);
-    state.binding = {0, floats_per_vertex(mesh) * uint32_t(sizeof(float)),
-                     VK_VERTEX_INPUT_RATE_VERTEX};
-    state.attributes.clear();
-    uint32_t offset = 0;
-    for (uint32_t i = 0; i < mesh.attribute_sizes.size(); ++i) {
-        state.attributes.push_back({i, 0, kFloatFormats[mesh.attribute_sizes[i] - 1], offset});
-        offset += mesh.attribute_sizes[i] * uint32_t(sizeof(float));
-    }
-    info.vertexBindingDescriptionCount = 1;
-    info.pVertexBindingDescriptions = &state.binding;
-    info.vertexAttributeDescriptionCount = static_cast<uint32_t>(state.attributes.size());
-    info.pVertexAttributeDescriptions = state.attributes.data();
+    return mesh.attribute_sizes;
 }
 
 MeshBuffers upload_mesh(Scope& scope, const MeshData& mesh) {

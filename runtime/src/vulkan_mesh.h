@@ -6,17 +6,10 @@
 
 namespace watergen::vk_detail {
 
-// Storage the pipeline's VkPipelineVertexInputStateCreateInfo points into; keep it alive until
-// the pipeline is created.
-struct MeshInputState {
-    VkVertexInputBindingDescription binding{};
-    std::vector<VkVertexInputAttributeDescription> attributes;
-};
-
-// Checks the mesh (throws RunnerError naming what is wrong) and points `info` at `state`.
-// Leaves `info` untouched for an empty mesh (the fullscreen triangle).
-void describe_mesh_input(const MeshData& mesh, MeshInputState& state,
-                         VkPipelineVertexInputStateCreateInfo& info);
+// Checks the mesh (throws RunnerError naming what is wrong) and returns its attribute sizes for
+// the pipeline's vertex input (vk_state::VertexInput); none for an empty mesh (the fullscreen
+// triangle).
+std::vector<uint32_t> mesh_attribute_sizes(const MeshData& mesh);
 
 struct MeshBuffers {
     Buffer vertices, indices;

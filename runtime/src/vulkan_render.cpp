@@ -66,27 +66,15 @@ Pipeline create_pipeline(Scope& scope, const RenderJob& job, VkPipelineLayout la
 
     // Fullscreen triangle: positions come from gl_VertexIndex, so no vertex input. An
     // indexed grid mesh (job.mesh) adds its binding/attributes here.
-    VkPipelineVertexInputStateCreateInfo vertex_input{};
-    vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-    MeshInputState mesh_input;
-    describe_mesh_input(job.mesh, mesh_input, vertex_input); // no-op without a mesh
+    const vk_state::VertexInput vertex_input(mesh_attribute_sizes(job.mesh));
     vk_state::FixedFunction fixed;
-    // Points: the vertex stage writes PointSize (Vulkan leaves the size undefined otherwise).
-    if (job.mesh.points) fixed.assembly.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
-    // Passes that accumulate (caustics) blend ONE + ONE over the target cleared to 0.
+    if (job.mesh.points) fixed.points();
     if (job.additive_blend) {
-        VkFormatProperties props{};
-        vkGetPhysicalDeviceFormatProperties(scope.ctx().physical, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                            &props);
-        if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+        if (!vk_state::blendable(scope.ctx().physical, VK_FORMAT_R32G32B32A32_SFLOAT))
             throw RunnerError(fmt::format("device '{}' cannot blend into "
                                           "VK_FORMAT_R32G32B32A32_SFLOAT (additive_blend)",
                                           scope.ctx().info.name));
-        VkPipelineColorBlendAttachmentState& b = fixed.blend_attachment;
-        b.blendEnable = VK_TRUE;
-        b.srcColorBlendFactor = b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
-        b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-        b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
+        fixed.additive_blend();
     }
 
     VkViewport viewport{0.0f, 0.0f, static_cast<float>(job.width), static_cast<float>(job.height),
@@ -103,7 +91,7 @@ Pipeline create_pipeline(Scope& scope, const RenderJob& job, VkPipelineLayout la
     fixed.apply(gci);
     gci.stageCount = 2;
     gci.pStages = stages;
-    gci.pVertexInputState = &vertex_input;
+    gci.pVertexInputState = &vertex_input.info;
     gci.pViewportState = &viewport_state;
     gci.layout = layout;
     gci.renderPass = pass;

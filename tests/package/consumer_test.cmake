@@ -40,12 +40,17 @@ endforeach()
 file(COPY ${WATERGEN_SOURCE_DIR}/examples/engine_consumer/ DESTINATION ${src})
 file(COPY ${WATERGEN_SOURCE_DIR}/examples/materials/default.json DESTINATION ${WORK_DIR}/water)
 file(COPY ${WATERGEN_SOURCE_DIR}/examples/scenes/open_ocean.json DESTINATION ${WORK_DIR}/water)
+file(COPY ${WATERGEN_SOURCE_DIR}/examples/scenes/mountain_lake.json DESTINATION ${WORK_DIR}/water)
 set(material ${WORK_DIR}/water/default.json)
 set(scene ${WORK_DIR}/water/open_ocean.json)
+# mountain_lake keeps caustics=area_ratio with Gerstner waves: the caustics pass end to end.
+set(lake ${WORK_DIR}/water/mountain_lake.json)
+# Two scenes are a list: an initial cache file keeps its ';' out of the command line.
+file(WRITE ${WORK_DIR}/scenes.cmake "set(WATER_SCENES \"${scene};${lake}\" CACHE STRING \"\")\n")
 
-run(configure ok out ${CMAKE_COMMAND} -S ${src} -B ${bld} -G ${GENERATOR}
-    -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
-    -DCMAKE_PREFIX_PATH=${prefix} -DWATER_MATERIAL=${material} -DWATER_SCENES=${scene})
+run(configure ok out ${CMAKE_COMMAND} -C ${WORK_DIR}/scenes.cmake -S ${src} -B ${bld}
+    -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
+    -DCMAKE_PREFIX_PATH=${prefix} -DWATER_MATERIAL=${material})
 
 run(first-build ok out ${CMAKE_COMMAND} --build ${bld})
 expect_match(first-build "${out}" "watergen: shaders of")
@@ -58,11 +63,23 @@ file(READ ${bld}/watergen_water_viewer.d depfile)
 expect_match(depfile "${depfile}" "water_viewer/manifest.json:")
 expect_match(depfile "${depfile}" "water/default.json")
 expect_match(depfile "${depfile}" "water/open_ocean.json")
+expect_match(depfile "${depfile}" "water/mountain_lake.json")
 
-run(draw ok out ${bld}/water_viewer ${bld}/watergen/water_viewer ${WORK_DIR}/water.ppm)
+run(draw ok out ${bld}/water_viewer ${bld}/watergen/water_viewer ${WORK_DIR}/water.ppm
+    open_ocean)
 expect_match(draw "${out}" "selected fresnel=schlick")
 expect_match(draw "${out}" "nearest kept variant: foam: shore -> none")
 expect_match(draw "${out}" "0 non-finite")
+
+# An area_ratio variant: its caustics pass drawn first, its texture bound as caustics_map.
+run(draw-caustics ok out ${bld}/water_viewer ${bld}/watergen/water_viewer
+    ${WORK_DIR}/caustics.ppm mountain_lake area_ratio)
+expect_match(draw-caustics "${out}" "scene mountain_lake: selected [^\n]*waves=gerstner")
+expect_match(draw-caustics "${out}" "selected [^\n]*caustics=area_ratio")
+expect_match(draw-caustics "${out}"
+  "caustics pass area_ratio \\(passes/caustics-area_ratio-gerstner\\) drawn first: 64x64 R32_SFLOAT")
+expect_match(draw-caustics "${out}" "bound as caustics_map")
+expect_match(draw-caustics "${out}" "0 non-finite")
 
 run(second-build ok out ${CMAKE_COMMAND} --build ${bld})
 expect_match(second-build "${out}" "ninja: no work to do")
@@ -82,5 +99,5 @@ expect_match(broken-material "${out}"
   "default.json:[0-9]+:[0-9]+: error: [^\n]*unknown fresnel choice 'schlik'")
 # The earlier build output is left as it was.
 run(draw-after-failure ok out ${bld}/water_viewer ${bld}/watergen/water_viewer
-    ${WORK_DIR}/water2.ppm)
+    ${WORK_DIR}/water2.ppm open_ocean)
 message(STATUS "package_consumer: every step as expected")

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "engine_builds.h"
+#include "engine_draw_support.h"
 #include "shared_runner.h"
 #include "watergen/render/variant_render.h"
 #include "watergen/runtime/headless_gpu.h"
@@ -15,6 +16,7 @@
 #include "watergen/water/presets.h"
 
 using namespace watergen;
+using namespace watergen::test;
 
 namespace {
 
@@ -27,71 +29,10 @@ const std::map<std::string, std::string> kChoices = {
     {"reflection", "sky_cubemap"}, {"waves", "gerstner"},       {"shore", "soft"},
     {"precision", "full"},         {"caustics", "area_ratio"}};
 
-// `watergen render --preset tropical_ocean`'s scene (flag_checks.cpp preset_scene).
-SyntheticScene render_scene(const Preset* preset) {
-    SyntheticScene scene = make_synthetic_scene(kSize, kSize);
-    for (const auto& [name, values] : preset->values)
-        scene.uniforms[name] = values;
-    return scene;
-}
-
-HeadlessGpu& gpu() {
-    static std::unique_ptr<HeadlessGpu> g = [] {
-        std::string error;
-        auto created = HeadlessGpu::create(&error);
-        if (!created) FAIL("no Vulkan device: " << error);
-        return created;
-    }();
-    return *g;
-}
-
-struct EngineDraw {
-    std::vector<float> rgba;
-    std::vector<uint8_t> uniforms;
-};
-
 // What an engine does: load the variant's files, set the frame's values, pack, draw.
-EngineDraw engine_draw(const ShaderBuild& b, const BuildVariant& v, const std::string& lang,
-                       const SyntheticScene& scene, VkPipelineCache cache) {
-    std::string error;
-    const auto vs = b.spirv(v, lang, ShaderStage::Vertex, &error);
-    const auto fs = b.spirv(v, lang, ShaderStage::Fragment, &error);
-    const auto vr = b.reflection(v, lang, ShaderStage::Vertex, &error);
-    const auto fr = b.reflection(v, lang, ShaderStage::Fragment, &error);
-    INFO(error);
-    REQUIRE((vs && fs && vr && fr));
-    UniformWriter writer(v);
-    for (const auto& [name, values] : scene.uniforms) {
-        if (!writer.has(name)) continue; // the scene feeds every node; this variant reads fewer
-        const std::vector<float> f(values.begin(), values.end());
-        const Write w = writer.set(name, f);
-        INFO(name << ": " << w.error);
-        REQUIRE(w.ok);
-    }
-    const auto bytes = writer.pack(*fr, &error);
-    REQUIRE(bytes);
-    VariantPipelineDesc desc{&*vs, &*fs, &*vr, &*fr, gpu().render_pass(), 0, {}, cache};
-    auto pipeline = VariantPipeline::create(gpu().device(), desc, &error);
-    REQUIRE(pipeline);
-    HeadlessDraw draw;
-    draw.width = draw.height = kSize;
-    draw.uniforms[v.block_name] = *bytes;
-    for (const auto& [name, t] : scene.textures)
-        draw.textures[name] = HeadlessTexture{t.width, t.height, t.layers, t.rgba};
-    EngineDraw out{gpu().draw(*pipeline, draw, &error), *bytes};
-    INFO(error);
-    REQUIRE(out.rgba.size() == size_t(kSize) * kSize * 4);
-    return out;
-}
-
-double max_abs(const std::vector<float>& a, const std::vector<float>& b) {
-    REQUIRE(a.size() == b.size());
-    double m = 0;
-    for (size_t i = 0; i < a.size(); ++i) {
-        REQUIRE(std::isfinite(a[i]));
-        m = std::max(m, std::fabs(double(a[i]) - double(b[i])));
-    }
-    return m;
+EngineDraw draw(const ShaderBuild& b, const BuildVariant& v, const std::string& lang,
+                const SyntheticScene& scene, VkPipelineCache cache) {
+    return engine_draw(b, v, lang, scene.uniforms, headless_textures(scene.textures), kSize, cache);
 }
 
 } // namespace
@@ -110,7 +51,7 @@ TEST_CASE("a variant drawn through the runtime library matches watergen render e
         REQUIRE_FALSE(set_choice(variant, axis, choice));
     const VariantBuild reference = build_variant(variant, preset);
     REQUIRE(reference.ok());
-    const SyntheticScene scene = render_scene(preset);
+    const SyntheticScene scene = preset_scene(preset, kSize);
 
     for (size_t i = 0; i < 2; ++i) {
         const LanguageBuild& lang = reference.languages[i];
@@ -126,10 +67,10 @@ TEST_CASE("a variant drawn through the runtime library matches watergen render e
         REQUIRE(expected.ok);
         CHECK(test::shared_runner().validation_messages().empty());
 
-        const EngineDraw got = engine_draw(b, v, name, scene, VK_NULL_HANDLE);
+        const EngineDraw got = draw(b, v, name, scene, VK_NULL_HANDLE);
         // Every byte the reflected members cover equals the runner's packing.
         CHECK(got.uniforms.size() >= job.uniforms.size());
-        const double diff = max_abs(got.rgba, expected.rgba);
+        const double diff = max_abs_difference(got.rgba, expected.rgba);
         WARN(name << " path: runtime library vs watergen render, " << kSize << "x" << kSize
                   << ", max abs " << diff);
         CHECK(diff == 0.0);
@@ -141,7 +82,7 @@ TEST_CASE("a variant drawn through the runtime library matches watergen render e
         }
         CHECK(hi - lo > 0.1f);
     }
-    CHECK(gpu().messages().empty());
+    CHECK(engine_gpu().messages().empty());
 }
 
 TEST_CASE("the pipeline cache file is written by one run and accepted by the next") {
@@ -150,31 +91,31 @@ TEST_CASE("the pipeline cache file is written by one run and accepted by the nex
     REQUIRE(s.ok());
     test::TempDir dir("engine-cache");
     const auto file = dir.path / "pipelines.bin";
-    const SyntheticScene scene = render_scene(find_preset("tropical_ocean"));
+    const SyntheticScene scene = preset_scene(find_preset("tropical_ocean"), kSize);
     std::string error;
 
-    auto first = load_pipeline_cache(gpu().physical(), gpu().device(), file, &error);
+    auto first = load_pipeline_cache(engine_gpu().physical(), engine_gpu().device(), file, &error);
     REQUIRE(first);
     CHECK_FALSE(first->loaded);
     CHECK_THAT(first->note, Catch::Contains("no cache file yet"));
-    const EngineDraw a = engine_draw(b, *s.variant, "glsl", scene, first->cache);
-    REQUIRE(save_pipeline_cache(gpu().device(), first->cache, file, &error));
-    vkDestroyPipelineCache(gpu().device(), first->cache, nullptr);
+    const EngineDraw a = draw(b, *s.variant, "glsl", scene, first->cache);
+    REQUIRE(save_pipeline_cache(engine_gpu().device(), first->cache, file, &error));
+    vkDestroyPipelineCache(engine_gpu().device(), first->cache, nullptr);
     CHECK(std::filesystem::file_size(file) >= sizeof(VkPipelineCacheHeaderVersionOne));
 
-    auto second = load_pipeline_cache(gpu().physical(), gpu().device(), file, &error);
+    auto second = load_pipeline_cache(engine_gpu().physical(), engine_gpu().device(), file, &error);
     REQUIRE(second);
     CHECK(second->loaded);
-    const EngineDraw c = engine_draw(b, *s.variant, "glsl", scene, second->cache);
-    vkDestroyPipelineCache(gpu().device(), second->cache, nullptr);
-    CHECK(max_abs(a.rgba, c.rgba) == 0.0);
+    const EngineDraw c = draw(b, *s.variant, "glsl", scene, second->cache);
+    vkDestroyPipelineCache(engine_gpu().device(), second->cache, nullptr);
+    CHECK(max_abs_difference(a.rgba, c.rgba) == 0.0);
 
     // A file from elsewhere (here: garbage) starts an empty cache rather than failing.
     std::ofstream(file, std::ios::binary | std::ios::trunc) << std::string(64, 'x');
-    auto third = load_pipeline_cache(gpu().physical(), gpu().device(), file, &error);
+    auto third = load_pipeline_cache(engine_gpu().physical(), engine_gpu().device(), file, &error);
     REQUIRE(third);
     CHECK_FALSE(third->loaded);
     CHECK_THAT(third->note, Catch::Contains("another device or driver"));
-    vkDestroyPipelineCache(gpu().device(), third->cache, nullptr);
-    CHECK(gpu().messages().empty());
+    vkDestroyPipelineCache(engine_gpu().device(), third->cache, nullptr);
+    CHECK(engine_gpu().messages().empty());
 }

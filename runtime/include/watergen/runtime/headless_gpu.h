@@ -1,6 +1,8 @@
 // A minimal headless Vulkan device and offscreen draw, for tools, tests and the example
-// consumer: it draws a VariantPipeline into an RGBA32F image and reads it back. Part of
-// watergen::runtime; an engine brings its own device and frame and uses only VariantPipeline.
+// consumer: it draws a VariantPipeline into an RGBA32F image and reads it back, and a build's
+// companion pass (pass_pipeline.h) into its float target, read back as the texture the water
+// variant samples. Part of watergen::runtime; an engine brings its own device and frame and uses
+// only VariantPipeline and create_pass_pipeline().
 //
 // Device: the one whose name contains WATERGEN_VK_DEVICE when that is set, else the first CPU
 // device (lavapipe): results are reproducible. The validation layer is enabled when installed,
@@ -9,11 +11,13 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
+#include "watergen/runtime/build_pass.h"
 #include "watergen/runtime/variant_pipeline.h"
 
 namespace watergen {
@@ -52,6 +56,25 @@ class HeadlessGpu {
     std::vector<float> draw(const VariantPipeline& pipeline, const HeadlessDraw& inputs,
                             std::string* error);
 
+    // One colour attachment of `format` (a companion pass's target, pass_format()), cleared,
+    // left ready to be copied out; made on first use and kept. Null and `error` when the device
+    // cannot blend into the format (a pass adds its fragments) or Vulkan fails.
+    VkRenderPass render_pass(VkFormat format, std::string* error);
+
+    // Draws a companion pass: `pipeline` from create_pass_pipeline(draw, ...) with
+    // render_pass(pass_format(draw)), over `grid` (pass_grid(draw, ...): its vertices and
+    // indices, drawn indexed in their order), with `uniforms` by block name (the pass's block
+    // packed by UniformWriter against its vertex reflection), into a grid.texels square target
+    // cleared to draw.clear. Returns the target as a texture ready to bind as the water
+    // variant's caustics_map: draw.channel in r, g and b, a = 1 (as watergen render feeds it),
+    // row 0 at the top (texel row j is z = z0 + (j + 0.5) size / texels). nullopt and `error`
+    // for a grid that does not fit the draw (texels, a vertex count beyond 2^26 or the device's
+    // image size, indices past the vertices or not whole triangles), a uniform block the
+    // pipeline does not have or of the wrong size, or a failed Vulkan call.
+    std::optional<HeadlessTexture>
+    draw_pass(const VariantPipeline& pipeline, const PassDraw& draw, const PassGrid& grid,
+              const std::map<std::string, std::vector<uint8_t>>& uniforms, std::string* error);
+
     std::vector<std::string> messages() const { return messages_; }
 
   private:
@@ -68,6 +91,7 @@ class HeadlessGpu {
     uint32_t family_ = 0;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkRenderPass render_pass_ = VK_NULL_HANDLE;
+    std::map<VkFormat, VkRenderPass> target_passes_; // render_pass(format)
     std::string device_name_;
     std::vector<std::string> messages_;
 };

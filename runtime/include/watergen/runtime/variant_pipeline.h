@@ -4,7 +4,9 @@
 //
 // The pipeline draws the generated vertex stage as it is (a fullscreen triangle from
 // gl_VertexIndex: vkCmdDraw(cmd, 3, 1, 0, 0), no vertex buffers), with viewport and scissor as
-// dynamic state, no blending, no depth, no culling. Descriptor layouts are the union of both
+// dynamic state, no blending, no depth, no culling; a companion pass (pass_pipeline.h) passes a
+// PipelineGeometry instead: its grid's vertex input, triangles or points, additive blending.
+// Descriptor layouts are the union of both
 // stages' bindings, one layout per set number (gaps get empty layouts), with the stage flags of
 // the stages that use each binding.
 #pragma once
@@ -20,6 +22,16 @@
 #include "watergen/runtime/reflection.h"
 
 namespace watergen {
+
+// How the pipeline draws when it is not the water's fullscreen triangle: a companion pass's
+// grid (pass_geometry() in pass_pipeline.h makes one from the pass's draw description).
+struct PipelineGeometry {
+    // Floats of each vertex attribute (1 to 4; attribute i at location i, interleaved in one
+    // buffer at binding 0). Empty: no vertex input (the fullscreen triangle).
+    std::vector<uint32_t> attribute_sizes;
+    bool points = false;         // a point list; else a triangle list
+    bool additive_blend = false; // ONE + ONE into the target; else no blending
+};
 
 struct VariantPipelineDesc {
     const std::vector<uint32_t>* vertex_spirv = nullptr;
@@ -38,6 +50,10 @@ class VariantPipeline {
   public:
     // std::nullopt and `error` naming the Vulkan call and its VkResult (or the missing input).
     static std::optional<VariantPipeline> create(VkDevice device, const VariantPipelineDesc& desc,
+                                                 std::string* error);
+    // The same with another geometry (a companion pass's grid: create_pass_pipeline()).
+    static std::optional<VariantPipeline> create(VkDevice device, const VariantPipelineDesc& desc,
+                                                 const PipelineGeometry& geometry,
                                                  std::string* error);
     VariantPipeline(VariantPipeline&& other) noexcept;
     VariantPipeline& operator=(VariantPipeline&& other) noexcept;
