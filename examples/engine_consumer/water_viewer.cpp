@@ -30,13 +30,23 @@ int fail(const std::string& what) {
     return 1;
 }
 
-// Stand-ins for the engine's frame: the opaque scene's colour and world positions (2 m below the
-// water), and a sky: constant images, enough to shade the water.
+// Stand-ins for the engine's frame: the opaque scene's colour, its world positions and a sky.
+// Constant images, except the positions: a flat bottom 2 m below the water spanning the caustics
+// pass's default window (x and z from -5 to 5 m across the screen), so that a caustics variant
+// shows the pass's pattern.
 HeadlessTexture texture_for(const TextureSlot& slot) {
     const bool cube = slot.type == "textureCube";
+    if (slot.name == "scene_position") {
+        constexpr uint32_t n = 32;
+        HeadlessTexture t{n, n, 1, {}};
+        for (uint32_t j = 0; j < n; ++j)
+            for (uint32_t i = 0; i < n; ++i)
+                t.rgba.insert(t.rgba.end(), {-5.0f + 10.0f * (i + 0.5f) / n, -2.0f,
+                                             -5.0f + 10.0f * (j + 0.5f) / n, 1.0f});
+        return t;
+    }
     float texel[4] = {0.5f, 0.5f, 0.5f, 1.0f};
     if (slot.name == "scene_color") texel[0] = 0.3f, texel[1] = 0.45f, texel[2] = 0.35f;
-    if (slot.name == "scene_position") texel[0] = 0.0f, texel[1] = -2.0f, texel[2] = 10.0f;
     if (cube) texel[0] = 0.45f, texel[1] = 0.65f, texel[2] = 0.9f;
     HeadlessTexture t{4, 4, cube ? 6u : 1u, {}};
     for (size_t i = 0; i < size_t(t.width) * t.height * t.layers; ++i)
