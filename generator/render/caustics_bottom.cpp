@@ -2,28 +2,17 @@
 
 #include "watergen/ir/dsl.h"
 #include "watergen/render/variant_render.h"
-#include "watergen/water/nodes/caustics.h"
+#include "watergen/water/axis_registry.h"
 #include "watergen/water/water_shader.h"
 
 namespace watergen {
 
-namespace {
-
-using IntensityNode = Expr (*)(Graph&, Expr);
-
-IntensityNode intensity_node(const std::string& choice) {
-    if (choice == "texture") return &caustics_texture_intensity;
-    if (choice == "area_ratio") return &caustics_area_ratio_intensity;
-    if (choice == "photon_splat") return &caustics_photon_splat_intensity;
-    return nullptr;
-}
-
-} // namespace
-
 ImageRGBA32F caustics_lit_bottom(const std::string& caustics_choice, const SyntheticScene& scene,
                                  std::string* error) {
-    const IntensityNode intensity = intensity_node(caustics_choice);
-    if (!intensity) {
+    // The choice's own catalog node (axis_registry.h): the lit colour from (colour, bottom xz).
+    const AxisInfo* axis = find_axis("caustics");
+    const ChoiceInfo* choice = axis ? find_choice(*axis, caustics_choice) : nullptr;
+    if (!choice || !choice->node) {
         *error = "caustics=" + caustics_choice + " lights no bottom";
         return {};
     }
@@ -33,7 +22,7 @@ ImageRGBA32F caustics_lit_bottom(const std::string& caustics_choice, const Synth
     Expr pos = sample(texture(g, scene_position_texture()), uv).xyz();
     // The water shader's own parameter: the scene sets it (0 in every view).
     Expr level = uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""});
-    Expr lit = caustics_lit(g, rgb, intensity(g, pos.xz()));
+    Expr lit = choice->node->build(g, {rgb, pos.xz()});
     g.set_output("color", vec4(select(pos.y() < level, lit, rgb), constant(g, 1.0)).id());
     const EvalResult r = evaluate_image(g, "color", scene.eval_inputs(), scene.width, scene.height,
                                         EvalPrecision::Float);

@@ -190,8 +190,7 @@ class Comparison {
             jobs.push_back(make_render_job(builds_[i].languages[0], *scene,
                                            {scene->width, scene->height, 0, false, false}));
         }
-        const InterleavedTiming t =
-            time_interleaved(runner_, jobs, request_.rounds, request_.draws);
+        InterleavedTiming t = time_interleaved(runner_, jobs, request_.rounds, request_.draws);
         if (!t.ok()) {
             run_.error = "timing: " + t.error;
             return false;
@@ -201,10 +200,10 @@ class Comparison {
             run_.entries[k].time = t.ratios[first_ + k];
             run_.entries[k].steady_ms = t.results[first_ + k].steady_draw_ms;
         }
-        timed_ = t.results;
-        timed_.resize(builds_.size()); // drop the A/A copy, if listed
-        for (const RenderResult& r : timed_)
-            if (r.rgba.empty()) timed_.clear(); // render view 0 afresh
+        // Per build (the A/A copy is not among them); without every image, view 0 renders afresh.
+        if (std::all_of(t.results.begin(), t.results.end(),
+                        [](const RenderResult& r) { return !r.rgba.empty(); }))
+            timed_ = std::move(t.results);
         return true;
     }
 
