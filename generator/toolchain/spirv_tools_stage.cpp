@@ -71,11 +71,29 @@ OptimizeResult run_optimizer(const std::vector<uint32_t>& spirv, const std::stri
 
 } // namespace
 
-Diagnostics validate_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name) {
-    Diagnostics ds;
+namespace {
+
+// True when the module is valid; the validator's messages go to `ds`.
+bool run_validator(const std::vector<uint32_t>& spirv, const std::string& file_name,
+                   bool friendly_names, Diagnostics& ds) {
     spvtools::SpirvTools tools(kEnv);
     tools.SetMessageConsumer(collect_into(ds, file_name, "spirv-val"));
-    if (!tools.Validate(spirv) && !has_errors(ds))
+    spvtools::ValidatorOptions options;
+    options.SetFriendlyNames(friendly_names);
+    return tools.Validate(spirv.data(), spirv.size(), options);
+}
+
+} // namespace
+
+Diagnostics validate_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name) {
+    // Friendly names (%water_height rather than %42) cost one more parse of the module and a
+    // string per id: 5.9% of the whole in-process chain over the covering set (callgrind,
+    // `watergen bench compile --repeat 1`), for text that only messages show. So validate
+    // without them, and only a module with something to say is validated again with them.
+    Diagnostics quiet;
+    if (run_validator(spirv, file_name, false, quiet) && quiet.empty()) return {};
+    Diagnostics ds;
+    if (!run_validator(spirv, file_name, true, ds) && !has_errors(ds))
         ds.push_back({Severity::Error, file_name, 0, 0, "", "spirv-val: invalid module"});
     return ds;
 }

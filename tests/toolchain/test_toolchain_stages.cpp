@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include <spirv-tools/libspirv.hpp>
+
 #include "watergen/toolchain/glslang_stage.h"
 #include "watergen/toolchain/reflection_stage.h"
 #include "watergen/toolchain/spirv_cross_stage.h"
@@ -158,6 +160,34 @@ TEST_CASE("spirv_val_rejects_a_broken_module") {
     CHECK(ds[0].file == "m.spv");
     CHECK(ds[0].message.rfind("spirv-val: ", 0) == 0);
     CHECK(count_instructions({}) == 0);
+}
+
+TEST_CASE("spirv_val_names_ids_in_its_messages") {
+    // Validation runs without friendly names first; a module with messages is validated
+    // again with them, so the message names the variable as the spirv-val CLI does.
+    const char* const kStoreToInput = R"(OpCapability Shader
+OpMemoryModel Logical GLSL450
+OpEntryPoint Fragment %main "main" %water_height
+OpExecutionMode %main OriginUpperLeft
+OpName %water_height "water_height"
+%void = OpTypeVoid
+%fn = OpTypeFunction %void
+%float = OpTypeFloat 32
+%ptr = OpTypePointer Input %float
+%water_height = OpVariable %ptr Input
+%one = OpConstant %float 1
+%main = OpFunction %void None %fn
+%entry = OpLabel
+OpStore %water_height %one
+OpReturn
+OpFunctionEnd
+)";
+    std::vector<uint32_t> spirv;
+    REQUIRE(spvtools::SpirvTools(SPV_ENV_VULKAN_1_1).Assemble(kStoreToInput, &spirv));
+    const Diagnostics ds = validate_spirv(spirv, "s.spv");
+    REQUIRE(has_errors(ds));
+    INFO(ds[0].message);
+    CHECK(ds[0].message.find("[%water_height]") != std::string::npos); // not "[%2]"
 }
 
 TEST_CASE("spirv_cross_errors_become_diagnostics") {

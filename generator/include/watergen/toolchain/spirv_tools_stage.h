@@ -12,10 +12,12 @@
 
 namespace watergen {
 
-// What:   spirv-val for Vulkan 1.1 (default validator options, like the CLI).
+// What:   spirv-val for Vulkan 1.1 (default validator options, like the CLI; the friendly
+//         names only for a module with messages, which is validated twice).
 // Inputs: a SPIR-V module; file_name goes into each diagnostic.
-// Output: one Error diagnostic per validator message, message prefixed "spirv-val: ";
-//         empty means valid. Line is 0 (SPIR-V has no source lines).
+// Output: one Error diagnostic per validator message, message prefixed "spirv-val: ", ids
+//         named as the CLI names them (%name from OpName); empty means valid. Line is 0
+//         (SPIR-V has no source lines).
 // Cost:   ~1 ms for a 100-line shader. Thread-safe.
 Diagnostics validate_spirv(const std::vector<uint32_t>& spirv, const std::string& file_name);
 
