@@ -289,7 +289,12 @@ BuildSummary build_material_now(const BuildRequest& request) {
         add_frozen(plan->jobs, results, request.options.threads, s, files);
     // The companion passes the built variants draw with, each once for the whole output.
     PassesOutput passes =
-        build_needed_passes(request.material, plan->jobs, results, request.options.threads);
+        build_needed_passes(request.material, plan->jobs, results, request.options);
+    s.passes = passes.passes.size();
+    s.passes_cached = passes.cached;
+    s.cache_rejected += passes.cache_rejected.size();
+    s.diagnostics.insert(s.diagnostics.end(), passes.cache_rejected.begin(),
+                         passes.cache_rejected.end());
     s.failed += passes.failed;
     s.diagnostics.insert(s.diagnostics.end(), passes.diagnostics.begin(), passes.diagnostics.end());
     files.merge(passes.files);

@@ -98,19 +98,45 @@ std::string caustics_pass_directory(const CausticsPassKey& key) {
            key.wave_model;
 }
 
-CausticsPassBuild build_caustics_pass_files(const Material& material, const CausticsPassKey& key) {
-    CausticsPassBuild b{build_caustics_pass(key.method, key.wave_model), {}, {}, {}};
+CausticsPassBuild build_caustics_pass_files(const Material& material, const CausticsPassKey& key,
+                                            const BuildCache& cache) {
+    CausticsPassBuild b;
+    b.pass = build_caustics_pass(key.method, key.wave_model);
     b.pass.vertex = settled(material, std::move(b.pass.vertex));
-    b.languages = build_two_stages(b.pass.vertex, b.pass.fragment, caustics_skeleton(key.method),
-                                   kStem, pass_key(key), b.diagnostics);
+    b.languages = emit_two_stages(b.pass.vertex, b.pass.fragment, caustics_skeleton(key.method),
+                                  kStem, pass_key(key), b.diagnostics);
+    if (!b.ok()) return b;
+    // The files follow from the sources and the interface (pass.json's uniform block, with
+    // defaults and ranges the sources do not spell out) under one toolchain, as a variant's do.
+    std::vector<std::string> parts{pass_key(key)};
+    for (const auto& lang : b.languages)
+        for (const StageBuild* s : {&lang.vertex, &lang.fragment})
+            parts.push_back(s->source.source);
+    const ShaderInterface& in = b.languages[0].vertex.source.interface;
+    parts.push_back(uniform_block_json(in).dump());
+    parts.push_back(specialization_json(in).dump());
+    b.content_hash = content_hash(parts);
+    std::vector<std::string> expected = stage_file_list(kStem);
+    expected.push_back("pass.json");
+    std::sort(expected.begin(), expected.end());
+    CacheLookup lookup = cache.load(b.content_hash, expected);
+    b.cache_rejected = std::move(lookup.rejected);
+    if (lookup.files) {
+        b.files = std::move(*lookup.files);
+        b.cached = true;
+        return b;
+    }
+    compile_two_stages(b.languages, b.diagnostics);
     if (!b.ok()) return b;
     add_stage_files(b.languages, kStem, pass_key(key), b.files);
     b.files["pass.json"] = pass_json(b, key).dump(2) + "\n";
+    cache.store(b.content_hash, b.files); // a cache that cannot be written only costs time
     return b;
 }
 
 PassesOutput build_needed_passes(const Material& material, const std::vector<BuildJob>& jobs,
-                                 const std::vector<JobResult>& results, unsigned threads) {
+                                 const std::vector<JobResult>& results,
+                                 const BuildOptions& options) {
     std::map<CausticsPassKey, std::vector<Target>> needed; // pass -> targets, all_targets() order
     for (size_t i = 0; i < jobs.size(); ++i) {
         if (!results[i].ok()) continue;
@@ -128,11 +154,18 @@ PassesOutput build_needed_passes(const Material& material, const std::vector<Bui
         keys.push_back(key);
     }
     std::vector<CausticsPassBuild> built(keys.size());
-    parallel_for(keys.size(), threads,
-                 [&](size_t k) { built[k] = build_caustics_pass_files(material, keys[k]); });
+    parallel_for(keys.size(), options.threads, [&](size_t k) {
+        built[k] = build_caustics_pass_files(material, keys[k], options.cache);
+    });
     PassesOutput out;
     for (size_t k = 0; k < keys.size(); ++k) {
         const std::string dir = caustics_pass_directory(keys[k]);
+        if (!built[k].cache_rejected.empty())
+            out.cache_rejected.push_back(
+                {Severity::Warning, options.cache.entry(built[k].content_hash).string(), 0, 0, "",
+                 "cache entry failed verification (" + built[k].cache_rejected +
+                     "); evicted and rebuilt"});
+        out.cached += built[k].cached ? 1 : 0;
         if (!built[k].ok()) {
             ++out.failed;
             out.diagnostics.insert(out.diagnostics.end(), built[k].diagnostics.begin(),

@@ -188,11 +188,11 @@ void add_stage_files(const std::array<LanguageBuild, 2>& languages, const std::s
     }
 }
 
-std::vector<std::string> variant_file_names() {
-    std::vector<std::string> names{"variant.json"};
+std::vector<std::string> stage_file_list(const std::string& stem) {
+    std::vector<std::string> names;
     for (Language lang : kLanguages)
         for (ShaderStage stage : kStages) {
-            const StageFileNames n = stage_file_names(lang, stage);
+            const StageFileNames n = stage_file_names(lang, stage, stem);
             names.insert(names.end(), {n.source, n.spirv, n.spirv_optimized, n.glsl330, n.essl300,
                                        n.msl, n.reflection});
         }
@@ -200,10 +200,16 @@ std::vector<std::string> variant_file_names() {
     return names;
 }
 
-std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& fragment,
-                                              const std::string& stage_name,
-                                              const std::string& stem, const std::string& key,
-                                              Diagnostics& diagnostics) {
+std::vector<std::string> variant_file_names() {
+    std::vector<std::string> names = stage_file_list(kStem);
+    names.push_back("variant.json");
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+std::array<LanguageBuild, 2> emit_two_stages(const Graph& vertex, const Graph& fragment,
+                                             const std::string& stage_name, const std::string& stem,
+                                             const std::string& key, Diagnostics& diagnostics) {
     std::array<LanguageBuild, 2> out;
     for (const Graph* g : {&vertex, &fragment})
         diagnostics.insert(diagnostics.end(), g->diagnostics().begin(), g->diagnostics().end());
@@ -211,16 +217,31 @@ std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& 
     for (size_t i = 0; i < out.size(); ++i) {
         const Language lang = kLanguages[i];
         out[i].language = lang;
-        EmittedShader vert =
+        out[i].vertex.source =
             emit_vertex(vertex, lang, stage_name,
                         stage_file_names(lang, ShaderStage::Vertex, stem).source, key, diagnostics);
-        EmittedShader frag = emit_fragment(
+        out[i].fragment.source = emit_fragment(
             fragment, lang, stage_file_names(lang, ShaderStage::Fragment, stem).source, key,
             diagnostics);
         if (has_errors(diagnostics)) return out;
-        out[i].vertex = build_stage(std::move(vert), diagnostics);
-        out[i].fragment = build_stage(std::move(frag), diagnostics);
     }
+    return out;
+}
+
+void compile_two_stages(std::array<LanguageBuild, 2>& languages, Diagnostics& diagnostics) {
+    for (LanguageBuild& lang : languages) {
+        lang.vertex = build_stage(std::move(lang.vertex.source), diagnostics);
+        lang.fragment = build_stage(std::move(lang.fragment.source), diagnostics);
+    }
+}
+
+std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& fragment,
+                                              const std::string& stage_name,
+                                              const std::string& stem, const std::string& key,
+                                              Diagnostics& diagnostics) {
+    std::array<LanguageBuild, 2> out =
+        emit_two_stages(vertex, fragment, stage_name, stem, key, diagnostics);
+    if (!has_errors(diagnostics)) compile_two_stages(out, diagnostics);
     return out;
 }
 

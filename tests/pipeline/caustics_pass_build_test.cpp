@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <fstream>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -166,6 +167,42 @@ TEST_CASE("the build record covers the pass files", "[build][caustics]") {
     REQUIRE(again.ok());
     CHECK_FALSE(again.up_to_date);
     CHECK(build_up_to_date(r));
+}
+
+TEST_CASE("a warm build copies the pass from the cache, and a damaged entry is rebuilt",
+          "[build][caustics][cache]") {
+    const TempDir tmp("caustics-cache");
+    auto build = [&](const char* out) {
+        BuildRequest r = request(tmp.path / out, 2);
+        r.options.cache = BuildCache(tmp.path / "cache");
+        const BuildSummary s = build_material(r);
+        REQUIRE(s.ok());
+        CHECK(s.passes == 1);
+        return std::make_pair(s, read_tree(tmp.path / out));
+    };
+    const auto [cold, cold_files] = build("cold");
+    CHECK(cold.passes_cached == 0);
+    const auto [warm, warm_files] = build("warm");
+    CHECK(warm.passes_cached == 1);
+    CHECK(warm.cache_rejected == 0);
+    CHECK(warm_files == cold_files); // the same bytes as compiled ones
+
+    // The entry's key is the pass's own: flip one byte of a file inside it.
+    const BuildCache cache(tmp.path / "cache");
+    const CausticsPassBuild probe = build_caustics_pass_files(
+        caustics_material(), {CausticsMethod::AreaRatio, "gerstner"}, cache);
+    CHECK(probe.cached);
+    const auto entry = cache.entry(probe.content_hash);
+    std::string bytes = read_tree(entry.parent_path()).at(entry.filename().string());
+    bytes[bytes.size() - 10] ^= 0x20;
+    std::ofstream(entry, std::ios::binary | std::ios::trunc) << bytes;
+    const auto [damaged, damaged_files] = build("damaged");
+    CHECK(damaged.passes_cached == 0);
+    CHECK(damaged.cache_rejected == 1);
+    CHECK(damaged_files == cold_files);
+    const auto [again, again_files] = build("again"); // the rebuilt entry was stored
+    CHECK(again.passes_cached == 1);
+    CHECK(again.cache_rejected == 0);
 }
 
 TEST_CASE("the specialized and branching modes reference the pass from each served variant",

@@ -43,6 +43,8 @@ struct BuildSummary {
     size_t same = 0;     // same shader as another variant of the scene (not built again)
     size_t failed = 0;
     size_t cache_rejected = 0; // cache entries that failed verification: evicted and rebuilt
+    size_t passes = 0;         // companion passes written (passes/<pass>/)
+    size_t passes_cached = 0;  // of them, copied from the cache
     size_t files = 0;          // written (or, up to date, verified)
     bool up_to_date = false;   // the record matched and the output was intact: nothing done
     double seconds = 0;

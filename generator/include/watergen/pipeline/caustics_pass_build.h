@@ -50,14 +50,19 @@ struct CausticsPassBuild {
     // Every target's files relative to the pass directory (<lang>/caustics.<stage>.*, pass.json);
     // empty when the pass failed.
     FileMap files;
+    std::string content_hash;   // its build cache key
+    bool cached = false;        // files copied from the cache: `languages` hold the sources only
+    std::string cache_rejected; // non-empty: the entry failed verification (why), was rebuilt
     bool ok() const { return !has_errors(diagnostics); }
 };
 
 // Builds the pass with the material's preset and parameter settings: both languages emitted,
 // validated, optimised, cross-compiled and reflected as a variant is, and pass.json (the
 // uniform block as variant.json lists one, the vertex input, the draw). Deterministic;
-// about 0.1 s.
-CausticsPassBuild build_caustics_pass_files(const Material& material, const CausticsPassKey& key);
+// about 0.1 s, or a verified copy from `cache` (keyed like a variant: the emitted sources, the
+// interface and the toolchain versions).
+CausticsPassBuild build_caustics_pass_files(const Material& material, const CausticsPassKey& key,
+                                            const BuildCache& cache = {});
 
 using CausticsPasses = std::map<CausticsPassKey, CausticsPassBuild>;
 
@@ -66,13 +71,17 @@ struct PassesOutput {
     // passes/<pass>/<file> for the union of the targets of the variants drawn with each pass.
     FileMap files;
     size_t failed = 0;
+    size_t cached = 0;          // copied from the build cache
+    Diagnostics cache_rejected; // one warning per entry that failed verification (rebuilt)
     Diagnostics diagnostics;
 };
 
 // The passes the variants of the jobs that built need (a shader of the specialized and
-// branching modes: those of every variant it serves), each built once on `threads` workers.
+// branching modes: those of every variant it serves), each built once on `options.threads`
+// workers, or copied from `options.cache`.
 PassesOutput build_needed_passes(const Material& material, const std::vector<BuildJob>& jobs,
-                                 const std::vector<JobResult>& results, unsigned threads);
+                                 const std::vector<JobResult>& results,
+                                 const BuildOptions& options);
 
 // A water variant's "passes" entry: {"caustics": {method, wave_model, directory, files (those
 // `targets` keep), draw, values}}. `folded` is what the variant's scene folded; the map's side

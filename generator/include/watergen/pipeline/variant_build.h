@@ -61,6 +61,14 @@ std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& 
                                               const std::string& stage_name,
                                               const std::string& stem, const std::string& key,
                                               Diagnostics& diagnostics);
+// Its two halves, for a caller that looks its files up by the sources first: the emission
+// (sources and interfaces only, microseconds), then the toolchain over every emitted stage.
+std::array<LanguageBuild, 2> emit_two_stages(const Graph& vertex, const Graph& fragment,
+                                             const std::string& stage_name, const std::string& stem,
+                                             const std::string& key, Diagnostics& diagnostics);
+void compile_two_stages(std::array<LanguageBuild, 2>& languages, Diagnostics& diagnostics);
+// The names add_stage_files gives both languages' stages of `stem`, sorted.
+std::vector<std::string> stage_file_list(const std::string& stem);
 // The files of both languages of a build as variant_files writes them, under the names
 // <lang>/<stem>.<stage>.<kind> (sources, SPIR-V plain and optimised, the cross-compiled texts
 // stamped with `key`, reflection).
