@@ -62,7 +62,7 @@ std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& 
                                               const std::string& stem, const std::string& key,
                                               Diagnostics& diagnostics);
 // Its two halves, for a caller that looks its files up by the sources first: the emission
-// (sources and interfaces only, microseconds), then the toolchain over every emitted stage.
+// (sources and interfaces only, no toolchain), then the toolchain over every emitted stage.
 std::array<LanguageBuild, 2> emit_two_stages(const Graph& vertex, const Graph& fragment,
                                              const std::string& stage_name, const std::string& stem,
                                              const std::string& key, Diagnostics& diagnostics);
