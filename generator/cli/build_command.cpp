@@ -180,23 +180,27 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                 ? std::string()
                 : fmt::format("; {} cache entr{} failed verification, rebuilt", s.cache_rejected,
                               s.cache_rejected == 1 ? "y" : "ies");
-        std::printf(
-            "%s\n",
-            fmt::format("build: {} variants{} ({} built, {} cached, {} shared between "
-                        "scenes, {} same shader as another variant, {} failed{}){} "
-                        "in {:.2f} s on {} thread{}{}",
-                        s.variants,
-                        request.mode == BuildMode::Permutations
-                            ? std::string()
-                            : fmt::format(" in {} {} shaders", s.shaders, o->mode),
-                        s.built, s.cached, s.shared, s.same, s.failed, rejected,
-                        s.passes == 0 ? std::string()
-                                      : fmt::format(" + {} caustics pass{} ({} cached)", s.passes,
-                                                    s.passes == 1 ? "" : "es", s.passes_cached),
-                        s.seconds, threads, threads == 1 ? "" : "s",
-                        s.ok() ? fmt::format(" -> {} ({} files)", o->out, s.files)
-                               : std::string("; nothing written, ") + o->out + " is unchanged")
-                .c_str());
+        std::string companions;
+        if (s.passes > 0)
+            companions += fmt::format(" + {} caustics pass{} ({} cached)", s.passes,
+                                      s.passes == 1 ? "" : "es", s.passes_cached);
+        if (s.frozen > 0)
+            companions +=
+                fmt::format(" + {} frozen modules ({} cached)", s.frozen, s.frozen_cached);
+        std::printf("%s\n",
+                    fmt::format("build: {} variants{} ({} built, {} cached, {} shared between "
+                                "scenes, {} same shader as another variant, {} failed{}){} "
+                                "in {:.2f} s on {} thread{}{}",
+                                s.variants,
+                                request.mode == BuildMode::Permutations
+                                    ? std::string()
+                                    : fmt::format(" in {} {} shaders", s.shaders, o->mode),
+                                s.built, s.cached, s.shared, s.same, s.failed, rejected, companions,
+                                s.seconds, threads, threads == 1 ? "" : "s",
+                                s.ok()
+                                    ? fmt::format(" -> {} ({} files)", o->out, s.files)
+                                    : std::string("; nothing written, ") + o->out + " is unchanged")
+                        .c_str());
         return s.ok() ? kOk : kFailed;
     };
 }

@@ -172,7 +172,8 @@ void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, B
 // Specialized mode with freeze: each variant's SPIR-V (both language paths) with the shader's
 // selectors frozen to the variant's values, beside the shader's own.
 void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                unsigned threads, BuildSummary& s, std::map<std::string, std::string>& files) {
+                const BuildOptions& options, BuildSummary& s,
+                std::map<std::string, std::string>& files) {
     struct Work {
         size_t job;
         Variant variant;
@@ -185,14 +186,24 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
                 for (const char* lang : {"glsl", "hlsl"})
                     if (results[i].files.count(std::string(lang) + "/water.frag.opt.spv"))
                         work.push_back({i, v, lang});
-    std::vector<OptimizeResult> frozen(work.size());
-    parallel_for(work.size(), threads, [&](size_t k) {
+    std::vector<FrozenVariant> frozen(work.size());
+    parallel_for(work.size(), options.threads, [&](size_t k) {
         const Work& w = work[k];
-        frozen[k] = freeze_variant(results[w.job], *jobs[w.job].shader, w.variant, w.lang);
+        frozen[k] =
+            freeze_variant(results[w.job], *jobs[w.job].shader, w.variant, w.lang, options.cache);
     });
     for (size_t k = 0; k < work.size(); ++k) {
         const Work& w = work[k];
         const std::string path = job_directory(jobs[w.job]) + "/" + frozen_path(w.lang, w.variant);
+        if (!frozen[k].cache_rejected.empty()) {
+            ++s.cache_rejected;
+            s.diagnostics.push_back({Severity::Warning,
+                                     options.cache.entry(frozen[k].content_hash).string(), 0, 0, "",
+                                     "cache entry failed verification (" +
+                                         frozen[k].cache_rejected + "); evicted and rebuilt"});
+        }
+        ++s.frozen;
+        s.frozen_cached += frozen[k].cached ? 1 : 0;
         if (frozen[k].spirv.empty()) {
             ++s.failed;
             s.diagnostics.insert(s.diagnostics.end(), frozen[k].diagnostics.begin(),
@@ -200,8 +211,7 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
             s.diagnostics.push_back({Severity::Error, path, 0, 0, "", "freezing failed"});
             continue;
         }
-        files[path] = std::string(reinterpret_cast<const char*>(frozen[k].spirv.data()),
-                                  frozen[k].spirv.size() * sizeof(uint32_t));
+        files[path] = std::move(frozen[k].spirv);
     }
 }
 
@@ -286,7 +296,7 @@ BuildSummary build_material_now(const BuildRequest& request) {
     for (size_t i = 0; i < results.size(); ++i)
         collect(plan->jobs[i], results[i], request.options.cache, s, files);
     if (request.freeze && request.mode == BuildMode::Specialized)
-        add_frozen(plan->jobs, results, request.options.threads, s, files);
+        add_frozen(plan->jobs, results, request.options, s, files);
     // The companion passes the built variants draw with, each once for the whole output.
     PassesOutput passes =
         build_needed_passes(request.material, plan->jobs, results, request.options);

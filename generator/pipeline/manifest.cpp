@@ -3,6 +3,7 @@
 #include <cstring>
 #include <set>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "watergen/ir/emitter.h"
@@ -363,19 +364,44 @@ std::string frozen_path(const std::string& language, const Variant& v) {
     return language + "/frozen/" + v.file_stem() + ".frag.spv";
 }
 
-OptimizeResult freeze_variant(const JobResult& r, const ShaderChoices& shader, const Variant& v,
-                              const std::string& language) {
+FrozenVariant freeze_variant(const JobResult& r, const ShaderChoices& shader, const Variant& v,
+                             const std::string& language, const BuildCache& cache) {
+    FrozenVariant out;
     const std::string name = language + "/water.frag.opt.spv";
     const auto it = r.files.find(name);
-    if (it == r.files.end()) return {{}, {{Severity::Error, name, 0, 0, "", "not built"}}};
-    std::vector<uint32_t> words(it->second.size() / sizeof(uint32_t));
-    std::memcpy(words.data(), it->second.data(), words.size() * sizeof(uint32_t));
+    if (it == r.files.end()) {
+        out.diagnostics.push_back({Severity::Error, name, 0, 0, "", "not built"});
+        return out;
+    }
     const std::map<std::string, uint32_t> places = selector_places(r, BuildMode::Specialized);
     std::map<uint32_t, float> values;
     for (const auto& [parameter, value] : shader.selector_values(v))
         if (const auto p = places.find(parameter); p != places.end())
             values[p->second] = static_cast<float>(value);
-    return freeze_specialization(words, values, frozen_path(language, v));
+
+    // The frozen module follows from the module and the constants' values (exact, as hex
+    // floats) under one toolchain: the same key finds the same bytes, verified on the way out.
+    std::string constants = "frozen";
+    for (const auto& [id, value] : values)
+        constants += fmt::format("|{}={:a}", id, value);
+    out.content_hash = content_hash({constants, it->second});
+    const std::vector<std::string> expected{kFrozenCacheFile};
+    CacheLookup lookup = cache.load(out.content_hash, expected);
+    out.cache_rejected = std::move(lookup.rejected);
+    if (lookup.files) {
+        out.spirv = std::move(lookup.files->at(kFrozenCacheFile));
+        out.cached = true;
+        return out;
+    }
+    std::vector<uint32_t> words(it->second.size() / sizeof(uint32_t));
+    std::memcpy(words.data(), it->second.data(), words.size() * sizeof(uint32_t));
+    OptimizeResult frozen = freeze_specialization(words, values, frozen_path(language, v));
+    out.diagnostics = std::move(frozen.diagnostics);
+    if (frozen.spirv.empty()) return out;
+    out.spirv.assign(reinterpret_cast<const char*>(frozen.spirv.data()),
+                     frozen.spirv.size() * sizeof(uint32_t));
+    cache.store(out.content_hash, {{kFrozenCacheFile, out.spirv}}); // a failed store costs time
+    return out;
 }
 
 } // namespace watergen

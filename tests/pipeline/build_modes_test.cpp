@@ -3,11 +3,13 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "build_test_support.h"
 #include "watergen/pipeline/build_output.h"
+#include "watergen/plan/material.h"
 
 using namespace watergen;
 using namespace watergen::test;
@@ -83,4 +85,46 @@ TEST_CASE("the_branching_manifest_places_the_selectors_in_the_uniform_block", "[
     for (const auto& sh : m["shaders"])
         for (const auto& sel : sh["selectors"])
             CHECK(sel.contains("offset")); // every switch survived the scene's fold
+}
+
+TEST_CASE("a_warm_frozen_build_copies_each_frozen_module_and_rebuilds_a_damaged_one",
+          "[build][cache]") {
+    const TempDir tmp("frozen-cache");
+    Diagnostics ds;
+    const auto material = MaterialBuilder("frozen")
+                              .offer("fresnel", {"schlick", "exact"})
+                              .offer("specular", {"none", "blinn_phong"})
+                              .build(ds);
+    REQUIRE(material);
+    auto build = [&](const char* out) {
+        BuildRequest r{*material, {}, tmp.path / out, {}};
+        r.mode = BuildMode::Specialized;
+        r.freeze = true;
+        r.options.cache = BuildCache(tmp.path / "cache");
+        const BuildSummary s = build_material(r);
+        REQUIRE(s.ok());
+        CHECK(s.frozen == 8); // 4 variants, GLSL and HLSL paths
+        return std::make_pair(s, read_tree(r.out));
+    };
+    const auto [cold, cold_files] = build("cold");
+    CHECK(cold.frozen_cached == 0);
+    const auto [warm, warm_files] = build("warm");
+    CHECK(warm.frozen_cached == 8);
+    CHECK(warm_files == cold_files); // the bytes spirv-opt wrote
+
+    // Flip one byte of one frozen module's entry: it fails verification and is frozen again.
+    fs::path entry;
+    for (const auto& f : fs::recursive_directory_iterator(tmp.path / "cache"))
+        if (f.is_regular_file() && read_tree(f.path().parent_path())
+                                           .at(f.path().filename().string())
+                                           .find("\nfrozen.spv\n") != std::string::npos)
+            entry = f.path();
+    REQUIRE_FALSE(entry.empty());
+    std::string bytes = read_tree(entry.parent_path()).at(entry.filename().string());
+    bytes[bytes.size() - 10] ^= 0x20;
+    std::ofstream(entry, std::ios::binary | std::ios::trunc) << bytes;
+    const auto [damaged, damaged_files] = build("damaged");
+    CHECK(damaged.cache_rejected == 1);
+    CHECK(damaged.frozen_cached == 7);
+    CHECK(damaged_files == cold_files);
 }

@@ -45,6 +45,8 @@ struct BuildSummary {
     size_t cache_rejected = 0; // cache entries that failed verification: evicted and rebuilt
     size_t passes = 0;         // companion passes written (passes/<pass>/)
     size_t passes_cached = 0;  // of them, copied from the cache
+    size_t frozen = 0;         // --freeze: modules frozen per variant and language path
+    size_t frozen_cached = 0;  // of them, copied from the cache
     size_t files = 0;          // written (or, up to date, verified)
     bool up_to_date = false;   // the record matched and the output was intact: nothing done
     double seconds = 0;

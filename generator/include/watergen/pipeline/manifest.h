@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "watergen/pipeline/build_cache.h"
 #include "watergen/pipeline/caustics_pass_build.h"
 #include "watergen/pipeline/parallel_build.h"
 #include "watergen/plan/scene_pruning.h"
@@ -52,9 +53,20 @@ nlohmann::ordered_json files_json(const std::string& dir, const FileMap& files);
 
 // Where a variant's frozen SPIR-V goes in its shader's directory: "glsl/frozen/<stem>.frag.spv".
 std::string frozen_path(const std::string& language, const Variant& v);
+struct FrozenVariant {
+    std::string spirv; // the module's bytes; empty when freezing failed
+    Diagnostics diagnostics;
+    std::string content_hash;   // its build cache key
+    bool cached = false;        // copied from the cache
+    std::string cache_rejected; // non-empty: the entry failed verification (why), was rebuilt
+};
+// The one file of a frozen module's cache entry.
+constexpr const char* kFrozenCacheFile = "frozen.spv";
+
 // The variant's fragment SPIR-V of one language path (its optimised module) with the shader's
-// selectors frozen to the variant's values (freeze_specialization()).
-OptimizeResult freeze_variant(const JobResult& r, const ShaderChoices& shader, const Variant& v,
-                              const std::string& language);
+// selectors frozen to the variant's values (freeze_specialization(), one spirv-opt -O run), or
+// a verified copy from `cache` (keyed by the module and the values).
+FrozenVariant freeze_variant(const JobResult& r, const ShaderChoices& shader, const Variant& v,
+                             const std::string& language, const BuildCache& cache = {});
 
 } // namespace watergen
