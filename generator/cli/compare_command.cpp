@@ -378,9 +378,24 @@ int run_compare_command(const CompareOptions& o, const Common& common) {
                                            preset_scene(o.size, o.size, p, view->name));
             continue;
         }
+        if (const std::string why = sel.plan ? view_outside_scene(*view, sel.plan->scene) : "";
+            !why.empty()) {
+            if (!o.views.empty()) { // asked for by name: say so rather than drop it
+                std::fprintf(stderr, "watergen: error: --views %s: %s\n", view->name.c_str(),
+                             why.c_str());
+                return kUsage;
+            }
+            std::printf("view %s left out: %s\n", view->name.c_str(), why.c_str());
+            continue;
+        }
         const SyntheticScene base = make_synthetic_scene(o.size, o.size, *view);
         request.views.emplace_back(view->name,
                                    sel.plan ? conform_scene(base, *sel.plan, sel.material) : base);
+    }
+    if (request.views.empty() && sel.plan) {
+        std::fprintf(stderr, "watergen: error: --scene %s shows none of the views\n",
+                     sel.plan->scene.name.c_str());
+        return kUsage;
     }
     std::string cache;
     auto runner = create_runner(o.runner, &cache);

@@ -217,11 +217,22 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
             const ScenePlan& plan = plans[s];
             std::printf("%s\n", plan.scene.name.c_str());
             PickPlan pick = plan_pick(plan, hold);
-            std::vector<std::pair<std::string, SyntheticScene>> views; // every view, conformed
-            for (const SceneView& view : scene_views())
+            // Every view the scene may show, conformed.
+            std::vector<std::pair<std::string, SyntheticScene>> views;
+            for (const SceneView& view : scene_views()) {
+                if (const std::string why = view_outside_scene(view, plan.scene); !why.empty()) {
+                    std::printf("  view %s left out: %s\n", view.name.c_str(), why.c_str());
+                    continue;
+                }
                 views.emplace_back(
                     view.name,
                     conform_scene(make_synthetic_scene(o->size, o->size, view), plan, m));
+            }
+            if (views.empty()) {
+                std::fprintf(stderr, "watergen: error: %s: the scene shows none of the views\n",
+                             plan.scene.name.c_str());
+                return kUsage;
+            }
             std::string error = measure_pick_errors(*runner, m, plan, views, pick);
             if (error.empty()) error = count_costs(*o, o->scenes[s], pick);
             const int chosen = error.empty() ? cheapest_within(pick.candidates, budget) : -1;

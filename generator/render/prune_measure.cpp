@@ -26,6 +26,13 @@ std::vector<double> uniform_value(const SyntheticScene& s, const Material& m,
 
 } // namespace
 
+std::string view_outside_scene(const SceneView& view, const SceneFacts& facts) {
+    const FactRange& r = facts.camera_pitch;
+    if (view.pitch_degrees >= r.min && view.pitch_degrees <= r.max) return "";
+    return fmt::format("its camera pitch {:g} degrees is outside {}'s camera_pitch [{:g}, {:g}]",
+                       view.pitch_degrees, facts.name, r.min, r.max);
+}
+
 SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, const Material& m,
                              std::string* notes) {
     SyntheticScene s = base;

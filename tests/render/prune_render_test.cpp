@@ -1,3 +1,4 @@
+#include <map>
 #include <set>
 
 #include <catch2/catch.hpp>
@@ -5,6 +6,7 @@
 #include "build_test_support.h"
 #include "shared_runner.h"
 #include "watergen/render/prune_bench.h"
+#include "watergen/render/prune_measure.h"
 
 using namespace watergen;
 using namespace watergen::test;
@@ -120,4 +122,21 @@ TEST_CASE("caustics_skipped_for_depth_draw_what_no_caustics_draws", "[render]") 
     }
     // The same pair in the shallow synthetic scene: the caustics show.
     CHECK(difference(shallow, 0).max_abs > 0.05);
+}
+
+TEST_CASE("views_outside_a_scenes_camera_pitch_are_named_with_the_range", "[prune]") {
+    // open_ocean's cameras look at most 60 degrees down, harbour_night's 45, mountain_lake's 80:
+    // open_water (-65) is outside the first two only, and every other view is inside all three.
+    std::map<std::string, std::set<std::string>> outside;
+    for (const SceneFacts& s : example_scenes())
+        for (const SceneView& v : scene_views())
+            if (const std::string why = view_outside_scene(v, s); !why.empty()) {
+                outside[s.name].insert(v.name);
+                if (s.name == "open_ocean")
+                    CHECK(why == "its camera pitch -65 degrees is outside open_ocean's "
+                                 "camera_pitch [-60, 10]");
+            }
+    const std::map<std::string, std::set<std::string>> expected{{"harbour_night", {"open_water"}},
+                                                                {"open_ocean", {"open_water"}}};
+    CHECK(outside == expected);
 }

@@ -8,6 +8,7 @@
 
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_pruning.h"
+#include "watergen/render/scene_views.h"
 #include "watergen/render/synthetic_scene.h"
 #include "watergen/render/variant_render.h"
 
@@ -19,6 +20,12 @@ namespace watergen {
 // texel's scene point slides along its view ray into the depth range. `notes` says what moved.
 SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan,
                              const Material& material, std::string* notes = nullptr);
+
+// Why the scene never shows `view`, or "" when it may: a camera pitch outside the scene's
+// camera_pitch range. conform_scene() moves the eye height, the sun and the depths into the
+// scene's ranges but keeps the view's framing, so such a view would measure the scene on
+// pictures it says never happen; pick and compare --scene leave it out.
+std::string view_outside_scene(const SceneView& view, const SceneFacts& facts);
 
 // A variant built twice: as composed (unpruned) and folded under a scene's facts (pruned).
 struct PrunePair {
