@@ -14,10 +14,6 @@ using manifest::ManifestReader;
 
 namespace {
 
-// Beyond this the grid is not a caustics pass's (256 x 256 texels, 8 cells each way, and a
-// margin: 4.2M points).
-constexpr size_t kMaxGridVertices = size_t(1) << 26;
-
 double number(ManifestReader& r, const json& o, const std::string& path, const char* key) {
     const json* v = r.get(o, path, key, json::value_t::number_float, "a number");
     return v ? v->get<double>() : 0.0;
@@ -143,7 +139,7 @@ std::optional<PassGrid> pass_grid(const PassDraw& draw, std::span<const double> 
     const double margin_texels = std::ceil(margin / texel);
     const double cells_d = (draw.texels + 2 * margin_texels) * draw.cells_per_texel;
     const double side = g.points ? cells_d : cells_d + 1;
-    if (side * side > double(kMaxGridVertices)) {
+    if (side * side > double(kMaxPassGridVertices)) {
         *error = "the grid would have " + std::to_string(side * side) +
                  " vertices; expected at most 2^26 (a smaller margin or fewer texels)";
         return std::nullopt;

@@ -14,9 +14,6 @@ using namespace headless;
 
 namespace {
 
-// pass_grid()'s own bound: beyond it the grid is not a caustics pass's.
-constexpr size_t kMaxGridVertices = size_t(1) << 26;
-
 // The grid against the draw and the device; throws a DrawError naming what does not fit.
 void check_grid(const PassDraw& draw, const PassGrid& grid, const VkPhysicalDeviceLimits& limits) {
     if (grid.texels != draw.texels)
@@ -34,7 +31,7 @@ void check_grid(const PassDraw& draw, const PassGrid& grid, const VkPhysicalDevi
     if (grid.vertices.empty() || grid.vertices.size() % 2 != 0)
         throw DrawError("the grid has " + std::to_string(grid.vertices.size()) +
                         " floats; expected two (grid_xz) per vertex");
-    if (vertices > kMaxGridVertices)
+    if (vertices > kMaxPassGridVertices)
         throw DrawError("the grid has " + std::to_string(vertices) +
                         " vertices; expected at most 2^26 (a smaller margin or fewer texels)");
     if (grid.indices.empty() || (!grid.points && grid.indices.size() % 3 != 0))

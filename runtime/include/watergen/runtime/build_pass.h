@@ -58,6 +58,11 @@ struct PassGrid {
     std::map<std::string, std::vector<float>> values;
 };
 
+// The most vertices a pass grid may have (pass_grid() refuses more, draw_pass() too): beyond
+// it the grid is not a caustics pass's (256 x 256 texels, 8 cells each way and a margin make
+// 4.2M points).
+constexpr size_t kMaxPassGridVertices = size_t(1) << 26;
+
 // The grid of `draw` for the window (x0, z0, size) and the margin parameter's value: cells of
 // a texel / cells_per_texel, the margin rounded up to whole texels; triangles with vertices on
 // the cell corners, rows from large z to small; points at the cell centres (so that under flat
