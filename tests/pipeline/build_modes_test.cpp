@@ -115,14 +115,10 @@ TEST_CASE("a_warm_frozen_build_copies_each_frozen_module_and_rebuilds_a_damaged_
     // Flip one byte of one frozen module's entry: it fails verification and is frozen again.
     fs::path entry;
     for (const auto& f : fs::recursive_directory_iterator(tmp.path / "cache"))
-        if (f.is_regular_file() && read_tree(f.path().parent_path())
-                                           .at(f.path().filename().string())
-                                           .find("\nfrozen.spv\n") != std::string::npos)
+        if (f.is_regular_file() && read_file(f.path()).find("\nfrozen.spv\n") != std::string::npos)
             entry = f.path();
     REQUIRE_FALSE(entry.empty());
-    std::string bytes = read_tree(entry.parent_path()).at(entry.filename().string());
-    bytes[bytes.size() - 10] ^= 0x20;
-    std::ofstream(entry, std::ios::binary | std::ios::trunc) << bytes;
+    flip_a_byte(entry);
     const auto [damaged, damaged_files] = build("damaged");
     CHECK(damaged.cache_rejected == 1);
     CHECK(damaged.frozen_cached == 7);

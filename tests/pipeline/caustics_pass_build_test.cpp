@@ -192,10 +192,7 @@ TEST_CASE("a warm build copies the pass from the cache, and a damaged entry is r
     const CausticsPassBuild probe = build_caustics_pass_files(
         caustics_material(), {CausticsMethod::AreaRatio, "gerstner"}, cache);
     CHECK(probe.cached);
-    const auto entry = cache.entry(probe.content_hash);
-    std::string bytes = read_tree(entry.parent_path()).at(entry.filename().string());
-    bytes[bytes.size() - 10] ^= 0x20;
-    std::ofstream(entry, std::ios::binary | std::ios::trunc) << bytes;
+    flip_a_byte(cache.entry(probe.content_hash));
     const auto [damaged, damaged_files] = build("damaged");
     CHECK(damaged.passes_cached == 0);
     CHECK(damaged.cache_rejected == 1);

@@ -82,6 +82,15 @@ inline std::string read_file(const std::filesystem::path& path) {
     return ss.str();
 }
 
+// Damages a cache entry the way a bad disk would: one bit of its last file's bytes flipped, so
+// that only the recorded hash can tell.
+inline void flip_a_byte(const std::filesystem::path& path) {
+    std::string bytes = read_file(path);
+    REQUIRE(bytes.size() > 10);
+    bytes[bytes.size() - 10] ^= 0x20;
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
 // Starts the watergen binary with `args` in a child process, its stdout and stderr going to the
 // given files, in `working_directory` unless that is empty; returns its pid.
 pid_t start_watergen(const std::vector<std::string>& args,
