@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
+#include <string_view>
 
 #include <fmt/core.h>
 
@@ -35,6 +37,62 @@ struct Frame {
         return bottom - (y - yt.first) / (yt.last - yt.first) * (bottom - top);
     }
 };
+
+struct Box {
+    double x0, y0, x1, y1;
+    bool overlaps(const Box& b) const { return x0 < b.x1 && b.x0 < x1 && y0 < b.y1 && b.y0 < y1; }
+};
+
+// A point's label at font-size 11: a sans-serif character is at most ~0.6 em wide on average,
+// the text 10 px above its baseline and 3 below (Chromium: 5.5 px a character, 13 px high).
+constexpr double kLabelCharWidth = 6.6, kLabelAscent = 10.0, kLabelDescent = 3.0;
+
+struct LabelSpot {
+    double x, y; // baseline anchor
+    const char* anchor;
+};
+
+// Where each point's label goes: the first spot around its point (right above, right below,
+// left above, left below, above, below) that leaves every point's dot and every label placed
+// before it clear and stays inside the plot; nullopt when none does (the dot's tooltip still
+// names it). Points are labelled from the left, so the leftmost of a cluster gets the room.
+std::vector<std::optional<LabelSpot>> place_labels(const std::vector<ScatterPoint>& points,
+                                                   const std::vector<double>& px,
+                                                   const std::vector<double>& py, const Box& area) {
+    std::vector<Box> taken;
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (finite_point(points[i])) taken.push_back({px[i] - 6, py[i] - 6, px[i] + 6, py[i] + 6});
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (finite_point(points[i]) && !points[i].label.empty()) order.push_back(i);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return px[a] < px[b] || (px[a] == px[b] && py[a] < py[b]);
+    });
+    std::vector<std::optional<LabelSpot>> out(points.size());
+    for (std::size_t i : order) {
+        const double w = kLabelCharWidth * double(points[i].label.size());
+        const LabelSpot spots[] = {
+            {px[i] + 8, py[i] - 6, "start"}, {px[i] + 8, py[i] + 14, "start"},
+            {px[i] - 8, py[i] - 6, "end"},   {px[i] - 8, py[i] + 14, "end"},
+            {px[i], py[i] - 10, "middle"},   {px[i], py[i] + 20, "middle"}};
+        for (const LabelSpot& spot : spots) {
+            const std::string_view anchor = spot.anchor;
+            const double x0 = anchor == "start" ? spot.x
+                              : anchor == "end" ? spot.x - w
+                                                : spot.x - w / 2;
+            const Box box{x0, spot.y - kLabelAscent, x0 + w, spot.y + kLabelDescent};
+            if (box.x0 < area.x0 || box.x1 > area.x1 || box.y0 < area.y0 || box.y1 > area.y1)
+                continue;
+            if (std::any_of(taken.begin(), taken.end(),
+                            [&](const Box& t) { return t.overlaps(box); }))
+                continue;
+            taken.push_back(box);
+            out[i] = spot;
+            break;
+        }
+    }
+    return out;
+}
 
 std::string axes_svg(const Frame& f, const ScatterPlot& plot) {
     std::string s;
@@ -152,15 +210,26 @@ std::string scatter_svg(const ScatterPlot& plot, uint32_t width, uint32_t height
     }
     const std::vector<std::size_t> front = pareto_front(plot.points);
     s += front_svg(f, plot, front);
+    std::vector<double> px(plot.points.size()), py(plot.points.size());
+    for (std::size_t i = 0; i < plot.points.size(); ++i)
+        if (finite_point(plot.points[i]))
+            px[i] = f.px(plot.points[i].x), py[i] = f.py(plot.points[i].y);
+    // Labels may reach into the margins, not into the legend or past the picture.
+    const Box area{0.0, 0.0, f.right + 8, double(height)};
+    const auto spots = place_labels(plot.points, px, py, area);
     for (std::size_t i = 0; i < plot.points.size(); ++i) {
         const ScatterPoint& p = plot.points[i];
         if (!finite_point(p)) continue;
         const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
         const char* color = p.group.empty() ? kGroupColors[0] : kGroupColors[groups[p.group] % 10];
-        s += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}"{}/>)", f.px(p.x),
-                         f.py(p.y), color, on_front ? R"( stroke="#000" stroke-width="2.5")" : "");
-        s += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11">{}</text>)", f.px(p.x) + 8,
-                         f.py(p.y) - 6, html_escape(p.label));
+        s += fmt::format(
+            R"(<circle cx="{:.1f}" cy="{:.1f}" r="5" fill="{}"{}><title>{}</title></circle>)",
+            px[i], py[i], color, on_front ? R"( stroke="#000" stroke-width="2.5")" : "",
+            html_escape(p.label));
+        if (spots[i])
+            s += fmt::format(
+                R"(<text class="point-label" x="{:.1f}" y="{:.1f}" text-anchor="{}" font-size="11">{}</text>)",
+                spots[i]->x, spots[i]->y, spots[i]->anchor, html_escape(p.label));
     }
     double ly = f.top + 8;
     for (const auto& [name, index] : groups) {

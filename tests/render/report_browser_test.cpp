@@ -4,6 +4,7 @@
 // each leaves colours in the screenshot that nothing else on the page has.
 #include <catch2/catch.hpp>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 
 #include "compare_report_support.h"
 #include "watergen/render/heat_map.h"
+#include "watergen/render/report_svg.h"
 
 using namespace watergen;
 namespace fs = std::filesystem;
@@ -92,5 +94,61 @@ TEST_CASE("the_report_renders_in_headless_chromium_without_console_messages", "[
     CHECK(pixels_near(*shot, {188, 188, 188}, 1) >= 192 * 192 * 95 / 100);
     CHECK(pixels_near(*shot, magma(0.5), 2) >= 192 * 192 * 95 / 100);
     // KEEP_REPORT=1 keeps the report, the screenshot and the browser log for a look.
+    if (!std::getenv("KEEP_REPORT")) fs::remove_all(dir);
+}
+
+TEST_CASE("the_plot_labels_overlap_neither_each_other_nor_a_dot_in_chromium", "[browser]") {
+    REQUIRE(run("command -v chromium > /dev/null") == 0);
+    // A cluster as a comparison gives one: eight variants within 2% of each other in cost and
+    // close in error, with labels as long as the report's, plus a few spread out.
+    ScatterPlot plot{"labels", "instructions per pixel", "p99 dE00", {}};
+    const char* names[] = {"fresnel=schlick specular=blinn_phong",
+                           "fresnel=power specular=none",
+                           "fresnel=exact specular=toman_glare",
+                           "fresnel=none",
+                           "fresnel=schlick",
+                           "fresnel=power",
+                           "specular=ggx_sun",
+                           "fresnel=exact specular=none"};
+    for (int i = 0; i < 8; ++i)
+        plot.points.push_back({names[i], "", 1000.0 + 2.5 * i, 1.0 + 0.05 * (i % 3)});
+    plot.points.push_back({"reference", "", 900, 0});
+    plot.points.push_back({"waves=gerstner", "", 1400, 6});
+    plot.points.push_back({"waves=sum_of_sines", "", 1300, 3});
+
+    // The page measures what the browser drew: each label's box against every other label's and
+    // every dot's (the script is the test's, not the report's).
+    const fs::path dir = fs::current_path() / "scratch-plot-labels";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string page = "<!DOCTYPE html><html><body>" + scatter_svg(plot) + R"(<script>
+const boxes = q => [...document.querySelectorAll(q)].map(e => e.getBoundingClientRect());
+const hit = (a, b) => a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom;
+const labels = boxes('text.point-label'), dots = boxes('circle');
+let pairs = 0, on_dots = 0;
+labels.forEach((a, i) => { labels.slice(i + 1).forEach(b => pairs += hit(a, b));
+                           dots.forEach(d => on_dots += hit(a, d)); });
+document.body.setAttribute('data-result', `labels=${labels.length} overlaps=${pairs} on_dots=${on_dots}`);
+</script></body></html>)";
+    std::ofstream(dir / "plot.html") << page;
+    const std::string dom = (dir / "dom.html").string();
+    REQUIRE(run(fmt::format("timeout 60 chromium --headless=new --no-sandbox --disable-gpu "
+                            "--user-data-dir='{}' --dump-dom 'file://{}' > '{}' 2>/dev/null",
+                            (dir / "profile").string(), (dir / "plot.html").string(), dom)) == 0);
+    const std::string text = test::read_file_text(dom);
+    const auto at = text.find("data-result=\"");
+    REQUIRE(at != std::string::npos);
+    const std::string result = text.substr(at + 13, text.find('"', at + 13) - at - 13);
+    INFO(result);
+    CHECK(result.find(" overlaps=0 on_dots=0") != std::string::npos);
+    // The points apart from the cluster keep their labels, and the cluster's first ones find a
+    // place; every dot names its point in a tooltip.
+    int labels = 0;
+    REQUIRE(std::sscanf(result.c_str(), "labels=%d", &labels) == 1);
+    CHECK(labels >= 5);
+    for (const char* apart :
+         {">reference</text>", ">waves=gerstner</text>", ">waves=sum_of_sines</text>"})
+        CHECK(page.find(apart) != std::string::npos);
+    CHECK(test::count_occurrences(page, "<title>") == 11);
     if (!std::getenv("KEEP_REPORT")) fs::remove_all(dir);
 }
