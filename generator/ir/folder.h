@@ -21,7 +21,13 @@ std::optional<Graph> inline_decided_switches(const Graph& g, const FoldFacts& fa
 
 class Folder {
   public:
-    Folder(const Graph& in, const FoldFacts& facts);
+    // `fold_bodies`: also fold inside loop bodies (fold_body()); the cause refinement's reruns,
+    // which only compare the graph's own rewrites, leave them alone.
+    Folder(const Graph& in, const FoldFacts& facts, bool fold_bodies = true);
+    // A loop body's folder: `leaves` bounds its LoopIndex, Carried and Captured nodes (by id);
+    // `declarations` is the graph that declares the body's parameters (the outermost one).
+    Folder(const Graph& body, const Graph& declarations, const FoldFacts& facts,
+           std::map<uint32_t, FoldFacts::Bounds> leaves);
 
     void rewrite_all();
     std::vector<FoldEvent>& events() { return report_.events; }
@@ -68,12 +74,24 @@ class Folder {
                                         const std::vector<const Intervals*>& captured) const;
     static Intervals loop_result_bounds(const Node& result, const Node& loop_node,
                                         const Intervals& loop_bounds);
+    // Bounds of the carried values at the start of every iteration (the union of the states
+    // before each); nullopt when the analysis gives up.
+    std::optional<State> carried_hull(const LoopBody& loop, const BodyScratch& scratch,
+                                      const State& initial,
+                                      const std::vector<const Intervals*>& captured,
+                                      FactSet& facts) const;
+    // The loop's body folded by what holds in every iteration (its index, the carried values'
+    // hull, the captured values' bounds, the scene's facts); the same body when nothing folds.
+    std::shared_ptr<const LoopBody> fold_body(const Node& n) const;
+    static BodyScratch scratch_for(const LoopBody& loop);
     bool is_constant(uint32_t id, double x) const;
     bool all_finite(uint32_t id) const;
     std::optional<uint32_t> as_type(uint32_t id, const Node& like);
     bool all_ge(const Intervals& a, const Intervals& b) const;
 
     const Graph& in_;
+    const Graph& declarations_; // where the parameters read in in_ are declared
+    bool fold_bodies_ = true;
     FoldFacts f_;                                       // with the bound quantities resolved
     std::map<uint32_t, FoldFacts::Bounds> node_ranges_; // computed nodes bound to a quantity
     Graph out_;

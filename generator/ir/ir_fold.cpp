@@ -27,9 +27,17 @@ std::string describe_facts(const FoldFacts& facts, const FactSet& set) {
 
 namespace fold {
 
-Folder::Folder(const Graph& in, const FoldFacts& facts)
-    : in_(in), f_(facts), map_(in.size(), UINT32_MAX) {
+Folder::Folder(const Graph& in, const FoldFacts& facts, bool fold_bodies)
+    : in_(in), declarations_(in), fold_bodies_(fold_bodies), f_(facts),
+      map_(in.size(), UINT32_MAX) {
     resolve_quantities();
+}
+
+Folder::Folder(const Graph& body, const Graph& declarations, const FoldFacts& facts,
+               std::map<uint32_t, FoldFacts::Bounds> leaves)
+    : in_(body), declarations_(declarations), f_(facts), node_ranges_(std::move(leaves)),
+      map_(body.size(), UINT32_MAX) {
+    f_.refine_causes = false;
 }
 
 void Folder::rewrite_all() {
@@ -208,7 +216,7 @@ FoldFacts without(const FoldFacts& f, const FactSet& drop) {
 }
 
 std::set<std::string> event_keys(const Graph& g, const FoldFacts& f) {
-    Folder folder(g, f);
+    Folder folder(g, f, false);
     folder.rewrite_all();
     std::set<std::string> keys;
     for (const auto& e : folder.events())

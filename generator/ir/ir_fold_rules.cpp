@@ -132,7 +132,7 @@ std::pair<Intervals, FactSet> Folder::leaf_bounds(const Graph& g, const Node& n,
     if (n.op == Op::Uniform || n.op == Op::UniformElement) {
         if (auto it = f_.parameter_ranges.find(n.name); it != f_.parameter_ranges.end())
             return {bounds_of(it->second, n.type), single(it->second.fact)};
-        if (const Parameter* p = in_.find_parameter(n.name))
+        if (const Parameter* p = declarations_.find_parameter(n.name))
             return {Intervals(static_cast<size_t>(component_count(n.type)),
                               make_interval(p->min, p->max)),
                     {}};
@@ -378,6 +378,7 @@ uint32_t Folder::rewrite(uint32_t in_id) {
         }
     }
 
+    if (n.op == Op::Loop && fold_bodies_) n.loop = fold_body(n);
     auto [v, facts] = bounds(n, in_id);
     narrow_by_assumption(in_id, n.type, v, facts);
     if (is_float_valued(n.type) && n.op != Op::Constant)

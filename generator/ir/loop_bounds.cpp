@@ -107,6 +107,91 @@ Folder::body_step(const LoopBody& loop, const BodyScratch& scratch, const State&
     return {std::move(next), facts};
 }
 
+Folder::BodyScratch Folder::scratch_for(const LoopBody& loop) {
+    BodyScratch scratch;
+    scratch.live = loop.body->live_nodes();
+    scratch.values.resize(loop.body->size());
+    scratch.next.assign(loop.carried(), UINT32_MAX);
+    for (const auto& o : loop.body->outputs())
+        for (size_t k = 0; k < loop.carried(); ++k)
+            if (o.name == "next" + std::to_string(k)) scratch.next[k] = o.node;
+    return scratch;
+}
+
+std::optional<Folder::State> Folder::carried_hull(const LoopBody& loop, const BodyScratch& scratch,
+                                                  const State& initial,
+                                                  const std::vector<const Intervals*>& captured,
+                                                  FactSet& facts) const {
+    State state = initial;
+    // Few iterations: the hull of the states before each, followed step by step.
+    if (loop.trip_count <= kStepByStep) {
+        State hulled = initial, at = initial;
+        for (int i = 0; i + 1 < loop.trip_count; ++i) {
+            auto [next, f] = body_step(loop, scratch, at, captured);
+            facts |= f;
+            at = std::move(next);
+            for (size_t k = 0; k < hulled.size(); ++k)
+                for (size_t c = 0; c < hulled[k].size() && c < at[k].size(); ++c)
+                    hulled[k][c] = hull(hulled[k][c], at[k][c]);
+        }
+        return hulled;
+    }
+    // Else the union of every state, as loop_bounds() finds it for a loop that may stop early.
+    for (int round = 0; round < kMaxRounds; ++round) {
+        auto [next, f] = body_step(loop, scratch, state, captured);
+        facts |= f;
+        bool moved = false;
+        for (size_t k = 0; k < state.size(); ++k)
+            for (size_t c = 0; c < state[k].size() && c < next[k].size(); ++c) {
+                Interval u = hull(state[k][c], next[k][c]);
+                if (same(u, state[k][c])) continue;
+                moved = true;
+                if (round >= kStepByStep) u = widened(state[k][c], u);
+                state[k][c] = u;
+            }
+        if (!moved) return state;
+    }
+    return std::nullopt;
+}
+
+std::shared_ptr<const LoopBody> Folder::fold_body(const Node& n) const {
+    const LoopBody& loop = *n.loop;
+    std::vector<const Intervals*> args;
+    for (uint32_t a : n.args)
+        args.push_back(&values_[a]);
+    State initial(loop.carried());
+    for (size_t k = 0; k < loop.carried(); ++k)
+        initial[k] = *args[k];
+    const std::vector<const Intervals*> captured(
+        args.begin() + static_cast<long>(loop.first_capture()), args.end());
+    const BodyScratch scratch = scratch_for(loop);
+    FactSet facts;
+    const std::optional<State> carried = carried_hull(loop, scratch, initial, captured, facts);
+    if (!carried) return n.loop;
+    // What every iteration may see; the body's own events are not reported, so one fact names
+    // the analysis behind all of them.
+    FoldFacts body_facts = f_;
+    const size_t fact = body_facts.add_fact("the loop's bounds", "");
+    std::map<uint32_t, FoldFacts::Bounds> leaves;
+    const Graph& body = *loop.body;
+    for (uint32_t id : scratch.live) {
+        const Node& b = body.node(id);
+        const size_t index = b.values.empty() ? 0 : static_cast<size_t>(b.values[0]);
+        if (b.op == Op::LoopIndex)
+            leaves[id] = {{make_interval(0.0, loop.trip_count - 1.0)}, fact};
+        else if (b.op == Op::Carried && index < carried->size())
+            leaves[id] = {(*carried)[index], fact};
+        else if (b.op == Op::Captured && index < captured.size())
+            leaves[id] = {*captured[index], fact};
+    }
+    Folder folder(body, declarations_, body_facts, std::move(leaves));
+    folder.rewrite_all();
+    if (folder.events().empty()) return n.loop;
+    auto folded = std::make_shared<LoopBody>(loop);
+    folded->body = std::make_shared<const Graph>(compact(folder.out_));
+    return folded;
+}
+
 // The bounds of a Loop node (its carried values side by side) from its arguments' bounds: the
 // initial values, then the captured ones.
 std::pair<Intervals, FactSet> Folder::loop_bounds(const Node& n,
@@ -117,13 +202,7 @@ std::pair<Intervals, FactSet> Folder::loop_bounds(const Node& n,
         state[k] = *args[k];
     const std::vector<const Intervals*> captured(
         args.begin() + static_cast<long>(loop.first_capture()), args.end());
-    BodyScratch scratch;
-    scratch.live = loop.body->live_nodes();
-    scratch.values.resize(loop.body->size());
-    scratch.next.assign(loop.carried(), UINT32_MAX);
-    for (const auto& o : loop.body->outputs())
-        for (size_t k = 0; k < loop.carried(); ++k)
-            if (o.name == "next" + std::to_string(k)) scratch.next[k] = o.node;
+    const BodyScratch scratch = scratch_for(loop);
     FactSet facts;
     auto flatten = [&](const State& s) {
         Intervals all;

@@ -441,3 +441,89 @@ TEST_CASE("a_loop_bound_with_a_trip_count_from_data_holds_for_no_iteration", "[l
         CHECK(e.values[0] == (count == 0.0 ? 10.0 : 5.0));
     }
 }
+
+namespace {
+
+// The loop's value as a fragment shader's colour: x from v_uv.x.
+void set_colour(Graph& g, Expr value) {
+    g.set_output("color", vec4(value, constant(g, 0.0), constant(g, 0.0), constant(g, 1.0)).id());
+}
+
+// c = c + x + t (i + 1) over four iterations, t a parameter in [0, 10].
+Graph drifting_sum() {
+    Graph g;
+    Expr x = varying(g, "v_uv", Type::Vec2).x();
+    Expr t = uniform(g, {"t", Type::Float, {1.0}, 0.0, 10.0, "s", "", ""});
+    const auto r = loop(g, 4, {constant(g, 0.0)}, [&](Expr i, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] + x + t * (i + 1.0)}, Expr()};
+    });
+    set_colour(g, r[0]);
+    return g;
+}
+
+std::string glsl_of(const Graph& g) {
+    Diagnostics ds;
+    const EmittedShader e = emit_fragment(g, Language::Glsl, "f.frag", "test", ds);
+    INFO((ds.empty() ? "" : ds[0].message));
+    REQUIRE(ds.empty());
+    return e.source;
+}
+
+// The red channel per lane, x = v_uv.x per lane, t = 0.
+std::vector<double> reds(const Graph& g, const std::vector<double>& xs, EvalPrecision p) {
+    EvalInputs in;
+    for (double x : xs)
+        in.varyings["v_uv"].insert(in.varyings["v_uv"].end(), {x, 0.5});
+    in.lanes = xs.size();
+    in.uniforms["t"] = {0.0};
+    const EvalResult e = evaluate(g, "color", in, p);
+    REQUIRE(e.ok());
+    std::vector<double> out;
+    for (size_t l = 0; l < xs.size(); ++l)
+        out.push_back(e.values[l * 4]);
+    return out;
+}
+
+FoldResult fold_with_t_zero(const Graph& g) {
+    FoldFacts facts;
+    facts.fixed["t"] = {{0.0}, facts.add_fact("t = 0", "")};
+    FoldResult folded = fold_graph(g, facts);
+    REQUIRE(folded.graph.diagnostics().empty());
+    return folded;
+}
+
+} // namespace
+
+TEST_CASE("the_fold_simplifies_inside_a_loop_body_by_what_every_iteration_sees", "[loop]") {
+    // With t fixed to 0, t (i + 1) is 0 in every iteration (i + 1 lies in [1, 4]): the body
+    // keeps c + x, and the block no longer holds t.
+    const Graph g = drifting_sum();
+    const FoldResult folded = fold_with_t_zero(g);
+    const std::string before = glsl_of(g), after = glsl_of(folded.graph);
+    INFO(after);
+    CHECK(before.find("params.t") != std::string::npos);
+    CHECK(after.find("params.t") == std::string::npos);
+    CHECK(after.find("0.0 *") == std::string::npos);
+    CHECK(after.find("for (") != std::string::npos); // still a loop
+    const auto unfolded = reds(g, {0.25, -3.0}, EvalPrecision::Double);
+    CHECK(reds(folded.graph, {0.25, -3.0}, EvalPrecision::Double) == unfolded);
+    CHECK(unfolded[0] == 1.0); // four times x
+}
+
+TEST_CASE("the_fold_leaves_a_body_term_whose_carried_value_may_overflow", "[loop]") {
+    // c doubles 200 times from 1: past the largest float it is infinite, and 0 c is NaN there,
+    // so c + 0 c is not c; the analysis widens c to infinity and must keep the product.
+    Graph g;
+    Expr x = varying(g, "v_uv", Type::Vec2).x();
+    Expr t = uniform(g, {"t", Type::Float, {1.0}, 0.0, 10.0, "s", "", ""});
+    const auto r = loop(g, 200, {constant(g, 1.0)}, [&](Expr, const std::vector<Expr>& c) {
+        return LoopStep{{c[0] * 2.0 + t * c[0]}, Expr()};
+    });
+    set_colour(g, r[0] + x);
+    const FoldResult folded = fold_with_t_zero(g);
+    const std::string after = glsl_of(folded.graph);
+    INFO(after);
+    CHECK(after.find("0.0 *") != std::string::npos);
+    CHECK(std::isnan(reds(g, {0.0}, EvalPrecision::Float)[0]));
+    CHECK(std::isnan(reds(folded.graph, {0.0}, EvalPrecision::Float)[0])); // as the loop computes
+}

@@ -65,176 +65,176 @@ void main()
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
     float _71 = floor(gerstner_wave_count);
-    float _1032;
-    float _1034;
-    _1034 = 0.0;
-    _1032 = 0.0;
+    float _1029;
+    float _1031;
+    _1031 = 0.0;
+    _1029 = 0.0;
     float _106;
     float _111;
     float _116;
     float _121;
-    int _1031 = 0;
-    float _1033 = params.gerstner_amplitude;
-    float _1035 = params.gerstner_frequency;
-    for (; _1031 < 8; _1035 = _121, _1034 = _111, _1033 = _116, _1032 = _106, _1031++)
+    int _1028 = 0;
+    float _1030 = params.gerstner_amplitude;
+    float _1032 = params.gerstner_frequency;
+    for (; _1028 < 8; _1032 = _121, _1031 = _111, _1030 = _116, _1029 = _106, _1028++)
     {
-        if (!(float(_1031) < _71))
+        if (!(float(_1028) < _71))
         {
             break;
         }
-        _106 = _1032 + _1033;
-        _111 = _1033 * _1035 + _1034;
-        _116 = _1033 * params.gerstner_amplitude_gain;
-        _121 = _1035 * params.gerstner_frequency_gain;
+        _106 = _1029 + _1030;
+        _111 = _1030 * _1032 + _1031;
+        _116 = _1030 * params.gerstner_amplitude_gain;
+        _121 = _1032 * params.gerstner_frequency_gain;
     }
     float _138 = _60.y;
     float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
     vec2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1034 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1032;
+    float _155 = 1.0 / (1.0 + (((_1031 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1029;
     float _162 = min(_138, -9.9999999747524270787835121154785e-07);
-    float _1039;
-    vec2 _1044;
-    _1044 = (params.eye_position + (_60 * max((_1032 - params.eye_position.y) / _162, 0.0))).xz;
-    _1039 = _1032;
+    float _1036;
+    vec2 _1041;
+    _1041 = (params.eye_position + (_60 * max((_1029 - params.eye_position.y) / _162, 0.0))).xz;
+    _1036 = _1029;
     vec2 _406;
-    float _679;
-    float _684;
-    float _694;
-    int _1038 = 0;
-    float _1072 = _1032;
-    float _1077 = _158;
+    float _676;
+    float _681;
+    float _691;
+    int _1035 = 0;
+    float _1069 = _1029;
+    float _1074 = _158;
     SPIRV_CROSS_LOOP
-    for (; _1038 < 9; _1077 = _684, _1072 = _679, _1044 = _406, _1039 = _694, _1038++)
+    for (; _1035 < 9; _1074 = _681, _1069 = _676, _1041 = _406, _1036 = _691, _1035++)
     {
-        float _207 = max((_1039 - params.eye_position.y) / _162, 0.0);
+        float _207 = max((_1036 - params.eye_position.y) / _162, 0.0);
         vec2 _217 = (params.eye_position + (_60 * _207)).xz;
         float _223 = (_68 * _207) / _142;
-        vec2 _1046;
-        vec3 _1047;
-        _1047 = vec3(0.0);
-        _1046 = vec2(0.0);
+        vec2 _1043;
+        vec3 _1044;
+        _1044 = vec3(0.0);
+        _1043 = vec2(0.0);
         float _323;
         float _327;
         vec2 _334;
         vec3 _348;
-        int _1041 = 0;
-        float _1042 = params.gerstner_frequency;
-        float _1045 = params.gerstner_amplitude;
-        for (; _1041 < 8; _1047 = _348, _1046 = _334, _1045 = _323, _1042 = _327, _1041++)
+        int _1038 = 0;
+        float _1039 = params.gerstner_frequency;
+        float _1042 = params.gerstner_amplitude;
+        for (; _1038 < 8; _1044 = _348, _1043 = _334, _1042 = _323, _1039 = _327, _1038++)
         {
-            float _242 = float(_1041);
+            float _242 = float(_1038);
             if (!(_242 < _71))
             {
                 break;
             }
             int _254 = clamp(int(_242), 0, 7);
-            float _282 = _1042 * dot(params.gerstner_wave_directions[_254], _1044) + (params.time * params.gerstner_wave_speeds[_254]);
-            float _296 = ((params.gerstner_steepness / (_71 * max(_1042 * _1045, 9.9999999747524270787835121154785e-07))) * _1045) * clamp((-(_1042 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _315 = (_296 * _1042) * sin(_282);
+            float _282 = _1039 * dot(params.gerstner_wave_directions[_254], _1041) + (params.time * params.gerstner_wave_speeds[_254]);
+            float _296 = ((params.gerstner_steepness / (_71 * max(_1039 * _1042, 9.9999999747524270787835121154785e-07))) * _1042) * clamp((-(_1039 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _315 = (_296 * _1039) * sin(_282);
             float _319 = _315 * params.gerstner_wave_directions[_254].x;
-            _323 = _1045 * params.gerstner_amplitude_gain;
-            _327 = _1042 * params.gerstner_frequency_gain;
-            _334 = _1046 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
-            _348 = _1047 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
+            _323 = _1042 * params.gerstner_amplitude_gain;
+            _327 = _1039 * params.gerstner_frequency_gain;
+            _334 = _1043 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
+            _348 = _1044 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
         }
-        float _354 = 1.0 - _1047.x;
-        float _359 = 1.0 - _1047.z;
-        float _363 = -_1047.y;
-        vec2 _369 = (_1044 + _1046) - _217;
+        float _354 = 1.0 - _1044.x;
+        float _359 = 1.0 - _1044.z;
+        float _363 = -_1044.y;
+        vec2 _369 = (_1041 + _1043) - _217;
         float _382 = _369.x;
         float _385 = _369.y;
-        _406 = _1044 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
-        vec3 _1054;
-        vec3 _1055;
-        vec3 _1056;
-        _1056 = vec3(0.0, 0.0, 1.0);
-        _1055 = vec3(1.0, 0.0, 0.0);
-        _1054 = vec3(0.0);
+        _406 = _1041 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
+        vec3 _1051;
+        vec3 _1052;
+        vec3 _1053;
+        _1053 = vec3(0.0, 0.0, 1.0);
+        _1052 = vec3(1.0, 0.0, 0.0);
+        _1051 = vec3(0.0);
         float _521;
         float _525;
         vec3 _537;
         vec3 _542;
         vec3 _547;
-        int _1051 = 0;
-        float _1052 = params.gerstner_frequency;
-        float _1053 = params.gerstner_amplitude;
-        for (; _1051 < 8; _1056 = _547, _1055 = _542, _1054 = _537, _1053 = _521, _1052 = _525, _1051++)
+        int _1048 = 0;
+        float _1049 = params.gerstner_frequency;
+        float _1050 = params.gerstner_amplitude;
+        for (; _1048 < 8; _1053 = _547, _1052 = _542, _1051 = _537, _1050 = _521, _1049 = _525, _1048++)
         {
-            float _427 = float(_1051);
+            float _427 = float(_1048);
             if (!(_427 < _71))
             {
                 break;
             }
             int _438 = clamp(int(_427), 0, 7);
-            float _447 = clamp((-(_1052 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _463 = _1052 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
-            float _477 = ((params.gerstner_steepness / (_71 * max(_1052 * _1053, 9.9999999747524270787835121154785e-07))) * _1053) * _447;
-            float _481 = _1053 * _447;
+            float _447 = clamp((-(_1049 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _463 = _1049 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
+            float _477 = ((params.gerstner_steepness / (_71 * max(_1049 * _1050, 9.9999999747524270787835121154785e-07))) * _1050) * _447;
+            float _481 = _1050 * _447;
             float _484 = sin(_463);
             float _487 = cos(_463);
             float _497 = _477 * _487;
-            float _504 = -((_477 * _1052) * _484);
-            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1052) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1053 * params.gerstner_amplitude_gain;
-            _525 = _1052 * params.gerstner_frequency_gain;
-            _537 = _1054 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1055 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1056 + (_517 * params.gerstner_wave_directions[_438].y);
+            float _504 = -((_477 * _1049) * _484);
+            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1049) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1050 * params.gerstner_amplitude_gain;
+            _525 = _1049 * params.gerstner_frequency_gain;
+            _537 = _1051 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1052 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1053 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        vec3 _553 = cross(_1056, _1055);
+        vec3 _553 = cross(_1053, _1052);
         float _557 = dot(_553, _553);
         vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
         bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
         vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
         vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1038);
+        float _600 = float(_1035);
         bool _601 = _600 < 1.0;
-        float _608 = (_1054.y + dot(_585, _217 - (_406 + _1054.xz))) - _1039;
-        float _621 = (-dot(_585, _146)) / _142;
-        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0) * _608 + _1039;
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1039 : _1072;
-        float _647 = _637 ? _1077 : _1039;
-        _679 = _601 ? _1039 : _642;
-        _684 = _601 ? _1077 : _647;
-        _694 = (_600 < 8.0) ? (_601 ? (_155 * _608 + _1039) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1039;
+        float _605 = (_1051.y + dot(_585, _217 - (_406 + _1051.xz))) - _1036;
+        float _618 = (-dot(_585, _146)) / _142;
+        float _631 = clamp(1.0 / max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0) * _605 + _1036;
+        bool _634 = _605 < 0.0;
+        float _639 = _634 ? _1036 : _1069;
+        float _644 = _634 ? _1074 : _1036;
+        _676 = _601 ? _1036 : _639;
+        _681 = _601 ? _1074 : _644;
+        _691 = (_600 < 8.0) ? (_601 ? (_155 * _605 + _1036) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1036;
     }
-    float _708 = max((_1039 - params.eye_position.y) / _162, 0.0);
-    vec3 _715 = params.eye_position + (_60 * _708);
-    float _723 = _33.y;
-    float _726 = _715.y;
-    float _731 = max(_726 - _723, 0.0);
-    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    vec3 _776 = _775.xyz;
-    float _780 = clamp(max(_53 - _708, 0.0), 0.0, 30000.0);
-    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
-    float _841 = _837.w;
-    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
-    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _867 = bvec2(_844);
-    float _871 = float(_844);
-    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
-    vec3 _1040;
-    if (_871 > 0.5)
+    float _705 = max((_1036 - params.eye_position.y) / _162, 0.0);
+    vec3 _712 = params.eye_position + (_60 * _705);
+    float _720 = _33.y;
+    float _723 = _712.y;
+    float _728 = max(_723 - _720, 0.0);
+    vec4 _772 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    vec3 _773 = _772.xyz;
+    float _777 = clamp(max(_53 - _705, 0.0), 0.0, 30000.0);
+    vec4 _834 = (((params.reflection_view_proj_c0 * _712.x) + (params.reflection_view_proj_c1 * _723)) + (params.reflection_view_proj_c2 * _712.z)) + params.reflection_view_proj_c3;
+    float _838 = _834.w;
+    bool _841 = _838 > 9.9999997473787516355514526367188e-05;
+    vec2 _858 = clamp((((_834.xy / vec2(_838)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _864 = bvec2(_841);
+    float _868 = float(_841);
+    vec4 _884 = texture(reflection_map, vec3(vec2(_864.x ? _858.x : vec2(0.5).x, _864.y ? _858.y : vec2(0.5).y), _868).xy);
+    vec3 _1037;
+    if (_868 > 0.5)
     {
-        _1040 = _887.xyz;
+        _1037 = _884.xyz;
     }
     else
     {
-        _1040 = params.sky_color;
+        _1037 = params.sky_color;
     }
-    float _906 = clamp((-_60).y, 0.0, 1.0);
-    float _914 = params.ior_air / params.ior_water;
-    float _918 = _914 * _914;
-    float _922 = (-_906) * _906 + 1.0;
-    float _928 = sqrt(max((-_918) * _922 + 1.0, 0.0));
-    float _933 = params.ior_water * _928;
-    float _947 = (params.ior_air * _906 + (-_933)) / max(params.ior_air * _906 + _933, 1.0000000031710768509710513471353e-30);
-    float _952 = params.ior_air * _928;
-    float _966 = (params.ior_water * _906 + (-_952)) / max(params.ior_water * _906 + _952, 1.0000000031710768509710513471353e-30);
-    vec3 _999 = mix(_776, mix(mix(params.scatter_color, _776 * exp((-params.absorb_coefficients) * (_731 + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _1040, vec3(((_918 * _922) >= 1.0) ? 1.0 : (0.5 * (_947 * _947 + (_966 * _966))))), vec3(clamp(_731 * params.shore_hardness, 0.0, 1.0)));
-    bvec3 _1004 = bvec3((_723 < _726) && (_138 < 0.0));
-    out_color = vec4(vec3(_1004.x ? _999.x : _26.x, _1004.y ? _999.y : _26.y, _1004.z ? _999.z : _26.z), 1.0);
+    float _903 = clamp((-_60).y, 0.0, 1.0);
+    float _911 = params.ior_air / params.ior_water;
+    float _915 = _911 * _911;
+    float _919 = (-_903) * _903 + 1.0;
+    float _925 = sqrt(max((-_915) * _919 + 1.0, 0.0));
+    float _930 = params.ior_water * _925;
+    float _944 = (params.ior_air * _903 + (-_930)) / max(params.ior_air * _903 + _930, 1.0000000031710768509710513471353e-30);
+    float _949 = params.ior_air * _925;
+    float _963 = (params.ior_water * _903 + (-_949)) / max(params.ior_water * _903 + _949, 1.0000000031710768509710513471353e-30);
+    vec3 _996 = mix(_773, mix(mix(params.scatter_color, _773 * exp((-params.absorb_coefficients) * (_728 + _777)), vec3(exp((-params.scatter_coefficient) * _777))) * params.incident_light, _1037, vec3(((_915 * _919) >= 1.0) ? 1.0 : (0.5 * (_944 * _944 + (_963 * _963))))), vec3(clamp(_728 * params.shore_hardness, 0.0, 1.0)));
+    bvec3 _1001 = bvec3((_720 < _723) && (_138 < 0.0));
+    out_color = vec4(vec3(_1001.x ? _996.x : _26.x, _1001.y ? _996.y : _26.y, _1001.z ? _996.z : _26.z), 1.0);
 }
 

@@ -69,178 +69,178 @@ void main()
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
     float _71 = floor(gerstner_wave_count);
-    float _1125;
-    float _1127;
-    _1127 = 0.0;
-    _1125 = 0.0;
+    float _1122;
+    float _1124;
+    _1124 = 0.0;
+    _1122 = 0.0;
     float _106;
     float _111;
     float _116;
     float _121;
-    int _1124 = 0;
-    float _1126 = params.gerstner_amplitude;
-    float _1128 = params.gerstner_frequency;
-    for (; _1124 < 8; _1128 = _121, _1127 = _111, _1126 = _116, _1125 = _106, _1124++)
+    int _1121 = 0;
+    float _1123 = params.gerstner_amplitude;
+    float _1125 = params.gerstner_frequency;
+    for (; _1121 < 8; _1125 = _121, _1124 = _111, _1123 = _116, _1122 = _106, _1121++)
     {
-        if (!(float(_1124) < _71))
+        if (!(float(_1121) < _71))
         {
             break;
         }
-        _106 = _1125 + _1126;
-        _111 = _1126 * _1128 + _1127;
-        _116 = _1126 * params.gerstner_amplitude_gain;
-        _121 = _1128 * params.gerstner_frequency_gain;
+        _106 = _1122 + _1123;
+        _111 = _1123 * _1125 + _1124;
+        _116 = _1123 * params.gerstner_amplitude_gain;
+        _121 = _1125 * params.gerstner_frequency_gain;
     }
     float _138 = _60.y;
     float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
     vec2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1127 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1125;
+    float _155 = 1.0 / (1.0 + (((_1124 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1122;
     float _162 = min(_138, -9.9999999747524270787835121154785e-07);
-    float _1132;
-    vec2 _1137;
-    _1137 = (params.eye_position + (_60 * max((_1125 - params.eye_position.y) / _162, 0.0))).xz;
-    _1132 = _1125;
+    float _1129;
+    vec2 _1134;
+    _1134 = (params.eye_position + (_60 * max((_1122 - params.eye_position.y) / _162, 0.0))).xz;
+    _1129 = _1122;
     vec2 _406;
-    float _679;
-    float _684;
-    float _694;
-    int _1131 = 0;
-    float _1165 = _1125;
-    float _1170 = _158;
+    float _676;
+    float _681;
+    float _691;
+    int _1128 = 0;
+    float _1162 = _1122;
+    float _1167 = _158;
     SPIRV_CROSS_LOOP
-    for (; _1131 < 9; _1170 = _684, _1165 = _679, _1137 = _406, _1132 = _694, _1131++)
+    for (; _1128 < 9; _1167 = _681, _1162 = _676, _1134 = _406, _1129 = _691, _1128++)
     {
-        float _207 = max((_1132 - params.eye_position.y) / _162, 0.0);
+        float _207 = max((_1129 - params.eye_position.y) / _162, 0.0);
         vec2 _217 = (params.eye_position + (_60 * _207)).xz;
         float _223 = (_68 * _207) / _142;
-        vec2 _1139;
-        vec3 _1140;
-        _1140 = vec3(0.0);
-        _1139 = vec2(0.0);
+        vec2 _1136;
+        vec3 _1137;
+        _1137 = vec3(0.0);
+        _1136 = vec2(0.0);
         float _323;
         float _327;
         vec2 _334;
         vec3 _348;
-        int _1134 = 0;
-        float _1135 = params.gerstner_frequency;
-        float _1138 = params.gerstner_amplitude;
-        for (; _1134 < 8; _1140 = _348, _1139 = _334, _1138 = _323, _1135 = _327, _1134++)
+        int _1131 = 0;
+        float _1132 = params.gerstner_frequency;
+        float _1135 = params.gerstner_amplitude;
+        for (; _1131 < 8; _1137 = _348, _1136 = _334, _1135 = _323, _1132 = _327, _1131++)
         {
-            float _242 = float(_1134);
+            float _242 = float(_1131);
             if (!(_242 < _71))
             {
                 break;
             }
             int _254 = clamp(int(_242), 0, 7);
-            float _282 = _1135 * dot(params.gerstner_wave_directions[_254], _1137) + (params.time * params.gerstner_wave_speeds[_254]);
-            float _296 = ((params.gerstner_steepness / (_71 * max(_1135 * _1138, 9.9999999747524270787835121154785e-07))) * _1138) * clamp((-(_1135 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _315 = (_296 * _1135) * sin(_282);
+            float _282 = _1132 * dot(params.gerstner_wave_directions[_254], _1134) + (params.time * params.gerstner_wave_speeds[_254]);
+            float _296 = ((params.gerstner_steepness / (_71 * max(_1132 * _1135, 9.9999999747524270787835121154785e-07))) * _1135) * clamp((-(_1132 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _315 = (_296 * _1132) * sin(_282);
             float _319 = _315 * params.gerstner_wave_directions[_254].x;
-            _323 = _1138 * params.gerstner_amplitude_gain;
-            _327 = _1135 * params.gerstner_frequency_gain;
-            _334 = _1139 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
-            _348 = _1140 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
+            _323 = _1135 * params.gerstner_amplitude_gain;
+            _327 = _1132 * params.gerstner_frequency_gain;
+            _334 = _1136 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
+            _348 = _1137 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
         }
-        float _354 = 1.0 - _1140.x;
-        float _359 = 1.0 - _1140.z;
-        float _363 = -_1140.y;
-        vec2 _369 = (_1137 + _1139) - _217;
+        float _354 = 1.0 - _1137.x;
+        float _359 = 1.0 - _1137.z;
+        float _363 = -_1137.y;
+        vec2 _369 = (_1134 + _1136) - _217;
         float _382 = _369.x;
         float _385 = _369.y;
-        _406 = _1137 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
-        vec3 _1147;
-        vec3 _1148;
-        vec3 _1149;
-        _1149 = vec3(0.0, 0.0, 1.0);
-        _1148 = vec3(1.0, 0.0, 0.0);
-        _1147 = vec3(0.0);
+        _406 = _1134 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
+        vec3 _1144;
+        vec3 _1145;
+        vec3 _1146;
+        _1146 = vec3(0.0, 0.0, 1.0);
+        _1145 = vec3(1.0, 0.0, 0.0);
+        _1144 = vec3(0.0);
         float _521;
         float _525;
         vec3 _537;
         vec3 _542;
         vec3 _547;
-        int _1144 = 0;
-        float _1145 = params.gerstner_frequency;
-        float _1146 = params.gerstner_amplitude;
-        for (; _1144 < 8; _1149 = _547, _1148 = _542, _1147 = _537, _1146 = _521, _1145 = _525, _1144++)
+        int _1141 = 0;
+        float _1142 = params.gerstner_frequency;
+        float _1143 = params.gerstner_amplitude;
+        for (; _1141 < 8; _1146 = _547, _1145 = _542, _1144 = _537, _1143 = _521, _1142 = _525, _1141++)
         {
-            float _427 = float(_1144);
+            float _427 = float(_1141);
             if (!(_427 < _71))
             {
                 break;
             }
             int _438 = clamp(int(_427), 0, 7);
-            float _447 = clamp((-(_1145 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _463 = _1145 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
-            float _477 = ((params.gerstner_steepness / (_71 * max(_1145 * _1146, 9.9999999747524270787835121154785e-07))) * _1146) * _447;
-            float _481 = _1146 * _447;
+            float _447 = clamp((-(_1142 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _463 = _1142 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
+            float _477 = ((params.gerstner_steepness / (_71 * max(_1142 * _1143, 9.9999999747524270787835121154785e-07))) * _1143) * _447;
+            float _481 = _1143 * _447;
             float _484 = sin(_463);
             float _487 = cos(_463);
             float _497 = _477 * _487;
-            float _504 = -((_477 * _1145) * _484);
-            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1145) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1146 * params.gerstner_amplitude_gain;
-            _525 = _1145 * params.gerstner_frequency_gain;
-            _537 = _1147 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1148 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1149 + (_517 * params.gerstner_wave_directions[_438].y);
+            float _504 = -((_477 * _1142) * _484);
+            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1142) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1143 * params.gerstner_amplitude_gain;
+            _525 = _1142 * params.gerstner_frequency_gain;
+            _537 = _1144 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1145 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1146 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        vec3 _553 = cross(_1149, _1148);
+        vec3 _553 = cross(_1146, _1145);
         float _557 = dot(_553, _553);
         vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
         bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
         vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
         vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1131);
+        float _600 = float(_1128);
         bool _601 = _600 < 1.0;
-        float _608 = (_1147.y + dot(_585, _217 - (_406 + _1147.xz))) - _1132;
-        float _621 = (-dot(_585, _146)) / _142;
-        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0) * _608 + _1132;
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1132 : _1165;
-        float _647 = _637 ? _1170 : _1132;
-        _679 = _601 ? _1132 : _642;
-        _684 = _601 ? _1170 : _647;
-        _694 = (_600 < 8.0) ? (_601 ? (_155 * _608 + _1132) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1132;
+        float _605 = (_1144.y + dot(_585, _217 - (_406 + _1144.xz))) - _1129;
+        float _618 = (-dot(_585, _146)) / _142;
+        float _631 = clamp(1.0 / max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0) * _605 + _1129;
+        bool _634 = _605 < 0.0;
+        float _639 = _634 ? _1129 : _1162;
+        float _644 = _634 ? _1167 : _1129;
+        _676 = _601 ? _1129 : _639;
+        _681 = _601 ? _1167 : _644;
+        _691 = (_600 < 8.0) ? (_601 ? (_155 * _605 + _1129) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1129;
     }
-    float _708 = max((_1132 - params.eye_position.y) / _162, 0.0);
-    vec3 _715 = params.eye_position + (_60 * _708);
-    float _723 = _33.y;
-    float _726 = _715.y;
-    float _731 = max(_726 - _723, 0.0);
-    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    float _780 = clamp(max(_53 - _708, 0.0), 0.0, 30000.0);
-    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
-    float _841 = _837.w;
-    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
-    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _867 = bvec2(_844);
-    float _871 = float(_844);
-    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
-    vec3 _1133;
-    if (_871 > 0.5)
+    float _705 = max((_1129 - params.eye_position.y) / _162, 0.0);
+    vec3 _712 = params.eye_position + (_60 * _705);
+    float _720 = _33.y;
+    float _723 = _712.y;
+    float _728 = max(_723 - _720, 0.0);
+    vec4 _772 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    float _777 = clamp(max(_53 - _705, 0.0), 0.0, 30000.0);
+    vec4 _834 = (((params.reflection_view_proj_c0 * _712.x) + (params.reflection_view_proj_c1 * _723)) + (params.reflection_view_proj_c2 * _712.z)) + params.reflection_view_proj_c3;
+    float _838 = _834.w;
+    bool _841 = _838 > 9.9999997473787516355514526367188e-05;
+    vec2 _858 = clamp((((_834.xy / vec2(_838)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _864 = bvec2(_841);
+    float _868 = float(_841);
+    vec4 _884 = texture(reflection_map, vec3(vec2(_864.x ? _858.x : vec2(0.5).x, _864.y ? _858.y : vec2(0.5).y), _868).xy);
+    vec3 _1130;
+    if (_868 > 0.5)
     {
-        _1133 = _887.xyz;
+        _1130 = _884.xyz;
     }
     else
     {
-        _1133 = params.sky_color;
+        _1130 = params.sky_color;
     }
-    float _906 = clamp((-_60).y, 0.0, 1.0);
-    float _914 = params.ior_air / params.ior_water;
-    float _918 = _914 * _914;
-    float _922 = (-_906) * _906 + 1.0;
-    float _928 = sqrt(max((-_918) * _922 + 1.0, 0.0));
-    float _933 = params.ior_water * _928;
-    float _947 = (params.ior_air * _906 + (-_933)) / max(params.ior_air * _906 + _933, 1.0000000031710768509710513471353e-30);
-    float _952 = params.ior_air * _928;
-    float _966 = (params.ior_water * _906 + (-_952)) / max(params.ior_water * _906 + _952, 1.0000000031710768509710513471353e-30);
-    vec2 _991 = _715.xz;
-    float _1052 = _731 - params.foam_existence.x;
-    float _1057 = params.foam_existence.y - params.foam_existence.x;
-    vec3 _1092 = mix(mix(mix(params.scatter_color, _775.xyz * exp((-params.absorb_coefficients) * (_731 + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _1133, vec3(((_918 * _922) >= 1.0) ? 1.0 : (0.5 * (_947 * _947 + (_966 * _966))))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_991 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_991)), length(dFdy(_991))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1052 < 0.0) ? 1.0 : (1.0 - ((_1052 >= _1057) ? 1.0 : clamp(_1052 / max(_1057, 5.9604644775390625e-08), 0.0, 1.0)))));
-    bvec3 _1097 = bvec3((_723 < _726) && (_138 < 0.0));
-    out_color = vec4(vec3(_1097.x ? _1092.x : _26.x, _1097.y ? _1092.y : _26.y, _1097.z ? _1092.z : _26.z), 1.0);
+    float _903 = clamp((-_60).y, 0.0, 1.0);
+    float _911 = params.ior_air / params.ior_water;
+    float _915 = _911 * _911;
+    float _919 = (-_903) * _903 + 1.0;
+    float _925 = sqrt(max((-_915) * _919 + 1.0, 0.0));
+    float _930 = params.ior_water * _925;
+    float _944 = (params.ior_air * _903 + (-_930)) / max(params.ior_air * _903 + _930, 1.0000000031710768509710513471353e-30);
+    float _949 = params.ior_air * _925;
+    float _963 = (params.ior_water * _903 + (-_949)) / max(params.ior_water * _903 + _949, 1.0000000031710768509710513471353e-30);
+    vec2 _988 = _712.xz;
+    float _1049 = _728 - params.foam_existence.x;
+    float _1054 = params.foam_existence.y - params.foam_existence.x;
+    vec3 _1089 = mix(mix(mix(params.scatter_color, _772.xyz * exp((-params.absorb_coefficients) * (_728 + _777)), vec3(exp((-params.scatter_coefficient) * _777))) * params.incident_light, _1130, vec3(((_915 * _919) >= 1.0) ? 1.0 : (0.5 * (_944 * _944 + (_963 * _963))))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_988 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_988)), length(dFdy(_988))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1049 < 0.0) ? 1.0 : (1.0 - ((_1049 >= _1054) ? 1.0 : clamp(_1049 / max(_1054, 5.9604644775390625e-08), 0.0, 1.0)))));
+    bvec3 _1094 = bvec3((_720 < _723) && (_138 < 0.0));
+    out_color = vec4(vec3(_1094.x ? _1089.x : _26.x, _1094.y ? _1089.y : _26.y, _1094.z ? _1089.z : _26.z), 1.0);
 }
 

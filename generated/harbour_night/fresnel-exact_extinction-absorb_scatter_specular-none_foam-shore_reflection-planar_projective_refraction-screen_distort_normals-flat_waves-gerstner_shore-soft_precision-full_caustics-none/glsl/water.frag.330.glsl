@@ -70,179 +70,179 @@ void main()
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
     float _71 = floor(gerstner_wave_count);
-    float _1136;
-    float _1138;
-    _1138 = 0.0;
-    _1136 = 0.0;
+    float _1133;
+    float _1135;
+    _1135 = 0.0;
+    _1133 = 0.0;
     float _106;
     float _111;
     float _116;
     float _121;
-    int _1135 = 0;
-    float _1137 = params.gerstner_amplitude;
-    float _1139 = params.gerstner_frequency;
-    for (; _1135 < 8; _1139 = _121, _1138 = _111, _1137 = _116, _1136 = _106, _1135++)
+    int _1132 = 0;
+    float _1134 = params.gerstner_amplitude;
+    float _1136 = params.gerstner_frequency;
+    for (; _1132 < 8; _1136 = _121, _1135 = _111, _1134 = _116, _1133 = _106, _1132++)
     {
-        if (!(float(_1135) < _71))
+        if (!(float(_1132) < _71))
         {
             break;
         }
-        _106 = _1136 + _1137;
-        _111 = _1137 * _1139 + _1138;
-        _116 = _1137 * params.gerstner_amplitude_gain;
-        _121 = _1139 * params.gerstner_frequency_gain;
+        _106 = _1133 + _1134;
+        _111 = _1134 * _1136 + _1135;
+        _116 = _1134 * params.gerstner_amplitude_gain;
+        _121 = _1136 * params.gerstner_frequency_gain;
     }
     float _138 = _60.y;
     float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
     vec2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1138 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1136;
+    float _155 = 1.0 / (1.0 + (((_1135 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1133;
     float _162 = min(_138, -9.9999999747524270787835121154785e-07);
-    float _1143;
-    vec2 _1148;
-    _1148 = (params.eye_position + (_60 * max((_1136 - params.eye_position.y) / _162, 0.0))).xz;
-    _1143 = _1136;
+    float _1140;
+    vec2 _1145;
+    _1145 = (params.eye_position + (_60 * max((_1133 - params.eye_position.y) / _162, 0.0))).xz;
+    _1140 = _1133;
     vec2 _406;
-    float _679;
-    float _684;
-    float _694;
-    int _1142 = 0;
-    float _1176 = _1136;
-    float _1181 = _158;
+    float _676;
+    float _681;
+    float _691;
+    int _1139 = 0;
+    float _1173 = _1133;
+    float _1178 = _158;
     SPIRV_CROSS_LOOP
-    for (; _1142 < 9; _1181 = _684, _1176 = _679, _1148 = _406, _1143 = _694, _1142++)
+    for (; _1139 < 9; _1178 = _681, _1173 = _676, _1145 = _406, _1140 = _691, _1139++)
     {
-        float _207 = max((_1143 - params.eye_position.y) / _162, 0.0);
+        float _207 = max((_1140 - params.eye_position.y) / _162, 0.0);
         vec2 _217 = (params.eye_position + (_60 * _207)).xz;
         float _223 = (_68 * _207) / _142;
-        vec2 _1150;
-        vec3 _1151;
-        _1151 = vec3(0.0);
-        _1150 = vec2(0.0);
+        vec2 _1147;
+        vec3 _1148;
+        _1148 = vec3(0.0);
+        _1147 = vec2(0.0);
         float _323;
         float _327;
         vec2 _334;
         vec3 _348;
-        int _1145 = 0;
-        float _1146 = params.gerstner_frequency;
-        float _1149 = params.gerstner_amplitude;
-        for (; _1145 < 8; _1151 = _348, _1150 = _334, _1149 = _323, _1146 = _327, _1145++)
+        int _1142 = 0;
+        float _1143 = params.gerstner_frequency;
+        float _1146 = params.gerstner_amplitude;
+        for (; _1142 < 8; _1148 = _348, _1147 = _334, _1146 = _323, _1143 = _327, _1142++)
         {
-            float _242 = float(_1145);
+            float _242 = float(_1142);
             if (!(_242 < _71))
             {
                 break;
             }
             int _254 = clamp(int(_242), 0, 7);
-            float _282 = _1146 * dot(params.gerstner_wave_directions[_254], _1148) + (params.time * params.gerstner_wave_speeds[_254]);
-            float _296 = ((params.gerstner_steepness / (_71 * max(_1146 * _1149, 9.9999999747524270787835121154785e-07))) * _1149) * clamp((-(_1146 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _315 = (_296 * _1146) * sin(_282);
+            float _282 = _1143 * dot(params.gerstner_wave_directions[_254], _1145) + (params.time * params.gerstner_wave_speeds[_254]);
+            float _296 = ((params.gerstner_steepness / (_71 * max(_1143 * _1146, 9.9999999747524270787835121154785e-07))) * _1146) * clamp((-(_1143 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _315 = (_296 * _1143) * sin(_282);
             float _319 = _315 * params.gerstner_wave_directions[_254].x;
-            _323 = _1149 * params.gerstner_amplitude_gain;
-            _327 = _1146 * params.gerstner_frequency_gain;
-            _334 = _1150 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
-            _348 = _1151 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
+            _323 = _1146 * params.gerstner_amplitude_gain;
+            _327 = _1143 * params.gerstner_frequency_gain;
+            _334 = _1147 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
+            _348 = _1148 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
         }
-        float _354 = 1.0 - _1151.x;
-        float _359 = 1.0 - _1151.z;
-        float _363 = -_1151.y;
-        vec2 _369 = (_1148 + _1150) - _217;
+        float _354 = 1.0 - _1148.x;
+        float _359 = 1.0 - _1148.z;
+        float _363 = -_1148.y;
+        vec2 _369 = (_1145 + _1147) - _217;
         float _382 = _369.x;
         float _385 = _369.y;
-        _406 = _1148 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
-        vec3 _1158;
-        vec3 _1159;
-        vec3 _1160;
-        _1160 = vec3(0.0, 0.0, 1.0);
-        _1159 = vec3(1.0, 0.0, 0.0);
-        _1158 = vec3(0.0);
+        _406 = _1145 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
+        vec3 _1155;
+        vec3 _1156;
+        vec3 _1157;
+        _1157 = vec3(0.0, 0.0, 1.0);
+        _1156 = vec3(1.0, 0.0, 0.0);
+        _1155 = vec3(0.0);
         float _521;
         float _525;
         vec3 _537;
         vec3 _542;
         vec3 _547;
-        int _1155 = 0;
-        float _1156 = params.gerstner_frequency;
-        float _1157 = params.gerstner_amplitude;
-        for (; _1155 < 8; _1160 = _547, _1159 = _542, _1158 = _537, _1157 = _521, _1156 = _525, _1155++)
+        int _1152 = 0;
+        float _1153 = params.gerstner_frequency;
+        float _1154 = params.gerstner_amplitude;
+        for (; _1152 < 8; _1157 = _547, _1156 = _542, _1155 = _537, _1154 = _521, _1153 = _525, _1152++)
         {
-            float _427 = float(_1155);
+            float _427 = float(_1152);
             if (!(_427 < _71))
             {
                 break;
             }
             int _438 = clamp(int(_427), 0, 7);
-            float _447 = clamp((-(_1156 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _463 = _1156 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
-            float _477 = ((params.gerstner_steepness / (_71 * max(_1156 * _1157, 9.9999999747524270787835121154785e-07))) * _1157) * _447;
-            float _481 = _1157 * _447;
+            float _447 = clamp((-(_1153 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _463 = _1153 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
+            float _477 = ((params.gerstner_steepness / (_71 * max(_1153 * _1154, 9.9999999747524270787835121154785e-07))) * _1154) * _447;
+            float _481 = _1154 * _447;
             float _484 = sin(_463);
             float _487 = cos(_463);
             float _497 = _477 * _487;
-            float _504 = -((_477 * _1156) * _484);
-            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1156) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1157 * params.gerstner_amplitude_gain;
-            _525 = _1156 * params.gerstner_frequency_gain;
-            _537 = _1158 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1159 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1160 + (_517 * params.gerstner_wave_directions[_438].y);
+            float _504 = -((_477 * _1153) * _484);
+            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1153) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1154 * params.gerstner_amplitude_gain;
+            _525 = _1153 * params.gerstner_frequency_gain;
+            _537 = _1155 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1156 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1157 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        vec3 _553 = cross(_1160, _1159);
+        vec3 _553 = cross(_1157, _1156);
         float _557 = dot(_553, _553);
         vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
         bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
         vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
         vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1142);
+        float _600 = float(_1139);
         bool _601 = _600 < 1.0;
-        float _608 = (_1158.y + dot(_585, _217 - (_406 + _1158.xz))) - _1143;
-        float _621 = (-dot(_585, _146)) / _142;
-        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0) * _608 + _1143;
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1143 : _1176;
-        float _647 = _637 ? _1181 : _1143;
-        _679 = _601 ? _1143 : _642;
-        _684 = _601 ? _1181 : _647;
-        _694 = (_600 < 8.0) ? (_601 ? (_155 * _608 + _1143) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1143;
+        float _605 = (_1155.y + dot(_585, _217 - (_406 + _1155.xz))) - _1140;
+        float _618 = (-dot(_585, _146)) / _142;
+        float _631 = clamp(1.0 / max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0) * _605 + _1140;
+        bool _634 = _605 < 0.0;
+        float _639 = _634 ? _1140 : _1173;
+        float _644 = _634 ? _1178 : _1140;
+        _676 = _601 ? _1140 : _639;
+        _681 = _601 ? _1178 : _644;
+        _691 = (_600 < 8.0) ? (_601 ? (_155 * _605 + _1140) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1140;
     }
-    float _708 = max((_1143 - params.eye_position.y) / _162, 0.0);
-    vec3 _715 = params.eye_position + (_60 * _708);
-    float _723 = _33.y;
-    float _726 = _715.y;
-    float _731 = max(_726 - _723, 0.0);
-    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    vec3 _776 = _775.xyz;
-    float _780 = clamp(max(_53 - _708, 0.0), 0.0, 30000.0);
-    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
-    float _841 = _837.w;
-    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
-    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _867 = bvec2(_844);
-    float _871 = float(_844);
-    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
-    vec3 _1144;
-    if (_871 > 0.5)
+    float _705 = max((_1140 - params.eye_position.y) / _162, 0.0);
+    vec3 _712 = params.eye_position + (_60 * _705);
+    float _720 = _33.y;
+    float _723 = _712.y;
+    float _728 = max(_723 - _720, 0.0);
+    vec4 _772 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    vec3 _773 = _772.xyz;
+    float _777 = clamp(max(_53 - _705, 0.0), 0.0, 30000.0);
+    vec4 _834 = (((params.reflection_view_proj_c0 * _712.x) + (params.reflection_view_proj_c1 * _723)) + (params.reflection_view_proj_c2 * _712.z)) + params.reflection_view_proj_c3;
+    float _838 = _834.w;
+    bool _841 = _838 > 9.9999997473787516355514526367188e-05;
+    vec2 _858 = clamp((((_834.xy / vec2(_838)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _864 = bvec2(_841);
+    float _868 = float(_841);
+    vec4 _884 = texture(reflection_map, vec3(vec2(_864.x ? _858.x : vec2(0.5).x, _864.y ? _858.y : vec2(0.5).y), _868).xy);
+    vec3 _1141;
+    if (_868 > 0.5)
     {
-        _1144 = _887.xyz;
+        _1141 = _884.xyz;
     }
     else
     {
-        _1144 = params.sky_color;
+        _1141 = params.sky_color;
     }
-    float _906 = clamp((-_60).y, 0.0, 1.0);
-    float _914 = params.ior_air / params.ior_water;
-    float _918 = _914 * _914;
-    float _922 = (-_906) * _906 + 1.0;
-    float _928 = sqrt(max((-_918) * _922 + 1.0, 0.0));
-    float _933 = params.ior_water * _928;
-    float _947 = (params.ior_air * _906 + (-_933)) / max(params.ior_air * _906 + _933, 1.0000000031710768509710513471353e-30);
-    float _952 = params.ior_air * _928;
-    float _966 = (params.ior_water * _906 + (-_952)) / max(params.ior_water * _906 + _952, 1.0000000031710768509710513471353e-30);
-    vec2 _991 = _715.xz;
-    float _1052 = _731 - params.foam_existence.x;
-    float _1057 = params.foam_existence.y - params.foam_existence.x;
-    vec3 _1103 = mix(_776, mix(mix(mix(params.scatter_color, _776 * exp((-params.absorb_coefficients) * (_731 + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _1144, vec3(((_918 * _922) >= 1.0) ? 1.0 : (0.5 * (_947 * _947 + (_966 * _966))))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_991 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_991)), length(dFdy(_991))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1052 < 0.0) ? 1.0 : (1.0 - ((_1052 >= _1057) ? 1.0 : clamp(_1052 / max(_1057, 5.9604644775390625e-08), 0.0, 1.0))))), vec3(clamp(_731 * params.shore_hardness, 0.0, 1.0)));
-    bvec3 _1108 = bvec3((_723 < _726) && (_138 < 0.0));
-    out_color = vec4(vec3(_1108.x ? _1103.x : _26.x, _1108.y ? _1103.y : _26.y, _1108.z ? _1103.z : _26.z), 1.0);
+    float _903 = clamp((-_60).y, 0.0, 1.0);
+    float _911 = params.ior_air / params.ior_water;
+    float _915 = _911 * _911;
+    float _919 = (-_903) * _903 + 1.0;
+    float _925 = sqrt(max((-_915) * _919 + 1.0, 0.0));
+    float _930 = params.ior_water * _925;
+    float _944 = (params.ior_air * _903 + (-_930)) / max(params.ior_air * _903 + _930, 1.0000000031710768509710513471353e-30);
+    float _949 = params.ior_air * _925;
+    float _963 = (params.ior_water * _903 + (-_949)) / max(params.ior_water * _903 + _949, 1.0000000031710768509710513471353e-30);
+    vec2 _988 = _712.xz;
+    float _1049 = _728 - params.foam_existence.x;
+    float _1054 = params.foam_existence.y - params.foam_existence.x;
+    vec3 _1100 = mix(_773, mix(mix(mix(params.scatter_color, _773 * exp((-params.absorb_coefficients) * (_728 + _777)), vec3(exp((-params.scatter_coefficient) * _777))) * params.incident_light, _1141, vec3(((_915 * _919) >= 1.0) ? 1.0 : (0.5 * (_944 * _944 + (_963 * _963))))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_988 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_988)), length(dFdy(_988))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1049 < 0.0) ? 1.0 : (1.0 - ((_1049 >= _1054) ? 1.0 : clamp(_1049 / max(_1054, 5.9604644775390625e-08), 0.0, 1.0))))), vec3(clamp(_728 * params.shore_hardness, 0.0, 1.0)));
+    bvec3 _1105 = bvec3((_720 < _723) && (_138 < 0.0));
+    out_color = vec4(vec3(_1105.x ? _1100.x : _26.x, _1105.y ? _1100.y : _26.y, _1105.z ? _1100.z : _26.z), 1.0);
 }
 

@@ -70,173 +70,173 @@ void main()
     vec3 _66 = dFdy(_60);
     float _68 = max(length(_63), length(_66));
     float _71 = floor(gerstner_wave_count);
-    float _1094;
-    float _1096;
-    _1096 = 0.0;
-    _1094 = 0.0;
+    float _1091;
+    float _1093;
+    _1093 = 0.0;
+    _1091 = 0.0;
     float _106;
     float _111;
     float _116;
     float _121;
-    int _1093 = 0;
-    float _1095 = params.gerstner_amplitude;
-    float _1097 = params.gerstner_frequency;
-    for (; _1093 < 8; _1097 = _121, _1096 = _111, _1095 = _116, _1094 = _106, _1093++)
+    int _1090 = 0;
+    float _1092 = params.gerstner_amplitude;
+    float _1094 = params.gerstner_frequency;
+    for (; _1090 < 8; _1094 = _121, _1093 = _111, _1092 = _116, _1091 = _106, _1090++)
     {
-        if (!(float(_1093) < _71))
+        if (!(float(_1090) < _71))
         {
             break;
         }
-        _106 = _1094 + _1095;
-        _111 = _1095 * _1097 + _1096;
-        _116 = _1095 * params.gerstner_amplitude_gain;
-        _121 = _1097 * params.gerstner_frequency_gain;
+        _106 = _1091 + _1092;
+        _111 = _1092 * _1094 + _1093;
+        _116 = _1092 * params.gerstner_amplitude_gain;
+        _121 = _1094 * params.gerstner_frequency_gain;
     }
     float _138 = _60.y;
     float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
     vec2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1096 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1094;
+    float _155 = 1.0 / (1.0 + (((_1093 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1091;
     float _162 = min(_138, -9.9999999747524270787835121154785e-07);
-    float _1101;
-    vec2 _1106;
-    _1106 = (params.eye_position + (_60 * max((_1094 - params.eye_position.y) / _162, 0.0))).xz;
-    _1101 = _1094;
+    float _1098;
+    vec2 _1103;
+    _1103 = (params.eye_position + (_60 * max((_1091 - params.eye_position.y) / _162, 0.0))).xz;
+    _1098 = _1091;
     vec2 _406;
-    float _679;
-    float _684;
-    float _694;
-    int _1100 = 0;
-    float _1134 = _1094;
-    float _1139 = _158;
+    float _676;
+    float _681;
+    float _691;
+    int _1097 = 0;
+    float _1131 = _1091;
+    float _1136 = _158;
     SPIRV_CROSS_LOOP
-    for (; _1100 < 9; _1139 = _684, _1134 = _679, _1106 = _406, _1101 = _694, _1100++)
+    for (; _1097 < 9; _1136 = _681, _1131 = _676, _1103 = _406, _1098 = _691, _1097++)
     {
-        float _207 = max((_1101 - params.eye_position.y) / _162, 0.0);
+        float _207 = max((_1098 - params.eye_position.y) / _162, 0.0);
         vec2 _217 = (params.eye_position + (_60 * _207)).xz;
         float _223 = (_68 * _207) / _142;
-        vec2 _1108;
-        vec3 _1109;
-        _1109 = vec3(0.0);
-        _1108 = vec2(0.0);
+        vec2 _1105;
+        vec3 _1106;
+        _1106 = vec3(0.0);
+        _1105 = vec2(0.0);
         float _323;
         float _327;
         vec2 _334;
         vec3 _348;
-        int _1103 = 0;
-        float _1104 = params.gerstner_frequency;
-        float _1107 = params.gerstner_amplitude;
-        for (; _1103 < 8; _1109 = _348, _1108 = _334, _1107 = _323, _1104 = _327, _1103++)
+        int _1100 = 0;
+        float _1101 = params.gerstner_frequency;
+        float _1104 = params.gerstner_amplitude;
+        for (; _1100 < 8; _1106 = _348, _1105 = _334, _1104 = _323, _1101 = _327, _1100++)
         {
-            float _242 = float(_1103);
+            float _242 = float(_1100);
             if (!(_242 < _71))
             {
                 break;
             }
             int _254 = clamp(int(_242), 0, 7);
-            float _282 = _1104 * dot(params.gerstner_wave_directions[_254], _1106) + (params.time * params.gerstner_wave_speeds[_254]);
-            float _296 = ((params.gerstner_steepness / (_71 * max(_1104 * _1107, 9.9999999747524270787835121154785e-07))) * _1107) * clamp((-(_1104 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _315 = (_296 * _1104) * sin(_282);
+            float _282 = _1101 * dot(params.gerstner_wave_directions[_254], _1103) + (params.time * params.gerstner_wave_speeds[_254]);
+            float _296 = ((params.gerstner_steepness / (_71 * max(_1101 * _1104, 9.9999999747524270787835121154785e-07))) * _1104) * clamp((-(_1101 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _315 = (_296 * _1101) * sin(_282);
             float _319 = _315 * params.gerstner_wave_directions[_254].x;
-            _323 = _1107 * params.gerstner_amplitude_gain;
-            _327 = _1104 * params.gerstner_frequency_gain;
-            _334 = _1108 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
-            _348 = _1109 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
+            _323 = _1104 * params.gerstner_amplitude_gain;
+            _327 = _1101 * params.gerstner_frequency_gain;
+            _334 = _1105 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
+            _348 = _1106 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
         }
-        float _354 = 1.0 - _1109.x;
-        float _359 = 1.0 - _1109.z;
-        float _363 = -_1109.y;
-        vec2 _369 = (_1106 + _1108) - _217;
+        float _354 = 1.0 - _1106.x;
+        float _359 = 1.0 - _1106.z;
+        float _363 = -_1106.y;
+        vec2 _369 = (_1103 + _1105) - _217;
         float _382 = _369.x;
         float _385 = _369.y;
-        _406 = _1106 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
-        vec3 _1116;
-        vec3 _1117;
-        vec3 _1118;
-        _1118 = vec3(0.0, 0.0, 1.0);
-        _1117 = vec3(1.0, 0.0, 0.0);
-        _1116 = vec3(0.0);
+        _406 = _1103 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
+        vec3 _1113;
+        vec3 _1114;
+        vec3 _1115;
+        _1115 = vec3(0.0, 0.0, 1.0);
+        _1114 = vec3(1.0, 0.0, 0.0);
+        _1113 = vec3(0.0);
         float _521;
         float _525;
         vec3 _537;
         vec3 _542;
         vec3 _547;
-        int _1113 = 0;
-        float _1114 = params.gerstner_frequency;
-        float _1115 = params.gerstner_amplitude;
-        for (; _1113 < 8; _1118 = _547, _1117 = _542, _1116 = _537, _1115 = _521, _1114 = _525, _1113++)
+        int _1110 = 0;
+        float _1111 = params.gerstner_frequency;
+        float _1112 = params.gerstner_amplitude;
+        for (; _1110 < 8; _1115 = _547, _1114 = _542, _1113 = _537, _1112 = _521, _1111 = _525, _1110++)
         {
-            float _427 = float(_1113);
+            float _427 = float(_1110);
             if (!(_427 < _71))
             {
                 break;
             }
             int _438 = clamp(int(_427), 0, 7);
-            float _447 = clamp((-(_1114 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _463 = _1114 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
-            float _477 = ((params.gerstner_steepness / (_71 * max(_1114 * _1115, 9.9999999747524270787835121154785e-07))) * _1115) * _447;
-            float _481 = _1115 * _447;
+            float _447 = clamp((-(_1111 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _463 = _1111 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
+            float _477 = ((params.gerstner_steepness / (_71 * max(_1111 * _1112, 9.9999999747524270787835121154785e-07))) * _1112) * _447;
+            float _481 = _1112 * _447;
             float _484 = sin(_463);
             float _487 = cos(_463);
             float _497 = _477 * _487;
-            float _504 = -((_477 * _1114) * _484);
-            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1114) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1115 * params.gerstner_amplitude_gain;
-            _525 = _1114 * params.gerstner_frequency_gain;
-            _537 = _1116 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1117 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1118 + (_517 * params.gerstner_wave_directions[_438].y);
+            float _504 = -((_477 * _1111) * _484);
+            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1111) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1112 * params.gerstner_amplitude_gain;
+            _525 = _1111 * params.gerstner_frequency_gain;
+            _537 = _1113 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1114 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1115 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        vec3 _553 = cross(_1118, _1117);
+        vec3 _553 = cross(_1115, _1114);
         float _557 = dot(_553, _553);
         vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
         bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
         vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
         vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1100);
+        float _600 = float(_1097);
         bool _601 = _600 < 1.0;
-        float _608 = (_1116.y + dot(_585, _217 - (_406 + _1116.xz))) - _1101;
-        float _621 = (-dot(_585, _146)) / _142;
-        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0) * _608 + _1101;
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1101 : _1134;
-        float _647 = _637 ? _1139 : _1101;
-        _679 = _601 ? _1101 : _642;
-        _684 = _601 ? _1139 : _647;
-        _694 = (_600 < 8.0) ? (_601 ? (_155 * _608 + _1101) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1101;
+        float _605 = (_1113.y + dot(_585, _217 - (_406 + _1113.xz))) - _1098;
+        float _618 = (-dot(_585, _146)) / _142;
+        float _631 = clamp(1.0 / max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0) * _605 + _1098;
+        bool _634 = _605 < 0.0;
+        float _639 = _634 ? _1098 : _1131;
+        float _644 = _634 ? _1136 : _1098;
+        _676 = _601 ? _1098 : _639;
+        _681 = _601 ? _1136 : _644;
+        _691 = (_600 < 8.0) ? (_601 ? (_155 * _605 + _1098) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1098;
     }
-    float _708 = max((_1101 - params.eye_position.y) / _162, 0.0);
-    vec3 _715 = params.eye_position + (_60 * _708);
-    float _723 = _33.y;
-    float _726 = _715.y;
-    float _731 = max(_726 - _723, 0.0);
-    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    vec3 _776 = _775.xyz;
-    float _780 = clamp(max(_53 - _708, 0.0), 0.0, 30000.0);
-    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
-    float _841 = _837.w;
-    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
-    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _867 = bvec2(_844);
-    float _871 = float(_844);
-    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
-    vec3 _1102;
-    if (_871 > 0.5)
+    float _705 = max((_1098 - params.eye_position.y) / _162, 0.0);
+    vec3 _712 = params.eye_position + (_60 * _705);
+    float _720 = _33.y;
+    float _723 = _712.y;
+    float _728 = max(_723 - _720, 0.0);
+    vec4 _772 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    vec3 _773 = _772.xyz;
+    float _777 = clamp(max(_53 - _705, 0.0), 0.0, 30000.0);
+    vec4 _834 = (((params.reflection_view_proj_c0 * _712.x) + (params.reflection_view_proj_c1 * _723)) + (params.reflection_view_proj_c2 * _712.z)) + params.reflection_view_proj_c3;
+    float _838 = _834.w;
+    bool _841 = _838 > 9.9999997473787516355514526367188e-05;
+    vec2 _858 = clamp((((_834.xy / vec2(_838)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _864 = bvec2(_841);
+    float _868 = float(_841);
+    vec4 _884 = texture(reflection_map, vec3(vec2(_864.x ? _858.x : vec2(0.5).x, _864.y ? _858.y : vec2(0.5).y), _868).xy);
+    vec3 _1099;
+    if (_868 > 0.5)
     {
-        _1102 = _887.xyz;
+        _1099 = _884.xyz;
     }
     else
     {
-        _1102 = params.sky_color;
+        _1099 = params.sky_color;
     }
-    float _917 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _925 = 1.0 - clamp((-_60).y, 0.0, 1.0);
-    float _929 = _925 * _925;
-    vec2 _949 = _715.xz;
-    float _1010 = _731 - params.foam_existence.x;
-    float _1015 = params.foam_existence.y - params.foam_existence.x;
-    vec3 _1061 = mix(_776, mix(mix(mix(params.scatter_color, _776 * exp((-params.absorb_coefficients) * (_731 + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _1102, vec3(_917 * _917 + (((-_917) * _917 + 1.0) * ((_929 * _929) * _925)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_949 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_949)), length(dFdy(_949))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1010 < 0.0) ? 1.0 : (1.0 - ((_1010 >= _1015) ? 1.0 : clamp(_1010 / max(_1015, 5.9604644775390625e-08), 0.0, 1.0))))), vec3(clamp(_731 * params.shore_hardness, 0.0, 1.0)));
-    bvec3 _1066 = bvec3((_723 < _726) && (_138 < 0.0));
-    out_color = vec4(vec3(_1066.x ? _1061.x : _26.x, _1066.y ? _1061.y : _26.y, _1066.z ? _1061.z : _26.z), 1.0);
+    float _914 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _922 = 1.0 - clamp((-_60).y, 0.0, 1.0);
+    float _926 = _922 * _922;
+    vec2 _946 = _712.xz;
+    float _1007 = _728 - params.foam_existence.x;
+    float _1012 = params.foam_existence.y - params.foam_existence.x;
+    vec3 _1058 = mix(_773, mix(mix(mix(params.scatter_color, _773 * exp((-params.absorb_coefficients) * (_728 + _777)), vec3(exp((-params.scatter_coefficient) * _777))) * params.incident_light, _1099, vec3(_914 * _914 + (((-_914) * _914 + 1.0) * ((_926 * _926) * _922)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_946 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_946)), length(dFdy(_946))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1007 < 0.0) ? 1.0 : (1.0 - ((_1007 >= _1012) ? 1.0 : clamp(_1007 / max(_1012, 5.9604644775390625e-08), 0.0, 1.0))))), vec3(clamp(_728 * params.shore_hardness, 0.0, 1.0)));
+    bvec3 _1063 = bvec3((_720 < _723) && (_138 < 0.0));
+    out_color = vec4(vec3(_1063.x ? _1058.x : _26.x, _1063.y ? _1058.y : _26.y, _1063.z ? _1058.z : _26.z), 1.0);
 }
 

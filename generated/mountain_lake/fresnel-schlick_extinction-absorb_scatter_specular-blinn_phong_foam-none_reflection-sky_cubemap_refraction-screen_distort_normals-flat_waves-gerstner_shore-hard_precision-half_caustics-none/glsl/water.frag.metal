@@ -7,7 +7,6 @@ using namespace metal;
 struct WaterParams
 {
     float4 gerstner_wave_directions[8];
-    float4 gerstner_wave_speeds[8];
     packed_float3 eye_position;
     float gerstner_amplitude;
     packed_float3 sun_direction;
@@ -47,167 +46,167 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _49 = _33.xyz - float3(params.eye_position);
-    float _53 = length(_49);
-    float3 _60 = _49 / float3(fast::max(_53, 9.9999999747524270787835121154785e-07));
-    float3 _63 = dfdx(_60);
-    float3 _66 = dfdy(_60);
-    float _68 = fast::max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
-    float _1075;
-    float _1077;
-    _1077 = 0.0;
-    _1075 = 0.0;
-    float _106;
-    float _111;
-    float _116;
-    float _121;
-    int _1074 = 0;
-    float _1076 = params.gerstner_amplitude;
-    float _1078 = params.gerstner_frequency;
-    for (; _1074 < 8; _1078 = _121, _1077 = _111, _1076 = _116, _1075 = _106, _1074++)
+    float3 _48 = _33.xyz - float3(params.eye_position);
+    float _52 = length(_48);
+    float3 _59 = _48 / float3(fast::max(_52, 9.9999999747524270787835121154785e-07));
+    float3 _62 = dfdx(_59);
+    float3 _65 = dfdy(_59);
+    float _67 = fast::max(length(_62), length(_65));
+    float _70 = floor(gerstner_wave_count);
+    float _1054;
+    float _1056;
+    _1056 = 0.0;
+    _1054 = 0.0;
+    float _105;
+    float _110;
+    float _115;
+    float _119;
+    int _1053 = 0;
+    float _1055 = params.gerstner_amplitude;
+    float _1057 = params.gerstner_frequency;
+    for (; _1053 < 8; _1057 = _119, _1056 = _110, _1055 = _115, _1054 = _105, _1053++)
     {
-        if (!(float(_1074) < _71))
+        if (!(float(_1053) < _70))
         {
             break;
         }
-        _106 = _1075 + _1076;
-        _111 = fma(_1076, _1078, _1077);
-        _116 = _1076 * params.gerstner_amplitude_gain;
-        _121 = _1078 * params.gerstner_frequency_gain;
+        _105 = _1054 + _1055;
+        _110 = fma(_1055, _1057, _1056);
+        _115 = _1055 * params.gerstner_amplitude_gain;
+        _119 = _1057 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
-    float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1077 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1075;
-    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _1082;
-    float2 _1086;
-    _1086 = (float3(params.eye_position) + (_60 * fast::max((_1075 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _1082 = _1075;
-    float2 _403;
-    float _674;
-    float _679;
-    float _689;
-    int _1081 = 0;
-    float _1114 = _1075;
-    float _1119 = _158;
-    for (; _1081 < 9; _1119 = _679, _1114 = _674, _1086 = _403, _1082 = _689, _1081++)
+    float _135 = _59.y;
+    float _139 = fast::max(-_135, 9.9999999747524270787835121154785e-07);
+    float2 _143 = _59.xz;
+    float _152 = 1.0 / (1.0 + (((_1056 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_143)) / _139));
+    float _155 = -_1054;
+    float _159 = fast::min(_135, -9.9999999747524270787835121154785e-07);
+    float _1061;
+    float2 _1065;
+    _1065 = (float3(params.eye_position) + (_59 * fast::max((_1054 - params.eye_position[1u]) / _159, 0.0))).xz;
+    _1061 = _1054;
+    float2 _394;
+    float _654;
+    float _659;
+    float _669;
+    int _1060 = 0;
+    float _1093 = _1054;
+    float _1098 = _155;
+    for (; _1060 < 9; _1098 = _659, _1093 = _654, _1065 = _394, _1061 = _669, _1060++)
     {
-        float _207 = fast::max((_1082 - params.eye_position[1u]) / _162, 0.0);
-        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
-        float2 _1088;
-        float3 _1089;
-        _1089 = float3(0.0);
-        _1088 = float2(0.0);
-        float _320;
-        float _324;
-        float2 _331;
-        float3 _345;
-        int _1083 = 0;
-        float _1084 = params.gerstner_frequency;
-        float _1087 = params.gerstner_amplitude;
-        for (; _1083 < 8; _1089 = _345, _1088 = _331, _1087 = _320, _1084 = _324, _1083++)
+        float _205 = fast::max((_1061 - params.eye_position[1u]) / _159, 0.0);
+        float2 _215 = (float3(params.eye_position) + (_59 * _205)).xz;
+        float _221 = (_67 * _205) / _139;
+        float2 _1067;
+        float3 _1068;
+        _1068 = float3(0.0);
+        _1067 = float2(0.0);
+        float _311;
+        float _315;
+        float2 _322;
+        float3 _336;
+        int _1062 = 0;
+        float _1063 = params.gerstner_frequency;
+        float _1066 = params.gerstner_amplitude;
+        for (; _1062 < 8; _1068 = _336, _1067 = _322, _1066 = _311, _1063 = _315, _1062++)
         {
-            float _242 = float(_1083);
-            if (!(_242 < _71))
+            float _240 = float(_1062);
+            if (!(_240 < _70))
             {
                 break;
             }
-            int _253 = clamp(int(_242), 0, 7);
-            float _271 = _1084 * dot(params.gerstner_wave_directions[_253].xy, _1086);
-            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_1084 * _1087, 9.9999999747524270787835121154785e-07))) * _1087) * fast::clamp(fma(-(_1084 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _312 = (_293 * _1084) * sin(_271);
-            float _316 = _312 * params.gerstner_wave_directions[_253].x;
-            _320 = _1087 * params.gerstner_amplitude_gain;
-            _324 = _1084 * params.gerstner_frequency_gain;
-            _331 = _1088 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
-            _345 = _1089 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            int _252 = clamp(int(_240), 0, 7);
+            float _270 = _1063 * dot(params.gerstner_wave_directions[_252].xy, _1065);
+            float _284 = ((params.gerstner_steepness / (_70 * fast::max(_1063 * _1066, 9.9999999747524270787835121154785e-07))) * _1066) * fast::clamp(fma(-(_1063 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _303 = (_284 * _1063) * sin(_270);
+            float _307 = _303 * params.gerstner_wave_directions[_252].x;
+            _311 = _1066 * params.gerstner_amplitude_gain;
+            _315 = _1063 * params.gerstner_frequency_gain;
+            _322 = _1067 + (params.gerstner_wave_directions[_252].xy * (_284 * cos(_270)));
+            _336 = _1068 + float3(_307 * params.gerstner_wave_directions[_252].x, _307 * params.gerstner_wave_directions[_252].y, (_303 * params.gerstner_wave_directions[_252].y) * params.gerstner_wave_directions[_252].y);
         }
-        float _351 = 1.0 - _1089.x;
-        float _356 = 1.0 - _1089.z;
-        float _360 = -_1089.y;
-        float2 _366 = (_1086 + _1088) - _217;
-        float _379 = _366.x;
-        float _382 = _366.y;
-        _403 = _1086 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
-        float3 _1096;
-        float3 _1097;
-        float3 _1098;
-        _1098 = float3(0.0, 0.0, 1.0);
-        _1097 = float3(1.0, 0.0, 0.0);
-        _1096 = float3(0.0);
-        float _516;
-        float _520;
-        float3 _532;
-        float3 _537;
-        float3 _542;
-        int _1093 = 0;
-        float _1094 = params.gerstner_frequency;
-        float _1095 = params.gerstner_amplitude;
-        for (; _1093 < 8; _1098 = _542, _1097 = _537, _1096 = _532, _1095 = _516, _1094 = _520, _1093++)
+        float _342 = 1.0 - _1068.x;
+        float _347 = 1.0 - _1068.z;
+        float _351 = -_1068.y;
+        float2 _357 = (_1065 + _1067) - _215;
+        float _370 = _357.x;
+        float _373 = _357.y;
+        _394 = _1065 - (float2(fma(_347, _370, -(_351 * _373)), fma(_342, _373, -(_351 * _370))) / float2(fast::max(fma(_342, _347, -(_351 * _351)), 0.039999999105930328369140625)));
+        float3 _1075;
+        float3 _1076;
+        float3 _1077;
+        _1077 = float3(0.0, 0.0, 1.0);
+        _1076 = float3(1.0, 0.0, 0.0);
+        _1075 = float3(0.0);
+        float _499;
+        float _503;
+        float3 _515;
+        float3 _520;
+        float3 _525;
+        int _1072 = 0;
+        float _1073 = params.gerstner_frequency;
+        float _1074 = params.gerstner_amplitude;
+        for (; _1072 < 8; _1077 = _525, _1076 = _520, _1075 = _515, _1074 = _499, _1073 = _503, _1072++)
         {
-            float _424 = float(_1093);
-            if (!(_424 < _71))
+            float _415 = float(_1072);
+            if (!(_415 < _70))
             {
                 break;
             }
-            int _435 = clamp(int(_424), 0, 7);
-            float _444 = fast::clamp(fma(-(_1094 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _450 = _1094 * dot(params.gerstner_wave_directions[_435].xy, _403);
-            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1094 * _1095, 9.9999999747524270787835121154785e-07))) * _1095) * _444;
-            float _476 = _1095 * _444;
-            float _479 = sin(_450);
-            float _482 = cos(_450);
-            float _492 = _472 * _482;
-            float _499 = -((_472 * _1094) * _479);
-            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1094) * _482, _499 * params.gerstner_wave_directions[_435].y);
-            _516 = _1095 * params.gerstner_amplitude_gain;
-            _520 = _1094 * params.gerstner_frequency_gain;
-            _532 = _1096 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
-            _537 = _1097 + (_512 * params.gerstner_wave_directions[_435].x);
-            _542 = _1098 + (_512 * params.gerstner_wave_directions[_435].y);
+            int _426 = clamp(int(_415), 0, 7);
+            float _435 = fast::clamp(fma(-(_1073 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _441 = _1073 * dot(params.gerstner_wave_directions[_426].xy, _394);
+            float _455 = ((params.gerstner_steepness / (_70 * fast::max(_1073 * _1074, 9.9999999747524270787835121154785e-07))) * _1074) * _435;
+            float _459 = _1074 * _435;
+            float _462 = sin(_441);
+            float _465 = cos(_441);
+            float _475 = _455 * _465;
+            float _482 = -((_455 * _1073) * _462);
+            float3 _495 = float3(_482 * params.gerstner_wave_directions[_426].x, (_459 * _1073) * _465, _482 * params.gerstner_wave_directions[_426].y);
+            _499 = _1074 * params.gerstner_amplitude_gain;
+            _503 = _1073 * params.gerstner_frequency_gain;
+            _515 = _1075 + float3(_475 * params.gerstner_wave_directions[_426].x, _459 * _462, _475 * params.gerstner_wave_directions[_426].y);
+            _520 = _1076 + (_495 * params.gerstner_wave_directions[_426].x);
+            _525 = _1077 + (_495 * params.gerstner_wave_directions[_426].y);
         }
-        float3 _548 = cross(_1098, _1097);
-        float _552 = dot(_548, _548);
-        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
-        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
-        float _595 = float(_1081);
-        bool _596 = _595 < 1.0;
-        float _603 = (_1096.y + dot(_580, _217 - (_403 + _1096.xz))) - _1082;
-        float _616 = (-dot(_580, _146)) / _142;
-        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _1082);
-        bool _632 = _603 < 0.0;
-        float _637 = _632 ? _1082 : _1114;
-        float _642 = _632 ? _1119 : _1082;
-        _674 = _596 ? _1082 : _637;
-        _679 = _596 ? _1119 : _642;
-        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _1082) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1082;
+        float3 _531 = cross(_1077, _1076);
+        float _535 = dot(_531, _531);
+        float3 _553 = select(float3(0.0, 1.0, 0.0), _531 * rsqrt(fast::max(_535, 1.0000000031710768509710513471353e-30)), bool3(_535 > 1.0000000031710768509710513471353e-30));
+        float2 _563 = (-_553.xz) / float2(fast::max(_553.y, 9.9999997473787516355514526367188e-05));
+        float _578 = float(_1060);
+        bool _579 = _578 < 1.0;
+        float _583 = (_1075.y + dot(_563, _215 - (_394 + _1075.xz))) - _1061;
+        float _596 = (-dot(_563, _143)) / _139;
+        float _609 = fma(fast::clamp(1.0 / fast::max(1.0 - _596, 9.9999999747524270787835121154785e-07), _152, 1.0), _583, _1061);
+        bool _612 = _583 < 0.0;
+        float _617 = _612 ? _1061 : _1093;
+        float _622 = _612 ? _1098 : _1061;
+        _654 = _579 ? _1061 : _617;
+        _659 = _579 ? _1098 : _622;
+        _669 = (_578 < 8.0) ? (_579 ? fma(_152, _583, _1061) : ((((_609 < _622) || (_609 > _617)) || (_596 >= 1.0)) ? (0.5 * (_622 + _617)) : _609)) : _1061;
     }
-    float _703 = fast::max((_1082 - params.eye_position[1u]) / _162, 0.0);
-    float3 _710 = float3(params.eye_position) + (_60 * _703);
-    float _718 = _33.y;
-    float _721 = _710.y;
-    float3 _736 = -_60;
-    float _777 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
-    float3 _811 = abs(_60);
-    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
-    float _828 = dot(_824, _824);
-    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _850 = _847.y;
-    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
-    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _930 = 1.0 - fast::clamp(_736.y, 0.0, 1.0);
-    float _934 = _930 * _930;
-    float3 _950 = -float3(params.sun_direction);
-    float3 _954 = _950 + _736;
-    float _966 = fast::max(fast::max(abs(_954.x), abs(_954.y)), abs(_954.z));
-    float3 _973 = _954 / float3(fast::max(_966, 5.9604644775390625e-08));
-    float _992 = fast::clamp(select(float3(0.0), _973 / float3(fast::max(length(_973), 1.0)), bool3(_966 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1041 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_721 - _718, 0.0) + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(fma(_922, _922, fma(-_922, _922, 1.0) * ((_934 * _934) * _930)))) + (float3(params.sun_color) * ((_950.y > 0.0) ? ((_992 > 6.103515625e-05) ? pow(fast::max(_992, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), bool3((_718 < _721) && (_138 < 0.0)));
-    out.out_color = float4(_1041, 1.0);
+    float _683 = fast::max((_1061 - params.eye_position[1u]) / _159, 0.0);
+    float3 _690 = float3(params.eye_position) + (_59 * _683);
+    float _698 = _33.y;
+    float _701 = _690.y;
+    float3 _716 = -_59;
+    float _757 = fast::clamp(fast::max(_52 - _683, 0.0), 0.0, 30000.0);
+    float3 _790 = abs(_59);
+    float3 _803 = _59 / float3(fast::max(fast::max(fast::max(_790.x, _790.y), _790.z), 1.0000000031710768509710513471353e-30));
+    float _807 = dot(_803, _803);
+    float3 _826 = reflect(select(float3(0.0, -1.0, 0.0), _803 * rsqrt(fast::max(_807, 1.0000000031710768509710513471353e-30)), bool3(_807 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _829 = _826.y;
+    float _855 = smoothstep(0.0, params.reflection_horizon_band, -_829);
+    float _901 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _909 = 1.0 - fast::clamp(_716.y, 0.0, 1.0);
+    float _913 = _909 * _909;
+    float3 _929 = -float3(params.sun_direction);
+    float3 _933 = _929 + _716;
+    float _945 = fast::max(fast::max(abs(_933.x), abs(_933.y)), abs(_933.z));
+    float3 _952 = _933 / float3(fast::max(_945, 5.9604644775390625e-08));
+    float _971 = fast::clamp(select(float3(0.0), _952 / float3(fast::max(length(_952), 1.0)), bool3(_945 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1020 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_701 - _698, 0.0) + _757)), float3(exp((-params.scatter_coefficient) * _757))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_826.x, abs(_829), _826.z), bool3(dot(_826, _826) > 9.9999999600419720025001879548654e-13)), _855).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_855)), float3(fma(_901, _901, fma(-_901, _901, 1.0) * ((_913 * _913) * _909)))) + (float3(params.sun_color) * ((_929.y > 0.0) ? ((_971 > 6.103515625e-05) ? pow(fast::max(_971, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), bool3((_698 < _701) && (_135 < 0.0)));
+    out.out_color = float4(_1020, 1.0);
     return out;
 }
 

@@ -7,7 +7,6 @@ using namespace metal;
 struct WaterParams
 {
     float4 gerstner_wave_directions[8];
-    float4 gerstner_wave_speeds[8];
     packed_float3 eye_position;
     float gerstner_amplitude;
     packed_float3 sun_direction;
@@ -53,175 +52,175 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _49 = _33.xyz - float3(params.eye_position);
-    float _53 = length(_49);
-    float3 _60 = _49 / float3(fast::max(_53, 9.9999999747524270787835121154785e-07));
-    float3 _63 = dfdx(_60);
-    float3 _66 = dfdy(_60);
-    float _68 = fast::max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
-    float _1236;
-    float _1238;
-    _1238 = 0.0;
-    _1236 = 0.0;
-    float _106;
-    float _111;
-    float _116;
-    float _121;
-    int _1235 = 0;
-    float _1237 = params.gerstner_amplitude;
-    float _1239 = params.gerstner_frequency;
-    for (; _1235 < 8; _1239 = _121, _1238 = _111, _1237 = _116, _1236 = _106, _1235++)
+    float3 _48 = _33.xyz - float3(params.eye_position);
+    float _52 = length(_48);
+    float3 _59 = _48 / float3(fast::max(_52, 9.9999999747524270787835121154785e-07));
+    float3 _62 = dfdx(_59);
+    float3 _65 = dfdy(_59);
+    float _67 = fast::max(length(_62), length(_65));
+    float _70 = floor(gerstner_wave_count);
+    float _1215;
+    float _1217;
+    _1217 = 0.0;
+    _1215 = 0.0;
+    float _105;
+    float _110;
+    float _115;
+    float _119;
+    int _1214 = 0;
+    float _1216 = params.gerstner_amplitude;
+    float _1218 = params.gerstner_frequency;
+    for (; _1214 < 8; _1218 = _119, _1217 = _110, _1216 = _115, _1215 = _105, _1214++)
     {
-        if (!(float(_1235) < _71))
+        if (!(float(_1214) < _70))
         {
             break;
         }
-        _106 = _1236 + _1237;
-        _111 = fma(_1237, _1239, _1238);
-        _116 = _1237 * params.gerstner_amplitude_gain;
-        _121 = _1239 * params.gerstner_frequency_gain;
+        _105 = _1215 + _1216;
+        _110 = fma(_1216, _1218, _1217);
+        _115 = _1216 * params.gerstner_amplitude_gain;
+        _119 = _1218 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
-    float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1238 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1236;
-    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _1243;
-    float2 _1247;
-    _1247 = (float3(params.eye_position) + (_60 * fast::max((_1236 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _1243 = _1236;
-    float2 _403;
-    float _674;
-    float _679;
-    float _689;
-    int _1242 = 0;
-    float _1275 = _1236;
-    float _1280 = _158;
-    for (; _1242 < 9; _1280 = _679, _1275 = _674, _1247 = _403, _1243 = _689, _1242++)
+    float _135 = _59.y;
+    float _139 = fast::max(-_135, 9.9999999747524270787835121154785e-07);
+    float2 _143 = _59.xz;
+    float _152 = 1.0 / (1.0 + (((_1217 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_143)) / _139));
+    float _155 = -_1215;
+    float _159 = fast::min(_135, -9.9999999747524270787835121154785e-07);
+    float _1222;
+    float2 _1226;
+    _1226 = (float3(params.eye_position) + (_59 * fast::max((_1215 - params.eye_position[1u]) / _159, 0.0))).xz;
+    _1222 = _1215;
+    float2 _394;
+    float _654;
+    float _659;
+    float _669;
+    int _1221 = 0;
+    float _1254 = _1215;
+    float _1259 = _155;
+    for (; _1221 < 9; _1259 = _659, _1254 = _654, _1226 = _394, _1222 = _669, _1221++)
     {
-        float _207 = fast::max((_1243 - params.eye_position[1u]) / _162, 0.0);
-        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
-        float2 _1249;
-        float3 _1250;
-        _1250 = float3(0.0);
-        _1249 = float2(0.0);
-        float _320;
-        float _324;
-        float2 _331;
-        float3 _345;
-        int _1244 = 0;
-        float _1245 = params.gerstner_frequency;
-        float _1248 = params.gerstner_amplitude;
-        for (; _1244 < 8; _1250 = _345, _1249 = _331, _1248 = _320, _1245 = _324, _1244++)
+        float _205 = fast::max((_1222 - params.eye_position[1u]) / _159, 0.0);
+        float2 _215 = (float3(params.eye_position) + (_59 * _205)).xz;
+        float _221 = (_67 * _205) / _139;
+        float2 _1228;
+        float3 _1229;
+        _1229 = float3(0.0);
+        _1228 = float2(0.0);
+        float _311;
+        float _315;
+        float2 _322;
+        float3 _336;
+        int _1223 = 0;
+        float _1224 = params.gerstner_frequency;
+        float _1227 = params.gerstner_amplitude;
+        for (; _1223 < 8; _1229 = _336, _1228 = _322, _1227 = _311, _1224 = _315, _1223++)
         {
-            float _242 = float(_1244);
-            if (!(_242 < _71))
+            float _240 = float(_1223);
+            if (!(_240 < _70))
             {
                 break;
             }
-            int _253 = clamp(int(_242), 0, 7);
-            float _271 = _1245 * dot(params.gerstner_wave_directions[_253].xy, _1247);
-            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_1245 * _1248, 9.9999999747524270787835121154785e-07))) * _1248) * fast::clamp(fma(-(_1245 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _312 = (_293 * _1245) * sin(_271);
-            float _316 = _312 * params.gerstner_wave_directions[_253].x;
-            _320 = _1248 * params.gerstner_amplitude_gain;
-            _324 = _1245 * params.gerstner_frequency_gain;
-            _331 = _1249 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
-            _345 = _1250 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            int _252 = clamp(int(_240), 0, 7);
+            float _270 = _1224 * dot(params.gerstner_wave_directions[_252].xy, _1226);
+            float _284 = ((params.gerstner_steepness / (_70 * fast::max(_1224 * _1227, 9.9999999747524270787835121154785e-07))) * _1227) * fast::clamp(fma(-(_1224 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _303 = (_284 * _1224) * sin(_270);
+            float _307 = _303 * params.gerstner_wave_directions[_252].x;
+            _311 = _1227 * params.gerstner_amplitude_gain;
+            _315 = _1224 * params.gerstner_frequency_gain;
+            _322 = _1228 + (params.gerstner_wave_directions[_252].xy * (_284 * cos(_270)));
+            _336 = _1229 + float3(_307 * params.gerstner_wave_directions[_252].x, _307 * params.gerstner_wave_directions[_252].y, (_303 * params.gerstner_wave_directions[_252].y) * params.gerstner_wave_directions[_252].y);
         }
-        float _351 = 1.0 - _1250.x;
-        float _356 = 1.0 - _1250.z;
-        float _360 = -_1250.y;
-        float2 _366 = (_1247 + _1249) - _217;
-        float _379 = _366.x;
-        float _382 = _366.y;
-        _403 = _1247 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
-        float3 _1257;
-        float3 _1258;
-        float3 _1259;
-        _1259 = float3(0.0, 0.0, 1.0);
-        _1258 = float3(1.0, 0.0, 0.0);
-        _1257 = float3(0.0);
-        float _516;
-        float _520;
-        float3 _532;
-        float3 _537;
-        float3 _542;
-        int _1254 = 0;
-        float _1255 = params.gerstner_frequency;
-        float _1256 = params.gerstner_amplitude;
-        for (; _1254 < 8; _1259 = _542, _1258 = _537, _1257 = _532, _1256 = _516, _1255 = _520, _1254++)
+        float _342 = 1.0 - _1229.x;
+        float _347 = 1.0 - _1229.z;
+        float _351 = -_1229.y;
+        float2 _357 = (_1226 + _1228) - _215;
+        float _370 = _357.x;
+        float _373 = _357.y;
+        _394 = _1226 - (float2(fma(_347, _370, -(_351 * _373)), fma(_342, _373, -(_351 * _370))) / float2(fast::max(fma(_342, _347, -(_351 * _351)), 0.039999999105930328369140625)));
+        float3 _1236;
+        float3 _1237;
+        float3 _1238;
+        _1238 = float3(0.0, 0.0, 1.0);
+        _1237 = float3(1.0, 0.0, 0.0);
+        _1236 = float3(0.0);
+        float _499;
+        float _503;
+        float3 _515;
+        float3 _520;
+        float3 _525;
+        int _1233 = 0;
+        float _1234 = params.gerstner_frequency;
+        float _1235 = params.gerstner_amplitude;
+        for (; _1233 < 8; _1238 = _525, _1237 = _520, _1236 = _515, _1235 = _499, _1234 = _503, _1233++)
         {
-            float _424 = float(_1254);
-            if (!(_424 < _71))
+            float _415 = float(_1233);
+            if (!(_415 < _70))
             {
                 break;
             }
-            int _435 = clamp(int(_424), 0, 7);
-            float _444 = fast::clamp(fma(-(_1255 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _450 = _1255 * dot(params.gerstner_wave_directions[_435].xy, _403);
-            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1255 * _1256, 9.9999999747524270787835121154785e-07))) * _1256) * _444;
-            float _476 = _1256 * _444;
-            float _479 = sin(_450);
-            float _482 = cos(_450);
-            float _492 = _472 * _482;
-            float _499 = -((_472 * _1255) * _479);
-            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1255) * _482, _499 * params.gerstner_wave_directions[_435].y);
-            _516 = _1256 * params.gerstner_amplitude_gain;
-            _520 = _1255 * params.gerstner_frequency_gain;
-            _532 = _1257 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
-            _537 = _1258 + (_512 * params.gerstner_wave_directions[_435].x);
-            _542 = _1259 + (_512 * params.gerstner_wave_directions[_435].y);
+            int _426 = clamp(int(_415), 0, 7);
+            float _435 = fast::clamp(fma(-(_1234 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _441 = _1234 * dot(params.gerstner_wave_directions[_426].xy, _394);
+            float _455 = ((params.gerstner_steepness / (_70 * fast::max(_1234 * _1235, 9.9999999747524270787835121154785e-07))) * _1235) * _435;
+            float _459 = _1235 * _435;
+            float _462 = sin(_441);
+            float _465 = cos(_441);
+            float _475 = _455 * _465;
+            float _482 = -((_455 * _1234) * _462);
+            float3 _495 = float3(_482 * params.gerstner_wave_directions[_426].x, (_459 * _1234) * _465, _482 * params.gerstner_wave_directions[_426].y);
+            _499 = _1235 * params.gerstner_amplitude_gain;
+            _503 = _1234 * params.gerstner_frequency_gain;
+            _515 = _1236 + float3(_475 * params.gerstner_wave_directions[_426].x, _459 * _462, _475 * params.gerstner_wave_directions[_426].y);
+            _520 = _1237 + (_495 * params.gerstner_wave_directions[_426].x);
+            _525 = _1238 + (_495 * params.gerstner_wave_directions[_426].y);
         }
-        float3 _548 = cross(_1259, _1258);
-        float _552 = dot(_548, _548);
-        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
-        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
-        float _595 = float(_1242);
-        bool _596 = _595 < 1.0;
-        float _603 = (_1257.y + dot(_580, _217 - (_403 + _1257.xz))) - _1243;
-        float _616 = (-dot(_580, _146)) / _142;
-        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _1243);
-        bool _632 = _603 < 0.0;
-        float _637 = _632 ? _1243 : _1275;
-        float _642 = _632 ? _1280 : _1243;
-        _674 = _596 ? _1243 : _637;
-        _679 = _596 ? _1280 : _642;
-        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _1243) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1243;
+        float3 _531 = cross(_1238, _1237);
+        float _535 = dot(_531, _531);
+        float3 _553 = select(float3(0.0, 1.0, 0.0), _531 * rsqrt(fast::max(_535, 1.0000000031710768509710513471353e-30)), bool3(_535 > 1.0000000031710768509710513471353e-30));
+        float2 _563 = (-_553.xz) / float2(fast::max(_553.y, 9.9999997473787516355514526367188e-05));
+        float _578 = float(_1221);
+        bool _579 = _578 < 1.0;
+        float _583 = (_1236.y + dot(_563, _215 - (_394 + _1236.xz))) - _1222;
+        float _596 = (-dot(_563, _143)) / _139;
+        float _609 = fma(fast::clamp(1.0 / fast::max(1.0 - _596, 9.9999999747524270787835121154785e-07), _152, 1.0), _583, _1222);
+        bool _612 = _583 < 0.0;
+        float _617 = _612 ? _1222 : _1254;
+        float _622 = _612 ? _1259 : _1222;
+        _654 = _579 ? _1222 : _617;
+        _659 = _579 ? _1259 : _622;
+        _669 = (_578 < 8.0) ? (_579 ? fma(_152, _583, _1222) : ((((_609 < _622) || (_609 > _617)) || (_596 >= 1.0)) ? (0.5 * (_622 + _617)) : _609)) : _1222;
     }
-    float _703 = fast::max((_1243 - params.eye_position[1u]) / _162, 0.0);
-    float3 _710 = float3(params.eye_position) + (_60 * _703);
-    float _718 = _33.y;
-    float _721 = _710.y;
-    float _726 = fast::max(_721 - _718, 0.0);
-    float3 _736 = -_60;
-    float2 _786 = (_33.xz - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
-    float _789 = _786.x;
-    float _792 = _786.y;
-    float3 _824 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * mix(1.0, ((((_789 >= 0.0) && (_789 <= 1.0)) && (_792 >= 0.0)) && (_792 <= 1.0)) ? caustics_map.sample(linear_clamp, _786, level(0.0)).x : 1.0, params.caustics_strength);
-    float _828 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
-    float3 _863 = abs(_60);
-    float3 _876 = _60 / float3(fast::max(fast::max(fast::max(_863.x, _863.y), _863.z), 1.0000000031710768509710513471353e-30));
-    float _880 = dot(_876, _876);
-    float3 _899 = reflect(select(float3(0.0, -1.0, 0.0), _876 * rsqrt(fast::max(_880, 1.0000000031710768509710513471353e-30)), bool3(_880 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _902 = _899.y;
-    float _928 = smoothstep(0.0, params.reflection_horizon_band, -_902);
-    float _974 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _982 = 1.0 - fast::clamp(_736.y, 0.0, 1.0);
-    float _986 = _982 * _982;
-    float3 _1002 = -float3(params.sun_direction);
-    float3 _1006 = _1002 + _736;
-    float _1018 = fast::max(fast::max(abs(_1006.x), abs(_1006.y)), abs(_1006.z));
-    float3 _1025 = _1006 / float3(fast::max(_1018, 5.9604644775390625e-08));
-    float _1044 = fast::clamp(select(float3(0.0), _1025 / float3(fast::max(length(_1025), 1.0)), bool3(_1018 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float2 _1090 = _710.xz;
-    float _1144 = _726 - params.foam_existence[0u];
-    float _1149 = params.foam_existence[1u] - params.foam_existence[0u];
-    float3 _1183 = mix(mix(mix(float3(params.scatter_color), _824 * exp((-float3(params.absorb_coefficients)) * (_726 + _828)), float3(exp((-params.scatter_coefficient) * _828))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_899.x, abs(_902), _899.z), bool3(dot(_899, _899) > 9.9999999600419720025001879548654e-13)), _928).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_928)), float3(fma(_974, _974, fma(-_974, _974, 1.0) * ((_986 * _986) * _982)))) + (float3(params.sun_color) * ((_1002.y > 0.0) ? ((_1044 > 6.103515625e-05) ? pow(fast::max(_1044, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_1090 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_1090)), length(dfdy(_1090))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1144 < 0.0) ? 1.0 : (1.0 - ((_1144 >= _1149) ? 1.0 : fast::clamp(_1144 / fast::max(_1149, 5.9604644775390625e-08), 0.0, 1.0)))));
-    out.out_color = float4(select(_25.xyz, mix(_824, _1183, float3(fast::clamp(_726 * params.shore_hardness, 0.0, 1.0))), bool3((_718 < _721) && (_138 < 0.0))), 1.0);
+    float _683 = fast::max((_1222 - params.eye_position[1u]) / _159, 0.0);
+    float3 _690 = float3(params.eye_position) + (_59 * _683);
+    float _698 = _33.y;
+    float _701 = _690.y;
+    float _706 = fast::max(_701 - _698, 0.0);
+    float3 _716 = -_59;
+    float2 _766 = (_33.xz - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
+    float _769 = _766.x;
+    float _772 = _766.y;
+    float3 _804 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * mix(1.0, ((((_769 >= 0.0) && (_769 <= 1.0)) && (_772 >= 0.0)) && (_772 <= 1.0)) ? caustics_map.sample(linear_clamp, _766, level(0.0)).x : 1.0, params.caustics_strength);
+    float _808 = fast::clamp(fast::max(_52 - _683, 0.0), 0.0, 30000.0);
+    float3 _842 = abs(_59);
+    float3 _855 = _59 / float3(fast::max(fast::max(fast::max(_842.x, _842.y), _842.z), 1.0000000031710768509710513471353e-30));
+    float _859 = dot(_855, _855);
+    float3 _878 = reflect(select(float3(0.0, -1.0, 0.0), _855 * rsqrt(fast::max(_859, 1.0000000031710768509710513471353e-30)), bool3(_859 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _881 = _878.y;
+    float _907 = smoothstep(0.0, params.reflection_horizon_band, -_881);
+    float _953 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _961 = 1.0 - fast::clamp(_716.y, 0.0, 1.0);
+    float _965 = _961 * _961;
+    float3 _981 = -float3(params.sun_direction);
+    float3 _985 = _981 + _716;
+    float _997 = fast::max(fast::max(abs(_985.x), abs(_985.y)), abs(_985.z));
+    float3 _1004 = _985 / float3(fast::max(_997, 5.9604644775390625e-08));
+    float _1023 = fast::clamp(select(float3(0.0), _1004 / float3(fast::max(length(_1004), 1.0)), bool3(_997 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float2 _1069 = _690.xz;
+    float _1123 = _706 - params.foam_existence[0u];
+    float _1128 = params.foam_existence[1u] - params.foam_existence[0u];
+    float3 _1162 = mix(mix(mix(float3(params.scatter_color), _804 * exp((-float3(params.absorb_coefficients)) * (_706 + _808)), float3(exp((-params.scatter_coefficient) * _808))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_878.x, abs(_881), _878.z), bool3(dot(_878, _878) > 9.9999999600419720025001879548654e-13)), _907).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_907)), float3(fma(_953, _953, fma(-_953, _953, 1.0) * ((_965 * _965) * _961)))) + (float3(params.sun_color) * ((_981.y > 0.0) ? ((_1023 > 6.103515625e-05) ? pow(fast::max(_1023, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_1069 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_1069)), length(dfdy(_1069))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1123 < 0.0) ? 1.0 : (1.0 - ((_1123 >= _1128) ? 1.0 : fast::clamp(_1123 / fast::max(_1128, 5.9604644775390625e-08), 0.0, 1.0)))));
+    out.out_color = float4(select(_25.xyz, mix(_804, _1162, float3(fast::clamp(_706 * params.shore_hardness, 0.0, 1.0))), bool3((_698 < _701) && (_135 < 0.0))), 1.0);
     return out;
 }
 

@@ -7,7 +7,6 @@ using namespace metal;
 struct WaterParams
 {
     float4 gerstner_wave_directions[8];
-    float4 gerstner_wave_speeds[8];
     packed_float3 eye_position;
     float gerstner_amplitude;
     packed_float3 sun_direction;
@@ -51,172 +50,172 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _49 = _33.xyz - float3(params.eye_position);
-    float _53 = length(_49);
-    float3 _60 = _49 / float3(fast::max(_53, 9.9999999747524270787835121154785e-07));
-    float3 _63 = dfdx(_60);
-    float3 _66 = dfdy(_60);
-    float _68 = fast::max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
-    float _1182;
-    float _1184;
-    _1184 = 0.0;
-    _1182 = 0.0;
-    float _106;
-    float _111;
-    float _116;
-    float _121;
-    int _1181 = 0;
-    float _1183 = params.gerstner_amplitude;
-    float _1185 = params.gerstner_frequency;
-    for (; _1181 < 8; _1185 = _121, _1184 = _111, _1183 = _116, _1182 = _106, _1181++)
+    float3 _48 = _33.xyz - float3(params.eye_position);
+    float _52 = length(_48);
+    float3 _59 = _48 / float3(fast::max(_52, 9.9999999747524270787835121154785e-07));
+    float3 _62 = dfdx(_59);
+    float3 _65 = dfdy(_59);
+    float _67 = fast::max(length(_62), length(_65));
+    float _70 = floor(gerstner_wave_count);
+    float _1161;
+    float _1163;
+    _1163 = 0.0;
+    _1161 = 0.0;
+    float _105;
+    float _110;
+    float _115;
+    float _119;
+    int _1160 = 0;
+    float _1162 = params.gerstner_amplitude;
+    float _1164 = params.gerstner_frequency;
+    for (; _1160 < 8; _1164 = _119, _1163 = _110, _1162 = _115, _1161 = _105, _1160++)
     {
-        if (!(float(_1181) < _71))
+        if (!(float(_1160) < _70))
         {
             break;
         }
-        _106 = _1182 + _1183;
-        _111 = fma(_1183, _1185, _1184);
-        _116 = _1183 * params.gerstner_amplitude_gain;
-        _121 = _1185 * params.gerstner_frequency_gain;
+        _105 = _1161 + _1162;
+        _110 = fma(_1162, _1164, _1163);
+        _115 = _1162 * params.gerstner_amplitude_gain;
+        _119 = _1164 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
-    float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1184 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1182;
-    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _1189;
-    float2 _1193;
-    _1193 = (float3(params.eye_position) + (_60 * fast::max((_1182 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _1189 = _1182;
-    float2 _403;
-    float _674;
-    float _679;
-    float _689;
-    int _1188 = 0;
-    float _1221 = _1182;
-    float _1226 = _158;
-    for (; _1188 < 9; _1226 = _679, _1221 = _674, _1193 = _403, _1189 = _689, _1188++)
+    float _135 = _59.y;
+    float _139 = fast::max(-_135, 9.9999999747524270787835121154785e-07);
+    float2 _143 = _59.xz;
+    float _152 = 1.0 / (1.0 + (((_1163 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_143)) / _139));
+    float _155 = -_1161;
+    float _159 = fast::min(_135, -9.9999999747524270787835121154785e-07);
+    float _1168;
+    float2 _1172;
+    _1172 = (float3(params.eye_position) + (_59 * fast::max((_1161 - params.eye_position[1u]) / _159, 0.0))).xz;
+    _1168 = _1161;
+    float2 _394;
+    float _654;
+    float _659;
+    float _669;
+    int _1167 = 0;
+    float _1200 = _1161;
+    float _1205 = _155;
+    for (; _1167 < 9; _1205 = _659, _1200 = _654, _1172 = _394, _1168 = _669, _1167++)
     {
-        float _207 = fast::max((_1189 - params.eye_position[1u]) / _162, 0.0);
-        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
-        float2 _1195;
-        float3 _1196;
-        _1196 = float3(0.0);
-        _1195 = float2(0.0);
-        float _320;
-        float _324;
-        float2 _331;
-        float3 _345;
-        int _1190 = 0;
-        float _1191 = params.gerstner_frequency;
-        float _1194 = params.gerstner_amplitude;
-        for (; _1190 < 8; _1196 = _345, _1195 = _331, _1194 = _320, _1191 = _324, _1190++)
+        float _205 = fast::max((_1168 - params.eye_position[1u]) / _159, 0.0);
+        float2 _215 = (float3(params.eye_position) + (_59 * _205)).xz;
+        float _221 = (_67 * _205) / _139;
+        float2 _1174;
+        float3 _1175;
+        _1175 = float3(0.0);
+        _1174 = float2(0.0);
+        float _311;
+        float _315;
+        float2 _322;
+        float3 _336;
+        int _1169 = 0;
+        float _1170 = params.gerstner_frequency;
+        float _1173 = params.gerstner_amplitude;
+        for (; _1169 < 8; _1175 = _336, _1174 = _322, _1173 = _311, _1170 = _315, _1169++)
         {
-            float _242 = float(_1190);
-            if (!(_242 < _71))
+            float _240 = float(_1169);
+            if (!(_240 < _70))
             {
                 break;
             }
-            int _253 = clamp(int(_242), 0, 7);
-            float _271 = _1191 * dot(params.gerstner_wave_directions[_253].xy, _1193);
-            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_1191 * _1194, 9.9999999747524270787835121154785e-07))) * _1194) * fast::clamp(fma(-(_1191 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _312 = (_293 * _1191) * sin(_271);
-            float _316 = _312 * params.gerstner_wave_directions[_253].x;
-            _320 = _1194 * params.gerstner_amplitude_gain;
-            _324 = _1191 * params.gerstner_frequency_gain;
-            _331 = _1195 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
-            _345 = _1196 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            int _252 = clamp(int(_240), 0, 7);
+            float _270 = _1170 * dot(params.gerstner_wave_directions[_252].xy, _1172);
+            float _284 = ((params.gerstner_steepness / (_70 * fast::max(_1170 * _1173, 9.9999999747524270787835121154785e-07))) * _1173) * fast::clamp(fma(-(_1170 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _303 = (_284 * _1170) * sin(_270);
+            float _307 = _303 * params.gerstner_wave_directions[_252].x;
+            _311 = _1173 * params.gerstner_amplitude_gain;
+            _315 = _1170 * params.gerstner_frequency_gain;
+            _322 = _1174 + (params.gerstner_wave_directions[_252].xy * (_284 * cos(_270)));
+            _336 = _1175 + float3(_307 * params.gerstner_wave_directions[_252].x, _307 * params.gerstner_wave_directions[_252].y, (_303 * params.gerstner_wave_directions[_252].y) * params.gerstner_wave_directions[_252].y);
         }
-        float _351 = 1.0 - _1196.x;
-        float _356 = 1.0 - _1196.z;
-        float _360 = -_1196.y;
-        float2 _366 = (_1193 + _1195) - _217;
-        float _379 = _366.x;
-        float _382 = _366.y;
-        _403 = _1193 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
-        float3 _1203;
-        float3 _1204;
-        float3 _1205;
-        _1205 = float3(0.0, 0.0, 1.0);
-        _1204 = float3(1.0, 0.0, 0.0);
-        _1203 = float3(0.0);
-        float _516;
-        float _520;
-        float3 _532;
-        float3 _537;
-        float3 _542;
-        int _1200 = 0;
-        float _1201 = params.gerstner_frequency;
-        float _1202 = params.gerstner_amplitude;
-        for (; _1200 < 8; _1205 = _542, _1204 = _537, _1203 = _532, _1202 = _516, _1201 = _520, _1200++)
+        float _342 = 1.0 - _1175.x;
+        float _347 = 1.0 - _1175.z;
+        float _351 = -_1175.y;
+        float2 _357 = (_1172 + _1174) - _215;
+        float _370 = _357.x;
+        float _373 = _357.y;
+        _394 = _1172 - (float2(fma(_347, _370, -(_351 * _373)), fma(_342, _373, -(_351 * _370))) / float2(fast::max(fma(_342, _347, -(_351 * _351)), 0.039999999105930328369140625)));
+        float3 _1182;
+        float3 _1183;
+        float3 _1184;
+        _1184 = float3(0.0, 0.0, 1.0);
+        _1183 = float3(1.0, 0.0, 0.0);
+        _1182 = float3(0.0);
+        float _499;
+        float _503;
+        float3 _515;
+        float3 _520;
+        float3 _525;
+        int _1179 = 0;
+        float _1180 = params.gerstner_frequency;
+        float _1181 = params.gerstner_amplitude;
+        for (; _1179 < 8; _1184 = _525, _1183 = _520, _1182 = _515, _1181 = _499, _1180 = _503, _1179++)
         {
-            float _424 = float(_1200);
-            if (!(_424 < _71))
+            float _415 = float(_1179);
+            if (!(_415 < _70))
             {
                 break;
             }
-            int _435 = clamp(int(_424), 0, 7);
-            float _444 = fast::clamp(fma(-(_1201 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _450 = _1201 * dot(params.gerstner_wave_directions[_435].xy, _403);
-            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1201 * _1202, 9.9999999747524270787835121154785e-07))) * _1202) * _444;
-            float _476 = _1202 * _444;
-            float _479 = sin(_450);
-            float _482 = cos(_450);
-            float _492 = _472 * _482;
-            float _499 = -((_472 * _1201) * _479);
-            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1201) * _482, _499 * params.gerstner_wave_directions[_435].y);
-            _516 = _1202 * params.gerstner_amplitude_gain;
-            _520 = _1201 * params.gerstner_frequency_gain;
-            _532 = _1203 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
-            _537 = _1204 + (_512 * params.gerstner_wave_directions[_435].x);
-            _542 = _1205 + (_512 * params.gerstner_wave_directions[_435].y);
+            int _426 = clamp(int(_415), 0, 7);
+            float _435 = fast::clamp(fma(-(_1180 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _441 = _1180 * dot(params.gerstner_wave_directions[_426].xy, _394);
+            float _455 = ((params.gerstner_steepness / (_70 * fast::max(_1180 * _1181, 9.9999999747524270787835121154785e-07))) * _1181) * _435;
+            float _459 = _1181 * _435;
+            float _462 = sin(_441);
+            float _465 = cos(_441);
+            float _475 = _455 * _465;
+            float _482 = -((_455 * _1180) * _462);
+            float3 _495 = float3(_482 * params.gerstner_wave_directions[_426].x, (_459 * _1180) * _465, _482 * params.gerstner_wave_directions[_426].y);
+            _499 = _1181 * params.gerstner_amplitude_gain;
+            _503 = _1180 * params.gerstner_frequency_gain;
+            _515 = _1182 + float3(_475 * params.gerstner_wave_directions[_426].x, _459 * _462, _475 * params.gerstner_wave_directions[_426].y);
+            _520 = _1183 + (_495 * params.gerstner_wave_directions[_426].x);
+            _525 = _1184 + (_495 * params.gerstner_wave_directions[_426].y);
         }
-        float3 _548 = cross(_1205, _1204);
-        float _552 = dot(_548, _548);
-        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
-        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
-        float _595 = float(_1188);
-        bool _596 = _595 < 1.0;
-        float _603 = (_1203.y + dot(_580, _217 - (_403 + _1203.xz))) - _1189;
-        float _616 = (-dot(_580, _146)) / _142;
-        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _1189);
-        bool _632 = _603 < 0.0;
-        float _637 = _632 ? _1189 : _1221;
-        float _642 = _632 ? _1226 : _1189;
-        _674 = _596 ? _1189 : _637;
-        _679 = _596 ? _1226 : _642;
-        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _1189) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1189;
+        float3 _531 = cross(_1184, _1183);
+        float _535 = dot(_531, _531);
+        float3 _553 = select(float3(0.0, 1.0, 0.0), _531 * rsqrt(fast::max(_535, 1.0000000031710768509710513471353e-30)), bool3(_535 > 1.0000000031710768509710513471353e-30));
+        float2 _563 = (-_553.xz) / float2(fast::max(_553.y, 9.9999997473787516355514526367188e-05));
+        float _578 = float(_1167);
+        bool _579 = _578 < 1.0;
+        float _583 = (_1182.y + dot(_563, _215 - (_394 + _1182.xz))) - _1168;
+        float _596 = (-dot(_563, _143)) / _139;
+        float _609 = fma(fast::clamp(1.0 / fast::max(1.0 - _596, 9.9999999747524270787835121154785e-07), _152, 1.0), _583, _1168);
+        bool _612 = _583 < 0.0;
+        float _617 = _612 ? _1168 : _1200;
+        float _622 = _612 ? _1205 : _1168;
+        _654 = _579 ? _1168 : _617;
+        _659 = _579 ? _1205 : _622;
+        _669 = (_578 < 8.0) ? (_579 ? fma(_152, _583, _1168) : ((((_609 < _622) || (_609 > _617)) || (_596 >= 1.0)) ? (0.5 * (_622 + _617)) : _609)) : _1168;
     }
-    float _703 = fast::max((_1189 - params.eye_position[1u]) / _162, 0.0);
-    float3 _710 = float3(params.eye_position) + (_60 * _703);
-    float _718 = _33.y;
-    float _721 = _710.y;
-    float _726 = fast::max(_721 - _718, 0.0);
-    float3 _736 = -_60;
-    float3 _773 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
-    float _777 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
-    float3 _811 = abs(_60);
-    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
-    float _828 = dot(_824, _824);
-    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _850 = _847.y;
-    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
-    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _930 = 1.0 - fast::clamp(_736.y, 0.0, 1.0);
-    float _934 = _930 * _930;
-    float3 _950 = -float3(params.sun_direction);
-    float3 _954 = _950 + _736;
-    float _966 = fast::max(fast::max(abs(_954.x), abs(_954.y)), abs(_954.z));
-    float3 _973 = _954 / float3(fast::max(_966, 5.9604644775390625e-08));
-    float _992 = fast::clamp(select(float3(0.0), _973 / float3(fast::max(length(_973), 1.0)), bool3(_966 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float2 _1038 = _710.xz;
-    float _1092 = _726 - params.foam_existence[0u];
-    float _1097 = params.foam_existence[1u] - params.foam_existence[0u];
-    float3 _1131 = mix(mix(mix(float3(params.scatter_color), _773 * exp((-float3(params.absorb_coefficients)) * (_726 + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(fma(_922, _922, fma(-_922, _922, 1.0) * ((_934 * _934) * _930)))) + (float3(params.sun_color) * ((_950.y > 0.0) ? ((_992 > 6.103515625e-05) ? pow(fast::max(_992, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_1038 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_1038)), length(dfdy(_1038))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1092 < 0.0) ? 1.0 : (1.0 - ((_1092 >= _1097) ? 1.0 : fast::clamp(_1092 / fast::max(_1097, 5.9604644775390625e-08), 0.0, 1.0)))));
-    out.out_color = float4(select(_25.xyz, mix(_773, _1131, float3(fast::clamp(_726 * params.shore_hardness, 0.0, 1.0))), bool3((_718 < _721) && (_138 < 0.0))), 1.0);
+    float _683 = fast::max((_1168 - params.eye_position[1u]) / _159, 0.0);
+    float3 _690 = float3(params.eye_position) + (_59 * _683);
+    float _698 = _33.y;
+    float _701 = _690.y;
+    float _706 = fast::max(_701 - _698, 0.0);
+    float3 _716 = -_59;
+    float3 _753 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
+    float _757 = fast::clamp(fast::max(_52 - _683, 0.0), 0.0, 30000.0);
+    float3 _790 = abs(_59);
+    float3 _803 = _59 / float3(fast::max(fast::max(fast::max(_790.x, _790.y), _790.z), 1.0000000031710768509710513471353e-30));
+    float _807 = dot(_803, _803);
+    float3 _826 = reflect(select(float3(0.0, -1.0, 0.0), _803 * rsqrt(fast::max(_807, 1.0000000031710768509710513471353e-30)), bool3(_807 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _829 = _826.y;
+    float _855 = smoothstep(0.0, params.reflection_horizon_band, -_829);
+    float _901 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _909 = 1.0 - fast::clamp(_716.y, 0.0, 1.0);
+    float _913 = _909 * _909;
+    float3 _929 = -float3(params.sun_direction);
+    float3 _933 = _929 + _716;
+    float _945 = fast::max(fast::max(abs(_933.x), abs(_933.y)), abs(_933.z));
+    float3 _952 = _933 / float3(fast::max(_945, 5.9604644775390625e-08));
+    float _971 = fast::clamp(select(float3(0.0), _952 / float3(fast::max(length(_952), 1.0)), bool3(_945 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float2 _1017 = _690.xz;
+    float _1071 = _706 - params.foam_existence[0u];
+    float _1076 = params.foam_existence[1u] - params.foam_existence[0u];
+    float3 _1110 = mix(mix(mix(float3(params.scatter_color), _753 * exp((-float3(params.absorb_coefficients)) * (_706 + _757)), float3(exp((-params.scatter_coefficient) * _757))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_826.x, abs(_829), _826.z), bool3(dot(_826, _826) > 9.9999999600419720025001879548654e-13)), _855).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_855)), float3(fma(_901, _901, fma(-_901, _901, 1.0) * ((_913 * _913) * _909)))) + (float3(params.sun_color) * ((_929.y > 0.0) ? ((_971 > 6.103515625e-05) ? pow(fast::max(_971, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_1017 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_1017)), length(dfdy(_1017))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1071 < 0.0) ? 1.0 : (1.0 - ((_1071 >= _1076) ? 1.0 : fast::clamp(_1071 / fast::max(_1076, 5.9604644775390625e-08), 0.0, 1.0)))));
+    out.out_color = float4(select(_25.xyz, mix(_753, _1110, float3(fast::clamp(_706 * params.shore_hardness, 0.0, 1.0))), bool3((_698 < _701) && (_135 < 0.0))), 1.0);
     return out;
 }
 

@@ -7,7 +7,6 @@ using namespace metal;
 struct WaterParams
 {
     float4 gerstner_wave_directions[8];
-    float4 gerstner_wave_speeds[8];
     packed_float3 eye_position;
     float gerstner_amplitude;
     packed_float3 caustics_window;
@@ -46,164 +45,164 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _49 = _33.xyz - float3(params.eye_position);
-    float _53 = length(_49);
-    float3 _60 = _49 / float3(fast::max(_53, 9.9999999747524270787835121154785e-07));
-    float3 _63 = dfdx(_60);
-    float3 _66 = dfdy(_60);
-    float _68 = fast::max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
-    float _1039;
-    float _1041;
-    _1041 = 0.0;
-    _1039 = 0.0;
-    float _106;
-    float _111;
-    float _116;
-    float _121;
-    int _1038 = 0;
-    float _1040 = params.gerstner_amplitude;
-    float _1042 = params.gerstner_frequency;
-    for (; _1038 < 8; _1042 = _121, _1041 = _111, _1040 = _116, _1039 = _106, _1038++)
+    float3 _48 = _33.xyz - float3(params.eye_position);
+    float _52 = length(_48);
+    float3 _59 = _48 / float3(fast::max(_52, 9.9999999747524270787835121154785e-07));
+    float3 _62 = dfdx(_59);
+    float3 _65 = dfdy(_59);
+    float _67 = fast::max(length(_62), length(_65));
+    float _70 = floor(gerstner_wave_count);
+    float _1018;
+    float _1020;
+    _1020 = 0.0;
+    _1018 = 0.0;
+    float _105;
+    float _110;
+    float _115;
+    float _119;
+    int _1017 = 0;
+    float _1019 = params.gerstner_amplitude;
+    float _1021 = params.gerstner_frequency;
+    for (; _1017 < 8; _1021 = _119, _1020 = _110, _1019 = _115, _1018 = _105, _1017++)
     {
-        if (!(float(_1038) < _71))
+        if (!(float(_1017) < _70))
         {
             break;
         }
-        _106 = _1039 + _1040;
-        _111 = fma(_1040, _1042, _1041);
-        _116 = _1040 * params.gerstner_amplitude_gain;
-        _121 = _1042 * params.gerstner_frequency_gain;
+        _105 = _1018 + _1019;
+        _110 = fma(_1019, _1021, _1020);
+        _115 = _1019 * params.gerstner_amplitude_gain;
+        _119 = _1021 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
-    float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1041 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1039;
-    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _1046;
-    float2 _1050;
-    _1050 = (float3(params.eye_position) + (_60 * fast::max((_1039 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _1046 = _1039;
-    float2 _403;
-    float _674;
-    float _679;
-    float _689;
-    int _1045 = 0;
-    float _1078 = _1039;
-    float _1083 = _158;
-    for (; _1045 < 9; _1083 = _679, _1078 = _674, _1050 = _403, _1046 = _689, _1045++)
+    float _135 = _59.y;
+    float _139 = fast::max(-_135, 9.9999999747524270787835121154785e-07);
+    float2 _143 = _59.xz;
+    float _152 = 1.0 / (1.0 + (((_1020 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_143)) / _139));
+    float _155 = -_1018;
+    float _159 = fast::min(_135, -9.9999999747524270787835121154785e-07);
+    float _1025;
+    float2 _1029;
+    _1029 = (float3(params.eye_position) + (_59 * fast::max((_1018 - params.eye_position[1u]) / _159, 0.0))).xz;
+    _1025 = _1018;
+    float2 _394;
+    float _654;
+    float _659;
+    float _669;
+    int _1024 = 0;
+    float _1057 = _1018;
+    float _1062 = _155;
+    for (; _1024 < 9; _1062 = _659, _1057 = _654, _1029 = _394, _1025 = _669, _1024++)
     {
-        float _207 = fast::max((_1046 - params.eye_position[1u]) / _162, 0.0);
-        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
-        float2 _1052;
-        float3 _1053;
-        _1053 = float3(0.0);
-        _1052 = float2(0.0);
-        float _320;
-        float _324;
-        float2 _331;
-        float3 _345;
-        int _1047 = 0;
-        float _1048 = params.gerstner_frequency;
-        float _1051 = params.gerstner_amplitude;
-        for (; _1047 < 8; _1053 = _345, _1052 = _331, _1051 = _320, _1048 = _324, _1047++)
+        float _205 = fast::max((_1025 - params.eye_position[1u]) / _159, 0.0);
+        float2 _215 = (float3(params.eye_position) + (_59 * _205)).xz;
+        float _221 = (_67 * _205) / _139;
+        float2 _1031;
+        float3 _1032;
+        _1032 = float3(0.0);
+        _1031 = float2(0.0);
+        float _311;
+        float _315;
+        float2 _322;
+        float3 _336;
+        int _1026 = 0;
+        float _1027 = params.gerstner_frequency;
+        float _1030 = params.gerstner_amplitude;
+        for (; _1026 < 8; _1032 = _336, _1031 = _322, _1030 = _311, _1027 = _315, _1026++)
         {
-            float _242 = float(_1047);
-            if (!(_242 < _71))
+            float _240 = float(_1026);
+            if (!(_240 < _70))
             {
                 break;
             }
-            int _253 = clamp(int(_242), 0, 7);
-            float _271 = _1048 * dot(params.gerstner_wave_directions[_253].xy, _1050);
-            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_1048 * _1051, 9.9999999747524270787835121154785e-07))) * _1051) * fast::clamp(fma(-(_1048 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _312 = (_293 * _1048) * sin(_271);
-            float _316 = _312 * params.gerstner_wave_directions[_253].x;
-            _320 = _1051 * params.gerstner_amplitude_gain;
-            _324 = _1048 * params.gerstner_frequency_gain;
-            _331 = _1052 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
-            _345 = _1053 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            int _252 = clamp(int(_240), 0, 7);
+            float _270 = _1027 * dot(params.gerstner_wave_directions[_252].xy, _1029);
+            float _284 = ((params.gerstner_steepness / (_70 * fast::max(_1027 * _1030, 9.9999999747524270787835121154785e-07))) * _1030) * fast::clamp(fma(-(_1027 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _303 = (_284 * _1027) * sin(_270);
+            float _307 = _303 * params.gerstner_wave_directions[_252].x;
+            _311 = _1030 * params.gerstner_amplitude_gain;
+            _315 = _1027 * params.gerstner_frequency_gain;
+            _322 = _1031 + (params.gerstner_wave_directions[_252].xy * (_284 * cos(_270)));
+            _336 = _1032 + float3(_307 * params.gerstner_wave_directions[_252].x, _307 * params.gerstner_wave_directions[_252].y, (_303 * params.gerstner_wave_directions[_252].y) * params.gerstner_wave_directions[_252].y);
         }
-        float _351 = 1.0 - _1053.x;
-        float _356 = 1.0 - _1053.z;
-        float _360 = -_1053.y;
-        float2 _366 = (_1050 + _1052) - _217;
-        float _379 = _366.x;
-        float _382 = _366.y;
-        _403 = _1050 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
-        float3 _1060;
-        float3 _1061;
-        float3 _1062;
-        _1062 = float3(0.0, 0.0, 1.0);
-        _1061 = float3(1.0, 0.0, 0.0);
-        _1060 = float3(0.0);
-        float _516;
-        float _520;
-        float3 _532;
-        float3 _537;
-        float3 _542;
-        int _1057 = 0;
-        float _1058 = params.gerstner_frequency;
-        float _1059 = params.gerstner_amplitude;
-        for (; _1057 < 8; _1062 = _542, _1061 = _537, _1060 = _532, _1059 = _516, _1058 = _520, _1057++)
+        float _342 = 1.0 - _1032.x;
+        float _347 = 1.0 - _1032.z;
+        float _351 = -_1032.y;
+        float2 _357 = (_1029 + _1031) - _215;
+        float _370 = _357.x;
+        float _373 = _357.y;
+        _394 = _1029 - (float2(fma(_347, _370, -(_351 * _373)), fma(_342, _373, -(_351 * _370))) / float2(fast::max(fma(_342, _347, -(_351 * _351)), 0.039999999105930328369140625)));
+        float3 _1039;
+        float3 _1040;
+        float3 _1041;
+        _1041 = float3(0.0, 0.0, 1.0);
+        _1040 = float3(1.0, 0.0, 0.0);
+        _1039 = float3(0.0);
+        float _499;
+        float _503;
+        float3 _515;
+        float3 _520;
+        float3 _525;
+        int _1036 = 0;
+        float _1037 = params.gerstner_frequency;
+        float _1038 = params.gerstner_amplitude;
+        for (; _1036 < 8; _1041 = _525, _1040 = _520, _1039 = _515, _1038 = _499, _1037 = _503, _1036++)
         {
-            float _424 = float(_1057);
-            if (!(_424 < _71))
+            float _415 = float(_1036);
+            if (!(_415 < _70))
             {
                 break;
             }
-            int _435 = clamp(int(_424), 0, 7);
-            float _444 = fast::clamp(fma(-(_1058 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _450 = _1058 * dot(params.gerstner_wave_directions[_435].xy, _403);
-            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1058 * _1059, 9.9999999747524270787835121154785e-07))) * _1059) * _444;
-            float _476 = _1059 * _444;
-            float _479 = sin(_450);
-            float _482 = cos(_450);
-            float _492 = _472 * _482;
-            float _499 = -((_472 * _1058) * _479);
-            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1058) * _482, _499 * params.gerstner_wave_directions[_435].y);
-            _516 = _1059 * params.gerstner_amplitude_gain;
-            _520 = _1058 * params.gerstner_frequency_gain;
-            _532 = _1060 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
-            _537 = _1061 + (_512 * params.gerstner_wave_directions[_435].x);
-            _542 = _1062 + (_512 * params.gerstner_wave_directions[_435].y);
+            int _426 = clamp(int(_415), 0, 7);
+            float _435 = fast::clamp(fma(-(_1037 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _441 = _1037 * dot(params.gerstner_wave_directions[_426].xy, _394);
+            float _455 = ((params.gerstner_steepness / (_70 * fast::max(_1037 * _1038, 9.9999999747524270787835121154785e-07))) * _1038) * _435;
+            float _459 = _1038 * _435;
+            float _462 = sin(_441);
+            float _465 = cos(_441);
+            float _475 = _455 * _465;
+            float _482 = -((_455 * _1037) * _462);
+            float3 _495 = float3(_482 * params.gerstner_wave_directions[_426].x, (_459 * _1037) * _465, _482 * params.gerstner_wave_directions[_426].y);
+            _499 = _1038 * params.gerstner_amplitude_gain;
+            _503 = _1037 * params.gerstner_frequency_gain;
+            _515 = _1039 + float3(_475 * params.gerstner_wave_directions[_426].x, _459 * _462, _475 * params.gerstner_wave_directions[_426].y);
+            _520 = _1040 + (_495 * params.gerstner_wave_directions[_426].x);
+            _525 = _1041 + (_495 * params.gerstner_wave_directions[_426].y);
         }
-        float3 _548 = cross(_1062, _1061);
-        float _552 = dot(_548, _548);
-        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
-        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
-        float _595 = float(_1045);
-        bool _596 = _595 < 1.0;
-        float _603 = (_1060.y + dot(_580, _217 - (_403 + _1060.xz))) - _1046;
-        float _616 = (-dot(_580, _146)) / _142;
-        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _1046);
-        bool _632 = _603 < 0.0;
-        float _637 = _632 ? _1046 : _1078;
-        float _642 = _632 ? _1083 : _1046;
-        _674 = _596 ? _1046 : _637;
-        _679 = _596 ? _1083 : _642;
-        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _1046) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1046;
+        float3 _531 = cross(_1041, _1040);
+        float _535 = dot(_531, _531);
+        float3 _553 = select(float3(0.0, 1.0, 0.0), _531 * rsqrt(fast::max(_535, 1.0000000031710768509710513471353e-30)), bool3(_535 > 1.0000000031710768509710513471353e-30));
+        float2 _563 = (-_553.xz) / float2(fast::max(_553.y, 9.9999997473787516355514526367188e-05));
+        float _578 = float(_1024);
+        bool _579 = _578 < 1.0;
+        float _583 = (_1039.y + dot(_563, _215 - (_394 + _1039.xz))) - _1025;
+        float _596 = (-dot(_563, _143)) / _139;
+        float _609 = fma(fast::clamp(1.0 / fast::max(1.0 - _596, 9.9999999747524270787835121154785e-07), _152, 1.0), _583, _1025);
+        bool _612 = _583 < 0.0;
+        float _617 = _612 ? _1025 : _1057;
+        float _622 = _612 ? _1062 : _1025;
+        _654 = _579 ? _1025 : _617;
+        _659 = _579 ? _1062 : _622;
+        _669 = (_578 < 8.0) ? (_579 ? fma(_152, _583, _1025) : ((((_609 < _622) || (_609 > _617)) || (_596 >= 1.0)) ? (0.5 * (_622 + _617)) : _609)) : _1025;
     }
-    float _703 = fast::max((_1046 - params.eye_position[1u]) / _162, 0.0);
-    float3 _710 = float3(params.eye_position) + (_60 * _703);
-    float _718 = _33.y;
-    float _721 = _710.y;
-    float2 _785 = (_33.xz - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
-    float _788 = _785.x;
-    float _791 = _785.y;
-    float _827 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
-    float3 _861 = abs(_60);
-    float3 _874 = _60 / float3(fast::max(fast::max(fast::max(_861.x, _861.y), _861.z), 1.0000000031710768509710513471353e-30));
-    float _878 = dot(_874, _874);
-    float3 _897 = reflect(select(float3(0.0, -1.0, 0.0), _874 * rsqrt(fast::max(_878, 1.0000000031710768509710513471353e-30)), bool3(_878 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _900 = _897.y;
-    float _926 = smoothstep(0.0, params.reflection_horizon_band, -_900);
-    float _972 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _980 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
-    float _984 = _980 * _980;
-    float3 _1007 = select(_25.xyz, mix(mix(float3(params.scatter_color), (scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * mix(1.0, ((((_788 >= 0.0) && (_788 <= 1.0)) && (_791 >= 0.0)) && (_791 <= 1.0)) ? caustics_map.sample(linear_clamp, _785, level(0.0)).x : 1.0, params.caustics_strength)) * exp((-float3(params.absorb_coefficients)) * (fast::max(_721 - _718, 0.0) + _827)), float3(exp((-params.scatter_coefficient) * _827))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_897.x, abs(_900), _897.z), bool3(dot(_897, _897) > 9.9999999600419720025001879548654e-13)), _926).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_926)), float3(fma(_972, _972, fma(-_972, _972, 1.0) * ((_984 * _984) * _980)))), bool3((_718 < _721) && (_138 < 0.0)));
-    out.out_color = float4(_1007, 1.0);
+    float _683 = fast::max((_1025 - params.eye_position[1u]) / _159, 0.0);
+    float3 _690 = float3(params.eye_position) + (_59 * _683);
+    float _698 = _33.y;
+    float _701 = _690.y;
+    float2 _765 = (_33.xz - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
+    float _768 = _765.x;
+    float _771 = _765.y;
+    float _807 = fast::clamp(fast::max(_52 - _683, 0.0), 0.0, 30000.0);
+    float3 _840 = abs(_59);
+    float3 _853 = _59 / float3(fast::max(fast::max(fast::max(_840.x, _840.y), _840.z), 1.0000000031710768509710513471353e-30));
+    float _857 = dot(_853, _853);
+    float3 _876 = reflect(select(float3(0.0, -1.0, 0.0), _853 * rsqrt(fast::max(_857, 1.0000000031710768509710513471353e-30)), bool3(_857 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _879 = _876.y;
+    float _905 = smoothstep(0.0, params.reflection_horizon_band, -_879);
+    float _951 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _959 = 1.0 - fast::clamp((-_59).y, 0.0, 1.0);
+    float _963 = _959 * _959;
+    float3 _986 = select(_25.xyz, mix(mix(float3(params.scatter_color), (scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * mix(1.0, ((((_768 >= 0.0) && (_768 <= 1.0)) && (_771 >= 0.0)) && (_771 <= 1.0)) ? caustics_map.sample(linear_clamp, _765, level(0.0)).x : 1.0, params.caustics_strength)) * exp((-float3(params.absorb_coefficients)) * (fast::max(_701 - _698, 0.0) + _807)), float3(exp((-params.scatter_coefficient) * _807))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_876.x, abs(_879), _876.z), bool3(dot(_876, _876) > 9.9999999600419720025001879548654e-13)), _905).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_905)), float3(fma(_951, _951, fma(-_951, _951, 1.0) * ((_963 * _963) * _959)))), bool3((_698 < _701) && (_135 < 0.0)));
+    out.out_color = float4(_986, 1.0);
     return out;
 }
 

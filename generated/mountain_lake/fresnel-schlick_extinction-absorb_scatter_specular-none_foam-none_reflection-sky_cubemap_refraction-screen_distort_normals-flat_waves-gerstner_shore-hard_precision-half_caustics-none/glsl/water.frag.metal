@@ -7,7 +7,6 @@ using namespace metal;
 struct WaterParams
 {
     float4 gerstner_wave_directions[8];
-    float4 gerstner_wave_speeds[8];
     packed_float3 eye_position;
     float gerstner_amplitude;
     packed_float3 absorb_coefficients;
@@ -44,161 +43,161 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _49 = _33.xyz - float3(params.eye_position);
-    float _53 = length(_49);
-    float3 _60 = _49 / float3(fast::max(_53, 9.9999999747524270787835121154785e-07));
-    float3 _63 = dfdx(_60);
-    float3 _66 = dfdy(_60);
-    float _68 = fast::max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
-    float _985;
-    float _987;
-    _987 = 0.0;
-    _985 = 0.0;
-    float _106;
-    float _111;
-    float _116;
-    float _121;
-    int _984 = 0;
-    float _986 = params.gerstner_amplitude;
-    float _988 = params.gerstner_frequency;
-    for (; _984 < 8; _988 = _121, _987 = _111, _986 = _116, _985 = _106, _984++)
+    float3 _48 = _33.xyz - float3(params.eye_position);
+    float _52 = length(_48);
+    float3 _59 = _48 / float3(fast::max(_52, 9.9999999747524270787835121154785e-07));
+    float3 _62 = dfdx(_59);
+    float3 _65 = dfdy(_59);
+    float _67 = fast::max(length(_62), length(_65));
+    float _70 = floor(gerstner_wave_count);
+    float _964;
+    float _966;
+    _966 = 0.0;
+    _964 = 0.0;
+    float _105;
+    float _110;
+    float _115;
+    float _119;
+    int _963 = 0;
+    float _965 = params.gerstner_amplitude;
+    float _967 = params.gerstner_frequency;
+    for (; _963 < 8; _967 = _119, _966 = _110, _965 = _115, _964 = _105, _963++)
     {
-        if (!(float(_984) < _71))
+        if (!(float(_963) < _70))
         {
             break;
         }
-        _106 = _985 + _986;
-        _111 = fma(_986, _988, _987);
-        _116 = _986 * params.gerstner_amplitude_gain;
-        _121 = _988 * params.gerstner_frequency_gain;
+        _105 = _964 + _965;
+        _110 = fma(_965, _967, _966);
+        _115 = _965 * params.gerstner_amplitude_gain;
+        _119 = _967 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
-    float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_987 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_985;
-    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _992;
-    float2 _996;
-    _996 = (float3(params.eye_position) + (_60 * fast::max((_985 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _992 = _985;
-    float2 _403;
-    float _674;
-    float _679;
-    float _689;
-    int _991 = 0;
-    float _1024 = _985;
-    float _1029 = _158;
-    for (; _991 < 9; _1029 = _679, _1024 = _674, _996 = _403, _992 = _689, _991++)
+    float _135 = _59.y;
+    float _139 = fast::max(-_135, 9.9999999747524270787835121154785e-07);
+    float2 _143 = _59.xz;
+    float _152 = 1.0 / (1.0 + (((_966 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_143)) / _139));
+    float _155 = -_964;
+    float _159 = fast::min(_135, -9.9999999747524270787835121154785e-07);
+    float _971;
+    float2 _975;
+    _975 = (float3(params.eye_position) + (_59 * fast::max((_964 - params.eye_position[1u]) / _159, 0.0))).xz;
+    _971 = _964;
+    float2 _394;
+    float _654;
+    float _659;
+    float _669;
+    int _970 = 0;
+    float _1003 = _964;
+    float _1008 = _155;
+    for (; _970 < 9; _1008 = _659, _1003 = _654, _975 = _394, _971 = _669, _970++)
     {
-        float _207 = fast::max((_992 - params.eye_position[1u]) / _162, 0.0);
-        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
-        float2 _998;
-        float3 _999;
-        _999 = float3(0.0);
-        _998 = float2(0.0);
-        float _320;
-        float _324;
-        float2 _331;
-        float3 _345;
-        int _993 = 0;
-        float _994 = params.gerstner_frequency;
-        float _997 = params.gerstner_amplitude;
-        for (; _993 < 8; _999 = _345, _998 = _331, _997 = _320, _994 = _324, _993++)
+        float _205 = fast::max((_971 - params.eye_position[1u]) / _159, 0.0);
+        float2 _215 = (float3(params.eye_position) + (_59 * _205)).xz;
+        float _221 = (_67 * _205) / _139;
+        float2 _977;
+        float3 _978;
+        _978 = float3(0.0);
+        _977 = float2(0.0);
+        float _311;
+        float _315;
+        float2 _322;
+        float3 _336;
+        int _972 = 0;
+        float _973 = params.gerstner_frequency;
+        float _976 = params.gerstner_amplitude;
+        for (; _972 < 8; _978 = _336, _977 = _322, _976 = _311, _973 = _315, _972++)
         {
-            float _242 = float(_993);
-            if (!(_242 < _71))
+            float _240 = float(_972);
+            if (!(_240 < _70))
             {
                 break;
             }
-            int _253 = clamp(int(_242), 0, 7);
-            float _271 = _994 * dot(params.gerstner_wave_directions[_253].xy, _996);
-            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_994 * _997, 9.9999999747524270787835121154785e-07))) * _997) * fast::clamp(fma(-(_994 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _312 = (_293 * _994) * sin(_271);
-            float _316 = _312 * params.gerstner_wave_directions[_253].x;
-            _320 = _997 * params.gerstner_amplitude_gain;
-            _324 = _994 * params.gerstner_frequency_gain;
-            _331 = _998 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
-            _345 = _999 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            int _252 = clamp(int(_240), 0, 7);
+            float _270 = _973 * dot(params.gerstner_wave_directions[_252].xy, _975);
+            float _284 = ((params.gerstner_steepness / (_70 * fast::max(_973 * _976, 9.9999999747524270787835121154785e-07))) * _976) * fast::clamp(fma(-(_973 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _303 = (_284 * _973) * sin(_270);
+            float _307 = _303 * params.gerstner_wave_directions[_252].x;
+            _311 = _976 * params.gerstner_amplitude_gain;
+            _315 = _973 * params.gerstner_frequency_gain;
+            _322 = _977 + (params.gerstner_wave_directions[_252].xy * (_284 * cos(_270)));
+            _336 = _978 + float3(_307 * params.gerstner_wave_directions[_252].x, _307 * params.gerstner_wave_directions[_252].y, (_303 * params.gerstner_wave_directions[_252].y) * params.gerstner_wave_directions[_252].y);
         }
-        float _351 = 1.0 - _999.x;
-        float _356 = 1.0 - _999.z;
-        float _360 = -_999.y;
-        float2 _366 = (_996 + _998) - _217;
-        float _379 = _366.x;
-        float _382 = _366.y;
-        _403 = _996 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
-        float3 _1006;
-        float3 _1007;
-        float3 _1008;
-        _1008 = float3(0.0, 0.0, 1.0);
-        _1007 = float3(1.0, 0.0, 0.0);
-        _1006 = float3(0.0);
-        float _516;
-        float _520;
-        float3 _532;
-        float3 _537;
-        float3 _542;
-        int _1003 = 0;
-        float _1004 = params.gerstner_frequency;
-        float _1005 = params.gerstner_amplitude;
-        for (; _1003 < 8; _1008 = _542, _1007 = _537, _1006 = _532, _1005 = _516, _1004 = _520, _1003++)
+        float _342 = 1.0 - _978.x;
+        float _347 = 1.0 - _978.z;
+        float _351 = -_978.y;
+        float2 _357 = (_975 + _977) - _215;
+        float _370 = _357.x;
+        float _373 = _357.y;
+        _394 = _975 - (float2(fma(_347, _370, -(_351 * _373)), fma(_342, _373, -(_351 * _370))) / float2(fast::max(fma(_342, _347, -(_351 * _351)), 0.039999999105930328369140625)));
+        float3 _985;
+        float3 _986;
+        float3 _987;
+        _987 = float3(0.0, 0.0, 1.0);
+        _986 = float3(1.0, 0.0, 0.0);
+        _985 = float3(0.0);
+        float _499;
+        float _503;
+        float3 _515;
+        float3 _520;
+        float3 _525;
+        int _982 = 0;
+        float _983 = params.gerstner_frequency;
+        float _984 = params.gerstner_amplitude;
+        for (; _982 < 8; _987 = _525, _986 = _520, _985 = _515, _984 = _499, _983 = _503, _982++)
         {
-            float _424 = float(_1003);
-            if (!(_424 < _71))
+            float _415 = float(_982);
+            if (!(_415 < _70))
             {
                 break;
             }
-            int _435 = clamp(int(_424), 0, 7);
-            float _444 = fast::clamp(fma(-(_1004 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _450 = _1004 * dot(params.gerstner_wave_directions[_435].xy, _403);
-            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1004 * _1005, 9.9999999747524270787835121154785e-07))) * _1005) * _444;
-            float _476 = _1005 * _444;
-            float _479 = sin(_450);
-            float _482 = cos(_450);
-            float _492 = _472 * _482;
-            float _499 = -((_472 * _1004) * _479);
-            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1004) * _482, _499 * params.gerstner_wave_directions[_435].y);
-            _516 = _1005 * params.gerstner_amplitude_gain;
-            _520 = _1004 * params.gerstner_frequency_gain;
-            _532 = _1006 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
-            _537 = _1007 + (_512 * params.gerstner_wave_directions[_435].x);
-            _542 = _1008 + (_512 * params.gerstner_wave_directions[_435].y);
+            int _426 = clamp(int(_415), 0, 7);
+            float _435 = fast::clamp(fma(-(_983 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _441 = _983 * dot(params.gerstner_wave_directions[_426].xy, _394);
+            float _455 = ((params.gerstner_steepness / (_70 * fast::max(_983 * _984, 9.9999999747524270787835121154785e-07))) * _984) * _435;
+            float _459 = _984 * _435;
+            float _462 = sin(_441);
+            float _465 = cos(_441);
+            float _475 = _455 * _465;
+            float _482 = -((_455 * _983) * _462);
+            float3 _495 = float3(_482 * params.gerstner_wave_directions[_426].x, (_459 * _983) * _465, _482 * params.gerstner_wave_directions[_426].y);
+            _499 = _984 * params.gerstner_amplitude_gain;
+            _503 = _983 * params.gerstner_frequency_gain;
+            _515 = _985 + float3(_475 * params.gerstner_wave_directions[_426].x, _459 * _462, _475 * params.gerstner_wave_directions[_426].y);
+            _520 = _986 + (_495 * params.gerstner_wave_directions[_426].x);
+            _525 = _987 + (_495 * params.gerstner_wave_directions[_426].y);
         }
-        float3 _548 = cross(_1008, _1007);
-        float _552 = dot(_548, _548);
-        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
-        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
-        float _595 = float(_991);
-        bool _596 = _595 < 1.0;
-        float _603 = (_1006.y + dot(_580, _217 - (_403 + _1006.xz))) - _992;
-        float _616 = (-dot(_580, _146)) / _142;
-        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _992);
-        bool _632 = _603 < 0.0;
-        float _637 = _632 ? _992 : _1024;
-        float _642 = _632 ? _1029 : _992;
-        _674 = _596 ? _992 : _637;
-        _679 = _596 ? _1029 : _642;
-        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _992) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _992;
+        float3 _531 = cross(_987, _986);
+        float _535 = dot(_531, _531);
+        float3 _553 = select(float3(0.0, 1.0, 0.0), _531 * rsqrt(fast::max(_535, 1.0000000031710768509710513471353e-30)), bool3(_535 > 1.0000000031710768509710513471353e-30));
+        float2 _563 = (-_553.xz) / float2(fast::max(_553.y, 9.9999997473787516355514526367188e-05));
+        float _578 = float(_970);
+        bool _579 = _578 < 1.0;
+        float _583 = (_985.y + dot(_563, _215 - (_394 + _985.xz))) - _971;
+        float _596 = (-dot(_563, _143)) / _139;
+        float _609 = fma(fast::clamp(1.0 / fast::max(1.0 - _596, 9.9999999747524270787835121154785e-07), _152, 1.0), _583, _971);
+        bool _612 = _583 < 0.0;
+        float _617 = _612 ? _971 : _1003;
+        float _622 = _612 ? _1008 : _971;
+        _654 = _579 ? _971 : _617;
+        _659 = _579 ? _1008 : _622;
+        _669 = (_578 < 8.0) ? (_579 ? fma(_152, _583, _971) : ((((_609 < _622) || (_609 > _617)) || (_596 >= 1.0)) ? (0.5 * (_622 + _617)) : _609)) : _971;
     }
-    float _703 = fast::max((_992 - params.eye_position[1u]) / _162, 0.0);
-    float3 _710 = float3(params.eye_position) + (_60 * _703);
-    float _718 = _33.y;
-    float _721 = _710.y;
-    float _775 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
-    float3 _809 = abs(_60);
-    float3 _822 = _60 / float3(fast::max(fast::max(fast::max(_809.x, _809.y), _809.z), 1.0000000031710768509710513471353e-30));
-    float _826 = dot(_822, _822);
-    float3 _845 = reflect(select(float3(0.0, -1.0, 0.0), _822 * rsqrt(fast::max(_826, 1.0000000031710768509710513471353e-30)), bool3(_826 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _848 = _845.y;
-    float _874 = smoothstep(0.0, params.reflection_horizon_band, -_848);
-    float _920 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _928 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
-    float _932 = _928 * _928;
-    float3 _955 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_721 - _718, 0.0) + _775)), float3(exp((-params.scatter_coefficient) * _775))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_845.x, abs(_848), _845.z), bool3(dot(_845, _845) > 9.9999999600419720025001879548654e-13)), _874).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_874)), float3(fma(_920, _920, fma(-_920, _920, 1.0) * ((_932 * _932) * _928)))), bool3((_718 < _721) && (_138 < 0.0)));
-    out.out_color = float4(_955, 1.0);
+    float _683 = fast::max((_971 - params.eye_position[1u]) / _159, 0.0);
+    float3 _690 = float3(params.eye_position) + (_59 * _683);
+    float _698 = _33.y;
+    float _701 = _690.y;
+    float _755 = fast::clamp(fast::max(_52 - _683, 0.0), 0.0, 30000.0);
+    float3 _789 = abs(_59);
+    float3 _802 = _59 / float3(fast::max(fast::max(fast::max(_789.x, _789.y), _789.z), 1.0000000031710768509710513471353e-30));
+    float _806 = dot(_802, _802);
+    float3 _825 = reflect(select(float3(0.0, -1.0, 0.0), _802 * rsqrt(fast::max(_806, 1.0000000031710768509710513471353e-30)), bool3(_806 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _828 = _825.y;
+    float _854 = smoothstep(0.0, params.reflection_horizon_band, -_828);
+    float _899 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _907 = 1.0 - fast::clamp((-_59).y, 0.0, 1.0);
+    float _911 = _907 * _907;
+    float3 _934 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_701 - _698, 0.0) + _755)), float3(exp((-params.scatter_coefficient) * _755))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_825.x, abs(_828), _825.z), bool3(dot(_825, _825) > 9.9999999600419720025001879548654e-13)), _854).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_854)), float3(fma(_899, _899, fma(-_899, _899, 1.0) * ((_911 * _911) * _907)))), bool3((_698 < _701) && (_135 < 0.0)));
+    out.out_color = float4(_934, 1.0);
     return out;
 }
 

@@ -7,7 +7,6 @@ using namespace metal;
 struct WaterParams
 {
     float4 gerstner_wave_directions[8];
-    float4 gerstner_wave_speeds[8];
     packed_float3 eye_position;
     float gerstner_amplitude;
     packed_float3 absorb_coefficients;
@@ -47,165 +46,165 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _49 = _33.xyz - float3(params.eye_position);
-    float _53 = length(_49);
-    float3 _60 = _49 / float3(fast::max(_53, 9.9999999747524270787835121154785e-07));
-    float3 _63 = dfdx(_60);
-    float3 _66 = dfdy(_60);
-    float _68 = fast::max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
-    float _1082;
-    float _1084;
-    _1084 = 0.0;
-    _1082 = 0.0;
-    float _106;
-    float _111;
-    float _116;
-    float _121;
-    int _1081 = 0;
-    float _1083 = params.gerstner_amplitude;
-    float _1085 = params.gerstner_frequency;
-    for (; _1081 < 8; _1085 = _121, _1084 = _111, _1083 = _116, _1082 = _106, _1081++)
+    float3 _48 = _33.xyz - float3(params.eye_position);
+    float _52 = length(_48);
+    float3 _59 = _48 / float3(fast::max(_52, 9.9999999747524270787835121154785e-07));
+    float3 _62 = dfdx(_59);
+    float3 _65 = dfdy(_59);
+    float _67 = fast::max(length(_62), length(_65));
+    float _70 = floor(gerstner_wave_count);
+    float _1061;
+    float _1063;
+    _1063 = 0.0;
+    _1061 = 0.0;
+    float _105;
+    float _110;
+    float _115;
+    float _119;
+    int _1060 = 0;
+    float _1062 = params.gerstner_amplitude;
+    float _1064 = params.gerstner_frequency;
+    for (; _1060 < 8; _1064 = _119, _1063 = _110, _1062 = _115, _1061 = _105, _1060++)
     {
-        if (!(float(_1081) < _71))
+        if (!(float(_1060) < _70))
         {
             break;
         }
-        _106 = _1082 + _1083;
-        _111 = fma(_1083, _1085, _1084);
-        _116 = _1083 * params.gerstner_amplitude_gain;
-        _121 = _1085 * params.gerstner_frequency_gain;
+        _105 = _1061 + _1062;
+        _110 = fma(_1062, _1064, _1063);
+        _115 = _1062 * params.gerstner_amplitude_gain;
+        _119 = _1064 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
-    float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1084 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1082;
-    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _1089;
-    float2 _1093;
-    _1093 = (float3(params.eye_position) + (_60 * fast::max((_1082 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _1089 = _1082;
-    float2 _403;
-    float _674;
-    float _679;
-    float _689;
-    int _1088 = 0;
-    float _1121 = _1082;
-    float _1126 = _158;
-    for (; _1088 < 9; _1126 = _679, _1121 = _674, _1093 = _403, _1089 = _689, _1088++)
+    float _135 = _59.y;
+    float _139 = fast::max(-_135, 9.9999999747524270787835121154785e-07);
+    float2 _143 = _59.xz;
+    float _152 = 1.0 / (1.0 + (((_1063 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_143)) / _139));
+    float _155 = -_1061;
+    float _159 = fast::min(_135, -9.9999999747524270787835121154785e-07);
+    float _1068;
+    float2 _1072;
+    _1072 = (float3(params.eye_position) + (_59 * fast::max((_1061 - params.eye_position[1u]) / _159, 0.0))).xz;
+    _1068 = _1061;
+    float2 _394;
+    float _654;
+    float _659;
+    float _669;
+    int _1067 = 0;
+    float _1100 = _1061;
+    float _1105 = _155;
+    for (; _1067 < 9; _1105 = _659, _1100 = _654, _1072 = _394, _1068 = _669, _1067++)
     {
-        float _207 = fast::max((_1089 - params.eye_position[1u]) / _162, 0.0);
-        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
-        float2 _1095;
-        float3 _1096;
-        _1096 = float3(0.0);
-        _1095 = float2(0.0);
-        float _320;
-        float _324;
-        float2 _331;
-        float3 _345;
-        int _1090 = 0;
-        float _1091 = params.gerstner_frequency;
-        float _1094 = params.gerstner_amplitude;
-        for (; _1090 < 8; _1096 = _345, _1095 = _331, _1094 = _320, _1091 = _324, _1090++)
+        float _205 = fast::max((_1068 - params.eye_position[1u]) / _159, 0.0);
+        float2 _215 = (float3(params.eye_position) + (_59 * _205)).xz;
+        float _221 = (_67 * _205) / _139;
+        float2 _1074;
+        float3 _1075;
+        _1075 = float3(0.0);
+        _1074 = float2(0.0);
+        float _311;
+        float _315;
+        float2 _322;
+        float3 _336;
+        int _1069 = 0;
+        float _1070 = params.gerstner_frequency;
+        float _1073 = params.gerstner_amplitude;
+        for (; _1069 < 8; _1075 = _336, _1074 = _322, _1073 = _311, _1070 = _315, _1069++)
         {
-            float _242 = float(_1090);
-            if (!(_242 < _71))
+            float _240 = float(_1069);
+            if (!(_240 < _70))
             {
                 break;
             }
-            int _253 = clamp(int(_242), 0, 7);
-            float _271 = _1091 * dot(params.gerstner_wave_directions[_253].xy, _1093);
-            float _293 = ((params.gerstner_steepness / (_71 * fast::max(_1091 * _1094, 9.9999999747524270787835121154785e-07))) * _1094) * fast::clamp(fma(-(_1091 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _312 = (_293 * _1091) * sin(_271);
-            float _316 = _312 * params.gerstner_wave_directions[_253].x;
-            _320 = _1094 * params.gerstner_amplitude_gain;
-            _324 = _1091 * params.gerstner_frequency_gain;
-            _331 = _1095 + (params.gerstner_wave_directions[_253].xy * (_293 * cos(_271)));
-            _345 = _1096 + float3(_316 * params.gerstner_wave_directions[_253].x, _316 * params.gerstner_wave_directions[_253].y, (_312 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            int _252 = clamp(int(_240), 0, 7);
+            float _270 = _1070 * dot(params.gerstner_wave_directions[_252].xy, _1072);
+            float _284 = ((params.gerstner_steepness / (_70 * fast::max(_1070 * _1073, 9.9999999747524270787835121154785e-07))) * _1073) * fast::clamp(fma(-(_1070 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _303 = (_284 * _1070) * sin(_270);
+            float _307 = _303 * params.gerstner_wave_directions[_252].x;
+            _311 = _1073 * params.gerstner_amplitude_gain;
+            _315 = _1070 * params.gerstner_frequency_gain;
+            _322 = _1074 + (params.gerstner_wave_directions[_252].xy * (_284 * cos(_270)));
+            _336 = _1075 + float3(_307 * params.gerstner_wave_directions[_252].x, _307 * params.gerstner_wave_directions[_252].y, (_303 * params.gerstner_wave_directions[_252].y) * params.gerstner_wave_directions[_252].y);
         }
-        float _351 = 1.0 - _1096.x;
-        float _356 = 1.0 - _1096.z;
-        float _360 = -_1096.y;
-        float2 _366 = (_1093 + _1095) - _217;
-        float _379 = _366.x;
-        float _382 = _366.y;
-        _403 = _1093 - (float2(fma(_356, _379, -(_360 * _382)), fma(_351, _382, -(_360 * _379))) / float2(fast::max(fma(_351, _356, -(_360 * _360)), 0.039999999105930328369140625)));
-        float3 _1103;
-        float3 _1104;
-        float3 _1105;
-        _1105 = float3(0.0, 0.0, 1.0);
-        _1104 = float3(1.0, 0.0, 0.0);
-        _1103 = float3(0.0);
-        float _516;
-        float _520;
-        float3 _532;
-        float3 _537;
-        float3 _542;
-        int _1100 = 0;
-        float _1101 = params.gerstner_frequency;
-        float _1102 = params.gerstner_amplitude;
-        for (; _1100 < 8; _1105 = _542, _1104 = _537, _1103 = _532, _1102 = _516, _1101 = _520, _1100++)
+        float _342 = 1.0 - _1075.x;
+        float _347 = 1.0 - _1075.z;
+        float _351 = -_1075.y;
+        float2 _357 = (_1072 + _1074) - _215;
+        float _370 = _357.x;
+        float _373 = _357.y;
+        _394 = _1072 - (float2(fma(_347, _370, -(_351 * _373)), fma(_342, _373, -(_351 * _370))) / float2(fast::max(fma(_342, _347, -(_351 * _351)), 0.039999999105930328369140625)));
+        float3 _1082;
+        float3 _1083;
+        float3 _1084;
+        _1084 = float3(0.0, 0.0, 1.0);
+        _1083 = float3(1.0, 0.0, 0.0);
+        _1082 = float3(0.0);
+        float _499;
+        float _503;
+        float3 _515;
+        float3 _520;
+        float3 _525;
+        int _1079 = 0;
+        float _1080 = params.gerstner_frequency;
+        float _1081 = params.gerstner_amplitude;
+        for (; _1079 < 8; _1084 = _525, _1083 = _520, _1082 = _515, _1081 = _499, _1080 = _503, _1079++)
         {
-            float _424 = float(_1100);
-            if (!(_424 < _71))
+            float _415 = float(_1079);
+            if (!(_415 < _70))
             {
                 break;
             }
-            int _435 = clamp(int(_424), 0, 7);
-            float _444 = fast::clamp(fma(-(_1101 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _450 = _1101 * dot(params.gerstner_wave_directions[_435].xy, _403);
-            float _472 = ((params.gerstner_steepness / (_71 * fast::max(_1101 * _1102, 9.9999999747524270787835121154785e-07))) * _1102) * _444;
-            float _476 = _1102 * _444;
-            float _479 = sin(_450);
-            float _482 = cos(_450);
-            float _492 = _472 * _482;
-            float _499 = -((_472 * _1101) * _479);
-            float3 _512 = float3(_499 * params.gerstner_wave_directions[_435].x, (_476 * _1101) * _482, _499 * params.gerstner_wave_directions[_435].y);
-            _516 = _1102 * params.gerstner_amplitude_gain;
-            _520 = _1101 * params.gerstner_frequency_gain;
-            _532 = _1103 + float3(_492 * params.gerstner_wave_directions[_435].x, _476 * _479, _492 * params.gerstner_wave_directions[_435].y);
-            _537 = _1104 + (_512 * params.gerstner_wave_directions[_435].x);
-            _542 = _1105 + (_512 * params.gerstner_wave_directions[_435].y);
+            int _426 = clamp(int(_415), 0, 7);
+            float _435 = fast::clamp(fma(-(_1080 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _441 = _1080 * dot(params.gerstner_wave_directions[_426].xy, _394);
+            float _455 = ((params.gerstner_steepness / (_70 * fast::max(_1080 * _1081, 9.9999999747524270787835121154785e-07))) * _1081) * _435;
+            float _459 = _1081 * _435;
+            float _462 = sin(_441);
+            float _465 = cos(_441);
+            float _475 = _455 * _465;
+            float _482 = -((_455 * _1080) * _462);
+            float3 _495 = float3(_482 * params.gerstner_wave_directions[_426].x, (_459 * _1080) * _465, _482 * params.gerstner_wave_directions[_426].y);
+            _499 = _1081 * params.gerstner_amplitude_gain;
+            _503 = _1080 * params.gerstner_frequency_gain;
+            _515 = _1082 + float3(_475 * params.gerstner_wave_directions[_426].x, _459 * _462, _475 * params.gerstner_wave_directions[_426].y);
+            _520 = _1083 + (_495 * params.gerstner_wave_directions[_426].x);
+            _525 = _1084 + (_495 * params.gerstner_wave_directions[_426].y);
         }
-        float3 _548 = cross(_1105, _1104);
-        float _552 = dot(_548, _548);
-        float3 _570 = select(float3(0.0, 1.0, 0.0), _548 * rsqrt(fast::max(_552, 1.0000000031710768509710513471353e-30)), bool3(_552 > 1.0000000031710768509710513471353e-30));
-        float2 _580 = (-_570.xz) / float2(fast::max(_570.y, 9.9999997473787516355514526367188e-05));
-        float _595 = float(_1088);
-        bool _596 = _595 < 1.0;
-        float _603 = (_1103.y + dot(_580, _217 - (_403 + _1103.xz))) - _1089;
-        float _616 = (-dot(_580, _146)) / _142;
-        float _629 = fma(fast::clamp(1.0 / fast::max(1.0 - _616, 9.9999999747524270787835121154785e-07), _155, 1.0), _603, _1089);
-        bool _632 = _603 < 0.0;
-        float _637 = _632 ? _1089 : _1121;
-        float _642 = _632 ? _1126 : _1089;
-        _674 = _596 ? _1089 : _637;
-        _679 = _596 ? _1126 : _642;
-        _689 = (_595 < 8.0) ? (_596 ? fma(_155, _603, _1089) : ((((_629 < _642) || (_629 > _637)) || (_616 >= 1.0)) ? (0.5 * (_642 + _637)) : _629)) : _1089;
+        float3 _531 = cross(_1084, _1083);
+        float _535 = dot(_531, _531);
+        float3 _553 = select(float3(0.0, 1.0, 0.0), _531 * rsqrt(fast::max(_535, 1.0000000031710768509710513471353e-30)), bool3(_535 > 1.0000000031710768509710513471353e-30));
+        float2 _563 = (-_553.xz) / float2(fast::max(_553.y, 9.9999997473787516355514526367188e-05));
+        float _578 = float(_1067);
+        bool _579 = _578 < 1.0;
+        float _583 = (_1082.y + dot(_563, _215 - (_394 + _1082.xz))) - _1068;
+        float _596 = (-dot(_563, _143)) / _139;
+        float _609 = fma(fast::clamp(1.0 / fast::max(1.0 - _596, 9.9999999747524270787835121154785e-07), _152, 1.0), _583, _1068);
+        bool _612 = _583 < 0.0;
+        float _617 = _612 ? _1068 : _1100;
+        float _622 = _612 ? _1105 : _1068;
+        _654 = _579 ? _1068 : _617;
+        _659 = _579 ? _1105 : _622;
+        _669 = (_578 < 8.0) ? (_579 ? fma(_152, _583, _1068) : ((((_609 < _622) || (_609 > _617)) || (_596 >= 1.0)) ? (0.5 * (_622 + _617)) : _609)) : _1068;
     }
-    float _703 = fast::max((_1089 - params.eye_position[1u]) / _162, 0.0);
-    float3 _710 = float3(params.eye_position) + (_60 * _703);
-    float _718 = _33.y;
-    float _721 = _710.y;
-    float _726 = fast::max(_721 - _718, 0.0);
-    float _775 = fast::clamp(fast::max(_53 - _703, 0.0), 0.0, 30000.0);
-    float3 _809 = abs(_60);
-    float3 _822 = _60 / float3(fast::max(fast::max(fast::max(_809.x, _809.y), _809.z), 1.0000000031710768509710513471353e-30));
-    float _826 = dot(_822, _822);
-    float3 _845 = reflect(select(float3(0.0, -1.0, 0.0), _822 * rsqrt(fast::max(_826, 1.0000000031710768509710513471353e-30)), bool3(_826 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _848 = _845.y;
-    float _874 = smoothstep(0.0, params.reflection_horizon_band, -_848);
-    float _920 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _928 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
-    float _932 = _928 * _928;
-    float2 _952 = _710.xz;
-    float _1006 = _726 - params.foam_existence[0u];
-    float _1011 = params.foam_existence[1u] - params.foam_existence[0u];
-    float3 _1052 = select(_25.xyz, mix(mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (_726 + _775)), float3(exp((-params.scatter_coefficient) * _775))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_845.x, abs(_848), _845.z), bool3(dot(_845, _845) > 9.9999999600419720025001879548654e-13)), _874).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_874)), float3(fma(_920, _920, fma(-_920, _920, 1.0) * ((_932 * _932) * _928)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_952 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_952)), length(dfdy(_952))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1006 < 0.0) ? 1.0 : (1.0 - ((_1006 >= _1011) ? 1.0 : fast::clamp(_1006 / fast::max(_1011, 5.9604644775390625e-08), 0.0, 1.0))))), bool3((_718 < _721) && (_138 < 0.0)));
-    out.out_color = float4(_1052, 1.0);
+    float _683 = fast::max((_1068 - params.eye_position[1u]) / _159, 0.0);
+    float3 _690 = float3(params.eye_position) + (_59 * _683);
+    float _698 = _33.y;
+    float _701 = _690.y;
+    float _706 = fast::max(_701 - _698, 0.0);
+    float _755 = fast::clamp(fast::max(_52 - _683, 0.0), 0.0, 30000.0);
+    float3 _789 = abs(_59);
+    float3 _802 = _59 / float3(fast::max(fast::max(fast::max(_789.x, _789.y), _789.z), 1.0000000031710768509710513471353e-30));
+    float _806 = dot(_802, _802);
+    float3 _825 = reflect(select(float3(0.0, -1.0, 0.0), _802 * rsqrt(fast::max(_806, 1.0000000031710768509710513471353e-30)), bool3(_806 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _828 = _825.y;
+    float _854 = smoothstep(0.0, params.reflection_horizon_band, -_828);
+    float _899 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _907 = 1.0 - fast::clamp((-_59).y, 0.0, 1.0);
+    float _911 = _907 * _907;
+    float2 _931 = _690.xz;
+    float _985 = _706 - params.foam_existence[0u];
+    float _990 = params.foam_existence[1u] - params.foam_existence[0u];
+    float3 _1031 = select(_25.xyz, mix(mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (_706 + _755)), float3(exp((-params.scatter_coefficient) * _755))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_825.x, abs(_828), _825.z), bool3(dot(_825, _825) > 9.9999999600419720025001879548654e-13)), _854).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_854)), float3(fma(_899, _899, fma(-_899, _899, 1.0) * ((_911 * _911) * _907)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_931 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_931)), length(dfdy(_931))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_985 < 0.0) ? 1.0 : (1.0 - ((_985 >= _990) ? 1.0 : fast::clamp(_985 / fast::max(_990, 5.9604644775390625e-08), 0.0, 1.0))))), bool3((_698 < _701) && (_135 < 0.0)));
+    out.out_color = float4(_1031, 1.0);
     return out;
 }
 

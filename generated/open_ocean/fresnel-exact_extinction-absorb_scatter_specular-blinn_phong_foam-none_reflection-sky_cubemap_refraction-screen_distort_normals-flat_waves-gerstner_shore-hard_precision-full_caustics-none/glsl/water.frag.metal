@@ -55,165 +55,165 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
     float _71 = floor(gerstner_wave_count);
-    float _1105;
-    float _1107;
-    _1107 = 0.0;
-    _1105 = 0.0;
+    float _1102;
+    float _1104;
+    _1104 = 0.0;
+    _1102 = 0.0;
     float _106;
     float _111;
     float _116;
     float _121;
-    int _1104 = 0;
-    float _1106 = params.gerstner_amplitude;
-    float _1108 = params.gerstner_frequency;
-    for (; _1104 < 8; _1108 = _121, _1107 = _111, _1106 = _116, _1105 = _106, _1104++)
+    int _1101 = 0;
+    float _1103 = params.gerstner_amplitude;
+    float _1105 = params.gerstner_frequency;
+    for (; _1101 < 8; _1105 = _121, _1104 = _111, _1103 = _116, _1102 = _106, _1101++)
     {
-        if (!(float(_1104) < _71))
+        if (!(float(_1101) < _71))
         {
             break;
         }
-        _106 = _1105 + _1106;
-        _111 = fma(_1106, _1108, _1107);
-        _116 = _1106 * params.gerstner_amplitude_gain;
-        _121 = _1108 * params.gerstner_frequency_gain;
+        _106 = _1102 + _1103;
+        _111 = fma(_1103, _1105, _1104);
+        _116 = _1103 * params.gerstner_amplitude_gain;
+        _121 = _1105 * params.gerstner_frequency_gain;
     }
     float _138 = _60.y;
     float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
     float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1107 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1105;
+    float _155 = 1.0 / (1.0 + (((_1104 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1102;
     float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _1112;
-    float2 _1116;
-    _1116 = (float3(params.eye_position) + (_60 * fast::max((_1105 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _1112 = _1105;
+    float _1109;
+    float2 _1113;
+    _1113 = (float3(params.eye_position) + (_60 * fast::max((_1102 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1109 = _1102;
     float2 _406;
-    float _679;
-    float _684;
-    float _694;
-    int _1111 = 0;
-    float _1144 = _1105;
-    float _1149 = _158;
-    for (; _1111 < 9; _1149 = _684, _1144 = _679, _1116 = _406, _1112 = _694, _1111++)
+    float _676;
+    float _681;
+    float _691;
+    int _1108 = 0;
+    float _1141 = _1102;
+    float _1146 = _158;
+    for (; _1108 < 9; _1146 = _681, _1141 = _676, _1113 = _406, _1109 = _691, _1108++)
     {
-        float _207 = fast::max((_1112 - params.eye_position[1u]) / _162, 0.0);
+        float _207 = fast::max((_1109 - params.eye_position[1u]) / _162, 0.0);
         float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
         float _223 = (_68 * _207) / _142;
-        float2 _1118;
-        float3 _1119;
-        _1119 = float3(0.0);
-        _1118 = float2(0.0);
+        float2 _1115;
+        float3 _1116;
+        _1116 = float3(0.0);
+        _1115 = float2(0.0);
         float _323;
         float _327;
         float2 _334;
         float3 _348;
-        int _1113 = 0;
-        float _1114 = params.gerstner_frequency;
-        float _1117 = params.gerstner_amplitude;
-        for (; _1113 < 8; _1119 = _348, _1118 = _334, _1117 = _323, _1114 = _327, _1113++)
+        int _1110 = 0;
+        float _1111 = params.gerstner_frequency;
+        float _1114 = params.gerstner_amplitude;
+        for (; _1110 < 8; _1116 = _348, _1115 = _334, _1114 = _323, _1111 = _327, _1110++)
         {
-            float _242 = float(_1113);
+            float _242 = float(_1110);
             if (!(_242 < _71))
             {
                 break;
             }
             int _253 = clamp(int(_242), 0, 7);
-            float _282 = fma(_1114, dot(params.gerstner_wave_directions[_253].xy, _1116), params.time * params.gerstner_wave_speeds[_253].x);
-            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_1114 * _1117, 9.9999999747524270787835121154785e-07))) * _1117) * fast::clamp(fma(-(_1114 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _315 = (_296 * _1114) * sin(_282);
+            float _282 = fma(_1111, dot(params.gerstner_wave_directions[_253].xy, _1113), params.time * params.gerstner_wave_speeds[_253].x);
+            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_1111 * _1114, 9.9999999747524270787835121154785e-07))) * _1114) * fast::clamp(fma(-(_1111 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _315 = (_296 * _1111) * sin(_282);
             float _319 = _315 * params.gerstner_wave_directions[_253].x;
-            _323 = _1117 * params.gerstner_amplitude_gain;
-            _327 = _1114 * params.gerstner_frequency_gain;
-            _334 = _1118 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
-            _348 = _1119 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            _323 = _1114 * params.gerstner_amplitude_gain;
+            _327 = _1111 * params.gerstner_frequency_gain;
+            _334 = _1115 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
+            _348 = _1116 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _354 = 1.0 - _1119.x;
-        float _359 = 1.0 - _1119.z;
-        float _363 = -_1119.y;
-        float2 _369 = (_1116 + _1118) - _217;
+        float _354 = 1.0 - _1116.x;
+        float _359 = 1.0 - _1116.z;
+        float _363 = -_1116.y;
+        float2 _369 = (_1113 + _1115) - _217;
         float _382 = _369.x;
         float _385 = _369.y;
-        _406 = _1116 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
-        float3 _1126;
-        float3 _1127;
-        float3 _1128;
-        _1128 = float3(0.0, 0.0, 1.0);
-        _1127 = float3(1.0, 0.0, 0.0);
-        _1126 = float3(0.0);
+        _406 = _1113 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
+        float3 _1123;
+        float3 _1124;
+        float3 _1125;
+        _1125 = float3(0.0, 0.0, 1.0);
+        _1124 = float3(1.0, 0.0, 0.0);
+        _1123 = float3(0.0);
         float _521;
         float _525;
         float3 _537;
         float3 _542;
         float3 _547;
-        int _1123 = 0;
-        float _1124 = params.gerstner_frequency;
-        float _1125 = params.gerstner_amplitude;
-        for (; _1123 < 8; _1128 = _547, _1127 = _542, _1126 = _537, _1125 = _521, _1124 = _525, _1123++)
+        int _1120 = 0;
+        float _1121 = params.gerstner_frequency;
+        float _1122 = params.gerstner_amplitude;
+        for (; _1120 < 8; _1125 = _547, _1124 = _542, _1123 = _537, _1122 = _521, _1121 = _525, _1120++)
         {
-            float _427 = float(_1123);
+            float _427 = float(_1120);
             if (!(_427 < _71))
             {
                 break;
             }
             int _438 = clamp(int(_427), 0, 7);
-            float _447 = fast::clamp(fma(-(_1124 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _463 = fma(_1124, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
-            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1124 * _1125, 9.9999999747524270787835121154785e-07))) * _1125) * _447;
-            float _481 = _1125 * _447;
+            float _447 = fast::clamp(fma(-(_1121 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _463 = fma(_1121, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
+            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1121 * _1122, 9.9999999747524270787835121154785e-07))) * _1122) * _447;
+            float _481 = _1122 * _447;
             float _484 = sin(_463);
             float _487 = cos(_463);
             float _497 = _477 * _487;
-            float _504 = -((_477 * _1124) * _484);
-            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1124) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1125 * params.gerstner_amplitude_gain;
-            _525 = _1124 * params.gerstner_frequency_gain;
-            _537 = _1126 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1127 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1128 + (_517 * params.gerstner_wave_directions[_438].y);
+            float _504 = -((_477 * _1121) * _484);
+            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1121) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1122 * params.gerstner_amplitude_gain;
+            _525 = _1121 * params.gerstner_frequency_gain;
+            _537 = _1123 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1124 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1125 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        float3 _553 = cross(_1128, _1127);
+        float3 _553 = cross(_1125, _1124);
         float _557 = dot(_553, _553);
         float3 _575 = select(float3(0.0, 1.0, 0.0), _553 * rsqrt(fast::max(_557, 1.0000000031710768509710513471353e-30)), bool3(_557 > 1.0000000031710768509710513471353e-30));
         float2 _585 = (-_575.xz) / float2(fast::max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1111);
+        float _600 = float(_1108);
         bool _601 = _600 < 1.0;
-        float _608 = (_1126.y + dot(_585, _217 - (_406 + _1126.xz))) - _1112;
-        float _621 = (-dot(_585, _146)) / _142;
-        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0), _608, _1112);
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1112 : _1144;
-        float _647 = _637 ? _1149 : _1112;
-        _679 = _601 ? _1112 : _642;
-        _684 = _601 ? _1149 : _647;
-        _694 = (_600 < 8.0) ? (_601 ? fma(_155, _608, _1112) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1112;
+        float _605 = (_1123.y + dot(_585, _217 - (_406 + _1123.xz))) - _1109;
+        float _618 = (-dot(_585, _146)) / _142;
+        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0), _605, _1109);
+        bool _634 = _605 < 0.0;
+        float _639 = _634 ? _1109 : _1141;
+        float _644 = _634 ? _1146 : _1109;
+        _676 = _601 ? _1109 : _639;
+        _681 = _601 ? _1146 : _644;
+        _691 = (_600 < 8.0) ? (_601 ? fma(_155, _605, _1109) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1109;
     }
-    float _708 = fast::max((_1112 - params.eye_position[1u]) / _162, 0.0);
-    float3 _715 = float3(params.eye_position) + (_60 * _708);
-    float _723 = _33.y;
-    float _726 = _715.y;
-    float3 _741 = -_60;
-    float _782 = fast::clamp(fast::max(_53 - _708, 0.0), 0.0, 30000.0);
-    float3 _816 = abs(_60);
-    float3 _829 = _60 / float3(fast::max(fast::max(fast::max(_816.x, _816.y), _816.z), 1.0000000031710768509710513471353e-30));
-    float _833 = dot(_829, _829);
-    float3 _852 = reflect(select(float3(0.0, -1.0, 0.0), _829 * rsqrt(fast::max(_833, 1.0000000031710768509710513471353e-30)), bool3(_833 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _855 = _852.y;
-    float _881 = smoothstep(0.0, params.reflection_horizon_band, -_855);
-    float _916 = fast::clamp(_741.y, 0.0, 1.0);
-    float _924 = params.ior_air / params.ior_water;
-    float _928 = _924 * _924;
-    float _932 = fma(-_916, _916, 1.0);
-    float _938 = sqrt(fast::max(fma(-_928, _932, 1.0), 0.0));
-    float _943 = params.ior_water * _938;
-    float _957 = fma(params.ior_air, _916, -_943) / fast::max(fma(params.ior_air, _916, _943), 1.0000000031710768509710513471353e-30);
-    float _962 = params.ior_air * _938;
-    float _976 = fma(params.ior_water, _916, -_962) / fast::max(fma(params.ior_water, _916, _962), 1.0000000031710768509710513471353e-30);
-    float3 _999 = (-float3(params.sun_direction)) + _741;
-    float _1011 = fast::max(fast::max(abs(_999.x), abs(_999.y)), abs(_999.z));
-    float3 _1018 = _999 / float3(fast::max(_1011, 5.9604644775390625e-08));
-    float _1037 = fast::clamp(select(float3(0.0), _1018 / float3(fast::max(length(_1018), 1.0)), bool3(_1011 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1072 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _782)), float3(exp((-params.scatter_coefficient) * _782))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_852.x, abs(_855), _852.z), bool3(dot(_852, _852) > 9.9999999600419720025001879548654e-13)), _881).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_881)), float3(((_928 * _932) >= 1.0) ? 1.0 : (0.5 * fma(_957, _957, _976 * _976)))) + (float3(params.sun_color) * ((_1037 > 6.103515625e-05) ? pow(fast::max(_1037, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_723 < _726) && (_138 < 0.0)));
-    out.out_color = float4(_1072, 1.0);
+    float _705 = fast::max((_1109 - params.eye_position[1u]) / _162, 0.0);
+    float3 _712 = float3(params.eye_position) + (_60 * _705);
+    float _720 = _33.y;
+    float _723 = _712.y;
+    float3 _738 = -_60;
+    float _779 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
+    float3 _813 = abs(_60);
+    float3 _826 = _60 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
+    float _830 = dot(_826, _826);
+    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _852 = _849.y;
+    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
+    float _913 = fast::clamp(_738.y, 0.0, 1.0);
+    float _921 = params.ior_air / params.ior_water;
+    float _925 = _921 * _921;
+    float _929 = fma(-_913, _913, 1.0);
+    float _935 = sqrt(fast::max(fma(-_925, _929, 1.0), 0.0));
+    float _940 = params.ior_water * _935;
+    float _954 = fma(params.ior_air, _913, -_940) / fast::max(fma(params.ior_air, _913, _940), 1.0000000031710768509710513471353e-30);
+    float _959 = params.ior_air * _935;
+    float _973 = fma(params.ior_water, _913, -_959) / fast::max(fma(params.ior_water, _913, _959), 1.0000000031710768509710513471353e-30);
+    float3 _996 = (-float3(params.sun_direction)) + _738;
+    float _1008 = fast::max(fast::max(abs(_996.x), abs(_996.y)), abs(_996.z));
+    float3 _1015 = _996 / float3(fast::max(_1008, 5.9604644775390625e-08));
+    float _1034 = fast::clamp(select(float3(0.0), _1015 / float3(fast::max(length(_1015), 1.0)), bool3(_1008 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1069 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_723 - _720, 0.0) + _779)), float3(exp((-params.scatter_coefficient) * _779))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(((_925 * _929) >= 1.0) ? 1.0 : (0.5 * fma(_954, _954, _973 * _973)))) + (float3(params.sun_color) * ((_1034 > 6.103515625e-05) ? pow(fast::max(_1034, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_720 < _723) && (_138 < 0.0)));
+    out.out_color = float4(_1069, 1.0);
     return out;
 }
 

@@ -52,160 +52,160 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
     float _71 = floor(gerstner_wave_count);
-    float _1032;
-    float _1034;
-    _1034 = 0.0;
-    _1032 = 0.0;
+    float _1029;
+    float _1031;
+    _1031 = 0.0;
+    _1029 = 0.0;
     float _106;
     float _111;
     float _116;
     float _121;
-    int _1031 = 0;
-    float _1033 = params.gerstner_amplitude;
-    float _1035 = params.gerstner_frequency;
-    for (; _1031 < 8; _1035 = _121, _1034 = _111, _1033 = _116, _1032 = _106, _1031++)
+    int _1028 = 0;
+    float _1030 = params.gerstner_amplitude;
+    float _1032 = params.gerstner_frequency;
+    for (; _1028 < 8; _1032 = _121, _1031 = _111, _1030 = _116, _1029 = _106, _1028++)
     {
-        if (!(float(_1031) < _71))
+        if (!(float(_1028) < _71))
         {
             break;
         }
-        _106 = _1032 + _1033;
-        _111 = fma(_1033, _1035, _1034);
-        _116 = _1033 * params.gerstner_amplitude_gain;
-        _121 = _1035 * params.gerstner_frequency_gain;
+        _106 = _1029 + _1030;
+        _111 = fma(_1030, _1032, _1031);
+        _116 = _1030 * params.gerstner_amplitude_gain;
+        _121 = _1032 * params.gerstner_frequency_gain;
     }
     float _138 = _60.y;
     float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
     float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1034 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1032;
+    float _155 = 1.0 / (1.0 + (((_1031 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1029;
     float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _1039;
-    float2 _1043;
-    _1043 = (float3(params.eye_position) + (_60 * fast::max((_1032 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _1039 = _1032;
+    float _1036;
+    float2 _1040;
+    _1040 = (float3(params.eye_position) + (_60 * fast::max((_1029 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1036 = _1029;
     float2 _406;
-    float _679;
-    float _684;
-    float _694;
-    int _1038 = 0;
-    float _1071 = _1032;
-    float _1076 = _158;
-    for (; _1038 < 9; _1076 = _684, _1071 = _679, _1043 = _406, _1039 = _694, _1038++)
+    float _676;
+    float _681;
+    float _691;
+    int _1035 = 0;
+    float _1068 = _1029;
+    float _1073 = _158;
+    for (; _1035 < 9; _1073 = _681, _1068 = _676, _1040 = _406, _1036 = _691, _1035++)
     {
-        float _207 = fast::max((_1039 - params.eye_position[1u]) / _162, 0.0);
+        float _207 = fast::max((_1036 - params.eye_position[1u]) / _162, 0.0);
         float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
         float _223 = (_68 * _207) / _142;
-        float2 _1045;
-        float3 _1046;
-        _1046 = float3(0.0);
-        _1045 = float2(0.0);
+        float2 _1042;
+        float3 _1043;
+        _1043 = float3(0.0);
+        _1042 = float2(0.0);
         float _323;
         float _327;
         float2 _334;
         float3 _348;
-        int _1040 = 0;
-        float _1041 = params.gerstner_frequency;
-        float _1044 = params.gerstner_amplitude;
-        for (; _1040 < 8; _1046 = _348, _1045 = _334, _1044 = _323, _1041 = _327, _1040++)
+        int _1037 = 0;
+        float _1038 = params.gerstner_frequency;
+        float _1041 = params.gerstner_amplitude;
+        for (; _1037 < 8; _1043 = _348, _1042 = _334, _1041 = _323, _1038 = _327, _1037++)
         {
-            float _242 = float(_1040);
+            float _242 = float(_1037);
             if (!(_242 < _71))
             {
                 break;
             }
             int _253 = clamp(int(_242), 0, 7);
-            float _282 = fma(_1041, dot(params.gerstner_wave_directions[_253].xy, _1043), params.time * params.gerstner_wave_speeds[_253].x);
-            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_1041 * _1044, 9.9999999747524270787835121154785e-07))) * _1044) * fast::clamp(fma(-(_1041 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _315 = (_296 * _1041) * sin(_282);
+            float _282 = fma(_1038, dot(params.gerstner_wave_directions[_253].xy, _1040), params.time * params.gerstner_wave_speeds[_253].x);
+            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_1038 * _1041, 9.9999999747524270787835121154785e-07))) * _1041) * fast::clamp(fma(-(_1038 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _315 = (_296 * _1038) * sin(_282);
             float _319 = _315 * params.gerstner_wave_directions[_253].x;
-            _323 = _1044 * params.gerstner_amplitude_gain;
-            _327 = _1041 * params.gerstner_frequency_gain;
-            _334 = _1045 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
-            _348 = _1046 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            _323 = _1041 * params.gerstner_amplitude_gain;
+            _327 = _1038 * params.gerstner_frequency_gain;
+            _334 = _1042 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
+            _348 = _1043 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _354 = 1.0 - _1046.x;
-        float _359 = 1.0 - _1046.z;
-        float _363 = -_1046.y;
-        float2 _369 = (_1043 + _1045) - _217;
+        float _354 = 1.0 - _1043.x;
+        float _359 = 1.0 - _1043.z;
+        float _363 = -_1043.y;
+        float2 _369 = (_1040 + _1042) - _217;
         float _382 = _369.x;
         float _385 = _369.y;
-        _406 = _1043 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
-        float3 _1053;
-        float3 _1054;
-        float3 _1055;
-        _1055 = float3(0.0, 0.0, 1.0);
-        _1054 = float3(1.0, 0.0, 0.0);
-        _1053 = float3(0.0);
+        _406 = _1040 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
+        float3 _1050;
+        float3 _1051;
+        float3 _1052;
+        _1052 = float3(0.0, 0.0, 1.0);
+        _1051 = float3(1.0, 0.0, 0.0);
+        _1050 = float3(0.0);
         float _521;
         float _525;
         float3 _537;
         float3 _542;
         float3 _547;
-        int _1050 = 0;
-        float _1051 = params.gerstner_frequency;
-        float _1052 = params.gerstner_amplitude;
-        for (; _1050 < 8; _1055 = _547, _1054 = _542, _1053 = _537, _1052 = _521, _1051 = _525, _1050++)
+        int _1047 = 0;
+        float _1048 = params.gerstner_frequency;
+        float _1049 = params.gerstner_amplitude;
+        for (; _1047 < 8; _1052 = _547, _1051 = _542, _1050 = _537, _1049 = _521, _1048 = _525, _1047++)
         {
-            float _427 = float(_1050);
+            float _427 = float(_1047);
             if (!(_427 < _71))
             {
                 break;
             }
             int _438 = clamp(int(_427), 0, 7);
-            float _447 = fast::clamp(fma(-(_1051 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _463 = fma(_1051, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
-            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1051 * _1052, 9.9999999747524270787835121154785e-07))) * _1052) * _447;
-            float _481 = _1052 * _447;
+            float _447 = fast::clamp(fma(-(_1048 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _463 = fma(_1048, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
+            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1048 * _1049, 9.9999999747524270787835121154785e-07))) * _1049) * _447;
+            float _481 = _1049 * _447;
             float _484 = sin(_463);
             float _487 = cos(_463);
             float _497 = _477 * _487;
-            float _504 = -((_477 * _1051) * _484);
-            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1051) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1052 * params.gerstner_amplitude_gain;
-            _525 = _1051 * params.gerstner_frequency_gain;
-            _537 = _1053 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1054 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1055 + (_517 * params.gerstner_wave_directions[_438].y);
+            float _504 = -((_477 * _1048) * _484);
+            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1048) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1049 * params.gerstner_amplitude_gain;
+            _525 = _1048 * params.gerstner_frequency_gain;
+            _537 = _1050 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1051 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1052 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        float3 _553 = cross(_1055, _1054);
+        float3 _553 = cross(_1052, _1051);
         float _557 = dot(_553, _553);
         float3 _575 = select(float3(0.0, 1.0, 0.0), _553 * rsqrt(fast::max(_557, 1.0000000031710768509710513471353e-30)), bool3(_557 > 1.0000000031710768509710513471353e-30));
         float2 _585 = (-_575.xz) / float2(fast::max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1038);
+        float _600 = float(_1035);
         bool _601 = _600 < 1.0;
-        float _608 = (_1053.y + dot(_585, _217 - (_406 + _1053.xz))) - _1039;
-        float _621 = (-dot(_585, _146)) / _142;
-        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0), _608, _1039);
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1039 : _1071;
-        float _647 = _637 ? _1076 : _1039;
-        _679 = _601 ? _1039 : _642;
-        _684 = _601 ? _1076 : _647;
-        _694 = (_600 < 8.0) ? (_601 ? fma(_155, _608, _1039) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1039;
+        float _605 = (_1050.y + dot(_585, _217 - (_406 + _1050.xz))) - _1036;
+        float _618 = (-dot(_585, _146)) / _142;
+        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0), _605, _1036);
+        bool _634 = _605 < 0.0;
+        float _639 = _634 ? _1036 : _1068;
+        float _644 = _634 ? _1073 : _1036;
+        _676 = _601 ? _1036 : _639;
+        _681 = _601 ? _1073 : _644;
+        _691 = (_600 < 8.0) ? (_601 ? fma(_155, _605, _1036) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1036;
     }
-    float _708 = fast::max((_1039 - params.eye_position[1u]) / _162, 0.0);
-    float3 _715 = float3(params.eye_position) + (_60 * _708);
-    float _723 = _33.y;
-    float _726 = _715.y;
-    float _780 = fast::clamp(fast::max(_53 - _708, 0.0), 0.0, 30000.0);
-    float3 _814 = abs(_60);
-    float3 _827 = _60 / float3(fast::max(fast::max(fast::max(_814.x, _814.y), _814.z), 1.0000000031710768509710513471353e-30));
-    float _831 = dot(_827, _827);
-    float3 _850 = reflect(select(float3(0.0, -1.0, 0.0), _827 * rsqrt(fast::max(_831, 1.0000000031710768509710513471353e-30)), bool3(_831 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _853 = _850.y;
-    float _879 = smoothstep(0.0, params.reflection_horizon_band, -_853);
-    float _914 = fast::clamp((-_60).y, 0.0, 1.0);
-    float _922 = params.ior_air / params.ior_water;
-    float _926 = _922 * _922;
-    float _930 = fma(-_914, _914, 1.0);
-    float _936 = sqrt(fast::max(fma(-_926, _930, 1.0), 0.0));
-    float _941 = params.ior_water * _936;
-    float _955 = fma(params.ior_air, _914, -_941) / fast::max(fma(params.ior_air, _914, _941), 1.0000000031710768509710513471353e-30);
-    float _960 = params.ior_air * _936;
-    float _974 = fma(params.ior_water, _914, -_960) / fast::max(fma(params.ior_water, _914, _960), 1.0000000031710768509710513471353e-30);
-    float3 _1002 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _780)), float3(exp((-params.scatter_coefficient) * _780))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_850.x, abs(_853), _850.z), bool3(dot(_850, _850) > 9.9999999600419720025001879548654e-13)), _879).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_879)), float3(((_926 * _930) >= 1.0) ? 1.0 : (0.5 * fma(_955, _955, _974 * _974)))), bool3((_723 < _726) && (_138 < 0.0)));
-    out.out_color = float4(_1002, 1.0);
+    float _705 = fast::max((_1036 - params.eye_position[1u]) / _162, 0.0);
+    float3 _712 = float3(params.eye_position) + (_60 * _705);
+    float _720 = _33.y;
+    float _723 = _712.y;
+    float _777 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
+    float3 _811 = abs(_60);
+    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
+    float _828 = dot(_824, _824);
+    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _850 = _847.y;
+    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
+    float _911 = fast::clamp((-_60).y, 0.0, 1.0);
+    float _919 = params.ior_air / params.ior_water;
+    float _923 = _919 * _919;
+    float _927 = fma(-_911, _911, 1.0);
+    float _933 = sqrt(fast::max(fma(-_923, _927, 1.0), 0.0));
+    float _938 = params.ior_water * _933;
+    float _952 = fma(params.ior_air, _911, -_938) / fast::max(fma(params.ior_air, _911, _938), 1.0000000031710768509710513471353e-30);
+    float _957 = params.ior_air * _933;
+    float _971 = fma(params.ior_water, _911, -_957) / fast::max(fma(params.ior_water, _911, _957), 1.0000000031710768509710513471353e-30);
+    float3 _999 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_723 - _720, 0.0) + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(((_923 * _927) >= 1.0) ? 1.0 : (0.5 * fma(_952, _952, _971 * _971)))), bool3((_720 < _723) && (_138 < 0.0)));
+    out.out_color = float4(_999, 1.0);
     return out;
 }
 

@@ -55,159 +55,159 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
     float _71 = floor(gerstner_wave_count);
-    float _1063;
-    float _1065;
-    _1065 = 0.0;
-    _1063 = 0.0;
+    float _1060;
+    float _1062;
+    _1062 = 0.0;
+    _1060 = 0.0;
     float _106;
     float _111;
     float _116;
     float _121;
-    int _1062 = 0;
-    float _1064 = params.gerstner_amplitude;
-    float _1066 = params.gerstner_frequency;
-    for (; _1062 < 8; _1066 = _121, _1065 = _111, _1064 = _116, _1063 = _106, _1062++)
+    int _1059 = 0;
+    float _1061 = params.gerstner_amplitude;
+    float _1063 = params.gerstner_frequency;
+    for (; _1059 < 8; _1063 = _121, _1062 = _111, _1061 = _116, _1060 = _106, _1059++)
     {
-        if (!(float(_1062) < _71))
+        if (!(float(_1059) < _71))
         {
             break;
         }
-        _106 = _1063 + _1064;
-        _111 = fma(_1064, _1066, _1065);
-        _116 = _1064 * params.gerstner_amplitude_gain;
-        _121 = _1066 * params.gerstner_frequency_gain;
+        _106 = _1060 + _1061;
+        _111 = fma(_1061, _1063, _1062);
+        _116 = _1061 * params.gerstner_amplitude_gain;
+        _121 = _1063 * params.gerstner_frequency_gain;
     }
     float _138 = _60.y;
     float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
     float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1065 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1063;
+    float _155 = 1.0 / (1.0 + (((_1062 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1060;
     float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _1070;
-    float2 _1074;
-    _1074 = (float3(params.eye_position) + (_60 * fast::max((_1063 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _1070 = _1063;
+    float _1067;
+    float2 _1071;
+    _1071 = (float3(params.eye_position) + (_60 * fast::max((_1060 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1067 = _1060;
     float2 _406;
-    float _679;
-    float _684;
-    float _694;
-    int _1069 = 0;
-    float _1102 = _1063;
-    float _1107 = _158;
-    for (; _1069 < 9; _1107 = _684, _1102 = _679, _1074 = _406, _1070 = _694, _1069++)
+    float _676;
+    float _681;
+    float _691;
+    int _1066 = 0;
+    float _1099 = _1060;
+    float _1104 = _158;
+    for (; _1066 < 9; _1104 = _681, _1099 = _676, _1071 = _406, _1067 = _691, _1066++)
     {
-        float _207 = fast::max((_1070 - params.eye_position[1u]) / _162, 0.0);
+        float _207 = fast::max((_1067 - params.eye_position[1u]) / _162, 0.0);
         float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
         float _223 = (_68 * _207) / _142;
-        float2 _1076;
-        float3 _1077;
-        _1077 = float3(0.0);
-        _1076 = float2(0.0);
+        float2 _1073;
+        float3 _1074;
+        _1074 = float3(0.0);
+        _1073 = float2(0.0);
         float _323;
         float _327;
         float2 _334;
         float3 _348;
-        int _1071 = 0;
-        float _1072 = params.gerstner_frequency;
-        float _1075 = params.gerstner_amplitude;
-        for (; _1071 < 8; _1077 = _348, _1076 = _334, _1075 = _323, _1072 = _327, _1071++)
+        int _1068 = 0;
+        float _1069 = params.gerstner_frequency;
+        float _1072 = params.gerstner_amplitude;
+        for (; _1068 < 8; _1074 = _348, _1073 = _334, _1072 = _323, _1069 = _327, _1068++)
         {
-            float _242 = float(_1071);
+            float _242 = float(_1068);
             if (!(_242 < _71))
             {
                 break;
             }
             int _253 = clamp(int(_242), 0, 7);
-            float _282 = fma(_1072, dot(params.gerstner_wave_directions[_253].xy, _1074), params.time * params.gerstner_wave_speeds[_253].x);
-            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_1072 * _1075, 9.9999999747524270787835121154785e-07))) * _1075) * fast::clamp(fma(-(_1072 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _315 = (_296 * _1072) * sin(_282);
+            float _282 = fma(_1069, dot(params.gerstner_wave_directions[_253].xy, _1071), params.time * params.gerstner_wave_speeds[_253].x);
+            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_1069 * _1072, 9.9999999747524270787835121154785e-07))) * _1072) * fast::clamp(fma(-(_1069 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _315 = (_296 * _1069) * sin(_282);
             float _319 = _315 * params.gerstner_wave_directions[_253].x;
-            _323 = _1075 * params.gerstner_amplitude_gain;
-            _327 = _1072 * params.gerstner_frequency_gain;
-            _334 = _1076 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
-            _348 = _1077 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            _323 = _1072 * params.gerstner_amplitude_gain;
+            _327 = _1069 * params.gerstner_frequency_gain;
+            _334 = _1073 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
+            _348 = _1074 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _354 = 1.0 - _1077.x;
-        float _359 = 1.0 - _1077.z;
-        float _363 = -_1077.y;
-        float2 _369 = (_1074 + _1076) - _217;
+        float _354 = 1.0 - _1074.x;
+        float _359 = 1.0 - _1074.z;
+        float _363 = -_1074.y;
+        float2 _369 = (_1071 + _1073) - _217;
         float _382 = _369.x;
         float _385 = _369.y;
-        _406 = _1074 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
-        float3 _1084;
-        float3 _1085;
-        float3 _1086;
-        _1086 = float3(0.0, 0.0, 1.0);
-        _1085 = float3(1.0, 0.0, 0.0);
-        _1084 = float3(0.0);
+        _406 = _1071 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
+        float3 _1081;
+        float3 _1082;
+        float3 _1083;
+        _1083 = float3(0.0, 0.0, 1.0);
+        _1082 = float3(1.0, 0.0, 0.0);
+        _1081 = float3(0.0);
         float _521;
         float _525;
         float3 _537;
         float3 _542;
         float3 _547;
-        int _1081 = 0;
-        float _1082 = params.gerstner_frequency;
-        float _1083 = params.gerstner_amplitude;
-        for (; _1081 < 8; _1086 = _547, _1085 = _542, _1084 = _537, _1083 = _521, _1082 = _525, _1081++)
+        int _1078 = 0;
+        float _1079 = params.gerstner_frequency;
+        float _1080 = params.gerstner_amplitude;
+        for (; _1078 < 8; _1083 = _547, _1082 = _542, _1081 = _537, _1080 = _521, _1079 = _525, _1078++)
         {
-            float _427 = float(_1081);
+            float _427 = float(_1078);
             if (!(_427 < _71))
             {
                 break;
             }
             int _438 = clamp(int(_427), 0, 7);
-            float _447 = fast::clamp(fma(-(_1082 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _463 = fma(_1082, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
-            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1082 * _1083, 9.9999999747524270787835121154785e-07))) * _1083) * _447;
-            float _481 = _1083 * _447;
+            float _447 = fast::clamp(fma(-(_1079 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _463 = fma(_1079, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
+            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1079 * _1080, 9.9999999747524270787835121154785e-07))) * _1080) * _447;
+            float _481 = _1080 * _447;
             float _484 = sin(_463);
             float _487 = cos(_463);
             float _497 = _477 * _487;
-            float _504 = -((_477 * _1082) * _484);
-            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1082) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1083 * params.gerstner_amplitude_gain;
-            _525 = _1082 * params.gerstner_frequency_gain;
-            _537 = _1084 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1085 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1086 + (_517 * params.gerstner_wave_directions[_438].y);
+            float _504 = -((_477 * _1079) * _484);
+            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1079) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1080 * params.gerstner_amplitude_gain;
+            _525 = _1079 * params.gerstner_frequency_gain;
+            _537 = _1081 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1082 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1083 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        float3 _553 = cross(_1086, _1085);
+        float3 _553 = cross(_1083, _1082);
         float _557 = dot(_553, _553);
         float3 _575 = select(float3(0.0, 1.0, 0.0), _553 * rsqrt(fast::max(_557, 1.0000000031710768509710513471353e-30)), bool3(_557 > 1.0000000031710768509710513471353e-30));
         float2 _585 = (-_575.xz) / float2(fast::max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1069);
+        float _600 = float(_1066);
         bool _601 = _600 < 1.0;
-        float _608 = (_1084.y + dot(_585, _217 - (_406 + _1084.xz))) - _1070;
-        float _621 = (-dot(_585, _146)) / _142;
-        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0), _608, _1070);
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1070 : _1102;
-        float _647 = _637 ? _1107 : _1070;
-        _679 = _601 ? _1070 : _642;
-        _684 = _601 ? _1107 : _647;
-        _694 = (_600 < 8.0) ? (_601 ? fma(_155, _608, _1070) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1070;
+        float _605 = (_1081.y + dot(_585, _217 - (_406 + _1081.xz))) - _1067;
+        float _618 = (-dot(_585, _146)) / _142;
+        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0), _605, _1067);
+        bool _634 = _605 < 0.0;
+        float _639 = _634 ? _1067 : _1099;
+        float _644 = _634 ? _1104 : _1067;
+        _676 = _601 ? _1067 : _639;
+        _681 = _601 ? _1104 : _644;
+        _691 = (_600 < 8.0) ? (_601 ? fma(_155, _605, _1067) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1067;
     }
-    float _708 = fast::max((_1070 - params.eye_position[1u]) / _162, 0.0);
-    float3 _715 = float3(params.eye_position) + (_60 * _708);
-    float _723 = _33.y;
-    float _726 = _715.y;
-    float3 _741 = -_60;
-    float _782 = fast::clamp(fast::max(_53 - _708, 0.0), 0.0, 30000.0);
-    float3 _816 = abs(_60);
-    float3 _829 = _60 / float3(fast::max(fast::max(fast::max(_816.x, _816.y), _816.z), 1.0000000031710768509710513471353e-30));
-    float _833 = dot(_829, _829);
-    float3 _852 = reflect(select(float3(0.0, -1.0, 0.0), _829 * rsqrt(fast::max(_833, 1.0000000031710768509710513471353e-30)), bool3(_833 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _855 = _852.y;
-    float _881 = smoothstep(0.0, params.reflection_horizon_band, -_855);
-    float _927 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _935 = 1.0 - fast::clamp(_741.y, 0.0, 1.0);
-    float _939 = _935 * _935;
-    float3 _957 = (-float3(params.sun_direction)) + _741;
-    float _969 = fast::max(fast::max(abs(_957.x), abs(_957.y)), abs(_957.z));
-    float3 _976 = _957 / float3(fast::max(_969, 5.9604644775390625e-08));
-    float _995 = fast::clamp(select(float3(0.0), _976 / float3(fast::max(length(_976), 1.0)), bool3(_969 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1030 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _782)), float3(exp((-params.scatter_coefficient) * _782))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_852.x, abs(_855), _852.z), bool3(dot(_852, _852) > 9.9999999600419720025001879548654e-13)), _881).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_881)), float3(fma(_927, _927, fma(-_927, _927, 1.0) * ((_939 * _939) * _935)))) + (float3(params.sun_color) * ((_995 > 6.103515625e-05) ? pow(fast::max(_995, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_723 < _726) && (_138 < 0.0)));
-    out.out_color = float4(_1030, 1.0);
+    float _705 = fast::max((_1067 - params.eye_position[1u]) / _162, 0.0);
+    float3 _712 = float3(params.eye_position) + (_60 * _705);
+    float _720 = _33.y;
+    float _723 = _712.y;
+    float3 _738 = -_60;
+    float _779 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
+    float3 _813 = abs(_60);
+    float3 _826 = _60 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
+    float _830 = dot(_826, _826);
+    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _852 = _849.y;
+    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
+    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _932 = 1.0 - fast::clamp(_738.y, 0.0, 1.0);
+    float _936 = _932 * _932;
+    float3 _954 = (-float3(params.sun_direction)) + _738;
+    float _966 = fast::max(fast::max(abs(_954.x), abs(_954.y)), abs(_954.z));
+    float3 _973 = _954 / float3(fast::max(_966, 5.9604644775390625e-08));
+    float _992 = fast::clamp(select(float3(0.0), _973 / float3(fast::max(length(_973), 1.0)), bool3(_966 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1027 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_723 - _720, 0.0) + _779)), float3(exp((-params.scatter_coefficient) * _779))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(fma(_924, _924, fma(-_924, _924, 1.0) * ((_936 * _936) * _932)))) + (float3(params.sun_color) * ((_992 > 6.103515625e-05) ? pow(fast::max(_992, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_720 < _723) && (_138 < 0.0)));
+    out.out_color = float4(_1027, 1.0);
     return out;
 }
 

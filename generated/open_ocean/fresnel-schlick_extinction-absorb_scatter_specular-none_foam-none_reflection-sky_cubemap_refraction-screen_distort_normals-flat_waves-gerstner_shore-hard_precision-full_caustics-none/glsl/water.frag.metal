@@ -52,154 +52,154 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     float3 _66 = dfdy(_60);
     float _68 = fast::max(length(_63), length(_66));
     float _71 = floor(gerstner_wave_count);
-    float _990;
-    float _992;
-    _992 = 0.0;
-    _990 = 0.0;
+    float _987;
+    float _989;
+    _989 = 0.0;
+    _987 = 0.0;
     float _106;
     float _111;
     float _116;
     float _121;
-    int _989 = 0;
-    float _991 = params.gerstner_amplitude;
-    float _993 = params.gerstner_frequency;
-    for (; _989 < 8; _993 = _121, _992 = _111, _991 = _116, _990 = _106, _989++)
+    int _986 = 0;
+    float _988 = params.gerstner_amplitude;
+    float _990 = params.gerstner_frequency;
+    for (; _986 < 8; _990 = _121, _989 = _111, _988 = _116, _987 = _106, _986++)
     {
-        if (!(float(_989) < _71))
+        if (!(float(_986) < _71))
         {
             break;
         }
-        _106 = _990 + _991;
-        _111 = fma(_991, _993, _992);
-        _116 = _991 * params.gerstner_amplitude_gain;
-        _121 = _993 * params.gerstner_frequency_gain;
+        _106 = _987 + _988;
+        _111 = fma(_988, _990, _989);
+        _116 = _988 * params.gerstner_amplitude_gain;
+        _121 = _990 * params.gerstner_frequency_gain;
     }
     float _138 = _60.y;
     float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
     float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_992 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_990;
+    float _155 = 1.0 / (1.0 + (((_989 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_987;
     float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _997;
-    float2 _1001;
-    _1001 = (float3(params.eye_position) + (_60 * fast::max((_990 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _997 = _990;
+    float _994;
+    float2 _998;
+    _998 = (float3(params.eye_position) + (_60 * fast::max((_987 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _994 = _987;
     float2 _406;
-    float _679;
-    float _684;
-    float _694;
-    int _996 = 0;
-    float _1029 = _990;
-    float _1034 = _158;
-    for (; _996 < 9; _1034 = _684, _1029 = _679, _1001 = _406, _997 = _694, _996++)
+    float _676;
+    float _681;
+    float _691;
+    int _993 = 0;
+    float _1026 = _987;
+    float _1031 = _158;
+    for (; _993 < 9; _1031 = _681, _1026 = _676, _998 = _406, _994 = _691, _993++)
     {
-        float _207 = fast::max((_997 - params.eye_position[1u]) / _162, 0.0);
+        float _207 = fast::max((_994 - params.eye_position[1u]) / _162, 0.0);
         float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
         float _223 = (_68 * _207) / _142;
-        float2 _1003;
-        float3 _1004;
-        _1004 = float3(0.0);
-        _1003 = float2(0.0);
+        float2 _1000;
+        float3 _1001;
+        _1001 = float3(0.0);
+        _1000 = float2(0.0);
         float _323;
         float _327;
         float2 _334;
         float3 _348;
-        int _998 = 0;
-        float _999 = params.gerstner_frequency;
-        float _1002 = params.gerstner_amplitude;
-        for (; _998 < 8; _1004 = _348, _1003 = _334, _1002 = _323, _999 = _327, _998++)
+        int _995 = 0;
+        float _996 = params.gerstner_frequency;
+        float _999 = params.gerstner_amplitude;
+        for (; _995 < 8; _1001 = _348, _1000 = _334, _999 = _323, _996 = _327, _995++)
         {
-            float _242 = float(_998);
+            float _242 = float(_995);
             if (!(_242 < _71))
             {
                 break;
             }
             int _253 = clamp(int(_242), 0, 7);
-            float _282 = fma(_999, dot(params.gerstner_wave_directions[_253].xy, _1001), params.time * params.gerstner_wave_speeds[_253].x);
-            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_999 * _1002, 9.9999999747524270787835121154785e-07))) * _1002) * fast::clamp(fma(-(_999 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _315 = (_296 * _999) * sin(_282);
+            float _282 = fma(_996, dot(params.gerstner_wave_directions[_253].xy, _998), params.time * params.gerstner_wave_speeds[_253].x);
+            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_996 * _999, 9.9999999747524270787835121154785e-07))) * _999) * fast::clamp(fma(-(_996 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _315 = (_296 * _996) * sin(_282);
             float _319 = _315 * params.gerstner_wave_directions[_253].x;
-            _323 = _1002 * params.gerstner_amplitude_gain;
-            _327 = _999 * params.gerstner_frequency_gain;
-            _334 = _1003 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
-            _348 = _1004 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            _323 = _999 * params.gerstner_amplitude_gain;
+            _327 = _996 * params.gerstner_frequency_gain;
+            _334 = _1000 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
+            _348 = _1001 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
         }
-        float _354 = 1.0 - _1004.x;
-        float _359 = 1.0 - _1004.z;
-        float _363 = -_1004.y;
-        float2 _369 = (_1001 + _1003) - _217;
+        float _354 = 1.0 - _1001.x;
+        float _359 = 1.0 - _1001.z;
+        float _363 = -_1001.y;
+        float2 _369 = (_998 + _1000) - _217;
         float _382 = _369.x;
         float _385 = _369.y;
-        _406 = _1001 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
-        float3 _1011;
-        float3 _1012;
-        float3 _1013;
-        _1013 = float3(0.0, 0.0, 1.0);
-        _1012 = float3(1.0, 0.0, 0.0);
-        _1011 = float3(0.0);
+        _406 = _998 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
+        float3 _1008;
+        float3 _1009;
+        float3 _1010;
+        _1010 = float3(0.0, 0.0, 1.0);
+        _1009 = float3(1.0, 0.0, 0.0);
+        _1008 = float3(0.0);
         float _521;
         float _525;
         float3 _537;
         float3 _542;
         float3 _547;
-        int _1008 = 0;
-        float _1009 = params.gerstner_frequency;
-        float _1010 = params.gerstner_amplitude;
-        for (; _1008 < 8; _1013 = _547, _1012 = _542, _1011 = _537, _1010 = _521, _1009 = _525, _1008++)
+        int _1005 = 0;
+        float _1006 = params.gerstner_frequency;
+        float _1007 = params.gerstner_amplitude;
+        for (; _1005 < 8; _1010 = _547, _1009 = _542, _1008 = _537, _1007 = _521, _1006 = _525, _1005++)
         {
-            float _427 = float(_1008);
+            float _427 = float(_1005);
             if (!(_427 < _71))
             {
                 break;
             }
             int _438 = clamp(int(_427), 0, 7);
-            float _447 = fast::clamp(fma(-(_1009 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _463 = fma(_1009, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
-            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1009 * _1010, 9.9999999747524270787835121154785e-07))) * _1010) * _447;
-            float _481 = _1010 * _447;
+            float _447 = fast::clamp(fma(-(_1006 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _463 = fma(_1006, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
+            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1006 * _1007, 9.9999999747524270787835121154785e-07))) * _1007) * _447;
+            float _481 = _1007 * _447;
             float _484 = sin(_463);
             float _487 = cos(_463);
             float _497 = _477 * _487;
-            float _504 = -((_477 * _1009) * _484);
-            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1009) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1010 * params.gerstner_amplitude_gain;
-            _525 = _1009 * params.gerstner_frequency_gain;
-            _537 = _1011 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1012 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1013 + (_517 * params.gerstner_wave_directions[_438].y);
+            float _504 = -((_477 * _1006) * _484);
+            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1006) * _487, _504 * params.gerstner_wave_directions[_438].y);
+            _521 = _1007 * params.gerstner_amplitude_gain;
+            _525 = _1006 * params.gerstner_frequency_gain;
+            _537 = _1008 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
+            _542 = _1009 + (_517 * params.gerstner_wave_directions[_438].x);
+            _547 = _1010 + (_517 * params.gerstner_wave_directions[_438].y);
         }
-        float3 _553 = cross(_1013, _1012);
+        float3 _553 = cross(_1010, _1009);
         float _557 = dot(_553, _553);
         float3 _575 = select(float3(0.0, 1.0, 0.0), _553 * rsqrt(fast::max(_557, 1.0000000031710768509710513471353e-30)), bool3(_557 > 1.0000000031710768509710513471353e-30));
         float2 _585 = (-_575.xz) / float2(fast::max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_996);
+        float _600 = float(_993);
         bool _601 = _600 < 1.0;
-        float _608 = (_1011.y + dot(_585, _217 - (_406 + _1011.xz))) - _997;
-        float _621 = (-dot(_585, _146)) / _142;
-        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _155, 1.0), _608, _997);
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _997 : _1029;
-        float _647 = _637 ? _1034 : _997;
-        _679 = _601 ? _997 : _642;
-        _684 = _601 ? _1034 : _647;
-        _694 = (_600 < 8.0) ? (_601 ? fma(_155, _608, _997) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _997;
+        float _605 = (_1008.y + dot(_585, _217 - (_406 + _1008.xz))) - _994;
+        float _618 = (-dot(_585, _146)) / _142;
+        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0), _605, _994);
+        bool _634 = _605 < 0.0;
+        float _639 = _634 ? _994 : _1026;
+        float _644 = _634 ? _1031 : _994;
+        _676 = _601 ? _994 : _639;
+        _681 = _601 ? _1031 : _644;
+        _691 = (_600 < 8.0) ? (_601 ? fma(_155, _605, _994) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _994;
     }
-    float _708 = fast::max((_997 - params.eye_position[1u]) / _162, 0.0);
-    float3 _715 = float3(params.eye_position) + (_60 * _708);
-    float _723 = _33.y;
-    float _726 = _715.y;
-    float _780 = fast::clamp(fast::max(_53 - _708, 0.0), 0.0, 30000.0);
-    float3 _814 = abs(_60);
-    float3 _827 = _60 / float3(fast::max(fast::max(fast::max(_814.x, _814.y), _814.z), 1.0000000031710768509710513471353e-30));
-    float _831 = dot(_827, _827);
-    float3 _850 = reflect(select(float3(0.0, -1.0, 0.0), _827 * rsqrt(fast::max(_831, 1.0000000031710768509710513471353e-30)), bool3(_831 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _853 = _850.y;
-    float _879 = smoothstep(0.0, params.reflection_horizon_band, -_853);
-    float _925 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _933 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
-    float _937 = _933 * _933;
-    float3 _960 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _780)), float3(exp((-params.scatter_coefficient) * _780))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_850.x, abs(_853), _850.z), bool3(dot(_850, _850) > 9.9999999600419720025001879548654e-13)), _879).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_879)), float3(fma(_925, _925, fma(-_925, _925, 1.0) * ((_937 * _937) * _933)))), bool3((_723 < _726) && (_138 < 0.0)));
-    out.out_color = float4(_960, 1.0);
+    float _705 = fast::max((_994 - params.eye_position[1u]) / _162, 0.0);
+    float3 _712 = float3(params.eye_position) + (_60 * _705);
+    float _720 = _33.y;
+    float _723 = _712.y;
+    float _777 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
+    float3 _811 = abs(_60);
+    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
+    float _828 = dot(_824, _824);
+    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _850 = _847.y;
+    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
+    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _930 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
+    float _934 = _930 * _930;
+    float3 _957 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_723 - _720, 0.0) + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(fma(_922, _922, fma(-_922, _922, 1.0) * ((_934 * _934) * _930)))), bool3((_720 < _723) && (_138 < 0.0)));
+    out.out_color = float4(_957, 1.0);
     return out;
 }
 
