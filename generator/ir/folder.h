@@ -74,6 +74,12 @@ class Folder {
                                         const std::vector<const Intervals*>& captured) const;
     static Intervals loop_result_bounds(const Node& result, const Node& loop_node,
                                         const Intervals& loop_bounds);
+    // The union of the states after 0, 1, ... iterations from `state`: U = U u f(U) until
+    // nothing moves (`settled`) or every iteration is accounted for; a bound still moving after
+    // kStepByStep rounds is widened to a threshold. nullopt when it does not settle.
+    std::optional<State> union_of_states(const LoopBody& loop, const BodyScratch& scratch,
+                                         State state, const std::vector<const Intervals*>& captured,
+                                         FactSet& facts, bool& settled) const;
     // Bounds of the carried values at the start of every iteration (the union of the states
     // before each); nullopt when the analysis gives up.
     std::optional<State> carried_hull(const LoopBody& loop, const BodyScratch& scratch,

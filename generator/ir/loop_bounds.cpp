@@ -137,7 +137,17 @@ std::optional<Folder::State> Folder::carried_hull(const LoopBody& loop, const Bo
         return hulled;
     }
     // Else the union of every state, as loop_bounds() finds it for a loop that may stop early.
+    bool settled = false;
+    return union_of_states(loop, scratch, std::move(state), captured, facts, settled);
+}
+
+std::optional<Folder::State> Folder::union_of_states(const LoopBody& loop,
+                                                     const BodyScratch& scratch, State state,
+                                                     const std::vector<const Intervals*>& captured,
+                                                     FactSet& facts, bool& settled) const {
+    settled = false;
     for (int round = 0; round < kMaxRounds; ++round) {
+        if (round >= loop.trip_count) return state;
         auto [next, f] = body_step(loop, scratch, state, captured);
         facts |= f;
         bool moved = false;
@@ -149,7 +159,9 @@ std::optional<Folder::State> Folder::carried_hull(const LoopBody& loop, const Bo
                 if (round >= kStepByStep) u = widened(state[k][c], u);
                 state[k][c] = u;
             }
-        if (!moved) return state;
+        if (moved) continue;
+        settled = true;
+        return state;
     }
     return std::nullopt;
 }
@@ -224,20 +236,16 @@ std::pair<Intervals, FactSet> Folder::loop_bounds(const Node& n,
     // threshold (16 |b| + 1, then on to infinity); once nothing moves, U holds every state, and
     // so does init u f(U), which narrows the widened bounds back down.
     const State initial = state;
-    for (int round = 0; round < kMaxRounds; ++round) {
-        if (round >= loop.trip_count) return flatten(state);
-        auto [next, f] = body_step(loop, scratch, state, captured);
-        facts |= f;
-        bool moved = false;
-        for (size_t k = 0; k < state.size(); ++k)
-            for (size_t c = 0; c < state[k].size() && c < next[k].size(); ++c) {
-                Interval u = hull(state[k][c], next[k][c]);
-                if (same(u, state[k][c])) continue;
-                moved = true;
-                if (round >= kStepByStep) u = widened(state[k][c], u);
-                state[k][c] = u;
-            }
-        if (moved) continue;
+    bool settled = false;
+    std::optional<State> all = union_of_states(loop, scratch, state, captured, facts, settled);
+    if (!all) {
+        State unknown(loop.carried());
+        for (size_t k = 0; k < loop.carried(); ++k)
+            unknown[k] = unknown_intervals(loop.carried_types[k], false);
+        return flatten(unknown);
+    }
+    state = std::move(*all);
+    if (settled)
         for (int i = 0; i < kNarrowingSteps; ++i) {
             auto [narrower, g] = body_step(loop, scratch, state, captured);
             facts |= g;
@@ -245,12 +253,7 @@ std::pair<Intervals, FactSet> Folder::loop_bounds(const Node& n,
                 for (size_t c = 0; c < state[k].size() && c < narrower[k].size(); ++c)
                     state[k][c] = hull(initial[k][c], narrower[k][c]);
         }
-        return flatten(state);
-    }
-    State unknown(loop.carried());
-    for (size_t k = 0; k < loop.carried(); ++k)
-        unknown[k] = unknown_intervals(loop.carried_types[k], false);
-    return flatten(unknown);
+    return flatten(state);
 }
 
 } // namespace watergen::fold
