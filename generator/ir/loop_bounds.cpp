@@ -48,6 +48,17 @@ Intervals slice(const LoopBody& loop, const Intervals& all, size_t k) {
                      all.begin() + static_cast<long>(offset + comps));
 }
 
+// A Loop node's argument bounds apart: the carried values' initial ones, the captured ones.
+std::pair<std::vector<Intervals>, std::vector<const Intervals*>>
+split_arguments(const LoopBody& loop, const std::vector<const Intervals*>& args) {
+    std::vector<Intervals> initial(loop.carried());
+    for (size_t k = 0; k < loop.carried(); ++k)
+        initial[k] = *args[k];
+    return {std::move(initial),
+            std::vector<const Intervals*>(args.begin() + static_cast<long>(loop.first_capture()),
+                                          args.end())};
+}
+
 } // namespace
 
 Intervals Folder::loop_result_bounds(const Node& result, const Node& loop_node,
@@ -171,11 +182,7 @@ std::shared_ptr<const LoopBody> Folder::fold_body(const Node& n) const {
     std::vector<const Intervals*> args;
     for (uint32_t a : n.args)
         args.push_back(&values_[a]);
-    State initial(loop.carried());
-    for (size_t k = 0; k < loop.carried(); ++k)
-        initial[k] = *args[k];
-    const std::vector<const Intervals*> captured(
-        args.begin() + static_cast<long>(loop.first_capture()), args.end());
+    const auto [initial, captured] = split_arguments(loop, args);
     const BodyScratch scratch = scratch_for(loop);
     FactSet facts;
     const std::optional<State> carried = carried_hull(loop, scratch, initial, captured, facts);
@@ -209,11 +216,7 @@ std::shared_ptr<const LoopBody> Folder::fold_body(const Node& n) const {
 std::pair<Intervals, FactSet> Folder::loop_bounds(const Node& n,
                                                   const std::vector<const Intervals*>& args) const {
     const LoopBody& loop = *n.loop;
-    State state(loop.carried());
-    for (size_t k = 0; k < loop.carried(); ++k)
-        state[k] = *args[k];
-    const std::vector<const Intervals*> captured(
-        args.begin() + static_cast<long>(loop.first_capture()), args.end());
+    auto [state, captured] = split_arguments(loop, args);
     const BodyScratch scratch = scratch_for(loop);
     FactSet facts;
     auto flatten = [&](const State& s) {
