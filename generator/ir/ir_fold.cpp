@@ -117,8 +117,8 @@ void Folder::resolve_quantities() {
 void Folder::declare_inputs() {
     for (Parameter p : in_.parameters()) {
         if (auto it = f_.fixed.find(p.name); it != f_.fixed.end()) {
-            // Loop bodies, which the fold leaves alone, read arrays: a fixed array stays a
-            // parameter whose default is the fixed value.
+            // Loop bodies read arrays element by element, which the fold does not turn into
+            // constants: a fixed array stays a parameter whose default is the fixed value.
             if (!p.array_size) continue;
             if (it->second.value.size() == p.default_value.size())
                 p.default_value = it->second.value;
