@@ -90,6 +90,9 @@ class Folder {
     // hull, the captured values' bounds, the scene's facts); the same body when nothing folds.
     std::shared_ptr<const LoopBody> fold_body(const Node& n) const;
     static BodyScratch scratch_for(const LoopBody& loop);
+    // A switch's cases folded by their captured values' bounds and the scene's facts
+    // (ir_fold_switch.cpp); the same cases when nothing folds.
+    std::shared_ptr<const SwitchCases> fold_cases(const Node& n) const;
     bool is_constant(uint32_t id, double x) const;
     bool all_finite(uint32_t id) const;
     std::optional<uint32_t> as_type(uint32_t id, const Node& like);

@@ -379,6 +379,7 @@ uint32_t Folder::rewrite(uint32_t in_id) {
     }
 
     if (n.op == Op::Loop && fold_bodies_) n.loop = fold_body(n);
+    if (n.op == Op::Switch && fold_bodies_) n.cases = fold_cases(n);
     auto [v, facts] = bounds(n, in_id);
     narrow_by_assumption(in_id, n.type, v, facts);
     if (is_float_valued(n.type) && n.op != Op::Constant)

@@ -234,3 +234,37 @@ TEST_CASE("a_quantity_every_case_binds_is_bound_to_the_result", "[switch]") {
     CHECK(bound_both);
     CHECK_FALSE(bound_one);
 }
+
+TEST_CASE("the_fold_simplifies_inside_the_cases_of_an_undecided_switch", "[switch]") {
+    // x * 0 in each case is 0 for x in [0, 1] (the switch's captured argument): each case folds
+    // to its constant while the switch itself stays (the selector is not fixed).
+    Graph g;
+    Expr x = varying(g, "x", Type::Float);
+    const auto r = choose(g, uniform(g, kSelector), 2, [&](Graph& body, int c) {
+        return std::vector<Expr>{constant(body, c == 0 ? 0.25 : 0.75) + read_in(body, x) * 0.0};
+    });
+    g.set_output("v", r[0].id());
+    FoldFacts facts;
+    facts.input_ranges["x"] = {{make_interval(0.0, 1.0)}, facts.add_fact("x in [0, 1]", "")};
+    auto products = [](const Graph& folded) {
+        size_t n = 0;
+        for (uint32_t id : folded.live_nodes())
+            if (folded.node(id).op == Op::Switch)
+                for (const auto& c : folded.node(id).cases->cases)
+                    n += count_ops(*c, Op::Mul);
+        return n;
+    };
+    CHECK(products(g) == 2);
+    const FoldResult open = fold_graph(g, facts);
+    REQUIRE(count_ops(open.graph, Op::Switch) == 1);
+    CHECK(products(open.graph) == 0);
+    for (double sel : {0.0, 1.0}) {
+        EvalInputs in;
+        in.varyings["x"] = {0.5};
+        in.lanes = 1;
+        in.uniforms["sel"] = {sel};
+        const EvalResult e = evaluate(open.graph, "v", in, EvalPrecision::Double);
+        REQUIRE(e.ok());
+        CHECK(e.values[0] == (sel == 0.0 ? 0.25 : 0.75));
+    }
+}

@@ -6,9 +6,11 @@
 
 #include <algorithm>
 
+#include "build_test_support.h"
 #include "shared_runner.h"
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/plan/material.h"
+#include "watergen/render/prune_measure.h"
 #include "watergen/render/variant_render.h"
 
 using namespace watergen;
@@ -88,6 +90,42 @@ TEST_CASE("specialized_and_branching_shaders_draw_what_the_permutations_draw", "
             CHECK(one.glsl_vs_hlsl.max_abs <= 1e-6);
             // The CPU evaluator runs the same operations on the selected case: the same image.
             CHECK(compare_images(one.cpu_float, own.cpu_float).max_abs == 0.0);
+        }
+    }
+}
+
+TEST_CASE("a_branching_shader_folded_under_a_scene_draws_what_it_draws_unfolded", "[modes]") {
+    // mountain_lake's facts fold inside the shared shader's cases (time = 0, world_to_meters,
+    // the depth and height ranges); drawn in the scene conformed to them, the folded shader
+    // must give the unfolded one's pixels for each variant it serves.
+    const Material m = default_material();
+    Diagnostics ds;
+    const auto facts = load_scene(test::source_dir() + "/examples/scenes/mountain_lake.json", ds);
+    REQUIRE(facts);
+    const auto plan = plan_scene(m, *facts, ds);
+    REQUIRE(plan);
+    const std::vector<ShaderChoices> shaders = shaders_for(plan->variants, BuildMode::Branching);
+    REQUIRE(shaders.size() == 1); // the lake targets half precision only
+    WaterShader unfolded = m.compose(shaders[0]);
+    WaterShader folded = unfolded;
+    FoldResult f = fold_graph(folded.fragment, plan->facts);
+    folded.fragment = std::move(f.graph);
+    const VariantBuild a = checked_build(unfolded), b = checked_build(folded);
+    CHECK(b.languages[0].fragment.toolchain.instruction_count_optimized <
+          a.languages[0].fragment.toolchain.instruction_count_optimized);
+    const SyntheticScene scene =
+        conform_scene(make_synthetic_scene(kSettings.width, kSettings.height), *plan, m);
+    for (const Variant& v : {plan->variants.front(), plan->variants.back()}) {
+        INFO(v.key());
+        SyntheticScene selected = scene;
+        for (const auto& [name, value] : shaders[0].selector_values(v))
+            selected.uniforms[name] = {value};
+        const VariantRender x = checked_render(a, selected), y = checked_render(b, selected);
+        for (size_t lang = 0; lang < 2; ++lang) {
+            const ImageErrorStats d = compare_images(y.gpu_image[lang], x.gpu_image[lang]);
+            REQUIRE(d.error.empty());
+            CHECK(d.nan_inf_pixels == d.reference_nan_inf_pixels);
+            CHECK(d.max_abs == 0.0);
         }
     }
 }
