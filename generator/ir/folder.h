@@ -93,6 +93,10 @@ class Folder {
     // A switch's cases folded by their captured values' bounds and the scene's facts
     // (ir_fold_switch.cpp); the same cases when nothing folds.
     std::shared_ptr<const SwitchCases> fold_cases(const Node& n) const;
+    // A loop body or switch case folded with its leaves (by id) within `leaves`, which
+    // `bounded_by` names; nullopt when nothing folds.
+    std::optional<Graph> fold_inner(const Graph& inner, std::map<uint32_t, Intervals> leaves,
+                                    const char* bounded_by) const;
     bool is_constant(uint32_t id, double x) const;
     bool all_finite(uint32_t id) const;
     std::optional<uint32_t> as_type(uint32_t id, const Node& like);

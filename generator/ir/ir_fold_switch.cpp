@@ -49,23 +49,20 @@ std::vector<uint32_t> inline_case(const Node& sw, size_t c, const std::vector<ui
 std::shared_ptr<const SwitchCases> Folder::fold_cases(const Node& n) const {
     const SwitchCases& cases = *n.cases;
     auto folded = std::make_shared<SwitchCases>(cases);
-    // The cases' own events are not reported; one fact names what bounds them.
-    FoldFacts case_facts = f_;
-    const size_t fact = case_facts.add_fact("the switch's arguments", "");
     bool any = false;
     for (size_t c = 0; c < cases.cases.size(); ++c) {
         const Graph& body = *cases.cases[c];
-        std::map<uint32_t, FoldFacts::Bounds> leaves;
+        std::map<uint32_t, Intervals> leaves;
         for (uint32_t id : body.live_nodes()) {
             const Node& b = body.node(id);
             if (b.op != Op::Captured || b.values.empty()) continue;
             const size_t arg = cases.case_args[c] + static_cast<size_t>(b.values[0]);
-            if (arg < n.args.size()) leaves[id] = {values_[n.args[arg]], fact};
+            if (arg < n.args.size()) leaves[id] = values_[n.args[arg]];
         }
-        Folder folder(body, declarations_, case_facts, std::move(leaves));
-        folder.rewrite_all();
-        if (folder.events().empty()) continue;
-        folded->cases[c] = std::make_shared<const Graph>(compact(folder.out_));
+        std::optional<Graph> case_graph =
+            fold_inner(body, std::move(leaves), "the switch's arguments");
+        if (!case_graph) continue;
+        folded->cases[c] = std::make_shared<const Graph>(std::move(*case_graph));
         any = true;
     }
     return any ? folded : n.cases;

@@ -133,7 +133,6 @@ std::optional<Folder::State> Folder::carried_hull(const LoopBody& loop, const Bo
                                                   const State& initial,
                                                   const std::vector<const Intervals*>& captured,
                                                   FactSet& facts) const {
-    State state = initial;
     // Few iterations: the hull of the states before each, followed step by step.
     if (loop.trip_count <= kStepByStep) {
         State hulled = initial, at = initial;
@@ -149,7 +148,7 @@ std::optional<Folder::State> Folder::carried_hull(const LoopBody& loop, const Bo
     }
     // Else the union of every state, as loop_bounds() finds it for a loop that may stop early.
     bool settled = false;
-    return union_of_states(loop, scratch, std::move(state), captured, facts, settled);
+    return union_of_states(loop, scratch, initial, captured, facts, settled);
 }
 
 std::optional<Folder::State> Folder::union_of_states(const LoopBody& loop,
@@ -187,28 +186,38 @@ std::shared_ptr<const LoopBody> Folder::fold_body(const Node& n) const {
     FactSet facts;
     const std::optional<State> carried = carried_hull(loop, scratch, initial, captured, facts);
     if (!carried) return n.loop;
-    // What every iteration may see; the body's own events are not reported, so one fact names
-    // the analysis behind all of them.
-    FoldFacts body_facts = f_;
-    const size_t fact = body_facts.add_fact("the loop's bounds", "");
-    std::map<uint32_t, FoldFacts::Bounds> leaves;
+    // What every iteration may see.
+    std::map<uint32_t, Intervals> leaves;
     const Graph& body = *loop.body;
     for (uint32_t id : scratch.live) {
         const Node& b = body.node(id);
         const size_t index = b.values.empty() ? 0 : static_cast<size_t>(b.values[0]);
         if (b.op == Op::LoopIndex)
-            leaves[id] = {{make_interval(0.0, loop.trip_count - 1.0)}, fact};
+            leaves[id] = {make_interval(0.0, loop.trip_count - 1.0)};
         else if (b.op == Op::Carried && index < carried->size())
-            leaves[id] = {(*carried)[index], fact};
+            leaves[id] = (*carried)[index];
         else if (b.op == Op::Captured && index < captured.size())
-            leaves[id] = {*captured[index], fact};
+            leaves[id] = *captured[index];
     }
-    Folder folder(body, declarations_, body_facts, std::move(leaves));
-    folder.rewrite_all();
-    if (folder.events().empty()) return n.loop;
+    std::optional<Graph> folded_body = fold_inner(body, std::move(leaves), "the loop's bounds");
+    if (!folded_body) return n.loop;
     auto folded = std::make_shared<LoopBody>(loop);
-    folded->body = std::make_shared<const Graph>(compact(folder.out_));
+    folded->body = std::make_shared<const Graph>(std::move(*folded_body));
     return folded;
+}
+
+std::optional<Graph> Folder::fold_inner(const Graph& inner, std::map<uint32_t, Intervals> leaves,
+                                        const char* bounded_by) const {
+    // The inner graph's own events are not reported, so one fact names what bounds its leaves.
+    FoldFacts facts = f_;
+    const size_t fact = facts.add_fact(bounded_by, "");
+    std::map<uint32_t, FoldFacts::Bounds> bounds;
+    for (auto& [id, v] : leaves)
+        bounds[id] = {std::move(v), fact};
+    Folder folder(inner, declarations_, facts, std::move(bounds));
+    folder.rewrite_all();
+    if (folder.events().empty()) return std::nullopt;
+    return compact(folder.out_);
 }
 
 // The bounds of a Loop node (its carried values side by side) from its arguments' bounds: the

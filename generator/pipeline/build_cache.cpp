@@ -203,4 +203,24 @@ fs::path default_cache_dir() {
     return {};
 }
 
+CacheUse BuildCache::load_or_make(const std::string& hash, const std::vector<std::string>& expected,
+                                  const std::function<std::optional<FileMap>()>& make) const {
+    CacheLookup lookup = load(hash, expected);
+    CacheUse use{std::move(lookup.files), false, std::move(lookup.rejected)};
+    use.cached = use.files.has_value();
+    if (use.cached) return use;
+    use.files = make();
+    if (use.files) store(hash, *use.files); // a cache that cannot be written only costs time
+    return use;
+}
+
+Diagnostic BuildCache::rejected_warning(const std::string& hash, const std::string& why) const {
+    return {Severity::Warning,
+            entry(hash).string(),
+            0,
+            0,
+            "",
+            "cache entry failed verification (" + why + "); evicted and rebuilt"};
+}
+
 } // namespace watergen

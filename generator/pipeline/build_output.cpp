@@ -147,9 +147,7 @@ void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, B
              std::map<std::string, std::string>& files) {
     if (!r.cache_rejected.empty()) {
         ++s.cache_rejected;
-        s.diagnostics.push_back(
-            {Severity::Warning, cache.entry(r.content_hash).string(), 0, 0, "",
-             "cache entry failed verification (" + r.cache_rejected + "); evicted and rebuilt"});
+        s.diagnostics.push_back(cache.rejected_warning(r.content_hash, r.cache_rejected));
     }
     if (!r.ok()) {
         ++s.failed;
@@ -197,10 +195,8 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
         const std::string path = job_directory(jobs[w.job]) + "/" + frozen_path(w.lang, w.variant);
         if (!frozen[k].cache_rejected.empty()) {
             ++s.cache_rejected;
-            s.diagnostics.push_back({Severity::Warning,
-                                     options.cache.entry(frozen[k].content_hash).string(), 0, 0, "",
-                                     "cache entry failed verification (" +
-                                         frozen[k].cache_rejected + "); evicted and rebuilt"});
+            s.diagnostics.push_back(
+                options.cache.rejected_warning(frozen[k].content_hash, frozen[k].cache_rejected));
         }
         ++s.frozen;
         s.frozen_cached += frozen[k].cached ? 1 : 0;

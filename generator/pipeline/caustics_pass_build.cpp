@@ -119,18 +119,17 @@ CausticsPassBuild build_caustics_pass_files(const Material& material, const Caus
     std::vector<std::string> expected = stage_file_list(kStem);
     expected.push_back("pass.json");
     std::sort(expected.begin(), expected.end());
-    CacheLookup lookup = cache.load(b.content_hash, expected);
-    b.cache_rejected = std::move(lookup.rejected);
-    if (lookup.files) {
-        b.files = std::move(*lookup.files);
-        b.cached = true;
-        return b;
-    }
-    compile_two_stages(b.languages, b.diagnostics);
-    if (!b.ok()) return b;
-    add_stage_files(b.languages, kStem, pass_key(key), b.files);
-    b.files["pass.json"] = pass_json(b, key).dump(2) + "\n";
-    cache.store(b.content_hash, b.files); // a cache that cannot be written only costs time
+    CacheUse use = cache.load_or_make(b.content_hash, expected, [&]() -> std::optional<FileMap> {
+        compile_two_stages(b.languages, b.diagnostics);
+        if (!b.ok()) return std::nullopt;
+        FileMap files;
+        add_stage_files(b.languages, kStem, pass_key(key), files);
+        files["pass.json"] = pass_json(b, key).dump(2) + "\n";
+        return files;
+    });
+    b.cached = use.cached;
+    b.cache_rejected = std::move(use.rejected);
+    if (use.files) b.files = std::move(*use.files);
     return b;
 }
 
@@ -162,9 +161,7 @@ PassesOutput build_needed_passes(const Material& material, const std::vector<Bui
         const std::string dir = caustics_pass_directory(keys[k]);
         if (!built[k].cache_rejected.empty())
             out.cache_rejected.push_back(
-                {Severity::Warning, options.cache.entry(built[k].content_hash).string(), 0, 0, "",
-                 "cache entry failed verification (" + built[k].cache_rejected +
-                     "); evicted and rebuilt"});
+                options.cache.rejected_warning(built[k].content_hash, built[k].cache_rejected));
         out.cached += built[k].cached ? 1 : 0;
         if (!built[k].ok()) {
             ++out.failed;

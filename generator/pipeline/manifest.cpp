@@ -385,22 +385,20 @@ FrozenVariant freeze_variant(const JobResult& r, const ShaderChoices& shader, co
     for (const auto& [id, value] : values)
         constants += fmt::format("|{}={:a}", id, value);
     out.content_hash = content_hash({constants, it->second});
-    const std::vector<std::string> expected{kFrozenCacheFile};
-    CacheLookup lookup = cache.load(out.content_hash, expected);
-    out.cache_rejected = std::move(lookup.rejected);
-    if (lookup.files) {
-        out.spirv = std::move(lookup.files->at(kFrozenCacheFile));
-        out.cached = true;
-        return out;
-    }
-    std::vector<uint32_t> words(it->second.size() / sizeof(uint32_t));
-    std::memcpy(words.data(), it->second.data(), words.size() * sizeof(uint32_t));
-    OptimizeResult frozen = freeze_specialization(words, values, frozen_path(language, v));
-    out.diagnostics = std::move(frozen.diagnostics);
-    if (frozen.spirv.empty()) return out;
-    out.spirv.assign(reinterpret_cast<const char*>(frozen.spirv.data()),
-                     frozen.spirv.size() * sizeof(uint32_t));
-    cache.store(out.content_hash, {{kFrozenCacheFile, out.spirv}}); // a failed store costs time
+    CacheUse use =
+        cache.load_or_make(out.content_hash, {kFrozenCacheFile}, [&]() -> std::optional<FileMap> {
+            std::vector<uint32_t> words(it->second.size() / sizeof(uint32_t));
+            std::memcpy(words.data(), it->second.data(), words.size() * sizeof(uint32_t));
+            OptimizeResult frozen = freeze_specialization(words, values, frozen_path(language, v));
+            out.diagnostics = std::move(frozen.diagnostics);
+            if (frozen.spirv.empty()) return std::nullopt;
+            return FileMap{
+                {kFrozenCacheFile, std::string(reinterpret_cast<const char*>(frozen.spirv.data()),
+                                               frozen.spirv.size() * sizeof(uint32_t))}};
+        });
+    out.cached = use.cached;
+    out.cache_rejected = std::move(use.rejected);
+    if (use.files) out.spirv = std::move(use.files->at(kFrozenCacheFile));
     return out;
 }
 

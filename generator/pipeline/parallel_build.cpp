@@ -127,21 +127,17 @@ BuildPlan plan_builds(const std::vector<BuildJob>& jobs, std::vector<JobResult>&
 // Phase 2 for one job: its files from the cache or the toolchain (all targets), if it built.
 std::optional<FileMap> load_or_build(const BuildOptions& options, WaterShader shader, JobResult& r,
                                      const std::vector<std::string>& expected_files) {
-    CacheLookup lookup = options.cache.load(r.content_hash, expected_files);
-    std::optional<FileMap> all = std::move(lookup.files);
-    r.cached = all.has_value();
-    r.cache_rejected = std::move(lookup.rejected);
-    if (!all) {
-        const VariantBuild build = build_shader(std::move(shader));
-        r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(),
-                             build.diagnostics.end());
-        if (build.ok()) {
-            all = variant_files(build);
-            options.cache.store(r.content_hash,
-                                *all); // a cache that cannot be written only costs time
-        }
-    }
-    return all;
+    CacheUse use =
+        options.cache.load_or_make(r.content_hash, expected_files, [&]() -> std::optional<FileMap> {
+            const VariantBuild build = build_shader(std::move(shader));
+            r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(),
+                                 build.diagnostics.end());
+            if (!build.ok()) return std::nullopt;
+            return variant_files(build);
+        });
+    r.cached = use.cached;
+    r.cache_rejected = std::move(use.rejected);
+    return std::move(use.files);
 }
 
 } // namespace

@@ -8,11 +8,14 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "watergen/ir/diagnostic.h"
 
 namespace watergen {
 
@@ -39,6 +42,13 @@ struct CacheLookup {
         rejected; // non-empty: an entry was there, failed verification (why) and was evicted
 };
 
+// What BuildCache::load_or_make() gave.
+struct CacheUse {
+    std::optional<FileMap> files; // nullopt: not in the cache and make() failed
+    bool cached = false;          // copied from the cache
+    std::string rejected;         // as CacheLookup::rejected
+};
+
 class BuildCache {
   public:
     BuildCache() = default; // disabled
@@ -53,8 +63,15 @@ class BuildCache {
     // message on failure, which callers may ignore (the build does not depend on the cache).
     std::optional<std::string> store(const std::string& hash, const FileMap& files) const;
 
+    // The files under `hash` (load()), or else make()'s, stored under `hash` when it made
+    // them (nullopt: it failed, and nothing is stored).
+    CacheUse load_or_make(const std::string& hash, const std::vector<std::string>& expected,
+                          const std::function<std::optional<FileMap>()>& make) const;
+
     // The file that holds the entry for `hash`.
     std::filesystem::path entry(const std::string& hash) const;
+    // The build's warning for the entry of `hash` that failed verification (`why`).
+    Diagnostic rejected_warning(const std::string& hash, const std::string& why) const;
 
   private:
     std::filesystem::path dir_;
