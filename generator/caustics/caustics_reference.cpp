@@ -1,5 +1,6 @@
 #include "watergen/caustics/caustics_reference.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace watergen {
@@ -161,6 +162,66 @@ CausticsImage caustics_reference(const CausticsSetup& s, std::string* error) {
     out.weight_sampled /= photons;
     out.shadowed = double(shadowed) / photons;
     return out;
+}
+
+namespace {
+
+const std::vector<double>& value(const std::map<std::string, std::vector<double>>& values,
+                                 const std::string& name) {
+    static const std::vector<double> none;
+    auto it = values.find(name);
+    return it == values.end() ? none : it->second;
+}
+
+double scalar(const std::map<std::string, std::vector<double>>& values, const std::string& name,
+              double fallback) {
+    const auto& v = value(values, name);
+    return v.empty() ? fallback : v[0];
+}
+
+} // namespace
+
+CausticsSetup caustics_reference_setup(const std::string& model,
+                                       const std::map<std::string, std::vector<double>>& values,
+                                       uint32_t texels, double margin) {
+    CausticsSetup s;
+    const std::string f = model == "gerstner" ? "gerstner" : "waves";
+    const int count = std::clamp(int(std::floor(scalar(values, f + "_wave_count", 0))), 0, 8);
+    const double time = scalar(values, "time", 0);
+    const std::vector<double>& directions = value(values, f + "_wave_directions");
+    const std::vector<double>& speeds = value(values, f + "_wave_speeds");
+    double a = scalar(values, f + "_amplitude", 0), w = scalar(values, f + "_frequency", 1);
+    const double ga = scalar(values, f + "_amplitude_gain", 1);
+    const double gf = scalar(values, f + "_frequency_gain", 1);
+    const double q = scalar(values, "gerstner_steepness", 0);
+    for (int i = 0; i < count && size_t(2 * i + 1) < directions.size() && size_t(i) < speeds.size();
+         ++i) {
+        CausticsWave wave;
+        wave.amplitude = a;
+        wave.frequency = w;
+        wave.dir_x = directions[size_t(2 * i)];
+        wave.dir_z = directions[size_t(2 * i + 1)];
+        wave.phase = time * speeds[size_t(i)];
+        // GPU Gems' Q_i = Q / (w_i A_i n) (the shader guards w_i A_i from 0 the same way).
+        if (model == "gerstner") wave.steepness = q / (count * std::max(w * a, 1e-6));
+        s.waves.push_back(wave);
+        a *= ga;
+        w *= gf;
+    }
+    const std::vector<double>& sun = value(values, "sun_direction");
+    if (sun.size() == 3) s.sun_direction = {sun[0], sun[1], sun[2]};
+    s.ior = scalar(values, "ior_water", 1.33333);
+    s.depth = scalar(values, "caustics_depth", 5);
+    const std::vector<double>& window = value(values, "caustics_window");
+    if (window.size() == 3) {
+        s.x0 = window[0];
+        s.z0 = window[1];
+        s.size = window[2];
+    }
+    s.texels = texels;
+    s.periodic = false;
+    s.margin = margin;
+    return s;
 }
 
 } // namespace watergen

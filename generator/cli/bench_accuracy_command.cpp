@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "watergen/render/accuracy_bench.h"
-#include "watergen/render/scene_views.h"
+#include "watergen/eval/bench/accuracy_bench.h"
+#include "watergen/eval/scene/scene_views.h"
 
 namespace watergen::cli {
 

@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "watergen/eval/bench/accuracy_bench.h"
+#include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/pipeline/compile_bench.h"
-#include "watergen/render/accuracy_bench.h"
-#include "watergen/render/synthetic_scene.h"
 #include "watergen/water/water_shader.h"
 
 namespace watergen::cli {

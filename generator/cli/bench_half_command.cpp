@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "watergen/render/half_render.h"
+#include "watergen/eval/draw/half_render.h"
 
 namespace watergen::cli {
 

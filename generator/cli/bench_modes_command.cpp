@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "watergen/render/modes_bench.h"
+#include "watergen/eval/bench/modes_bench.h"
 
 namespace watergen::cli {
 

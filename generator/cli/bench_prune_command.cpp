@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "watergen/eval/bench/prune_bench.h"
 #include "watergen/pipeline/build_output.h"
-#include "watergen/render/prune_bench.h"
 
 namespace watergen::cli {
 

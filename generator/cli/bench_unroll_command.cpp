@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "watergen/eval/bench/unroll_bench.h"
 #include "watergen/pipeline/compile_bench.h"
-#include "watergen/render/unroll_bench.h"
 
 namespace watergen::cli {
 

@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "watergen/eval/draw/caustics_render.h"
+#include "watergen/eval/image/image_io.h"
 #include "watergen/pipeline/output_writer.h"
-#include "watergen/render/caustics_render.h"
-#include "watergen/runtime/image_io.h"
 #include "watergen/water/presets.h"
 
 namespace watergen::cli {

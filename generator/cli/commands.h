@@ -8,12 +8,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/ir/diagnostic.h"
 #include "watergen/ir/emitter.h"
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
-#include "watergen/render/synthetic_scene.h"
 #include "watergen/runtime/vulkan_runner.h"
 #include "watergen/water/presets.h"
 #include "watergen/water/variant.h"

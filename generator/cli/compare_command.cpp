@@ -8,13 +8,13 @@
 #include <fmt/core.h>
 
 #include "commands.h"
+#include "watergen/eval/compare/compare_caustics.h"
+#include "watergen/eval/compare/compare_run.h"
+#include "watergen/eval/compare/pick.h"
+#include "watergen/eval/compare/prune_measure.h"
+#include "watergen/eval/report/compare_report.h"
+#include "watergen/eval/scene/scene_views.h"
 #include "watergen/plan/scene_pruning.h"
-#include "watergen/render/compare_caustics.h"
-#include "watergen/render/compare_report.h"
-#include "watergen/render/compare_run.h"
-#include "watergen/render/pick.h"
-#include "watergen/render/prune_measure.h"
-#include "watergen/render/scene_views.h"
 
 namespace watergen::cli {
 

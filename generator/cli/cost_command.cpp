@@ -9,9 +9,9 @@
 #include <valgrind/valgrind.h>
 
 #include "commands.h"
+#include "watergen/eval/draw/variant_render.h"
+#include "watergen/eval/measure/draw_count.h"
 #include "watergen/pipeline/variant_build.h"
-#include "watergen/render/draw_count.h"
-#include "watergen/render/variant_render.h"
 
 namespace watergen::cli {
 

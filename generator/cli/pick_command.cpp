@@ -10,11 +10,11 @@
 #include <valgrind/valgrind.h>
 
 #include "commands.h"
+#include "watergen/eval/compare/pick.h"
+#include "watergen/eval/compare/prune_measure.h"
+#include "watergen/eval/measure/draw_count.h"
+#include "watergen/eval/scene/scene_views.h"
 #include "watergen/pipeline/output_writer.h"
-#include "watergen/render/draw_count.h"
-#include "watergen/render/pick.h"
-#include "watergen/render/prune_measure.h"
-#include "watergen/render/scene_views.h"
 
 namespace watergen::cli {
 

@@ -4,9 +4,9 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "watergen/eval/probe/probe.h"
+#include "watergen/eval/probe/probe_table.h"
 #include "watergen/pipeline/output_writer.h"
-#include "watergen/render/probe.h"
-#include "watergen/render/probe_table.h"
 #include "watergen/water/node_catalog.h"
 
 namespace watergen::cli {

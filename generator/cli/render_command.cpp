@@ -2,8 +2,8 @@
 #include <filesystem>
 
 #include "commands.h"
-#include "watergen/render/render_caustics.h"
-#include "watergen/render/render_report.h"
+#include "watergen/eval/draw/render_caustics.h"
+#include "watergen/eval/report/render_report.h"
 #include "watergen/water/presets.h"
 
 namespace watergen::cli {

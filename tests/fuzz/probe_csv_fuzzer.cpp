@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "watergen/render/probe_table.h"
+#include "watergen/eval/probe/probe_table.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace watergen;

@@ -3,12 +3,12 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "watergen/eval/compare/prune_measure.h"
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/dsl.h"
 #include "watergen/ir/emitter.h"
 #include "watergen/ir/ir_fold.h"
 #include "watergen/plan/scene_pruning.h"
-#include "watergen/render/prune_measure.h"
 
 using namespace watergen;
 

@@ -9,7 +9,7 @@
 #include "engine_builds.h"
 #include "engine_draw_support.h"
 #include "shared_runner.h"
-#include "watergen/render/variant_render.h"
+#include "watergen/eval/draw/variant_render.h"
 
 using namespace watergen;
 using namespace watergen::test;

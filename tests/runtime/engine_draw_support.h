@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/render/synthetic_scene.h"
+#include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/runtime/headless_gpu.h"
 #include "watergen/runtime/shader_build.h"
 #include "watergen/runtime/vulkan_runner.h"

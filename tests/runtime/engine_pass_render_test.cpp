@@ -13,8 +13,8 @@
 #include "engine_builds.h"
 #include "engine_draw_support.h"
 #include "shared_runner.h"
+#include "watergen/eval/draw/caustics_render.h"
 #include "watergen/pipeline/caustics_pass_build.h"
-#include "watergen/render/caustics_render.h"
 #include "watergen/runtime/pass_pipeline.h"
 
 using namespace watergen;

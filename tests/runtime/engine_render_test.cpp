@@ -10,7 +10,7 @@
 #include "engine_builds.h"
 #include "engine_draw_support.h"
 #include "shared_runner.h"
-#include "watergen/render/variant_render.h"
+#include "watergen/eval/draw/variant_render.h"
 #include "watergen/runtime/headless_gpu.h"
 #include "watergen/runtime/uniform_writer.h"
 #include "watergen/water/presets.h"

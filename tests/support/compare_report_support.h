@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "watergen/render/compare_report.h"
+#include "watergen/eval/report/compare_report.h"
 
 namespace watergen::test {
 

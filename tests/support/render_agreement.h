@@ -4,7 +4,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "watergen/render/variant_render.h"
+#include "watergen/eval/draw/variant_render.h"
 
 namespace watergen::test {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "watergen/render/probe.h"
+#include "watergen/eval/probe/probe.h"
 #include "watergen/runtime/vulkan_runner.h"
 
 namespace watergen::test {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/render/probe.h"
+#include "watergen/eval/probe/probe.h"
 
 namespace watergen::test {
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "watergen/eval/scene/scene_wave_inputs.h"
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/emitter.h"
-#include "watergen/render/scene_wave_inputs.h"
 #include "watergen/water/node_catalog.h"
 
 namespace watergen::test {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "optics_support.h"
-#include "watergen/render/synthetic_scene.h"
+#include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/water/axis_registry.h"
 #include "watergen/water/nodes.h"
 #include "watergen/water/surface.h"

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "reflection_support.h"
-#include "watergen/render/synthetic_scene.h"
+#include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/water/axis_registry.h"
 #include "watergen/water/nodes/reflection.h"
 #include "watergen/water/surface.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "reflection_support.h"
-#include "watergen/render/synthetic_scene.h"
+#include "watergen/eval/scene/synthetic_scene.h"
 
 using namespace watergen;
 using test::eval_catalog;

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -68,5 +69,12 @@ double mean_intensity(const std::vector<double>& intensity);
 //         waves in about a second. Bad input (no texels, a sun not shining down, ior <= 1,
 //         depth < 0) returns an empty image and the reason in *error.
 CausticsImage caustics_reference(const CausticsSetup& setup, std::string* error);
+
+// The CPU reference for the same values: seed 004's waves restated (a_i = A g_a^i,
+// f_i = F g_f^i, phase t phi_i, Gerstner Q_i = Q / (f_i a_i n)), the sun, ior_water, the depth
+// and window; not periodic, photons over the window grown by `margin`.
+CausticsSetup caustics_reference_setup(const std::string& wave_model,
+                                       const std::map<std::string, std::vector<double>>& values,
+                                       uint32_t texels, double margin);
 
 } // namespace watergen

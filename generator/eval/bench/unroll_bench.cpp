@@ -1,0 +1,88 @@
+#include "watergen/eval/bench/unroll_bench.h"
+
+#include <algorithm>
+#include <array>
+
+#include "watergen/eval/draw/variant_render.h"
+#include "watergen/eval/scene/synthetic_scene.h"
+#include "watergen/pipeline/variant_build.h"
+#include "watergen/water/axis_registry.h"
+
+namespace watergen {
+
+namespace {
+
+size_t line_count(const std::string& text) {
+    return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// Renders one side once: both language paths, GPU only.
+std::string render_side(VulkanRunner& runner, const VariantBuild& build,
+                        const SyntheticScene& scene, uint32_t size, uint32_t draws,
+                        UnrollSide& side) {
+    RenderSettings settings{size, size, draws, false, false};
+    const VariantRender r = render_variant(runner, build, scene, settings);
+    if (!r.ok()) return r.key + ": " + r.error;
+    for (const auto& gpu : r.gpu) {
+        side.first_draw_ms.push_back(gpu.first_draw_ms);
+        side.steady_draw_ms.push_back(gpu.steady_draw_ms);
+        side.pipeline_ms.push_back(gpu.pipeline_ms);
+    }
+    return "";
+}
+
+// Each sample of `a` over the same sample of `b`.
+std::vector<double> ratios(const std::vector<double>& a, const std::vector<double>& b) {
+    std::vector<double> out;
+    for (size_t i = 0; i < a.size() && i < b.size(); ++i)
+        out.push_back(b[i] > 0 ? a[i] / b[i] : 0.0);
+    return out;
+}
+
+} // namespace
+
+UnrollBench run_unroll_bench(VulkanRunner& runner, uint32_t size, uint32_t rounds, uint32_t draws) {
+    UnrollBench bench;
+    bench.size = size;
+    bench.rounds = rounds;
+    const SyntheticScene scene = make_synthetic_scene(size, size);
+    for (const ChoiceInfo& choice : find_axis("waves")->choices) {
+        const std::string& waves = choice.name;
+        Variant v = default_variant();
+        set_choice(v, "waves", waves);
+        UnrollBenchRow row;
+        row.waves = waves;
+        std::array<VariantBuild, 2> builds = {
+            build_variant(v, nullptr, EmitOptions{false, {}, LoopUnroll::None}),
+            build_variant(v, nullptr, EmitOptions{false, {}, LoopUnroll::All})};
+        std::array<UnrollSide*, 3> sides = {&row.kept, &row.unrolled, &row.kept_again};
+        for (int s = 0; s < 2; ++s) {
+            const VariantBuild& b = builds[static_cast<size_t>(s)];
+            bench.diagnostics.insert(bench.diagnostics.end(), b.diagnostics.begin(),
+                                     b.diagnostics.end());
+            if (!b.ok()) return bench;
+            const StageBuild& frag = b.languages[0].fragment;
+            for (UnrollSide* side :
+                 s == 0 ? std::vector{sides[0], sides[2]} : std::vector{sides[1]}) {
+                side->glsl_lines = line_count(frag.source.source);
+                side->spirv_words = frag.toolchain.spirv_optimized.size();
+                side->instructions = frag.toolchain.instruction_count_optimized;
+            }
+        }
+        for (uint32_t round = 0; round < rounds; ++round)
+            for (uint32_t k = 0; k < 3; ++k) {
+                const uint32_t which = (k + round) % 3; // kept, unrolled, kept again, rotated
+                const VariantBuild& b = builds[which == 1 ? 1 : 0];
+                bench.error = render_side(runner, b, scene, size, draws, *sides[which]);
+                if (!bench.error.empty()) return bench;
+            }
+        row.first_draw_ratio = ratios(row.unrolled.first_draw_ms, row.kept.first_draw_ms);
+        row.first_draw_aa = ratios(row.kept_again.first_draw_ms, row.kept.first_draw_ms);
+        row.steady_ratio = ratios(row.unrolled.steady_draw_ms, row.kept.steady_draw_ms);
+        row.steady_aa = ratios(row.kept_again.steady_draw_ms, row.kept.steady_draw_ms);
+        bench.rows.push_back(std::move(row));
+    }
+    return bench;
+}
+
+} // namespace watergen

@@ -1,0 +1,238 @@
+#include "watergen/eval/compare/compare_run.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "watergen/eval/draw/variant_render.h"
+#include "watergen/pipeline/variant_build.h"
+
+namespace watergen {
+
+namespace {
+
+double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b) {
+    if (a.size() != b.size()) return INFINITY;
+    double m = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (a[i] != b[i]) // NaN in one and not the other counts as infinite
+            m = std::max(m, std::isnan(a[i]) != std::isnan(b[i])
+                                ? INFINITY
+                                : std::fabs(double(a[i]) - double(b[i])));
+    return m;
+}
+
+} // namespace
+
+bool approximates(const AxisInfo& axis, const std::string& choice, const std::string& target) {
+    std::string at = choice;
+    for (size_t hops = 0; hops < axis.choices.size(); ++hops) {
+        const ChoiceInfo* c = find_choice(axis, at);
+        if (!c || c->approximates.empty()) return false;
+        if (c->approximates == target) return true;
+        at = c->approximates;
+    }
+    return false;
+}
+
+Variant reference_for(const std::vector<Variant>& variants) {
+    if (variants.empty()) return default_variant();
+    Variant ref = variants.front();
+    const auto& list = axes();
+    for (size_t a = 0; a < list.size(); ++a) {
+        const bool varies = std::any_of(variants.begin(), variants.end(), [&](const Variant& v) {
+            return v.choices[a] != variants.front().choices[a];
+        });
+        if (!varies) continue;
+        // The gold, where some variant holds it or an approximation of it (for choices that
+        // are only different models, the first variant's choice stays).
+        for (const ChoiceInfo& c : list[a].choices)
+            if (c.gold && std::any_of(variants.begin(), variants.end(), [&](const Variant& v) {
+                    return v.choices[a] == c.name || approximates(list[a], v.choices[a], c.name);
+                }))
+                ref.choices[a] = c.name;
+    }
+    return ref;
+}
+
+std::string relation_to(const Variant& v, const Variant& reference) {
+    const auto& list = axes();
+    std::string approx, different;
+    for (size_t a = 0; a < list.size(); ++a) {
+        const std::string& mine = v.choices[a];
+        const std::string& theirs = reference.choices[a];
+        if (mine == theirs) continue;
+        if (approximates(list[a], mine, theirs))
+            approx += (approx.empty() ? "" : ", ") + list[a].name + "=" + mine;
+        else
+            different +=
+                (different.empty() ? "" : ", ") + list[a].name + ": " + mine + " vs " + theirs;
+    }
+    if (!different.empty()) return "different model (" + different + ")";
+    if (!approx.empty()) return "approximates (" + approx + ")";
+    return "reference";
+}
+
+namespace {
+
+// The stages of one comparison; `order` holds the reference first, then the other variants, and
+// entries[k] is order[first + k] (first = 0 when the reference is one of the compared variants).
+class Comparison {
+  public:
+    Comparison(VulkanRunner& runner, const CompareRequest& request, CompareRun& run)
+        : runner_(runner), request_(request), run_(run) {}
+
+    bool build() {
+        run_.reference_on_cpu = !request_.reference.has_value();
+        run_.reference =
+            request_.reference ? *request_.reference : reference_for(request_.variants);
+        order_ = {run_.reference};
+        for (const Variant& v : request_.variants)
+            if (std::none_of(order_.begin(), order_.end(),
+                             [&](const Variant& o) { return o.key() == v.key(); }))
+                order_.push_back(v);
+        for (const Variant& v : order_) {
+            builds_.push_back(request_.build ? request_.build(v)
+                                             : build_variant(v, request_.preset));
+            if (!builds_.back().ok()) {
+                run_.diagnostics = builds_.back().diagnostics;
+                run_.error = v.key() + ": did not build";
+                return false;
+            }
+        }
+        const bool listed =
+            std::any_of(request_.variants.begin(), request_.variants.end(),
+                        [&](const Variant& v) { return v.key() == run_.reference.key(); });
+        first_ = listed ? 0 : 1;
+        for (size_t i = first_; i < order_.size(); ++i) {
+            CompareEntry e;
+            e.variant = order_[i];
+            e.is_reference = i == 0 && !run_.reference_on_cpu;
+            e.relation = relation_to(order_[i], run_.reference);
+            e.spirv_instructions =
+                builds_[i].languages[0].fragment.toolchain.instruction_count_optimized;
+            run_.entries.push_back(std::move(e));
+        }
+        return true;
+    }
+
+    // View `view`'s scene as variant i sees it (request.textures_for); nullptr after a failure.
+    const SyntheticScene* scene_for(size_t i, size_t view, const SyntheticScene& scene) {
+        if (!request_.textures_for) return &scene;
+        std::string error;
+        auto textures = request_.textures_for(builds_[i], view, &error);
+        if (!error.empty()) {
+            run_.error = order_[i].key() + ": " + error;
+            return nullptr;
+        }
+        if (textures.empty()) return &scene;
+        own_scene_ = scene;
+        for (auto& [name, texture] : textures)
+            own_scene_.textures[name] = std::move(texture);
+        return &own_scene_;
+    }
+
+    // Every variant on both paths in one view, each GLSL image against the reference's.
+    bool render_view(size_t view, const std::string& name, const SyntheticScene& view_scene) {
+        const RenderSettings settings{view_scene.width, view_scene.height, 0, false, false};
+        std::vector<ImageRGBA32F> images;
+        std::vector<double> path_difference;
+        for (size_t i = 0; i < order_.size(); ++i) {
+            const SyntheticScene* scene = scene_for(i, view, view_scene);
+            if (!scene) return false;
+            std::array<RenderResult, 2> paths;
+            for (size_t l = 0; l < (request_.both_paths ? 2u : 1u); ++l) {
+                // View 0's GLSL images are the timing's last draws (read back already).
+                if (l == 0 && view == 0 && !timed_.empty()) {
+                    paths[0] = std::move(timed_[i]);
+                    continue;
+                }
+                paths[l] =
+                    runner_.render(make_render_job(builds_[i].languages[l], *scene, settings));
+                if (!paths[l].ok) {
+                    run_.error = order_[i].key() + " (" + name + "): " + paths[l].error;
+                    return false;
+                }
+            }
+            images.push_back(ImageRGBA32F{scene->width, scene->height, paths[0].rgba});
+            path_difference.push_back(
+                request_.both_paths ? max_abs_difference(paths[0].rgba, paths[1].rgba) : 0.0);
+        }
+        ImageRGBA32F reference = images[0];
+        if (run_.reference_on_cpu) {
+            const SyntheticScene* scene = scene_for(0, view, view_scene);
+            if (!scene) return false;
+            const EvalResult d =
+                evaluate_image(builds_[0].shader.fragment, "color", scene->eval_inputs(),
+                               scene->width, scene->height, EvalPrecision::Double);
+            if (!d.ok()) {
+                run_.error = "CPU reference (" + name + "): " + d.error;
+                return false;
+            }
+            reference = to_image(d, scene->width, scene->height);
+        }
+        for (size_t k = 0; k < run_.entries.size(); ++k) {
+            ComparedView view;
+            view.image = std::move(images[first_ + k]);
+            view.glsl_vs_hlsl = path_difference[first_ + k];
+            view.error = compare_images(view.image, reference);
+            run_.entries[k].views.push_back(std::move(view));
+        }
+        run_.reference_images.push_back(std::move(reference));
+        return true;
+    }
+
+    // Draw times in view 0, every variant against the reference variant on the GPU.
+    bool time(const SyntheticScene& view_scene) {
+        std::vector<RenderJob> jobs;
+        for (size_t i = 0; i < builds_.size(); ++i) {
+            const SyntheticScene* scene = scene_for(i, 0, view_scene);
+            if (!scene) return false;
+            jobs.push_back(make_render_job(builds_[i].languages[0], *scene,
+                                           {scene->width, scene->height, 0, false, false}));
+        }
+        InterleavedTiming t = time_interleaved(runner_, jobs, request_.rounds, request_.draws);
+        if (!t.ok()) {
+            run_.error = "timing: " + t.error;
+            return false;
+        }
+        run_.aa = t.aa;
+        for (size_t k = 0; k < run_.entries.size(); ++k) {
+            run_.entries[k].time = t.ratios[first_ + k];
+            run_.entries[k].steady_ms = t.results[first_ + k].steady_draw_ms;
+        }
+        // Per build (the A/A copy is not among them); without every image, view 0 renders afresh.
+        if (std::all_of(t.results.begin(), t.results.end(),
+                        [](const RenderResult& r) { return !r.rgba.empty(); }))
+            timed_ = std::move(t.results);
+        return true;
+    }
+
+  private:
+    VulkanRunner& runner_;
+    const CompareRequest& request_;
+    CompareRun& run_;
+    std::vector<Variant> order_;
+    std::vector<VariantBuild> builds_;
+    size_t first_ = 0;
+    SyntheticScene own_scene_;        // scene_for's copy with a variant's own textures
+    std::vector<RenderResult> timed_; // time()'s results, per build: view 0's GLSL images
+};
+
+} // namespace
+
+CompareRun run_compare(VulkanRunner& runner, const CompareRequest& request) {
+    CompareRun run;
+    if (request.views.empty()) {
+        run.error = "no view to render";
+        return run;
+    }
+    Comparison c(runner, request, run);
+    if (!c.build()) return run;
+    // Timing first: its last draws are view 0's GLSL images, so no pipeline is made twice.
+    if (!c.time(request.views.front().second)) return run;
+    for (size_t v = 0; v < request.views.size(); ++v)
+        if (!c.render_view(v, request.views[v].first, request.views[v].second)) return run;
+    return run;
+}
+
+} // namespace watergen

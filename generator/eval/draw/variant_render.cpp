@@ -1,0 +1,89 @@
+#include "watergen/eval/draw/variant_render.h"
+
+#include <chrono>
+
+namespace watergen {
+
+ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height) {
+    ImageRGBA32F img;
+    img.width = width;
+    img.height = height;
+    img.rgba.resize(size_t(width) * height * 4, 1.0f);
+    for (size_t p = 0; p < size_t(width) * height; ++p)
+        for (int c = 0; c < r.components && c < 4; ++c)
+            img.rgba[p * 4 + c] = static_cast<float>(r.values[p * r.components + c]);
+    return img;
+}
+
+RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene,
+                          const RenderSettings& settings) {
+    RenderJob job;
+    job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
+    job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
+    job.vertex_reflection = lang.vertex.toolchain.reflection;
+    job.fragment_reflection = lang.fragment.toolchain.reflection;
+    job.width = settings.width;
+    job.height = settings.height;
+    const ShaderInterface& in = lang.fragment.source.interface;
+    job.uniforms = pack_uniforms(in.uniforms, in.parameters, scene.uniforms);
+    job.specialization = specialization_values(in.specialization, scene.uniforms);
+    for (const auto& t : in.textures)
+        if (auto it = scene.textures.find(t.name); it != scene.textures.end())
+            job.textures[t.name] = it->second;
+    job.filter = TextureFilter::Linear;
+    job.timed_draws = settings.timed_draws;
+    return job;
+}
+
+VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
+                             const SyntheticScene& scene, const RenderSettings& settings) {
+    VariantRender out;
+    out.key = build.shader.variant.key();
+    if (!build.ok()) {
+        out.error = "variant did not build";
+        return out;
+    }
+    if (scene.width != settings.width || scene.height != settings.height) {
+        out.error = "scene size differs from the render size";
+        return out;
+    }
+    runner.clear_validation_messages();
+    for (size_t i = 0; i < 2; ++i) {
+        out.gpu[i] = runner.render(make_render_job(build.languages[i], scene, settings));
+        if (!out.gpu[i].ok) {
+            out.error =
+                std::string(to_string(build.languages[i].language)) + " path: " + out.gpu[i].error;
+            return out;
+        }
+        out.gpu_image[i] = ImageRGBA32F{settings.width, settings.height, out.gpu[i].rgba};
+    }
+    out.validation_messages = runner.validation_messages();
+    out.glsl_vs_hlsl = compare_images(out.gpu_image[0], out.gpu_image[1]);
+    if (!settings.cpu_float) return out;
+
+    const auto t0 = std::chrono::steady_clock::now();
+    const EvalResult f = evaluate_image(build.shader.fragment, "color", scene.eval_inputs(),
+                                        settings.width, settings.height, EvalPrecision::Float);
+    out.cpu_float_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (!f.ok()) {
+        out.error = "CPU evaluator: " + f.error;
+        return out;
+    }
+    out.cpu_float = to_image(f, settings.width, settings.height);
+    out.glsl_vs_cpu_float = compare_images(out.gpu_image[0], out.cpu_float);
+    out.hlsl_vs_cpu_float = compare_images(out.gpu_image[1], out.cpu_float);
+    if (settings.cpu_double) {
+        const EvalResult d = evaluate_image(build.shader.fragment, "color", scene.eval_inputs(),
+                                            settings.width, settings.height, EvalPrecision::Double);
+        if (!d.ok()) {
+            out.error = "CPU evaluator: " + d.error;
+            return out;
+        }
+        out.cpu_double = to_image(d, settings.width, settings.height);
+        out.glsl_vs_cpu_double = compare_images(out.gpu_image[0], out.cpu_double);
+    }
+    return out;
+}
+
+} // namespace watergen

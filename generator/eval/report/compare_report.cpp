@@ -1,0 +1,259 @@
+#include "watergen/eval/report/compare_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <fmt/core.h>
+
+#include "watergen/eval/image/heat_map.h"
+#include "watergen/eval/report/compare_table.h"
+#include "watergen/eval/report/report_html.h"
+#include "watergen/eval/report/report_svg.h"
+#include "watergen/pipeline/output_writer.h"
+
+namespace watergen {
+
+namespace {
+
+constexpr const char* kCss = R"(
+body { font-family: sans-serif; margin: 24px; color: #222; background: #fff; }
+h1 { font-size: 22px; } h2 { font-size: 18px; margin-top: 32px; } h3 { font-size: 15px; }
+table { border-collapse: collapse; margin: 8px 0; font-size: 13px; }
+th, td { border: 1px solid #ccc; padding: 3px 8px; text-align: right; }
+th { background: #f0f0f0; } td.key, th.key { text-align: left; }
+tr.reference td { background: #eef6ee; }
+.untrusted { color: #999; }
+.warning { background: #fff3cd; border: 1px solid #e0c060; padding: 6px 10px; }
+.note { color: #555; font-size: 13px; }
+.row { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; }
+figure { margin: 0; } figcaption { font-size: 12px; max-width: 260px; overflow-wrap: anywhere; }
+img.pixelated { image-rendering: pixelated; }
+.bar { position: relative; width: 256px; margin: 4px 0 28px 0; }
+.bar .ticks span { position: absolute; top: 16px; font-size: 11px; transform: translateX(-50%); }
+)";
+
+constexpr std::array<uint8_t, 3> kOutlineColor{0, 255, 255};
+constexpr uint32_t kCropDisplaySize = 192;
+
+std::string cell_value(double v, const ErrorColumnInfo& column) {
+    if (std::isnan(v)) return "n/a";
+    return fmt::format(fmt::runtime(column.format), v * column.display_scale);
+}
+
+std::string time_cell(const CompareVariant& v, bool trustworthy) {
+    if (v.time_ratio == 0) return "<td>n/a</td>";
+    return fmt::format(R"(<td{}>{:.3f}&times; [{:.3f}, {:.3f}]{}</td>)",
+                       trustworthy ? "" : R"( class="untrusted")", v.time_ratio, v.time_ratio_lo,
+                       v.time_ratio_hi, trustworthy ? "" : " (untrusted)");
+}
+
+std::string error_headings() {
+    std::string s;
+    for (std::size_t c = 0; c < kErrorColumnCount; ++c)
+        s += fmt::format("<th>{}</th>", error_column(ErrorColumn(c)).heading);
+    return s;
+}
+
+std::string error_cells(const std::vector<double>& values) {
+    std::string s;
+    for (std::size_t c = 0; c < kErrorColumnCount; ++c)
+        s += "<td>" + cell_value(values[c], error_column(ErrorColumn(c))) + "</td>";
+    return s;
+}
+
+std::vector<double> view_values(const ErrorMaps& m) {
+    std::vector<double> values;
+    for (std::size_t c = 0; c < kErrorColumnCount; ++c)
+        values.push_back(error_column(ErrorColumn(c)).value(m));
+    return values;
+}
+
+std::string summary_table(const CompareReport& report, const ResolvedErrors& errors) {
+    std::string s = "<table><tr><th class=\"key\">variant</th><th>time ratio [95% CI]</th>"
+                    "<th>cost (instr/px)</th><th>SPIR-V instr</th>" +
+                    error_headings() + "<th class=\"key\">relation</th></tr>\n";
+    for (std::size_t v = 0; v < report.variants.size(); ++v) {
+        const CompareVariant& var = report.variants[v];
+        s += fmt::format(
+            R"(<tr{}><td class="key" title="{}">{}</td>{}<td>{}</td><td>{}</td>{}<td class="key">{}</td></tr>)",
+            var.reference ? R"( class="reference")" : "", html_escape(var.key),
+            html_escape(short_label(report, var)), time_cell(var, report.timing_trustworthy),
+            var.cost != 0 ? fmt::format("{:.1f}", var.cost) : "n/a",
+            var.spirv_instructions ? std::to_string(var.spirv_instructions) : "n/a",
+            error_cells(errors.summaries[v]), html_escape(var.relation));
+        s += "\n";
+    }
+    return s + "</table>\n";
+}
+
+// Cost on x when every variant has one, else SPIR-V instructions; y the worst view's p99 dE00.
+std::vector<std::string> plots(const CompareReport& report, const ResolvedErrors& errors) {
+    const bool all_costed = std::all_of(report.variants.begin(), report.variants.end(),
+                                        [](const CompareVariant& v) { return v.cost != 0; });
+    auto x_of = [&](const CompareVariant& v) {
+        const double x = all_costed ? v.cost : double(v.spirv_instructions);
+        return x != 0 ? x : std::nan("");
+    };
+    const std::string x_label = all_costed ? "cost (instructions per pixel)"
+                                           : "SPIR-V instructions (cost not measured for all)";
+    const std::size_t p99 = static_cast<std::size_t>(ErrorColumn::Ciede2000P99);
+    auto make = [&](const std::string& title, auto group_of) {
+        ScatterPlot plot{title, x_label, "p99 CIEDE2000 (worst view)", {}};
+        for (std::size_t v = 0; v < report.variants.size(); ++v) {
+            const CompareVariant& var = report.variants[v];
+            plot.points.push_back(
+                {short_label(report, var), group_of(var), x_of(var), errors.summaries[v][p99]});
+        }
+        return scatter_svg(plot);
+    };
+    std::vector<std::string> out{
+        make("all variants", [](const CompareVariant& v) { return v.relation; })};
+    std::map<std::string, std::set<std::string>> axis_choices;
+    for (const CompareVariant& v : report.variants)
+        for (const auto& [axis, choice] : v.choices)
+            axis_choices[axis].insert(choice);
+    for (const auto& [axis, choices] : axis_choices) {
+        if (choices.size() < 2) continue;
+        out.push_back(make("by " + axis, [&axis](const CompareVariant& v) {
+            const auto it = v.choices.find(axis);
+            return axis + "=" + (it == v.choices.end() ? "?" : it->second);
+        }));
+    }
+    return out;
+}
+
+ImageRGBA8 srgb8(const ImageRGBA32F& image, float exposure) {
+    return ImageRGBA8{image.width, image.height, tone_map_to_srgb8(image, exposure)};
+}
+
+ImageRGBA8 outlined_heat_map(const std::vector<float>& values, const ErrorMaps& m,
+                             const HeatScale& scale) {
+    ImageRGBA8 image = heat_map(values, m.width, m.height, scale);
+    outline_region(image, m.worst, kOutlineColor);
+    return image;
+}
+
+std::string heat_row(const CompareReport& report, const ResolvedErrors& errors, std::size_t view,
+                     bool flip) {
+    const HeatScale scale = flip ? flip_scale() : ciede2000_scale();
+    std::string s = fmt::format("<h3>{} (worst {}x{} window outlined)</h3>\n<div class=\"row\">",
+                                flip ? "FLIP" : "CIEDE2000", errors.maps[0][view].worst.width,
+                                errors.maps[0][view].worst.height);
+    for (std::size_t v = 0; v < report.variants.size(); ++v) {
+        if (report.variants[v].reference) continue;
+        const ErrorMaps& m = errors.maps[v][view];
+        s += html_figure(outlined_heat_map(flip ? m.flip.values : m.ciede2000, m, scale),
+                         short_label(report, report.variants[v]));
+    }
+    return s + "</div>\n" + html_color_bar(scale) + "\n";
+}
+
+// Each variant's worst window with half a window of context on every side, zoomed: the
+// reference, the variant and its CIEDE2000 map, the window outlined.
+std::string crops_row(const CompareReport& report, const ResolvedErrors& errors, std::size_t view) {
+    const ImageRGBA8 reference = srgb8(report.views[view].reference, report.exposure);
+    std::string s = "<h3>Worst region, zoomed</h3>\n";
+    for (std::size_t v = 0; v < report.variants.size(); ++v) {
+        const CompareVariant& var = report.variants[v];
+        if (var.reference) continue;
+        const ErrorMaps& m = errors.maps[v][view];
+        const PixelRegion context = grown_region(m.worst, m.worst.width / 2, m.width, m.height);
+        const uint32_t zoom = std::max(1u, kCropDisplaySize / std::max(1u, context.width));
+        auto zoomed = [&](const ImageRGBA8& image) {
+            ImageRGBA8 z = zoom_nearest(crop(image, context), zoom);
+            outline_region(z,
+                           PixelRegion{(m.worst.x - context.x) * zoom,
+                                       (m.worst.y - context.y) * zoom, m.worst.width * zoom,
+                                       m.worst.height * zoom},
+                           kOutlineColor);
+            return z;
+        };
+        const std::string where = fmt::format(" around ({}, {}), {}x{}", m.worst.x, m.worst.y,
+                                              m.worst.width, m.worst.height);
+        s += "<div class=\"row\">" + html_figure(zoomed(reference), "reference" + where) +
+             html_figure(zoomed(srgb8(var.views[view].image, report.exposure)),
+                         short_label(report, var) + where) +
+             html_figure(zoomed(heat_map(m.ciede2000, m.width, m.height, ciede2000_scale())),
+                         "CIEDE2000" + where) +
+             "</div>\n";
+    }
+    return s;
+}
+
+std::string view_section(const CompareReport& report, const ResolvedErrors& errors,
+                         std::size_t view) {
+    const CompareView& cv = report.views[view];
+    std::string s =
+        fmt::format("<section><h2>View: {}</h2>\n<div class=\"row\">", html_escape(cv.name));
+    s += html_figure(srgb8(cv.reference, report.exposure), "reference: " + report.reference_key);
+    for (const CompareVariant& var : report.variants)
+        if (!var.reference)
+            s += html_figure(srgb8(var.views[view].image, report.exposure),
+                             short_label(report, var));
+    s += "</div>\n" + heat_row(report, errors, view, false) + heat_row(report, errors, view, true);
+    s += crops_row(report, errors, view);
+    s += "<table><tr><th class=\"key\">variant</th>" + error_headings() + "</tr>\n";
+    for (std::size_t v = 0; v < report.variants.size(); ++v)
+        s += fmt::format("<tr><td class=\"key\">{}</td>{}</tr>\n",
+                         html_escape(report.variants[v].key),
+                         error_cells(view_values(errors.maps[v][view])));
+    return s + "</table></section>\n";
+}
+
+std::string report_html(const CompareReport& report, const ResolvedErrors& errors) {
+    std::string s = fmt::format(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{0}</title>"
+        "<style>{1}</style></head>\n<body><h1>{0}</h1>\n<p class=\"note\">Reference: {2}. "
+        "Exposure {3:g}; FLIP at {4:g} pixels per degree; dE00 = CIEDE2000 of the tone-mapped "
+        "sRGB images; error figures in the summary are the worst view's.</p>\n",
+        html_escape(report.title), kCss, html_escape(report.reference_key), report.exposure,
+        report.pixels_per_degree);
+    if (!report.timing_note.empty())
+        s += fmt::format("<p class=\"{}\">Timing: {}</p>\n",
+                         report.timing_trustworthy ? "note" : "warning",
+                         html_escape(report.timing_note));
+    if (!report.cost_note.empty())
+        s += "<p class=\"note\">Cost: " + html_escape(report.cost_note) + "</p>\n";
+    s += summary_table(report, errors);
+    s += "<h2>Cost against error</h2>\n<p class=\"note\">Ringed points joined by the dashed "
+         "line form the Pareto front: no other variant is both cheaper and more accurate."
+         "</p>\n<div class=\"row\">";
+    for (const std::string& svg : plots(report, errors))
+        s += svg;
+    s += "</div>\n";
+    s += caustics_passes_html(report.caustics_passes, report.caustics_note);
+    for (std::size_t i = 0; i < report.views.size(); ++i)
+        s += view_section(report, errors, i);
+    return s + "<p class=\"note\">Generated by watergen compare.</p>\n</body></html>\n";
+}
+
+} // namespace
+
+std::optional<std::map<std::string, std::string>> compare_report_files(const CompareReport& report,
+                                                                       std::string* error) {
+    if (auto problem = check_compare_report(report)) {
+        if (error) *error = *problem;
+        return std::nullopt;
+    }
+    const ResolvedErrors errors = resolve_errors(report);
+    return std::map<std::string, std::string>{
+        {kCompareReportHtml, report_html(report, errors)},
+        {kCompareCsv, compare_csv(report, errors)},
+        {kCompareJson, compare_json(report, errors)},
+    };
+}
+
+std::optional<std::string> write_compare_report(const std::filesystem::path& dir,
+                                                const CompareReport& report,
+                                                const std::map<std::string, std::string>& extra) {
+    std::string error;
+    std::optional<std::map<std::string, std::string>> files = compare_report_files(report, &error);
+    if (!files) return error;
+    for (const auto& [name, contents] : extra)
+        if (!files->emplace(name, contents).second)
+            return "extra file '" + name + "' has the name of a report file";
+    return write_directory_atomically(dir, *files);
+}
+
+} // namespace watergen

@@ -1,0 +1,58 @@
+// The accuracy benchmark (`watergen bench accuracy`): on every axis that has a gold choice, each
+// other choice against the gold, measured with the instrument of `watergen compare`
+// (compare_run.h): image error over the named views, draw time interleaved with an A/A check.
+// An approximation of the gold gets an error; a choice that is a different model (sines
+// against Gerstner, no highlight against a GGX lobe) gets its cost and "different model".
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "watergen/eval/compare/compare_run.h"
+
+namespace watergen {
+
+struct AccuracyRow {
+    std::string axis, choice;
+    Variant variant; // the reference with this choice (waves rows: detail-map normals)
+    bool gold = false;
+    std::string relation; // "reference", "approximates (...)", "different model (...)"
+    bool approximation() const { return relation.rfind("approximates", 0) == 0; }
+    RatioInterval time;            // steady draw / the gold's, interleaved in the first view
+    size_t spirv_instructions = 0; // optimised fragment SPIR-V, GLSL path
+    double cost_per_pixel = 0;     // instructions per pixel under valgrind (filled by the CLI)
+    ImageErrorStats worst;         // over the views: each figure's worst view
+    std::string worst_view;        // the view of the worst p99 dE00
+    std::string note;              // why the row was skipped, or how it was built
+    bool skipped() const { return !note.empty() && spirv_instructions == 0; }
+};
+
+struct AccuracyAxis {
+    std::string axis;
+    Variant gold;     // the reference variant with the axis' gold
+    RatioInterval aa; // the gold timed against a second pipeline of itself
+};
+
+struct AccuracyBench {
+    std::vector<AccuracyRow> rows; // axes in registry order, the gold first within each
+    std::vector<AccuracyAxis> axes;
+    std::vector<std::string> views;
+    Diagnostics diagnostics; // of the variant that failed to build
+    std::string error;       // a render failed: "<variant key>: <what>"
+    bool ok() const { return error.empty() && !has_errors(diagnostics); }
+};
+
+// The variant every row differs from in one axis: the gold choice where an axis has one, and
+// Gerstner waves (analytic normals need a closed-form wave model).
+Variant accuracy_reference_variant();
+
+// What:   per axis with a gold choice, the reference with each of the axis' choices (the half
+//         row built strict half, so lavapipe computes it in 16-bit arithmetic) compared with
+//         the gold over `views` (GLSL path only) and timed against it (`rounds` x `draws`).
+// Output: the rows, or the first failure (the rows measured so far stay).
+// Cost:   per axis, a pipeline per choice and view plus the timing rounds.
+AccuracyBench run_accuracy_bench(VulkanRunner& runner,
+                                 const std::vector<std::pair<std::string, SyntheticScene>>& views,
+                                 uint32_t rounds, uint32_t draws);
+
+} // namespace watergen

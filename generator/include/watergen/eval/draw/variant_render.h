@@ -1,0 +1,47 @@
+// Renders one built variant through both language paths on the Vulkan runner and evaluates
+// the same description on the CPU, then measures how far apart the images are.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "watergen/eval/image/image_io.h"
+#include "watergen/eval/image/image_metrics.h"
+#include "watergen/eval/scene/synthetic_scene.h"
+#include "watergen/pipeline/variant_build.h"
+#include "watergen/runtime/vulkan_runner.h"
+
+namespace watergen {
+
+struct RenderSettings {
+    uint32_t width = 256, height = 256;
+    uint32_t timed_draws = 5;
+    bool cpu_double = true; // also evaluate in double (costs about as much as the float pass)
+    bool cpu_float = true;  // evaluate on the CPU in float at all (about 30 us per pixel)
+};
+
+struct VariantRender {
+    std::string key;
+    std::array<RenderResult, 2> gpu; // GLSL path, HLSL path (optimised SPIR-V)
+    std::array<ImageRGBA32F, 2> gpu_image;
+    ImageRGBA32F cpu_float, cpu_double; // CPU evaluator of the same graph and inputs
+    ImageErrorStats glsl_vs_hlsl, glsl_vs_cpu_float, hlsl_vs_cpu_float, glsl_vs_cpu_double;
+    double cpu_float_ms = 0;
+    std::vector<std::string> validation_messages; // raised while rendering this variant
+    std::string error;                            // first failure, "" when everything ran
+    bool ok() const { return error.empty(); }
+};
+
+// Cost: two pipelines (each JIT-compiled by lavapipe at first draw, 0.1-0.5 s) plus
+// 1 + timed_draws draws per path, plus one CPU evaluation per precision.
+VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
+                             const SyntheticScene& scene, const RenderSettings& settings);
+
+// The runner job for one language path of a built variant over `scene`: optimised SPIR-V, the
+// scene's textures by binding name, uniforms packed from the scene's values over the defaults.
+RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene,
+                          const RenderSettings& settings);
+
+ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height);
+
+} // namespace watergen

@@ -1,0 +1,93 @@
+// What `watergen compare` writes: ONE self-contained report.html (inline CSS, images as PNG data
+// URIs, plots as inline SVG, no script, no external URL) plus compare.csv and compare.json with
+// the table. The caller fills a CompareReport with renders and measurements; everything derived
+// from the images (error maps, statistics, worst regions, crops, plots) is computed here.
+//
+// report.html, per view: the reference and every other variant side by side at the same
+// exposure; their CIEDE2000 and FLIP heat maps (fixed scales, colour bars with ticks; the worst
+// window outlined in cyan); each variant's worst window with some context, zoomed, beside the
+// reference's and the CIEDE2000 map's;
+// a table of the view's error figures. Above the views: a summary table per variant (time ratio
+// with its 95% CI, cost, SPIR-V instructions, worst-over-views error figures, NaN count,
+// relation) and scatter plots of cost against p99 CIEDE2000 with the Pareto front, one for all
+// variants and one per axis whose choice varies (points coloured by that axis's choice).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "watergen/eval/image/error_maps.h"
+#include "watergen/eval/image/image_io.h"
+#include "watergen/eval/report/caustics_report.h"
+
+namespace watergen {
+
+// A named camera view of the scene and the image every variant's render of it is compared to.
+struct CompareView {
+    std::string name;       // e.g. "overview"; shown as a heading, used in the CSV/JSON
+    ImageRGBA32F reference; // linear float, e.g. the reference variant's render
+};
+
+// One variant's render of one view.
+struct CompareViewResult {
+    ImageRGBA32F image; // linear float, the same size as the view's reference
+    // compute_error_maps(image, view.reference, report.exposure, report.pixels_per_degree);
+    // left empty, the writer computes it (fill it to reuse figures already computed).
+    std::optional<ErrorMaps> errors;
+};
+
+struct CompareVariant {
+    std::string key;                            // the variant's key, e.g. "fresnel=schlick"
+    std::map<std::string, std::string> choices; // axis -> choice; plots group by these
+    bool reference = false;                     // the variant the others are compared with
+    // "reference", "approximates <key>", "different model", ...: shown as given.
+    std::string relation;
+    // Frame time of this variant / frame time of the reference, with its 95% confidence
+    // interval [lo, hi]; ratio 0 = not measured (shown as "n/a", null in JSON).
+    double time_ratio = 0, time_ratio_lo = 0, time_ratio_hi = 0;
+    double cost = 0;                 // deterministic cost, instructions per pixel; 0 = not measured
+    uint64_t spirv_instructions = 0; // of the fragment shader; 0 = unknown
+    std::vector<CompareViewResult> views; // one per CompareReport::views, in the same order
+};
+
+struct CompareReport {
+    std::string title;
+    std::string reference_key; // the key of the reference variant (shown in the header)
+    std::vector<CompareView> views;
+    std::vector<CompareVariant> variants; // in the order rows and images appear
+    float exposure = 1.0f;                // of every image and every perceptual metric
+    double pixels_per_degree = kFlipDefaultPixelsPerDegree; // FLIP's viewing condition
+    std::string timing_note; // how times were measured; shown above the table
+    // false: time ratios are shown greyed and marked "untrusted", with timing_note as a warning
+    // (e.g. the A/A interval is wider than the effects).
+    bool timing_trustworthy = true;
+    std::string cost_note; // how the cost was measured (e.g. "valgrind, instructions / pixel")
+    // The caustics passes the variants read ("Caustics passes" section, compare.json's
+    // "caustics_passes"); none: neither appears.
+    std::vector<CausticsPassFigures> caustics_passes;
+    std::string caustics_note; // how the passes were drawn, measured and timed
+};
+
+// Names of the files written, for callers that list them.
+constexpr const char* kCompareReportHtml = "report.html";
+constexpr const char* kCompareCsv = "compare.csv";
+constexpr const char* kCompareJson = "compare.json";
+
+// The three files' contents by name. Fails (nullopt, reason in *error) if the report is
+// inconsistent: no view, a variant without one result per view, or an image whose size differs
+// from its view's reference.
+std::optional<std::map<std::string, std::string>> compare_report_files(const CompareReport& report,
+                                                                       std::string* error);
+
+// Writes compare_report_files(report) plus `extra_files` (relative path -> contents) into `dir`
+// as one atomic step: a staging directory beside it, then a rename over `dir` (a previous `dir`
+// is replaced whole). Returns the error, if any; on error `dir` is as it was.
+std::optional<std::string>
+write_compare_report(const std::filesystem::path& dir, const CompareReport& report,
+                     const std::map<std::string, std::string>& extra_files = {});
+
+} // namespace watergen
