@@ -75,9 +75,9 @@ Runner add_build_command(CLI::App& app, const Common& common) {
     };
     auto o = std::make_shared<Options>();
     app.add_option("material", o->material,
-                   "material description (JSON, see README \"Material files\"); default: the "
-                   "built-in default material, "
-                   "the same as examples/materials/default.json");
+                   "material description (JSON, see docs/user-guide.md \"Material files\"); "
+                   "default: the built-in default material, the same as "
+                   "examples/materials/default.json");
     app.add_option("--scene", o->scenes,
                    "scene description (JSON, repeatable); with scenes only the variants they reach "
                    "are built, each folded "

@@ -60,7 +60,8 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
         plan.scenes.push_back(std::move(*p));
     }
     if (plan.scenes.empty()) {
-        // Sorted by key, each key made once (the full space has 238,080).
+        // Sorted by key, each key made once (the full space has 721,920: the count
+        // the_full_space_has_721920_variants pins).
         std::vector<std::pair<std::string, Variant>> keyed;
         enumerate(material.space, [&](const Variant& v) { keyed.emplace_back(v.key(), v); });
         std::sort(keyed.begin(), keyed.end(),

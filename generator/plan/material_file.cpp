@@ -1,5 +1,6 @@
-// A material description file (README "Material files") mapped onto MaterialBuilder calls, one
-// call per JSON value, each carrying where the value stands so the builder's errors name it.
+// A material description file (docs/user-guide.md "Material files") mapped onto MaterialBuilder
+// calls, one call per JSON value, each carrying where the value stands so the builder's errors
+// name it.
 #include <string>
 #include <vector>
 

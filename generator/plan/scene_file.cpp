@@ -55,7 +55,8 @@ std::optional<SceneFacts> parse_scene(const JsonSource& src, Diagnostics& ds) {
                  [](const std::string& k) {
                      return k != "description" && k != "fixed" && k != "bottom_in_view";
                  });
-    if (!r.keys("", allowed, required, "(a scene states every fact; see README \"Scene files\")"))
+    if (!r.keys("", allowed, required,
+                "(a scene states every fact; see docs/user-guide.md \"Scene files\")"))
         return std::nullopt;
     if (!r.string("/name", s.name)) return std::nullopt;
     if (s.name.empty() ||

@@ -8,7 +8,7 @@
 #include <map>
 #include <set>
 
-#include "readme_text.h"
+#include "doc_text.h"
 #include "render_agreement.h"
 #include "shared_runner.h"
 #include "watergen/eval/bench/accuracy_bench.h"
@@ -217,11 +217,12 @@ TEST_CASE("every_view_renders_alike_on_lavapipe_and_the_cpu", "[views][render]")
     }
 }
 
-TEST_CASE("readme_names_every_view", "[views]") {
-    const std::string readme = test::readme_prose();
+TEST_CASE("user_guide_names_every_view", "[views]") {
+    // docs/user-guide.md, "Views".
+    const std::string guide = test::user_guide_prose();
     for (const SceneView& v : scene_views()) {
         INFO(v.name);
-        CHECK(readme.find("`" + v.name + "`") != std::string::npos);
+        CHECK(guide.find("`" + v.name + "`") != std::string::npos);
     }
-    CHECK(readme.find("--view") != std::string::npos);
+    CHECK(guide.find("--view") != std::string::npos);
 }

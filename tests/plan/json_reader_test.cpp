@@ -66,8 +66,8 @@ TEST_CASE("json_reader_errors_name_the_value_and_what_was_expected", "[json]") {
     std::vector<double> v;
     double lo = 0, hi = 0;
     CHECK(error_of([&](JsonReader& r) {
-              return r.keys("", {"s", "list", "v", "r"}, {"s", "t"}, "(see README)");
-          }) == "r.json:1:1: error: /: missing key 't' (see README)");
+              return r.keys("", {"s", "list", "v", "r"}, {"s", "t"}, "(see docs/user-guide.md)");
+          }) == "r.json:1:1: error: /: missing key 't' (see docs/user-guide.md)");
     CHECK(error_of([&](JsonReader& r) {
               return r.keys("", {"s", "v"}, {});
           }) == "r.json:1:10: error: /list: unknown key 'list'; expected one of s, v");

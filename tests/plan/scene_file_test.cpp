@@ -69,8 +69,8 @@ TEST_CASE("scene_errors_name_file_line_path_and_what_was_expected", "[scene]") {
     CHECK(error_of(scene_text("shoreline", "  \"shoreline\": \"yes\",")) ==
           "s.json:3:3: error: /shoreline: expected true or false, got a string (\"yes\")");
     CHECK(error_of(scene_text("shoreline")) ==
-          "s.json:1:1: error: /: missing key 'shoreline' (a scene states every fact; see README "
-          "\"Scene files\")");
+          "s.json:1:1: error: /: missing key 'shoreline' (a scene states every fact; see "
+          "docs/user-guide.md \"Scene files\")");
     CHECK(error_of(scene_text("waves", "  \"waves\": \"choppy\",")) ==
           "s.json:9:3: error: /waves: unknown value 'choppy'; expected one of static, animated");
     CHECK(error_of(scene_text("water_depth", "  \"water_depth\": {\"min\": 30, \"max\": 3},")) ==

@@ -5,7 +5,8 @@
 #include <set>
 #include <sstream>
 
-#include "readme_text.h"
+#include "doc_text.h"
+#include "watergen/plan/covering_array.h"
 #include "watergen/plan/variant_space.h"
 
 using namespace watergen;
@@ -17,10 +18,6 @@ size_t combinations(const VariantSpace& s) {
     for (const auto& c : s.choices)
         n *= c.size();
     return n;
-}
-
-std::string readme() {
-    return test::readme_text();
 }
 
 } // namespace
@@ -124,10 +121,11 @@ TEST_CASE("short_hash_is_16_hex_digits_stable_and_distinct", "[space]") {
     CHECK(hashes.size() == count_variants(full_space()));
 }
 
-TEST_CASE("readme_axis_table_is_the_registry's", "[space][readme]") {
-    // README.md's table under "### Axes" is axes_markdown_table(); regenerate it from there.
-    const std::string text = readme();
-    const size_t section = text.find("### Axes");
+TEST_CASE("user_guide_axis_table_is_the_registry's", "[space][docs]") {
+    // docs/user-guide.md's table under "## Axes" is axes_markdown_table(); regenerate it from
+    // there.
+    const std::string text = test::user_guide_text();
+    const size_t section = text.find("\n## Axes\n");
     REQUIRE(section != std::string::npos);
     const size_t start = text.find("| axis | choices |", section);
     REQUIRE(start != std::string::npos);
@@ -136,9 +134,13 @@ TEST_CASE("readme_axis_table_is_the_registry's", "[space][readme]") {
     CHECK(text.substr(start, end + 1 - start) == axes_markdown_table());
 }
 
-TEST_CASE("readme_states_the_size_of_the_space", "[space][readme]") {
-    const std::string text = readme();
+TEST_CASE("user_guide_states_the_size_of_the_space", "[space][docs]") {
+    const std::string text = test::user_guide_text();
     const std::string size = std::to_string(count_variants(full_space()));
     CHECK(text.find("The valid space has " + size + " variants") != std::string::npos);
     CHECK(text.find("Of the " + size + " variants of the full space") != std::string::npos);
+    // The covering set's size, as the user guide's "## Axes" gives it.
+    const std::string covering = std::to_string(pairwise_covering_variants().size());
+    CHECK(test::user_guide_prose().find("at least one variant, " + covering + " variants in all") !=
+          std::string::npos);
 }

@@ -67,8 +67,8 @@ void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>&
 std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs,
                                       const BuildOptions& options);
 
-// The files of `all` a target list keeps (variant.json and a pass's pass.json always; see README
-// "watergen build").
+// The files of `all` a target list keeps (variant.json and a pass's pass.json always; see
+// docs/user-guide.md "Build output").
 FileMap filter_targets(const FileMap& all, const std::vector<Target>& targets);
 
 } // namespace watergen

@@ -22,7 +22,7 @@
 
 namespace watergen {
 
-// What a build writes per variant besides variant.json (see README "watergen build").
+// What a build writes per variant besides variant.json (see docs/user-guide.md "Build output").
 enum class Target { Glsl, Hlsl, Spirv, Glsl330, Essl300, Msl, Reflection };
 const std::vector<Target>& all_targets();
 const char* to_string(Target t);
@@ -137,8 +137,8 @@ class MaterialBuilder {
     SourceRef offered_at(size_t axis, const std::string& choice) const;
 };
 
-// Reads a material description (format: README "Material files"; material_file.cpp). Errors
-// name the file, line, column and JSON path, and what was expected.
+// Reads a material description (format: docs/user-guide.md "Material files";
+// material_file.cpp). Errors name the file, line, column and JSON path, and what was expected.
 std::optional<Material> load_material(const std::filesystem::path& path, Diagnostics& diagnostics);
 std::optional<Material> parse_material(const JsonSource& source, Diagnostics& diagnostics);
 

@@ -47,7 +47,7 @@ struct SceneFacts {
     SceneWhere where;
 };
 
-// Vocabulary of the scene file (README "Scene files").
+// Vocabulary of the scene file (docs/user-guide.md "Scene files").
 extern const std::vector<std::string> kReflectionSources; // planar, cubemap, horizon_map
 extern const std::vector<std::string> kPlatforms;         // vulkan, d3d, opengl, gles, metal
 // Targets a platform needs.

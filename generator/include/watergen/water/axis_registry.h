@@ -1,8 +1,8 @@
 // The axis registry: every axis of the water pass and, per choice, everything the toolkit
 // derives from it. Each axis file (water/nodes/<axis>.cpp) declares its choices once, in one
 // table; the axis list, variant keys, the node catalog, the composition of the water pass, the
-// built-in rules of the variant space, scene pruning, `--help` and README's axis table are all
-// read from here. Adding a choice to an axis touches its axis file only.
+// built-in rules of the variant space, scene pruning, `--help` and the user guide's axis table
+// are all read from here. Adding a choice to an axis touches its axis file only.
 #pragma once
 
 #include <functional>
@@ -127,7 +127,8 @@ void compose_switch(Surface& s, const std::string& axis, const std::vector<std::
 // The --<axis> option's help: default, then one line per choice with gold, what it approximates,
 // the choices of other axes it needs, and its seed.
 std::string axis_help(const AxisInfo& axis);
-// README's axis table: "| axis | choices |" with each choice's seed and gold mark.
+// The axis table of docs/user-guide.md ("Axes"): "| axis | choices |" with each choice's seed
+// and gold mark.
 std::string axes_markdown_table();
 
 } // namespace watergen
