@@ -1,26 +1,43 @@
 # `cmake --install` of the package an engine consumes with find_package(watergen CONFIG):
-# watergen::runtime (watergen_engine and the reflection types it exposes), the imported
-# executable watergen::watergen, their headers, and watergen_add_shaders(). Components:
-# "runtime" (library and headers), "generator" (the executable), "cmake" (the package files).
+# watergen::runtime (watergen_runtime and the reflection types it exposes), the imported
+# executable watergen::watergen, their headers, and watergen_add_shaders(); optionally the
+# headless device watergen::headless (find_package(watergen CONFIG COMPONENTS headless)).
+# Install components: "runtime" (library and headers), "headless" (the device's library,
+# headers and targets file), "generator" (the executable), "cmake" (the package files).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(WATERGEN_PACKAGE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/watergen)
-install(TARGETS watergen_engine watergen_reflection EXPORT watergenTargets
-  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime)
+
+# watergen_install_libraries(COMPONENT c EXPORT e FOLDER f TARGETS t... HEADERS h...): the static
+# libraries into export set `e` and the headers into include/watergen/<f>, in component `c`.
+function(watergen_install_libraries)
+  cmake_parse_arguments(L "" "COMPONENT;EXPORT;FOLDER" "TARGETS;HEADERS" ${ARGN})
+  install(TARGETS ${L_TARGETS} EXPORT ${L_EXPORT}
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT ${L_COMPONENT})
+  list(TRANSFORM L_HEADERS PREPEND runtime/include/watergen/${L_FOLDER}/)
+  install(FILES ${L_HEADERS} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/watergen/${L_FOLDER}
+    COMPONENT ${L_COMPONENT})
+endfunction()
+
+watergen_install_libraries(COMPONENT runtime EXPORT watergenTargets FOLDER runtime
+  TARGETS watergen_runtime watergen_reflection
+  HEADERS reflection.h build_pass.h shader_build.h uniform_writer.h variant_pipeline.h
+          pass_pipeline.h)
 install(TARGETS watergen EXPORT watergenTargets
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT generator)
-install(FILES
-    runtime/include/watergen/runtime/reflection.h
-    runtime/include/watergen/runtime/build_pass.h
-    runtime/include/watergen/runtime/shader_build.h
-    runtime/include/watergen/runtime/uniform_writer.h
-    runtime/include/watergen/runtime/variant_pipeline.h
-    runtime/include/watergen/runtime/pass_pipeline.h
-    runtime/include/watergen/runtime/headless_gpu.h
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/watergen/runtime COMPONENT runtime)
 install(EXPORT watergenTargets NAMESPACE watergen:: DESTINATION ${WATERGEN_PACKAGE_DIR}
   COMPONENT cmake)
+
+# The headless device: its own export set, installed with its component, so that a prefix
+# without it still loads (the config includes this targets file only when the component is
+# asked for).
+watergen_install_libraries(COMPONENT headless EXPORT watergenHeadlessTargets FOLDER headless
+  TARGETS watergen_headless
+  HEADERS headless_device.h offscreen_draw.h compute_job.h texture_data.h)
+install(EXPORT watergenHeadlessTargets NAMESPACE watergen:: DESTINATION ${WATERGEN_PACKAGE_DIR}
+  COMPONENT headless)
+
 configure_package_config_file(cmake/watergenConfig.cmake.in
   ${PROJECT_BINARY_DIR}/watergenConfig.cmake INSTALL_DESTINATION ${WATERGEN_PACKAGE_DIR})
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/watergenConfigVersion.cmake

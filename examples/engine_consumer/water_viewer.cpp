@@ -16,7 +16,7 @@
 #include <optional>
 #include <string>
 
-#include "watergen/runtime/headless_gpu.h"
+#include "watergen/headless/headless_device.h"
 #include "watergen/runtime/pass_pipeline.h"
 #include "watergen/runtime/shader_build.h"
 #include "watergen/runtime/uniform_writer.h"
@@ -34,11 +34,11 @@ int fail(const std::string& what) {
 // Constant images, except the positions: a flat bottom 2 m below the water spanning the caustics
 // pass's default window (x and z from -5 to 5 m across the screen), so that a caustics variant
 // shows the pass's pattern.
-HeadlessTexture texture_for(const TextureSlot& slot) {
+TextureData texture_for(const TextureSlot& slot) {
     const bool cube = slot.type == "textureCube";
     if (slot.name == "scene_position") {
         constexpr uint32_t n = 32;
-        HeadlessTexture t{n, n, 1, {}};
+        TextureData t{n, n, 1, {}};
         for (uint32_t j = 0; j < n; ++j)
             for (uint32_t i = 0; i < n; ++i)
                 t.rgba.insert(t.rgba.end(), {-5.0f + 10.0f * (i + 0.5f) / n, -2.0f,
@@ -48,7 +48,7 @@ HeadlessTexture texture_for(const TextureSlot& slot) {
     float texel[4] = {0.5f, 0.5f, 0.5f, 1.0f};
     if (slot.name == "scene_color") texel[0] = 0.3f, texel[1] = 0.45f, texel[2] = 0.35f;
     if (cube) texel[0] = 0.45f, texel[1] = 0.65f, texel[2] = 0.9f;
-    HeadlessTexture t{4, 4, cube ? 6u : 1u, {}};
+    TextureData t{4, 4, cube ? 6u : 1u, {}};
     for (size_t i = 0; i < size_t(t.width) * t.height * t.layers; ++i)
         t.rgba.insert(t.rgba.end(), texel, texel + 4);
     return t;
@@ -84,9 +84,9 @@ std::optional<Stages> load_stages(const ShaderBuild& build, const BuildVariant& 
 // The variant's caustics pass, drawn as the engine would each frame before the water: the grid
 // over the pass's caustics window (its default) at its default depth, the frame's sun. Drawn
 // once more after the first (which JIT-compiles on lavapipe) to time a steady frame.
-std::optional<HeadlessTexture> draw_caustics(const ShaderBuild& build, const BuildVariant& v,
-                                             HeadlessGpu& gpu, VkPipelineCache cache,
-                                             const std::vector<float>& sun, std::string* error) {
+std::optional<TextureData> draw_caustics(const ShaderBuild& build, const BuildVariant& v,
+                                         HeadlessDevice& gpu, VkPipelineCache cache,
+                                         const std::vector<float>& sun, std::string* error) {
     const auto pass = build.pass(v, "caustics", error);
     const auto stages = pass ? load_stages(build, pass->shader, error) : std::nullopt;
     if (!stages) return std::nullopt;
@@ -111,7 +111,7 @@ std::optional<HeadlessTexture> draw_caustics(const ShaderBuild& build, const Bui
                                    target,      0,           {},          cache};
     const auto pipeline = create_pass_pipeline(gpu.device(), d, desc, error);
     if (!pipeline) return std::nullopt;
-    std::optional<HeadlessTexture> texture;
+    std::optional<TextureData> texture;
     double ms[2] = {0, 0};
     for (double& t : ms) {
         const auto start = std::chrono::steady_clock::now();
@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
     const auto bytes = uniforms.pack(stages->fr, &error);
     if (!bytes) return fail(error);
 
-    auto gpu = HeadlessGpu::create(&error);
+    auto gpu = HeadlessDevice::create({}, &error);
     if (!gpu) return fail(error);
     auto cache = load_pipeline_cache(gpu->physical(), gpu->device(), "pipelines.bin", &error);
     if (!cache) return fail(error);
@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
         desc.specialization[id] = static_cast<float>(value);
     auto pipeline = VariantPipeline::create(gpu->device(), desc, &error);
     if (!pipeline) return fail(error);
-    std::optional<HeadlessTexture> caustics_map;
+    std::optional<TextureData> caustics_map;
     if (v.passes.count("caustics")) {
         caustics_map = draw_caustics(*build, v, *gpu, cache->cache, sun, &error);
         if (!caustics_map) return fail(error);
@@ -218,9 +218,9 @@ int main(int argc, char** argv) {
     std::printf("drew %ux%u on %s (pipeline cache %s): rgb in [%.4f, %.4f], %zu non-finite\n",
                 draw.width, draw.height, gpu->device_name().c_str(),
                 cache->loaded ? "loaded" : "new", lo, hi, bad);
-    for (const auto& m : gpu->messages())
+    for (const auto& m : gpu->validation_messages())
         std::printf("  validation: %s\n", m.c_str());
-    if (bad || !(hi - lo > 0.01f) || !gpu->messages().empty())
+    if (bad || !(hi - lo > 0.01f) || !gpu->validation_messages().empty())
         return fail("the image is not a plausible water surface");
     if (!write_ppm(image, rgba, draw.width, draw.height)) return fail("cannot write " + image);
     std::printf("wrote %s\n", image.c_str());

@@ -14,7 +14,7 @@
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
-#include "watergen/runtime/vulkan_runner.h"
+#include "watergen/runner/vulkan_runner.h"
 #include "watergen/water/presets.h"
 #include "watergen/water/variant.h"
 

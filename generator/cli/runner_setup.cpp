@@ -26,7 +26,7 @@ std::unique_ptr<VulkanRunner> create_runner(const RunnerSetup& setup, std::strin
         *cache_used = setup.shader_cache;
     }
     std::string error;
-    RunnerOptions options;
+    DeviceOptions options;
     options.device = setup.device;
     options.validation = false; // commands measure; the tests run with validation on
     auto runner = VulkanRunner::create(options, &error);

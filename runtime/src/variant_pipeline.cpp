@@ -2,6 +2,7 @@
 // cache file.
 #include "watergen/runtime/variant_pipeline.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <unistd.h>
@@ -123,12 +124,16 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
                                    std::pair{d.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}})
         for (const DescriptorBinding& b : r->bindings) {
             auto [it, fresh] = all.try_emplace({b.set, b.binding}, b, 0);
-            if (!fresh && it->second.first.kind != b.kind) {
+            DescriptorBinding& seen = it->second.first;
+            if (!fresh && (seen.kind != b.kind || seen.name != b.name)) {
                 *error = "binding " + std::to_string(b.binding) + " of set " +
-                         std::to_string(b.set) + " is " + to_string(it->second.first.kind) +
-                         " in one stage and " + to_string(b.kind) + " in the other";
+                         std::to_string(b.set) + " is " + to_string(seen.kind) + " '" + seen.name +
+                         "' in one stage and " + to_string(b.kind) + " '" + b.name +
+                         "' in the other";
                 return std::nullopt;
             }
+            // A block both stages declare needs the larger of their sizes.
+            seen.block_size = std::max(seen.block_size, b.block_size);
             it->second.second |= static_cast<VkShaderStageFlags>(stage);
         }
     uint32_t sets = 0;

@@ -38,13 +38,17 @@ struct Layer {
     std::set<std::string> may_include;
 };
 
-// Generic first. runtime/reflection.h is the shader interface types every layer shares. The
-// evaluation rooms (generator/eval/<room>) may use the whole generator, the runtime and the
-// rooms before them; the CLI uses everything.
+// Generic first. The runtime: the engine library (runtime/src) includes only itself; the
+// headless device (runtime/headless) the runtime and itself; the test runner (runtime/runner)
+// those and itself; nothing in runtime/ includes the generator. runtime/reflection.h is the
+// shader interface types every layer shares. The evaluation rooms (generator/eval/<room>) may
+// use the whole generator, the runtime's three layers and the rooms before them; the CLI uses
+// everything.
 const std::vector<Layer>& layers() {
     static const std::vector<Layer> all = [] {
-        const std::vector<std::string> generator = {"ir",        "water",    "caustics", "plan",
-                                                    "toolchain", "pipeline", "runtime"};
+        const std::vector<std::string> generator = {"ir",      "water",     "caustics",
+                                                    "plan",    "toolchain", "pipeline",
+                                                    "runtime", "headless",  "runner"};
         const std::vector<std::string> rooms = {"image", "scene",  "draw",    "measure",
                                                 "probe", "report", "compare", "bench"};
         auto gen = [](const std::string& name, std::set<std::string> uses) {
@@ -54,6 +58,12 @@ const std::vector<Layer>& layers() {
         };
         std::vector<Layer> v = {
             Layer{"runtime", {"runtime/src", "runtime/include/watergen/runtime"}, {"runtime"}},
+            Layer{"headless",
+                  {"runtime/headless", "runtime/include/watergen/headless"},
+                  {"runtime", "headless"}},
+            Layer{"runner",
+                  {"runtime/runner", "runtime/include/watergen/runner"},
+                  {"runtime", "headless", "runner"}},
             gen("ir", {"runtime/reflection"}),
             gen("water", {"ir", "runtime/reflection"}),
             gen("caustics", {"ir", "water", "runtime/reflection"}),
@@ -155,6 +165,13 @@ TEST_CASE("include_rules_catch_an_upward_include", "[layout]") {
     CHECK_FALSE(allowed("generator/pipeline", "eval/draw/variant_render.h"));
     CHECK_FALSE(allowed("generator/eval/scene", "eval/draw/caustics_render.h"));
     CHECK_FALSE(allowed("runtime/src", "ir/ir.h"));
+    CHECK_FALSE(allowed("runtime/src", "headless/headless_device.h"));
+    CHECK_FALSE(allowed("runtime/headless", "runner/vulkan_runner.h"));
+    CHECK_FALSE(allowed("runtime/headless", "ir/ir.h"));
+    CHECK_FALSE(allowed("runtime/runner", "eval/probe/probe.h"));
+    CHECK(allowed("runtime/headless", "runtime/variant_pipeline.h"));
+    CHECK(allowed("runtime/runner", "headless/offscreen_draw.h"));
+    CHECK(allowed("generator/eval/draw", "runner/vulkan_runner.h"));
     CHECK(allowed("generator/eval/compare", "eval/report/compare_report.h"));
     CHECK(allowed("generator/water/nodes", "ir/dsl.h"));
     CHECK(layer_of("generator/include/watergen/eval/draw")->name == "eval/draw");
@@ -165,7 +182,8 @@ TEST_CASE("every_generator_layer_has_its_public_header_folder_and_nothing_else_d
     const fs::path gen = source_dir() / "generator";
     std::set<std::string> sources, headers;
     for (const Layer& l : layers()) {
-        if (l.name == "cli" || l.name == "runtime") continue; // no public generator headers
+        // No public generator headers: the CLI and the runtime's layers.
+        if (l.name == "cli" || l.folders.front().rfind("runtime/", 0) == 0) continue;
         for (const std::string& f : l.folders)
             (f.find("/include/") != std::string::npos ? headers : sources).insert(l.name);
     }

@@ -30,11 +30,43 @@ function(expect_match name text regex)
   endif()
 endfunction()
 
-# Install only the package's components.
+# Install only the package's components: first those an engine with its own device needs.
 foreach(component runtime generator cmake)
   run(install-${component} ok out ${CMAKE_COMMAND} --install ${WATERGEN_BUILD_DIR}
       --prefix ${prefix} --component ${component})
 endforeach()
+if(EXISTS ${prefix}/include/watergen/headless)
+  message(FATAL_ERROR "[install-runtime] the headless device's headers came with the runtime")
+endif()
+
+# An engine that links watergen::runtime alone: it configures and builds without the headless
+# component, which it cannot ask for until that is installed.
+set(engine ${WORK_DIR}/engine)
+file(WRITE ${engine}/CMakeLists.txt "cmake_minimum_required(VERSION 3.25)
+project(engine LANGUAGES CXX)
+find_package(watergen 0.1 CONFIG REQUIRED)
+find_package(watergen 0.1 CONFIG QUIET COMPONENTS headless)
+if(watergen_FOUND)
+  message(STATUS \"headless component: found\")
+else()
+  message(STATUS \"headless component: not installed\")
+endif()
+add_executable(engine engine.cpp)
+target_link_libraries(engine PRIVATE watergen::runtime)
+")
+file(WRITE ${engine}/engine.cpp "#include \"watergen/runtime/shader_build.h\"
+int main(int argc, char** argv) {
+    std::string error;
+    return argc > 1 && watergen::ShaderBuild::open(argv[1], &error) ? 0 : 1;
+}
+")
+run(engine-configure ok out ${CMAKE_COMMAND} -S ${engine} -B ${engine}/build -G ${GENERATOR}
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_PREFIX_PATH=${prefix})
+expect_match(engine-configure "${out}" "headless component: not installed")
+run(engine-build ok out ${CMAKE_COMMAND} --build ${engine}/build)
+
+run(install-headless ok out ${CMAKE_COMMAND} --install ${WATERGEN_BUILD_DIR}
+    --prefix ${prefix} --component headless)
 
 # The consumer and its material and scene, copied: the test edits them.
 file(COPY ${WATERGEN_SOURCE_DIR}/examples/engine_consumer/ DESTINATION ${src})
@@ -64,6 +96,9 @@ expect_match(depfile "${depfile}" "water_viewer/manifest.json:")
 expect_match(depfile "${depfile}" "water/default.json")
 expect_match(depfile "${depfile}" "water/open_ocean.json")
 expect_match(depfile "${depfile}" "water/mountain_lake.json")
+
+# The runtime-only engine opens that build.
+run(engine-open ok out ${engine}/build/engine ${bld}/watergen/water_viewer)
 
 run(draw ok out ${bld}/water_viewer ${bld}/watergen/water_viewer ${WORK_DIR}/water.ppm
     open_ocean)

@@ -1,6 +1,6 @@
 // Caustics end to end through the runtime library: a water variant with caustics=area_ratio (the
-// example material's build), its caustics pass drawn by HeadlessGpu::draw_pass with the scene's
-// values, that texture bound as the variant's caustics_map and the variant drawn by HeadlessGpu,
+// example material's build), its caustics pass drawn by HeadlessDevice::draw_pass with the scene's
+// values, that texture bound as the variant's caustics_map and the variant drawn by HeadlessDevice,
 // gives the test runner's render of the same variant (built in-process, make_render_job, as
 // `watergen render` draws it) with the same texture: max abs 0 through both language paths. The
 // pass's light shows: the image differs from caustics=none's.
@@ -78,10 +78,9 @@ TEST_CASE("a caustics variant drawn through the library with its library-drawn p
         const std::string name = lang ? "hlsl" : "glsl";
         INFO(name);
         const EnginePass drawn = engine_pass(b, *pass, name, values);
-        const HeadlessTexture& t = drawn.texture;
-        scene.textures["caustics_map"] = TextureData{t.width, t.height, t.layers, t.rgba};
+        scene.textures["caustics_map"] = drawn.texture;
         const std::vector<float> expected = runner_image(v, scene, lang);
-        const auto textures = headless_textures(scene.textures);
+        const auto& textures = scene.textures;
         const EngineDraw got = engine_draw(b, v, name, scene.uniforms, textures, kSize);
         const double diff = max_abs_difference(got.rgba, expected);
         WARN(name << ": area_ratio variant with the library's pass texture, library vs runner, "
@@ -96,5 +95,5 @@ TEST_CASE("a caustics variant drawn through the library with its library-drawn p
         CHECK(lit > 0.02);
     }
     CHECK(shared_runner().validation_messages().empty());
-    CHECK(engine_gpu().messages().empty());
+    CHECK(engine_gpu().validation_messages().empty());
 }

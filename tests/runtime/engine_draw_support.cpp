@@ -40,10 +40,10 @@ void set_values(UniformWriter& writer, const std::map<std::string, std::vector<d
 
 } // namespace
 
-HeadlessGpu& engine_gpu() {
-    static std::unique_ptr<HeadlessGpu> g = [] {
+HeadlessDevice& engine_gpu() {
+    static std::unique_ptr<HeadlessDevice> g = [] {
         std::string error;
-        auto created = HeadlessGpu::create(&error);
+        auto created = HeadlessDevice::create({}, &error);
         if (!created) FAIL("no Vulkan device: " << error);
         return created;
     }();
@@ -52,7 +52,7 @@ HeadlessGpu& engine_gpu() {
 
 EngineDraw engine_draw(const ShaderBuild& b, const BuildVariant& v, const std::string& lang,
                        const std::map<std::string, std::vector<double>>& values,
-                       const std::map<std::string, HeadlessTexture>& textures, uint32_t size,
+                       const std::map<std::string, TextureData>& textures, uint32_t size,
                        VkPipelineCache cache) {
     const StageFiles files = stage_files(b, v, lang);
     UniformWriter writer(v);
@@ -91,7 +91,7 @@ EnginePass engine_pass(const ShaderBuild& b, const BuildPass& pass, const std::s
     REQUIRE(bytes);
     const auto format = pass_format(d, &error);
     REQUIRE(format);
-    HeadlessGpu& gpu = engine_gpu();
+    HeadlessDevice& gpu = engine_gpu();
     const VkRenderPass target = gpu.render_pass(*format, &error);
     REQUIRE(target);
     VariantPipelineDesc desc{&files.vs, &files.fs, &files.vr, &files.fr,
@@ -121,14 +121,6 @@ SyntheticScene preset_scene(const Preset* preset, uint32_t size) {
     for (const auto& [name, values] : preset->values)
         scene.uniforms[name] = values;
     return scene;
-}
-
-std::map<std::string, HeadlessTexture>
-headless_textures(const std::map<std::string, TextureData>& textures) {
-    std::map<std::string, HeadlessTexture> out;
-    for (const auto& [name, t] : textures)
-        out[name] = HeadlessTexture{t.width, t.height, t.layers, t.rgba};
-    return out;
 }
 
 double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b) {

@@ -1,7 +1,7 @@
 // What an engine does with a build, through the runtime library only, for the runtime_engine_*
-// render tests: a variant drawn on the library's HeadlessGpu (files, UniformWriter,
+// render tests: a variant drawn on the library's HeadlessDevice (files, UniformWriter,
 // VariantPipeline), and a variant's caustics pass drawn there (create_pass_pipeline, pass_grid,
-// HeadlessGpu::draw_pass) into the texture the variant samples.
+// HeadlessDevice::draw_pass) into the texture the variant samples.
 #pragma once
 
 #include <map>
@@ -9,15 +9,14 @@
 #include <vector>
 
 #include "watergen/eval/scene/synthetic_scene.h"
-#include "watergen/runtime/headless_gpu.h"
+#include "watergen/headless/headless_device.h"
 #include "watergen/runtime/shader_build.h"
-#include "watergen/runtime/vulkan_runner.h"
 #include "watergen/water/presets.h"
 
 namespace watergen::test {
 
 // One device per test binary (lavapipe); FAILs without one.
-HeadlessGpu& engine_gpu();
+HeadlessDevice& engine_gpu();
 
 struct EngineDraw {
     std::vector<float> rgba;
@@ -28,27 +27,23 @@ struct EngineDraw {
 // (a scene feeds every node; a variant reads fewer), packed, drawn size x size with `textures`.
 EngineDraw engine_draw(const ShaderBuild& b, const BuildVariant& v, const std::string& lang,
                        const std::map<std::string, std::vector<double>>& values,
-                       const std::map<std::string, HeadlessTexture>& textures, uint32_t size,
+                       const std::map<std::string, TextureData>& textures, uint32_t size,
                        VkPipelineCache cache = VK_NULL_HANDLE);
 
 struct EnginePass {
-    HeadlessTexture texture;
+    TextureData texture;
     std::vector<double> intensity; // the texture's r, row-major
     std::vector<double> draw_ms;   // wall time of each draw_pass() call after the first
 };
 
 // The pass of one language path with `values` (the pass's parameters only; the grid's own
-// values added), drawn 1 + `timed` times through HeadlessGpu::draw_pass; REQUIREs success.
+// values added), drawn 1 + `timed` times through HeadlessDevice::draw_pass; REQUIREs success.
 EnginePass engine_pass(const ShaderBuild& b, const BuildPass& pass, const std::string& lang,
                        const std::map<std::string, std::vector<double>>& values,
                        uint32_t timed = 0);
 
 // `watergen render --preset <preset>`'s scene (flag_checks.cpp preset_scene), size x size.
 SyntheticScene preset_scene(const Preset* preset, uint32_t size);
-
-// The test runner's textures (a synthetic scene's) as the library takes them.
-std::map<std::string, HeadlessTexture>
-headless_textures(const std::map<std::string, TextureData>& textures);
 
 // Largest |a - b| over equal-sized arrays (REQUIREs finite values and equal sizes).
 double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b);

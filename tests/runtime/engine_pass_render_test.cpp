@@ -1,6 +1,6 @@
 // A build's caustics pass drawn by the runtime library as an engine would (the build directory
 // opened with ShaderBuild, the pass's SPIR-V and reflection from its files, create_pass_pipeline,
-// the uniforms packed by UniformWriter, the grid from pass_grid(), HeadlessGpu::draw_pass into
+// the uniforms packed by UniformWriter, the grid from pass_grid(), HeadlessDevice::draw_pass into
 // the R32_SFLOAT target) gives the texture render_caustics() draws on the test runner from the
 // same pass built in-process with the same values: max abs 0 (stated tolerance 1e-6) through
 // both language paths, for both methods. And the library's errors: a wrong uniform size, a
@@ -91,7 +91,7 @@ TEST_CASE("the pass drawn through the runtime library equals render_caustics") {
         }
     }
     CHECK(test::shared_runner().validation_messages().empty());
-    CHECK(engine_gpu().messages().empty());
+    CHECK(engine_gpu().validation_messages().empty());
 }
 
 TEST_CASE("the library's pass draw refuses wrong uniforms and grids that do not fit") {
@@ -100,7 +100,7 @@ TEST_CASE("the library's pass draw refuses wrong uniforms and grids that do not 
     REQUIRE(b);
     const BuildPass pass = open_pass(*b, "area_ratio");
     const PassDraw& d = pass.reference.draw;
-    HeadlessGpu& gpu = engine_gpu();
+    HeadlessDevice& gpu = engine_gpu();
     const auto vs = b->spirv(pass.shader, "glsl", ShaderStage::Vertex, &error);
     const auto fs = b->spirv(pass.shader, "glsl", ShaderStage::Fragment, &error);
     const auto vr = b->reflection(pass.shader, "glsl", ShaderStage::Vertex, &error);
@@ -129,8 +129,9 @@ TEST_CASE("the library's pass draw refuses wrong uniforms and grids that do not 
         gpu.draw_pass(*pipeline, d, *grid, {{"Params", std::vector<uint8_t>(block)}}, &error));
     CHECK_THAT(error, Catch::Contains("'Params' is not one of the pass's (WaterParams)"));
     CHECK_FALSE(gpu.draw_pass(*pipeline, d, *grid, {}, &error));
-    CHECK_THAT(error, Catch::Contains("uniform block 'WaterParams' (" + std::to_string(block) +
-                                      " bytes) is not supplied"));
+    CHECK_THAT(error, Catch::Contains("uniform_buffer 'WaterParams' (set 0, binding 0) is not "
+                                      "supplied (" +
+                                      std::to_string(block) + " bytes needed)"));
 
     const std::map<std::string, std::vector<uint8_t>> zeros{
         {"WaterParams", std::vector<uint8_t>(block)}};
@@ -169,5 +170,5 @@ TEST_CASE("the library's pass draw refuses wrong uniforms and grids that do not 
     water.vertex_reflection = &no_input;
     CHECK_FALSE(create_pass_pipeline(gpu.device(), d, water, &error));
     CHECK_THAT(error, Catch::Contains("no vec2 input at location 0"));
-    CHECK(gpu.messages().empty());
+    CHECK(gpu.validation_messages().empty());
 }

@@ -1,6 +1,6 @@
 // A variant drawn through the engine runtime library (a build directory opened with
 // ShaderBuild, uniforms packed by UniformWriter, the pipeline from VariantPipeline, drawn on the
-// library's HeadlessGpu) gives the same image as `watergen render` (the variant built in-process
+// library's HeadlessDevice) gives the same image as `watergen render` (the variant built in-process
 // and drawn by the test runner from make_render_job): max abs 0 through both language paths.
 // And the pipeline cache file: written by one run, accepted by the next, same image.
 #include <catch2/catch.hpp>
@@ -11,7 +11,7 @@
 #include "engine_draw_support.h"
 #include "shared_runner.h"
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/runtime/headless_gpu.h"
+#include "watergen/headless/headless_device.h"
 #include "watergen/runtime/uniform_writer.h"
 #include "watergen/water/presets.h"
 
@@ -32,7 +32,7 @@ const std::map<std::string, std::string> kChoices = {
 // What an engine does: load the variant's files, set the frame's values, pack, draw.
 EngineDraw draw(const ShaderBuild& b, const BuildVariant& v, const std::string& lang,
                 const SyntheticScene& scene, VkPipelineCache cache) {
-    return engine_draw(b, v, lang, scene.uniforms, headless_textures(scene.textures), kSize, cache);
+    return engine_draw(b, v, lang, scene.uniforms, scene.textures, kSize, cache);
 }
 
 } // namespace
@@ -82,7 +82,7 @@ TEST_CASE("a variant drawn through the runtime library matches watergen render e
         }
         CHECK(hi - lo > 0.1f);
     }
-    CHECK(engine_gpu().messages().empty());
+    CHECK(engine_gpu().validation_messages().empty());
 }
 
 TEST_CASE("the pipeline cache file is written by one run and accepted by the next") {
@@ -117,5 +117,5 @@ TEST_CASE("the pipeline cache file is written by one run and accepted by the nex
     CHECK_FALSE(third->loaded);
     CHECK_THAT(third->note, Catch::Contains("another device or driver"));
     vkDestroyPipelineCache(engine_gpu().device(), third->cache, nullptr);
-    CHECK(engine_gpu().messages().empty());
+    CHECK(engine_gpu().validation_messages().empty());
 }

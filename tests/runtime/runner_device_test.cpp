@@ -64,7 +64,7 @@ TEST_CASE("runner enables lavapipe's 16-bit shader features", "[render][device]"
 TEST_CASE("device overrides select by name substring or fail clearly", "[render][device]") {
     // Validation off: these runners only test selection, and skipping the layer keeps
     // each creation cheap.
-    RunnerOptions options;
+    DeviceOptions options;
     options.validation = false;
 
     SECTION("option with no matching device") {
@@ -98,7 +98,7 @@ TEST_CASE("no usable Vulkan driver: nullptr and one clear error", "[render][devi
     // Point the loader at a driver manifest that does not exist: nothing can load.
     ScopedEnv icd("VK_ICD_FILENAMES", "/nonexistent/watergen_no_icd.json");
     ScopedEnv driver_files("VK_DRIVER_FILES", "/nonexistent/watergen_no_icd.json");
-    RunnerOptions options;
+    DeviceOptions options;
     options.validation = false;
     std::string error;
     auto runner = VulkanRunner::create(options, &error);

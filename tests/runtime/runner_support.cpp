@@ -14,7 +14,7 @@ VulkanRunner& shared_runner() {
     static std::unique_ptr<VulkanRunner> runner;
     static std::string error;
     if (!runner && error.empty()) {
-        runner = VulkanRunner::create(RunnerOptions{}, &error);
+        runner = VulkanRunner::create(DeviceOptions{}, &error);
         if (!runner && error.empty()) error = "(no message)";
     }
     INFO("VulkanRunner::create: " << error);

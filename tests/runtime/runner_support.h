@@ -3,7 +3,7 @@
 // compiled in-process with the toolchain, and uniform block packing by reflection offset.
 #pragma once
 
-#include "watergen/runtime/vulkan_runner.h"
+#include "watergen/runner/vulkan_runner.h"
 
 #include <cstdint>
 #include <string>

@@ -10,7 +10,7 @@ using namespace watergen;
 TEST_CASE("validation layer messages are collected", "[render][validation]") {
     // Its own runner: the shared one must stay free of messages.
     std::string error;
-    auto runner = VulkanRunner::create(RunnerOptions{}, &error);
+    auto runner = VulkanRunner::create(DeviceOptions{}, &error);
     INFO(error);
     REQUIRE(runner);
     REQUIRE(runner->device_info().validation_enabled);

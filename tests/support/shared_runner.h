@@ -6,7 +6,7 @@
 #include <string>
 
 #include "watergen/eval/probe/probe.h"
-#include "watergen/runtime/vulkan_runner.h"
+#include "watergen/runner/vulkan_runner.h"
 
 namespace watergen::test {
 

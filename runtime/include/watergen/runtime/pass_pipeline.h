@@ -8,7 +8,8 @@
 // attachment of pass_format() (texels x texels, cleared to draw.clear), bind the pipeline, the
 // block packed by UniformWriter(pass.shader) against the pass's vertex reflection, the vertex
 // and index buffers of pass_grid(), vkCmdDrawIndexed(indices), and sample the result as the
-// water variant's caustics_map (its draw.channel). HeadlessGpu::draw_pass() does exactly that.
+// water variant's caustics_map (its draw.channel). HeadlessDevice::draw_pass()
+// (watergen/headless/headless_device.h) does exactly that.
 #pragma once
 
 #include <optional>
@@ -35,7 +36,7 @@ std::optional<PipelineGeometry> pass_geometry(const PassDraw& draw, const Reflec
 
 // VariantPipeline::create with pass_geometry(draw, *desc.vertex_reflection).
 // desc.render_pass must have one colour attachment of pass_format(draw) (blending into it must
-// be supported: HeadlessGpu::render_pass(format) checks).
+// be supported: HeadlessDevice::render_pass(format) checks).
 std::optional<VariantPipeline> create_pass_pipeline(VkDevice device, const PassDraw& draw,
                                                     const VariantPipelineDesc& desc,
                                                     std::string* error);

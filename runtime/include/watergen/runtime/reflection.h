@@ -1,4 +1,4 @@
-// Shader interface as an engine (and the Vulkan runner) needs it: which descriptors a stage
+// Shader interface as an engine (and the headless device) needs it: which descriptors a stage
 // binds and where each uniform lives inside its block. Produced by the generator from
 // SPIRV-Cross reflection, stored as JSON next to every shader.
 #pragma once

@@ -6,9 +6,9 @@
 // gl_VertexIndex: vkCmdDraw(cmd, 3, 1, 0, 0), no vertex buffers), with viewport and scissor as
 // dynamic state, no blending, no depth, no culling; a companion pass (pass_pipeline.h) passes a
 // PipelineGeometry instead: its grid's vertex input, triangles or points, additive blending.
-// Descriptor layouts are the union of both
-// stages' bindings, one layout per set number (gaps get empty layouts), with the stage flags of
-// the stages that use each binding.
+// Descriptor layouts are the union of both stages' bindings (a binding both declare agrees on
+// kind and name, and keeps the larger block size), one layout per set number (gaps get empty
+// layouts), with the stage flags of the stages that use each binding.
 #pragma once
 
 #include <filesystem>

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "watergen/ir/diagnostic.h"
-#include "watergen/runtime/vulkan_runner.h"
+#include "watergen/runner/vulkan_runner.h"
 
 namespace watergen {
 

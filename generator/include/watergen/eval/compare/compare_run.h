@@ -15,6 +15,7 @@
 #include "watergen/eval/measure/interleaved_timing.h"
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/pipeline/variant_build.h"
+#include "watergen/runner/vulkan_runner.h"
 #include "watergen/water/presets.h"
 #include "watergen/water/variant.h"
 

@@ -21,6 +21,7 @@
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/plan/scene_pruning.h"
+#include "watergen/runner/vulkan_runner.h"
 
 namespace watergen {
 

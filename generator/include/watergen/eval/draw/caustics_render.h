@@ -13,7 +13,7 @@
 #include "watergen/eval/image/image_io.h"
 #include "watergen/eval/image/image_metrics.h"
 #include "watergen/pipeline/variant_build.h"
-#include "watergen/runtime/vulkan_runner.h"
+#include "watergen/runner/vulkan_runner.h"
 
 namespace watergen {
 

@@ -9,6 +9,7 @@
 #include "watergen/eval/image/image_metrics.h"
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/pipeline/variant_build.h"
+#include "watergen/runner/vulkan_runner.h"
 #include "watergen/water/mesh_shader.h"
 
 namespace watergen {

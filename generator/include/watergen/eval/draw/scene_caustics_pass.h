@@ -15,6 +15,7 @@
 
 #include "watergen/eval/draw/caustics_render.h"
 #include "watergen/eval/scene/synthetic_scene.h"
+#include "watergen/runner/vulkan_runner.h"
 
 namespace watergen {
 

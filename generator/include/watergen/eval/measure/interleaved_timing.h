@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/runtime/vulkan_runner.h"
+#include "watergen/runner/vulkan_runner.h"
 
 namespace watergen {
 

@@ -9,7 +9,7 @@
 
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/emitter.h"
-#include "watergen/runtime/vulkan_runner.h"
+#include "watergen/runner/vulkan_runner.h"
 #include "watergen/water/node_catalog.h"
 
 namespace watergen {

@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "watergen/runtime/vulkan_runner.h"
+#include "watergen/headless/texture_data.h"
 
 namespace watergen {
 

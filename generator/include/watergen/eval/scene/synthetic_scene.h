@@ -23,8 +23,8 @@
 
 #include "watergen/caustics/caustics_pass.h"
 #include "watergen/eval/scene/scene_views.h"
+#include "watergen/headless/texture_data.h"
 #include "watergen/ir/cpu_evaluator.h"
-#include "watergen/runtime/vulkan_runner.h"
 
 namespace watergen {
 

@@ -1,11 +1,11 @@
 // VkResult names for error strings. Debian's libvulkan-dev 1.3.239 does not ship
 // vk_enum_string_helper.h, so the few results Vulkan 1.3 core + our extensions can return
 // are spelled out here.
-#include "vulkan_internal.h"
+#include "device_context.h"
 
 #include <fmt/format.h>
 
-namespace watergen::vk_detail {
+namespace watergen::headless_detail {
 
 const char* result_name(VkResult r) {
     switch (r) {
@@ -66,14 +66,14 @@ const char* result_name(VkResult r) {
     }
 }
 
-void vk_check(VkResult r, const char* call) {
+void check(VkResult r, const char* call) {
     if (r == VK_SUCCESS) return;
     const char* name = result_name(r);
-    if (name) throw RunnerError(fmt::format("{} failed: {}", call, name));
-    throw RunnerError(fmt::format("{} failed: VkResult {}", call, static_cast<int>(r)));
+    if (name) throw DeviceError(fmt::format("{} failed: {}", call, name));
+    throw DeviceError(fmt::format("{} failed: VkResult {}", call, static_cast<int>(r)));
 }
 
-} // namespace watergen::vk_detail
+} // namespace watergen::headless_detail
 
 namespace watergen {
 

@@ -1,16 +1,17 @@
-// Buffers, images, texture upload, command buffers, fences and the job Scope.
-#include "vulkan_internal.h"
+// Buffers, images, texture upload, command buffers, fences, shader modules and the Scope that
+// destroys them (see resources.h).
+#include "resources.h"
 
 #include <fmt/format.h>
 
 #include <cstring>
 
-namespace watergen::vk_detail {
+namespace watergen::headless_detail {
 namespace {
 
 constexpr VkFormat kRgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
 // Long enough for lavapipe to JIT and run a very large shader at a large size; short
-// enough that an infinite loop in a generated shader fails the job instead of hanging CI.
+// enough that an infinite loop in a generated shader fails the draw instead of hanging CI.
 constexpr uint64_t kWaitTimeoutNs = 120ull * 1000 * 1000 * 1000;
 
 uint32_t find_memory_type(const Context& ctx, uint32_t type_bits, VkMemoryPropertyFlags required,
@@ -24,7 +25,7 @@ uint32_t find_memory_type(const Context& ctx, uint32_t type_bits, VkMemoryProper
         if (fallback < 0) fallback = static_cast<int>(i);
     }
     if (fallback < 0)
-        throw RunnerError(fmt::format("no Vulkan memory type with property flags {:#x}", required));
+        throw DeviceError(fmt::format("no Vulkan memory type with property flags {:#x}", required));
     return static_cast<uint32_t>(fallback);
 }
 
@@ -40,42 +41,49 @@ VkDeviceMemory allocate(Scope& scope, const VkMemoryRequirements& req,
         *coherent = ctx.memory.memoryTypes[mai.memoryTypeIndex].propertyFlags &
                     VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     VkDeviceMemory memory = VK_NULL_HANDLE;
-    vk_check(vkAllocateMemory(ctx.device, &mai, nullptr, &memory), "vkAllocateMemory");
+    check(vkAllocateMemory(ctx.device, &mai, nullptr, &memory), "vkAllocateMemory");
     VkDevice device = ctx.device;
     scope.defer([device, memory] { vkFreeMemory(device, memory, nullptr); });
     return memory;
 }
 
-void require_format(const Context& ctx, VkFormatFeatureFlags features, const char* purpose) {
-    VkFormatProperties props{};
-    vkGetPhysicalDeviceFormatProperties(ctx.physical, kRgba32f, &props);
-    if ((props.optimalTilingFeatures & features) != features)
-        throw RunnerError(fmt::format("device '{}' cannot use VK_FORMAT_R32G32B32A32_SFLOAT as {}",
-                                      ctx.info.name, purpose));
+std::string format_name(VkFormat format) {
+    if (format == kRgba32f) return "VK_FORMAT_R32G32B32A32_SFLOAT";
+    return fmt::format("VkFormat {}", static_cast<int>(format));
 }
 
-VkImageView create_view(Scope& scope, VkImage image, VkImageViewType type, uint32_t layers) {
+void require_format(const Context& ctx, VkFormat format, VkFormatFeatureFlags features,
+                    const char* purpose) {
+    VkFormatProperties props{};
+    vkGetPhysicalDeviceFormatProperties(ctx.physical, format, &props);
+    if ((props.optimalTilingFeatures & features) != features)
+        throw DeviceError(fmt::format("device '{}' cannot use {} as {}", ctx.info.name,
+                                      format_name(format), purpose));
+}
+
+VkImageView create_view(Scope& scope, VkImage image, VkFormat format, VkImageViewType type,
+                        uint32_t layers) {
     VkImageViewCreateInfo vci{};
     vci.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
     vci.image = image;
     vci.viewType = type;
-    vci.format = kRgba32f;
+    vci.format = format;
     vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
     VkImageView view = VK_NULL_HANDLE;
-    vk_check(vkCreateImageView(scope.ctx().device, &vci, nullptr, &view), "vkCreateImageView");
+    check(vkCreateImageView(scope.ctx().device, &vci, nullptr, &view), "vkCreateImageView");
     VkDevice device = scope.ctx().device;
     scope.defer([device, view] { vkDestroyImageView(device, view, nullptr); });
     return view;
 }
 
-Image create_image(Scope& scope, uint32_t width, uint32_t height, uint32_t layers, bool cube,
-                   VkImageUsageFlags usage) {
+Image create_image(Scope& scope, VkFormat format, uint32_t width, uint32_t height, uint32_t layers,
+                   bool cube, VkImageUsageFlags usage) {
     Context& ctx = scope.ctx();
     VkImageCreateInfo ici{};
     ici.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
     ici.flags = cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
     ici.imageType = VK_IMAGE_TYPE_2D;
-    ici.format = kRgba32f;
+    ici.format = format;
     ici.extent = {width, height, 1};
     ici.mipLevels = 1;
     ici.arrayLayers = layers;
@@ -88,7 +96,7 @@ Image create_image(Scope& scope, uint32_t width, uint32_t height, uint32_t layer
     img.width = width;
     img.height = height;
     img.layers = layers;
-    vk_check(vkCreateImage(ctx.device, &ici, nullptr, &img.image), "vkCreateImage");
+    check(vkCreateImage(ctx.device, &ici, nullptr, &img.image), "vkCreateImage");
     VkDevice device = ctx.device;
     VkImage image = img.image;
     scope.defer([device, image] { vkDestroyImage(device, image, nullptr); });
@@ -96,17 +104,10 @@ Image create_image(Scope& scope, uint32_t width, uint32_t height, uint32_t layer
     VkMemoryRequirements req{};
     vkGetImageMemoryRequirements(ctx.device, img.image, &req);
     VkDeviceMemory memory = allocate(scope, req, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, nullptr);
-    vk_check(vkBindImageMemory(ctx.device, img.image, memory, 0), "vkBindImageMemory");
-    img.view = create_view(scope, img.image, cube ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_2D,
-                           layers);
+    check(vkBindImageMemory(ctx.device, img.image, memory, 0), "vkBindImageMemory");
+    img.view = create_view(scope, img.image, format,
+                           cube ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_2D, layers);
     return img;
-}
-
-void begin(VkCommandBuffer cmd) {
-    VkCommandBufferBeginInfo bi{};
-    bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
 }
 
 } // namespace
@@ -120,7 +121,7 @@ Scope::~Scope() {
 
 Buffer create_buffer(Scope& scope, VkDeviceSize size, VkBufferUsageFlags usage) {
     Context& ctx = scope.ctx();
-    if (size == 0) throw RunnerError("cannot create an empty Vulkan buffer");
+    if (size == 0) throw DeviceError("cannot create an empty Vulkan buffer");
     VkBufferCreateInfo bci{};
     bci.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
     bci.size = size;
@@ -128,7 +129,7 @@ Buffer create_buffer(Scope& scope, VkDeviceSize size, VkBufferUsageFlags usage) 
     bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     Buffer b;
     b.size = size;
-    vk_check(vkCreateBuffer(ctx.device, &bci, nullptr, &b.buffer), "vkCreateBuffer");
+    check(vkCreateBuffer(ctx.device, &bci, nullptr, &b.buffer), "vkCreateBuffer");
     VkDevice device = ctx.device;
     VkBuffer buffer = b.buffer;
     scope.defer([device, buffer] { vkDestroyBuffer(device, buffer, nullptr); });
@@ -139,8 +140,8 @@ Buffer create_buffer(Scope& scope, VkDeviceSize size, VkBufferUsageFlags usage) 
     // lavapipe all memory is host-visible and coherent anyway.
     b.memory = allocate(scope, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT,
                         VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, &b.coherent);
-    vk_check(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0), "vkBindBufferMemory");
-    vk_check(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
+    check(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0), "vkBindBufferMemory");
+    check(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
     VkDeviceMemory memory = b.memory;
     // Registered after vkFreeMemory, so it runs before it.
     scope.defer([device, memory] { vkUnmapMemory(device, memory); });
@@ -148,38 +149,45 @@ Buffer create_buffer(Scope& scope, VkDeviceSize size, VkBufferUsageFlags usage) 
     return b;
 }
 
+Buffer upload_buffer(Scope& scope, const void* data, size_t size, VkBufferUsageFlags usage) {
+    Buffer b = create_buffer(scope, size, usage);
+    write_buffer(scope.ctx(), b, data, size);
+    return b;
+}
+
 void write_buffer(Context& ctx, const Buffer& b, const void* data, size_t size) {
-    if (size > b.size) throw RunnerError("write past the end of a Vulkan buffer");
+    if (size > b.size) throw DeviceError("write past the end of a Vulkan buffer");
     if (size) std::memcpy(b.mapped, data, size);
     if (!b.coherent) {
         // Whole-range flush keeps us clear of nonCoherentAtomSize alignment rules.
         VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, b.memory, 0,
                                   VK_WHOLE_SIZE};
-        vk_check(vkFlushMappedMemoryRanges(ctx.device, 1, &range), "vkFlushMappedMemoryRanges");
+        check(vkFlushMappedMemoryRanges(ctx.device, 1, &range), "vkFlushMappedMemoryRanges");
     }
 }
 
 void read_buffer(Context& ctx, const Buffer& b, void* out, size_t size) {
-    if (size > b.size) throw RunnerError("read past the end of a Vulkan buffer");
+    if (size > b.size) throw DeviceError("read past the end of a Vulkan buffer");
     if (!b.coherent) {
         VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, b.memory, 0,
                                   VK_WHOLE_SIZE};
-        vk_check(vkInvalidateMappedMemoryRanges(ctx.device, 1, &range),
-                 "vkInvalidateMappedMemoryRanges");
+        check(vkInvalidateMappedMemoryRanges(ctx.device, 1, &range),
+              "vkInvalidateMappedMemoryRanges");
     }
     if (size) std::memcpy(out, b.mapped, size);
 }
 
-Image create_color_target(Scope& scope, uint32_t width, uint32_t height) {
+Image create_color_target(Scope& scope, uint32_t width, uint32_t height, VkFormat format) {
     const Context& ctx = scope.ctx();
     if (width == 0 || height == 0 || width > ctx.limits.maxFramebufferWidth ||
         height > ctx.limits.maxFramebufferHeight)
-        throw RunnerError(fmt::format("render size {}x{} is outside 1x1..{}x{}", width, height,
+        throw DeviceError(fmt::format("render size {}x{} is outside 1x1..{}x{}", width, height,
                                       ctx.limits.maxFramebufferWidth,
                                       ctx.limits.maxFramebufferHeight));
-    require_format(ctx, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT,
+    require_format(ctx, format,
+                   VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT,
                    "a colour attachment");
-    return create_image(scope, width, height, 1, false,
+    return create_image(scope, format, width, height, 1, false,
                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
 }
 
@@ -187,31 +195,32 @@ Image create_texture(Scope& scope, const std::string& name, const TextureData& d
     Context& ctx = scope.ctx();
     const uint32_t want_layers = cube ? 6 : 1;
     if (data.layers != want_layers)
-        throw RunnerError(
+        throw DeviceError(
             fmt::format("texture '{}' has {} layers; the shader's {} binding needs {}", name,
                         data.layers, cube ? "cube" : "2D", want_layers));
     const uint32_t max_dim =
         cube ? ctx.limits.maxImageDimensionCube : ctx.limits.maxImageDimension2D;
     if (data.width == 0 || data.height == 0 || data.width > max_dim || data.height > max_dim ||
         (cube && data.width != data.height))
-        throw RunnerError(fmt::format("texture '{}' has invalid size {}x{}{}", name, data.width,
+        throw DeviceError(fmt::format("texture '{}' has invalid size {}x{}{}", name, data.width,
                                       data.height, cube ? " (cube faces must be square)" : ""));
     const size_t floats = size_t{data.width} * data.height * data.layers * 4;
     if (data.rgba.size() != floats)
-        throw RunnerError(fmt::format("texture '{}' has {} floats; {}x{}x{} RGBA needs {}", name,
+        throw DeviceError(fmt::format("texture '{}' has {} floats; {}x{}x{} RGBA needs {}", name,
                                       data.rgba.size(), data.width, data.height, data.layers,
                                       floats));
-    require_format(ctx, VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT,
+    require_format(ctx, kRgba32f,
+                   VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT,
                    "a sampled texture");
 
-    Image img = create_image(scope, data.width, data.height, data.layers, cube,
+    Image img = create_image(scope, kRgba32f, data.width, data.height, data.layers, cube,
                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    Buffer staging = create_buffer(scope, floats * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     // Host writes made before vkQueueSubmit are visible to the device without a barrier.
-    write_buffer(ctx, staging, data.rgba.data(), floats * sizeof(float));
+    Buffer staging = upload_buffer(scope, data.rgba.data(), floats * sizeof(float),
+                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
 
     VkCommandBuffer cmd = allocate_command_buffer(scope);
-    begin(cmd);
+    begin_commands(cmd, true);
     VkImageMemoryBarrier to_dst{};
     to_dst.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
     to_dst.srcAccessMask = 0; // fresh image: nothing to wait for, contents discarded
@@ -243,7 +252,7 @@ Image create_texture(Scope& scope, const std::string& name, const TextureData& d
                              VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                          0, 0, nullptr, 0, nullptr, 1, &to_read);
-    vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
     submit_and_wait(ctx, cmd, create_fence(scope));
     return img;
 }
@@ -256,36 +265,43 @@ VkCommandBuffer allocate_command_buffer(Scope& scope) {
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
-    vk_check(vkAllocateCommandBuffers(ctx.device, &ai, &cmd), "vkAllocateCommandBuffers");
+    check(vkAllocateCommandBuffers(ctx.device, &ai, &cmd), "vkAllocateCommandBuffers");
     VkDevice device = ctx.device;
     VkCommandPool pool = ctx.command_pool;
     scope.defer([device, pool, cmd] { vkFreeCommandBuffers(device, pool, 1, &cmd); });
     return cmd;
 }
 
+void begin_commands(VkCommandBuffer cmd, bool one_time) {
+    VkCommandBufferBeginInfo bi{};
+    bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    bi.flags = one_time ? VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT : 0;
+    check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+}
+
 VkFence create_fence(Scope& scope) {
     VkFenceCreateInfo fci{};
     fci.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     VkFence fence = VK_NULL_HANDLE;
-    vk_check(vkCreateFence(scope.ctx().device, &fci, nullptr, &fence), "vkCreateFence");
+    check(vkCreateFence(scope.ctx().device, &fci, nullptr, &fence), "vkCreateFence");
     VkDevice device = scope.ctx().device;
     scope.defer([device, fence] { vkDestroyFence(device, fence, nullptr); });
     return fence;
 }
 
 void submit_and_wait(Context& ctx, VkCommandBuffer cmd, VkFence fence) {
-    // Fences are reused across the timed draws of one job.
-    vk_check(vkResetFences(ctx.device, 1, &fence), "vkResetFences");
+    // Fences are reused across the timed draws of one draw.
+    check(vkResetFences(ctx.device, 1, &fence), "vkResetFences");
     VkSubmitInfo si{};
     si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cmd;
     VkResult r = vkQueueSubmit(ctx.queue, 1, &si, fence);
     if (r == VK_ERROR_DEVICE_LOST) ctx.unusable = true;
-    vk_check(r, "vkQueueSubmit");
+    check(r, "vkQueueSubmit");
     r = vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, kWaitTimeoutNs);
     if (r == VK_TIMEOUT || r == VK_ERROR_DEVICE_LOST) ctx.unusable = true;
-    vk_check(r, "vkWaitForFences");
+    check(r, "vkWaitForFences");
 }
 
 VkShaderModule create_shader_module(Scope& scope, const std::vector<uint32_t>& spirv,
@@ -293,14 +309,14 @@ VkShaderModule create_shader_module(Scope& scope, const std::vector<uint32_t>& s
     // 0x07230203 is the SPIR-V magic number; catching a wrong blob here gives a clearer
     // message than the driver would.
     if (spirv.size() < 5 || spirv[0] != 0x07230203u)
-        throw RunnerError(fmt::format("{} SPIR-V is empty or not SPIR-V", what));
+        throw DeviceError(fmt::format("{} SPIR-V is empty or not SPIR-V", what));
     VkShaderModuleCreateInfo ci{};
     ci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
     ci.codeSize = spirv.size() * sizeof(uint32_t);
     ci.pCode = spirv.data();
     VkShaderModule module = VK_NULL_HANDLE;
-    vk_check(vkCreateShaderModule(scope.ctx().device, &ci, nullptr, &module),
-             fmt::format("vkCreateShaderModule ({})", what).c_str());
+    check(vkCreateShaderModule(scope.ctx().device, &ci, nullptr, &module),
+          fmt::format("vkCreateShaderModule ({})", what).c_str());
     VkDevice device = scope.ctx().device;
     scope.defer([device, module] { vkDestroyShaderModule(device, module, nullptr); });
     return module;
@@ -318,4 +334,4 @@ Specialization::Specialization(const std::map<uint32_t, float>& values) {
     info_.pData = data_.data();
 }
 
-} // namespace watergen::vk_detail
+} // namespace watergen::headless_detail

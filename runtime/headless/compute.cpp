@@ -1,29 +1,34 @@
-// Compute jobs, the numeric harness: node functions compiled into a compute shader read
-// input tuples from storage buffers (and textures, bound as for a render job) and write
-// results to others; every storage buffer is read back after one dispatch.
-#include "vulkan_internal.h"
+// HeadlessDevice::compute (compute_job.h): the pipeline of the job's compute stage, its
+// descriptors written from the job, one dispatch, every storage buffer read back.
+#include "descriptors.h"
 
 #include <fmt/format.h>
 
-namespace watergen::vk_detail {
+namespace watergen {
 
-void compute_job(Context& ctx, const ComputeJob& job, ComputeResult& result) {
+using namespace headless_detail;
+
+namespace {
+
+void dispatch(Context& ctx, const ComputeJob& job, ComputeOutput& result) {
     const uint32_t groups[3] = {job.group_count_x, job.group_count_y, job.group_count_z};
     for (int i = 0; i < 3; ++i)
         if (groups[i] == 0 || groups[i] > ctx.limits.maxComputeWorkGroupCount[i])
-            throw RunnerError(fmt::format("group count {} = {} is outside 1..{}", "xyz"[i],
+            throw DeviceError(fmt::format("group count {} = {} is outside 1..{}", "xyz"[i],
                                           groups[i], ctx.limits.maxComputeWorkGroupCount[i]));
     Scope scope(ctx);
 
     DescriptorInputs inputs;
-    inputs.uniforms = &job.uniforms;
+    inputs.sole_uniforms = &job.uniforms;
     inputs.textures = &job.textures;
     inputs.filter = job.filter;
     inputs.storage = &job.buffers;
     inputs.storage_sizes = &job.output_sizes;
-    BoundDescriptors descriptors =
-        bind_descriptors(scope, {{&job.reflection, VK_SHADER_STAGE_COMPUTE_BIT}}, inputs);
-    VkPipelineLayout layout = create_pipeline_layout(scope, descriptors);
+    const SetBindings bindings = stage_bindings(job.reflection);
+    const std::vector<VkDescriptorSetLayout> layouts =
+        create_set_layouts(scope, bindings, VK_SHADER_STAGE_COMPUTE_BIT);
+    const BoundDescriptors descriptors = bind_descriptors(scope, layouts, bindings, inputs);
+    VkPipelineLayout layout = create_pipeline_layout(scope, layouts);
 
     VkComputePipelineCreateInfo cci{};
     cci.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
@@ -39,15 +44,12 @@ void compute_job(Context& ctx, const ComputeJob& job, ComputeResult& result) {
     const auto start_pipeline = Clock::now();
     VkResult r = vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &cci, nullptr, &pipeline);
     result.pipeline_ms = ms_since(start_pipeline);
-    vk_check(r, "vkCreateComputePipelines");
+    check(r, "vkCreateComputePipelines");
     VkDevice device = ctx.device;
     scope.defer([device, pipeline] { vkDestroyPipeline(device, pipeline, nullptr); });
 
     VkCommandBuffer cmd = allocate_command_buffer(scope);
-    VkCommandBufferBeginInfo bi{};
-    bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+    begin_commands(cmd, true);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     if (!descriptors.sets.empty())
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0,
@@ -61,7 +63,7 @@ void compute_job(Context& ctx, const ComputeJob& job, ComputeResult& result) {
     to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0,
                          1, &to_host, 0, nullptr, 0, nullptr);
-    vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
 
     const auto start = Clock::now();
     submit_and_wait(ctx, cmd, create_fence(scope));
@@ -74,4 +76,12 @@ void compute_job(Context& ctx, const ComputeJob& job, ComputeResult& result) {
     }
 }
 
-} // namespace watergen::vk_detail
+} // namespace
+
+std::optional<ComputeOutput> HeadlessDevice::compute(const ComputeJob& job, std::string* error) {
+    ComputeOutput out;
+    if (!guarded(*context_, error, [&] { dispatch(*context_, job, out); })) return std::nullopt;
+    return out;
+}
+
+} // namespace watergen

@@ -1,5 +1,7 @@
-// Headless Vulkan runner: renders generated shader variants offscreen and runs compute
-// "numeric harness" shaders, on lavapipe by default, for tests and benchmarks.
+// The test runner on watergen's headless device (watergen/headless/headless_device.h): renders
+// generated shader variants offscreen, timed (GPU timestamps, interleaved rounds, counted draws
+// under callgrind), and runs compute "numeric harness" shaders, on lavapipe by default, for the
+// tests, the tools (watergen render, cost, compare, caustics, probe, bench) and the benches.
 //
 // Errors are data: no call here throws or aborts. A failed job returns ok == false and an
 // error string naming the Vulkan call and its VkResult (or the binding the job forgot).
@@ -8,6 +10,9 @@
 // thread-safe: use one per thread.
 #pragma once
 
+#include "watergen/headless/compute_job.h"
+#include "watergen/headless/headless_device.h"
+#include "watergen/headless/texture_data.h"
 #include "watergen/runtime/reflection.h"
 
 #include <cstdint>
@@ -18,45 +23,7 @@
 
 namespace watergen {
 
-struct RunnerOptions {
-    // Substring of the device name to use instead of lavapipe. Empty: the environment
-    // variable WATERGEN_VK_DEVICE if set, else the first llvmpipe / CPU device.
-    std::string device;
-    // Enable VK_LAYER_KHRONOS_validation + VK_EXT_debug_utils when the layer is installed.
-    bool validation = true;
-};
-
-struct DeviceInfo {
-    std::string name;            // VkPhysicalDeviceProperties::deviceName
-    std::string driver_name;     // VkPhysicalDeviceDriverProperties::driverName ("llvmpipe")
-    std::string driver_info;     // e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
-    uint32_t driver_version = 0; // raw, vendor-specific encoding
-    uint32_t api_version = 0;    // VK_MAKE_API_VERSION encoding
-    bool validation_enabled = false;
-    // 16-bit shader features, enabled on the device whenever it supports them (so a shader
-    // may use float16_t / int16_t arithmetic and 16-bit storage-buffer members).
-    bool shader_float16 = false;            // VkPhysicalDeviceShaderFloat16Int8Features
-    bool shader_int16 = false;              // VkPhysicalDeviceFeatures::shaderInt16
-    bool storage_buffer_16bit = false;      // VkPhysicalDevice16BitStorageFeatures
-    bool uniform_storage_16bit = false;     // ... uniformAndStorageBuffer16BitAccess
-    bool float16_denorms_preserved = false; // FloatControls shaderDenormPreserveFloat16
-};
-
-// "1.3.230" from a VK_MAKE_API_VERSION value.
-std::string format_api_version(uint32_t version);
-
-enum class TextureFilter { Nearest, Linear };
-
-// RGBA32F texels, layer-major, then rows, then columns: rgba.size() == width*height*layers*4.
-// Row 0 is v = 0. Cube layers are in Vulkan face order +X, -X, +Y, -Y, +Z, -Z.
-struct TextureData {
-    uint32_t width = 0;
-    uint32_t height = 0;
-    uint32_t layers = 1; // 1 = 2D, 6 = cube
-    std::vector<float> rgba;
-};
-
-// An indexed triangle (or point) list (vulkan_mesh.cpp): one interleaved float vertex buffer,
+// An indexed triangle (or point) list: one interleaved float vertex buffer,
 // attribute i at location i with attribute_sizes[i] floats (1..4), and 32-bit indices. No depth
 // buffer: later triangles overwrite earlier ones, so order them back to front.
 struct MeshData {
@@ -113,7 +80,9 @@ struct RenderResult {
     uint32_t height = 0;
     // RGBA32F, width*height*4 floats; row 0 is the top of the image (framebuffer y = 0).
     std::vector<float> rgba;
-    double pipeline_ms = 0; // CPU time of vkCreateGraphicsPipelines
+    // CPU time of the pipeline's creation (VariantPipeline::create: its descriptor set layouts,
+    // shader modules and vkCreateGraphicsPipelines).
+    double pipeline_ms = 0;
     // CPU wall time of the first submit + wait. Includes lavapipe's LLVM JIT, unless
     // Mesa's own on-disk shader cache already holds the shader (MESA_SHADER_CACHE_DIR);
     // MESA_SHADER_CACHE_DISABLE=true makes this independent of earlier runs.
@@ -125,54 +94,27 @@ struct RenderResult {
     std::vector<double> draw_ms;
 };
 
-struct ComputeJob {
-    std::vector<uint32_t> spirv;
-    Reflection reflection;
-    // Initial contents of StorageBuffer bindings, by reflection binding name (the block
-    // type name, e.g. "Inputs"). Entries no binding uses are ignored.
-    std::map<std::string, std::vector<uint8_t>> buffers;
-    // Sizes of StorageBuffer bindings the shader only writes (zero-filled before the
-    // dispatch). A storage binding in neither map gets its reflected block_size, if nonzero.
-    std::map<std::string, uint64_t> output_sizes;
-    // Bytes of the UniformBuffer binding, if the shader has one.
-    std::vector<uint8_t> uniforms;
-    // Float specialization constants by constant_id, as in RenderJob.
-    std::map<uint32_t, float> specialization;
-    // SampledImage / CombinedImageSampler bindings and their sampler, as in RenderJob.
-    std::map<std::string, TextureData> textures;
-    TextureFilter filter = TextureFilter::Linear;
-    uint32_t group_count_x = 1;
-    uint32_t group_count_y = 1;
-    uint32_t group_count_z = 1;
-};
-
-struct ComputeResult {
+struct ComputeResult : ComputeOutput {
     bool ok = false;
     std::string error;
-    // Contents of every StorageBuffer binding after the dispatch, by binding name.
-    std::map<std::string, std::vector<uint8_t>> buffers;
-    double pipeline_ms = 0; // CPU time of vkCreateComputePipelines
-    double dispatch_ms = 0; // CPU wall time of the submit + wait (includes JIT)
 };
-
-namespace vk_detail {
-struct Context;
-}
 
 class VulkanRunner {
   public:
-    // nullptr and `error` set when no usable device is found or Vulkan fails to start.
-    static std::unique_ptr<VulkanRunner> create(const RunnerOptions& options, std::string* error);
+    // nullptr and `error` when no usable device is found or Vulkan fails to start.
+    static std::unique_ptr<VulkanRunner> create(const DeviceOptions& options, std::string* error);
     ~VulkanRunner();
     VulkanRunner(const VulkanRunner&) = delete;
     VulkanRunner& operator=(const VulkanRunner&) = delete;
 
-    const DeviceInfo& device_info() const;
+    // The device every job runs on.
+    HeadlessDevice& device() { return *device_; }
+    const DeviceInfo& device_info() const { return device_->info(); }
 
     // Every validation-layer warning and error since creation (or the last clear), as
     // "[severity] id: message". Tests fail on any.
-    std::vector<std::string> validation_messages() const;
-    void clear_validation_messages();
+    std::vector<std::string> validation_messages() const { return device_->validation_messages(); }
+    void clear_validation_messages() { device_->clear_validation_messages(); }
 
     RenderResult render(const RenderJob& job);
     // Several jobs timed side by side: every pipeline is created and drawn once (untimed, the
@@ -182,11 +124,12 @@ class VulkanRunner {
     // every job (each result's error says what).
     std::vector<RenderResult> render_interleaved(const std::vector<RenderJob>& jobs,
                                                  uint32_t rounds);
+    // HeadlessDevice::compute, its error prefixed "compute: ".
     ComputeResult run_compute(const ComputeJob& job);
 
   private:
-    explicit VulkanRunner(std::unique_ptr<vk_detail::Context> context);
-    std::unique_ptr<vk_detail::Context> context_;
+    explicit VulkanRunner(std::unique_ptr<HeadlessDevice> device);
+    std::unique_ptr<HeadlessDevice> device_;
 };
 
 } // namespace watergen

@@ -1,9 +1,9 @@
 // Optional device features: 16-bit shader arithmetic and 16-bit storage. lavapipe (Mesa 22.3)
 // has them; enabling them lets a probe run float16_t arithmetic in true binary16 instead of
 // the 32-bit "mediump" hint (watergen issue 14).
-#include "vulkan_internal.h"
+#include "device_context.h"
 
-namespace watergen::vk_detail {
+namespace watergen::headless_detail {
 namespace {
 
 // Whether the float16 / int8 feature struct may be chained: core in 1.2, an extension before.
@@ -35,7 +35,7 @@ void choose_device_features(Context* ctx, uint32_t api, DeviceFeatures* out) {
     out->core.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
     out->storage16.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_16BIT_STORAGE_FEATURES;
     out->float16_int8.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES;
-    out->core.pNext = &out->storage16; // 16-bit storage is core in 1.1, the runner's minimum
+    out->core.pNext = &out->storage16; // 16-bit storage is core in 1.1, the device's minimum
     if (float16_int8_known(ctx->physical, api, &out->extensions))
         out->storage16.pNext = &out->float16_int8;
     vkGetPhysicalDeviceFeatures2(ctx->physical, &out->core);
@@ -60,4 +60,4 @@ void choose_device_features(Context* ctx, uint32_t api, DeviceFeatures* out) {
     info.float16_denorms_preserved = float16_denorms_preserved(ctx->physical, api);
 }
 
-} // namespace watergen::vk_detail
+} // namespace watergen::headless_detail

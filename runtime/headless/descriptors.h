@@ -1,0 +1,47 @@
+// Descriptor sets of a draw or dispatch: the pool, the sets, and the buffers, textures and
+// samplers the inputs supply for their bindings (matched by binding name); the set layouts of a
+// compute stage (a draw's come from its VariantPipeline). Not installed.
+#pragma once
+
+#include "resources.h"
+#include "watergen/runtime/reflection.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace watergen::headless_detail {
+
+// What a draw or dispatch feeds into its bindings, by binding name; null maps: none of that kind.
+struct DescriptorInputs {
+    const std::map<std::string, std::vector<uint8_t>>* uniforms = nullptr;
+    // The bytes of the one uniform block, whatever its name (a job of the test runner carries
+    // one block); more than one uniform binding is then an error. In place of `uniforms`.
+    const std::vector<uint8_t>* sole_uniforms = nullptr;
+    const std::map<std::string, TextureData>* textures = nullptr;
+    TextureFilter filter = TextureFilter::Nearest;
+    const std::map<std::string, std::vector<uint8_t>>* storage = nullptr;
+    const std::map<std::string, uint64_t>* storage_sizes = nullptr;
+};
+
+// The bindings of each set number (index = set; a gap holds none).
+using SetBindings = std::vector<std::vector<DescriptorBinding>>;
+
+struct BoundDescriptors {
+    std::vector<VkDescriptorSet> sets;             // one per layout
+    std::map<std::string, Buffer> storage_buffers; // by binding name, for readback
+};
+
+// Allocates one set per layout and writes every binding from `inputs`; throws naming the
+// binding an input is missing for.
+BoundDescriptors bind_descriptors(Scope& scope, const std::vector<VkDescriptorSetLayout>& layouts,
+                                  const SetBindings& bindings, const DescriptorInputs& inputs);
+
+// One stage's bindings by set, and their layouts visible to `stage` (gaps get empty ones).
+SetBindings stage_bindings(const Reflection& reflection);
+std::vector<VkDescriptorSetLayout> create_set_layouts(Scope& scope, const SetBindings& bindings,
+                                                      VkShaderStageFlags stage);
+VkPipelineLayout create_pipeline_layout(Scope& scope,
+                                        const std::vector<VkDescriptorSetLayout>& layouts);
+
+} // namespace watergen::headless_detail
