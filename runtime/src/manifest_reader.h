@@ -1,6 +1,6 @@
 // Reading the JSON a build writes (manifest.json, a pass's pass.json) without exceptions: each
 // accessor checks the type first and records the first problem as "<file>: <key path>:
-// expected ...". Private to watergen_engine (shader_build.cpp, build_pass.cpp); not installed.
+// expected ...". Private to watergen_runtime (shader_build.cpp, build_pass.cpp); not installed.
 #pragma once
 
 #include <cstdint>
