@@ -115,14 +115,6 @@ EnginePass engine_pass(const ShaderBuild& b, const BuildPass& pass, const std::s
     return out;
 }
 
-SyntheticScene preset_scene(const Preset* preset, uint32_t size) {
-    REQUIRE(preset);
-    SyntheticScene scene = make_synthetic_scene(size, size);
-    for (const auto& [name, values] : preset->values)
-        scene.uniforms[name] = values;
-    return scene;
-}
-
 std::map<std::string, HeadlessTexture>
 headless_textures(const std::map<std::string, TextureData>& textures) {
     std::map<std::string, HeadlessTexture> out;

@@ -43,9 +43,6 @@ EnginePass engine_pass(const ShaderBuild& b, const BuildPass& pass, const std::s
                        const std::map<std::string, std::vector<double>>& values,
                        uint32_t timed = 0);
 
-// `watergen render --preset <preset>`'s scene (flag_checks.cpp preset_scene), size x size.
-SyntheticScene preset_scene(const Preset* preset, uint32_t size);
-
 // The test runner's textures (a synthetic scene's) as the library takes them.
 std::map<std::string, HeadlessTexture>
 headless_textures(const std::map<std::string, TextureData>& textures);
