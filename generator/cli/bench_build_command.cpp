@@ -2,9 +2,6 @@
 // it to build.csv and build.json.
 #include <cstdio>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 #include "commands.h"
 #include "watergen/pipeline/build_bench.h"
 #include "watergen/pipeline/parallel_build.h"
@@ -44,27 +41,16 @@ Runner add_bench_build_command(CLI::App& app, const Common& common) {
             return kFailed;
         }
         std::printf("%-78s %9s %9s %12s  %s\n", "what", "variants", "seconds", "variants/s", "");
-        std::string csv = "what,variants,seconds,variants_per_second,note\n";
-        nlohmann::ordered_json json = nlohmann::ordered_json::array();
-        for (const auto& r : result.rows) {
-            const double rate = r.seconds > 0 ? r.variants / r.seconds : 0.0;
+        for (const auto& r : result.rows)
             std::printf("%-78s %9zu %9.3f %12.1f  %s\n", r.what.c_str(), r.variants, r.seconds,
-                        rate, r.note.c_str());
-            csv += fmt::format("\"{}\",{},{:.4f},{:.1f},\"{}\"\n", r.what, r.variants, r.seconds,
-                               rate, r.note);
-            json.push_back({{"what", r.what},
-                            {"variants", r.variants},
-                            {"seconds", r.seconds},
-                            {"variants_per_second", rate},
-                            {"note", r.note}});
-        }
+                        r.rate(), r.note.c_str());
         std::printf("cold: empty cache, every distinct shader through glslang (GLSL + HLSL), "
                     "spirv-val, spirv-opt, SPIRV-Cross "
                     "and reflection; warm: the same build again (every variant from the cache); "
                     "no-op: again with the build record (nothing changed: the output's sizes and "
                     "hashes verified, no IR work); %u hardware threads\n",
                     hardware_threads());
-        if (!write_bench_files(o->out, "build", csv, json.dump(2) + "\n")) return kFailed;
+        if (!write_bench_files(o->out, "build", result.csv, result.json)) return kFailed;
         return kOk;
     };
 }

@@ -2,9 +2,6 @@
 // command-line tools as processes, measured in the same run on the same shaders.
 #include <cstdio>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 #include "commands.h"
 #include "watergen/pipeline/compile_bench.h"
 
@@ -26,27 +23,15 @@ Runner add_bench_compile_command(CLI::App& app, const Common& common) {
         if (!bench_succeeded(bench.diagnostics, bench.error, common)) return kFailed;
         std::printf("%-46s %14s %14s %8s\n", "variant (4 shaders: GLSL+HLSL, vert+frag)",
                     "in-process ms", "processes ms", "ratio");
-        std::string csv = "variant,in_process_ms,processes_ms,ratio\n";
-        nlohmann::ordered_json json = nlohmann::ordered_json::array();
-        for (const auto& r : bench.rows) {
-            const double ratio = r.ratio();
+        for (const auto& r : bench.rows)
             std::printf("%-46s %14.2f %14.2f %7.1fx\n", r.key.c_str(), r.in_process_ms,
-                        r.processes_ms, ratio);
-            csv += fmt::format("\"{}\",{:.3f},{:.3f},{:.2f}\n", r.key, r.in_process_ms,
-                               r.processes_ms, ratio);
-            json.push_back({{"variant", r.key},
-                            {"in_process_ms", r.in_process_ms},
-                            {"processes_ms", r.processes_ms},
-                            {"ratio", ratio}});
-        }
+                        r.processes_ms, r.ratio());
         std::printf("%-46s %14.2f %14.2f %7.1fx\n", "median over variants",
                     bench.median_in_process_ms, bench.median_processes_ms, bench.median_ratio);
         std::printf("chain: glslang -> spirv-val -> spirv-opt -O -> spirv-val -> SPIRV-Cross (GLSL "
                     "330, ESSL 300, MSL) + round trip + reflection; median of %d runs\n",
                     o->repeat);
-        nlohmann::ordered_json doc = {
-            {"repeat", o->repeat}, {"median_ratio", bench.median_ratio}, {"variants", json}};
-        if (!write_bench_files(o->out, "compile", csv, doc.dump(2) + "\n")) return kFailed;
+        if (!write_bench_files(o->out, "compile", bench.csv, bench.json)) return kFailed;
         return kOk;
     };
 }

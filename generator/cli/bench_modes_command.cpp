@@ -1,10 +1,7 @@
-// watergen bench modes [MATERIAL]: prints bench_modes() (render/modes_bench.h) as a table and
+// watergen bench modes [MATERIAL]: prints bench_modes() (eval/bench/modes_bench.h) as a table and
 // writes it to modes.csv and modes.json; fails when a mode's image differs from the
 // permutation's by more than --tolerance.
 #include <cstdio>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "watergen/eval/bench/modes_bench.h"
@@ -13,45 +10,18 @@ namespace watergen::cli {
 
 namespace {
 
-void print_table(const ModesBenchResult& r, std::string& csv, nlohmann::ordered_json& json) {
+void print_table(const ModesBenchResult& r) {
     std::printf("%-19s %7s %12s %11s %11s %12s %10s %11s %10s %10s\n", "mode", "shaders",
                 "gen+compile", "per variant", "SPIR-V KiB", "per draw KiB", "pipeline",
                 "first draw", "steady", "max |diff|");
-    csv = "mode,variant,shaders,generate_compile_ms,spirv_bytes,spirv_bytes_per_draw,"
-          "pipeline_ms,first_draw_ms,steady_ms,max_abs\n";
-    json = nlohmann::ordered_json::array();
     const double n = static_cast<double>(r.material_variants);
-    for (const ModeRow& row : r.rows) {
+    for (const ModeRow& row : r.rows)
         std::printf("%-19s %7zu %10.0f ms %8.2f ms %11.1f %12.1f %8.2f ms %8.1f ms %7.2f ms "
                     "%10.2g\n",
                     row.mode.c_str(), row.shaders, row.generate_compile_ms,
                     row.generate_compile_ms / n, row.spirv_bytes / 1024,
                     row.spirv_bytes_per_draw / 1024, row.pipeline_ms, row.first_draw_ms,
                     row.steady_ms, row.max_abs);
-        nlohmann::ordered_json variants = nlohmann::ordered_json::array();
-        for (const ModeVariantTimes& v : row.variants) {
-            csv += fmt::format("{},\"{}\",{},{:.3f},{:.0f},{:.0f},{:.3f},{:.3f},{:.4f},{:.3g}\n",
-                               row.mode, v.key, row.shaders, row.generate_compile_ms,
-                               row.spirv_bytes, row.spirv_bytes_per_draw, v.pipeline_ms,
-                               v.first_draw_ms, v.steady_ms, v.max_abs);
-            variants.push_back({{"variant", v.key},
-                                {"pipeline_ms", v.pipeline_ms},
-                                {"first_draw_ms", v.first_draw_ms},
-                                {"steady_ms", v.steady_ms},
-                                {"max_abs", v.max_abs}});
-        }
-        json.push_back({{"mode", row.mode},
-                        {"shaders", row.shaders},
-                        {"generate_compile_ms", row.generate_compile_ms},
-                        {"generate_compile_ms_per_variant", row.generate_compile_ms / n},
-                        {"spirv_bytes", row.spirv_bytes},
-                        {"spirv_bytes_per_draw", row.spirv_bytes_per_draw},
-                        {"pipeline_ms", row.pipeline_ms},
-                        {"first_draw_ms", row.first_draw_ms},
-                        {"steady_ms", row.steady_ms},
-                        {"max_abs", row.max_abs},
-                        {"variants", variants}});
-    }
 }
 
 } // namespace
@@ -89,9 +59,7 @@ Runner add_bench_modes_command(CLI::App& app, const Common& common) {
         if (!runner) return kNoDevice;
         const ModesBenchResult r = bench_modes(*runner, m, o->bench);
         if (!bench_succeeded({}, r.error, common)) return kFailed;
-        std::string csv;
-        nlohmann::ordered_json json;
-        print_table(r, csv, json);
+        print_table(r);
         std::printf("material %s (%zu variants) on %s, %ux%u, shader cache %s; gen+compile: every "
                     "shader of the mode, one thread (frozen: plus freezing every variant); "
                     "SPIR-V: fragment, GLSL path, optimised; pipeline / first draw (JIT) / "
@@ -99,15 +67,14 @@ Runner add_bench_modes_command(CLI::App& app, const Common& common) {
                     "against the permutation's image, GLSL and HLSL paths\n",
                     r.material.c_str(), r.material_variants, r.device.c_str(), o->bench.size,
                     o->bench.size, cache_used.c_str(), o->bench.rounds);
-        if (!write_bench_files(o->out, "modes", csv, json.dump(2) + "\n")) return kFailed;
-        for (const ModeRow& row : r.rows)
-            if (row.max_abs > o->tolerance) {
-                std::fprintf(stderr,
-                             "watergen: error: %s draws images %g from the permutation's "
-                             "(tolerance %g)\n",
-                             row.mode.c_str(), row.max_abs, o->tolerance);
-                return kFailed;
-            }
+        if (!write_bench_files(o->out, "modes", r.csv, r.json)) return kFailed;
+        if (const ModeRow* row = r.beyond(o->tolerance)) {
+            std::fprintf(stderr,
+                         "watergen: error: %s draws images %g from the permutation's "
+                         "(tolerance %g)\n",
+                         row->mode.c_str(), row->max_abs, o->tolerance);
+            return kFailed;
+        }
         return kOk;
     };
 }

@@ -1,6 +1,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <fmt/format.h>
+
 #include "commands.h"
 #include "watergen/pipeline/output_writer.h"
 
@@ -17,6 +19,10 @@ bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error,
         return false;
     }
     return true;
+}
+
+std::string interval_text(const RatioInterval& r) {
+    return fmt::format("{:.3f} [{:.3f}, {:.3f}]", r.ratio, r.lo, r.hi);
 }
 
 bool write_bench_files(const std::string& out, const std::string& stem, const std::string& csv,

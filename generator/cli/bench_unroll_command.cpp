@@ -1,8 +1,8 @@
-// Unroll bench: kept loops against unrolled ones on lavapipe, per waves choice.
+// Unroll bench: prints run_unroll_bench() (eval/bench/unroll_bench.h), kept loops against
+// unrolled ones on lavapipe per waves choice, and writes it to unroll.csv and unroll.json.
 #include <cstdio>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "watergen/eval/bench/unroll_bench.h"
@@ -16,12 +16,6 @@ std::string range_text(const std::vector<double>& v) {
     if (v.empty()) return "-";
     const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
     return fmt::format("{:.2f} ({:.2f}-{:.2f})", median(v), *lo, *hi);
-}
-
-nlohmann::ordered_json side_json(const UnrollSide& s) {
-    return {{"glsl_lines", s.glsl_lines},         {"spirv_words", s.spirv_words},
-            {"instructions", s.instructions},     {"first_draw_ms", s.first_draw_ms},
-            {"steady_draw_ms", s.steady_draw_ms}, {"pipeline_ms", s.pipeline_ms}};
 }
 
 void print_table(const UnrollBench& b) {
@@ -67,31 +61,7 @@ Runner add_bench_unroll_command(CLI::App& app, const Common& common) {
         const UnrollBench bench = run_unroll_bench(*runner, o->size, o->rounds, o->draws);
         if (!bench_succeeded(bench.diagnostics, bench.error, common)) return kFailed;
         print_table(bench);
-        std::string csv = "waves,hint,glsl_lines,spirv_words,instructions,first_draw_ms_median,"
-                          "steady_draw_ms_median,first_draw_ratio_median,steady_ratio_median\n";
-        nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-        for (const auto& r : bench.rows) {
-            for (const auto& [hint, side] :
-                 {std::pair{"kept", &r.kept}, std::pair{"unrolled", &r.unrolled}})
-                csv += fmt::format("{},{},{},{},{},{:.3f},{:.4f},{:.4f},{:.4f}\n", r.waves, hint,
-                                   side->glsl_lines, side->spirv_words, side->instructions,
-                                   median(side->first_draw_ms), median(side->steady_draw_ms),
-                                   median(r.first_draw_ratio), median(r.steady_ratio));
-            rows.push_back({{"waves", r.waves},
-                            {"kept", side_json(r.kept)},
-                            {"unrolled", side_json(r.unrolled)},
-                            {"kept_again", side_json(r.kept_again)},
-                            {"first_draw_ratio", r.first_draw_ratio},
-                            {"first_draw_aa", r.first_draw_aa},
-                            {"steady_ratio", r.steady_ratio},
-                            {"steady_aa", r.steady_aa}});
-        }
-        nlohmann::ordered_json j = {{"size", bench.size},
-                                    {"rounds", bench.rounds},
-                                    {"draws", o->draws},
-                                    {"device", runner->device_info().name},
-                                    {"rows", rows}};
-        return write_bench_files(o->out, "unroll", csv, j.dump(2) + "\n") ? kOk : kFailed;
+        return write_bench_files(o->out, "unroll", bench.csv, bench.json) ? kOk : kFailed;
     };
 }
 

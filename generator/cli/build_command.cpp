@@ -6,9 +6,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "watergen/pipeline/build_output.h"
-#include "watergen/pipeline/build_record.h"
-#include "watergen/pipeline/depfile.h"
+#include "watergen/pipeline/build_files.h"
 
 namespace watergen::cli {
 
@@ -21,29 +19,44 @@ void print_up_to_date(const BuildSummary& s, const std::string& out) {
                             .c_str());
 }
 
+void print_summary(const BuildSummary& s, BuildMode mode, const std::string& mode_name,
+                   const std::string& out, unsigned jobs) {
+    const unsigned threads = jobs ? jobs : hardware_threads();
+    const std::string rejected =
+        s.cache_rejected == 0 ? std::string()
+                              : fmt::format("; {} cache entr{} failed verification, rebuilt",
+                                            s.cache_rejected, s.cache_rejected == 1 ? "y" : "ies");
+    std::string companions;
+    if (s.passes > 0)
+        companions += fmt::format(" + {} caustics pass{} ({} cached)", s.passes,
+                                  s.passes == 1 ? "" : "es", s.passes_cached);
+    if (s.frozen > 0)
+        companions += fmt::format(" + {} frozen modules ({} cached)", s.frozen, s.frozen_cached);
+    std::printf("%s\n",
+                fmt::format("build: {} variants{} ({} built, {} cached, {} shared between "
+                            "scenes, {} same shader as another variant, {} failed{}){} "
+                            "in {:.2f} s on {} thread{}{}",
+                            s.variants,
+                            mode == BuildMode::Permutations
+                                ? std::string()
+                                : fmt::format(" in {} {} shaders", s.shaders, mode_name),
+                            s.built, s.cached, s.shared, s.same, s.failed, rejected, companions,
+                            s.seconds, threads, threads == 1 ? "" : "s",
+                            s.ok() ? fmt::format(" -> {} ({} files)", out, s.files)
+                                   : std::string("; nothing written, ") + out + " is unchanged")
+                    .c_str());
+}
+
 } // namespace
 
 bool load_material_and_scenes(const std::string& material_path,
                               const std::vector<std::string>& scene_paths, Material& material,
                               std::vector<SceneFacts>& scenes, const Common& common) {
-    Diagnostics ds;
-    if (material_path.empty()) {
-        material = default_material();
-    } else if (auto m = load_material(material_path, ds)) {
-        material = std::move(*m);
-    } else {
-        print_diagnostics(ds, common);
-        return false;
-    }
-    for (const auto& path : scene_paths) {
-        auto s = load_scene(path, ds);
-        if (!s) {
-            print_diagnostics(ds, common);
-            return false;
-        }
-        scenes.push_back(std::move(*s));
-    }
-    return true;
+    Diagnostics ds; // shown only when a file does not load
+    if (watergen::load_material_and_scenes(material_path, scene_paths, material, scenes, ds))
+        return true;
+    print_diagnostics(ds, common);
+    return false;
 }
 
 void add_mode_option(CLI::App& app, std::string& mode) {
@@ -114,7 +127,10 @@ Runner add_build_command(CLI::App& app, const Common& common) {
             },
             "I/N"));
     return [o, &common]() {
-        BuildRequest request;
+        BuildFilesRequest request;
+        request.material_path = o->material;
+        request.scene_paths = o->scenes;
+        request.out = o->out;
         request.mode = *parse_build_mode(o->mode);
         request.freeze = o->freeze;
         if (o->freeze && request.mode != BuildMode::Specialized) {
@@ -134,35 +150,11 @@ Runner add_build_command(CLI::App& app, const Common& common) {
             }
             request.shard = *parse_shard(o->shard, nullptr);
         }
-        // Hashed before they are loaded: a file changed in between makes the record stale,
-        // never wrong.
-        request.inputs_hash =
-            build_inputs_hash(o->material, o->scenes, o->mode + (o->freeze ? " freeze" : ""))
-                .value_or("");
-        request.out = o->out;
         request.options.threads = o->jobs;
         if (!o->no_cache)
             request.options.cache = BuildCache(o->cache.empty() ? default_cache_dir()
                                                                 : std::filesystem::path(o->cache));
-        // Written before the build: it depends on the inputs only, and a depfile that cannot be
-        // written stops the build before anything else is.
-        if (!o->depfile.empty()) {
-            std::vector<std::string> inputs = o->scenes;
-            if (!o->material.empty()) inputs.insert(inputs.begin(), o->material);
-            const std::string target = (std::filesystem::path(o->out) / "manifest.json").string();
-            if (auto e = write_depfile(o->depfile, target, inputs)) {
-                std::fprintf(stderr, "watergen: error: --depfile: %s\n", e->c_str());
-                return kFailed;
-            }
-        }
-        // Nothing changed and the output is intact: not even the material is loaded.
-        if (auto done = build_up_to_date(request)) {
-            print_up_to_date(*done, o->out);
-            return kOk;
-        }
-        if (!load_material_and_scenes(o->material, o->scenes, request.material, request.scenes,
-                                      common))
-            return kUsage;
+        request.depfile = o->depfile;
         const bool tty = !o->quiet && ::isatty(STDERR_FILENO);
         if (tty)
             request.options.progress = [](const BuildProgress& p) {
@@ -170,37 +162,19 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                              p.total, p.cached, p.failed, p.key.substr(0, 60).c_str());
                 std::fflush(stderr);
             };
-        const BuildSummary s = build_material_now(request); // checked above
+        const BuildFilesRun run = build_from_files(request);
+        if (!run.depfile_error.empty())
+            return stop("--depfile: " + run.depfile_error, RunStatus::Failed);
+        if (run.summary.up_to_date) {
+            print_up_to_date(run.summary, o->out);
+            return kOk;
+        }
+        if (!run.built) return stop(run.load_diagnostics, "", RunStatus::BadInput, common);
         if (tty) std::fprintf(stderr, "\r\033[K");
+        const BuildSummary& s = run.summary;
         print_diagnostics(s.diagnostics, common);
         if (s.bad_input) return kUsage;
-        const unsigned threads = o->jobs ? o->jobs : hardware_threads();
-        const std::string rejected =
-            s.cache_rejected == 0
-                ? std::string()
-                : fmt::format("; {} cache entr{} failed verification, rebuilt", s.cache_rejected,
-                              s.cache_rejected == 1 ? "y" : "ies");
-        std::string companions;
-        if (s.passes > 0)
-            companions += fmt::format(" + {} caustics pass{} ({} cached)", s.passes,
-                                      s.passes == 1 ? "" : "es", s.passes_cached);
-        if (s.frozen > 0)
-            companions +=
-                fmt::format(" + {} frozen modules ({} cached)", s.frozen, s.frozen_cached);
-        std::printf("%s\n",
-                    fmt::format("build: {} variants{} ({} built, {} cached, {} shared between "
-                                "scenes, {} same shader as another variant, {} failed{}){} "
-                                "in {:.2f} s on {} thread{}{}",
-                                s.variants,
-                                request.mode == BuildMode::Permutations
-                                    ? std::string()
-                                    : fmt::format(" in {} {} shaders", s.shaders, o->mode),
-                                s.built, s.cached, s.shared, s.same, s.failed, rejected, companions,
-                                s.seconds, threads, threads == 1 ? "" : "s",
-                                s.ok()
-                                    ? fmt::format(" -> {} ({} files)", o->out, s.files)
-                                    : std::string("; nothing written, ") + o->out + " is unchanged")
-                        .c_str());
+        print_summary(s, request.mode, o->mode, o->out, o->jobs);
         return s.ok() ? kOk : kFailed;
     };
 }

@@ -1,11 +1,10 @@
+// watergen emit: one variant (or the pairwise covering set) built and written, each by
+// emit_variant() (pipeline/variant_emit.h).
 #include <cstdio>
-#include <filesystem>
 
 #include "commands.h"
-#include "watergen/pipeline/output_writer.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant_emit.h"
 #include "watergen/plan/covering_array.h"
-#include "watergen/water/presets.h"
 
 namespace watergen::cli {
 
@@ -37,24 +36,18 @@ Runner add_emit_command(CLI::App& app, const Common& common) {
             o->covering ? pairwise_covering_variants() : std::vector<Variant>{o->variant};
         int failed = 0;
         for (const Variant& v : variants) {
-            const VariantBuild build =
-                build_variant(v, preset, EmitOptions{o->strict_half, {}, o->unroll});
-            print_diagnostics(build.diagnostics, common);
-            if (!build.ok()) {
+            const EmittedVariant e =
+                emit_variant(v, preset, EmitOptions{o->strict_half, {}, o->unroll}, o->out);
+            print_diagnostics(e.diagnostics, common);
+            if (!e.built)
                 std::fprintf(stderr, "watergen: error: %s failed; nothing written for it\n",
                              v.key().c_str());
-                ++failed;
-                continue;
-            }
-            const auto files = variant_files(build);
-            const std::filesystem::path dir = std::filesystem::path(o->out) / v.file_stem();
-            if (auto e = write_directory_atomically(dir, files)) {
-                std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-                ++failed;
-                continue;
-            }
-            std::printf("%s -> %s (%zu files)\n", v.key().c_str(), dir.string().c_str(),
-                        files.size());
+            else if (!e.error.empty())
+                std::fprintf(stderr, "watergen: error: %s\n", e.error.c_str());
+            else
+                std::printf("%s -> %s (%zu files)\n", v.key().c_str(), e.dir.string().c_str(),
+                            e.files);
+            failed += e.ok() ? 0 : 1;
         }
         return failed ? kFailed : kOk;
     };

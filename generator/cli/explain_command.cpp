@@ -1,14 +1,14 @@
 // watergen explain [MATERIAL] [--scene S ...]: per scene, the variants it skips and the terms
 // it folds away, each with the scene fact (file:line:column and JSON path) behind it; then the
-// variants no scene reaches. The work is explain_plans() (plan/explain.h); this prints it.
+// variants no scene reaches. The work is explain_build() (pipeline/build_explain.h); this
+// prints it.
 #include <cstdio>
 
 #include <fmt/format.h>
 
 #include "commands.h"
 #include "watergen/ir/text.h"
-#include "watergen/pipeline/build_output.h"
-#include "watergen/plan/explain.h"
+#include "watergen/pipeline/build_explain.h"
 
 namespace watergen::cli {
 
@@ -106,12 +106,9 @@ Runner add_explain_command(CLI::App& app, const Common& common) {
             detail = v->key();
         }
         Diagnostics ds;
-        auto plan = plan_build(m, scenes, ds);
-        if (!plan) {
-            print_diagnostics(ds, common);
-            return kUsage;
-        }
-        const Explanation e = explain_plans(m, plan->scenes, detail, o->sample);
+        const auto explained = explain_build(m, scenes, detail, o->sample, ds);
+        if (!explained) return stop(ds, "", RunStatus::BadInput, common);
+        const Explanation& e = explained->explanation;
         print_material(e.material);
         for (const auto& scene : e.scenes)
             print_scene(scene);

@@ -52,15 +52,4 @@ void add_instrument_options(CLI::App& app, uint32_t& draws, uint32_t& cost_size,
                  "workers at once)");
 }
 
-SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset,
-                            const std::string& view) {
-    const SceneView* seen_from = find_scene_view(view);
-    SyntheticScene scene =
-        make_synthetic_scene(width, height, seen_from ? *seen_from : beach_view());
-    if (preset)
-        for (const auto& [name, values] : preset->values)
-            scene.uniforms[name] = values;
-    return scene;
-}
-
 } // namespace watergen::cli

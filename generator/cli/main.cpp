@@ -38,6 +38,30 @@ void print_diagnostics(const Diagnostics& ds, const Common& common) {
         std::fprintf(stderr, "%s\n", format_diagnostic(d, common.format).c_str());
 }
 
+int exit_code(RunStatus status) {
+    switch (status) {
+    case RunStatus::Ok:
+        return kOk;
+    case RunStatus::BadInput:
+        return kUsage;
+    case RunStatus::Failed:
+        return kFailed;
+    case RunStatus::NoDevice:
+        return kNoDevice;
+    }
+    return kFailed;
+}
+
+int stop(const Diagnostics& ds, const std::string& error, RunStatus status, const Common& common) {
+    print_diagnostics(ds, common);
+    return stop(error, status);
+}
+
+int stop(const std::string& error, RunStatus status) {
+    if (!error.empty()) std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
+    return exit_code(status);
+}
+
 } // namespace watergen::cli
 
 int main(int argc, char** argv) {

@@ -1,97 +1,24 @@
-// `watergen pick`: per scene, the cheapest variant within an error budget (render/pick.h), its
+// `watergen pick`: per scene, the cheapest variant within an error budget (pick_scene.h), its
 // cost against the scene's gold, what each traded axis saved and cost in error, and a material
-// file holding the picked choices. Costs come from a worker run under valgrind (--counted).
+// file holding the picked choices. Costs come from a worker run under valgrind (--counted,
+// cost_worker.h).
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <thread>
-
-#include <nlohmann/json.hpp>
-#include <valgrind/valgrind.h>
 
 #include "commands.h"
-#include "watergen/eval/compare/pick.h"
-#include "watergen/eval/compare/prune_measure.h"
-#include "watergen/eval/measure/draw_count.h"
-#include "watergen/eval/scene/scene_views.h"
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/eval/compare/pick_scene.h"
+#include "watergen/eval/measure/cost_worker.h"
 
 namespace watergen::cli {
 
 namespace {
 
 struct PickOptions {
-    std::string material;
+    PickRequest request;
     std::vector<std::string> scenes, keys;
     std::vector<std::string> holds; // per axis, "" or a choice
-    double max_de_p99 = 2.0, max_abs = INFINITY;
-    uint32_t size = 256, cost_size = 64;
-    std::string out = "out/pick";
     bool counted = false, unfolded = false;
     RunnerSetup runner;
 };
-
-// The worker: the given keys' shaders as the material builds them (for a scene: folded under
-// its facts unless --unfolded, drawn in the scene's conformed synthetic scene either way), each
-// GLSL path drawn with the count on; a key given twice is labelled "<key>#2".
-int run_worker(const PickOptions& o, const Material& m, const ScenePlan* plan,
-               const Common& common) {
-    if (!RUNNING_ON_VALGRIND) {
-        std::fprintf(stderr, "watergen: error: --counted is the worker of watergen pick and runs "
-                             "under valgrind --tool=callgrind\n");
-        return kUsage;
-    }
-    const SyntheticScene base = make_synthetic_scene(o.cost_size, o.cost_size);
-    const SyntheticScene scene = plan ? conform_scene(base, *plan, m) : base;
-    return draw_counted_keys(
-        o.keys, scene,
-        [&](const Variant& v) {
-            return plan && !o.unfolded ? build_for_scene(m, *plan, v) : build_shader(m.compose(v));
-        },
-        common);
-}
-
-// Instructions per pixel of every candidate not counted yet, from one worker run; "" or the
-// failure.
-std::string count_costs(const PickOptions& o, const std::string& scene_path, PickPlan& pick) {
-    std::vector<Variant> missing;
-    for (const PickCandidate& c : pick.candidates)
-        if (c.cost_per_pixel == 0) missing.push_back(c.variant);
-    if (missing.empty()) return "";
-    std::string error;
-    const auto counts = count_material_costs(o.material, scene_path, missing, o.cost_size, &error);
-    if (!counts) return error;
-    const double pixels = double(o.cost_size) * o.cost_size;
-    for (PickCandidate& c : pick.candidates)
-        if (auto it = counts->find(c.variant.key()); it != counts->end())
-            c.cost_per_pixel = double(it->second) / pixels;
-    for (const PickCandidate& c : pick.candidates)
-        if (c.cost_per_pixel == 0) return c.variant.key() + ": no instruction count";
-    return "";
-}
-
-// The material file of the pick: the material with one choice per axis (its rules dropped).
-nlohmann::ordered_json picked_material(const Material& m, const std::string& scene,
-                                       const Variant& v, const PickBudget& budget) {
-    nlohmann::ordered_json j;
-    j["name"] = m.name + "-" + scene;
-    j["description"] =
-        "picked by watergen pick for scene " + scene +
-        ": the cheapest variant with CIEDE2000 p99 <= " + std::to_string(budget.max_de_p99) +
-        " against the scene's gold";
-    if (!m.preset.empty()) j["preset"] = m.preset;
-    const auto& list = axes();
-    for (size_t a = 0; a < list.size(); ++a)
-        j["axes"][list[a].name] = nlohmann::ordered_json::array({v.choices[a]});
-    for (const auto& [name, p] : m.parameters) {
-        if (p.value) j["parameters"][name]["value"] = *p.value;
-        if (p.min) j["parameters"][name]["min"] = *p.min;
-        if (p.max) j["parameters"][name]["max"] = *p.max;
-    }
-    for (Target t : m.targets)
-        j["targets"].push_back(to_string(t));
-    return j;
-}
 
 void print_candidates(const PickPlan& pick, const PickBudget& budget) {
     std::printf("  gold: %s\n", pick.gold.key().c_str());
@@ -131,35 +58,41 @@ void print_pick(const PickPlan& pick, const PickCandidate& c) {
     }
 }
 
-} // namespace
-
-std::optional<std::map<std::string, uint64_t>>
-count_material_costs(const std::string& material_path, const std::string& scene_path,
-                     const std::vector<Variant>& variants, uint32_t size, std::string* error,
-                     bool folded) {
-    std::vector<std::string> keys;
-    for (const Variant& v : variants)
-        keys.push_back(v.key());
-    const KeyedWorker worker = [&](const std::vector<std::string>& part) {
-        std::vector<std::string> argv = {std::filesystem::read_symlink("/proc/self/exe").string(),
-                                         "pick", "--counted", "--cost-size", std::to_string(size)};
-        // The worker runs in its scratch directory: paths as given would not resolve there.
-        if (!scene_path.empty())
-            argv.insert(argv.end(), {"--scene", std::filesystem::absolute(scene_path).string()});
-        if (!folded) argv.push_back("--unfolded");
-        if (!material_path.empty())
-            argv.push_back(std::filesystem::absolute(material_path).string());
-        for (const std::string& key : part)
-            argv.insert(argv.end(), {"--key", key});
-        return argv;
-    };
-    return count_keys_in_parallel(keys, worker, std::filesystem::temp_directory_path(),
-                                  std::max(1u, std::thread::hardware_concurrency()), error);
+// One scene's pick, printed; the exit code, kOk to go on with the next scene.
+int pick_and_print(VulkanRunner& runner, const Material& m, const ScenePlan& plan,
+                   const std::string& scene_path, const PickRequest& request) {
+    std::printf("%s\n", plan.scene.name.c_str());
+    const PickSceneRun run = pick_scene(runner, m, plan, scene_path, request);
+    for (const std::string& note : run.notes)
+        std::printf("  %s\n", note.c_str());
+    if (!run.measured()) {
+        std::fprintf(stderr, "watergen: error: %s: %s\n", plan.scene.name.c_str(),
+                     run.error.c_str());
+        return exit_code(run.status);
+    }
+    print_candidates(run.pick, request.budget);
+    if (run.chosen < 0) {
+        std::printf("  no reached variant within the budget\n");
+        const PickCandidate* gold = find_candidate(run.pick, run.pick.gold, "", "");
+        if (gold && !gold->reached && gold->within(request.budget))
+            std::printf("  the gold is within it: offer its choices in the material\n");
+        return kOk;
+    }
+    print_pick(run.pick, run.pick.candidates[size_t(run.chosen)]);
+    if (!run.write_error.empty()) {
+        std::fprintf(stderr, "watergen: error: %s\n", run.write_error.c_str());
+        return kFailed;
+    }
+    std::printf("  wrote %s\n", run.written.string().c_str());
+    return kOk;
 }
+
+} // namespace
 
 Runner add_pick_command(CLI::App& app, const Common& common) {
     auto o = std::make_shared<PickOptions>();
-    app.add_option("material", o->material, "material file (default: the built-in material)");
+    PickRequest& r = o->request;
+    app.add_option("material", r.material_path, "material file (default: the built-in material)");
     app.add_option("--scene", o->scenes, "scene file (repeatable; at least one)");
     const auto& list = axes();
     o->holds.resize(list.size());
@@ -168,24 +101,24 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
                        "hold " + list[a].name +
                            " at this choice (axes of different models are "
                            "otherwise held at the richest reached choice)");
-    app.add_option("--max-dE-p99", o->max_de_p99, "error budget: CIEDE2000 p99 (default 2)")
+    app.add_option("--max-dE-p99", r.budget.max_de_p99, "error budget: CIEDE2000 p99 (default 2)")
         ->check(finite_range(0, 100));
-    app.add_option("--max-abs", o->max_abs, "error budget: max abs linear RGB (default none)")
+    app.add_option("--max-abs", r.budget.max_abs, "error budget: max abs linear RGB (default none)")
         ->check(finite_range(0, 1e30));
-    app.add_option("--size", o->size, "image size of the error measurement (default 256)")
+    app.add_option("--size", r.size, "image size of the error measurement (default 256)")
         ->check(CLI::Range(16, 2048));
-    app.add_option("--cost-size", o->cost_size, "image size of the instruction count (default 64)")
+    app.add_option("--cost-size", r.cost_size, "image size of the instruction count (default 64)")
         ->check(CLI::Range(8, 512));
-    app.add_option("--out", o->out, "directory for <scene>.json material files (default out/pick)");
+    app.add_option("--out", r.out, "directory for <scene>.json material files (default out/pick)");
     app.add_flag("--counted", o->counted, "")->group("");   // the cost worker; hidden
     app.add_option("--key", o->keys, "")->group("");        // the worker's variants; hidden
     app.add_flag("--unfolded", o->unfolded, "")->group(""); // the worker draws them unpruned
     add_runner_options(app, o->runner);
     return [o, &common]() {
+        PickRequest& r = o->request;
         Material m;
         std::vector<SceneFacts> scenes;
-        if (!load_material_and_scenes(o->material, o->scenes, m, scenes, common)) return kUsage;
-        std::map<std::string, std::string> hold;
+        if (!load_material_and_scenes(r.material_path, o->scenes, m, scenes, common)) return kUsage;
         for (size_t a = 0; a < axes().size(); ++a)
             if (!o->holds[a].empty()) {
                 Variant probe = default_variant();
@@ -194,7 +127,7 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
                                  error->c_str());
                     return kUsage;
                 }
-                hold[axes()[a].name] = o->holds[a];
+                r.hold[axes()[a].name] = o->holds[a];
             }
         std::vector<ScenePlan> plans;
         for (const SceneFacts& s : scenes) {
@@ -204,7 +137,16 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
             if (!plan) return kUsage;
             plans.push_back(std::move(*plan));
         }
-        if (o->counted) return run_worker(*o, m, plans.empty() ? nullptr : &plans.front(), common);
+        if (o->counted) {
+            const MaterialCountJob job{r.material_path, o->scenes.empty() ? "" : o->scenes.front(),
+                                       !o->unfolded, r.cost_size, o->keys};
+            const CountWorkerRun run =
+                run_count_worker(job, m, plans.empty() ? nullptr : &plans.front());
+            print_diagnostics(run.diagnostics, common);
+            if (!run.error.empty())
+                std::fprintf(stderr, "watergen: error: %s\n", run.error.c_str());
+            return exit_code(run.status);
+        }
         if (plans.empty()) {
             std::fprintf(stderr, "watergen: error: pick needs a scene: --scene FILE\n");
             return kUsage;
@@ -212,62 +154,9 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
-        const PickBudget budget{o->max_de_p99, o->max_abs};
-        for (size_t s = 0; s < plans.size(); ++s) {
-            const ScenePlan& plan = plans[s];
-            std::printf("%s\n", plan.scene.name.c_str());
-            PickPlan pick = plan_pick(plan, hold);
-            // Every view the scene may show, conformed.
-            std::vector<std::pair<std::string, SyntheticScene>> views;
-            for (const SceneView& view : scene_views()) {
-                if (const std::string why = view_outside_scene(view, plan.scene); !why.empty()) {
-                    std::printf("  view %s left out: %s\n", view.name.c_str(), why.c_str());
-                    continue;
-                }
-                views.emplace_back(
-                    view.name,
-                    conform_scene(make_synthetic_scene(o->size, o->size, view), plan, m));
-            }
-            if (views.empty()) {
-                std::fprintf(stderr, "watergen: error: %s: the scene shows none of the views\n",
-                             plan.scene.name.c_str());
-                return kUsage;
-            }
-            std::string error = measure_pick_errors(*runner, m, plan, views, pick);
-            if (error.empty()) error = count_costs(*o, o->scenes[s], pick);
-            const int chosen = error.empty() ? cheapest_within(pick.candidates, budget) : -1;
-            if (chosen >= 0) { // what each axis saved: the pick with that axis at the gold's
-                add_axis_alternatives(pick, pick.candidates[size_t(chosen)].variant);
-                error = measure_pick_errors(*runner, m, plan, views, pick);
-                if (error.empty()) error = count_costs(*o, o->scenes[s], pick);
-            }
-            if (!error.empty()) {
-                std::fprintf(stderr, "watergen: error: %s: %s\n", plan.scene.name.c_str(),
-                             error.c_str());
-                return kFailed;
-            }
-            print_candidates(pick, budget);
-            if (chosen < 0) {
-                std::printf("  no reached variant within the budget\n");
-                const PickCandidate* gold = find_candidate(pick, pick.gold, "", "");
-                if (gold && !gold->reached && gold->within(budget))
-                    std::printf("  the gold is within it: offer its choices in the material\n");
-                continue;
-            }
-            print_pick(pick, pick.candidates[size_t(chosen)]);
-            const auto path = std::filesystem::path(o->out) / (plan.scene.name + ".json");
-            const std::string text =
-                picked_material(m, plan.scene.name, pick.candidates[size_t(chosen)].variant, budget)
-                    .dump(2) +
-                "\n";
-            std::error_code ec;
-            std::filesystem::create_directories(path.parent_path(), ec);
-            if (auto failure = write_file_atomically(path, text)) {
-                std::fprintf(stderr, "watergen: error: %s\n", failure->c_str());
-                return kFailed;
-            }
-            std::printf("  wrote %s\n", path.string().c_str());
-        }
+        for (size_t s = 0; s < plans.size(); ++s)
+            if (const int code = pick_and_print(*runner, m, plans[s], o->scenes[s], r); code != kOk)
+                return code;
         return kOk;
     };
 }

@@ -4,9 +4,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "watergen/eval/probe/probe.h"
-#include "watergen/eval/probe/probe_table.h"
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/eval/probe/probe_output.h"
 #include "watergen/water/node_catalog.h"
 
 namespace watergen::cli {
@@ -51,43 +49,28 @@ int run_probe_command(const ProbeOptions& o, const Common& common) {
     std::string error;
     const auto probe =
         prepare_probe(*find_catalog_node(o.node), o.in, o.params, o.allow_out_of_range, error);
-    if (!probe) {
-        std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
-        return kUsage;
-    }
-    const Graph& g = probe->graph;
+    if (!probe) return stop(error, RunStatus::BadInput);
     std::string cache;
     auto runner = create_runner(o.runner, &cache);
     if (!runner) return kNoDevice;
-    if (o.strict_half && !runner->device_info().shader_float16) {
-        std::fprintf(stderr, "watergen: error: %s has no shaderFloat16; --strict-half needs it\n",
-                     runner->device_info().name.c_str());
-        return kNoDevice;
-    }
-    const ProbeRun run =
-        run_probe(*runner, g, o.language == "hlsl" ? Language::Hlsl : Language::Glsl, probe->tuples,
-                  probe->params, probe_scene_textures(), EmitOptions{o.strict_half});
-    print_diagnostics(run.diagnostics, common);
-    if (!run.ok()) {
-        if (!run.error.empty()) std::fprintf(stderr, "watergen: error: %s\n", run.error.c_str());
-        return kFailed;
-    }
-    const std::string csv = probe_results_csv(run, probe->tuples);
-    if (auto e = write_file_atomically(o.out, csv)) {
-        std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-        return kFailed;
-    }
+    if (o.strict_half && !has_float16(*runner, "; --strict-half needs it")) return kNoDevice;
+    const ProbeOutput out =
+        write_probe(*runner, *probe, o.language == "hlsl" ? Language::Hlsl : Language::Glsl,
+                    o.strict_half, o.out);
+    if (out.status != RunStatus::Ok)
+        return stop(out.run.diagnostics, out.error, out.status, common);
+    print_diagnostics(out.run.diagnostics, common);
     std::printf("%s (%s path%s) on %s: %zu tuples, dispatch %.2f ms (pipeline %.2f ms, Mesa "
                 "shader cache %s)\n",
                 o.node.c_str(), o.language.c_str(), o.strict_half ? ", strict half" : "",
-                runner->device_info().name.c_str(), run.tuples, run.dispatch_ms, run.pipeline_ms,
-                cache.c_str());
-    for (const auto& t : g.textures()) {
+                runner->device_info().name.c_str(), out.run.tuples, out.run.dispatch_ms,
+                out.run.pipeline_ms, cache.c_str());
+    for (const auto& t : probe->graph.textures()) {
         const TextureData& data = probe_scene_textures().at(t.name);
         std::printf("  texture %s: %ux%u%s from the synthetic scene, linear, clamp to edge\n",
                     t.name.c_str(), data.width, data.height, data.layers == 6 ? " x 6 faces" : "");
     }
-    const ProbeSummary summary = summarize_probe(run);
+    const ProbeSummary& summary = out.summary;
     print_summary(summary);
     std::printf("  wrote %s\n", o.out.c_str());
     if (!summary.gpu_stable()) {

@@ -2,9 +2,7 @@
 #include <filesystem>
 
 #include "commands.h"
-#include "watergen/eval/draw/render_caustics.h"
-#include "watergen/eval/report/render_report.h"
-#include "watergen/water/presets.h"
+#include "watergen/eval/report/render_run.h"
 
 namespace watergen::cli {
 
@@ -98,138 +96,79 @@ int check_gpu_finite(const std::string& key, uint64_t broken, const char* where)
 }
 
 struct RenderOptions {
-    Variant variant = default_variant();
-    std::string preset, view = "beach";
-    uint32_t width = 256, height = 256, draws = 10;
-    double exposure = 1.0;
+    RenderRequest request;
+    std::string preset, out = "out/render";
     bool strict_half = false;
-    LoopUnroll unroll = LoopUnroll::AsHinted;
-    std::string out = "out/render";
     RunnerSetup runner;
 };
 
-// <out>/<variant>/, or <out>/<variant>_view-<view>/ for a view other than beach: renders of one
-// variant in several views sit side by side.
-std::filesystem::path output_directory(const RenderOptions& o) {
-    const std::string stem = o.variant.file_stem();
-    return std::filesystem::path(o.out) /
-           (o.view == beach_view().name ? stem : stem + "_view-" + o.view);
-}
-
-int run_strict_half(const RenderOptions& o, const Preset* preset, const Common& common) {
-    if (o.variant.choice("precision") != "half") {
+int run_strict_half(const RenderOptions& o, const Common& common) {
+    if (o.request.variant.choice("precision") != "half") {
         std::fprintf(stderr, "watergen: error: --strict-half renders a precision=half variant; "
                              "add --precision half\n");
         return kUsage;
     }
-    std::string cache;
-    auto runner = create_runner(o.runner, &cache);
+    RenderRequest request = o.request;
+    auto runner = create_runner(o.runner, &request.shader_cache);
     if (!runner) return kNoDevice;
-    if (!runner->device_info().shader_float16) {
-        std::fprintf(stderr, "watergen: error: %s has no shaderFloat16; strict half needs it\n",
-                     runner->device_info().name.c_str());
-        return kNoDevice;
-    }
-    const SyntheticScene scene = preset_scene(o.width, o.height, preset, o.view);
-    const HalfRender h =
-        render_strict_half(*runner, o.variant, preset, scene, {o.width, o.height, o.draws});
-    print_diagnostics(h.diagnostics, common);
-    if (!h.ok()) {
-        std::fprintf(stderr, "watergen: error: %s: %s\n", h.key.c_str(), h.error.c_str());
-        return kFailed;
-    }
-    const std::filesystem::path dir = output_directory(o);
-    const RenderReportInfo info{o.preset,   cache, runner->device_info(), o.width, o.height,
-                                o.exposure, o.view};
-    if (auto e = write_half_render_report(dir, h, info)) {
-        std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-        return kFailed;
-    }
-    print_half_render(h, info, dir);
-    return check_gpu_finite(h.key,
-                            std::max(h.vs_cpu_half[0].nan_inf_where_reference_finite,
-                                     h.vs_cpu_half[1].nan_inf_where_reference_finite),
+    if (!has_float16(*runner, "; strict half needs it")) return kNoDevice;
+    const HalfRenderRun run = run_strict_half_render(*runner, request);
+    print_diagnostics(run.half.diagnostics, common);
+    if (run.status != RunStatus::Ok) return stop({}, run.error, run.status, common);
+    print_half_render(run.half, run.info, run.dir);
+    return check_gpu_finite(run.half.key, run.gpu_only_non_finite,
                             "in 16-bit arithmetic on the GPU where the CPU half image is finite");
+}
+
+int run_render_command(const RenderOptions& o, const Common& common) {
+    RenderRequest request = o.request;
+    auto runner = create_runner(o.runner, &request.shader_cache);
+    if (!runner) return kNoDevice;
+    const RenderRun run = run_render(*runner, request);
+    if (run.status != RunStatus::Ok) return stop(run.diagnostics, run.error, run.status, common);
+    print_diagnostics(run.diagnostics, common);
+    print_render(run.render, run.info, request.draws, run.dir);
+    if (run.caustics) print_caustics(*run.caustics, request.draws, run.dir);
+    return check_gpu_finite(run.render.key, run.gpu_only_non_finite,
+                            "on the GPU where the CPU float image is finite");
 }
 
 } // namespace
 
 Runner add_render_command(CLI::App& app, const Common& common) {
     auto o = std::make_shared<RenderOptions>();
-    add_variant_options(app, o->variant, o->preset);
-    app.add_option("--width", o->width, "image width in pixels (default 256)")
+    RenderRequest& r = o->request;
+    add_variant_options(app, r.variant, o->preset);
+    app.add_option("--width", r.width, "image width in pixels (default 256)")
         ->check(CLI::Range(8, 4096));
-    app.add_option("--height", o->height, "image height in pixels (default 256)")
+    app.add_option("--height", r.height, "image height in pixels (default 256)")
         ->check(CLI::Range(8, 4096));
-    app.add_option("--draws", o->draws,
+    app.add_option("--draws", r.draws,
                    "timed draws after the first (JIT) draw; the median is reported (default 10)")
         ->check(CLI::Range(1, 1000));
-    app.add_option("--exposure", o->exposure,
+    app.add_option("--exposure", r.exposure,
                    "exposure applied before the sRGB PNG encoding (default 1)")
         ->check(finite_range(1e-6, 1e6));
     app.add_flag("--strict-half", o->strict_half,
                  "render a precision=half variant in 16-bit arithmetic (GLSL float16_t, HLSL "
                  "half) and compare it with the CPU half evaluator and with the variant at "
                  "precision=full");
-    add_unroll_option(app, o->unroll);
-    add_view_option(app, o->view);
+    add_unroll_option(app, r.unroll);
+    add_view_option(app, r.view);
     app.add_option(
         "--out", o->out,
         "output directory; files go to <out>/<variant>/, or <out>/<variant>_view-<view>/ "
         "for a view other than beach (default out/render)");
     add_runner_options(app, o->runner);
     return [o, &common]() {
-        const Preset* preset = nullptr;
-        if (!resolve_variant(o->variant, o->preset, &preset)) return kUsage;
-        if (o->strict_half && o->unroll != LoopUnroll::AsHinted) {
+        if (!resolve_variant(o->request.variant, o->preset, &o->request.preset)) return kUsage;
+        o->request.out = o->out;
+        if (o->strict_half && o->request.unroll != LoopUnroll::AsHinted) {
             std::fprintf(stderr, "watergen: error: --strict-half renders with each loop's own "
                                  "unroll hint; leave out --unroll\n");
             return kUsage;
         }
-        if (o->strict_half) return run_strict_half(*o, preset, common);
-        const VariantBuild build =
-            build_variant(o->variant, preset, EmitOptions{false, {}, o->unroll});
-        print_diagnostics(build.diagnostics, common);
-        if (!build.ok()) return kFailed;
-        std::string cache;
-        auto runner = create_runner(o->runner, &cache);
-        if (!runner) return kNoDevice;
-        SyntheticScene scene = preset_scene(o->width, o->height, preset, o->view);
-        RenderCaustics caustics;
-        RenderExtras extras;
-        if (has_caustics(o->variant)) {
-            caustics = prepare_render_caustics(*runner, o->variant, build, scene, o->draws);
-            print_diagnostics(caustics.pass ? caustics.pass->diagnostics : Diagnostics{}, common);
-            std::string error = caustics.error;
-            const auto files = caustics.ok()
-                                   ? render_caustics_files(caustics, float(o->exposure), &error)
-                                   : std::nullopt;
-            if (!files) {
-                std::fprintf(stderr, "watergen: error: %s: %s\n", o->variant.key().c_str(),
-                             error.c_str());
-                return kFailed;
-            }
-            extras.files = *files;
-            extras.json["caustics"] = render_caustics_json(caustics);
-        }
-        const VariantRender r =
-            render_variant(*runner, build, scene, {o->width, o->height, o->draws, true});
-        if (!r.ok()) {
-            std::fprintf(stderr, "watergen: error: %s: %s\n", r.key.c_str(), r.error.c_str());
-            return kFailed;
-        }
-        const std::filesystem::path dir = output_directory(*o);
-        const DeviceInfo& dev = runner->device_info();
-        const RenderReportInfo info{o->preset, cache,       dev,    o->width,
-                                    o->height, o->exposure, o->view};
-        if (auto e = write_render_report(dir, r, info, extras)) {
-            std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
-            return kFailed;
-        }
-        print_render(r, info, o->draws, dir);
-        if (has_caustics(o->variant)) print_caustics(caustics, o->draws, dir);
-        return check_gpu_finite(r.key, gpu_only_non_finite_pixels(r),
-                                "on the GPU where the CPU float image is finite");
+        return o->strict_half ? run_strict_half(*o, common) : run_render_command(*o, common);
     };
 }
 

@@ -1,5 +1,4 @@
-#include <cstdlib>
-#include <filesystem>
+#include <cstdio>
 
 #include "commands.h"
 
@@ -15,27 +14,17 @@ void add_runner_options(CLI::App& app, RunnerSetup& setup) {
 }
 
 std::unique_ptr<VulkanRunner> create_runner(const RunnerSetup& setup, std::string* cache_used) {
-    // Mesa reads these when the device is created, so they are set before.
-    if (setup.shader_cache == "off") {
-        ::setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
-        *cache_used = "disabled";
-    } else {
-        std::filesystem::create_directories(setup.shader_cache);
-        ::setenv("MESA_SHADER_CACHE_DIR", setup.shader_cache.c_str(), 1);
-        ::unsetenv("MESA_SHADER_CACHE_DISABLE");
-        *cache_used = setup.shader_cache;
-    }
     std::string error;
-    DeviceOptions options;
-    options.device = setup.device;
-    options.validation = false; // commands measure; the tests run with validation on
-    auto runner = VulkanRunner::create(options, &error);
-    if (!runner)
-        std::fprintf(
-            stderr,
-            "watergen: error: no Vulkan device: %s (install mesa-vulkan-drivers for lavapipe)\n",
-            error.c_str());
+    auto runner = open_draw_device(setup, cache_used, &error);
+    if (!runner) std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
     return runner;
+}
+
+bool has_float16(const VulkanRunner& runner, const char* why) {
+    if (runner.device_info().shader_float16) return true;
+    std::fprintf(stderr, "watergen: error: %s has no shaderFloat16%s\n",
+                 runner.device_info().name.c_str(), why);
+    return false;
 }
 
 } // namespace watergen::cli

@@ -1,5 +1,7 @@
 #include "watergen/ir/text.h"
 
+#include <sstream>
+
 #include <fmt/format.h>
 
 namespace watergen {
@@ -9,6 +11,14 @@ std::string join(const std::vector<std::string>& names, const std::string& separ
     for (size_t i = 0; i < names.size(); ++i)
         s += (i == 0 ? "" : separator) + names[i];
     return s;
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, separator);)
+        out.push_back(item);
+    return out;
 }
 
 std::string spell_number(double value) {

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "watergen/pipeline/build_output.h"
 #include "watergen/toolchain/glslang_stage.h"
@@ -136,6 +137,18 @@ BuildBenchResult bench_build(const BuildBenchRequest& request) {
     measure_sample(full, n, request.sample, all, work, out.rows);
     measure_example(request, all, work, out);
     fs::remove_all(work);
+    out.csv = "what,variants,seconds,variants_per_second,note\n";
+    nlohmann::ordered_json json = nlohmann::ordered_json::array();
+    for (const auto& r : out.rows) {
+        out.csv += fmt::format("\"{}\",{},{:.4f},{:.1f},\"{}\"\n", r.what, r.variants, r.seconds,
+                               r.rate(), r.note);
+        json.push_back({{"what", r.what},
+                        {"variants", r.variants},
+                        {"seconds", r.seconds},
+                        {"variants_per_second", r.rate()},
+                        {"note", r.note}});
+    }
+    out.json = json.dump(2) + "\n";
     return out;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fcntl.h>
 
+#include "watergen/ir/ir_fold.h"
 #include "watergen/pipeline/build_record.h"
 #include "watergen/pipeline/caustics_pass_build.h"
 #include "watergen/pipeline/output_target.h"
@@ -35,6 +36,13 @@ void add_jobs(BuildPlan& plan, const std::string& scene, const std::vector<Varia
 }
 
 } // namespace
+
+VariantBuild build_for_scene(const Material& material, const ScenePlan& plan, const Variant& v) {
+    WaterShader shader = material.compose(v);
+    FoldResult folded = fold_graph(shader.fragment, plan.facts);
+    shader.fragment = std::move(folded.graph);
+    return build_shader(std::move(shader));
+}
 
 std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes,
                                     Diagnostics& ds, BuildMode mode) {

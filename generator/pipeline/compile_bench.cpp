@@ -4,6 +4,9 @@
 #include <chrono>
 #include <filesystem>
 
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
 #include "watergen/ir/emitter.h"
 #include "watergen/plan/covering_array.h"
 #include "watergen/toolchain/tool_process_chain.h"
@@ -98,6 +101,19 @@ CompileBench run_compile_bench(int repeat) {
     bench.median_in_process_ms = median(in_process);
     bench.median_processes_ms = median(processes);
     bench.median_ratio = median(ratios);
+    bench.csv = "variant,in_process_ms,processes_ms,ratio\n";
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    for (const auto& r : bench.rows) {
+        bench.csv += fmt::format("\"{}\",{:.3f},{:.3f},{:.2f}\n", r.key, r.in_process_ms,
+                                 r.processes_ms, r.ratio());
+        rows.push_back({{"variant", r.key},
+                        {"in_process_ms", r.in_process_ms},
+                        {"processes_ms", r.processes_ms},
+                        {"ratio", r.ratio()}});
+    }
+    const nlohmann::ordered_json doc = {
+        {"repeat", repeat}, {"median_ratio", bench.median_ratio}, {"variants", rows}};
+    bench.json = doc.dump(2) + "\n";
     return bench;
 }
 

@@ -115,4 +115,10 @@ Graph Material::with_settings(const Graph& g) const {
     return with_parameters(g, params);
 }
 
+Material preset_material(const Preset* preset) {
+    Material m;
+    if (preset) m.preset = preset->name;
+    return m;
+}
+
 } // namespace watergen

@@ -113,4 +113,22 @@ std::optional<SceneFacts> load_scene(const std::filesystem::path& path, Diagnost
     return src ? parse_scene(*src, ds) : std::nullopt;
 }
 
+bool load_material_and_scenes(const std::string& material_path,
+                              const std::vector<std::string>& scene_paths, Material& material,
+                              std::vector<SceneFacts>& scenes, Diagnostics& ds) {
+    if (material_path.empty()) {
+        material = default_material();
+    } else if (auto m = load_material(material_path, ds)) {
+        material = std::move(*m);
+    } else {
+        return false;
+    }
+    for (const auto& path : scene_paths) {
+        auto s = load_scene(path, ds);
+        if (!s) return false;
+        scenes.push_back(std::move(*s));
+    }
+    return true;
+}
+
 } // namespace watergen

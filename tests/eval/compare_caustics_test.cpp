@@ -48,7 +48,8 @@ TEST_CASE("compare_reports_the_caustics_pass_its_variants_read", "[render][caust
     // Drawn directly for the same view: the same texture and error figures (lavapipe is
     // deterministic), and the variant's image is its render over that texture.
     const SceneCausticsPass direct = draw_scene_caustics_pass(
-        shared_runner(), build_caustics(CausticsMethod::AreaRatio, "gerstner"),
+        shared_runner(),
+        build_caustics_pass_files(Material{}, {CausticsMethod::AreaRatio, "gerstner"}),
         request.views[0].second, 64, 0);
     REQUIRE(direct.ok());
     CHECK(c.first.intensity == direct.intensity);

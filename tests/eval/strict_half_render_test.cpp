@@ -9,7 +9,7 @@
 #include <cstdio>
 
 #include "shared_runner.h"
-#include "watergen/eval/draw/half_render.h"
+#include "watergen/eval/bench/half_bench.h"
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/plan/covering_array.h"
@@ -21,6 +21,10 @@ TEST_CASE("strict_half_covering_variants_at_256_agree_with_the_cpu_half_model", 
     INFO(bench.error);
     REQUIRE(bench.ok());
     REQUIRE(bench.rows.size() >= 8);
+    // half.csv: the header and a line per variant; half.json: a row per variant.
+    CHECK(size_t(std::count(bench.csv.begin(), bench.csv.end(), '\n')) == bench.rows.size() + 1);
+    CHECK(bench.csv.rfind("variant,glsl_equal_pct,", 0) == 0);
+    CHECK(nlohmann::json::parse(bench.json).at("rows").size() == bench.rows.size());
     for (const HalfBenchRow& r : bench.rows) {
         INFO(r.key);
         for (int i = 0; i < 2; ++i) {

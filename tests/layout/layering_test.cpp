@@ -163,7 +163,7 @@ TEST_CASE("include_rules_catch_an_upward_include", "[layout]") {
     };
     CHECK_FALSE(allowed("generator/ir", "water/water_shader.h"));
     CHECK_FALSE(allowed("generator/pipeline", "eval/draw/variant_render.h"));
-    CHECK_FALSE(allowed("generator/eval/scene", "eval/draw/caustics_render.h"));
+    CHECK_FALSE(allowed("generator/eval/scene", "eval/draw/caustics_pass_draw.h"));
     CHECK_FALSE(allowed("runtime/src", "ir/ir.h"));
     CHECK_FALSE(allowed("runtime/src", "headless/headless_device.h"));
     CHECK_FALSE(allowed("runtime/headless", "runner/vulkan_runner.h"));

@@ -232,3 +232,26 @@ TEST_CASE("a scene named passes is refused: it would share the passes' directory
     REQUIRE(ds.size() == 1);
     CHECK_THAT(ds[0].message, Catch::Contains("scene name 'passes' is reserved"));
 }
+
+TEST_CASE("render and compare draw the pass a build of the default material ships",
+          "[build][caustics]") {
+    // The passes are one builder's: for variants named by their choices the pass of a material
+    // of the preset alone (no preset here), for the built-in material its own. Its preset sets
+    // no parameter the pass reads otherwise than the nodes' defaults do (tropical_ocean's sun is
+    // the default sun), so every file is the same bytes: sources, SPIR-V, the cross-compiled
+    // texts, the reflection and pass.json.
+    for (CausticsMethod method : {CausticsMethod::AreaRatio, CausticsMethod::PhotonSplat}) {
+        INFO(to_string(method));
+        const CausticsPassBuild shipped =
+            build_caustics_pass_files(default_material(), {method, "gerstner"});
+        const CausticsPassBuild drawn =
+            build_caustics_pass_files(preset_material(nullptr), {method, "gerstner"});
+        REQUIRE(shipped.ok());
+        REQUIRE(drawn.ok());
+        CHECK(shipped.files.size() == 29); // two languages' two stages, seven files each; pass.json
+        CHECK(drawn.files == shipped.files);
+        // The drawn pass carries the SPIR-V it is drawn with (built, not copied from a cache).
+        CHECK_FALSE(drawn.cached);
+        CHECK(drawn.languages[0].vertex.toolchain.spirv_optimized.size() > 0);
+    }
+}

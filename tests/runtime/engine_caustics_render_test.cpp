@@ -66,7 +66,7 @@ TEST_CASE("a caustics variant drawn through the library with its library-drawn p
     REQUIRE(pass);
 
     // The scene's values at the depth of its caustics map; the pass starts at its defaults.
-    SyntheticScene scene = preset_scene(find_preset("tropical_ocean"), kSize);
+    SyntheticScene scene = preset_scene(kSize, kSize, find_preset("tropical_ocean"));
     scene.uniforms["caustics_depth"] = {kSceneCausticsDepth};
     std::map<std::string, std::vector<double>> values;
     for (const BlockParameter& p : pass->shader.parameters)

@@ -115,14 +115,6 @@ EnginePass engine_pass(const ShaderBuild& b, const BuildPass& pass, const std::s
     return out;
 }
 
-SyntheticScene preset_scene(const Preset* preset, uint32_t size) {
-    REQUIRE(preset);
-    SyntheticScene scene = make_synthetic_scene(size, size);
-    for (const auto& [name, values] : preset->values)
-        scene.uniforms[name] = values;
-    return scene;
-}
-
 double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b) {
     return max_abs_difference(std::vector<double>(a.begin(), a.end()),
                               std::vector<double>(b.begin(), b.end()));

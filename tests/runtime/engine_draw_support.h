@@ -42,9 +42,6 @@ EnginePass engine_pass(const ShaderBuild& b, const BuildPass& pass, const std::s
                        const std::map<std::string, std::vector<double>>& values,
                        uint32_t timed = 0);
 
-// `watergen render --preset <preset>`'s scene (flag_checks.cpp preset_scene), size x size.
-SyntheticScene preset_scene(const Preset* preset, uint32_t size);
-
 // Largest |a - b| over equal-sized arrays (REQUIREs finite values and equal sizes).
 double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b);
 double max_abs_difference(const std::vector<double>& a, const std::vector<double>& b);

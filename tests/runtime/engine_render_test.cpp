@@ -51,7 +51,7 @@ TEST_CASE("a variant drawn through the runtime library matches watergen render e
         REQUIRE_FALSE(set_choice(variant, axis, choice));
     const VariantBuild reference = build_variant(variant, preset);
     REQUIRE(reference.ok());
-    const SyntheticScene scene = preset_scene(preset, kSize);
+    const SyntheticScene scene = preset_scene(kSize, kSize, preset);
 
     for (size_t i = 0; i < 2; ++i) {
         const LanguageBuild& lang = reference.languages[i];
@@ -91,7 +91,7 @@ TEST_CASE("the pipeline cache file is written by one run and accepted by the nex
     REQUIRE(s.ok());
     test::TempDir dir("engine-cache");
     const auto file = dir.path / "pipelines.bin";
-    const SyntheticScene scene = preset_scene(find_preset("tropical_ocean"), kSize);
+    const SyntheticScene scene = preset_scene(kSize, kSize, find_preset("tropical_ocean"));
     std::string error;
 
     auto first = load_pipeline_cache(engine_gpu().physical(), engine_gpu().device(), file, &error);

@@ -1,7 +1,12 @@
 #include "watergen/eval/bench/accuracy_bench.h"
 
 #include <algorithm>
+#include <set>
 
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "watergen/eval/measure/draw_cost.h"
 #include "watergen/plan/variant_space.h"
 
 namespace watergen {
@@ -103,6 +108,88 @@ AccuracyBench run_accuracy_bench(VulkanRunner& runner,
             if (c.gold) gold = &c;
         if (gold && !measure_axis(runner, axis, *gold, views, rounds, draws, bench)) break;
     }
+    return bench;
+}
+
+double AccuracyBench::gold_cost(const std::string& axis) const {
+    for (const AccuracyRow& r : rows)
+        if (r.axis == axis && r.gold) return r.cost_per_pixel;
+    return 0;
+}
+
+namespace {
+
+// Instructions per pixel of every row's variant, from one valgrind worker; "" or the failure.
+std::string add_costs(uint32_t cost_size, AccuracyBench& bench) {
+    std::vector<Variant> variants;
+    std::set<std::string> keys;
+    for (const AccuracyRow& r : bench.rows)
+        if (!r.skipped() && keys.insert(r.variant.key()).second) variants.push_back(r.variant);
+    std::string error;
+    const auto counts = count_draw_costs(variants, cost_size, "", "beach", &error, true);
+    if (!counts) return "instruction count: " + error;
+    for (AccuracyRow& r : bench.rows)
+        if (auto it = counts->find(r.variant.key()); it != counts->end())
+            r.cost_per_pixel = double(it->second) / (double(cost_size) * cost_size);
+    return "";
+}
+
+std::string csv_row(const AccuracyRow& r) {
+    const bool error = r.gold || r.approximation();
+    return fmt::format("{},{},{},\"{}\",{:.2f},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{},\"{}\"\n",
+                       r.axis, r.choice, r.gold, r.relation, r.cost_per_pixel, r.time.ratio,
+                       r.time.lo, r.time.hi, r.spirv_instructions,
+                       error ? fmt::format("{:.6g}", r.worst.max_abs) : "",
+                       error ? fmt::format("{:.6g}", r.worst.rmse) : "",
+                       error ? fmt::format("{:.4f}", r.worst.ciede2000_mean) : "",
+                       error ? fmt::format("{:.4f}", r.worst.ciede2000_p99) : "",
+                       error ? r.worst_view : "", r.note);
+}
+
+nlohmann::ordered_json json_row(const AccuracyRow& r) {
+    nlohmann::ordered_json row = {{"axis", r.axis},
+                                  {"choice", r.choice},
+                                  {"gold", r.gold},
+                                  {"relation", r.relation},
+                                  {"cost_per_pixel", r.cost_per_pixel},
+                                  {"time_ratio", {r.time.ratio, r.time.lo, r.time.hi}},
+                                  {"spirv_instructions", r.spirv_instructions},
+                                  {"note", r.note}};
+    if (r.gold || r.approximation())
+        row["error"] = {{"max_abs", r.worst.max_abs},
+                        {"rmse", r.worst.rmse},
+                        {"ciede2000_mean", r.worst.ciede2000_mean},
+                        {"ciede2000_p99", r.worst.ciede2000_p99},
+                        {"worst_view", r.worst_view}};
+    return row;
+}
+
+} // namespace
+
+AccuracyBench bench_accuracy(VulkanRunner& runner, const AccuracyBenchRequest& request) {
+    std::vector<std::pair<std::string, SyntheticScene>> views;
+    for (const SceneView& v : scene_views())
+        views.emplace_back(v.name, make_synthetic_scene(request.size, request.size, v));
+    AccuracyBench bench = run_accuracy_bench(runner, views, request.rounds, request.draws);
+    bench.reference = accuracy_reference_variant();
+    if (!bench.ok()) return bench;
+    if (request.cost) bench.error = add_costs(request.cost_size, bench);
+    if (!bench.ok()) return bench;
+    bench.csv = "axis,choice,gold,relation,cost_per_pixel,time_ratio,time_lo,time_hi,"
+                "spirv_instructions,max_abs,rmse,ciede2000_mean,ciede2000_p99,worst_view,note\n";
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    for (const AccuracyRow& r : bench.rows) {
+        bench.csv += csv_row(r);
+        rows.push_back(json_row(r));
+    }
+    const nlohmann::ordered_json doc = {{"reference", bench.reference.key()},
+                                        {"size", request.size},
+                                        {"views", bench.views},
+                                        {"rounds", request.rounds},
+                                        {"draws", request.draws},
+                                        {"device", runner.device_info().name},
+                                        {"rows", rows}};
+    bench.json = doc.dump(2) + "\n";
     return bench;
 }
 

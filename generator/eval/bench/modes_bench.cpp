@@ -4,6 +4,9 @@
 #include <array>
 #include <chrono>
 
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
 #include "watergen/eval/draw/variant_render.h"
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
@@ -162,6 +165,40 @@ void measure_modes(VulkanRunner& runner, const std::vector<Variant>& sample,
     }
 }
 
+// modes.csv (a line per mode and rendered variant) and modes.json.
+void add_tables(ModesBenchResult& r) {
+    r.csv = "mode,variant,shaders,generate_compile_ms,spirv_bytes,spirv_bytes_per_draw,"
+            "pipeline_ms,first_draw_ms,steady_ms,max_abs\n";
+    nlohmann::ordered_json json = nlohmann::ordered_json::array();
+    const double n = static_cast<double>(r.material_variants);
+    for (const ModeRow& row : r.rows) {
+        nlohmann::ordered_json variants = nlohmann::ordered_json::array();
+        for (const ModeVariantTimes& v : row.variants) {
+            r.csv += fmt::format("{},\"{}\",{},{:.3f},{:.0f},{:.0f},{:.3f},{:.3f},{:.4f},{:.3g}\n",
+                                 row.mode, v.key, row.shaders, row.generate_compile_ms,
+                                 row.spirv_bytes, row.spirv_bytes_per_draw, v.pipeline_ms,
+                                 v.first_draw_ms, v.steady_ms, v.max_abs);
+            variants.push_back({{"variant", v.key},
+                                {"pipeline_ms", v.pipeline_ms},
+                                {"first_draw_ms", v.first_draw_ms},
+                                {"steady_ms", v.steady_ms},
+                                {"max_abs", v.max_abs}});
+        }
+        json.push_back({{"mode", row.mode},
+                        {"shaders", row.shaders},
+                        {"generate_compile_ms", row.generate_compile_ms},
+                        {"generate_compile_ms_per_variant", row.generate_compile_ms / n},
+                        {"spirv_bytes", row.spirv_bytes},
+                        {"spirv_bytes_per_draw", row.spirv_bytes_per_draw},
+                        {"pipeline_ms", row.pipeline_ms},
+                        {"first_draw_ms", row.first_draw_ms},
+                        {"steady_ms", row.steady_ms},
+                        {"max_abs", row.max_abs},
+                        {"variants", variants}});
+    }
+    r.json = json.dump(2) + "\n";
+}
+
 } // namespace
 
 ModesBenchResult bench_modes(VulkanRunner& runner, const Material& m,
@@ -217,7 +254,14 @@ ModesBenchResult bench_modes(VulkanRunner& runner, const Material& m,
             {draw_of(perm, v), draw_of(perm, v), draw_of(spec, v), f, draw_of(branch, v)});
     }
     measure_modes(runner, sample, draws, options, out);
+    if (out.ok()) add_tables(out);
     return out;
+}
+
+const ModeRow* ModesBenchResult::beyond(double tolerance) const {
+    for (const ModeRow& row : rows)
+        if (row.max_abs > tolerance) return &row;
+    return nullptr;
 }
 
 } // namespace watergen

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "watergen/eval/measure/draw_cost.h"
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/emitter.h"
 #include "watergen/ir/ir_fold.h"
@@ -172,8 +173,50 @@ void summarise_prune_scene(PruneBenchScene& s) {
     s.cost = cost.size() == s.rows.size() && !cost.empty() ? median(cost) : 0;
 }
 
-PruneBenchResult bench_prune(VulkanRunner& runner, const Material& m,
-                             const std::vector<ScenePlan>& plans, const PruneBenchOptions& o) {
+namespace {
+
+double ratio(double pruned, double unpruned) {
+    return unpruned > 0 ? pruned / unpruned : 0;
+}
+
+// Instructions per pixel of both shaders of every row, scene by scene. The first scene's first
+// unpruned shader is counted twice: the count's A/A. "" or the failure.
+std::string add_costs(const PruneBenchOptions& o, PruneBenchResult& result) {
+    const double pixels = double(o.cost_size) * o.cost_size;
+    for (size_t s = 0; s < result.scenes.size(); ++s) {
+        PruneBenchScene& scene = result.scenes[s];
+        std::vector<Variant> variants;
+        for (const PruneBenchRow& row : scene.rows)
+            variants.push_back(row.variant);
+        if (variants.empty()) continue;
+        std::vector<Variant> unpruned = variants;
+        if (s == 0) unpruned.push_back(variants.front());
+        const std::string& file = o.scene_files.at(scene.name);
+        std::string error;
+        const auto pruned_counts =
+            count_material_costs(o.material_path, file, variants, o.cost_size, &error, true);
+        const auto unpruned_counts =
+            pruned_counts
+                ? count_material_costs(o.material_path, file, unpruned, o.cost_size, &error, false)
+                : std::nullopt;
+        if (!unpruned_counts) return scene.name + ": instruction count: " + error;
+        for (PruneBenchRow& row : scene.rows) {
+            const std::string key = row.variant.key();
+            row.cost_pruned = double(pruned_counts->at(key)) / pixels;
+            row.cost_unpruned = double(unpruned_counts->at(key)) / pixels;
+        }
+        if (s == 0) {
+            const std::string key = variants.front().key();
+            result.cost_aa =
+                ratio(double(unpruned_counts->at(key + "#2")), double(unpruned_counts->at(key)));
+        }
+        summarise_prune_scene(scene);
+    }
+    return "";
+}
+
+PruneBenchResult measure_scenes(VulkanRunner& runner, const Material& m,
+                                const std::vector<ScenePlan>& plans, const PruneBenchOptions& o) {
     PruneBenchResult out;
     const SyntheticScene base = make_synthetic_scene(o.size, o.size);
     for (const ScenePlan& sp : plans) {
@@ -193,6 +236,16 @@ PruneBenchResult bench_prune(VulkanRunner& runner, const Material& m,
         summarise_prune_scene(s);
         s.complete = true;
     }
+    return out;
+}
+
+} // namespace
+
+PruneBenchResult bench_prune(VulkanRunner& runner, const Material& m,
+                             const std::vector<ScenePlan>& plans, const PruneBenchOptions& o) {
+    PruneBenchResult out = measure_scenes(runner, m, plans, o);
+    if (out.ok() && o.cost) out.cost_error = add_costs(o, out);
+    if (out.cost_error.empty()) add_prune_tables(o, runner.device_info().name, out);
     return out;
 }
 

@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <array>
 
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
 #include "watergen/eval/draw/variant_render.h"
 #include "watergen/eval/scene/synthetic_scene.h"
+#include "watergen/pipeline/compile_bench.h"
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/water/axis_registry.h"
 
@@ -37,6 +41,41 @@ std::vector<double> ratios(const std::vector<double>& a, const std::vector<doubl
     for (size_t i = 0; i < a.size() && i < b.size(); ++i)
         out.push_back(b[i] > 0 ? a[i] / b[i] : 0.0);
     return out;
+}
+
+nlohmann::ordered_json side_json(const UnrollSide& s) {
+    return {{"glsl_lines", s.glsl_lines},         {"spirv_words", s.spirv_words},
+            {"instructions", s.instructions},     {"first_draw_ms", s.first_draw_ms},
+            {"steady_draw_ms", s.steady_draw_ms}, {"pipeline_ms", s.pipeline_ms}};
+}
+
+// unroll.csv (a line per waves choice and hint, medians) and unroll.json (every sample).
+void add_tables(UnrollBench& b, uint32_t draws, const std::string& device) {
+    b.csv = "waves,hint,glsl_lines,spirv_words,instructions,first_draw_ms_median,"
+            "steady_draw_ms_median,first_draw_ratio_median,steady_ratio_median\n";
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    for (const auto& r : b.rows) {
+        for (const auto& [hint, side] :
+             {std::pair{"kept", &r.kept}, std::pair{"unrolled", &r.unrolled}})
+            b.csv += fmt::format("{},{},{},{},{},{:.3f},{:.4f},{:.4f},{:.4f}\n", r.waves, hint,
+                                 side->glsl_lines, side->spirv_words, side->instructions,
+                                 median(side->first_draw_ms), median(side->steady_draw_ms),
+                                 median(r.first_draw_ratio), median(r.steady_ratio));
+        rows.push_back({{"waves", r.waves},
+                        {"kept", side_json(r.kept)},
+                        {"unrolled", side_json(r.unrolled)},
+                        {"kept_again", side_json(r.kept_again)},
+                        {"first_draw_ratio", r.first_draw_ratio},
+                        {"first_draw_aa", r.first_draw_aa},
+                        {"steady_ratio", r.steady_ratio},
+                        {"steady_aa", r.steady_aa}});
+    }
+    const nlohmann::ordered_json j = {{"size", b.size},
+                                      {"rounds", b.rounds},
+                                      {"draws", draws},
+                                      {"device", device},
+                                      {"rows", rows}};
+    b.json = j.dump(2) + "\n";
 }
 
 } // namespace
@@ -82,6 +121,7 @@ UnrollBench run_unroll_bench(VulkanRunner& runner, uint32_t size, uint32_t round
         row.steady_aa = ratios(row.kept_again.steady_draw_ms, row.kept.steady_draw_ms);
         bench.rows.push_back(std::move(row));
     }
+    add_tables(bench, draws, runner.device_info().name);
     return bench;
 }
 

@@ -7,14 +7,15 @@
 namespace watergen {
 
 struct CompareCaustics::Pass {
-    CausticsBuild build;
+    CausticsPassBuild build;
     uint32_t texels = 0;
     std::map<size_t, SceneCausticsPass> views; // drawn so far, by view
 };
 
 CompareCaustics::CompareCaustics(VulkanRunner& runner,
-                                 const std::vector<std::pair<std::string, SyntheticScene>>& views)
-    : runner_(runner), views_(views) {}
+                                 const std::vector<std::pair<std::string, SyntheticScene>>& views,
+                                 Material material)
+    : runner_(runner), views_(views), material_(std::move(material)) {}
 
 CompareCaustics::~CompareCaustics() = default;
 
@@ -31,7 +32,8 @@ std::map<std::string, TextureData> CompareCaustics::textures_for(const VariantBu
                p->texels == texels;
     });
     if (it == passes_.end()) {
-        passes_.push_back(std::make_unique<Pass>(Pass{build_caustics(*method, waves), texels, {}}));
+        passes_.push_back(std::make_unique<Pass>(
+            Pass{build_caustics_pass_files(material_, {*method, waves}), texels, {}}));
         it = std::prev(passes_.end());
     }
     Pass& pass = **it;

@@ -81,13 +81,6 @@ PickPlan plan_pick(const ScenePlan& plan, const std::map<std::string, std::strin
     return out;
 }
 
-VariantBuild build_for_scene(const Material& material, const ScenePlan& plan, const Variant& v) {
-    WaterShader shader = material.compose(v);
-    FoldResult folded = fold_graph(shader.fragment, plan.facts);
-    shader.fragment = std::move(folded.graph);
-    return build_shader(std::move(shader));
-}
-
 std::string measure_pick_errors(VulkanRunner& runner, const Material& material,
                                 const ScenePlan& plan,
                                 const std::vector<std::pair<std::string, SyntheticScene>>& views,

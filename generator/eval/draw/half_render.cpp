@@ -2,7 +2,6 @@
 
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/pipeline/variant_build.h"
-#include "watergen/plan/covering_array.h"
 
 namespace watergen {
 
@@ -64,27 +63,6 @@ HalfRender render_strict_half(VulkanRunner& runner, const Variant& variant, cons
     }
     out.cpu_half_vs_full = compare_images(out.cpu_half, reference);
     return out;
-}
-
-HalfBench run_half_bench(VulkanRunner& runner, uint32_t size, uint32_t draws) {
-    HalfBench bench;
-    bench.size = size;
-    const SyntheticScene scene = make_synthetic_scene(size, size);
-    for (const Variant& v : pairwise_covering_variants()) {
-        if (v.choice("precision") != "half") continue;
-        const HalfRender h = render_strict_half(runner, v, nullptr, scene, {size, size, draws});
-        if (!h.ok()) {
-            bench.diagnostics = h.diagnostics;
-            bench.error = h.key + ": " + h.error;
-            break;
-        }
-        bench.rows.push_back({h.key,
-                              h.ulps_vs_cpu_half,
-                              {h.vs_cpu_half[0].max_abs, h.vs_cpu_half[1].max_abs},
-                              h.vs_full,
-                              h.cpu_half_vs_full});
-    }
-    return bench;
 }
 
 } // namespace watergen

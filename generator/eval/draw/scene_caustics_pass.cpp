@@ -18,7 +18,7 @@ uint32_t scene_caustics_texels(const VariantBuild& water, const SyntheticScene& 
     return uint32_t(std::clamp(std::lround(texels[0]), 4l, 4096l));
 }
 
-std::map<std::string, std::vector<double>> scene_caustics_values(const CausticsBuild& build,
+std::map<std::string, std::vector<double>> scene_caustics_values(const CausticsPassBuild& build,
                                                                  const SyntheticScene& scene) {
     auto values = caustics_values(build, scene.uniforms);
     values["caustics_depth"] = {kSceneCausticsDepth};
@@ -35,7 +35,7 @@ CausticsRenderSettings scene_caustics_settings(CausticsMethod method, uint32_t t
     return settings;
 }
 
-SceneCausticsPass draw_scene_caustics_pass(VulkanRunner& runner, const CausticsBuild& build,
+SceneCausticsPass draw_scene_caustics_pass(VulkanRunner& runner, const CausticsPassBuild& build,
                                            const SyntheticScene& scene, uint32_t texels,
                                            uint32_t timed_draws) {
     SceneCausticsPass out;

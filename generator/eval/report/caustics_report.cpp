@@ -4,7 +4,7 @@
 
 #include <fmt/core.h>
 
-#include "watergen/eval/draw/caustics_render.h"
+#include "watergen/eval/draw/caustics_pass_draw.h"
 #include "watergen/eval/report/report_html.h"
 
 namespace watergen {

@@ -19,6 +19,10 @@ std::string join(const Items& items, Name name, const std::string& separator = "
     return join(names, separator);
 }
 
+// The items of "a,b,c" between separators, as std::getline reads them: "" gives none, "a,"
+// gives "a", "a,,b" an empty item between.
+std::vector<std::string> split(const std::string& text, char separator);
+
 // The shortest text that reads back as the same double ("4.0000001", "1000", "1e+20"):
 // messages such as "min 4.0000001 is above max 4" never round two different numbers alike.
 std::string spell_number(double value);

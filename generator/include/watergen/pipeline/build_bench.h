@@ -25,6 +25,7 @@ struct BuildBenchRow {
     size_t variants = 0;
     double seconds = 0;
     std::string note;
+    double rate() const { return seconds > 0 ? variants / seconds : 0.0; } // variants per second
 };
 
 struct BuildBenchRequest {
@@ -38,6 +39,7 @@ struct BuildBenchRequest {
 
 struct BuildBenchResult {
     std::vector<BuildBenchRow> rows; // in the order measured
+    std::string csv, json;           // build.csv, build.json
     Diagnostics diagnostics; // why the pruned example failed to build (then rows are incomplete)
     bool ok() const { return !has_errors(diagnostics); }
 };

@@ -12,6 +12,7 @@
 #include "watergen/pipeline/manifest.h"
 #include "watergen/pipeline/parallel_build.h"
 #include "watergen/pipeline/sharded_build.h"
+#include "watergen/pipeline/variant_build.h"
 #include "watergen/plan/scene_pruning.h"
 
 namespace watergen {
@@ -33,6 +34,10 @@ struct BuildPlan {
 // (shaders_for(), water_shader.h), each listing the variants it serves.
 std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes,
                                     Diagnostics& ds, BuildMode mode = BuildMode::Permutations);
+
+// The shader a build for the scene ships: the material's composition of `v`, folded under the
+// scene's facts, built in both languages (as one variant, not through the jobs and the cache).
+VariantBuild build_for_scene(const Material& material, const ScenePlan& plan, const Variant& v);
 
 struct BuildSummary {
     size_t variants = 0; // reached (scene, variant) pairs

@@ -19,6 +19,7 @@ struct CompileBench {
     std::vector<CompileBenchRow> rows; // pairwise covering variants, in their order
     // Medians over the rows.
     double median_in_process_ms = 0, median_processes_ms = 0, median_ratio = 0;
+    std::string csv, json;   // compile.csv, compile.json
     Diagnostics diagnostics; // of the variant that failed to emit
     std::string error;       // a chain failed: "<variant key>: <what>"
     bool ok() const { return error.empty() && !has_errors(diagnostics); }

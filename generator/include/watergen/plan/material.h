@@ -146,4 +146,9 @@ std::optional<Material> parse_material(const JsonSource& source, Diagnostics& di
 // same in JSON, and a test builds both and compares them).
 Material default_material();
 
+// A material of a preset alone (nullptr: none), with no parameter settings: variants named by
+// their choices are built with the preset (build_variant), and a build of this material ships
+// the caustics pass they read.
+Material preset_material(const Preset* preset);
+
 } // namespace watergen

@@ -58,4 +58,11 @@ std::vector<Target> platform_targets(const std::string& platform);
 std::optional<SceneFacts> load_scene(const std::filesystem::path& path, Diagnostics& diagnostics);
 std::optional<SceneFacts> parse_scene(const JsonSource& source, Diagnostics& diagnostics);
 
+// The description files of a build: the material at `material_path` ("": the built-in default
+// material) and each scene. False at the first file that does not load, its errors in
+// `diagnostics`.
+bool load_material_and_scenes(const std::string& material_path,
+                              const std::vector<std::string>& scene_paths, Material& material,
+                              std::vector<SceneFacts>& scenes, Diagnostics& diagnostics);
+
 } // namespace watergen

@@ -20,7 +20,7 @@ struct AccuracyRow {
     bool approximation() const { return relation.rfind("approximates", 0) == 0; }
     RatioInterval time;            // steady draw / the gold's, interleaved in the first view
     size_t spirv_instructions = 0; // optimised fragment SPIR-V, GLSL path
-    double cost_per_pixel = 0;     // instructions per pixel under valgrind (filled by the CLI)
+    double cost_per_pixel = 0;     // instructions per pixel under valgrind (bench_accuracy)
     ImageErrorStats worst;         // over the views: each figure's worst view
     std::string worst_view;        // the view of the worst p99 dE00
     std::string note;              // why the row was skipped, or how it was built
@@ -34,12 +34,16 @@ struct AccuracyAxis {
 };
 
 struct AccuracyBench {
+    Variant reference;             // accuracy_reference_variant()
     std::vector<AccuracyRow> rows; // axes in registry order, the gold first within each
     std::vector<AccuracyAxis> axes;
     std::vector<std::string> views;
+    std::string csv, json;   // accuracy.csv, accuracy.json (bench_accuracy)
     Diagnostics diagnostics; // of the variant that failed to build
-    std::string error;       // a render failed: "<variant key>: <what>"
+    std::string error;       // a render failed: "<variant key>: <what>"; or the instruction count
     bool ok() const { return error.empty() && !has_errors(diagnostics); }
+    // The instructions per pixel of the axis' gold row (0: none, or not counted).
+    double gold_cost(const std::string& axis) const;
 };
 
 // The variant every row differs from in one axis: the gold choice where an axis has one, and
@@ -54,5 +58,17 @@ Variant accuracy_reference_variant();
 AccuracyBench run_accuracy_bench(VulkanRunner& runner,
                                  const std::vector<std::pair<std::string, SyntheticScene>>& views,
                                  uint32_t rounds, uint32_t draws);
+
+struct AccuracyBenchRequest {
+    uint32_t size = 256, rounds = 20, draws = 3; // every view at size x size; timing
+    bool cost = false;                           // count instructions per pixel (valgrind)
+    uint32_t cost_size = 64;                     // of the count, in the beach view
+};
+
+// `watergen bench accuracy`: run_accuracy_bench over every view of the synthetic scene, each
+// measured row's instructions per pixel counted (draw_cost.h; the half row strict half, as it
+// is timed), and the tables. Cost: run_accuracy_bench's, plus about 5 s of JIT under valgrind
+// per variant counted.
+AccuracyBench bench_accuracy(VulkanRunner& runner, const AccuracyBenchRequest& request);
 
 } // namespace watergen

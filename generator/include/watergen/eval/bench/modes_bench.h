@@ -43,8 +43,11 @@ struct ModesBenchResult {
     size_t material_variants = 0;
     std::vector<ModeRow> rows;
     std::string device;
+    std::string csv, json; // modes.csv, modes.json
     std::string error;
     bool ok() const { return error.empty(); }
+    // The first mode whose image differs from the permutation's by more than `tolerance`.
+    const ModeRow* beyond(double tolerance) const;
 };
 
 // Cost: every variant built once (permutations), the shared shaders, every variant frozen, then

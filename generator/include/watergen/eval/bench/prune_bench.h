@@ -3,10 +3,11 @@
 // over the synthetic scene conformed to the scene's facts, with the instrument of
 // `watergen compare` (interleaved_timing.h): SPIR-V sizes, the steady draw time of pruned
 // against unpruned paired by round with a 95% interval and an A/A check, and how far the
-// images differ (GLSL, HLSL, CPU). The instruction counts under valgrind are the CLI's (the
-// counting workers are watergen processes).
+// images differ (GLSL, HLSL, CPU), and the instruction counts of both shaders under valgrind
+// (draw_cost.h: the counting workers are watergen processes).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,12 @@ struct PruneBenchOptions {
     uint32_t size = 256;             // image width and height
     uint32_t rounds = 20, draws = 3; // interleaved timing: rounds x draws per shader
     size_t per_scene = 4;            // distinct shaders measured per scene; 0: all
+    bool cost = false;               // count instructions per pixel under valgrind
+    uint32_t cost_size = 64;         // of the count
+    // The files the material ("": the built-in one) and each scene (by name) were loaded from:
+    // the counting workers load them again.
+    std::string material_path;
+    std::map<std::string, std::string> scene_files;
 };
 
 struct PruneBenchRow {
@@ -28,6 +35,7 @@ struct PruneBenchRow {
     RatioInterval time;           // pruned / unpruned steady draw, paired by round
     // Instructions per pixel of the steady draw under valgrind; 0: not counted.
     double cost_unpruned = 0, cost_pruned = 0;
+    double cost_ratio() const { return cost_unpruned > 0 ? cost_pruned / cost_unpruned : 0; }
     double max_diff = 0; // over the GLSL, HLSL and CPU images
 };
 
@@ -47,6 +55,10 @@ struct PruneBenchScene {
 struct PruneBenchResult {
     std::vector<PruneBenchScene> scenes; // in plan order; the last one incomplete on error
     std::string error;                   // "scene: key: why" of the failed measurement
+    // The count's A/A: the first scene's first unpruned shader counted twice (two pipelines).
+    double cost_aa = 0;
+    std::string cost_error; // "scene: instruction count: why" (the tables are not made)
+    std::string csv, json;  // prune.csv, prune.json, of the scenes measured
     bool ok() const { return error.empty(); }
     bool within(double tolerance) const; // every image difference is at most `tolerance`
 };
@@ -64,9 +76,17 @@ void summarise_prune_scene(PruneBenchScene& scene);
 //         prune_bench_shaders' variants pruned and unpruned, times all of them interleaved
 //         (GLSL path; ratios paired by round, the first unpruned shader's A/A), renders the
 //         HLSL path once each and evaluates both graphs on the CPU in float to compare images.
+//         With options.cost, then counts both shaders of every row (pruned: folded under the
+//         scene's facts; unpruned: as composed; both in the scene's conformed synthetic scene).
 // Cost:   per scene, 2 x shaders + 1 timed pipelines and 2 x shaders HLSL ones (lavapipe JIT,
-//         0.1-0.5 s each), the timing rounds, 2 x shaders CPU evaluations.
+//         0.1-0.5 s each), the timing rounds, 2 x shaders CPU evaluations; counting, about 5 s
+//         of JIT under valgrind per shader.
 PruneBenchResult bench_prune(VulkanRunner& runner, const Material& material,
                              const std::vector<ScenePlan>& plans, const PruneBenchOptions& options);
+
+// Fills result.csv and result.json (prune.csv, prune.json) from the scenes measured, the
+// incomplete one last (prune_bench_tables.cpp).
+void add_prune_tables(const PruneBenchOptions& options, const std::string& device,
+                      PruneBenchResult& result);
 
 } // namespace watergen

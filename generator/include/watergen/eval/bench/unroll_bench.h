@@ -29,6 +29,7 @@ struct UnrollBenchRow {
 struct UnrollBench {
     uint32_t size = 0, rounds = 0;
     std::vector<UnrollBenchRow> rows;
+    std::string csv, json;   // unroll.csv, unroll.json
     Diagnostics diagnostics; // of a build that failed
     std::string error;
     bool ok() const { return error.empty() && !has_errors(diagnostics); }
@@ -38,7 +39,8 @@ struct UnrollBench {
 //         every loop kept and with every loop unrolled, rendered over the synthetic scene at
 //         size x size; each round renders kept, unrolled and kept again (the A/A pair) in an
 //         order that rotates from round to round, each render a new pipeline JIT-compiled at
-//         its first draw (Mesa's shader cache off), then `draws` timed draws (median).
+//         its first draw (Mesa's shader cache off), then `draws` timed draws (median); and
+//         the tables.
 // Cost:   per round and waves choice, six pipelines (two languages x three renders).
 UnrollBench run_unroll_bench(VulkanRunner& runner, uint32_t size, uint32_t rounds, uint32_t draws);
 

@@ -34,8 +34,10 @@ caustics_pass_figures(const std::vector<ComparedCausticsPass>& passes);
 
 class CompareCaustics {
   public:
+    // Each pass as a build of `material` ships it (build_caustics_pass_files).
     CompareCaustics(VulkanRunner& runner,
-                    const std::vector<std::pair<std::string, SyntheticScene>>& views);
+                    const std::vector<std::pair<std::string, SyntheticScene>>& views,
+                    Material material = {});
     ~CompareCaustics();
 
     // CompareRequest::textures_for: the caustics_map of the built variant's pass in view
@@ -52,6 +54,7 @@ class CompareCaustics {
     struct Pass;
     VulkanRunner& runner_;
     const std::vector<std::pair<std::string, SyntheticScene>>& views_;
+    Material material_;
     std::vector<std::unique_ptr<Pass>> passes_; // in the order first needed
 };
 

@@ -19,7 +19,7 @@
 
 #include "watergen/eval/image/image_metrics.h"
 #include "watergen/eval/scene/synthetic_scene.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/build_output.h"
 #include "watergen/plan/scene_pruning.h"
 #include "watergen/runner/vulkan_runner.h"
 
@@ -57,11 +57,8 @@ struct PickPlan {
 // The scene's gold and candidates. `hold` fixes held axes by name (axis -> choice).
 PickPlan plan_pick(const ScenePlan& plan, const std::map<std::string, std::string>& hold = {});
 
-// The shader a build for the scene ships: the material's composition of `v`, folded under the
-// scene's facts, built in both languages.
-VariantBuild build_for_scene(const Material& material, const ScenePlan& plan, const Variant& v);
-
-// What:   renders every candidate (as build_for_scene builds it, GLSL path) over `views`
+// What:   renders every candidate (as build_for_scene builds it, build_output.h, GLSL path) over
+// `views`
 //         (scenes conformed to the plan) and compares each image with the gold's CPU double
 //         evaluation of the same view; fills worst_de_p99, worst_max_abs and nan_pixels of
 //         every candidate not yet measured.

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/eval/draw/caustics_render.h"
+#include "watergen/eval/draw/caustics_pass_draw.h"
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/runner/vulkan_runner.h"
 
@@ -45,18 +45,19 @@ uint32_t scene_caustics_texels(const VariantBuild& water, const SyntheticScene& 
 
 // The values a scene's pass is drawn with: the pass's defaults, the scene's uniforms over them,
 // caustics_depth kSceneCausticsDepth.
-std::map<std::string, std::vector<double>> scene_caustics_values(const CausticsBuild& build,
+std::map<std::string, std::vector<double>> scene_caustics_values(const CausticsPassBuild& build,
                                                                  const SyntheticScene& scene);
 
 // The pass's settings for a scene: `texels`, the scene's margin, the method's cells per texel.
 CausticsRenderSettings scene_caustics_settings(CausticsMethod method, uint32_t texels,
                                                uint32_t timed_draws);
 
-// What:   draws `build` (build_caustics) for `scene` on both paths, `timed_draws` timed draws
+// What:   draws `build` (build_caustics_pass_files) for `scene` on both paths, `timed_draws` timed
+// draws
 //         each, and the CPU reference of the same values.
 // Cost:   two pipelines (JIT about 0.1 s each) and the draws (area ratio at 64 texels: a few ms;
 //         photons: 746k points), plus 64 photons per texel on the CPU (tens of ms).
-SceneCausticsPass draw_scene_caustics_pass(VulkanRunner& runner, const CausticsBuild& build,
+SceneCausticsPass draw_scene_caustics_pass(VulkanRunner& runner, const CausticsPassBuild& build,
                                            const SyntheticScene& scene, uint32_t texels,
                                            uint32_t timed_draws);
 

@@ -30,7 +30,7 @@ uint64_t gpu_only_non_finite_pixels(const VariantRender& r);
 
 nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderReportInfo& info);
 
-// What a render adds beside its images (caustics: render_caustics.h): keys appended to
+// What a render adds beside its images (caustics: variant_caustics.h): keys appended to
 // render.json and files by name. Empty for most variants: their files stay as they were.
 struct RenderExtras {
     nlohmann::ordered_json json = nlohmann::ordered_json::object();

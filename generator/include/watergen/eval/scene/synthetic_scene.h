@@ -25,6 +25,7 @@
 #include "watergen/eval/scene/scene_views.h"
 #include "watergen/headless/texture_data.h"
 #include "watergen/ir/cpu_evaluator.h"
+#include "watergen/water/presets.h"
 
 namespace watergen {
 
@@ -46,6 +47,12 @@ texture_views(const std::map<std::string, TextureData>& textures);
 // byte for byte the scene every render used before views existed.
 SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height);
 SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const SceneView& view);
+
+// The scene at width x height seen from the view named `view` (beach for a name that is none),
+// its uniforms following the preset if any: a preset's values, its sun_direction among them,
+// replace the view's. What the commands draw a variant named by flags over.
+SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset,
+                            const std::string& view = "beach");
 
 // Inputs of the node families, each in its own file under render/: textures and uniforms the
 // nodes of those axes read (their binding names are the TextureInput names the nodes declare),

@@ -1,4 +1,4 @@
-// `watergen render` of caustics variants (render/render_caustics.h): the pass drawn for the
+// `watergen render` of caustics variants (draw/variant_caustics.h): the pass drawn for the
 // scene becomes the map the water pass and the CPU evaluator sample, the files beside the render,
 // and caustics=none untouched. Figures measured on lavapipe are in comments.
 #include <catch2/catch.hpp>
@@ -9,7 +9,7 @@
 
 #include "compare_report_support.h"
 #include "shared_runner.h"
-#include "watergen/eval/draw/render_caustics.h"
+#include "watergen/eval/draw/variant_caustics.h"
 #include "watergen/eval/report/render_report.h"
 
 using namespace watergen;

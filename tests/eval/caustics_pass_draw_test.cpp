@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "shared_runner.h"
-#include "watergen/eval/draw/caustics_render.h"
+#include "watergen/eval/draw/caustics_pass_draw.h"
 
 using namespace watergen;
 using namespace watergen::test;
@@ -40,7 +40,7 @@ struct Drawn {
 // for periodic waves, the periodic CPU reference.
 Drawn draw(const std::string& model, const Values& v, bool reference = true, double margin = 3,
            CausticsMethod method = CausticsMethod::AreaRatio, uint32_t cells_per_texel = 2) {
-    const CausticsBuild build = build_caustics(method, model);
+    const CausticsPassBuild build = build_caustics_pass_files(Material{}, {method, model});
     REQUIRE(build.ok());
     const auto values = caustics_values(build, v);
     CausticsRenderSettings settings;

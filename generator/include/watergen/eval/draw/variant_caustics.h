@@ -31,10 +31,11 @@ struct RenderCaustics {
 bool has_caustics(const Variant& variant);
 
 // Before the variant's render: draws its pass (if any, `timed_draws` timed draws) for `scene`,
-// puts the texture into `scene`, and evaluates the lit bottom over the result.
+// puts the texture into `scene`, and evaluates the lit bottom over the result. The pass is the
+// one a build of a material of `preset` alone ships (build_caustics_pass_files).
 RenderCaustics prepare_render_caustics(VulkanRunner& runner, const Variant& variant,
                                        const VariantBuild& water, SyntheticScene& scene,
-                                       uint32_t timed_draws);
+                                       uint32_t timed_draws, const Preset* preset = nullptr);
 
 // render.json's "caustics" block: the choice, the texture and its tone map, and for a pass its
 // method, wave model, depth, window, draw times and error against the CPU reference.

@@ -1,4 +1,4 @@
-#include "watergen/eval/draw/render_caustics.h"
+#include "watergen/eval/draw/variant_caustics.h"
 
 #include "watergen/eval/draw/caustics_bottom.h"
 #include "watergen/water/nodes/caustics.h"
@@ -47,11 +47,12 @@ bool has_caustics(const Variant& variant) {
 
 RenderCaustics prepare_render_caustics(VulkanRunner& runner, const Variant& variant,
                                        const VariantBuild& water, SyntheticScene& scene,
-                                       uint32_t timed_draws) {
+                                       uint32_t timed_draws, const Preset* preset) {
     RenderCaustics out;
     out.choice = variant.choice("caustics");
     if (const auto method = caustics_pass_method(out.choice)) {
-        const CausticsBuild build = build_caustics(*method, variant.choice("waves"));
+        const CausticsPassBuild build =
+            build_caustics_pass_files(preset_material(preset), {*method, variant.choice("waves")});
         out.pass = draw_scene_caustics_pass(runner, build, scene,
                                             scene_caustics_texels(water, scene), timed_draws);
         if (!out.pass->ok()) {

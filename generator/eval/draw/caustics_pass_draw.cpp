@@ -1,4 +1,4 @@
-#include "watergen/eval/draw/caustics_render.h"
+#include "watergen/eval/draw/caustics_pass_draw.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,17 +7,8 @@
 
 namespace watergen {
 
-CausticsBuild build_caustics(CausticsMethod method, const std::string& wave_model) {
-    CausticsBuild b{build_caustics_pass(method, wave_model), {}, {}};
-    const std::string name = std::string("caustics_") + to_string(method) + "_" + wave_model;
-    b.languages = build_two_stages(b.pass.vertex, b.pass.fragment, caustics_skeleton(method), name,
-                                   std::string("caustics.") + to_string(method) + "." + wave_model,
-                                   b.diagnostics);
-    return b;
-}
-
 std::map<std::string, std::vector<double>>
-caustics_values(const CausticsBuild& build,
+caustics_values(const CausticsPassBuild& build,
                 const std::map<std::string, std::vector<double>>& values) {
     std::map<std::string, std::vector<double>> out;
     for (const Parameter& p : build.languages[0].vertex.source.interface.parameters)
@@ -31,7 +22,7 @@ uint32_t default_cells_per_texel(CausticsMethod method) {
     return method == CausticsMethod::PhotonSplat ? 8 : 2;
 }
 
-RenderJob caustics_job(const CausticsBuild& build, size_t language,
+RenderJob caustics_job(const CausticsPassBuild& build, size_t language,
                        const std::map<std::string, std::vector<double>>& values,
                        const CausticsRenderSettings& settings, std::string* error) {
     const auto window_value = values.find("caustics_window");
@@ -68,7 +59,7 @@ RenderJob caustics_job(const CausticsBuild& build, size_t language,
     return job;
 }
 
-CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
+CausticsRender render_caustics(VulkanRunner& runner, const CausticsPassBuild& build,
                                const std::map<std::string, std::vector<double>>& values,
                                const CausticsRenderSettings& settings) {
     CausticsRender out;

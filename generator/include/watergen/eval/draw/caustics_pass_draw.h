@@ -1,6 +1,7 @@
-// The caustics passes end to end: build both languages of a pass, draw its grid into
-// the caustics texture on the Vulkan runner (additive blending), and the CPU reference set up
-// from the same parameter values, so that the two can be compared texel by texel.
+// A built caustics pass drawn on the Vulkan runner: its grid over the window into the caustics
+// texture (additive blending), both language paths, and measured against the CPU reference of
+// the same parameter values texel by texel. The pass is the one `watergen build` ships
+// (build_caustics_pass_files), built uncached so that its languages carry the SPIR-V.
 #pragma once
 
 #include <array>
@@ -12,24 +13,15 @@
 #include "watergen/caustics/caustics_reference.h"
 #include "watergen/eval/image/image_io.h"
 #include "watergen/eval/image/image_metrics.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/caustics_pass_build.h"
 #include "watergen/runner/vulkan_runner.h"
 
 namespace watergen {
 
-struct CausticsBuild {
-    CausticsPass pass;
-    std::array<LanguageBuild, 2> languages; // GLSL, HLSL
-    Diagnostics diagnostics;
-    bool ok() const { return !has_errors(diagnostics); }
-};
-
-CausticsBuild build_caustics(CausticsMethod method, const std::string& wave_model);
-
 // Parameter values by name: the pass's defaults (its vertex stage's parameters) overlaid with
 // `values`.
 std::map<std::string, std::vector<double>>
-caustics_values(const CausticsBuild& build,
+caustics_values(const CausticsPassBuild& build,
                 const std::map<std::string, std::vector<double>>& values);
 
 // Grid cells (photons) per texel side each method is drawn with unless told otherwise: area
@@ -55,14 +47,14 @@ struct CausticsRender {
 // Draws both paths with `values` (caustics_values) over a grid covering the window grown by
 // settings.margin, cells_per_texel grid cells per texel side (photon_splat: one photon per grid
 // point, caustics_photon_share set to match).
-CausticsRender render_caustics(VulkanRunner& runner, const CausticsBuild& build,
+CausticsRender render_caustics(VulkanRunner& runner, const CausticsPassBuild& build,
                                const std::map<std::string, std::vector<double>>& values,
                                const CausticsRenderSettings& settings);
 
 // The runner job that draws one language path (0 GLSL, 1 HLSL) of `build` as render_caustics
 // does (additive blending); timing draws these interleaved. Empty SPIR-V and the reason in
 // *error for a window that is not (x0, z0, size > 0).
-RenderJob caustics_job(const CausticsBuild& build, size_t language,
+RenderJob caustics_job(const CausticsPassBuild& build, size_t language,
                        const std::map<std::string, std::vector<double>>& values,
                        const CausticsRenderSettings& settings, std::string* error);
 

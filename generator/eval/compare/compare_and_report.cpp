@@ -1,0 +1,175 @@
+#include "watergen/eval/compare/compare_and_report.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <fmt/core.h>
+
+#include "watergen/eval/measure/draw_cost.h"
+#include "watergen/eval/report/compare_report.h"
+#include "watergen/pipeline/build_output.h"
+
+namespace watergen {
+
+namespace {
+
+CompareRequest compare_request(const CompareSetup& s) {
+    CompareRequest request;
+    request.variants = s.variants;
+    request.preset = s.preset;
+    request.reference = s.reference;
+    request.rounds = s.spec.rounds;
+    request.draws = s.spec.draws;
+    request.views = s.views;
+    if (s.spec.strict_half)
+        request.build = [preset = s.preset](const Variant& v) {
+            EmitOptions strict;
+            strict.strict_half = true;
+            return build_variant(v, preset, strict);
+        };
+    if (s.from_material)
+        request.build = [&s](const Variant& v) {
+            return s.plan ? build_for_scene(s.material, *s.plan, v)
+                          : build_shader(s.material.compose(v));
+        };
+    return request;
+}
+
+// Fills the variants' cost per pixel and the cost's A/A pair (the reference counted once more,
+// on its own pipeline); "" or the failure.
+std::string add_costs(const CompareSetup& s, CompareRun& run) {
+    const CompareSpec& o = s.spec;
+    std::vector<Variant> counted;
+    for (const CompareEntry& e : run.entries)
+        counted.push_back(e.variant);
+    const std::string key = run.reference.key();
+    counted.push_back(run.reference);
+    if (std::none_of(run.entries.begin(), run.entries.end(),
+                     [&](const CompareEntry& e) { return e.variant.key() == key; }))
+        counted.push_back(run.reference);
+    const std::string& first_view = s.views.front().first;
+    std::string error;
+    const auto costs =
+        s.from_material
+            ? count_material_costs(o.material, o.scene, counted, o.cost_size, &error)
+            : count_draw_costs(counted, o.cost_size, s.preset ? s.preset->name : "",
+                               first_view.substr(0, first_view.find('@')), &error, o.strict_half);
+    if (!costs) return "instruction count: " + error;
+    const double pixels = double(o.cost_size) * o.cost_size;
+    for (CompareEntry& e : run.entries)
+        if (auto it = costs->find(e.variant.key()); it != costs->end())
+            e.cost_per_pixel = double(it->second) / pixels;
+    if (costs->count(key) && costs->count(key + "#2") && costs->at(key) > 0) {
+        run.reference_cost_per_pixel = double(costs->at(key)) / pixels;
+        run.cost_aa = double(costs->at(key + "#2")) / double(costs->at(key));
+    }
+    return "";
+}
+
+// The report of a run: images, maps, table and plots (compare_report.h).
+CompareReport make_report(const CompareRun& run, const CompareSetup& s) {
+    const CompareSpec& o = s.spec;
+    CompareReport report;
+    report.title = "watergen compare: " + std::to_string(run.entries.size()) + " variants";
+    report.reference_key = run.reference.key() + (run.reference_on_cpu ? " (CPU, double)" : "");
+    for (size_t v = 0; v < s.views.size(); ++v)
+        report.views.push_back({s.views[v].first, run.reference_images[v]});
+    const auto& list = axes();
+    for (const CompareEntry& e : run.entries) {
+        CompareVariant cv;
+        cv.key = e.variant.key();
+        for (size_t a = 0; a < list.size(); ++a)
+            cv.choices[list[a].name] = e.variant.choices[a];
+        cv.reference = e.variant.key() == run.reference.key();
+        cv.relation = e.relation;
+        cv.time_ratio = e.time.ratio;
+        cv.time_ratio_lo = e.time.lo;
+        cv.time_ratio_hi = e.time.hi;
+        cv.cost = e.cost_per_pixel;
+        cv.spirv_instructions = e.spirv_instructions;
+        for (const ComparedView& view : e.views)
+            cv.views.push_back({view.image, std::nullopt});
+        report.variants.push_back(std::move(cv));
+    }
+    const auto& [first_view, first_scene] = s.views.front();
+    char note[400];
+    std::snprintf(note, sizeof note,
+                  "steady draw time on lavapipe (GLSL path, view %s, %ux%u), interleaved: %u "
+                  "rounds x %u draws, the first (JIT) draw excluded; ratio = median over rounds, "
+                  "95%% paired bootstrap interval. A/A (the reference against a second pipeline "
+                  "of itself): %.3f [%.3f, %.3f]%s",
+                  first_view.c_str(), first_scene.width, first_scene.height, o.rounds, o.draws,
+                  run.aa.ratio, run.aa.lo, run.aa.hi,
+                  run.timing_trustworthy() ? ", within +-3%"
+                                           : ": NOT within +-3%, times are not trustworthy on "
+                                             "this machine now; use the cost");
+    report.timing_note = note;
+    if (o.strict_half)
+        report.timing_note += ". precision=half variants are built strict: explicit 16-bit types, "
+                              "computed at 16 bits";
+    report.timing_trustworthy = run.timing_trustworthy();
+    if (o.cost) {
+        std::snprintf(note, sizeof note,
+                      "instructions lavapipe executes per pixel for one %ux%u draw of the GLSL "
+                      "path (valgrind callgrind, the draw alone; independent of machine load). "
+                      "A/A: %.5f",
+                      o.cost_size, o.cost_size, run.cost_aa);
+        report.cost_note = note;
+    }
+    return report;
+}
+
+// The note the report shows above the caustics passes.
+std::string caustics_note(const RatioInterval& aa, const CompareSetup& s) {
+    return fmt::format(
+        "Each caustics variant renders over its own pass's map: the pass of its method and wave "
+        "model drawn on the device for each view ({} m deep, window and sun as the view's). "
+        "Below, in view {}: the texture (GLSL path) against the CPU photon reference of the same "
+        "values ({} photons per texel); draw times interleaved, {} rounds x {} draws, the first "
+        "(JIT) draw excluded, each round's median; A/A of the first pass {:.3f} [{:.3f}, {:.3f}].",
+        kSceneCausticsDepth, s.views.front().first,
+        kSceneCausticsReferencePhotons * kSceneCausticsReferencePhotons, s.spec.rounds,
+        s.spec.draws, aa.ratio, aa.lo, aa.hi);
+}
+
+} // namespace
+
+CompareOutcome compare_and_report(VulkanRunner& runner, const CompareSetup& setup) {
+    CompareOutcome out;
+    auto stop = [&out](std::string error) {
+        out.error = std::move(error);
+        out.status = RunStatus::Failed;
+        return std::move(out);
+    };
+    CompareRequest request = compare_request(setup);
+    // The caustics pass of a variant is the one its build ships: its material's, or for
+    // variants named by flags a material of the preset alone.
+    CompareCaustics caustics(runner, request.views,
+                             setup.from_material ? setup.material : preset_material(setup.preset));
+    request.textures_for = [&caustics](const VariantBuild& water, size_t view, std::string* error) {
+        return caustics.textures_for(water, view, error);
+    };
+    out.run = run_compare(runner, request);
+    if (!out.run.ok()) {
+        out.diagnostics = out.run.diagnostics;
+        return stop(out.run.error);
+    }
+    std::string error;
+    out.caustics = caustics.time(setup.spec.rounds, setup.spec.draws, &out.caustics_aa, &error);
+    if (!error.empty()) return stop(error);
+    if (setup.spec.cost)
+        if (std::string e = add_costs(setup, out.run); !e.empty()) return stop(e);
+    CompareReport report = make_report(out.run, setup);
+    if (!out.caustics.empty()) {
+        out.caustics_note = caustics_note(out.caustics_aa, setup);
+        report.caustics_note = out.caustics_note;
+        report.caustics_passes = caustics_pass_figures(out.caustics);
+    }
+    if (auto failure = write_compare_report(setup.spec.out, report)) {
+        out.write_error = *failure;
+        out.status = RunStatus::Failed;
+    }
+    return out;
+}
+
+} // namespace watergen

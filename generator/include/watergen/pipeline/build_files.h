@@ -1,0 +1,36 @@
+// `watergen build` from its files as a library call: the inputs hashed, the depfile written, the
+// build record checked before anything is loaded (nothing changed and the output intact: a
+// no-op), then the material and scene files loaded and built (build_output.h).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "watergen/pipeline/build_output.h"
+
+namespace watergen {
+
+struct BuildFilesRequest {
+    std::string material_path; // "": the built-in default material
+    std::vector<std::string> scene_paths;
+    std::filesystem::path out;
+    BuildMode mode = BuildMode::Permutations;
+    bool freeze = false; // specialized mode only
+    Shard shard = {};    // permutations mode only
+    BuildOptions options;
+    // Also a Makefile-style dependency file: target <out>/manifest.json, prerequisites the
+    // material and scene files. "": none.
+    std::string depfile;
+};
+
+struct BuildFilesRun {
+    BuildSummary summary;         // of the build, or of the no-op (summary.up_to_date)
+    bool built = false;           // the files loaded and the build ran
+    Diagnostics load_diagnostics; // why the material or a scene file did not load (exit 2)
+    std::string depfile_error;    // the depfile could not be written (exit 1): nothing built
+};
+
+BuildFilesRun build_from_files(const BuildFilesRequest& request);
+
+} // namespace watergen
