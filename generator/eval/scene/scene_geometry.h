@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include <glm/glm.hpp>
@@ -12,6 +13,8 @@
 namespace watergen::scene_geometry {
 
 using glm::dvec3;
+
+inline constexpr double kPi = std::numbers::pi;
 
 // Where the unit ray o + t d enters the sphere: its near side (t > 0), 0 when o lies inside it,
 // nothing when the sphere is missed or behind o.

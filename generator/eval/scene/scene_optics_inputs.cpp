@@ -17,10 +17,10 @@ namespace watergen {
 namespace {
 
 using glm::dvec3;
+using scene_geometry::kPi;
 using scene_geometry::sphere_entry;
 using scene_geometry::sunlit;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr uint32_t kSkyFaceSize = 32;
 constexpr uint32_t kFourierSize = 16;
 
