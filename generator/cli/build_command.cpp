@@ -164,7 +164,8 @@ Runner add_build_command(CLI::App& app, const Common& common) {
             };
         const BuildFilesRun run = build_from_files(request);
         if (!run.depfile_error.empty())
-            return stop("--depfile: " + run.depfile_error, RunStatus::Failed);
+            return stop("--depfile: " + run.depfile_error,
+                        run.depfile_refused ? RunStatus::BadInput : RunStatus::Failed);
         if (run.summary.up_to_date) {
             print_up_to_date(run.summary, o->out);
             return kOk;

@@ -26,6 +26,17 @@ BuildFilesRun build_from_files(const BuildFilesRequest& files) {
         std::vector<std::string> inputs = files.scene_paths;
         if (!files.material_path.empty()) inputs.insert(inputs.begin(), files.material_path);
         const std::string target = (files.out / "manifest.json").string();
+        if (std::string why = depfile_refusal(files.depfile, inputs, files.out); !why.empty()) {
+            run.depfile_error = why;
+            run.depfile_refused = true;
+            return run;
+        }
+        std::string unnamed;
+        if (!depfile_text(target, inputs, &unnamed)) {
+            run.depfile_error = files.depfile + ": " + unnamed;
+            run.depfile_refused = true;
+            return run;
+        }
         if (auto e = write_depfile(files.depfile, target, inputs)) {
             run.depfile_error = *e;
             return run;

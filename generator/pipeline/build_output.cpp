@@ -12,6 +12,7 @@
 #include "watergen/pipeline/caustics_pass_build.h"
 #include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/safe_read.h"
 
 namespace watergen {
 
@@ -132,8 +133,9 @@ void remove_stale_staging(const fs::path& out) {
 }
 
 // The output directory, resolved, if a build may replace it; else "" and the refusal in `s`.
-fs::path accepted_output(const fs::path& out, BuildSummary& s) {
-    const OutputTarget target = check_output_target(out);
+fs::path accepted_output(const fs::path& out, BuildSummary& s,
+                         const std::vector<std::string>& recorded = {}) {
+    const OutputTarget target = check_output_target(out, recorded);
     if (target.ok()) return target.path;
     s.bad_input = true;
     s.diagnostics.push_back({Severity::Error, out.string(), 0, 0, "", target.error});
@@ -231,6 +233,10 @@ std::optional<BuildSummary> up_to_date(const BuildRequest& request, const std::s
     const auto r = read_record(record);
     if (!r || r->key != key || !outputs_intact(request.out, *r, request.options.threads))
         return std::nullopt;
+    // Intact as recorded, manifest.json included; the record must also name what it names.
+    const SafeRead manifest =
+        read_regular_file(normal_output_path(request.out) / "manifest.json", kMaxManifestBytes);
+    if (!manifest.bytes || !record_covers_manifest(*r, *manifest.bytes)) return std::nullopt;
     BuildSummary s;
     s.up_to_date = true;
     s.variants = r->variants;
@@ -291,7 +297,11 @@ BuildSummary build_material_now(const BuildRequest& request) {
     }
     if (request.shard.sharded()) keep_shard(*plan, request.shard);
     // Refuse an output that is not ours before spending time on the build.
-    if (accepted_output(request.out, s).empty()) return s;
+    std::vector<std::string> written; // what the last build into request.out wrote
+    if (const auto last = recorded ? read_record(record) : std::nullopt)
+        for (const RecordedFile& f : last->files)
+            written.push_back(f.path);
+    if (accepted_output(request.out, s, written).empty()) return s;
     const std::vector<JobResult> results =
         run_build_jobs(request.material, plan->jobs, request.options);
     s.shaders = plan->jobs.size();
@@ -324,7 +334,7 @@ BuildSummary build_material_now(const BuildRequest& request) {
             files[kShardFile] = shard_json(request.shard, request.inputs_hash, plan->jobs, results,
                                            s.variants, files);
         s.files = files.size();
-        if (auto failure = publish_output(request.out, files))
+        if (auto failure = publish_output(request.out, files, written))
             s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
         else if (recorded)
             store_record(record, make_record(key, s.variants, s.shaders, files));
@@ -333,9 +343,10 @@ BuildSummary build_material_now(const BuildRequest& request) {
     return s;
 }
 
-std::optional<std::string> publish_output(const fs::path& out, const FileMap& files) {
+std::optional<std::string> publish_output(const fs::path& out, const FileMap& files,
+                                          const std::vector<std::string>& recorded) {
     BuildSummary refused;
-    const fs::path resolved = accepted_output(out, refused); // again: the build took a while
+    const fs::path resolved = accepted_output(out, refused, recorded); // again: it took a while
     if (resolved.empty()) return refused.diagnostics.front().message;
     return publish(resolved, files);
 }

@@ -5,7 +5,6 @@
 #include <cerrno>
 #include <fcntl.h>
 #include <fstream>
-#include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -19,8 +18,6 @@ namespace watergen {
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr const char* kMagic = "watergen-record 1";
 
 // Description files are at most 4 MiB (json_source.h); a record file far below this.
 constexpr size_t kMaxInputBytes = size_t(8) << 20;
@@ -55,6 +52,22 @@ bool holds_file(int dir, const char* name, uint64_t size, const std::string& dig
     }
     ::close(fd);
     return same;
+}
+
+// The directory `sub` ("" or "a/b/") of `out`, every component opened without following a
+// link (out itself too): a directory swapped for a link anywhere on the path fails to open.
+int open_beneath(const fs::path& out, std::string_view sub) {
+    constexpr int kFlags = O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC;
+    int fd = ::open(out.c_str(), kFlags);
+    while (fd >= 0 && !sub.empty()) {
+        const size_t slash = sub.find('/');
+        const std::string name(sub.substr(0, slash));
+        const int next = ::openat(fd, name.c_str(), kFlags);
+        ::close(fd);
+        fd = next;
+        sub = slash == std::string_view::npos ? std::string_view() : sub.substr(slash + 1);
+    }
+    return fd;
 }
 
 } // namespace
@@ -107,36 +120,6 @@ BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
     return r;
 }
 
-std::string record_text(const BuildRecord& r) {
-    std::ostringstream s;
-    s << kMagic << "\nkey " << r.key << "\nvariants " << r.variants << "\nshaders " << r.shaders
-      << "\nfiles " << r.files.size() << "\n";
-    for (const RecordedFile& f : r.files)
-        s << f.size << ' ' << f.digest << ' ' << f.path << '\n';
-    return s.str();
-}
-
-std::optional<BuildRecord> parse_record(const std::string& text) {
-    std::istringstream in(text);
-    std::string line, word;
-    BuildRecord r;
-    size_t count = 0;
-    if (!std::getline(in, line) || line != kMagic) return std::nullopt;
-    if (!(in >> word >> r.key) || word != "key") return std::nullopt;
-    if (!(in >> word >> r.variants) || word != "variants") return std::nullopt;
-    if (!(in >> word >> r.shaders) || word != "shaders") return std::nullopt;
-    if (!(in >> word >> count) || word != "files" || in.get() != '\n') return std::nullopt;
-    for (size_t i = 0; i < count; ++i) {
-        RecordedFile f;
-        if (!(in >> f.size >> f.digest) || in.get() != ' ' || !std::getline(in, f.path) ||
-            !is_plain_relative_path(f.path))
-            return std::nullopt;
-        r.files.push_back(std::move(f));
-    }
-    if (in.peek() != std::char_traits<char>::eof()) return std::nullopt;
-    return r;
-}
-
 std::optional<BuildRecord> read_record(const fs::path& file) {
     auto text = read_whole(file, kMaxRecordBytes);
     return text ? parse_record(*text) : std::nullopt;
@@ -166,8 +149,7 @@ bool outputs_intact(const fs::path& out, const BuildRecord& record, unsigned thr
         if (!intact) return;
         const auto [begin, end] = dirs[d];
         const std::string_view sub = parent(begin); // "" or "a/b/"
-        const fs::path dir = sub.empty() ? out : out / std::string(sub.substr(0, sub.size() - 1));
-        const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        const int fd = open_beneath(out, sub);
         thread_local std::vector<char> buffer;
         for (size_t i = begin; fd >= 0 && intact && i < end; ++i) {
             const RecordedFile& f = record.files[i];

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <set>
 #include <sys/stat.h>
 
 #include <nlohmann/json.hpp>
@@ -19,9 +20,6 @@ constexpr const char* kReplaceable = "a build replaces only a directory watergen
                                      "manifest.json), an empty directory or a path that "
                                      "does not exist; it was left untouched";
 
-// A manifest is a few hundred KB; anything far larger is not one.
-constexpr size_t kMaxManifestBytes = size_t(256) << 20;
-
 // "out/", "." and ".." name the directory itself: absolute, normal, no trailing separator.
 fs::path normal_absolute(const fs::path& out, std::error_code& ec) {
     fs::path p = fs::absolute(out, ec).lexically_normal();
@@ -34,14 +32,30 @@ bool holds(const fs::path& outer, const fs::path& inner) {
            outer.end();
 }
 
+// Whether every entry of `dir` is the first component of a recorded path, and the record
+// names manifest.json: the directory holds nothing watergen's last build there did not write.
+bool only_recorded_entries(const fs::path& dir, const std::vector<std::string>& recorded) {
+    std::set<std::string> tops;
+    for (const std::string& p : recorded)
+        tops.insert(p.substr(0, p.find('/')));
+    if (!tops.count("manifest.json")) return false;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+        if (!tops.count(it->path().filename().string())) return false;
+    return !ec;
+}
+
 // Why the existing directory `dir` may not be replaced; "" when it may.
-std::string refusal_for_directory(const fs::path& dir) {
+std::string refusal_for_directory(const fs::path& dir, const std::vector<std::string>& recorded) {
     std::error_code ec;
     fs::directory_iterator it(dir, ec);
     if (ec) return "cannot be listed: " + ec.message();
     if (it == fs::directory_iterator()) return ""; // empty
     const SafeRead manifest = read_regular_file(dir / "manifest.json", kMaxManifestBytes);
     if (manifest.bytes && is_watergen_manifest(*manifest.bytes)) return "";
+    // A manifest broken (or lost) since: the record of the last build there still shows the
+    // directory is watergen's, so it is rebuilt rather than left for the user to remove.
+    if (!recorded.empty() && only_recorded_entries(dir, recorded)) return "";
     return std::string("is a directory of files watergen did not write (no manifest.json of a "
                        "watergen build); ") +
            kReplaceable;
@@ -60,7 +74,7 @@ bool is_watergen_manifest(const std::string& bytes) {
     return j["generator"].get<std::string>().rfind("watergen ", 0) == 0;
 }
 
-OutputTarget check_output_target(const fs::path& out) {
+OutputTarget check_output_target(const fs::path& out, const std::vector<std::string>& recorded) {
     OutputTarget t;
     if (out.empty()) {
         t.error =
@@ -99,7 +113,7 @@ OutputTarget check_output_target(const fs::path& out) {
         t.error = subject + " is " + file_kind(st.st_mode) + "; " + kReplaceable;
         return t;
     }
-    if (std::string why = refusal_for_directory(t.path); !why.empty())
+    if (std::string why = refusal_for_directory(t.path, recorded); !why.empty())
         t.error = subject + " " + why;
     return t;
 }

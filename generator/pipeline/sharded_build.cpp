@@ -8,8 +8,11 @@
 #include <xxhash.h>
 
 #include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/manifest_files.h"
+#include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
 #include "watergen/pipeline/safe_read.h"
+#include "watergen/pipeline/shard_file.h"
 
 namespace watergen {
 
@@ -18,31 +21,21 @@ using OJson = nlohmann::ordered_json;
 
 namespace {
 
+bool holds(const fs::path& outer, const fs::path& inner) {
+    return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first ==
+           outer.end();
+}
+
 constexpr size_t kMaxShardFileBytes = size_t(512) << 20;
 constexpr size_t kMaxOutputFileBytes = size_t(1) << 30;
-
-// "<digits>" as a number of at most 9 digits.
-std::optional<unsigned> small_number(const std::string& text) {
-    if (text.empty() || text.size() > 9 ||
-        text.find_first_not_of("0123456789") != std::string::npos)
-        return std::nullopt;
-    return static_cast<unsigned>(std::stoul(text));
-}
 
 // A shard's output, read and verified against its shard.json.
 struct ShardOutput {
     fs::path dir;
-    Shard shard;
-    std::string toolchain, inputs;
-    size_t variants = 0;
-    std::map<std::pair<std::string, std::string>, std::string> shapes; // (scene, key) -> shape
+    ShardFile meta;
     OJson manifest;
     FileMap files; // manifest.json and shard.json left out
 };
-
-bool is_uint(const OJson& j) {
-    return j.is_number_unsigned();
-}
 
 // Reads `dir` as a shard's output; "" or why not.
 std::string read_shard(const fs::path& dir, ShardOutput& s) {
@@ -53,43 +46,25 @@ std::string read_shard(const fs::path& dir, ShardOutput& s) {
         return where + (meta.missing
                             ? "no shard.json; expected the output of watergen build --shard I/N"
                             : "shard.json " + meta.why);
-    const OJson j = OJson::parse(*meta.bytes, nullptr, false);
-    const bool shaped =
-        j.is_object() && j.value("watergen_shard", 0) == 1 && is_uint(j.value("index", OJson())) &&
-        is_uint(j.value("count", OJson())) && j.value("toolchain", OJson()).is_string() &&
-        j.value("inputs", OJson()).is_string() && is_uint(j.value("variants", OJson())) &&
-        j.value("shapes", OJson()).is_array() && j.value("files", OJson()).is_array();
-    if (!shaped) return where + "shard.json is not one watergen build --shard wrote";
-    s.shard = {j["index"].get<unsigned>(), j["count"].get<unsigned>()};
-    if (s.shard.index < 1 || s.shard.index > s.shard.count)
-        return where + "shard.json names shard " + std::to_string(s.shard.index) + "/" +
-               std::to_string(s.shard.count) + "; expected I/N with 1 <= I <= N";
-    s.toolchain = j["toolchain"];
-    s.inputs = j["inputs"];
-    s.variants = j["variants"];
-    for (const auto& shape : j["shapes"]) {
-        if (!shape.is_array() || shape.size() != 3 || !shape[0].is_string() ||
-            !shape[1].is_string() || !shape[2].is_string())
-            return where + "shard.json: a shape is not [scene, key, hash]";
-        s.shapes[{shape[0], shape[1]}] = shape[2];
-    }
-    for (const auto& f : j["files"]) {
-        if (!f.is_array() || f.size() != 3 || !f[0].is_string() || !is_uint(f[1]) ||
-            !f[2].is_string() || !is_plain_relative_path(f[0]))
-            return where + "shard.json: a file is not [relative path, size, hash]";
-        const std::string path = f[0];
-        const size_t size = f[1].get<size_t>();
-        const SafeRead r = read_regular_file(dir / path, std::min(size, kMaxOutputFileBytes));
-        if (!r.bytes || r.bytes->size() != size || file_digest(*r.bytes) != f[2])
-            return where + path + " does not match the size and hash shard.json records" +
+    std::string why;
+    auto parsed = parse_shard_file(*meta.bytes, &why);
+    if (!parsed) return where + why;
+    s.meta = std::move(*parsed);
+    std::set<std::string> listed;
+    for (const ListedFile& f : s.meta.files) {
+        const SafeRead r =
+            read_regular_file(dir / f.path, std::min<uint64_t>(f.size, kMaxOutputFileBytes));
+        if (!r.bytes || r.bytes->size() != f.size || file_digest(*r.bytes) != f.digest)
+            return where + f.path + " does not match the size and hash shard.json records" +
                    (r.bytes ? "" : " (" + (r.missing ? std::string("missing") : r.why) + ")");
-        if (path == "manifest.json")
+        listed.insert(f.path);
+        if (f.path == "manifest.json")
             s.manifest = OJson::parse(*r.bytes, nullptr, false);
         else
-            s.files.emplace(path, std::move(*r.bytes));
+            s.files.emplace(f.path, std::move(*r.bytes));
     }
-    if (!s.manifest.is_object() || !s.manifest.value("variants", OJson()).is_array())
-        return where + "no manifest.json of a build among the files shard.json lists";
+    if (std::string bad = check_shard_manifest(s.manifest, s.meta, listed); !bad.empty())
+        return where + bad;
     return "";
 }
 
@@ -106,24 +81,26 @@ std::string check_set(const std::vector<ShardOutput>& shards) {
     std::map<unsigned, const ShardOutput*> by_index;
     for (const ShardOutput& s : shards) {
         const std::string both = s.dir.string() + " and " + first.dir.string();
-        if (s.toolchain != first.toolchain)
+        if (s.meta.toolchain != first.meta.toolchain)
             return both + " were built by different watergen or toolchain versions ('" +
-                   s.toolchain + "' and '" + first.toolchain + "'); expected one for every shard";
-        if (s.inputs != first.inputs || header_of(s.manifest) != header_of(first.manifest))
+                   s.meta.toolchain + "' and '" + first.meta.toolchain +
+                   "'); expected one for every shard";
+        if (s.meta.inputs != first.meta.inputs ||
+            header_of(s.manifest) != header_of(first.manifest))
             return both + " were built from different inputs (material, scenes or options); "
                           "expected shards of one build";
-        if (s.shard.count != first.shard.count)
-            return both + " are shards of " + std::to_string(s.shard.count) + " and of " +
-                   std::to_string(first.shard.count) + "; expected shards of one build";
-        if (auto [it, fresh] = by_index.emplace(s.shard.index, &s); !fresh)
-            return "shard " + shard_text(s.shard) + " is given twice: " + it->second->dir.string() +
-                   " and " + s.dir.string();
+        if (s.meta.shard.count != first.meta.shard.count)
+            return both + " are shards of " + std::to_string(s.meta.shard.count) + " and of " +
+                   std::to_string(first.meta.shard.count) + "; expected shards of one build";
+        if (auto [it, fresh] = by_index.emplace(s.meta.shard.index, &s); !fresh)
+            return "shard " + shard_text(s.meta.shard) +
+                   " is given twice: " + it->second->dir.string() + " and " + s.dir.string();
     }
-    for (unsigned i = 1; i <= first.shard.count; ++i)
+    for (unsigned i = 1; i <= first.meta.shard.count; ++i)
         if (!by_index.count(i))
-            return "shard " + shard_text({i, first.shard.count}) +
-                   " is missing; expected all of 1/" + std::to_string(first.shard.count) + " .. " +
-                   shard_text({first.shard.count, first.shard.count});
+            return "shard " + shard_text({i, first.meta.shard.count}) +
+                   " is missing; expected all of 1/" + std::to_string(first.meta.shard.count) +
+                   " .. " + shard_text({first.meta.shard.count, first.meta.shard.count});
     return "";
 }
 
@@ -142,25 +119,57 @@ OJson as_same(const OJson& own, const OJson& builder) {
     return v;
 }
 
+// Why OUT may not be the merge's output beside these shards: it is one, holds one or lies
+// inside one (links resolved); "" when apart from all.
+std::string out_apart_from_shards(const fs::path& out, const std::vector<fs::path>& dirs) {
+    std::error_code ec;
+    const fs::path o = fs::weakly_canonical(normal_output_path(out), ec);
+    for (const fs::path& d : dirs) {
+        const fs::path shard = fs::weakly_canonical(normal_output_path(d), ec);
+        const std::string both = out.string() + " and the shard " + d.string();
+        if (o == shard)
+            return "the output directory " + out.string() + " is the shard " + d.string() +
+                   "; expected an output directory apart from every shard";
+        if (holds(o, shard))
+            return "the output directory " + out.string() + " holds the shard " + d.string() +
+                   ", which the merge would delete with the old output; expected an output "
+                   "directory apart from every shard";
+        if (holds(shard, o))
+            return "the output directory " + out.string() + " lies inside the shard " + d.string() +
+                   "; expected an output directory apart from every shard";
+    }
+    return "";
+}
+
+// The merged manifest: every scene holds as many variants as its header counts (a shard that
+// lost a variant falls short), and every file the manifest names is among the merged files.
+std::string check_merged(const OJson& manifest, const FileMap& files) {
+    std::map<std::string, size_t> held;
+    for (const OJson& v : manifest["variants"])
+        ++held[v.value("scene", "")];
+    for (const OJson& scene : manifest.value("scenes", OJson::array())) {
+        const std::string name = scene.value("name", "");
+        const OJson count = scene.value("variants", OJson());
+        if (!count.is_number_unsigned() || count.get<size_t>() != held[name])
+            return "scene " + name + ": the shards hold " + std::to_string(held[name]) +
+                   " variants, the build's manifest counts " + count.dump() +
+                   "; expected every variant of the build in one of the shards";
+        held.erase(name);
+    }
+    if (!held.empty())
+        return "variants of scene " + held.begin()->first +
+               ", which the build's manifest does not name";
+    for (const OJson& v : manifest["variants"]) {
+        std::vector<std::string> paths;
+        if (std::string why = named_files(v, paths); !why.empty()) return why;
+        for (const std::string& p : paths)
+            if (!files.count(p))
+                return "the merged manifest would name " + p + ", which no shard holds";
+    }
+    return "";
+}
+
 } // namespace
-
-std::optional<Shard> parse_shard(const std::string& text, std::string* error) {
-    const size_t slash = text.find('/');
-    const auto i = small_number(text.substr(0, slash));
-    const auto n = slash == std::string::npos ? std::nullopt : small_number(text.substr(slash + 1));
-    if (i && n && *i >= 1 && *i <= *n) return Shard{*i, *n};
-    if (error)
-        *error = "'" + text + "': expected I/N, shard I of N with 1 <= I <= N (e.g. 1/4 .. 4/4)";
-    return std::nullopt;
-}
-
-std::string shard_text(const Shard& shard) {
-    return shard.sharded() ? std::to_string(shard.index) + "/" + std::to_string(shard.count) : "";
-}
-
-bool in_shard(const Shard& shard, const std::string& key) {
-    return !shard.sharded() || XXH64(key.data(), key.size(), 0) % shard.count == shard.index - 1;
-}
 
 std::string shard_json(const Shard& shard, const std::string& inputs_hash,
                        const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
@@ -189,6 +198,13 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs)
         m.error = "no shard directories; expected the outputs of watergen build --shard 1/N .. N/N";
         return m;
     }
+    // Refused before anything is read: the merge replaces OUT whole, so a shard at, above or
+    // below it would be lost with the old tree, or would be read while being replaced.
+    if (m.error = out_apart_from_shards(out, dirs); !m.error.empty()) return m;
+    if (const OutputTarget t = check_output_target(out); !t.ok()) {
+        m.error = out.string() + ": " + t.error;
+        return m;
+    }
     std::vector<ShardOutput> shards(dirs.size());
     for (size_t i = 0; i < dirs.size(); ++i)
         if (m.error = read_shard(dirs[i], shards[i]); !m.error.empty()) return m;
@@ -199,7 +215,7 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs)
     for (const ShardOutput& s : shards)
         for (const OJson& v : s.manifest["variants"]) {
             const std::pair<std::string, std::string> id{v.value("scene", ""), v.value("key", "")};
-            if (!s.shapes.count(id)) {
+            if (!s.meta.shapes.count(id)) {
                 m.error = s.dir.string() + ": variant " + id.first + "/" + id.second +
                           " has no shape in shard.json";
                 return m;
@@ -218,7 +234,7 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs)
     for (const auto& [id, where] : all) {
         const auto& [entry, shard] = where;
         const auto [it, fresh] =
-            first.emplace(std::make_pair(id.first, shard->shapes.at(id)), entry);
+            first.emplace(std::make_pair(id.first, shard->meta.shapes.at(id)), entry);
         if (fresh) {
             variants.push_back(*entry);
             continue;
@@ -235,6 +251,7 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs)
         }
     OJson manifest = shards.front().manifest;
     manifest["variants"] = variants;
+    if (m.error = check_merged(manifest, files); !m.error.empty()) return m;
     files["manifest.json"] = manifest.dump(2) + "\n";
     if (auto e = publish_output(out, files)) {
         m.error = *e;

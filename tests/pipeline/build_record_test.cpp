@@ -128,3 +128,80 @@ TEST_CASE("two_concurrent_builds_share_one_cache_directory", "[record]") {
     CHECK(third.err.find("verification") == std::string::npos);
     CHECK(read_tree(tmp.path / "c") == reference);
 }
+
+// The no-op check cannot be fooled: a record that lost the line of a file the manifest names
+// (and the file deleted), a directory of the output swapped for a link to a copy, each rebuild;
+// a manifest.json broken in a directory the record shows watergen wrote is rebuilt, not refused.
+TEST_CASE("the_no_op_check_holds_the_record_to_the_manifest_and_follows_no_link", "[record]") {
+    const TempDir tmp("record-hostile");
+    const auto args =
+        build_args(tmp.path, "out", {source_dir() + "/examples/scenes/open_ocean.json"});
+    const fs::path out = tmp.path / "out";
+    REQUIRE(run_watergen(args).exit_code == 0);
+    const auto tree = read_tree(out);
+    auto up_to_date = [&] {
+        const WatergenRun r = run_watergen(args);
+        INFO(r.out << r.err);
+        CHECK(r.exit_code == 0);
+        return r.out.find("up to date") != std::string::npos;
+    };
+    REQUIRE(up_to_date());
+
+    // One line of the record gone (its count kept consistent), and the file it named deleted.
+    fs::path record;
+    for (const auto& e : fs::directory_iterator(tmp.path / "cache" / "records"))
+        record = e.path();
+    auto r = read_record(record);
+    REQUIRE(r);
+    std::string victim;
+    for (const RecordedFile& f : r->files)
+        if (f.path.find("water.frag.glsl") != std::string::npos) victim = f.path;
+    REQUIRE(!victim.empty());
+    std::erase_if(r->files, [&](const RecordedFile& f) { return f.path == victim; });
+    std::ofstream(record) << record_text(*r);
+    REQUIRE(parse_record(read_file(record)));
+    fs::remove(out / victim);
+    CHECK_FALSE(up_to_date());
+    CHECK(read_tree(out) == tree);
+    CHECK(up_to_date());
+
+    // A directory of the output (not the last component of any file's path) a link to a copy.
+    const fs::path copy = tmp.path / "elsewhere";
+    fs::rename(out / "open_ocean", copy);
+    fs::create_directory_symlink(copy, out / "open_ocean");
+    CHECK_FALSE(up_to_date());
+    CHECK(fs::is_directory(fs::symlink_status(out / "open_ocean")));
+    CHECK(read_tree(out) == tree);
+
+    // manifest.json broken in place: the record of the last build there vouches for the rest.
+    std::ofstream(out / "manifest.json") << "{";
+    CHECK_FALSE(up_to_date());
+    CHECK(read_tree(out) == tree);
+    // A file the record does not know beside a broken manifest: not watergen's alone, refused.
+    std::ofstream(out / "manifest.json") << "{";
+    std::ofstream(out / "notes.txt") << "mine\n";
+    const WatergenRun foreign = run_watergen(args);
+    CHECK(foreign.exit_code == 2);
+    CHECK(foreign.err.find("did not write") != std::string::npos);
+    CHECK(read_file(out / "notes.txt") == "mine\n");
+}
+
+TEST_CASE("a_record_covers_the_manifest_only_when_it_names_every_file_the_manifest_names",
+          "[record]") {
+    const std::string manifest =
+        R"({"variants": [{"directory": "s/v", "files": {"glsl": ["s/v/a.glsl"]},
+        "passes": {"caustics": {"directory": "passes/p", "files": {"spirv": ["passes/p/b.spv"]}}}}]})";
+    BuildRecord r = make_record(
+        "k", 1, 1, {{"manifest.json", manifest}, {"s/v/a.glsl", "a"}, {"passes/p/b.spv", "b"}});
+    CHECK(record_covers_manifest(r, manifest));
+    for (const char* lost : {"manifest.json", "s/v/a.glsl", "passes/p/b.spv"}) {
+        BuildRecord less = r;
+        std::erase_if(less.files, [&](const RecordedFile& f) { return f.path == lost; });
+        INFO(lost);
+        CHECK_FALSE(record_covers_manifest(less, manifest));
+    }
+    CHECK_FALSE(record_covers_manifest(r, "{"));
+    // A manifest naming a path outside its directory vouches for nothing.
+    CHECK_FALSE(record_covers_manifest(
+        r, R"({"variants": [{"directory": "s/v", "files": {"glsl": ["../a.glsl"]}}]})"));
+}

@@ -128,3 +128,143 @@ TEST_CASE("four_shards_merged_are_byte_identical_to_one_build", "[shard]") {
     std::ofstream(tmp.path / "shard3" / "manifest.json", std::ios::app) << " ";
     refused({s1, s2, s3, s4}, "shard3: manifest.json does not match the size and hash");
 }
+
+namespace {
+
+using OJson = nlohmann::ordered_json;
+
+OJson read_json(const fs::path& p) {
+    return OJson::parse(read_file(p));
+}
+
+// shard.json's size and hash of every file made to agree with the files again: a shard
+// rewritten consistently, as only a deliberate edit would.
+void rehash(const fs::path& shard) {
+    OJson j = read_json(shard / "shard.json");
+    for (auto& f : j["files"]) {
+        const std::string bytes = read_file(shard / f[0].get<std::string>());
+        f[1] = bytes.size();
+        f[2] = file_digest(bytes);
+    }
+    std::ofstream(shard / "shard.json") << j.dump(1) << "\n";
+}
+
+void write_json(const fs::path& p, const OJson& j) {
+    std::ofstream(p) << j.dump(2) << "\n";
+}
+
+} // namespace
+
+// merge replaces OUT whole, so OUT may not be, hold or lie inside a shard; and it trusts no
+// shard: a file shard.json leaves out, a variant dropped (shard.json and manifest rewritten to
+// agree), a directory outside the output are each refused with exit 2 and nothing written.
+TEST_CASE("merge_refuses_an_out_among_its_shards_and_shards_that_do_not_add_up", "[shard]") {
+    const TempDir tmp("shards-hostile");
+    const std::string material = default_material_path();
+    std::vector<std::string> shards;
+    for (const char* i : {"1", "2", "3", "4"}) {
+        const std::string name = std::string("s") + i;
+        REQUIRE(
+            run_watergen(build_args(tmp.path, material, name, std::string(i) + "/4")).exit_code ==
+            0);
+        shards.push_back((tmp.path / name).string());
+    }
+    const auto kept = read_tree(shards[0]);
+    auto merge = [&](const fs::path& out, std::vector<std::string> dirs) {
+        dirs.insert(dirs.begin(), {"merge", out.string()});
+        return run_watergen(dirs);
+    };
+    auto refused = [&](const WatergenRun& r, const std::string& why) {
+        INFO(r.out << r.err);
+        CHECK(r.exit_code == 2);
+        CHECK(r.err.find(why) != std::string::npos);
+        CHECK(r.err.find("nothing written") != std::string::npos);
+    };
+    refused(merge(shards[0], shards), "is the shard " + shards[0]);
+    CHECK(read_tree(shards[0]) == kept);
+    refused(merge(tmp.path / "s1" / "merged", shards), "lies inside the shard " + shards[0]);
+    // OUT an earlier output that holds the shards: the old tree would go, shards with it.
+    const fs::path outer = tmp.path / "outer";
+    std::vector<std::string> inner;
+    fs::create_directories(outer);
+    for (const std::string& s : shards) {
+        fs::copy(s, outer / fs::path(s).filename(), fs::copy_options::recursive);
+        inner.push_back((outer / fs::path(s).filename()).string());
+    }
+    fs::copy_file(fs::path(shards[0]) / "manifest.json", outer / "manifest.json");
+    refused(merge(outer, inner), "holds the shard " + inner[0]);
+    CHECK(read_tree(inner[0]) == kept);
+    fs::create_directories(tmp.path / "foreign");
+    std::ofstream(tmp.path / "foreign" / "notes.txt") << "keep\n";
+    refused(merge(tmp.path / "foreign", shards), "a directory of files watergen did not write");
+
+    const fs::path out = tmp.path / "merged";
+    auto tampered = [&](const std::string& name) {
+        const fs::path copy = tmp.path / (name + ".bad");
+        fs::copy(tmp.path / name, copy, fs::copy_options::recursive);
+        std::vector<std::string> dirs = shards;
+        for (std::string& d : dirs)
+            if (fs::path(d).filename() == name) d = copy.string();
+        return std::make_pair(copy, dirs);
+    };
+    {
+        // A file of a variant left out of shard.json's list.
+        const auto [bad, dirs] = tampered("s2");
+        OJson j = read_json(bad / "shard.json");
+        auto& files = j["files"];
+        for (size_t i = 0; i < files.size(); ++i)
+            if (files[i][0].get<std::string>().find("water.frag.glsl") != std::string::npos) {
+                files.erase(i);
+                break;
+            }
+        std::ofstream(bad / "shard.json") << j.dump(1) << "\n";
+        refused(merge(out, dirs), "which shard.json does not list");
+        CHECK_FALSE(fs::exists(out));
+    }
+    {
+        // A variant dropped from the manifest and from shard.json, both rehashed.
+        const auto [bad, dirs] = tampered("s3");
+        OJson m = read_json(bad / "manifest.json");
+        const std::string gone = m["variants"].back()["key"];
+        m["variants"].erase(m["variants"].size() - 1);
+        write_json(bad / "manifest.json", m);
+        OJson j = read_json(bad / "shard.json");
+        OJson shapes = OJson::array();
+        for (const auto& s : j["shapes"])
+            if (s[1] != gone) shapes.push_back(s);
+        j["shapes"] = shapes;
+        j["variants"] = j["variants"].get<size_t>() - 1;
+        std::ofstream(bad / "shard.json") << j.dump(1) << "\n";
+        rehash(bad);
+        refused(merge(out, dirs), "the build's manifest counts");
+        CHECK_FALSE(fs::exists(out));
+    }
+    {
+        // A variant's directory pointing outside the output, rehashed.
+        const auto [bad, dirs] = tampered("s4");
+        OJson m = read_json(bad / "manifest.json");
+        m["variants"][0]["directory"] = "../../../evil";
+        write_json(bad / "manifest.json", m);
+        rehash(bad);
+        refused(merge(out, dirs), "is not a plain relative path");
+        CHECK_FALSE(fs::exists(out));
+    }
+    {
+        // A variant moved into a shard whose key range does not hold it.
+        const auto [bad, dirs] = tampered("s1");
+        OJson m = read_json(bad / "manifest.json");
+        const OJson other = read_json(fs::path(shards[1]) / "manifest.json")["variants"][0];
+        m["variants"].push_back(other);
+        write_json(bad / "manifest.json", m);
+        OJson j = read_json(bad / "shard.json");
+        j["shapes"].push_back({other["scene"], other["key"], "0"});
+        j["variants"] = j["variants"].get<size_t>() + 1;
+        std::ofstream(bad / "shard.json") << j.dump(1) << "\n";
+        rehash(bad);
+        refused(merge(out, dirs), "key range");
+        CHECK_FALSE(fs::exists(out));
+    }
+    const WatergenRun ok = merge(out, shards);
+    INFO(ok.err);
+    CHECK(ok.exit_code == 0);
+}

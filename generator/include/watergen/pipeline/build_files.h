@@ -28,7 +28,8 @@ struct BuildFilesRun {
     BuildSummary summary;         // of the build, or of the no-op (summary.up_to_date)
     bool built = false;           // the files loaded and the build ran
     Diagnostics load_diagnostics; // why the material or a scene file did not load (exit 2)
-    std::string depfile_error;    // the depfile could not be written (exit 1): nothing built
+    std::string depfile_error;    // the depfile was refused or not written: nothing built
+    bool depfile_refused = false; // refused (exit 2: depfile_refusal, a path it cannot name)
 };
 
 BuildFilesRun build_from_files(const BuildFilesRequest& request);

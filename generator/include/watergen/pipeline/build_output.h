@@ -90,7 +90,9 @@ BuildSummary build_material(const BuildRequest& request);
 BuildSummary build_material_now(const BuildRequest& request);
 
 // Puts `files` in place of the output directory `out` as one atomic step, if `out` may be
-// replaced (check_output_target()); the error otherwise, and `out` untouched.
-std::optional<std::string> publish_output(const std::filesystem::path& out, const FileMap& files);
+// replaced (check_output_target(), with `recorded`: what the build record says watergen wrote
+// there); the error otherwise, and `out` untouched.
+std::optional<std::string> publish_output(const std::filesystem::path& out, const FileMap& files,
+                                          const std::vector<std::string>& recorded = {});
 
 } // namespace watergen

@@ -57,8 +57,13 @@ std::optional<BuildRecord> read_record(const std::filesystem::path& file);
 // costs the next build its shortcut, so failures are ignored.
 void store_record(const std::filesystem::path& file, const BuildRecord& record);
 
+// Whether the record names every file the manifest `manifest` names, and manifest.json: a
+// record that lost a line cannot vouch for an output that lost that file.
+bool record_covers_manifest(const BuildRecord& record, const std::string& manifest);
+
 // Whether every recorded file is in `out`, a regular file of its size and digest (read on
-// `threads` workers; 0: all cores).
+// `threads` workers; 0: all cores). No link is followed on the way: not `out`, not a directory
+// inside it, not a file.
 bool outputs_intact(const std::filesystem::path& out, const BuildRecord& record, unsigned threads);
 
 } // namespace watergen

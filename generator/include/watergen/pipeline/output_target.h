@@ -1,12 +1,15 @@
 // The directory a build may replace. A build puts its output in place of the directory it is
 // given, as a whole; so that directory must be one watergen made (it holds the manifest.json of
-// a build), an empty directory, or a path that does not exist yet. Anything else (a regular
+// a build, or the build record shows watergen wrote it), an empty directory, or a path that does
+// not exist yet. Anything else (a regular
 // file, a device, a symbolic link, a directory of other files, the current directory or one
 // holding it) is refused, and left untouched.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace watergen {
 
@@ -16,7 +19,13 @@ struct OutputTarget {
     bool ok() const { return error.empty(); }
 };
 
-OutputTarget check_output_target(const std::filesystem::path& out);
+// A manifest is a few hundred KB; anything far larger is not one.
+constexpr size_t kMaxManifestBytes = size_t(256) << 20;
+
+// `recorded`: the files the build record of `out` says watergen wrote there (build_record.h);
+// a directory whose manifest.json is broken is still replaced when it holds only those.
+OutputTarget check_output_target(const std::filesystem::path& out,
+                                 const std::vector<std::string>& recorded = {});
 // `out` absolute and normal, without a trailing separator ("out/" and "./out" are "$PWD/out").
 std::filesystem::path normal_output_path(const std::filesystem::path& out);
 

@@ -1,0 +1,42 @@
+// What `watergen merge` reads of one shard's output, trusting none of it: shard.json parsed into
+// its fields (every one checked for type and range), and the shard's manifest checked against
+// it: each variant in the shard's key range, exactly the variants shard.json names, every file
+// the manifest names listed in shard.json, plain and inside its variant's directory.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "watergen/pipeline/sharded_build.h"
+
+namespace watergen {
+
+struct ListedFile {
+    std::string path; // plain relative (is_plain_relative_path)
+    uint64_t size = 0;
+    std::string digest; // file_digest()
+};
+
+struct ShardFile {
+    Shard shard;
+    std::string toolchain, inputs;
+    size_t variants = 0;
+    std::map<std::pair<std::string, std::string>, std::string> shapes; // (scene, key) -> shape
+    std::vector<ListedFile> files;
+};
+
+// shard.json's text as a ShardFile; nullopt and *why (what is wrong, what was expected).
+std::optional<ShardFile> parse_shard_file(const std::string& text, std::string* why);
+
+// The shard's manifest against its shard.json and the files shard.json lists; "" or why not.
+std::string check_shard_manifest(const nlohmann::ordered_json& manifest, const ShardFile& shard,
+                                 const std::set<std::string>& listed);
+
+} // namespace watergen

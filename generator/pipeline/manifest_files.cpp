@@ -1,0 +1,62 @@
+#include "watergen/pipeline/manifest_files.h"
+
+#include "watergen/pipeline/output_writer.h"
+
+namespace watergen {
+
+using OJson = nlohmann::ordered_json;
+
+namespace {
+
+bool starts_with(const std::string& s, const std::string& prefix) {
+    return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+// The paths under one "files" object ({kind: [path, ...]}) below `directory`; "" or why not.
+std::string files_under(const OJson& files, const std::string& directory,
+                        std::vector<std::string>& paths) {
+    if (!files.is_object()) return "\"files\" is not an object of path lists";
+    for (const auto& [kind, list] : files.items()) {
+        if (!list.is_array()) return "\"files\"/" + kind + " is not a list of paths";
+        for (const OJson& p : list) {
+            if (!p.is_string() || !is_plain_relative_path(p.get<std::string>()) ||
+                !starts_with(p.get<std::string>(), directory + "/"))
+                return "\"files\"/" + kind + " names " + p.dump() +
+                       "; expected a plain relative path inside \"" + directory + "\"";
+            paths.push_back(p);
+        }
+    }
+    return "";
+}
+
+} // namespace
+
+std::string named_files(const OJson& entry, std::vector<std::string>& paths) {
+    if (!entry.is_object()) return "an entry is not an object";
+    if (entry.contains("files") || entry.contains("directory")) {
+        const OJson dir = entry.value("directory", OJson());
+        if (!dir.is_string() || !is_plain_relative_path(dir.get<std::string>()))
+            return "\"directory\" " + dir.dump() + " is not a plain relative path";
+        if (std::string why = files_under(entry.value("files", OJson::object()), dir, paths);
+            !why.empty())
+            return why;
+    }
+    if (const auto it = entry.find("passes"); it != entry.end()) {
+        if (!it->is_object()) return "\"passes\" is not an object";
+        for (const auto& [name, pass] : it->items())
+            if (std::string why = named_files(pass, paths); !why.empty())
+                return "pass " + name + ": " + why;
+    }
+    return "";
+}
+
+std::string manifest_named_files(const std::string& bytes, std::vector<std::string>& paths) {
+    const OJson m = OJson::parse(bytes, nullptr, false);
+    if (!m.is_object() || !m.value("variants", OJson()).is_array())
+        return "manifest.json is not the manifest of a build";
+    for (const OJson& v : m["variants"])
+        if (std::string why = named_files(v, paths); !why.empty()) return why;
+    return "";
+}
+
+} // namespace watergen

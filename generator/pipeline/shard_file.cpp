@@ -1,0 +1,141 @@
+#include "watergen/pipeline/shard_file.h"
+
+#include <xxhash.h>
+
+#include "watergen/pipeline/manifest_files.h"
+#include "watergen/pipeline/output_writer.h"
+
+namespace watergen {
+
+using OJson = nlohmann::ordered_json;
+
+namespace {
+
+// A build of the whole space writes a few thousand variants and files per shard; far more is
+// not a shard watergen wrote (and would only cost memory).
+constexpr size_t kMaxShardEntries = size_t(1) << 20;
+
+bool is_uint(const OJson& j) {
+    return j.is_number_unsigned();
+}
+
+bool is_string_triple(const OJson& j) {
+    return j.is_array() && j.size() == 3 && j[0].is_string() && j[1].is_string();
+}
+
+bool starts_with(const std::string& s, const std::string& prefix) {
+    return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+// "<digits>" as a number of at most 9 digits.
+std::optional<unsigned> small_number(const std::string& text) {
+    if (text.empty() || text.size() > 9 ||
+        text.find_first_not_of("0123456789") != std::string::npos)
+        return std::nullopt;
+    return static_cast<unsigned>(std::stoul(text));
+}
+
+} // namespace
+
+std::optional<Shard> parse_shard(const std::string& text, std::string* error) {
+    const size_t slash = text.find('/');
+    const auto i = small_number(text.substr(0, slash));
+    const auto n = slash == std::string::npos ? std::nullopt : small_number(text.substr(slash + 1));
+    if (i && n && *i >= 1 && *i <= *n) return Shard{*i, *n};
+    if (error)
+        *error = "'" + text + "': expected I/N, shard I of N with 1 <= I <= N (e.g. 1/4 .. 4/4)";
+    return std::nullopt;
+}
+
+std::string shard_text(const Shard& shard) {
+    return shard.sharded() ? std::to_string(shard.index) + "/" + std::to_string(shard.count) : "";
+}
+
+bool in_shard(const Shard& shard, const std::string& key) {
+    return !shard.sharded() || XXH64(key.data(), key.size(), 0) % shard.count == shard.index - 1;
+}
+
+std::optional<ShardFile> parse_shard_file(const std::string& text, std::string* why) {
+    auto fail = [&](const std::string& w) {
+        if (why) *why = w;
+        return std::nullopt;
+    };
+    const OJson j = OJson::parse(text, nullptr, false);
+    const bool shaped =
+        j.is_object() && is_uint(j.value("watergen_shard", OJson())) &&
+        j["watergen_shard"].get<uint64_t>() == 1 && is_uint(j.value("index", OJson())) &&
+        is_uint(j.value("count", OJson())) && j.value("toolchain", OJson()).is_string() &&
+        j.value("inputs", OJson()).is_string() && is_uint(j.value("variants", OJson())) &&
+        j.value("shapes", OJson()).is_array() && j.value("files", OJson()).is_array();
+    if (!shaped) return fail("shard.json is not one watergen build --shard wrote");
+    if (j["index"].get<uint64_t>() > 1000000000 || j["count"].get<uint64_t>() > 1000000000)
+        return fail("shard.json names a shard past 10^9; expected I/N of a build");
+    ShardFile s;
+    s.shard = {j["index"].get<unsigned>(), j["count"].get<unsigned>()};
+    if (s.shard.index < 1 || s.shard.index > s.shard.count)
+        return fail("shard.json names shard " + std::to_string(s.shard.index) + "/" +
+                    std::to_string(s.shard.count) + "; expected I/N with 1 <= I <= N");
+    s.toolchain = j["toolchain"];
+    s.inputs = j["inputs"];
+    s.variants = j["variants"];
+    if (j["shapes"].size() > kMaxShardEntries || j["files"].size() > kMaxShardEntries)
+        return fail("shard.json lists more than " + std::to_string(kMaxShardEntries) +
+                    " shapes or files; expected a shard of one build");
+    for (const auto& shape : j["shapes"]) {
+        if (!is_string_triple(shape) || !shape[2].is_string())
+            return fail("shard.json: a shape is not [scene, key, hash]");
+        if (!s.shapes.emplace(std::make_pair(shape[0], shape[1]), shape[2]).second)
+            return fail("shard.json names variant " + shape[0].get<std::string>() + "/" +
+                        shape[1].get<std::string>() + " twice");
+    }
+    std::string previous;
+    for (const auto& f : j["files"]) {
+        if (!f.is_array() || f.size() != 3 || !f[0].is_string() || !is_uint(f[1]) ||
+            !f[2].is_string() || !is_plain_relative_path(f[0]))
+            return fail("shard.json: a file is not [relative path, size, hash]");
+        ListedFile file{f[0], f[1].get<uint64_t>(), f[2]};
+        if (!s.files.empty() && file.path <= previous)
+            return fail("shard.json: " + file.path +
+                        " out of order or twice; expected the "
+                        "files sorted by path, each once");
+        previous = file.path;
+        s.files.push_back(std::move(file));
+    }
+    return s;
+}
+
+std::string check_shard_manifest(const OJson& manifest, const ShardFile& s,
+                                 const std::set<std::string>& listed) {
+    if (!manifest.is_object() || !manifest.value("variants", OJson()).is_array())
+        return "no manifest.json of a build among the files shard.json lists";
+    const OJson& variants = manifest["variants"];
+    if (variants.size() != s.shapes.size() || variants.size() != s.variants)
+        return "manifest.json holds " + std::to_string(variants.size()) +
+               " variants, shard.json names " + std::to_string(s.shapes.size()) + " and counts " +
+               std::to_string(s.variants) + "; expected one count";
+    const std::string range = "shard " + shard_text(s.shard);
+    for (const OJson& v : variants) {
+        const OJson scene = v.value("scene", OJson()), key = v.value("key", OJson());
+        if (!scene.is_string() || !key.is_string())
+            return "a variant of manifest.json has no scene and key";
+        const std::string id = scene.get<std::string>() + "/" + key.get<std::string>();
+        if (!s.shapes.count({scene, key}))
+            return "variant " + id + " of manifest.json is not among shard.json's shapes";
+        if (!in_shard(s.shard, key))
+            return "variant " + id + " is not in " + range +
+                   "'s key range (its key hashes to another shard)";
+        std::vector<std::string> paths;
+        if (std::string why = named_files(v, paths); !why.empty())
+            return "variant " + id + ": " + why;
+        if (v.contains("directory") &&
+            !starts_with(v["directory"].get<std::string>(), scene.get<std::string>() + "/"))
+            return "variant " + id + ": \"directory\" " + v["directory"].dump() +
+                   " is outside its scene's directory " + scene.get<std::string>() + "/";
+        for (const std::string& p : paths)
+            if (!listed.count(p))
+                return "variant " + id + " names " + p + ", which shard.json does not list";
+    }
+    return "";
+}
+
+} // namespace watergen
