@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "json_limits.h"
 #include "manifest_reader.h"
 #include "watergen/runtime/shader_build.h"
 
@@ -85,9 +86,17 @@ std::optional<BuildPass> ShaderBuild::pass(const BuildVariant& v, const std::str
     }
     BuildPass p{name, it->second, {}};
     const std::string file = pass_json_path(p.reference);
-    const auto bytes = read(file, error);
+    const auto bytes = read_at_most(file, manifest::kMaxDescriptionBytes, error);
     if (!bytes) return std::nullopt;
     const std::string where = (directory_ / file).string();
+    // A pass.json is one uniform block (manifest_reader.h: kMaxDescriptionBytes).
+    bool syntax_error = false;
+    if (const std::string over =
+            json_limits::check(*bytes, {size_t(1) << 16, 8, 4096}, &syntax_error);
+        !over.empty()) {
+        *error = where + ": " + over + "; expected a pass description of a watergen build";
+        return std::nullopt;
+    }
     const json doc = json::parse(*bytes, nullptr, false);
     if (!doc.is_object()) {
         *error = where + ": not a JSON object; expected a pass description of a watergen build";

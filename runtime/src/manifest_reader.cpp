@@ -6,14 +6,8 @@ namespace watergen::manifest {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// A manifest is a few hundred KB, a shader file far less; anything larger is not one of ours.
-constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t(256) << 20;
-
-} // namespace
-
-std::optional<std::string> read_bytes(const fs::path& path, std::string* error) {
+std::optional<std::string> read_bytes(const fs::path& path, std::string* error,
+                                      std::uintmax_t max_bytes) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
         *error = path.string() + ": " +
@@ -22,8 +16,11 @@ std::optional<std::string> read_bytes(const fs::path& path, std::string* error) 
         return std::nullopt;
     }
     const std::uintmax_t size = fs::file_size(path, ec);
-    if (ec || size > kMaxFileBytes) {
-        *error = path.string() + ": " + (ec ? ec.message() : "larger than 256 MiB");
+    if (ec || size > max_bytes) {
+        *error = path.string() + ": " +
+                 (ec ? ec.message()
+                     : std::to_string(size) + " bytes; expected at most " +
+                           std::to_string(max_bytes) + " (no watergen build writes a larger one)");
         return std::nullopt;
     }
     std::ifstream in(path, std::ios::binary);
@@ -33,6 +30,41 @@ std::optional<std::string> read_bytes(const fs::path& path, std::string* error) 
         return std::nullopt;
     }
     return bytes;
+}
+
+size_t estimated_bytes(const BuildVariant& v) {
+    constexpr size_t kEntry = 64; // a map node or vector element and its bookkeeping
+    size_t n = sizeof(BuildVariant) + v.scene.size() + v.key.size() + v.hash.size() +
+               v.shader_directory.size() + v.block_name.size();
+    for (const auto& [axis, choice] : v.choices)
+        n += kEntry + axis.size() + choice.size();
+    for (const auto& [kind, list] : v.files) {
+        n += kEntry + kind.size();
+        for (const std::string& f : list)
+            n += kEntry + f.size();
+    }
+    for (const BlockParameter& p : v.parameters)
+        n += sizeof(BlockParameter) + p.name.size() + p.type.size() + 8 * p.default_value.size();
+    for (const TextureSlot& t : v.textures)
+        n += sizeof(TextureSlot) + t.name.size() + t.type.size();
+    for (const auto& [name, value] : v.folded_parameters)
+        n += kEntry + name.size() + 8 * value.size();
+    for (const std::string& r : v.removed_parameters)
+        n += kEntry + r.size();
+    n += kEntry * (v.specialization.size() + v.frozen.size() + v.passes.size());
+    for (const auto& [name, value] : v.selector_uniforms)
+        n += kEntry + name.size();
+    for (const auto& [lang, file] : v.frozen)
+        n += lang.size() + file.size();
+    for (const auto& [name, pass] : v.passes) {
+        n += sizeof(PassReference) + name.size() + pass.directory.size();
+        for (const auto& [kind, list] : pass.files)
+            for (const std::string& f : list)
+                n += kEntry + kind.size() + f.size();
+        for (const auto& [parameter, value] : pass.values)
+            n += kEntry + parameter.size() + 8 * value.size();
+    }
+    return n;
 }
 
 std::string at(const std::string& path, size_t i) {

@@ -19,8 +19,37 @@ namespace watergen::manifest {
 
 using nlohmann::json;
 
-// The bytes of a regular file of at most 256 MiB; nullopt and `error` naming the file otherwise.
-std::optional<std::string> read_bytes(const std::filesystem::path& path, std::string* error);
+// The largest manifest.json: the generator's own limit on the manifest it writes and reads back
+// (generator/pipeline/output_target.cpp); a build of more variants does not open anywhere.
+constexpr std::uintmax_t kMaxManifestBytes = std::uintmax_t(256) << 20;
+// The largest pass.json or reflection file: the generator writes a few KB (one uniform block of
+// at most kMaxBlockMembers members, a few bindings); 1 MiB is far beyond any of them.
+constexpr std::uintmax_t kMaxDescriptionBytes = std::uintmax_t(1) << 20;
+
+// What a manifest's JSON can hold (json_limits.h), checked before its DOM is built. The
+// generator's manifests average 24 bytes per JSON value, keys included (paths, keys, hashes:
+// generated/manifest.json, the default material's build, is 34,336 values in 834,164 bytes): a
+// manifest at kMaxManifestBytes holds about 11M values, so 16M refuses no build the generator
+// can write, while a text of small values ("[0,0,0,...", "[],[],...") no longer makes a DOM of
+// 20 times its size. The generator nests 8 levels; strings are paths, keys and descriptions.
+constexpr size_t kMaxManifestValues = size_t(16) << 20;
+constexpr size_t kMaxManifestDepth = 16;
+constexpr size_t kMaxManifestString = size_t(64) << 10;
+// What the variants read from a manifest may hold in memory in all. The specialized and
+// branching modes copy their shader's part (files, uniform block, textures) into every variant
+// that is drawn with it, so a few shaders of a huge uniform block times many small variant
+// entries would be a product of two counts; the copies are counted (estimated_bytes()) and
+// the manifest refused past this. A real variant holds about 11 KB (the 56 of the default
+// material's build: docs/engine-guide.md), so 1 GiB is some 95,000 variants of that size.
+constexpr size_t kMaxVariantBytes = size_t(1) << 30;
+
+// The bytes a variant's strings, numbers and entries take, roughly (for kMaxVariantBytes).
+size_t estimated_bytes(const BuildVariant& v);
+
+// The bytes of a regular file of at most `max_bytes`; nullopt and `error` naming the file
+// otherwise.
+std::optional<std::string> read_bytes(const std::filesystem::path& path, std::string* error,
+                                      std::uintmax_t max_bytes = kMaxManifestBytes);
 
 // Walks the manifest recording the first problem as "<file>: <key path>: expected ...";
 // every accessor checks the type first, so nlohmann never throws.

@@ -5,8 +5,34 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_limits.h"
+
 namespace watergen {
 namespace {
+
+// What the generator's reflection of one stage can hold (toolchain/ reflects SPIRV-Cross's view
+// of a generated shader): one uniform block of the material's parameters (the node catalog
+// declares under a hundred; each is a member) and one binding per texture a node samples
+// (under ten), all in set 0; a handful of stage inputs and outputs; a specialization constant
+// per selector component in the specialized mode (under a hundred). Each limit is ten times
+// that or more, so a real file never meets one; a file past one is not a watergen reflection,
+// and reading it on would only spend memory (a DOM of 100,000 bindings) or hand a driver
+// descriptor set layouts it cannot make.
+constexpr size_t kMaxBindings = 64;
+constexpr size_t kMaxMembers = 1024;
+constexpr size_t kMaxStageVariables = 64;
+constexpr size_t kMaxSpecializationConstants = 1024;
+// Vulkan guarantees 4 bound descriptor sets (maxBoundDescriptorSets), and 1024 binding numbers
+// per set is far beyond a shader with kMaxBindings bindings.
+constexpr uint32_t kMaxSet = 3;
+constexpr uint32_t kMaxBinding = 1023;
+// A uniform or storage block: Vulkan guarantees 16 KiB uniform buffers (maxUniformBufferRange);
+// the material's block is well under 1 KiB. UniformWriter::pack() allocates block_size bytes.
+constexpr uint32_t kMaxBlockSize = 1u << 16;
+// The text as a whole: 1 MiB, and its values, depth and strings (json_limits.h): a real file is
+// a few KB of at most 5 levels (object, bindings, binding, members, member).
+constexpr size_t kMaxReflectionBytes = size_t(1) << 20;
+constexpr json_limits::Limits kLimits{size_t(1) << 16, 8, 4096};
 
 using nlohmann::json;
 
@@ -69,11 +95,15 @@ class Reader {
         return true;
     }
 
-    bool u32(const char* key, uint32_t& out, bool required = true) {
+    bool u32(const char* key, uint32_t& out, bool required = true,
+             uint32_t max = std::numeric_limits<uint32_t>::max()) {
         const json* v = find(key, required, "an unsigned 32-bit integer");
         if (!v) return !required && !failed_;
         if (!v->is_number_unsigned() || v->get<uint64_t>() > std::numeric_limits<uint32_t>::max())
             return fail(key, "expected an unsigned 32-bit integer");
+        if (v->get<uint64_t>() > max)
+            return fail(key, std::to_string(v->get<uint64_t>()) + "; expected at most " +
+                                 std::to_string(max));
         out = static_cast<uint32_t>(v->get<uint64_t>());
         return true;
     }
@@ -103,10 +133,14 @@ class Reader {
 
     // Calls read(element_reader, item) for each object in the array at `key`.
     template <class T, class Fn>
-    bool array(const char* key, std::vector<T>& out, Fn read, bool required = true) {
+    bool array(const char* key, std::vector<T>& out, Fn read, size_t max_items,
+               bool required = true) {
         const json* v = find(key, required, "an array");
         if (!v) return !required && !failed_;
         if (!v->is_array()) return fail(key, "expected an array");
+        if (v->size() > max_items)
+            return fail(key, std::to_string(v->size()) + " items; expected at most " +
+                                 std::to_string(max_items) + " (a watergen shader has far fewer)");
         out.clear();
         for (size_t i = 0; i < v->size(); ++i) {
             const std::string element = join(key) + "[" + std::to_string(i) + "]";
@@ -162,10 +196,11 @@ bool read_specialization_constant(Reader& r, SpecializationConstant& c) {
 
 bool read_binding(Reader& r, DescriptorBinding& b) {
     // image_dim, block_size and members only matter for some kinds, so they may be omitted.
-    return r.string("name", b.name) && r.u32("set", b.set) && r.u32("binding", b.binding) &&
+    return r.string("name", b.name) && r.u32("set", b.set, true, kMaxSet) &&
+           r.u32("binding", b.binding, true, kMaxBinding) &&
            r.enumeration("kind", kKinds, b.kind) && r.string("image_dim", b.image_dim, false) &&
-           r.u32("block_size", b.block_size, false) &&
-           r.array("members", b.members, read_member, false);
+           r.u32("block_size", b.block_size, false, kMaxBlockSize) &&
+           r.array("members", b.members, read_member, kMaxMembers, false);
 }
 
 } // namespace
@@ -216,6 +251,16 @@ std::optional<Reflection> reflection_from_json(const std::string& text, std::str
     std::string scratch;
     if (!error) error = &scratch;
     error->clear();
+    if (text.size() > kMaxReflectionBytes) {
+        *error = "(root): " + std::to_string(text.size()) + " bytes; expected at most " +
+                 std::to_string(kMaxReflectionBytes) + " (a watergen reflection is a few KB)";
+        return std::nullopt;
+    }
+    bool syntax_error = false;
+    if (const std::string over = json_limits::check(text, kLimits, &syntax_error); !over.empty()) {
+        *error = "(root): " + over + "; expected a watergen reflection (a few KB)";
+        return std::nullopt;
+    }
     json doc;
     try {
         doc = json::parse(text);
@@ -235,11 +280,11 @@ std::optional<Reflection> reflection_from_json(const std::string& text, std::str
     Reader reader(doc, "", error);
     const bool ok = reader.enumeration("stage", kStages, r.stage) &&
                     reader.string("entry_point", r.entry_point) &&
-                    reader.array("bindings", r.bindings, read_binding) &&
-                    reader.array("inputs", r.inputs, read_variable) &&
-                    reader.array("outputs", r.outputs, read_variable) &&
+                    reader.array("bindings", r.bindings, read_binding, kMaxBindings) &&
+                    reader.array("inputs", r.inputs, read_variable, kMaxStageVariables) &&
+                    reader.array("outputs", r.outputs, read_variable, kMaxStageVariables) &&
                     reader.array("specialization_constants", r.specialization_constants,
-                                 read_specialization_constant, false);
+                                 read_specialization_constant, kMaxSpecializationConstants, false);
     if (!ok) return std::nullopt;
     return r;
 }

@@ -9,7 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_limits.h"
 #include "manifest_reader.h"
+#include "watergen/runtime/spirv_check.h"
 
 namespace watergen {
 
@@ -153,9 +155,20 @@ std::map<std::string, std::string> parse_key(const std::string& key, std::string
 
 std::optional<ShaderBuild> ShaderBuild::open(const fs::path& directory, std::string* error) {
     const fs::path file = directory / "manifest.json";
-    const auto bytes = read_bytes(file, error);
+    auto bytes = read_bytes(file, error, manifest::kMaxManifestBytes);
     if (!bytes) return std::nullopt;
+    bool syntax_error = false;
+    if (const std::string over =
+            json_limits::check(*bytes,
+                               {manifest::kMaxManifestValues, manifest::kMaxManifestDepth,
+                                manifest::kMaxManifestString},
+                               &syntax_error);
+        !over.empty()) {
+        *error = file.string() + ": " + over + "; expected the manifest of a watergen build";
+        return std::nullopt;
+    }
     const json doc = json::parse(*bytes, nullptr, false);
+    bytes.reset(); // the DOM holds it all now
     if (doc.is_discarded() || !doc.is_object()) {
         *error = file.string() + ": not a JSON object; expected the manifest of a watergen build";
         return std::nullopt;
@@ -193,6 +206,7 @@ std::optional<ShaderBuild> ShaderBuild::open(const fs::path& directory, std::str
                 read_shader_part(r, (*list)[i], at("shaders", i), s);
                 shaders[s.shader_directory] = std::move(s);
             }
+    size_t held = 0; // estimated bytes of the variants read (kMaxVariantBytes)
     if (const json* list = r.get(doc, "", "variants", json::value_t::array, "an array"))
         for (size_t i = 0; i < list->size() && !r.failed(); ++i) {
             BuildVariant v;
@@ -202,6 +216,12 @@ std::optional<ShaderBuild> ShaderBuild::open(const fs::path& directory, std::str
             else
                 read_served(r, (*list)[i], at("variants", i), v, shaders);
             manifest::read_passes(r, (*list)[i], at("variants", i), v.passes);
+            held += manifest::estimated_bytes(v);
+            if (!r.failed() && held > manifest::kMaxVariantBytes)
+                r.fail(at("variants", i),
+                       "the variants so far hold over " +
+                           std::to_string(manifest::kMaxVariantBytes >> 20) +
+                           " MiB in memory; expected a build of fewer or smaller variants");
             b.variants_.push_back(std::move(v));
         }
     if (r.failed()) return std::nullopt;
@@ -210,6 +230,12 @@ std::optional<ShaderBuild> ShaderBuild::open(const fs::path& directory, std::str
 
 std::optional<std::string> ShaderBuild::read(const std::string& relative_path,
                                              std::string* error) const {
+    return read_at_most(relative_path, manifest::kMaxManifestBytes, error);
+}
+
+std::optional<std::string> ShaderBuild::read_at_most(const std::string& relative_path,
+                                                     std::uintmax_t max_bytes,
+                                                     std::string* error) const {
     if (unsafe_relative(relative_path)) {
         *error = "'" + relative_path + "': expected a path inside the build directory";
         return std::nullopt;
@@ -230,18 +256,18 @@ std::optional<std::string> ShaderBuild::read(const std::string& relative_path,
             (directory_ / "manifest.json").string() + ": does not list '" + relative_path + "'";
         return std::nullopt;
     }
-    return read_bytes(directory_ / relative_path, error);
+    return read_bytes(directory_ / relative_path, error, max_bytes);
 }
 
 std::optional<std::string> ShaderBuild::listed(const BuildVariant& v, const std::string& kind,
-                                               const std::string& suffix,
+                                               const std::string& suffix, std::uintmax_t max_bytes,
                                                std::string* error) const {
     const auto it = v.files.find(kind);
     if (it != v.files.end())
         for (const std::string& p : it->second)
             if (p.size() >= suffix.size() &&
                 p.compare(p.size() - suffix.size(), suffix.size(), suffix) == 0)
-                return read(p, error);
+                return read_at_most(p, max_bytes, error);
     *error = "variant " + v.key + " (scene " + v.scene + "): the build has no " + kind + " file '" +
              suffix + "' (its targets decide which files it writes)";
     return std::nullopt;
@@ -252,21 +278,37 @@ std::optional<std::vector<uint32_t>> ShaderBuild::spirv(const BuildVariant& v,
                                                         ShaderStage stage,
                                                         std::string* error) const {
     std::optional<std::string> bytes;
+    std::string file;
     const auto frozen = v.frozen.find(language);
-    if (stage == ShaderStage::Fragment && frozen != v.frozen.end())
-        bytes = read(frozen->second, error);
-    else
-        bytes =
-            listed(v, "spirv",
-                   "/" + language + "/" + v.file_stem + "." + stage_tag(stage) + ".opt.spv", error);
+    if (stage == ShaderStage::Fragment && frozen != v.frozen.end()) {
+        file = frozen->second;
+        bytes = read_at_most(file, kMaxSpirvBytes, error);
+    } else {
+        const std::string suffix =
+            "/" + language + "/" + v.file_stem + "." + stage_tag(stage) + ".opt.spv";
+        bytes = listed(v, "spirv", suffix, kMaxSpirvBytes, error);
+        if (const auto it = v.files.find("spirv"); it != v.files.end())
+            for (const std::string& p : it->second)
+                if (p.size() >= suffix.size() &&
+                    p.compare(p.size() - suffix.size(), suffix.size(), suffix) == 0) {
+                    file = p;
+                    break;
+                }
+    }
     if (!bytes) return std::nullopt;
-    if (bytes->size() % 4 != 0 || bytes->size() < 20) {
-        *error = "variant " + v.key + ": " + language + " " + stage_tag(stage) + " SPIR-V is " +
-                 std::to_string(bytes->size()) + " bytes; expected a whole number of 32-bit words";
+    const std::string where = (directory_ / file).string() + ": ";
+    if (bytes->size() % 4 != 0) {
+        *error = where + std::to_string(bytes->size()) +
+                 " bytes; expected a whole number of 32-bit words (SPIR-V)";
         return std::nullopt;
     }
     std::vector<uint32_t> words(bytes->size() / 4);
-    std::memcpy(words.data(), bytes->data(), bytes->size());
+    if (!words.empty()) std::memcpy(words.data(), bytes->data(), bytes->size());
+    std::string why;
+    if (!check_spirv(words, stage, "", &why) || !validate_spirv(words, &why)) {
+        *error = where + why;
+        return std::nullopt;
+    }
     return words;
 }
 
@@ -283,7 +325,7 @@ std::optional<std::string> ShaderBuild::source(const BuildVariant& v, const std:
         *error = "source kind '" + kind + "'; expected glsl, hlsl, glsl330, essl300 or msl";
         return std::nullopt;
     }
-    return listed(v, kind, it->second, error);
+    return listed(v, kind, it->second, manifest::kMaxManifestBytes, error);
 }
 
 std::optional<Reflection> ShaderBuild::reflection(const BuildVariant& v,
@@ -291,7 +333,7 @@ std::optional<Reflection> ShaderBuild::reflection(const BuildVariant& v,
                                                   std::string* error) const {
     const std::string suffix =
         "/" + language + "/" + v.file_stem + "." + stage_tag(stage) + ".reflect.json";
-    const auto text = listed(v, "reflection", suffix, error);
+    const auto text = listed(v, "reflection", suffix, manifest::kMaxDescriptionBytes, error);
     if (!text) return std::nullopt;
     std::string why;
     auto r = reflection_from_json(*text, &why);
@@ -353,10 +395,11 @@ Selection ShaderBuild::select(const std::string& scene_name,
     }
     if (fallback == Fallback::Error) {
         std::vector<std::string> missing;
-        for (const auto& [axis, choice] : choices) {
+        for (const auto& asked_choice : choices) {     // (no structured binding: clang 14 cannot
+            const auto& [axis, choice] = asked_choice; // capture one in the lambda below)
             const bool kept = std::any_of(in_scene.begin(), in_scene.end(), [&](const auto* v) {
-                const auto it = v->choices.find(axis);
-                return it != v->choices.end() && it->second == choice;
+                const auto it = v->choices.find(asked_choice.first);
+                return it != v->choices.end() && it->second == asked_choice.second;
             });
             if (!kept) missing.push_back(axis + "=" + choice);
         }

@@ -146,7 +146,8 @@ std::optional<std::vector<uint8_t>> UniformWriter::pack(const Reflection& reflec
                  variant_name(variant_) + ")";
         return std::nullopt;
     }
-    std::vector<uint8_t> bytes((block->block_size + 15) / 16 * 16, 0);
+    // size_t: a block_size near 2^32 must not wrap to an empty buffer the members then overrun.
+    std::vector<uint8_t> bytes((size_t(block->block_size) + 15) / 16 * 16, 0);
     for (const UniformMember& m : block->members) {
         const auto it = values_.find(m.name);
         if (it == values_.end()) {

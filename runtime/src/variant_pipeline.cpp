@@ -5,15 +5,20 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <tuple>
 #include <unistd.h>
 
 #include "pipeline_state.h"
+#include "watergen/runtime/spirv_check.h"
 
 namespace watergen {
 
 namespace fs = std::filesystem;
 
 namespace {
+
+// Vulkan guarantees maxBoundDescriptorSets >= 4; watergen's shaders use set 0.
+constexpr uint32_t kMaxDescriptorSets = 4;
 
 std::string failed(const char* call, VkResult r) {
     return std::string(call) + " failed: VkResult " + std::to_string(static_cast<int>(r));
@@ -117,6 +122,25 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
             return std::nullopt;
         }
     VariantPipeline p;
+    // The driver trusts the modules: a vertex module in the fragment slot crashed lavapipe.
+    for (const auto& [words, r, stage] :
+         {std::tuple{d.vertex_spirv, d.vertex_reflection, ShaderStage::Vertex},
+          std::tuple{d.fragment_spirv, d.fragment_reflection, ShaderStage::Fragment}}) {
+        std::string why;
+        if (!check_spirv(*words, stage, r->entry_point.empty() ? "main" : r->entry_point, &why)) {
+            *error = std::string(to_string(stage)) + " stage: SPIR-V " + why;
+            return std::nullopt;
+        }
+        // One descriptor set layout per set number up to the largest: bounded as a reflection
+        // file's are (reflection.cpp), whoever made this one.
+        for (const DescriptorBinding& b : r->bindings)
+            if (b.set >= kMaxDescriptorSets) {
+                *error = std::string(to_string(stage)) + " stage: binding '" + b.name +
+                         "' in set " + std::to_string(b.set) + "; expected a set below " +
+                         std::to_string(kMaxDescriptorSets);
+                return std::nullopt;
+            }
+    }
     p.device_ = device;
     // Union of the stages' bindings by (set, binding), stage flags or-ed together.
     std::map<std::pair<uint32_t, uint32_t>, std::pair<DescriptorBinding, VkShaderStageFlags>> all;

@@ -122,7 +122,9 @@ class ShaderBuild {
 
     // The variant's (or a pass's shader's) SPIR-V of one language path ("glsl" or "hlsl") and
     // stage: the optimised module ("<lang>/<file_stem>.<stage>.opt.spv"); for the fragment stage of
-    // a frozen specialized build, the variant's frozen module.
+    // a frozen specialized build, the variant's frozen module. Checked before it is returned
+    // (spirv_check.h): check_spirv() for the stage's execution model, then spirv-val; a module
+    // that fails either is an error naming the file and what was expected.
     std::optional<std::vector<uint32_t>> spirv(const BuildVariant& v, const std::string& language,
                                                ShaderStage stage, std::string* error) const;
     // The file of kind `kind` for `stage` ("glsl", "hlsl", "glsl330", "essl300", "msl"), as text.
@@ -139,7 +141,11 @@ class ShaderBuild {
 
   private:
     std::optional<std::string> listed(const BuildVariant& v, const std::string& kind,
-                                      const std::string& suffix, std::string* error) const;
+                                      const std::string& suffix, std::uintmax_t max_bytes,
+                                      std::string* error) const;
+    // read() with a size limit of the file's kind (SPIR-V, reflection, pass.json).
+    std::optional<std::string> read_at_most(const std::string& relative_path,
+                                            std::uintmax_t max_bytes, std::string* error) const;
 
     std::filesystem::path directory_;
     std::string generator_, mode_ = "permutations";
