@@ -17,7 +17,9 @@ survivors() { pgrep -g $parent | grep -vx $parent || true; }
 
 compare_args=(compare --fresnel schlick,exact --views beach --size 16 --rounds 3 --draws 1
               --cost-size 16)
-setsid "$watergen" "${compare_args[@]}" --out "$work/report" >"$work/out.txt" 2>&1 &
+# (env --default-signal: a non-interactive shell starts background jobs with SIGINT ignored.)
+setsid env --default-signal=INT,TERM "$watergen" "${compare_args[@]}" --out "$work/report" \
+  >"$work/out.txt" 2>&1 &
 parent=$!
 # Wait for both workers to be counting (their directories and processes exist).
 for _ in $(seq 1 600); do
