@@ -20,8 +20,8 @@ Runner add_bench_build_command(CLI::App& app, const Common& common) {
     app.add_option("material", o->material,
                    "material of the pruned example (default: the built-in default material)");
     app.add_option("--scene", o->scenes, "scenes of the pruned example (repeatable)");
-    app.add_option("--jobs,-j", o->threads,
-                   "threads of the 'all threads' runs (default: every hardware thread)");
+    add_jobs_option(app, o->threads,
+                    "threads of the 'all threads' runs (default: every hardware thread)");
     app.add_option("--sample", o->sample,
                    "full-space variants to build, evenly spaced (default 48)")
         ->check(CLI::Validator(
@@ -33,7 +33,7 @@ Runner add_bench_build_command(CLI::App& app, const Common& common) {
         if (!load_material_and_scenes(o->material, o->scenes, request.example, request.scenes,
                                       common))
             return kUsage;
-        request.threads = o->threads;
+        request.threads = o->threads ? capped_jobs(o->threads) : 0;
         request.sample = o->sample;
         const BuildBenchResult result = bench_build(request);
         if (!result.ok()) {

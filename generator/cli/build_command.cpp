@@ -102,9 +102,9 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                    "earlier output of "
                    "watergen build, an empty directory or a path that does not exist")
         ->required();
-    app.add_option(
-        "--jobs,-j", o->jobs,
-        "worker threads (default: every hardware thread); output is the same for any count");
+    add_jobs_option(app, o->jobs,
+                    "worker threads (default: every hardware thread); output is the same for any "
+                    "count");
     app.add_option("--cache", o->cache,
                    "cache directory (default: $XDG_CACHE_HOME/watergen or ~/.cache/watergen)");
     app.add_flag("--no-cache", o->no_cache, "build every variant, and store nothing");
@@ -150,6 +150,7 @@ Runner add_build_command(CLI::App& app, const Common& common) {
             }
             request.shard = *parse_shard(o->shard, nullptr);
         }
+        o->jobs = o->jobs ? capped_jobs(o->jobs) : 0;
         request.options.threads = o->jobs;
         if (!o->no_cache)
             request.options.cache = BuildCache(o->cache.empty() ? default_cache_dir()

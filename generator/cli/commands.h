@@ -36,6 +36,10 @@ using Runner = std::function<int()>;
 
 // A finite number within [lo, hi] (CLI::Range would let NaN through).
 CLI::Validator finite_range(double lo, double hi);
+// --jobs,-j N (0, the default: every hardware thread) and the count a run uses: N, or
+// max_jobs() with a note on stderr when N is more (parallel_build.h).
+void add_jobs_option(CLI::App& app, unsigned& jobs, const std::string& help);
+unsigned capped_jobs(unsigned jobs);
 
 // Adds --<axis> options for every axis, each restricted to its choices, and --preset.
 void add_variant_options(CLI::App& app, Variant& variant, std::string& preset);

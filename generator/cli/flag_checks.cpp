@@ -1,9 +1,12 @@
 // Checks shared by the numeric flags of every subcommand.
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "watergen/pipeline/parallel_build.h"
 
 namespace watergen::cli {
 
@@ -21,6 +24,24 @@ CLI::Validator finite_range(double lo, double hi) {
             return "";
         },
         fmt::format("FLOAT in [{} - {}]", lo, hi));
+}
+
+void add_jobs_option(CLI::App& app, unsigned& jobs, const std::string& help) {
+    app.add_option("--jobs,-j", jobs,
+                   help + "; at most " + std::to_string(kJobsPerHardwareThread) +
+                       " per hardware thread (" + std::to_string(max_jobs()) +
+                       " here): more is lowered to that, with a note")
+        ->check(CLI::Range(0u, std::numeric_limits<unsigned>::max()));
+}
+
+unsigned capped_jobs(unsigned jobs) {
+    // Lowered, not refused: the count never changes what is built, so a script's -j written
+    // for a bigger machine still runs here; the note says what was used.
+    if (jobs <= max_jobs()) return jobs;
+    std::fprintf(stderr,
+                 "watergen: note: --jobs %u is more than %u per hardware thread; using %u\n", jobs,
+                 kJobsPerHardwareThread, max_jobs());
+    return max_jobs();
 }
 
 void add_unroll_option(CLI::App& app, LoopUnroll& unroll) {

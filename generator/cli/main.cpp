@@ -76,8 +76,9 @@ int main(int argc, char** argv) {
                    "how errors are printed: gcc (file:line:col) or msvc (file(line,col))")
         ->check(CLI::IsMember({"gcc", "msvc"}));
     std::map<CLI::App*, Runner> runners;
-    CLI::App* emit = app.add_subcommand(
-        "emit", "emit one variant (or --all) in GLSL and HLSL, validated and cross-compiled");
+    CLI::App* emit =
+        app.add_subcommand("emit", "emit one variant (or --covering: the covering set) in GLSL and "
+                                   "HLSL, validated and cross-compiled");
     runners[emit] = add_emit_command(*emit, common);
     CLI::App* render = app.add_subcommand(
         "render",

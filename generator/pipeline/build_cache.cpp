@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <mutex>
 #include <set>
 #include <thread>
 #include <unistd.h>
@@ -159,6 +160,10 @@ CacheLookup BuildCache::load(const std::string& hash,
     // An entry of the previous format is outdated, not damaged: a quiet miss, overwritten by the
     // store.
     if (read.missing || (read.bytes && read.bytes->rfind(kPreviousMagic, 0) == 0)) return lookup;
+    // No directory to hold the entry (a cache path under a regular file): nothing was ever
+    // stored, a miss; the store says once that the cache cannot be written.
+    std::error_code ec;
+    if (!read.bytes && !fs::is_directory(path.parent_path(), ec)) return lookup;
     if (read.bytes)
         lookup.files = verify_entry(*read.bytes, hash, expected, lookup.rejected);
     else
@@ -210,8 +215,20 @@ CacheUse BuildCache::load_or_make(const std::string& hash, const std::vector<std
     use.cached = use.files.has_value();
     if (use.cached) return use;
     use.files = make();
-    if (use.files) store(hash, *use.files); // a cache that cannot be written only costs time
+    // A cache that cannot be written only costs time: said once, and the build goes on.
+    if (use.files)
+        if (auto failure = store(hash, *use.files)) warn_unwritable(*failure);
     return use;
+}
+
+void BuildCache::warn_unwritable(const std::string& why) const {
+    if (!unwritable_) return;
+    std::call_once(*unwritable_, [&] {
+        std::fprintf(stderr,
+                     "watergen: warning: cache %s cannot be written (%s); building without "
+                     "storing\n",
+                     dir_.string().c_str(), why.c_str());
+    });
 }
 
 Diagnostic BuildCache::rejected_warning(const std::string& hash, const std::string& why) const {

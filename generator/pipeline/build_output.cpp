@@ -97,8 +97,7 @@ namespace {
 std::optional<std::string> swap_into_place(const fs::path& staging, const fs::path& dir) {
     for (int attempt = 0; attempt < 3; ++attempt) {
         if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
-            std::error_code ec;
-            fs::remove_all(staging, ec); // the old output, now under the staging name
+            remove_replaced_tree(staging); // the old output, now under the staging name
             return std::nullopt;
         }
         if (errno != ENOENT) break;

@@ -1,6 +1,7 @@
 #include "watergen/pipeline/output_writer.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fcntl.h>
 #include <system_error>
@@ -60,7 +61,10 @@ std::optional<std::string> write_file_atomically(const fs::path& path,
     const fs::path tmp = path.string() + unique_suffix();
     std::error_code ec;
     fs::remove(tmp, ec); // left by a killed process of the same pid
-    if (auto e = write_new_file(tmp, contents)) return e;
+    if (auto e = write_new_file(tmp, contents)) {
+        fs::remove(tmp, ec); // a short write (a full disk) leaves what it wrote
+        return e;
+    }
     fs::rename(tmp, path, ec);
     if (ec) {
         std::error_code ignored; // `ec` keeps the rename's error for the message
@@ -107,8 +111,19 @@ std::optional<std::string> commit_directory(const fs::path& staging, const fs::p
         fs::remove_all(staging, ignored);
         return "cannot rename into " + dir.string() + ": " + ec.message();
     }
-    if (had_old) fs::remove_all(old, ec);
+    if (had_old) remove_replaced_tree(old);
     return std::nullopt;
+}
+
+void remove_replaced_tree(const fs::path& old) {
+    std::error_code ec;
+    fs::remove_all(old, ec);
+    if (!ec) return;
+    // The new tree is in place; what is left of the old one only takes room, but it stays
+    // until someone removes it, so say where it is.
+    std::fprintf(stderr,
+                 "watergen: warning: cannot remove the replaced %s: %s; remove it by hand\n",
+                 old.string().c_str(), ec.message().c_str());
 }
 
 std::optional<std::string> write_tree(const fs::path& root,

@@ -150,9 +150,15 @@ unsigned hardware_threads() {
     return std::max(1u, std::thread::hardware_concurrency());
 }
 
+unsigned max_jobs() {
+    return kJobsPerHardwareThread * hardware_threads();
+}
+
 void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& task) {
-    const unsigned workers = static_cast<unsigned>(
-        std::min<size_t>(threads == 0 ? hardware_threads() : threads, std::max<size_t>(n, 1)));
+    // Never more threads than tasks, nor past max_jobs(): each thread costs a stack and its own
+    // glslang state, and past a few per core they only contend.
+    const unsigned asked = threads == 0 ? hardware_threads() : std::min(threads, max_jobs());
+    const unsigned workers = static_cast<unsigned>(std::min<size_t>(asked, std::max<size_t>(n, 1)));
     if (workers <= 1) {
         for (size_t i = 0; i < n; ++i)
             task(i);

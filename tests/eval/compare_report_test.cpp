@@ -184,3 +184,43 @@ TEST_CASE("write_compare_report_replaces_the_directory_whole_or_not_at_all", "[u
         CHECK(e.path().filename().string().find("scratch-compare-report.") == std::string::npos);
     fs::remove_all(dir);
 }
+
+TEST_CASE("a_streamed_report_is_the_report_made_from_kept_images", "[unit][report]") {
+    // compare streams: each image becomes its figures (spooled to disk) and error figures as it
+    // is rendered and is dropped. The files come out byte for byte as from the kept images.
+    const CompareReport kept = test::synthetic_compare_report(32);
+    CompareReport streamed = kept;
+    streamed.spool = std::make_shared<FigureSpool>();
+    REQUIRE(streamed.spool->ok());
+    for (std::size_t i = 0; i < kept.views.size(); ++i) {
+        streamed.views[i].reference = {};
+        streamed.views[i].reference_figure = reference_figure(kept, kept.views[i].reference);
+    }
+    for (std::size_t v = 0; v < kept.variants.size(); ++v)
+        for (std::size_t i = 0; i < kept.views.size(); ++i)
+            streamed.variants[v].views[i] = figured_view_result(
+                streamed, v, kept.variants[v].views[i].image, kept.views[i].reference);
+    for (const CompareVariant& v : streamed.variants)
+        for (const CompareViewResult& r : v.views) {
+            CHECK(r.image.rgba.empty());
+            REQUIRE(r.errors);
+            CHECK(r.errors->ciede2000.empty()); // the per-pixel maps are not kept
+            CHECK(r.errors->flip.values.empty());
+            REQUIRE(r.figures);
+            CHECK(r.figures->spooled.has_value()); // on disk, not in memory
+            CHECK(r.figures->image.empty());
+        }
+    const fs::path a = fs::current_path() / "scratch-report-kept";
+    const fs::path b = fs::current_path() / "scratch-report-streamed";
+    fs::remove_all(a);
+    fs::remove_all(b);
+    REQUIRE_FALSE(write_compare_report(a, kept));
+    REQUIRE_FALSE(write_compare_report(b, streamed));
+    for (const char* name : {kCompareReportHtml, kCompareCsv, kCompareJson})
+        CHECK(test::read_file_text(a / name) == test::read_file_text(b / name));
+    const auto files = compare_report_files(kept, nullptr);
+    REQUIRE(files);
+    CHECK(files->at(kCompareReportHtml) == test::read_file_text(b / kCompareReportHtml));
+    fs::remove_all(a);
+    fs::remove_all(b);
+}

@@ -138,3 +138,28 @@ TEST_CASE("a_material_that_does_not_load_stops_with_its_diagnostics", "[compare]
     REQUIRE(s.diagnostics.size() == 1);
     CHECK(s.diagnostics[0].message.find("cannot open the file") != std::string::npos);
 }
+
+TEST_CASE("compare_past_the_cap_names_the_number_of_variants", "[compare]") {
+    // Every choice of the first axes until the product passes the cap, and one key more: the
+    // refusal counts them all (it once said "65 variants or more" for any number past 64).
+    std::map<std::string, std::string> lists;
+    size_t product = 1;
+    for (const AxisInfo& axis : axes()) {
+        if (product > 2 * kMaxComparedVariants) break;
+        std::string list;
+        for (const ChoiceInfo& c : axis.choices)
+            list += (list.empty() ? "" : ",") + c.name;
+        lists[axis.name] = list;
+        product *= axis.choices.size();
+    }
+    REQUIRE(product > 2 * kMaxComparedVariants);
+    CompareSpec many = spec(lists);
+    many.keys = {"fresnel=schlick"};
+    const CompareSetup s = plan_compare(many);
+    CHECK(s.status == RunStatus::BadInput);
+    CHECK(s.error == std::to_string(product + 1) + " variants to compare; at most " +
+                         std::to_string(kMaxComparedVariants));
+    // A bad choice past the cap is still named.
+    lists["fresnel"] += ",fancy";
+    CHECK(plan_compare(spec(lists)).error.rfind("--fresnel: ", 0) == 0);
+}

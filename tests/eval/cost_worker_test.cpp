@@ -65,10 +65,14 @@ TEST_CASE("a_material_count_job_sends_absolute_paths", "[cost]") {
     // The worker runs in a scratch directory of its own: relative paths would not resolve.
     const MaterialCountJob job{"materials/m.json", "scenes/s.json", false, 8, {"fresnel=exact"}};
     const auto argv = count_worker_argv(job, "watergen");
-    CHECK(std::vector<std::string>(argv.begin(), argv.begin() + 5) ==
-          std::vector<std::string>{"watergen", "pick", "--counted", "--cost-size", "8"});
-    CHECK(value_of(argv, "--scene") == std::filesystem::absolute("scenes/s.json").string());
-    CHECK(has(argv, std::filesystem::absolute("materials/m.json").string()));
+    // The material right after the subcommand: --scene takes every word up to the next flag,
+    // so it comes last, with its one value.
+    CHECK(std::vector<std::string>(argv.begin(), argv.begin() + 6) ==
+          std::vector<std::string>{"watergen", "pick",
+                                   std::filesystem::absolute("materials/m.json").string(),
+                                   "--counted", "--cost-size", "8"});
+    CHECK(std::vector<std::string>(argv.end() - 2, argv.end()) ==
+          std::vector<std::string>{"--scene", std::filesystem::absolute("scenes/s.json").string()});
     CHECK(has(argv, "--unfolded"));
     CHECK(value_of(argv, "--key") == "fresnel=exact");
     const auto built_in = count_worker_argv(MaterialCountJob{"", "", true, 64, {}}, "watergen");

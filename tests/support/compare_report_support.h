@@ -91,7 +91,8 @@ inline CompareReport synthetic_compare_report(uint32_t size = 64) {
     r.reference_key = "fresnel=exact,foam=none";
     r.timing_note = "median of 5 runs of 20 frames, lavapipe; A/A interval 1%";
     r.cost_note = "valgrind instructions per pixel, first draw";
-    r.views = {{"overview", synthetic_view(size, 1.0f)}, {"grazing", synthetic_view(size, 0.6f)}};
+    r.views = {{"overview", synthetic_view(size, 1.0f), ""},
+               {"grazing", synthetic_view(size, 0.6f), ""}};
     r.variants = {
         synthetic_variant("exact", "none", true, "reference", 120, 1.0),
         synthetic_variant("schlick", "none", false, "approximates fresnel=exact", 100, 0.9),
@@ -103,7 +104,7 @@ inline CompareReport synthetic_compare_report(uint32_t size = 64) {
             ImageRGBA32F img = view.reference;
             if (v.choices["fresnel"] == "schlick") img = with_ripple(img, 0.01f);
             if (v.choices["foam"] == "sprites") img = with_blob(img, 44, 20, 5);
-            v.views.push_back({img, std::nullopt});
+            v.views.push_back({img, std::nullopt, std::nullopt});
         }
     }
     // One NaN pixel: the sprites variant breaks in the grazing view.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 
 #include <fmt/core.h>
 
@@ -66,14 +67,13 @@ std::string add_costs(const CompareSetup& s, CompareRun& run) {
     return "";
 }
 
-// The report of a run: images, maps, table and plots (compare_report.h).
-CompareReport make_report(const CompareRun& run, const CompareSetup& s) {
-    const CompareSpec& o = s.spec;
+// The report's names, before any image: the views and each variant's key, choices and
+// reference flag (what the figures' captions read). Every result is filled as it is rendered.
+CompareReport report_skeleton(const CompareRun& run, const CompareSetup& s) {
     CompareReport report;
-    report.title = "watergen compare: " + std::to_string(run.entries.size()) + " variants";
     report.reference_key = run.reference.key() + (run.reference_on_cpu ? " (CPU, double)" : "");
-    for (size_t v = 0; v < s.views.size(); ++v)
-        report.views.push_back({s.views[v].first, run.reference_images[v]});
+    for (const auto& [name, scene] : s.views)
+        report.views.push_back({name, {}, {}});
     const auto& list = axes();
     for (const CompareEntry& e : run.entries) {
         CompareVariant cv;
@@ -82,14 +82,45 @@ CompareReport make_report(const CompareRun& run, const CompareSetup& s) {
             cv.choices[list[a].name] = e.variant.choices[a];
         cv.reference = e.variant.key() == run.reference.key();
         cv.relation = e.relation;
+        cv.views.resize(s.views.size());
+        report.variants.push_back(std::move(cv));
+    }
+    return report;
+}
+
+// The images of a run go into `report` as they are rendered (figures and error figures), one
+// at a time: compare holds one view's reference and one variant image, not every variant's
+// image of every view.
+void stream_into(CompareRequest& request, const CompareSetup& setup, CompareReport& report) {
+    auto ensure = [&report, &setup](const CompareRun& run) {
+        if (!report.variants.empty()) return;
+        report = report_skeleton(run, setup);
+        report.spool = std::make_shared<FigureSpool>(); // the figures wait on disk
+    };
+    request.on_reference = [&report, ensure](const CompareRun& run, size_t view,
+                                             const ImageRGBA32F& reference) {
+        ensure(run);
+        report.views[view].reference_figure = reference_figure(report, reference);
+    };
+    request.on_image = [&report, ensure](const CompareRun& run, size_t entry, size_t view,
+                                         const ImageRGBA32F& image, const ImageRGBA32F& reference) {
+        ensure(run);
+        report.variants[entry].views[view] = figured_view_result(report, entry, image, reference);
+    };
+}
+
+// The report of a run: its streamed figures, then the table and plots (compare_report.h).
+void complete_report(CompareReport& report, const CompareRun& run, const CompareSetup& s) {
+    const CompareSpec& o = s.spec;
+    report.title = "watergen compare: " + std::to_string(run.entries.size()) + " variants";
+    for (size_t k = 0; k < run.entries.size(); ++k) {
+        const CompareEntry& e = run.entries[k];
+        CompareVariant& cv = report.variants[k];
         cv.time_ratio = e.time.ratio;
         cv.time_ratio_lo = e.time.lo;
         cv.time_ratio_hi = e.time.hi;
         cv.cost = e.cost_per_pixel;
         cv.spirv_instructions = e.spirv_instructions;
-        for (const ComparedView& view : e.views)
-            cv.views.push_back({view.image, std::nullopt});
-        report.variants.push_back(std::move(cv));
     }
     const auto& [first_view, first_scene] = s.views.front();
     char note[400];
@@ -116,7 +147,6 @@ CompareReport make_report(const CompareRun& run, const CompareSetup& s) {
                       o.cost_size, o.cost_size, run.cost_aa);
         report.cost_note = note;
     }
-    return report;
 }
 
 // The note the report shows above the caustics passes.
@@ -149,6 +179,8 @@ CompareOutcome compare_and_report(VulkanRunner& runner, const CompareSetup& setu
     request.textures_for = [&caustics](const VariantBuild& water, size_t view, std::string* error) {
         return caustics.textures_for(water, view, error);
     };
+    CompareReport report;
+    stream_into(request, setup, report);
     out.run = run_compare(runner, request);
     if (!out.run.ok()) {
         out.diagnostics = out.run.diagnostics;
@@ -159,7 +191,7 @@ CompareOutcome compare_and_report(VulkanRunner& runner, const CompareSetup& setu
     if (!error.empty()) return stop(error);
     if (setup.spec.cost)
         if (std::string e = add_costs(setup, out.run); !e.empty()) return stop(e);
-    CompareReport report = make_report(out.run, setup);
+    complete_report(report, out.run, setup);
     if (!out.caustics.empty()) {
         out.caustics_note = caustics_note(out.caustics_aa, setup);
         report.caustics_note = out.caustics_note;

@@ -1,6 +1,7 @@
 #include "watergen/eval/compare/compare_run.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "watergen/eval/draw/variant_render.h"
@@ -131,53 +132,79 @@ class Comparison {
         return &own_scene_;
     }
 
-    // Every variant on both paths in one view, each GLSL image against the reference's.
-    bool render_view(size_t view, const std::string& name, const SyntheticScene& view_scene) {
-        const RenderSettings settings{view_scene.width, view_scene.height, 0, false, false};
-        std::vector<ImageRGBA32F> images;
-        std::vector<double> path_difference;
-        for (size_t i = 0; i < order_.size(); ++i) {
-            const SyntheticScene* scene = scene_for(i, view, view_scene);
-            if (!scene) return false;
-            std::array<RenderResult, 2> paths;
-            for (size_t l = 0; l < (request_.both_paths ? 2u : 1u); ++l) {
-                // View 0's GLSL images are the timing's last draws (read back already).
-                if (l == 0 && view == 0 && !timed_.empty()) {
-                    paths[0] = std::move(timed_[i]);
-                    continue;
-                }
-                paths[l] =
-                    runner_.render(make_render_job(builds_[i].languages[l], *scene, settings));
-                if (!paths[l].ok) {
-                    run_.error = order_[i].key() + " (" + name + "): " + paths[l].error;
-                    return false;
-                }
+    // Build i's GLSL image of one view (view 0: the timing's last draw when there is one), its
+    // HLSL image compared with it; false after a failure.
+    bool render_one(size_t i, size_t view, const std::string& name,
+                    const SyntheticScene& view_scene, ImageRGBA32F& image, double& paths_differ) {
+        const SyntheticScene* scene = scene_for(i, view, view_scene);
+        if (!scene) return false;
+        const RenderSettings settings{scene->width, scene->height, 0, false, false};
+        std::array<RenderResult, 2> paths;
+        for (size_t l = 0; l < (request_.both_paths ? 2u : 1u); ++l) {
+            // View 0's GLSL images are the timing's last draws (read back already); each is
+            // moved out when used, so none outlives its turn.
+            if (l == 0 && view == 0 && i < timed_.size() && !timed_[i].rgba.empty()) {
+                paths[0] = std::move(timed_[i]);
+                timed_[i] = RenderResult{};
+                continue;
             }
-            images.push_back(ImageRGBA32F{scene->width, scene->height, paths[0].rgba});
-            path_difference.push_back(
-                request_.both_paths ? max_abs_difference(paths[0].rgba, paths[1].rgba) : 0.0);
-        }
-        ImageRGBA32F reference = images[0];
-        if (run_.reference_on_cpu) {
-            const SyntheticScene* scene = scene_for(0, view, view_scene);
-            if (!scene) return false;
-            const EvalResult d =
-                evaluate_image(builds_[0].shader.fragment, "color", scene->eval_inputs(),
-                               scene->width, scene->height, EvalPrecision::Double);
-            if (!d.ok()) {
-                run_.error = "CPU reference (" + name + "): " + d.error;
+            paths[l] = runner_.render(make_render_job(builds_[i].languages[l], *scene, settings));
+            if (!paths[l].ok) {
+                run_.error = order_[i].key() + " (" + name + "): " + paths[l].error;
                 return false;
             }
-            reference = to_image(d, scene->width, scene->height);
         }
+        paths_differ = request_.both_paths ? max_abs_difference(paths[0].rgba, paths[1].rgba) : 0.0;
+        image = ImageRGBA32F{scene->width, scene->height, std::move(paths[0].rgba)};
+        return true;
+    }
+
+    // The reference image of a view: the CPU double evaluation, or build 0's GLSL render (with
+    // its path difference, for when it is also entry 0).
+    bool reference_image(size_t view, const std::string& name, const SyntheticScene& view_scene,
+                         ImageRGBA32F& reference, double& paths_differ) {
+        if (!run_.reference_on_cpu)
+            return render_one(0, view, name, view_scene, reference, paths_differ);
+        const SyntheticScene* scene = scene_for(0, view, view_scene);
+        if (!scene) return false;
+        const EvalResult d =
+            evaluate_image(builds_[0].shader.fragment, "color", scene->eval_inputs(), scene->width,
+                           scene->height, EvalPrecision::Double);
+        if (!d.ok()) {
+            run_.error = "CPU reference (" + name + "): " + d.error;
+            return false;
+        }
+        reference = to_image(d, scene->width, scene->height);
+        return true;
+    }
+
+    // Every variant on both paths in one view, each GLSL image against the reference's: the
+    // reference first, then one variant at a time (streamed to request.on_image, or kept).
+    bool render_view(size_t view, const std::string& name, const SyntheticScene& view_scene) {
+        const bool streamed = bool(request_.on_image);
+        ImageRGBA32F reference;
+        double reference_paths = 0;
+        if (!reference_image(view, name, view_scene, reference, reference_paths)) return false;
+        if (request_.on_reference) request_.on_reference(run_, view, reference);
         for (size_t k = 0; k < run_.entries.size(); ++k) {
-            ComparedView view;
-            view.image = std::move(images[first_ + k]);
-            view.glsl_vs_hlsl = path_difference[first_ + k];
-            view.error = compare_images(view.image, reference);
-            run_.entries[k].views.push_back(std::move(view));
+            const size_t i = first_ + k;
+            ComparedView compared;
+            ImageRGBA32F image;
+            if (i == 0 && !run_.reference_on_cpu) { // the GPU reference itself
+                image = reference;
+                compared.glsl_vs_hlsl = reference_paths;
+            } else if (!render_one(i, view, name, view_scene, image, compared.glsl_vs_hlsl)) {
+                return false;
+            }
+            compared.error = compare_images(image, reference);
+            if (streamed)
+                request_.on_image(run_, k, view, image, reference);
+            else
+                compared.image = std::move(image);
+            run_.entries[k].views.push_back(std::move(compared));
         }
-        run_.reference_images.push_back(std::move(reference));
+        if (!streamed) run_.reference_images.push_back(std::move(reference));
+        timed_ = {}; // view 0's timed images not used (a CPU reference's build) go too
         return true;
     }
 

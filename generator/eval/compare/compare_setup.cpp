@@ -40,33 +40,44 @@ bool select_variants(CompareSetup& s) {
     const auto& list = axes();
     bool any_list = false;
     std::vector<Variant> product = {default_variant()};
+    // Past the cap the product is only counted (every choice still checked), so the refusal
+    // names the real number without building a long list.
+    size_t count = 1;
     for (size_t a = 0; a < list.size(); ++a) {
         if (s.spec.axis_lists[a].empty()) continue;
         any_list = true;
+        const std::vector<std::string> choices = split(s.spec.axis_lists[a], ',');
+        for (const std::string& choice : choices) {
+            Variant v = default_variant();
+            if (auto error = set_choice(v, list[a].name, choice))
+                return refuse(s, "--" + list[a].name + ": " + *error);
+        }
+        count *= choices.size();
+        if (count > kMaxComparedVariants) continue;
         std::vector<Variant> next;
         for (const Variant& base : product)
-            for (const std::string& choice : split(s.spec.axis_lists[a], ',')) {
+            for (const std::string& choice : choices) {
                 Variant v = base;
-                if (auto error = set_choice(v, list[a].name, choice))
-                    return refuse(s, "--" + list[a].name + ": " + *error);
+                set_choice(v, list[a].name, choice);
                 next.push_back(v);
             }
         product = std::move(next);
-        if (product.size() > kMaxComparedVariants) break;
     }
-    if (any_list) s.variants = product;
+    if (any_list && count <= kMaxComparedVariants) s.variants = product;
+    if (!any_list) count = 0;
     for (const std::string& key : s.spec.keys) {
         std::string error;
         const auto v = parse_variant_key(key, &error);
         if (!v) return refuse(s, "--variant '" + key + "': " + error);
         s.variants.push_back(*v);
+        ++count;
     }
-    if (s.variants.empty())
+    if (count == 0)
         return refuse(s, "nothing to compare: give a comma list on an axis flag (--fresnel "
                          "schlick,exact) or --variant KEY");
-    if (s.variants.size() > kMaxComparedVariants)
-        return refuse(s, fmt::format("{} variants or more to compare; at most {}",
-                                     s.variants.size(), kMaxComparedVariants));
+    if (count > kMaxComparedVariants)
+        return refuse(
+            s, fmt::format("{} variants to compare; at most {}", count, kMaxComparedVariants));
     return true;
 }
 

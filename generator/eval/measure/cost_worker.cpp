@@ -100,15 +100,17 @@ std::vector<std::string> count_worker_argv(const VariantCountJob& job,
 
 std::vector<std::string> count_worker_argv(const MaterialCountJob& job,
                                            const std::filesystem::path& executable) {
-    std::vector<std::string> argv = {executable.string(), "pick", "--counted", "--cost-size",
-                                     std::to_string(job.size)};
-    if (!job.scene_path.empty())
-        argv.insert(argv.end(), {"--scene", std::filesystem::absolute(job.scene_path).string()});
-    if (!job.folded) argv.push_back("--unfolded");
+    std::vector<std::string> argv = {executable.string(), "pick"};
+    // The material first: --scene takes every word up to the next flag (`--scene
+    // examples/scenes/*.json`), so a material after it would be read as a second scene.
     if (!job.material_path.empty())
         argv.push_back(std::filesystem::absolute(job.material_path).string());
+    argv.insert(argv.end(), {"--counted", "--cost-size", std::to_string(job.size)});
+    if (!job.folded) argv.push_back("--unfolded");
     for (const std::string& key : job.keys)
         argv.insert(argv.end(), {"--key", key});
+    if (!job.scene_path.empty())
+        argv.insert(argv.end(), {"--scene", std::filesystem::absolute(job.scene_path).string()});
     return argv;
 }
 

@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include "watergen/eval/measure/scratch_directory.h"
 #include "watergen/toolchain/child_process.h"
 
 namespace watergen {
@@ -43,19 +44,17 @@ DrawCountRun count_draws_under_valgrind(const std::vector<std::string>& worker_a
     DrawCountRun run;
     // A directory of this call's own: two counts at once (two watergen processes, or ctest -j)
     // must not read or clear each other's dumps, and the caller's directory is never cleared.
-    static std::atomic<unsigned> calls{0};
-    const fs::path scratch = scratch_root / ("watergen-count-" + std::to_string(::getpid()) + "-" +
-                                             std::to_string(calls++));
-    std::error_code ec;
-    fs::remove_all(scratch, ec);
-    fs::create_directories(scratch, ec);
-    if (ec) {
-        run.error = "cannot create " + scratch.string() + ": " + ec.message();
+    // Removed on every way out, a kill of this process included (scratch_directory.h).
+    const ScratchDirectory dir(scratch_root, "watergen-count-");
+    if (!dir.error().empty()) {
+        run.error = dir.error();
         return run;
     }
+    const fs::path& scratch = dir.path();
     const fs::path out = scratch / "callgrind.out";
-    std::vector<std::string> argv = {"valgrind", "--tool=callgrind", "--instr-atstart=no",
-                                     "--callgrind-out-file=" + out.string()};
+    // --vgdb=no: no gdbserver FIFOs in $TMPDIR, which a killed worker would leave behind.
+    std::vector<std::string> argv = {"valgrind", "--tool=callgrind", "--vgdb=no",
+                                     "--instr-atstart=no", "--callgrind-out-file=" + out.string()};
     argv.insert(argv.end(), worker_argv.begin(), worker_argv.end());
     run.error =
         run_child_process(argv, scratch, {"LP_NUM_THREADS=0", "MESA_SHADER_CACHE_DISABLE=true"});
@@ -69,7 +68,6 @@ DrawCountRun count_draws_under_valgrind(const std::vector<std::string>& worker_a
         if (auto c = parse_callgrind_dump(text.str())) run.counts.push_back(*c);
     }
     if (run.counts.empty()) run.error = "the worker bracketed no draw (no callgrind dump)";
-    fs::remove_all(scratch, ec);
     return run;
 }
 

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <optional>
 #include <set>
+#include <sstream>
 
 #include <fmt/core.h>
 
@@ -134,74 +137,111 @@ ImageRGBA8 outlined_heat_map(const std::vector<float>& values, const ErrorMaps& 
     return image;
 }
 
-std::string heat_row(const CompareReport& report, const ResolvedErrors& errors, std::size_t view,
-                     bool flip) {
+std::string heat_figure(const CompareReport& report, std::size_t v, const ErrorMaps& m, bool flip) {
     const HeatScale scale = flip ? flip_scale() : ciede2000_scale();
-    std::string s = fmt::format("<h3>{} (worst {}x{} window outlined)</h3>\n<div class=\"row\">",
-                                flip ? "FLIP" : "CIEDE2000", errors.maps[0][view].worst.width,
-                                errors.maps[0][view].worst.height);
-    for (std::size_t v = 0; v < report.variants.size(); ++v) {
-        if (report.variants[v].reference) continue;
-        const ErrorMaps& m = errors.maps[v][view];
-        s += html_figure(outlined_heat_map(flip ? m.flip.values : m.ciede2000, m, scale),
-                         short_label(report, report.variants[v]));
-    }
-    return s + "</div>\n" + html_color_bar(scale) + "\n";
+    return html_figure(outlined_heat_map(flip ? m.flip.values : m.ciede2000, m, scale),
+                       short_label(report, report.variants[v]));
 }
 
-// Each variant's worst window with half a window of context on every side, zoomed: the
-// reference, the variant and its CIEDE2000 map, the window outlined.
-std::string crops_row(const CompareReport& report, const ResolvedErrors& errors, std::size_t view) {
-    const ImageRGBA8 reference = srgb8(report.views[view].reference, report.exposure);
-    std::string s = "<h3>Worst region, zoomed</h3>\n";
-    for (std::size_t v = 0; v < report.variants.size(); ++v) {
-        const CompareVariant& var = report.variants[v];
-        if (var.reference) continue;
-        const ErrorMaps& m = errors.maps[v][view];
-        const PixelRegion context = grown_region(m.worst, m.worst.width / 2, m.width, m.height);
-        const uint32_t zoom = std::max(1u, kCropDisplaySize / std::max(1u, context.width));
-        auto zoomed = [&](const ImageRGBA8& image) {
-            ImageRGBA8 z = zoom_nearest(crop(image, context), zoom);
-            outline_region(z,
-                           PixelRegion{(m.worst.x - context.x) * zoom,
-                                       (m.worst.y - context.y) * zoom, m.worst.width * zoom,
-                                       m.worst.height * zoom},
-                           kOutlineColor);
-            return z;
-        };
-        const std::string where = fmt::format(" around ({}, {}), {}x{}", m.worst.x, m.worst.y,
-                                              m.worst.width, m.worst.height);
-        s += "<div class=\"row\">" + html_figure(zoomed(reference), "reference" + where) +
-             html_figure(zoomed(srgb8(var.views[view].image, report.exposure)),
-                         short_label(report, var) + where) +
-             html_figure(zoomed(heat_map(m.ciede2000, m.width, m.height, ciede2000_scale())),
-                         "CIEDE2000" + where) +
-             "</div>\n";
-    }
-    return s;
+// Variant v's worst window with half a window of context on every side, zoomed: the reference,
+// the variant and its CIEDE2000 map, the window outlined.
+std::string crops_figures(const CompareReport& report, std::size_t v, const ErrorMaps& m,
+                          const ImageRGBA8& reference, const ImageRGBA32F& image) {
+    const PixelRegion context = grown_region(m.worst, m.worst.width / 2, m.width, m.height);
+    const uint32_t zoom = std::max(1u, kCropDisplaySize / std::max(1u, context.width));
+    auto zoomed = [&](const ImageRGBA8& source) {
+        ImageRGBA8 z = zoom_nearest(crop(source, context), zoom);
+        outline_region(z,
+                       PixelRegion{(m.worst.x - context.x) * zoom, (m.worst.y - context.y) * zoom,
+                                   m.worst.width * zoom, m.worst.height * zoom},
+                       kOutlineColor);
+        return z;
+    };
+    const std::string where =
+        fmt::format(" around ({}, {}), {}x{}", m.worst.x, m.worst.y, m.worst.width, m.worst.height);
+    return "<div class=\"row\">" + html_figure(zoomed(reference), "reference" + where) +
+           html_figure(zoomed(srgb8(image, report.exposure)),
+                       short_label(report, report.variants[v]) + where) +
+           html_figure(zoomed(heat_map(m.ciede2000, m.width, m.height, ciede2000_scale())),
+                       "CIEDE2000" + where) +
+           "</div>\n";
 }
 
-std::string view_section(const CompareReport& report, const ResolvedErrors& errors,
-                         std::size_t view) {
+// A variant's figures of one view: streamed ones as made, else made now from the image.
+CompareViewFigures figures_of(const CompareReport& report, const ResolvedErrors& errors,
+                              std::size_t v, std::size_t view, const ImageRGBA8* reference) {
+    const CompareViewResult& result = report.variants[v].views[view];
+    if (result.figures) return *result.figures;
+    const ErrorMaps& m = errors.maps[v][view];
+    CompareViewFigures f;
+    f.image =
+        html_figure(srgb8(result.image, report.exposure), short_label(report, report.variants[v]));
+    f.ciede2000 = heat_figure(report, v, m, false);
+    f.flip = heat_figure(report, v, m, true);
+    if (reference) f.crops = crops_figures(report, v, m, *reference, result.image);
+    return f;
+}
+
+std::string heat_heading(const ResolvedErrors& errors, std::size_t view, bool flip) {
+    return fmt::format("<h3>{} (worst {}x{} window outlined)</h3>\n<div class=\"row\">",
+                       flip ? "FLIP" : "CIEDE2000", errors.maps[0][view].worst.width,
+                       errors.maps[0][view].worst.height);
+}
+
+// The four figure rows of a view, in CompareViewFigures order.
+enum FigureRow { kImageRow, kCiede2000Row, kFlipRow, kCropsRow };
+
+const std::string& row_text(const CompareViewFigures& f, int row) {
+    return row == kImageRow       ? f.image
+           : row == kCiede2000Row ? f.ciede2000
+           : row == kFlipRow      ? f.flip
+                                  : f.crops;
+}
+
+void write_view_section(std::ostream& out, const CompareReport& report,
+                        const ResolvedErrors& errors, std::size_t view) {
     const CompareView& cv = report.views[view];
-    std::string s =
-        fmt::format("<section><h2>View: {}</h2>\n<div class=\"row\">", html_escape(cv.name));
-    s += html_figure(srgb8(cv.reference, report.exposure), "reference: " + report.reference_key);
-    for (const CompareVariant& var : report.variants)
-        if (!var.reference)
-            s += html_figure(srgb8(var.views[view].image, report.exposure),
-                             short_label(report, var));
-    s += "</div>\n" + heat_row(report, errors, view, false) + heat_row(report, errors, view, true);
-    s += crops_row(report, errors, view);
-    s += "<table><tr><th class=\"key\">variant</th>" + error_headings() + "</tr>\n";
+    out << fmt::format("<section><h2>View: {}</h2>\n<div class=\"row\">", html_escape(cv.name));
+    out << (cv.reference_figure.empty() ? reference_figure(report, cv.reference)
+                                        : cv.reference_figure);
+    // Results given as images get their figures made here, all of the view's at once (a small
+    // report); streamed ones are copied one figure at a time from where they were put.
+    std::optional<ImageRGBA8> reference;
+    if (!cv.reference.rgba.empty()) reference = srgb8(cv.reference, report.exposure);
+    std::vector<std::optional<CompareViewFigures>> made(report.variants.size());
     for (std::size_t v = 0; v < report.variants.size(); ++v)
-        s += fmt::format("<tr><td class=\"key\">{}</td>{}</tr>\n",
-                         html_escape(report.variants[v].key),
-                         error_cells(view_values(errors.maps[v][view])));
-    return s + "</table></section>\n";
+        if (!report.variants[v].reference && !report.variants[v].views[view].figures)
+            made[v] = figures_of(report, errors, v, view, reference ? &*reference : nullptr);
+    auto row = [&](int which) {
+        for (std::size_t v = 0; v < report.variants.size(); ++v) {
+            if (report.variants[v].reference) continue;
+            const CompareViewFigures& f =
+                made[v] ? *made[v] : *report.variants[v].views[view].figures;
+            if (f.spooled && report.spool)
+                report.spool->copy((*f.spooled)[std::size_t(which)], out);
+            else
+                out << row_text(f, which);
+        }
+    };
+    row(kImageRow);
+    out << "</div>\n" << heat_heading(errors, view, false);
+    row(kCiede2000Row);
+    out << "</div>\n"
+        << html_color_bar(ciede2000_scale()) << "\n"
+        << heat_heading(errors, view, true);
+    row(kFlipRow);
+    out << "</div>\n" << html_color_bar(flip_scale()) << "\n<h3>Worst region, zoomed</h3>\n";
+    row(kCropsRow);
+    out << "<table><tr><th class=\"key\">variant</th>" << error_headings() << "</tr>\n";
+    for (std::size_t v = 0; v < report.variants.size(); ++v)
+        out << fmt::format("<tr><td class=\"key\">{}</td>{}</tr>\n",
+                           html_escape(report.variants[v].key),
+                           error_cells(view_values(errors.maps[v][view])));
+    out << "</table></section>\n";
 }
 
-std::string report_html(const CompareReport& report, const ResolvedErrors& errors) {
+void write_report_html(std::ostream& out, const CompareReport& report,
+                       const ResolvedErrors& errors) {
     std::string s = fmt::format(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{0}</title>"
         "<style>{1}</style></head>\n<body><h1>{0}</h1>\n<p class=\"note\">Reference: {2}. "
@@ -223,12 +263,47 @@ std::string report_html(const CompareReport& report, const ResolvedErrors& error
         s += svg;
     s += "</div>\n";
     s += caustics_passes_html(report.caustics_passes, report.caustics_note);
+    out << s;
     for (std::size_t i = 0; i < report.views.size(); ++i)
-        s += view_section(report, errors, i);
-    return s + "<p class=\"note\">Generated by watergen compare.</p>\n</body></html>\n";
+        write_view_section(out, report, errors, i);
+    out << "<p class=\"note\">Generated by watergen compare.</p>\n</body></html>\n";
+}
+
+std::string report_html(const CompareReport& report, const ResolvedErrors& errors) {
+    std::ostringstream out;
+    write_report_html(out, report, errors);
+    return out.str();
 }
 
 } // namespace
+
+std::string reference_figure(const CompareReport& report, const ImageRGBA32F& reference) {
+    return html_figure(srgb8(reference, report.exposure), "reference: " + report.reference_key);
+}
+
+CompareViewResult figured_view_result(const CompareReport& report, std::size_t variant,
+                                      const ImageRGBA32F& image, const ImageRGBA32F& reference) {
+    CompareViewResult result;
+    ErrorMaps m = compute_error_maps(image, reference, report.exposure, report.pixels_per_degree);
+    CompareViewFigures f;
+    if (m.ok() && !report.variants[variant].reference) {
+        f.image = html_figure(srgb8(image, report.exposure),
+                              short_label(report, report.variants[variant]));
+        f.ciede2000 = heat_figure(report, variant, m, false);
+        f.flip = heat_figure(report, variant, m, true);
+        f.crops = crops_figures(report, variant, m, srgb8(reference, report.exposure), image);
+    }
+    if (report.spool) {
+        f.spooled = {report.spool->append(f.image), report.spool->append(f.ciede2000),
+                     report.spool->append(f.flip), report.spool->append(f.crops)};
+        f.image = f.ciede2000 = f.flip = f.crops = {};
+    }
+    m.ciede2000 = {};
+    m.flip.values = {};
+    result.errors = std::move(m);
+    result.figures = std::move(f);
+    return result;
+}
 
 std::optional<std::map<std::string, std::string>> compare_report_files(const CompareReport& report,
                                                                        std::string* error) {
@@ -247,13 +322,29 @@ std::optional<std::map<std::string, std::string>> compare_report_files(const Com
 std::optional<std::string> write_compare_report(const std::filesystem::path& dir,
                                                 const CompareReport& report,
                                                 const std::map<std::string, std::string>& extra) {
-    std::string error;
-    std::optional<std::map<std::string, std::string>> files = compare_report_files(report, &error);
-    if (!files) return error;
+    if (auto problem = check_compare_report(report)) return *problem;
+    const ResolvedErrors errors = resolve_errors(report);
+    std::map<std::string, std::string> files{{kCompareCsv, compare_csv(report, errors)},
+                                             {kCompareJson, compare_json(report, errors)}};
     for (const auto& [name, contents] : extra)
-        if (!files->emplace(name, contents).second)
+        if (name == kCompareReportHtml || !files.emplace(name, contents).second)
             return "extra file '" + name + "' has the name of a report file";
-    return write_directory_atomically(dir, *files);
+    std::string error;
+    const std::filesystem::path staging = write_staged_tree(dir, files, &error);
+    if (staging.empty()) return error;
+    const std::filesystem::path html_path = staging / kCompareReportHtml;
+    std::ofstream html(html_path, std::ios::binary);
+    write_report_html(html, report, errors);
+    html.close();
+    if (!html || (report.spool && !report.spool->ok())) {
+        const std::string why = report.spool && !report.spool->ok()
+                                    ? report.spool->error()
+                                    : "cannot write " + html_path.string();
+        std::error_code ec;
+        std::filesystem::remove_all(staging, ec);
+        return why;
+    }
+    return commit_directory(staging, dir);
 }
 
 } // namespace watergen

@@ -93,7 +93,8 @@ std::optional<std::string> check_compare_report(const CompareReport& report) {
     if (report.views.empty()) return "the comparison has no view";
     if (report.variants.empty()) return "the comparison has no variant";
     for (const CompareView& view : report.views)
-        if (!view.reference.well_formed() || view.reference.pixel_count() == 0)
+        if (view.reference_figure.empty() &&
+            (!view.reference.well_formed() || view.reference.pixel_count() == 0))
             return fmt::format("view '{}': the reference image is empty or malformed", view.name);
     for (const CompareVariant& v : report.variants) {
         if (v.views.size() != report.views.size())
@@ -102,6 +103,15 @@ std::optional<std::string> check_compare_report(const CompareReport& report) {
         for (std::size_t i = 0; i < v.views.size(); ++i) {
             const ImageRGBA32F& image = v.views[i].image;
             const ImageRGBA32F& ref = report.views[i].reference;
+            if (v.views[i].figures && !v.views[i].errors)
+                return fmt::format("variant '{}', view '{}': figures without error figures", v.key,
+                                   report.views[i].name);
+            if (v.views[i].figures) {
+                if (!v.views[i].errors->ok())
+                    return fmt::format("variant '{}', view '{}': {}", v.key, report.views[i].name,
+                                       v.views[i].errors->error);
+                continue;
+            }
             if (!image.well_formed() || image.width != ref.width || image.height != ref.height)
                 return fmt::format("variant '{}', view '{}': image is {}x{}, the reference {}x{}",
                                    v.key, report.views[i].name, image.width, image.height,

@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -52,7 +54,8 @@ struct CacheUse {
 class BuildCache {
   public:
     BuildCache() = default; // disabled
-    explicit BuildCache(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    explicit BuildCache(std::filesystem::path dir)
+        : dir_(std::move(dir)), unwritable_(std::make_shared<std::once_flag>()) {}
     bool enabled() const { return !dir_.empty(); }
     const std::filesystem::path& dir() const { return dir_; }
 
@@ -64,7 +67,10 @@ class BuildCache {
     std::optional<std::string> store(const std::string& hash, const FileMap& files) const;
 
     // The files under `hash` (load()), or else make()'s, stored under `hash` when it made
-    // them (nullopt: it failed, and nothing is stored).
+    // them (nullopt: it failed, and nothing is stored). A store that fails (a full disk, a
+    // read-only directory, a cache path under a regular file) leaves no temporary file and is
+    // reported once per cache, on stderr: "watergen: warning: cache <dir> cannot be written
+    // (<why>); building without storing".
     CacheUse load_or_make(const std::string& hash, const std::vector<std::string>& expected,
                           const std::function<std::optional<FileMap>()>& make) const;
 
@@ -74,7 +80,9 @@ class BuildCache {
     Diagnostic rejected_warning(const std::string& hash, const std::string& why) const;
 
   private:
+    void warn_unwritable(const std::string& why) const;
     std::filesystem::path dir_;
+    std::shared_ptr<std::once_flag> unwritable_; // shared by copies: one warning per cache
 };
 
 // ${XDG_CACHE_HOME:-$HOME/.cache}/watergen, or "" when neither variable is set.

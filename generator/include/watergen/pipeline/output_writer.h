@@ -34,6 +34,10 @@ std::filesystem::path write_staged_tree(const std::filesystem::path& dir,
 // Replaces `dir` with `staging` by rename; the old `dir` stays complete until then.
 std::optional<std::string> commit_directory(const std::filesystem::path& staging,
                                             const std::filesystem::path& dir);
+// Removes the tree a commit replaced (now under a staging name); one that cannot be removed is
+// reported on stderr, "watergen: warning: cannot remove the replaced <path>: <why>; remove it by
+// hand", rather than left without a word.
+void remove_replaced_tree(const std::filesystem::path& old);
 
 // Creates `path` and writes `contents` to it; never through an existing name or a link
 // (O_EXCL | O_NOFOLLOW). The error names the path and carries errno's text.

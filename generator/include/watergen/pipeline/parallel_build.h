@@ -60,7 +60,13 @@ struct BuildOptions {
 
 unsigned hardware_threads();
 
-// Runs task(i) for every i in [0, n) on `threads` workers (0: all cores; 1: the calling thread).
+// The most worker threads any --jobs runs: kJobsPerHardwareThread per hardware thread (a few per
+// core still help when tasks wait on child processes; past that they only contend).
+inline constexpr unsigned kJobsPerHardwareThread = 4;
+unsigned max_jobs();
+
+// Runs task(i) for every i in [0, n) on `threads` workers (0: all cores; 1: the calling thread),
+// never more than n nor max_jobs().
 void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& task);
 
 // Jobs must be sorted by (scene, job_key) for `same_as` to name the first of equal shaders.

@@ -1,4 +1,5 @@
-// Runs a program as a child process (posix_spawnp, no shell) and waits for it.
+// Runs a program as a child process (fork and execve, no shell) and waits for it. The child
+// dies with this process (PR_SET_PDEATHSIG SIGKILL), however this process ends.
 #pragma once
 
 #include <filesystem>
@@ -16,5 +17,10 @@ namespace watergen {
 std::string run_child_process(const std::vector<std::string>& argv,
                               const std::filesystem::path& dir,
                               const std::vector<std::string>& env = {});
+
+// For a signal handler (async-signal-safe): SIGKILL to every child run_child_process is waiting
+// for now, then wait until each has exited (without reaping it: its caller does).
+void kill_child_processes();
+void wait_for_killed_children();
 
 } // namespace watergen

@@ -21,6 +21,8 @@
 
 namespace watergen {
 
+struct CompareRun;
+
 struct CompareRequest {
     std::vector<Variant> variants; // in report order; duplicates are dropped
     // A variant rendered on the GPU, or nullopt: reference_for(variants) evaluated on the CPU
@@ -40,10 +42,19 @@ struct CompareRequest {
     std::function<std::map<std::string, TextureData>(const VariantBuild&, size_t view,
                                                      std::string* error)>
         textures_for;
+    // Streaming: with these set, each view's reference image and then each entry's GLSL image of
+    // the view (CompareRun::entries index, view index) are handed over as soon as they exist and
+    // are not kept (ComparedView::image and CompareRun::reference_images stay empty), so a run
+    // holds one view's reference and one variant image at a time, whatever the number of
+    // variants and views. Unset: every image is kept in the run.
+    std::function<void(const CompareRun&, size_t view, const ImageRGBA32F& reference)> on_reference;
+    std::function<void(const CompareRun&, size_t entry, size_t view, const ImageRGBA32F& image,
+                       const ImageRGBA32F& reference)>
+        on_image;
 };
 
 struct ComparedView {
-    ImageRGBA32F image;      // GLSL path
+    ImageRGBA32F image;      // GLSL path; empty when streamed (CompareRequest::on_image)
     double glsl_vs_hlsl = 0; // max abs between the two paths (0: bit-identical)
     ImageErrorStats error;   // against the reference image of the view
 };
@@ -66,7 +77,7 @@ struct CompareRun {
     std::vector<CompareEntry> entries;
     Variant reference;                          // the reference variant (CPU or GPU)
     bool reference_on_cpu = false;              // CPU double evaluation
-    std::vector<ImageRGBA32F> reference_images; // per view
+    std::vector<ImageRGBA32F> reference_images; // per view; empty when streamed
     RatioInterval aa;                           // timing reference against itself
     double reference_cost_per_pixel = 0;        // the reference variant's instructions per pixel
     double cost_aa = 0; // its count against a second pipeline of it (1: the count is exact)

@@ -13,9 +13,11 @@
 // variants and one per axis whose choice varies (points coloured by that axis's choice).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +25,7 @@
 #include "watergen/eval/image/error_maps.h"
 #include "watergen/eval/image/image_io.h"
 #include "watergen/eval/report/caustics_report.h"
+#include "watergen/eval/report/figure_spool.h"
 
 namespace watergen {
 
@@ -30,6 +33,18 @@ namespace watergen {
 struct CompareView {
     std::string name;       // e.g. "overview"; shown as a heading, used in the CSV/JSON
     ImageRGBA32F reference; // linear float, e.g. the reference variant's render
+    // Streamed (reference_figure()): the reference's figure made when it was rendered, the
+    // image itself left empty.
+    std::string reference_figure;
+};
+
+// The HTML of one variant's render of one view, made as soon as it was rendered (its image, its
+// CIEDE2000 and FLIP heat maps, its worst window zoomed), so that neither the float image nor
+// its per-pixel maps need be kept while the other variants and views render.
+struct CompareViewFigures {
+    std::string image, ciede2000, flip, crops;
+    // Written to CompareReport::spool instead (the strings left empty): the same four, in order.
+    std::optional<std::array<SpooledText, 4>> spooled;
 };
 
 // One variant's render of one view.
@@ -38,6 +53,9 @@ struct CompareViewResult {
     // compute_error_maps(image, view.reference, report.exposure, report.pixels_per_degree);
     // left empty, the writer computes it (fill it to reuse figures already computed).
     std::optional<ErrorMaps> errors;
+    // Streamed (figured_view_result()): the figures, `errors` with its per-pixel maps dropped,
+    // `image` empty.
+    std::optional<CompareViewFigures> figures;
 };
 
 struct CompareVariant {
@@ -70,7 +88,18 @@ struct CompareReport {
     // "caustics_passes"); none: neither appears.
     std::vector<CausticsPassFigures> caustics_passes;
     std::string caustics_note; // how the passes were drawn, measured and timed
+    // Where figured_view_result() puts the figures it makes (nullptr: in memory); the report is
+    // then written from it one figure at a time.
+    std::shared_ptr<FigureSpool> spool;
 };
+
+// Streaming a report: `report` holds the views' names and every variant's key, choices and
+// reference flag (the captions read them). The reference image's figure for view `view`; and
+// variant `variant`'s result of `image` against `reference`: error figures computed, figures
+// made, the image and the per-pixel maps not kept.
+std::string reference_figure(const CompareReport& report, const ImageRGBA32F& reference);
+CompareViewResult figured_view_result(const CompareReport& report, std::size_t variant,
+                                      const ImageRGBA32F& image, const ImageRGBA32F& reference);
 
 // Names of the files written, for callers that list them.
 constexpr const char* kCompareReportHtml = "report.html";
@@ -85,7 +114,9 @@ std::optional<std::map<std::string, std::string>> compare_report_files(const Com
 
 // Writes compare_report_files(report) plus `extra_files` (relative path -> contents) into `dir`
 // as one atomic step: a staging directory beside it, then a rename over `dir` (a previous `dir`
-// is replaced whole). Returns the error, if any; on error `dir` is as it was.
+// is replaced whole). report.html is written piece by piece (spooled figures are copied from
+// the spool), never held whole in memory. Returns the error, if any; on error `dir` is as it
+// was.
 std::optional<std::string>
 write_compare_report(const std::filesystem::path& dir, const CompareReport& report,
                      const std::map<std::string, std::string>& extra_files = {});
