@@ -96,6 +96,15 @@ TEST_CASE("compare_refuses_bad_flags_naming_them", "[compare]") {
     CompareSpec both = spec({{"fresnel", "schlick,exact"}});
     both.scene = example_scene("open_ocean");
     CHECK(refusal(both).rfind("--material / --scene select the variants", 0) == 0);
+    // Variants x size^2 bounds what the interleaved timing holds: 16 at 1024 pass, 17 do not.
+    CompareSpec big = spec({{"fresnel", "none,power,schlick,exact"},
+                            {"specular", "none,toman_glare,blinn_phong,ggx_sun"}});
+    big.size = 1024;
+    CHECK(plan_compare(big).status != RunStatus::BadInput);
+    big.keys = {"foam=shore"};
+    CHECK(refusal(big).rfind("--size 1024: 17 variants at 1024x1024 are 17825792 variant pixels "
+                             "per view; at most 16777216",
+                             0) == 0);
     // A directory that holds anything but an earlier report is not replaced.
     const fs::path foreign = fs::temp_directory_path() / "watergen-compare-setup-foreign";
     fs::create_directories(foreign);

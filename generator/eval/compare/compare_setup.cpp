@@ -181,6 +181,15 @@ CompareSetup plan_compare(const CompareSpec& spec) {
                               ? select_from_material(s)
                               : select_variants(s) && select_presets(s, presets);
     if (!selected || !select_reference(s)) return s;
+    if (const uint64_t pixels = uint64_t(s.variants.size()) * spec.size * spec.size;
+        pixels > kMaxComparedPixels) {
+        refuse(s, fmt::format("--size {}: {} variants at {}x{} are {} variant pixels per view; at "
+                              "most {} (64 variants at 512x512, 16 at 1024x1024, 4 at "
+                              "2048x2048): compare fewer variants or a smaller --size",
+                              spec.size, s.variants.size(), spec.size, spec.size, pixels,
+                              kMaxComparedPixels));
+        return s;
+    }
     if (spec.strict_half && s.from_material) {
         refuse(s, "--strict-half compares variants named by axis flags or --variant; a "
                   "material's variants are built as its build ships them (relaxed-precision "

@@ -31,6 +31,10 @@ struct CompareSpec {
 
 // At most this many variants are compared.
 inline constexpr size_t kMaxComparedVariants = 64;
+// And at most this many variant pixels per view (variants x size^2): the interleaved timing
+// holds every variant's render targets and image at once, so memory grows with variants x
+// size^2 (views are streamed). 64 variants at 512x512, or 4 at 2048x2048, at the most.
+inline constexpr uint64_t kMaxComparedPixels = uint64_t(64) * 512 * 512;
 
 struct CompareSetup {
     CompareSpec spec;
