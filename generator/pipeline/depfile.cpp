@@ -61,7 +61,7 @@ bool same_file(const struct stat& a, const struct stat& b) {
 // The watergen output directory at or above `path` (not `path` itself), or "".
 fs::path output_directory_above(const fs::path& path) {
     for (fs::path dir = path.parent_path(); !dir.empty(); dir = dir.parent_path()) {
-        const SafeRead m = read_regular_file(dir / "manifest.json", size_t(256) << 20);
+        const SafeRead m = read_regular_file(dir / "manifest.json", kMaxManifestBytes);
         if (m.bytes && is_watergen_manifest(*m.bytes)) return dir;
         if (dir == dir.root_path()) break;
     }
@@ -132,8 +132,7 @@ std::string depfile_refusal(const fs::path& file, const std::vector<std::string>
     }
     const fs::path out_dir = normal_output_path(out);
     const fs::path real_out = resolved_path(out_dir);
-    if (std::mismatch(real_out.begin(), real_out.end(), resolved.begin(), resolved.end()).first ==
-        real_out.end())
+    if (path_holds(real_out, resolved))
         return subject + "lies inside the output directory " + out_dir.string() +
                ", which the build replaces; expected a path outside it";
     if (const fs::path above = output_directory_above(resolved); !above.empty())

@@ -27,11 +27,6 @@ fs::path normal_absolute(const fs::path& out, std::error_code& ec) {
     return p;
 }
 
-bool holds(const fs::path& outer, const fs::path& inner) {
-    return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first ==
-           outer.end();
-}
-
 // Whether every entry of `dir` is the first component of a recorded path, and the record
 // names manifest.json: the directory holds nothing watergen's last build there did not write.
 bool only_recorded_entries(const fs::path& dir, const std::vector<std::string>& recorded) {
@@ -62,6 +57,11 @@ std::string refusal_for_directory(const fs::path& dir, const std::vector<std::st
 }
 
 } // namespace
+
+bool path_holds(const fs::path& outer, const fs::path& inner) {
+    return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first ==
+           outer.end();
+}
 
 fs::path normal_output_path(const fs::path& out) {
     std::error_code ec;
@@ -98,7 +98,7 @@ OutputTarget check_output_target(const fs::path& out, const std::vector<std::str
     std::error_code cwd_ec, real_ec;
     const fs::path cwd = fs::current_path(cwd_ec);
     const fs::path real = fs::weakly_canonical(t.path, real_ec);
-    if (!cwd_ec && !real_ec && holds(real, cwd)) {
+    if (!cwd_ec && !real_ec && path_holds(real, cwd)) {
         t.error = subject +
                   " is the current directory or holds it; name one outside the current directory";
         return t;

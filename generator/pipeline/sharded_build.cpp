@@ -21,11 +21,6 @@ using OJson = nlohmann::ordered_json;
 
 namespace {
 
-bool holds(const fs::path& outer, const fs::path& inner) {
-    return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first ==
-           outer.end();
-}
-
 constexpr size_t kMaxShardFileBytes = size_t(512) << 20;
 constexpr size_t kMaxOutputFileBytes = size_t(1) << 30;
 
@@ -130,11 +125,11 @@ std::string out_apart_from_shards(const fs::path& out, const std::vector<fs::pat
         if (o == shard)
             return "the output directory " + out.string() + " is the shard " + d.string() +
                    "; expected an output directory apart from every shard";
-        if (holds(o, shard))
+        if (path_holds(o, shard))
             return "the output directory " + out.string() + " holds the shard " + d.string() +
                    ", which the merge would delete with the old output; expected an output "
                    "directory apart from every shard";
-        if (holds(shard, o))
+        if (path_holds(shard, o))
             return "the output directory " + out.string() + " lies inside the shard " + d.string() +
                    "; expected an output directory apart from every shard";
     }

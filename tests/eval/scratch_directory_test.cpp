@@ -2,6 +2,8 @@
 // that is gone (killed outright) swept by the next count.
 #include <catch2/catch.hpp>
 
+#include "build_test_support.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,16 +13,10 @@
 #include "watergen/eval/measure/scratch_directory.h"
 
 using namespace watergen;
+using watergen::test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path fresh_root(const std::string& name) {
-    const fs::path root = fs::temp_directory_path() / (name + "-" + std::to_string(::getpid()));
-    fs::remove_all(root);
-    fs::create_directories(root);
-    return root;
-}
 
 // A pid that named a process a moment ago and names none now (reaped).
 pid_t pid_of_a_finished_process() {
@@ -34,7 +30,8 @@ pid_t pid_of_a_finished_process() {
 } // namespace
 
 TEST_CASE("a_scratch_directory_goes_with_everything_in_it", "[cost]") {
-    const fs::path root = fresh_root("wg-scratch");
+    const TempDir root_tmp("wg-scratch");
+    const fs::path root = root_tmp.path;
     fs::path made;
     {
         const ScratchDirectory dir(root, "watergen-count-");
@@ -49,20 +46,20 @@ TEST_CASE("a_scratch_directory_goes_with_everything_in_it", "[cost]") {
     }
     CHECK_FALSE(fs::exists(made));
     CHECK(fs::is_empty(root));
-    fs::remove_all(root);
 }
 
 TEST_CASE("a_scratch_directory_under_a_file_says_why_it_cannot_be_made", "[cost]") {
-    const fs::path root = fresh_root("wg-scratch-file");
+    const TempDir root_tmp("wg-scratch-file");
+    const fs::path root = root_tmp.path;
     std::ofstream(root / "plain") << "not a directory";
     const ScratchDirectory dir(root / "plain", "watergen-count-");
     CHECK(dir.error().rfind("cannot create " + (root / "plain").string() + "/watergen-count-", 0) ==
           0);
-    fs::remove_all(root);
 }
 
 TEST_CASE("the_scratch_of_a_process_that_is_gone_is_swept", "[cost]") {
-    const fs::path root = fresh_root("wg-sweep");
+    const TempDir root_tmp("wg-sweep");
+    const fs::path root = root_tmp.path;
     const pid_t gone = pid_of_a_finished_process();
     const fs::path stale = root / ("watergen-count-" + std::to_string(gone) + "-0");
     const fs::path mine = root / ("watergen-count-" + std::to_string(::getpid()) + "-99");
@@ -75,5 +72,4 @@ TEST_CASE("the_scratch_of_a_process_that_is_gone_is_swept", "[cost]") {
     CHECK_FALSE(fs::exists(stale));
     CHECK(fs::exists(mine));  // this process is alive
     CHECK(fs::exists(other)); // not a scratch name
-    fs::remove_all(root);
 }

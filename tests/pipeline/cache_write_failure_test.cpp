@@ -4,6 +4,8 @@
 // rather than ENOSPC), for root too, which a read-only directory does not stop.
 #include <catch2/catch.hpp>
 
+#include "build_test_support.h"
+
 #include <signal.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -17,16 +19,10 @@
 #include "watergen/pipeline/output_writer.h"
 
 using namespace watergen;
+using watergen::test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / (name + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
 
 // Every regular file under `dir`, relative.
 std::vector<std::string> files_under(const fs::path& dir) {
@@ -77,7 +73,8 @@ const FileMap kBig = {{"glsl/a.spv", std::string(64 * 1024, 'x')}, {"variant.jso
 } // namespace
 
 TEST_CASE("a_store_on_a_full_disk_leaves_no_temporary_file", "[cache]") {
-    const fs::path dir = fresh_dir("wg-cache-full");
+    const TempDir dir_tmp("wg-cache-full");
+    const fs::path dir = dir_tmp.path;
     const BuildCache cache(dir / "cache");
     fs::create_directories(dir / "cache" / "01");
     std::optional<std::string> store_error, record_error;
@@ -92,11 +89,11 @@ TEST_CASE("a_store_on_a_full_disk_leaves_no_temporary_file", "[cache]") {
     CHECK(record_error->rfind("cannot write " + (dir / "cache" / "x.record.tmp-").string(), 0) ==
           0);
     CHECK(files_under(dir).empty());
-    fs::remove_all(dir);
 }
 
 TEST_CASE("a_cache_that_cannot_be_written_warns_once_and_the_build_goes_on", "[cache]") {
-    const fs::path dir = fresh_dir("wg-cache-under-file");
+    const TempDir dir_tmp("wg-cache-under-file");
+    const fs::path dir = dir_tmp.path;
     std::ofstream(dir / "plain") << "a regular file, not a directory";
     const BuildCache cache(dir / "plain" / "cache");
     const BuildCache copy = cache; // the build's jobs hold copies: still one warning
@@ -120,5 +117,4 @@ TEST_CASE("a_cache_that_cannot_be_written_warns_once_and_the_build_goes_on", "[c
                       " cannot be written (cannot create " +
                       (dir / "plain" / "cache" / "01").string() +
                       ": Not a directory); building without storing\n");
-    fs::remove_all(dir);
 }

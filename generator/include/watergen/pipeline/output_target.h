@@ -29,6 +29,9 @@ OutputTarget check_output_target(const std::filesystem::path& out,
 // `out` absolute and normal, without a trailing separator ("out/" and "./out" are "$PWD/out").
 std::filesystem::path normal_output_path(const std::filesystem::path& out);
 
+// Whether `inner` is `outer` or lies below it (both absolute and normal; compared by component).
+bool path_holds(const std::filesystem::path& outer, const std::filesystem::path& inner);
+
 // Whether `bytes` are a manifest.json that watergen wrote (a JSON object whose "generator"
 // names watergen).
 bool is_watergen_manifest(const std::string& bytes);
