@@ -94,6 +94,7 @@ Runner add_bench_build_command(CLI::App& bench, const Common& common);
 Runner add_bench_prune_command(CLI::App& bench, const Common& common);
 Runner add_bench_accuracy_command(CLI::App& bench, const Common& common);
 Runner add_bench_half_command(CLI::App& bench, const Common& common);
+Runner add_bench_agreement_command(CLI::App& bench, const Common& common);
 Runner add_bench_cpu_command(CLI::App& bench, const Common& common);
 Runner add_bench_unroll_command(CLI::App& bench, const Common& common);
 Runner add_bench_modes_command(CLI::App& bench, const Common& common);

@@ -134,6 +134,10 @@ int main(int argc, char** argv) {
         "half", "the covering set's half variants in 16-bit arithmetic on the GPU: agreement "
                 "with the CPU half model, error against full precision");
     runners[half] = add_bench_half_command(*half, common);
+    CLI::App* agreement = bench->add_subcommand(
+        "agreement", "the covering set through both languages against the CPU in float and "
+                     "double, pixel by pixel within the tolerance plus the float error bound");
+    runners[agreement] = add_bench_agreement_command(*agreement, common);
     CLI::App* unroll = bench->add_subcommand(
         "unroll", "kept loops against unrolled ones on lavapipe, per waves choice: shader size, "
                   "first draw (JIT) and steady draw, interleaved with an A/A pair");

@@ -1,6 +1,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <fmt/format.h>
+
 #include "commands.h"
 #include "watergen/eval/report/render_run.h"
 
@@ -30,7 +32,7 @@ void print_render(const VariantRender& r, const RenderReportInfo& info, uint32_t
                 static_cast<unsigned long long>(r.glsl_vs_cpu_float.nan_inf_pixels),
                 static_cast<unsigned long long>(r.hlsl_vs_cpu_float.nan_inf_pixels),
                 static_cast<unsigned long long>(r.glsl_vs_cpu_float.reference_nan_inf_pixels));
-    std::printf("  wrote %s/{glsl,hlsl}.png, .pfm, cpu_float.pfm, render.json\n",
+    std::printf("  wrote %s/{glsl,hlsl}.png, .pfm, cpu_float.pfm, float_bound.pfm, render.json\n",
                 dir.string().c_str());
 }
 
@@ -95,6 +97,49 @@ int check_gpu_finite(const std::string& key, uint64_t broken, const char* where)
     return kFailed;
 }
 
+// The worst pixel's line: where, how far apart, its bound, and the operation whose float
+// rounding moves it most.
+std::string worst_pixel_text(const RenderRun& run) {
+    const Agreement& a = run.render.agreement[0];
+    std::string text = fmt::format("({}, {}): |gpu - cpu float| {:.3g}, bound {:.3g}", a.worst.x,
+                                   a.worst.y, a.worst_difference, a.worst_bound);
+    if (run.worst && run.worst->ok() && !run.worst->effects.empty()) {
+        const SiteEffect& e = run.worst->effects.front();
+        text += fmt::format("; most from {} {}({}) ({:.3g} in double when rounded to float)",
+                            e.what.origin, op_name(e.what.op), e.what.operands, e.change);
+    }
+    return text;
+}
+
+void print_agreement(const RenderRun& run) {
+    const char* names[2] = {"glsl", "hlsl"};
+    for (size_t i = 0; i < 2; ++i) {
+        const Agreement& a = run.render.agreement[i];
+        std::printf("  %s vs cpu float: %llu pixel%s over %.3g, %llu of them over it plus their "
+                    "float error bound (largest bound %.3g)\n",
+                    names[i], static_cast<unsigned long long>(a.over_tolerance),
+                    a.over_tolerance == 1 ? "" : "s", a.tolerance,
+                    static_cast<unsigned long long>(a.over_bound), a.max_bound);
+    }
+    if (run.render.agreement[0].over_tolerance > 0)
+        std::printf("  worst pixel %s\n", worst_pixel_text(run).c_str());
+}
+
+// kOk, or kFailed after naming the pixels over the tolerance and their bound.
+int check_agreement(const RenderRun& run) {
+    const Agreement &g = run.render.agreement[0], &h = run.render.agreement[1];
+    if (g.holds() && h.holds()) return kOk;
+    std::fprintf(stderr,
+                 "watergen: error: %s: %llu pixel%s differ from the CPU float image by more than "
+                 "%.3g plus the float error expected there (glsl %llu, hlsl %llu); worst %s\n",
+                 run.render.key.c_str(),
+                 static_cast<unsigned long long>(std::max(g.over_bound, h.over_bound)),
+                 std::max(g.over_bound, h.over_bound) == 1 ? "" : "s", g.tolerance,
+                 static_cast<unsigned long long>(g.over_bound),
+                 static_cast<unsigned long long>(h.over_bound), worst_pixel_text(run).c_str());
+    return kFailed;
+}
+
 struct RenderOptions {
     RenderRequest request;
     std::string preset, out = "out/render";
@@ -129,10 +174,13 @@ int run_render_command(const RenderOptions& o, const Common& common) {
     print_diagnostics(run.diagnostics, common);
     print_render(run.render, run.info, request.draws, run.dir);
     if (run.caustics) print_caustics(*run.caustics, request.draws, run.dir);
-    return check_gpu_finite(run.render.key, run.gpu_only_non_finite,
-                            "on the GPU where the CPU float image is finite");
+    print_agreement(run);
+    if (const int rc = check_gpu_finite(run.render.key, run.gpu_only_non_finite,
+                                        "on the GPU where the CPU float image is finite");
+        rc != kOk)
+        return rc;
+    return check_agreement(run);
 }
-
 } // namespace
 
 Runner add_render_command(CLI::App& app, const Common& common) {
@@ -143,6 +191,10 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         ->check(CLI::Range(8, 4096));
     app.add_option("--height", r.height, "image height in pixels (default 256)")
         ->check(CLI::Range(8, 4096));
+    app.add_option("--tolerance", r.tolerance,
+                   "GPU against CPU float: the largest difference of a pixel beyond the float "
+                   "error expected there (default 5e-5); a pixel over it fails the render")
+        ->check(finite_range(0, 1e6));
     app.add_option("--draws", r.draws,
                    "timed draws after the first (JIT) draw; the median is reported (default 10)")
         ->check(CLI::Range(1, 1000));

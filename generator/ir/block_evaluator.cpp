@@ -2,6 +2,7 @@
 #include "block_evaluator.h"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "block_kernels.h"
 
@@ -9,11 +10,41 @@ namespace watergen {
 
 namespace {
 
+// splitmix64's finaliser: a well-mixed 64-bit value from any.
+uint64_t mix(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+// FloatPerturbation on a double instruction's results (cpu_evaluator.h).
+void perturb(const Instr& ins, Exec& ex, size_t lanes) {
+    const FloatPerturbation& p = *ex.perturbation;
+    const auto site = static_cast<int64_t>(ins.site);
+    const bool round_here = site >= p.round_first && site < p.round_end;
+    if (!round_here && (p.relative <= 0 || ins.exact)) return;
+    double* m = static_cast<double*>(ex.arena);
+    const uint64_t key = mix(p.seed ^ mix(uint64_t(ins.site) << 20 ^ uint64_t(ex.loop_index)));
+    for (uint32_t c = 0; c < ins.comps; ++c)
+        for (size_t l = 0; l < lanes; ++l) {
+            double& v = m[ins.out.offset + l * ins.out.lane_step + c * ins.out.comp_step];
+            if (round_here) {
+                v = static_cast<double>(static_cast<float>(v));
+                continue;
+            }
+            const uint64_t lane = ins.per_lane ? ex.begin + l : 0;
+            // Uniform in [-1, 1): the top 53 bits of the lane's hash as a fraction.
+            const uint64_t r = mix(key ^ (lane << 3 | c));
+            v *= 1.0 + p.relative * (static_cast<double>(r >> 11) * 0x1p-52 - 1.0);
+        }
+}
+
 void run_list(const std::vector<Instr>& list, Exec& ex) {
     for (const Instr& ins : list) {
         const size_t lanes = ins.per_lane ? ex.lanes : 1;
         ins.kernel(ins, ex, lanes);
         if (ins.round != Rounding::None) round_result(ins, ex, lanes);
+        if (ex.perturbation && ins.site != UINT32_MAX) perturb(ins, ex, lanes);
     }
 }
 
@@ -85,6 +116,7 @@ BlockEvaluator::BlockEvaluator(const Program& program, const EvalInputs& in) : p
     exec_.arena = program.wide ? static_cast<void*>(wide_.data()) : narrow_.data();
     exec_.program = &program;
     exec_.inputs = &in;
+    if (program.wide && in.perturbation.active()) exec_.perturbation = &in.perturbation;
     run_list(program.prologue, exec_);
 }
 

@@ -50,6 +50,49 @@ struct LoopScope {
     std::vector<Value> captured, carried;
 };
 
+// Values two float evaluations hold alike: inputs (constants, parameters, array elements: the
+// same binary32 values on GPU and CPU), results exact given binary32 arguments (operations that
+// choose, compare or count), and + - and differences, which both round to nearest. Products (a
+// GPU may fuse one into the add that follows), quotients, transcendentals, the composite
+// built-ins, filtering and interpolated varyings are where two float evaluations part, so
+// FloatPerturbation::relative moves those alone (a loop index 3 moved to 2.9999999 would pick
+// another array element).
+bool same_in_binary32(Op op) {
+    switch (op) {
+    case Op::Constant:
+    case Op::Uniform:
+    case Op::UniformElement:
+    case Op::Add:
+    case Op::Sub:
+    case Op::Neg:
+    case Op::Less:
+    case Op::LessEqual:
+    case Op::Greater:
+    case Op::GreaterEqual:
+    case Op::Equal:
+    case Op::NotEqual:
+    case Op::And:
+    case Op::Or:
+    case Op::Not:
+    case Op::Select:
+    case Op::Abs:
+    case Op::Sign:
+    case Op::Min:
+    case Op::Max:
+    case Op::Clamp:
+    case Op::Saturate:
+    case Op::Step:
+    case Op::Floor:
+    case Op::Fract:
+    case Op::Ddx:
+    case Op::Ddy:
+    case Op::LoopIndex:
+        return true;
+    default:
+        return false;
+    }
+}
+
 // A texture sample, or components of one. lavapipe converts these to binary16 rounding
 // toward zero (NIR folds the conversion into the sampler), other values to nearest.
 bool texture_result(const Graph& g, uint32_t id) {
@@ -326,6 +369,19 @@ Value Compiler::compile_op(Context& ctx, uint32_t id, const std::vector<Value>& 
     if (n.op == Op::UniformElement && ins.data) ins.aux = top_.find_parameter(n.name)->array_size;
     if (n.op == Op::Sample || n.op == Op::SampleLevel)
         ins.aux = ctx.g.node(n.args[0]).type == Type::TextureCube;
+    // Every value, constants and parameters too: the GPU holds them in binary32.
+    if (wide_) {
+        ins.site = static_cast<uint32_t>(program_.sites.size());
+        ins.exact = same_in_binary32(n.op);
+        std::string operands;
+        for (uint32_t a : n.args) {
+            const Node& arg = ctx.g.node(a);
+            operands += (operands.empty() ? "" : ", ") +
+                        (arg.name.empty() ? std::string(op_name(arg.op)) : arg.name);
+        }
+        program_.sites.push_back(
+            {n.origin, n.name, n.op, std::move(operands), id, &ctx.g == &top_});
+    }
     push(ctx, ins, hoisted, reads);
     return out;
 }

@@ -44,6 +44,8 @@ struct Instr {
     Rounding round = Rounding::None;
     const void* data = nullptr; // constants, parameter values, a varying, a texture
     uint32_t aux = 0;           // kernel-specific: a count, an index, a flag
+    uint32_t site = UINT32_MAX; // double programs: Program::sites[site] computed it
+    bool exact = false;         // the same in any binary32 evaluation (block_program.cpp)
 };
 
 // A loop: each carried value has a place of its own (`storage`; lane step 0 when it is the same
@@ -78,6 +80,7 @@ struct Program {
     size_t arena = 0;                  // values per evaluator
     Operand root;
     uint32_t root_comps = 0;
+    std::vector<EvalSite> sites; // double programs: the operations that compute values
 };
 
 // What a kernel sees: the arena, the block and the enclosing loops' iteration.
@@ -88,6 +91,7 @@ struct Exec {
     double loop_index = 0; // of the innermost loop running
     const Program* program = nullptr;
     const EvalInputs* inputs = nullptr;
+    const FloatPerturbation* perturbation = nullptr; // double programs, when active
 };
 
 // Compiles the nodes `root` depends on. Double precision stores doubles; float and half store

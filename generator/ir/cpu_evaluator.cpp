@@ -153,6 +153,13 @@ EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs&
     return result;
 }
 
+std::vector<EvalSite> evaluation_sites(const Graph& g, const std::string& output,
+                                       const EvalInputs& inputs) {
+    const auto root = find_output(g, output);
+    if (!root || has_errors(g.diagnostics())) return {};
+    return compile_program(g, *root, inputs, EvalPrecision::Double).sites;
+}
+
 EvalResult evaluate_image(const Graph& g, const std::string& output, EvalInputs inputs,
                           uint32_t width, uint32_t height, EvalPrecision precision) {
     // Lanes in 2x2 quads so derivatives see their neighbours; odd edges are padded.

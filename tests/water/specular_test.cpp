@@ -81,7 +81,8 @@ double ggx_reference(const Case& c, double a, double r0) {
     const double d = a2 / (M_PI * std::pow(ch * ch * (a2 - 1) + 1, 2));
     auto g1 = [&](double x) { return 2 * x / (x + std::sqrt(a2 + (1 - a2) * x * x)); };
     const double f = r0 + (1 - r0) * std::pow(1 - vh, 5);
-    return d * g1(nl) * g1(nv) * f / (4 * nl * nv) * nl;
+    // The node fades the lobe out over N.V in (0, 2^-10] (no jump at grazing).
+    return d * g1(nl) * g1(nv) * f / (4 * nl * nv) * nl * std::min(nv * 1024.0, 1.0);
 }
 
 const double kR0 = std::pow((1.0 - 1.33333) / (1.0 + 1.33333), 2); // fresnel.h indices

@@ -1,6 +1,10 @@
 #include "watergen/eval/draw/variant_render.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+
+#include "watergen/ir/float_error.h"
 
 namespace watergen {
 
@@ -82,6 +86,28 @@ VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
         }
         out.cpu_double = to_image(d, settings.width, settings.height);
         out.glsl_vs_cpu_double = compare_images(out.gpu_image[0], out.cpu_double);
+        if (settings.float_bound) {
+            ErrorSpread spread = float_error_spread(
+                build.shader.fragment, "color", scene.eval_inputs(), settings.width,
+                settings.height, d, kFloatBoundRuns, kFloatBoundRelative);
+            if (!spread.ok()) {
+                out.error = "CPU evaluator: " + spread.error;
+                return out;
+            }
+            // Plus an ulp of the pixel's value on either side: the last rounding alone.
+            const auto comps = static_cast<size_t>(d.components);
+            for (size_t p = 0; p < spread.per_pixel.size(); ++p) {
+                double largest = 0;
+                for (size_t c = 0; c < comps && c < 3; ++c)
+                    largest = std::max(largest, std::fabs(d.values[p * comps + c]));
+                spread.per_pixel[p] =
+                    static_cast<float>(kFloatBoundFactor * spread.per_pixel[p] + largest * 0x1p-22);
+            }
+            out.float_bound = std::move(spread.per_pixel);
+            for (size_t i = 0; i < 2; ++i)
+                out.agreement[i] = check_agreement(out.gpu_image[i], out.cpu_float, out.float_bound,
+                                                   settings.tolerance);
+        }
     }
     return out;
 }

@@ -88,6 +88,54 @@ write_report(const std::filesystem::path& dir, const VariantRender& r, const Ren
 
 } // namespace
 
+nlohmann::ordered_json agreement_json(const VariantRender& r, const PixelAttribution* worst) {
+    auto side = [](const Agreement& a) {
+        return nlohmann::ordered_json{{"compared_pixels", a.compared},
+                                      {"over_tolerance", a.over_tolerance},
+                                      {"over_tolerance_and_bound", a.over_bound},
+                                      {"max_bound", number(a.max_bound)},
+                                      {"worst_at", {a.worst.x, a.worst.y}},
+                                      {"worst_difference", number(a.worst_difference)},
+                                      {"worst_bound", number(a.worst_bound)}};
+    };
+    nlohmann::ordered_json j;
+    j["tolerance"] = r.agreement[0].tolerance;
+    j["bound"] = "per pixel (float_bound.pfm): twice the largest change of the double image over " +
+                 std::to_string(kFloatBoundRuns) +
+                 " runs moving every product, quotient, transcendental, built-in and filtered "
+                 "sample by up to one binary32 ulp (2^-23 relative)";
+    j["glsl"] = side(r.agreement[0]);
+    j["hlsl"] = side(r.agreement[1]);
+    if (worst && worst->ok()) {
+        const PixelLocation at = r.agreement[0].worst;
+        const size_t p = (size_t(at.y) * r.gpu_image[0].width + at.x) * 4;
+        nlohmann::ordered_json nodes = nlohmann::ordered_json::array();
+        for (const SiteEffect& e : worst->effects)
+            nodes.push_back(
+                {{"origin", e.what.origin},
+                 {"operation", std::string(op_name(e.what.op)) + "(" + e.what.operands + ")"},
+                 {"name", e.what.name},
+                 {"change", number(e.change)}});
+        std::vector<double> gpu;
+        for (size_t c = 0; c < worst->double_value.size() && c < 4; ++c)
+            gpu.push_back(r.gpu_image[0].rgba[p + c]);
+        j["worst_pixel"] = {{"at", {at.x, at.y}},
+                            {"cpu_double", worst->double_value},
+                            {"cpu_float", worst->float_value},
+                            {"glsl", gpu},
+                            {"nodes_by_float_rounding", nodes}};
+    }
+    return j;
+}
+
+ImageRGBA32F bound_image(const VariantRender& r, uint32_t width, uint32_t height) {
+    ImageRGBA32F img{width, height, std::vector<float>(size_t(width) * height * 4, 1.0f)};
+    for (size_t p = 0; p < r.float_bound.size() && p < size_t(width) * height; ++p)
+        for (size_t c = 0; c < 3; ++c)
+            img.rgba[p * 4 + c] = r.float_bound[p];
+    return img;
+}
+
 uint64_t gpu_only_non_finite_pixels(const VariantRender& r) {
     return std::max(r.glsl_vs_cpu_float.nan_inf_where_reference_finite,
                     r.hlsl_vs_cpu_float.nan_inf_where_reference_finite);
@@ -119,7 +167,11 @@ std::optional<std::string> write_render_report(const std::filesystem::path& dir,
     nlohmann::ordered_json json = render_report_json(r, info);
     for (const auto& [key, value] : extras.json.items())
         json[key] = value;
-    return write_report(dir, r, info, {{"cpu_float", &r.cpu_float}}, json, extras.files);
+    std::vector<std::pair<std::string, const ImageRGBA32F*>> references = {
+        {"cpu_float", &r.cpu_float}};
+    const ImageRGBA32F bound = bound_image(r, info.width, info.height);
+    if (!r.float_bound.empty()) references.push_back({"float_bound", &bound});
+    return write_report(dir, r, info, references, json, extras.files);
 }
 
 nlohmann::ordered_json half_render_report_json(const HalfRender& h, const RenderReportInfo& info) {

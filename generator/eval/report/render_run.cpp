@@ -53,9 +53,19 @@ RenderRun run_render(VulkanRunner& runner, const RenderRequest& request) {
         extras.files = *files;
         extras.json["caustics"] = render_caustics_json(c);
     }
-    run.render =
-        render_variant(runner, build, scene, {request.width, request.height, request.draws, true});
+    RenderSettings settings{request.width, request.height, request.draws, true};
+    settings.float_bound = true;
+    settings.tolerance = request.tolerance;
+    run.render = render_variant(runner, build, scene, settings);
     if (!run.render.ok()) return fail(run.render.key + ": " + run.render.error);
+    // The pixel furthest over its allowance, traced to the operations its float rounding
+    // depends on most (one evaluation of its quad per operation).
+    if (run.render.agreement[0].over_tolerance > 0) {
+        const PixelLocation at = run.render.agreement[0].worst;
+        run.worst = attribute_float_error(build.shader.fragment, "color", scene.eval_inputs(),
+                                          request.width, request.height, at.x, at.y);
+    }
+    extras.json["agreement"] = agreement_json(run.render, run.worst ? &*run.worst : nullptr);
     run.dir = render_directory(request.out, v, request.view);
     run.info = report_info(runner, request);
     if (auto e = write_render_report(run.dir, run.render, run.info, extras)) return fail(*e);

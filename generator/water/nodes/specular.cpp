@@ -16,6 +16,8 @@ constexpr double kLobeFloor = 0x1p-14;
 // Smallest GGX width: the sun lobe peaks near 1 / (18 a^3) at grazing mirror angles, which
 // must stay below binary16's 65504 (a = 0.02 gives 7e3).
 constexpr double kMinAlpha = 0.02;
+// 1 / the N.V below which the GGX lobe fades out to 0 at grazing (specular_ggx_sun).
+constexpr double kGrazingFade = 1024.0;
 
 // The sun is above the horizon and in front of the surface.
 Expr sun_lights(Expr to_sun, Expr n_dot_l) {
@@ -135,8 +137,13 @@ Expr specular_ggx_sun(Graph& g, const SpecularInputs& in) {
     Expr m2 = m * m;
     Expr f = named(r0 + (1.0 - r0) * (m2 * m2 * m), "ggx_fresnel");
     // N.V <= 0 (a back-facing normal from bumps) and N.L <= 0 are unlit, not extrapolated.
-    Expr lit = sun_lights(to_sun, n_dot_l) && (n_dot_v > 0.0);
-    return named(select(lit, d * f * visibility, constant(g, 0.0)), "specular_intensity");
+    // At N.L -> 0 the lobe goes to 0 with masked_l; at N.V -> 0 it does not (masked_v -> 1 / a):
+    // cut there, a normal within float rounding of grazing would land on either side of a jump
+    // of D F / a (1.3e-3 of a beach pixel at 512x512, the GPU dark and the CPU float lit). The
+    // lobe fades out over N.V in (0, 2^-10] instead (the last 0.056 degrees before grazing).
+    Expr grazing = named(saturate(n_dot_v * kGrazingFade), "ggx_grazing_fade");
+    Expr lit = sun_lights(to_sun, n_dot_l);
+    return named(select(lit, d * f * visibility * grazing, constant(g, 0.0)), "specular_intensity");
 }
 
 namespace {

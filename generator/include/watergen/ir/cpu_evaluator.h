@@ -63,6 +63,19 @@ CubeFaceCoord cube_face_coord(double x, double y, double z);
 // defined past the face's edges (s, t outside [0, 1]). For making cube textures.
 void cube_face_direction(int face, double s, double t, double direction[3]);
 
+// The float model's rounding, applied inside a double evaluation (EvalPrecision::Double only,
+// ignored otherwise) to find out where a float result's error comes from and how large it can
+// be: at the operations [round_first, round_end) (indices into evaluation_sites()), results
+// rounded to binary32 as the float evaluation rounds them; and at every operation, results
+// moved by a pseudo-random relative amount in [-relative, relative], the same for the same
+// seed, lane, operation and loop iteration (so a result does not depend on threads or blocks).
+struct FloatPerturbation {
+    int64_t round_first = 0, round_end = 0;
+    uint64_t seed = 0;
+    double relative = 0; // 0: none
+    bool active() const { return round_end > round_first || relative > 0; }
+};
+
 struct EvalInputs {
     std::map<std::string, std::vector<double>> uniforms; // overrides of parameter defaults
     std::map<std::string, TextureView> textures;
@@ -72,6 +85,7 @@ struct EvalInputs {
     size_t lanes = 0;
     // Threads sharing the blocks of lanes; 0 = one per core. Results do not depend on it.
     unsigned threads = 0;
+    FloatPerturbation perturbation;
 };
 
 struct EvalResult {
@@ -94,6 +108,21 @@ struct EvalResult {
 // order.
 EvalResult evaluate(const Graph& g, const std::string& output, const EvalInputs& inputs,
                     EvalPrecision precision);
+
+// An operation of the evaluation (a node of the graph or of a loop body or switch case, in the
+// order the evaluator runs them): the feature node that made it (Node::origin), its name, its
+// operation.
+struct EvalSite {
+    std::string origin, name;
+    Op op = Op::Constant;
+    std::string operands; // its arguments, by name or else operation: "fract, -"
+    uint32_t node = 0;    // its id in the graph that holds it
+    bool top = true;      // that graph is the evaluated one, not a loop body or switch case
+};
+// The operations that compute values in the double evaluation of `output`, indexed as
+// FloatPerturbation::site counts them. Empty when the graph has no such output.
+std::vector<EvalSite> evaluation_sites(const Graph& g, const std::string& output,
+                                       const EvalInputs& inputs);
 
 // Evaluates a fullscreen fragment graph over width x height pixels with v_uv at pixel centres,
 // like the runner's fullscreen triangle. Result is row-major, row 0 = top.

@@ -5,6 +5,7 @@
 #include <array>
 #include <string>
 
+#include "watergen/eval/image/agreement.h"
 #include "watergen/eval/image/image_io.h"
 #include "watergen/eval/image/image_metrics.h"
 #include "watergen/eval/scene/synthetic_scene.h"
@@ -18,7 +19,21 @@ struct RenderSettings {
     uint32_t timed_draws = 5;
     bool cpu_double = true; // also evaluate in double (costs about as much as the float pass)
     bool cpu_float = true;  // evaluate on the CPU in float at all (about 30 us per pixel)
+    // With cpu_double: the float error to expect per pixel (float_error_bound) and the GPU
+    // images' agreement with the CPU float image within `tolerance` plus that bound. Costs
+    // kFloatBoundRuns more double evaluations.
+    bool float_bound = false;
+    double tolerance = kAgreementTolerance;
 };
+
+// The float error bound's model (watergen/ir/float_error.h): every operation's result moved by
+// up to one binary32 ulp (2^-23 relative: GPUs round to nearest, and their exp2, sin and fused
+// multiply-adds differ from correctly rounded by about an ulp), four seeded runs; two float
+// evaluations of a pixel are expected within twice the largest change any run makes, plus an
+// ulp of the pixel's value on either side (2^-22 of its largest component).
+constexpr int kFloatBoundRuns = 4;
+constexpr double kFloatBoundRelative = 0x1p-23;
+constexpr double kFloatBoundFactor = 2.0;
 
 struct VariantRender {
     std::string key;
@@ -26,6 +41,10 @@ struct VariantRender {
     std::array<ImageRGBA32F, 2> gpu_image;
     ImageRGBA32F cpu_float, cpu_double; // CPU evaluator of the same graph and inputs
     ImageErrorStats glsl_vs_hlsl, glsl_vs_cpu_float, hlsl_vs_cpu_float, glsl_vs_cpu_double;
+    // RenderSettings::float_bound: per pixel, how far apart two float evaluations may be
+    // (row 0 = top); each path's agreement with the CPU float image within tolerance + that.
+    std::vector<float> float_bound;
+    std::array<Agreement, 2> agreement;
     double cpu_float_ms = 0;
     std::vector<std::string> validation_messages; // raised while rendering this variant
     std::string error;                            // first failure, "" when everything ran

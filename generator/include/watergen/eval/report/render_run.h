@@ -13,6 +13,7 @@
 #include "watergen/eval/draw/draw_device.h"
 #include "watergen/eval/draw/variant_caustics.h"
 #include "watergen/eval/report/render_report.h"
+#include "watergen/ir/float_error.h"
 
 namespace watergen {
 
@@ -22,6 +23,7 @@ struct RenderRequest {
     std::string view = "beach";
     uint32_t width = 256, height = 256, draws = 10; // timed draws after the first (JIT) draw
     double exposure = 1.0;                          // of the PNG previews
+    double tolerance = kAgreementTolerance;         // GPU against CPU float, beyond the bound
     LoopUnroll unroll = LoopUnroll::AsHinted;       // every loop's hint (not with strict half)
     std::filesystem::path out = "out/render";
     std::string shader_cache; // Mesa's shader cache as the device was opened (render.json)
@@ -41,6 +43,9 @@ struct RenderRun {
     RunStatus status = RunStatus::Ok;
     // Pixels NaN/Inf on the GPU where the CPU float image is finite (gpu_only_non_finite_pixels).
     uint64_t gpu_only_non_finite = 0;
+    // When a pixel differs from the CPU float image by more than the tolerance: the worst one
+    // (Agreement::worst of the GLSL path) traced to the operations it depends on.
+    std::optional<PixelAttribution> worst;
 };
 
 // Cost: a variant build, two pipelines (JIT), the CPU evaluations; for a pass choice its build,
