@@ -25,7 +25,9 @@ void print_rows(const AgreementBench& bench) {
                     r.agreement[0].max_bound);
     }
     for (size_t i = 0; i < bench.rows.size(); ++i)
-        std::printf("%zu: %s\n", i + 1, bench.rows[i].key.c_str());
+        std::printf("%zu: %s%s%s\n", i + 1, bench.rows[i].key.c_str(),
+                    bench.rows[i].cause.empty() ? "" : "\n    worst pixel most from ",
+                    bench.rows[i].cause.c_str());
 }
 
 } // namespace

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "watergen/ir/float_error.h"
 #include "watergen/plan/covering_array.h"
 
 namespace watergen {
@@ -21,10 +22,10 @@ nlohmann::ordered_json side_json(const Agreement& a, double max_abs) {
 
 std::string csv_row(const AgreementBenchRow& r) {
     const Agreement &g = r.agreement[0], &h = r.agreement[1];
-    return fmt::format("\"{}\",{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{:.6g},{}\n", r.key,
-                       r.glsl_vs_hlsl, r.vs_cpu_float[0], r.vs_cpu_float[1], r.glsl_vs_cpu_double,
-                       r.cpu_float_vs_double, g.over_tolerance, g.over_bound, h.over_tolerance,
-                       h.over_bound, g.max_bound, r.gpu_nan_inf);
+    return fmt::format("\"{}\",{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{},{},{:.6g},{},\"{}\"\n",
+                       r.key, r.glsl_vs_hlsl, r.vs_cpu_float[0], r.vs_cpu_float[1],
+                       r.glsl_vs_cpu_double, r.cpu_float_vs_double, g.over_tolerance, g.over_bound,
+                       h.over_tolerance, h.over_bound, g.max_bound, r.gpu_nan_inf, r.cause);
 }
 
 } // namespace
@@ -56,12 +57,22 @@ AgreementBench run_agreement_bench(VulkanRunner& runner, uint32_t size, double t
              r.glsl_vs_cpu_double.max_abs,
              compare_images(r.cpu_float, r.cpu_double).max_abs,
              r.agreement,
-             r.glsl_vs_cpu_float.nan_inf_pixels + r.hlsl_vs_cpu_float.nan_inf_pixels});
+             r.glsl_vs_cpu_float.nan_inf_pixels + r.hlsl_vs_cpu_float.nan_inf_pixels,
+             ""});
+        if (r.agreement[0].over_tolerance > 0) {
+            const PixelLocation at = r.agreement[0].worst;
+            const PixelAttribution a = attribute_float_error(
+                build.shader.fragment, "color", scene.eval_inputs(), size, size, at.x, at.y, 1);
+            if (a.ok() && !a.effects.empty()) {
+                const EvalSite& e = a.effects.front().what;
+                bench.rows.back().cause = e.origin + " " + op_name(e.op) + "(" + e.operands + ")";
+            }
+        }
     }
     bench.csv = "variant,glsl_vs_hlsl_max_abs,glsl_vs_cpu_float_max_abs,"
                 "hlsl_vs_cpu_float_max_abs,glsl_vs_cpu_double_max_abs,"
                 "cpu_float_vs_double_max_abs,glsl_over_tolerance,glsl_over_bound,"
-                "hlsl_over_tolerance,hlsl_over_bound,max_bound,gpu_nan_inf_pixels\n";
+                "hlsl_over_tolerance,hlsl_over_bound,max_bound,gpu_nan_inf_pixels,cause\n";
     nlohmann::ordered_json rows = nlohmann::ordered_json::array();
     for (const AgreementBenchRow& r : bench.rows) {
         bench.csv += csv_row(r);
@@ -71,7 +82,8 @@ AgreementBench run_agreement_bench(VulkanRunner& runner, uint32_t size, double t
                         {"hlsl_vs_cpu_float", side_json(r.agreement[1], r.vs_cpu_float[1])},
                         {"glsl_vs_cpu_double_max_abs", r.glsl_vs_cpu_double},
                         {"cpu_float_vs_double_max_abs", r.cpu_float_vs_double},
-                        {"gpu_nan_inf_pixels", r.gpu_nan_inf}});
+                        {"gpu_nan_inf_pixels", r.gpu_nan_inf},
+                        {"worst_pixel_cause", r.cause}});
     }
     const nlohmann::ordered_json doc = {{"size", size},
                                         {"tolerance", tolerance},

@@ -20,6 +20,9 @@ struct AgreementBenchRow {
     double glsl_vs_cpu_double = 0, cpu_float_vs_double = 0;
     std::array<Agreement, 2> agreement;
     uint64_t gpu_nan_inf = 0;
+    // With a pixel over the tolerance: the operation whose float rounding moves the worst one
+    // most (attribute_float_error), "origin op(operands)".
+    std::string cause;
 };
 
 struct AgreementBench {
@@ -36,7 +39,9 @@ struct AgreementBench {
 //         with the CPU float and double images and the float error bound.
 // Output: a row per variant, or the first failure (the rows so far stay).
 // Cost:   per variant two pipelines (JIT) and six CPU evaluations (float, double, the bound's
-//         four): about 4 s at 512x512 and 15 s at 1024x1024 on this project's 2-core machine.
+//         four), and one evaluation of a quad per operation to trace a pixel over the
+//         tolerance: about 4 s at 512x512 and 20 s at 1024x1024 on this project's 2-core
+//         machine.
 AgreementBench run_agreement_bench(VulkanRunner& runner, uint32_t size, double tolerance);
 
 } // namespace watergen
