@@ -58,21 +58,13 @@ struct LoopScope {
 // FloatPerturbation::relative moves those alone (a loop index 3 moved to 2.9999999 would pick
 // another array element).
 bool same_in_binary32(Op op) {
+    // + -, comparisons, && ||: the infix operations but * and /.
+    if (is_infix(op)) return op != Op::Mul && op != Op::Div;
     switch (op) {
     case Op::Constant:
     case Op::Uniform:
     case Op::UniformElement:
-    case Op::Add:
-    case Op::Sub:
     case Op::Neg:
-    case Op::Less:
-    case Op::LessEqual:
-    case Op::Greater:
-    case Op::GreaterEqual:
-    case Op::Equal:
-    case Op::NotEqual:
-    case Op::And:
-    case Op::Or:
     case Op::Not:
     case Op::Select:
     case Op::Abs:

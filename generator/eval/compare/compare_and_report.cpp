@@ -121,6 +121,10 @@ void complete_report(CompareReport& report, const CompareRun& run, const Compare
         cv.time_ratio_hi = e.time.hi;
         cv.cost = e.cost_per_pixel;
         cv.spirv_instructions = e.spirv_instructions;
+        for (size_t v = 0; v < e.views.size() && v < cv.views.size(); ++v) {
+            cv.views[v].beyond_float_bound = e.views[v].beyond_float_bound;
+            cv.views[v].float_bound_max = e.views[v].float_bound_max;
+        }
     }
     const auto& [first_view, first_scene] = s.views.front();
     char note[400];

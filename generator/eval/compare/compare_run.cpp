@@ -175,7 +175,37 @@ class Comparison {
             return false;
         }
         reference = to_image(d, scene->width, scene->height);
+        // What float rounding alone can move a pixel by: the CPU float image's own distance
+        // from double, plus how far another float evaluation may be from it.
+        const EvalResult f =
+            evaluate_image(builds_[0].shader.fragment, "color", scene->eval_inputs(), scene->width,
+                           scene->height, EvalPrecision::Float);
+        std::string error = f.error;
+        if (error.empty())
+            bound_ = float_bound(builds_[0].shader.fragment, scene->eval_inputs(), scene->width,
+                                 scene->height, d, error);
+        if (!error.empty()) {
+            run_.error = "CPU reference (" + name + "): " + error;
+            return false;
+        }
+        const auto comps = static_cast<size_t>(d.components);
+        for (size_t p = 0; p < bound_.size(); ++p) {
+            double apart = 0;
+            for (size_t c = 0; c < comps && c < 3; ++c)
+                apart =
+                    std::max(apart, std::fabs(f.values[p * comps + c] - d.values[p * comps + c]));
+            bound_[p] = static_cast<float>(bound_[p] + apart);
+        }
         return true;
+    }
+
+    // The pixels of `image` further from `reference` than bound_ allows (a CPU reference).
+    void check_float_bound(const ImageRGBA32F& image, const ImageRGBA32F& reference,
+                           ComparedView& compared) const {
+        if (bound_.empty()) return;
+        const Agreement a = check_agreement(image, reference, bound_, 0.0);
+        compared.beyond_float_bound = static_cast<int64_t>(a.over_bound);
+        compared.float_bound_max = a.max_bound;
     }
 
     // Every variant on both paths in one view, each GLSL image against the reference's: the
@@ -197,6 +227,7 @@ class Comparison {
                 return false;
             }
             compared.error = compare_images(image, reference);
+            check_float_bound(image, reference, compared);
             if (streamed)
                 request_.on_image(run_, k, view, image, reference);
             else
@@ -242,6 +273,7 @@ class Comparison {
     std::vector<VariantBuild> builds_;
     size_t first_ = 0;
     SyntheticScene own_scene_;        // scene_for's copy with a variant's own textures
+    std::vector<float> bound_;        // the view's float allowance per pixel (a CPU reference)
     std::vector<RenderResult> timed_; // time()'s results, per build: view 0's GLSL images
 };
 

@@ -39,6 +39,27 @@ RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene
     return job;
 }
 
+std::vector<float> float_bound(const Graph& graph, const EvalInputs& inputs, uint32_t width,
+                               uint32_t height, const EvalResult& double_image,
+                               std::string& error) {
+    ErrorSpread spread = float_error_spread(graph, "color", inputs, width, height, double_image,
+                                            kFloatBoundRuns, kFloatBoundRelative);
+    if (!spread.ok()) {
+        error = spread.error;
+        return {};
+    }
+    // Plus an ulp of the pixel's value on either side: the last rounding alone.
+    const auto comps = static_cast<size_t>(double_image.components);
+    for (size_t p = 0; p < spread.per_pixel.size(); ++p) {
+        double largest = 0;
+        for (size_t c = 0; c < comps && c < 3; ++c)
+            largest = std::max(largest, std::fabs(double_image.values[p * comps + c]));
+        spread.per_pixel[p] =
+            static_cast<float>(kFloatBoundFactor * spread.per_pixel[p] + largest * 0x1p-22);
+    }
+    return std::move(spread.per_pixel);
+}
+
 VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
                              const SyntheticScene& scene, const RenderSettings& settings) {
     VariantRender out;
@@ -87,23 +108,13 @@ VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
         out.cpu_double = to_image(d, settings.width, settings.height);
         out.glsl_vs_cpu_double = compare_images(out.gpu_image[0], out.cpu_double);
         if (settings.float_bound) {
-            ErrorSpread spread = float_error_spread(
-                build.shader.fragment, "color", scene.eval_inputs(), settings.width,
-                settings.height, d, kFloatBoundRuns, kFloatBoundRelative);
-            if (!spread.ok()) {
-                out.error = "CPU evaluator: " + spread.error;
+            std::string error;
+            out.float_bound = float_bound(build.shader.fragment, scene.eval_inputs(),
+                                          settings.width, settings.height, d, error);
+            if (!error.empty()) {
+                out.error = "CPU evaluator: " + error;
                 return out;
             }
-            // Plus an ulp of the pixel's value on either side: the last rounding alone.
-            const auto comps = static_cast<size_t>(d.components);
-            for (size_t p = 0; p < spread.per_pixel.size(); ++p) {
-                double largest = 0;
-                for (size_t c = 0; c < comps && c < 3; ++c)
-                    largest = std::max(largest, std::fabs(d.values[p * comps + c]));
-                spread.per_pixel[p] =
-                    static_cast<float>(kFloatBoundFactor * spread.per_pixel[p] + largest * 0x1p-22);
-            }
-            out.float_bound = std::move(spread.per_pixel);
             for (size_t i = 0; i < 2; ++i)
                 out.agreement[i] = check_agreement(out.gpu_image[i], out.cpu_float, out.float_bound,
                                                    settings.tolerance);

@@ -72,12 +72,16 @@ Json number_or_null(double v, bool measured = true) {
     return measured && std::isfinite(v) ? Json(v) : Json(nullptr);
 }
 
-Json view_json(const std::string& name, const ErrorMaps& m) {
+Json view_json(const std::string& name, const ErrorMaps& m, const CompareViewResult& r) {
     Json j;
     j["view"] = name;
     for (const ErrorColumnInfo& c : kColumns)
         j[c.key] = number_or_null(c.value(m));
     j["compared_pixels"] = m.stats.compared_pixels;
+    // Against a CPU reference: pixels beyond |CPU float - double| + the float error bound.
+    j["pixels_beyond_float_bound"] =
+        r.beyond_float_bound < 0 ? Json(nullptr) : Json(r.beyond_float_bound);
+    j["float_bound_max"] = number_or_null(r.float_bound_max, r.beyond_float_bound >= 0);
     j["worst_region"] = {
         {"x", m.worst.x}, {"y", m.worst.y}, {"width", m.worst.width}, {"height", m.worst.height}};
     return j;
@@ -227,7 +231,7 @@ std::string compare_json(const CompareReport& report, const ResolvedErrors& erro
         jv["summary"] = summary;
         jv["views"] = Json::array();
         for (std::size_t i = 0; i < report.views.size(); ++i)
-            jv["views"].push_back(view_json(report.views[i].name, errors.maps[v][i]));
+            jv["views"].push_back(view_json(report.views[i].name, errors.maps[v][i], var.views[i]));
         j["variants"].push_back(jv);
     }
     if (!report.caustics_passes.empty())

@@ -57,6 +57,13 @@ struct ComparedView {
     ImageRGBA32F image;      // GLSL path; empty when streamed (CompareRequest::on_image)
     double glsl_vs_hlsl = 0; // max abs between the two paths (0: bit-identical)
     ImageErrorStats error;   // against the reference image of the view
+    // A CPU reference only: pixels whose difference from the reference exceeds what float
+    // rounding alone can explain there (|CPU float - double| plus the float error bound,
+    // variant_render.h), and the largest such allowance in the view; -1: not measured (GPU
+    // reference). The reference variant's own render should have none; an approximation's
+    // count is the pixels where it differs as a model.
+    int64_t beyond_float_bound = -1;
+    double float_bound_max = 0;
 };
 
 struct CompareEntry {

@@ -63,4 +63,10 @@ RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene
 
 ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height);
 
+// The float error bound of each pixel of `graph`'s width x height image, whose double
+// evaluation is `double_image`: how far apart two float evaluations may be (the model above).
+// Empty, with `error` set, when the evaluation fails.
+std::vector<float> float_bound(const Graph& graph, const EvalInputs& inputs, uint32_t width,
+                               uint32_t height, const EvalResult& double_image, std::string& error);
+
 } // namespace watergen

@@ -56,6 +56,10 @@ struct CompareViewResult {
     // Streamed (figured_view_result()): the figures, `errors` with its per-pixel maps dropped,
     // `image` empty.
     std::optional<CompareViewFigures> figures;
+    // A CPU reference only (compare_run.h's ComparedView): pixels beyond what float rounding
+    // explains, and the view's largest allowance; -1: not measured.
+    int64_t beyond_float_bound = -1;
+    double float_bound_max = 0;
 };
 
 struct CompareVariant {
