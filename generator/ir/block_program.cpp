@@ -371,8 +371,7 @@ Value Compiler::compile_op(Context& ctx, uint32_t id, const std::vector<Value>& 
             operands += (operands.empty() ? "" : ", ") +
                         (arg.name.empty() ? std::string(op_name(arg.op)) : arg.name);
         }
-        program_.sites.push_back(
-            {n.origin, n.name, n.op, std::move(operands), id, &ctx.g == &top_});
+        program_.sites.push_back({n.origin, n.name, n.op, std::move(operands)});
     }
     push(ctx, ins, hoisted, reads);
     return out;

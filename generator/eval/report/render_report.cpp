@@ -65,6 +65,15 @@ nlohmann::ordered_json ulps_json(const HalfAgreement& a, uint32_t width) {
             {"max_at", {a.max_index % width, a.max_index / width}}};
 }
 
+// The per-pixel float error bound as a grey image (R = G = B = the bound): float_bound.pfm.
+ImageRGBA32F bound_image(const VariantRender& r, uint32_t width, uint32_t height) {
+    ImageRGBA32F img{width, height, std::vector<float>(size_t(width) * height * 4, 1.0f)};
+    for (size_t p = 0; p < r.float_bound.size() && p < size_t(width) * height; ++p)
+        for (size_t c = 0; c < 3; ++c)
+            img.rgba[p * 4 + c] = r.float_bound[p];
+    return img;
+}
+
 // Stages the images and render.json, then swaps the directory in whole.
 std::optional<std::string>
 write_report(const std::filesystem::path& dir, const VariantRender& r, const RenderReportInfo& info,
@@ -126,14 +135,6 @@ nlohmann::ordered_json agreement_json(const VariantRender& r, const PixelAttribu
                             {"nodes_by_float_rounding", nodes}};
     }
     return j;
-}
-
-ImageRGBA32F bound_image(const VariantRender& r, uint32_t width, uint32_t height) {
-    ImageRGBA32F img{width, height, std::vector<float>(size_t(width) * height * 4, 1.0f)};
-    for (size_t p = 0; p < r.float_bound.size() && p < size_t(width) * height; ++p)
-        for (size_t c = 0; c < 3; ++c)
-            img.rgba[p * 4 + c] = r.float_bound[p];
-    return img;
 }
 
 uint64_t gpu_only_non_finite_pixels(const VariantRender& r) {

@@ -116,8 +116,6 @@ struct EvalSite {
     std::string origin, name;
     Op op = Op::Constant;
     std::string operands; // its arguments, by name or else operation: "fract, -"
-    uint32_t node = 0;    // its id in the graph that holds it
-    bool top = true;      // that graph is the evaluated one, not a loop body or switch case
 };
 // The operations that compute values in the double evaluation of `output`, indexed as
 // FloatPerturbation::site counts them. Empty when the graph has no such output.

@@ -35,8 +35,6 @@ nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderRe
 // float error bound's model, the pixels over each), and when a pixel is over the tolerance,
 // the worst one's values and the operations whose float rounding moves it most.
 nlohmann::ordered_json agreement_json(const VariantRender& r, const PixelAttribution* worst);
-// The per-pixel float error bound as a grey image (R = G = B = the bound), for float_bound.pfm.
-ImageRGBA32F bound_image(const VariantRender& r, uint32_t width, uint32_t height);
 
 // What a render adds beside its images (caustics: variant_caustics.h): keys appended to
 // render.json and files by name. Empty for most variants: their files stay as they were.
