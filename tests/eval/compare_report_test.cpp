@@ -224,3 +224,31 @@ TEST_CASE("a_streamed_report_is_the_report_made_from_kept_images", "[unit][repor
     fs::remove_all(a);
     fs::remove_all(b);
 }
+
+TEST_CASE("the_float_bound_of_a_cpu_reference_is_in_the_csv_and_the_html", "[unit][report]") {
+    CompareReport report = test::synthetic_compare_report();
+    // Without a CPU reference the columns are empty in the CSV and absent from the HTML.
+    auto files = compare_report_files(report, nullptr);
+    REQUIRE(files);
+    CHECK(files->at(kCompareCsv).find(",pixels_beyond_float_bound,float_bound_max\r\n") !=
+          std::string::npos);
+    CHECK(test::count_occurrences(files->at(kCompareCsv), ",,\r\n") == 4 * 2);
+    CHECK(files->at(kCompareReportHtml).find("px beyond float bound") == std::string::npos);
+
+    for (CompareVariant& v : report.variants)
+        for (CompareViewResult& r : v.views) {
+            r.beyond_float_bound = v.choices["foam"] == "sprites" ? 81 : 0;
+            r.float_bound_max = 2.5e-6;
+        }
+    files = compare_report_files(report, nullptr);
+    REQUIRE(files);
+    const std::string& csv = files->at(kCompareCsv);
+    // The last two cells of each row: 4 variants x 2 views.
+    CHECK(test::count_occurrences(csv, ",0,2.5e-06\r\n") == 4);
+    CHECK(test::count_occurrences(csv, ",81,2.5e-06\r\n") == 4);
+    const std::string& html = files->at(kCompareReportHtml);
+    CHECK(test::count_occurrences(html, "<th>px beyond float bound</th>") == 2); // one per view
+    CHECK(test::count_occurrences(html, "<td>81</td><td>2.5e-06</td>") == 4);
+    const nlohmann::json j = nlohmann::json::parse(files->at(kCompareJson));
+    CHECK(j["variants"][2]["views"][0]["pixels_beyond_float_bound"] == 81);
+}

@@ -232,11 +232,24 @@ void write_view_section(std::ostream& out, const CompareReport& report,
     row(kFlipRow);
     out << "</div>\n" << html_color_bar(flip_scale()) << "\n<h3>Worst region, zoomed</h3>\n";
     row(kCropsRow);
-    out << "<table><tr><th class=\"key\">variant</th>" << error_headings() << "</tr>\n";
-    for (std::size_t v = 0; v < report.variants.size(); ++v)
-        out << fmt::format("<tr><td class=\"key\">{}</td>{}</tr>\n",
+    // Against the CPU reference, the pixels its own float rounding does not explain.
+    const bool bounded =
+        std::any_of(report.variants.begin(), report.variants.end(),
+                    [&](const CompareVariant& v) { return v.views[view].beyond_float_bound >= 0; });
+    out << "<table><tr><th class=\"key\">variant</th>" << error_headings()
+        << (bounded ? "<th>px beyond float bound</th><th>float bound max</th>" : "") << "</tr>\n";
+    for (std::size_t v = 0; v < report.variants.size(); ++v) {
+        const CompareViewResult& r = report.variants[v].views[view];
+        std::string bound_cells;
+        if (bounded)
+            bound_cells = r.beyond_float_bound < 0
+                              ? "<td>n/a</td><td>n/a</td>"
+                              : fmt::format("<td>{}</td><td>{:.3g}</td>", r.beyond_float_bound,
+                                            r.float_bound_max);
+        out << fmt::format("<tr><td class=\"key\">{}</td>{}{}</tr>\n",
                            html_escape(report.variants[v].key),
-                           error_cells(view_values(errors.maps[v][view])));
+                           error_cells(view_values(errors.maps[v][view])), bound_cells);
+    }
     out << "</table></section>\n";
 }
 

@@ -178,7 +178,7 @@ std::string compare_csv(const CompareReport& report, const ResolvedErrors& error
                       "time_ratio_hi,timing_trustworthy,cost_per_pixel,spirv_instructions";
     for (const ErrorColumnInfo& c : kColumns)
         csv += std::string(",") + c.key;
-    csv += "\r\n";
+    csv += ",pixels_beyond_float_bound,float_bound_max\r\n";
     for (std::size_t v = 0; v < report.variants.size(); ++v) {
         const CompareVariant& var = report.variants[v];
         const bool timed = var.time_ratio != 0;
@@ -193,7 +193,12 @@ std::string compare_csv(const CompareReport& report, const ResolvedErrors& error
                 var.spirv_instructions ? std::to_string(var.spirv_instructions) : "");
             for (const ErrorColumnInfo& c : kColumns)
                 csv += fmt::format(",{}", csv_number(c.value(errors.maps[v][i])));
-            csv += "\r\n";
+            // Empty unless the reference is the CPU evaluator (the bound is its float error).
+            const CompareViewResult& r = var.views[i];
+            const bool bounded = r.beyond_float_bound >= 0;
+            csv += fmt::format(",{},{}\r\n",
+                               bounded ? std::to_string(r.beyond_float_bound) : std::string(),
+                               csv_number(r.float_bound_max, bounded));
         }
     }
     return csv;
