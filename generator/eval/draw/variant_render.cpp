@@ -40,22 +40,27 @@ RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene
 }
 
 std::vector<float> float_bound(const Graph& graph, const EvalInputs& inputs, uint32_t width,
-                               uint32_t height, const EvalResult& double_image,
-                               std::string& error) {
+                               uint32_t height, const EvalResult& double_image, std::string& error,
+                               const EvalResult* float_image) {
     ErrorSpread spread = float_error_spread(graph, "color", inputs, width, height, double_image,
                                             kFloatBoundRuns, kFloatBoundRelative);
     if (!spread.ok()) {
         error = spread.error;
         return {};
     }
-    // Plus an ulp of the pixel's value on either side: the last rounding alone.
+    // Plus an ulp of the pixel's value on either side (the last rounding alone), and the float
+    // image's own distance from double when there is one.
     const auto comps = static_cast<size_t>(double_image.components);
     for (size_t p = 0; p < spread.per_pixel.size(); ++p) {
-        double largest = 0;
-        for (size_t c = 0; c < comps && c < 3; ++c)
-            largest = std::max(largest, std::fabs(double_image.values[p * comps + c]));
+        double largest = 0, apart = 0;
+        for (size_t c = 0; c < comps && c < 3; ++c) {
+            const double v = double_image.values[p * comps + c];
+            largest = std::max(largest, std::fabs(v));
+            if (float_image)
+                apart = std::max(apart, std::fabs(float_image->values[p * comps + c] - v));
+        }
         spread.per_pixel[p] =
-            static_cast<float>(kFloatBoundFactor * spread.per_pixel[p] + largest * 0x1p-22);
+            static_cast<float>(kFloatBoundFactor * spread.per_pixel[p] + largest * 0x1p-22 + apart);
     }
     return std::move(spread.per_pixel);
 }

@@ -235,17 +235,17 @@ void write_view_section(std::ostream& out, const CompareReport& report,
     // Against the CPU reference, the pixels its own float rounding does not explain.
     const bool bounded =
         std::any_of(report.variants.begin(), report.variants.end(),
-                    [&](const CompareVariant& v) { return v.views[view].beyond_float_bound >= 0; });
+                    [&](const CompareVariant& v) { return v.views[view].float_bound_measured(); });
     out << "<table><tr><th class=\"key\">variant</th>" << error_headings()
         << (bounded ? "<th>px beyond float bound</th><th>float bound max</th>" : "") << "</tr>\n";
     for (std::size_t v = 0; v < report.variants.size(); ++v) {
         const CompareViewResult& r = report.variants[v].views[view];
         std::string bound_cells;
         if (bounded)
-            bound_cells = r.beyond_float_bound < 0
-                              ? "<td>n/a</td><td>n/a</td>"
-                              : fmt::format("<td>{}</td><td>{:.3g}</td>", r.beyond_float_bound,
-                                            r.float_bound_max);
+            bound_cells = r.float_bound_measured()
+                              ? fmt::format("<td>{}</td><td>{:.3g}</td>", r.beyond_float_bound,
+                                            r.float_bound_max)
+                              : "<td>n/a</td><td>n/a</td>";
         out << fmt::format("<tr><td class=\"key\">{}</td>{}{}</tr>\n",
                            html_escape(report.variants[v].key),
                            error_cells(view_values(errors.maps[v][view])), bound_cells);

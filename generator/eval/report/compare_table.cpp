@@ -80,8 +80,8 @@ Json view_json(const std::string& name, const ErrorMaps& m, const CompareViewRes
     j["compared_pixels"] = m.stats.compared_pixels;
     // Against a CPU reference: pixels beyond |CPU float - double| + the float error bound.
     j["pixels_beyond_float_bound"] =
-        r.beyond_float_bound < 0 ? Json(nullptr) : Json(r.beyond_float_bound);
-    j["float_bound_max"] = number_or_null(r.float_bound_max, r.beyond_float_bound >= 0);
+        r.float_bound_measured() ? Json(r.beyond_float_bound) : Json(nullptr);
+    j["float_bound_max"] = number_or_null(r.float_bound_max, r.float_bound_measured());
     j["worst_region"] = {
         {"x", m.worst.x}, {"y", m.worst.y}, {"width", m.worst.width}, {"height", m.worst.height}};
     return j;
@@ -195,10 +195,10 @@ std::string compare_csv(const CompareReport& report, const ResolvedErrors& error
                 csv += fmt::format(",{}", csv_number(c.value(errors.maps[v][i])));
             // Empty unless the reference is the CPU evaluator (the bound is its float error).
             const CompareViewResult& r = var.views[i];
-            const bool bounded = r.beyond_float_bound >= 0;
             csv += fmt::format(",{},{}\r\n",
-                               bounded ? std::to_string(r.beyond_float_bound) : std::string(),
-                               csv_number(r.float_bound_max, bounded));
+                               r.float_bound_measured() ? std::to_string(r.beyond_float_bound)
+                                                        : std::string(),
+                               csv_number(r.float_bound_max, r.float_bound_measured()));
         }
     }
     return csv;

@@ -65,8 +65,11 @@ ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height);
 
 // The float error bound of each pixel of `graph`'s width x height image, whose double
 // evaluation is `double_image`: how far apart two float evaluations may be (the model above).
-// Empty, with `error` set, when the evaluation fails.
+// With `float_image` (the same graph in float), how far a float evaluation may be from double:
+// that image's own distance from double added. Empty, with `error` set, when the evaluation
+// fails.
 std::vector<float> float_bound(const Graph& graph, const EvalInputs& inputs, uint32_t width,
-                               uint32_t height, const EvalResult& double_image, std::string& error);
+                               uint32_t height, const EvalResult& double_image, std::string& error,
+                               const EvalResult* float_image = nullptr);
 
 } // namespace watergen

@@ -60,6 +60,7 @@ struct CompareViewResult {
     // explains, and the view's largest allowance; -1: not measured.
     int64_t beyond_float_bound = -1;
     double float_bound_max = 0;
+    bool float_bound_measured() const { return beyond_float_bound >= 0; }
 };
 
 struct CompareVariant {
