@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "watergen/eval/draw/draw_device.h"
+#include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/eval/measure/interleaved_timing.h"
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/ir/diagnostic.h"
@@ -74,6 +75,17 @@ Runner add_emit_command(CLI::App& app, const Common& common);
 Runner add_render_command(CLI::App& app, const Common& common);
 Runner add_probe_command(CLI::App& app, const Common& common);
 Runner add_cost_command(CLI::App& app, const Common& common);
+Runner add_gpu_worker_command(CLI::App& app);
+// --target NAME (repeatable, or a comma list): the cost targets (gpu_target.h), lavapipe by
+// default.
+void add_target_option(CLI::App& app, std::vector<std::string>& targets);
+// The targets named; prints the error and returns nullopt on an unknown one (exit kUsage).
+std::optional<std::vector<GpuTarget>> resolve_targets(const std::vector<std::string>& words);
+// Whether every target's null device opened: prints each failure and returns the exit code
+// (kNoDevice when a device is missing, kFailed for a worker that died), or kOk.
+int check_target_runs(const std::vector<TargetCosts>& runs);
+// A target's costs as a table on stdout: per pipeline and stage, ACO's figures.
+void print_gpu_costs(const TargetCosts& costs);
 Runner add_compare_command(CLI::App& app, const Common& common);
 Runner add_caustics_command(CLI::App& app, const Common& common);
 Runner add_pick_command(CLI::App& app, const Common& common);

@@ -1,6 +1,6 @@
 // `watergen cost`: the instructions lavapipe executes for one draw of a variant, counted by
-// valgrind (draw_cost.h). The command runs itself under valgrind as the worker (--counted,
-// cost_worker.h).
+// valgrind (draw_cost.h; the command runs itself under valgrind as the worker: --counted,
+// cost_worker.h), and with --target an AMD family's compiler statistics (gpu_cost.h).
 #include <cstdio>
 #include <filesystem>
 
@@ -16,6 +16,7 @@ struct CostOptions {
     uint32_t runs = 2;
     bool counted = false; // the worker, under valgrind
     std::string scratch;
+    std::vector<std::string> targets;
 };
 
 } // namespace
@@ -29,6 +30,7 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
                    "valgrind runs; more than one shows the count repeats (default 2)")
         ->check(CLI::Range(1, 20));
     add_unroll_option(app, o->job.unroll);
+    add_target_option(app, o->targets);
     add_view_option(app, o->job.view);
     app.add_option("--scratch", o->scratch,
                    "directory under which each valgrind run keeps its dumps in a directory of "
@@ -48,9 +50,35 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
                 std::fprintf(stderr, "watergen: error: %s\n", run.error.c_str());
             return exit_code(run.status);
         }
+        const auto targets = resolve_targets(o->targets);
+        if (!targets) return kUsage;
         const std::filesystem::path scratch = o->scratch.empty()
                                                   ? std::filesystem::temp_directory_path()
                                                   : std::filesystem::path(o->scratch);
+        std::vector<GpuTarget> gpus;
+        bool lavapipe = false;
+        for (const auto& t : *targets) {
+            if (t.is_lavapipe())
+                lavapipe = true;
+            else
+                gpus.push_back(t);
+        }
+        if (!gpus.empty()) {
+            const bool strict = o->job.strict_half && o->job.variant.choice("precision") == "half";
+            const VariantBuild b =
+                build_variant(o->job.variant, preset, EmitOptions{strict, {}, o->job.unroll});
+            print_diagnostics(b.diagnostics, common);
+            if (!b.ok()) return kFailed;
+            const auto runs = variant_gpu_costs(gpus, {&b}, {"water"}, scratch, o->job.unroll);
+            if (const int code = check_target_runs(runs); code != kOk) return code;
+            std::printf("%s\n", o->job.variant.key().c_str());
+            for (const auto& t : runs)
+                print_gpu_costs(t);
+            for (const auto& t : runs)
+                for (const auto& c : t.costs)
+                    if (!c.ok()) return kFailed;
+            if (!lavapipe) return kOk;
+        }
         const VariantCost cost = count_variant_cost(o->job, o->runs, scratch);
         if (!cost.ok()) {
             std::fprintf(stderr, "watergen: error: %s\n", cost.error.c_str());

@@ -150,6 +150,9 @@ int main(int argc, char** argv) {
         "modes", "the build modes side by side: build cost, SPIR-V size, pipeline, first and "
                  "steady draw per variant, image against the permutation");
     runners[modes] = add_bench_modes_command(*modes, common);
+    // Hidden (no group): the child process of every ACO statistic (aco_worker.h).
+    CLI::App* gpu_worker = app.add_subcommand("gpu-worker", "")->group("");
+    runners[gpu_worker] = add_gpu_worker_command(*gpu_worker);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

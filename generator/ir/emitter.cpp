@@ -29,6 +29,12 @@ const char* file_extension(Language l, ShaderStage s) {
     return "";
 }
 
+UnrollHint emitted_hint(LoopUnroll unroll, UnrollHint hint) {
+    return unroll == LoopUnroll::All    ? UnrollHint::Unroll
+           : unroll == LoopUnroll::None ? UnrollHint::Keep
+                                        : hint;
+}
+
 std::optional<LoopUnroll> parse_loop_unroll(const std::string& word) {
     if (word == "hinted") return LoopUnroll::AsHinted;
     if (word == "all") return LoopUnroll::All;
@@ -269,6 +275,30 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
          {"reads", reads},
          {"body", body},
          {"writes", writes}});
+    return out;
+}
+
+namespace {
+
+// In FragmentWriter::lines' order: live nodes by id, a loop's body written where the loop is.
+void collect_loops(const Graph& g, LoopUnroll unroll, uint32_t depth,
+                   std::vector<EmittedLoop>& out) {
+    for (uint32_t id : g.live_nodes()) {
+        const Node& n = g.node(id);
+        if (n.op == Op::Loop) {
+            out.push_back({n.loop->trip_count, depth, n.loop->counted || n.loop->has_exit,
+                           emitted_hint(unroll, n.loop->unroll)});
+        }
+        for (const Graph* body : bodies_of(n))
+            collect_loops(*body, unroll, n.op == Op::Loop ? depth + 1 : depth, out);
+    }
+}
+
+} // namespace
+
+std::vector<EmittedLoop> emitted_loops(const Graph& g, LoopUnroll unroll) {
+    std::vector<EmittedLoop> out;
+    collect_loops(g, unroll, 0, out);
     return out;
 }
 

@@ -215,9 +215,7 @@ void FragmentWriter::loop_lines(uint32_t id, std::vector<Line>& out, std::set<Op
     }
     for (size_t m = body.first_capture(); m < n.args.size(); ++m)
         names.captured.push_back(strip_outer(expr(n.args[m])));
-    const UnrollHint unroll = unroll_ == LoopUnroll::All    ? UnrollHint::Unroll
-                              : unroll_ == LoopUnroll::None ? UnrollHint::Keep
-                                                            : body.unroll;
+    const UnrollHint unroll = emitted_hint(unroll_, body.unroll);
     out.push_back({syntax_.loop_header(names.index, body.trip_count, unroll), n.origin});
     std::vector<Line> inside;
     // A NaN count compares false: no iteration, as the CPU evaluator runs it.

@@ -238,6 +238,7 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
     gci.layout = p.layout_;
     gci.renderPass = d.render_pass;
     gci.subpass = d.subpass;
+    gci.flags = d.flags;
     const VkResult r = vkCreateGraphicsPipelines(device, d.cache, 1, &gci, nullptr, &p.pipeline_);
     vkDestroyShaderModule(device, vs, nullptr);
     vkDestroyShaderModule(device, fs, nullptr);

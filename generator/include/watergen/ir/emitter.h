@@ -77,6 +77,8 @@ struct EmitOptions {
 // "hinted", "all", "none" (the --unroll flag); nullopt for another word.
 std::optional<LoopUnroll> parse_loop_unroll(const std::string& word);
 const char* to_string(LoopUnroll unroll); // the word parse_loop_unroll takes
+// The hint a loop with its own `hint` is written with under `unroll`.
+UnrollHint emitted_hint(LoopUnroll unroll, UnrollHint hint);
 
 // The stamp line every generated file carries.
 std::string stamp_text(const std::string& variant_key);
@@ -86,6 +88,17 @@ std::string stamp_text(const std::string& variant_key);
 EmittedShader emit_fragment(const Graph& g, Language language, const std::string& file_name,
                             const std::string& variant_key, Diagnostics& diagnostics,
                             const EmitOptions& options = {});
+
+// The loops emit_fragment writes for `g`, in the order of its text: each loop before the loops
+// of its body, a switch's cases in order (each case's loops, though only one case runs). A
+// driver compiles them in that order; it may unroll some away.
+struct EmittedLoop {
+    int trip_count = 0;                 // LoopBody::trip_count: the most iterations
+    uint32_t depth = 0;                 // 0 outermost
+    bool bounded_by_data = false;       // LoopBody::counted or has_exit: may run fewer
+    UnrollHint hint = UnrollHint::Keep; // as written (EmitOptions::unroll over the loop's own)
+};
+std::vector<EmittedLoop> emitted_loops(const Graph& g, LoopUnroll unroll = LoopUnroll::AsHinted);
 
 // The fullscreen-triangle vertex stage that feeds v_uv to the water pass.
 EmittedShader emit_fullscreen_vertex(Language language, const std::string& file_name,

@@ -44,6 +44,9 @@ struct VariantPipelineDesc {
     // selectors in the specialized build mode).
     std::map<uint32_t, float> specialization;
     VkPipelineCache cache = VK_NULL_HANDLE; // may be null
+    // VkGraphicsPipelineCreateInfo::flags: e.g. VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR
+    // for a driver's compiler statistics (VK_KHR_pipeline_executable_properties).
+    VkPipelineCreateFlags flags = 0;
 };
 
 class VariantPipeline {

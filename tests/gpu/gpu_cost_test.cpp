@@ -1,0 +1,131 @@
+// ACO's statistics through RADV's null device (gpu_cost.h), with the watergen executable as the
+// worker: what a family reports per stage, the per-pixel estimate against the loops it kept, an
+// alias's costs, and a radv abort that does not take the caller down.
+//
+// Golden numbers are Mesa 22.3.6's (Debian 12, the platform CI runs): ACO's output is
+// deterministic for one driver version and changes with the next; the relations hold for any.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "watergen/eval/measure/gpu_cost.h"
+
+using namespace watergen;
+
+namespace {
+
+const std::filesystem::path kWatergen = WATERGEN_EXECUTABLE;
+
+Variant gerstner() {
+    Variant v = default_variant();
+    REQUIRE_FALSE(set_choice(v, "waves", "gerstner"));
+    return v;
+}
+
+std::vector<TargetCosts> costs(const std::vector<std::string>& names, const VariantBuild& b,
+                               LoopUnroll unroll = LoopUnroll::AsHinted) {
+    std::string error;
+    const auto targets = parse_gpu_targets(names, &error);
+    REQUIRE(targets);
+    auto runs = variant_gpu_costs(*targets, {&b}, {"v"}, std::filesystem::current_path(), unroll,
+                                  kWatergen);
+    for (const auto& r : runs) {
+        INFO(r.run.error);
+        REQUIRE(r.run.ok());
+        REQUIRE(r.costs.size() == 2);
+        for (const auto& c : r.costs)
+            REQUIRE(c.ok());
+    }
+    return runs;
+}
+
+bool mesa_22_3_6(const TargetCosts& t) {
+    return t.run.driver.rfind("Mesa 22.3.6", 0) == 0;
+}
+
+} // namespace
+
+TEST_CASE("rdna2 compiles a Gerstner variant's two paths and reports every stage") {
+    const VariantBuild b = build_variant(gerstner());
+    REQUIRE(b.ok());
+    const auto runs = costs({"rdna2"}, b);
+    const TargetCosts& t = runs[0];
+    CHECK(t.run.device.find("NAVI21") != std::string::npos);
+    for (const PipelineGpuCost& c : t.costs) {
+        const StageGpuCost* f = c.stage("fragment");
+        REQUIRE(f);
+        REQUIRE(c.stage("vertex"));
+        CHECK(f->instructions > 100);
+        CHECK(f->vgprs > 0);
+        CHECK(f->waves_per_simd > 0);
+        CHECK(f->code_bytes >= 4 * f->instructions); // 4- or 8-byte encodings
+        // The 9-step search loop is written [[dont_unroll]]; the wave sums inside have a
+        // count from data and are unrolled by the driver: one loop kept, weighted by 9.
+        CHECK(f->loops == 1);
+        REQUIRE(f->per_pixel);
+        CHECK(*f->per_pixel > 4 * f->instructions);
+        if (mesa_22_3_6(t)) {
+            CHECK(f->instructions == 543);
+            CHECK(f->vgprs == 56);
+            CHECK(*f->per_pixel == 543 + 8 * 284); // the 284-instruction body 8 more times
+        }
+    }
+    // The GLSL and HLSL paths of this variant reach the same machine code size.
+    CHECK(t.costs[0].stage("fragment")->instructions == t.costs[1].stage("fragment")->instructions);
+}
+
+TEST_CASE("a variant compiled twice reports the same statistics") {
+    const VariantBuild b = build_variant(gerstner());
+    const auto a = costs({"gcn4"}, b), c = costs({"gcn4"}, b);
+    for (size_t i = 0; i < 2; ++i)
+        for (const auto& col : gpu_cost_columns())
+            CHECK(a[0].costs[i].stage("fragment")->*col.value ==
+                  c[0].costs[i].stage("fragment")->*col.value);
+}
+
+TEST_CASE("with every loop unrolled the static count is the per-pixel count; with none kept "
+          "the estimate weights all four") {
+    const Variant v = gerstner();
+    const VariantBuild all = build_variant(v, nullptr, EmitOptions{false, {}, LoopUnroll::All});
+    const VariantBuild none = build_variant(v, nullptr, EmitOptions{false, {}, LoopUnroll::None});
+    const auto unrolled = costs({"rdna2"}, all, LoopUnroll::All);
+    const auto kept = costs({"rdna2"}, none, LoopUnroll::None);
+    const StageGpuCost* u = unrolled[0].costs[0].stage("fragment");
+    const StageGpuCost* k = kept[0].costs[0].stage("fragment");
+    CHECK(u->loops == 0);
+    REQUIRE(u->per_pixel);
+    CHECK(*u->per_pixel == u->instructions);
+    CHECK(k->loops == 4);
+    REQUIRE(k->per_pixel);
+    // Kept loops are shorter code and more executed instructions than unrolled ones.
+    CHECK(k->instructions < u->instructions);
+    CHECK(*k->per_pixel > *u->per_pixel);
+}
+
+TEST_CASE("steamdeck is rdna2's ISA: its costs are rdna2's, and Van Gogh compiles the same") {
+    const VariantBuild b = build_variant(gerstner());
+    const auto runs = costs({"rdna2", "steamdeck"}, b);
+    CHECK(runs[1].run.target.alias_of == "rdna2");
+    CHECK(runs[0].costs[0].stage("fragment")->instructions ==
+          runs[1].costs[0].stage("fragment")->instructions);
+    // The APU itself, as RADV knows it.
+    GpuTarget vangogh{"vangogh", "vangogh", "Van Gogh", ""};
+    std::vector<AcoPipelineSource> sources = {aco_source(b.languages[0], "v")};
+    const auto apu =
+        compile_on_targets({vangogh}, sources, std::filesystem::current_path(), 1, kWatergen);
+    REQUIRE(apu[0].ok());
+    const auto cost = gpu_cost(apu[0].pipelines[0], emitted_loops(b.shader.fragment));
+    CHECK(cost.stage("fragment")->instructions == runs[0].costs[0].stage("fragment")->instructions);
+    CHECK(cost.stage("fragment")->vgprs == runs[0].costs[0].stage("fragment")->vgprs);
+}
+
+TEST_CASE("a family radv does not know aborts the worker, not the caller") {
+    const VariantBuild b = build_variant(default_variant());
+    GpuTarget bogus{"bogus", "bogus", "none", ""};
+    const auto runs = compile_on_targets({bogus}, {aco_source(b.languages[0], "v")},
+                                         std::filesystem::current_path(), 1, kWatergen);
+    REQUIRE(runs.size() == 1);
+    CHECK_FALSE(runs[0].ok());
+    CHECK(runs[0].error.find("bogus") != std::string::npos);
+    CHECK(runs[0].error.find("signal 6") != std::string::npos);
+}
