@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "watergen/eval/measure/driver_check.h"
 #include "watergen/pipeline/build_files.h"
 
 namespace watergen::cli {
@@ -72,6 +73,23 @@ void add_mode_option(CLI::App& app, std::string& mode) {
             "MODE"));
 }
 
+// --check-drivers: the written build's pipelines on the families' compilers; the exit code.
+static int check_drivers(const std::string& out, const std::vector<GpuTarget>& targets) {
+    std::string names;
+    for (const auto& t : targets)
+        names += (names.empty() ? "" : ", ") + t.name;
+    const DriverCheck check =
+        check_build_on_drivers(out, targets, std::filesystem::temp_directory_path());
+    if (!check.error.empty()) return stop("--check-drivers: " + check.error, RunStatus::Failed);
+    for (const auto& f : check.failures)
+        std::fprintf(stderr, "watergen: error: --check-drivers: %s\n", f.c_str());
+    if (check.no_device) return kNoDevice;
+    if (!check.ok()) return kFailed;
+    std::printf("checked %zu pipelines on %s (ACO, RADV's null device): every one compiled\n",
+                check.pipelines, names.c_str());
+    return kOk;
+}
+
 Runner add_build_command(CLI::App& app, const Common& common) {
     struct Options {
         std::string material;
@@ -85,6 +103,7 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         bool freeze = false;
         std::string depfile;
         std::string shard;
+        std::vector<std::string> check_drivers;
     };
     auto o = std::make_shared<Options>();
     app.add_option("material", o->material,
@@ -126,7 +145,17 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                 return parse_shard(text, &why) ? std::string() : why;
             },
             "I/N"));
+    app.add_option("--check-drivers", o->check_drivers,
+                   "after the build, create every pipeline it wrote (each variant's GLSL and HLSL "
+                   "paths, each companion pass) with these AMD families' compiler, ACO on RADV's "
+                   "null device (no GPU needed; " +
+                       gpu_target_names() +
+                       "): the build fails naming each pipeline a driver refuses or crashes on")
+        ->take_all();
     return [o, &common]() {
+        std::optional<std::vector<GpuTarget>> drivers;
+        if (!o->check_drivers.empty() && !(drivers = resolve_targets(o->check_drivers)))
+            return kUsage;
         BuildFilesRequest request;
         request.material_path = o->material;
         request.scene_paths = o->scenes;
@@ -169,7 +198,7 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                         run.depfile_refused ? RunStatus::BadInput : RunStatus::Failed);
         if (run.summary.up_to_date) {
             print_up_to_date(run.summary, o->out);
-            return kOk;
+            return drivers ? check_drivers(o->out, *drivers) : kOk;
         }
         if (!run.built) return stop(run.load_diagnostics, "", RunStatus::BadInput, common);
         if (tty) std::fprintf(stderr, "\r\033[K");
@@ -177,7 +206,8 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         print_diagnostics(s.diagnostics, common);
         if (s.bad_input) return kUsage;
         print_summary(s, request.mode, o->mode, o->out, o->jobs);
-        return s.ok() ? kOk : kFailed;
+        if (!s.ok()) return kFailed;
+        return drivers ? check_drivers(o->out, *drivers) : kOk;
     };
 }
 

@@ -7,7 +7,9 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
 
+#include "covering_builds.h"
 #include "watergen/eval/measure/gpu_cost.h"
 
 using namespace watergen;
@@ -128,4 +130,69 @@ TEST_CASE("a family radv does not know aborts the worker, not the caller") {
     CHECK_FALSE(runs[0].ok());
     CHECK(runs[0].error.find("bogus") != std::string::npos);
     CHECK(runs[0].error.find("signal 6") != std::string::npos);
+}
+
+TEST_CASE("a worker that dies inside the compiler names the pipeline it was compiling") {
+    // A stand-in for a driver crash: the worker's protocol (compiling.txt, then the signal).
+    const std::filesystem::path worker = std::filesystem::current_path() / "crashing_worker.sh";
+    {
+        std::ofstream script(worker);
+        script << "#!/bin/sh\nprintf 'water glsl' > \"$2/compiling.txt\"\nkill -SEGV $$\n";
+    }
+    std::filesystem::permissions(worker, std::filesystem::perms::owner_all);
+    const VariantBuild b = build_variant(default_variant());
+    const auto runs =
+        compile_on_targets({*find_gpu_target("rdna2")}, {aco_source(b.languages[0], "water glsl")},
+                           std::filesystem::current_path(), 1, worker);
+    CHECK_FALSE(runs[0].ok());
+    CHECK(runs[0].error.find("rdna2 (navi21)") != std::string::npos);
+    CHECK(runs[0].error.find("compiling water glsl") != std::string::npos);
+    CHECK(runs[0].error.find("signal 11") != std::string::npos);
+}
+
+TEST_CASE("every covering variant's two paths compile on gcn4, rdna2 and rdna3") {
+    std::vector<const VariantBuild*> builds;
+    std::vector<std::string> names;
+    for (const VariantBuild& b : test::covering_builds()) {
+        REQUIRE(b.ok());
+        builds.push_back(&b);
+        names.push_back(b.shader.key());
+    }
+    std::string error;
+    const auto targets = parse_gpu_targets({"gcn4,rdna2,rdna3"}, &error);
+    REQUIRE(targets);
+    const auto runs = variant_gpu_costs(*targets, builds, names, std::filesystem::current_path(),
+                                        LoopUnroll::AsHinted, kWatergen);
+    REQUIRE(runs.size() == 3);
+    for (const auto& t : runs) {
+        INFO(t.run.target.name << ": " << t.run.error);
+        REQUIRE(t.run.ok());
+        REQUIRE(t.costs.size() == 2 * builds.size());
+        for (const PipelineGpuCost& c : t.costs) {
+            INFO(c.name << ": " << c.error);
+            REQUIRE(c.ok());
+            const StageGpuCost* f = c.stage("fragment");
+            REQUIRE(f);
+            CHECK(f->instructions > 0);
+            CHECK(f->vgprs > 0);
+            CHECK(f->waves_per_simd > 0);
+            // A covering variant's loops are the Gerstner search's and wave sums': every one is
+            // matched, so each fragment stage has its per-pixel estimate.
+            CHECK(f->per_pixel);
+        }
+    }
+}
+
+TEST_CASE("a pipeline the driver cannot create is named with what failed; the others compile") {
+    const VariantBuild b = build_variant(default_variant());
+    AcoPipelineSource broken = aco_source(b.languages[0], "broken");
+    broken.fragment.clear();
+    const GpuTarget* gcn4 = find_gpu_target("gcn4");
+    const auto runs = compile_on_targets({*gcn4}, {aco_source(b.languages[0], "good"), broken},
+                                         std::filesystem::current_path(), 1, kWatergen);
+    REQUIRE(runs[0].ok());
+    REQUIRE(runs[0].pipelines.size() == 2);
+    CHECK(runs[0].pipelines[0].ok());
+    CHECK(runs[0].pipelines[1].name == "broken");
+    CHECK_FALSE(runs[0].pipelines[1].ok());
 }

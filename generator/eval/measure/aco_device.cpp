@@ -3,10 +3,9 @@
 #include <fmt/format.h>
 
 #include <cstring>
+#include <map>
 
 #include <vulkan/vulkan.h>
-
-#include "watergen/runtime/variant_pipeline.h"
 
 namespace watergen {
 
@@ -14,7 +13,7 @@ struct AcoDevice::Handles {
     VkInstance instance = VK_NULL_HANDLE;
     VkPhysicalDevice physical = VK_NULL_HANDLE;
     VkDevice device = VK_NULL_HANDLE;
-    VkRenderPass render_pass = VK_NULL_HANDLE;
+    std::map<VkFormat, VkRenderPass> render_passes; // one per target format, made when needed
     PFN_vkGetPipelineExecutablePropertiesKHR properties = nullptr;
     PFN_vkGetPipelineExecutableStatisticsKHR statistics = nullptr;
     PFN_vkGetPipelineExecutableInternalRepresentationsKHR representations = nullptr;
@@ -57,10 +56,11 @@ VkPhysicalDevice find_radv(VkInstance instance, std::string* name, std::string* 
     return VK_NULL_HANDLE;
 }
 
-// RGBA16F, an engine's HDR target: the export instructions are those a water pass pays for.
-VkRenderPass make_render_pass(VkDevice device, std::string* error) {
+// The water pass draws into RGBA16F, an engine's HDR target: the export instructions are those
+// it pays for there.
+VkRenderPass make_render_pass(VkDevice device, VkFormat format, std::string* error) {
     VkAttachmentDescription colour{};
-    colour.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    colour.format = format;
     colour.samples = VK_SAMPLE_COUNT_1_BIT;
     colour.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
     colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
@@ -244,14 +244,13 @@ std::unique_ptr<AcoDevice> AcoDevice::open(std::string* error) {
         *error = d->name_ + ": the pipeline executable entry points are missing";
         return nullptr;
     }
-    h.render_pass = make_render_pass(h.device, error);
-    if (!h.render_pass) return nullptr;
     return d;
 }
 
 AcoDevice::~AcoDevice() {
     if (!h_) return;
-    if (h_->render_pass) vkDestroyRenderPass(h_->device, h_->render_pass, nullptr);
+    for (const auto& [format, pass] : h_->render_passes)
+        vkDestroyRenderPass(h_->device, pass, nullptr);
     if (h_->device) vkDestroyDevice(h_->device, nullptr);
     if (h_->instance) vkDestroyInstance(h_->instance, nullptr);
 }
@@ -264,11 +263,16 @@ AcoPipelineStatistics AcoDevice::compile(const AcoPipelineSource& source) {
     desc.fragment_spirv = &source.fragment;
     desc.vertex_reflection = &source.vertex_reflection;
     desc.fragment_reflection = &source.fragment_reflection;
-    desc.render_pass = h_->render_pass;
+    VkRenderPass& pass = h_->render_passes[source.format];
+    if (!pass) pass = make_render_pass(h_->device, source.format, &out.error);
+    if (!pass) return out;
+    desc.render_pass = pass;
     desc.specialization = source.specialization;
     desc.flags = VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR |
                  VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR;
-    auto pipeline = VariantPipeline::create(h_->device, desc, &out.error);
+    auto pipeline = source.geometry
+                        ? VariantPipeline::create(h_->device, desc, *source.geometry, &out.error)
+                        : VariantPipeline::create(h_->device, desc, &out.error);
     if (!pipeline) return out;
     VkPipelineInfoKHR info{};
     info.sType = VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR;

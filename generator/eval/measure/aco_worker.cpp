@@ -53,7 +53,12 @@ std::string write_job(const fs::path& dir, const std::vector<AcoPipelineSource>&
         json spec = json::object();
         for (const auto& [id, value] : s.specialization)
             spec[std::to_string(id)] = value;
-        job["pipelines"].push_back({{"name", s.name}, {"specialization", spec}});
+        json entry = {{"name", s.name}, {"specialization", spec}, {"format", s.format}};
+        if (s.geometry)
+            entry["geometry"] = {{"attribute_sizes", s.geometry->attribute_sizes},
+                                 {"points", s.geometry->points},
+                                 {"additive_blend", s.geometry->additive_blend}};
+        job["pipelines"].push_back(entry);
     }
     const std::string text = job.dump(1);
     if (!write_bytes(dir / "job.json", text.data(), text.size()))
@@ -87,6 +92,13 @@ std::string read_source(const fs::path& dir, size_t i, const json& entry, AcoPip
     s.fragment_reflection = std::move(*f);
     for (const auto& [id, value] : entry.at("specialization").items())
         s.specialization[static_cast<uint32_t>(std::stoul(id))] = value.get<float>();
+    s.format = static_cast<VkFormat>(entry.at("format").get<int>());
+    if (entry.contains("geometry")) {
+        const json& g = entry.at("geometry");
+        s.geometry =
+            PipelineGeometry{g.at("attribute_sizes").get<std::vector<uint32_t>>(),
+                             g.at("points").get<bool>(), g.at("additive_blend").get<bool>()};
+    }
     return "";
 }
 

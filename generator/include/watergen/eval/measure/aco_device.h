@@ -18,16 +18,20 @@
 
 #include "watergen/eval/measure/aco_loops.h"
 #include "watergen/runtime/reflection.h"
+#include "watergen/runtime/variant_pipeline.h"
 
 namespace watergen {
 
-// One pipeline to compile: the water pass's two stages as a build writes them, the
-// specialization constants by id (a specialized build's selector values).
+// One pipeline to compile: two stages as a build writes them, the specialization constants by
+// id (a specialized build's selector values); the water pass's fullscreen triangle into an
+// RGBA16F target, or a companion pass's grid into its own float target.
 struct AcoPipelineSource {
     std::string name;
     std::vector<uint32_t> vertex, fragment;
     Reflection vertex_reflection, fragment_reflection;
     std::map<uint32_t, float> specialization;
+    std::optional<PipelineGeometry> geometry; // a companion pass (pass_geometry())
+    VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;
 };
 
 // What the driver reports for one executable of a pipeline (a stage, or stages merged: RADV
@@ -64,8 +68,8 @@ class AcoDevice {
     const std::string& name() const { return name_; }        // "AMD RADV NAVI21"
     const std::string& driver_info() const { return info_; } // "Mesa 22.3.6 (LLVM 15.0.6)"
 
-    // Compiles the pipeline (RGBA16F colour target, the fullscreen triangle) with statistics
-    // and internal representations captured. Cost: 2-20 ms.
+    // Compiles the pipeline with statistics and internal representations captured.
+    // Cost: 2-20 ms.
     AcoPipelineStatistics compile(const AcoPipelineSource& source);
 
     struct Handles; // the Vulkan objects (aco_device.cpp)
