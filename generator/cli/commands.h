@@ -84,6 +84,8 @@ std::optional<std::vector<GpuTarget>> resolve_targets(const std::vector<std::str
 // Whether every target's null device opened: prints each failure and returns the exit code
 // (kNoDevice when a device is missing, kFailed for a worker that died), or kOk.
 int check_target_runs(const std::vector<TargetCosts>& runs);
+// What a cost per pixel counts on `target`, for the tables' headings.
+std::string cost_unit(const GpuTarget& target);
 // A target's costs as a table on stdout: per pipeline and stage, ACO's figures.
 void print_gpu_costs(const TargetCosts& costs);
 Runner add_compare_command(CLI::App& app, const Common& common);

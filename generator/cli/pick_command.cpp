@@ -1,7 +1,7 @@
 // `watergen pick`: per scene, the cheapest variant within an error budget (pick_scene.h), its
 // cost against the scene's gold, what each traded axis saved and cost in error, and a material
 // file holding the picked choices. Costs come from a worker run under valgrind (--counted,
-// cost_worker.h).
+// cost_worker.h), or with --target from an AMD family's compiler (gpu_cost.h).
 #include <cstdio>
 
 #include "commands.h"
@@ -18,6 +18,7 @@ struct PickOptions {
     std::vector<std::string> holds; // per axis, "" or a choice
     bool counted = false, unfolded = false;
     RunnerSetup runner;
+    std::vector<std::string> targets;
 };
 
 void print_candidates(const PickPlan& pick, const PickBudget& budget) {
@@ -36,14 +37,13 @@ void print_candidates(const PickPlan& pick, const PickBudget& budget) {
 }
 
 // The pick against the gold, and what each traded axis saved and cost in error.
-void print_pick(const PickPlan& pick, const PickCandidate& c) {
+void print_pick(const PickPlan& pick, const PickCandidate& c, const GpuTarget& target) {
     const PickCandidate* gold = find_candidate(pick, pick.gold, "", "");
     std::printf("  picked: %s\n", c.variant.key().c_str());
     if (gold)
-        std::printf("  cost %.3f x the gold's (%.1f vs %.1f instructions per pixel); dE00 p99 "
-                    "%.3f, max abs %.3g\n",
+        std::printf("  cost %.3f x the gold's (%.1f vs %.1f %s); dE00 p99 %.3f, max abs %.3g\n",
                     c.cost_per_pixel / gold->cost_per_pixel, c.cost_per_pixel, gold->cost_per_pixel,
-                    c.worst_de_p99, c.worst_max_abs);
+                    cost_unit(target).c_str(), c.worst_de_p99, c.worst_max_abs);
     const auto& list = axes();
     for (size_t a = 0; a < list.size(); ++a) {
         if (c.variant.choices[a] == pick.gold.choices[a]) continue;
@@ -61,7 +61,7 @@ void print_pick(const PickPlan& pick, const PickCandidate& c) {
 // One scene's pick, printed; the exit code, kOk to go on with the next scene.
 int pick_and_print(VulkanRunner& runner, const Material& m, const ScenePlan& plan,
                    const std::string& scene_path, const PickRequest& request) {
-    std::printf("%s\n", plan.scene.name.c_str());
+    std::printf("%s (cost: %s)\n", plan.scene.name.c_str(), cost_unit(request.target).c_str());
     const PickSceneRun run = pick_scene(runner, m, plan, scene_path, request);
     for (const std::string& note : run.notes)
         std::printf("  %s\n", note.c_str());
@@ -78,7 +78,7 @@ int pick_and_print(VulkanRunner& runner, const Material& m, const ScenePlan& pla
             std::printf("  the gold is within it: offer its choices in the material\n");
         return kOk;
     }
-    print_pick(run.pick, run.pick.candidates[size_t(run.chosen)]);
+    print_pick(run.pick, run.pick.candidates[size_t(run.chosen)], request.target);
     if (!run.write_error.empty()) {
         std::fprintf(stderr, "watergen: error: %s\n", run.write_error.c_str());
         return kFailed;
@@ -114,8 +114,17 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
     app.add_option("--key", o->keys, "")->group("");        // the worker's variants; hidden
     app.add_flag("--unfolded", o->unfolded, "")->group(""); // the worker draws them unpruned
     add_runner_options(app, o->runner);
+    add_target_option(app, o->targets);
     return [o, &common]() {
         PickRequest& r = o->request;
+        const auto targets = resolve_targets(o->targets);
+        if (!targets) return kUsage;
+        if (targets->size() != 1) {
+            std::fprintf(stderr, "watergen: error: --target: pick trades one target's cost; "
+                                 "run it once per target\n");
+            return kUsage;
+        }
+        r.target = targets->front();
         Material m;
         std::vector<SceneFacts> scenes;
         if (!load_material_and_scenes(r.material_path, o->scenes, m, scenes, common)) return kUsage;

@@ -35,6 +35,11 @@ int check_target_runs(const std::vector<TargetCosts>& runs) {
     return code;
 }
 
+std::string cost_unit(const GpuTarget& target) {
+    if (target.is_lavapipe()) return "instructions per pixel lavapipe executes (valgrind)";
+    return target.name + " fragment instructions per pixel (ACO, loops weighted by trip count)";
+}
+
 void print_gpu_costs(const TargetCosts& t) {
     const GpuTarget& g = t.run.target;
     std::printf("%s: %s, %s (ACO on RADV's null device%s)\n", g.name.c_str(), g.isa.c_str(),

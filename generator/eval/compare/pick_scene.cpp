@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "watergen/eval/measure/draw_cost.h"
+#include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/eval/scene/scene_conform.h"
 #include "watergen/pipeline/output_writer.h"
 
@@ -10,14 +11,61 @@ namespace watergen {
 
 namespace {
 
-// Instructions per pixel of every candidate not counted yet, from one worker run; "" or the
+// The target's fragment instructions per pixel (ACO, loops weighted) of each variant as the
+// build for the scene ships it, by key; nullopt and *error (and *no_device) when a run failed.
+std::optional<std::map<std::string, double>> aco_costs(const GpuTarget& target, const Material& m,
+                                                       const ScenePlan& plan,
+                                                       const std::vector<Variant>& variants,
+                                                       std::string* error, bool* no_device) {
+    std::vector<VariantBuild> builds;
+    std::vector<const VariantBuild*> pointers;
+    std::vector<std::string> keys;
+    for (const Variant& v : variants) {
+        builds.push_back(build_for_scene(m, plan, v));
+        if (!builds.back().ok()) {
+            *error = v.key() + ": the variant does not build";
+            return std::nullopt;
+        }
+        keys.push_back(v.key());
+    }
+    for (const VariantBuild& b : builds)
+        pointers.push_back(&b);
+    const auto runs =
+        variant_gpu_costs({target}, pointers, keys, std::filesystem::temp_directory_path());
+    if (!runs[0].run.ok()) {
+        *error = runs[0].run.error;
+        *no_device = runs[0].run.no_device;
+        return std::nullopt;
+    }
+    std::map<std::string, double> out;
+    for (size_t i = 0; i < keys.size(); ++i) {
+        const PipelineGpuCost& glsl = runs[0].costs[2 * i];
+        if (!glsl.ok()) {
+            *error = target.name + ": " + glsl.name + ": " + glsl.error;
+            return std::nullopt;
+        }
+        out[keys[i]] = glsl.fragment_cost();
+    }
+    return out;
+}
+
+// The cost per pixel of every candidate not costed yet, from one worker run; "" or the
 // failure.
-std::string count_costs(const PickRequest& request, const std::string& scene_path, PickPlan& pick) {
+std::string count_costs(const PickRequest& request, const Material& m, const ScenePlan& plan,
+                        const std::string& scene_path, PickPlan& pick, bool* no_device) {
     std::vector<Variant> missing;
     for (const PickCandidate& c : pick.candidates)
         if (c.cost_per_pixel == 0) missing.push_back(c.variant);
     if (missing.empty()) return "";
     std::string error;
+    if (!request.target.is_lavapipe()) {
+        const auto costs = aco_costs(request.target, m, plan, missing, &error, no_device);
+        if (!costs) return error;
+        for (PickCandidate& c : pick.candidates)
+            if (auto it = costs->find(c.variant.key()); it != costs->end())
+                c.cost_per_pixel = it->second;
+        return "";
+    }
     const auto counts =
         count_material_costs(request.material_path, scene_path, missing, request.cost_size, &error);
     if (!counts) return error;
@@ -32,13 +80,13 @@ std::string count_costs(const PickRequest& request, const std::string& scene_pat
 
 // The material file of the pick: the material with one choice per axis (its rules dropped).
 nlohmann::ordered_json picked_material(const Material& m, const std::string& scene,
-                                       const Variant& v, const PickBudget& budget) {
+                                       const Variant& v, const PickBudget& budget,
+                                       const GpuTarget& target) {
     nlohmann::ordered_json j;
     j["name"] = m.name + "-" + scene;
-    j["description"] =
-        "picked by watergen pick for scene " + scene +
-        ": the cheapest variant with CIEDE2000 p99 <= " + std::to_string(budget.max_de_p99) +
-        " against the scene's gold";
+    j["description"] = "picked by watergen pick for scene " + scene + ": the cheapest variant on " +
+                       target.name + " with CIEDE2000 p99 <= " + std::to_string(budget.max_de_p99) +
+                       " against the scene's gold";
     if (!m.preset.empty()) j["preset"] = m.preset;
     const auto& list = axes();
     for (size_t a = 0; a < list.size(); ++a)
@@ -76,24 +124,25 @@ PickSceneRun pick_scene(VulkanRunner& runner, const Material& m, const ScenePlan
         return run;
     }
     PickPlan& pick = run.pick;
+    bool no_device = false;
     std::string error = measure_pick_errors(runner, m, plan, views, pick);
-    if (error.empty()) error = count_costs(request, scene_path, pick);
+    if (error.empty()) error = count_costs(request, m, plan, scene_path, pick, &no_device);
     run.chosen = error.empty() ? cheapest_within(pick.candidates, request.budget) : -1;
     if (run.chosen >= 0) { // what each axis saved: the pick with that axis at the gold's
         add_axis_alternatives(pick, pick.candidates[size_t(run.chosen)].variant);
         error = measure_pick_errors(runner, m, plan, views, pick);
-        if (error.empty()) error = count_costs(request, scene_path, pick);
+        if (error.empty()) error = count_costs(request, m, plan, scene_path, pick, &no_device);
     }
     if (!error.empty()) {
         run.error = error;
-        run.status = RunStatus::Failed;
+        run.status = no_device ? RunStatus::NoDevice : RunStatus::Failed;
         return run;
     }
     if (run.chosen < 0) return run;
     const auto path = request.out / (plan.scene.name + ".json");
     const std::string text =
         picked_material(m, plan.scene.name, pick.candidates[size_t(run.chosen)].variant,
-                        request.budget)
+                        request.budget, request.target)
             .dump(2) +
         "\n";
     std::error_code ec;

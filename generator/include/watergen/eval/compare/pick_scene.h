@@ -1,6 +1,7 @@
 // `watergen pick` for one scene as a library call: the scene's candidates (plan_pick) measured
 // over every view it may show (conformed to its facts) against its gold, their instruction
-// costs counted under valgrind (draw_cost.h), the cheapest within the budget picked, then the
+// costs counted under valgrind (draw_cost.h) or compiled by an AMD family's ACO (gpu_cost.h),
+// the cheapest within the budget picked, then the
 // pick with each traded axis back at the gold's choice measured too (what each axis saved), and
 // the pick written as a material file <out>/<scene>.json.
 #pragma once
@@ -12,6 +13,7 @@
 
 #include "watergen/eval/compare/pick.h"
 #include "watergen/eval/draw/draw_device.h"
+#include "watergen/eval/measure/gpu_target.h"
 
 namespace watergen {
 
@@ -22,6 +24,10 @@ struct PickRequest {
     uint32_t size = 256;     // image size of the error measurement
     uint32_t cost_size = 64; // image size of the instruction count
     std::filesystem::path out = "out/pick";
+    // Whose cost is traded: lavapipe's instructions per pixel counted under valgrind, or an AMD
+    // family's fragment instructions from ACO, each loop weighted by its trip count
+    // (gpu_cost.h: PipelineGpuCost::fragment_cost), of the GLSL path as the build ships it.
+    GpuTarget target = *find_gpu_target("lavapipe");
 };
 
 struct PickSceneRun {
