@@ -32,8 +32,11 @@ std::string differences(const Variant& v, const Variant& base) {
 void print_table(const CompareRun& run, const CompareSetup& setup) {
     std::printf("reference: %s%s\n", run.reference.key().c_str(),
                 run.reference_on_cpu ? " (CPU, double)" : " (GPU)");
-    std::printf("%-44s %-12s %24s %12s %8s", "variant (differs from the reference in)", "relation",
-                "time ratio [95% CI]", "cost/pixel", "SPIR-V");
+    std::printf("%-44s %-12s %24s %12s", "variant (differs from the reference in)", "relation",
+                "time ratio [95% CI]", "cost/pixel");
+    for (const GpuTarget& t : setup.gpu_targets)
+        std::printf(" %10s", t.name.c_str());
+    std::printf(" %8s", "SPIR-V");
     for (const auto& [view, scene] : setup.views)
         std::printf(" %22s", (view + " max|dE p99").c_str());
     std::printf("\n");
@@ -41,8 +44,11 @@ void print_table(const CompareRun& run, const CompareSetup& setup) {
         const std::string relation = e.relation.substr(0, e.relation.find(' '));
         char time[64];
         std::snprintf(time, sizeof time, "%.3f [%.3f, %.3f]", e.time.ratio, e.time.lo, e.time.hi);
-        std::printf("%-44s %-12s %24s %12.1f %8zu", differences(e.variant, run.reference).c_str(),
-                    relation.c_str(), time, e.cost_per_pixel, e.spirv_instructions);
+        std::printf("%-44s %-12s %24s %12.1f", differences(e.variant, run.reference).c_str(),
+                    relation.c_str(), time, e.cost_per_pixel);
+        for (const GpuTarget& t : setup.gpu_targets)
+            std::printf(" %10.0f", e.target_costs.at(t.name));
+        std::printf(" %8zu", e.spirv_instructions);
         for (const ComparedView& v : e.views)
             std::printf("  %9.3g | %8.3f", v.error.max_abs, v.error.ciede2000_p99);
         std::printf("\n");
@@ -89,7 +95,8 @@ int run_compare_command(const CompareOptions& o, const Common& common) {
     if (!runner) return kNoDevice;
     if (o.spec.strict_half && !has_float16(*runner, "; strict half needs it")) return kNoDevice;
     const CompareOutcome out = compare_and_report(*runner, setup);
-    if (!bench_succeeded(out.diagnostics, out.error, common)) return kFailed;
+    if (!bench_succeeded(out.diagnostics, out.error, common))
+        return out.status == RunStatus::NoDevice ? kNoDevice : kFailed;
     print_table(out.run, setup);
     if (!out.caustics.empty()) print_caustics(out.caustics, setup);
     if (!out.write_error.empty()) {
@@ -140,6 +147,7 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
                    "than +-3% in 3 of 5 runs on an idle 2-core machine)")
         ->check(CLI::Range(3, 1000));
     add_instrument_options(app, s.draws, s.cost_size, s.cost);
+    add_target_option(app, s.targets);
     app.add_flag("--strict-half", s.strict_half,
                  "build precision=half variants in explicit 16-bit types, so that lavapipe "
                  "computes them at 16 bits (with the default relaxed-precision hints it computes "

@@ -252,3 +252,46 @@ TEST_CASE("the_float_bound_of_a_cpu_reference_is_in_the_csv_and_the_html", "[uni
     const nlohmann::json j = nlohmann::json::parse(files->at(kCompareJson));
     CHECK(j["variants"][2]["views"][0]["pixels_beyond_float_bound"] == 81);
 }
+
+TEST_CASE("each_cost_target_gets_a_column_and_a_front_and_their_disagreements_are_marked",
+          "[unit][report]") {
+    CompareReport report = test::synthetic_compare_report();
+    // lavapipe: schlick (100) is cheaper than the reference (120), on its front; rdna2: the
+    // reference (80) is cheaper than schlick (90) and exact, so schlick is dominated there.
+    report.cost_targets = {"rdna2"};
+    const double rdna2[] = {80, 90, 150, 130};
+    for (size_t v = 0; v < 4; ++v)
+        report.variants[v].target_costs["rdna2"] = rdna2[v];
+    const auto files = compare_report_files(report, nullptr);
+    REQUIRE(files);
+    const std::string& csv = files->at(kCompareCsv);
+    CHECK(
+        csv.find(",float_bound_max,cost_rdna2,pareto_lavapipe,pareto_rdna2,targets_disagree\r\n") !=
+        std::string::npos);
+    // Per view: the reference on both fronts, schlick on lavapipe's only, the others on none.
+    CHECK(test::count_occurrences(csv, ",80,true,true,false\r\n") == 2);
+    CHECK(test::count_occurrences(csv, ",90,true,false,true\r\n") == 2);
+    CHECK(test::count_occurrences(csv, ",150,false,false,false\r\n") == 2);
+    CHECK(test::count_occurrences(csv, ",130,false,false,false\r\n") == 2);
+    const std::string& html = files->at(kCompareReportHtml);
+    CHECK(test::count_occurrences(html, "<th>rdna2 (ACO instr/px)</th>") == 1);
+    CHECK(test::count_occurrences(html, "on the front of lavapipe; dominated on rdna2") == 1);
+    CHECK(test::count_occurrences(html, "<h2>Cost on each target</h2>") == 1);
+    CHECK(html.find("The targets disagree") != std::string::npos);
+    CHECK(test::count_occurrences(html, "cost on rdna2") == 1); // the target's plot
+    const nlohmann::json j = nlohmann::json::parse(files->at(kCompareJson));
+    CHECK(j["cost_targets"] == nlohmann::json::array({"rdna2"}));
+    CHECK(j["variants"][1]["target_costs"]["rdna2"] == 90);
+    CHECK(j["variants"][1]["pareto_fronts"]["lavapipe"] == true);
+    CHECK(j["variants"][1]["pareto_fronts"]["rdna2"] == false);
+    CHECK(j["variants"][1]["targets_disagree"] == true);
+    CHECK(j["variants"][0]["targets_disagree"] == false);
+}
+
+TEST_CASE("without_targets_the_tables_keep_their_columns", "[unit][report]") {
+    const auto files = compare_report_files(test::synthetic_compare_report(), nullptr);
+    REQUIRE(files);
+    CHECK(files->at(kCompareCsv).find("cost_rdna2") == std::string::npos);
+    CHECK(files->at(kCompareReportHtml).find("Cost on each target") == std::string::npos);
+    CHECK_FALSE(nlohmann::json::parse(files->at(kCompareJson)).contains("cost_targets"));
+}

@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 
 #include "watergen/eval/measure/draw_cost.h"
+#include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/eval/report/compare_report.h"
 #include "watergen/pipeline/build_output.h"
 
@@ -67,6 +68,36 @@ std::string add_costs(const CompareSetup& s, CompareRun& run) {
     return "";
 }
 
+// Each entry's fragment cost per pixel on every AMD target (the GLSL path as compared: the
+// same build as the render's); "" or the failure, *no_device when a null device is missing.
+std::string add_gpu_costs(const CompareSetup& s, const CompareRequest& request, CompareRun& run,
+                          bool* no_device) {
+    std::vector<VariantBuild> builds;
+    std::vector<std::string> keys;
+    for (const CompareEntry& e : run.entries) {
+        builds.push_back(request.build ? request.build(e.variant)
+                                       : build_variant(e.variant, s.preset));
+        keys.push_back(e.variant.key());
+    }
+    std::vector<const VariantBuild*> pointers;
+    for (const VariantBuild& b : builds)
+        pointers.push_back(&b);
+    const auto runs =
+        variant_gpu_costs(s.gpu_targets, pointers, keys, std::filesystem::temp_directory_path());
+    for (const TargetCosts& t : runs) {
+        if (!t.run.ok()) {
+            *no_device = *no_device || t.run.no_device;
+            return t.run.error;
+        }
+        for (size_t i = 0; i < run.entries.size(); ++i) {
+            const PipelineGpuCost& glsl = t.costs[2 * i];
+            if (!glsl.ok()) return t.run.target.name + ": " + glsl.name + ": " + glsl.error;
+            run.entries[i].target_costs[t.run.target.name] = glsl.fragment_cost();
+        }
+    }
+    return "";
+}
+
 // The report's names, before any image: the views and each variant's key, choices and
 // reference flag (what the figures' captions read). Every result is filled as it is rendered.
 CompareReport report_skeleton(const CompareRun& run, const CompareSetup& s) {
@@ -120,6 +151,7 @@ void complete_report(CompareReport& report, const CompareRun& run, const Compare
         cv.time_ratio_lo = e.time.lo;
         cv.time_ratio_hi = e.time.hi;
         cv.cost = e.cost_per_pixel;
+        cv.target_costs = e.target_costs;
         cv.spirv_instructions = e.spirv_instructions;
         for (size_t v = 0; v < e.views.size() && v < cv.views.size(); ++v) {
             cv.views[v].beyond_float_bound = e.views[v].beyond_float_bound;
@@ -151,6 +183,14 @@ void complete_report(CompareReport& report, const CompareRun& run, const Compare
                       o.cost_size, o.cost_size, run.cost_aa);
         report.cost_note = note;
     }
+    for (const GpuTarget& t : s.gpu_targets)
+        report.cost_targets.push_back(t.name);
+    if (!s.gpu_targets.empty())
+        report.cost_note += std::string(report.cost_note.empty() ? "" : ". ") +
+                            "Per AMD target: ACO's fragment instructions per pixel of the GLSL "
+                            "path on RADV's null device (Mesa's AMD compiler, no GPU), each loop "
+                            "body weighted by its trip count (static count where the driver "
+                            "unrolled every loop); the target Pareto fronts use these";
 }
 
 // The note the report shows above the caustics passes.
@@ -193,8 +233,16 @@ CompareOutcome compare_and_report(VulkanRunner& runner, const CompareSetup& setu
     std::string error;
     out.caustics = caustics.time(setup.spec.rounds, setup.spec.draws, &out.caustics_aa, &error);
     if (!error.empty()) return stop(error);
-    if (setup.spec.cost)
+    if (setup.spec.cost && setup.lavapipe_cost)
         if (std::string e = add_costs(setup, out.run); !e.empty()) return stop(e);
+    if (!setup.gpu_targets.empty()) {
+        bool no_device = false;
+        if (std::string e = add_gpu_costs(setup, request, out.run, &no_device); !e.empty()) {
+            out = stop(e);
+            if (no_device) out.status = RunStatus::NoDevice;
+            return out;
+        }
+    }
     complete_report(report, out.run, setup);
     if (!out.caustics.empty()) {
         out.caustics_note = caustics_note(out.caustics_aa, setup);

@@ -175,6 +175,19 @@ CompareSetup plan_compare(const CompareSpec& spec) {
     CompareSetup s;
     s.spec = spec;
     s.spec.axis_lists.resize(axes().size());
+    std::string target_error;
+    const auto targets = parse_gpu_targets(spec.targets, &target_error);
+    if (!targets) {
+        refuse(s, target_error);
+        return s;
+    }
+    s.lavapipe_cost = spec.targets.empty();
+    for (const GpuTarget& t : *targets) {
+        if (t.is_lavapipe())
+            s.lavapipe_cost = true;
+        else
+            s.gpu_targets.push_back(t);
+    }
     if (!out_replaceable(s)) return s;
     std::vector<const Preset*> presets;
     const bool selected = !spec.material.empty() || !spec.scene.empty()

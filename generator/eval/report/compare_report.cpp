@@ -13,6 +13,7 @@
 #include "watergen/eval/report/compare_table.h"
 #include "watergen/eval/report/report_html.h"
 #include "watergen/eval/report/report_svg.h"
+#include "watergen/eval/report/target_fronts.h"
 #include "watergen/pipeline/output_writer.h"
 
 namespace watergen {
@@ -72,22 +73,72 @@ std::vector<double> view_values(const ErrorMaps& m) {
     return values;
 }
 
-std::string summary_table(const CompareReport& report, const ResolvedErrors& errors) {
+// A column per AMD target, and with several targets where their fronts disagree.
+std::string summary_table(const CompareReport& report, const ResolvedErrors& errors,
+                          const TargetFronts& fronts) {
+    std::string target_headings;
+    for (const std::string& t : report.cost_targets)
+        target_headings += "<th>" + html_escape(t) + " (ACO instr/px)</th>";
+    const bool several = fronts.targets.size() > 1;
     std::string s = "<table><tr><th class=\"key\">variant</th><th>time ratio [95% CI]</th>"
-                    "<th>cost (instr/px)</th><th>SPIR-V instr</th>" +
-                    error_headings() + "<th class=\"key\">relation</th></tr>\n";
+                    "<th>cost (instr/px)</th>" +
+                    target_headings + "<th>SPIR-V instr</th>" + error_headings() +
+                    "<th class=\"key\">relation</th>" +
+                    (several ? "<th class=\"key\">Pareto fronts</th>" : "") + "</tr>\n";
     for (std::size_t v = 0; v < report.variants.size(); ++v) {
         const CompareVariant& var = report.variants[v];
+        std::string target_cells;
+        for (const std::string& t : report.cost_targets) {
+            const double c = target_cost(var, t);
+            target_cells += "<td>" + (c != 0 ? fmt::format("{:.0f}", c) : "n/a") + "</td>";
+        }
+        std::string front_cell;
+        if (several)
+            front_cell =
+                fronts.disagree[v]
+                    ? "<td class=\"key warning\">" + html_escape(disagreement_text(fronts, v)) +
+                          "</td>"
+                    : "<td class=\"key\">" +
+                          std::string(fronts.on_front[0][v] ? "on every front"
+                                                            : "dominated on every target") +
+                          "</td>";
         s += fmt::format(
-            R"(<tr{}><td class="key" title="{}">{}</td>{}<td>{}</td><td>{}</td>{}<td class="key">{}</td></tr>)",
+            R"(<tr{}><td class="key" title="{}">{}</td>{}<td>{}</td>{}<td>{}</td>{}<td class="key">{}</td>{}</tr>)",
             var.reference ? R"( class="reference")" : "", html_escape(var.key),
             html_escape(short_label(report, var)), time_cell(var, report.timing_trustworthy),
-            var.cost != 0 ? fmt::format("{:.1f}", var.cost) : "n/a",
+            var.cost != 0 ? fmt::format("{:.1f}", var.cost) : "n/a", target_cells,
             var.spirv_instructions ? std::to_string(var.spirv_instructions) : "n/a",
-            error_cells(errors.summaries[v]), html_escape(var.relation));
+            error_cells(errors.summaries[v]), html_escape(var.relation), front_cell);
         s += "\n";
     }
     return s + "</table>\n";
+}
+
+// One plot per AMD target: its cost against the error, the points grouped by whether the
+// other targets agree with this front.
+std::vector<std::string> target_plots(const CompareReport& report, const ResolvedErrors& errors,
+                                      const TargetFronts& fronts) {
+    std::vector<std::string> out;
+    const std::size_t p99 = static_cast<std::size_t>(ErrorColumn::Ciede2000P99);
+    for (std::size_t t = 0; t < fronts.targets.size(); ++t) {
+        const std::string& name = fronts.targets[t];
+        if (name == "lavapipe") continue; // the plots above
+        ScatterPlot plot{"cost on " + name,
+                         name + " fragment instructions per pixel (ACO)",
+                         "p99 CIEDE2000 (worst view)",
+                         {}};
+        for (std::size_t v = 0; v < report.variants.size(); ++v) {
+            const CompareVariant& var = report.variants[v];
+            const double x = target_cost(var, name);
+            const std::string group = !fronts.disagree[v]     ? "targets agree"
+                                      : fronts.on_front[t][v] ? "on this front only, not all"
+                                                              : "dominated here, on another front";
+            plot.points.push_back({short_label(report, var), group, x != 0 ? x : std::nan(""),
+                                   errors.summaries[v][p99]});
+        }
+        out.push_back(scatter_svg(plot));
+    }
+    return out;
 }
 
 // Cost on x when every variant has one, else SPIR-V instructions; y the worst view's p99 dE00.
@@ -268,13 +319,26 @@ void write_report_html(std::ostream& out, const CompareReport& report,
                          html_escape(report.timing_note));
     if (!report.cost_note.empty())
         s += "<p class=\"note\">Cost: " + html_escape(report.cost_note) + "</p>\n";
-    s += summary_table(report, errors);
+    const TargetFronts fronts = target_fronts(report, errors);
+    s += summary_table(report, errors, fronts);
     s += "<h2>Cost against error</h2>\n<p class=\"note\">Ringed points joined by the dashed "
          "line form the Pareto front: no other variant is both cheaper and more accurate."
          "</p>\n<div class=\"row\">";
     for (const std::string& svg : plots(report, errors))
         s += svg;
     s += "</div>\n";
+    if (!report.cost_targets.empty()) {
+        s += "<h2>Cost on each target</h2>\n<p class=\"note\">One front per target (ACO's "
+             "fragment instructions per pixel, each loop weighted by its trip count). " +
+             std::string(fronts.any_disagreement()
+                             ? "The targets disagree: a variant on one front is dominated on "
+                               "another (the summary's last column names them)."
+                             : "Every variant is on all fronts or on none: the targets agree.") +
+             "</p>\n<div class=\"row\">";
+        for (const std::string& svg : target_plots(report, errors, fronts))
+            s += svg;
+        s += "</div>\n";
+    }
     s += caustics_passes_html(report.caustics_passes, report.caustics_note);
     out << s;
     for (std::size_t i = 0; i < report.views.size(); ++i)

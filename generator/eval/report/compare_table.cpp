@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "watergen/eval/report/target_fronts.h"
+
 namespace watergen {
 
 namespace {
@@ -178,7 +180,18 @@ std::string compare_csv(const CompareReport& report, const ResolvedErrors& error
                       "time_ratio_hi,timing_trustworthy,cost_per_pixel,spirv_instructions";
     for (const ErrorColumnInfo& c : kColumns)
         csv += std::string(",") + c.key;
-    csv += ",pixels_beyond_float_bound,float_bound_max\r\n";
+    csv += ",pixels_beyond_float_bound,float_bound_max";
+    // With AMD targets: their costs, each target's front, and whether the fronts disagree.
+    const TargetFronts fronts = target_fronts(report, errors);
+    const bool targeted = !report.cost_targets.empty();
+    if (targeted) {
+        for (const std::string& t : report.cost_targets)
+            csv += fmt::format(",cost_{}", t);
+        for (const std::string& t : fronts.targets)
+            csv += fmt::format(",pareto_{}", t);
+        csv += ",targets_disagree";
+    }
+    csv += "\r\n";
     for (std::size_t v = 0; v < report.variants.size(); ++v) {
         const CompareVariant& var = report.variants[v];
         const bool timed = var.time_ratio != 0;
@@ -195,10 +208,19 @@ std::string compare_csv(const CompareReport& report, const ResolvedErrors& error
                 csv += fmt::format(",{}", csv_number(c.value(errors.maps[v][i])));
             // Empty unless the reference is the CPU evaluator (the bound is its float error).
             const CompareViewResult& r = var.views[i];
-            csv += fmt::format(",{},{}\r\n",
+            csv += fmt::format(",{},{}",
                                r.float_bound_measured() ? std::to_string(r.beyond_float_bound)
                                                         : std::string(),
                                csv_number(r.float_bound_max, r.float_bound_measured()));
+            if (targeted) {
+                for (const std::string& t : report.cost_targets)
+                    csv += fmt::format(",{}",
+                                       csv_number(target_cost(var, t), target_cost(var, t) != 0));
+                for (std::size_t t = 0; t < fronts.targets.size(); ++t)
+                    csv += fronts.on_front[t][v] ? ",true" : ",false";
+                csv += fronts.disagree[v] ? ",true" : ",false";
+            }
+            csv += "\r\n";
         }
     }
     return csv;
@@ -212,6 +234,8 @@ std::string compare_json(const CompareReport& report, const ResolvedErrors& erro
     j["pixels_per_degree"] = report.pixels_per_degree;
     j["timing"] = {{"note", report.timing_note}, {"trustworthy", report.timing_trustworthy}};
     j["cost_note"] = report.cost_note;
+    const TargetFronts fronts = target_fronts(report, errors);
+    if (!report.cost_targets.empty()) j["cost_targets"] = report.cost_targets;
     j["views"] = Json::array();
     for (const CompareView& view : report.views)
         j["views"].push_back(view.name);
@@ -230,6 +254,14 @@ std::string compare_json(const CompareReport& report, const ResolvedErrors& erro
         jv["cost_per_pixel"] = number_or_null(var.cost, var.cost != 0);
         jv["spirv_instructions"] =
             var.spirv_instructions ? Json(var.spirv_instructions) : Json(nullptr);
+        if (!report.cost_targets.empty()) {
+            jv["target_costs"] = var.target_costs;
+            Json on = Json::object();
+            for (std::size_t t = 0; t < fronts.targets.size(); ++t)
+                on[fronts.targets[t]] = bool(fronts.on_front[t][v]);
+            jv["pareto_fronts"] = on;
+            jv["targets_disagree"] = bool(fronts.disagree[v]);
+        }
         Json summary;
         for (std::size_t c = 0; c < kErrorColumnCount; ++c)
             summary[kColumns[c].key] = number_or_null(errors.summaries[v][c]);

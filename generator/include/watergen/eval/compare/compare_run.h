@@ -78,6 +78,7 @@ struct CompareEntry {
     double steady_ms = 0;
     size_t spirv_instructions = 0; // optimised fragment SPIR-V, GLSL path
     double cost_per_pixel = 0;     // instructions per pixel under valgrind; 0: not measured
+    std::map<std::string, double> target_costs; // AMD target -> ACO fragment instructions / px
 };
 
 struct CompareRun {

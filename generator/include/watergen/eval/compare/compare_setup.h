@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "watergen/eval/draw/draw_device.h"
+#include "watergen/eval/measure/gpu_target.h"
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/plan/scene_pruning.h"
 #include "watergen/water/presets.h"
@@ -27,6 +28,9 @@ struct CompareSpec {
     std::string views;           // comma list; "": every view
     uint32_t size = 512, rounds = 40, draws = 3, cost_size = 64;
     bool cost = true, strict_half = false;
+    // --target: cost targets (gpu_target.h); none: lavapipe. lavapipe's count is taken when it
+    // is named (or none is) and `cost` holds; each AMD family's ACO statistics in any case.
+    std::vector<std::string> targets;
 };
 
 // At most this many variants are compared.
@@ -47,9 +51,11 @@ struct CompareSetup {
     Material material;
     std::optional<ScenePlan> plan;
     std::vector<std::pair<std::string, SyntheticScene>> views; // "<view>@<preset>" for several
-    std::vector<std::string> notes;                            // "view X left out: why"
-    Diagnostics diagnostics; // of loading and planning the material and scene files
-    std::string error;       // bad input ("" with diagnostics that hold the error)
+    std::vector<GpuTarget> gpu_targets;                        // the AMD families of --target
+    bool lavapipe_cost = true;      // lavapipe among the targets (or none named)
+    std::vector<std::string> notes; // "view X left out: why"
+    Diagnostics diagnostics;        // of loading and planning the material and scene files
+    std::string error;              // bad input ("" with diagnostics that hold the error)
     RunStatus status = RunStatus::Ok;
 };
 

@@ -72,8 +72,11 @@ struct CompareVariant {
     // Frame time of this variant / frame time of the reference, with its 95% confidence
     // interval [lo, hi]; ratio 0 = not measured (shown as "n/a", null in JSON).
     double time_ratio = 0, time_ratio_lo = 0, time_ratio_hi = 0;
-    double cost = 0;                 // deterministic cost, instructions per pixel; 0 = not measured
-    uint64_t spirv_instructions = 0; // of the fragment shader; 0 = unknown
+    double cost = 0; // deterministic cost, instructions per pixel; 0 = not measured
+    // Per AMD target (CompareReport::cost_targets): ACO's fragment instructions per pixel,
+    // loops weighted by trip count (gpu_cost.h).
+    std::map<std::string, double> target_costs;
+    uint64_t spirv_instructions = 0;      // of the fragment shader; 0 = unknown
     std::vector<CompareViewResult> views; // one per CompareReport::views, in the same order
 };
 
@@ -89,6 +92,10 @@ struct CompareReport {
     // (e.g. the A/A interval is wider than the effects).
     bool timing_trustworthy = true;
     std::string cost_note; // how the cost was measured (e.g. "valgrind, instructions / pixel")
+    // AMD targets whose costs every variant has in target_costs ("rdna2", ...): a column, a
+    // Pareto plot and front each; the variants on one target's front and dominated on another's
+    // are marked (target_fronts.h).
+    std::vector<std::string> cost_targets;
     // The caustics passes the variants read ("Caustics passes" section, compare.json's
     // "caustics_passes"); none: neither appears.
     std::vector<CausticsPassFigures> caustics_passes;
