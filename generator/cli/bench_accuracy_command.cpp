@@ -1,6 +1,9 @@
 // Accuracy bench: prints bench_accuracy() (eval/bench/accuracy_bench.h) as a table and writes it
 // to accuracy.csv and accuracy.json.
+#include <algorithm>
 #include <cstdio>
+
+#include <fmt/format.h>
 
 #include "commands.h"
 #include "watergen/eval/bench/accuracy_bench.h"
@@ -13,7 +16,28 @@ struct Options {
     AccuracyBenchRequest request;
     std::string out = "out/bench";
     RunnerSetup runner;
+    std::vector<std::string> targets;
 };
+
+// With several targets: each row's cost ratio to its gold per target, beside its error, and
+// where the targets rank it the other way.
+void print_target_ratios(const AccuracyBench& bench) {
+    std::printf("\ncost / the axis' gold per target (lavapipe: valgrind instructions; AMD: ACO "
+                "fragment instructions, loops weighted):\n%-11s %-26s",
+                "axis", "choice");
+    for (const std::string& t : bench.targets)
+        std::printf(" %9s", t.c_str());
+    std::printf(" %10s  %s\n", "dE p99", "where the targets disagree");
+    for (const AccuracyRow& r : bench.rows) {
+        if (r.skipped() || r.gold) continue;
+        std::printf("%-11s %-26s", r.axis.c_str(), r.choice.c_str());
+        for (const std::string& t : bench.targets)
+            std::printf(" %9.3f", bench.cost_ratio(r, t));
+        const std::string error =
+            r.approximation() ? fmt::format("{:.3f}", r.worst.ciede2000_p99) : "(model)";
+        std::printf(" %10s  %s\n", error.c_str(), bench.disagreement(r).c_str());
+    }
+}
 
 void print_rows(const AccuracyBench& bench) {
     std::printf("%-11s %-26s %-13s %10s %7s %22s %9s %10s  %s\n", "axis", "choice", "relation",
@@ -56,7 +80,17 @@ Runner add_bench_accuracy_command(CLI::App& app, const Common& common) {
     app.add_option("--out", o->out,
                    "directory for accuracy.csv and accuracy.json (default out/bench)");
     add_runner_options(app, o->runner);
+    add_target_option(app, o->targets);
     return [o, &common]() {
+        const auto targets = resolve_targets(o->targets);
+        if (!targets) return kUsage;
+        AccuracyBenchRequest& request = o->request;
+        if (!o->targets.empty())
+            request.cost =
+                request.cost && std::any_of(targets->begin(), targets->end(),
+                                            [](const GpuTarget& t) { return t.is_lavapipe(); });
+        for (const GpuTarget& t : *targets)
+            if (!t.is_lavapipe()) request.gpu_targets.push_back(t);
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
@@ -64,6 +98,7 @@ Runner add_bench_accuracy_command(CLI::App& app, const Common& common) {
         const AccuracyBench bench = bench_accuracy(*runner, r);
         if (!bench_succeeded(bench.diagnostics, bench.error, common)) return kFailed;
         print_rows(bench);
+        if (bench.targets.size() > 1) print_target_ratios(bench);
         std::printf("reference: %s; %ux%u over %zu views, %u rounds x %u draws, %s; cost: "
                     "instructions per pixel, %ux%u beach view\n",
                     bench.reference.key().c_str(), r.size, r.size, bench.views.size(), r.rounds,

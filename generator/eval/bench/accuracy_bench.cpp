@@ -1,12 +1,14 @@
 #include "watergen/eval/bench/accuracy_bench.h"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "watergen/eval/measure/draw_cost.h"
+#include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/plan/variant_space.h"
 
 namespace watergen {
@@ -119,6 +121,37 @@ double AccuracyBench::gold_cost(const std::string& axis) const {
 
 namespace {
 
+double cost_on(const AccuracyRow& r, const std::string& target) {
+    if (target == "lavapipe") return r.cost_per_pixel;
+    const auto it = r.target_costs.find(target);
+    return it == r.target_costs.end() ? 0 : it->second;
+}
+
+} // namespace
+
+double AccuracyBench::cost_ratio(const AccuracyRow& row, const std::string& target) const {
+    for (const AccuracyRow& g : rows)
+        if (g.axis == row.axis && g.gold) {
+            const double gold = cost_on(g, target), own = cost_on(row, target);
+            return gold > 0 && own > 0 ? own / gold : 0;
+        }
+    return 0;
+}
+
+std::string AccuracyBench::disagreement(const AccuracyRow& row) const {
+    std::string cheaper, dearer;
+    for (const std::string& t : targets) {
+        const double r = cost_ratio(row, t);
+        if (r == 0 || std::abs(r - 1) <= 0.005) continue;
+        std::string& list = r < 1 ? cheaper : dearer;
+        list += (list.empty() ? "" : ", ") + t;
+    }
+    if (cheaper.empty() || dearer.empty()) return "";
+    return "cheaper than the gold on " + cheaper + "; dearer on " + dearer;
+}
+
+namespace {
+
 // Instructions per pixel of every row's variant, from one valgrind worker; "" or the failure.
 std::string add_costs(uint32_t cost_size, AccuracyBench& bench) {
     std::vector<Variant> variants;
@@ -131,6 +164,36 @@ std::string add_costs(uint32_t cost_size, AccuracyBench& bench) {
     for (AccuracyRow& r : bench.rows)
         if (auto it = counts->find(r.variant.key()); it != counts->end())
             r.cost_per_pixel = double(it->second) / (double(cost_size) * cost_size);
+    return "";
+}
+
+// Each measured row's fragment cost on every AMD target, built as the row renders (the half row
+// strict half); "" or the failure.
+std::string add_gpu_costs(const std::vector<GpuTarget>& targets, AccuracyBench& bench) {
+    std::vector<VariantBuild> builds;
+    std::vector<std::string> keys;
+    std::vector<AccuracyRow*> rows;
+    for (AccuracyRow& r : bench.rows) {
+        if (r.skipped()) continue;
+        builds.push_back(build_variant(r.variant, nullptr,
+                                       EmitOptions{r.variant.choice("precision") == "half"}));
+        keys.push_back(r.axis + "=" + r.choice);
+        rows.push_back(&r);
+    }
+    std::vector<const VariantBuild*> pointers;
+    for (const VariantBuild& b : builds)
+        pointers.push_back(&b);
+    const auto runs =
+        variant_gpu_costs(targets, pointers, keys, std::filesystem::temp_directory_path());
+    for (const TargetCosts& t : runs) {
+        if (!t.run.ok()) return t.run.error;
+        for (size_t i = 0; i < rows.size(); ++i) {
+            const PipelineGpuCost& glsl = t.costs[2 * i];
+            if (!glsl.ok()) return t.run.target.name + ": " + glsl.name + ": " + glsl.error;
+            rows[i]->target_costs[t.run.target.name] = glsl.fragment_cost();
+        }
+        bench.targets.push_back(t.run.target.name);
+    }
     return "";
 }
 
@@ -174,13 +237,33 @@ AccuracyBench bench_accuracy(VulkanRunner& runner, const AccuracyBenchRequest& r
     bench.reference = accuracy_reference_variant();
     if (!bench.ok()) return bench;
     if (request.cost) bench.error = add_costs(request.cost_size, bench);
+    if (request.cost && bench.ok()) bench.targets.push_back("lavapipe");
+    if (bench.ok() && !request.gpu_targets.empty())
+        bench.error = add_gpu_costs(request.gpu_targets, bench);
     if (!bench.ok()) return bench;
+    // With targets: each one's cost and ratio to the gold, and where they rank it differently.
+    std::string target_columns;
+    for (const std::string& t : bench.targets)
+        target_columns += fmt::format(",cost_{0},cost_ratio_{0}", t);
     bench.csv = "axis,choice,gold,relation,cost_per_pixel,time_ratio,time_lo,time_hi,"
-                "spirv_instructions,max_abs,rmse,ciede2000_mean,ciede2000_p99,worst_view,note\n";
+                "spirv_instructions,max_abs,rmse,ciede2000_mean,ciede2000_p99,worst_view,note" +
+                target_columns + (bench.targets.size() > 1 ? ",targets_disagree\n" : "\n");
     nlohmann::ordered_json rows = nlohmann::ordered_json::array();
     for (const AccuracyRow& r : bench.rows) {
-        bench.csv += csv_row(r);
-        rows.push_back(json_row(r));
+        std::string row = csv_row(r);
+        row.pop_back(); // the newline
+        nlohmann::ordered_json j = json_row(r);
+        for (const std::string& t : bench.targets) {
+            row += fmt::format(",{:.2f},{:.4f}", cost_on(r, t), bench.cost_ratio(r, t));
+            j["targets"][t] = {{"cost_per_pixel", cost_on(r, t)},
+                               {"ratio_to_gold", bench.cost_ratio(r, t)}};
+        }
+        if (bench.targets.size() > 1) {
+            row += ",\"" + bench.disagreement(r) + "\"";
+            j["targets_disagree"] = bench.disagreement(r);
+        }
+        bench.csv += row + "\n";
+        rows.push_back(j);
     }
     const nlohmann::ordered_json doc = {{"reference", bench.reference.key()},
                                         {"size", request.size},

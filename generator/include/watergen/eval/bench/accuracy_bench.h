@@ -5,10 +5,12 @@
 // against Gerstner, no highlight against a GGX lobe) gets its cost and "different model".
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
 #include "watergen/eval/compare/compare_run.h"
+#include "watergen/eval/measure/gpu_target.h"
 
 namespace watergen {
 
@@ -21,9 +23,11 @@ struct AccuracyRow {
     RatioInterval time;            // steady draw / the gold's, interleaved in the first view
     size_t spirv_instructions = 0; // optimised fragment SPIR-V, GLSL path
     double cost_per_pixel = 0;     // instructions per pixel under valgrind (bench_accuracy)
-    ImageErrorStats worst;         // over the views: each figure's worst view
-    std::string worst_view;        // the view of the worst p99 dE00
-    std::string note;              // why the row was skipped, or how it was built
+    // Per AMD target: ACO's fragment instructions per pixel, loops weighted (gpu_cost.h).
+    std::map<std::string, double> target_costs;
+    ImageErrorStats worst;  // over the views: each figure's worst view
+    std::string worst_view; // the view of the worst p99 dE00
+    std::string note;       // why the row was skipped, or how it was built
     bool skipped() const { return !note.empty() && spirv_instructions == 0; }
 };
 
@@ -44,6 +48,14 @@ struct AccuracyBench {
     bool ok() const { return error.empty() && !has_errors(diagnostics); }
     // The instructions per pixel of the axis' gold row (0: none, or not counted).
     double gold_cost(const std::string& axis) const;
+    // The cost targets measured: "lavapipe" (when counted), then the AMD ones.
+    std::vector<std::string> targets;
+    // The row's cost on `target` over its axis' gold's (0: not measured).
+    double cost_ratio(const AccuracyRow& row, const std::string& target) const;
+    // Where the targets rank the row and its gold the other way: "cheaper than the gold on
+    // rdna2, gcn4; dearer on lavapipe" (a ratio within 0.5% of 1 is a tie, on neither side);
+    // "" when they agree.
+    std::string disagreement(const AccuracyRow& row) const;
 };
 
 // The variant every row differs from in one axis: the gold choice where an axis has one, and
@@ -63,6 +75,7 @@ struct AccuracyBenchRequest {
     uint32_t size = 256, rounds = 20, draws = 3; // every view at size x size; timing
     bool cost = false;                           // count instructions per pixel (valgrind)
     uint32_t cost_size = 64;                     // of the count, in the beach view
+    std::vector<GpuTarget> gpu_targets;          // AMD families' ACO statistics too
 };
 
 // `watergen bench accuracy`: run_accuracy_bench over every view of the synthetic scene, each
