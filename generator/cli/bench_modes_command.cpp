@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "watergen/eval/bench/modes_bench.h"
+#include "watergen/pipeline/output_writer.h"
 
 namespace watergen::cli {
 
@@ -24,6 +25,24 @@ void print_table(const ModesBenchResult& r) {
                     row.steady_ms, row.max_abs);
 }
 
+// Per mode and AMD family: what its pipelines cost the GPU (register pressure sets occupancy:
+// the waves a SIMD keeps in flight to hide latency).
+void print_target_table(const ModesBenchResult& r) {
+    std::printf("\nper family (ACO on RADV's null device, fragment stage, GLSL path; medians over "
+                "the rendered variants, and the worst):\n%-19s %-9s %7s %9s %6s %8s %6s %6s "
+                "%10s %8s %6s\n",
+                "mode", "target", "instr", "per-pixel", "VGPRs", "VGPR max", "SGPRs", "waves",
+                "waves min", "code KiB", "spills");
+    for (const std::string& t : r.targets)
+        for (const ModeRow& row : r.rows) {
+            const ModeTargetCost& c = row.targets.at(t);
+            std::printf("%-19s %-9s %7.0f %9.0f %6.0f %8.0f %6.0f %6.0f %10.0f %8.2f %6.0f\n",
+                        row.mode.c_str(), t.c_str(), c.instructions, c.per_pixel, c.vgprs,
+                        c.vgprs_max, c.sgprs, c.waves_per_simd, c.waves_min, c.code_bytes / 1024,
+                        c.spills);
+        }
+}
+
 } // namespace
 
 Runner add_bench_modes_command(CLI::App& app, const Common& common) {
@@ -33,6 +52,7 @@ Runner add_bench_modes_command(CLI::App& app, const Common& common) {
         double tolerance = 1e-6;
         std::string out = "out/bench";
         RunnerSetup runner;
+        std::vector<std::string> targets;
     };
     auto o = std::make_shared<Options>();
     app.add_option("material", o->material, "material (default: the built-in default material)");
@@ -50,7 +70,20 @@ Runner add_bench_modes_command(CLI::App& app, const Common& common) {
         ->check(finite_range(0.0, 1.0));
     app.add_option("--out", o->out, "directory for modes.csv and modes.json (default out/bench)");
     add_runner_options(app, o->runner);
+    app.add_option("--target", o->targets,
+                   "AMD families whose compiler also builds each rendered variant in each mode "
+                   "(repeatable or a comma list: " +
+                       gpu_target_names() +
+                       "): VGPRs, occupancy, code size per mode and family in the table and "
+                       "modes_targets.csv")
+        ->take_all();
     return [o, &common]() {
+        const auto targets = o->targets.empty()
+                                 ? std::optional<std::vector<GpuTarget>>(std::vector<GpuTarget>{})
+                                 : resolve_targets(o->targets);
+        if (!targets) return kUsage;
+        for (const GpuTarget& t : *targets)
+            if (!t.is_lavapipe()) o->bench.gpu_targets.push_back(t);
         Material m;
         std::vector<SceneFacts> none;
         if (!load_material_and_scenes(o->material, {}, m, none, common)) return kUsage;
@@ -67,7 +100,16 @@ Runner add_bench_modes_command(CLI::App& app, const Common& common) {
                     "against the permutation's image, GLSL and HLSL paths\n",
                     r.material.c_str(), r.material_variants, r.device.c_str(), o->bench.size,
                     o->bench.size, cache_used.c_str(), o->bench.rounds);
+        if (!r.targets.empty()) print_target_table(r);
         if (!write_bench_files(o->out, "modes", r.csv, r.json)) return kFailed;
+        if (!r.targets_csv.empty()) {
+            const auto file = std::filesystem::path(o->out) / "modes_targets.csv";
+            if (auto e = write_file_atomically(file, r.targets_csv)) {
+                std::fprintf(stderr, "watergen: error: %s\n", e->c_str());
+                return kFailed;
+            }
+            std::printf("wrote %s\n", file.string().c_str());
+        }
         if (const ModeRow* row = r.beyond(o->tolerance)) {
             std::fprintf(stderr,
                          "watergen: error: %s draws images %g from the permutation's "

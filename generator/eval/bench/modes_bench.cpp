@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
+#include <thread>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "watergen/eval/draw/variant_render.h"
+#include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
 
@@ -165,6 +168,96 @@ void measure_modes(VulkanRunner& runner, const std::vector<Variant>& sample,
     }
 }
 
+// The pipeline of `d` for ACO (GLSL path): as render_draw makes it, the scene's uniforms and the
+// selectors giving the specialization constants, a frozen fragment module in its place.
+AcoPipelineSource aco_draw(const Draw& d, const SyntheticScene& scene, const std::string& name) {
+    SyntheticScene selected = scene;
+    for (const auto& [n, value] : d.selectors)
+        selected.uniforms[n] = {value};
+    const LanguageBuild& glsl = d.build->languages[0];
+    AcoPipelineSource s = aco_source(
+        glsl, name,
+        specialization_values(glsl.fragment.source.interface.specialization, selected.uniforms));
+    if (!d.frozen[0].empty()) {
+        s.fragment = d.frozen[0];
+        s.specialization.clear();
+    }
+    return s;
+}
+
+// Every rendered variant's pipeline in every mode on each AMD family: medians per mode.
+void add_mode_gpu_costs(const std::vector<Variant>& sample,
+                        const std::vector<std::array<Draw, 5>>& draws, const ModesBenchOptions& o,
+                        ModesBenchResult& out) {
+    const SyntheticScene scene = make_synthetic_scene(o.size, o.size);
+    std::vector<AcoPipelineSource> sources;
+    std::vector<std::vector<EmittedLoop>> loops;
+    for (size_t k = 0; k < out.rows.size(); ++k)
+        for (size_t i = 0; i < sample.size(); ++i) {
+            sources.push_back(
+                aco_draw(draws[i][k], scene, out.rows[k].mode + " " + sample[i].key()));
+            loops.push_back(emitted_loops(draws[i][k].build->shader.fragment));
+        }
+    const auto runs =
+        compile_on_targets(o.gpu_targets, sources, std::filesystem::temp_directory_path(),
+                           std::max(1u, std::thread::hardware_concurrency()));
+    for (const AcoTargetRun& run : runs) {
+        if (!run.ok()) {
+            out.error = run.error;
+            return;
+        }
+        out.targets.push_back(run.target.name);
+        for (size_t k = 0; k < out.rows.size(); ++k) {
+            std::array<std::vector<double>, 7> values;
+            ModeTargetCost c;
+            c.waves_min = INFINITY;
+            for (size_t i = 0; i < sample.size(); ++i) {
+                const size_t at = k * sample.size() + i;
+                const PipelineGpuCost cost = gpu_cost(run.pipelines[at], loops[at]);
+                const StageGpuCost* f = cost.stage("fragment");
+                if (!cost.ok() || !f) {
+                    out.error = run.target.name + ": " + cost.name + ": " + cost.error;
+                    return;
+                }
+                const double v[7] = {f->instructions,
+                                     cost.fragment_cost(),
+                                     f->vgprs,
+                                     f->sgprs,
+                                     f->waves_per_simd,
+                                     f->code_bytes,
+                                     f->spilled_vgprs + f->spilled_sgprs};
+                for (size_t q = 0; q < 7; ++q)
+                    values[q].push_back(v[q]);
+                c.vgprs_max = std::max(c.vgprs_max, f->vgprs);
+                c.waves_min = std::min(c.waves_min, f->waves_per_simd);
+            }
+            c.instructions = median(values[0]);
+            c.per_pixel = median(values[1]);
+            c.vgprs = median(values[2]);
+            c.sgprs = median(values[3]);
+            c.waves_per_simd = median(values[4]);
+            c.code_bytes = median(values[5]);
+            c.spills = median(values[6]);
+            out.rows[k].targets[run.target.name] = c;
+        }
+    }
+}
+
+nlohmann::ordered_json targets_json(const ModeRow& row) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
+    for (const auto& [t, c] : row.targets)
+        j[t] = {{"instructions", c.instructions},
+                {"per_pixel", c.per_pixel},
+                {"vgprs", c.vgprs},
+                {"vgprs_max", c.vgprs_max},
+                {"sgprs", c.sgprs},
+                {"waves_per_simd", c.waves_per_simd},
+                {"waves_min", c.waves_min},
+                {"code_bytes", c.code_bytes},
+                {"spills", c.spills}};
+    return j;
+}
+
 // modes.csv (a line per mode and rendered variant) and modes.json.
 void add_tables(ModesBenchResult& r) {
     r.csv = "mode,variant,shaders,generate_compile_ms,spirv_bytes,spirv_bytes_per_draw,"
@@ -194,9 +287,22 @@ void add_tables(ModesBenchResult& r) {
                         {"first_draw_ms", row.first_draw_ms},
                         {"steady_ms", row.steady_ms},
                         {"max_abs", row.max_abs},
+                        {"targets", targets_json(row)},
                         {"variants", variants}});
     }
     r.json = json.dump(2) + "\n";
+    if (r.targets.empty()) return;
+    // Per mode and family, the medians over the rendered variants.
+    r.targets_csv = "mode,target,instructions,per_pixel,vgprs,vgprs_max,sgprs,waves_per_simd,"
+                    "waves_min,code_bytes,spills\n";
+    for (const ModeRow& row : r.rows)
+        for (const std::string& t : r.targets) {
+            const ModeTargetCost& c = row.targets.at(t);
+            r.targets_csv += fmt::format(
+                "{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f}\n", row.mode,
+                t, c.instructions, c.per_pixel, c.vgprs, c.vgprs_max, c.sgprs, c.waves_per_simd,
+                c.waves_min, c.code_bytes, c.spills);
+        }
 }
 
 } // namespace
@@ -227,7 +333,7 @@ ModesBenchResult bench_modes(VulkanRunner& runner, const Material& m,
     const double freeze_ms = ms_since(t0);
 
     auto row = [&](const std::string& name, const Mode& mode, double ms) {
-        ModeRow r{name, mode.shaders.size(), ms, 0, 0, {}, 0, 0, 0, 0};
+        ModeRow r{name, mode.shaders.size(), ms, 0, 0, {}, 0, 0, 0, 0, {}};
         for (const auto& b : mode.builds)
             r.spirv_bytes += static_cast<double>(fragment_bytes(b));
         r.spirv_bytes_per_draw = r.spirv_bytes / static_cast<double>(mode.builds.size());
@@ -254,6 +360,7 @@ ModesBenchResult bench_modes(VulkanRunner& runner, const Material& m,
             {draw_of(perm, v), draw_of(perm, v), draw_of(spec, v), f, draw_of(branch, v)});
     }
     measure_modes(runner, sample, draws, options, out);
+    if (out.ok() && !options.gpu_targets.empty()) add_mode_gpu_costs(sample, draws, options, out);
     if (out.ok()) add_tables(out);
     return out;
 }

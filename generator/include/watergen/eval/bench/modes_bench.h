@@ -4,9 +4,11 @@
 // image of a variant held against the permutation's.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "watergen/eval/measure/gpu_target.h"
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/plan/material.h"
 #include "watergen/runner/vulkan_runner.h"
@@ -18,6 +20,18 @@ struct ModesBenchOptions {
     size_t variants = 6; // variants rendered, spread over the material's (0: every one)
     unsigned rounds = 3; // renders per variant and mode, the modes interleaved
     uint32_t draws = 5;  // timed draws per render
+    // AMD families whose compiler (ACO, RADV's null device) also builds every rendered
+    // variant's pipeline in every mode: register pressure and occupancy per mode.
+    std::vector<GpuTarget> gpu_targets;
+};
+
+// One mode's pipelines on one AMD family, over the rendered variants (GLSL path, fragment stage,
+// each variant's pipeline as that mode makes it: its selectors as specialization constants, or
+// as uniforms of the branching shader): medians, and the worst.
+struct ModeTargetCost {
+    double instructions = 0, per_pixel = 0, vgprs = 0, sgprs = 0, waves_per_simd = 0;
+    double code_bytes = 0, spills = 0;
+    double vgprs_max = 0, waves_min = 0; // the worst variant
 };
 
 // One mode's numbers for one rendered variant: medians over the rounds.
@@ -36,14 +50,17 @@ struct ModeRow {
     double spirv_bytes_per_draw = 0; // the module a variant's pipeline is made from
     std::vector<ModeVariantTimes> variants;
     double pipeline_ms = 0, first_draw_ms = 0, steady_ms = 0, max_abs = 0; // over the variants
+    std::map<std::string, ModeTargetCost> targets;                         // by target name
 };
 
 struct ModesBenchResult {
     std::string material;
     size_t material_variants = 0;
     std::vector<ModeRow> rows;
+    std::vector<std::string> targets; // the AMD families measured, in the order asked
     std::string device;
-    std::string csv, json; // modes.csv, modes.json
+    std::string csv, json;   // modes.csv, modes.json
+    std::string targets_csv; // modes_targets.csv: per mode and AMD family (with gpu_targets)
     std::string error;
     bool ok() const { return error.empty(); }
     // The first mode whose image differs from the permutation's by more than `tolerance`.
