@@ -1,6 +1,7 @@
 // watergen bench prune: prints bench_prune() (eval/bench/prune_bench.h) as a table with the
 // instructions per pixel of both shaders of each row counted under valgrind, and writes it to
 // prune.csv and prune.json; fails when a pruned image differs by more than --tolerance.
+#include <algorithm>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -19,6 +20,7 @@ struct Options {
     double tolerance = 1e-4;
     std::string out = "out/bench";
     RunnerSetup runner;
+    std::vector<std::string> targets;
 };
 
 void print_row(const PruneBenchRow& row) {
@@ -44,6 +46,13 @@ void print_tables(const PruneBenchResult& result) {
                     s.ir, s.spirv, s.spirv_opt, s.cost, s.time, interval_text(s.aa).c_str(),
                     s.timing_trustworthy() ? "" : " (outside +-3%: times not trustworthy)",
                     s.worst);
+        for (const auto& [target, ratio] : s.target_cost) {
+            std::printf("  %s (ACO fragment instr/px, unpruned->pruned):", target.c_str());
+            for (const PruneBenchRow& row : s.rows)
+                std::printf(" %.0f->%.0f", row.target_costs.at(target).first,
+                            row.target_costs.at(target).second);
+            std::printf("; median pruned/unpruned %.3f\n", ratio);
+        }
     }
 }
 
@@ -69,8 +78,16 @@ Runner add_bench_prune_command(CLI::App& app, const Common& common) {
         ->check(finite_range(0.0, 1.0));
     app.add_option("--out", o->out, "directory for prune.csv and prune.json (default out/bench)");
     add_runner_options(app, o->runner);
+    add_target_option(app, o->targets);
     return [o, &common]() {
         PruneBenchOptions& b = o->bench;
+        const auto targets = resolve_targets(o->targets);
+        if (!targets) return kUsage;
+        if (!o->targets.empty())
+            b.cost = b.cost && std::any_of(targets->begin(), targets->end(),
+                                           [](const GpuTarget& t) { return t.is_lavapipe(); });
+        for (const GpuTarget& t : *targets)
+            if (!t.is_lavapipe()) b.gpu_targets.push_back(t);
         Material m;
         std::vector<SceneFacts> scenes;
         if (!load_material_and_scenes(b.material_path, o->scenes, m, scenes, common)) return kUsage;

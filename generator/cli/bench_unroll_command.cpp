@@ -35,6 +35,21 @@ void print_table(const UnrollBench& b) {
     std::printf("k: every loop [[dont_unroll]] / [loop]; u: every loop [[unroll]] / [unroll] "
                 "(spirv-opt unrolls). Times in ms, medians; ratios: median (min-max) over "
                 "rounds and paths; A/A: the kept shader against itself.\n");
+    if (b.targets.empty()) return;
+    std::printf("\nper family (ACO on RADV's null device, fragment stage, GLSL path; per-pixel: "
+                "each kept loop weighted by its trip count):\n%-26s %-9s %9s %9s %11s %11s "
+                "%9s %9s\n",
+                "waves", "target", "instr k", "instr u", "per-pixel k", "per-pixel u", "VGPRs k",
+                "VGPRs u");
+    for (const std::string& t : b.targets)
+        for (const auto& r : b.rows) {
+            const StageGpuCost& k = r.kept.targets.at(t);
+            const StageGpuCost& u = r.unrolled.targets.at(t);
+            std::printf("%-26s %-9s %9.0f %9.0f %11.0f %11.0f %9.0f %9.0f\n", r.waves.c_str(),
+                        t.c_str(), k.instructions, u.instructions,
+                        k.per_pixel ? *k.per_pixel : k.instructions,
+                        u.per_pixel ? *u.per_pixel : u.instructions, k.vgprs, u.vgprs);
+        }
 }
 
 } // namespace
@@ -44,6 +59,7 @@ Runner add_bench_unroll_command(CLI::App& app, const Common& common) {
         uint32_t size = 256, rounds = 3, draws = 5;
         std::string out = "out/bench";
         RunnerSetup runner;
+        std::vector<std::string> targets;
     };
     auto o = std::make_shared<Options>();
     app.add_option("--size", o->size, "image width and height (default 256)")
@@ -54,11 +70,23 @@ Runner add_bench_unroll_command(CLI::App& app, const Common& common) {
         ->check(CLI::Range(1, 1000));
     app.add_option("--out", o->out, "directory for unroll.csv and unroll.json (default out/bench)");
     add_runner_options(app, o->runner);
+    app.add_option("--target", o->targets,
+                   "AMD families whose compiler also builds both shaders of each waves choice "
+                   "(repeatable or a comma list: " +
+                       gpu_target_names() + ")")
+        ->take_all();
     return [o, &common]() {
+        std::vector<GpuTarget> gpus;
+        if (!o->targets.empty()) {
+            const auto targets = resolve_targets(o->targets);
+            if (!targets) return kUsage;
+            for (const GpuTarget& t : *targets)
+                if (!t.is_lavapipe()) gpus.push_back(t);
+        }
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
-        const UnrollBench bench = run_unroll_bench(*runner, o->size, o->rounds, o->draws);
+        const UnrollBench bench = run_unroll_bench(*runner, o->size, o->rounds, o->draws, gpus);
         if (!bench_succeeded(bench.diagnostics, bench.error, common)) return kFailed;
         print_table(bench);
         return write_bench_files(o->out, "unroll", bench.csv, bench.json) ? kOk : kFailed;

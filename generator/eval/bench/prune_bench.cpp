@@ -4,9 +4,11 @@
 #include <set>
 
 #include "watergen/eval/measure/draw_cost.h"
+#include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/emitter.h"
 #include "watergen/ir/ir_fold.h"
+#include "watergen/pipeline/build_output.h"
 #include "watergen/pipeline/compile_bench.h"
 
 namespace watergen {
@@ -215,6 +217,44 @@ std::string add_costs(const PruneBenchOptions& o, PruneBenchResult& result) {
     return "";
 }
 
+// Both shaders of every row on each AMD target, scene by scene; "" or the failure.
+std::string add_gpu_costs(const PruneBenchOptions& o, const Material& m,
+                          const std::vector<ScenePlan>& plans, PruneBenchResult& result) {
+    for (size_t s = 0; s < result.scenes.size() && s < plans.size(); ++s) {
+        PruneBenchScene& scene = result.scenes[s];
+        std::vector<VariantBuild> builds; // per row: pruned, unpruned
+        std::vector<std::string> names;
+        for (const PruneBenchRow& row : scene.rows) {
+            builds.push_back(build_for_scene(m, plans[s], row.variant));
+            builds.push_back(build_shader(m.compose(row.variant)));
+            names.push_back(row.variant.key() + " pruned");
+            names.push_back(row.variant.key() + " unpruned");
+        }
+        if (builds.empty()) continue;
+        std::vector<const VariantBuild*> pointers;
+        for (const VariantBuild& b : builds)
+            pointers.push_back(&b);
+        const auto runs = variant_gpu_costs(o.gpu_targets, pointers, names,
+                                            std::filesystem::temp_directory_path());
+        for (const TargetCosts& t : runs) {
+            if (!t.run.ok()) return scene.name + ": " + t.run.error;
+            std::vector<double> ratios;
+            for (size_t r = 0; r < scene.rows.size(); ++r) {
+                const PipelineGpuCost& pruned = t.costs[4 * r];
+                const PipelineGpuCost& unpruned = t.costs[4 * r + 2];
+                if (!pruned.ok() || !unpruned.ok())
+                    return scene.name + ": " + t.run.target.name + ": " + pruned.error +
+                           unpruned.error;
+                scene.rows[r].target_costs[t.run.target.name] = {unpruned.fragment_cost(),
+                                                                 pruned.fragment_cost()};
+                ratios.push_back(ratio(pruned.fragment_cost(), unpruned.fragment_cost()));
+            }
+            scene.target_cost[t.run.target.name] = median(ratios);
+        }
+    }
+    return "";
+}
+
 PruneBenchResult measure_scenes(VulkanRunner& runner, const Material& m,
                                 const std::vector<ScenePlan>& plans, const PruneBenchOptions& o) {
     PruneBenchResult out;
@@ -245,6 +285,8 @@ PruneBenchResult bench_prune(VulkanRunner& runner, const Material& m,
                              const std::vector<ScenePlan>& plans, const PruneBenchOptions& o) {
     PruneBenchResult out = measure_scenes(runner, m, plans, o);
     if (out.ok() && o.cost) out.cost_error = add_costs(o, out);
+    if (out.ok() && out.cost_error.empty() && !o.gpu_targets.empty())
+        out.cost_error = add_gpu_costs(o, m, plans, out);
     if (out.cost_error.empty()) add_prune_tables(o, runner.device_info().name, out);
     return out;
 }

@@ -43,24 +43,47 @@ std::vector<double> ratios(const std::vector<double>& a, const std::vector<doubl
     return out;
 }
 
+nlohmann::ordered_json targets_json(const UnrollSide& s) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
+    for (const auto& [t, c] : s.targets)
+        j[t] = {{"instructions", c.instructions},
+                {"per_pixel", c.per_pixel ? *c.per_pixel : c.instructions},
+                {"vgprs", c.vgprs},
+                {"waves_per_simd", c.waves_per_simd},
+                {"code_bytes", c.code_bytes}};
+    return j;
+}
+
 nlohmann::ordered_json side_json(const UnrollSide& s) {
     return {{"glsl_lines", s.glsl_lines},         {"spirv_words", s.spirv_words},
             {"instructions", s.instructions},     {"first_draw_ms", s.first_draw_ms},
-            {"steady_draw_ms", s.steady_draw_ms}, {"pipeline_ms", s.pipeline_ms}};
+            {"steady_draw_ms", s.steady_draw_ms}, {"pipeline_ms", s.pipeline_ms},
+            {"targets", targets_json(s)}};
 }
 
 // unroll.csv (a line per waves choice and hint, medians) and unroll.json (every sample).
 void add_tables(UnrollBench& b, uint32_t draws, const std::string& device) {
     b.csv = "waves,hint,glsl_lines,spirv_words,instructions,first_draw_ms_median,"
-            "steady_draw_ms_median,first_draw_ratio_median,steady_ratio_median\n";
+            "steady_draw_ms_median,first_draw_ratio_median,steady_ratio_median";
+    for (const std::string& t : b.targets)
+        b.csv += fmt::format(",{0}_instructions,{0}_per_pixel,{0}_vgprs,{0}_waves_per_simd", t);
+    b.csv += "\n";
     nlohmann::ordered_json rows = nlohmann::ordered_json::array();
     for (const auto& r : b.rows) {
         for (const auto& [hint, side] :
-             {std::pair{"kept", &r.kept}, std::pair{"unrolled", &r.unrolled}})
-            b.csv += fmt::format("{},{},{},{},{},{:.3f},{:.4f},{:.4f},{:.4f}\n", r.waves, hint,
+             {std::pair{"kept", &r.kept}, std::pair{"unrolled", &r.unrolled}}) {
+            b.csv += fmt::format("{},{},{},{},{},{:.3f},{:.4f},{:.4f},{:.4f}", r.waves, hint,
                                  side->glsl_lines, side->spirv_words, side->instructions,
                                  median(side->first_draw_ms), median(side->steady_draw_ms),
                                  median(r.first_draw_ratio), median(r.steady_ratio));
+            for (const std::string& t : b.targets) {
+                const StageGpuCost& c = side->targets.at(t);
+                b.csv += fmt::format(",{:.0f},{:.0f},{:.0f},{:.0f}", c.instructions,
+                                     c.per_pixel ? *c.per_pixel : c.instructions, c.vgprs,
+                                     c.waves_per_simd);
+            }
+            b.csv += "\n";
+        }
         rows.push_back({{"waves", r.waves},
                         {"kept", side_json(r.kept)},
                         {"unrolled", side_json(r.unrolled)},
@@ -78,10 +101,33 @@ void add_tables(UnrollBench& b, uint32_t draws, const std::string& device) {
     b.json = j.dump(2) + "\n";
 }
 
+// Both shaders' fragment stage on each AMD target; "" or the failure.
+std::string add_gpu_costs(const std::vector<GpuTarget>& targets,
+                          const std::array<VariantBuild, 2>& builds, const std::string& waves,
+                          UnrollBenchRow& row) {
+    const std::array<LoopUnroll, 2> unroll = {LoopUnroll::None, LoopUnroll::All};
+    const std::array<UnrollSide*, 2> sides = {&row.kept, &row.unrolled};
+    for (size_t s = 0; s < 2; ++s) {
+        const auto runs = variant_gpu_costs(targets, {&builds[s]}, {waves},
+                                            std::filesystem::temp_directory_path(), unroll[s]);
+        for (const TargetCosts& t : runs) {
+            if (!t.run.ok()) return t.run.error;
+            const StageGpuCost* f = t.costs[0].stage("fragment");
+            if (!t.costs[0].ok() || !f) return waves + ": " + t.costs[0].error;
+            sides[s]->targets[t.run.target.name] = *f;
+        }
+    }
+    row.kept_again.targets = row.kept.targets;
+    return "";
+}
+
 } // namespace
 
-UnrollBench run_unroll_bench(VulkanRunner& runner, uint32_t size, uint32_t rounds, uint32_t draws) {
+UnrollBench run_unroll_bench(VulkanRunner& runner, uint32_t size, uint32_t rounds, uint32_t draws,
+                             const std::vector<GpuTarget>& targets) {
     UnrollBench bench;
+    for (const GpuTarget& t : targets)
+        bench.targets.push_back(t.name);
     bench.size = size;
     bench.rounds = rounds;
     const SyntheticScene scene = make_synthetic_scene(size, size);
@@ -107,6 +153,10 @@ UnrollBench run_unroll_bench(VulkanRunner& runner, uint32_t size, uint32_t round
                 side->spirv_words = frag.toolchain.spirv_optimized.size();
                 side->instructions = frag.toolchain.instruction_count_optimized;
             }
+        }
+        if (!targets.empty()) {
+            bench.error = add_gpu_costs(targets, builds, waves, row);
+            if (!bench.error.empty()) return bench;
         }
         for (uint32_t round = 0; round < rounds; ++round)
             for (uint32_t k = 0; k < 3; ++k) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "watergen/eval/compare/prune_measure.h"
+#include "watergen/eval/measure/gpu_target.h"
 #include "watergen/eval/measure/interleaved_timing.h"
 
 namespace watergen {
@@ -26,6 +27,8 @@ struct PruneBenchOptions {
     // the counting workers load them again.
     std::string material_path;
     std::map<std::string, std::string> scene_files;
+    // AMD families whose ACO also compiles both shaders of every row (gpu_cost.h).
+    std::vector<GpuTarget> gpu_targets;
 };
 
 struct PruneBenchRow {
@@ -37,6 +40,8 @@ struct PruneBenchRow {
     double cost_unpruned = 0, cost_pruned = 0;
     double cost_ratio() const { return cost_unpruned > 0 ? cost_pruned / cost_unpruned : 0; }
     double max_diff = 0; // over the GLSL, HLSL and CPU images
+    // Per AMD target: ACO's fragment cost per pixel (loops weighted), unpruned and pruned.
+    std::map<std::string, std::pair<double, double>> target_costs;
 };
 
 struct PruneBenchScene {
@@ -49,6 +54,7 @@ struct PruneBenchScene {
     // Medians over the rows of pruned / unpruned (cost: 0 when not counted); the largest image
     // difference. Filled by summarise_prune_scene.
     double ir = 0, spirv = 0, spirv_opt = 0, time = 0, cost = 0, worst = 0;
+    std::map<std::string, double> target_cost; // per AMD target: median pruned / unpruned
     bool timing_trustworthy() const { return aa.within(kAATolerance); }
 };
 

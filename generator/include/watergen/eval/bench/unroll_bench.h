@@ -3,9 +3,11 @@
 // then unrolls them), timed interleaved with an A/A pair.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/ir/diagnostic.h"
 #include "watergen/runner/vulkan_runner.h"
 
@@ -17,6 +19,9 @@ struct UnrollSide {
     size_t spirv_words = 0;  // optimised SPIR-V of the GLSL path's fragment stage
     size_t instructions = 0; // spirv-opt's instruction count, same module
     std::vector<double> first_draw_ms, steady_draw_ms, pipeline_ms;
+    // Per AMD target: ACO's fragment stage of the GLSL path (static count, per-pixel estimate,
+    // VGPRs, ...).
+    std::map<std::string, StageGpuCost> targets;
 };
 
 struct UnrollBenchRow {
@@ -29,8 +34,9 @@ struct UnrollBenchRow {
 struct UnrollBench {
     uint32_t size = 0, rounds = 0;
     std::vector<UnrollBenchRow> rows;
-    std::string csv, json;   // unroll.csv, unroll.json
-    Diagnostics diagnostics; // of a build that failed
+    std::vector<std::string> targets; // the AMD families measured
+    std::string csv, json;            // unroll.csv, unroll.json
+    Diagnostics diagnostics;          // of a build that failed
     std::string error;
     bool ok() const { return error.empty() && !has_errors(diagnostics); }
 };
@@ -41,7 +47,9 @@ struct UnrollBench {
 //         order that rotates from round to round, each render a new pipeline JIT-compiled at
 //         its first draw (Mesa's shader cache off), then `draws` timed draws (median); and
 //         the tables.
+//         With `targets`, both shaders also compiled by each AMD family's ACO.
 // Cost:   per round and waves choice, six pipelines (two languages x three renders).
-UnrollBench run_unroll_bench(VulkanRunner& runner, uint32_t size, uint32_t rounds, uint32_t draws);
+UnrollBench run_unroll_bench(VulkanRunner& runner, uint32_t size, uint32_t rounds, uint32_t draws,
+                             const std::vector<GpuTarget>& targets = {});
 
 } // namespace watergen
