@@ -1,5 +1,6 @@
 #include "fragment_writer.h"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 namespace watergen {
@@ -362,7 +363,16 @@ std::string FragmentWriter::spell(uint32_t id) {
         const bool compute_sample = compute_ && n.op == Op::Sample;
         return syntax_.convert(n.type, true, strip_outer(spell_at(id, false, compute_sample)));
     }
-    return spell_at(id, half, compute_ && n.op == Op::Sample);
+    return spell_at(id, half || compares_halves(n), compute_ && n.op == Op::Sample);
+}
+
+// A comparison of two binary16 values compares them at 16 bits: widening is exact, so the
+// result is the 32-bit comparison's, without the two conversions.
+bool FragmentWriter::compares_halves(const Node& n) const {
+    const bool comparison = n.op == Op::Less || n.op == Op::LessEqual || n.op == Op::Greater ||
+                            n.op == Op::GreaterEqual || n.op == Op::Equal || n.op == Op::NotEqual;
+    return comparison && !n.args.empty() &&
+           std::all_of(n.args.begin(), n.args.end(), [this](uint32_t a) { return is_half(a); });
 }
 
 // `half`: the width of the arguments and the result. `level0`: a compute stage's sample,

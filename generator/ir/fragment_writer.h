@@ -44,6 +44,7 @@ class FragmentWriter {
 
     // Whether node `id` is spelled in a binary16 type: strict half, relaxed, and a float.
     bool is_half(uint32_t id) const;
+    bool compares_halves(const Node& n) const; // a comparison of two binary16 values
     // Whether any live node, in loops too, is spelled in a binary16 type / is a loop (the
     // shader needs the float16 / control-flow-attributes extension).
     bool writes_half() const;

@@ -65,3 +65,22 @@ TEST_CASE("strict_half_leaves_a_full_precision_variant_unchanged", "[compile]") 
         CHECK(plain.languages[i].fragment.source.source ==
               strict.languages[i].fragment.source.source);
 }
+
+TEST_CASE("strict_half_compares_two_half_values_at_16_bits", "[compile]") {
+    // Widening binary16 to binary32 is exact, so a comparison of two half values has the same
+    // result at 16 bits; writing it there spares the GPU two conversions (ACO on rdna2: the
+    // flat default half variant 239 -> 233 instructions).
+    Variant v = default_variant();
+    REQUIRE_FALSE(set_choice(v, "precision", "half"));
+    const VariantBuild b = build_variant(v, nullptr, EmitOptions{true});
+    REQUIRE(b.ok());
+    const std::string& glsl = b.languages[0].fragment.source.source;
+    const std::string& hlsl = b.languages[1].fragment.source.source;
+    // The Blinn-Phong guard: the half lobe's base against a half constant, in both languages.
+    CHECK(glsl.find(" > float16_t(6.1035156e-05);") != std::string::npos);
+    CHECK(hlsl.find(" > ((half)(6.1035156e-05));") != std::string::npos);
+    // A 32-bit parameter against a half constant still compares at 32 bits.
+    CHECK(glsl.find("params.refraction_shore_fade_depth > float(float16_t(0.0))") !=
+          std::string::npos);
+    CHECK(glsl.find(") > float(") == std::string::npos);
+}
