@@ -31,8 +31,13 @@ void print_target_ratios(const AccuracyBench& bench) {
     for (const AccuracyRow& r : bench.rows) {
         if (r.skipped() || r.gold) continue;
         std::printf("%-11s %-26s", r.axis.c_str(), r.choice.c_str());
-        for (const std::string& t : bench.targets)
-            std::printf(" %9.3f", bench.cost_ratio(r, t));
+        for (const std::string& t : bench.targets) {
+            const double ratio = bench.cost_ratio(r, t);
+            if (ratio > 0)
+                std::printf(" %9.3f", ratio);
+            else
+                std::printf(" %9s", "n/a");
+        }
         const std::string error =
             r.approximation() ? fmt::format("{:.3f}", r.worst.ciede2000_p99) : "(model)";
         std::printf(" %10s  %s\n", error.c_str(), bench.disagreement(r).c_str());

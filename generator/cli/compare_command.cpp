@@ -46,8 +46,13 @@ void print_table(const CompareRun& run, const CompareSetup& setup) {
         std::snprintf(time, sizeof time, "%.3f [%.3f, %.3f]", e.time.ratio, e.time.lo, e.time.hi);
         std::printf("%-44s %-12s %24s %12.1f", differences(e.variant, run.reference).c_str(),
                     relation.c_str(), time, e.cost_per_pixel);
-        for (const GpuTarget& t : setup.gpu_targets)
-            std::printf(" %10.0f", e.target_costs.at(t.name));
+        for (const GpuTarget& t : setup.gpu_targets) {
+            const auto it = e.target_costs.find(t.name);
+            if (it == e.target_costs.end())
+                std::printf(" %10s", "n/a");
+            else
+                std::printf(" %10.0f", it->second);
+        }
         std::printf(" %8zu", e.spirv_instructions);
         for (const ComparedView& v : e.views)
             std::printf("  %9.3g | %8.3f", v.error.max_abs, v.error.ciede2000_p99);

@@ -196,3 +196,25 @@ TEST_CASE("a pipeline the driver cannot create is named with what failed; the ot
     CHECK(runs[0].pipelines[1].name == "broken");
     CHECK_FALSE(runs[0].pipelines[1].ok());
 }
+
+TEST_CASE("16-bit arithmetic on a family without it is reported, not compiled (gcn1 aborts)") {
+    Variant v = default_variant();
+    REQUIRE_FALSE(set_choice(v, "precision", "half"));
+    const VariantBuild strict = build_variant(v, nullptr, EmitOptions{true});
+    REQUIRE(strict.ok());
+    const auto runs = compile_on_targets({*find_gpu_target("gcn1"), *find_gpu_target("rdna3")},
+                                         {aco_source(strict.languages[0], "half")},
+                                         std::filesystem::current_path(), 2, kWatergen);
+    REQUIRE(runs[0].ok()); // the worker lived
+    CHECK(runs[0].pipelines[0].unsupported);
+    CHECK(runs[0].pipelines[0].error.find("no shaderFloat16") != std::string::npos);
+    REQUIRE(runs[1].ok());
+    CHECK(runs[1].pipelines[0].ok()); // rdna3 has 16-bit arithmetic
+    // gcn1 has no listing (Mesa disassembles gfx6 through CLRX): static counts only.
+    const VariantBuild full = build_variant(gerstner());
+    const auto gcn1 = costs({"gcn1"}, full);
+    const StageGpuCost* f = gcn1[0].costs[0].stage("fragment");
+    CHECK_FALSE(f->per_pixel);
+    CHECK(f->per_pixel_note.find("CLRX") != std::string::npos);
+    CHECK(gcn1[0].costs[0].fragment_cost() == f->instructions);
+}

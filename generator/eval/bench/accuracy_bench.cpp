@@ -189,6 +189,11 @@ std::string add_gpu_costs(const std::vector<GpuTarget>& targets, AccuracyBench& 
         if (!t.run.ok()) return t.run.error;
         for (size_t i = 0; i < rows.size(); ++i) {
             const PipelineGpuCost& glsl = t.costs[2 * i];
+            if (glsl.unsupported) { // the half row on a family without 16-bit arithmetic
+                rows[i]->note += (rows[i]->note.empty() ? "" : "; ") + t.run.target.name +
+                                 ": no 16-bit arithmetic";
+                continue;
+            }
             if (!glsl.ok()) return t.run.target.name + ": " + glsl.name + ": " + glsl.error;
             rows[i]->target_costs[t.run.target.name] = glsl.fragment_cost();
         }

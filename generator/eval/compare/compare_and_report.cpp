@@ -91,6 +91,7 @@ std::string add_gpu_costs(const CompareSetup& s, const CompareRequest& request, 
         }
         for (size_t i = 0; i < run.entries.size(); ++i) {
             const PipelineGpuCost& glsl = t.costs[2 * i];
+            if (glsl.unsupported) continue; // no cost on this family: n/a, off its front
             if (!glsl.ok()) return t.run.target.name + ": " + glsl.name + ": " + glsl.error;
             run.entries[i].target_costs[t.run.target.name] = glsl.fragment_cost();
         }

@@ -7,6 +7,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "watergen/toolchain/spirv_tools_stage.h"
+
 namespace watergen {
 
 struct AcoDevice::Handles {
@@ -125,7 +127,8 @@ std::string disassembly(const AcoDevice::Handles& h, VkPipelineExecutableInfoKHR
 }
 
 AcoStageStatistics read_executable(const AcoDevice::Handles& h, VkPipeline pipeline, uint32_t i,
-                                   const VkPipelineExecutablePropertiesKHR& props) {
+                                   const VkPipelineExecutablePropertiesKHR& props,
+                                   bool want_disassembly) {
     AcoStageStatistics out;
     out.stage = stage_name(props.stages);
     out.executable = props.name;
@@ -143,7 +146,7 @@ AcoStageStatistics read_executable(const AcoDevice::Handles& h, VkPipeline pipel
             for (const auto& s : stats)
                 out.values[s.name] = statistic_value(s);
     }
-    const std::string text = disassembly(h, info);
+    const std::string text = want_disassembly ? disassembly(h, info) : std::string();
     if (!text.empty()) {
         std::string error;
         if (auto listing = read_aco_listing(text, &error)) {
@@ -161,8 +164,9 @@ double AcoStageStatistics::value(const std::string& name) const {
     return it == values.end() ? -1.0 : it->second;
 }
 
-std::unique_ptr<AcoDevice> AcoDevice::open(std::string* error) {
+std::unique_ptr<AcoDevice> AcoDevice::open(std::string* error, bool disassembly) {
     std::unique_ptr<AcoDevice> d(new AcoDevice);
+    d->disassembly_ = disassembly;
     d->h_ = std::make_unique<Handles>();
     Handles& h = *d->h_;
     VkApplicationInfo app{};
@@ -204,6 +208,7 @@ std::unique_ptr<AcoDevice> AcoDevice::open(std::string* error) {
     want12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
     want12.pNext = &exec;
     want12.shaderFloat16 = v12.shaderFloat16;
+    d->float16_ = v12.shaderFloat16 == VK_TRUE;
     VkPhysicalDeviceVulkan11Features want11{};
     want11.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES;
     want11.pNext = &want12;
@@ -258,6 +263,14 @@ AcoDevice::~AcoDevice() {
 AcoPipelineStatistics AcoDevice::compile(const AcoPipelineSource& source) {
     AcoPipelineStatistics out;
     out.name = source.name;
+    // Creating it anyway would be invalid usage, and ACO for gfx6 aborts on 16-bit arithmetic.
+    if (!float16_ && (declares_capability(source.vertex, kCapabilityFloat16) ||
+                      declares_capability(source.fragment, kCapabilityFloat16))) {
+        out.unsupported = true;
+        out.error =
+            name_ + " has no shaderFloat16: the shader's 16-bit arithmetic cannot run there";
+        return out;
+    }
     VariantPipelineDesc desc;
     desc.vertex_spirv = &source.vertex;
     desc.fragment_spirv = &source.fragment;
@@ -269,7 +282,7 @@ AcoPipelineStatistics AcoDevice::compile(const AcoPipelineSource& source) {
     desc.render_pass = pass;
     desc.specialization = source.specialization;
     desc.flags = VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR |
-                 VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR;
+                 (disassembly_ ? VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR : 0);
     auto pipeline = source.geometry
                         ? VariantPipeline::create(h_->device, desc, *source.geometry, &out.error)
                         : VariantPipeline::create(h_->device, desc, &out.error);
@@ -288,7 +301,7 @@ AcoPipelineStatistics AcoDevice::compile(const AcoPipelineSource& source) {
         return out;
     }
     for (uint32_t i = 0; i < count; ++i)
-        out.stages.push_back(read_executable(*h_, pipeline->pipeline(), i, props[i]));
+        out.stages.push_back(read_executable(*h_, pipeline->pipeline(), i, props[i], disassembly_));
     return out;
 }
 

@@ -38,8 +38,10 @@ fs::path file_of(const fs::path& dir, size_t i, const char* suffix) {
     return dir / (std::to_string(i) + suffix);
 }
 
-std::string write_job(const fs::path& dir, const std::vector<AcoPipelineSource>& sources) {
+std::string write_job(const fs::path& dir, const std::vector<AcoPipelineSource>& sources,
+                      bool disassembly) {
     json job = json::object();
+    job["disassembly"] = disassembly;
     job["pipelines"] = json::array();
     for (size_t i = 0; i < sources.size(); ++i) {
         const AcoPipelineSource& s = sources[i];
@@ -142,6 +144,7 @@ void read_result(const fs::path& dir, AcoTargetRun& run) {
             AcoPipelineStatistics s;
             s.name = p.at("name").get<std::string>();
             s.error = p.at("error").get<std::string>();
+            s.unsupported = p.at("unsupported").get<bool>();
             for (const json& st : p.at("stages"))
                 s.stages.push_back(stage_from_json(st));
             run.pipelines.push_back(std::move(s));
@@ -161,7 +164,7 @@ AcoTargetRun run_family(const GpuTarget& target, const fs::path& icd,
         run.error = dir.error();
         return run;
     }
-    run.error = write_job(dir.path(), sources);
+    run.error = write_job(dir.path(), sources, target.disassembly);
     if (!run.error.empty()) return run;
     const std::vector<std::string> argv = {worker.string(), "gpu-worker", dir.path().string()};
     // Mesa's shader cache off: every statistic comes from a compile, and nothing is written
@@ -269,7 +272,7 @@ int aco_worker(const fs::path& dir) {
         return 2;
     }
     std::string error;
-    const auto device = AcoDevice::open(&error);
+    const auto device = AcoDevice::open(&error, job.value("disassembly", true));
     if (!device) {
         std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
         return 3;
@@ -290,7 +293,10 @@ int aco_worker(const fs::path& dir) {
         json stages = json::array();
         for (const auto& st : s.stages)
             stages.push_back(stage_json(st));
-        result["pipelines"].push_back({{"name", s.name}, {"error", s.error}, {"stages", stages}});
+        result["pipelines"].push_back({{"name", s.name},
+                                       {"error", s.error},
+                                       {"unsupported", s.unsupported},
+                                       {"stages", stages}});
     }
     const std::string out = result.dump(1);
     const fs::path tmp = dir / "result.json.tmp";

@@ -55,7 +55,8 @@ bool same_nesting(const std::vector<AsmLoop>& loops, const std::vector<EmittedLo
 void estimate_per_pixel(const AcoStageStatistics& s, const std::vector<EmittedLoop>& ir,
                         StageGpuCost& c) {
     if (!s.has_disassembly) {
-        c.per_pixel_note = "the driver gave no disassembly";
+        c.per_pixel_note = "no disassembly of this family (Mesa disassembles gfx6 with CLRX, "
+                           "which Debian does not package): the static count stands in";
         return;
     }
     if (s.loops.empty()) {
@@ -118,6 +119,7 @@ PipelineGpuCost gpu_cost(const AcoPipelineStatistics& stats,
     PipelineGpuCost out;
     out.name = stats.name;
     out.error = stats.error;
+    out.unsupported = stats.unsupported;
     for (const auto& s : stats.stages) {
         StageGpuCost c = stage_cost(s);
         if (c.stage == "fragment")

@@ -9,8 +9,8 @@ const std::vector<GpuTarget>& gpu_targets() {
     // RADV_FORCE_FAMILY names Mesa 22.3 knows (radv_null_winsys / ac_gpu_info): one chip per
     // architecture, the one its users most often ship on.
     static const std::vector<GpuTarget> targets = {
-        {"lavapipe", "", "Mesa's CPU rasterizer (LLVM x86-64 code)", ""},
-        {"gcn1", "tahiti", "GCN1 (gfx6, Radeon HD 7970)", ""},
+        {"lavapipe", "", "Mesa's CPU rasterizer (LLVM x86-64 code)", "", true},
+        {"gcn1", "tahiti", "GCN1 (gfx6, Radeon HD 7970)", "", false},
         {"gcn4", "polaris10", "GCN4 (gfx8, Radeon RX 480)", ""},
         {"gfx9", "vega10", "GCN5 (gfx9, Radeon RX Vega 64)", ""},
         {"rdna1", "navi10", "RDNA1 (gfx10.1, Radeon RX 5700 XT)", ""},

@@ -52,6 +52,9 @@ struct AcoPipelineStatistics {
     std::string name;
     std::vector<AcoStageStatistics> stages;
     std::string error; // the driver refused it: the Vulkan call and its result
+    // Not compiled: the shader needs a feature the family lacks (16-bit arithmetic on gcn1);
+    // `error` says which. Not a driver fault: the shader cannot run on that GPU.
+    bool unsupported = false;
     bool ok() const { return error.empty(); }
 };
 
@@ -60,7 +63,9 @@ class AcoDevice {
     // The null device of the family RADV_FORCE_FAMILY names, with the pipeline executable
     // feature and the 16-bit shader features it has; nullptr and *error when the loader finds
     // no RADV device or it lacks VK_KHR_pipeline_executable_properties.
-    static std::unique_ptr<AcoDevice> open(std::string* error);
+    // `disassembly`: capture ACO's disassembly (for the loops); Mesa disassembles gfx6 through
+    // CLRX, which Debian does not package, so gcn1 goes without.
+    static std::unique_ptr<AcoDevice> open(std::string* error, bool disassembly = true);
     ~AcoDevice();
     AcoDevice(const AcoDevice&) = delete;
     AcoDevice& operator=(const AcoDevice&) = delete;
@@ -78,6 +83,7 @@ class AcoDevice {
     AcoDevice() = default;
     std::unique_ptr<Handles> h_;
     std::string name_, info_;
+    bool float16_ = false, disassembly_ = true;
 };
 
 } // namespace watergen

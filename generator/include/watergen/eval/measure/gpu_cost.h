@@ -32,6 +32,7 @@ struct PipelineGpuCost {
     std::string name;
     std::vector<StageGpuCost> stages; // vertex, fragment
     std::string error;                // the driver refused the pipeline
+    bool unsupported = false;         // not compiled: the family lacks a feature (aco_device.h)
     bool ok() const { return error.empty(); }
     const StageGpuCost* stage(const std::string& name) const;
     // The fragment stage's per-pixel estimate, else its static count: what the Pareto uses.

@@ -15,6 +15,9 @@ struct GpuTarget {
     std::string family;   // RADV_FORCE_FAMILY: "navi21"; "" for lavapipe
     std::string isa;      // what the name stands for: "RDNA2 (gfx10.3)"
     std::string alias_of; // "rdna2" for steamdeck: the same compiler output; "" otherwise
+    // Mesa disassembles gfx6 through CLRX, which Debian does not package: no listing, so no
+    // per-pixel estimate of loops (the static count stands in).
+    bool disassembly = true;
     bool is_lavapipe() const { return family.empty(); }
 };
 
