@@ -1,6 +1,8 @@
 // watergen build [MATERIAL] [--scene S ...] --out DIR: every variant the scenes need, folded,
 // validated, optimised, cross-compiled and reflected in parallel, cached, written atomically.
+#include <chrono>
 #include <cstdio>
+#include <memory>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -8,6 +10,7 @@
 #include "commands.h"
 #include "watergen/eval/measure/driver_check.h"
 #include "watergen/pipeline/build_files.h"
+#include "watergen/pipeline/build_progress.h"
 
 namespace watergen::cli {
 
@@ -36,7 +39,7 @@ void print_summary(const BuildSummary& s, BuildMode mode, const std::string& mod
     std::printf("%s\n",
                 fmt::format("build: {} variants{} ({} built, {} cached, {} shared between "
                             "scenes, {} same shader as another variant, {} failed{}){} "
-                            "in {:.2f} s on {} thread{}{}",
+                            "in {:.2f} s on {} thread{}{}; peak memory {:.0f} MB",
                             s.variants,
                             mode == BuildMode::Permutations
                                 ? std::string()
@@ -44,7 +47,8 @@ void print_summary(const BuildSummary& s, BuildMode mode, const std::string& mod
                             s.built, s.cached, s.shared, s.same, s.failed, rejected, companions,
                             s.seconds, threads, threads == 1 ? "" : "s",
                             s.ok() ? fmt::format(" -> {} ({} files)", out, s.files)
-                                   : std::string("; nothing written, ") + out + " is unchanged")
+                                   : std::string("; nothing written, ") + out + " is unchanged",
+                            double(peak_resident_bytes()) / 1e6)
                     .c_str());
 }
 
@@ -186,10 +190,23 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                                                                 : std::filesystem::path(o->cache));
         request.depfile = o->depfile;
         const bool tty = !o->quiet && ::isatty(STDERR_FILENO);
-        if (tty)
-            request.options.progress = [](const BuildProgress& p) {
-                std::fprintf(stderr, "\r\033[K[%zu/%zu] %zu cached, %zu failed  %s", p.done,
-                             p.total, p.cached, p.failed, p.key.substr(0, 60).c_str());
+        // On a terminal a line redrawn after every job; in a log (CI) a line every 30 s, so
+        // that a long build says where it is and a short one stays quiet.
+        const auto start = std::chrono::steady_clock::now();
+        auto last_line = std::make_shared<std::chrono::steady_clock::time_point>(start);
+        const std::string jobs = request.mode == BuildMode::Permutations ? "variants" : "shaders";
+        if (!o->quiet)
+            request.options.progress = [tty, start, last_line, jobs](const BuildProgress& p) {
+                const auto now = std::chrono::steady_clock::now();
+                const double seconds = std::chrono::duration<double>(now - start).count();
+                if (tty) {
+                    std::fprintf(stderr, "\r\033[K%s  %s", progress_text(p, seconds, jobs).c_str(),
+                                 p.key.substr(0, 50).c_str());
+                } else {
+                    if (now - *last_line < std::chrono::seconds(30)) return;
+                    *last_line = now;
+                    std::fprintf(stderr, "build: %s\n", progress_text(p, seconds, jobs).c_str());
+                }
                 std::fflush(stderr);
             };
         const BuildFilesRun run = build_from_files(request);
