@@ -1,5 +1,6 @@
 # watergen_add_shaders(<target> MATERIAL <file> [SCENES <files...>] [OUTPUT_DIR <dir>]
-#                      [MODE permutations|specialized|branching] [FREEZE] [JOBS <n>] [CACHE <dir>])
+#                      [MODE permutations|specialized|branching] [FREEZE] [JOBS <n>] [CACHE <dir>]
+#                      [SHARDS <n> [JOB_POOL <pool>]])
 #
 # Runs `watergen build` as a build step of <target>: the build directory (manifest.json and one
 # directory per shader) goes to OUTPUT_DIR (default: <current binary dir>/watergen/<target>).
@@ -8,8 +9,17 @@
 # changed; otherwise the build has no work to do. An invalid material or shader fails the build
 # with watergen's diagnostics (file:line:column). Sets the target property WATERGEN_SHADER_DIR
 # to the output directory. JOBS and CACHE are watergen build's --jobs and --cache.
+#
+# SHARDS <n> (permutations mode) splits the build into n steps, `watergen build --shard i/n`
+# each into <OUTPUT_DIR>.shards/<i> with a depfile of its own, and one `watergen merge` of them
+# into OUTPUT_DIR, which is then byte for byte what one build writes. The shard steps are
+# independent custom commands: the generator runs them in parallel (in the Ninja job pool
+# JOB_POOL when given, e.g. set_property(GLOBAL PROPERTY JOB_POOLS watergen=4)), and a
+# remote-execution launcher set as RULE_LAUNCH_CUSTOM runs them where it runs compiles.
+# JOB_POOL puts the build step (or each shard step) in that Ninja job pool.
 function(watergen_add_shaders target)
-  cmake_parse_arguments(WG "FREEZE" "MATERIAL;OUTPUT_DIR;MODE;JOBS;CACHE" "SCENES" ${ARGN})
+  cmake_parse_arguments(WG "FREEZE" "MATERIAL;OUTPUT_DIR;MODE;JOBS;CACHE;SHARDS;JOB_POOL"
+    "SCENES" ${ARGN})
   if(NOT TARGET ${target})
     message(FATAL_ERROR "watergen_add_shaders: '${target}' is not a target")
   endif()
@@ -44,14 +54,53 @@ function(watergen_add_shaders target)
     list(APPEND args --cache "${WG_CACHE}")
   endif()
   set(manifest "${out}/manifest.json")
-  set(depfile "${CMAKE_CURRENT_BINARY_DIR}/watergen_${target}.d")
-  add_custom_command(
-    OUTPUT "${manifest}"
-    COMMAND watergen::watergen ${args} --out "${out}" --depfile "${depfile}"
-    DEPENDS "${material}" ${scenes} watergen::watergen
-    DEPFILE "${depfile}"
-    COMMENT "watergen: shaders of ${WG_MATERIAL} for ${target}"
-    VERBATIM)
+  set(pool "")
+  if(WG_JOB_POOL)
+    set(pool JOB_POOL ${WG_JOB_POOL})
+  endif()
+  if(WG_SHARDS)
+    if(NOT WG_SHARDS MATCHES "^[1-9][0-9]*$")
+      message(FATAL_ERROR "watergen_add_shaders(${target}): SHARDS ${WG_SHARDS}: expected a "
+        "positive whole number")
+    endif()
+    if(WG_MODE AND NOT WG_MODE STREQUAL "permutations")
+      message(FATAL_ERROR "watergen_add_shaders(${target}): SHARDS shards a permutations build; "
+        "expected MODE permutations, got MODE ${WG_MODE}")
+    endif()
+    set(shard_dirs "")
+    set(shard_files "")
+    foreach(i RANGE 1 ${WG_SHARDS})
+      set(shard_dir "${out}.shards/${i}")
+      set(depfile "${CMAKE_CURRENT_BINARY_DIR}/watergen_${target}_shard_${i}.d")
+      add_custom_command(
+        OUTPUT "${shard_dir}/manifest.json"
+        COMMAND watergen::watergen ${args} --shard ${i}/${WG_SHARDS} --out "${shard_dir}"
+          --depfile "${depfile}" --quiet
+        DEPENDS "${material}" ${scenes} watergen::watergen
+        DEPFILE "${depfile}"
+        ${pool}
+        COMMENT "watergen: shard ${i}/${WG_SHARDS} of ${WG_MATERIAL} for ${target}"
+        VERBATIM)
+      list(APPEND shard_dirs "${shard_dir}")
+      list(APPEND shard_files "${shard_dir}/manifest.json") # what the depfile names
+    endforeach()
+    add_custom_command(
+      OUTPUT "${manifest}"
+      COMMAND watergen::watergen merge "${out}" ${shard_dirs}
+      DEPENDS ${shard_files} watergen::watergen
+      COMMENT "watergen: merging ${WG_SHARDS} shards of ${WG_MATERIAL} for ${target}"
+      VERBATIM)
+  else()
+    set(depfile "${CMAKE_CURRENT_BINARY_DIR}/watergen_${target}.d")
+    add_custom_command(
+      OUTPUT "${manifest}"
+      COMMAND watergen::watergen ${args} --out "${out}" --depfile "${depfile}"
+      DEPENDS "${material}" ${scenes} watergen::watergen
+      DEPFILE "${depfile}"
+      ${pool}
+      COMMENT "watergen: shaders of ${WG_MATERIAL} for ${target}"
+      VERBATIM)
+  endif()
   add_custom_target(${target}_watergen_shaders DEPENDS "${manifest}")
   add_dependencies(${target} ${target}_watergen_shaders)
   set_property(TARGET ${target} PROPERTY WATERGEN_SHADER_DIR "${out}")
