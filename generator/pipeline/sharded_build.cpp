@@ -8,6 +8,7 @@
 #include <xxhash.h>
 
 #include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build_record.h"
 #include "watergen/pipeline/manifest_files.h"
 #include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
@@ -187,7 +188,8 @@ std::string shard_json(const Shard& shard, const std::string& inputs_hash,
     return j.dump(1) + "\n";
 }
 
-MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs) {
+MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
+                         const BuildCache& cache) {
     MergeResult m;
     if (dirs.empty()) {
         m.error = "no shard directories; expected the outputs of watergen build --shard 1/N .. N/N";
@@ -256,6 +258,12 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs)
     m.shards = shards.size();
     m.variants = variants.size();
     m.files = files.size();
+    // What one unsharded build of these inputs records (a permutations build: a shader per
+    // variant).
+    if (cache.enabled())
+        store_record(
+            record_file(cache, out),
+            make_record(record_key(shards.front().meta.inputs, ""), m.variants, m.variants, files));
     return m;
 }
 

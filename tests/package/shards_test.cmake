@@ -68,6 +68,14 @@ foreach(f IN LISTS single)
 endforeach()
 message(STATUS "the merged build equals one build: ${count} files, byte for byte")
 
+# The merge stored one build's record: one build of the same inputs into it does nothing.
+run(build-into-merged out ${WATERGEN} build ${src}/water/default.json
+    --scene ${src}/water/harbour_night.json --scene ${src}/water/mountain_lake.json
+    --scene ${src}/water/open_ocean.json --out ${bld}/shaders)
+if(NOT out MATCHES "56 variants up to date")
+  message(FATAL_ERROR "[build-into-merged] expected the merged output to be up to date")
+endif()
+
 run(rebuild out ${CMAKE_COMMAND} --build ${bld})
 if(NOT out MATCHES "no work to do")
   message(FATAL_ERROR "[rebuild] expected no work to do")

@@ -68,7 +68,8 @@ TEST_CASE("four_shards_merged_are_byte_identical_to_one_build", "[shard]") {
     REQUIRE(run_watergen(build_args(tmp.path, material, "one", "")).exit_code == 0);
     const auto one = read_tree(tmp.path / "one");
     CHECK(one == reference_build());
-    std::vector<std::string> merge = {"merge", (tmp.path / "merged").string()};
+    std::vector<std::string> merge = {"merge", "--cache", (tmp.path / "cache").string(),
+                                      (tmp.path / "merged").string()};
     size_t shard_variants = 0, shard_dirs = 0;
     for (int i = 1; i <= 4; ++i) {
         const std::string name = "shard" + std::to_string(i);
@@ -98,6 +99,13 @@ TEST_CASE("four_shards_merged_are_byte_identical_to_one_build", "[shard]") {
         CHECK(merged.at(path) == bytes);
     }
     CHECK(merged == one);
+
+    // The merge stored one build's record: the same build into its output is a no-op.
+    const WatergenRun again = run_watergen(build_args(tmp.path, material, "merged", ""));
+    INFO(again.out << again.err);
+    CHECK(again.exit_code == 0);
+    CHECK(again.out.find("build: 56 variants up to date") != std::string::npos);
+    CHECK(read_tree(tmp.path / "merged") == one);
 
     // Refused, nothing written: a shard missing, a shard twice, a shard of another material,
     // a file changed after the shard was built, a directory that is no shard.

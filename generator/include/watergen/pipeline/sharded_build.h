@@ -45,8 +45,11 @@ struct MergeResult {
 // Merges the outputs of shards 1..N of one build into `out` (replaced as a whole, as a build
 // replaces it). Refused, with nothing written: a directory without shard.json, shards of
 // different inputs or toolchains, a shard missing or given twice, a variant in two shards, a
-// file that does not match its recorded size and hash.
+// file that does not match its recorded size and hash. With an enabled `cache`, then stores
+// the build record one build of the same inputs into `out` stores (build_record.h), so that
+// the next `watergen build` of those inputs into `out` is a no-op.
 MergeResult merge_shards(const std::filesystem::path& out,
-                         const std::vector<std::filesystem::path>& shards);
+                         const std::vector<std::filesystem::path>& shards,
+                         const BuildCache& cache = {});
 
 } // namespace watergen
