@@ -56,3 +56,78 @@ TEST_CASE("a_build_killed_midway_leaves_the_previous_output_intact", "[build]") 
     for (const auto& e : fs::directory_iterator(tmp.path))
         CHECK(e.path().filename() == "out");
 }
+
+TEST_CASE("a_merge_killed_midway_leaves_the_previous_output_intact", "[build]") {
+    const TempDir tmp("kill-merge");
+    const fs::path out = tmp.path / "out";
+    auto scenes = example_scenes();
+    BuildRequest old_request{default_material(), {scenes.back()}, out, {}};
+    REQUIRE(build_material(old_request).ok());
+    const auto previous = read_tree(out);
+    const auto complete = reference_build();
+    std::vector<std::string> merge = {"merge", "--no-cache", out.string()};
+    for (int i = 1; i <= 4; ++i) {
+        const fs::path shard = tmp.path / ("shard" + std::to_string(i));
+        std::vector<std::string> args = {
+            "build",      "-q",
+            "--no-cache", source_dir() + "/examples/materials/default.json",
+            "--shard",    std::to_string(i) + "/4",
+            "--out",      shard.string()};
+        for (const auto& p : example_scene_paths())
+            args.insert(args.end(), {"--scene", p});
+        REQUIRE(run_watergen(args).exit_code == 0);
+        merge.push_back(shard.string());
+    }
+    int killed = 0;
+    for (int delay_ms : {1, 5, 10, 20, 30, 45, 60, 90}) {
+        const pid_t pid = start_watergen(merge);
+        REQUIRE(pid > 0);
+        std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+        ::kill(pid, SIGKILL);
+        int status = 0;
+        ::waitpid(pid, &status, 0);
+        killed += WIFSIGNALED(status);
+        const auto now = read_tree(out);
+        INFO("merge killed after " << delay_ms << " ms");
+        // The old output or the whole merge, never a mix, never nothing.
+        CHECK((now == previous || now == complete));
+        if (now == complete) REQUIRE(build_material(old_request).ok());
+    }
+    CHECK(killed > 0);
+    // A later merge succeeds and clears what the killed ones left beside the output.
+    REQUIRE(run_watergen(merge).exit_code == 0);
+    CHECK(read_tree(out) == complete);
+    for (const auto& e : fs::directory_iterator(tmp.path))
+        CHECK(
+            (e.path().filename() == "out" || e.path().filename().string().rfind("shard", 0) == 0));
+}
+
+TEST_CASE("a_shard_killed_midway_leaves_nothing_a_merge_accepts", "[build]") {
+    const TempDir tmp("kill-shard");
+    std::vector<std::string> args = {
+        "build",   "-q",  "--no-cache", source_dir() + "/examples/materials/default.json",
+        "--shard", "1/2", "--out",      (tmp.path / "shard1").string()};
+    for (const auto& p : example_scene_paths())
+        args.insert(args.end(), {"--scene", p});
+    std::vector<std::string> second = args;
+    second[5] = "2/2";
+    second[7] = (tmp.path / "shard2").string();
+    REQUIRE(run_watergen(second).exit_code == 0);
+    for (int delay_ms : {20, 100, 250}) {
+        const pid_t pid = start_watergen(args);
+        REQUIRE(pid > 0);
+        std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+        ::kill(pid, SIGKILL);
+        int status = 0;
+        ::waitpid(pid, &status, 0);
+        if (!WIFSIGNALED(status)) continue; // it finished first: nothing to check
+        INFO("shard killed after " << delay_ms << " ms");
+        CHECK_FALSE(fs::exists(tmp.path / "shard1")); // only its staging directory beside
+        const WatergenRun m =
+            run_watergen({"merge", "--no-cache", (tmp.path / "out").string(),
+                          (tmp.path / "shard1").string(), (tmp.path / "shard2").string()});
+        CHECK(m.exit_code == 2);
+        CHECK(m.err.find("nothing written") != std::string::npos);
+        CHECK_FALSE(fs::exists(tmp.path / "out"));
+    }
+}
