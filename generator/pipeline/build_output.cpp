@@ -152,9 +152,8 @@ std::optional<std::string> publish(const fs::path& out,
     return swap_into_place(staging, out);
 }
 
-// Counts a job's result in the summary and adds its files (under its variant directory).
-void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, BuildSummary& s,
-             std::map<std::string, std::string>& files) {
+// Counts a job's result in the summary.
+void count(const BuildJob& job, const JobResult& r, const BuildCache& cache, BuildSummary& s) {
     if (!r.cache_rejected.empty()) {
         ++s.cache_rejected;
         s.diagnostics.push_back(cache.rejected_warning(r.content_hash, r.cache_rejected));
@@ -172,9 +171,16 @@ void collect(const BuildJob& job, const JobResult& r, const BuildCache& cache, B
         return;
     }
     (r.shared ? s.shared : r.cached ? s.cached : s.built) += 1;
+}
+
+// Moves a job's files (under its variant directory) into the output, once everything that
+// reads them (frozen modules, the manifest) has: the bytes are not held twice.
+void move_files(const BuildJob& job, JobResult& r, std::map<std::string, std::string>& files) {
+    if (!r.ok() || !r.same_as.empty()) return;
     const std::string dir = job_directory(job);
-    for (const auto& [path, bytes] : r.files)
-        files[dir + "/" + path] = bytes;
+    for (auto& [path, bytes] : r.files)
+        files[dir + "/" + path] = std::move(bytes);
+    r.files.clear();
 }
 
 // Specialized mode with freeze: each variant's SPIR-V (both language paths) with the shader's
@@ -301,14 +307,13 @@ BuildSummary build_material_now(const BuildRequest& request) {
         for (const RecordedFile& f : last->files)
             written.push_back(f.path);
     if (accepted_output(request.out, s, written).empty()) return s;
-    const std::vector<JobResult> results =
-        run_build_jobs(request.material, plan->jobs, request.options);
+    std::vector<JobResult> results = run_build_jobs(request.material, plan->jobs, request.options);
     s.shaders = plan->jobs.size();
     for (const BuildJob& job : plan->jobs)
         s.variants += job.shader ? job.serves.size() : 1;
     std::map<std::string, std::string> files;
     for (size_t i = 0; i < results.size(); ++i)
-        collect(plan->jobs[i], results[i], request.options.cache, s, files);
+        count(plan->jobs[i], results[i], request.options.cache, s);
     if (request.freeze && request.mode == BuildMode::Specialized)
         add_frozen(plan->jobs, results, request.options, s, files);
     // The companion passes the built variants draw with, each once for the whole output.
@@ -329,6 +334,8 @@ BuildSummary build_material_now(const BuildRequest& request) {
                                 passes.passes)
                 : modes_manifest_json(request.material, request.mode, request.freeze,
                                       plan->manifest_scenes, plan->jobs, results, passes.passes);
+        for (size_t i = 0; i < results.size(); ++i)
+            move_files(plan->jobs[i], results[i], files);
         if (request.shard.sharded())
             files[kShardFile] = shard_json(request.shard, request.inputs_hash, plan->jobs, results,
                                            s.variants, files);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include <fmt/format.h>
@@ -207,7 +208,13 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
     for (size_t i = 0; i < jobs.size(); ++i)
         if (!results[i].ok() || !results[i].same_as.empty()) report(i);
 
-    std::map<size_t, FileMap> shared; // unfiltered files of each job built, for its copies
+    // The unfiltered files of each job another scene's job copies, kept for it; a job nothing
+    // copies keeps only its filtered files (a second, unfiltered copy of every job's output
+    // was most of a large build's memory).
+    std::set<size_t> copied;
+    for (const auto& [i, from] : plan.copies)
+        copied.insert(from);
+    std::map<size_t, FileMap> shared;
     std::mutex shared_lock;
     const std::vector<std::string> expected_files = variant_file_names();
     parallel_for(plan.to_build.size(), options.threads, [&](size_t k) {
@@ -220,7 +227,7 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
         r.milliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
-        if (all) {
+        if (all && copied.count(i)) {
             std::lock_guard<std::mutex> lock(shared_lock);
             shared[i] = std::move(*all);
         }
