@@ -90,12 +90,8 @@ Runner add_bench_accuracy_command(CLI::App& app, const Common& common) {
         const auto targets = resolve_targets(o->targets);
         if (!targets) return kUsage;
         AccuracyBenchRequest& request = o->request;
-        if (!o->targets.empty())
-            request.cost =
-                request.cost && std::any_of(targets->begin(), targets->end(),
-                                            [](const GpuTarget& t) { return t.is_lavapipe(); });
-        for (const GpuTarget& t : *targets)
-            if (!t.is_lavapipe()) request.gpu_targets.push_back(t);
+        request.cost = request.cost && has_lavapipe(*targets);
+        request.gpu_targets = amd_targets(*targets);
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;

@@ -78,12 +78,9 @@ Runner add_bench_modes_command(CLI::App& app, const Common& common) {
                        "modes_targets.csv")
         ->take_all();
     return [o, &common]() {
-        const auto targets = o->targets.empty()
-                                 ? std::optional<std::vector<GpuTarget>>(std::vector<GpuTarget>{})
-                                 : resolve_targets(o->targets);
+        const auto targets = resolve_targets(o->targets);
         if (!targets) return kUsage;
-        for (const GpuTarget& t : *targets)
-            if (!t.is_lavapipe()) o->bench.gpu_targets.push_back(t);
+        o->bench.gpu_targets = amd_targets(*targets);
         Material m;
         std::vector<SceneFacts> none;
         if (!load_material_and_scenes(o->material, {}, m, none, common)) return kUsage;

@@ -83,11 +83,8 @@ Runner add_bench_prune_command(CLI::App& app, const Common& common) {
         PruneBenchOptions& b = o->bench;
         const auto targets = resolve_targets(o->targets);
         if (!targets) return kUsage;
-        if (!o->targets.empty())
-            b.cost = b.cost && std::any_of(targets->begin(), targets->end(),
-                                           [](const GpuTarget& t) { return t.is_lavapipe(); });
-        for (const GpuTarget& t : *targets)
-            if (!t.is_lavapipe()) b.gpu_targets.push_back(t);
+        b.cost = b.cost && has_lavapipe(*targets);
+        b.gpu_targets = amd_targets(*targets);
         Material m;
         std::vector<SceneFacts> scenes;
         if (!load_material_and_scenes(b.material_path, o->scenes, m, scenes, common)) return kUsage;

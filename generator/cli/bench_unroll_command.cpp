@@ -76,13 +76,9 @@ Runner add_bench_unroll_command(CLI::App& app, const Common& common) {
                        gpu_target_names() + ")")
         ->take_all();
     return [o, &common]() {
-        std::vector<GpuTarget> gpus;
-        if (!o->targets.empty()) {
-            const auto targets = resolve_targets(o->targets);
-            if (!targets) return kUsage;
-            for (const GpuTarget& t : *targets)
-                if (!t.is_lavapipe()) gpus.push_back(t);
-        }
+        const auto targets = resolve_targets(o->targets);
+        if (!targets) return kUsage;
+        const std::vector<GpuTarget> gpus = amd_targets(*targets);
         std::string cache;
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;

@@ -55,14 +55,8 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
         const std::filesystem::path scratch = o->scratch.empty()
                                                   ? std::filesystem::temp_directory_path()
                                                   : std::filesystem::path(o->scratch);
-        std::vector<GpuTarget> gpus;
-        bool lavapipe = false;
-        for (const auto& t : *targets) {
-            if (t.is_lavapipe())
-                lavapipe = true;
-            else
-                gpus.push_back(t);
-        }
+        const std::vector<GpuTarget> gpus = amd_targets(*targets);
+        const bool lavapipe = has_lavapipe(*targets);
         if (!gpus.empty()) {
             const bool strict = o->job.strict_half && o->job.variant.choice("precision") == "half";
             const VariantBuild b =

@@ -180,24 +180,19 @@ std::string add_gpu_costs(const std::vector<GpuTarget>& targets, AccuracyBench& 
         keys.push_back(r.axis + "=" + r.choice);
         rows.push_back(&r);
     }
-    std::vector<const VariantBuild*> pointers;
-    for (const VariantBuild& b : builds)
-        pointers.push_back(&b);
-    const auto runs =
-        variant_gpu_costs(targets, pointers, keys, std::filesystem::temp_directory_path());
-    for (const TargetCosts& t : runs) {
-        if (!t.run.ok()) return t.run.error;
+    const GlslFragmentCosts costs = glsl_fragment_costs(targets, builds, keys);
+    if (!costs.ok()) return costs.error;
+    for (size_t t = 0; t < targets.size(); ++t) {
         for (size_t i = 0; i < rows.size(); ++i) {
-            const PipelineGpuCost& glsl = t.costs[2 * i];
-            if (glsl.unsupported) { // the half row on a family without 16-bit arithmetic
-                rows[i]->note += (rows[i]->note.empty() ? "" : "; ") + t.run.target.name +
-                                 ": no 16-bit arithmetic";
+            if (costs.costs[t][i]) {
+                rows[i]->target_costs[targets[t].name] = *costs.costs[t][i];
                 continue;
             }
-            if (!glsl.ok()) return t.run.target.name + ": " + glsl.name + ": " + glsl.error;
-            rows[i]->target_costs[t.run.target.name] = glsl.fragment_cost();
+            // The half row on a family without 16-bit arithmetic.
+            rows[i]->note +=
+                (rows[i]->note.empty() ? "" : "; ") + targets[t].name + ": no 16-bit arithmetic";
         }
-        bench.targets.push_back(t.run.target.name);
+        bench.targets.push_back(targets[t].name);
     }
     return "";
 }

@@ -231,25 +231,21 @@ std::string add_gpu_costs(const PruneBenchOptions& o, const Material& m,
             names.push_back(row.variant.key() + " unpruned");
         }
         if (builds.empty()) continue;
-        std::vector<const VariantBuild*> pointers;
-        for (const VariantBuild& b : builds)
-            pointers.push_back(&b);
-        const auto runs = variant_gpu_costs(o.gpu_targets, pointers, names,
-                                            std::filesystem::temp_directory_path());
-        for (const TargetCosts& t : runs) {
-            if (!t.run.ok()) return scene.name + ": " + t.run.error;
+        const GlslFragmentCosts costs = glsl_fragment_costs(o.gpu_targets, builds, names);
+        if (!costs.ok()) return scene.name + ": " + costs.error;
+        for (size_t t = 0; t < o.gpu_targets.size(); ++t) {
+            const std::string& target = o.gpu_targets[t].name;
             std::vector<double> ratios;
             for (size_t r = 0; r < scene.rows.size(); ++r) {
-                const PipelineGpuCost& pruned = t.costs[4 * r];
-                const PipelineGpuCost& unpruned = t.costs[4 * r + 2];
-                if (!pruned.ok() || !unpruned.ok())
-                    return scene.name + ": " + t.run.target.name + ": " + pruned.error +
-                           unpruned.error;
-                scene.rows[r].target_costs[t.run.target.name] = {unpruned.fragment_cost(),
-                                                                 pruned.fragment_cost()};
-                ratios.push_back(ratio(pruned.fragment_cost(), unpruned.fragment_cost()));
+                const auto& pruned = costs.costs[t][2 * r];
+                const auto& unpruned = costs.costs[t][2 * r + 1];
+                if (!pruned || !unpruned)
+                    return scene.name + ": " + target + ": " + names[2 * r] +
+                           ": the family lacks a feature it needs";
+                scene.rows[r].target_costs[target] = {*unpruned, *pruned};
+                ratios.push_back(ratio(*pruned, *unpruned));
             }
-            scene.target_cost[t.run.target.name] = median(ratios);
+            scene.target_cost[target] = median(ratios);
         }
     }
     return "";

@@ -69,7 +69,8 @@ std::string add_costs(const CompareSetup& s, CompareRun& run) {
 }
 
 // Each entry's fragment cost per pixel on every AMD target (the GLSL path as compared: the
-// same build as the render's); "" or the failure, *no_device when a null device is missing.
+// same build as the render's; none where the family lacks a feature the shader needs);
+// "" or the failure, *no_device when a null device is missing.
 std::string add_gpu_costs(const CompareSetup& s, const CompareRequest& request, CompareRun& run,
                           bool* no_device) {
     std::vector<VariantBuild> builds;
@@ -79,23 +80,13 @@ std::string add_gpu_costs(const CompareSetup& s, const CompareRequest& request, 
                                        : build_variant(e.variant, s.preset));
         keys.push_back(e.variant.key());
     }
-    std::vector<const VariantBuild*> pointers;
-    for (const VariantBuild& b : builds)
-        pointers.push_back(&b);
-    const auto runs =
-        variant_gpu_costs(s.gpu_targets, pointers, keys, std::filesystem::temp_directory_path());
-    for (const TargetCosts& t : runs) {
-        if (!t.run.ok()) {
-            *no_device = *no_device || t.run.no_device;
-            return t.run.error;
-        }
-        for (size_t i = 0; i < run.entries.size(); ++i) {
-            const PipelineGpuCost& glsl = t.costs[2 * i];
-            if (glsl.unsupported) continue; // no cost on this family: n/a, off its front
-            if (!glsl.ok()) return t.run.target.name + ": " + glsl.name + ": " + glsl.error;
-            run.entries[i].target_costs[t.run.target.name] = glsl.fragment_cost();
-        }
-    }
+    const GlslFragmentCosts costs = glsl_fragment_costs(s.gpu_targets, builds, keys);
+    *no_device = costs.no_device;
+    if (!costs.ok()) return costs.error;
+    for (size_t t = 0; t < costs.costs.size(); ++t)
+        for (size_t i = 0; i < run.entries.size(); ++i)
+            if (costs.costs[t][i])
+                run.entries[i].target_costs[s.gpu_targets[t].name] = *costs.costs[t][i];
     return "";
 }
 

@@ -181,13 +181,8 @@ CompareSetup plan_compare(const CompareSpec& spec) {
         refuse(s, target_error);
         return s;
     }
-    s.lavapipe_cost = spec.targets.empty();
-    for (const GpuTarget& t : *targets) {
-        if (t.is_lavapipe())
-            s.lavapipe_cost = true;
-        else
-            s.gpu_targets.push_back(t);
-    }
+    s.lavapipe_cost = spec.targets.empty() || has_lavapipe(*targets);
+    s.gpu_targets = amd_targets(*targets);
     if (!out_replaceable(s)) return s;
     std::vector<const Preset*> presets;
     const bool selected = !spec.material.empty() || !spec.scene.empty()

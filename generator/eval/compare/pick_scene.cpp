@@ -12,13 +12,13 @@ namespace watergen {
 namespace {
 
 // The target's fragment instructions per pixel (ACO, loops weighted) of each variant as the
-// build for the scene ships it, by key; nullopt and *error (and *no_device) when a run failed.
+// build for the scene ships it, by key; nullopt and *error (and *no_device) when a run failed
+// or the family cannot run a variant.
 std::optional<std::map<std::string, double>> aco_costs(const GpuTarget& target, const Material& m,
                                                        const ScenePlan& plan,
                                                        const std::vector<Variant>& variants,
                                                        std::string* error, bool* no_device) {
     std::vector<VariantBuild> builds;
-    std::vector<const VariantBuild*> pointers;
     std::vector<std::string> keys;
     for (const Variant& v : variants) {
         builds.push_back(build_for_scene(m, plan, v));
@@ -28,23 +28,19 @@ std::optional<std::map<std::string, double>> aco_costs(const GpuTarget& target, 
         }
         keys.push_back(v.key());
     }
-    for (const VariantBuild& b : builds)
-        pointers.push_back(&b);
-    const auto runs =
-        variant_gpu_costs({target}, pointers, keys, std::filesystem::temp_directory_path());
-    if (!runs[0].run.ok()) {
-        *error = runs[0].run.error;
-        *no_device = runs[0].run.no_device;
+    const GlslFragmentCosts costs = glsl_fragment_costs({target}, builds, keys);
+    *no_device = costs.no_device;
+    if (!costs.ok()) {
+        *error = costs.error;
         return std::nullopt;
     }
     std::map<std::string, double> out;
     for (size_t i = 0; i < keys.size(); ++i) {
-        const PipelineGpuCost& glsl = runs[0].costs[2 * i];
-        if (!glsl.ok()) {
-            *error = target.name + ": " + glsl.name + ": " + glsl.error;
+        if (!costs.costs[0][i]) {
+            *error = target.name + ": " + keys[i] + ": the family lacks a feature it needs";
             return std::nullopt;
         }
-        out[keys[i]] = glsl.fragment_cost();
+        out[keys[i]] = *costs.costs[0][i];
     }
     return out;
 }

@@ -4,12 +4,13 @@
 #include <cstdlib>
 #include <fstream>
 #include <future>
-#include <iterator>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "watergen/eval/measure/scratch_directory.h"
+#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/safe_read.h"
 #include "watergen/toolchain/child_process.h"
 
 namespace watergen {
@@ -27,10 +28,11 @@ bool write_bytes(const fs::path& file, const void* data, size_t size) {
     return static_cast<bool>(out);
 }
 
+// The job's and the answer's files: written by this protocol, in a directory of its own.
+constexpr size_t kMaxJobFileBytes = size_t(256) << 20;
+
 std::optional<std::string> read_text(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return std::nullopt;
-    return std::string(std::istreambuf_iterator<char>(in), {});
+    return read_regular_file(file, kMaxJobFileBytes).bytes;
 }
 
 // Pipeline i's files: <i>.vert.spv, <i>.frag.spv and their .reflect.json.
@@ -298,12 +300,7 @@ int aco_worker(const fs::path& dir) {
                                        {"unsupported", s.unsupported},
                                        {"stages", stages}});
     }
-    const std::string out = result.dump(1);
-    const fs::path tmp = dir / "result.json.tmp";
-    if (!write_bytes(tmp, out.data(), out.size())) return 1;
-    std::error_code ec;
-    fs::rename(tmp, dir / "result.json", ec);
-    return ec ? 1 : 0;
+    return write_file_atomically(dir / "result.json", result.dump(1)) ? 1 : 0;
 }
 
 } // namespace

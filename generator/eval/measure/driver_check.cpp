@@ -74,10 +74,7 @@ DriverCheck check_build_on_drivers(const std::filesystem::path& build_dir,
             }
         }
     out.pipelines = sources.size();
-    std::vector<GpuTarget> gpus;
-    for (const auto& t : targets)
-        if (!t.is_lavapipe()) gpus.push_back(t);
-    const auto runs = compile_on_targets(gpus, sources, scratch,
+    const auto runs = compile_on_targets(amd_targets(targets), sources, scratch,
                                          std::max(1u, std::thread::hardware_concurrency()), worker);
     for (const auto& run : runs) {
         if (!run.ok()) {

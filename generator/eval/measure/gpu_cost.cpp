@@ -175,4 +175,32 @@ std::vector<TargetCosts> variant_gpu_costs(const std::vector<GpuTarget>& targets
     return out;
 }
 
+GlslFragmentCosts glsl_fragment_costs(const std::vector<GpuTarget>& targets,
+                                      const std::vector<VariantBuild>& builds,
+                                      const std::vector<std::string>& names, LoopUnroll unroll) {
+    std::vector<const VariantBuild*> pointers;
+    for (const VariantBuild& b : builds)
+        pointers.push_back(&b);
+    GlslFragmentCosts out;
+    for (const TargetCosts& t : variant_gpu_costs(targets, pointers, names,
+                                                  std::filesystem::temp_directory_path(), unroll)) {
+        if (!t.run.ok()) {
+            out.error = t.run.error;
+            out.no_device = t.run.no_device;
+            return out;
+        }
+        std::vector<std::optional<double>>& costs = out.costs.emplace_back();
+        for (size_t i = 0; i < builds.size(); ++i) {
+            const PipelineGpuCost& glsl = t.costs[2 * i];
+            if (!glsl.ok() && !glsl.unsupported) {
+                out.error = t.run.target.name + ": " + glsl.name + ": " + glsl.error;
+                return out;
+            }
+            costs.push_back(glsl.unsupported ? std::nullopt
+                                             : std::optional<double>(glsl.fragment_cost()));
+        }
+    }
+    return out;
+}
+
 } // namespace watergen

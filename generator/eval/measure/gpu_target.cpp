@@ -55,4 +55,16 @@ std::optional<std::vector<GpuTarget>> parse_gpu_targets(const std::vector<std::s
     return out;
 }
 
+std::vector<GpuTarget> amd_targets(const std::vector<GpuTarget>& targets) {
+    std::vector<GpuTarget> out;
+    for (const GpuTarget& t : targets)
+        if (!t.is_lavapipe()) out.push_back(t);
+    return out;
+}
+
+bool has_lavapipe(const std::vector<GpuTarget>& targets) {
+    return std::any_of(targets.begin(), targets.end(),
+                       [](const GpuTarget& t) { return t.is_lavapipe(); });
+}
+
 } // namespace watergen

@@ -71,4 +71,19 @@ std::vector<TargetCosts> variant_gpu_costs(const std::vector<GpuTarget>& targets
                                            LoopUnroll unroll = LoopUnroll::AsHinted,
                                            const std::filesystem::path& worker = own_executable());
 
+// What compare, pick and the benches trade: per target, each build's GLSL fragment cost
+// (PipelineGpuCost::fragment_cost), nullopt where the family lacks a feature the shader needs
+// (PipelineGpuCost::unsupported). `error` is the first failure: a worker that failed
+// (`no_device` when its null device is missing) or a pipeline the driver refused.
+struct GlslFragmentCosts {
+    std::vector<std::vector<std::optional<double>>> costs; // [target][build]
+    std::string error;
+    bool no_device = false;
+    bool ok() const { return error.empty(); }
+};
+GlslFragmentCosts glsl_fragment_costs(const std::vector<GpuTarget>& targets,
+                                      const std::vector<VariantBuild>& builds,
+                                      const std::vector<std::string>& names,
+                                      LoopUnroll unroll = LoopUnroll::AsHinted);
+
 } // namespace watergen

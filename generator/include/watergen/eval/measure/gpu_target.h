@@ -33,4 +33,8 @@ std::string gpu_target_names();
 std::optional<std::vector<GpuTarget>> parse_gpu_targets(const std::vector<std::string>& words,
                                                         std::string* error);
 
+// The AMD families among `targets` (lavapipe left out), and whether lavapipe is among them.
+std::vector<GpuTarget> amd_targets(const std::vector<GpuTarget>& targets);
+bool has_lavapipe(const std::vector<GpuTarget>& targets);
+
 } // namespace watergen
