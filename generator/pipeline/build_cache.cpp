@@ -140,7 +140,11 @@ std::string content_hash(const std::vector<std::string>& parts) {
 
 std::string file_digest(std::string_view bytes) {
     const XXH128_hash_t h = XXH3_128bits(bytes.data(), bytes.size());
-    return hex16(h.high64) + hex16(h.low64);
+    return digest_text(h.high64, h.low64);
+}
+
+std::string digest_text(uint64_t high, uint64_t low) {
+    return hex16(high) + hex16(low);
 }
 
 std::string cache_record(const std::string& path, const std::string& bytes) {

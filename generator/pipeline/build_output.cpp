@@ -1,11 +1,9 @@
 #include "watergen/pipeline/build_output.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
-#include <csignal>
-#include <cstdio>
-#include <fcntl.h>
+#include <memory>
+#include <mutex>
 
 #include "watergen/ir/ir_fold.h"
 #include "watergen/pipeline/build_record.h"
@@ -13,6 +11,7 @@
 #include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
 #include "watergen/pipeline/safe_read.h"
+#include "watergen/pipeline/staged_tree.h"
 
 namespace watergen {
 
@@ -20,15 +19,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The scene's jobs: one per variant, or one per shader of the mode.
+// The scene's jobs of the shard: one per variant, or one per shader of the mode.
 void add_jobs(BuildPlan& plan, const std::string& scene, const std::vector<Variant>& variants,
-              const FoldFacts* facts, const std::vector<Target>& targets, BuildMode mode) {
+              const FoldFacts* facts, const std::vector<Target>& targets, BuildMode mode,
+              const Shard& shard) {
+    auto kept = [&](const std::string& key) { return !shard.sharded() || in_shard(shard, key); };
     if (mode == BuildMode::Permutations) {
         for (const Variant& v : variants)
-            plan.jobs.push_back({scene, v, facts, targets});
+            if (kept(v.key())) plan.jobs.push_back({scene, v, facts, targets});
         return;
     }
     for (const ShaderChoices& s : shaders_for(variants, mode)) {
+        if (!kept(s.key())) continue;
         BuildJob job{scene, s.first_variant(), facts, targets, s, {}};
         for (const Variant& v : variants)
             if (s.covers(v)) job.serves.push_back(v);
@@ -46,7 +48,7 @@ VariantBuild build_for_scene(const Material& material, const ScenePlan& plan, co
 }
 
 std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes,
-                                    Diagnostics& ds, BuildMode mode) {
+                                    Diagnostics& ds, BuildMode mode, const Shard& shard) {
     BuildPlan plan;
     std::vector<SceneFacts> sorted = scenes;
     std::stable_sort(sorted.begin(), sorted.end(),
@@ -70,66 +72,32 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
     }
     if (plan.scenes.empty()) {
         // Sorted by key, each key made once (the full space has 721,920: the count
-        // the_full_space_has_721920_variants pins).
+        // the_full_space_has_721920_variants pins). A permutations shard keeps its own only:
+        // the whole space's jobs would be most of a shard's memory.
+        const bool only_shard = shard.sharded() && mode == BuildMode::Permutations;
+        size_t count = 0;
         std::vector<std::pair<std::string, Variant>> keyed;
-        enumerate(material.space, [&](const Variant& v) { keyed.emplace_back(v.key(), v); });
+        enumerate(material.space, [&](const Variant& v) {
+            ++count;
+            std::string key = v.key();
+            if (!only_shard || in_shard(shard, key)) keyed.emplace_back(std::move(key), v);
+        });
         std::sort(keyed.begin(), keyed.end(),
                   [](const auto& a, const auto& b) { return a.first < b.first; });
+        std::vector<Variant> unpruned;
         for (auto& [key, v] : keyed)
-            plan.unpruned.push_back(std::move(v));
-        add_jobs(plan, kUnprunedScene, plan.unpruned, nullptr, material.targets, mode);
-        plan.manifest_scenes.push_back({kUnprunedScene, nullptr, plan.unpruned.size()});
+            unpruned.push_back(std::move(v));
+        add_jobs(plan, kUnprunedScene, unpruned, nullptr, material.targets, mode, shard);
+        plan.manifest_scenes.push_back({kUnprunedScene, nullptr, count});
     }
     for (const ScenePlan& s : plan.scenes) {
-        add_jobs(plan, s.scene.name, s.variants, &s.facts, s.targets, mode);
+        add_jobs(plan, s.scene.name, s.variants, &s.facts, s.targets, mode, shard);
         plan.manifest_scenes.push_back({s.scene.name, &s, s.variants.size()});
     }
     return plan;
 }
 
 namespace {
-
-// Puts `staging` in the place of `dir` in one step: renameat2(RENAME_EXCHANGE) swaps the two
-// names atomically, so whenever the process dies, `dir` holds either the old output or the
-// new one, never nothing. Without an old output, a rename that replaces nothing; if a
-// concurrent build creates `dir` in between, exchange with that. On file systems that cannot
-// exchange, the two-rename commit of output_writer.h.
-std::optional<std::string> swap_into_place(const fs::path& staging, const fs::path& dir) {
-    for (int attempt = 0; attempt < 3; ++attempt) {
-        if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
-            remove_replaced_tree(staging); // the old output, now under the staging name
-            return std::nullopt;
-        }
-        if (errno != ENOENT) break;
-        if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_NOREPLACE) == 0)
-            return std::nullopt;
-        if (errno != EEXIST) break;
-    }
-    return commit_directory(staging, dir);
-}
-
-// A killed build leaves its staging directory ("<out>.tmp-<pid>", or "<out>.old.tmp-<pid>"
-// from the fallback commit) beside the output; remove those whose process is gone.
-void remove_stale_staging(const fs::path& out) {
-    std::error_code ec;
-    const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
-    const std::string name = out.filename().string();
-    std::vector<fs::path> stale;
-    for (const auto& e : fs::directory_iterator(parent, ec)) {
-        const std::string entry = e.path().filename().string();
-        for (const std::string& prefix : {name + ".tmp-", name + ".old.tmp-"}) {
-            if (entry.rfind(prefix, 0) != 0) continue;
-            const std::string digits = entry.substr(prefix.size());
-            if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
-                continue;
-            const long pid = std::stol(digits);
-            if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
-                stale.push_back(e.path());
-        }
-    }
-    for (const auto& p : stale)
-        fs::remove_all(p, ec);
-}
 
 // The output directory, resolved, if a build may replace it; else "" and the refusal in `s`.
 fs::path accepted_output(const fs::path& out, BuildSummary& s,
@@ -149,7 +117,7 @@ std::optional<std::string> publish(const fs::path& out,
     std::string error;
     const fs::path staging = write_staged_tree(out, files, &error);
     if (staging.empty()) return error;
-    return swap_into_place(staging, out);
+    return swap_directory_into_place(staging, out);
 }
 
 // Counts a job's result in the summary.
@@ -173,21 +141,34 @@ void count(const BuildJob& job, const JobResult& r, const BuildCache& cache, Bui
     (r.shared ? s.shared : r.cached ? s.cached : s.built) += 1;
 }
 
-// Moves a job's files (under its variant directory) into the output, once everything that
-// reads them (frozen modules, the manifest) has: the bytes are not held twice.
-void move_files(const BuildJob& job, JobResult& r, std::map<std::string, std::string>& files) {
-    if (!r.ok() || !r.same_as.empty()) return;
-    const std::string dir = job_directory(job);
-    for (auto& [path, bytes] : r.files)
-        files[dir + "/" + path] = std::move(bytes);
-    r.files.clear();
+// The first error of the writes into the staging tree (a full disk): the build then fails
+// with it and publishes nothing.
+struct WriteErrors {
+    std::mutex lock;
+    std::optional<std::string> first;
+    void note(std::optional<std::string> e) {
+        if (!e) return;
+        std::lock_guard<std::mutex> guard(lock);
+        if (!first) first = std::move(e);
+    }
+};
+
+// Writes a job's files under its directory into the tree as soon as they exist, and lets them go.
+std::function<void(size_t, JobResult&)> job_sink(const std::vector<BuildJob>& jobs,
+                                                 StagedTree& tree, WriteErrors& errors) {
+    return [&jobs, &tree, &errors](size_t i, JobResult& r) {
+        const std::string dir = job_directory(jobs[i]);
+        for (const auto& [path, bytes] : r.files)
+            errors.note(tree.write(dir + "/" + path, bytes));
+        r.files.clear();
+    };
 }
 
 // Specialized mode with freeze: each variant's SPIR-V (both language paths) with the shader's
-// selectors frozen to the variant's values, beside the shader's own.
+// selectors frozen to the variant's values, beside the shader's own (read back from the tree).
 void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                const BuildOptions& options, BuildSummary& s,
-                std::map<std::string, std::string>& files) {
+                const BuildOptions& options, BuildSummary& s, StagedTree& tree,
+                WriteErrors& errors) {
     struct Work {
         size_t job;
         Variant variant;
@@ -198,13 +179,30 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
         if (jobs[i].shader && results[i].ok() && results[i].same_as.empty())
             for (const Variant& v : jobs[i].serves)
                 for (const char* lang : {"glsl", "hlsl"})
-                    if (results[i].files.count(std::string(lang) + "/water.frag.opt.spv"))
+                    if (std::binary_search(results[i].names.begin(), results[i].names.end(),
+                                           std::string(lang) + "/water.frag.opt.spv"))
                         work.push_back({i, v, lang});
     std::vector<FrozenVariant> frozen(work.size());
+    std::vector<char> failed(work.size(), 0);
     parallel_for(work.size(), options.threads, [&](size_t k) {
         const Work& w = work[k];
-        frozen[k] =
-            freeze_variant(results[w.job], *jobs[w.job].shader, w.variant, w.lang, options.cache);
+        const std::string dir = job_directory(jobs[w.job]) + "/";
+        const auto module = tree.read(dir + w.lang + "/water.frag.opt.spv");
+        const auto description = tree.read(dir + "variant.json");
+        if (!module || !description) {
+            frozen[k].diagnostics.push_back(
+                {Severity::Error, dir + w.lang, 0, 0, "", "cannot read the built module back"});
+            failed[k] = 1;
+            return;
+        }
+        frozen[k] = freeze_variant(*module, *description, *jobs[w.job].shader, w.variant, w.lang,
+                                   options.cache);
+        if (frozen[k].spirv.empty()) {
+            failed[k] = 1;
+            return;
+        }
+        errors.note(tree.write(dir + frozen_path(w.lang, w.variant), frozen[k].spirv));
+        frozen[k].spirv = std::string(); // written: not held
     });
     for (size_t k = 0; k < work.size(); ++k) {
         const Work& w = work[k];
@@ -216,14 +214,12 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
         }
         ++s.frozen;
         s.frozen_cached += frozen[k].cached ? 1 : 0;
-        if (frozen[k].spirv.empty()) {
+        if (failed[k]) {
             ++s.failed;
             s.diagnostics.insert(s.diagnostics.end(), frozen[k].diagnostics.begin(),
                                  frozen[k].diagnostics.end());
             s.diagnostics.push_back({Severity::Error, path, 0, 0, "", "freezing failed"});
-            continue;
         }
-        files[path] = std::move(frozen[k].spirv);
     }
 }
 
@@ -239,23 +235,19 @@ std::optional<BuildSummary> up_to_date(const BuildRequest& request, const std::s
     if (!r || r->key != key || !outputs_intact(request.out, *r, request.options.threads))
         return std::nullopt;
     // Intact as recorded, manifest.json included; the record must also name what it names.
-    const SafeRead manifest =
-        read_regular_file(normal_output_path(request.out) / "manifest.json", kMaxManifestBytes);
-    if (!manifest.bytes || !record_covers_manifest(*r, *manifest.bytes)) return std::nullopt;
+    SafeRead seen;
+    std::FILE* manifest =
+        open_regular_stream(normal_output_path(request.out) / "manifest.json", seen);
+    if (!manifest) return std::nullopt;
+    const bool covered = record_covers_manifest(*r, manifest);
+    std::fclose(manifest);
+    if (!covered) return std::nullopt;
     BuildSummary s;
     s.up_to_date = true;
     s.variants = r->variants;
     s.shaders = r->shaders;
     s.files = r->files.size();
     return s;
-}
-
-// The plan's jobs of the shard only (the plan's scenes stay whole: the manifest counts them).
-void keep_shard(BuildPlan& plan, const Shard& shard) {
-    std::vector<BuildJob> kept;
-    for (BuildJob& job : plan.jobs)
-        if (in_shard(shard, job_key(job))) kept.push_back(std::move(job));
-    plan.jobs = std::move(kept);
 }
 
 } // namespace
@@ -295,27 +287,38 @@ BuildSummary build_material_now(const BuildRequest& request) {
                                      std::string(to_string(request.mode))});
         return s;
     }
-    auto plan = plan_build(request.material, request.scenes, s.diagnostics, request.mode);
+    auto plan =
+        plan_build(request.material, request.scenes, s.diagnostics, request.mode, request.shard);
     if (!plan) {
         s.bad_input = true;
         return s;
     }
-    if (request.shard.sharded()) keep_shard(*plan, request.shard);
     // Refuse an output that is not ours before spending time on the build.
     std::vector<std::string> written; // what the last build into request.out wrote
     if (const auto last = recorded ? read_record(record) : std::nullopt)
         for (const RecordedFile& f : last->files)
             written.push_back(f.path);
-    if (accepted_output(request.out, s, written).empty()) return s;
-    std::vector<JobResult> results = run_build_jobs(request.material, plan->jobs, request.options);
+    const fs::path out = accepted_output(request.out, s, written);
+    if (out.empty()) return s;
+    // Every file goes to a staging tree beside the output as soon as it is built; the tree
+    // replaces the output at the end, or is removed.
+    std::string error;
+    const std::unique_ptr<StagedTree> tree = StagedTree::open(out, &error);
+    if (!tree) {
+        s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", error});
+        return s;
+    }
+    WriteErrors errors;
+    BuildOptions options = request.options;
+    options.sink = job_sink(plan->jobs, *tree, errors);
+    std::vector<JobResult> results = run_build_jobs(request.material, plan->jobs, options);
     s.shaders = plan->jobs.size();
     for (const BuildJob& job : plan->jobs)
         s.variants += job.shader ? job.serves.size() : 1;
-    std::map<std::string, std::string> files;
     for (size_t i = 0; i < results.size(); ++i)
         count(plan->jobs[i], results[i], request.options.cache, s);
     if (request.freeze && request.mode == BuildMode::Specialized)
-        add_frozen(plan->jobs, results, request.options, s, files);
+        add_frozen(plan->jobs, results, request.options, s, *tree, errors);
     // The companion passes the built variants draw with, each once for the whole output.
     PassesOutput passes =
         build_needed_passes(request.material, plan->jobs, results, request.options);
@@ -326,21 +329,37 @@ BuildSummary build_material_now(const BuildRequest& request) {
                          passes.cache_rejected.end());
     s.failed += passes.failed;
     s.diagnostics.insert(s.diagnostics.end(), passes.diagnostics.begin(), passes.diagnostics.end());
-    files.merge(passes.files);
-    if (s.failed == 0) {
-        files["manifest.json"] =
-            request.mode == BuildMode::Permutations
-                ? manifest_json(request.material, plan->manifest_scenes, plan->jobs, results,
-                                passes.passes)
-                : modes_manifest_json(request.material, request.mode, request.freeze,
-                                      plan->manifest_scenes, plan->jobs, results, passes.passes);
-        for (size_t i = 0; i < results.size(); ++i)
-            move_files(plan->jobs[i], results[i], files);
-        if (request.shard.sharded())
-            files[kShardFile] = shard_json(request.shard, request.inputs_hash, plan->jobs, results,
-                                           s.variants, files);
+    for (const auto& [path, bytes] : passes.files)
+        errors.note(tree->write(path, bytes));
+    if (s.failed == 0 && !errors.first) {
+        const ReadJobFile read = [&](size_t job, const std::string& name) {
+            return tree->read(job_directory(plan->jobs[job]) + "/" + name);
+        };
+        StagedStream manifest = tree->stream("manifest.json");
+        const WriteText write = [&](std::string_view piece) { manifest.write(piece); };
+        if (request.mode == BuildMode::Permutations)
+            write_manifest(request.material, plan->manifest_scenes, plan->jobs, results,
+                           passes.passes, read, write);
+        else
+            write_modes_manifest(request.material, request.mode, request.freeze,
+                                 plan->manifest_scenes, plan->jobs, results, passes.passes, read,
+                                 write);
+        errors.note(manifest.close());
+        if (request.shard.sharded() && !errors.first)
+            errors.note(
+                tree->write(kShardFile, shard_json(request.shard, request.inputs_hash, plan->jobs,
+                                                   results, s.variants, tree->files())));
+    }
+    if (errors.first)
+        s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *errors.first});
+    if (s.failed == 0 && !errors.first) {
+        const std::vector<RecordedFile> files = tree->files();
         s.files = files.size();
-        if (auto failure = publish_output(request.out, files, written))
+        BuildSummary refused;
+        const fs::path target = accepted_output(request.out, refused, written); // it took a while
+        if (target.empty())
+            s.diagnostics.push_back(refused.diagnostics.front());
+        else if (auto failure = tree->commit(target))
             s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
         else if (recorded)
             store_record(record, make_record(key, s.variants, s.shaders, files));

@@ -113,6 +113,11 @@ fs::path record_file(const BuildCache& cache, const fs::path& out) {
 }
 
 BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
+                        std::vector<RecordedFile> files) {
+    return {key, variants, shaders, std::move(files)};
+}
+
+BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
                         const FileMap& files) {
     BuildRecord r{key, variants, shaders, {}};
     for (const auto& [path, bytes] : files)

@@ -1,6 +1,7 @@
 // The build record as text, and what it vouches for: kept apart from the filesystem work of
 // build_record.cpp so that the record fuzzer (tests/fuzz/record_fuzzer.cpp) builds it alone.
 #include <algorithm>
+#include <functional>
 #include <sstream>
 #include <string_view>
 
@@ -46,16 +47,40 @@ std::optional<BuildRecord> parse_record(const std::string& text) {
     return r;
 }
 
-bool record_covers_manifest(const BuildRecord& record, const std::string& manifest) {
-    std::vector<std::string> named{"manifest.json"};
-    if (!manifest_named_files(manifest, named).empty()) return false;
+namespace {
+
+// Whether every path `read_names` hands over is recorded (and manifest.json is).
+bool covers(
+    const BuildRecord& record,
+    const std::function<std::string(const std::function<void(std::string&&)>&)>& read_names) {
     std::vector<std::string_view> recorded;
     recorded.reserve(record.files.size());
     for (const RecordedFile& f : record.files)
         recorded.push_back(f.path);
     std::sort(recorded.begin(), recorded.end());
-    return std::all_of(named.begin(), named.end(), [&](const std::string& p) {
-        return std::binary_search(recorded.begin(), recorded.end(), std::string_view(p));
+    auto has = [&](std::string_view p) {
+        return std::binary_search(recorded.begin(), recorded.end(), p);
+    };
+    bool all = has("manifest.json");
+    const std::string why = read_names([&](std::string&& p) { all = all && has(p); });
+    return why.empty() && all;
+}
+
+} // namespace
+
+bool record_covers_manifest(const BuildRecord& record, const std::string& manifest) {
+    return covers(record, [&](const std::function<void(std::string &&)>& each) {
+        std::vector<std::string> named;
+        std::string why = manifest_named_files(manifest, named);
+        for (std::string& p : named)
+            each(std::move(p));
+        return why;
+    });
+}
+
+bool record_covers_manifest(const BuildRecord& record, std::FILE* manifest) {
+    return covers(record, [&](const std::function<void(std::string &&)>& each) {
+        return manifest_named_files(manifest, each);
     });
 }
 

@@ -61,8 +61,7 @@ bool same_file(const struct stat& a, const struct stat& b) {
 // The watergen output directory at or above `path` (not `path` itself), or "".
 fs::path output_directory_above(const fs::path& path) {
     for (fs::path dir = path.parent_path(); !dir.empty(); dir = dir.parent_path()) {
-        const SafeRead m = read_regular_file(dir / "manifest.json", kMaxManifestBytes);
-        if (m.bytes && is_watergen_manifest(*m.bytes)) return dir;
+        if (is_watergen_manifest_file(dir / "manifest.json")) return dir;
         if (dir == dir.root_path()) break;
     }
     return {};

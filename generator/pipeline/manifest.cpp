@@ -1,12 +1,15 @@
 #include "watergen/pipeline/manifest.h"
 
+#include <algorithm>
 #include <cstring>
 #include <set>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "watergen/ir/emitter.h"
+#include "watergen/pipeline/json_document.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
 
 namespace watergen {
@@ -129,7 +132,8 @@ void add_fold(OJson& v, const BuildJob& job, const JobResult& r) {
 // Where the job's files are (its own, or those of the earlier job with the same shader), its
 // reflection and SPIR-V counts; returns the job whose files these are.
 size_t add_output(OJson& v, size_t i, const std::vector<BuildJob>& jobs,
-                  const std::vector<JobResult>& results, const JobIndex& index) {
+                  const std::vector<JobResult>& results, const JobIndex& index,
+                  const ReadJobFile& read) {
     const BuildJob& job = jobs[i];
     const JobResult& r = results[i];
     size_t built = i;
@@ -140,10 +144,9 @@ size_t add_output(OJson& v, size_t i, const std::vector<BuildJob>& jobs,
         v["same_as"] = r.same_as;
     }
     v["directory"] = job_directory(jobs[built]);
-    v["files"] = files_json(job_directory(jobs[built]), results[built].files);
-    const JobResult& b = results[built];
-    if (auto it = b.files.find("variant.json"); it != b.files.end()) {
-        const OJson d = OJson::parse(it->second);
+    v["files"] = files_json(job_directory(jobs[built]), results[built].names);
+    if (const auto description = read(built, "variant.json")) {
+        const OJson d = OJson::parse(*description);
         v["reflection"] = {
             {"uniform_block", d.value("uniform_block", OJson::object())},
             {"sampler", {{"name", "linear_clamp"}, {"set", 0}, {"binding", kSamplerBinding}}},
@@ -185,9 +188,16 @@ OJson nodes_json(const Variant& v) {
 } // namespace
 
 OJson files_json(const std::string& dir, const FileMap& files) {
+    std::vector<std::string> names;
+    for (const auto& [path, bytes] : files)
+        names.push_back(path);
+    return files_json(dir, names);
+}
+
+OJson files_json(const std::string& dir, const std::vector<std::string>& names) {
     OJson j = OJson::object();
     std::map<std::string, std::vector<std::string>> by;
-    for (const auto& [path, bytes] : files) {
+    for (const std::string& path : names) {
         std::string kind;
         auto ends = [&](const std::string& s) {
             return path.size() > s.size() && path.compare(path.size() - s.size(), s.size(), s) == 0;
@@ -221,14 +231,14 @@ std::string job_directory(const BuildJob& job) {
                       : variant_directory(job.scene, job.variant);
 }
 
-std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
-                          const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                          const CausticsPasses& passes) {
-    OJson doc = header_json(material, scenes);
+void write_manifest(const Material& material, const std::vector<ManifestScene>& scenes,
+                    const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                    const CausticsPasses& passes, const ReadJobFile& read, const WriteText& write) {
+    JsonDocumentWriter doc(header_json(material, scenes), write);
     JobIndex index;
     for (size_t i = 0; i < jobs.size(); ++i)
         index[{jobs[i].scene, job_key(jobs[i])}] = i;
-    OJson variants = OJson::array();
+    doc.begin_array("variants");
     for (const auto& [scene_key, i] : index) {
         const BuildJob& job = jobs[i];
         OJson v;
@@ -238,23 +248,44 @@ std::string manifest_json(const Material& material, const std::vector<ManifestSc
         v["content_hash"] = results[i].content_hash;
         v["nodes"] = nodes_json(job.variant);
         add_fold(v, job, results[i]);
-        add_output(v, i, jobs, results, index);
+        add_output(v, i, jobs, results, index, read);
         add_passes(v, material, job.variant, job, results[i], passes);
-        variants.push_back(v);
+        doc.element(v);
     }
-    doc["variants"] = variants;
-    return doc.dump(2) + "\n";
+    doc.end_array();
+    doc.end();
+}
+
+namespace {
+
+ReadJobFile read_from_results(const std::vector<JobResult>& results) {
+    return [&results](size_t job, const std::string& name) -> std::optional<std::string> {
+        const auto it = results[job].files.find(name);
+        if (it == results[job].files.end()) return std::nullopt;
+        return it->second;
+    };
+}
+
+} // namespace
+
+std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
+                          const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                          const CausticsPasses& passes) {
+    std::string text;
+    write_manifest(material, scenes, jobs, results, passes, read_from_results(results),
+                   [&](std::string_view piece) { text += piece; });
+    return text;
 }
 
 namespace {
 
 // Where each selector of a built shader lives: its constant id (specialized) or block offset
 // (branching), from its variant.json; a selector the shader no longer reads is left out.
-std::map<std::string, uint32_t> selector_places(const JobResult& r, BuildMode mode) {
+std::map<std::string, uint32_t> selector_places(const std::optional<std::string>& description,
+                                                BuildMode mode) {
     std::map<std::string, uint32_t> places;
-    const auto it = r.files.find("variant.json");
-    if (it == r.files.end()) return places;
-    const OJson d = OJson::parse(it->second);
+    if (!description) return places;
+    const OJson d = OJson::parse(*description);
     if (mode == BuildMode::Specialized) {
         for (const auto& c : d.value("specialization_constants", OJson::array()))
             if (c["constant_ids"].size() == 1) places[c["name"]] = c["constant_ids"][0];
@@ -265,8 +296,16 @@ std::map<std::string, uint32_t> selector_places(const JobResult& r, BuildMode mo
     return places;
 }
 
+using Places = std::map<std::string, uint32_t>;
+
+bool has_file(const JobResult& r, const std::string& name) {
+    return std::binary_search(r.names.begin(), r.names.end(), name);
+}
+
+// The shader's entry; the selector places of its built job into `places`.
 OJson shader_json(size_t i, const std::vector<BuildJob>& jobs,
-                  const std::vector<JobResult>& results, const JobIndex& index, BuildMode mode) {
+                  const std::vector<JobResult>& results, const JobIndex& index, BuildMode mode,
+                  const ReadJobFile& read, Places& places) {
     const BuildJob& job = jobs[i];
     const ShaderChoices& s = *job.shader;
     OJson v;
@@ -277,8 +316,8 @@ OJson shader_json(size_t i, const std::vector<BuildJob>& jobs,
     for (const auto& a : axes())
         choices[a.name] = s.offered(a.name);
     v["axes"] = choices;
-    const size_t built = add_output(v, i, jobs, results, index);
-    const std::map<std::string, uint32_t> places = selector_places(results[built], mode);
+    const size_t built = add_output(v, i, jobs, results, index, read);
+    places = selector_places(read(built, "variant.json"), mode);
     OJson selectors = OJson::array();
     for (const auto& axis : s.switched_axes()) {
         OJson sel = {
@@ -297,13 +336,12 @@ OJson shader_json(size_t i, const std::vector<BuildJob>& jobs,
 // freeze) the variant's own frozen SPIR-V.
 OJson served_json(const Material& material, const Variant& variant, size_t i,
                   const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                  const JobIndex& index, BuildMode mode, bool freeze,
-                  const CausticsPasses& passes) {
+                  const JobIndex& index, BuildMode mode, bool freeze, const CausticsPasses& passes,
+                  const Places& places) {
     const BuildJob& job = jobs[i];
     size_t built = i;
     if (const auto it = index.find({job.scene, results[i].same_as}); it != index.end())
         built = it->second;
-    const std::map<std::string, uint32_t> places = selector_places(results[built], mode);
     OJson v;
     v["scene"] = job.scene;
     v["key"] = variant.key();
@@ -323,7 +361,7 @@ OJson served_json(const Material& material, const Variant& variant, size_t i,
     if (freeze && mode == BuildMode::Specialized) {
         OJson frozen = OJson::object();
         for (const char* lang : {"glsl", "hlsl"})
-            if (results[built].files.count(std::string(lang) + "/water.frag.opt.spv"))
+            if (has_file(results[built], std::string(lang) + "/water.frag.opt.spv"))
                 frozen[lang] = job_directory(jobs[built]) + "/" + frozen_path(lang, variant);
         v["frozen"] = frozen;
     }
@@ -333,47 +371,46 @@ OJson served_json(const Material& material, const Variant& variant, size_t i,
 
 } // namespace
 
-std::string modes_manifest_json(const Material& material, BuildMode mode, bool freeze,
-                                const std::vector<ManifestScene>& scenes,
-                                const std::vector<BuildJob>& jobs,
-                                const std::vector<JobResult>& results,
-                                const CausticsPasses& passes) {
-    OJson doc = header_json(material, scenes);
-    doc["mode"] = to_string(mode);
+void write_modes_manifest(const Material& material, BuildMode mode, bool freeze,
+                          const std::vector<ManifestScene>& scenes,
+                          const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                          const CausticsPasses& passes, const ReadJobFile& read,
+                          const WriteText& write) {
+    OJson head = header_json(material, scenes);
+    head["mode"] = to_string(mode);
+    JsonDocumentWriter doc(head, write);
     JobIndex index;
     for (size_t i = 0; i < jobs.size(); ++i)
         index[{jobs[i].scene, job_key(jobs[i])}] = i;
-    OJson shaders = OJson::array();
-    std::map<std::pair<std::string, std::string>, OJson> variants; // sorted by (scene, key)
+    // Each variant once, sorted by (scene, key) across the shaders that serve them.
+    std::vector<std::tuple<std::string, std::string, size_t, size_t>> served;
+    std::vector<Places> places(jobs.size());
+    doc.begin_array("shaders");
     for (const auto& [scene_key, i] : index) {
         if (!jobs[i].shader) continue;
-        shaders.push_back(shader_json(i, jobs, results, index, mode));
-        for (const Variant& v : jobs[i].serves)
-            variants[{jobs[i].scene, v.key()}] =
-                served_json(material, v, i, jobs, results, index, mode, freeze, passes);
+        doc.element(shader_json(i, jobs, results, index, mode, read, places[i]));
+        for (size_t k = 0; k < jobs[i].serves.size(); ++k)
+            served.emplace_back(jobs[i].scene, jobs[i].serves[k].key(), i, k);
     }
-    doc["shaders"] = shaders;
-    OJson list = OJson::array();
-    for (auto& [key, v] : variants)
-        list.push_back(std::move(v));
-    doc["variants"] = list;
-    return doc.dump(2) + "\n";
+    doc.end_array();
+    std::sort(served.begin(), served.end());
+    doc.begin_array("variants");
+    for (const auto& [scene, key, i, k] : served)
+        doc.element(served_json(material, jobs[i].serves[k], i, jobs, results, index, mode, freeze,
+                                passes, places[i]));
+    doc.end_array();
+    doc.end();
 }
 
 std::string frozen_path(const std::string& language, const Variant& v) {
     return language + "/frozen/" + v.file_stem() + ".frag.spv";
 }
 
-FrozenVariant freeze_variant(const JobResult& r, const ShaderChoices& shader, const Variant& v,
+FrozenVariant freeze_variant(const std::string& module, const std::string& description,
+                             const ShaderChoices& shader, const Variant& v,
                              const std::string& language, const BuildCache& cache) {
     FrozenVariant out;
-    const std::string name = language + "/water.frag.opt.spv";
-    const auto it = r.files.find(name);
-    if (it == r.files.end()) {
-        out.diagnostics.push_back({Severity::Error, name, 0, 0, "", "not built"});
-        return out;
-    }
-    const std::map<std::string, uint32_t> places = selector_places(r, BuildMode::Specialized);
+    const Places places = selector_places(description, BuildMode::Specialized);
     std::map<uint32_t, float> values;
     for (const auto& [parameter, value] : shader.selector_values(v))
         if (const auto p = places.find(parameter); p != places.end())
@@ -384,11 +421,11 @@ FrozenVariant freeze_variant(const JobResult& r, const ShaderChoices& shader, co
     std::string constants = "frozen";
     for (const auto& [id, value] : values)
         constants += fmt::format("|{}={:a}", id, value);
-    out.content_hash = content_hash({constants, it->second});
+    out.content_hash = content_hash({constants, module});
     CacheUse use =
         cache.load_or_make(out.content_hash, {kFrozenCacheFile}, [&]() -> std::optional<FileMap> {
-            std::vector<uint32_t> words(it->second.size() / sizeof(uint32_t));
-            std::memcpy(words.data(), it->second.data(), words.size() * sizeof(uint32_t));
+            std::vector<uint32_t> words(module.size() / sizeof(uint32_t));
+            std::memcpy(words.data(), module.data(), words.size() * sizeof(uint32_t));
             OptimizeResult frozen = freeze_specialization(words, values, frozen_path(language, v));
             out.diagnostics = std::move(frozen.diagnostics);
             if (frozen.spirv.empty()) return std::nullopt;

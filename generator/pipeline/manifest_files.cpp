@@ -1,5 +1,6 @@
 #include "watergen/pipeline/manifest_files.h"
 
+#include "watergen/pipeline/json_document.h"
 #include "watergen/pipeline/output_writer.h"
 
 namespace watergen {
@@ -50,13 +51,43 @@ std::string named_files(const OJson& entry, std::vector<std::string>& paths) {
     return "";
 }
 
-std::string manifest_named_files(const std::string& bytes, std::vector<std::string>& paths) {
-    const OJson m = OJson::parse(bytes, nullptr, false);
-    if (!m.is_object() || !m.value("variants", OJson()).is_array())
-        return "manifest.json is not the manifest of a build";
-    for (const OJson& v : m["variants"])
-        if (std::string why = named_files(v, paths); !why.empty()) return why;
+namespace {
+
+template <class Input>
+std::string named_files_of(Input&& in, const std::function<void(std::string&&)>& each) {
+    bool variants = false;
+    std::string why;
+    JsonDocumentReader reader{{"variants"},
+                              [&](const std::string& name, OJson&&) {
+                                  if (name != "variants") return true;
+                                  why = "\"variants\" is not a list";
+                                  return false;
+                              },
+                              [&](const std::string&, OJson&& v) {
+                                  std::vector<std::string> paths;
+                                  why = named_files(v, paths);
+                                  for (std::string& p : paths)
+                                      each(std::move(p));
+                                  return why.empty();
+                              },
+                              [&](const std::string&) { variants = true; }};
+    std::string malformed;
+    if (read_json_document(std::forward<Input>(in), reader, &malformed) == JsonReadEnd::Malformed)
+        return "manifest.json is not the manifest of a build (" + malformed + ")";
+    if (!why.empty()) return why;
+    if (!variants) return "manifest.json is not the manifest of a build";
     return "";
+}
+
+} // namespace
+
+std::string manifest_named_files(const std::string& bytes, std::vector<std::string>& paths) {
+    return named_files_of(std::string_view(bytes),
+                          [&](std::string&& p) { paths.push_back(std::move(p)); });
+}
+
+std::string manifest_named_files(std::FILE* in, const std::function<void(std::string&&)>& each) {
+    return named_files_of(in, each);
 }
 
 } // namespace watergen

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "watergen/pipeline/json_document.h"
 #include "watergen/pipeline/safe_read.h"
 
 namespace watergen {
@@ -46,8 +47,7 @@ std::string refusal_for_directory(const fs::path& dir, const std::vector<std::st
     fs::directory_iterator it(dir, ec);
     if (ec) return "cannot be listed: " + ec.message();
     if (it == fs::directory_iterator()) return ""; // empty
-    const SafeRead manifest = read_regular_file(dir / "manifest.json", kMaxManifestBytes);
-    if (manifest.bytes && is_watergen_manifest(*manifest.bytes)) return "";
+    if (is_watergen_manifest_file(dir / "manifest.json")) return "";
     // A manifest broken (or lost) since: the record of the last build there still shows the
     // directory is watergen's, so it is rebuilt rather than left for the user to remove.
     if (!recorded.empty() && only_recorded_entries(dir, recorded)) return "";
@@ -68,10 +68,36 @@ fs::path normal_output_path(const fs::path& out) {
     return normal_absolute(out, ec);
 }
 
+namespace {
+
+// The first member of the document is "generator": "watergen <version>".
+template <class Input> bool starts_as_manifest(Input&& in) {
+    bool ours = false;
+    JsonDocumentReader reader{{"variants", "shaders"},
+                              [&](const std::string& name, nlohmann::ordered_json&& value) {
+                                  if (name != "generator") return true;
+                                  ours = value.is_string() &&
+                                         value.get<std::string>().rfind("watergen ", 0) == 0;
+                                  return false;
+                              },
+                              [](const std::string&, nlohmann::ordered_json&&) { return true; }};
+    return read_json_document(std::forward<Input>(in), reader, nullptr) != JsonReadEnd::Malformed &&
+           ours;
+}
+
+} // namespace
+
 bool is_watergen_manifest(const std::string& bytes) {
-    const auto j = nlohmann::json::parse(bytes, nullptr, false);
-    if (!j.is_object() || !j.contains("generator") || !j["generator"].is_string()) return false;
-    return j["generator"].get<std::string>().rfind("watergen ", 0) == 0;
+    return starts_as_manifest(std::string_view(bytes));
+}
+
+bool is_watergen_manifest_file(const fs::path& path) {
+    SafeRead seen;
+    std::FILE* f = open_regular_stream(path, seen);
+    if (!f) return false;
+    const bool ours = starts_as_manifest(f);
+    std::fclose(f);
+    return ours;
 }
 
 OutputTarget check_output_target(const fs::path& out, const std::vector<std::string>& recorded) {

@@ -1,11 +1,13 @@
 #include "watergen/pipeline/output_writer.h"
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
 #include <system_error>
 #include <unistd.h>
+#include <vector>
 
 namespace watergen {
 
@@ -160,6 +162,48 @@ write_directory_atomically(const fs::path& dir, const std::map<std::string, std:
     const fs::path staging = write_staged_tree(dir, files, &error);
     if (staging.empty()) return error;
     return commit_directory(staging, dir);
+}
+
+// Puts `staging` in the place of `dir` in one step: renameat2(RENAME_EXCHANGE) swaps the two
+// names atomically, so whenever the process dies, `dir` holds either the old output or the
+// new one, never nothing. Without an old output, a rename that replaces nothing; if a
+// concurrent build creates `dir` in between, exchange with that. On file systems that cannot
+// exchange, the two-rename commit of output_writer.h.
+std::optional<std::string> swap_directory_into_place(const fs::path& staging, const fs::path& dir) {
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
+            remove_replaced_tree(staging); // the old output, now under the staging name
+            return std::nullopt;
+        }
+        if (errno != ENOENT) break;
+        if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_NOREPLACE) == 0)
+            return std::nullopt;
+        if (errno != EEXIST) break;
+    }
+    return commit_directory(staging, dir);
+}
+
+// A killed build leaves its staging directory ("<out>.tmp-<pid>", or "<out>.old.tmp-<pid>"
+// from the fallback commit) beside the output; remove those whose process is gone.
+void remove_stale_staging(const fs::path& out) {
+    std::error_code ec;
+    const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+    const std::string name = out.filename().string();
+    std::vector<fs::path> stale;
+    for (const auto& e : fs::directory_iterator(parent, ec)) {
+        const std::string entry = e.path().filename().string();
+        for (const std::string& prefix : {name + ".tmp-", name + ".old.tmp-"}) {
+            if (entry.rfind(prefix, 0) != 0) continue;
+            const std::string digits = entry.substr(prefix.size());
+            if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
+                continue;
+            const long pid = std::stol(digits);
+            if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+                stale.push_back(e.path());
+        }
+    }
+    for (const auto& p : stale)
+        fs::remove_all(p, ec);
 }
 
 } // namespace watergen

@@ -76,25 +76,31 @@ std::vector<std::string> hash_inputs(const WaterShader& shader, const std::strin
     return parts;
 }
 
-// Phase 1 for one job: compose, fold, hash (no compiler involved).
-void compose_and_hash(const Material& material, const BuildJob& job, JobResult& r,
-                      WaterShader& out) {
+// The job's shader: composed from the material and folded under its scene's facts (what
+// folding did into `report`, if given).
+WaterShader compose_job(const Material& material, const BuildJob& job, Diagnostics& ds,
+                        FoldReport* report = nullptr) {
     WaterShader shader = job.shader ? material.compose(*job.shader) : material.compose(job.variant);
     const Diagnostics& graph_errors = shader.fragment.diagnostics();
-    r.diagnostics.insert(r.diagnostics.end(), graph_errors.begin(), graph_errors.end());
+    ds.insert(ds.end(), graph_errors.begin(), graph_errors.end());
+    if (has_errors(ds) || !job.facts) return shader;
+    FoldResult folded = fold_graph(shader.fragment, *job.facts);
+    shader.fragment = std::move(folded.graph);
+    if (report) *report = std::move(folded.report);
+    return shader;
+}
+
+// Phase 1 for one job: compose, fold, hash (no compiler involved). The shader is not kept:
+// phase 2 composes it again (a few ms) rather than hold every job's graph at once.
+void compose_and_hash(const Material& material, const BuildJob& job, JobResult& r) {
+    const WaterShader shader = compose_job(material, job, r.diagnostics, &r.fold);
     if (has_errors(r.diagnostics)) return;
-    if (job.facts) {
-        FoldResult folded = fold_graph(shader.fragment, *job.facts);
-        shader.fragment = std::move(folded.graph);
-        r.fold = std::move(folded.report);
-        r.folded = true;
-    }
+    r.folded = job.facts != nullptr;
     r.content_hash = content_hash(hash_inputs(shader, job_key(job), r.diagnostics));
     Diagnostics ignored;
     std::vector<std::string> shape = hash_inputs(shader, "", ignored);
     shape.erase(shape.begin()); // equal shaders under different keys are still equal
     r.shape_hash = content_hash(shape);
-    out = std::move(shader);
 }
 
 struct BuildPlan {
@@ -126,11 +132,13 @@ BuildPlan plan_builds(const std::vector<BuildJob>& jobs, std::vector<JobResult>&
 }
 
 // Phase 2 for one job: its files from the cache or the toolchain (all targets), if it built.
-std::optional<FileMap> load_or_build(const BuildOptions& options, WaterShader shader, JobResult& r,
+// The shader is composed only when the cache does not have the files.
+std::optional<FileMap> load_or_build(const BuildOptions& options,
+                                     const std::function<WaterShader()>& compose, JobResult& r,
                                      const std::vector<std::string>& expected_files) {
     CacheUse use =
         options.cache.load_or_make(r.content_hash, expected_files, [&]() -> std::optional<FileMap> {
-            const VariantBuild build = build_shader(std::move(shader));
+            const VariantBuild build = build_shader(compose());
             r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(),
                                  build.diagnostics.end());
             if (!build.ok()) return std::nullopt;
@@ -186,12 +194,11 @@ FileMap filter_targets(const FileMap& all, const std::vector<Target>& targets) {
 std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs,
                                       const BuildOptions& options) {
     std::vector<JobResult> results(jobs.size());
-    std::vector<WaterShader> shaders(jobs.size());
     // glslang builds its tables once per process; do it before the threads race for it.
     glslang_warm_up();
 
     parallel_for(jobs.size(), options.threads,
-                 [&](size_t i) { compose_and_hash(material, jobs[i], results[i], shaders[i]); });
+                 [&](size_t i) { compose_and_hash(material, jobs[i], results[i]); });
     const BuildPlan plan = plan_builds(jobs, results);
 
     std::mutex progress_lock;
@@ -208,40 +215,41 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
     for (size_t i = 0; i < jobs.size(); ++i)
         if (!results[i].ok() || !results[i].same_as.empty()) report(i);
 
-    // The unfiltered files of each job another scene's job copies, kept for it; a job nothing
-    // copies keeps only its filtered files (a second, unfiltered copy of every job's output
-    // was most of a large build's memory).
-    std::set<size_t> copied;
+    // The jobs that take each built job's files (same content in another scene), done on the
+    // builder's thread as soon as its files exist: nothing is kept for them.
+    std::map<size_t, std::vector<size_t>> copies;
     for (const auto& [i, from] : plan.copies)
-        copied.insert(from);
-    std::map<size_t, FileMap> shared;
-    std::mutex shared_lock;
+        copies[from].push_back(i);
+    auto finish = [&](size_t i, const FileMap* all) {
+        JobResult& r = results[i];
+        if (all) r.files = filter_targets(*all, jobs[i].targets);
+        for (const auto& [name, bytes] : r.files)
+            r.names.push_back(name);
+        if (options.sink && r.ok()) options.sink(i, r);
+        report(i);
+    };
     const std::vector<std::string> expected_files = variant_file_names();
     parallel_for(plan.to_build.size(), options.threads, [&](size_t k) {
         const size_t i = plan.to_build[k];
         JobResult& r = results[i];
         const auto t0 = std::chrono::steady_clock::now();
-        std::optional<FileMap> all =
-            load_or_build(options, std::move(shaders[i]), r, expected_files);
-        if (all) r.files = filter_targets(*all, jobs[i].targets);
+        auto compose = [&] {
+            Diagnostics composed; // reported in phase 1 already
+            return compose_job(material, jobs[i], composed);
+        };
+        std::optional<FileMap> all = load_or_build(options, compose, r, expected_files);
         r.milliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
-        if (all && copied.count(i)) {
-            std::lock_guard<std::mutex> lock(shared_lock);
-            shared[i] = std::move(*all);
-        }
-        report(i);
+        finish(i, all ? &*all : nullptr);
+        if (const auto it = copies.find(i); it != copies.end())
+            for (size_t c : it->second) {
+                results[c].diagnostics = r.diagnostics;
+                results[c].cached = r.cached;
+                results[c].shared = true;
+                finish(c, all ? &*all : nullptr);
+            }
     });
-    for (const auto& [i, from] : plan.copies) {
-        JobResult& r = results[i];
-        r.diagnostics = results[from].diagnostics;
-        r.cached = results[from].cached;
-        r.shared = true;
-        if (auto it = shared.find(from); it != shared.end())
-            r.files = filter_targets(it->second, jobs[i].targets);
-        report(i);
-    }
     return results;
 }
 

@@ -48,25 +48,27 @@ const char* file_kind(mode_t mode) {
     return "an unknown kind of file";
 }
 
-SafeRead read_regular_file(const std::filesystem::path& path, size_t max_bytes) {
-    SafeRead r;
+namespace {
+
+// Opens `path` for reading if it is a regular file of at most max_bytes; -1 and why in `r`.
+int open_regular(const std::filesystem::path& path, size_t max_bytes, SafeRead& r) {
     struct stat seen {};
     if (::lstat(path.c_str(), &seen) != 0) {
         const int e = errno;
         r.missing = e == ENOENT;
         r.why = "cannot inspect: " + errno_text(e);
-        return r;
+        return -1;
     }
     r.device = seen.st_dev;
     r.inode = seen.st_ino;
     if (!S_ISREG(seen.st_mode)) {
         r.why = std::string("is ") + file_kind(seen.st_mode) + ", not a regular file";
-        return r;
+        return -1;
     }
     if (static_cast<unsigned long long>(seen.st_size) > max_bytes) {
         r.why =
             "is " + std::to_string(seen.st_size) + " bytes, more than " + std::to_string(max_bytes);
-        return r;
+        return -1;
     }
     // O_NOFOLLOW and O_NONBLOCK: whatever was swapped in since the lstat, opening it neither
     // follows a link nor waits for a FIFO's writer; fstat then checks what was opened.
@@ -74,7 +76,7 @@ SafeRead read_regular_file(const std::filesystem::path& path, size_t max_bytes) 
     if (fd < 0) {
         const int e = errno;
         r.why = "cannot open: " + errno_text(e);
-        return r;
+        return -1;
     }
     struct stat opened {};
     if (::fstat(fd, &opened) != 0) {
@@ -84,10 +86,33 @@ SafeRead read_regular_file(const std::filesystem::path& path, size_t max_bytes) 
                opened.st_ino != seen.st_ino) {
         r.why = "was replaced while being opened";
     } else {
-        r.bytes = read_bounded(fd, max_bytes, r.why);
+        return fd;
     }
     ::close(fd);
+    return -1;
+}
+
+} // namespace
+
+SafeRead read_regular_file(const std::filesystem::path& path, size_t max_bytes) {
+    SafeRead r;
+    const int fd = open_regular(path, max_bytes, r);
+    if (fd < 0) return r;
+    r.bytes = read_bounded(fd, max_bytes, r.why);
+    ::close(fd);
     return r;
+}
+
+std::FILE* open_regular_stream(const std::filesystem::path& path, SafeRead& r) {
+    const int fd = open_regular(path, static_cast<size_t>(-1), r);
+    if (fd < 0) return nullptr;
+    std::FILE* f = ::fdopen(fd, "rb");
+    if (!f) {
+        const int e = errno;
+        r.why = "cannot open: " + errno_text(e);
+        ::close(fd);
+    }
+    return f;
 }
 
 void remove_if_same(const std::filesystem::path& path, const SafeRead& seen) {

@@ -1,5 +1,7 @@
 #include "watergen/pipeline/shard_file.h"
 
+#include <algorithm>
+
 #include <xxhash.h>
 
 #include "watergen/pipeline/manifest_files.h"
@@ -104,37 +106,50 @@ std::optional<ShardFile> parse_shard_file(const std::string& text, std::string* 
     return s;
 }
 
-std::string check_shard_manifest(const OJson& manifest, const ShardFile& s,
-                                 const std::set<std::string>& listed) {
+std::string check_shard_variant(const OJson& v, const ShardFile& s) {
+    const OJson scene = v.value("scene", OJson()), key = v.value("key", OJson());
+    if (!scene.is_string() || !key.is_string())
+        return "a variant of manifest.json has no scene and key";
+    const std::string id = scene.get<std::string>() + "/" + key.get<std::string>();
+    if (!s.shapes.count({scene, key}))
+        return "variant " + id + " of manifest.json is not among shard.json's shapes";
+    if (!in_shard(s.shard, key))
+        return "variant " + id + " is not in shard " + shard_text(s.shard) +
+               "'s key range (its key hashes to another shard)";
+    std::vector<std::string> paths;
+    if (std::string why = named_files(v, paths); !why.empty()) return "variant " + id + ": " + why;
+    if (v.contains("directory") &&
+        !starts_with(v["directory"].get<std::string>(), scene.get<std::string>() + "/"))
+        return "variant " + id + ": \"directory\" " + v["directory"].dump() +
+               " is outside its scene's directory " + scene.get<std::string>() + "/";
+    for (const std::string& p : paths)
+        if (!s.lists(p))
+            return "variant " + id + " names " + p + ", which shard.json does not list";
+    return "";
+}
+
+std::string check_variant_count(size_t variants, const ShardFile& s) {
+    if (variants != s.shapes.size() || variants != s.variants)
+        return "manifest.json holds " + std::to_string(variants) + " variants, shard.json names " +
+               std::to_string(s.shapes.size()) + " and counts " + std::to_string(s.variants) +
+               "; expected one count";
+    return "";
+}
+
+bool ShardFile::lists(const std::string& path) const {
+    const auto it =
+        std::lower_bound(files.begin(), files.end(), path,
+                         [](const ListedFile& f, const std::string& p) { return f.path < p; });
+    return it != files.end() && it->path == path;
+}
+
+std::string check_shard_manifest(const OJson& manifest, const ShardFile& s) {
     if (!manifest.is_object() || !manifest.value("variants", OJson()).is_array())
         return "no manifest.json of a build among the files shard.json lists";
     const OJson& variants = manifest["variants"];
-    if (variants.size() != s.shapes.size() || variants.size() != s.variants)
-        return "manifest.json holds " + std::to_string(variants.size()) +
-               " variants, shard.json names " + std::to_string(s.shapes.size()) + " and counts " +
-               std::to_string(s.variants) + "; expected one count";
-    const std::string range = "shard " + shard_text(s.shard);
-    for (const OJson& v : variants) {
-        const OJson scene = v.value("scene", OJson()), key = v.value("key", OJson());
-        if (!scene.is_string() || !key.is_string())
-            return "a variant of manifest.json has no scene and key";
-        const std::string id = scene.get<std::string>() + "/" + key.get<std::string>();
-        if (!s.shapes.count({scene, key}))
-            return "variant " + id + " of manifest.json is not among shard.json's shapes";
-        if (!in_shard(s.shard, key))
-            return "variant " + id + " is not in " + range +
-                   "'s key range (its key hashes to another shard)";
-        std::vector<std::string> paths;
-        if (std::string why = named_files(v, paths); !why.empty())
-            return "variant " + id + ": " + why;
-        if (v.contains("directory") &&
-            !starts_with(v["directory"].get<std::string>(), scene.get<std::string>() + "/"))
-            return "variant " + id + ": \"directory\" " + v["directory"].dump() +
-                   " is outside its scene's directory " + scene.get<std::string>() + "/";
-        for (const std::string& p : paths)
-            if (!listed.count(p))
-                return "variant " + id + " names " + p + ", which shard.json does not list";
-    }
+    if (std::string why = check_variant_count(variants.size(), s); !why.empty()) return why;
+    for (const OJson& v : variants)
+        if (std::string why = check_shard_variant(v, s); !why.empty()) return why;
     return "";
 }
 

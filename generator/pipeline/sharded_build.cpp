@@ -1,19 +1,29 @@
 #include "watergen/pipeline/sharded_build.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <fcntl.h>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <set>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 #include <xxhash.h>
 
 #include "watergen/pipeline/build_output.h"
 #include "watergen/pipeline/build_record.h"
+#include "watergen/pipeline/caustics_pass_build.h"
+#include "watergen/pipeline/json_document.h"
 #include "watergen/pipeline/manifest_files.h"
 #include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
 #include "watergen/pipeline/safe_read.h"
 #include "watergen/pipeline/shard_file.h"
+#include "watergen/pipeline/staged_tree.h"
 
 namespace watergen {
 
@@ -23,18 +33,92 @@ using OJson = nlohmann::ordered_json;
 namespace {
 
 constexpr size_t kMaxShardFileBytes = size_t(512) << 20;
-constexpr size_t kMaxOutputFileBytes = size_t(1) << 30;
 
-// A shard's output, read and verified against its shard.json.
+// Where the merge keeps the variants of the shards' manifests (compact text) while it reads
+// them: an unlinked file in the staging directory, so memory holds an index, not documents.
+class Spool {
+  public:
+    struct Ref {
+        uint64_t offset = 0, size = 0;
+    };
+    explicit Spool(const fs::path& dir) {
+        const fs::path path = dir / ".merge-spool";
+        fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+        if (fd_ >= 0) ::unlink(path.c_str());
+    }
+    ~Spool() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    Spool(const Spool&) = delete;
+    Spool& operator=(const Spool&) = delete;
+    bool ok() const { return fd_ >= 0; }
+    std::optional<Ref> put(const std::string& text) {
+        const Ref r{end_, text.size()};
+        for (size_t done = 0; done < text.size();) {
+            const ssize_t n = ::pwrite(fd_, text.data() + done, text.size() - done,
+                                       static_cast<off_t>(end_ + done));
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) return std::nullopt;
+            done += static_cast<size_t>(n);
+        }
+        end_ += text.size();
+        return r;
+    }
+    OJson get(Ref r) const {
+        std::string text(r.size, '\0');
+        for (size_t done = 0; done < r.size;) {
+            const ssize_t n = ::pread(fd_, text.data() + done, r.size - done,
+                                      static_cast<off_t>(r.offset + done));
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) return OJson();
+            done += static_cast<size_t>(n);
+        }
+        return OJson::parse(text, nullptr, false);
+    }
+
+  private:
+    int fd_ = -1;
+    uint64_t end_ = 0;
+};
+
+// A variant of a shard's manifest, as the merge keeps it.
+struct SpooledVariant {
+    std::string scene, key;
+    Spool::Ref entry;
+    std::string directory; // its "directory"
+    bool same_as = false;  // it points at another variant's files
+};
+
+// A shard's output, checked against its shard.json: the manifest read one variant at a time
+// into the spool, the other files checked for kind and size (their hashes when copied).
 struct ShardOutput {
     fs::path dir;
     ShardFile meta;
-    OJson manifest;
-    FileMap files; // manifest.json and shard.json left out
+    OJson head;         // the manifest without its variants
+    std::string header; // head.dump(): shards of one build have the same
+    std::vector<SpooledVariant> variants;
 };
 
+std::string mismatch(const fs::path& dir, const ListedFile& f, const std::string& detail) {
+    return dir.string() + ": " + f.path + " does not match the size and hash shard.json records" +
+           detail;
+}
+
+// The XXH3-128 digest and size of what `in` holds from its start.
+std::pair<std::string, uint64_t> stream_digest(std::FILE* in) {
+    std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(),
+                                                                          XXH3_freeState);
+    XXH3_128bits_reset(state.get());
+    std::vector<char> buffer(size_t(1) << 16);
+    uint64_t size = 0;
+    for (size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), in)) > 0; size += n)
+        XXH3_128bits_update(state.get(), buffer.data(), n);
+    const XXH128_hash_t h = XXH3_128bits_digest(state.get());
+    return {digest_text(h.high64, h.low64), size};
+}
+
 // Reads `dir` as a shard's output; "" or why not.
-std::string read_shard(const fs::path& dir, ShardOutput& s) {
+std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
     s.dir = dir;
     const std::string where = dir.string() + ": ";
     const SafeRead meta = read_regular_file(dir / kShardFile, kMaxShardFileBytes);
@@ -46,29 +130,68 @@ std::string read_shard(const fs::path& dir, ShardOutput& s) {
     auto parsed = parse_shard_file(*meta.bytes, &why);
     if (!parsed) return where + why;
     s.meta = std::move(*parsed);
-    std::set<std::string> listed;
+    const ListedFile* listed_manifest = nullptr;
     for (const ListedFile& f : s.meta.files) {
-        const SafeRead r =
-            read_regular_file(dir / f.path, std::min<uint64_t>(f.size, kMaxOutputFileBytes));
-        if (!r.bytes || r.bytes->size() != f.size || file_digest(*r.bytes) != f.digest)
-            return where + f.path + " does not match the size and hash shard.json records" +
-                   (r.bytes ? "" : " (" + (r.missing ? std::string("missing") : r.why) + ")");
-        listed.insert(f.path);
-        if (f.path == "manifest.json")
-            s.manifest = OJson::parse(*r.bytes, nullptr, false);
-        else
-            s.files.emplace(f.path, std::move(*r.bytes));
+        if (f.path == "manifest.json") {
+            listed_manifest = &f;
+            continue;
+        }
+        // Kind and size now; the hash when the file is copied.
+        struct stat st {};
+        if (::lstat((dir / f.path).c_str(), &st) != 0)
+            return mismatch(dir, f, errno == ENOENT ? " (missing)" : "");
+        if (!S_ISREG(st.st_mode) || static_cast<uint64_t>(st.st_size) != f.size)
+            return mismatch(
+                dir, f,
+                S_ISREG(st.st_mode) ? "" : std::string(" (is ") + file_kind(st.st_mode) + ")");
     }
-    if (std::string bad = check_shard_manifest(s.manifest, s.meta, listed); !bad.empty())
-        return where + bad;
+    if (!listed_manifest)
+        return where + "no manifest.json of a build among the files shard.json lists";
+    SafeRead seen;
+    std::FILE* in = open_regular_stream(dir / "manifest.json", seen);
+    if (!in)
+        return mismatch(dir, *listed_manifest,
+                        " (" + (seen.missing ? std::string("missing") : seen.why) + ")");
+    // Hashed in one pass, then read one variant at a time: each checked and spooled, the rest
+    // kept as the head.
+    const auto [digest, size] = stream_digest(in);
+    std::rewind(in);
+    if (size != listed_manifest->size || digest != listed_manifest->digest) {
+        std::fclose(in);
+        return mismatch(dir, *listed_manifest, "");
+    }
+    s.head = OJson::object();
+    bool has_variants = false;
+    std::string bad;
+    JsonDocumentReader reader{{"variants"},
+                              [&](const std::string& name, OJson&& value) {
+                                  if (name == "variants") return false; // not a list
+                                  s.head[name] = std::move(value);
+                                  return true;
+                              },
+                              [&](const std::string&, OJson&& v) {
+                                  if (bad = check_shard_variant(v, s.meta); !bad.empty())
+                                      return false;
+                                  const auto ref = spool.put(v.dump());
+                                  if (!ref) {
+                                      bad = "cannot write the merge's spool beside the output";
+                                      return false;
+                                  }
+                                  s.variants.push_back({v["scene"], v["key"], *ref,
+                                                        v.value("directory", ""),
+                                                        v.contains("same_as")});
+                                  return true;
+                              },
+                              [&](const std::string&) { has_variants = true; }};
+    const JsonReadEnd end = read_json_document(in, reader, nullptr);
+    std::fclose(in);
+    if (!bad.empty()) return where + bad;
+    if (end != JsonReadEnd::Done || !has_variants)
+        return where + "no manifest.json of a build among the files shard.json lists";
+    if (std::string count = check_variant_count(s.variants.size(), s.meta); !count.empty())
+        return where + count;
+    s.header = s.head.dump();
     return "";
-}
-
-// The manifest without its variants: the material, the space, the scenes.
-std::string header_of(const OJson& manifest) {
-    OJson h = manifest;
-    h.erase("variants");
-    return h.dump();
 }
 
 // The shards, checked to be 1..N of one build; "" or why not.
@@ -81,8 +204,7 @@ std::string check_set(const std::vector<ShardOutput>& shards) {
             return both + " were built by different watergen or toolchain versions ('" +
                    s.meta.toolchain + "' and '" + first.meta.toolchain +
                    "'); expected one for every shard";
-        if (s.meta.inputs != first.meta.inputs ||
-            header_of(s.manifest) != header_of(first.manifest))
+        if (s.meta.inputs != first.meta.inputs || s.header != first.header)
             return both + " were built from different inputs (material, scenes or options); "
                           "expected shards of one build";
         if (s.meta.shard.count != first.meta.shard.count)
@@ -137,13 +259,10 @@ std::string out_apart_from_shards(const fs::path& out, const std::vector<fs::pat
     return "";
 }
 
-// The merged manifest: every scene holds as many variants as its header counts (a shard that
-// lost a variant falls short), and every file the manifest names is among the merged files.
-std::string check_merged(const OJson& manifest, const FileMap& files) {
-    std::map<std::string, size_t> held;
-    for (const OJson& v : manifest["variants"])
-        ++held[v.value("scene", "")];
-    for (const OJson& scene : manifest.value("scenes", OJson::array())) {
+// Every scene of the merged manifest's head holds as many variants as it counts (a shard that
+// lost a variant falls short), and no variant is of a scene it does not name.
+std::string check_counts(const OJson& head, std::map<std::string, size_t> held) {
+    for (const OJson& scene : head.value("scenes", OJson::array())) {
         const std::string name = scene.value("name", "");
         const OJson count = scene.value("variants", OJson());
         if (!count.is_number_unsigned() || count.get<size_t>() != held[name])
@@ -155,13 +274,6 @@ std::string check_merged(const OJson& manifest, const FileMap& files) {
     if (!held.empty())
         return "variants of scene " + held.begin()->first +
                ", which the build's manifest does not name";
-    for (const OJson& v : manifest["variants"]) {
-        std::vector<std::string> paths;
-        if (std::string why = named_files(v, paths); !why.empty()) return why;
-        for (const std::string& p : paths)
-            if (!files.count(p))
-                return "the merged manifest would name " + p + ", which no shard holds";
-    }
     return "";
 }
 
@@ -169,7 +281,7 @@ std::string check_merged(const OJson& manifest, const FileMap& files) {
 
 std::string shard_json(const Shard& shard, const std::string& inputs_hash,
                        const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                       size_t variants, const FileMap& files) {
+                       size_t variants, const std::vector<RecordedFile>& files) {
     OJson j;
     j["watergen_shard"] = 1;
     j["index"] = shard.index;
@@ -182,8 +294,8 @@ std::string shard_json(const Shard& shard, const std::string& inputs_hash,
         shapes.push_back({jobs[i].scene, job_key(jobs[i]), results[i].shape_hash});
     j["shapes"] = shapes;
     OJson list = OJson::array();
-    for (const auto& [path, bytes] : files)
-        list.push_back({path, bytes.size(), file_digest(bytes)});
+    for (const RecordedFile& f : files)
+        list.push_back({f.path, f.size, f.digest});
     j["files"] = list;
     return j.dump(1) + "\n";
 }
@@ -198,25 +310,36 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
     // Refused before anything is read: the merge replaces OUT whole, so a shard at, above or
     // below it would be lost with the old tree, or would be read while being replaced.
     if (m.error = out_apart_from_shards(out, dirs); !m.error.empty()) return m;
-    if (const OutputTarget t = check_output_target(out); !t.ok()) {
-        m.error = out.string() + ": " + t.error;
+    const OutputTarget target = check_output_target(out);
+    if (!target.ok()) {
+        m.error = out.string() + ": " + target.error;
+        return m;
+    }
+    // The merged tree is written beside OUT as it is made, and replaces OUT at the end.
+    std::string error;
+    const std::unique_ptr<StagedTree> tree = StagedTree::open(target.path, &error);
+    if (!tree) {
+        m.error = error;
+        m.write_failed = true;
+        return m;
+    }
+    Spool spool(tree->dir());
+    if (!spool.ok()) {
+        m.error = "cannot create the merge's spool in " + tree->dir().string();
+        m.write_failed = true;
         return m;
     }
     std::vector<ShardOutput> shards(dirs.size());
     for (size_t i = 0; i < dirs.size(); ++i)
-        if (m.error = read_shard(dirs[i], shards[i]); !m.error.empty()) return m;
+        if (m.error = read_shard(dirs[i], shards[i], spool); !m.error.empty()) return m;
     if (m.error = check_set(shards); !m.error.empty()) return m;
 
     // Every variant once, sorted by (scene, key) as a build sorts them.
-    std::map<std::pair<std::string, std::string>, std::pair<const OJson*, const ShardOutput*>> all;
+    using Id = std::pair<std::string, std::string>;
+    std::map<Id, std::pair<const SpooledVariant*, const ShardOutput*>> all;
     for (const ShardOutput& s : shards)
-        for (const OJson& v : s.manifest["variants"]) {
-            const std::pair<std::string, std::string> id{v.value("scene", ""), v.value("key", "")};
-            if (!s.meta.shapes.count(id)) {
-                m.error = s.dir.string() + ": variant " + id.first + "/" + id.second +
-                          " has no shape in shard.json";
-                return m;
-            }
+        for (const SpooledVariant& v : s.variants) {
+            const Id id{v.scene, v.key};
             if (auto [it, fresh] = all.emplace(id, std::make_pair(&v, &s)); !fresh) {
                 m.error = "variant " + id.first + "/" + id.second + " is in both " +
                           it->second.second->dir.string() + " and " + s.dir.string();
@@ -224,39 +347,100 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
             }
         }
     // The first key of each shape of a scene is built; the others point at it.
-    std::map<std::pair<std::string, std::string>, const OJson*> first; // (scene, shape)
-    std::set<std::string> dropped;                                     // directories
-    FileMap files;
-    OJson variants = OJson::array();
+    std::map<Id, const SpooledVariant*> first;  // (scene, shape)
+    std::vector<const SpooledVariant*> builder; // per variant of `all`, in order
+    std::set<std::string> dropped;              // directories
+    std::map<std::string, size_t> held;
     for (const auto& [id, where] : all) {
-        const auto& [entry, shard] = where;
-        const auto [it, fresh] =
-            first.emplace(std::make_pair(id.first, shard->meta.shapes.at(id)), entry);
-        if (fresh) {
-            variants.push_back(*entry);
-            continue;
-        }
-        if (!entry->contains("same_as")) dropped.insert(entry->value("directory", "") + "/");
-        variants.push_back(as_same(*entry, *it->second));
+        const auto& [v, shard] = where;
+        const auto [it, fresh] = first.emplace(Id(id.first, shard->meta.shapes.at(id)), v);
+        builder.push_back(fresh ? v : it->second);
+        if (!fresh && !v->same_as) dropped.insert(v->directory + "/");
+        ++held[id.first];
     }
-    for (const ShardOutput& s : shards)
-        for (const auto& [path, bytes] : s.files) {
-            if (path == kShardFile) continue;
-            const size_t slash = path.find('/', path.find('/') + 1);
-            if (slash != std::string::npos && dropped.count(path.substr(0, slash + 1))) continue;
-            files[path] = bytes;
+    if (m.error = check_counts(shards.front().head, held); !m.error.empty()) return m;
+    auto is_dropped = [&](const std::string& path) {
+        const size_t slash = path.find('/', path.find('/') + 1);
+        return slash != std::string::npos && dropped.count(path.substr(0, slash + 1));
+    };
+    auto merged = [&](const std::string& path) {
+        return !is_dropped(path) && std::any_of(shards.begin(), shards.end(),
+                                                [&](const auto& s) { return s.meta.lists(path); });
+    };
+
+    // The merged manifest, one variant at a time; every file it names among the merged files.
+    StagedStream manifest = tree->stream("manifest.json");
+    const WriteText write = [&](std::string_view piece) { manifest.write(piece); };
+    JsonDocumentWriter doc(shards.front().head, write);
+    doc.begin_array("variants");
+    size_t k = 0;
+    for (const auto& [id, where] : all) {
+        OJson entry = spool.get(where.first->entry);
+        if (builder[k] != where.first) entry = as_same(entry, spool.get(builder[k]->entry));
+        ++k;
+        std::vector<std::string> paths;
+        if (m.error = named_files(entry, paths); !m.error.empty()) return m;
+        for (const std::string& p : paths)
+            if (!merged(p)) {
+                m.error = "the merged manifest would name " + p + ", which no shard holds";
+                return m;
+            }
+        doc.element(entry);
+    }
+    doc.end_array();
+    doc.end();
+    if (auto e = manifest.close()) {
+        m.error = *e;
+        m.write_failed = true;
+        return m;
+    }
+
+    // The shards' files, each checked against its size and hash as it is copied, one at a time
+    // per worker. The companion passes are in every shard that needs them: copied once.
+    std::mutex lock;
+    std::set<std::string> passes;
+    std::string copy_error;
+    bool write_error = false;
+    for (const ShardOutput& s : shards) {
+        parallel_for(s.meta.files.size(), 0, [&](size_t i) {
+            const ListedFile& f = s.meta.files[i];
+            if (f.path == "manifest.json" || f.path == kShardFile || is_dropped(f.path)) return;
+            if (f.path.rfind(std::string(kPassesDirectory) + "/", 0) == 0) {
+                std::lock_guard<std::mutex> guard(lock);
+                if (!passes.insert(f.path).second) return;
+            }
+            const SafeRead r = read_regular_file(s.dir / f.path, f.size);
+            std::string why;
+            bool wrote = false;
+            if (!r.bytes || r.bytes->size() != f.size || file_digest(*r.bytes) != f.digest)
+                why = mismatch(s.dir, f,
+                               r.bytes ? ""
+                                       : " (" + (r.missing ? std::string("missing") : r.why) + ")");
+            else if (auto e = tree->write(f.path, *r.bytes))
+                why = *e, wrote = true;
+            if (why.empty()) return;
+            std::lock_guard<std::mutex> guard(lock);
+            if (copy_error.empty()) copy_error = why, write_error = wrote;
+        });
+        if (!copy_error.empty()) {
+            m.error = copy_error;
+            m.write_failed = write_error;
+            return m;
         }
-    OJson manifest = shards.front().manifest;
-    manifest["variants"] = variants;
-    if (m.error = check_merged(manifest, files); !m.error.empty()) return m;
-    files["manifest.json"] = manifest.dump(2) + "\n";
-    if (auto e = publish_output(out, files)) {
+    }
+    const std::vector<RecordedFile> files = tree->files();
+    // Checked again: the merge took a while.
+    if (const OutputTarget again = check_output_target(out); !again.ok()) {
+        m.error = out.string() + ": " + again.error;
+        return m;
+    }
+    if (auto e = tree->commit(target.path)) {
         m.error = *e;
         m.write_failed = true;
         return m;
     }
     m.shards = shards.size();
-    m.variants = variants.size();
+    m.variants = all.size();
     m.files = files.size();
     // What one unsharded build of these inputs records (a permutations build: a shader per
     // variant).

@@ -32,6 +32,8 @@ std::string content_hash(const std::vector<std::string>& parts);
 
 // XXH3-128 of one file's bytes, as 32 lower-case hex digits: what an entry records per file.
 std::string file_digest(std::string_view bytes);
+// The text of an XXH3-128 value as file_digest() writes it (for digests taken piece by piece).
+std::string digest_text(uint64_t high, uint64_t low);
 // One file as an entry stores it: "<path>\n<size>\n<file_digest>\n<bytes>".
 std::string cache_record(const std::string& path, const std::string& bytes);
 

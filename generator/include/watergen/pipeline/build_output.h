@@ -22,7 +22,6 @@ constexpr const char* kUnprunedScene = "unpruned";
 
 struct BuildPlan {
     std::vector<ScenePlan> scenes; // sorted by name; empty: unpruned
-    std::vector<Variant> unpruned; // the material's space, when there are no scenes
     std::vector<BuildJob> jobs;    // sorted by (scene, key); facts point into `scenes`
     std::vector<ManifestScene> manifest_scenes;
 };
@@ -31,9 +30,11 @@ struct BuildPlan {
 // parameters, duplicate scene names, a scene that needs nothing). The plan must not be
 // copied after this (jobs point at its scenes' facts).
 // In the specialized and branching modes the jobs are the shaders of each scene's variants
-// (shaders_for(), water_shader.h), each listing the variants it serves.
+// (shaders_for(), water_shader.h), each listing the variants it serves. With `shard`, only the
+// jobs whose key is in it (the scenes stay whole: the manifest counts them).
 std::optional<BuildPlan> plan_build(const Material& material, const std::vector<SceneFacts>& scenes,
-                                    Diagnostics& ds, BuildMode mode = BuildMode::Permutations);
+                                    Diagnostics& ds, BuildMode mode = BuildMode::Permutations,
+                                    const Shard& shard = {});
 
 // The shader a build for the scene ships: the material's composition of `v`, folded under the
 // scene's facts, built in both languages (as one variant, not through the jobs and the cache).

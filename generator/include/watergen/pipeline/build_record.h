@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -49,6 +50,9 @@ std::filesystem::path record_file(const BuildCache& cache, const std::filesystem
 
 BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
                         const FileMap& files);
+// The same from what a staging tree wrote (sorted by path).
+BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
+                        std::vector<RecordedFile> files);
 std::string record_text(const BuildRecord& record);
 // nullopt for anything that is not a well-formed record (then the build simply runs).
 std::optional<BuildRecord> parse_record(const std::string& text);
@@ -60,6 +64,8 @@ void store_record(const std::filesystem::path& file, const BuildRecord& record);
 // Whether the record names every file the manifest `manifest` names, and manifest.json: a
 // record that lost a line cannot vouch for an output that lost that file.
 bool record_covers_manifest(const BuildRecord& record, const std::string& manifest);
+// The same for the manifest in `manifest`, read one variant at a time.
+bool record_covers_manifest(const BuildRecord& record, std::FILE* manifest);
 
 // Whether every recorded file is in `out`, a regular file of its size and digest (read on
 // `threads` workers; 0: all cores). No link is followed on the way: not `out`, not a directory

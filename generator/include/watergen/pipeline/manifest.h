@@ -5,13 +5,17 @@
 // inputs, whether the material came from C++ or from a file.
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "watergen/pipeline/build_cache.h"
 #include "watergen/pipeline/caustics_pass_build.h"
+#include "watergen/pipeline/json_document.h"
 #include "watergen/pipeline/parallel_build.h"
 #include "watergen/plan/scene_pruning.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
@@ -25,8 +29,18 @@ struct ManifestScene {
     size_t variants = 0;
 };
 
+// Where the manifest finds a built job's variant.json (its reflection): (job, file name) -> the
+// bytes, or nullopt. A streaming build reads it back from its staging tree.
+using ReadJobFile = std::function<std::optional<std::string>(size_t job, const std::string& name)>;
+// The manifest's text goes to a WriteText (json_document.h) piece by piece: the entries are made
+// and written one at a time, so no build holds the whole document.
+
 // A variant drawn with a companion pass gets "passes" (passes_entry(), caustics_pass_build.h)
 // after its own files.
+void write_manifest(const Material& material, const std::vector<ManifestScene>& scenes,
+                    const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                    const CausticsPasses& passes, const ReadJobFile& read, const WriteText& write);
+// The same as one string, reading each job's files from its result (JobResult::files).
 std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
                           const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
                           const CausticsPasses& passes = {});
@@ -41,14 +55,15 @@ std::string job_directory(const BuildJob& job);
 // offsets, fold, files, reflection) and "variants" (per variant, sorted by scene and key: the
 // shader directory that draws it and its selector values, placed; with freeze, its frozen
 // SPIR-V).
-std::string modes_manifest_json(const Material& material, BuildMode mode, bool freeze,
-                                const std::vector<ManifestScene>& scenes,
-                                const std::vector<BuildJob>& jobs,
-                                const std::vector<JobResult>& results,
-                                const CausticsPasses& passes = {});
+void write_modes_manifest(const Material& material, BuildMode mode, bool freeze,
+                          const std::vector<ManifestScene>& scenes,
+                          const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                          const CausticsPasses& passes, const ReadJobFile& read,
+                          const WriteText& write);
 
 // The files of a directory by kind ("description", "glsl", "hlsl", "spirv", "glsl330",
 // "essl300", "msl", "reflection"), as paths relative to the output directory.
+nlohmann::ordered_json files_json(const std::string& dir, const std::vector<std::string>& names);
 nlohmann::ordered_json files_json(const std::string& dir, const FileMap& files);
 
 // Where a variant's frozen SPIR-V goes in its shader's directory: "glsl/frozen/<stem>.frag.spv".
@@ -63,10 +78,12 @@ struct FrozenVariant {
 // The one file of a frozen module's cache entry.
 constexpr const char* kFrozenCacheFile = "frozen.spv";
 
-// The variant's fragment SPIR-V of one language path (its optimised module) with the shader's
-// selectors frozen to the variant's values (freeze_specialization(), one spirv-opt -O run), or
-// a verified copy from `cache` (keyed by the module and the values).
-FrozenVariant freeze_variant(const JobResult& r, const ShaderChoices& shader, const Variant& v,
+// The variant's fragment SPIR-V of one language path (`module`, its optimised module;
+// `description`, its shader's variant.json, which places the selectors) with the shader's selectors
+// frozen to the variant's values (freeze_specialization(), one spirv-opt -O run), or a verified
+// copy from `cache` (keyed by the module and the values).
+FrozenVariant freeze_variant(const std::string& module, const std::string& description,
+                             const ShaderChoices& shader, const Variant& v,
                              const std::string& language, const BuildCache& cache = {});
 
 } // namespace watergen

@@ -3,6 +3,8 @@
 // build record verifies, so that neither can report an output whole that lacks one.
 #pragma once
 
+#include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,5 +18,8 @@ std::string named_files(const nlohmann::ordered_json& entry, std::vector<std::st
 
 // named_files of every variant of the manifest `bytes`; "" or why not (not a manifest).
 std::string manifest_named_files(const std::string& bytes, std::vector<std::string>& paths);
+// The same, read from `in` one variant at a time, each path handed to `each` (a manifest of
+// many variants is larger than the memory its document would take).
+std::string manifest_named_files(std::FILE* in, const std::function<void(std::string&&)>& each);
 
 } // namespace watergen

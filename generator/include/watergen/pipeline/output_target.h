@@ -19,9 +19,6 @@ struct OutputTarget {
     bool ok() const { return error.empty(); }
 };
 
-// A manifest is a few hundred KB; anything far larger is not one.
-constexpr size_t kMaxManifestBytes = size_t(256) << 20;
-
 // `recorded`: the files the build record of `out` says watergen wrote there (build_record.h);
 // a directory whose manifest.json is broken is still replaced when it holds only those.
 OutputTarget check_output_target(const std::filesystem::path& out,
@@ -35,5 +32,8 @@ bool path_holds(const std::filesystem::path& outer, const std::filesystem::path&
 // Whether `bytes` are a manifest.json that watergen wrote (a JSON object whose "generator"
 // names watergen).
 bool is_watergen_manifest(const std::string& bytes);
+// Whether `path` is a regular file that begins as a watergen manifest: its "generator" member
+// is read, not the rest (a manifest of many variants is large).
+bool is_watergen_manifest_file(const std::filesystem::path& path);
 
 } // namespace watergen

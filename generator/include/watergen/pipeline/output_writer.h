@@ -34,6 +34,13 @@ std::filesystem::path write_staged_tree(const std::filesystem::path& dir,
 // Replaces `dir` with `staging` by rename; the old `dir` stays complete until then.
 std::optional<std::string> commit_directory(const std::filesystem::path& staging,
                                             const std::filesystem::path& dir);
+// Puts `staging` in the place of `dir` in one step: renameat2(RENAME_EXCHANGE) where the file
+// system has it (whenever the process dies, `dir` holds the old tree or the new one), else
+// commit_directory().
+std::optional<std::string> swap_directory_into_place(const std::filesystem::path& staging,
+                                                     const std::filesystem::path& dir);
+// Removes the staging directories beside `dir` that killed processes left.
+void remove_stale_staging(const std::filesystem::path& dir);
 // Removes the tree a commit replaced (now under a staging name); one that cannot be removed is
 // reported on stderr, "watergen: warning: cannot remove the replaced <path>: <why>; remove it by
 // hand", rather than left without a word.

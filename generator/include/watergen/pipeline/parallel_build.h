@@ -36,7 +36,9 @@ struct JobResult {
     std::string same_as;      // key of the earlier variant of the scene with the same shader
     bool folded = false;
     FoldReport fold;
-    FileMap files; // relative to the variant directory, filtered by targets
+    FileMap files; // relative to the variant directory, filtered by targets (empty once a
+                   // BuildOptions::sink took them)
+    std::vector<std::string> names; // of `files`, sorted; kept when a sink takes the bytes
     bool cached = false;
     std::string cache_rejected; // why its cache entry failed verification (evicted, rebuilt); "" if
                                 // it did not
@@ -56,6 +58,10 @@ struct BuildOptions {
     BuildCache cache;     // disabled by default
     // Called after each job, one call at a time, in completion order (progress display only).
     std::function<void(const BuildProgress&)> progress;
+    // Called on the worker thread, concurrently, with each job (index, result) whose files are
+    // done (a built job, or one that takes another scene's files), before `progress`: a streaming
+    // build writes them out and clears JobResult::files, so memory holds the jobs in flight only.
+    std::function<void(size_t, JobResult&)> sink;
 };
 
 unsigned hardware_threads();

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -24,6 +25,9 @@ struct SafeRead {
 const char* file_kind(mode_t mode);
 
 SafeRead read_regular_file(const std::filesystem::path& path, size_t max_bytes);
+// The same checks, for a file too large to hold (a manifest of many variants): the open stream
+// (close it with fclose), or nullptr and why in `r` (its `bytes` stay empty).
+std::FILE* open_regular_stream(const std::filesystem::path& path, SafeRead& r);
 
 // Removes what read_regular_file found at `path` (the link itself for a symbolic link), unless
 // something else has been put there since: a concurrent writer's fresh file stays.

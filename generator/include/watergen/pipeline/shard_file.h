@@ -29,14 +29,20 @@ struct ShardFile {
     std::string toolchain, inputs;
     size_t variants = 0;
     std::map<std::pair<std::string, std::string>, std::string> shapes; // (scene, key) -> shape
-    std::vector<ListedFile> files;
+    std::vector<ListedFile> files;                                     // sorted by path
+    bool lists(const std::string& path) const;
 };
 
 // shard.json's text as a ShardFile; nullopt and *why (what is wrong, what was expected).
 std::optional<ShardFile> parse_shard_file(const std::string& text, std::string* why);
 
-// The shard's manifest against its shard.json and the files shard.json lists; "" or why not.
-std::string check_shard_manifest(const nlohmann::ordered_json& manifest, const ShardFile& shard,
-                                 const std::set<std::string>& listed);
+// One variant of the shard's manifest against its shard.json (a merge reads the manifest one
+// variant at a time): in the shard's key range, among its shapes, every file it names listed;
+// "" or why not.
+std::string check_shard_variant(const nlohmann::ordered_json& variant, const ShardFile& shard);
+// The number of variants the manifest held against shard.json's; "" or why not.
+std::string check_variant_count(size_t variants, const ShardFile& shard);
+// The whole manifest: each variant, and their count.
+std::string check_shard_manifest(const nlohmann::ordered_json& manifest, const ShardFile& shard);
 
 } // namespace watergen

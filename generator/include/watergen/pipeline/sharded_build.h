@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "watergen/pipeline/build_cache.h"
+#include "watergen/pipeline/build_record.h"
 #include "watergen/pipeline/parallel_build.h"
 
 namespace watergen {
@@ -32,7 +33,7 @@ bool in_shard(const Shard& shard, const std::string& key);
 // The shard.json a shard's output carries (its `files` are the output's, manifest included).
 std::string shard_json(const Shard& shard, const std::string& inputs_hash,
                        const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                       size_t variants, const FileMap& files);
+                       size_t variants, const std::vector<RecordedFile>& files);
 
 constexpr const char* kShardFile = "shard.json";
 

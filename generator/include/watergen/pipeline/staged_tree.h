@@ -1,0 +1,84 @@
+// The output of a build as it is made: each file goes to a staging directory beside the output
+// as soon as it exists, so memory holds the files in flight, not the whole output. The tree
+// keeps what it wrote (path, size, digest) for the build record and shard.json, and reads a
+// file back for the steps that need one again (the manifest's reflection, frozen modules).
+// Until commit() swaps it into place the output is untouched; a tree never committed is removed.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <xxhash.h>
+
+#include "watergen/pipeline/build_record.h"
+
+namespace watergen {
+
+class StagedTree;
+
+// A file written piece by piece (the manifest), hashed on the way; close() records it.
+class StagedStream {
+  public:
+    StagedStream(StagedStream&&) noexcept;
+    ~StagedStream();
+    void write(std::string_view bytes);
+    // Closes and records the file; the first error of any write, or of the close.
+    std::optional<std::string> close();
+
+  private:
+    friend class StagedTree;
+    StagedStream(StagedTree* tree, std::string relative, std::FILE* file, std::string error);
+    StagedTree* tree_;
+    std::string relative_;
+    std::FILE* file_;
+    std::string error_;
+    uint64_t size_ = 0;
+    std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state_;
+};
+
+class StagedTree {
+  public:
+    // A fresh staging directory beside `out` (make_staging_directory, output_writer.h); nullptr
+    // and the error in `error` when it cannot be made.
+    static std::unique_ptr<StagedTree> open(const std::filesystem::path& out, std::string* error);
+    ~StagedTree(); // removes the staging directory unless committed
+    StagedTree(const StagedTree&) = delete;
+    StagedTree& operator=(const StagedTree&) = delete;
+
+    // Writes one file (a plain relative path, never an existing name); thread-safe.
+    std::optional<std::string> write(const std::string& relative, const std::string& bytes);
+    StagedStream stream(const std::string& relative);
+    // A file written before, read back; nullopt if it was not written or cannot be read.
+    std::optional<std::string> read(const std::string& relative) const;
+    bool has(const std::string& relative) const;
+
+    // Every file written, sorted by path.
+    std::vector<RecordedFile> files() const;
+    size_t count() const;
+    const std::filesystem::path& dir() const { return dir_; }
+
+    // Puts the tree in place of `out` in one step (renameat2 exchange where the file system
+    // has it); the old output stays whole until then. The tree is gone from its staging name
+    // either way.
+    std::optional<std::string> commit(const std::filesystem::path& out);
+
+  private:
+    friend class StagedStream;
+    explicit StagedTree(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    std::optional<std::string> make_parent(const std::string& relative);
+    void record(RecordedFile f);
+
+    std::filesystem::path dir_;
+    mutable std::mutex lock_;
+    std::set<std::string> directories_; // made already
+    std::vector<RecordedFile> files_;   // in write order
+    bool committed_ = false;
+};
+
+} // namespace watergen
