@@ -10,7 +10,8 @@
 # with watergen's diagnostics (file:line:column). Sets the target property WATERGEN_SHADER_DIR
 # to the output directory. JOBS and CACHE are watergen build's --jobs and --cache.
 #
-# SHARDS <n> (permutations mode) splits the build into n steps, `watergen build --shard i/n`
+# SHARDS <n> splits the build into n steps (by variant, or in specialized and branching mode by
+# shader: no more useful steps than the build has shaders), `watergen build --shard i/n`
 # each into <OUTPUT_DIR>.shards/<i> with a depfile of its own, and one `watergen merge` of them
 # into OUTPUT_DIR, which is then byte for byte what one build writes. The shard steps are
 # independent custom commands: the generator runs them in parallel (in the Ninja job pool
@@ -62,10 +63,6 @@ function(watergen_add_shaders target)
     if(NOT WG_SHARDS MATCHES "^[1-9][0-9]*$")
       message(FATAL_ERROR "watergen_add_shaders(${target}): SHARDS ${WG_SHARDS}: expected a "
         "positive whole number")
-    endif()
-    if(WG_MODE AND NOT WG_MODE STREQUAL "permutations")
-      message(FATAL_ERROR "watergen_add_shaders(${target}): SHARDS shards a permutations build; "
-        "expected MODE permutations, got MODE ${WG_MODE}")
     endif()
     set(shard_dirs "")
     set(shard_files "")

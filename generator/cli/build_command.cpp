@@ -140,9 +140,9 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                    "also write a Makefile-style dependency file: target <out>/manifest.json, "
                    "prerequisites the material and scene files (for make, ninja, CMake DEPFILE)");
     app.add_option("--shard", o->shard,
-                   "build only shard I of N (I/N, 1 <= I <= N): the variants whose key hashes to "
-                   "it, plus shard.json; `watergen merge` joins the N outputs into what one build "
-                   "writes (permutations mode)")
+                   "build only shard I of N (I/N, 1 <= I <= N): the variants (in specialized "
+                   "and branching mode the shaders) whose key hashes to it, plus shard.json; "
+                   "`watergen merge` joins the N outputs into what one build writes")
         ->check(CLI::Validator(
             [](std::string& text) {
                 std::string why;
@@ -173,16 +173,7 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                          o->mode.c_str());
             return kUsage;
         }
-        if (!o->shard.empty()) {
-            if (request.mode != BuildMode::Permutations) {
-                std::fprintf(stderr,
-                             "watergen: error: --shard: shards a permutations build; expected "
-                             "--mode permutations, got --mode %s\n",
-                             o->mode.c_str());
-                return kUsage;
-            }
-            request.shard = *parse_shard(o->shard, nullptr);
-        }
+        if (!o->shard.empty()) request.shard = *parse_shard(o->shard, nullptr);
         o->jobs = o->jobs ? capped_jobs(o->jobs) : 0;
         request.options.threads = o->jobs;
         if (!o->no_cache)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <memory>
 #include <mutex>
 
@@ -170,23 +171,35 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
                 const BuildOptions& options, BuildSummary& s, StagedTree& tree,
                 WriteErrors& errors) {
     struct Work {
-        size_t job;
+        size_t job, built; // the variant's shader and the one whose module it has
         Variant variant;
         std::string lang;
     };
-    std::vector<Work> work;
+    // A shader with the same shape as another's of its scene is that one's module: its
+    // variants are frozen from it, beside its own, where the manifest points them.
+    std::map<std::pair<std::string, std::string>, size_t> index;
     for (size_t i = 0; i < jobs.size(); ++i)
-        if (jobs[i].shader && results[i].ok() && results[i].same_as.empty())
-            for (const Variant& v : jobs[i].serves)
-                for (const char* lang : {"glsl", "hlsl"})
-                    if (std::binary_search(results[i].names.begin(), results[i].names.end(),
-                                           std::string(lang) + "/water.frag.opt.spv"))
-                        work.push_back({i, v, lang});
+        index[{jobs[i].scene, job_key(jobs[i])}] = i;
+    std::vector<Work> work;
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        if (!jobs[i].shader || !results[i].ok()) continue;
+        size_t built = i;
+        if (!results[i].same_as.empty()) {
+            const auto it = index.find({jobs[i].scene, results[i].same_as});
+            if (it == index.end()) continue;
+            built = it->second;
+        }
+        for (const Variant& v : jobs[i].serves)
+            for (const char* lang : {"glsl", "hlsl"})
+                if (std::binary_search(results[built].names.begin(), results[built].names.end(),
+                                       std::string(lang) + "/water.frag.opt.spv"))
+                    work.push_back({i, built, v, lang});
+    }
     std::vector<FrozenVariant> frozen(work.size());
     std::vector<char> failed(work.size(), 0);
     parallel_for(work.size(), options.threads, [&](size_t k) {
         const Work& w = work[k];
-        const std::string dir = job_directory(jobs[w.job]) + "/";
+        const std::string dir = job_directory(jobs[w.built]) + "/";
         const auto module = tree.read(dir + w.lang + "/water.frag.opt.spv");
         const auto description = tree.read(dir + "variant.json");
         if (!module || !description) {
@@ -206,7 +219,8 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
     });
     for (size_t k = 0; k < work.size(); ++k) {
         const Work& w = work[k];
-        const std::string path = job_directory(jobs[w.job]) + "/" + frozen_path(w.lang, w.variant);
+        const std::string path =
+            job_directory(jobs[w.built]) + "/" + frozen_path(w.lang, w.variant);
         if (!frozen[k].cache_rejected.empty()) {
             ++s.cache_rejected;
             s.diagnostics.push_back(
@@ -279,14 +293,6 @@ BuildSummary build_material_now(const BuildRequest& request) {
         recorded ? record_key(request.inputs_hash, shard_text(request.shard)) : "";
     const fs::path record = recorded ? record_file(request.options.cache, request.out) : fs::path();
     BuildSummary s;
-    if (request.shard.sharded() && request.mode != BuildMode::Permutations) {
-        s.bad_input = true;
-        s.diagnostics.push_back({Severity::Error, "", 0, 0, "",
-                                 "--shard: shards permutations builds; expected --mode "
-                                 "permutations, got --mode " +
-                                     std::string(to_string(request.mode))});
-        return s;
-    }
     auto plan =
         plan_build(request.material, request.scenes, s.diagnostics, request.mode, request.shard);
     if (!plan) {

@@ -42,6 +42,21 @@ std::string named_files(const OJson& entry, std::vector<std::string>& paths) {
             !why.empty())
             return why;
     }
+    // A variant a specialized build freezes: its own SPIR-V per language, in its shader's
+    // directory.
+    if (const auto it = entry.find("frozen"); it != entry.end()) {
+        const OJson shader = entry.value("shader", OJson());
+        if (!it->is_object() || !shader.is_string())
+            return "\"frozen\" is not an object of paths beside a \"shader\"";
+        for (const auto& [lang, p] : it->items()) {
+            if (!p.is_string() || !is_plain_relative_path(p.get<std::string>()) ||
+                !starts_with(p.get<std::string>(), shader.get<std::string>() + "/"))
+                return "\"frozen\"/" + lang + " names " + p.dump() +
+                       "; expected a plain relative path inside \"" + shader.get<std::string>() +
+                       "\"";
+            paths.push_back(p);
+        }
+    }
     if (const auto it = entry.find("passes"); it != entry.end()) {
         if (!it->is_object()) return "\"passes\" is not an object";
         for (const auto& [name, pass] : it->items())
@@ -57,20 +72,22 @@ template <class Input>
 std::string named_files_of(Input&& in, const std::function<void(std::string&&)>& each) {
     bool variants = false;
     std::string why;
-    JsonDocumentReader reader{{"variants"},
-                              [&](const std::string& name, OJson&&) {
-                                  if (name != "variants") return true;
-                                  why = "\"variants\" is not a list";
-                                  return false;
-                              },
-                              [&](const std::string&, OJson&& v) {
-                                  std::vector<std::string> paths;
-                                  why = named_files(v, paths);
-                                  for (std::string& p : paths)
-                                      each(std::move(p));
-                                  return why.empty();
-                              },
-                              [&](const std::string&) { variants = true; }};
+    // A modes build's shaders hold the files; its variants name their frozen modules.
+    JsonDocumentReader reader{
+        {"variants", "shaders"},
+        [&](const std::string& name, OJson&&) {
+            if (name != "variants" && name != "shaders") return true;
+            why = "\"" + name + "\" is not a list";
+            return false;
+        },
+        [&](const std::string&, OJson&& v) {
+            std::vector<std::string> paths;
+            why = named_files(v, paths);
+            for (std::string& p : paths)
+                each(std::move(p));
+            return why.empty();
+        },
+        [&](const std::string& array) { variants = variants || array == "variants"; }};
     std::string malformed;
     if (read_json_document(std::forward<Input>(in), reader, &malformed) == JsonReadEnd::Malformed)
         return "manifest.json is not the manifest of a build (" + malformed + ")";

@@ -128,11 +128,30 @@ std::string check_shard_variant(const OJson& v, const ShardFile& s) {
     return "";
 }
 
-std::string check_variant_count(size_t variants, const ShardFile& s) {
-    if (variants != s.shapes.size() || variants != s.variants)
-        return "manifest.json holds " + std::to_string(variants) + " variants, shard.json names " +
-               std::to_string(s.shapes.size()) + " and counts " + std::to_string(s.variants) +
-               "; expected one count";
+std::string check_served_variant(const OJson& v, const ShardFile& s,
+                                 const std::set<std::string>& shaders) {
+    const OJson scene = v.value("scene", OJson()), key = v.value("key", OJson()),
+                shader = v.value("shader", OJson());
+    if (!scene.is_string() || !key.is_string() || !shader.is_string())
+        return "a variant of manifest.json has no scene, key and shader";
+    const std::string id = scene.get<std::string>() + "/" + key.get<std::string>();
+    if (!shaders.count(shader))
+        return "variant " + id + " is drawn by " + shader.dump() +
+               ", which is no shader of the shard's manifest";
+    std::vector<std::string> paths;
+    if (std::string why = named_files(v, paths); !why.empty()) return "variant " + id + ": " + why;
+    for (const std::string& p : paths)
+        if (!s.lists(p))
+            return "variant " + id + " names " + p + ", which shard.json does not list";
+    return "";
+}
+
+std::string check_variant_count(size_t jobs, size_t variants, const ShardFile& s) {
+    if (jobs != s.shapes.size() || variants != s.variants)
+        return "manifest.json holds " + std::to_string(variants) + " variants in " +
+               std::to_string(jobs) + " shaders, shard.json names " +
+               std::to_string(s.shapes.size()) + " shaders and counts " +
+               std::to_string(s.variants) + " variants; expected one count";
     return "";
 }
 
@@ -144,12 +163,22 @@ bool ShardFile::lists(const std::string& path) const {
 }
 
 std::string check_shard_manifest(const OJson& manifest, const ShardFile& s) {
-    if (!manifest.is_object() || !manifest.value("variants", OJson()).is_array())
+    const bool modes = manifest.is_object() && manifest.contains("mode");
+    if (!manifest.is_object() || !manifest.value("variants", OJson()).is_array() ||
+        (modes && !manifest.value("shaders", OJson()).is_array()))
         return "no manifest.json of a build among the files shard.json lists";
     const OJson& variants = manifest["variants"];
-    if (std::string why = check_variant_count(variants.size(), s); !why.empty()) return why;
-    for (const OJson& v : variants)
+    const OJson& jobs = modes ? manifest["shaders"] : variants;
+    if (std::string why = check_variant_count(jobs.size(), variants.size(), s); !why.empty())
+        return why;
+    std::set<std::string> shaders;
+    for (const OJson& v : jobs) {
         if (std::string why = check_shard_variant(v, s); !why.empty()) return why;
+        if (modes) shaders.insert(v.value("directory", ""));
+    }
+    if (modes)
+        for (const OJson& v : variants)
+            if (std::string why = check_served_variant(v, s, shaders); !why.empty()) return why;
     return "";
 }
 

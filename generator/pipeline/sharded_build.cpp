@@ -89,14 +89,17 @@ struct SpooledVariant {
     bool same_as = false;  // it points at another variant's files
 };
 
-// A shard's output, checked against its shard.json: the manifest read one variant at a time
-// into the spool, the other files checked for kind and size (their hashes when copied).
+// A shard's output, checked against its shard.json: the manifest read one entry at a time into
+// the spool, the other files checked for kind and size (their hashes when copied).
 struct ShardOutput {
     fs::path dir;
     ShardFile meta;
-    OJson head;         // the manifest without its variants
+    OJson head;         // the manifest without its variants (and shaders)
     std::string header; // head.dump(): shards of one build have the same
-    std::vector<SpooledVariant> variants;
+    bool modes = false; // a specialized or branching build: its jobs are shaders
+    // Its jobs: the variants of a permutations build, the shaders of a modes build.
+    std::vector<SpooledVariant> jobs;
+    std::vector<SpooledVariant> served; // a modes build's variants
 };
 
 std::string mismatch(const fs::path& dir, const ListedFile& f, const std::string& detail) {
@@ -161,34 +164,54 @@ std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
         return mismatch(dir, *listed_manifest, "");
     }
     s.head = OJson::object();
-    bool has_variants = false;
+    bool has_variants = false, has_shaders = false;
+    std::set<std::string> shaders; // the directories of a modes build's shaders
     std::string bad;
-    JsonDocumentReader reader{{"variants"},
+    auto spooled = [&](const OJson& v) -> std::optional<SpooledVariant> {
+        const auto ref = spool.put(v.dump());
+        if (!ref) {
+            bad = "cannot write the merge's spool beside the output";
+            return std::nullopt;
+        }
+        return SpooledVariant{v["scene"], v["key"], *ref, v.value("directory", ""),
+                              v.contains("same_as")};
+    };
+    // A modes manifest names its mode, then its shaders, then the variants they draw.
+    JsonDocumentReader reader{{"variants", "shaders"},
                               [&](const std::string& name, OJson&& value) {
-                                  if (name == "variants") return false; // not a list
+                                  if (name == "variants" || name == "shaders")
+                                      return false; // not a list
+                                  s.modes = s.modes || name == "mode";
                                   s.head[name] = std::move(value);
                                   return true;
                               },
-                              [&](const std::string&, OJson&& v) {
-                                  if (bad = check_shard_variant(v, s.meta); !bad.empty())
-                                      return false;
-                                  const auto ref = spool.put(v.dump());
-                                  if (!ref) {
-                                      bad = "cannot write the merge's spool beside the output";
-                                      return false;
-                                  }
-                                  s.variants.push_back({v["scene"], v["key"], *ref,
-                                                        v.value("directory", ""),
-                                                        v.contains("same_as")});
+                              [&](const std::string& array, OJson&& v) {
+                                  const bool served = s.modes && array == "variants";
+                                  if (!s.modes && array == "shaders")
+                                      bad = "a permutations manifest with shaders";
+                                  else if (served && !has_shaders)
+                                      bad = "a modes manifest's variants before its shaders";
+                                  else
+                                      bad = served ? check_served_variant(v, s.meta, shaders)
+                                                   : check_shard_variant(v, s.meta);
+                                  if (!bad.empty()) return false;
+                                  auto entry = spooled(v);
+                                  if (!entry) return false;
+                                  if (!served && s.modes) shaders.insert(entry->directory);
+                                  (served ? s.served : s.jobs).push_back(std::move(*entry));
                                   return true;
                               },
-                              [&](const std::string&) { has_variants = true; }};
+                              [&](const std::string& array) {
+                                  (array == "variants" ? has_variants : has_shaders) = true;
+                              }};
     const JsonReadEnd end = read_json_document(in, reader, nullptr);
     std::fclose(in);
     if (!bad.empty()) return where + bad;
-    if (end != JsonReadEnd::Done || !has_variants)
+    if (end != JsonReadEnd::Done || !has_variants || s.modes != has_shaders)
         return where + "no manifest.json of a build among the files shard.json lists";
-    if (std::string count = check_variant_count(s.variants.size(), s.meta); !count.empty())
+    if (std::string count =
+            check_variant_count(s.jobs.size(), (s.modes ? s.served : s.jobs).size(), s.meta);
+        !count.empty())
         return where + count;
     s.header = s.head.dump();
     return "";
@@ -235,6 +258,18 @@ OJson as_same(const OJson& own, const OJson& builder) {
     for (const auto& [name, value] : builder.items())
         if (kOutputFields.count(name) && name != "same_as") v[name] = value;
     return v;
+}
+
+// A modes build's variant whose shader another shard's shader of the same shape replaced, drawn
+// by that one, as one build writes it: its "shader" and its frozen modules' directory.
+void moved_to_its_shader(OJson& entry, const std::map<std::string, std::string>& moved) {
+    const auto to = moved.find(entry.value("shader", ""));
+    if (to == moved.end()) return;
+    entry["shader"] = to->second;
+    if (auto frozen = entry.find("frozen"); frozen != entry.end() && frozen->is_object())
+        for (auto path = frozen->begin(); path != frozen->end(); ++path)
+            if (path->is_string())
+                *path = to->second + path->get<std::string>().substr(to->first.size());
 }
 
 // Why OUT may not be the merge's output beside these shards: it is one, holds one or lies
@@ -334,60 +369,105 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
         if (m.error = read_shard(dirs[i], shards[i], spool); !m.error.empty()) return m;
     if (m.error = check_set(shards); !m.error.empty()) return m;
 
-    // Every variant once, sorted by (scene, key) as a build sorts them.
+    // Every job once (a variant; a modes build's shader), sorted by (scene, key) as a build
+    // sorts them; and each variant of a modes build once.
     using Id = std::pair<std::string, std::string>;
-    std::map<Id, std::pair<const SpooledVariant*, const ShardOutput*>> all;
-    for (const ShardOutput& s : shards)
-        for (const SpooledVariant& v : s.variants) {
-            const Id id{v.scene, v.key};
-            if (auto [it, fresh] = all.emplace(id, std::make_pair(&v, &s)); !fresh) {
-                m.error = "variant " + id.first + "/" + id.second + " is in both " +
-                          it->second.second->dir.string() + " and " + s.dir.string();
-                return m;
+    using Held = std::map<Id, std::pair<const SpooledVariant*, const ShardOutput*>>;
+    const bool modes = shards.front().modes; // the same for all: it is in the header
+    Held all, served;
+    auto gather = [&](Held& into, std::vector<SpooledVariant> ShardOutput::*entries,
+                      const char* what) {
+        for (const ShardOutput& s : shards)
+            for (const SpooledVariant& v : s.*entries) {
+                const Id id{v.scene, v.key};
+                if (auto [it, fresh] = into.emplace(id, std::make_pair(&v, &s)); !fresh) {
+                    m.error = std::string(what) + " " + id.first + "/" + id.second +
+                              " is in both " + it->second.second->dir.string() + " and " +
+                              s.dir.string();
+                    return false;
+                }
             }
-        }
-    // The first key of each shape of a scene is built; the others point at it.
+        return true;
+    };
+    if (!gather(all, &ShardOutput::jobs, modes ? "shader" : "variant") ||
+        !gather(served, &ShardOutput::served, "variant"))
+        return m;
+    // The first key of each shape of a scene is built; the others point at it. A modes build's
+    // shader replaced so moves its variants, and their frozen modules, to the one built.
     std::map<Id, const SpooledVariant*> first;  // (scene, shape)
-    std::vector<const SpooledVariant*> builder; // per variant of `all`, in order
+    std::vector<const SpooledVariant*> builder; // per job of `all`, in order
     std::set<std::string> dropped;              // directories
+    std::map<std::string, std::string> moved;   // a dropped shader's directory -> the built one's
     std::map<std::string, size_t> held;
     for (const auto& [id, where] : all) {
         const auto& [v, shard] = where;
         const auto [it, fresh] = first.emplace(Id(id.first, shard->meta.shapes.at(id)), v);
         builder.push_back(fresh ? v : it->second);
-        if (!fresh && !v->same_as) dropped.insert(v->directory + "/");
-        ++held[id.first];
+        if (!fresh && !v->same_as) {
+            dropped.insert(v->directory);
+            if (modes) moved[v->directory] = it->second->directory;
+        }
+        if (!modes) ++held[id.first];
     }
+    for (const auto& [id, where] : served)
+        ++held[id.first];
     if (m.error = check_counts(shards.front().head, held); !m.error.empty()) return m;
-    auto is_dropped = [&](const std::string& path) {
+    // A job's directory is <scene>/<name>: the first two parts of a path.
+    auto directory_of = [](const std::string& path) {
         const size_t slash = path.find('/', path.find('/') + 1);
-        return slash != std::string::npos && dropped.count(path.substr(0, slash + 1));
+        return slash == std::string::npos ? std::string() : path.substr(0, slash);
+    };
+    auto listed = [&](const std::string& path) {
+        return std::any_of(shards.begin(), shards.end(),
+                           [&](const auto& s) { return s.meta.lists(path); });
+    };
+    // Where a shard's file goes in the merged output; "" for none.
+    auto destination = [&](const std::string& path) -> std::string {
+        const std::string dir = directory_of(path);
+        if (dir.empty() || !dropped.count(dir)) return path;
+        const auto to = moved.find(dir);
+        const std::string rest = path.substr(dir.size());
+        const bool frozen = rest.find("/frozen/") != std::string::npos;
+        return to != moved.end() && frozen ? to->second + rest : "";
     };
     auto merged = [&](const std::string& path) {
-        return !is_dropped(path) && std::any_of(shards.begin(), shards.end(),
-                                                [&](const auto& s) { return s.meta.lists(path); });
+        if (destination(path) == path && listed(path)) return true;
+        for (const auto& [from, to] : moved)
+            if (directory_of(path) == to && listed(from + path.substr(to.size()))) return true;
+        return false;
     };
 
-    // The merged manifest, one variant at a time; every file it names among the merged files.
+    // The merged manifest, one entry at a time; every file it names among the merged files.
     StagedStream manifest = tree->stream("manifest.json");
     const WriteText write = [&](std::string_view piece) { manifest.write(piece); };
     JsonDocumentWriter doc(shards.front().head, write);
-    doc.begin_array("variants");
-    size_t k = 0;
-    for (const auto& [id, where] : all) {
-        OJson entry = spool.get(where.first->entry);
-        if (builder[k] != where.first) entry = as_same(entry, spool.get(builder[k]->entry));
-        ++k;
-        std::vector<std::string> paths;
-        if (m.error = named_files(entry, paths); !m.error.empty()) return m;
-        for (const std::string& p : paths)
-            if (!merged(p)) {
-                m.error = "the merged manifest would name " + p + ", which no shard holds";
-                return m;
-            }
-        doc.element(entry);
-    }
+    auto write_entries = [&](const Held& entries, bool jobs) {
+        size_t k = 0;
+        for (const auto& [id, where] : entries) {
+            OJson entry = spool.get(where.first->entry);
+            if (jobs && builder[k] != where.first)
+                entry = as_same(entry, spool.get(builder[k]->entry));
+            ++k;
+            if (!jobs) moved_to_its_shader(entry, moved);
+            std::vector<std::string> paths;
+            if (m.error = named_files(entry, paths); !m.error.empty()) return false;
+            for (const std::string& p : paths)
+                if (!merged(p)) {
+                    m.error = "the merged manifest would name " + p + ", which no shard holds";
+                    return false;
+                }
+            doc.element(entry);
+        }
+        return true;
+    };
+    doc.begin_array(modes ? "shaders" : "variants");
+    if (!write_entries(all, true)) return m;
     doc.end_array();
+    if (modes) {
+        doc.begin_array("variants");
+        if (!write_entries(served, false)) return m;
+        doc.end_array();
+    }
     doc.end();
     if (auto e = manifest.close()) {
         m.error = *e;
@@ -404,7 +484,9 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
     for (const ShardOutput& s : shards) {
         parallel_for(s.meta.files.size(), 0, [&](size_t i) {
             const ListedFile& f = s.meta.files[i];
-            if (f.path == "manifest.json" || f.path == kShardFile || is_dropped(f.path)) return;
+            if (f.path == "manifest.json" || f.path == kShardFile) return;
+            const std::string to = destination(f.path);
+            if (to.empty()) return;
             if (f.path.rfind(std::string(kPassesDirectory) + "/", 0) == 0) {
                 std::lock_guard<std::mutex> guard(lock);
                 if (!passes.insert(f.path).second) return;
@@ -416,7 +498,7 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
                 why = mismatch(s.dir, f,
                                r.bytes ? ""
                                        : " (" + (r.missing ? std::string("missing") : r.why) + ")");
-            else if (auto e = tree->write(f.path, *r.bytes))
+            else if (auto e = tree->write(to, *r.bytes))
                 why = *e, wrote = true;
             if (why.empty()) return;
             std::lock_guard<std::mutex> guard(lock);
@@ -440,14 +522,13 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
         return m;
     }
     m.shards = shards.size();
-    m.variants = all.size();
+    m.variants = modes ? served.size() : all.size();
     m.files = files.size();
-    // What one unsharded build of these inputs records (a permutations build: a shader per
-    // variant).
+    // What one unsharded build of these inputs records.
     if (cache.enabled())
         store_record(
             record_file(cache, out),
-            make_record(record_key(shards.front().meta.inputs, ""), m.variants, m.variants, files));
+            make_record(record_key(shards.front().meta.inputs, ""), m.variants, all.size(), files));
     return m;
 }
 

@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <fstream>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
@@ -275,4 +277,83 @@ TEST_CASE("merge_refuses_an_out_among_its_shards_and_shards_that_do_not_add_up",
     const WatergenRun ok = merge(out, shards);
     INFO(ok.err);
     CHECK(ok.exit_code == 0);
+}
+
+// Specialized (with frozen modules) and branching builds shard by shader: four shards merged
+// are the single build byte for byte, and the build after the merge is a no-op. The example
+// scenes make 3 shaders, so a shard of four may be empty, and merges as one. A variant drawn by
+// a shader its shard does not hold is refused, as are shards of two modes.
+TEST_CASE("modes_shards_merged_are_byte_identical_to_one_build", "[shard]") {
+    const TempDir tmp("shards-modes");
+    const std::string material = default_material_path();
+    std::map<std::string, std::vector<std::string>> shards_of;
+    for (const std::vector<std::string>& mode :
+         {std::vector<std::string>{"--mode", "specialized", "--freeze"},
+          std::vector<std::string>{"--mode", "branching"}}) {
+        const std::string name = mode[1];
+        INFO(name);
+        auto args = [&](const std::string& out, const std::string& shard) {
+            auto a = build_args(tmp.path, material, out, shard);
+            a.insert(a.end(), mode.begin(), mode.end());
+            return a;
+        };
+        REQUIRE(run_watergen(args(name + "-one", "")).exit_code == 0);
+        const auto one = read_tree(tmp.path / (name + "-one"));
+        std::vector<std::string> merge = {"merge", "--cache", (tmp.path / "cache").string(),
+                                          (tmp.path / (name + "-merged")).string()};
+        size_t shaders = 0, variants = 0, empty = 0;
+        for (int i = 1; i <= 4; ++i) {
+            const std::string shard = name + "-" + std::to_string(i);
+            REQUIRE(run_watergen(args(shard, std::to_string(i) + "/4")).exit_code == 0);
+            const auto m = nlohmann::json::parse(read_file(tmp.path / shard / "manifest.json"));
+            shaders += m["shaders"].size();
+            variants += m["variants"].size();
+            empty += m["shaders"].empty() ? 1 : 0;
+            merge.push_back((tmp.path / shard).string());
+            shards_of[name].push_back((tmp.path / shard).string());
+        }
+        CHECK(shaders == 3);
+        CHECK(variants == 56);
+        CHECK(empty > 0);
+        const WatergenRun m = run_watergen(merge);
+        INFO(m.out << m.err);
+        REQUIRE(m.exit_code == 0);
+        CHECK(m.out.find("merge: 4 shards, 56 variants") != std::string::npos);
+        const auto merged = read_tree(tmp.path / (name + "-merged"));
+        for (const auto& [path, bytes] : one) {
+            INFO(path);
+            REQUIRE(merged.count(path) == 1);
+            CHECK(merged.at(path) == bytes);
+        }
+        CHECK(merged == one);
+        const WatergenRun again = run_watergen(args(name + "-merged", ""));
+        INFO(again.out << again.err);
+        CHECK(again.out.find("build: 56 variants up to date") != std::string::npos);
+    }
+    auto refused = [&](std::vector<std::string> dirs, const std::string& why) {
+        const fs::path out = tmp.path / "refused";
+        dirs.insert(dirs.begin(), {"merge", out.string()});
+        const WatergenRun r = run_watergen(dirs);
+        INFO(r.err);
+        CHECK(r.exit_code == 2);
+        CHECK(r.err.find(why) != std::string::npos);
+        CHECK_FALSE(fs::exists(out));
+    };
+    std::vector<std::string> mixed = shards_of["specialized"];
+    mixed[3] = shards_of["branching"][3];
+    refused(mixed, "built from different inputs");
+    // A variant pointed at a shader of another shard, shard.json rehashed to agree.
+    std::vector<std::string> dirs = shards_of["specialized"];
+    std::string with; // a shard with variants
+    for (const std::string& d : dirs)
+        if (!read_json(fs::path(d) / "manifest.json")["variants"].empty()) with = d;
+    REQUIRE(!with.empty());
+    const fs::path bad = tmp.path / "bad-shard";
+    fs::copy(with, bad, fs::copy_options::recursive);
+    OJson m = read_json(bad / "manifest.json");
+    m["variants"][0]["shader"] = "open_ocean/elsewhere";
+    write_json(bad / "manifest.json", m);
+    rehash(bad);
+    std::replace(dirs.begin(), dirs.end(), with, bad.string());
+    refused(dirs, "which is no shader of the shard's manifest");
 }

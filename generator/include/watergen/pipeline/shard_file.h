@@ -1,7 +1,8 @@
 // What `watergen merge` reads of one shard's output, trusting none of it: shard.json parsed into
 // its fields (every one checked for type and range), and the shard's manifest checked against
-// it: each variant in the shard's key range, exactly the variants shard.json names, every file
-// the manifest names listed in shard.json, plain and inside its variant's directory.
+// it: each variant (a modes build: each shader) in the shard's key range, exactly the ones
+// shard.json names, every file the manifest names listed in shard.json, plain and inside its
+// variant's (or shader's) directory.
 #pragma once
 
 #include <cstdint>
@@ -36,13 +37,18 @@ struct ShardFile {
 // shard.json's text as a ShardFile; nullopt and *why (what is wrong, what was expected).
 std::optional<ShardFile> parse_shard_file(const std::string& text, std::string* why);
 
-// One variant of the shard's manifest against its shard.json (a merge reads the manifest one
-// variant at a time): in the shard's key range, among its shapes, every file it names listed;
-// "" or why not.
+// One variant of a permutations shard's manifest (or one shader of a modes shard's) against its
+// shard.json (a merge reads the manifest one entry at a time): in the shard's key range, among
+// its shapes, every file it names listed; "" or why not.
 std::string check_shard_variant(const nlohmann::ordered_json& variant, const ShardFile& shard);
-// The number of variants the manifest held against shard.json's; "" or why not.
-std::string check_variant_count(size_t variants, const ShardFile& shard);
-// The whole manifest: each variant, and their count.
+// One variant of a modes shard's manifest: drawn by one of the shard's shaders (`shaders`, their
+// directories), its frozen modules listed; "" or why not.
+std::string check_served_variant(const nlohmann::ordered_json& variant, const ShardFile& shard,
+                                 const std::set<std::string>& shaders);
+// The number of shaders (variants, in a permutations build) and of variants the manifest held
+// against shard.json's; "" or why not.
+std::string check_variant_count(size_t jobs, size_t variants, const ShardFile& shard);
+// The whole manifest: each entry, and their counts.
 std::string check_shard_manifest(const nlohmann::ordered_json& manifest, const ShardFile& shard);
 
 } // namespace watergen
