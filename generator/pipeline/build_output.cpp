@@ -337,6 +337,9 @@ BuildSummary build_material_now(const BuildRequest& request) {
     s.diagnostics.insert(s.diagnostics.end(), passes.diagnostics.begin(), passes.diagnostics.end());
     for (const auto& [path, bytes] : passes.files)
         errors.note(tree->write(path, bytes));
+    const ListFiles list_files = [&](const std::function<void(const RecordedFile&)>& each) {
+        tree->for_each_file(each);
+    };
     if (s.failed == 0 && !errors.first) {
         const ReadJobFile read = [&](size_t job, const std::string& name) {
             return tree->read(job_directory(plan->jobs[job]) + "/" + name);
@@ -351,16 +354,18 @@ BuildSummary build_material_now(const BuildRequest& request) {
                                  plan->manifest_scenes, plan->jobs, results, passes.passes, read,
                                  write);
         errors.note(manifest.close());
-        if (request.shard.sharded() && !errors.first)
-            errors.note(
-                tree->write(kShardFile, shard_json(request.shard, request.inputs_hash, plan->jobs,
-                                                   results, s.variants, tree->files())));
+        if (request.shard.sharded() && !errors.first) {
+            // Lists every file so far: shard.json is recorded once it is closed.
+            StagedStream shard = tree->stream(kShardFile);
+            write_shard_json(request.shard, request.inputs_hash, plan->jobs, results, s.variants,
+                             list_files, [&](std::string_view piece) { shard.write(piece); });
+            errors.note(shard.close());
+        }
     }
     if (errors.first)
         s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *errors.first});
     if (s.failed == 0 && !errors.first) {
-        const std::vector<RecordedFile> files = tree->files();
-        s.files = files.size();
+        s.files = tree->count();
         BuildSummary refused;
         const fs::path target = accepted_output(request.out, refused, written); // it took a while
         if (target.empty())
@@ -368,7 +373,7 @@ BuildSummary build_material_now(const BuildRequest& request) {
         else if (auto failure = tree->commit(target))
             s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
         else if (recorded)
-            store_record(record, make_record(key, s.variants, s.shaders, files));
+            store_record(record, key, s.variants, s.shaders, s.files, list_files);
     }
     s.seconds = elapsed();
     return s;

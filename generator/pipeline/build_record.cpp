@@ -136,6 +136,17 @@ void store_record(const fs::path& file, const BuildRecord& record) {
     if (!ec) write_file_atomically(file, record_text(record));
 }
 
+void store_record(const fs::path& file, const std::string& key, size_t variants, size_t shaders,
+                  size_t count, const ListFiles& files) {
+    std::error_code ec;
+    fs::create_directories(file.parent_path(), ec);
+    if (ec) return;
+    write_file_atomically(file, [&](const std::function<void(std::string_view)>& write) {
+        write(record_head(key, variants, shaders, count));
+        files([&](const RecordedFile& f) { write(record_line(f)); });
+    });
+}
+
 bool outputs_intact(const fs::path& out, const BuildRecord& record, unsigned threads) {
     // Files by directory (the sorted paths keep each directory's files together): each
     // directory opened once, its files opened relative to it, so no path is walked twice.

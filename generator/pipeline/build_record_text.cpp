@@ -5,6 +5,8 @@
 #include <sstream>
 #include <string_view>
 
+#include <fmt/format.h>
+
 #include "watergen/pipeline/build_record.h"
 #include "watergen/pipeline/manifest_files.h"
 #include "watergen/pipeline/output_writer.h"
@@ -17,13 +19,20 @@ constexpr const char* kMagic = "watergen-record 1";
 
 } // namespace
 
+std::string record_head(const std::string& key, size_t variants, size_t shaders, size_t files) {
+    return fmt::format("{}\nkey {}\nvariants {}\nshaders {}\nfiles {}\n", kMagic, key, variants,
+                       shaders, files);
+}
+
+std::string record_line(const RecordedFile& f) {
+    return fmt::format("{} {} {}\n", f.size, f.digest, f.path);
+}
+
 std::string record_text(const BuildRecord& r) {
-    std::ostringstream s;
-    s << kMagic << "\nkey " << r.key << "\nvariants " << r.variants << "\nshaders " << r.shaders
-      << "\nfiles " << r.files.size() << "\n";
+    std::string text = record_head(r.key, r.variants, r.shaders, r.files.size());
     for (const RecordedFile& f : r.files)
-        s << f.size << ' ' << f.digest << ' ' << f.path << '\n';
-    return s.str();
+        text += record_line(f);
+    return text;
 }
 
 std::optional<BuildRecord> parse_record(const std::string& text) {

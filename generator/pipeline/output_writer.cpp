@@ -76,6 +76,34 @@ std::optional<std::string> write_file_atomically(const fs::path& path,
     return std::nullopt;
 }
 
+std::optional<std::string> write_file_atomically(const fs::path& path, const ProduceText& produce) {
+    const fs::path tmp = path.string() + unique_suffix();
+    std::error_code ec;
+    fs::remove(tmp, ec); // left by a killed process of the same pid
+    std::FILE* f = std::fopen(tmp.c_str(), "wbx");
+    if (!f) {
+        const int e = errno;
+        return "cannot create " + tmp.string() + ": " + std::strerror(e);
+    }
+    bool failed = false;
+    produce([&](std::string_view piece) {
+        failed = failed || std::fwrite(piece.data(), 1, piece.size(), f) != piece.size();
+    });
+    const int e = errno;
+    failed = std::fclose(f) != 0 || failed;
+    if (failed) {
+        fs::remove(tmp, ec);
+        return "cannot write " + tmp.string() + ": " + std::strerror(e);
+    }
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        return "cannot rename into " + path.string() + ": " + ec.message();
+    }
+    return std::nullopt;
+}
+
 fs::path make_staging_directory(const fs::path& dir, std::string* error) {
     std::error_code ec;
     const fs::path parent = dir.parent_path().empty() ? fs::path(".") : dir.parent_path();

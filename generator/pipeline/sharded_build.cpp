@@ -314,25 +314,25 @@ std::string check_counts(const OJson& head, std::map<std::string, size_t> held) 
 
 } // namespace
 
-std::string shard_json(const Shard& shard, const std::string& inputs_hash,
-                       const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                       size_t variants, const std::vector<RecordedFile>& files) {
-    OJson j;
-    j["watergen_shard"] = 1;
-    j["index"] = shard.index;
-    j["count"] = shard.count;
-    j["toolchain"] = toolchain_fingerprint();
-    j["inputs"] = inputs_hash;
-    j["variants"] = variants;
-    OJson shapes = OJson::array();
+void write_shard_json(const Shard& shard, const std::string& inputs_hash,
+                      const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                      size_t variants, const ListFiles& files, const WriteText& write) {
+    OJson head;
+    head["watergen_shard"] = 1;
+    head["index"] = shard.index;
+    head["count"] = shard.count;
+    head["toolchain"] = toolchain_fingerprint();
+    head["inputs"] = inputs_hash;
+    head["variants"] = variants;
+    JsonDocumentWriter doc(head, write);
+    doc.begin_array("shapes");
     for (size_t i = 0; i < jobs.size(); ++i)
-        shapes.push_back({jobs[i].scene, job_key(jobs[i]), results[i].shape_hash});
-    j["shapes"] = shapes;
-    OJson list = OJson::array();
-    for (const RecordedFile& f : files)
-        list.push_back({f.path, f.size, f.digest});
-    j["files"] = list;
-    return j.dump(1) + "\n";
+        doc.element({jobs[i].scene, job_key(jobs[i]), results[i].shape_hash});
+    doc.end_array();
+    doc.begin_array("files");
+    files([&](const RecordedFile& f) { doc.element({f.path, f.size, f.digest}); });
+    doc.end_array();
+    doc.end();
 }
 
 MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
@@ -510,7 +510,6 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
             return m;
         }
     }
-    const std::vector<RecordedFile> files = tree->files();
     // Checked again: the merge took a while.
     if (const OutputTarget again = check_output_target(out); !again.ok()) {
         m.error = out.string() + ": " + again.error;
@@ -523,12 +522,14 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
     }
     m.shards = shards.size();
     m.variants = modes ? served.size() : all.size();
-    m.files = files.size();
+    m.files = tree->count();
     // What one unsharded build of these inputs records.
     if (cache.enabled())
-        store_record(
-            record_file(cache, out),
-            make_record(record_key(shards.front().meta.inputs, ""), m.variants, all.size(), files));
+        store_record(record_file(cache, out), record_key(shards.front().meta.inputs, ""),
+                     m.variants, all.size(), m.files,
+                     [&](const std::function<void(const RecordedFile&)>& each) {
+                         tree->for_each_file(each);
+                     });
     return m;
 }
 

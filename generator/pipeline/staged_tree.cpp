@@ -38,25 +38,48 @@ std::optional<std::string> StagedTree::make_parent(const std::string& relative) 
     const size_t slash = relative.rfind('/');
     if (slash == std::string::npos) return std::nullopt;
     const std::string parent = relative.substr(0, slash);
+    const uint64_t id = XXH64(parent.data(), parent.size(), 0);
     std::lock_guard<std::mutex> guard(lock_);
-    if (directories_.count(parent)) return std::nullopt;
+    if (directories_.count(id)) return std::nullopt;
     std::error_code ec;
     fs::create_directories(dir_ / parent, ec);
     if (ec) return "cannot create " + (dir_ / parent).string() + ": " + ec.message();
-    directories_.insert(parent);
+    directories_.insert(id);
     return std::nullopt;
 }
 
-void StagedTree::record(RecordedFile f) {
+uint32_t StagedTree::part(std::string_view text) {
+    if (const auto it = part_ids_.find(text); it != part_ids_.end()) return it->second;
+    parts_.emplace_back(text);
+    const auto id = static_cast<uint32_t>(parts_.size() - 1);
+    part_ids_.emplace(parts_.back(), id);
+    return id;
+}
+
+void StagedTree::record(const std::string& relative, uint64_t size, XXH128_hash_t digest) {
+    // <scene>/<job>/ is most of a path and the same for a job's twenty-odd files.
+    const size_t first = relative.find('/');
+    const size_t second = first == std::string::npos ? first : relative.find('/', first + 1);
+    const size_t split = second == std::string::npos ? 0 : second + 1;
     std::lock_guard<std::mutex> guard(lock_);
-    files_.push_back(std::move(f));
+    const uint32_t directory = part(std::string_view(relative).substr(0, split));
+    files_.push_back({directory, part(std::string_view(relative).substr(split)), size, digest});
+}
+
+bool StagedTree::path_less(const Entry& a, const Entry& b) const {
+    const std::string &ad = parts_[a.directory], &bd = parts_[b.directory];
+    if (a.directory == b.directory) return parts_[a.rest] < parts_[b.rest];
+    // Two job directories (each <scene>/<job>/) are never one the other's prefix: their order
+    // is their paths'. A top-level file ("" directory) is compared whole.
+    if (!ad.empty() && !bd.empty()) return ad < bd;
+    return ad + parts_[a.rest] < bd + parts_[b.rest];
 }
 
 std::optional<std::string> StagedTree::write(const std::string& relative,
                                              const std::string& bytes) {
     if (auto e = make_parent(relative)) return e;
     if (auto e = write_new_file(dir_ / relative, bytes)) return e;
-    record({relative, bytes.size(), file_digest(bytes)});
+    record(relative, bytes.size(), XXH3_128bits(bytes.data(), bytes.size()));
     return std::nullopt;
 }
 
@@ -84,11 +107,26 @@ bool StagedTree::has(const std::string& relative) const {
     return is_plain_relative_path(relative) && fs::is_regular_file(dir_ / relative, ec);
 }
 
-std::vector<RecordedFile> StagedTree::files() const {
+void StagedTree::for_each_file(const std::function<void(const RecordedFile&)>& each) const {
     std::lock_guard<std::mutex> guard(lock_);
-    std::vector<RecordedFile> sorted = files_;
-    std::sort(sorted.begin(), sorted.end(),
-              [](const RecordedFile& a, const RecordedFile& b) { return a.path < b.path; });
+    std::vector<uint32_t> order(files_.size());
+    for (size_t i = 0; i < order.size(); ++i)
+        order[i] = static_cast<uint32_t>(i);
+    std::sort(order.begin(), order.end(),
+              [&](uint32_t a, uint32_t b) { return path_less(files_[a], files_[b]); });
+    RecordedFile f;
+    for (const uint32_t i : order) {
+        const Entry& e = files_[i];
+        f.path = parts_[e.directory] + parts_[e.rest];
+        f.size = e.size;
+        f.digest = digest_text(e.digest.high64, e.digest.low64);
+        each(f);
+    }
+}
+
+std::vector<RecordedFile> StagedTree::files() const {
+    std::vector<RecordedFile> sorted;
+    for_each_file([&](const RecordedFile& f) { sorted.push_back(f); });
     return sorted;
 }
 
@@ -145,8 +183,7 @@ std::optional<std::string> StagedStream::close() {
                 "cannot write " + (tree_->dir() / relative_).string() + ": " + std::strerror(e);
     }
     if (!error_.empty()) return error_;
-    const XXH128_hash_t h = XXH3_128bits_digest(state_.get());
-    tree_->record({relative_, size_, digest_text(h.high64, h.low64)});
+    tree_->record(relative_, size_, XXH3_128bits_digest(state_.get()));
     return std::nullopt;
 }
 

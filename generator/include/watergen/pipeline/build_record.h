@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,12 +55,21 @@ BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
 BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
                         std::vector<RecordedFile> files);
 std::string record_text(const BuildRecord& record);
+// Its parts: the head (key, counts) and one file's line.
+std::string record_head(const std::string& key, size_t variants, size_t shaders, size_t files);
+std::string record_line(const RecordedFile& file);
 // nullopt for anything that is not a well-formed record (then the build simply runs).
 std::optional<BuildRecord> parse_record(const std::string& text);
 std::optional<BuildRecord> read_record(const std::filesystem::path& file);
 // Writes the record atomically (temporary + rename); a record that cannot be written only
 // costs the next build its shortcut, so failures are ignored.
 void store_record(const std::filesystem::path& file, const BuildRecord& record);
+// Every file of an output, sorted by path, handed over one at a time.
+using ListFiles = std::function<void(const std::function<void(const RecordedFile&)>&)>;
+// The same record written one file at a time (`count` files), for an output too large to list
+// in memory.
+void store_record(const std::filesystem::path& file, const std::string& key, size_t variants,
+                  size_t shaders, size_t count, const ListFiles& files);
 
 // Whether the record names every file the manifest `manifest` names, and manifest.json: a
 // record that lost a line cannot vouch for an output that lost that file.

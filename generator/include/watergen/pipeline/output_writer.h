@@ -2,9 +2,11 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace watergen {
 
@@ -54,5 +56,9 @@ std::optional<std::string> write_new_file(const std::filesystem::path& path,
 // Writes one file through a temporary in the same directory and a rename.
 std::optional<std::string> write_file_atomically(const std::filesystem::path& path,
                                                  const std::string& contents);
+// The same for contents made piece by piece: `produce` hands each piece to its argument.
+using ProduceText = std::function<void(const std::function<void(std::string_view)>&)>;
+std::optional<std::string> write_file_atomically(const std::filesystem::path& path,
+                                                 const ProduceText& produce);
 
 } // namespace watergen

@@ -14,6 +14,7 @@
 
 #include "watergen/pipeline/build_cache.h"
 #include "watergen/pipeline/build_record.h"
+#include "watergen/pipeline/json_document.h"
 #include "watergen/pipeline/parallel_build.h"
 
 namespace watergen {
@@ -30,10 +31,11 @@ std::string shard_text(const Shard& shard);
 // Whether the job with this key belongs to the shard: xxHash64 of the key, modulo N, is I - 1.
 bool in_shard(const Shard& shard, const std::string& key);
 
-// The shard.json a shard's output carries (its `files` are the output's, manifest included).
-std::string shard_json(const Shard& shard, const std::string& inputs_hash,
-                       const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                       size_t variants, const std::vector<RecordedFile>& files);
+// The shard.json a shard's output carries (its `files` are the output's, manifest included),
+// written one shape and one file at a time.
+void write_shard_json(const Shard& shard, const std::string& inputs_hash,
+                      const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
+                      size_t variants, const ListFiles& files, const WriteText& write);
 
 constexpr const char* kShardFile = "shard.json";
 

@@ -1,17 +1,23 @@
 // The output of a build as it is made: each file goes to a staging directory beside the output
 // as soon as it exists, so memory holds the files in flight, not the whole output. The tree
-// keeps what it wrote (path, size, digest) for the build record and shard.json, and reads a
-// file back for the steps that need one again (the manifest's reflection, frozen modules).
+// keeps what it wrote (path, size, digest) for the build record and shard.json, in 32 bytes a
+// file (each job directory's name once), and reads a file back for the steps that need one
+// again (the manifest's reflection, frozen modules).
 // Until commit() swaps it into place the output is untouched; a tree never committed is removed.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <string>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include <xxhash.h>
@@ -58,7 +64,8 @@ class StagedTree {
     std::optional<std::string> read(const std::string& relative) const;
     bool has(const std::string& relative) const;
 
-    // Every file written, sorted by path.
+    // Every file written, sorted by path: one at a time, or all.
+    void for_each_file(const std::function<void(const RecordedFile&)>& each) const;
     std::vector<RecordedFile> files() const;
     size_t count() const;
     const std::filesystem::path& dir() const { return dir_; }
@@ -72,12 +79,24 @@ class StagedTree {
     friend class StagedStream;
     explicit StagedTree(std::filesystem::path dir) : dir_(std::move(dir)) {}
     std::optional<std::string> make_parent(const std::string& relative);
-    void record(RecordedFile f);
+    void record(const std::string& relative, uint64_t size, XXH128_hash_t digest);
+    uint32_t part(std::string_view text); // the id of an interned path part
+
+    // A file as the tree keeps it: its path as two interned parts, <scene>/<job>/ and the rest
+    // ("" and the name at the top level).
+    struct Entry {
+        uint32_t directory, rest;
+        uint64_t size;
+        XXH128_hash_t digest;
+    };
+    bool path_less(const Entry& a, const Entry& b) const;
 
     std::filesystem::path dir_;
     mutable std::mutex lock_;
-    std::set<std::string> directories_; // made already
-    std::vector<RecordedFile> files_;   // in write order
+    std::unordered_set<uint64_t> directories_; // made already (XXH64 of the path)
+    std::deque<std::string> parts_;            // stable: part_ids_ views them
+    std::unordered_map<std::string_view, uint32_t> part_ids_;
+    std::vector<Entry> files_; // in write order
     bool committed_ = false;
 };
 
