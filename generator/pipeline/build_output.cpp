@@ -237,10 +237,6 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
     }
 }
 
-} // namespace
-
-namespace {
-
 // The summary of a build that found its record matching and its output intact; nullopt when
 // it must run.
 std::optional<BuildSummary> up_to_date(const BuildRequest& request, const std::string& key,
