@@ -113,11 +113,6 @@ fs::path record_file(const BuildCache& cache, const fs::path& out) {
 }
 
 BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
-                        std::vector<RecordedFile> files) {
-    return {key, variants, shaders, std::move(files)};
-}
-
-BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
                         const FileMap& files) {
     BuildRecord r{key, variants, shaders, {}};
     for (const auto& [path, bytes] : files)
@@ -131,9 +126,11 @@ std::optional<BuildRecord> read_record(const fs::path& file) {
 }
 
 void store_record(const fs::path& file, const BuildRecord& record) {
-    std::error_code ec;
-    fs::create_directories(file.parent_path(), ec);
-    if (!ec) write_file_atomically(file, record_text(record));
+    store_record(file, record.key, record.variants, record.shaders, record.files.size(),
+                 [&](const std::function<void(const RecordedFile&)>& each) {
+                     for (const RecordedFile& f : record.files)
+                         each(f);
+                 });
 }
 
 void store_record(const fs::path& file, const std::string& key, size_t variants, size_t shaders,

@@ -124,12 +124,6 @@ void StagedTree::for_each_file(const std::function<void(const RecordedFile&)>& e
     }
 }
 
-std::vector<RecordedFile> StagedTree::files() const {
-    std::vector<RecordedFile> sorted;
-    for_each_file([&](const RecordedFile& f) { sorted.push_back(f); });
-    return sorted;
-}
-
 size_t StagedTree::count() const {
     std::lock_guard<std::mutex> guard(lock_);
     return files_.size();

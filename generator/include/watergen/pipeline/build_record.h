@@ -51,9 +51,6 @@ std::filesystem::path record_file(const BuildCache& cache, const std::filesystem
 
 BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
                         const FileMap& files);
-// The same from what a staging tree wrote (sorted by path).
-BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
-                        std::vector<RecordedFile> files);
 std::string record_text(const BuildRecord& record);
 // Its parts: the head (key, counts) and one file's line.
 std::string record_head(const std::string& key, size_t variants, size_t shaders, size_t files);

@@ -64,9 +64,8 @@ class StagedTree {
     std::optional<std::string> read(const std::string& relative) const;
     bool has(const std::string& relative) const;
 
-    // Every file written, sorted by path: one at a time, or all.
+    // Every file written, sorted by path, one at a time.
     void for_each_file(const std::function<void(const RecordedFile&)>& each) const;
-    std::vector<RecordedFile> files() const;
     size_t count() const;
     const std::filesystem::path& dir() const { return dir_; }
 
