@@ -30,6 +30,10 @@ void print_summary(const BuildSummary& s, BuildMode mode, const std::string& mod
         s.cache_rejected == 0 ? std::string()
                               : fmt::format("; {} cache entr{} failed verification, rebuilt",
                                             s.cache_rejected, s.cache_rejected == 1 ? "y" : "ies");
+    const std::string stages =
+        s.stages.reused == 0
+            ? std::string()
+            : fmt::format("; {} stages compiled, {} reused", s.stages.compiled, s.stages.reused);
     std::string companions;
     if (s.passes > 0)
         companions += fmt::format(" + {} caustics pass{} ({} cached)", s.passes,
@@ -38,14 +42,14 @@ void print_summary(const BuildSummary& s, BuildMode mode, const std::string& mod
         companions += fmt::format(" + {} frozen modules ({} cached)", s.frozen, s.frozen_cached);
     std::printf("%s\n",
                 fmt::format("build: {} variants{} ({} built, {} cached, {} shared between "
-                            "scenes, {} same shader as another variant, {} failed{}){} "
+                            "scenes, {} same shader as another variant, {} failed{}{}){} "
                             "in {:.2f} s on {} thread{}{}; peak memory {:.0f} MB",
                             s.variants,
                             mode == BuildMode::Permutations
                                 ? std::string()
                                 : fmt::format(" in {} {} shaders", s.shaders, mode_name),
-                            s.built, s.cached, s.shared, s.same, s.failed, rejected, companions,
-                            s.seconds, threads, threads == 1 ? "" : "s",
+                            s.built, s.cached, s.shared, s.same, s.failed, stages, rejected,
+                            companions, s.seconds, threads, threads == 1 ? "" : "s",
                             s.ok() ? fmt::format(" -> {} ({} files)", out, s.files)
                                    : std::string("; nothing written, ") + out + " is unchanged",
                             double(peak_resident_bytes()) / 1e6)

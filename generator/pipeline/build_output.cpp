@@ -313,7 +313,8 @@ BuildSummary build_material_now(const BuildRequest& request) {
     WriteErrors errors;
     BuildOptions options = request.options;
     options.sink = job_sink(plan->jobs, *tree, errors);
-    std::vector<JobResult> results = run_build_jobs(request.material, plan->jobs, options);
+    std::vector<JobResult> results =
+        run_build_jobs(request.material, plan->jobs, options, &s.stages);
     s.shaders = plan->jobs.size();
     for (const BuildJob& job : plan->jobs)
         s.variants += job.shader ? job.serves.size() : 1;

@@ -120,7 +120,7 @@ CausticsPassBuild build_caustics_pass_files(const Material& material, const Caus
     expected.push_back("pass.json");
     std::sort(expected.begin(), expected.end());
     CacheUse use = cache.load_or_make(b.content_hash, expected, [&]() -> std::optional<FileMap> {
-        compile_two_stages(b.languages, b.diagnostics);
+        compile_two_stages(b.languages, b.diagnostics, StageCompile{false, nullptr});
         if (!b.ok()) return std::nullopt;
         FileMap files;
         add_stage_files(b.languages, kStem, pass_key(key), files);

@@ -1,6 +1,7 @@
 #include "watergen/pipeline/parallel_build.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <map>
@@ -52,18 +53,35 @@ std::string emitted_name(Language lang, ShaderStage stage) {
     return std::string(to_string(lang)) + "/water." + file_extension(lang, stage);
 }
 
+// The stages a build compiles for a job, keyed by content (StageMemo): GLSL vertex, GLSL
+// fragment, HLSL vertex, HLSL fragment.
+using StageKeys = std::array<std::string, 4>;
+
+// What phase 1 learns of a shader from its sources, emitted once per language.
+struct ShaderHashes {
+    std::string content, shape;
+    StageKeys stages;
+};
+
 // What the files of a variant depend on besides the toolchain: its sources (which carry the
 // key in their stamp) and the metadata of the parameters they read, which variant.json reports.
-std::vector<std::string> hash_inputs(const WaterShader& shader, const std::string& stamp_key,
-                                     Diagnostics& ds) {
-    std::vector<std::string> parts{shader.key(), shader.preset};
+// The shape is the same without the key: the sources with their stamps blank.
+ShaderHashes hash_shader(const WaterShader& shader, const std::string& stamp_key,
+                         const StageCompile& compile, Diagnostics& ds) {
+    std::vector<std::string> parts{shader.key(), shader.preset}, shape{shader.preset};
+    ShaderHashes h;
+    size_t k = 0;
     for (Language lang : {Language::Glsl, Language::Hlsl}) {
         const EmittedShader frag = emit_fragment(
             shader.fragment, lang, emitted_name(lang, ShaderStage::Fragment), stamp_key, ds);
-        parts.push_back(frag.source);
-        parts.push_back(
-            emit_fullscreen_vertex(lang, emitted_name(lang, ShaderStage::Vertex), stamp_key)
-                .source);
+        const EmittedShader vert =
+            emit_fullscreen_vertex(lang, emitted_name(lang, ShaderStage::Vertex), stamp_key);
+        for (const EmittedShader* e : {&frag, &vert}) {
+            parts.push_back(e->source);
+            shape.push_back(blank_stamp(e->source, stamp_key));
+        }
+        h.stages[k++] = stage_key(stage_request(vert), stage_cross(lang, compile), stamp_key);
+        h.stages[k++] = stage_key(stage_request(frag), stage_cross(lang, compile), stamp_key);
         if (lang != Language::Glsl) continue;
         for (const Parameter& p : frag.interface.parameters) {
             std::string s = fmt::format("{}|{}|{}|{}|{}|{}|{}", p.name, static_cast<int>(p.type),
@@ -71,9 +89,12 @@ std::vector<std::string> hash_inputs(const WaterShader& shader, const std::strin
             for (double v : p.default_value)
                 s += fmt::format("|{}", v);
             parts.push_back(s);
+            shape.push_back(s);
         }
     }
-    return parts;
+    h.content = content_hash(parts);
+    h.shape = content_hash(shape); // equal shaders under different keys are still equal
+    return h;
 }
 
 // The job's shader: composed from the material and folded under its scene's facts (what
@@ -92,15 +113,15 @@ WaterShader compose_job(const Material& material, const BuildJob& job, Diagnosti
 
 // Phase 1 for one job: compose, fold, hash (no compiler involved). The shader is not kept:
 // phase 2 composes it again (a few ms) rather than hold every job's graph at once.
-void compose_and_hash(const Material& material, const BuildJob& job, JobResult& r) {
+void compose_and_hash(const Material& material, const BuildJob& job, const StageCompile& compile,
+                      JobResult& r, StageKeys& stages) {
     const WaterShader shader = compose_job(material, job, r.diagnostics, &r.fold);
     if (has_errors(r.diagnostics)) return;
     r.folded = job.facts != nullptr;
-    r.content_hash = content_hash(hash_inputs(shader, job_key(job), r.diagnostics));
-    Diagnostics ignored;
-    std::vector<std::string> shape = hash_inputs(shader, "", ignored);
-    shape.erase(shape.begin()); // equal shaders under different keys are still equal
-    r.shape_hash = content_hash(shape);
+    ShaderHashes h = hash_shader(shader, job_key(job), compile, r.diagnostics);
+    r.content_hash = std::move(h.content);
+    r.shape_hash = std::move(h.shape);
+    stages = std::move(h.stages);
 }
 
 struct BuildPlan {
@@ -134,11 +155,12 @@ BuildPlan plan_builds(const std::vector<BuildJob>& jobs, std::vector<JobResult>&
 // Phase 2 for one job: its files from the cache or the toolchain (all targets), if it built.
 // The shader is composed only when the cache does not have the files.
 std::optional<FileMap> load_or_build(const BuildOptions& options,
-                                     const std::function<WaterShader()>& compose, JobResult& r,
+                                     const std::function<WaterShader()>& compose,
+                                     const StageCompile& compile, JobResult& r,
                                      const std::vector<std::string>& expected_files) {
     CacheUse use =
         options.cache.load_or_make(r.content_hash, expected_files, [&]() -> std::optional<FileMap> {
-            const VariantBuild build = build_shader(compose());
+            const VariantBuild build = build_shader(compose(), {}, compile);
             r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(),
                                  build.diagnostics.end());
             if (!build.ok()) return std::nullopt;
@@ -192,14 +214,23 @@ FileMap filter_targets(const FileMap& all, const std::vector<Target>& targets) {
 }
 
 std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs,
-                                      const BuildOptions& options) {
+                                      const BuildOptions& options, StageCounts* stage_counts) {
     std::vector<JobResult> results(jobs.size());
     // glslang builds its tables once per process; do it before the threads race for it.
     glslang_warm_up();
 
-    parallel_for(jobs.size(), options.threads,
-                 [&](size_t i) { compose_and_hash(material, jobs[i], results[i]); });
+    StageMemo memo;
+    const StageCompile compile{false, &memo};
+    std::vector<StageKeys> stages(jobs.size());
+    parallel_for(jobs.size(), options.threads, [&](size_t i) {
+        compose_and_hash(material, jobs[i], compile, results[i], stages[i]);
+    });
     const BuildPlan plan = plan_builds(jobs, results);
+    // The stages of the jobs that will compile, so the memo keeps those more than one shares.
+    for (size_t i : plan.to_build)
+        for (const std::string& key : stages[i])
+            if (!key.empty()) memo.expect(key);
+    std::vector<StageKeys>().swap(stages);
 
     std::mutex progress_lock;
     BuildProgress progress{0, jobs.size(), 0, 0, ""};
@@ -237,7 +268,7 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
             Diagnostics composed; // reported in phase 1 already
             return compose_job(material, jobs[i], composed);
         };
-        std::optional<FileMap> all = load_or_build(options, compose, r, expected_files);
+        std::optional<FileMap> all = load_or_build(options, compose, compile, r, expected_files);
         r.milliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
@@ -250,6 +281,7 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
                 finish(c, all ? &*all : nullptr);
             }
     });
+    if (stage_counts) *stage_counts = memo.counts();
     return results;
 }
 

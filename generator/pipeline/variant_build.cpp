@@ -34,13 +34,14 @@ StageFileNames stage_file_names(Language lang, ShaderStage stage, const std::str
 constexpr Language kLanguages[] = {Language::Glsl, Language::Hlsl};
 constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment};
 
-StageBuild build_stage(EmittedShader source, Diagnostics& all, bool strict_half = false) {
+// `key`: the variant whose stamp the source carries (the memo finds the stage without it).
+StageBuild build_stage(EmittedShader source, Diagnostics& all, const StageCompile& compile,
+                       const std::string& key, bool strict_half = false) {
     StageBuild stage{std::move(source), {}};
-    CompileRequest request{stage.source.language == Language::Glsl ? SourceLanguage::Glsl
-                                                                   : SourceLanguage::Hlsl,
-                           stage.source.stage, stage.source.source, stage.source.file_name, "main"};
-    request.hlsl_16bit_types = strict_half;
-    stage.toolchain = run_toolchain(request);
+    const CompileRequest request = stage_request(stage.source, strict_half);
+    const CrossCompile cross = stage_cross(stage.source.language, compile);
+    stage.toolchain =
+        compile.memo ? compile.memo->run(request, cross, key) : run_toolchain(request, cross);
     add_specialization_ranges(stage.toolchain.reflection, stage.source.interface.specialization);
     Diagnostics ds = stage.toolchain.diagnostics;
     // Only glslang's diagnostics point at lines of our emitted source.
@@ -135,12 +136,26 @@ nlohmann::ordered_json specialization_json(const ShaderInterface& in) {
     return constants;
 }
 
+CompileRequest stage_request(const EmittedShader& stage, bool strict_half) {
+    CompileRequest request{stage.language == Language::Glsl ? SourceLanguage::Glsl
+                                                            : SourceLanguage::Hlsl,
+                           stage.stage, stage.source, stage.file_name, "main"};
+    request.hlsl_16bit_types = strict_half;
+    return request;
+}
+
+CrossCompile stage_cross(Language language, const StageCompile& compile) {
+    return language == Language::Glsl || compile.hlsl_cross_compile ? CrossCompile::Yes
+                                                                    : CrossCompile::No;
+}
+
 VariantBuild build_variant(const Variant& variant, const Preset* preset,
                            const EmitOptions& options) {
     return build_shader(build_water_shader(variant, preset), options);
 }
 
-VariantBuild build_shader(WaterShader shader, const EmitOptions& options) {
+VariantBuild build_shader(WaterShader shader, const EmitOptions& options,
+                          const StageCompile& compile) {
     VariantBuild b{std::move(shader), {}, {}};
     const Diagnostics& graph_errors = b.shader.fragment.diagnostics();
     b.diagnostics.insert(b.diagnostics.end(), graph_errors.begin(), graph_errors.end());
@@ -154,10 +169,11 @@ VariantBuild build_shader(WaterShader shader, const EmitOptions& options) {
                                            stage_file_names(lang, ShaderStage::Fragment).source,
                                            key, b.diagnostics, options);
         if (has_errors(b.diagnostics)) return b;
-        out.fragment = build_stage(std::move(frag), b.diagnostics, options.strict_half);
+        out.fragment =
+            build_stage(std::move(frag), b.diagnostics, compile, key, options.strict_half);
         out.vertex = build_stage(
             emit_fullscreen_vertex(lang, stage_file_names(lang, ShaderStage::Vertex).source, key),
-            b.diagnostics);
+            b.diagnostics, compile, key);
     }
     return b;
 }
@@ -180,10 +196,11 @@ void add_stage_files(const std::array<LanguageBuild, 2>& languages, const std::s
             files[names.source] = s->source.source;
             files[names.spirv] = spirv_bytes(t.spirv);
             files[names.spirv_optimized] = spirv_bytes(t.spirv_optimized);
+            files[names.reflection] = reflection_to_json(t.reflection);
+            if (lang.language != Language::Glsl) continue;
             files[names.glsl330] = with_stamp(stamp, t.glsl330);
             files[names.essl300] = with_stamp(stamp, t.essl300);
             files[names.msl] = with_stamp(stamp, t.msl);
-            files[names.reflection] = reflection_to_json(t.reflection);
         }
     }
 }
@@ -193,8 +210,8 @@ std::vector<std::string> stage_file_list(const std::string& stem) {
     for (Language lang : kLanguages)
         for (ShaderStage stage : kStages) {
             const StageFileNames n = stage_file_names(lang, stage, stem);
-            names.insert(names.end(), {n.source, n.spirv, n.spirv_optimized, n.glsl330, n.essl300,
-                                       n.msl, n.reflection});
+            names.insert(names.end(), {n.source, n.spirv, n.spirv_optimized, n.reflection});
+            if (lang == Language::Glsl) names.insert(names.end(), {n.glsl330, n.essl300, n.msl});
         }
     std::sort(names.begin(), names.end());
     return names;
@@ -228,10 +245,11 @@ std::array<LanguageBuild, 2> emit_two_stages(const Graph& vertex, const Graph& f
     return out;
 }
 
-void compile_two_stages(std::array<LanguageBuild, 2>& languages, Diagnostics& diagnostics) {
+void compile_two_stages(std::array<LanguageBuild, 2>& languages, Diagnostics& diagnostics,
+                        const StageCompile& compile) {
     for (LanguageBuild& lang : languages) {
-        lang.vertex = build_stage(std::move(lang.vertex.source), diagnostics);
-        lang.fragment = build_stage(std::move(lang.fragment.source), diagnostics);
+        lang.vertex = build_stage(std::move(lang.vertex.source), diagnostics, compile, "");
+        lang.fragment = build_stage(std::move(lang.fragment.source), diagnostics, compile, "");
     }
 }
 

@@ -1,5 +1,8 @@
 #include "watergen/plan/variant_space.h"
 
+#include <algorithm>
+#include <optional>
+
 #include "watergen/ir/text.h"
 
 namespace watergen {
@@ -62,17 +65,67 @@ std::optional<std::string> check_constraints(const Variant& v) {
     return broken_rule(rules, v);
 }
 
+namespace {
+
+// A rule over the space's choice indices: it fires when `axis` is at `choice`, and is broken
+// when `allowed[index of other_axis]` is false (a Requires rule allows the listed choices, an
+// Excludes rule the others).
+struct IndexedRule {
+    size_t axis, choice, other_axis;
+    std::vector<bool> allowed;
+};
+
+// The rules as index tests; nullopt when one names an axis that does not exist (then the
+// names are compared, as broken_rule does).
+std::optional<std::vector<IndexedRule>> index_rules(const VariantSpace& space) {
+    std::vector<IndexedRule> indexed;
+    for (const Rule& r : space.rules) {
+        const AxisInfo* a = find_axis(r.axis);
+        const AxisInfo* o = find_axis(r.other_axis);
+        if (!a || !o) return std::nullopt;
+        const size_t ai = static_cast<size_t>(a - axes().data());
+        const size_t oi = static_cast<size_t>(o - axes().data());
+        std::vector<bool> allowed;
+        for (const std::string& c : space.choices[oi]) {
+            const bool listed = std::find(r.other_choices.begin(), r.other_choices.end(), c) !=
+                                r.other_choices.end();
+            allowed.push_back(listed == (r.kind == Rule::Kind::Requires));
+        }
+        for (size_t k = 0; k < space.choices[ai].size(); ++k) // no index: never fires here
+            if (space.choices[ai][k] == r.choice) indexed.push_back({ai, k, oi, allowed});
+    }
+    return indexed;
+}
+
+} // namespace
+
 void enumerate(const VariantSpace& space, const std::function<void(const Variant&)>& visit) {
     const size_t n = space.choices.size();
     if (n != axes().size()) return;
     for (const auto& list : space.choices)
         if (list.empty()) return;
+    // The full space has 721,920 variants and a build enumerates it several times: rules are
+    // tested on indices, and a variant's names are set only when it is valid.
+    const std::optional<std::vector<IndexedRule>> rules = index_rules(space);
     Variant v = default_variant();
     std::vector<size_t> index(n, 0);
     for (;;) {
-        for (size_t a = 0; a < n; ++a)
-            v.choices[a] = space.choices[a][index[a]];
-        if (!broken_rule(space.rules, v)) visit(v);
+        bool valid = true;
+        if (rules) {
+            for (const IndexedRule& r : *rules)
+                if (index[r.axis] == r.choice && !r.allowed[index[r.other_axis]]) {
+                    valid = false;
+                    break;
+                }
+            if (valid)
+                for (size_t a = 0; a < n; ++a)
+                    v.choices[a] = space.choices[a][index[a]];
+        } else {
+            for (size_t a = 0; a < n; ++a)
+                v.choices[a] = space.choices[a][index[a]];
+            valid = !find_broken_rule(space.rules, v);
+        }
+        if (valid) visit(v);
         size_t a = n;
         while (a > 0) {
             --a;

@@ -15,25 +15,11 @@ bool take(Diagnostics& to, Diagnostics from) {
     return errors;
 }
 
-} // namespace
-
-ToolchainOutputs run_toolchain(const CompileRequest& request) {
-    ToolchainOutputs out;
+// SPIRV-Cross to GLSL 330, ESSL 300 and MSL from the optimised module, then the round trip of
+// the GL texts through glslang.
+void cross_compile_and_check(const CompileRequest& request, ToolchainOutputs& out) {
     const std::string& f = request.file_name;
-
-    SpirvResult compiled = compile_to_spirv(request);
-    if (take(out.diagnostics, std::move(compiled.diagnostics)) || compiled.spirv.empty())
-        return out;
-    if (take(out.diagnostics, validate_spirv(compiled.spirv, f + ".spv"))) return out;
-    out.spirv = std::move(compiled.spirv);
-    out.instruction_count = count_instructions(out.spirv);
-
-    OptimizeResult optimized = optimize_spirv(out.spirv, f + ".opt.spv");
-    if (take(out.diagnostics, std::move(optimized.diagnostics))) return out;
-    if (take(out.diagnostics, validate_spirv(optimized.spirv, f + ".opt.spv"))) return out;
-    out.spirv_optimized = std::move(optimized.spirv);
-    out.instruction_count_optimized = count_instructions(out.spirv_optimized);
-
+    out.cross_compiled = true;
     // GLSL 330 and ESSL 300 predate compute shaders, so compute only gets MSL; neither has
     // 16-bit arithmetic types (a strict-half module), which MSL has (`half`).
     const bool compute = request.stage == ShaderStage::Compute;
@@ -59,12 +45,12 @@ ToolchainOutputs run_toolchain(const CompileRequest& request) {
                    {CrossTarget::Msl, &out.msl, true}};
     for (const auto& t : targets) {
         if (!t.wanted) continue;
-        CrossResult cross =
+        CrossResult result =
             cross_compile(out.spirv_optimized, t.target, f + cross_target_suffix(t.target));
-        cross_failed |= take(out.diagnostics, std::move(cross.diagnostics));
-        *t.text = std::move(cross.source);
+        cross_failed |= take(out.diagnostics, std::move(result.diagnostics));
+        *t.text = std::move(result.source);
     }
-    if (cross_failed) return out;
+    if (cross_failed) return;
 
     if (gl_targets) {
         bool round_trip_failed =
@@ -73,8 +59,31 @@ ToolchainOutputs run_toolchain(const CompileRequest& request) {
         round_trip_failed |=
             take(out.diagnostics, check_glsl(out.essl300, request.stage, GlslProfile::Es300,
                                              f + cross_target_suffix(CrossTarget::Essl300)));
-        if (round_trip_failed) return out;
+        if (round_trip_failed) return;
     }
+}
+
+} // namespace
+
+ToolchainOutputs run_toolchain(const CompileRequest& request, CrossCompile cross) {
+    ToolchainOutputs out;
+    const std::string& f = request.file_name;
+
+    SpirvResult compiled = compile_to_spirv(request);
+    if (take(out.diagnostics, std::move(compiled.diagnostics)) || compiled.spirv.empty())
+        return out;
+    if (take(out.diagnostics, validate_spirv(compiled.spirv, f + ".spv"))) return out;
+    out.spirv = std::move(compiled.spirv);
+    out.instruction_count = count_instructions(out.spirv);
+
+    OptimizeResult optimized = optimize_spirv(out.spirv, f + ".opt.spv");
+    if (take(out.diagnostics, std::move(optimized.diagnostics))) return out;
+    if (take(out.diagnostics, validate_spirv(optimized.spirv, f + ".opt.spv"))) return out;
+    out.spirv_optimized = std::move(optimized.spirv);
+    out.instruction_count_optimized = count_instructions(out.spirv_optimized);
+
+    if (cross == CrossCompile::Yes) cross_compile_and_check(request, out);
+    if (has_errors(out.diagnostics)) return out;
 
     ReflectResult reflected = reflect_spirv(out.spirv, request.stage, f + ".spv");
     out.reflection = std::move(reflected.reflection);

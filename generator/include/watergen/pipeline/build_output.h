@@ -48,6 +48,7 @@ struct BuildSummary {
     size_t shared = 0;   // same files as a variant of another scene, built once for both
     size_t same = 0;     // same shader as another variant of the scene (not built again)
     size_t failed = 0;
+    StageCounts stages;        // of the built: toolchain runs, and stages another's run served
     size_t cache_rejected = 0; // cache entries that failed verification: evicted and rebuilt
     size_t passes = 0;         // companion passes written (passes/<pass>/)
     size_t passes_cached = 0;  // of them, copied from the cache

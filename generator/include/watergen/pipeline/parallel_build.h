@@ -75,9 +75,16 @@ unsigned max_jobs();
 // never more than n nor max_jobs().
 void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& task);
 
+struct StageCounts; // stage_memo.h
+
 // Jobs must be sorted by (scene, job_key) for `same_as` to name the first of equal shaders.
+// A stage several jobs compile (the vertex shader every variant has; a fragment two scenes
+// fold alike) is compiled once (StageMemo); how many were compiled and reused goes to
+// `stage_counts`. The HLSL path is not cross-compiled: a build ships SPIRV-Cross text of the
+// GLSL path only.
 std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs,
-                                      const BuildOptions& options);
+                                      const BuildOptions& options,
+                                      StageCounts* stage_counts = nullptr);
 
 // The files of `all` a target list keeps (variant.json and a pass's pass.json always; see
 // docs/user-guide.md "Build output").

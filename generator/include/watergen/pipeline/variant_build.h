@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "watergen/ir/emitter.h"
+#include "watergen/pipeline/stage_memo.h"
 #include "watergen/toolchain/toolchain.h"
 #include "watergen/water/water_shader.h"
 
@@ -32,6 +33,19 @@ struct VariantBuild {
     bool ok() const { return !has_errors(diagnostics); }
 };
 
+// How build_shader runs the toolchain. The default runs every stage of both languages through
+// the whole chain. A build (run_build_jobs) ships SPIRV-Cross text of the GLSL path only (the
+// HLSL path's module is the same program again), so it skips the HLSL path's cross-compiles,
+// and finds stages compiled for another variant in its memo.
+struct StageCompile {
+    bool hlsl_cross_compile = true;
+    StageMemo* memo = nullptr; // none: every stage compiled
+};
+
+// The request build_shader compiles `stage` with, and how far its chain runs under `compile`.
+CompileRequest stage_request(const EmittedShader& stage, bool strict_half = false);
+CrossCompile stage_cross(Language language, const StageCompile& compile);
+
 // Builds both languages of one variant. A graph with type errors stops before emission.
 // Cost: two toolchain runs per stage (a few ms each); thread-safe.
 // `options.strict_half` writes a half variant's relaxed math in explicit 16-bit types (see
@@ -39,10 +53,12 @@ struct VariantBuild {
 VariantBuild build_variant(const Variant& variant, const Preset* preset = nullptr,
                            const EmitOptions& options = {});
 // Same for an already composed shader (a custom description, or a test's ill-typed one).
-VariantBuild build_shader(WaterShader shader, const EmitOptions& options = {});
+VariantBuild build_shader(WaterShader shader, const EmitOptions& options = {},
+                          const StageCompile& compile = {});
 
-// The files a build writes, relative path -> contents, e.g. "glsl/water.frag.spv".
-// Empty when the build failed.
+// The files a build writes, relative path -> contents, e.g. "glsl/water.frag.spv": sources,
+// SPIR-V, reflection of both languages, SPIRV-Cross text of the GLSL path. Empty when the
+// build failed.
 std::map<std::string, std::string> variant_files(const VariantBuild& build);
 // The names variant_files gives every successful build, whatever the variant, sorted.
 std::vector<std::string> variant_file_names();
@@ -66,12 +82,13 @@ std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& 
 std::array<LanguageBuild, 2> emit_two_stages(const Graph& vertex, const Graph& fragment,
                                              const std::string& stage_name, const std::string& stem,
                                              const std::string& key, Diagnostics& diagnostics);
-void compile_two_stages(std::array<LanguageBuild, 2>& languages, Diagnostics& diagnostics);
+void compile_two_stages(std::array<LanguageBuild, 2>& languages, Diagnostics& diagnostics,
+                        const StageCompile& compile = {});
 // The names add_stage_files gives both languages' stages of `stem`, sorted.
 std::vector<std::string> stage_file_list(const std::string& stem);
 // The files of both languages of a build as variant_files writes them, under the names
-// <lang>/<stem>.<stage>.<kind> (sources, SPIR-V plain and optimised, the cross-compiled texts
-// stamped with `key`, reflection).
+// <lang>/<stem>.<stage>.<kind> (sources, SPIR-V plain and optimised, reflection, and for the
+// GLSL path the cross-compiled texts stamped with `key`).
 void add_stage_files(const std::array<LanguageBuild, 2>& languages, const std::string& stem,
                      const std::string& key, std::map<std::string, std::string>& files);
 

@@ -20,6 +20,7 @@ struct ToolchainOutputs {
     std::string glsl330, essl300, msl; // SPIRV-Cross output of the optimised module
     Reflection reflection;             // of the unoptimised module
     Diagnostics diagnostics;           // all stages; see run_toolchain for file names
+    bool cross_compiled = false;       // SPIRV-Cross ran (CrossCompile::No: it did not)
     bool ok() const { return !spirv.empty() && !has_errors(diagnostics); }
 };
 
@@ -41,6 +42,10 @@ struct ToolchainOutputs {
 // Cost:   ~12 ms for a 100-line fragment shader after warm-up (spirv-opt ~40% of it),
 //         against ~100-160 ms through the CLI tools (run_tool_process_chain). Thread-safe,
 //         so many shaders can go through in parallel.
-ToolchainOutputs run_toolchain(const CompileRequest& request);
+//         With CrossCompile::No the chain skips SPIRV-Cross and the round trip (their outputs
+//         stay empty): for a module whose cross-compiled text nobody ships.
+enum class CrossCompile { Yes, No };
+ToolchainOutputs run_toolchain(const CompileRequest& request,
+                               CrossCompile cross = CrossCompile::Yes);
 
 } // namespace watergen

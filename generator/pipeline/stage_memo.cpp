@@ -1,0 +1,105 @@
+#include "watergen/pipeline/stage_memo.h"
+
+#include <fmt/format.h>
+
+#include "watergen/ir/emitter.h"
+#include "watergen/pipeline/build_cache.h"
+
+namespace watergen {
+
+namespace {
+
+size_t bytes_of(const ToolchainOutputs& t) {
+    size_t n = (t.spirv.size() + t.spirv_optimized.size()) * sizeof(uint32_t) + t.glsl330.size() +
+               t.essl300.size() + t.msl.size();
+    for (const Diagnostic& d : t.diagnostics)
+        n += d.message.size() + d.file.size();
+    return n + 4096; // the reflection, roughly
+}
+
+} // namespace
+
+std::string blank_stamp(const std::string& source, const std::string& variant_key) {
+    if (variant_key.empty()) return source;
+    const std::string stamp = stamp_text(variant_key);
+    const size_t at = source.find(stamp);
+    if (at == std::string::npos) return source;
+    std::string blank = source;
+    blank.replace(at, stamp.size(), stamp_text(""));
+    return blank;
+}
+
+std::string stage_key(const CompileRequest& request, CrossCompile cross,
+                      const std::string& variant_key) {
+    return content_hash({fmt::format("{}|{}|{}|{}|{}", static_cast<int>(request.language),
+                                     static_cast<int>(request.stage), request.hlsl_16bit_types,
+                                     cross == CrossCompile::Yes, request.entry_point),
+                         request.file_name, blank_stamp(request.source, variant_key)});
+}
+
+void StageMemo::expect(const std::string& key) {
+    std::lock_guard<std::mutex> hold(lock_);
+    ++entries_[key].expected;
+}
+
+ToolchainOutputs StageMemo::take(std::map<std::string, Entry>::iterator it) {
+    ++counts_.reused;
+    if (--it->second.expected > 0) return it->second.outputs;
+    ToolchainOutputs last = std::move(it->second.outputs);
+    held_bytes_ -= it->second.bytes;
+    entries_.erase(it);
+    return last;
+}
+
+ToolchainOutputs StageMemo::run(const CompileRequest& request, CrossCompile cross,
+                                const std::string& variant_key) {
+    const std::string key = stage_key(request, cross, variant_key);
+    CompileRequest blank = request;
+    blank.source = blank_stamp(request.source, variant_key);
+    std::unique_lock<std::mutex> hold(lock_);
+    for (;;) {
+        auto it = entries_.find(key);
+        if (it == entries_.end()) break;
+        Entry& e = it->second;
+        if (e.state == Entry::State::Done) return take(it);
+        if (e.state == Entry::State::Waiting && e.expected < 2) { // nobody else will ask
+            entries_.erase(it);
+            break;
+        }
+        if (e.state == Entry::State::Waiting) {
+            e.state = Entry::State::Compiling;
+            hold.unlock();
+            ToolchainOutputs outputs = run_toolchain(blank, cross);
+            hold.lock();
+            ++counts_.compiled;
+            it = entries_.find(key); // still there: only its compiler or its last use erases it
+            const size_t bytes = bytes_of(outputs);
+            if (held_bytes_ + bytes > max_bytes_) {
+                // Not kept: the variants still to come compile it themselves.
+                entries_.erase(it);
+                done_.notify_all();
+                return outputs;
+            }
+            held_bytes_ += bytes;
+            it->second.bytes = bytes;
+            it->second.outputs = outputs;
+            it->second.state = Entry::State::Done;
+            --it->second.expected;
+            done_.notify_all();
+            return outputs;
+        }
+        done_.wait(hold); // another thread compiles it: look again when it is done
+    }
+    hold.unlock();
+    ToolchainOutputs outputs = run_toolchain(blank, cross);
+    hold.lock();
+    ++counts_.compiled;
+    return outputs;
+}
+
+StageCounts StageMemo::counts() const {
+    std::lock_guard<std::mutex> hold(lock_);
+    return counts_;
+}
+
+} // namespace watergen
