@@ -1,9 +1,11 @@
 #include "watergen/pipeline/shard_file.h"
 
 #include <algorithm>
+#include <functional>
 
 #include <xxhash.h>
 
+#include "watergen/pipeline/json_document.h"
 #include "watergen/pipeline/manifest_files.h"
 #include "watergen/pipeline/output_writer.h"
 
@@ -57,53 +59,97 @@ bool in_shard(const Shard& shard, const std::string& key) {
     return !shard.sharded() || XXH64(key.data(), key.size(), 0) % shard.count == shard.index - 1;
 }
 
-std::optional<ShardFile> parse_shard_file(const std::string& text, std::string* why) {
+namespace {
+
+// shard.json read one shape and one file at a time (a 1/20 shard of the full space lists
+// 829,842 files: its document would need several times the memory of its text).
+std::optional<ShardFile>
+read_shard_document(const std::function<JsonReadEnd(const JsonDocumentReader&, std::string*)>& read,
+                    std::string* why) {
+    std::string fault;
     auto fail = [&](const std::string& w) {
+        if (fault.empty()) fault = w;
+        return false;
+    };
+    const std::string not_ours = "shard.json is not one watergen build --shard wrote";
+    OJson head = OJson::object();
+    ShardFile s;
+    std::string previous;
+    bool shapes = false, files = false;
+    JsonDocumentReader reader{
+        {"shapes", "files"},
+        [&](const std::string& name, OJson&& value) {
+            if (name == "shapes" || name == "files") return fail(not_ours); // not a list
+            head[name] = std::move(value);
+            return true;
+        },
+        [&](const std::string& array, OJson&& e) {
+            if (array == "shapes") {
+                if (s.shapes.size() >= kMaxShardEntries)
+                    return fail("shard.json lists more than " + std::to_string(kMaxShardEntries) +
+                                " shapes or files; expected a shard of one build");
+                if (!is_string_triple(e) || !e[2].is_string())
+                    return fail("shard.json: a shape is not [scene, key, hash]");
+                if (!s.shapes.emplace(std::make_pair(e[0], e[1]), e[2]).second)
+                    return fail("shard.json names variant " + e[0].get<std::string>() + "/" +
+                                e[1].get<std::string>() + " twice");
+                return true;
+            }
+            if (s.files.size() >= kMaxShardEntries)
+                return fail("shard.json lists more than " + std::to_string(kMaxShardEntries) +
+                            " shapes or files; expected a shard of one build");
+            if (!e.is_array() || e.size() != 3 || !e[0].is_string() || !is_uint(e[1]) ||
+                !e[2].is_string() || !is_plain_relative_path(e[0]))
+                return fail("shard.json: a file is not [relative path, size, hash]");
+            ListedFile file{e[0], e[1].get<uint64_t>(), e[2]};
+            if (!s.files.empty() && file.path <= previous)
+                return fail("shard.json: " + file.path +
+                            " out of order or twice; expected the "
+                            "files sorted by path, each once");
+            previous = file.path;
+            s.files.push_back(std::move(file));
+            return true;
+        },
+        [&](const std::string& array) { (array == "shapes" ? shapes : files) = true; }};
+    std::string malformed;
+    const JsonReadEnd end = read(reader, &malformed);
+    auto failed = [&](const std::string& w) -> std::optional<ShardFile> {
         if (why) *why = w;
         return std::nullopt;
     };
-    const OJson j = OJson::parse(text, nullptr, false);
+    if (!fault.empty()) return failed(fault);
+    if (end != JsonReadEnd::Done) return failed(not_ours);
+    const OJson& j = head;
     const bool shaped =
-        j.is_object() && is_uint(j.value("watergen_shard", OJson())) &&
-        j["watergen_shard"].get<uint64_t>() == 1 && is_uint(j.value("index", OJson())) &&
-        is_uint(j.value("count", OJson())) && j.value("toolchain", OJson()).is_string() &&
-        j.value("inputs", OJson()).is_string() && is_uint(j.value("variants", OJson())) &&
-        j.value("shapes", OJson()).is_array() && j.value("files", OJson()).is_array();
-    if (!shaped) return fail("shard.json is not one watergen build --shard wrote");
+        is_uint(j.value("watergen_shard", OJson())) && j["watergen_shard"].get<uint64_t>() == 1 &&
+        is_uint(j.value("index", OJson())) && is_uint(j.value("count", OJson())) &&
+        j.value("toolchain", OJson()).is_string() && j.value("inputs", OJson()).is_string() &&
+        is_uint(j.value("variants", OJson())) && shapes && files;
+    if (!shaped) return failed(not_ours);
     if (j["index"].get<uint64_t>() > 1000000000 || j["count"].get<uint64_t>() > 1000000000)
-        return fail("shard.json names a shard past 10^9; expected I/N of a build");
-    ShardFile s;
+        return failed("shard.json names a shard past 10^9; expected I/N of a build");
     s.shard = {j["index"].get<unsigned>(), j["count"].get<unsigned>()};
     if (s.shard.index < 1 || s.shard.index > s.shard.count)
-        return fail("shard.json names shard " + std::to_string(s.shard.index) + "/" +
-                    std::to_string(s.shard.count) + "; expected I/N with 1 <= I <= N");
+        return failed("shard.json names shard " + std::to_string(s.shard.index) + "/" +
+                      std::to_string(s.shard.count) + "; expected I/N with 1 <= I <= N");
     s.toolchain = j["toolchain"];
     s.inputs = j["inputs"];
     s.variants = j["variants"];
-    if (j["shapes"].size() > kMaxShardEntries || j["files"].size() > kMaxShardEntries)
-        return fail("shard.json lists more than " + std::to_string(kMaxShardEntries) +
-                    " shapes or files; expected a shard of one build");
-    for (const auto& shape : j["shapes"]) {
-        if (!is_string_triple(shape) || !shape[2].is_string())
-            return fail("shard.json: a shape is not [scene, key, hash]");
-        if (!s.shapes.emplace(std::make_pair(shape[0], shape[1]), shape[2]).second)
-            return fail("shard.json names variant " + shape[0].get<std::string>() + "/" +
-                        shape[1].get<std::string>() + " twice");
-    }
-    std::string previous;
-    for (const auto& f : j["files"]) {
-        if (!f.is_array() || f.size() != 3 || !f[0].is_string() || !is_uint(f[1]) ||
-            !f[2].is_string() || !is_plain_relative_path(f[0]))
-            return fail("shard.json: a file is not [relative path, size, hash]");
-        ListedFile file{f[0], f[1].get<uint64_t>(), f[2]};
-        if (!s.files.empty() && file.path <= previous)
-            return fail("shard.json: " + file.path +
-                        " out of order or twice; expected the "
-                        "files sorted by path, each once");
-        previous = file.path;
-        s.files.push_back(std::move(file));
-    }
     return s;
+}
+
+} // namespace
+
+std::optional<ShardFile> parse_shard_file(const std::string& text, std::string* why) {
+    return read_shard_document(
+        [&](const JsonDocumentReader& r, std::string* w) { return read_json_document(text, r, w); },
+        why);
+}
+
+std::optional<ShardFile> read_shard_file(std::FILE* in, std::string* why) {
+    return read_shard_document(
+        [&](const JsonDocumentReader& r, std::string* w) { return read_json_document(in, r, w); },
+        why);
 }
 
 std::string check_shard_variant(const OJson& v, const ShardFile& s) {

@@ -32,8 +32,6 @@ using OJson = nlohmann::ordered_json;
 
 namespace {
 
-constexpr size_t kMaxShardFileBytes = size_t(512) << 20;
-
 // Where the merge keeps the variants of the shards' manifests (compact text) while it reads
 // them: an unlinked file in the staging directory, so memory holds an index, not documents.
 class Spool {
@@ -124,13 +122,15 @@ std::pair<std::string, uint64_t> stream_digest(std::FILE* in) {
 std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
     s.dir = dir;
     const std::string where = dir.string() + ": ";
-    const SafeRead meta = read_regular_file(dir / kShardFile, kMaxShardFileBytes);
-    if (!meta.bytes)
+    SafeRead meta;
+    std::FILE* meta_in = open_regular_stream(dir / kShardFile, meta);
+    if (!meta_in)
         return where + (meta.missing
                             ? "no shard.json; expected the output of watergen build --shard I/N"
                             : "shard.json " + meta.why);
     std::string why;
-    auto parsed = parse_shard_file(*meta.bytes, &why);
+    auto parsed = read_shard_file(meta_in, &why);
+    std::fclose(meta_in);
     if (!parsed) return where + why;
     s.meta = std::move(*parsed);
     const ListedFile* listed_manifest = nullptr;

@@ -63,15 +63,19 @@ std::string why_unusable(const VariantSpace& space, size_t axis, const std::stri
 
 // Parameters the offered nodes declare, found by composing one valid variant per offered choice.
 std::map<std::string, Parameter> declared_parameters(const VariantSpace& space) {
-    std::vector<std::set<std::string>> pending(axes().size());
+    std::vector<std::vector<bool>> seen(axes().size());
     for (size_t i = 0; i < axes().size(); ++i)
-        pending[i] = {space.choices[i].begin(), space.choices[i].end()};
+        seen[i].assign(space.choices[i].size(), false);
     std::vector<Variant> probes;
-    enumerate(space, [&](const Variant& v) {
+    enumerate_indices(space, [&](const std::vector<size_t>& index) {
         bool fresh = false;
-        for (size_t i = 0; i < axes().size(); ++i)
-            fresh = pending[i].erase(v.choices[i]) > 0 || fresh;
-        if (fresh) probes.push_back(v);
+        for (size_t i = 0; i < index.size(); ++i)
+            if (!seen[i][index[i]]) fresh = seen[i][index[i]] = true;
+        if (!fresh) return;
+        Variant v = default_variant();
+        for (size_t i = 0; i < index.size(); ++i)
+            v.choices[i] = space.choices[i][index[i]];
+        probes.push_back(std::move(v));
     });
     std::map<std::string, Parameter> declared;
     for (const Variant& v : probes) {
@@ -257,17 +261,20 @@ std::optional<Diagnostic> MaterialBuilder::check_rules(Material& m) const {
 // Every offered choice must be usable in at least one valid variant. Reports the unusable
 // choice that a broken rule is about (its subject), else the first unusable one.
 std::optional<Diagnostic> MaterialBuilder::check_usable(Material& m) const {
-    std::vector<std::set<std::string>> used(axes().size());
+    std::vector<std::vector<bool>> used(axes().size());
+    for (size_t i = 0; i < axes().size(); ++i)
+        used[i].assign(m.space.choices[i].size(), false);
     size_t count = 0;
-    enumerate(m.space, [&](const Variant& v) {
+    enumerate_indices(m.space, [&](const std::vector<size_t>& index) {
         ++count;
-        for (size_t i = 0; i < axes().size(); ++i)
-            used[i].insert(v.choices[i]);
+        for (size_t i = 0; i < index.size(); ++i)
+            used[i][index[i]] = true;
     });
     std::optional<Diagnostic> first_unusable;
     for (size_t i = 0; i < axes().size(); ++i)
-        for (const std::string& c : m.space.choices[i]) {
-            if (used[i].count(c)) continue;
+        for (size_t k = 0; k < m.space.choices[i].size(); ++k) {
+            const std::string& c = m.space.choices[i][k];
+            if (used[i][k]) continue;
             bool subject = false;
             const std::string why = why_unusable(m.space, i, c, &subject);
             Diagnostic d =

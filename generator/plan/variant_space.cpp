@@ -99,15 +99,16 @@ std::optional<std::vector<IndexedRule>> index_rules(const VariantSpace& space) {
 
 } // namespace
 
-void enumerate(const VariantSpace& space, const std::function<void(const Variant&)>& visit) {
+void enumerate_indices(const VariantSpace& space,
+                       const std::function<void(const std::vector<size_t>&)>& visit) {
     const size_t n = space.choices.size();
     if (n != axes().size()) return;
     for (const auto& list : space.choices)
         if (list.empty()) return;
     // The full space has 721,920 variants and a build enumerates it several times: rules are
-    // tested on indices, and a variant's names are set only when it is valid.
+    // tested on indices, and no names are touched.
     const std::optional<std::vector<IndexedRule>> rules = index_rules(space);
-    Variant v = default_variant();
+    Variant named = default_variant(); // only when a rule names an unknown axis
     std::vector<size_t> index(n, 0);
     for (;;) {
         bool valid = true;
@@ -117,15 +118,12 @@ void enumerate(const VariantSpace& space, const std::function<void(const Variant
                     valid = false;
                     break;
                 }
-            if (valid)
-                for (size_t a = 0; a < n; ++a)
-                    v.choices[a] = space.choices[a][index[a]];
         } else {
             for (size_t a = 0; a < n; ++a)
-                v.choices[a] = space.choices[a][index[a]];
-            valid = !find_broken_rule(space.rules, v);
+                named.choices[a] = space.choices[a][index[a]];
+            valid = !find_broken_rule(space.rules, named);
         }
-        if (valid) visit(v);
+        if (valid) visit(index);
         size_t a = n;
         while (a > 0) {
             --a;
@@ -136,9 +134,18 @@ void enumerate(const VariantSpace& space, const std::function<void(const Variant
     }
 }
 
+void enumerate(const VariantSpace& space, const std::function<void(const Variant&)>& visit) {
+    Variant v = default_variant();
+    enumerate_indices(space, [&](const std::vector<size_t>& index) {
+        for (size_t a = 0; a < index.size(); ++a)
+            v.choices[a] = space.choices[a][index[a]];
+        visit(v);
+    });
+}
+
 size_t count_variants(const VariantSpace& space) {
     size_t n = 0;
-    enumerate(space, [&](const Variant&) { ++n; });
+    enumerate_indices(space, [&](const std::vector<size_t>&) { ++n; });
     return n;
 }
 

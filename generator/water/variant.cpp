@@ -31,18 +31,30 @@ const std::string& Variant::choice(const std::string& axis) const {
     return i < choices.size() ? choices[i] : none;
 }
 
+namespace {
+
+// "axis<bind>choice" for every axis, `separator` between them (a build makes one per variant
+// of the space, 721,920 for a shard of the full space: one string, no parts).
+std::string spell(const std::vector<std::string>& choices, char bind, char separator) {
+    std::string s;
+    s.reserve(256);
+    for (size_t i = 0; i < axes().size(); ++i) {
+        if (i) s += separator;
+        s += axes()[i].name;
+        s += bind;
+        s += choices[i];
+    }
+    return s;
+}
+
+} // namespace
+
 std::string Variant::key() const {
-    std::vector<std::string> parts;
-    for (size_t i = 0; i < axes().size(); ++i)
-        parts.push_back(axes()[i].name + "=" + choices[i]);
-    return join(parts, ",");
+    return spell(choices, '=', ',');
 }
 
 std::string Variant::file_stem() const {
-    std::vector<std::string> parts;
-    for (size_t i = 0; i < axes().size(); ++i)
-        parts.push_back(axes()[i].name + "-" + choices[i]);
-    return join(parts, "_");
+    return spell(choices, '-', '_');
 }
 
 std::string Variant::short_hash() const {

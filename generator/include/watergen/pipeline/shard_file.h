@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <set>
@@ -34,8 +35,11 @@ struct ShardFile {
     bool lists(const std::string& path) const;
 };
 
-// shard.json's text as a ShardFile; nullopt and *why (what is wrong, what was expected).
+// shard.json's text as a ShardFile; nullopt and *why (what is wrong, what was expected). Read
+// one shape and one file at a time: no document of the whole is made.
 std::optional<ShardFile> parse_shard_file(const std::string& text, std::string* why);
+// The same from an open file, read as it goes (a merge never holds shard.json's text).
+std::optional<ShardFile> read_shard_file(std::FILE* in, std::string* why);
 
 // One variant of a permutations shard's manifest (or one shader of a modes shard's) against its
 // shard.json (a merge reads the manifest one entry at a time): in the shard's key range, among

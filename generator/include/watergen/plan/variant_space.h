@@ -50,6 +50,9 @@ std::optional<std::string> check_constraints(const Variant& v);
 // Visits every valid variant of the space once, odometer order over axes() (the last axis
 // turns fastest). Cost: product of the choice counts x rules.
 void enumerate(const VariantSpace& space, const std::function<void(const Variant&)>& visit);
+// The same over choice indices (index[a]: the position in space.choices[a]), making no Variant.
+void enumerate_indices(const VariantSpace& space,
+                       const std::function<void(const std::vector<size_t>&)>& visit);
 size_t count_variants(const VariantSpace& space);
 
 } // namespace watergen
