@@ -55,7 +55,7 @@ std::string emitted_name(Language lang, ShaderStage stage) {
 
 // The stages a build compiles for a job, keyed by content (StageMemo): GLSL vertex, GLSL
 // fragment, HLSL vertex, HLSL fragment.
-using StageKeys = std::array<std::string, 4>;
+using StageKeys = std::array<StageKey, 4>;
 
 // What phase 1 learns of a shader from its sources, emitted once per language.
 struct ShaderHashes {
@@ -228,7 +228,7 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
     const BuildPlan plan = plan_builds(jobs, results);
     // The stages of the jobs that will compile, so the memo keeps those more than one shares.
     for (size_t i : plan.to_build)
-        for (const std::string& key : stages[i])
+        for (const StageKey& key : stages[i])
             if (!key.empty()) memo.expect(key);
     std::vector<StageKeys>().swap(stages);
 

@@ -1,9 +1,11 @@
 #include "watergen/pipeline/stage_memo.h"
 
+#include <memory>
+
 #include <fmt/format.h>
+#include <xxhash.h>
 
 #include "watergen/ir/emitter.h"
-#include "watergen/pipeline/build_cache.h"
 
 namespace watergen {
 
@@ -29,20 +31,31 @@ std::string blank_stamp(const std::string& source, const std::string& variant_ke
     return blank;
 }
 
-std::string stage_key(const CompileRequest& request, CrossCompile cross,
-                      const std::string& variant_key) {
-    return content_hash({fmt::format("{}|{}|{}|{}|{}", static_cast<int>(request.language),
-                                     static_cast<int>(request.stage), request.hlsl_16bit_types,
-                                     cross == CrossCompile::Yes, request.entry_point),
-                         request.file_name, blank_stamp(request.source, variant_key)});
+StageKey stage_key(const CompileRequest& request, CrossCompile cross,
+                   const std::string& variant_key) {
+    std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(),
+                                                                          XXH3_freeState);
+    XXH3_128bits_reset(state.get());
+    auto feed = [&](const std::string& part) { // length first: no two splits hash alike
+        const uint64_t n = part.size();
+        XXH3_128bits_update(state.get(), &n, sizeof n);
+        XXH3_128bits_update(state.get(), part.data(), part.size());
+    };
+    feed(fmt::format("{}|{}|{}|{}|{}", static_cast<int>(request.language),
+                     static_cast<int>(request.stage), request.hlsl_16bit_types,
+                     cross == CrossCompile::Yes, request.entry_point));
+    feed(request.file_name);
+    feed(blank_stamp(request.source, variant_key));
+    const XXH128_hash_t h = XXH3_128bits_digest(state.get());
+    return {h.high64, h.low64};
 }
 
-void StageMemo::expect(const std::string& key) {
+void StageMemo::expect(const StageKey& key) {
     std::lock_guard<std::mutex> hold(lock_);
     ++entries_[key].expected;
 }
 
-ToolchainOutputs StageMemo::take(std::map<std::string, Entry>::iterator it) {
+ToolchainOutputs StageMemo::take(std::map<StageKey, Entry>::iterator it) {
     ++counts_.reused;
     if (--it->second.expected > 0) return it->second.outputs;
     ToolchainOutputs last = std::move(it->second.outputs);
@@ -53,7 +66,7 @@ ToolchainOutputs StageMemo::take(std::map<std::string, Entry>::iterator it) {
 
 ToolchainOutputs StageMemo::run(const CompileRequest& request, CrossCompile cross,
                                 const std::string& variant_key) {
-    const std::string key = stage_key(request, cross, variant_key);
+    const StageKey key = stage_key(request, cross, variant_key);
     CompileRequest blank = request;
     blank.source = blank_stamp(request.source, variant_key);
     std::unique_lock<std::mutex> hold(lock_);

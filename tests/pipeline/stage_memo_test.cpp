@@ -100,7 +100,7 @@ TEST_CASE("a_stage_compiled_once_serves_every_variant_that_expects_it", "[memo]"
 
 TEST_CASE("a_stage_nobody_else_expects_or_past_the_budget_is_compiled_each_time", "[memo]") {
     const CompileRequest r = vertex_request(Language::Glsl, kKeyA);
-    const std::string key = stage_key(r, CrossCompile::Yes, kKeyA);
+    const StageKey key = stage_key(r, CrossCompile::Yes, kKeyA);
     StageMemo unplanned;
     unplanned.run(r, CrossCompile::Yes, kKeyA);
     unplanned.run(r, CrossCompile::Yes, kKeyA);
@@ -119,7 +119,7 @@ TEST_CASE("a_stage_nobody_else_expects_or_past_the_budget_is_compiled_each_time"
 
 TEST_CASE("threads_asking_for_one_stage_at_once_compile_it_once", "[memo]") {
     const CompileRequest r = vertex_request(Language::Hlsl, kKeyA);
-    const std::string key = stage_key(r, CrossCompile::No, kKeyA);
+    const StageKey key = stage_key(r, CrossCompile::No, kKeyA);
     constexpr int kThreads = 8;
     StageMemo memo;
     for (int i = 0; i < kThreads; ++i)

@@ -5,8 +5,10 @@
 // compiles the first request for it and hands its outputs to the others.
 #pragma once
 
+#include <compare>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <mutex>
 #include <string>
@@ -15,10 +17,17 @@
 
 namespace watergen {
 
-// The content key of a stage: `request` with the stamp of `variant_key` blanked in its source
-// (stamp_text(""), emitter.h), and how far the chain runs. Equal keys, equal outputs.
-std::string stage_key(const CompileRequest& request, CrossCompile cross,
-                      const std::string& variant_key);
+// The content key of a stage: XXH3-128 of `request` with the stamp of `variant_key` blanked in
+// its source (stamp_text(""), emitter.h) and of how far the chain runs. Equal keys, equal
+// outputs. 128 bits in 16 bytes: over the millions of stages of a large build a 64-bit key
+// could collide, and a collision would hand one stage another's outputs.
+struct StageKey {
+    uint64_t high = 0, low = 0;
+    bool empty() const { return high == 0 && low == 0; }
+    auto operator<=>(const StageKey&) const = default;
+};
+StageKey stage_key(const CompileRequest& request, CrossCompile cross,
+                   const std::string& variant_key);
 // `source` with the stamp line of `variant_key` replaced by the blank stamp; lines keep their
 // numbers, so diagnostics point where they did.
 std::string blank_stamp(const std::string& source, const std::string& variant_key);
@@ -39,7 +48,7 @@ class StageMemo {
     // Only a stage expected more than once is kept, and only until its last expected use (a
     // variant that finds its files in the cache never comes, so its share stays until the end:
     // within max_bytes).
-    void expect(const std::string& key);
+    void expect(const StageKey& key);
 
     // The toolchain outputs of `request` (its stamp blanked, see stage_key) for a variant keyed
     // `variant_key`. Thread-safe; a caller that asks while another compiles the same stage waits
@@ -56,13 +65,13 @@ class StageMemo {
         ToolchainOutputs outputs;
         size_t bytes = 0;
     };
-    ToolchainOutputs take(std::map<std::string, Entry>::iterator it);
+    ToolchainOutputs take(std::map<StageKey, Entry>::iterator it);
 
     size_t max_bytes_;
     size_t held_bytes_ = 0;
     mutable std::mutex lock_;
     std::condition_variable done_;
-    std::map<std::string, Entry> entries_;
+    std::map<StageKey, Entry> entries_;
     StageCounts counts_;
 };
 
