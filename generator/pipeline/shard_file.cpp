@@ -72,6 +72,10 @@ read_shard_document(const std::function<JsonReadEnd(const JsonDocumentReader&, s
         return false;
     };
     const std::string not_ours = "shard.json is not one watergen build --shard wrote";
+    auto too_many = [&] {
+        return fail("shard.json lists more than " + std::to_string(kMaxShardEntries) +
+                    " shapes or files; expected a shard of one build");
+    };
     OJson head = OJson::object();
     ShardFile s;
     std::string previous;
@@ -85,9 +89,7 @@ read_shard_document(const std::function<JsonReadEnd(const JsonDocumentReader&, s
         },
         [&](const std::string& array, OJson&& e) {
             if (array == "shapes") {
-                if (s.shapes.size() >= kMaxShardEntries)
-                    return fail("shard.json lists more than " + std::to_string(kMaxShardEntries) +
-                                " shapes or files; expected a shard of one build");
+                if (s.shapes.size() >= kMaxShardEntries) return too_many();
                 if (!is_string_triple(e) || !e[2].is_string())
                     return fail("shard.json: a shape is not [scene, key, hash]");
                 if (!s.shapes.emplace(std::make_pair(e[0], e[1]), e[2]).second)
@@ -95,9 +97,7 @@ read_shard_document(const std::function<JsonReadEnd(const JsonDocumentReader&, s
                                 e[1].get<std::string>() + " twice");
                 return true;
             }
-            if (s.files.size() >= kMaxShardEntries)
-                return fail("shard.json lists more than " + std::to_string(kMaxShardEntries) +
-                            " shapes or files; expected a shard of one build");
+            if (s.files.size() >= kMaxShardEntries) return too_many();
             if (!e.is_array() || e.size() != 3 || !e[0].is_string() || !is_uint(e[1]) ||
                 !e[2].is_string() || !is_plain_relative_path(e[0]))
                 return fail("shard.json: a file is not [relative path, size, hash]");

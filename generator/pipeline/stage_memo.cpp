@@ -19,6 +19,26 @@ size_t bytes_of(const ToolchainOutputs& t) {
     return n + 4096; // the reflection, roughly
 }
 
+// The key of `request` compiled from `blank_source` (its source with the stamp blank).
+StageKey key_of(const CompileRequest& request, const std::string& blank_source,
+                CrossCompile cross) {
+    std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(),
+                                                                          XXH3_freeState);
+    XXH3_128bits_reset(state.get());
+    auto feed = [&](const std::string& part) { // length first: no two splits hash alike
+        const uint64_t n = part.size();
+        XXH3_128bits_update(state.get(), &n, sizeof n);
+        XXH3_128bits_update(state.get(), part.data(), part.size());
+    };
+    feed(fmt::format("{}|{}|{}|{}|{}", static_cast<int>(request.language),
+                     static_cast<int>(request.stage), request.hlsl_16bit_types,
+                     cross == CrossCompile::Yes, request.entry_point));
+    feed(request.file_name);
+    feed(blank_source);
+    const XXH128_hash_t h = XXH3_128bits_digest(state.get());
+    return {h.high64, h.low64};
+}
+
 } // namespace
 
 std::string blank_stamp(const std::string& source, const std::string& variant_key) {
@@ -33,21 +53,7 @@ std::string blank_stamp(const std::string& source, const std::string& variant_ke
 
 StageKey stage_key(const CompileRequest& request, CrossCompile cross,
                    const std::string& variant_key) {
-    std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(),
-                                                                          XXH3_freeState);
-    XXH3_128bits_reset(state.get());
-    auto feed = [&](const std::string& part) { // length first: no two splits hash alike
-        const uint64_t n = part.size();
-        XXH3_128bits_update(state.get(), &n, sizeof n);
-        XXH3_128bits_update(state.get(), part.data(), part.size());
-    };
-    feed(fmt::format("{}|{}|{}|{}|{}", static_cast<int>(request.language),
-                     static_cast<int>(request.stage), request.hlsl_16bit_types,
-                     cross == CrossCompile::Yes, request.entry_point));
-    feed(request.file_name);
-    feed(blank_stamp(request.source, variant_key));
-    const XXH128_hash_t h = XXH3_128bits_digest(state.get());
-    return {h.high64, h.low64};
+    return key_of(request, blank_stamp(request.source, variant_key), cross);
 }
 
 void StageMemo::expect(const StageKey& key) {
@@ -66,9 +72,9 @@ ToolchainOutputs StageMemo::take(std::map<StageKey, Entry>::iterator it) {
 
 ToolchainOutputs StageMemo::run(const CompileRequest& request, CrossCompile cross,
                                 const std::string& variant_key) {
-    const StageKey key = stage_key(request, cross, variant_key);
     CompileRequest blank = request;
     blank.source = blank_stamp(request.source, variant_key);
+    const StageKey key = key_of(request, blank.source, cross);
     std::unique_lock<std::mutex> hold(lock_);
     for (;;) {
         auto it = entries_.find(key);

@@ -52,15 +52,11 @@ void cross_compile_and_check(const CompileRequest& request, ToolchainOutputs& ou
     }
     if (cross_failed) return;
 
-    if (gl_targets) {
-        bool round_trip_failed =
-            take(out.diagnostics, check_glsl(out.glsl330, request.stage, GlslProfile::Core330,
-                                             f + cross_target_suffix(CrossTarget::Glsl330)));
-        round_trip_failed |=
-            take(out.diagnostics, check_glsl(out.essl300, request.stage, GlslProfile::Es300,
-                                             f + cross_target_suffix(CrossTarget::Essl300)));
-        if (round_trip_failed) return;
-    }
+    if (!gl_targets) return;
+    take(out.diagnostics, check_glsl(out.glsl330, request.stage, GlslProfile::Core330,
+                                     f + cross_target_suffix(CrossTarget::Glsl330)));
+    take(out.diagnostics, check_glsl(out.essl300, request.stage, GlslProfile::Es300,
+                                     f + cross_target_suffix(CrossTarget::Essl300)));
 }
 
 } // namespace
