@@ -1,6 +1,6 @@
 # watergen_add_shaders(<target> MATERIAL <file> [SCENES <files...>] [OUTPUT_DIR <dir>]
 #                      [MODE permutations|specialized|branching] [FREEZE] [JOBS <n>] [CACHE <dir>]
-#                      [SHARDS <n> [JOB_POOL <pool>]])
+#                      [SHARDS <n> [JOB_POOL <pool>]] [BINDINGS <profile>|<file>])
 #
 # Runs `watergen build` as a build step of <target>: the build directory (manifest.json and one
 # directory per shader) goes to OUTPUT_DIR (default: <current binary dir>/watergen/<target>).
@@ -8,7 +8,9 @@
 # the scenes and every file they include) names a changed file, or when watergen itself
 # changed; otherwise the build has no work to do. An invalid material or shader fails the build
 # with watergen's diagnostics (file:line:column). Sets the target property WATERGEN_SHADER_DIR
-# to the output directory. JOBS and CACHE are watergen build's --jobs and --cache.
+# to the output directory. JOBS and CACHE are watergen build's --jobs and --cache; BINDINGS is
+# its --bindings: a binding profile's name or the engine's binding map file (a file is a
+# dependency like the material).
 #
 # SHARDS <n> splits the build into n steps (by variant, or in specialized and branching mode by
 # shader: no more useful steps than the build has shaders), `watergen build --shard i/n`
@@ -19,7 +21,7 @@
 # remote-execution launcher set as RULE_LAUNCH_CUSTOM runs them where it runs compiles.
 # JOB_POOL puts the build step (or each shard step) in that Ninja job pool.
 function(watergen_add_shaders target)
-  cmake_parse_arguments(WG "FREEZE" "MATERIAL;OUTPUT_DIR;MODE;JOBS;CACHE;SHARDS;JOB_POOL"
+  cmake_parse_arguments(WG "FREEZE" "MATERIAL;OUTPUT_DIR;MODE;JOBS;CACHE;SHARDS;JOB_POOL;BINDINGS"
     "SCENES" ${ARGN})
   if(NOT TARGET ${target})
     message(FATAL_ERROR "watergen_add_shaders: '${target}' is not a target")
@@ -54,6 +56,15 @@ function(watergen_add_shaders target)
   if(WG_CACHE)
     list(APPEND args --cache "${WG_CACHE}")
   endif()
+  set(binding_file "")
+  if(WG_BINDINGS)
+    if(WG_BINDINGS MATCHES "^[a-z_]+$")
+      list(APPEND args --bindings ${WG_BINDINGS}) # a profile
+    else()
+      get_filename_component(binding_file "${WG_BINDINGS}" ABSOLUTE)
+      list(APPEND args --bindings "${binding_file}")
+    endif()
+  endif()
   set(manifest "${out}/manifest.json")
   set(pool "")
   if(WG_JOB_POOL)
@@ -73,7 +84,7 @@ function(watergen_add_shaders target)
         OUTPUT "${shard_dir}/manifest.json"
         COMMAND watergen::watergen ${args} --shard ${i}/${WG_SHARDS} --out "${shard_dir}"
           --depfile "${depfile}" --quiet
-        DEPENDS "${material}" ${scenes} watergen::watergen
+        DEPENDS "${material}" ${scenes} ${binding_file} watergen::watergen
         DEPFILE "${depfile}"
         ${pool}
         COMMENT "watergen: shard ${i}/${WG_SHARDS} of ${WG_MATERIAL} for ${target}"
@@ -92,7 +103,7 @@ function(watergen_add_shaders target)
     add_custom_command(
       OUTPUT "${manifest}"
       COMMAND watergen::watergen ${args} --out "${out}" --depfile "${depfile}"
-      DEPENDS "${material}" ${scenes} watergen::watergen
+      DEPENDS "${material}" ${scenes} ${binding_file} watergen::watergen
       DEPFILE "${depfile}"
       ${pool}
       COMMENT "watergen: shaders of ${WG_MATERIAL} for ${target}"

@@ -11,6 +11,7 @@
 #include "watergen/eval/measure/driver_check.h"
 #include "watergen/pipeline/build_files.h"
 #include "watergen/pipeline/build_progress.h"
+#include "watergen/water/binding_profiles.h"
 
 namespace watergen::cli {
 
@@ -111,6 +112,7 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         bool freeze = false;
         std::string depfile;
         std::string shard;
+        std::string bindings;
         std::vector<std::string> check_drivers;
     };
     auto o = std::make_shared<Options>();
@@ -153,6 +155,11 @@ Runner add_build_command(CLI::App& app, const Common& common) {
                 return parse_shard(text, &why) ? std::string() : why;
             },
             "I/N"));
+    app.add_option("--bindings", o->bindings,
+                   "where every resource is bound in every target: a profile (" +
+                       binding_profile_list() +
+                       "; default watergen) or a binding map file (JSON, see docs/user-guide.md "
+                       "\"Binding maps\"); one map serves every variant");
     app.add_option("--check-drivers", o->check_drivers,
                    "after the build, create every pipeline it wrote (each variant's GLSL and HLSL "
                    "paths, each companion pass) with these AMD families' compiler, ACO on RADV's "
@@ -184,6 +191,7 @@ Runner add_build_command(CLI::App& app, const Common& common) {
             request.options.cache = BuildCache(o->cache.empty() ? default_cache_dir()
                                                                 : std::filesystem::path(o->cache));
         request.depfile = o->depfile;
+        request.bindings = o->bindings;
         const bool tty = !o->quiet && ::isatty(STDERR_FILENO);
         // On a terminal a line redrawn after every job; in a log (CI) a line every 30 s, so
         // that a long build says where it is and a short one stays quiet.

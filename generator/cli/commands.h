@@ -104,6 +104,7 @@ void add_mode_option(CLI::App& app, std::string& mode);
 Runner add_build_command(CLI::App& app, const Common& common);
 Runner add_merge_command(CLI::App& app);
 Runner add_explain_command(CLI::App& app, const Common& common);
+Runner add_bindings_command(CLI::App& app, const Common& common);
 Runner add_bench_build_command(CLI::App& bench, const Common& common);
 Runner add_bench_prune_command(CLI::App& bench, const Common& common);
 Runner add_bench_accuracy_command(CLI::App& bench, const Common& common);

@@ -116,6 +116,10 @@ int main(int argc, char** argv) {
         "merge", "join the outputs of `watergen build --shard I/N` (I = 1..N) into exactly what "
                  "one build writes");
     runners[merge] = add_merge_command(*merge);
+    CLI::App* bindings = app.add_subcommand(
+        "bindings", "print a binding map (a profile, or a checked file) with every slot spelled "
+                    "out: where each resource is bound for Vulkan, HLSL, Metal and GL");
+    runners[bindings] = add_bindings_command(*bindings, common);
     CLI::App* explain = app.add_subcommand(
         "explain", "which variants each scene skips and which terms it folds away, and why");
     runners[explain] = add_explain_command(*explain, common);

@@ -83,9 +83,42 @@ void collect_reads(const Graph& g, std::set<std::string>& uniforms, std::set<std
     }
 }
 
+// The slot of `name` in `map`, or in the dense numbering when there is no map (`dense`: the
+// next texture index); an error naming the resource when the map does not place it or places
+// it as another kind.
+std::optional<ResourceSlot> slot_of(const std::string& name, ResourceKind kind,
+                                    const BindingMap* map, uint32_t dense,
+                                    const std::string& origin, Diagnostics& diagnostics) {
+    if (!map) {
+        const uint32_t b = kind == ResourceKind::UniformBlock ? kParamsBinding
+                           : kind == ResourceKind::Sampler    ? kSamplerBinding
+                                                              : kFirstTextureBinding + dense;
+        const uint32_t index = kind == ResourceKind::Texture ? dense : 0;
+        return ResourceSlot{name, kind, 0, b, index, 0, index, index, ""};
+    }
+    const ResourceSlot* s = map->find(name);
+    const std::string read = origin.empty() ? "" : " (read by " + origin + ")";
+    if (!s) {
+        diagnostics.push_back({Severity::Error, map->name, 0, 0, origin,
+                               std::string(to_string(kind)) + " '" + name + "'" + read +
+                                   " has no slot in the binding map " + map->name +
+                                   "; expected an entry for it under \"resources\""});
+        return std::nullopt;
+    }
+    if (s->kind != kind) {
+        diagnostics.push_back({Severity::Error, map->name, 0, 0, origin,
+                               "the binding map " + map->name + " places '" + name + "' (" +
+                                   s->origin + ") as a " + to_string(s->kind) + "; the shader" +
+                                   read + " reads it as a " + to_string(kind)});
+        return std::nullopt;
+    }
+    return *s;
+}
+
 // `specialized`: EmitOptions::specialization_constants.
 ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics,
-                             const std::set<std::string>& specialized = {}) {
+                             const std::set<std::string>& specialized = {},
+                             const BindingMap* map = nullptr) {
     ShaderInterface in;
     std::set<std::string> used_uniforms, used_textures;
     collect_reads(g, used_uniforms, used_textures, in.varyings);
@@ -97,9 +130,21 @@ ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics,
         }
     in.uniforms = layout_uniforms(in.parameters, diagnostics);
     in.specialization = specialization_slots(in.parameters, diagnostics);
-    uint32_t binding = kFirstTextureBinding;
+    auto place = [&](const std::string& name, ResourceKind kind, uint32_t dense,
+                     const std::string& origin) -> const ResourceSlot* {
+        auto s = slot_of(name, kind, map, dense, origin, diagnostics);
+        if (!s) return nullptr;
+        in.slots.push_back(std::move(*s));
+        return &in.slots.back();
+    };
+    if (!in.uniforms.members.empty()) place(kParamsResource, ResourceKind::UniformBlock, 0, "");
+    if (!used_textures.empty()) place(kSamplerResource, ResourceKind::Sampler, 0, "");
     for (const auto& t : g.textures())
-        if (used_textures.count(t.name)) in.textures.push_back({t.name, t.type, binding++});
+        if (used_textures.count(t.name)) {
+            const uint32_t dense = static_cast<uint32_t>(in.textures.size());
+            if (const ResourceSlot* s = place(t.name, ResourceKind::Texture, dense, t.origin))
+                in.textures.push_back({t.name, t.type, s->binding, s->set});
+        }
     return in;
 }
 
@@ -143,6 +188,19 @@ std::vector<Line> as_lines(const std::vector<std::string>& texts) {
 
 } // namespace
 
+const ResourceSlot* ShaderInterface::slot(const std::string& resource) const {
+    for (const ResourceSlot& s : slots)
+        if (s.name == resource) return &s;
+    return nullptr;
+}
+
+uint32_t probe_set(const ShaderInterface& in) {
+    uint32_t last = 0;
+    for (const ResourceSlot& s : in.slots)
+        last = std::max(last, s.set);
+    return in.slots.empty() ? 0 : last + 1;
+}
+
 EmittedShader emit_fragment(const Graph& g, Language language, const std::string& file_name,
                             const std::string& variant_key, Diagnostics& diagnostics,
                             const EmitOptions& options) {
@@ -156,7 +214,9 @@ EmittedShader emit_fragment(const Graph& g, Language language, const std::string
         return out;
     }
     const GlslSyntax& syntax = syntax_for(language);
-    out.interface = interface_of(g, diagnostics, options.specialization_constants);
+    out.interface =
+        interface_of(g, diagnostics, options.specialization_constants, options.bindings);
+    if (has_errors(diagnostics)) return out;
     std::vector<std::string> results;
     std::set<Op> used_ops;
     FragmentWriter writer(g, syntax, false, options.strict_half);
@@ -218,18 +278,11 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
         diagnostics.push_back({Severity::Error, file_name, 0, 0, "", "probe graph has no output"});
     if (has_errors(diagnostics)) return out;
 
-    out.interface = interface_of(g, diagnostics, options.specialization_constants);
+    out.interface =
+        interface_of(g, diagnostics, options.specialization_constants, options.bindings);
+    if (has_errors(diagnostics)) return out;
     writer.read_as_constants(out.interface);
     out.interface.varyings.clear(); // probe inputs come from the buffer, not the rasteriser
-    if (!out.interface.textures.empty() &&
-        out.interface.textures.back().binding >= kProbeInputBinding) {
-        diagnostics.push_back(
-            {Severity::Error, file_name, 0, 0, "",
-             fmt::format("probe graph reads {} textures; bindings {}..{} hold at most {}",
-                         out.interface.textures.size(), kFirstTextureBinding,
-                         kProbeInputBinding - 1, kProbeInputBinding - kFirstTextureBinding)});
-        return out;
-    }
     const ProbeLayout layout = probe_layout(g);
     std::vector<std::string> results;
     std::set<Op> used_ops;
@@ -270,6 +323,7 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
          {"extensions", as_lines(syntax.extensions(writer.writes_half(), writer.writes_loop()))},
          {"declarations", as_lines(syntax.declarations(out.interface))},
          {"prelude", as_lines(prelude)},
+         {"probe_set", {{std::to_string(probe_set(out.interface)), ""}}},
          {"input_stride", {{std::to_string(layout.input_stride), ""}}},
          {"output_stride", {{std::to_string(layout.output_stride), ""}}},
          {"reads", reads},
@@ -327,13 +381,15 @@ void attribute_to_nodes(const EmittedShader& shader, Diagnostics& diagnostics) {
 
 EmittedShader emit_from_skeleton(const Graph& g, Language language, ShaderStage stage,
                                  std::string_view skeleton, const std::string& file_name,
-                                 const std::string& variant_key, Diagnostics& diagnostics) {
+                                 const std::string& variant_key, Diagnostics& diagnostics,
+                                 const BindingMap* bindings) {
     EmittedShader out;
     out.language = language;
     out.stage = stage;
     out.file_name = file_name;
     const GlslSyntax& syntax = syntax_for(language);
-    out.interface = interface_of(g, diagnostics);
+    out.interface = interface_of(g, diagnostics, {}, bindings);
+    if (has_errors(diagnostics)) return out;
     std::vector<std::string> results;
     std::set<Op> used_ops;
     FragmentWriter writer(g, syntax);

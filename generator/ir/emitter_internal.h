@@ -13,6 +13,7 @@ namespace watergen {
 // of `g` holding its expression.
 EmittedShader emit_from_skeleton(const Graph& g, Language language, ShaderStage stage,
                                  std::string_view skeleton, const std::string& file_name,
-                                 const std::string& variant_key, Diagnostics& diagnostics);
+                                 const std::string& variant_key, Diagnostics& diagnostics,
+                                 const BindingMap* bindings = nullptr);
 
 } // namespace watergen

@@ -121,9 +121,10 @@ std::string GlslSyntax::call(Op op, Type result, const std::vector<std::string>&
 
 std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) const {
     std::vector<std::string> lines;
-    if (!in.uniforms.members.empty()) {
-        lines.push_back(fmt::format("layout(set = 0, binding = {}, std140) uniform WaterParams {{",
-                                    kParamsBinding));
+    if (const ResourceSlot* block = in.slot(kParamsResource);
+        block && !in.uniforms.members.empty()) {
+        lines.push_back(fmt::format("layout(set = {}, binding = {}, std140) uniform WaterParams {{",
+                                    block->set, block->binding));
         for (const auto& m : in.uniforms.members)
             lines.push_back(fmt::format("    layout(offset = {}) {} {}{};", m.offset, type(m.type),
                                         m.name, array_suffix(m)));
@@ -131,13 +132,13 @@ std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) con
     }
     const std::vector<std::string> constants = specialization_declarations(in);
     lines.insert(lines.end(), constants.begin(), constants.end());
-    if (!in.textures.empty())
-        lines.push_back(fmt::format("layout(set = 0, binding = {}) uniform sampler linear_clamp;",
-                                    kSamplerBinding));
+    if (const ResourceSlot* sampler = in.slot(kSamplerResource))
+        lines.push_back(fmt::format("layout(set = {}, binding = {}) uniform sampler linear_clamp;",
+                                    sampler->set, sampler->binding));
     for (const auto& t : in.textures)
-        lines.push_back(fmt::format("layout(set = 0, binding = {}) uniform {} {};", t.binding,
-                                    t.type == Type::TextureCube ? "textureCube" : "texture2D",
-                                    t.name));
+        lines.push_back(
+            fmt::format("layout(set = {}, binding = {}) uniform {} {};", t.set, t.binding,
+                        t.type == Type::TextureCube ? "textureCube" : "texture2D", t.name));
     for (size_t i = 0; i < in.varyings.size(); ++i)
         lines.push_back(fmt::format("layout(location = {}) in {} {};", i,
                                     type(in.varyings[i].second), in.varyings[i].first));

@@ -124,9 +124,11 @@ std::string HlslSyntax::call(Op op, Type result, const std::vector<std::string>&
 
 std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) const {
     std::vector<std::string> lines;
-    if (!in.uniforms.members.empty()) {
-        lines.push_back(fmt::format("[[vk::binding({}, 0)]] cbuffer WaterParams : register(b0) {{",
-                                    kParamsBinding));
+    if (const ResourceSlot* block = in.slot(kParamsResource);
+        block && !in.uniforms.members.empty()) {
+        lines.push_back(
+            fmt::format("[[vk::binding({}, {})]] cbuffer WaterParams : register(b{}, space{}) {{",
+                        block->binding, block->set, block->hlsl_register, block->hlsl_space));
         for (const auto& m : in.uniforms.members) {
             const char component = "xyzw"[(m.offset % 16) / 4];
             lines.push_back(fmt::format("    {} {}{} : packoffset(c{}.{});", type(m.type), m.name,
@@ -136,12 +138,16 @@ std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) con
     }
     const std::vector<std::string> constants = specialization_declarations(in);
     lines.insert(lines.end(), constants.begin(), constants.end());
-    if (!in.textures.empty())
+    if (const ResourceSlot* sampler = in.slot(kSamplerResource))
         lines.push_back(fmt::format(
-            "[[vk::binding({}, 0)]] SamplerState linear_clamp : register(s0);", kSamplerBinding));
-    for (const auto& t : in.textures)
-        lines.push_back(fmt::format("[[vk::binding({}, 0)]] {} {} : register(t{});", t.binding,
-                                    type(t.type), t.name, t.binding - kFirstTextureBinding));
+            "[[vk::binding({}, {})]] SamplerState linear_clamp : register(s{}, space{});",
+            sampler->binding, sampler->set, sampler->hlsl_register, sampler->hlsl_space));
+    for (const auto& t : in.textures) {
+        const ResourceSlot* s = in.slot(t.name);
+        lines.push_back(fmt::format("[[vk::binding({}, {})]] {} {} : register(t{}, space{});",
+                                    t.binding, t.set, type(t.type), t.name, s->hlsl_register,
+                                    s->hlsl_space));
+    }
     return lines;
 }
 

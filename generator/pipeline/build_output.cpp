@@ -345,11 +345,11 @@ BuildSummary build_material_now(const BuildRequest& request) {
         const WriteText write = [&](std::string_view piece) { manifest.write(piece); };
         if (request.mode == BuildMode::Permutations)
             write_manifest(request.material, plan->manifest_scenes, plan->jobs, results,
-                           passes.passes, read, write);
+                           passes.passes, read, write, request.options.bindings);
         else
             write_modes_manifest(request.material, request.mode, request.freeze,
                                  plan->manifest_scenes, plan->jobs, results, passes.passes, read,
-                                 write);
+                                 write, request.options.bindings);
         errors.note(manifest.close());
         if (request.shard.sharded() && !errors.first) {
             // Lists every file so far: shard.json is recorded once it is closed.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "watergen/pipeline/manifest.h"
 
 #include "watergen/water/nodes/caustics.h"
@@ -99,19 +101,22 @@ std::string caustics_pass_directory(const CausticsPassKey& key) {
 }
 
 CausticsPassBuild build_caustics_pass_files(const Material& material, const CausticsPassKey& key,
-                                            const BuildCache& cache) {
+                                            const BuildCache& cache, const BindingMap* bindings) {
     CausticsPassBuild b;
     b.pass = build_caustics_pass(key.method, key.wave_model);
     b.pass.vertex = settled(material, std::move(b.pass.vertex));
     b.languages = emit_two_stages(b.pass.vertex, b.pass.fragment, caustics_skeleton(key.method),
-                                  kStem, pass_key(key), b.diagnostics);
+                                  kStem, pass_key(key), b.diagnostics, bindings);
     if (!b.ok()) return b;
     // The files follow from the sources and the interface (pass.json's uniform block, with
     // defaults and ranges the sources do not spell out) under one toolchain, as a variant's do.
     std::vector<std::string> parts{pass_key(key)};
     for (const auto& lang : b.languages)
-        for (const StageBuild* s : {&lang.vertex, &lang.fragment})
+        for (const StageBuild* s : {&lang.vertex, &lang.fragment}) {
             parts.push_back(s->source.source);
+            for (const MslSlot& m : stage_request(s->source).msl_bindings)
+                parts.push_back(fmt::format("msl {} {} {}", m.set, m.binding, m.index));
+        }
     const ShaderInterface& in = b.languages[0].vertex.source.interface;
     parts.push_back(uniform_block_json(in).dump());
     parts.push_back(specialization_json(in).dump());
@@ -154,7 +159,7 @@ PassesOutput build_needed_passes(const Material& material, const std::vector<Bui
     }
     std::vector<CausticsPassBuild> built(keys.size());
     parallel_for(keys.size(), options.threads, [&](size_t k) {
-        built[k] = build_caustics_pass_files(material, keys[k], options.cache);
+        built[k] = build_caustics_pass_files(material, keys[k], options.cache, options.bindings);
     });
     PassesOutput out;
     for (size_t k = 0; k < keys.size(); ++k) {

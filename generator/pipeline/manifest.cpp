@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <set>
 #include <tuple>
 
@@ -10,7 +11,9 @@
 
 #include "watergen/ir/emitter.h"
 #include "watergen/pipeline/json_document.h"
+#include "watergen/plan/binding_map_file.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
+#include "watergen/water/binding_profiles.h"
 
 namespace watergen {
 
@@ -147,10 +150,9 @@ size_t add_output(OJson& v, size_t i, const std::vector<BuildJob>& jobs,
     v["files"] = files_json(job_directory(jobs[built]), results[built].names);
     if (const auto description = read(built, "variant.json")) {
         const OJson d = OJson::parse(*description);
-        v["reflection"] = {
-            {"uniform_block", d.value("uniform_block", OJson::object())},
-            {"sampler", {{"name", "linear_clamp"}, {"set", 0}, {"binding", kSamplerBinding}}},
-            {"textures", d.value("textures", OJson::array())}};
+        v["reflection"] = {{"uniform_block", d.value("uniform_block", OJson::object())},
+                           {"sampler", d.value("sampler", OJson::object())},
+                           {"textures", d.value("textures", OJson::array())}};
         if (d.contains("specialization_constants"))
             v["reflection"]["specialization_constants"] = d["specialization_constants"];
         v["spirv_instructions"] = d.value("spirv_instructions", OJson::object());
@@ -158,7 +160,16 @@ size_t add_output(OJson& v, size_t i, const std::vector<BuildJob>& jobs,
     return built;
 }
 
-OJson header_json(const Material& material, const std::vector<ManifestScene>& scenes) {
+// The map's name as the manifest gives it: a profile's, or its file's (not the path, which
+// differs between machines that build the same inputs).
+std::string map_name(const BindingMap& map) {
+    return binding_profile(map.name) ? map.name
+                                     : std::filesystem::path(map.name).filename().string();
+}
+
+OJson header_json(const Material& material, const std::vector<ManifestScene>& scenes,
+                  const BindingMap* bindings) {
+    const BindingMap& map = bindings ? *bindings : default_binding_map();
     OJson doc;
     doc["generator"] = std::string("watergen ") + WATERGEN_VERSION;
     doc["material"] = material_json(material);
@@ -168,6 +179,9 @@ OJson header_json(const Material& material, const std::vector<ManifestScene>& sc
     for (const auto& s : scenes)
         sc.push_back(scene_json(s));
     doc["scenes"] = sc;
+    OJson b = binding_map_json(map);
+    b.erase("watergen_bindings");
+    doc["bindings"] = {{"map", map_name(map)}, {"resources", b["resources"]}};
     return doc;
 }
 
@@ -233,8 +247,9 @@ std::string job_directory(const BuildJob& job) {
 
 void write_manifest(const Material& material, const std::vector<ManifestScene>& scenes,
                     const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                    const CausticsPasses& passes, const ReadJobFile& read, const WriteText& write) {
-    JsonDocumentWriter doc(header_json(material, scenes), write);
+                    const CausticsPasses& passes, const ReadJobFile& read, const WriteText& write,
+                    const BindingMap* bindings) {
+    JsonDocumentWriter doc(header_json(material, scenes, bindings), write);
     JobIndex index;
     for (size_t i = 0; i < jobs.size(); ++i)
         index[{jobs[i].scene, job_key(jobs[i])}] = i;
@@ -270,10 +285,11 @@ ReadJobFile read_from_results(const std::vector<JobResult>& results) {
 
 std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
                           const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                          const CausticsPasses& passes) {
+                          const CausticsPasses& passes, const BindingMap* bindings) {
     std::string text;
-    write_manifest(material, scenes, jobs, results, passes, read_from_results(results),
-                   [&](std::string_view piece) { text += piece; });
+    write_manifest(
+        material, scenes, jobs, results, passes, read_from_results(results),
+        [&](std::string_view piece) { text += piece; }, bindings);
     return text;
 }
 
@@ -375,8 +391,8 @@ void write_modes_manifest(const Material& material, BuildMode mode, bool freeze,
                           const std::vector<ManifestScene>& scenes,
                           const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
                           const CausticsPasses& passes, const ReadJobFile& read,
-                          const WriteText& write) {
-    OJson head = header_json(material, scenes);
+                          const WriteText& write, const BindingMap* bindings) {
+    OJson head = header_json(material, scenes, bindings);
     head["mode"] = to_string(mode);
     JsonDocumentWriter doc(head, write);
     JobIndex index;

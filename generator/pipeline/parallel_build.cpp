@@ -63,17 +63,29 @@ struct ShaderHashes {
     StageKeys stages;
 };
 
+// The slots a stage is bound at in every target (the sources spell the Vulkan and HLSL ones;
+// the Metal indices are SPIRV-Cross's options, the GL units the manifest's).
+std::string slots_text(const ShaderInterface& in) {
+    std::string text;
+    for (const ResourceSlot& r : in.slots)
+        text += fmt::format("{}|{}|{}|{}|{}|{}|{}|{};", r.name, static_cast<int>(r.kind), r.set,
+                            r.binding, r.hlsl_register, r.hlsl_space, r.msl_index, r.gl_unit);
+    return text;
+}
+
 // What the files of a variant depend on besides the toolchain: its sources (which carry the
-// key in their stamp) and the metadata of the parameters they read, which variant.json reports.
-// The shape is the same without the key: the sources with their stamps blank.
+// key in their stamp), the slots of its resources and the metadata of the parameters they read,
+// which variant.json reports. The shape is the same without the key: the sources with their
+// stamps blank.
 ShaderHashes hash_shader(const WaterShader& shader, const std::string& stamp_key,
-                         const StageCompile& compile, Diagnostics& ds) {
+                         const EmitOptions& emit, const StageCompile& compile, Diagnostics& ds) {
     std::vector<std::string> parts{shader.key(), shader.preset}, shape{shader.preset};
     ShaderHashes h;
     size_t k = 0;
     for (Language lang : {Language::Glsl, Language::Hlsl}) {
         const EmittedShader frag = emit_fragment(
-            shader.fragment, lang, emitted_name(lang, ShaderStage::Fragment), stamp_key, ds);
+            shader.fragment, lang, emitted_name(lang, ShaderStage::Fragment), stamp_key, ds, emit);
+        if (has_errors(ds)) return h;
         const EmittedShader vert =
             emit_fullscreen_vertex(lang, emitted_name(lang, ShaderStage::Vertex), stamp_key);
         for (const EmittedShader* e : {&frag, &vert}) {
@@ -83,6 +95,8 @@ ShaderHashes hash_shader(const WaterShader& shader, const std::string& stamp_key
         h.stages[k++] = stage_key(stage_request(vert), stage_cross(lang, compile), stamp_key);
         h.stages[k++] = stage_key(stage_request(frag), stage_cross(lang, compile), stamp_key);
         if (lang != Language::Glsl) continue;
+        parts.push_back(slots_text(frag.interface));
+        shape.push_back(parts.back());
         for (const Parameter& p : frag.interface.parameters) {
             std::string s = fmt::format("{}|{}|{}|{}|{}|{}|{}", p.name, static_cast<int>(p.type),
                                         p.min, p.max, p.unit, p.seed, p.origin);
@@ -113,12 +127,13 @@ WaterShader compose_job(const Material& material, const BuildJob& job, Diagnosti
 
 // Phase 1 for one job: compose, fold, hash (no compiler involved). The shader is not kept:
 // phase 2 composes it again (a few ms) rather than hold every job's graph at once.
-void compose_and_hash(const Material& material, const BuildJob& job, const StageCompile& compile,
-                      JobResult& r, StageKeys& stages) {
+void compose_and_hash(const Material& material, const BuildJob& job, const EmitOptions& emit,
+                      const StageCompile& compile, JobResult& r, StageKeys& stages) {
     const WaterShader shader = compose_job(material, job, r.diagnostics, &r.fold);
     if (has_errors(r.diagnostics)) return;
     r.folded = job.facts != nullptr;
-    ShaderHashes h = hash_shader(shader, job_key(job), compile, r.diagnostics);
+    ShaderHashes h = hash_shader(shader, job_key(job), emit, compile, r.diagnostics);
+    if (has_errors(r.diagnostics)) return;
     r.content_hash = std::move(h.content);
     r.shape_hash = std::move(h.shape);
     stages = std::move(h.stages);
@@ -154,13 +169,13 @@ BuildPlan plan_builds(const std::vector<BuildJob>& jobs, std::vector<JobResult>&
 
 // Phase 2 for one job: its files from the cache or the toolchain (all targets), if it built.
 // The shader is composed only when the cache does not have the files.
-std::optional<FileMap> load_or_build(const BuildOptions& options,
+std::optional<FileMap> load_or_build(const BuildOptions& options, const EmitOptions& emit,
                                      const std::function<WaterShader()>& compose,
                                      const StageCompile& compile, JobResult& r,
                                      const std::vector<std::string>& expected_files) {
     CacheUse use =
         options.cache.load_or_make(r.content_hash, expected_files, [&]() -> std::optional<FileMap> {
-            const VariantBuild build = build_shader(compose(), {}, compile);
+            const VariantBuild build = build_shader(compose(), emit, compile);
             r.diagnostics.insert(r.diagnostics.end(), build.diagnostics.begin(),
                                  build.diagnostics.end());
             if (!build.ok()) return std::nullopt;
@@ -221,9 +236,11 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
 
     StageMemo memo;
     const StageCompile compile{false, &memo};
+    const EmitOptions emit =
+        with_bindings(EmitOptions{false, {}, LoopUnroll::AsHinted, options.bindings});
     std::vector<StageKeys> stages(jobs.size());
     parallel_for(jobs.size(), options.threads, [&](size_t i) {
-        compose_and_hash(material, jobs[i], compile, results[i], stages[i]);
+        compose_and_hash(material, jobs[i], emit, compile, results[i], stages[i]);
     });
     const BuildPlan plan = plan_builds(jobs, results);
     // The stages of the jobs that will compile, so the memo keeps those more than one shares.
@@ -268,7 +285,8 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
             Diagnostics composed; // reported in phase 1 already
             return compose_job(material, jobs[i], composed);
         };
-        std::optional<FileMap> all = load_or_build(options, compose, compile, r, expected_files);
+        std::optional<FileMap> all =
+            load_or_build(options, emit, compose, compile, r, expected_files);
         r.milliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();

@@ -34,6 +34,10 @@ StageKey key_of(const CompileRequest& request, const std::string& blank_source,
                      static_cast<int>(request.stage), request.hlsl_16bit_types,
                      cross == CrossCompile::Yes, request.entry_point));
     feed(request.file_name);
+    std::string msl;
+    for (const MslSlot& m : request.msl_bindings)
+        msl += fmt::format("{},{},{};", m.set, m.binding, m.index);
+    feed(msl);
     feed(blank_source);
     const XXH128_hash_t h = XXH3_128bits_digest(state.get());
     return {h.high64, h.low64};

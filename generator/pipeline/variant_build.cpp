@@ -7,6 +7,7 @@
 #include "watergen/ir/vertex_emitter.h"
 #include "watergen/runtime/reflection.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
+#include "watergen/water/binding_profiles.h"
 
 namespace watergen {
 
@@ -44,6 +45,10 @@ StageBuild build_stage(EmittedShader source, Diagnostics& all, const StageCompil
         compile.memo ? compile.memo->run(request, cross, key) : run_toolchain(request, cross);
     add_specialization_ranges(stage.toolchain.reflection, stage.source.interface.specialization);
     Diagnostics ds = stage.toolchain.diagnostics;
+    if (!has_errors(ds)) {
+        Diagnostics off = check_reflected_bindings(stage.toolchain.reflection, stage.source);
+        ds.insert(ds.end(), off.begin(), off.end());
+    }
     // Only glslang's diagnostics point at lines of our emitted source.
     Diagnostics own, rest;
     for (auto& d : ds)
@@ -94,9 +99,15 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
     if (b.shader.switched) j["mode"] = to_string(b.shader.switched->mode);
     const ShaderInterface& in = b.languages[0].fragment.source.interface;
     j["uniform_block"] = uniform_block_json(in);
+    if (const ResourceSlot* sampler = in.slot(kSamplerResource))
+        j["sampler"] = {
+            {"name", sampler->name}, {"set", sampler->set}, {"binding", sampler->binding}};
     nlohmann::ordered_json textures = nlohmann::ordered_json::array();
     for (const auto& t : in.textures)
-        textures.push_back({{"name", t.name}, {"binding", t.binding}, {"type", type_name(t.type)}});
+        textures.push_back({{"name", t.name},
+                            {"set", t.set},
+                            {"binding", t.binding},
+                            {"type", type_name(t.type)}});
     j["textures"] = textures;
     // Only when there are some, so variants without them keep their form.
     if (!in.specialization.empty()) j["specialization_constants"] = specialization_json(in);
@@ -117,9 +128,10 @@ nlohmann::ordered_json uniform_block_json(const ShaderInterface& in) {
     for (const auto& slot : in.uniforms.members)
         for (const auto& p : in.parameters)
             if (p.name == slot.name) params.push_back(describe_parameter(p, "offset", slot.offset));
-    return {{"name", "WaterParams"},
-            {"set", 0},
-            {"binding", kParamsBinding},
+    const ResourceSlot* block = in.slot(kParamsResource);
+    return {{"name", kParamsResource},
+            {"set", block ? block->set : 0},
+            {"binding", block ? block->binding : kParamsBinding},
             {"size", in.uniforms.size},
             {"members", params}};
 }
@@ -141,7 +153,60 @@ CompileRequest stage_request(const EmittedShader& stage, bool strict_half) {
                                                             : SourceLanguage::Hlsl,
                            stage.stage, stage.source, stage.file_name, "main"};
     request.hlsl_16bit_types = strict_half;
+    for (const ResourceSlot& r : stage.interface.slots)
+        request.msl_bindings.push_back({r.set, r.binding, r.msl_index});
     return request;
+}
+
+Diagnostics check_reflected_bindings(const Reflection& reflection, const EmittedShader& stage) {
+    Diagnostics ds;
+    auto off = [&](const std::string& what) {
+        ds.push_back({Severity::Error, stage.file_name, 0, 0, "",
+                      "reflection of the SPIR-V: " + what + "; the binding map says otherwise"});
+    };
+    for (const DescriptorBinding& b : reflection.bindings) {
+        const ResourceSlot* slot = stage.interface.slot(b.name);
+        const bool probe =
+            b.set == probe_set(stage.interface) && stage.stage == ShaderStage::Compute;
+        if (!slot) {
+            if (!probe)
+                off("'" + b.name + "' is bound at set " + std::to_string(b.set) + " binding " +
+                    std::to_string(b.binding) + ", a resource the shader does not declare");
+            continue;
+        }
+        if (b.set != slot->set || b.binding != slot->binding)
+            off("'" + b.name + "' is at set " + std::to_string(b.set) + " binding " +
+                std::to_string(b.binding) + ", expected set " + std::to_string(slot->set) +
+                " binding " + std::to_string(slot->binding) + " (" + slot->origin + ")");
+    }
+    for (const ResourceSlot& slot : stage.interface.slots)
+        if (std::none_of(reflection.bindings.begin(), reflection.bindings.end(),
+                         [&](const DescriptorBinding& b) { return b.name == slot.name; }))
+            off("'" + slot.name + "' is declared but not bound");
+    return ds;
+}
+
+EmitOptions with_bindings(EmitOptions options) {
+    if (!options.bindings) options.bindings = &default_binding_map();
+    return options;
+}
+
+BindingMap default_map_for(std::initializer_list<const Graph*> graphs) {
+    BindingMap map = default_binding_map();
+    uint32_t binding = 0, index = 0;
+    for (const ResourceSlot& s : map.slots) {
+        if (s.set == 0) binding = std::max(binding, s.binding + 1);
+        if (s.kind == ResourceKind::Texture)
+            index = std::max({index, s.hlsl_register + 1, s.msl_index + 1, s.gl_unit + 1});
+    }
+    for (const Graph* g : graphs)
+        for (const TextureInput& t : g->textures())
+            if (!map.find(t.name)) {
+                map.slots.push_back({t.name, ResourceKind::Texture, 0, binding++, index, 0, index,
+                                     index, "after the watergen profile"});
+                ++index;
+            }
+    return map;
 }
 
 CrossCompile stage_cross(Language language, const StageCompile& compile) {
@@ -154,8 +219,13 @@ VariantBuild build_variant(const Variant& variant, const Preset* preset,
     return build_shader(build_water_shader(variant, preset), options);
 }
 
-VariantBuild build_shader(WaterShader shader, const EmitOptions& options,
+VariantBuild build_shader(WaterShader shader, const EmitOptions& given,
                           const StageCompile& compile) {
+    // A shader of nodes the profile does not know (a test's own, a user's) gets their textures
+    // after it, rather than an error, when the caller gave no map.
+    const BindingMap fallback = default_map_for({&shader.fragment});
+    EmitOptions options = given;
+    if (!options.bindings) options.bindings = &fallback;
     VariantBuild b{std::move(shader), {}, {}};
     const Diagnostics& graph_errors = b.shader.fragment.diagnostics();
     b.diagnostics.insert(b.diagnostics.end(), graph_errors.begin(), graph_errors.end());
@@ -226,7 +296,10 @@ std::vector<std::string> variant_file_names() {
 
 std::array<LanguageBuild, 2> emit_two_stages(const Graph& vertex, const Graph& fragment,
                                              const std::string& stage_name, const std::string& stem,
-                                             const std::string& key, Diagnostics& diagnostics) {
+                                             const std::string& key, Diagnostics& diagnostics,
+                                             const BindingMap* bindings) {
+    const BindingMap fallback = default_map_for({&vertex, &fragment});
+    if (!bindings) bindings = &fallback;
     std::array<LanguageBuild, 2> out;
     for (const Graph* g : {&vertex, &fragment})
         diagnostics.insert(diagnostics.end(), g->diagnostics().begin(), g->diagnostics().end());
@@ -234,12 +307,12 @@ std::array<LanguageBuild, 2> emit_two_stages(const Graph& vertex, const Graph& f
     for (size_t i = 0; i < out.size(); ++i) {
         const Language lang = kLanguages[i];
         out[i].language = lang;
-        out[i].vertex.source =
-            emit_vertex(vertex, lang, stage_name,
-                        stage_file_names(lang, ShaderStage::Vertex, stem).source, key, diagnostics);
+        out[i].vertex.source = emit_vertex(vertex, lang, stage_name,
+                                           stage_file_names(lang, ShaderStage::Vertex, stem).source,
+                                           key, diagnostics, bindings);
         out[i].fragment.source = emit_fragment(
             fragment, lang, stage_file_names(lang, ShaderStage::Fragment, stem).source, key,
-            diagnostics);
+            diagnostics, EmitOptions{false, {}, LoopUnroll::AsHinted, bindings});
         if (has_errors(diagnostics)) return out;
     }
     return out;
@@ -256,9 +329,10 @@ void compile_two_stages(std::array<LanguageBuild, 2>& languages, Diagnostics& di
 std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& fragment,
                                               const std::string& stage_name,
                                               const std::string& stem, const std::string& key,
-                                              Diagnostics& diagnostics) {
+                                              Diagnostics& diagnostics,
+                                              const BindingMap* bindings) {
     std::array<LanguageBuild, 2> out =
-        emit_two_stages(vertex, fragment, stage_name, stem, key, diagnostics);
+        emit_two_stages(vertex, fragment, stage_name, stem, key, diagnostics, bindings);
     if (!has_errors(diagnostics)) compile_two_stages(out, diagnostics);
     return out;
 }

@@ -47,8 +47,18 @@ std::string compile_gl(const std::vector<uint32_t>& spirv, bool es) {
     return compiler.compile();
 }
 
-std::string compile_msl(const std::vector<uint32_t>& spirv) {
+std::string compile_msl(const std::vector<uint32_t>& spirv, const std::vector<MslSlot>& slots) {
     spirv_cross::CompilerMSL compiler(spirv);
+    for (const MslSlot& s : slots) {
+        spirv_cross::MSLResourceBinding b;
+        b.stage = compiler.get_execution_model();
+        b.desc_set = s.set;
+        b.binding = s.binding;
+        b.count = 1;
+        // Only the field of the resource's kind is read.
+        b.msl_buffer = b.msl_texture = b.msl_sampler = s.index;
+        compiler.add_msl_resource_binding(b);
+    }
     return compiler.compile();
 }
 
@@ -67,7 +77,7 @@ const char* cross_target_suffix(CrossTarget target) {
 }
 
 CrossResult cross_compile(const std::vector<uint32_t>& spirv, CrossTarget target,
-                          const std::string& file_name) {
+                          const std::string& file_name, const std::vector<MslSlot>& msl) {
     CrossResult result;
     // SPIRV-Cross reports every problem by throwing; stages must return errors as data.
     try {
@@ -79,7 +89,7 @@ CrossResult cross_compile(const std::vector<uint32_t>& spirv, CrossTarget target
             result.source = compile_gl(spirv, true);
             break;
         case CrossTarget::Msl:
-            result.source = compile_msl(spirv);
+            result.source = compile_msl(spirv, msl);
             break;
         }
     } catch (const spirv_cross::CompilerError& e) {

@@ -45,8 +45,8 @@ void cross_compile_and_check(const CompileRequest& request, ToolchainOutputs& ou
                    {CrossTarget::Msl, &out.msl, true}};
     for (const auto& t : targets) {
         if (!t.wanted) continue;
-        CrossResult result =
-            cross_compile(out.spirv_optimized, t.target, f + cross_target_suffix(t.target));
+        CrossResult result = cross_compile(out.spirv_optimized, t.target,
+                                           f + cross_target_suffix(t.target), request.msl_bindings);
         cross_failed |= take(out.diagnostics, std::move(result.diagnostics));
         *t.text = std::move(result.source);
     }

@@ -107,7 +107,8 @@ void check_sole_uniform(const SetBindings& bindings) {
 // A pool for one set per layout, and the sets.
 std::vector<VkDescriptorSet> allocate_sets(Scope& scope,
                                            const std::vector<VkDescriptorSetLayout>& layouts,
-                                           const SetBindings& bindings) {
+                                           const SetBindings& bindings,
+                                           const std::vector<VkDescriptorPoolSize>* counts) {
     std::map<VkDescriptorType, uint32_t> type_counts;
     for (const auto& set : bindings)
         for (const DescriptorBinding& b : set)
@@ -115,6 +116,7 @@ std::vector<VkDescriptorSet> allocate_sets(Scope& scope,
     std::vector<VkDescriptorPoolSize> sizes;
     for (const auto& [type, count] : type_counts)
         sizes.push_back({type, count});
+    if (counts) sizes = *counts;
     VkDevice device = scope.ctx().device;
     VkDescriptorPoolCreateInfo pci{};
     pci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
@@ -138,7 +140,8 @@ std::vector<VkDescriptorSet> allocate_sets(Scope& scope,
 } // namespace
 
 BoundDescriptors bind_descriptors(Scope& scope, const std::vector<VkDescriptorSetLayout>& layouts,
-                                  const SetBindings& bindings, const DescriptorInputs& inputs) {
+                                  const SetBindings& bindings, const DescriptorInputs& inputs,
+                                  const std::vector<VkDescriptorPoolSize>* pool) {
     BoundDescriptors out;
     if (layouts.empty()) return out;
     const Context& ctx = scope.ctx();
@@ -146,7 +149,7 @@ BoundDescriptors bind_descriptors(Scope& scope, const std::vector<VkDescriptorSe
         throw DeviceError(fmt::format("shader uses descriptor set {}; the device binds at most {}",
                                       layouts.size() - 1, ctx.limits.maxBoundDescriptorSets));
     if (inputs.sole_uniforms) check_sole_uniform(bindings);
-    out.sets = allocate_sets(scope, layouts, bindings);
+    out.sets = allocate_sets(scope, layouts, bindings, pool);
 
     // Infos are referenced by pointer from the writes: size the vectors up front so they
     // never reallocate.

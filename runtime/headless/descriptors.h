@@ -33,9 +33,11 @@ struct BoundDescriptors {
 };
 
 // Allocates one set per layout and writes every binding from `inputs`; throws naming the
-// binding an input is missing for.
+// binding an input is missing for. `pool`: the descriptor counts the layouts hold, when they
+// hold more than `bindings` (a build's shared layout, of which a pipeline reads some slots).
 BoundDescriptors bind_descriptors(Scope& scope, const std::vector<VkDescriptorSetLayout>& layouts,
-                                  const SetBindings& bindings, const DescriptorInputs& inputs);
+                                  const SetBindings& bindings, const DescriptorInputs& inputs,
+                                  const std::vector<VkDescriptorPoolSize>* pool = nullptr);
 
 // One stage's bindings by set, and their layouts visible to `stage` (gaps get empty ones).
 SetBindings stage_bindings(const Reflection& reflection);

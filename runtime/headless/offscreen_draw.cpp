@@ -158,7 +158,8 @@ void prepare(PreparedDraw& p, const VariantPipeline& pipeline, const DrawBinding
     inputs.sole_uniforms = bindings.sole_uniforms;
     inputs.textures = bindings.textures;
     inputs.filter = bindings.filter;
-    p.descriptors = bind_descriptors(scope, pipeline.set_layouts(), set_bindings, inputs);
+    const std::vector<VkDescriptorPoolSize> pool = pipeline.pool_sizes();
+    p.descriptors = bind_descriptors(scope, pipeline.set_layouts(), set_bindings, inputs, &pool);
     const VkFramebuffer framebuffer = create_framebuffer(scope, pass, p.image);
     if (indexed) {
         // Host-visible like every buffer here; host writes before the submit need no barrier.

@@ -71,6 +71,41 @@ std::string at(const std::string& path, size_t i) {
     return path + "[" + std::to_string(i) + "]";
 }
 
+BuildBindings read_bindings(ManifestReader& r, const json& bindings) {
+    BuildBindings out;
+    out.map = r.text(bindings, "bindings", "map");
+    const json* resources =
+        r.get(bindings, "bindings", "resources", json::value_t::object, "an object");
+    if (!resources) return out;
+    for (const auto& [name, slot] : resources->items()) {
+        const std::string path = "bindings.resources." + name;
+        if (!slot.is_object()) {
+            r.fail(path, "expected an object");
+            return out;
+        }
+        MapSlot s;
+        s.name = name;
+        const std::string kind = r.text(slot, path, "kind");
+        if (kind == "uniform_block")
+            s.kind = DescriptorKind::UniformBuffer;
+        else if (kind == "sampler")
+            s.kind = DescriptorKind::Sampler;
+        else if (kind == "texture")
+            s.kind = DescriptorKind::SampledImage;
+        else if (!r.failed())
+            r.fail(path + ".kind", "'" + kind + "'; expected uniform_block, sampler or texture");
+        s.set = r.u32(slot, path, "set");
+        s.binding = r.u32(slot, path, "binding");
+        s.hlsl_register = r.u32(slot, path, "hlsl_register");
+        s.hlsl_space = r.u32(slot, path, "hlsl_space");
+        s.msl = r.u32(slot, path, "msl");
+        s.gl = r.u32(slot, path, "gl");
+        if (r.failed()) return out;
+        out.slots.push_back(std::move(s));
+    }
+    return out;
+}
+
 void read_file_lists(ManifestReader& r, const json& entry, const std::string& path,
                      std::map<std::string, std::vector<std::string>>& files) {
     const json* object = r.get(entry, path, "files", json::value_t::object, "an object");

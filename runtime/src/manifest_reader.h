@@ -123,6 +123,9 @@ void read_file_lists(ManifestReader& r, const json& entry, const std::string& pa
 void read_uniform_block(ManifestReader& r, const json& parent, const std::string& path,
                         BuildVariant& v);
 
+// The manifest's "bindings": the map's name and each resource's slot.
+BuildBindings read_bindings(ManifestReader& r, const json& bindings);
+
 // A variant entry's "passes" (optional): name -> reference (build_pass.cpp).
 void read_passes(ManifestReader& r, const json& entry, const std::string& path,
                  std::map<std::string, PassReference>& passes);

@@ -195,6 +195,8 @@ std::optional<ShaderBuild> ShaderBuild::open(const fs::path& directory, std::str
                 b.axes_[axis].push_back(c.get<std::string>());
             }
         }
+    if (const json* map = r.get(doc, "", "bindings", json::value_t::object, "an object", false))
+        b.bindings_ = manifest::read_bindings(r, *map);
     if (const json* scenes = r.get(doc, "", "scenes", json::value_t::array, "an array"))
         for (size_t i = 0; i < scenes->size(); ++i)
             b.scenes_.push_back(r.text((*scenes)[i], at("scenes", i), "name"));

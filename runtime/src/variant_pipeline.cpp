@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Vulkan guarantees maxBoundDescriptorSets >= 4; watergen's shaders use set 0.
+// Vulkan guarantees maxBoundDescriptorSets >= 4: a binding map places resources in sets 0..3.
 constexpr uint32_t kMaxDescriptorSets = 4;
 
 std::string failed(const char* call, VkResult r) {
@@ -67,6 +67,7 @@ VariantPipeline& VariantPipeline::operator=(VariantPipeline&& o) noexcept {
     set_layouts_ = std::move(o.set_layouts_);
     bindings_ = std::move(o.bindings_);
     layout_ = o.layout_;
+    shared_ = o.shared_;
     pipeline_ = o.pipeline_;
     o.set_layouts_.clear();
     o.layout_ = VK_NULL_HANDLE;
@@ -90,6 +91,7 @@ void VariantPipeline::destroy() {
 }
 
 std::vector<VkDescriptorPoolSize> VariantPipeline::pool_sizes(uint32_t copies) const {
+    if (shared_) return shared_->pool_sizes(copies);
     std::map<VkDescriptorType, uint32_t> counts;
     for (const auto& set : bindings_)
         for (const DescriptorBinding& b : set)
@@ -98,6 +100,38 @@ std::vector<VkDescriptorPoolSize> VariantPipeline::pool_sizes(uint32_t copies) c
     for (const auto& [type, n] : counts)
         sizes.push_back({type, n});
     return sizes;
+}
+
+bool VariantPipeline::create_own_layout(VkDevice device, const StageUnion& all, uint32_t sets,
+                                        std::string* error) {
+    bindings_.resize(sets);
+    std::vector<std::vector<VkDescriptorSetLayoutBinding>> layout_bindings(sets);
+    for (const auto& [key, b] : all) {
+        bindings_[key.first].push_back(b.first);
+        layout_bindings[key.first].push_back(
+            {key.second, descriptor_type(b.first.kind), 1, b.second, nullptr});
+    }
+    for (uint32_t s = 0; s < sets; ++s) {
+        VkDescriptorSetLayoutCreateInfo ci{};
+        ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+        ci.bindingCount = static_cast<uint32_t>(layout_bindings[s].size());
+        ci.pBindings = layout_bindings[s].data();
+        VkDescriptorSetLayout l = VK_NULL_HANDLE;
+        if (VkResult r = vkCreateDescriptorSetLayout(device, &ci, nullptr, &l); r != VK_SUCCESS) {
+            *error = failed("vkCreateDescriptorSetLayout", r);
+            return false;
+        }
+        set_layouts_.push_back(l);
+    }
+    VkPipelineLayoutCreateInfo lci{};
+    lci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    lci.setLayoutCount = sets;
+    lci.pSetLayouts = set_layouts_.data();
+    if (VkResult r = vkCreatePipelineLayout(device, &lci, nullptr, &layout_); r != VK_SUCCESS) {
+        *error = failed("vkCreatePipelineLayout", r);
+        return false;
+    }
+    return true;
 }
 
 std::optional<VariantPipeline>
@@ -143,7 +177,7 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
     }
     p.device_ = device;
     // Union of the stages' bindings by (set, binding), stage flags or-ed together.
-    std::map<std::pair<uint32_t, uint32_t>, std::pair<DescriptorBinding, VkShaderStageFlags>> all;
+    StageUnion all;
     for (const auto& [r, stage] : {std::pair{d.vertex_reflection, VK_SHADER_STAGE_VERTEX_BIT},
                                    std::pair{d.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}})
         for (const DescriptorBinding& b : r->bindings) {
@@ -163,32 +197,18 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
     uint32_t sets = 0;
     for (const auto& [key, b] : all)
         sets = std::max(sets, key.first + 1);
-    p.bindings_.resize(sets);
-    std::vector<std::vector<VkDescriptorSetLayoutBinding>> layout_bindings(sets);
-    for (const auto& [key, b] : all) {
-        p.bindings_[key.first].push_back(b.first);
-        layout_bindings[key.first].push_back(
-            {key.second, descriptor_type(b.first.kind), 1, b.second, nullptr});
-    }
-    for (uint32_t s = 0; s < sets; ++s) {
-        VkDescriptorSetLayoutCreateInfo ci{};
-        ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-        ci.bindingCount = static_cast<uint32_t>(layout_bindings[s].size());
-        ci.pBindings = layout_bindings[s].data();
-        VkDescriptorSetLayout l = VK_NULL_HANDLE;
-        if (VkResult r = vkCreateDescriptorSetLayout(device, &ci, nullptr, &l); r != VK_SUCCESS) {
-            *error = failed("vkCreateDescriptorSetLayout", r);
-            return std::nullopt;
-        }
-        p.set_layouts_.push_back(l);
-    }
-    VkPipelineLayoutCreateInfo lci{};
-    lci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-    lci.setLayoutCount = sets;
-    lci.pSetLayouts = p.set_layouts_.data();
-    if (VkResult r = vkCreatePipelineLayout(device, &lci, nullptr, &p.layout_); r != VK_SUCCESS) {
-        *error = failed("vkCreatePipelineLayout", r);
-        return std::nullopt;
+    if (d.layout) {
+        for (const Reflection* r : {d.vertex_reflection, d.fragment_reflection})
+            if (std::string off = d.layout->check(*r); !off.empty()) {
+                *error = off;
+                return std::nullopt;
+            }
+        p.shared_ = d.layout;
+        p.bindings_.resize(d.layout->set_layouts().size());
+        for (const auto& [key, b] : all)
+            p.bindings_[key.first].push_back(b.first);
+    } else {
+        if (!p.create_own_layout(device, all, sets, error)) return std::nullopt;
     }
 
     std::vector<VkSpecializationMapEntry> entries;
@@ -235,7 +255,7 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
     gci.pVertexInputState = &vertex_input.info;
     gci.pViewportState = &viewport;
     gci.pDynamicState = &dynamic;
-    gci.layout = p.layout_;
+    gci.layout = p.layout();
     gci.renderPass = d.render_pass;
     gci.subpass = d.subpass;
     gci.flags = d.flags;

@@ -6,8 +6,8 @@
 layout(local_size_x = 64) in;
 
 {{declarations}}
-layout(set = 0, binding = 8, std430) readonly buffer ProbeInputs { float probe_in[]; };
-layout(set = 0, binding = 9, std430) writeonly buffer ProbeOutputs { float probe_out[]; };
+layout(set = {{probe_set}}, binding = 0, std430) readonly buffer ProbeInputs { float probe_in[]; };
+layout(set = {{probe_set}}, binding = 1, std430) writeonly buffer ProbeOutputs { float probe_out[]; };
 
 {{prelude}}
 void main() {

@@ -2,8 +2,8 @@
 
 // Numeric harness: one invocation evaluates one input tuple.
 {{declarations}}
-[[vk::binding(8, 0)]] StructuredBuffer<float> probe_in : register(t8);
-[[vk::binding(9, 0)]] RWStructuredBuffer<float> probe_out : register(u0);
+[[vk::binding(0, {{probe_set}})]] StructuredBuffer<float> probe_in : register(t0, space{{probe_set}});
+[[vk::binding(1, {{probe_set}})]] RWStructuredBuffer<float> probe_out : register(u0, space{{probe_set}});
 
 {{prelude}}
 [numthreads(64, 1, 1)]

@@ -53,7 +53,7 @@ HeadlessDevice& engine_gpu() {
 EngineDraw engine_draw(const ShaderBuild& b, const BuildVariant& v, const std::string& lang,
                        const std::map<std::string, std::vector<double>>& values,
                        const std::map<std::string, TextureData>& textures, uint32_t size,
-                       VkPipelineCache cache) {
+                       VkPipelineCache cache, const BindingLayout* layout) {
     const StageFiles files = stage_files(b, v, lang);
     UniformWriter writer(v);
     set_values(writer, values);
@@ -62,6 +62,7 @@ EngineDraw engine_draw(const ShaderBuild& b, const BuildVariant& v, const std::s
     REQUIRE(bytes);
     VariantPipelineDesc desc{&files.vs, &files.fs, &files.vr, &files.fr, engine_gpu().render_pass(),
                              0,         {},        cache};
+    desc.layout = layout;
     auto pipeline = VariantPipeline::create(engine_gpu().device(), desc, &error);
     INFO(error);
     REQUIRE(pipeline);

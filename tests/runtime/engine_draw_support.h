@@ -24,11 +24,13 @@ struct EngineDraw {
 };
 
 // The variant's files of one language path, `values` set where the variant has the parameter
-// (a scene feeds every node; a variant reads fewer), packed, drawn size x size with `textures`.
+// (a scene feeds every node; a variant reads fewer), packed, drawn size x size with `textures`;
+// the pipeline in the build's shared `layout` when given.
 EngineDraw engine_draw(const ShaderBuild& b, const BuildVariant& v, const std::string& lang,
                        const std::map<std::string, std::vector<double>>& values,
                        const std::map<std::string, TextureData>& textures, uint32_t size,
-                       VkPipelineCache cache = VK_NULL_HANDLE);
+                       VkPipelineCache cache = VK_NULL_HANDLE,
+                       const BindingLayout* layout = nullptr);
 
 struct EnginePass {
     TextureData texture;

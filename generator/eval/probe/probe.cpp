@@ -13,9 +13,9 @@ namespace watergen {
 
 namespace {
 
-std::string binding_name(const Reflection& r, uint32_t binding) {
+std::string binding_name(const Reflection& r, uint32_t set, uint32_t binding) {
     for (const auto& b : r.bindings)
-        if (b.binding == binding) return b.name;
+        if (b.set == set && b.binding == binding) return b.name;
     return "";
 }
 
@@ -35,13 +35,13 @@ bool pick_textures(const ShaderInterface& interface,
 }
 
 // Runs the compiled probe over every tuple, in dispatches of at most 65535 workgroups.
-void run_on_gpu(VulkanRunner& runner, const ToolchainOutputs& built, ComputeJob& job,
+void run_on_gpu(VulkanRunner& runner, const ToolchainOutputs& built, uint32_t set, ComputeJob& job,
                 const std::vector<double>& inputs, ProbeRun& run) {
     const uint32_t in_stride = run.layout.input_stride, out_stride = run.layout.output_stride;
     job.spirv = built.spirv_optimized;
     job.reflection = built.reflection;
-    const std::string in_name = binding_name(built.reflection, kProbeInputBinding);
-    const std::string out_name = binding_name(built.reflection, kProbeOutputBinding);
+    const std::string in_name = binding_name(built.reflection, set, kProbeInputBinding);
+    const std::string out_name = binding_name(built.reflection, set, kProbeOutputBinding);
     runner.clear_validation_messages();
     run.gpu.resize(run.tuples * out_stride);
     // Vulkan guarantees 65535 workgroups per dispatch dimension; larger inputs run in chunks
@@ -164,7 +164,7 @@ ProbeRun run_probe(VulkanRunner& runner, const Graph& g, Language language,
 
     job.uniforms = pack_uniforms(shader.interface.uniforms, shader.interface.parameters, uniforms);
     job.specialization = specialization_values(shader.interface.specialization, uniforms);
-    run_on_gpu(runner, built, job, inputs, run);
+    run_on_gpu(runner, built, probe_set(shader.interface), job, inputs, run);
     if (!run.error.empty()) return run;
     run_on_cpu(g, inputs, uniforms, job.textures, run);
     return run;

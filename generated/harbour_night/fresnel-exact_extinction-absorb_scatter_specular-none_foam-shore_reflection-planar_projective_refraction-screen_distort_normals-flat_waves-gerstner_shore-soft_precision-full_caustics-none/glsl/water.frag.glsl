@@ -36,8 +36,8 @@ layout(constant_id = 0) const float gerstner_wave_count = 4.0;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
 layout(set = 0, binding = 3) uniform texture2D scene_position;
-layout(set = 0, binding = 4) uniform texture2D reflection_map;
-layout(set = 0, binding = 5) uniform texture2D foam_pattern;
+layout(set = 0, binding = 5) uniform texture2D reflection_map;
+layout(set = 0, binding = 9) uniform texture2D foam_pattern;
 layout(location = 0) in vec2 v_uv;
 layout(location = 0) out vec4 out_color;
 

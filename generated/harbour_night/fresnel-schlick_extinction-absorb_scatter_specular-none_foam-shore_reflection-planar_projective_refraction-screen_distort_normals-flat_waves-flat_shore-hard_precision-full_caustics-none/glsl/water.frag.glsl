@@ -26,8 +26,8 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
 layout(set = 0, binding = 3) uniform texture2D scene_position;
-layout(set = 0, binding = 4) uniform texture2D reflection_map;
-layout(set = 0, binding = 5) uniform texture2D foam_pattern;
+layout(set = 0, binding = 5) uniform texture2D reflection_map;
+layout(set = 0, binding = 9) uniform texture2D foam_pattern;
 layout(location = 0) in vec2 v_uv;
 layout(location = 0) out vec4 out_color;
 

@@ -45,7 +45,7 @@ struct main0_in
     float2 v_uv [[user(locn0)]];
 };
 
-fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params [[buffer(0)]], texture2d<float> scene_color [[texture(0)]], texture2d<float> scene_position [[texture(1)]], texturecube<float> sky_cube [[texture(2)]], texture2d<float> foam_pattern [[texture(3)]], sampler linear_clamp [[sampler(0)]])
+fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params [[buffer(0)]], texture2d<float> scene_color [[texture(0)]], texture2d<float> scene_position [[texture(1)]], texturecube<float> sky_cube [[texture(2)]], texture2d<float> foam_pattern [[texture(7)]], sampler linear_clamp [[sampler(0)]])
 {
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);

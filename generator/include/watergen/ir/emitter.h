@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "watergen/ir/binding_map.h"
 #include "watergen/ir/ir.h"
 #include "watergen/ir/specialization.h"
 #include "watergen/ir/uniform_layout.h"
@@ -19,7 +20,9 @@ enum class Language { Glsl, Hlsl };
 const char* to_string(Language l);
 const char* file_extension(Language l, ShaderStage s); // "frag.glsl", "frag.hlsl", ...
 
-// Fixed descriptor numbering shared by both languages (set 0).
+// The numbering of a shader emitted without a binding map (EmitOptions::bindings), in set 0:
+// the block, the sampler, then the textures it reads in declaration order. A build always
+// emits with a map (the watergen profile by default), which keeps every slot across variants.
 constexpr uint32_t kParamsBinding = 0;       // uniform block "WaterParams"
 constexpr uint32_t kSamplerBinding = 1;      // sampler "linear_clamp"
 constexpr uint32_t kFirstTextureBinding = 2; // textures in declaration order
@@ -28,6 +31,7 @@ struct TextureBinding {
     std::string name;
     Type type = Type::Texture2D;
     uint32_t binding = 0;
+    uint32_t set = 0;
 };
 
 struct ShaderInterface {
@@ -38,6 +42,10 @@ struct ShaderInterface {
     std::vector<SpecializationSlot> specialization; // ascending id
     std::vector<TextureBinding> textures;
     std::vector<std::pair<std::string, Type>> varyings; // fragment inputs, location = index
+    // Where the block (when it has members), the sampler (when a texture is read) and each
+    // texture are bound, in every target.
+    std::vector<ResourceSlot> slots;
+    const ResourceSlot* slot(const std::string& resource) const;
 };
 
 struct EmittedShader {
@@ -72,6 +80,9 @@ struct EmitOptions {
     std::set<std::string> specialization_constants =
         {}; // "= {}": EmitOptions{x} stays warning-free
     LoopUnroll unroll = LoopUnroll::AsHinted;
+    // Where each resource is bound (binding_map.h); null: the dense numbering above. A
+    // resource the shader reads that the map does not place is an error naming it.
+    const BindingMap* bindings = nullptr;
 };
 
 // "hinted", "all", "none" (the --unroll flag); nullopt for another word.
@@ -106,16 +117,17 @@ EmittedShader emit_fullscreen_vertex(Language language, const std::string& file_
 
 // The numeric harness: a compute shader that evaluates every output of `g` for a batch of
 // input tuples. Each Varying of `g` (in creation order) is an input read from the storage buffer
-// probe_in (binding kProbeInputBinding) and each output is written to probe_out
-// (kProbeOutputBinding), tuple-major, floats only. One invocation per tuple, 64 per workgroup; the
-// caller pads the tuple count to a multiple of 64. Textures and linear_clamp are bound as in the
-// fragment stage (at most kProbeInputBinding - kFirstTextureBinding textures). A compute stage has
-// no implicit LOD and no derivatives: samples read level 0 (what a one-level texture gives a
-// fragment too), and ddx / ddy are fine differences over quads of tuples 4k..4k+3 = pixels (0,0),
-// (1,0), (0,1), (1,1) of a 2x2 quad, exchanged through workgroup memory: the CPU evaluator's lane
-// quads.
-constexpr uint32_t kProbeInputBinding = 8;
-constexpr uint32_t kProbeOutputBinding = 9;
+// probe_in and each output is written to probe_out, tuple-major, floats only: bindings
+// kProbeInputBinding and kProbeOutputBinding of the set after the last one the textures use
+// (probe_set()), so they never meet a binding map's slots. One invocation per tuple, 64 per
+// workgroup; the caller pads the tuple count to a multiple of 64. Textures and linear_clamp are
+// bound as in the fragment stage. A compute stage has no implicit LOD and no derivatives: samples
+// read level 0 (what a one-level texture gives a fragment too), and ddx / ddy are fine differences
+// over quads of tuples 4k..4k+3 = pixels (0,0), (1,0), (0,1), (1,1) of a 2x2 quad, exchanged
+// through workgroup memory: the CPU evaluator's lane quads.
+constexpr uint32_t kProbeInputBinding = 0;
+constexpr uint32_t kProbeOutputBinding = 1;
+uint32_t probe_set(const ShaderInterface& in);
 constexpr uint32_t kProbeWorkgroupSize = 64;
 
 struct ProbeField {

@@ -13,6 +13,6 @@ namespace watergen {
 // (vec4, clip space) is required, and every other output must be one the skeleton writes.
 EmittedShader emit_vertex(const Graph& g, Language language, const std::string& skeleton,
                           const std::string& file_name, const std::string& variant_key,
-                          Diagnostics& diagnostics);
+                          Diagnostics& diagnostics, const BindingMap* bindings = nullptr);
 
 } // namespace watergen

@@ -19,6 +19,9 @@ struct BuildFilesRequest {
     bool freeze = false; // specialized mode only
     Shard shard = {};    // permutations mode only
     BuildOptions options;
+    // A binding profile's name or a binding map file (plan/binding_map_file.h); "": the
+    // watergen profile. A file is an input like the material: hashed, and in the depfile.
+    std::string bindings;
     // Also a Makefile-style dependency file: target <out>/manifest.json, prerequisites the
     // material and scene files. "": none.
     std::string depfile;

@@ -60,9 +60,10 @@ struct CausticsPassBuild {
 // validated, optimised, cross-compiled and reflected as a variant is, and pass.json (the
 // uniform block as variant.json lists one, the vertex input, the draw). Deterministic;
 // about 0.1 s, or a verified copy from `cache` (keyed like a variant: the emitted sources, the
-// interface and the toolchain versions).
+// interface, its slots and the toolchain versions). `bindings`: null for the default map.
 CausticsPassBuild build_caustics_pass_files(const Material& material, const CausticsPassKey& key,
-                                            const BuildCache& cache = {});
+                                            const BuildCache& cache = {},
+                                            const BindingMap* bindings = nullptr);
 
 using CausticsPasses = std::map<CausticsPassKey, CausticsPassBuild>;
 

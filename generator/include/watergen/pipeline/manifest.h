@@ -36,14 +36,16 @@ using ReadJobFile = std::function<std::optional<std::string>(size_t job, const s
 // and written one at a time, so no build holds the whole document.
 
 // A variant drawn with a companion pass gets "passes" (passes_entry(), caustics_pass_build.h)
-// after its own files.
+// after its own files. The head records "bindings": the map every shader was emitted with
+// (null: the watergen profile), with every slot spelled out.
 void write_manifest(const Material& material, const std::vector<ManifestScene>& scenes,
                     const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                    const CausticsPasses& passes, const ReadJobFile& read, const WriteText& write);
+                    const CausticsPasses& passes, const ReadJobFile& read, const WriteText& write,
+                    const BindingMap* bindings = nullptr);
 // The same as one string, reading each job's files from its result (JobResult::files).
 std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
                           const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                          const CausticsPasses& passes = {});
+                          const CausticsPasses& passes = {}, const BindingMap* bindings = nullptr);
 
 // Directory of a variant inside the output, e.g. "open_ocean/fresnel-schlick_...".
 std::string variant_directory(const std::string& scene, const Variant& v);
@@ -59,7 +61,7 @@ void write_modes_manifest(const Material& material, BuildMode mode, bool freeze,
                           const std::vector<ManifestScene>& scenes,
                           const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
                           const CausticsPasses& passes, const ReadJobFile& read,
-                          const WriteText& write);
+                          const WriteText& write, const BindingMap* bindings = nullptr);
 
 // The files of a directory by kind ("description", "glsl", "hlsl", "spirv", "glsl330",
 // "essl300", "msl", "reflection"), as paths relative to the output directory.

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "watergen/ir/binding_map.h"
 #include "watergen/ir/ir_fold.h"
 #include "watergen/pipeline/build_cache.h"
 #include "watergen/plan/material.h"
@@ -62,6 +63,8 @@ struct BuildOptions {
     // done (a built job, or one that takes another scene's files), before `progress`: a streaming
     // build writes them out and clears JobResult::files, so memory holds the jobs in flight only.
     std::function<void(size_t, JobResult&)> sink;
+    // Where every shader's resources are bound (ir/binding_map.h); null: the watergen profile.
+    const BindingMap* bindings = nullptr;
 };
 
 unsigned hardware_threads();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
@@ -42,11 +43,23 @@ struct StageCompile {
     StageMemo* memo = nullptr; // none: every stage compiled
 };
 
-// The request build_shader compiles `stage` with, and how far its chain runs under `compile`.
+// The request build_shader compiles `stage` with (its Metal indices from the stage's binding
+// slots), and how far its chain runs under `compile`.
 CompileRequest stage_request(const EmittedShader& stage, bool strict_half = false);
 CrossCompile stage_cross(Language language, const StageCompile& compile);
+// `options` with the default binding map (the watergen profile) when it names none: every
+// stage a build writes, renders or probes is emitted with a map.
+EmitOptions with_bindings(EmitOptions options);
+// The watergen profile with every texture of `graphs` it does not place appended in set 0 (after
+// its last binding, in declaration order): what build_shader and the two-stage builds use when
+// given no map, so a shader of a test's or a user's own nodes still builds.
+BindingMap default_map_for(std::initializer_list<const Graph*> graphs);
+// The stage's reflected descriptors against the slots it was emitted with: each at its set and
+// binding, none missing, none extra (a probe's own buffers aside); errors naming the resource.
+Diagnostics check_reflected_bindings(const Reflection& reflection, const EmittedShader& stage);
 
 // Builds both languages of one variant. A graph with type errors stops before emission.
+// `options.bindings` null: default_map_for(the fragment graph).
 // Cost: two toolchain runs per stage (a few ms each); thread-safe.
 // `options.strict_half` writes a half variant's relaxed math in explicit 16-bit types (see
 // EmitOptions), for rendering at 16 bits on the GPU; builds written to disk use the default.
@@ -72,16 +85,18 @@ nlohmann::ordered_json specialization_json(const ShaderInterface& in);
 // Emits a vertex and a fragment graph in both languages (files <lang>/<stem>.<ext>, the
 // vertex entry named `stage_name`, stamped with `key`) and runs each through the toolchain (a
 // few ms each); stops at the first graph with errors. The mesh path and the caustics pass
-// share it.
+// share it. `bindings`: null for the default map.
 std::array<LanguageBuild, 2> build_two_stages(const Graph& vertex, const Graph& fragment,
                                               const std::string& stage_name,
                                               const std::string& stem, const std::string& key,
-                                              Diagnostics& diagnostics);
+                                              Diagnostics& diagnostics,
+                                              const BindingMap* bindings = nullptr);
 // Its two halves, for a caller that looks its files up by the sources first: the emission
 // (sources and interfaces only, no toolchain), then the toolchain over every emitted stage.
 std::array<LanguageBuild, 2> emit_two_stages(const Graph& vertex, const Graph& fragment,
                                              const std::string& stage_name, const std::string& stem,
-                                             const std::string& key, Diagnostics& diagnostics);
+                                             const std::string& key, Diagnostics& diagnostics,
+                                             const BindingMap* bindings = nullptr);
 void compile_two_stages(std::array<LanguageBuild, 2>& languages, Diagnostics& diagnostics,
                         const StageCompile& compile = {});
 // The names add_stage_files gives both languages' stages of `stem`, sorted.

@@ -8,6 +8,7 @@
 
 #include "watergen/ir/diagnostic.h"
 #include "watergen/runtime/reflection.h"
+#include "watergen/toolchain/spirv_cross_stage.h"
 
 namespace watergen {
 
@@ -24,6 +25,9 @@ struct CompileRequest {
     // RelaxedPrecision). glslang 12 does not know `float16_t` in HLSL either way. GLSL asks
     // for 16-bit types itself, with GL_EXT_shader_explicit_arithmetic_types_float16.
     bool hlsl_16bit_types = false;
+    // The Metal index ([[buffer]], [[texture]] or [[sampler]] by the resource's kind) of each
+    // Vulkan (set, binding), from the binding map; a slot not listed keeps SPIRV-Cross's own.
+    std::vector<MslSlot> msl_bindings = {};
 };
 
 struct SpirvResult {

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "watergen/runtime/binding_layout.h"
 #include "watergen/runtime/build_pass.h"
 #include "watergen/runtime/reflection.h"
 
@@ -108,6 +109,9 @@ class ShaderBuild {
     // Axis -> choices of the material, in the material's order.
     const std::map<std::string, std::vector<std::string>>& axes() const { return axes_; }
     const std::vector<BuildVariant>& variants() const { return variants_; } // (scene, key) order
+    // The binding map every shader of the build was emitted with (manifest "bindings"): make
+    // one BindingLayout of it for all their pipelines. Empty for a manifest without one.
+    const BuildBindings& bindings() const { return bindings_; }
 
     Selection select(const std::string& scene, const std::map<std::string, std::string>& choices,
                      Fallback fallback = Fallback::Error) const;
@@ -152,6 +156,7 @@ class ShaderBuild {
     std::vector<std::string> scenes_;
     std::map<std::string, std::vector<std::string>> axes_;
     std::vector<BuildVariant> variants_;
+    BuildBindings bindings_;
 };
 
 } // namespace watergen

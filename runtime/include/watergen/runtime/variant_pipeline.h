@@ -8,7 +8,9 @@
 // PipelineGeometry instead: its grid's vertex input, triangles or points, additive blending.
 // Descriptor layouts are the union of both stages' bindings (a binding both declare agrees on
 // kind and name, and keeps the larger block size), one layout per set number (gaps get empty
-// layouts), with the stage flags of the stages that use each binding.
+// layouts), with the stage flags of the stages that use each binding; or, given a
+// BindingLayout (binding_layout.h), that one layout of the build's binding map, shared by every
+// pipeline of the build and not re-derived (each stage's descriptors checked against it).
 #pragma once
 
 #include <filesystem>
@@ -19,6 +21,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "watergen/runtime/binding_layout.h"
 #include "watergen/runtime/reflection.h"
 
 namespace watergen {
@@ -47,6 +50,9 @@ struct VariantPipelineDesc {
     // VkGraphicsPipelineCreateInfo::flags: e.g. VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR
     // for a driver's compiler statistics (VK_KHR_pipeline_executable_properties).
     VkPipelineCreateFlags flags = 0;
+    // The build's one layout (BindingLayout::create from ShaderBuild::bindings()); it must
+    // outlive the pipeline. Null: a layout of this pipeline's own from its reflection.
+    const BindingLayout* layout = nullptr;
 };
 
 class VariantPipeline {
@@ -65,20 +71,30 @@ class VariantPipeline {
     ~VariantPipeline();
 
     VkPipeline pipeline() const { return pipeline_; }
-    VkPipelineLayout layout() const { return layout_; }
-    const std::vector<VkDescriptorSetLayout>& set_layouts() const { return set_layouts_; }
-    // The bindings of set `set` (union of both stages), for writing descriptors.
+    VkPipelineLayout layout() const { return shared_ ? shared_->layout() : layout_; }
+    const std::vector<VkDescriptorSetLayout>& set_layouts() const {
+        return shared_ ? shared_->set_layouts() : set_layouts_;
+    }
+    // The bindings of set `set` the stages read (union of both), for writing descriptors; with
+    // a shared layout its other slots are not read and need not be written.
     const std::vector<DescriptorBinding>& bindings(uint32_t set) const { return bindings_[set]; }
-    // Descriptor counts for a pool holding `copies` of every set.
+    // Descriptor counts for a pool holding `copies` of every set (of the shared layout: every
+    // slot of the map).
     std::vector<VkDescriptorPoolSize> pool_sizes(uint32_t copies = 1) const;
 
   private:
+    // Both stages' bindings by (set, binding), with the stage flags of the stages reading each.
+    using StageUnion =
+        std::map<std::pair<uint32_t, uint32_t>, std::pair<DescriptorBinding, VkShaderStageFlags>>;
     VariantPipeline() = default;
     void destroy();
+    bool create_own_layout(VkDevice device, const StageUnion& all, uint32_t sets,
+                           std::string* error);
     VkDevice device_ = VK_NULL_HANDLE;
     std::vector<VkDescriptorSetLayout> set_layouts_;
     std::vector<std::vector<DescriptorBinding>> bindings_;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE; // own; null with a shared one
+    const BindingLayout* shared_ = nullptr;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
 };
 

@@ -1,0 +1,138 @@
+// The descriptor set layouts and pipeline layout of a build's binding map.
+#include "watergen/runtime/binding_layout.h"
+
+#include <algorithm>
+#include <map>
+
+#include "watergen/runtime/variant_pipeline.h"
+
+namespace watergen {
+
+namespace {
+
+// Vulkan guarantees maxBoundDescriptorSets >= 4.
+constexpr uint32_t kMaxDescriptorSets = 4;
+
+std::string failed(const char* call, VkResult r) {
+    return std::string(call) + " failed: VkResult " + std::to_string(static_cast<int>(r));
+}
+
+std::string place(uint32_t set, uint32_t binding) {
+    return "set " + std::to_string(set) + " binding " + std::to_string(binding);
+}
+
+} // namespace
+
+const MapSlot* BuildBindings::find(const std::string& name) const {
+    const auto it =
+        std::find_if(slots.begin(), slots.end(), [&](const MapSlot& s) { return s.name == name; });
+    return it == slots.end() ? nullptr : &*it;
+}
+
+BindingLayout::BindingLayout(BindingLayout&& o) noexcept {
+    *this = std::move(o);
+}
+
+BindingLayout& BindingLayout::operator=(BindingLayout&& o) noexcept {
+    if (this == &o) return *this;
+    destroy();
+    device_ = o.device_;
+    bindings_ = std::move(o.bindings_);
+    set_layouts_ = std::move(o.set_layouts_);
+    layout_ = o.layout_;
+    o.set_layouts_.clear();
+    o.layout_ = VK_NULL_HANDLE;
+    return *this;
+}
+
+BindingLayout::~BindingLayout() {
+    destroy();
+}
+
+void BindingLayout::destroy() {
+    if (!device_) return;
+    if (layout_) vkDestroyPipelineLayout(device_, layout_, nullptr);
+    for (VkDescriptorSetLayout l : set_layouts_)
+        vkDestroyDescriptorSetLayout(device_, l, nullptr);
+    set_layouts_.clear();
+    layout_ = VK_NULL_HANDLE;
+}
+
+std::optional<BindingLayout> BindingLayout::create(VkDevice device, const BuildBindings& bindings,
+                                                   std::string* error) {
+    if (bindings.slots.empty()) {
+        *error = "binding map '" + bindings.map +
+                 "' has no slot; expected the \"bindings\" of a build's manifest";
+        return std::nullopt;
+    }
+    std::map<std::pair<uint32_t, uint32_t>, const MapSlot*> taken;
+    uint32_t sets = 0;
+    for (const MapSlot& s : bindings.slots) {
+        if (s.set >= kMaxDescriptorSets) {
+            *error = "binding map '" + bindings.map + "': '" + s.name + "' in set " +
+                     std::to_string(s.set) + "; expected a set below " +
+                     std::to_string(kMaxDescriptorSets) + " (Vulkan's maxBoundDescriptorSets)";
+            return std::nullopt;
+        }
+        if (auto [it, fresh] = taken.emplace(std::pair{s.set, s.binding}, &s); !fresh) {
+            *error = "binding map '" + bindings.map + "': '" + it->second->name + "' and '" +
+                     s.name + "' are both at " + place(s.set, s.binding);
+            return std::nullopt;
+        }
+        sets = std::max(sets, s.set + 1);
+    }
+    BindingLayout l;
+    l.device_ = device;
+    l.bindings_ = bindings;
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    std::vector<std::vector<VkDescriptorSetLayoutBinding>> per_set(sets);
+    for (const auto& [key, s] : taken)
+        per_set[key.first].push_back({key.second, descriptor_type(s->kind), 1, stages, nullptr});
+    for (const auto& entries : per_set) {
+        VkDescriptorSetLayoutCreateInfo ci{};
+        ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+        ci.bindingCount = static_cast<uint32_t>(entries.size());
+        ci.pBindings = entries.data();
+        VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+        if (VkResult r = vkCreateDescriptorSetLayout(device, &ci, nullptr, &set_layout);
+            r != VK_SUCCESS) {
+            *error = failed("vkCreateDescriptorSetLayout", r);
+            return std::nullopt;
+        }
+        l.set_layouts_.push_back(set_layout);
+    }
+    VkPipelineLayoutCreateInfo lci{};
+    lci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    lci.setLayoutCount = sets;
+    lci.pSetLayouts = l.set_layouts_.data();
+    if (VkResult r = vkCreatePipelineLayout(device, &lci, nullptr, &l.layout_); r != VK_SUCCESS) {
+        *error = failed("vkCreatePipelineLayout", r);
+        return std::nullopt;
+    }
+    return l;
+}
+
+std::vector<VkDescriptorPoolSize> BindingLayout::pool_sizes(uint32_t copies) const {
+    std::map<VkDescriptorType, uint32_t> counts;
+    for (const MapSlot& s : bindings_.slots)
+        counts[descriptor_type(s.kind)] += copies;
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (const auto& [type, n] : counts)
+        sizes.push_back({type, n});
+    return sizes;
+}
+
+std::string BindingLayout::check(const Reflection& r) const {
+    for (const DescriptorBinding& b : r.bindings) {
+        const MapSlot* s = bindings_.find(b.name);
+        const std::string what = std::string(to_string(r.stage)) + " stage: " + to_string(b.kind) +
+                                 " '" + b.name + "' at " + place(b.set, b.binding);
+        if (!s) return what + " is no slot of the binding map '" + bindings_.map + "'";
+        if (s->set != b.set || s->binding != b.binding || s->kind != b.kind)
+            return what + "; the binding map '" + bindings_.map + "' has it as " +
+                   to_string(s->kind) + " at " + place(s->set, s->binding);
+    }
+    return "";
+}
+
+} // namespace watergen
