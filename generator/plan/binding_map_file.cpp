@@ -8,14 +8,14 @@
 namespace watergen {
 namespace {
 
-// A whole number in [0, kMaxBindingIndex] at `pointer`.
-bool index_at(JsonReader& r, const std::string& pointer, uint32_t& out) {
+// A whole number in [0, most] at `pointer`; `why` says where the bound comes from.
+bool index_at(JsonReader& r, const std::string& pointer, uint32_t most, const std::string& why,
+              uint32_t& out) {
     double v = 0;
     if (!r.number(pointer, v)) return false;
-    if (v < 0 || v > kMaxBindingIndex || std::floor(v) != v)
-        return r.fail(pointer, "expected a whole number from 0 to " +
-                                   std::to_string(kMaxBindingIndex) + ", got " +
-                                   r.at(pointer).dump());
+    if (v < 0 || v > most || std::floor(v) != v)
+        return r.fail(pointer, "expected a whole number from 0 to " + std::to_string(most) + why +
+                                   ", got " + r.at(pointer).dump());
     out = static_cast<uint32_t>(v);
     return true;
 }
@@ -87,9 +87,13 @@ std::optional<BindingMap> read_binding_map(const JsonSource& src, Diagnostics& d
                                 {"hlsl_space", &slot->hlsl_space},
                                 {"msl", &slot->msl_index},
                                 {"gl", &slot->gl_unit}};
-        for (const Field& f : fields)
-            if (r.has(at + "/" + f.key) && !index_at(r, at + "/" + f.key, *f.value))
+        for (const Field& f : fields) {
+            const bool set = std::string(f.key) == "set";
+            if (r.has(at + "/" + f.key) &&
+                !index_at(r, at + "/" + f.key, set ? kMaxSet : kMaxBindingIndex,
+                          set ? " (Vulkan guarantees 4 bound descriptor sets)" : "", *f.value))
                 return std::nullopt;
+        }
         if (fresh) {
             auto given = [&](const char* key) { return r.has(at + "/" + key); };
             if (!given("hlsl_register")) slot->hlsl_register = slot->binding;

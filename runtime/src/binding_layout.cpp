@@ -10,9 +10,6 @@ namespace watergen {
 
 namespace {
 
-// Vulkan guarantees maxBoundDescriptorSets >= 4.
-constexpr uint32_t kMaxDescriptorSets = 4;
-
 std::string failed(const char* call, VkResult r) {
     return std::string(call) + " failed: VkResult " + std::to_string(static_cast<int>(r));
 }

@@ -17,9 +17,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Vulkan guarantees maxBoundDescriptorSets >= 4: a binding map places resources in sets 0..3.
-constexpr uint32_t kMaxDescriptorSets = 4;
-
 std::string failed(const char* call, VkResult r) {
     return std::string(call) + " failed: VkResult " + std::to_string(static_cast<int>(r));
 }

@@ -226,7 +226,10 @@ TEST_CASE("a_bad_map_file_is_an_error_at_its_line", "[bindings]") {
          "  \"b\": {\"set\": 0, \"binding\": 2, \"msl\": 4}}}",
          3, "are both at Metal [[texture(4)]]"},
         {"{\"watergen_bindings\": 1, \"resources\": {\n  \"a\": {\"set\": -1, \"binding\": 0}}}", 2,
-         "/resources/a/set: expected a whole number from 0 to 4095, got -1"},
+         "/resources/a/set: expected a whole number from 0 to 3 (Vulkan guarantees 4 bound "
+         "descriptor sets), got -1"},
+        {"{\"watergen_bindings\": 1, \"resources\": {\n  \"a\": {\"set\": 0, \"binding\": 5000}}}",
+         2, "/resources/a/binding: expected a whole number from 0 to 4095, got 5000"},
         {"{\"watergen_bindings\": 1, \"resources\": {\n  \"a\": {\"binding\": 0}}}", 2,
          "needs \"set\" and \"binding\""},
         {"{\"watergen_bindings\": 1, \"resources\": {\n  \"a\": {\"set\": 0, \"binding\": 0, "

@@ -106,6 +106,40 @@ TEST_CASE("an_unchanged_build_does_nothing_and_a_damaged_output_is_rebuilt", "[r
     CHECK(read_tree(out) == tree);
 }
 
+// A binding map file is an input like the scenes: an unchanged one no-ops, a changed one
+// rebuilds into the new slots (the cache misses: the sources differ), and a profile named
+// instead is another build again.
+TEST_CASE("a_changed_binding_map_rebuilds_and_an_unchanged_one_does_nothing", "[record]") {
+    const TempDir tmp("record-bindings");
+    const fs::path map = tmp.path / "engine.json";
+    auto write_map = [&](int set) {
+        std::ofstream(map) << "{\"watergen_bindings\": 1, \"base\": \"watergen\", \"resources\": "
+                              "{\"WaterParams\": {\"set\": "
+                           << set << ", \"binding\": 0, \"hlsl_space\": " << set << "}}}\n";
+    };
+    write_map(1);
+    auto args = build_args(tmp.path, "out", {source_dir() + "/examples/scenes/open_ocean.json"});
+    args.insert(args.end(), {"--bindings", map.string()});
+    REQUIRE(run_watergen(args).exit_code == 0);
+    const std::string first = read_file(tmp.path / "out" / "manifest.json");
+    CHECK(first.find("\"map\": \"engine.json\"") != std::string::npos);
+    CHECK(run_watergen(args).out.find("up to date") != std::string::npos);
+
+    write_map(2);
+    const WatergenRun moved = run_watergen(args);
+    REQUIRE(moved.exit_code == 0);
+    CHECK(moved.out.find("up to date") == std::string::npos);
+    CHECK(moved.out.find("(8 built, 0 cached") != std::string::npos);
+    const std::string second = read_file(tmp.path / "out" / "manifest.json");
+    CHECK(second != first);
+    CHECK(second.find("\"WaterParams\": {\n        \"kind\": \"uniform_block\",\n        "
+                      "\"set\": 2") != std::string::npos);
+
+    args.back() = "watergen";
+    const WatergenRun profile = run_watergen(args);
+    CHECK(profile.out.find("up to date") == std::string::npos);
+}
+
 // Two builds at once on one cache directory (cold): both succeed with the same bytes, and a
 // third build takes every variant from the entries they stored.
 TEST_CASE("two_concurrent_builds_share_one_cache_directory", "[record]") {

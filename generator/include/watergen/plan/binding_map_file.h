@@ -13,7 +13,8 @@
 // An entry for a resource the base already places changes the keys it gives; an entry for a
 // new resource needs "set" and "binding", and its other places default to the binding (HLSL
 // register, Metal index, GL unit) and the set (HLSL space). "kind" ("uniform_block", "sampler",
-// "texture") defaults from the name (binding_map.h). Indices are at most kMaxBindingIndex.
+// "texture") defaults from the name (binding_map.h). Indices are at most kMaxBindingIndex, sets
+// at most kMaxSet (Vulkan guarantees maxBoundDescriptorSets >= 4).
 #pragma once
 
 #include <optional>
@@ -28,6 +29,7 @@
 namespace watergen {
 
 constexpr uint32_t kMaxBindingIndex = 4095;
+constexpr uint32_t kMaxSet = 3;
 
 // The map in `source`; nullopt and a diagnostic at the offending key (file:line:column, the
 // JSON pointer, what was expected); a clash names both resources and both lines.

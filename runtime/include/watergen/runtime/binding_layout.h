@@ -19,6 +19,9 @@
 
 namespace watergen {
 
+// Vulkan guarantees maxBoundDescriptorSets >= 4: a layout has sets 0..3 at most.
+constexpr uint32_t kMaxDescriptorSets = 4;
+
 // One resource of the map, as the manifest records it.
 struct MapSlot {
     std::string name;
