@@ -83,6 +83,12 @@ void collect_reads(const Graph& g, std::set<std::string>& uniforms, std::set<std
     }
 }
 
+// An error among the diagnostics from `first` on: what this emission added, not a caller's.
+bool errors_since(const Diagnostics& ds, size_t first) {
+    return std::any_of(ds.begin() + static_cast<long>(first), ds.end(),
+                       [](const Diagnostic& d) { return d.severity == Severity::Error; });
+}
+
 // The slot of `name` in `map`, or in the dense numbering when there is no map (`dense`: the
 // next texture index); an error naming the resource when the map does not place it or places
 // it as another kind.
@@ -214,9 +220,10 @@ EmittedShader emit_fragment(const Graph& g, Language language, const std::string
         return out;
     }
     const GlslSyntax& syntax = syntax_for(language);
+    const size_t before = diagnostics.size();
     out.interface =
         interface_of(g, diagnostics, options.specialization_constants, options.bindings);
-    if (has_errors(diagnostics)) return out;
+    if (errors_since(diagnostics, before)) return out;
     std::vector<std::string> results;
     std::set<Op> used_ops;
     FragmentWriter writer(g, syntax, false, options.strict_half);
@@ -278,9 +285,10 @@ EmittedShader emit_probe(const Graph& g, Language language, const std::string& f
         diagnostics.push_back({Severity::Error, file_name, 0, 0, "", "probe graph has no output"});
     if (has_errors(diagnostics)) return out;
 
+    const size_t before = diagnostics.size();
     out.interface =
         interface_of(g, diagnostics, options.specialization_constants, options.bindings);
-    if (has_errors(diagnostics)) return out;
+    if (errors_since(diagnostics, before)) return out;
     writer.read_as_constants(out.interface);
     out.interface.varyings.clear(); // probe inputs come from the buffer, not the rasteriser
     const ProbeLayout layout = probe_layout(g);
@@ -388,8 +396,9 @@ EmittedShader emit_from_skeleton(const Graph& g, Language language, ShaderStage 
     out.stage = stage;
     out.file_name = file_name;
     const GlslSyntax& syntax = syntax_for(language);
+    const size_t before = diagnostics.size();
     out.interface = interface_of(g, diagnostics, {}, bindings);
-    if (has_errors(diagnostics)) return out;
+    if (errors_since(diagnostics, before)) return out;
     std::vector<std::string> results;
     std::set<Op> used_ops;
     FragmentWriter writer(g, syntax);

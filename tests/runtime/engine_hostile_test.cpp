@@ -1,14 +1,17 @@
 // The runtime library on a build's files gone wrong (a hostile-input round found each through
 // the example consumer): a vertex module in the fragment slot, a truncated, byte-flipped or
-// foreign .opt.spv, a reflection of 100,000 bindings, manifests near and past the size limit.
+// foreign .opt.spv, a reflection of 100,000 bindings, manifests near and past the size limit, a
+// manifest binding map of the wrong shape.
 // Each is an error naming the file and what was expected; none reaches the driver or builds a
 // DOM of gigabytes. The big files are made here, in a temporary copy of a real build.
 #include <catch2/catch.hpp>
 
 #include <cstring>
 #include <fstream>
+#include <tuple>
 
 #include "engine_builds.h"
+#include "watergen/runtime/binding_layout.h"
 #include "watergen/runtime/spirv_check.h"
 
 using namespace watergen;
@@ -242,4 +245,41 @@ TEST_CASE("a manifest past the size limit, or of small values by the million, is
                            ": JSON nested more than 16 levels deep; expected the manifest of a "
                            "watergen build");
     }
+}
+
+// The manifest's binding map gone wrong: each an error naming the key; a map whose slots
+// clash or reach past set 3 opens, and BindingLayout::create refuses it (no device needed to
+// get there: the check comes first).
+TEST_CASE("a manifest's binding map of the wrong shape is refused naming the key") {
+    const Copy copy;
+    const std::string text = slurp(copy.out / "manifest.json");
+    const std::string kind = "\"kind\": \"texture\"";
+    REQUIRE(text.find(kind) != std::string::npos);
+    for (const auto& [from, to, says] :
+         {std::tuple{kind, std::string("\"kind\": \"storage\""),
+                     std::string("kind: 'storage'; expected uniform_block, sampler or texture")},
+          std::tuple{kind, std::string("\"kind\": 7"), std::string("kind: expected a string")},
+          std::tuple{std::string("\"map\": \"watergen\""), std::string("\"map\": []"),
+                     std::string("bindings.map: expected a string")}}) {
+        INFO(to);
+        std::string broken = text;
+        broken.replace(broken.find(from), from.size(), to);
+        put(copy.out / "manifest.json", broken);
+        std::string error;
+        CHECK_FALSE(ShaderBuild::open(copy.out, &error));
+        CHECK(error.find(says) != std::string::npos);
+        CHECK(error.find("manifest.json: bindings") != std::string::npos);
+    }
+    put(copy.out / "manifest.json", text);
+    BuildBindings past = copy.open().bindings();
+    REQUIRE(past.slots.size() == 13);
+    past.slots.back().set = 7;
+    std::string error;
+    CHECK_FALSE(BindingLayout::create(VK_NULL_HANDLE, past, &error));
+    CHECK(error.find("in set 7; expected a set below 4") != std::string::npos);
+    BuildBindings twice = copy.open().bindings();
+    twice.slots.back().set = twice.slots.front().set;
+    twice.slots.back().binding = twice.slots.front().binding;
+    CHECK_FALSE(BindingLayout::create(VK_NULL_HANDLE, twice, &error));
+    CHECK(error.find("are both at set 0 binding 0") != std::string::npos);
 }
