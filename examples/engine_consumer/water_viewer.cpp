@@ -2,9 +2,10 @@
 // watergen_add_shaders() generated, select the variant for the scene and the features the
 // renderer wants (the nearest kept variant if the scene pruned that combination), set the
 // frame's parameters, pack the uniform block as the GLSL path's reflection lays it out, create
-// the pipeline (with a pipeline cache file) and draw it. A variant whose caustics read the
-// build's caustics pass (caustics=area_ratio, photon_splat) gets that pass drawn first, its
-// texture bound as caustics_map. Writes water.ppm and checks the pixels.
+// the pipeline in the one layout of the build's binding map (BindingLayout; with a pipeline
+// cache file) and draw it. A variant whose caustics read the build's caustics pass
+// (caustics=area_ratio, photon_splat) gets that pass drawn first, its texture bound as
+// caustics_map. Writes water.ppm and checks the pixels.
 //
 //   water_viewer [build-directory] [output.ppm] [scene] [caustics choice]
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include <string>
 
 #include "watergen/headless/headless_device.h"
+#include "watergen/runtime/binding_layout.h"
 #include "watergen/runtime/pass_pipeline.h"
 #include "watergen/runtime/shader_build.h"
 #include "watergen/runtime/uniform_writer.h"
@@ -182,8 +184,16 @@ int main(int argc, char** argv) {
     if (!gpu) return fail(error);
     auto cache = load_pipeline_cache(gpu->physical(), gpu->device(), "pipelines.bin", &error);
     if (!cache) return fail(error);
+    // One pipeline layout for every variant of the build, from its binding map: an engine
+    // makes it once and keeps its descriptor sets bound across variants.
+    const auto layout = BindingLayout::create(gpu->device(), build->bindings(), &error);
+    if (!layout) return fail(error);
+    std::printf("one pipeline layout for every variant: binding map %s, %zu slots in %zu sets\n",
+                build->bindings().map.c_str(), build->bindings().slots.size(),
+                layout->set_layouts().size());
     VariantPipelineDesc desc{&stages->vs,        &stages->fs, &stages->vr, &stages->fr,
                              gpu->render_pass(), 0,           {},          cache->cache};
+    desc.layout = &*layout;
     for (const auto& [id, value] : v.specialization) // specialized build mode: the selectors
         desc.specialization[id] = static_cast<float>(value);
     auto pipeline = VariantPipeline::create(gpu->device(), desc, &error);
