@@ -96,11 +96,4 @@ std::optional<BindingConflict> BindingMap::conflict() const {
     return std::nullopt;
 }
 
-uint32_t BindingMap::last_set() const {
-    uint32_t last = 0;
-    for (const ResourceSlot& s : slots)
-        last = std::max(last, s.set);
-    return last;
-}
-
 } // namespace watergen

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <fmt/format.h>
-
 #include "watergen/pipeline/manifest.h"
 
 #include "watergen/water/nodes/caustics.h"
@@ -114,8 +112,7 @@ CausticsPassBuild build_caustics_pass_files(const Material& material, const Caus
     for (const auto& lang : b.languages)
         for (const StageBuild* s : {&lang.vertex, &lang.fragment}) {
             parts.push_back(s->source.source);
-            for (const MslSlot& m : stage_request(s->source).msl_bindings)
-                parts.push_back(fmt::format("msl {} {} {}", m.set, m.binding, m.index));
+            parts.push_back(slots_text(s->source.interface));
         }
     const ShaderInterface& in = b.languages[0].vertex.source.interface;
     parts.push_back(uniform_block_json(in).dump());

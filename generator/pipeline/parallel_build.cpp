@@ -63,16 +63,6 @@ struct ShaderHashes {
     StageKeys stages;
 };
 
-// The slots a stage is bound at in every target (the sources spell the Vulkan and HLSL ones;
-// the Metal indices are SPIRV-Cross's options, the GL units the manifest's).
-std::string slots_text(const ShaderInterface& in) {
-    std::string text;
-    for (const ResourceSlot& r : in.slots)
-        text += fmt::format("{}|{}|{}|{}|{}|{}|{}|{};", r.name, static_cast<int>(r.kind), r.set,
-                            r.binding, r.hlsl_register, r.hlsl_space, r.msl_index, r.gl_unit);
-    return text;
-}
-
 // What the files of a variant depend on besides the toolchain: its sources (which carry the
 // key in their stamp), the slots of its resources and the metadata of the parameters they read,
 // which variant.json reports. The shape is the same without the key: the sources with their

@@ -1,6 +1,9 @@
 #include "watergen/pipeline/variant_build.h"
 
 #include <algorithm>
+#include <optional>
+
+#include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
 
@@ -158,16 +161,25 @@ CompileRequest stage_request(const EmittedShader& stage, bool strict_half) {
     return request;
 }
 
+std::string slots_text(const ShaderInterface& in) {
+    std::string text;
+    for (const ResourceSlot& r : in.slots)
+        text += fmt::format("{}|{}|{}|{}|{}|{}|{}|{};", r.name, static_cast<int>(r.kind), r.set,
+                            r.binding, r.hlsl_register, r.hlsl_space, r.msl_index, r.gl_unit);
+    return text;
+}
+
 Diagnostics check_reflected_bindings(const Reflection& reflection, const EmittedShader& stage) {
     Diagnostics ds;
     auto off = [&](const std::string& what) {
         ds.push_back({Severity::Error, stage.file_name, 0, 0, "",
                       "reflection of the SPIR-V: " + what + "; the binding map says otherwise"});
     };
+    const bool compute = stage.stage == ShaderStage::Compute;
+    const uint32_t probe_buffers = probe_set(stage.interface);
     for (const DescriptorBinding& b : reflection.bindings) {
         const ResourceSlot* slot = stage.interface.slot(b.name);
-        const bool probe =
-            b.set == probe_set(stage.interface) && stage.stage == ShaderStage::Compute;
+        const bool probe = compute && b.set == probe_buffers;
         if (!slot) {
             if (!probe)
                 off("'" + b.name + "' is bound at set " + std::to_string(b.set) + " binding " +
@@ -223,9 +235,10 @@ VariantBuild build_shader(WaterShader shader, const EmitOptions& given,
                           const StageCompile& compile) {
     // A shader of nodes the profile does not know (a test's own, a user's) gets their textures
     // after it, rather than an error, when the caller gave no map.
-    const BindingMap fallback = default_map_for({&shader.fragment});
+    std::optional<BindingMap> fallback;
     EmitOptions options = given;
-    if (!options.bindings) options.bindings = &fallback;
+    if (!options.bindings)
+        options.bindings = &fallback.emplace(default_map_for({&shader.fragment}));
     VariantBuild b{std::move(shader), {}, {}};
     const Diagnostics& graph_errors = b.shader.fragment.diagnostics();
     b.diagnostics.insert(b.diagnostics.end(), graph_errors.begin(), graph_errors.end());
@@ -298,8 +311,8 @@ std::array<LanguageBuild, 2> emit_two_stages(const Graph& vertex, const Graph& f
                                              const std::string& stage_name, const std::string& stem,
                                              const std::string& key, Diagnostics& diagnostics,
                                              const BindingMap* bindings) {
-    const BindingMap fallback = default_map_for({&vertex, &fragment});
-    if (!bindings) bindings = &fallback;
+    std::optional<BindingMap> fallback;
+    if (!bindings) bindings = &fallback.emplace(default_map_for({&vertex, &fragment}));
     std::array<LanguageBuild, 2> out;
     for (const Graph* g : {&vertex, &fragment})
         diagnostics.insert(diagnostics.end(), g->diagnostics().begin(), g->diagnostics().end());

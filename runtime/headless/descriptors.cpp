@@ -109,14 +109,16 @@ std::vector<VkDescriptorSet> allocate_sets(Scope& scope,
                                            const std::vector<VkDescriptorSetLayout>& layouts,
                                            const SetBindings& bindings,
                                            const std::vector<VkDescriptorPoolSize>* counts) {
-    std::map<VkDescriptorType, uint32_t> type_counts;
-    for (const auto& set : bindings)
-        for (const DescriptorBinding& b : set)
-            ++type_counts[descriptor_type(b.kind)];
     std::vector<VkDescriptorPoolSize> sizes;
-    for (const auto& [type, count] : type_counts)
-        sizes.push_back({type, count});
-    if (counts) sizes = *counts;
+    if (counts) {
+        sizes = *counts;
+    } else {
+        std::vector<DescriptorKind> kinds;
+        for (const auto& set : bindings)
+            for (const DescriptorBinding& b : set)
+                kinds.push_back(b.kind);
+        sizes = pool_sizes_of(kinds);
+    }
     VkDevice device = scope.ctx().device;
     VkDescriptorPoolCreateInfo pci{};
     pci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;

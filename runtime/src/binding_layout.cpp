@@ -110,13 +110,10 @@ std::optional<BindingLayout> BindingLayout::create(VkDevice device, const BuildB
 }
 
 std::vector<VkDescriptorPoolSize> BindingLayout::pool_sizes(uint32_t copies) const {
-    std::map<VkDescriptorType, uint32_t> counts;
+    std::vector<DescriptorKind> kinds;
     for (const MapSlot& s : bindings_.slots)
-        counts[descriptor_type(s.kind)] += copies;
-    std::vector<VkDescriptorPoolSize> sizes;
-    for (const auto& [type, n] : counts)
-        sizes.push_back({type, n});
-    return sizes;
+        kinds.push_back(s.kind);
+    return pool_sizes_of(kinds, copies);
 }
 
 std::string BindingLayout::check(const Reflection& r) const {

@@ -87,16 +87,24 @@ void VariantPipeline::destroy() {
     layout_ = VK_NULL_HANDLE;
 }
 
-std::vector<VkDescriptorPoolSize> VariantPipeline::pool_sizes(uint32_t copies) const {
-    if (shared_) return shared_->pool_sizes(copies);
+std::vector<VkDescriptorPoolSize> pool_sizes_of(const std::vector<DescriptorKind>& kinds,
+                                                uint32_t copies) {
     std::map<VkDescriptorType, uint32_t> counts;
-    for (const auto& set : bindings_)
-        for (const DescriptorBinding& b : set)
-            counts[descriptor_type(b.kind)] += copies;
+    for (DescriptorKind k : kinds)
+        counts[descriptor_type(k)] += copies;
     std::vector<VkDescriptorPoolSize> sizes;
     for (const auto& [type, n] : counts)
         sizes.push_back({type, n});
     return sizes;
+}
+
+std::vector<VkDescriptorPoolSize> VariantPipeline::pool_sizes(uint32_t copies) const {
+    if (shared_) return shared_->pool_sizes(copies);
+    std::vector<DescriptorKind> kinds;
+    for (const auto& set : bindings_)
+        for (const DescriptorBinding& b : set)
+            kinds.push_back(b.kind);
+    return pool_sizes_of(kinds, copies);
 }
 
 bool VariantPipeline::create_own_layout(VkDevice device, const StageUnion& all, uint32_t sets,

@@ -51,8 +51,6 @@ struct BindingMap {
     // The first two slots that claim one place in one target (or one name twice); nullopt
     // when none clash.
     std::optional<BindingConflict> conflict() const;
-    // The highest Vulkan set any slot uses (0 for an empty map).
-    uint32_t last_set() const;
 };
 
 } // namespace watergen

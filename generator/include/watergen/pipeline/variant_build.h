@@ -54,6 +54,10 @@ EmitOptions with_bindings(EmitOptions options);
 // its last binding, in declaration order): what build_shader and the two-stage builds use when
 // given no map, so a shader of a test's or a user's own nodes still builds.
 BindingMap default_map_for(std::initializer_list<const Graph*> graphs);
+// Where a stage's resources are bound in every target, as text for a content hash (the sources
+// spell the Vulkan and HLSL places; the Metal indices are SPIRV-Cross's options, the GL units the
+// manifest's).
+std::string slots_text(const ShaderInterface& in);
 // The stage's reflected descriptors against the slots it was emitted with: each at its set and
 // binding, none missing, none extra (a probe's own buffers aside); errors naming the resource.
 Diagnostics check_reflected_bindings(const Reflection& reflection, const EmittedShader& stage);

@@ -99,6 +99,10 @@ class VariantPipeline {
 };
 
 VkDescriptorType descriptor_type(DescriptorKind kind);
+// Descriptor counts by type for one descriptor of each of `kinds`, `copies` times over: the
+// pool sizes of sets holding them.
+std::vector<VkDescriptorPoolSize> pool_sizes_of(const std::vector<DescriptorKind>& kinds,
+                                                uint32_t copies = 1);
 
 // A VkPipelineCache whose initial data comes from a file and that save() writes back. A
 // missing file, or one the driver rejects (another device, driver or version: the header is
