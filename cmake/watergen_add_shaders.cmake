@@ -1,6 +1,7 @@
 # watergen_add_shaders(<target> MATERIAL <file> [SCENES <files...>] [OUTPUT_DIR <dir>]
 #                      [MODE permutations|specialized|branching] [FREEZE] [JOBS <n>] [CACHE <dir>]
-#                      [SHARDS <n> [JOB_POOL <pool>]] [BINDINGS <profile>|<file>])
+#                      [SHARDS <n> [JOB_POOL <pool>]] [BINDINGS <profile>|<file>]
+#                      [GENERATOR <target>])
 #
 # Runs `watergen build` as a build step of <target>: the build directory (manifest.json and one
 # directory per shader) goes to OUTPUT_DIR (default: <current binary dir>/watergen/<target>).
@@ -10,7 +11,9 @@
 # with watergen's diagnostics (file:line:column). Sets the target property WATERGEN_SHADER_DIR
 # to the output directory. JOBS and CACHE are watergen build's --jobs and --cache; BINDINGS is
 # its --bindings: a binding profile's name or the engine's binding map file (a file is a
-# dependency like the material).
+# dependency like the material). GENERATOR is a project's own generator
+# (watergen_add_generator: watergen with the project's nodes), run instead of watergen and a
+# dependency of the step: the material may then offer the project's axes and choices.
 #
 # SHARDS <n> splits the build into n steps (by variant, or in specialized and branching mode by
 # shader: no more useful steps than the build has shaders), `watergen build --shard i/n`
@@ -21,7 +24,7 @@
 # remote-execution launcher set as RULE_LAUNCH_CUSTOM runs them where it runs compiles.
 # JOB_POOL puts the build step (or each shard step) in that Ninja job pool.
 function(watergen_add_shaders target)
-  cmake_parse_arguments(WG "FREEZE" "MATERIAL;OUTPUT_DIR;MODE;JOBS;CACHE;SHARDS;JOB_POOL;BINDINGS"
+  cmake_parse_arguments(WG "FREEZE" "MATERIAL;OUTPUT_DIR;MODE;JOBS;CACHE;SHARDS;JOB_POOL;BINDINGS;GENERATOR"
     "SCENES" ${ARGN})
   if(NOT TARGET ${target})
     message(FATAL_ERROR "watergen_add_shaders: '${target}' is not a target")
@@ -31,6 +34,14 @@ function(watergen_add_shaders target)
   endif()
   if(WG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "watergen_add_shaders(${target}): unknown arguments ${WG_UNPARSED_ARGUMENTS}")
+  endif()
+  set(tool watergen::watergen)
+  if(WG_GENERATOR)
+    if(NOT TARGET ${WG_GENERATOR})
+      message(FATAL_ERROR "watergen_add_shaders(${target}): GENERATOR ${WG_GENERATOR} is not a "
+        "target (watergen_add_generator makes one)")
+    endif()
+    set(tool ${WG_GENERATOR})
   endif()
   if(NOT WG_OUTPUT_DIR)
     set(WG_OUTPUT_DIR "${CMAKE_CURRENT_BINARY_DIR}/watergen/${target}")
@@ -82,9 +93,9 @@ function(watergen_add_shaders target)
       set(depfile "${CMAKE_CURRENT_BINARY_DIR}/watergen_${target}_shard_${i}.d")
       add_custom_command(
         OUTPUT "${shard_dir}/manifest.json"
-        COMMAND watergen::watergen ${args} --shard ${i}/${WG_SHARDS} --out "${shard_dir}"
+        COMMAND ${tool} ${args} --shard ${i}/${WG_SHARDS} --out "${shard_dir}"
           --depfile "${depfile}" --quiet
-        DEPENDS "${material}" ${scenes} ${binding_file} watergen::watergen
+        DEPENDS "${material}" ${scenes} ${binding_file} ${tool}
         DEPFILE "${depfile}"
         ${pool}
         COMMENT "watergen: shard ${i}/${WG_SHARDS} of ${WG_MATERIAL} for ${target}"
@@ -94,16 +105,16 @@ function(watergen_add_shaders target)
     endforeach()
     add_custom_command(
       OUTPUT "${manifest}"
-      COMMAND watergen::watergen merge "${out}" ${shard_dirs}
-      DEPENDS ${shard_files} watergen::watergen
+      COMMAND ${tool} merge "${out}" ${shard_dirs}
+      DEPENDS ${shard_files} ${tool}
       COMMENT "watergen: merging ${WG_SHARDS} shards of ${WG_MATERIAL} for ${target}"
       VERBATIM)
   else()
     set(depfile "${CMAKE_CURRENT_BINARY_DIR}/watergen_${target}.d")
     add_custom_command(
       OUTPUT "${manifest}"
-      COMMAND watergen::watergen ${args} --out "${out}" --depfile "${depfile}"
-      DEPENDS "${material}" ${scenes} ${binding_file} watergen::watergen
+      COMMAND ${tool} ${args} --out "${out}" --depfile "${depfile}"
+      DEPENDS "${material}" ${scenes} ${binding_file} ${tool}
       DEPFILE "${depfile}"
       ${pool}
       COMMENT "watergen: shaders of ${WG_MATERIAL} for ${target}"

@@ -2,8 +2,12 @@
 # watergen::runtime (watergen_runtime and the reflection types it exposes), the imported
 # executable watergen::watergen, their headers, and watergen_add_shaders(); optionally the
 # headless device watergen::headless (find_package(watergen CONFIG COMPONENTS headless)).
+# With COMPONENTS generator, the authoring API: watergen::generator (the IR and DSL, the axis
+# registry and its nodes, materials, the build API, the evaluation layer), watergen::cli and
+# watergen_add_generator(), for a project's own generator with its own nodes.
 # Install components: "runtime" (library and headers), "headless" (the device's library,
-# headers and targets file), "generator" (the executable), "cmake" (the package files).
+# headers and targets file), "generator" (the executable), "authoring" (the generator's
+# libraries, headers, entry point and targets file), "cmake" (the package files).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -39,10 +43,34 @@ watergen_install_libraries(COMPONENT headless EXPORT watergenHeadlessTargets FOL
 install(EXPORT watergenHeadlessTargets NAMESPACE watergen:: DESTINATION ${WATERGEN_PACKAGE_DIR}
   COMPONENT headless)
 
+# The authoring API: every library of the generator, their public headers (generator/include,
+# the test runner's), and the entry point watergen_add_generator() compiles. Its own export set
+# and targets file, loaded only with COMPONENTS generator (which needs headless too).
+set(WATERGEN_AUTHORING_LIBRARIES watergen_ir watergen_water watergen_caustics watergen_plan
+  watergen_toolchain watergen_pipeline watergen_runner watergen_eval_image watergen_eval_scene
+  watergen_eval_draw watergen_eval_measure watergen_eval_probe watergen_eval_report
+  watergen_eval_compare watergen_eval_bench watergen_eval watergen_cli watergen_generator)
+foreach(library IN LISTS WATERGEN_AUTHORING_LIBRARIES)
+  get_target_property(export_name ${library} EXPORT_NAME)
+  if(NOT export_name)
+    string(REGEX REPLACE "^watergen_" "" export_name ${library})
+    set_target_properties(${library} PROPERTIES EXPORT_NAME ${export_name})
+  endif()
+endforeach()
+install(TARGETS ${WATERGEN_AUTHORING_LIBRARIES} EXPORT watergenAuthoringTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT authoring)
+install(DIRECTORY generator/include/watergen/ runtime/include/watergen/runner
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/watergen COMPONENT authoring)
+install(FILES generator/cli/main.cpp DESTINATION ${WATERGEN_PACKAGE_DIR}
+  RENAME generator_main.cpp COMPONENT authoring)
+install(EXPORT watergenAuthoringTargets NAMESPACE watergen:: DESTINATION ${WATERGEN_PACKAGE_DIR}
+  COMPONENT authoring)
+
 configure_package_config_file(cmake/watergenConfig.cmake.in
   ${PROJECT_BINARY_DIR}/watergenConfig.cmake INSTALL_DESTINATION ${WATERGEN_PACKAGE_DIR})
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/watergenConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/watergenConfig.cmake
     ${PROJECT_BINARY_DIR}/watergenConfigVersion.cmake cmake/watergen_add_shaders.cmake
+    cmake/watergen_add_generator.cmake
   DESTINATION ${WATERGEN_PACKAGE_DIR} COMPONENT cmake)

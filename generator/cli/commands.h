@@ -44,9 +44,11 @@ unsigned capped_jobs(unsigned jobs);
 
 // Adds --<axis> options for every axis, each restricted to its choices, and --preset.
 void add_variant_options(CLI::App& app, Variant& variant, std::string& preset);
-// Checks the variant's constraints and resolves the preset; prints the reason and returns
-// false on bad input (exit with kUsage).
-bool resolve_variant(const Variant& variant, const std::string& preset_name, const Preset** preset);
+// Checks the variant's constraints, resolves the preset and composes the variant's IR (a
+// project's node with a type error fails here, at its registering file and line); prints the
+// reason and returns false on bad input (exit with kUsage).
+bool resolve_variant(const Variant& variant, const std::string& preset_name, const Preset** preset,
+                     const Common& common);
 void print_diagnostics(const Diagnostics& ds, const Common& common);
 // The exit code of a library run's status.
 int exit_code(RunStatus status);

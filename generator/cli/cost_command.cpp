@@ -42,7 +42,7 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
                  "draws it) instead of with mediump / min16float hints");
     return [o, &common]() {
         const Preset* preset = nullptr;
-        if (!resolve_variant(o->job.variant, o->job.preset, &preset)) return kUsage;
+        if (!resolve_variant(o->job.variant, o->job.preset, &preset, common)) return kUsage;
         if (o->counted) {
             const CountWorkerRun run = run_count_worker(o->job);
             print_diagnostics(run.diagnostics, common);

@@ -30,7 +30,8 @@ Runner add_emit_command(CLI::App& app, const Common& common) {
                    "output directory; each variant goes to <out>/<variant>/ (default out/emit)");
     return [o, &common]() {
         const Preset* preset = nullptr;
-        if (!resolve_variant(o->covering ? default_variant() : o->variant, o->preset, &preset))
+        if (!resolve_variant(o->covering ? default_variant() : o->variant, o->preset, &preset,
+                             common))
             return kUsage;
         const std::vector<Variant> variants =
             o->covering ? pairwise_covering_variants() : std::vector<Variant>{o->variant};

@@ -213,7 +213,8 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         "for a view other than beach (default out/render)");
     add_runner_options(app, o->runner);
     return [o, &common]() {
-        if (!resolve_variant(o->request.variant, o->preset, &o->request.preset)) return kUsage;
+        if (!resolve_variant(o->request.variant, o->preset, &o->request.preset, common))
+            return kUsage;
         o->request.out = o->out;
         if (o->strict_half && o->request.unroll != LoopUnroll::AsHinted) {
             std::fprintf(stderr, "watergen: error: --strict-half renders with each loop's own "

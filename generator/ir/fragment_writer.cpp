@@ -1,5 +1,7 @@
 #include "fragment_writer.h"
 
+#include "watergen/ir/identifier.h"
+
 #include <algorithm>
 #include <fmt/format.h>
 
@@ -17,7 +19,14 @@ std::string strip_outer(const std::string& s) {
 
 FragmentWriter::FragmentWriter(const Graph& g, const GlslSyntax& syntax, bool compute,
                                bool strict_half)
-    : g_(g), syntax_(syntax), compute_(compute), strict_half_(strict_half) {}
+    : g_(g), syntax_(syntax), compute_(compute), strict_half_(strict_half) {
+    // HLSL reads cbuffer members and textures as globals: a temporary of the same name would
+    // hide them.
+    for (const auto& p : g.parameters())
+        own_taken_.insert(p.name);
+    for (const auto& t : g.textures())
+        own_taken_.insert(t.name);
+}
 
 FragmentWriter::FragmentWriter(const Graph& g, const FragmentWriter& enclosing,
                                const BodyNames& names)
@@ -28,6 +37,7 @@ FragmentWriter::FragmentWriter(const Graph& g, const FragmentWriter& enclosing,
 
 void FragmentWriter::read_as_constants(const ShaderInterface& in) {
     for (const auto& p : in.parameters) {
+        taken_->insert(p.name);
         if (p.specialization) constants_.insert(p.name);
         if (p.array_size) array_sizes_[p.name] = p.array_size;
     }
@@ -313,7 +323,7 @@ void FragmentWriter::switch_lines(uint32_t id, std::vector<Line>& out, std::set<
 }
 
 std::string FragmentWriter::unique_name(const Node& n, uint32_t id) {
-    std::string base = !n.name.empty()      ? n.name
+    std::string base = !n.name.empty()      ? safe_identifier(n.name)
                        : n.op == Op::Loop   ? fmt::format("loop{}", id)
                        : n.op == Op::Switch ? fmt::format("choice{}", id)
                                             : fmt::format("t{}", id);

@@ -1,5 +1,7 @@
 #include "watergen/ir/ir.h"
 
+#include "watergen/ir/identifier.h"
+
 #include <algorithm>
 #include <cstring>
 
@@ -310,7 +312,36 @@ uint32_t Graph::add(Node node) {
 }
 
 void Graph::error(std::string message) {
-    diagnostics_.push_back(Diagnostic{Severity::Error, "", 0, 0, origin_, std::move(message)});
+    diagnostics_.push_back(
+        Diagnostic{Severity::Error, author_.file, author_.line, 0, origin_, std::move(message)});
+}
+
+std::string Author::label() const {
+    return builtin() ? "watergen" : file + ":" + std::to_string(line);
+}
+
+namespace {
+
+// "fog.exponential at /src/fog.cpp:31": a declaring node and where the definition was written.
+std::string declared_by(const std::string& origin, const SourceLocation& at) {
+    return (origin.empty() ? std::string("a node") : origin) + " at " + at.file + ":" +
+           std::to_string(at.line);
+}
+
+} // namespace
+
+bool same_definition(const Parameter& a, const Parameter& b) {
+    return a.type == b.type && a.default_value == b.default_value && a.min == b.min &&
+           a.max == b.max && a.unit == b.unit && a.seed == b.seed &&
+           a.specialization == b.specialization && a.array_size == b.array_size;
+}
+
+std::string definition_clash(const std::string& what, const std::string& name,
+                             const std::string& origin, const SourceLocation& at,
+                             const std::string& other_origin, const SourceLocation& other_at) {
+    return what + " '" + name + "' is declared by " + declared_by(origin, at) + " and by " +
+           declared_by(other_origin, other_at) +
+           " with different definitions: a name belongs to one definition; rename one";
 }
 
 uint32_t Graph::capture(uint32_t outer) {
@@ -340,10 +371,19 @@ void Graph::declare_parameter(const Parameter& p) {
     if (enclosing_) { // a loop body's parameters are its enclosing graph's
         Parameter copy = p;
         if (copy.origin.empty()) copy.origin = origin_;
+        if (copy.author.builtin()) copy.author = author_;
         enclosing_->declare_parameter(copy);
         return;
     }
+    const Author& author = p.author.builtin() ? author_ : p.author;
     if (const Parameter* existing = find_parameter(p.name)) {
+        // Another author's declaration is the same parameter only when it is the same
+        // definition (a project reading watergen's ior_water() through its header).
+        if (!(existing->author == author) && !same_definition(*existing, p)) {
+            error(definition_clash("parameter", p.name, p.origin.empty() ? origin_ : p.origin,
+                                   p.defined_at, existing->origin, existing->defined_at));
+            return;
+        }
         if (existing->type != p.type || existing->default_value != p.default_value ||
             existing->specialization != p.specialization || existing->array_size != p.array_size)
             error("parameter '" + p.name +
@@ -352,8 +392,13 @@ void Graph::declare_parameter(const Parameter& p) {
                   existing->origin + ")");
         return;
     }
+    if (auto problem = identifier_problem(p.name)) {
+        error("parameter name: " + *problem);
+        return;
+    }
     Parameter copy = p;
     if (copy.origin.empty()) copy.origin = origin_;
+    copy.author = author;
     if (copy.default_value.size() != value_count(copy))
         error(fmt::format("parameter '{}': default has {} components, {}{} needs {}", p.name,
                           copy.default_value.size(), type_name(copy.type),
@@ -382,13 +427,26 @@ void Graph::declare_texture(const TextureInput& t) {
     if (enclosing_) {
         TextureInput copy = t;
         if (copy.origin.empty()) copy.origin = origin_;
+        if (copy.author.builtin()) copy.author = author_;
         enclosing_->declare_texture(copy);
         return;
     }
+    const Author& author = t.author.builtin() ? author_ : t.author;
     for (const auto& existing : textures_)
-        if (existing.name == t.name) return;
+        if (existing.name == t.name) {
+            if (!(existing.author == author) &&
+                (existing.type != t.type || existing.description != t.description))
+                error(definition_clash("texture", t.name, t.origin.empty() ? origin_ : t.origin,
+                                       t.defined_at, existing.origin, existing.defined_at));
+            return;
+        }
+    if (auto problem = identifier_problem(t.name)) {
+        error("texture name: " + *problem);
+        return;
+    }
     TextureInput copy = t;
     if (copy.origin.empty()) copy.origin = origin_;
+    copy.author = author;
     textures_.push_back(std::move(copy));
 }
 

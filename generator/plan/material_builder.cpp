@@ -62,7 +62,12 @@ std::string why_unusable(const VariantSpace& space, size_t axis, const std::stri
 }
 
 // Parameters the offered nodes declare, found by composing one valid variant per offered choice.
-std::map<std::string, Parameter> declared_parameters(const VariantSpace& space) {
+// *error is the first mistake in a node's definition this finds, before anything is built: an
+// error composing the IR (a project's node with a type error, at its registering file and
+// line), or two authors' different definitions of one name (a project's node and watergen's,
+// or two projects'), which would give one uniform two meanings across the material's variants.
+std::map<std::string, Parameter> declared_parameters(const VariantSpace& space,
+                                                     std::optional<Diagnostic>* error) {
     std::vector<std::vector<bool>> seen(axes().size());
     for (size_t i = 0; i < axes().size(); ++i)
         seen[i].assign(space.choices[i].size(), false);
@@ -80,8 +85,22 @@ std::map<std::string, Parameter> declared_parameters(const VariantSpace& space) 
     std::map<std::string, Parameter> declared;
     for (const Variant& v : probes) {
         const WaterShader s = build_water_shader(v, nullptr);
-        for (const Parameter& p : s.fragment.parameters())
-            declared.emplace(p.name, p);
+        for (const Diagnostic& d : s.fragment.diagnostics())
+            if (d.severity == Severity::Error && !error->has_value()) *error = d;
+        for (const Parameter& p : s.fragment.parameters()) {
+            const auto [it, fresh] = declared.emplace(p.name, p);
+            const Parameter& first = it->second;
+            if (fresh || error->has_value() || first.author == p.author ||
+                same_definition(first, p))
+                continue;
+            *error = Diagnostic{Severity::Error,
+                                p.defined_at.file,
+                                p.defined_at.line,
+                                0,
+                                p.origin,
+                                definition_clash("parameter", p.name, p.origin, p.defined_at,
+                                                 first.origin, first.defined_at)};
+        }
     }
     return declared;
 }
@@ -311,7 +330,9 @@ std::optional<Diagnostic> MaterialBuilder::check_preset(Material& m) const {
 
 // Names against the parameters the offered nodes declare; sizes; ranges inside the node's.
 std::optional<Diagnostic> MaterialBuilder::check_parameters(Material& m) const {
-    m.declared = declared_parameters(m.space);
+    std::optional<Diagnostic> error;
+    m.declared = declared_parameters(m.space, &error);
+    if (error) return error;
     std::vector<std::string> declared_names;
     for (const auto& [n, p] : m.declared)
         declared_names.push_back(n);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "axis_tables.h"
+#include "watergen/ir/identifier.h"
 #include "watergen/water/surface.h"
 
 namespace watergen {
@@ -17,6 +18,13 @@ struct Registry {
                                   foam_axis(),      reflection_axis(), refraction_axis(),
                                   normals_axis(),   waves_axis(),      shore_axis(),
                                   precision_axis(), caustics_axis()};
+    // The order water_shader.cpp composes watergen's axes in: the surface first (waves,
+    // normals), then what the view ray sees through and off it, then what lies on top.
+    // Precision composes nothing (it scopes the shading); registered axes join on freezing.
+    std::vector<std::string> composition = {"waves",      "normals",    "refraction", "caustics",
+                                            "extinction", "reflection", "fresnel",    "specular",
+                                            "foam",       "shore"};
+    Diagnostics errors;
     bool frozen = false;
 };
 
@@ -55,14 +63,84 @@ ChoiceRequirement every_choice_but(const std::string& axis, std::vector<std::str
     return {axis, std::move(excluded), why, true};
 }
 
-const std::vector<AxisInfo>& axes() {
-    static const std::vector<AxisInfo> list = [] {
+namespace {
+
+// Places each registered axis right after its compose_after, in registration order; an axis
+// placed after another registered one waits for it (registration order across files is the
+// static initialisation order, which C++ leaves open).
+void place_registered_axes(Registry& r) {
+    std::vector<const AxisInfo*> pending;
+    for (const auto& a : r.axes)
+        if (!a.author.builtin()) pending.push_back(&a);
+    for (bool placed = true; placed && !pending.empty();) {
+        placed = false;
+        for (auto it = pending.begin(); it != pending.end(); ++it) {
+            auto after =
+                std::find(r.composition.begin(), r.composition.end(), (*it)->compose_after);
+            if (after == r.composition.end()) continue;
+            // After the anchor and every axis placed after it before this one.
+            auto at = after + 1;
+            while (at != r.composition.end()) {
+                const AxisInfo* other = find_mutable_axis(r.axes, *at);
+                if (!other || other->author.builtin()) break;
+                ++at;
+            }
+            r.composition.insert(at, (*it)->name);
+            pending.erase(it);
+            placed = true;
+            break;
+        }
+    }
+    for (const AxisInfo* a : pending) {
+        std::string anchors;
+        for (const auto& name : r.composition)
+            anchors += (anchors.empty() ? "" : ", ") + name;
+        r.errors.push_back({Severity::Error, a->author.file, a->author.line, 0, "",
+                            "registering axis " + a->name + ": compose_after '" + a->compose_after +
+                                "' is not a composed axis (one of " + anchors + ")"});
+    }
+}
+
+Registry& frozen_registry() {
+    static const bool frozen = [] {
         Registry& r = registry();
         r.frozen = true;
         resolve_requirements(r.axes);
-        return r.axes;
+        place_registered_axes(r);
+        return true;
     }();
-    return list;
+    (void)frozen;
+    return registry();
+}
+
+// Why `name` cannot name an axis or a choice: it appears in keys, file names and --options.
+std::optional<std::string> name_problem(const std::string& name) {
+    if (name.empty() || name.front() < 'a' || name.front() > 'z')
+        return "'" + name + "' must start with a lower-case letter";
+    for (char c : name)
+        if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'))
+            return "'" + name + "' may hold only a-z, 0-9 and '_'";
+    return std::nullopt;
+}
+
+// Records a failed registration at its call and returns the message.
+std::optional<std::string> refuse(Registry& r, const SourceLocation& where, std::string message) {
+    r.errors.push_back({Severity::Error, where.file, where.line, 0, "", message});
+    return message;
+}
+
+} // namespace
+
+const std::vector<AxisInfo>& axes() {
+    return frozen_registry().axes;
+}
+
+const std::vector<std::string>& composition_order() {
+    return frozen_registry().composition;
+}
+
+const Diagnostics& registration_errors() {
+    return frozen_registry().errors;
 }
 
 const AxisInfo* find_axis(const std::string& name) {
@@ -83,17 +161,62 @@ const ChoiceInfo* find_choice(const AxisInfo& axis, const std::string& name) {
     return nullptr;
 }
 
-std::optional<std::string> register_choice(const std::string& axis, ChoiceInfo choice) {
+std::optional<std::string> register_choice(const std::string& axis, ChoiceInfo choice,
+                                           SourceLocation where) {
     Registry& r = registry();
     const std::string what = "registering " + axis + "=" + choice.name + ": ";
     if (r.frozen)
-        return what +
-               "the axis registry is already in use (register before the first call to axes())";
+        return refuse(r, where,
+                      what + "the axis registry is already in use (register before the first "
+                             "call to axes(), e.g. with WATERGEN_REGISTER_NODES)");
+    if (auto problem = name_problem(choice.name)) return refuse(r, where, what + *problem);
     AxisInfo* a = find_mutable_axis(r.axes, axis);
-    if (!a) return what + "unknown axis";
+    if (!a) return refuse(r, where, what + "unknown axis");
     for (const auto& c : a->choices)
-        if (c.name == choice.name) return what + "the axis already has that choice";
+        if (c.name == choice.name)
+            return refuse(r, where,
+                          what + "the axis already has that choice (" +
+                              (c.author.builtin() ? std::string("watergen's own")
+                                                  : "registered at " + c.author.label()) +
+                              ")");
+    choice.author = {where.file, where.line};
     a->choices.push_back(std::move(choice));
+    return std::nullopt;
+}
+
+std::optional<std::string> register_axis(AxisInfo axis, SourceLocation where) {
+    Registry& r = registry();
+    const std::string what = "registering axis " + axis.name + ": ";
+    if (r.frozen)
+        return refuse(r, where,
+                      what + "the axis registry is already in use (register before the first "
+                             "call to axes(), e.g. with WATERGEN_REGISTER_NODES)");
+    if (auto problem = name_problem(axis.name)) return refuse(r, where, what + *problem);
+    if (const AxisInfo* other = find_mutable_axis(r.axes, axis.name))
+        return refuse(r, where,
+                      what + "the name is taken (" +
+                          (other->author.builtin() ? std::string("a watergen axis")
+                                                   : "registered at " + other->author.label()) +
+                          ")");
+    if (axis.choices.empty()) return refuse(r, where, what + "no choices");
+    if (axis.compose_after.empty())
+        return refuse(r, where, what + "compose_after is empty (name the axis it follows)");
+    const Author author{where.file, where.line};
+    for (size_t i = 0; i < axis.choices.size(); ++i) {
+        if (auto problem = name_problem(axis.choices[i].name))
+            return refuse(r, where, what + "choice " + *problem);
+        for (size_t j = 0; j < i; ++j)
+            if (axis.choices[j].name == axis.choices[i].name)
+                return refuse(r, where, what + "choice '" + axis.choices[i].name + "' twice");
+        axis.choices[i].author = author;
+    }
+    if (!find_choice(axis, axis.default_choice))
+        return refuse(r, where,
+                      what + "default choice '" + axis.default_choice +
+                          "' is not one of its "
+                          "choices");
+    axis.author = author;
+    r.axes.push_back(std::move(axis));
     return std::nullopt;
 }
 
@@ -104,7 +227,15 @@ void compose_choice(Surface& s, const std::string& axis, const std::string& choi
         s.g.error(axis + ": no node for choice '" + choice + "'");
         return;
     }
-    if (c->compose) c->compose(s);
+    if (!c->compose) return;
+    if (c->author.builtin()) {
+        c->compose(s);
+        return;
+    }
+    // A project's choice: what it declares is its own, and its errors name its file and line.
+    AuthorScope author(s.g, c->author);
+    OriginScope origin(s.g, axis + "." + choice);
+    c->compose(s);
 }
 
 std::string axis_help(const AxisInfo& axis) {

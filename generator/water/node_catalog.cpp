@@ -1,5 +1,6 @@
 #include "watergen/water/node_catalog.h"
 
+#include "watergen/ir/identifier.h"
 #include "watergen/ir/text.h"
 #include "watergen/water/axis_registry.h"
 
@@ -12,9 +13,9 @@ const std::vector<CatalogNode>& node_catalog() {
             for (const auto& c : a.choices) {
                 if (!c.node) continue;
                 const std::string note = c.node->note.empty() ? "" : "; " + c.node->note;
-                nodes.push_back({a.name + "." + c.name, c.description + note, c.node->inputs,
-                                 c.node->build,
-                                 c.approximates.empty() ? "" : a.name + "." + c.approximates});
+                nodes.push_back(
+                    {a.name + "." + c.name, c.description + note, c.node->inputs, c.node->build,
+                     c.approximates.empty() ? "" : a.name + "." + c.approximates, c.author});
             }
             nodes.insert(nodes.end(), a.extra_nodes.begin(), a.extra_nodes.end());
         }
@@ -35,9 +36,13 @@ std::string catalog_names() {
 
 Graph probe_graph(const CatalogNode& node) {
     Graph g;
+    AuthorScope author(g, node.author);
+    OriginScope origin(g, node.author.builtin() ? "" : node.name);
     std::vector<Expr> inputs;
-    for (const auto& in : node.inputs)
+    for (const auto& in : node.inputs) {
+        if (auto problem = identifier_problem(in.name)) g.error("node input: " + *problem);
         inputs.push_back(varying(g, in.name, in.type));
+    }
     RelaxedScope relaxed(g, true); // the half mode of a probe rounds every operation of the node
     g.set_output("value", node.build(g, inputs).id());
     return g;

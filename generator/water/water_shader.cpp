@@ -1,5 +1,7 @@
 #include "watergen/water/water_shader.h"
 
+#include <optional>
+
 #include "watergen/water/axis_registry.h"
 
 #include "watergen/water/nodes.h"
@@ -85,28 +87,25 @@ WaterShader build_water_shader(const ShaderChoices& choices, const Preset* prese
     }
     const bool relaxed = choices.offered("precision").front() == "half";
     // Geometry (positions, times, wave phases) stays 32-bit: half cannot hold 1e5 m or a day
-    // of seconds. The precision axis relaxes the shading math only.
-    compose_axis(s, choices, "waves");
-    compose_axis(s, choices, "normals");
-    {
-        OriginScope scope(g, "surface");
-        s.to_eye = -s.view_ray;
-        s.n_dot_v = named(dot(s.normal, s.to_eye), "n_dot_v");
-    }
-    RelaxedScope shading(g, relaxed);
-    compose_axis(s, choices, "refraction");
+    // of seconds. The precision axis relaxes the shading math only: everything composed after
+    // the normals (composition_order(): waves, normals, refraction, caustics, extinction,
+    // reflection, fresnel, specular, foam, shore, with a project's axes where they asked).
     // Caustics light the bottom the refraction sees, before the water column dims it.
-    compose_axis(s, choices, "caustics");
-    compose_axis(s, choices, "extinction");
-    compose_axis(s, choices, "reflection");
-    compose_axis(s, choices, "fresnel");
-    compose_axis(s, choices, "specular");
-    {
-        OriginScope scope(g, "compose");
-        s.color = named(mix(s.water_color, s.reflected, s.fresnel) + s.specular, "water_rgb");
+    std::optional<RelaxedScope> shading;
+    bool surface_done = false;
+    for (const std::string& axis : composition_order()) {
+        if (surface_done && !shading) shading.emplace(g, relaxed);
+        compose_axis(s, choices, axis);
+        if (axis == "normals") {
+            OriginScope scope(g, "surface");
+            s.to_eye = -s.view_ray;
+            s.n_dot_v = named(dot(s.normal, s.to_eye), "n_dot_v");
+            surface_done = true;
+        } else if (axis == "specular") {
+            OriginScope scope(g, "compose");
+            s.color = named(mix(s.water_color, s.reflected, s.fresnel) + s.specular, "water_rgb");
+        }
     }
-    compose_axis(s, choices, "foam");
-    compose_axis(s, choices, "shore");
     OriginScope scope(g, "compose");
     if (has_errors(g.diagnostics())) return shader;
     Expr rgb = select(s.is_water, s.color, s.scene_rgb);

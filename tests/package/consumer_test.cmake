@@ -136,4 +136,49 @@ expect_match(broken-material "${out}"
 # The earlier build output is left as it was.
 run(draw-after-failure ok out ${bld}/water_viewer ${bld}/watergen/water_viewer
     ${WORK_DIR}/water2.ppm open_ocean)
+# A project's own nodes against the installed authoring API (COMPONENTS generator):
+# examples/custom_node, copied out of the tree, builds its generator water_lab (the fog axis and
+# a Fresnel choice in two source files), the lab material's shaders with it, and its lab_check
+# (render, probe, compare of the new nodes).
+run(install-authoring ok out ${CMAKE_COMMAND} --install ${WATERGEN_BUILD_DIR}
+    --prefix ${prefix} --component authoring)
+set(lab_src ${WORK_DIR}/custom_node)
+set(lab_bld ${WORK_DIR}/custom_node-build)
+file(COPY ${WATERGEN_SOURCE_DIR}/examples/custom_node/ DESTINATION ${lab_src})
+run(lab-configure ok out ${CMAKE_COMMAND} -S ${lab_src} -B ${lab_bld} -G ${GENERATOR}
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_PREFIX_PATH=${prefix})
+run(lab-build ok out ${CMAKE_COMMAND} --build ${lab_bld})
+expect_match(lab-build "${out}" "watergen: shaders of [^\n]*lab.json for lab_shaders")
+file(READ ${lab_bld}/watergen/lab_shaders/manifest.json lab_manifest)
+expect_match(lab-manifest "${lab_manifest}" "fresnel=spherical_gaussian,[^\"]*,fog=rational")
+run(lab-second-build ok out ${CMAKE_COMMAND} --build ${lab_bld})
+expect_match(lab-second-build "${out}" "ninja: no work to do")
+run(lab-check ok out ${CMAKE_COMMAND} --build ${lab_bld} --target lab_check)
+# GLSL = HLSL, and GPU against the CPU reference within the bounds (render exits 1 otherwise).
+expect_match(lab-check "${out}" "fresnel=spherical_gaussian,[^\n]*,fog=exponential on llvmpipe")
+expect_match(lab-check "${out}" "max abs: glsl-hlsl 0,")
+expect_match(lab-check "${out}" "glsl vs cpu float: [0-9]+ pixels over 5e-05, 0 of them over it")
+expect_match(lab-check "${out}" "fog.rational \\(glsl path\\) on llvmpipe[^\n]*: 5 tuples")
+expect_match(lab-check "${out}" "fog=rational +approximates")
+expect_match(lab-check "${out}" "GLSL and HLSL images: bit-identical in every view")
+if(NOT EXISTS ${lab_bld}/lab/compare/report.html)
+  message(FATAL_ERROR "[lab-check] no compare report")
+endif()
+# The fog variant drawn by the installed example equals the in-tree generator's draw, to the bit.
+run(lab-in-tree ok out ${WATER_LAB} render --fog exponential --fresnel spherical_gaussian
+    --width 64 --height 64 --draws 1 --out ${WORK_DIR}/lab-in-tree)
+file(GLOB out_of_tree ${lab_bld}/lab/render/*fog-exponential/glsl.pfm)
+file(GLOB in_tree ${WORK_DIR}/lab-in-tree/*fog-exponential/glsl.pfm)
+if(NOT out_of_tree OR NOT in_tree)
+  message(FATAL_ERROR "[lab-in-tree] no fog render: '${out_of_tree}' '${in_tree}'")
+endif()
+get_filename_component(out_of_tree_dir ${out_of_tree} DIRECTORY)
+foreach(pair "${out_of_tree};${in_tree}" "${out_of_tree};${out_of_tree_dir}/hlsl.pfm")
+  list(GET pair 0 a)
+  list(GET pair 1 b)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${a} ${b} RESULT_VARIABLE differ)
+  if(differ)
+    message(FATAL_ERROR "[lab-in-tree] ${a} and ${b} differ")
+  endif()
+endforeach()
 message(STATUS "package_consumer: every step as expected")

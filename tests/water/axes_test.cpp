@@ -113,7 +113,7 @@ TEST_CASE("registering_after_first_use_is_refused", "[variant]") {
     CHECK(
         *error ==
         "registering fresnel=late: the axis registry is already in use (register before the first "
-        "call to axes())");
+        "call to axes(), e.g. with WATERGEN_REGISTER_NODES)");
 }
 
 TEST_CASE("constraints_name_both_axes", "[variant]") {

@@ -103,7 +103,7 @@ void main() {
     float foam_footprint = max(length(dFdx(t133)), length(dFdy(t133)));
     float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
-    float foam_pattern = mix(foam_texel, 0.6, foam_aliasing);
+    float foam_pattern_2 = mix(foam_texel, 0.6, foam_aliasing);
     float t163 = params.foam_existence.x;
     float t164 = water_depth - t163;
     float t166 = params.foam_existence.y - t163;
@@ -113,7 +113,7 @@ void main() {
     float t173 = 1.0 - t172;
     bool t174 = t164 < 0.0;
     float shore_foam = t174 ? 1.0 : t173;
-    vec3 foam_rgb = mix(t132, params.foam_color * foam_pattern, vec3(shore_foam));
+    vec3 foam_rgb = mix(t132, params.foam_color * foam_pattern_2, vec3(shore_foam));
 
     // compose
     vec3 t180 = t31 ? foam_rgb : scene_rgb;

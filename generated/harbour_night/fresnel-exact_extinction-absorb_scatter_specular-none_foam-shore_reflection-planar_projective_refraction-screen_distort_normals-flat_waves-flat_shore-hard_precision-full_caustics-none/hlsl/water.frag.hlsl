@@ -100,7 +100,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float foam_footprint = max(length(ddx(t133)), length(ddy(t133)));
     float foam_texel = foam_pattern.SampleLevel(linear_clamp, foam_uv, 0.0).x;
     float foam_aliasing = saturate((4.0 * ((foam_footprint * foam_pattern_scale) * 5.0)) - 1.0);
-    float foam_pattern = lerp(foam_texel, 0.6, foam_aliasing);
+    float foam_pattern_2 = lerp(foam_texel, 0.6, foam_aliasing);
     float t163 = foam_existence.x;
     float t164 = water_depth - t163;
     float t166 = foam_existence.y - t163;
@@ -110,7 +110,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float t173 = 1.0 - t172;
     bool t174 = t164 < 0.0;
     float shore_foam = t174 ? 1.0 : t173;
-    float3 foam_rgb = lerp(t132, foam_color * foam_pattern, (float3)(shore_foam));
+    float3 foam_rgb = lerp(t132, foam_color * foam_pattern_2, (float3)(shore_foam));
 
     // compose
     float3 t180 = t31 ? foam_rgb : scene_rgb;

@@ -92,19 +92,19 @@ void main() {
         for (int loop30_i = 0; loop30_i < 8; ++loop30_i) {
             if (!(float(loop30_i) < trip_count)) break;
             // waves.gerstner
-            vec2 gerstner_wave_directions = params.gerstner_wave_directions[clamp(int(float(loop30_i)), 0, 7)];
+            vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop30_i)), 0, 7)];
             float wave_fade = clamp(2.0 - ((loop30_c1 * pixel_footprint) * 0.63661975), 0.0, 1.0);
-            float wave_theta = (loop30_c1 * dot(gerstner_wave_directions, loop56_c3)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop30_i)), 0, 7)]);
+            float wave_theta = (loop30_c1 * dot(gerstner_wave_directions_2, loop56_c3)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop30_i)), 0, 7)]);
             float t32 = ((params.gerstner_steepness / (trip_count * max(loop30_c1 * loop30_c0, 1e-06))) * loop30_c0) * wave_fade;
             float gerstner_sin = sin(wave_theta);
             float gerstner_cos = cos(wave_theta);
-            float t36_2 = gerstner_wave_directions.x;
-            float t37_2 = gerstner_wave_directions.y;
+            float t36_2 = gerstner_wave_directions_2.x;
+            float t37_2 = gerstner_wave_directions_2.y;
             float t40 = (t32 * loop30_c1) * gerstner_sin;
             float t43 = t40 * t36_2;
             loop30_c0 = loop30_c0 * params.gerstner_amplitude_gain;
             loop30_c1 = loop30_c1 * params.gerstner_frequency_gain;
-            loop30_c2 = loop30_c2 + ((t32 * gerstner_cos) * gerstner_wave_directions);
+            loop30_c2 = loop30_c2 + ((t32 * gerstner_cos) * gerstner_wave_directions_2);
             loop30_c3 = loop30_c3 + vec3((t43 * t36_2), (t43 * t37_2), ((t40 * t37_2) * t37_2));
         }
         float t35 = 1.0 - loop30_c3.x;
@@ -123,15 +123,15 @@ void main() {
         for (int loop60_i = 0; loop60_i < 8; ++loop60_i) {
             if (!(float(loop60_i) < trip_count)) break;
             // waves.gerstner
-            vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop60_i)), 0, 7)];
+            vec2 gerstner_wave_directions_3 = params.gerstner_wave_directions[clamp(int(float(loop60_i)), 0, 7)];
             float wave_fade_2 = clamp(2.0 - ((loop60_c1 * pixel_footprint) * 0.63661975), 0.0, 1.0);
-            float wave_theta_2 = (loop60_c1 * dot(gerstner_wave_directions_2, gerstner_grid_point)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop60_i)), 0, 7)]);
+            float wave_theta_2 = (loop60_c1 * dot(gerstner_wave_directions_3, gerstner_grid_point)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop60_i)), 0, 7)]);
             float t33 = ((params.gerstner_steepness / (trip_count * max(loop60_c1 * loop60_c0, 1e-06))) * loop60_c0) * wave_fade_2;
             float t34 = loop60_c0 * wave_fade_2;
             float gerstner_sin_2 = sin(wave_theta_2);
             float gerstner_cos_2 = cos(wave_theta_2);
-            float t37_3 = gerstner_wave_directions_2.x;
-            float t38 = gerstner_wave_directions_2.y;
+            float t37_3 = gerstner_wave_directions_3.x;
+            float t38 = gerstner_wave_directions_3.y;
             float t39_3 = t33 * gerstner_cos_2;
             float t49_2 = -((t33 * loop60_c1) * gerstner_sin_2);
             vec3 t52 = vec3((t49_2 * t37_3), ((t34 * loop60_c1) * gerstner_cos_2), (t49_2 * t38));
@@ -232,7 +232,7 @@ void main() {
     float foam_footprint = max(length(dFdx(t170)), length(dFdy(t170)));
     float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
-    float foam_pattern = mix(foam_texel, 0.6, foam_aliasing);
+    float foam_pattern_2 = mix(foam_texel, 0.6, foam_aliasing);
     float t200 = params.foam_existence.x;
     float t201 = water_depth - t200;
     float t203 = params.foam_existence.y - t200;
@@ -242,7 +242,7 @@ void main() {
     float t210 = 1.0 - t209;
     bool t211 = t201 < 0.0;
     float shore_foam = t211 ? 1.0 : t210;
-    vec3 foam_rgb = mix(t169, params.foam_color * foam_pattern, vec3(shore_foam));
+    vec3 foam_rgb = mix(t169, params.foam_color * foam_pattern_2, vec3(shore_foam));
 
     // shore.soft
     vec3 shore_color = mix(refracted, foam_rgb, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));

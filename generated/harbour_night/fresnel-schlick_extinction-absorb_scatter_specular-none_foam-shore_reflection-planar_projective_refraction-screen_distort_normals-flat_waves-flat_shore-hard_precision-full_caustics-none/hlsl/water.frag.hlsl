@@ -92,7 +92,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float foam_footprint = max(length(ddx(t117)), length(ddy(t117)));
     float foam_texel = foam_pattern.SampleLevel(linear_clamp, foam_uv, 0.0).x;
     float foam_aliasing = saturate((4.0 * ((foam_footprint * foam_pattern_scale) * 5.0)) - 1.0);
-    float foam_pattern = lerp(foam_texel, 0.6, foam_aliasing);
+    float foam_pattern_2 = lerp(foam_texel, 0.6, foam_aliasing);
     float t147 = foam_existence.x;
     float t148 = water_depth - t147;
     float t150 = foam_existence.y - t147;
@@ -102,7 +102,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float t157 = 1.0 - t156;
     bool t158 = t148 < 0.0;
     float shore_foam = t158 ? 1.0 : t157;
-    float3 foam_rgb = lerp(t116, foam_color * foam_pattern, (float3)(shore_foam));
+    float3 foam_rgb = lerp(t116, foam_color * foam_pattern_2, (float3)(shore_foam));
 
     // compose
     float3 t164 = t31 ? foam_rgb : scene_rgb;

@@ -96,7 +96,7 @@ void main() {
     float foam_footprint = max(length(dFdx(t117)), length(dFdy(t117)));
     float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
-    float foam_pattern = mix(foam_texel, 0.6, foam_aliasing);
+    float foam_pattern_2 = mix(foam_texel, 0.6, foam_aliasing);
     float t147 = params.foam_existence.x;
     float t148 = water_depth - t147;
     float t150 = params.foam_existence.y - t147;
@@ -106,7 +106,7 @@ void main() {
     float t157 = 1.0 - t156;
     bool t158 = t148 < 0.0;
     float shore_foam = t158 ? 1.0 : t157;
-    vec3 foam_rgb = mix(t116, params.foam_color * foam_pattern, vec3(shore_foam));
+    vec3 foam_rgb = mix(t116, params.foam_color * foam_pattern_2, vec3(shore_foam));
 
     // shore.soft
     vec3 shore_color = mix(refracted, foam_rgb, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));

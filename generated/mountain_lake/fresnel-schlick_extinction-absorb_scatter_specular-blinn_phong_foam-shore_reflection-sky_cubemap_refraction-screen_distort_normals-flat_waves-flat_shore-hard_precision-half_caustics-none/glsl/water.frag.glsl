@@ -113,7 +113,7 @@ void main() {
     float foam_footprint = max(length(dFdx(t160)), length(dFdy(t160)));
     mediump float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     mediump float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
-    mediump float foam_pattern = mix(foam_texel, 0.6, foam_aliasing);
+    mediump float foam_pattern_2 = mix(foam_texel, 0.6, foam_aliasing);
     mediump float t188 = params.foam_existence.x;
     mediump float t189 = water_depth - t188;
     mediump float t191 = params.foam_existence.y - t188;
@@ -123,7 +123,7 @@ void main() {
     mediump float t197 = 1.0 - t196;
     bool t198 = t189 < 0.0;
     mediump float shore_foam = t198 ? 1.0 : t197;
-    mediump vec3 foam_rgb = mix(water_rgb, params.foam_color * foam_pattern, vec3(shore_foam));
+    mediump vec3 foam_rgb = mix(water_rgb, params.foam_color * foam_pattern_2, vec3(shore_foam));
 
     // compose
     mediump vec3 t204 = t32 ? foam_rgb : scene_rgb;

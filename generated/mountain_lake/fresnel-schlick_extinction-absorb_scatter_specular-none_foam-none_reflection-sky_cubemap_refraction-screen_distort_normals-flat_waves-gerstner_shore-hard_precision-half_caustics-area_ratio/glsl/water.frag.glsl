@@ -83,19 +83,19 @@ void main() {
         for (int loop29_i = 0; loop29_i < 8; ++loop29_i) {
             if (!(float(loop29_i) < trip_count)) break;
             // waves.gerstner
-            vec2 gerstner_wave_directions = params.gerstner_wave_directions[clamp(int(float(loop29_i)), 0, 7)];
+            vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop29_i)), 0, 7)];
             float wave_fade = clamp(2.0 - ((loop29_c1 * pixel_footprint) * 0.63661975), 0.0, 1.0);
-            float t15_2 = loop29_c1 * dot(gerstner_wave_directions, loop55_c3);
+            float t15_2 = loop29_c1 * dot(gerstner_wave_directions_2, loop55_c3);
             float t28 = ((params.gerstner_steepness / (trip_count * max(loop29_c1 * loop29_c0, 1e-06))) * loop29_c0) * wave_fade;
             float gerstner_sin = sin(t15_2);
             float gerstner_cos = cos(t15_2);
-            float t31 = gerstner_wave_directions.x;
-            float t32 = gerstner_wave_directions.y;
+            float t31 = gerstner_wave_directions_2.x;
+            float t32 = gerstner_wave_directions_2.y;
             float t35_2 = (t28 * loop29_c1) * gerstner_sin;
             float t38_3 = t35_2 * t31;
             loop29_c0 = loop29_c0 * params.gerstner_amplitude_gain;
             loop29_c1 = loop29_c1 * params.gerstner_frequency_gain;
-            loop29_c2 = loop29_c2 + ((t28 * gerstner_cos) * gerstner_wave_directions);
+            loop29_c2 = loop29_c2 + ((t28 * gerstner_cos) * gerstner_wave_directions_2);
             loop29_c3 = loop29_c3 + vec3((t38_3 * t31), (t38_3 * t32), ((t35_2 * t32) * t32));
         }
         float t34 = 1.0 - loop29_c3.x;
@@ -114,15 +114,15 @@ void main() {
         for (int loop59_i = 0; loop59_i < 8; ++loop59_i) {
             if (!(float(loop59_i) < trip_count)) break;
             // waves.gerstner
-            vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop59_i)), 0, 7)];
+            vec2 gerstner_wave_directions_3 = params.gerstner_wave_directions[clamp(int(float(loop59_i)), 0, 7)];
             float wave_fade_2 = clamp(2.0 - ((loop59_c1 * pixel_footprint) * 0.63661975), 0.0, 1.0);
-            float t16 = loop59_c1 * dot(gerstner_wave_directions_2, gerstner_grid_point);
+            float t16 = loop59_c1 * dot(gerstner_wave_directions_3, gerstner_grid_point);
             float t29 = ((params.gerstner_steepness / (trip_count * max(loop59_c1 * loop59_c0, 1e-06))) * loop59_c0) * wave_fade_2;
             float t30 = loop59_c0 * wave_fade_2;
             float gerstner_sin_2 = sin(t16);
             float gerstner_cos_2 = cos(t16);
-            float t33 = gerstner_wave_directions_2.x;
-            float t34_2 = gerstner_wave_directions_2.y;
+            float t33 = gerstner_wave_directions_3.x;
+            float t34_2 = gerstner_wave_directions_3.y;
             float t35_3 = t29 * gerstner_cos_2;
             float t45 = -((t29 * loop59_c1) * gerstner_sin_2);
             vec3 t48_2 = vec3((t45 * t33), ((t30 * loop59_c1) * gerstner_cos_2), (t45 * t34_2));

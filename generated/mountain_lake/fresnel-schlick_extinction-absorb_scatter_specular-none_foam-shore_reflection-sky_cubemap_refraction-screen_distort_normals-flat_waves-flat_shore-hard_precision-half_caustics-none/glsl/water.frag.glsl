@@ -93,7 +93,7 @@ void main() {
     float foam_footprint = max(length(dFdx(t123)), length(dFdy(t123)));
     mediump float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     mediump float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
-    mediump float foam_pattern = mix(foam_texel, 0.6, foam_aliasing);
+    mediump float foam_pattern_2 = mix(foam_texel, 0.6, foam_aliasing);
     mediump float t151 = params.foam_existence.x;
     mediump float t152 = water_depth - t151;
     mediump float t154 = params.foam_existence.y - t151;
@@ -103,7 +103,7 @@ void main() {
     mediump float t161 = 1.0 - t160;
     bool t162 = t152 < 0.0;
     mediump float shore_foam = t162 ? 1.0 : t161;
-    mediump vec3 foam_rgb = mix(t122, params.foam_color * foam_pattern, vec3(shore_foam));
+    mediump vec3 foam_rgb = mix(t122, params.foam_color * foam_pattern_2, vec3(shore_foam));
 
     // compose
     mediump vec3 t168 = t30 ? foam_rgb : scene_rgb;

@@ -85,19 +85,19 @@ void main() {
         for (int loop30_i = 0; loop30_i < 8; ++loop30_i) {
             if (!(float(loop30_i) < trip_count)) break;
             // waves.gerstner
-            vec2 gerstner_wave_directions = params.gerstner_wave_directions[clamp(int(float(loop30_i)), 0, 7)];
+            vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop30_i)), 0, 7)];
             float wave_fade = clamp(2.0 - ((loop30_c1 * pixel_footprint) * 0.63661975), 0.0, 1.0);
-            float wave_theta = (loop30_c1 * dot(gerstner_wave_directions, loop59_c3)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop30_i)), 0, 7)]);
+            float wave_theta = (loop30_c1 * dot(gerstner_wave_directions_2, loop59_c3)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop30_i)), 0, 7)]);
             float t32 = ((params.gerstner_steepness / (trip_count * max(loop30_c1 * loop30_c0, 1e-06))) * loop30_c0) * wave_fade;
             float gerstner_sin = sin(wave_theta);
             float gerstner_cos = cos(wave_theta);
-            float t36 = gerstner_wave_directions.x;
-            float t37_2 = gerstner_wave_directions.y;
+            float t36 = gerstner_wave_directions_2.x;
+            float t37_2 = gerstner_wave_directions_2.y;
             float t40 = (t32 * loop30_c1) * gerstner_sin;
             float t43 = t40 * t36;
             loop30_c0 = loop30_c0 * params.gerstner_amplitude_gain;
             loop30_c1 = loop30_c1 * params.gerstner_frequency_gain;
-            loop30_c2 = loop30_c2 + ((t32 * gerstner_cos) * gerstner_wave_directions);
+            loop30_c2 = loop30_c2 + ((t32 * gerstner_cos) * gerstner_wave_directions_2);
             loop30_c3 = loop30_c3 + vec3((t43 * t36), (t43 * t37_2), ((t40 * t37_2) * t37_2));
         }
         float t35 = 1.0 - loop30_c3.x;
@@ -116,15 +116,15 @@ void main() {
         for (int loop60_i = 0; loop60_i < 8; ++loop60_i) {
             if (!(float(loop60_i) < trip_count)) break;
             // waves.gerstner
-            vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop60_i)), 0, 7)];
+            vec2 gerstner_wave_directions_3 = params.gerstner_wave_directions[clamp(int(float(loop60_i)), 0, 7)];
             float wave_fade_2 = clamp(2.0 - ((loop60_c1 * pixel_footprint) * 0.63661975), 0.0, 1.0);
-            float wave_theta_2 = (loop60_c1 * dot(gerstner_wave_directions_2, gerstner_grid_point)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop60_i)), 0, 7)]);
+            float wave_theta_2 = (loop60_c1 * dot(gerstner_wave_directions_3, gerstner_grid_point)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop60_i)), 0, 7)]);
             float t33 = ((params.gerstner_steepness / (trip_count * max(loop60_c1 * loop60_c0, 1e-06))) * loop60_c0) * wave_fade_2;
             float t34 = loop60_c0 * wave_fade_2;
             float gerstner_sin_2 = sin(wave_theta_2);
             float gerstner_cos_2 = cos(wave_theta_2);
-            float t37_3 = gerstner_wave_directions_2.x;
-            float t38_2 = gerstner_wave_directions_2.y;
+            float t37_3 = gerstner_wave_directions_3.x;
+            float t38_2 = gerstner_wave_directions_3.y;
             float t39_2 = t33 * gerstner_cos_2;
             float t49_2 = -((t33 * loop60_c1) * gerstner_sin_2);
             vec3 t52 = vec3((t49_2 * t37_3), ((t34 * loop60_c1) * gerstner_cos_2), (t49_2 * t38_2));

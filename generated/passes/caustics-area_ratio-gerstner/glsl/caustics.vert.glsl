@@ -38,13 +38,13 @@ void main() {
     for (int loop19_i = 0; loop19_i < 8; ++loop19_i) {
         if (!(float(loop19_i) < trip_count)) break;
         // waves.gerstner
-        vec2 gerstner_wave_directions = params.gerstner_wave_directions[clamp(int(float(loop19_i)), 0, 7)];
-        float wave_theta = (loop19_c1 * dot(gerstner_wave_directions, grid_xz)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop19_i)), 0, 7)]);
+        vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop19_i)), 0, 7)];
+        float wave_theta = (loop19_c1 * dot(gerstner_wave_directions_2, grid_xz)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop19_i)), 0, 7)]);
         float t25 = (params.gerstner_steepness / (t14 * max(loop19_c1 * loop19_c0, 1e-06))) * loop19_c0;
         float gerstner_sin = sin(wave_theta);
         float gerstner_cos = cos(wave_theta);
-        float t28 = gerstner_wave_directions.x;
-        float t29 = gerstner_wave_directions.y;
+        float t28 = gerstner_wave_directions_2.x;
+        float t29 = gerstner_wave_directions_2.y;
         float t30 = t25 * gerstner_cos;
         float t40 = -((t25 * loop19_c1) * gerstner_sin);
         vec3 t43_2 = vec3((t40 * t28), ((loop19_c0 * loop19_c1) * gerstner_cos), (t40 * t29));

@@ -57,6 +57,21 @@ class OriginScope {
     std::string previous_;
 };
 
+// Sets the author of what a registered node declares and reports (ir.h, Author) while alive.
+class AuthorScope {
+  public:
+    AuthorScope(Graph& g, Author author) : g_(g), previous_(g.author()) {
+        g.set_author(std::move(author));
+    }
+    ~AuthorScope() { g_.set_author(previous_); }
+    AuthorScope(const AuthorScope&) = delete;
+    AuthorScope& operator=(const AuthorScope&) = delete;
+
+  private:
+    Graph& g_;
+    Author previous_;
+};
+
 // Marks subsequent operations relaxed precision (mediump / min16float) when `relaxed`.
 class RelaxedScope {
   public:

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "watergen/ir/diagnostic.h"
+#include "watergen/ir/source_location.h"
 
 namespace watergen {
 
@@ -138,6 +139,22 @@ struct Node {
 // The graphs a node runs inside itself: a loop's body, a switch's cases; none for other nodes.
 std::vector<const Graph*> bodies_of(const Node& n);
 
+// Who wrote a node: the file and line where a project registered it (a node added out of tree,
+// axis_registry.h), or nothing for watergen's own nodes. A parameter or texture two authors
+// declare is one only when both give the same definition (a project reading watergen's
+// ior_water() through its header); otherwise it is an error naming both
+// (Graph::declare_parameter), so one project's node cannot silently change another's.
+struct Author {
+    std::string file{}; // "" for watergen's own nodes
+    int line = 0;
+
+    bool builtin() const { return file.empty(); }
+    std::string label() const; // "fog.cpp:31", or "watergen" for watergen's own nodes
+    friend bool operator==(const Author& a, const Author& b) {
+        return a.file == b.file && a.line == b.line;
+    }
+};
+
 // A uniform parameter a feature node reads. Parameters are data: defaults and ranges travel
 // with the node that declares them, so presets and validation need no shader knowledge.
 struct Parameter {
@@ -154,16 +171,30 @@ struct Parameter {
     // 0: not an array. N > 0: N elements of `type` (default_value holds all of them, element
     // after element), read with element() in dsl.h; min/max bound every element.
     uint32_t array_size = 0;
+    Author author = {}; // set on declaration from the graph's author (Graph::set_author)
+    // The C++ that wrote this definition (its aggregate initialisation): a clash of two
+    // definitions of one name names both places.
+    SourceLocation defined_at = SourceLocation::current();
 };
 
 // Numbers in a parameter's value: its type's components, times its elements for an array.
 size_t value_count(const Parameter& p);
+// Whether two declarations of a parameter are one definition: type, default, range, unit,
+// seed, specialization and size (not who wrote them, nor where).
+bool same_definition(const Parameter& a, const Parameter& b);
+// "parameter 'x' is declared by a at file:line and by b at file:line with different
+// definitions: ...": the error a clash of two definitions of one name reports.
+std::string definition_clash(const std::string& what, const std::string& name,
+                             const std::string& origin, const SourceLocation& at,
+                             const std::string& other_origin, const SourceLocation& other_at);
 
 struct TextureInput {
     std::string name;
     Type type = Type::Texture2D;
     std::string description;
     std::string origin;
+    Author author = {};                                    // set on declaration, as for Parameter
+    SourceLocation defined_at = SourceLocation::current(); // as for Parameter
 };
 
 struct Output {
@@ -200,6 +231,10 @@ class Graph {
     // Feature node that subsequent operations belong to (see OriginScope in dsl.h).
     const std::string& origin() const { return origin_; }
     void set_origin(std::string origin) { origin_ = std::move(origin); }
+    // Author of subsequent declarations and diagnostics (see AuthorScope in dsl.h): an error
+    // then carries the author's file and line.
+    const Author& author() const { return author_; }
+    void set_author(Author author) { author_ = std::move(author); }
     // Whether subsequent operations are relaxed precision (see RelaxedScope in dsl.h).
     bool relaxed() const { return relaxed_; }
     void set_relaxed(bool relaxed) { relaxed_ = relaxed; }
@@ -208,7 +243,8 @@ class Graph {
     const Diagnostics& diagnostics() const { return diagnostics_; }
 
     // Declares a parameter once; a second declaration must agree on type, default and
-    // specialization.
+    // specialization, and another author's must be the same definition (Author). The name must
+    // be an identifier that no shading language reserves (ir/identifier.h).
     void declare_parameter(const Parameter& p);
     const std::vector<Parameter>& parameters() const { return parameters_; }
     const Parameter* find_parameter(const std::string& name) const;
@@ -235,7 +271,10 @@ class Graph {
     // holds the parameters and textures the body declares, and the outer values the body
     // captures. capture() gives the body's node for an outer one: constants and textures are
     // copied, other values become Captured leaves, one per outer node.
-    void begin_body(Graph* enclosing) { enclosing_ = enclosing; }
+    void begin_body(Graph* enclosing) {
+        enclosing_ = enclosing;
+        author_ = enclosing->author_;
+    }
     void end_body() { enclosing_ = nullptr; }
     Graph* enclosing() const { return enclosing_; }
     uint32_t capture(uint32_t outer);
@@ -248,6 +287,7 @@ class Graph {
     std::vector<Node> nodes_;
     std::unordered_map<std::string, uint32_t, KeyHash> index_;
     std::string origin_;
+    Author author_;
     bool relaxed_ = false;
     Diagnostics diagnostics_;
     std::vector<Parameter> parameters_;

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "watergen/ir/source_location.h"
 #include "watergen/water/node_catalog.h"
 
 namespace watergen {
@@ -77,6 +78,9 @@ struct ChoiceInfo {
     std::vector<ChoiceRequirement> requirements{};
     // Extinction choices: how much sunlight their model lets reach a depth; unset: all of it.
     SunlightAtDepth sunlight_at_depth{};
+    // Where a project registered the choice (register_choice); empty for watergen's own. Its
+    // composition declares and reports as this author (ir.h, Author).
+    Author author{};
 };
 
 // A choice with its own feature node: `node` is its catalog entry, `compose` what it does to the
@@ -104,6 +108,11 @@ struct AxisInfo {
     std::vector<ChoiceInfo> choices{}; // in documentation order
     // Catalog nodes of the axis that are not choices ("waves.gerstner.normal"); names are full.
     std::vector<CatalogNode> extra_nodes{};
+    // An axis a project registers (register_axis): composed right after this axis (and the
+    // skeleton's step that follows it: after normals, V and N.V; after specular, the Fresnel
+    // blend into `color`). Empty for watergen's axes, whose order is the registry's.
+    std::string compose_after{};
+    Author author{}; // where a project registered the axis; empty for watergen's own
 };
 
 // Every axis in fixed order; the order of a variant key. The first call freezes the registry.
@@ -111,9 +120,27 @@ const std::vector<AxisInfo>& axes();
 const AxisInfo* find_axis(const std::string& name);
 const ChoiceInfo* find_choice(const AxisInfo& axis, const std::string& name);
 
-// Adds a choice at the end of an axis (a test build's extra node, a plug-in). Only before the
-// first call to axes(); returns why not otherwise, or for an unknown axis or a name in use.
-std::optional<std::string> register_choice(const std::string& axis, ChoiceInfo choice);
+// A project's own nodes, added without editing watergen (docs/authoring.md). Registration
+// happens before the registry's first use (axes()), typically from WATERGEN_REGISTER_NODES at
+// static initialisation of the project's generator (watergen_add_generator); `where` is the
+// call's file and line, which the choice's diagnostics and name clashes then carry.
+//
+// Adds a choice at the end of an existing axis. Returns why not (after the first call to
+// axes(), an unknown axis, a name in use or not a lower-case identifier), and records the
+// same in registration_errors().
+std::optional<std::string> register_choice(const std::string& axis, ChoiceInfo choice,
+                                           SourceLocation where = SourceLocation::current());
+// Adds a whole axis: its choices, its default, and its place in composition
+// (AxisInfo::compose_after, checked when the registry freezes). It comes after watergen's axes
+// in a variant key, in registration order. Errors as for register_choice.
+std::optional<std::string> register_axis(AxisInfo axis,
+                                         SourceLocation where = SourceLocation::current());
+// Every registration that failed, with its file and line: a generator stops on them before
+// doing anything (the CLI exits 2).
+const Diagnostics& registration_errors();
+// The axes in the order the water pass composes them (water_shader.cpp): watergen's, with each
+// registered axis right after its compose_after. Freezes the registry like axes().
+const std::vector<std::string>& composition_order();
 
 // Runs the choice's composition on the surface; an unknown choice records a diagnostic.
 void compose_choice(Surface& s, const std::string& axis, const std::string& choice);
@@ -132,3 +159,10 @@ std::string axis_help(const AxisInfo& axis);
 std::string axes_markdown_table();
 
 } // namespace watergen
+
+// Registers a project's nodes at static initialisation, before main:
+//   WATERGEN_REGISTER_NODES(register_fog) { watergen::register_axis(fog_axis()); }
+#define WATERGEN_REGISTER_NODES(function)                                                          \
+    static void function();                                                                        \
+    [[maybe_unused]] static const bool function##_registered = (function(), true);                 \
+    static void function()
