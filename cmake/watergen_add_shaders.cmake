@@ -9,7 +9,9 @@
 # the scenes and every file they include) names a changed file, or when watergen itself
 # changed; otherwise the build has no work to do. An invalid material or shader fails the build
 # with watergen's diagnostics (file:line:column). Sets the target property WATERGEN_SHADER_DIR
-# to the output directory. JOBS and CACHE are watergen build's --jobs and --cache; BINDINGS is
+# to the output directory, which also holds watergen_shaders.h, the build's C++ header (its
+# binding map, uniform blocks as structs, variants; a target that includes it adds that
+# directory to its include path). JOBS and CACHE are watergen build's --jobs and --cache; BINDINGS is
 # its --bindings: a binding profile's name or the engine's binding map file (a file is a
 # dependency like the material). GENERATOR is a project's own generator
 # (watergen_add_generator: watergen with the project's nodes), run instead of watergen and a
@@ -105,6 +107,7 @@ function(watergen_add_shaders target)
     endforeach()
     add_custom_command(
       OUTPUT "${manifest}"
+      BYPRODUCTS "${out}/watergen_shaders.h"
       COMMAND ${tool} merge "${out}" ${shard_dirs}
       DEPENDS ${shard_files} ${tool}
       COMMENT "watergen: merging ${WG_SHARDS} shards of ${WG_MATERIAL} for ${target}"
@@ -113,6 +116,7 @@ function(watergen_add_shaders target)
     set(depfile "${CMAKE_CURRENT_BINARY_DIR}/watergen_${target}.d")
     add_custom_command(
       OUTPUT "${manifest}"
+      BYPRODUCTS "${out}/watergen_shaders.h"
       COMMAND ${tool} ${args} --out "${out}" --depfile "${depfile}"
       DEPENDS "${material}" ${scenes} ${binding_file} ${tool}
       DEPFILE "${depfile}"

@@ -12,10 +12,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <optional>
 #include <string>
+
+// The build's own C++ header (watergen_shaders.h beside manifest.json): its binding map, each
+// uniform block as a struct, its variants. The namespace is the material's name.
+#include "watergen_shaders.h"
 
 #include "watergen/headless/headless_device.h"
 #include "watergen/runtime/binding_layout.h"
@@ -134,6 +139,33 @@ std::optional<TextureData> draw_caustics(const ShaderBuild& build, const BuildVa
     return texture;
 }
 
+// An engine without the runtime library fills the build header's struct of the variant's
+// uniform block instead of a UniformWriter: the same frame's values give the same bytes.
+std::optional<std::string> check_header_block(const std::string& scene, const BuildVariant& v,
+                                              const std::vector<uint8_t>& packed) {
+    namespace header = watergen_default;
+    const auto found = std::find_if(header::kVariants.begin(), header::kVariants.end(),
+                                    [&](const watergen_shaders::VariantInfo& info) {
+                                        return info.scene == scene && info.key == v.key;
+                                    });
+    if (found == header::kVariants.end())
+        return "watergen_shaders.h does not list " + scene + " " + v.key;
+    return header::with_interface(
+        found->interface_index, [&](auto block) -> std::optional<std::string> {
+            block.eye_position = {0.0f, 6.0f, -20.0f};
+            if constexpr (requires { block.sun_direction; })
+                block.sun_direction = {-0.3f, -0.8f, 0.5f};
+            if (packed.size() != sizeof block ||
+                std::memcmp(packed.data(), &block, sizeof block) != 0)
+                return "watergen_shaders.h's block differs from the runtime's packing";
+            std::printf("watergen_shaders.h: interface %u (%zu bytes) packs the same bytes; "
+                        "WaterParams at set %u, binding %u\n",
+                        found->interface_index, sizeof block, header::bindings::WaterParams.set,
+                        header::bindings::WaterParams.binding);
+            return std::nullopt;
+        });
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -179,6 +211,7 @@ int main(int argc, char** argv) {
     }
     const auto bytes = uniforms.pack(stages->fr, &error);
     if (!bytes) return fail(error);
+    if (auto why = check_header_block(scene, v, *bytes)) return fail(*why);
 
     auto gpu = HeadlessDevice::create({}, &error);
     if (!gpu) return fail(error);

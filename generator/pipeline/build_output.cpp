@@ -1,4 +1,5 @@
 #include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/shaders_header.h"
 
 #include <algorithm>
 #include <chrono>
@@ -351,6 +352,15 @@ BuildSummary build_material_now(const BuildRequest& request) {
                                  plan->manifest_scenes, plan->jobs, results, passes.passes, read,
                                  write, request.options.bindings);
         errors.note(manifest.close());
+        // The build's C++ header, from what it wrote; a shard's comes from the merge instead.
+        if (!request.shard.sharded() && !errors.first) {
+            std::string why;
+            if (auto header =
+                    shaders_header([&](const std::string& path) { return tree->read(path); }, &why))
+                errors.note(tree->write(kShadersHeader, *header));
+            else
+                errors.note(std::optional<std::string>(kShadersHeader + std::string(": ") + why));
+        }
         if (request.shard.sharded() && !errors.first) {
             // Lists every file so far: shard.json is recorded once it is closed.
             StagedStream shard = tree->stream(kShardFile);

@@ -1,4 +1,5 @@
 #include "watergen/pipeline/sharded_build.h"
+#include "watergen/pipeline/shaders_header.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -509,6 +510,19 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
             m.write_failed = write_error;
             return m;
         }
+    }
+    // The merged build's C++ header, as one build of the same inputs writes it.
+    std::string why;
+    const auto header =
+        shaders_header([&](const std::string& path) { return tree->read(path); }, &why);
+    if (!header) {
+        m.error = std::string(kShadersHeader) + ": " + why;
+        return m;
+    }
+    if (auto e = tree->write(kShadersHeader, *header)) {
+        m.error = *e;
+        m.write_failed = true;
+        return m;
     }
     // Checked again: the merge took a while.
     if (const OutputTarget again = check_output_target(out); !again.ok()) {

@@ -1,0 +1,298 @@
+#include "watergen/pipeline/shaders_header.h"
+
+#include <map>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "watergen/ir/uniform_layout.h"
+#include "watergen/pipeline/json_document.h"
+
+namespace watergen {
+
+namespace {
+
+using OJson = nlohmann::ordered_json;
+
+// "default" -> "watergen_default": a namespace no keyword or other build's takes.
+std::string namespace_of(const std::string& material) {
+    std::string s = "watergen_";
+    for (char c : material)
+        s += ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9')) ? c : '_';
+    return s;
+}
+
+// A C++ string literal of `text` (keys and names hold no quote or backslash; escaped anyway).
+std::string literal(const std::string& text) {
+    std::string s = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') s += '\\';
+        s += c;
+    }
+    return s + "\"";
+}
+
+// A float as C++ writes it back to the same binary32 value.
+std::string float_literal(double v) {
+    std::string s = fmt::format("{}", static_cast<float>(v));
+    if (s.find_first_of(".einf") == std::string::npos) s += ".0";
+    return s + "f";
+}
+
+uint32_t components(const std::string& type) {
+    if (type == "float") return 1;
+    if (type == "vec2") return 2;
+    if (type == "vec3") return 3;
+    if (type == "vec4") return 4;
+    return 0;
+}
+
+// The C++ type of a member: Vec2..Vec4 for vectors, their padded element types in arrays.
+std::string member_type(const std::string& type, bool element) {
+    const std::string base = type == "float" ? "Float" : "Vec" + type.substr(3);
+    if (element) return base + "Element";
+    return type == "float" ? "float" : base;
+}
+
+// One value of `n` components as an initialiser: 1.0f or {1.0f, 2.0f}.
+std::string initialiser(const std::vector<double>& values, size_t first, uint32_t n) {
+    if (n == 1) return float_literal(values.at(first));
+    std::string s = "{";
+    for (uint32_t i = 0; i < n; ++i)
+        s += (i ? ", " : "") + float_literal(values.at(first + i));
+    return s + "}";
+}
+
+struct Interface {
+    std::string block;     // the uniform block's struct body and asserts, as written
+    std::string constants; // its specialization constants' initialiser list
+    size_t constant_count = 0;
+    size_t variants = 0;
+    std::string first; // the first variant's scene and key, for the comment
+};
+
+// The struct of a variant.json's uniform block, named `name`; nullopt with *error.
+std::optional<std::string> block_struct(const OJson& block, const std::string& name,
+                                        std::string* error) {
+    std::string body, asserts;
+    uint32_t cursor = 0, pads = 0;
+    for (const OJson& m : block.at("members")) {
+        const std::string member = m.at("name").get<std::string>();
+        const std::string type = m.at("type").get<std::string>();
+        const uint32_t n = components(type);
+        const uint32_t offset = m.at("offset").get<uint32_t>();
+        const uint32_t array = m.value("array_size", 0u);
+        const std::vector<double> values = m.at("default").get<std::vector<double>>();
+        if (n == 0 || offset < cursor || offset % 4 != 0 ||
+            values.size() != n * std::max(array, 1u)) {
+            *error = "uniform block member '" + member + "' (" + type + " at " +
+                     std::to_string(offset) + "): not a float member in order";
+            return std::nullopt;
+        }
+        if (offset > cursor)
+            body += fmt::format("    float pad{}[{}]{{}};\n", pads++, (offset - cursor) / 4);
+        if (array) {
+            std::string init;
+            for (uint32_t e = 0; e < array; ++e)
+                init += (e ? ", " : "") + std::string("{") + initialiser(values, e * n, n) + "}";
+            body += fmt::format("    {} {}[{}] = {{{}}};\n", member_type(type, true), member, array,
+                                init);
+            cursor = offset + array * kArrayStride;
+        } else {
+            body += fmt::format("    {} {} = {};\n", member_type(type, false), member,
+                                initialiser(values, 0, n));
+            cursor = offset + 4 * n;
+        }
+        asserts += fmt::format("static_assert(offsetof({}, {}) == {});\n", name, member, offset);
+    }
+    const uint32_t size = block.at("size").get<uint32_t>();
+    if (size < cursor) {
+        *error = "uniform block size " + std::to_string(size) + " below its members' end " +
+                 std::to_string(cursor);
+        return std::nullopt;
+    }
+    if (size > cursor) body += fmt::format("    float pad{}[{}]{{}};\n", pads, (size - cursor) / 4);
+    if (size > 0) asserts += fmt::format("static_assert(sizeof({}) == {});\n", name, size);
+    return fmt::format("struct {} {{\n{}}};\n{}", name, body, asserts);
+}
+
+std::string constants_of(const OJson& description, size_t* count) {
+    std::string s;
+    *count = 0;
+    for (const OJson& c : description.value("specialization_constants", OJson::array()))
+        for (const OJson& id : c.at("constant_ids")) {
+            s += fmt::format("{}{{{}, {}}}", *count ? ", " : "", literal(c.at("name")),
+                             id.get<uint32_t>());
+            ++*count;
+        }
+    return s;
+}
+
+const char* kPrologue = R"(#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+// Types shared by every watergen build's header (defined once, whichever is included first).
+#ifndef WATERGEN_SHADERS_HEADER_TYPES
+#define WATERGEN_SHADERS_HEADER_TYPES
+namespace watergen_shaders {
+struct Vec2 { float x, y; };
+struct Vec3 { float x, y, z; };
+struct Vec4 { float x, y, z, w; };
+// An array element: std140 and HLSL cbuffers start each one on a 16-byte register.
+struct FloatElement { float value; float pad[3]{}; };
+struct Vec2Element { Vec2 value; float pad[2]{}; };
+struct Vec3Element { Vec3 value; float pad = 0; };
+struct Vec4Element { Vec4 value; };
+// Where the binding map puts a resource, in every target.
+struct Slot { uint32_t set, binding, hlsl_register, hlsl_space, msl, gl; };
+struct SpecializationConstant { const char* name; uint32_t constant_id; };
+struct VariantInfo { const char* scene; const char* key; const char* hash; uint32_t interface_index; };
+} // namespace watergen_shaders
+#endif
+)";
+
+} // namespace
+
+std::optional<std::string> shaders_header(const ReadOutputFile& read, std::string* error) {
+    const std::optional<std::string> manifest = read("manifest.json");
+    if (!manifest) {
+        *error = "manifest.json: missing";
+        return std::nullopt;
+    }
+    std::string material, map_name;
+    OJson resources;
+    std::map<std::string, size_t> interface_of_text; // block + constants -> interface
+    std::map<std::string, size_t> interface_of_dir;  // a shader's directory -> interface
+    std::vector<Interface> interfaces;
+    std::string variants;
+    size_t variant_count = 0;
+    // The interface of the shader in `dir` (its variant.json read once).
+    auto interface_at = [&](const std::string& description) -> std::optional<size_t> {
+        if (auto it = interface_of_dir.find(description); it != interface_of_dir.end())
+            return it->second;
+        const std::optional<std::string> text = read(description);
+        if (!text) {
+            *error = description + ": missing";
+            return std::nullopt;
+        }
+        const OJson d = OJson::parse(*text, nullptr, false);
+        if (d.is_discarded() || !d.contains("uniform_block")) {
+            *error = description + ": not a variant description";
+            return std::nullopt;
+        }
+        const size_t next = interfaces.size();
+        const std::string name = "WaterParams" + std::to_string(next);
+        auto block = block_struct(d["uniform_block"], name, error);
+        if (!block) {
+            *error = description + ": " + *error;
+            return std::nullopt;
+        }
+        size_t count = 0;
+        const std::string constants = constants_of(d, &count);
+        // Interfaces alike in everything but their number are one.
+        std::string generic = *block;
+        for (size_t at = generic.find(name); at != std::string::npos; at = generic.find(name, at))
+            generic.replace(at, name.size(), "WaterParams#");
+        const auto [it, fresh] = interface_of_text.emplace(generic + "|" + constants, next);
+        if (fresh) interfaces.push_back({*block, constants, count, 0, ""});
+        interface_of_dir.emplace(description, it->second);
+        return it->second;
+    };
+    bool modes = false;
+    std::map<std::string, std::string> shader_description; // modes: directory -> variant.json
+    JsonDocumentReader reader;
+    reader.streamed = {"shaders", "variants"};
+    reader.member = [&](const std::string& name, OJson&& value) {
+        if (name == "material") material = value.value("name", "");
+        if (name == "bindings") {
+            map_name = value.value("map", "");
+            resources = value.value("resources", OJson::object());
+        }
+        if (name == "mode") modes = value.get<std::string>() != "permutations";
+        return true;
+    };
+    reader.element = [&](const std::string& array, OJson&& e) {
+        if (array == "shaders") {
+            const OJson& files = e["files"]["description"];
+            if (!files.is_array() || files.empty()) {
+                *error = "manifest.json: a shader without a description file";
+                return false;
+            }
+            shader_description[e.value("directory", "")] = files[0].get<std::string>();
+            return true;
+        }
+        std::string description;
+        if (modes) {
+            const auto it = shader_description.find(e.value("shader", ""));
+            if (it != shader_description.end()) description = it->second;
+        } else if (e["files"]["description"].is_array() && !e["files"]["description"].empty()) {
+            description = e["files"]["description"][0].get<std::string>();
+        }
+        if (description.empty()) {
+            *error = "manifest.json: variant " + e.value("key", "") + " names no description";
+            return false;
+        }
+        const std::optional<size_t> i = interface_at(description);
+        if (!i) return false;
+        const std::string scene = e.value("scene", ""), key = e.value("key", "");
+        Interface& in = interfaces[*i];
+        if (in.variants++ == 0) in.first = scene + " " + key;
+        variants += fmt::format("    {{{}, {}, {}, {}}},\n", literal(scene), literal(key),
+                                literal(e.value("hash", "")), *i);
+        ++variant_count;
+        return true;
+    };
+    std::string why;
+    const JsonReadEnd end = read_json_document(*manifest, reader, &why);
+    if (end == JsonReadEnd::Stopped) return std::nullopt;
+    if (end == JsonReadEnd::Malformed) {
+        *error = "manifest.json: " + why;
+        return std::nullopt;
+    }
+
+    const std::string ns = namespace_of(material);
+    std::string h = fmt::format("// generated by watergen from the build of material '{}'; do not "
+                                "edit. The build's\n// binding map, its uniform blocks as structs "
+                                "and its variants (docs/engine-guide.md).\n",
+                                material);
+    h += kPrologue;
+    h += fmt::format("\nnamespace {} {{\n\nusing namespace watergen_shaders;\n", ns);
+    h += fmt::format("inline constexpr const char* kMaterial = {};\n", literal(material));
+    h += fmt::format("inline constexpr const char* kBindingMap = {};\n\n", literal(map_name));
+    h += "// Every resource's place: set, binding, HLSL register, HLSL space, Metal index, GL "
+         "unit.\nnamespace bindings {\n";
+    for (const auto& [name, r] : resources.items())
+        h += fmt::format("inline constexpr Slot {}{{{}, {}, {}, {}, {}, {}}}; // {}\n", name,
+                         r.value("set", 0u), r.value("binding", 0u), r.value("hlsl_register", 0u),
+                         r.value("hlsl_space", 0u), r.value("msl", 0u), r.value("gl", 0u),
+                         r.value("kind", ""));
+    h += "} // namespace bindings\n";
+    for (size_t i = 0; i < interfaces.size(); ++i) {
+        const Interface& in = interfaces[i];
+        h += fmt::format("\n// Interface {}: {} variant{} (the first: {}).\n", i, in.variants,
+                         in.variants == 1 ? "" : "s", in.first);
+        h += in.block;
+        h += fmt::format(
+            "inline constexpr std::array<SpecializationConstant, {}> kConstants{}{{{{{}}}}};\n",
+            in.constant_count, i, in.constants);
+    }
+    h += fmt::format("\ninline constexpr std::array<VariantInfo, {}> kVariants{{{{\n{}}}}};\n",
+                     variant_count, variants);
+    if (!interfaces.empty())
+        h += "\n// Calls f with interface i's uniform block at its defaults (f's result for each "
+             "interface\n// must be of one type).\ntemplate <class F>\nconstexpr decltype(auto) "
+             "with_interface(uint32_t i, F&& f) {\n    switch (i) {\n";
+    for (size_t i = 0; i + 1 < interfaces.size(); ++i)
+        h += fmt::format("    case {}:\n        return f(WaterParams{}{{}});\n", i, i);
+    if (!interfaces.empty())
+        h += fmt::format("    default:\n        return f(WaterParams{}{{}});\n    }}\n}}\n",
+                         interfaces.size() - 1);
+    h += fmt::format("\n}} // namespace {}\n", ns);
+    return h;
+}
+
+} // namespace watergen

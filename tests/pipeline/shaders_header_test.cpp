@@ -1,0 +1,115 @@
+// watergen_shaders.h, the build's C++ header. generated/ holds the example build's (a test keeps
+// generated/ equal to what the generator writes), so including it here compiles the header with
+// every static_assert of its offsets and sizes; at run time it must list the manifest's
+// variants in order and hold, in each interface's default block, every member's default at the
+// offset the variant's description gives, and zero elsewhere.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "build_test_support.h"
+#include "watergen/ir/uniform_layout.h"
+#include "watergen/pipeline/shaders_header.h"
+#include "watergen_shaders.h"
+
+using namespace watergen;
+
+namespace {
+
+Json read_json(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    REQUIRE(in);
+    return Json::parse(in);
+}
+
+// Interface i's default block as floats.
+std::vector<float> default_block(uint32_t i) {
+    return watergen_default::with_interface(i, [](auto block) {
+        std::vector<float> floats(sizeof block / sizeof(float));
+        std::memcpy(floats.data(), &block, sizeof block);
+        return floats;
+    });
+}
+
+} // namespace
+
+TEST_CASE("the_build_header_lists_every_variant_with_its_default_block", "[golden]") {
+    const std::filesystem::path generated = std::filesystem::path(test::source_dir()) / "generated";
+    const Json manifest = read_json(generated / "manifest.json");
+    const Json& variants = manifest.at("variants");
+    REQUIRE(watergen_default::kVariants.size() == variants.size());
+    CHECK(std::string(watergen_default::kMaterial) == "default");
+    CHECK(std::string(watergen_default::kBindingMap) == manifest["bindings"]["map"]);
+    CHECK(watergen_default::bindings::WaterParams.binding ==
+          manifest["bindings"]["resources"]["WaterParams"]["binding"]);
+    CHECK(watergen_default::bindings::sky_cube.binding ==
+          manifest["bindings"]["resources"]["sky_cube"]["binding"]);
+    size_t members = 0;
+    for (size_t k = 0; k < variants.size(); ++k) {
+        const Json& v = variants[k];
+        const watergen_shaders::VariantInfo& info = watergen_default::kVariants[k];
+        INFO(v["scene"].get<std::string>() << " " << v["key"].get<std::string>());
+        CHECK(info.scene == v["scene"].get<std::string>());
+        CHECK(info.key == v["key"].get<std::string>());
+        CHECK(info.hash == v["hash"].get<std::string>());
+        const Json d = read_json(generated / v["files"]["description"][0].get<std::string>());
+        const Json& block = d["uniform_block"];
+        const std::vector<float> floats = default_block(info.interface_index);
+        REQUIRE(floats.size() * sizeof(float) == block["size"].get<size_t>());
+        std::vector<bool> member_float(floats.size(), false);
+        for (const Json& m : block["members"]) {
+            const std::vector<double> values = m["default"];
+            const size_t n = m["type"] == "float" ? 1 : m["type"].get<std::string>()[3] - '0';
+            for (size_t i = 0; i < values.size(); ++i) {
+                const size_t at = (m["offset"].get<size_t>() + (i / n) * kArrayStride) / 4 + i % n;
+                REQUIRE(at < floats.size());
+                CHECK(floats[at] == static_cast<float>(values[i]));
+                member_float[at] = true;
+            }
+            ++members;
+        }
+        for (size_t at = 0; at < floats.size(); ++at)
+            if (!member_float[at]) CHECK(floats[at] == 0.0f);
+    }
+    CHECK(members > 1000); // every variant's members were compared (56 variants)
+}
+
+TEST_CASE("the_build_header_is_what_the_generator_writes_for_that_output", "[golden]") {
+    const std::filesystem::path generated = std::filesystem::path(test::source_dir()) / "generated";
+    std::string error;
+    const auto header = shaders_header(
+        [&](const std::string& path) -> std::optional<std::string> {
+            std::ifstream in(generated / path, std::ios::binary);
+            if (!in) return std::nullopt;
+            std::ostringstream s;
+            s << in.rdbuf();
+            return s.str();
+        },
+        &error);
+    INFO(error);
+    REQUIRE(header);
+    std::ifstream in(generated / kShadersHeader, std::ios::binary);
+    std::ostringstream committed;
+    committed << in.rdbuf();
+    CHECK(*header == committed.str());
+    CHECK(header->find("kConstants") != std::string::npos);
+}
+
+TEST_CASE("a_build_header_needs_its_manifest_and_descriptions", "[unit]") {
+    std::string error;
+    CHECK_FALSE(shaders_header([](const std::string&) { return std::nullopt; }, &error));
+    CHECK(error == "manifest.json: missing");
+    const std::string manifest = R"({"material": {"name": "m"}, "variants": [
+        {"scene": "s", "key": "k", "hash": "h", "files": {"description": ["s/k/variant.json"]}}]})";
+    CHECK_FALSE(shaders_header(
+        [&](const std::string& path) -> std::optional<std::string> {
+            if (path == "manifest.json") return manifest;
+            return std::nullopt;
+        },
+        &error));
+    CHECK(error == "s/k/variant.json: missing");
+}
