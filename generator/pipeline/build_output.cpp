@@ -353,14 +353,7 @@ BuildSummary build_material_now(const BuildRequest& request) {
                                  write, request.options.bindings);
         errors.note(manifest.close());
         // The build's C++ header, from what it wrote; a shard's comes from the merge instead.
-        if (!request.shard.sharded() && !errors.first) {
-            std::string why;
-            if (auto header =
-                    shaders_header([&](const std::string& path) { return tree->read(path); }, &why))
-                errors.note(tree->write(kShadersHeader, *header));
-            else
-                errors.note(std::optional<std::string>(kShadersHeader + std::string(": ") + why));
-        }
+        if (!request.shard.sharded() && !errors.first) errors.note(write_shaders_header(*tree));
         if (request.shard.sharded() && !errors.first) {
             // Lists every file so far: shard.json is recorded once it is closed.
             StagedStream shard = tree->stream(kShardFile);

@@ -8,6 +8,7 @@
 
 #include "watergen/ir/uniform_layout.h"
 #include "watergen/pipeline/json_document.h"
+#include "watergen/pipeline/staged_tree.h"
 
 namespace watergen {
 
@@ -293,6 +294,14 @@ std::optional<std::string> shaders_header(const ReadOutputFile& read, std::strin
                          interfaces.size() - 1);
     h += fmt::format("\n}} // namespace {}\n", ns);
     return h;
+}
+
+std::optional<std::string> write_shaders_header(StagedTree& tree) {
+    std::string why;
+    const auto header =
+        shaders_header([&](const std::string& path) { return tree.read(path); }, &why);
+    if (!header) return std::string(kShadersHeader) + ": " + why;
+    return tree.write(kShadersHeader, *header);
 }
 
 } // namespace watergen

@@ -512,14 +512,7 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
         }
     }
     // The merged build's C++ header, as one build of the same inputs writes it.
-    std::string why;
-    const auto header =
-        shaders_header([&](const std::string& path) { return tree->read(path); }, &why);
-    if (!header) {
-        m.error = std::string(kShadersHeader) + ": " + why;
-        return m;
-    }
-    if (auto e = tree->write(kShadersHeader, *header)) {
+    if (auto e = write_shaders_header(*tree)) {
         m.error = *e;
         m.write_failed = true;
         return m;

@@ -27,4 +27,9 @@ using ReadOutputFile = std::function<std::optional<std::string>(const std::strin
 // The header's text, or nullopt with *error (a file missing or malformed).
 std::optional<std::string> shaders_header(const ReadOutputFile& read, std::string* error);
 
+class StagedTree;
+// Writes the header of what `tree` holds (its manifest.json written) into it: the build's last
+// step and the merge's. The error names the header.
+std::optional<std::string> write_shaders_header(StagedTree& tree);
+
 } // namespace watergen
