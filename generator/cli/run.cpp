@@ -4,6 +4,7 @@
 #include <map>
 
 #include "commands.h"
+#include "watergen/plan/material.h"
 #include "watergen/water/presets.h"
 #include "watergen/water/water_shader.h"
 
@@ -76,6 +77,10 @@ int run(int argc, char** argv) {
     // registration stops it before anything is built from a registry without them.
     if (const auto& errors = watergen::registration_errors(); !errors.empty()) {
         print_diagnostics(errors, Common{});
+        return kUsage;
+    }
+    if (const auto error = watergen::check_registered_nodes()) {
+        print_diagnostics({*error}, Common{});
         return kUsage;
     }
     CLI::App app{

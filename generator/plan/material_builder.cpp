@@ -61,27 +61,9 @@ std::string why_unusable(const VariantSpace& space, size_t axis, const std::stri
     return why;
 }
 
-// Parameters the offered nodes declare, found by composing one valid variant per offered choice.
-// *error is the first mistake in a node's definition this finds, before anything is built: an
-// error composing the IR (a project's node with a type error, at its registering file and
-// line), or two authors' different definitions of one name (a project's node and watergen's,
-// or two projects'), which would give one uniform two meanings across the material's variants.
-std::map<std::string, Parameter> declared_parameters(const VariantSpace& space,
-                                                     std::optional<Diagnostic>* error) {
-    std::vector<std::vector<bool>> seen(axes().size());
-    for (size_t i = 0; i < axes().size(); ++i)
-        seen[i].assign(space.choices[i].size(), false);
-    std::vector<Variant> probes;
-    enumerate_indices(space, [&](const std::vector<size_t>& index) {
-        bool fresh = false;
-        for (size_t i = 0; i < index.size(); ++i)
-            if (!seen[i][index[i]]) fresh = seen[i][index[i]] = true;
-        if (!fresh) return;
-        Variant v = default_variant();
-        for (size_t i = 0; i < index.size(); ++i)
-            v.choices[i] = space.choices[i][index[i]];
-        probes.push_back(std::move(v));
-    });
+// The parameters `probes` declare, composed one by one; *error as for declared_parameters.
+std::map<std::string, Parameter> declarations_of(const std::vector<Variant>& probes,
+                                                 std::optional<Diagnostic>* error) {
     std::map<std::string, Parameter> declared;
     for (const Variant& v : probes) {
         const WaterShader s = build_water_shader(v, nullptr);
@@ -105,7 +87,49 @@ std::map<std::string, Parameter> declared_parameters(const VariantSpace& space,
     return declared;
 }
 
+// Parameters the offered nodes declare, found by composing one valid variant per offered choice.
+// *error is the first mistake in a node's definition this finds, before anything is built: an
+// error composing the IR (a project's node with a type error, at its registering file and
+// line), or two authors' different definitions of one name (a project's node and watergen's,
+// or two projects'), which would give one uniform two meanings across the material's variants.
+std::map<std::string, Parameter> declared_parameters(const VariantSpace& space,
+                                                     std::optional<Diagnostic>* error) {
+    std::vector<std::vector<bool>> seen(axes().size());
+    for (size_t i = 0; i < axes().size(); ++i)
+        seen[i].assign(space.choices[i].size(), false);
+    std::vector<Variant> probes;
+    enumerate_indices(space, [&](const std::vector<size_t>& index) {
+        bool fresh = false;
+        for (size_t i = 0; i < index.size(); ++i)
+            if (!seen[i][index[i]]) fresh = seen[i][index[i]] = true;
+        if (!fresh) return;
+        Variant v = default_variant();
+        for (size_t i = 0; i < index.size(); ++i)
+            v.choices[i] = space.choices[i][index[i]];
+        probes.push_back(std::move(v));
+    });
+    return declarations_of(probes, error);
+}
+
 } // namespace
+
+std::optional<Diagnostic> check_registered_nodes() {
+    bool registered = false;
+    for (const AxisInfo& a : axes())
+        for (const ChoiceInfo& c : a.choices)
+            registered |= !c.author.builtin();
+    if (!registered) return std::nullopt;
+    std::vector<Variant> probes;
+    for (size_t i = 0; i < axes().size(); ++i)
+        for (const ChoiceInfo& c : axes()[i].choices) {
+            Variant v = default_variant();
+            v.choices[i] = c.name;
+            if (!check_constraints(v)) probes.push_back(std::move(v));
+        }
+    std::optional<Diagnostic> error;
+    declarations_of(probes, &error);
+    return error;
+}
 
 MaterialBuilder::MaterialBuilder(std::string name, SourceRef at)
     : name_(std::move(name)), name_at_(std::move(at)) {}

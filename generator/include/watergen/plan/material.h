@@ -142,6 +142,13 @@ class MaterialBuilder {
 std::optional<Material> load_material(const std::filesystem::path& path, Diagnostics& diagnostics);
 std::optional<Material> parse_material(const JsonSource& source, Diagnostics& diagnostics);
 
+// The first mistake in a project's registered nodes (axis_registry.h), found by composing the
+// default variant with each choice of every axis in turn (those the constraints allow): an
+// error composing a node's IR, or a parameter two authors define differently (both
+// definitions named). nullopt when nothing is registered. A project's generator checks this at
+// start, so a redefinition is refused even where the two nodes never meet in one variant.
+std::optional<Diagnostic> check_registered_nodes();
+
 // The built-in default material (default_material.cpp; examples/materials/default.json is the
 // same in JSON, and a test builds both and compares them).
 Material default_material();
