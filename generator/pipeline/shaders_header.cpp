@@ -1,11 +1,13 @@
 #include "watergen/pipeline/shaders_header.h"
 
+#include <cstring>
 #include <map>
 #include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "watergen/ir/ir.h"
 #include "watergen/ir/uniform_layout.h"
 #include "watergen/pipeline/json_document.h"
 #include "watergen/pipeline/staged_tree.h"
@@ -41,11 +43,11 @@ std::string float_literal(double v) {
     return s + "f";
 }
 
+// Components of a block member's type as variant.json spells it (the IR's type_name); 0 for
+// any type a block does not hold.
 uint32_t components(const std::string& type) {
-    if (type == "float") return 1;
-    if (type == "vec2") return 2;
-    if (type == "vec3") return 3;
-    if (type == "vec4") return 4;
+    for (Type t : {Type::Float, Type::Vec2, Type::Vec3, Type::Vec4})
+        if (type == type_name(t)) return static_cast<uint32_t>(component_count(t));
     return 0;
 }
 
@@ -64,6 +66,9 @@ std::string initialiser(const std::vector<double>& values, size_t first, uint32_
         s += (i ? ", " : "") + float_literal(values.at(first + i));
     return s + "}";
 }
+
+// The name a block struct is made with, before its interface has a number.
+constexpr const char* kBlockPlaceholder = "WaterParams#";
 
 struct Interface {
     std::string block;     // the uniform block's struct body and asserts, as written
@@ -185,20 +190,17 @@ std::optional<std::string> shaders_header(const ReadOutputFile& read, std::strin
             *error = description + ": not a variant description";
             return std::nullopt;
         }
-        const size_t next = interfaces.size();
-        const std::string name = "WaterParams" + std::to_string(next);
-        auto block = block_struct(d["uniform_block"], name, error);
+        // Written with a placeholder name: interfaces alike in everything but their number are
+        // one, and the number is spelled when the header is written.
+        auto block = block_struct(d["uniform_block"], kBlockPlaceholder, error);
         if (!block) {
             *error = description + ": " + *error;
             return std::nullopt;
         }
         size_t count = 0;
         const std::string constants = constants_of(d, &count);
-        // Interfaces alike in everything but their number are one.
-        std::string generic = *block;
-        for (size_t at = generic.find(name); at != std::string::npos; at = generic.find(name, at))
-            generic.replace(at, name.size(), "WaterParams#");
-        const auto [it, fresh] = interface_of_text.emplace(generic + "|" + constants, next);
+        const auto [it, fresh] =
+            interface_of_text.emplace(*block + "|" + constants, interfaces.size());
         if (fresh) interfaces.push_back({*block, constants, count, 0, ""});
         interface_of_dir.emplace(description, it->second);
         return it->second;
@@ -276,7 +278,12 @@ std::optional<std::string> shaders_header(const ReadOutputFile& read, std::strin
         const Interface& in = interfaces[i];
         h += fmt::format("\n// Interface {}: {} variant{} (the first: {}).\n", i, in.variants,
                          in.variants == 1 ? "" : "s", in.first);
-        h += in.block;
+        std::string block = in.block;
+        const std::string name = "WaterParams" + std::to_string(i);
+        for (size_t at = block.find(kBlockPlaceholder); at != std::string::npos;
+             at = block.find(kBlockPlaceholder, at))
+            block.replace(at, std::strlen(kBlockPlaceholder), name);
+        h += block;
         h += fmt::format(
             "inline constexpr std::array<SpecializationConstant, {}> kConstants{}{{{{{}}}}};\n",
             in.constant_count, i, in.constants);
