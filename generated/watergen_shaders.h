@@ -46,6 +46,7 @@ inline constexpr Slot foam_pattern{0, 9, 7, 0, 7, 7}; // texture
 inline constexpr Slot fourier_coefs1{0, 10, 8, 0, 8, 8}; // texture
 inline constexpr Slot fourier_coefs2{0, 11, 9, 0, 9, 9}; // texture
 inline constexpr Slot caustics_tile{0, 12, 10, 0, 10, 10}; // texture
+inline constexpr Slot scene_depth{0, 13, 11, 0, 11, 11}; // texture
 } // namespace bindings
 
 // Interface 0: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none).

@@ -1,4 +1,6 @@
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -140,7 +142,34 @@ int check_agreement(const RenderRun& run) {
     return kFailed;
 }
 
+// "name=v[,v...]" into values; false after saying what is wrong.
+bool parse_set(const std::string& item, std::map<std::string, std::vector<double>>& values) {
+    const size_t eq = item.find('=');
+    std::vector<double> value;
+    bool ok = eq != std::string::npos && eq > 0 && eq + 1 < item.size();
+    for (size_t at = eq + 1; ok && at <= item.size();) {
+        size_t end = item.find(',', at);
+        if (end == std::string::npos) end = item.size();
+        const std::string number = item.substr(at, end - at);
+        char* stop = nullptr;
+        const double x = std::strtod(number.c_str(), &stop);
+        ok = !number.empty() && stop == number.c_str() + number.size() && std::isfinite(x);
+        value.push_back(x);
+        at = end + 1;
+    }
+    if (!ok) {
+        std::fprintf(stderr,
+                     "watergen: error: --set '%s': expected name=value or name=v1,v2,... with "
+                     "finite numbers\n",
+                     item.c_str());
+        return false;
+    }
+    values[item.substr(0, eq)] = std::move(value);
+    return true;
+}
+
 struct RenderOptions {
+    std::vector<std::string> sets;
     RenderRequest request;
     std::string preset, out = "out/render";
     bool strict_half = false;
@@ -207,6 +236,10 @@ Runner add_render_command(CLI::App& app, const Common& common) {
                  "precision=full");
     add_unroll_option(app, r.unroll);
     add_view_option(app, r.view);
+    app.add_option("--set", o->sets,
+                   "NAME=V[,V...]: a parameter's value for the GPU and the CPU alike, over the "
+                   "preset's and the view's (repeatable); e.g. --scene_input depth_buffer --set "
+                   "scene_depth_reversed=0 draws a standard-Z depth buffer");
     app.add_option(
         "--out", o->out,
         "output directory; files go to <out>/<variant>/, or <out>/<variant>_view-<view>/ "
@@ -216,6 +249,13 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         if (!resolve_variant(o->request.variant, o->preset, &o->request.preset, common))
             return kUsage;
         o->request.out = o->out;
+        for (const std::string& item : o->sets)
+            if (!parse_set(item, o->request.values)) return kUsage;
+        if (o->strict_half && !o->sets.empty()) {
+            std::fprintf(stderr, "watergen: error: --strict-half draws the view's values; "
+                                 "leave out --set\n");
+            return kUsage;
+        }
         if (o->strict_half && o->request.unroll != LoopUnroll::AsHinted) {
             std::fprintf(stderr, "watergen: error: --strict-half renders with each loop's own "
                                  "unroll hint; leave out --unroll\n");

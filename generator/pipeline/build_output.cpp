@@ -73,8 +73,8 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
         plan.scenes.push_back(std::move(*p));
     }
     if (plan.scenes.empty()) {
-        // Sorted by key, each key made once (the full space has 721,920: the count
-        // the_full_space_has_721920_variants pins). A permutations shard keeps its own only:
+        // Sorted by key, each key made once (the full space has 1,443,840: the count
+        // the_full_space_has_1443840_variants pins). A permutations shard keeps its own only:
         // the whole space's jobs would be most of a shard's memory.
         const bool only_shard = shard.sharded() && mode == BuildMode::Permutations;
         size_t count = 0;

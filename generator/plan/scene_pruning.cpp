@@ -184,11 +184,16 @@ FoldFacts base_facts(const Material& m) {
     const size_t uv = f.add_fact("v_uv lies in [0, 1]", "");
     f.input_ranges["v_uv"] = {{make_interval(0.0, 1.0)}, uv};
     const size_t tex =
-        f.add_fact("scene textures are finite: colour in [0, 65504], positions within 100 km", "");
+        f.add_fact("scene textures are finite: colour in [0, 65504], positions within 100 km, "
+                   "window depth in [0, 1]",
+                   "");
     f.input_ranges["scene_color"] = {{make_interval(0.0, 65504.0)}, tex};
     f.input_ranges["scene_position"] = {{make_interval(-1e5, 1e5), make_interval(-1e5, 1e5),
                                          make_interval(-1e5, 1e5), make_interval(0.0, 1e6)},
                                         tex};
+    f.input_ranges["scene_depth"] = {{make_interval(0.0, 1.0), make_interval(0.0, 1.0),
+                                      make_interval(0.0, 1.0), make_interval(0.0, 1.0)},
+                                     tex};
     for (const auto& [name, s] : m.parameters) {
         if (!s.min) continue;
         const size_t id = f.add_fact(

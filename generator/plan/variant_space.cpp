@@ -105,7 +105,7 @@ void enumerate_indices(const VariantSpace& space,
     if (n != axes().size()) return;
     for (const auto& list : space.choices)
         if (list.empty()) return;
-    // The full space has 721,920 variants and a build enumerates it several times: rules are
+    // The full space has 1,443,840 variants and a build enumerates it several times: rules are
     // tested on indices, and no names are touched.
     const std::optional<std::vector<IndexedRule>> rules = index_rules(space);
     Variant named = default_variant(); // only when a rule names an unknown axis

@@ -13,14 +13,15 @@ namespace {
 struct Registry {
     // Order is the order of a variant key. Seeds: 000 Toman, 001 Lombard, 002 Mihalik,
     // 003 IceFall, 004 sum of sines / Gerstner / Atlas (../shared/docs/water-models.md).
-    // caustics came last, so every key before it reads as it did.
+    // caustics and scene_input came last, in that order.
     std::vector<AxisInfo> axes = {fresnel_axis(),   extinction_axis(), specular_axis(),
                                   foam_axis(),      reflection_axis(), refraction_axis(),
                                   normals_axis(),   waves_axis(),      shore_axis(),
-                                  precision_axis(), caustics_axis()};
+                                  precision_axis(), caustics_axis(),   scene_input_axis()};
     // The order water_shader.cpp composes watergen's axes in: the surface first (waves,
     // normals), then what the view ray sees through and off it, then what lies on top.
-    // Precision composes nothing (it scopes the shading); registered axes join on freezing.
+    // Precision composes nothing (it scopes the shading); scene_input composes in the skeleton,
+    // before the view ray; registered axes join on freezing.
     std::vector<std::string> composition = {"waves",      "normals",    "refraction", "caustics",
                                             "extinction", "reflection", "fresnel",    "specular",
                                             "foam",       "shore"};
@@ -133,6 +134,10 @@ std::optional<std::string> refuse(Registry& r, const SourceLocation& where, std:
 
 const std::vector<AxisInfo>& axes() {
     return frozen_registry().axes;
+}
+
+bool spelled_in_key(const AxisInfo& axis, const std::vector<std::string>& choices) {
+    return axis.keyed_at_default || choices.size() != 1 || choices.front() != axis.default_choice;
 }
 
 const std::vector<std::string>& composition_order() {

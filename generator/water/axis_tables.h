@@ -17,5 +17,6 @@ AxisInfo waves_axis();
 AxisInfo shore_axis();
 AxisInfo precision_axis();
 AxisInfo caustics_axis();
+AxisInfo scene_input_axis();
 
 } // namespace watergen

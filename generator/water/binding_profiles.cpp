@@ -8,11 +8,17 @@ namespace {
 // The textures watergen's nodes read: what the renderer draws each view, then the material's
 // assets. A node that adds a texture adds it here, or the profiles refuse the shaders that
 // read it (a test composes every choice against every profile).
-const std::vector<std::string> kViewTextures = {"scene_color", "scene_position", "sky_cube",
-                                                "reflection_map", "caustics_map"};
+const std::vector<std::string> kViewTextures = {"scene_color",    "scene_position", "sky_cube",
+                                                "reflection_map", "caustics_map",   "scene_depth"};
 const std::vector<std::string> kMaterialTextures = {"height_map",     "detail_normal_map",
                                                     "foam_pattern",   "fourier_coefs1",
                                                     "fourier_coefs2", "caustics_tile"};
+// The watergen profile numbers textures in the order they joined, so a binding an engine
+// already uses never moves: scene_depth (the depth-buffer scene input) came last.
+const std::vector<std::string> kJoinedTextures = {
+    "scene_color",    "scene_position", "sky_cube",          "reflection_map",
+    "caustics_map",   "height_map",     "detail_normal_map", "foam_pattern",
+    "fourier_coefs1", "fourier_coefs2", "caustics_tile",     "scene_depth"};
 
 // Appends `name` at (set, binding), with its HLSL register, Metal index and GL unit counted per
 // class in the order slots are added.
@@ -33,11 +39,10 @@ BindingMap watergen_profile() {
     b.add(kParamsResource, 0, 0, 0, 0);
     b.add(kSamplerResource, 0, 1, 0, 0);
     uint32_t t = 0;
-    for (const auto* list : {&kViewTextures, &kMaterialTextures})
-        for (const std::string& name : *list) {
-            b.add(name, 0, 2 + t, t, 0);
-            ++t;
-        }
+    for (const std::string& name : kJoinedTextures) {
+        b.add(name, 0, 2 + t, t, 0);
+        ++t;
+    }
     return b.map;
 }
 

@@ -54,7 +54,8 @@ std::string selector_parameter(const std::string& axis) {
 }
 
 bool permutation_only(const std::string& axis) {
-    return axis == "precision";
+    // A pass binds either a depth buffer or a position texture: never a switch between them.
+    return axis == "precision" || axis == "scene_input";
 }
 
 ShaderChoices ShaderChoices::of(const Variant& v) {
@@ -73,14 +74,16 @@ const std::vector<std::string>& ShaderChoices::offered(const std::string& axis) 
 std::string ShaderChoices::key() const {
     std::vector<std::string> parts;
     for (size_t i = 0; i < axes().size() && i < choices.size(); ++i)
-        parts.push_back(axes()[i].name + "=" + join(choices[i], "|"));
+        if (spelled_in_key(axes()[i], choices[i]))
+            parts.push_back(axes()[i].name + "=" + join(choices[i], "|"));
     return join(parts, ",");
 }
 
 std::string ShaderChoices::file_stem() const {
     std::vector<std::string> parts;
     for (size_t i = 0; i < axes().size() && i < choices.size(); ++i)
-        parts.push_back(axes()[i].name + "-" + join(choices[i], "+"));
+        if (spelled_in_key(axes()[i], choices[i]))
+            parts.push_back(axes()[i].name + "-" + join(choices[i], "+"));
     return join(parts, "_");
 }
 

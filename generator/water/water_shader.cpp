@@ -67,7 +67,6 @@ WaterShader build_water_shader(const ShaderChoices& choices, const Preset* prese
         OriginScope scope(g, "surface");
         s.uv = varying(g, "v_uv", Type::Vec2);
         s.scene_rgb = named(sample(texture(g, scene_color_texture()), s.uv).xyz(), "scene_rgb");
-        s.scene_pos = named(sample(texture(g, scene_position_texture()), s.uv).xyz(), "scene_pos");
         s.eye = bind(
             scene_quantity::eye_position,
             uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""}));
@@ -81,9 +80,13 @@ WaterShader build_water_shader(const ShaderChoices& choices, const Preset* prese
                     {"sun_direction", Type::Vec3, {-0.35, -0.75, 0.55}, -1.0, 1.0, "", "000", ""}));
         s.sun_color =
             uniform(g, {"sun_color", Type::Vec3, {1.0, 0.95, 0.85}, 0.0, 1e3, "", "000", ""});
-        Expr to_scene = s.scene_pos - s.eye;
-        s.scene_distance = named(length(to_scene), "scene_distance");
-        s.view_ray = named(to_scene / max(s.scene_distance, 1e-6), "view_ray");
+    }
+    // Where the scene lies behind the pixel: a texture or the depth buffer (nodes/scene_input).
+    compose_axis(s, choices, "scene_input");
+    {
+        OriginScope scope(g, "surface");
+        s.scene_distance = named(length(s.to_scene), "scene_distance");
+        s.view_ray = named(s.to_scene / max(s.scene_distance, 1e-6), "view_ray");
     }
     const bool relaxed = choices.offered("precision").front() == "half";
     // Geometry (positions, times, wave phases) stays 32-bit: half cannot hold 1e5 m or a day

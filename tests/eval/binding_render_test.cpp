@@ -30,7 +30,7 @@ std::vector<Variant> variants_reading_every_texture() {
             adds |= read.insert(t.name).second;
         if (adds) picked.push_back(v);
     }
-    REQUIRE(read.size() == 11);
+    REQUIRE(read.size() == 12);
     return picked;
 }
 

@@ -36,14 +36,16 @@ uint64_t scene_hash(const SyntheticScene& s) {
     f.add(&s.height, sizeof s.height);
     for (const auto& [name, t] : s.textures) {
         // Added after the hashes below were taken, and read by caustics variants only:
-        // scene_caustics_inputs_test pins their values.
-        if (name == "caustics_tile" || name == "caustics_map") continue;
+        // scene_caustics_inputs_test pins their values. scene_depth (depth-buffer variants
+        // only) is made from scene_position; depth_buffer_render_test checks it against it.
+        if (name == "caustics_tile" || name == "caustics_map" || name == "scene_depth") continue;
         f.add(name.data(), name.size());
         for (uint32_t v : {t.width, t.height, t.layers})
             f.add(&v, sizeof v);
         f.add(t.rgba.data(), t.rgba.size() * sizeof(float));
     }
     for (const auto& [name, values] : s.uniforms) {
+        if (name.rfind("scene_inv_view_proj_c", 0) == 0) continue; // with scene_depth
         f.add(name.data(), name.size());
         f.add(values.data(), values.size() * sizeof(double));
     }

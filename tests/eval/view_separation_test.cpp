@@ -58,6 +58,13 @@ size_t view_index(const std::string& name) {
 const std::set<std::tuple<std::string, std::string, std::string>> kIndistinguishable = {
     {"foam", "none", "crest"}, {"foam", "shore", "both"}};
 
+// Two sources of one scene: the depth buffer unprojects to the position texture's points but
+// for the depth's float rounding, so no view may tell them apart. Measured: at most 8.9e-4 in
+// five views; 0.04 in `reflection`, at a few pixels (0.0%) where the buoy meets the water and
+// the rounding moves its waterline by a texel.
+const std::set<std::tuple<std::string, std::string, std::string>> kSameScene = {
+    {"scene_input", "position_texture", "depth_buffer"}};
+
 } // namespace
 
 TEST_CASE("every_choice_of_every_axis_changes_the_image_in_some_view", "[views]") {
@@ -78,6 +85,8 @@ TEST_CASE("every_choice_of_every_axis_changes_the_image_in_some_view", "[views]"
         if (kIndistinguishable.count({p.axis, p.first, p.second})) {
             for (const ImageDifference& d : p.views)
                 CHECK(d.max_abs == 0.0);
+        } else if (kSameScene.count({p.axis, p.first, p.second})) {
+            CHECK(separating.empty());
         } else {
             CHECK_FALSE(separating.empty());
         }

@@ -89,11 +89,11 @@ TEST_CASE("a shard plans only its own jobs and counts the whole space", "[unit]"
     const auto plan = plan_build(*material, {}, ds, BuildMode::Permutations, shard);
     REQUIRE(plan);
     CHECK(plan->jobs.size() == expected);
-    CHECK(expected > 100); // 721,920 / 4000 = 180 on average
+    CHECK(expected > 200); // 1,443,840 / 4000 = 361 on average
     for (const BuildJob& job : plan->jobs)
         CHECK(in_shard(shard, job_key(job)));
     REQUIRE(plan->manifest_scenes.size() == 1);
-    CHECK(plan->manifest_scenes[0].variants == 721920); // the manifest counts the whole space
+    CHECK(plan->manifest_scenes[0].variants == 1443840); // the manifest counts the whole space
 }
 
 TEST_CASE("a shard of the full space builds in bounded memory", "[build]") {

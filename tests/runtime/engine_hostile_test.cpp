@@ -272,7 +272,7 @@ TEST_CASE("a manifest's binding map of the wrong shape is refused naming the key
     }
     put(copy.out / "manifest.json", text);
     BuildBindings past = copy.open().bindings();
-    REQUIRE(past.slots.size() == 13);
+    REQUIRE(past.slots.size() == 14);
     past.slots.back().set = 7;
     std::string error;
     CHECK_FALSE(BindingLayout::create(VK_NULL_HANDLE, past, &error));

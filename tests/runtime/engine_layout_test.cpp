@@ -58,7 +58,7 @@ Stages stages(const ShaderBuild& b, const BuildVariant& v, const std::string& la
 TEST_CASE("every pipeline of a build takes the binding map's one layout") {
     const ShaderBuild& b = frequency_sets_build();
     REQUIRE(b.bindings().map == "frequency_sets");
-    REQUIRE(b.bindings().slots.size() == 13);
+    REQUIRE(b.bindings().slots.size() == 14);
     const MapSlot* params = b.bindings().find("WaterParams");
     REQUIRE(params);
     CHECK(params->set == 2);

@@ -21,9 +21,9 @@ TEST_CASE("variant_key_round_trips", "[variant]") {
 
 TEST_CASE("the_axes_keep_the_order_of_a_variant_key", "[variant]") {
     // Pinned: the order of a variant key, hence of every file stem and short hash.
-    const std::vector<std::string> expected = {"fresnel",    "extinction", "specular", "foam",
-                                               "reflection", "refraction", "normals",  "waves",
-                                               "shore",      "precision",  "caustics"};
+    const std::vector<std::string> expected = {
+        "fresnel", "extinction", "specular", "foam",      "reflection", "refraction",
+        "normals", "waves",      "shore",    "precision", "caustics",   "scene_input"};
     REQUIRE(axes().size() == expected.size());
     for (size_t i = 0; i < expected.size(); ++i)
         CHECK(axes()[i].name == expected[i]);

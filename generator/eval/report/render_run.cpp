@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 namespace watergen {
 
 namespace {
@@ -14,6 +16,26 @@ RenderReportInfo report_info(const VulkanRunner& runner, const RenderRequest& re
             request.height,
             request.exposure,
             request.view};
+}
+
+// Puts `values` into the scene, each checked against the variant's parameter of that name,
+// and makes the depth buffer again for the conventions they set.
+std::optional<std::string> set_values(SyntheticScene& scene, const Graph& fragment,
+                                      const std::map<std::string, std::vector<double>>& values) {
+    for (const auto& [name, value] : values) {
+        const Parameter* p = fragment.find_parameter(name);
+        if (!p) return "--set " + name + ": not a parameter of this variant";
+        if (value.size() != value_count(*p))
+            return fmt::format("--set {}: {} value(s), expected {}", name, value.size(),
+                               value_count(*p));
+        for (double x : value)
+            if (!(x >= p->min && x <= p->max))
+                return fmt::format("--set {}: {:g} is outside [{:g}, {:g}]", name, x, p->min,
+                                   p->max);
+        scene.uniforms[name] = value;
+    }
+    if (!values.empty()) add_depth_inputs(scene);
+    return std::nullopt;
 }
 
 } // namespace
@@ -38,7 +60,14 @@ RenderRun run_render(VulkanRunner& runner, const RenderRequest& request) {
     if (!build.ok()) return fail("");
     SyntheticScene scene =
         preset_scene(request.width, request.height, request.preset, request.view);
+    if (auto error = set_values(scene, build.shader.fragment, request.values)) {
+        run.error = v.key() + ": " + *error;
+        run.status = RunStatus::BadInput;
+        return run;
+    }
     RenderExtras extras;
+    for (const auto& [name, value] : request.values)
+        extras.json["values"][name] = value;
     if (has_caustics(v)) {
         run.caustics =
             prepare_render_caustics(runner, v, build, scene, request.draws, request.preset);

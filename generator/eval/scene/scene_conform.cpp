@@ -99,6 +99,7 @@ SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, 
             log += fmt::format("{} water texels moved into depth {:g}..{:g} m; ", moved,
                                f.water_depth.min, f.water_depth.max);
     }
+    add_depth_inputs(s); // the moved texels' depth, and the conformed eye's matrix
     if (notes)
         *notes = log.empty() ? "the synthetic scene already obeys the facts"
                              : log.substr(0, log.size() - 2);

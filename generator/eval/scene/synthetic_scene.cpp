@@ -15,7 +15,7 @@ using scene_geometry::kPi;
 using scene_geometry::sphere_entry;
 using scene_geometry::sunlit;
 
-constexpr double kFarDistance = 1000.0;
+constexpr double kFarDistance = kSceneSkyDistance;
 
 struct Sphere {
     dvec3 centre;
@@ -174,6 +174,7 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const Scene
     add_optics_inputs(s);
     add_wave_inputs(s);
     add_caustics_inputs(s);
+    add_depth_inputs(s);
     return s;
 }
 

@@ -113,7 +113,14 @@ struct AxisInfo {
     // blend into `color`). Empty for watergen's axes, whose order is the registry's.
     std::string compose_after{};
     Author author{}; // where a project registered the axis; empty for watergen's own
+    // false: a variant key and file stem leave the axis out at its default choice, so an axis
+    // added to watergen later renames no variant that existed before it (keys, hashes, file
+    // names and an engine's caches stay as they were). scene_input is such an axis.
+    bool keyed_at_default = true;
 };
+
+// Whether a key or file stem spells `axis` with `choices` offered (keyed_at_default).
+bool spelled_in_key(const AxisInfo& axis, const std::vector<std::string>& choices);
 
 // Every axis in fixed order; the order of a variant key. The first call freezes the registry.
 const std::vector<AxisInfo>& axes();

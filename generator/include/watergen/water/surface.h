@@ -14,10 +14,12 @@ struct Surface {
     explicit Surface(Graph& graph) : g(graph) {}
     Graph& g;
 
-    // Set by the skeleton (water_shader.cpp) before any axis runs.
+    // Set by the skeleton (water_shader.cpp) before any axis runs; scene_pos and to_scene by
+    // the scene_input axis, which the skeleton composes first.
     Expr uv;             // vec2, screen position in [0, 1]^2, (0, 0) top-left
     Expr scene_rgb;      // vec3, lit scene colour at uv (what lies under / behind the water)
     Expr scene_pos;      // vec3, world position of the scene at uv, m
+    Expr to_scene;       // vec3, scene_pos - eye, m (a camera-relative input has it exactly)
     Expr eye;            // vec3, camera position, m
     Expr level;          // float, height of the undisturbed water plane, m
     Expr view_ray;       // vec3, unit, from the eye towards scene_pos

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -27,6 +28,10 @@ struct RenderRequest {
     LoopUnroll unroll = LoopUnroll::AsHinted;       // every loop's hint (not with strict half)
     std::filesystem::path out = "out/render";
     std::string shader_cache; // Mesa's shader cache as the device was opened (render.json)
+    // Parameter values over the preset's and the view's, for the GPU and the CPU alike (render
+    // --set): each must name a parameter of the variant, with its number of components. The
+    // scene's depth buffer follows the depth conventions set here.
+    std::map<std::string, std::vector<double>> values = {};
 };
 
 // Where a render of `variant` in `view` goes under `out`.

@@ -60,9 +60,19 @@ SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* prese
 void add_foam_inputs(SyntheticScene& scene);   // scene_foam_inputs.cpp
 void add_optics_inputs(SyntheticScene& scene); // scene_optics_inputs.cpp: reflection, refraction
 void add_wave_inputs(SyntheticScene& scene);   // scene_wave_inputs.cpp: waves, normals
+// scene_depth_inputs.cpp: scene_depth, the window depth of scene_position's texels under the
+// depth conventions in scene.uniforms (scene_input.h; their defaults otherwise), and the
+// inverse view-projection uniforms. Made again whenever scene_position or a convention changes.
+void add_depth_inputs(SyntheticScene& scene);
 // scene_caustics_inputs.cpp: caustics_tile and caustics_map from the CPU photon reference
 // (caustics_reference.h); needs the scene's sun_direction and time uniforms.
 void add_caustics_inputs(SyntheticScene& scene);
+
+// A sky texel's position lies this far along its ray (its scene_position alpha, the distance);
+// the depth buffer's planes: near for both Z conventions, far for the standard one (the reversed
+// projection's far plane is at infinity).
+inline constexpr double kSceneSkyDistance = 1000.0;
+inline constexpr double kSceneNear = 0.1, kSceneFar = 2000.0;
 
 // The caustics map's setting, shared by the CPU-made map and the pass drawn for a scene
 // (scene_caustics_pass.h): the bottom 2 m under the water level (the seabed in the default
