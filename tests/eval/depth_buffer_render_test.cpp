@@ -56,13 +56,6 @@ ImageRGBA32F cpu_image(const Graph& g, const SyntheticScene& scene, EvalPrecisio
     return to_image(r, scene.width, scene.height);
 }
 
-double max_difference(const ImageRGBA32F& a, const ImageRGBA32F& b) {
-    double worst = 0;
-    for (size_t i = 0; i < a.rgba.size(); ++i)
-        worst = std::max(worst, double(std::fabs(a.rgba[i] - b.rgba[i])));
-    return worst;
-}
-
 VariantBuild checked_build(const Variant& v) {
     VariantBuild build = build_variant(v);
     for (const auto& d : build.diagnostics)
@@ -101,7 +94,7 @@ TEST_CASE("depth_buffer_variants_agree_with_the_cpu_under_every_convention", "[r
         // The same picture as the world-position texture: the CPU reference in double of both,
         // apart only by the depth buffer's float rounding of each texel's distance (2^-24
         // relative in reversed Z; in standard Z 2^-24 / (1 - d), 1 - d = 1e-3 at 100 m).
-        const double apart = max_difference(r.cpu_double, truth);
+        const double apart = test::max_difference(r.cpu_double, truth);
         CHECK(apart <= (k.reversed ? 1e-4 : 1e-3));
         std::printf("%-55s glsl-hlsl %.3g  gpu-cpu(float) %.3g  bound %.3g  vs position "
                     "texture %.3g\n",

@@ -52,13 +52,6 @@ ImageRGBA32F cpu_image(const Variant& v, const SyntheticScene& scene) {
     return to_image(r, scene.width, scene.height);
 }
 
-double max_difference(const ImageRGBA32F& a, const ImageRGBA32F& b) {
-    double worst = 0;
-    for (size_t i = 0; i < a.rgba.size(); ++i)
-        worst = std::max(worst, double(std::fabs(a.rgba[i] - b.rgba[i])));
-    return worst;
-}
-
 } // namespace
 
 TEST_CASE("optics_choices_render_alike_in_glsl_hlsl_and_on_the_cpu", "[render]") {
@@ -88,8 +81,8 @@ TEST_CASE("optics_choices_render_alike_in_glsl_hlsl_and_on_the_cpu", "[render]")
         Variant no_specular = v, no_foam = v;
         REQUIRE_FALSE(set_choice(no_specular, "specular", "none"));
         REQUIRE_FALSE(set_choice(no_foam, "foam", "none"));
-        const double highlight = max_difference(r.cpu_float, cpu_image(no_specular, scene));
-        const double foam = max_difference(r.cpu_float, cpu_image(no_foam, scene));
+        const double highlight = test::max_difference(r.cpu_float, cpu_image(no_specular, scene));
+        const double foam = test::max_difference(r.cpu_float, cpu_image(no_foam, scene));
         std::printf("    largest change from the highlight %.3g, from the foam %.3g\n", highlight,
                     foam);
         CHECK(highlight > 0.05);

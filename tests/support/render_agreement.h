@@ -4,6 +4,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 #include "watergen/eval/draw/variant_render.h"
 
 namespace watergen::test {
@@ -22,6 +25,14 @@ inline void check_paths_agree(const VariantRender& r, double cpu_bound) {
     CHECK(r.hlsl_vs_cpu_float.nan_inf_pixels == 0);
     CHECK(r.glsl_vs_cpu_float.reference_nan_inf_pixels == 0);
     CHECK_FALSE(is_degenerate(r.gpu_image[0]));
+}
+
+// The largest difference of two images' values, any channel.
+inline double max_difference(const ImageRGBA32F& a, const ImageRGBA32F& b) {
+    double worst = 0;
+    for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); ++i)
+        worst = std::max(worst, double(std::fabs(a.rgba[i] - b.rgba[i])));
+    return worst;
 }
 
 } // namespace watergen::test
