@@ -136,8 +136,12 @@ const std::vector<AxisInfo>& axes() {
     return frozen_registry().axes;
 }
 
+bool spelled_in_key(const AxisInfo& axis, const std::string& choice) {
+    return axis.keyed_at_default || choice != axis.default_choice;
+}
+
 bool spelled_in_key(const AxisInfo& axis, const std::vector<std::string>& choices) {
-    return axis.keyed_at_default || choices.size() != 1 || choices.front() != axis.default_choice;
+    return choices.size() != 1 || spelled_in_key(axis, choices.front());
 }
 
 const std::vector<std::string>& composition_order() {

@@ -41,7 +41,7 @@ std::string spell(const std::vector<std::string>& choices, char bind, char separ
     s.reserve(256);
     for (size_t i = 0; i < axes().size(); ++i) {
         const AxisInfo& a = axes()[i];
-        if (!a.keyed_at_default && choices[i] == a.default_choice) continue;
+        if (!spelled_in_key(a, choices[i])) continue;
         if (i) s += separator;
         s += a.name;
         s += bind;

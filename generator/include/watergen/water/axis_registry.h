@@ -121,6 +121,7 @@ struct AxisInfo {
 
 // Whether a key or file stem spells `axis` with `choices` offered (keyed_at_default).
 bool spelled_in_key(const AxisInfo& axis, const std::vector<std::string>& choices);
+bool spelled_in_key(const AxisInfo& axis, const std::string& choice); // a variant's one choice
 
 // Every axis in fixed order; the order of a variant key. The first call freezes the registry.
 const std::vector<AxisInfo>& axes();
