@@ -7,6 +7,8 @@
 
 #include "commands.h"
 #include "watergen/eval/report/render_run.h"
+#include "watergen/plan/binding_map_file.h"
+#include "watergen/water/binding_profiles.h"
 
 namespace watergen::cli {
 
@@ -170,6 +172,8 @@ bool parse_set(const std::string& item, std::map<std::string, std::vector<double
 
 struct RenderOptions {
     std::vector<std::string> sets;
+    std::string bindings;
+    std::optional<BindingMap> map;
     RenderRequest request;
     std::string preset, out = "out/render";
     bool strict_half = false;
@@ -240,6 +244,11 @@ Runner add_render_command(CLI::App& app, const Common& common) {
                    "NAME=V[,V...]: a parameter's value for the GPU and the CPU alike, over the "
                    "preset's and the view's (repeatable); e.g. --scene_input depth_buffer --set "
                    "scene_depth_reversed=0 draws a standard-Z depth buffer");
+    app.add_option("--bindings", o->bindings,
+                   "where the variant binds its resources, as in watergen build: a profile (" +
+                       binding_profile_list() +
+                       ") or a binding map file; a map that pushes the parameter block draws "
+                       "it as a push constant");
     app.add_option(
         "--out", o->out,
         "output directory; files go to <out>/<variant>/, or <out>/<variant>_view-<view>/ "
@@ -251,6 +260,13 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         o->request.out = o->out;
         for (const std::string& item : o->sets)
             if (!parse_set(item, o->request.values)) return kUsage;
+        if (!o->bindings.empty()) {
+            Diagnostics ds;
+            o->map = load_binding_map(o->bindings, ds);
+            print_diagnostics(ds, common);
+            if (!o->map) return kUsage;
+            o->request.bindings = &*o->map;
+        }
         if (o->strict_half && !o->sets.empty()) {
             std::fprintf(stderr, "watergen: error: --strict-half draws the view's values; "
                                  "leave out --set\n");

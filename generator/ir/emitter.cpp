@@ -111,7 +111,10 @@ std::optional<ResourceSlot> slot_of(const std::string& name, ResourceKind kind,
                                    "; expected an entry for it under \"resources\""});
         return std::nullopt;
     }
-    if (s->kind != kind) {
+    // The parameter block is read the same way from a uniform buffer or a push constant.
+    const bool block_as_push =
+        kind == ResourceKind::UniformBlock && s->kind == ResourceKind::PushConstant;
+    if (s->kind != kind && !block_as_push) {
         diagnostics.push_back({Severity::Error, map->name, 0, 0, origin,
                                "the binding map " + map->name + " places '" + name + "' (" +
                                    s->origin + ") as a " + to_string(s->kind) + "; the shader" +
@@ -119,6 +122,40 @@ std::optional<ResourceSlot> slot_of(const std::string& name, ResourceKind kind,
         return std::nullopt;
     }
     return *s;
+}
+
+// A push-constant block must fit the map's range: the whole block, padded to 16 bytes as the
+// uniform buffer is (the generated header's struct, UniformWriter::pack), so an engine pushes
+// the struct as it is; push_constant_bytes is a multiple of 16.
+// Arrays stay out of push constants: glslang 12's HLSL front end lays out a push-constant
+// cbuffer's arrays at std430 strides (4 bytes for float[]) whatever its packoffsets say, where
+// the GLSL std140 block and a uniform-buffer cbuffer put one element per 16-byte register; the
+// two languages would read different bytes.
+void check_push_constant_size(const UniformLayout& block, const BindingMap& map,
+                              Diagnostics& diagnostics) {
+    for (const auto& m : block.members)
+        if (m.array_size)
+            diagnostics.push_back(
+                {Severity::Error, map.name, 0, 0, "",
+                 fmt::format("the binding map {} makes the parameter block {} a push constant, "
+                             "and this variant's block holds the array '{}'; expected a block "
+                             "without arrays (glslang's HLSL push constants lay arrays out at "
+                             "std430 strides, the GLSL block at std140's 16 bytes, so the "
+                             "languages would disagree): keep this material's block a uniform "
+                             "buffer",
+                             map.name, kParamsResource, m.name)});
+    const uint32_t end = block.size;
+    if (end <= map.push_constant_bytes) return;
+    const ResourceSlot* s = map.push_constant();
+    diagnostics.push_back(
+        {Severity::Error, map.name, 0, 0, "",
+         fmt::format("the parameter block {} is {} bytes in this variant; the binding map {} makes "
+                     "it a push constant of at most {} bytes (push_constant_bytes{}). Expected a "
+                     "block that fits: raise push_constant_bytes to what the engine's devices "
+                     "allow (maxPushConstantsSize), make parameters specialization constants, or "
+                     "let the scene fold them",
+                     kParamsResource, end, map.name, map.push_constant_bytes,
+                     s && !s->origin.empty() ? "; " + s->origin : "")});
 }
 
 // `specialized`: EmitOptions::specialization_constants.
@@ -143,7 +180,11 @@ ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics,
         in.slots.push_back(std::move(*s));
         return &in.slots.back();
     };
-    if (!in.uniforms.members.empty()) place(kParamsResource, ResourceKind::UniformBlock, 0, "");
+    if (!in.uniforms.members.empty()) {
+        const ResourceSlot* block = place(kParamsResource, ResourceKind::UniformBlock, 0, "");
+        if (block && block->kind == ResourceKind::PushConstant)
+            check_push_constant_size(in.uniforms, *map, diagnostics);
+    }
     if (!used_textures.empty()) place(kSamplerResource, ResourceKind::Sampler, 0, "");
     for (const auto& t : g.textures())
         if (used_textures.count(t.name)) {

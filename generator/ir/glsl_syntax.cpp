@@ -123,8 +123,13 @@ std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) con
     std::vector<std::string> lines;
     if (const ResourceSlot* block = in.slot(kParamsResource);
         block && !in.uniforms.members.empty()) {
-        lines.push_back(fmt::format("layout(set = {}, binding = {}, std140) uniform WaterParams {{",
-                                    block->set, block->binding));
+        // std140 on the push constant too (glslang's default there is std430): the block keeps
+        // the uniform block's offsets, which the HLSL cbuffer's packoffsets match.
+        lines.push_back(block->kind == ResourceKind::PushConstant
+                            ? std::string("layout(push_constant, std140) uniform WaterParams {")
+                            : fmt::format("layout(set = {}, binding = {}, std140) uniform "
+                                          "WaterParams {{",
+                                          block->set, block->binding));
         for (const auto& m : in.uniforms.members)
             lines.push_back(fmt::format("    layout(offset = {}) {} {}{};", m.offset, type(m.type),
                                         m.name, array_suffix(m)));

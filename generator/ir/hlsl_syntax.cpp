@@ -126,9 +126,14 @@ std::vector<std::string> HlslSyntax::declarations(const ShaderInterface& in) con
     std::vector<std::string> lines;
     if (const ResourceSlot* block = in.slot(kParamsResource);
         block && !in.uniforms.members.empty()) {
+        // No register on a push constant: glslang 12 would decorate it with a DescriptorSet,
+        // which spirv-val rejects (VUID-StandaloneSpirv-DescriptorSet-06491).
         lines.push_back(
-            fmt::format("[[vk::binding({}, {})]] cbuffer WaterParams : register(b{}, space{}) {{",
-                        block->binding, block->set, block->hlsl_register, block->hlsl_space));
+            block->kind == ResourceKind::PushConstant
+                ? std::string("[[vk::push_constant]] cbuffer WaterParams {")
+                : fmt::format(
+                      "[[vk::binding({}, {})]] cbuffer WaterParams : register(b{}, space{}) {{",
+                      block->binding, block->set, block->hlsl_register, block->hlsl_space));
         for (const auto& m : in.uniforms.members) {
             const char component = "xyzw"[(m.offset % 16) / 4];
             lines.push_back(fmt::format("    {} {}{} : packoffset(c{}.{});", type(m.type), m.name,

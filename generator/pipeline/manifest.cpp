@@ -182,6 +182,8 @@ OJson header_json(const Material& material, const std::vector<ManifestScene>& sc
     OJson b = binding_map_json(map);
     b.erase("watergen_bindings");
     doc["bindings"] = {{"map", map_name(map)}, {"resources", b["resources"]}};
+    if (b.contains("push_constant_bytes"))
+        doc["bindings"]["push_constant_bytes"] = b["push_constant_bytes"];
     return doc;
 }
 

@@ -171,6 +171,7 @@ std::optional<std::string> shaders_header(const ReadOutputFile& read, std::strin
     }
     std::string material, map_name;
     OJson resources;
+    uint32_t push_constant_bytes = 0;                // 0: the block is a uniform buffer
     std::map<std::string, size_t> interface_of_text; // block + constants -> interface
     std::map<std::string, size_t> interface_of_dir;  // a shader's directory -> interface
     std::vector<Interface> interfaces;
@@ -214,6 +215,7 @@ std::optional<std::string> shaders_header(const ReadOutputFile& read, std::strin
         if (name == "bindings") {
             map_name = value.value("map", "");
             resources = value.value("resources", OJson::object());
+            push_constant_bytes = value.value("push_constant_bytes", 0u);
         }
         if (name == "mode") modes = value.get<std::string>() != "permutations";
         return true;
@@ -274,6 +276,11 @@ std::optional<std::string> shaders_header(const ReadOutputFile& read, std::strin
                          r.value("hlsl_space", 0u), r.value("msl", 0u), r.value("gl", 0u),
                          r.value("kind", ""));
     h += "} // namespace bindings\n";
+    if (push_constant_bytes)
+        h += fmt::format("// The block is a push constant: one VkPushConstantRange of this many "
+                         "bytes, vertex and\n// fragment stages, offset 0; every variant's block "
+                         "fits in it.\ninline constexpr uint32_t kPushConstantBytes = {};\n",
+                         push_constant_bytes);
     for (size_t i = 0; i < interfaces.size(); ++i) {
         const Interface& in = interfaces[i];
         h += fmt::format("\n// Interface {}: {} variant{} (the first: {}).\n", i, in.variants,
@@ -284,6 +291,8 @@ std::optional<std::string> shaders_header(const ReadOutputFile& read, std::strin
              at = block.find(kBlockPlaceholder, at))
             block.replace(at, std::strlen(kBlockPlaceholder), name);
         h += block;
+        if (push_constant_bytes && block.find("struct " + name + " {") != std::string::npos)
+            h += fmt::format("static_assert(sizeof({}) <= kPushConstantBytes);\n", name);
         h += fmt::format(
             "inline constexpr std::array<SpecializationConstant, {}> kConstants{}{{{{{}}}}};\n",
             in.constant_count, i, in.constants);

@@ -132,6 +132,11 @@ nlohmann::ordered_json uniform_block_json(const ShaderInterface& in) {
         for (const auto& p : in.parameters)
             if (p.name == slot.name) params.push_back(describe_parameter(p, "offset", slot.offset));
     const ResourceSlot* block = in.slot(kParamsResource);
+    if (block && block->kind == ResourceKind::PushConstant) // no set or binding to give
+        return {{"name", kParamsResource},
+                {"push_constant", true},
+                {"size", in.uniforms.size},
+                {"members", params}};
     return {{"name", kParamsResource},
             {"set", block ? block->set : 0},
             {"binding", block ? block->binding : kParamsBinding},
@@ -157,7 +162,8 @@ CompileRequest stage_request(const EmittedShader& stage, bool strict_half) {
                            stage.stage, stage.source, stage.file_name, "main"};
     request.hlsl_16bit_types = strict_half;
     for (const ResourceSlot& r : stage.interface.slots)
-        request.msl_bindings.push_back({r.set, r.binding, r.msl_index});
+        request.msl_bindings.push_back(
+            {r.set, r.binding, r.msl_index, r.kind == ResourceKind::PushConstant});
     return request;
 }
 
@@ -191,10 +197,22 @@ Diagnostics check_reflected_bindings(const Reflection& reflection, const Emitted
                 std::to_string(b.binding) + ", expected set " + std::to_string(slot->set) +
                 " binding " + std::to_string(slot->binding) + " (" + slot->origin + ")");
     }
-    for (const ResourceSlot& slot : stage.interface.slots)
+    for (const ResourceSlot& slot : stage.interface.slots) {
+        if (slot.kind == ResourceKind::PushConstant) {
+            if (!reflection.push_constant || reflection.push_constant->name != slot.name)
+                off("'" + slot.name + "' is declared but is not the stage's push-constant block");
+            continue;
+        }
         if (std::none_of(reflection.bindings.begin(), reflection.bindings.end(),
                          [&](const DescriptorBinding& b) { return b.name == slot.name; }))
             off("'" + slot.name + "' is declared but not bound");
+    }
+    if (reflection.push_constant) {
+        const ResourceSlot* slot = stage.interface.slot(reflection.push_constant->name);
+        if (!slot || slot->kind != ResourceKind::PushConstant)
+            off("'" + reflection.push_constant->name +
+                "' is a push-constant block, which the binding map does not make it");
+    }
     return ds;
 }
 

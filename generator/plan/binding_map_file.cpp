@@ -24,7 +24,8 @@ bool index_at(JsonReader& r, const std::string& pointer, uint32_t most, const st
 
 std::optional<BindingMap> read_binding_map(const JsonSource& src, Diagnostics& ds) {
     JsonReader r(src, ds);
-    if (!r.keys("", {"watergen_bindings", "base", "resources"}, {"watergen_bindings", "resources"},
+    if (!r.keys("", {"watergen_bindings", "base", "resources", "push_constant_bytes"},
+                {"watergen_bindings", "resources"},
                 "(a binding map; see docs/user-guide.md \"Binding maps\")"))
         return std::nullopt;
     double version = 0;
@@ -47,6 +48,7 @@ std::optional<BindingMap> read_binding_map(const JsonSource& src, Diagnostics& d
         const std::string at = json_child("/resources", name);
         if (!r.keys(at, {"kind", "set", "binding", "hlsl_register", "hlsl_space", "msl", "gl"}, {}))
             return std::nullopt;
+        const bool push = r.has(at + "/kind") && r.at(at + "/kind") == "push_constant";
         if (name.empty() ||
             name.find_first_not_of(
                 "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") !=
@@ -61,8 +63,16 @@ std::optional<BindingMap> read_binding_map(const JsonSource& src, Diagnostics& d
         for (size_t i = 0; i < map.slots.size(); ++i)
             if (map.slots[i].name == name) slot = &map.slots[i], pointers[i] = at;
         const bool fresh = slot == nullptr;
+        if (push)
+            for (const char* key : {"set", "binding", "hlsl_register", "hlsl_space"})
+                if (r.has(at + "/" + key)) {
+                    r.fail(at + "/" + key, "a push constant has no descriptor set, binding or "
+                                           "HLSL register; expected only \"msl\" and \"gl\" "
+                                           "beside \"kind\"");
+                    return std::nullopt;
+                }
         if (fresh) {
-            if (!r.has(at + "/set") || !r.has(at + "/binding")) {
+            if (!push && (!r.has(at + "/set") || !r.has(at + "/binding"))) {
                 r.fail(at, "a resource the base does not place needs \"set\" and \"binding\"");
                 return std::nullopt;
             }
@@ -73,7 +83,8 @@ std::optional<BindingMap> read_binding_map(const JsonSource& src, Diagnostics& d
         slot->origin = src.where(at);
         if (r.has(at + "/kind")) {
             std::string kind;
-            if (!r.string_in(at + "/kind", {"uniform_block", "sampler", "texture"}, kind))
+            if (!r.string_in(at + "/kind", {"uniform_block", "sampler", "texture", "push_constant"},
+                             kind))
                 return std::nullopt;
             slot->kind = *parse_resource_kind(kind);
         }
@@ -94,6 +105,8 @@ std::optional<BindingMap> read_binding_map(const JsonSource& src, Diagnostics& d
                           set ? " (Vulkan guarantees 4 bound descriptor sets)" : "", *f.value))
                 return std::nullopt;
         }
+        if (slot->kind == ResourceKind::PushConstant) // what a base gave it means nothing now
+            slot->set = slot->binding = slot->hlsl_register = slot->hlsl_space = 0;
         if (fresh) {
             auto given = [&](const char* key) { return r.has(at + "/" + key); };
             if (!given("hlsl_register")) slot->hlsl_register = slot->binding;
@@ -101,6 +114,21 @@ std::optional<BindingMap> read_binding_map(const JsonSource& src, Diagnostics& d
             if (!given("msl")) slot->msl_index = slot->binding;
             if (!given("gl")) slot->gl_unit = slot->binding;
         }
+    }
+    if (r.has("/push_constant_bytes")) {
+        uint32_t bytes = 0;
+        if (!index_at(r, "/push_constant_bytes", kMaxPushConstantBytes, " (no device pushes more)",
+                      bytes))
+            return std::nullopt;
+        // 16: the block is padded to whole 16-byte registers (as every device's limit is).
+        if (bytes == 0 || bytes % 16 != 0) {
+            r.fail("/push_constant_bytes",
+                   "expected a multiple of 16 bytes from 16 (the block is whole 16-byte "
+                   "registers), got " +
+                       std::to_string(bytes));
+            return std::nullopt;
+        }
+        map.push_constant_bytes = bytes;
     }
     if (const auto clash = map.conflict()) {
         const std::string& at = pointers[clash->later];
@@ -127,7 +155,12 @@ std::optional<BindingMap> load_binding_map(const std::string& profile_or_path, D
 
 nlohmann::ordered_json binding_map_json(const BindingMap& map) {
     nlohmann::ordered_json resources = nlohmann::ordered_json::object();
-    for (const ResourceSlot& s : map.slots)
+    for (const ResourceSlot& s : map.slots) {
+        if (s.kind == ResourceKind::PushConstant) { // no set, binding or register
+            resources[s.name] = {
+                {"kind", to_string(s.kind)}, {"msl", s.msl_index}, {"gl", s.gl_unit}};
+            continue;
+        }
         resources[s.name] = {{"kind", to_string(s.kind)},
                              {"set", s.set},
                              {"binding", s.binding},
@@ -135,7 +168,10 @@ nlohmann::ordered_json binding_map_json(const BindingMap& map) {
                              {"hlsl_space", s.hlsl_space},
                              {"msl", s.msl_index},
                              {"gl", s.gl_unit}};
-    return {{"watergen_bindings", 1}, {"resources", resources}};
+    }
+    nlohmann::ordered_json j = {{"watergen_bindings", 1}, {"resources", resources}};
+    if (map.push_constant()) j["push_constant_bytes"] = map.push_constant_bytes;
+    return j;
 }
 
 } // namespace watergen

@@ -229,8 +229,12 @@ void reflect_into(spirv_cross::Compiler& compiler, ShaderStage stage, const std:
     });
 
     warn_unsupported(compiler, res.storage_images, "storage image", file, out.diagnostics);
-    warn_unsupported(compiler, res.push_constant_buffers, "push constant block", file,
-                     out.diagnostics);
+    // One push-constant block (the parameter block, when the binding map makes it one); a
+    // module holds at most one per entry point.
+    for (const auto& r : res.push_constant_buffers) {
+        refl.push_constant = block_binding(compiler, r, DescriptorKind::PushConstant);
+        refl.push_constant->set = refl.push_constant->binding = 0;
+    }
     warn_unsupported(compiler, res.subpass_inputs, "subpass input", file, out.diagnostics);
     warn_unsupported(compiler, res.atomic_counters, "atomic counter", file, out.diagnostics);
     warn_unsupported(compiler, res.acceleration_structures, "acceleration structure", file,

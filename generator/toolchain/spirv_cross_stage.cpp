@@ -38,6 +38,9 @@ std::string compile_gl(const std::vector<uint32_t>& spirv, bool es) {
     // Without this SPIRV-Cross emits layout(binding) via GL_ARB_shading_language_420pack,
     // which plain 330 core drivers (and glslang in 330 mode) reject.
     options.enable_420pack_extension = false;
+    // A push-constant block becomes a uniform block an engine binds like the Vulkan path's
+    // (glUniformBlockBinding at the map's GL binding), not a struct of loose uniforms.
+    options.emit_push_constant_as_uniform_buffer = true;
     // Water needs world-space precision in the fragment stage; ES 3.0 guarantees highp there.
     options.fragment.default_float_precision = spirv_cross::CompilerGLSL::Options::Highp;
     options.fragment.default_int_precision = spirv_cross::CompilerGLSL::Options::Highp;
@@ -52,8 +55,8 @@ std::string compile_msl(const std::vector<uint32_t>& spirv, const std::vector<Ms
     for (const MslSlot& s : slots) {
         spirv_cross::MSLResourceBinding b;
         b.stage = compiler.get_execution_model();
-        b.desc_set = s.set;
-        b.binding = s.binding;
+        b.desc_set = s.push_constant ? spirv_cross::kPushConstDescSet : s.set;
+        b.binding = s.push_constant ? spirv_cross::kPushConstBinding : s.binding;
         b.count = 1;
         // Only the field of the resource's kind is read.
         b.msl_buffer = b.msl_texture = b.msl_sampler = s.index;

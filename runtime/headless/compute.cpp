@@ -16,6 +16,12 @@ void dispatch(Context& ctx, const ComputeJob& job, ComputeOutput& result) {
         if (groups[i] == 0 || groups[i] > ctx.limits.maxComputeWorkGroupCount[i])
             throw DeviceError(fmt::format("group count {} = {} is outside 1..{}", "xyz"[i],
                                           groups[i], ctx.limits.maxComputeWorkGroupCount[i]));
+    // A compute job's layout has no push-constant range: refused here rather than a dispatch
+    // that reads bytes nobody pushed.
+    if (job.reflection.push_constant)
+        throw DeviceError(fmt::format("push-constant block '{}': a compute job binds its uniforms "
+                                      "as a uniform buffer only",
+                                      job.reflection.push_constant->name));
     Scope scope(ctx);
 
     DescriptorInputs inputs;

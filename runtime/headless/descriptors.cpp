@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+
 namespace watergen::headless_detail {
 namespace {
 
@@ -92,12 +94,16 @@ Image texture(Scope& scope, const DescriptorBinding& b, const DescriptorInputs& 
     return create_texture(scope, b.name, *data, b.image_dim == "Cube");
 }
 
-// One block of bytes can feed only one uniform binding.
-void check_sole_uniform(const SetBindings& bindings) {
+// One block of bytes can feed only one uniform binding, or the push-constant block.
+void check_sole_uniform(const SetBindings& bindings, const DescriptorBinding* push) {
     std::vector<std::string> names;
     for (const auto& set : bindings)
         for (const DescriptorBinding& b : set)
             if (b.kind == DescriptorKind::UniformBuffer) names.push_back(b.name);
+    if (push && !names.empty())
+        throw DeviceError(fmt::format("shaders declare uniform block(s) {} and push-constant "
+                                      "block '{}'; the job's uniforms bytes can feed only one",
+                                      fmt::join(names, ", "), push->name));
     if (names.size() > 1)
         throw DeviceError(fmt::format("shaders declare {} uniform blocks ({}); the job's uniforms "
                                       "bytes can feed only one",
@@ -150,7 +156,7 @@ BoundDescriptors bind_descriptors(Scope& scope, const std::vector<VkDescriptorSe
     if (layouts.size() > ctx.limits.maxBoundDescriptorSets)
         throw DeviceError(fmt::format("shader uses descriptor set {}; the device binds at most {}",
                                       layouts.size() - 1, ctx.limits.maxBoundDescriptorSets));
-    if (inputs.sole_uniforms) check_sole_uniform(bindings);
+    if (inputs.sole_uniforms) check_sole_uniform(bindings, inputs.push_constant);
     out.sets = allocate_sets(scope, layouts, bindings, pool);
 
     // Infos are referenced by pointer from the writes: size the vectors up front so they
@@ -200,6 +206,36 @@ BoundDescriptors bind_descriptors(Scope& scope, const std::vector<VkDescriptorSe
         }
     vkUpdateDescriptorSets(ctx.device, static_cast<uint32_t>(writes.size()), writes.data(), 0,
                            nullptr);
+    return out;
+}
+
+std::vector<uint8_t> push_constant_bytes(const Context& ctx, const DescriptorBinding& block,
+                                         uint32_t range, const SetBindings& bindings,
+                                         const DescriptorInputs& in) {
+    const std::string what = fmt::format("push-constant block '{}'", block.name);
+    if (range > ctx.limits.maxPushConstantsSize)
+        throw DeviceError(fmt::format("{}: a range of {} bytes exceeds maxPushConstantsSize {}",
+                                      what, range, ctx.limits.maxPushConstantsSize));
+    const std::vector<uint8_t>* bytes = in.sole_uniforms;
+    if (bytes) check_sole_uniform(bindings, &block);
+    if (in.uniforms) {
+        if (auto it = in.uniforms->find(block.name); it != in.uniforms->end()) bytes = &it->second;
+    }
+    if (!bytes || bytes->empty())
+        throw DeviceError(
+            fmt::format("{} is not supplied ({} bytes needed)", what, block.block_size));
+    if (bytes->size() < block.block_size)
+        throw DeviceError(
+            fmt::format("{} needs {} bytes; {} supplied", what, block.block_size, bytes->size()));
+    // size_t: a block_size near 2^32 must not wrap; the range check above bounds it in practice.
+    const size_t pushed = (size_t(block.block_size) + 3) / 4 * 4;
+    if (pushed > range)
+        throw DeviceError(fmt::format("{} of {} bytes pushes {}; the layout's push-constant "
+                                      "range has {}",
+                                      what, block.block_size, pushed, range));
+    // Zero padding past block_size; a copy so the recorded draw never points at the caller's.
+    std::vector<uint8_t> out(pushed, 0);
+    std::copy_n(bytes->begin(), std::min(pushed, bytes->size()), out.begin());
     return out;
 }
 

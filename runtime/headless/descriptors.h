@@ -17,7 +17,11 @@ struct DescriptorInputs {
     const std::map<std::string, std::vector<uint8_t>>* uniforms = nullptr;
     // The bytes of the one uniform block, whatever its name (a job of the test runner carries
     // one block); more than one uniform binding is then an error. In place of `uniforms`.
+    // They feed the pipeline's push-constant block instead when it has one (push_constant).
     const std::vector<uint8_t>* sole_uniforms = nullptr;
+    // The pipeline's push-constant block (VariantPipeline::push_constant()), if any: with
+    // sole_uniforms, a uniform binding besides it is an error (one block of bytes feeds one).
+    const DescriptorBinding* push_constant = nullptr;
     const std::map<std::string, TextureData>* textures = nullptr;
     TextureFilter filter = TextureFilter::Nearest;
     const std::map<std::string, std::vector<uint8_t>>* storage = nullptr;
@@ -38,6 +42,15 @@ struct BoundDescriptors {
 BoundDescriptors bind_descriptors(Scope& scope, const std::vector<VkDescriptorSetLayout>& layouts,
                                   const SetBindings& bindings, const DescriptorInputs& inputs,
                                   const std::vector<VkDescriptorPoolSize>* pool = nullptr);
+
+// The bytes vkCmdPushConstants records for `block` from `inputs` (by its name, else
+// sole_uniforms): its block_size rounded up to 4 (UniformWriter::pack() pads to 16; the rest
+// may be past the range). Throws naming the block when none are supplied, fewer than its
+// block_size, sole_uniforms would also feed a uniform binding of `bindings`, or `range` (the
+// layout's push-constant bytes) exceeds the device's maxPushConstantsSize.
+std::vector<uint8_t> push_constant_bytes(const Context& ctx, const DescriptorBinding& block,
+                                         uint32_t range, const SetBindings& bindings,
+                                         const DescriptorInputs& inputs);
 
 // One stage's bindings by set, and their layouts visible to `stage` (gaps get empty ones).
 SetBindings stage_bindings(const Reflection& reflection);

@@ -49,9 +49,10 @@ void check_grid(const PassDraw& draw, const PassGrid& grid, const VkPhysicalDevi
                                       grid.vertices.size(), grid.indices.size()));
 }
 
-// Every supplied block names a uniform buffer of the pipeline and has its packed size: the
-// reflected size up to the next 16 bytes (UniformWriter::pack). A block the pipeline has but
-// the caller left out: the descriptors say so.
+// Every supplied block names a uniform buffer or the push-constant block of the pipeline and
+// has its packed size: the reflected size up to the next 16 bytes (UniformWriter::pack). A
+// block the pipeline has but the caller left out: the descriptors (or the push constants) say
+// so.
 void check_uniforms(const VariantPipeline& p,
                     const std::map<std::string, std::vector<uint8_t>>& uniforms) {
     for (const auto& [name, bytes] : uniforms) {
@@ -63,6 +64,10 @@ void check_uniforms(const VariantPipeline& p,
                     blocks += (blocks.empty() ? "" : ", ") + b.name;
                     if (b.name == name) found = &b;
                 }
+        if (const DescriptorBinding* push = p.push_constant()) {
+            blocks += (blocks.empty() ? "" : ", ") + push->name + " (push constant)";
+            if (push->name == name) found = push;
+        }
         if (!found)
             throw DeviceError(fmt::format("uniform block '{}' is not one of the pass's ({})", name,
                                           blocks.empty() ? "none" : blocks));

@@ -1,6 +1,6 @@
 // One draw of a VariantPipeline into an offscreen target, prepared once and submitted as often
-// as asked (see offscreen_draw.h): target, descriptors, vertex and index buffers, timestamp
-// queries, the recorded command buffer; the readback.
+// as asked (see offscreen_draw.h): target, descriptors, push constants, vertex and index
+// buffers, timestamp queries, the recorded command buffer; the readback.
 #include "watergen/headless/offscreen_draw.h"
 
 #include "descriptors.h"
@@ -20,6 +20,10 @@ struct PreparedDraw {
     DrawTarget target;
     Image image;
     BoundDescriptors descriptors;
+    // The push-constant block's bytes and stages, recorded by vkCmdPushConstants; kept with
+    // the draw so the recorded command buffer never refers to the caller's memory.
+    std::vector<uint8_t> push_bytes;
+    VkShaderStageFlags push_stages = 0;
     Buffer vertices, indices;
     uint32_t index_count = 0;             // 0: the fullscreen triangle
     VkQueryPool queries = VK_NULL_HANDLE; // null without timestamp support
@@ -98,7 +102,8 @@ VkQueryPool create_timestamp_pool(Scope& scope) {
 }
 
 // One command buffer, resubmitted for every draw: the render pass over the whole target
-// (cleared), the pipeline and its sets, viewport and scissor, the triangle or the indexed list.
+// (cleared), the pipeline, its sets and push constants, viewport and scissor, the triangle or
+// the indexed list.
 void record(PreparedDraw& p, const VariantPipeline& pipeline, VkRenderPass pass,
             VkFramebuffer framebuffer) {
     const uint32_t width = p.target.width, height = p.target.height;
@@ -128,6 +133,9 @@ void record(PreparedDraw& p, const VariantPipeline& pipeline, VkRenderPass pass,
     if (!sets.empty())
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), 0,
                                 static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
+    if (!p.push_bytes.empty())
+        vkCmdPushConstants(cmd, pipeline.layout(), p.push_stages, 0,
+                           static_cast<uint32_t>(p.push_bytes.size()), p.push_bytes.data());
     if (p.index_count) {
         const VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &p.vertices.buffer, &offset);
@@ -158,6 +166,12 @@ void prepare(PreparedDraw& p, const VariantPipeline& pipeline, const DrawBinding
     inputs.sole_uniforms = bindings.sole_uniforms;
     inputs.textures = bindings.textures;
     inputs.filter = bindings.filter;
+    inputs.push_constant = pipeline.push_constant();
+    if (inputs.push_constant) {
+        p.push_bytes = push_constant_bytes(ctx, *inputs.push_constant,
+                                           pipeline.push_constant_size(), set_bindings, inputs);
+        p.push_stages = pipeline.push_constant_stages();
+    }
     const std::vector<VkDescriptorPoolSize> pool = pipeline.pool_sizes();
     p.descriptors = bind_descriptors(scope, pipeline.set_layouts(), set_bindings, inputs, &pool);
     const VkFramebuffer framebuffer = create_framebuffer(scope, pass, p.image);

@@ -67,14 +67,19 @@ bool prepare(HeadlessDevice& device, const RenderJob& job, PreparedJob& p, Rende
     if (!pass) return false;
     // No VkPipelineCache: every job pays full creation cost, so timings and results do not
     // depend on which jobs ran before.
-    const VariantPipelineDesc desc{&job.vertex_spirv,
-                                   &job.fragment_spirv,
-                                   &job.vertex_reflection,
-                                   &job.fragment_reflection,
-                                   pass,
-                                   0,
-                                   job.specialization,
-                                   VK_NULL_HANDLE};
+    VariantPipelineDesc desc{&job.vertex_spirv,
+                             &job.fragment_spirv,
+                             &job.vertex_reflection,
+                             &job.fragment_reflection,
+                             pass,
+                             0,
+                             job.specialization,
+                             VK_NULL_HANDLE};
+    // The device's own limit: a push-constant block past the guaranteed 128 bytes draws where
+    // the device pushes it.
+    VkPhysicalDeviceProperties props{};
+    vkGetPhysicalDeviceProperties(device.physical(), &props);
+    desc.max_push_constants_size = props.limits.maxPushConstantsSize;
     PipelineGeometry geometry;
     if (!job.mesh.empty()) geometry.attribute_sizes = job.mesh.attribute_sizes;
     geometry.points = job.mesh.points;

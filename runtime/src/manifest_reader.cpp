@@ -77,6 +77,7 @@ BuildBindings read_bindings(ManifestReader& r, const json& bindings) {
     const json* resources =
         r.get(bindings, "bindings", "resources", json::value_t::object, "an object");
     if (!resources) return out;
+    std::string push; // the push-constant slot's name, once one is read
     for (const auto& [name, slot] : resources->items()) {
         const std::string path = "bindings.resources." + name;
         if (!slot.is_object()) {
@@ -92,16 +93,40 @@ BuildBindings read_bindings(ManifestReader& r, const json& bindings) {
             s.kind = DescriptorKind::Sampler;
         else if (kind == "texture")
             s.kind = DescriptorKind::SampledImage;
+        else if (kind == "push_constant")
+            s.kind = DescriptorKind::PushConstant;
         else if (!r.failed())
-            r.fail(path + ".kind", "'" + kind + "'; expected uniform_block, sampler or texture");
-        s.set = r.u32(slot, path, "set");
-        s.binding = r.u32(slot, path, "binding");
-        s.hlsl_register = r.u32(slot, path, "hlsl_register");
-        s.hlsl_space = r.u32(slot, path, "hlsl_space");
+            r.fail(path + ".kind", "'" + kind +
+                                       "'; expected uniform_block, sampler, texture or "
+                                       "push_constant");
+        if (s.kind == DescriptorKind::PushConstant) {
+            // One range at offset 0 holds one block (generator/ir/binding_map.h).
+            if (!push.empty() && !r.failed())
+                r.fail(path + ".kind",
+                       "a second push_constant slot ('" + push + "' is one); expected at most one");
+            push = name;
+        } else {
+            // A push constant has no set, binding or HLSL register: the keys are absent.
+            s.set = r.u32(slot, path, "set");
+            s.binding = r.u32(slot, path, "binding");
+            s.hlsl_register = r.u32(slot, path, "hlsl_register");
+            s.hlsl_space = r.u32(slot, path, "hlsl_space");
+        }
         s.msl = r.u32(slot, path, "msl");
         s.gl = r.u32(slot, path, "gl");
         if (r.failed()) return out;
         out.slots.push_back(std::move(s));
+    }
+    // The range's size, stated by a map with a push constant (and read only then: a map
+    // without one has no range, whatever else it says).
+    if (!push.empty()) {
+        const uint32_t bytes = r.u32(bindings, "bindings", "push_constant_bytes");
+        if (!r.failed() && (bytes < 4 || bytes > kMaxPushConstantRange || bytes % 4 != 0))
+            r.fail("bindings.push_constant_bytes",
+                   std::to_string(bytes) + "; expected a multiple of 4 from 4 to " +
+                       std::to_string(kMaxPushConstantRange) + " (the push-constant range of '" +
+                       push + "')");
+        out.push_constant_bytes = r.failed() ? 0 : bytes;
     }
     return out;
 }

@@ -123,7 +123,8 @@ void read_file_lists(ManifestReader& r, const json& entry, const std::string& pa
 void read_uniform_block(ManifestReader& r, const json& parent, const std::string& path,
                         BuildVariant& v);
 
-// The manifest's "bindings": the map's name and each resource's slot.
+// The manifest's "bindings": the map's name, each resource's slot, and with a push_constant
+// slot (at most one) the range's "push_constant_bytes" (required then; 4..4096, a multiple of 4).
 BuildBindings read_bindings(ManifestReader& r, const json& bindings);
 
 // A variant entry's "passes" (optional): name -> reference (build_pass.cpp).

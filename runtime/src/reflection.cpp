@@ -41,6 +41,9 @@ constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment,
 constexpr DescriptorKind kKinds[] = {DescriptorKind::UniformBuffer, DescriptorKind::StorageBuffer,
                                      DescriptorKind::SampledImage, DescriptorKind::Sampler,
                                      DescriptorKind::CombinedImageSampler};
+// Vulkan guarantees 128 bytes of push constants (maxPushConstantsSize); the largest any device
+// reports is 4096 (Apple's).
+constexpr uint32_t kMaxPushConstantBytes = 4096;
 
 json to_json(const UniformMember& m) {
     json j{{"name", m.name}, {"type", m.type}, {"offset", m.offset}, {"size", m.size}};
@@ -157,6 +160,24 @@ class Reader {
         return true;
     }
 
+    // Calls read(object_reader, value) for the optional object at `key`.
+    template <class T, class Fn> bool object(const char* key, std::optional<T>& out, Fn read) {
+        const json* v = find(key, false, "an object");
+        if (!v) return !failed_;
+        if (!v->is_object()) return fail(key, "expected an object");
+        T value{};
+        Reader r(*v, join(key), error_);
+        if (!read(r, value)) return false;
+        out = std::move(value);
+        return true;
+    }
+
+    bool fail(const char* key, const std::string& what) {
+        *error_ = join(key) + ": " + what;
+        failed_ = true;
+        return false;
+    }
+
   private:
     std::string join(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
 
@@ -165,12 +186,6 @@ class Reader {
         if (it != object_.end()) return &*it;
         if (required) fail(key, std::string("missing, expected ") + expected);
         return nullptr;
-    }
-
-    bool fail(const char* key, const std::string& what) {
-        *error_ = join(key) + ": " + what;
-        failed_ = true;
-        return false;
     }
 
     const json& object_;
@@ -194,13 +209,36 @@ bool read_specialization_constant(Reader& r, SpecializationConstant& c) {
            r.number("default", c.default_value) && r.number("min", c.min) && r.number("max", c.max);
 }
 
-bool read_binding(Reader& r, DescriptorBinding& b) {
+// A binding's fields, its kind one of `kinds`.
+template <size_t N>
+bool read_block(Reader& r, DescriptorBinding& b, const DescriptorKind (&kinds)[N]) {
     // image_dim, block_size and members only matter for some kinds, so they may be omitted.
     return r.string("name", b.name) && r.u32("set", b.set, true, kMaxSet) &&
-           r.u32("binding", b.binding, true, kMaxBinding) &&
-           r.enumeration("kind", kKinds, b.kind) && r.string("image_dim", b.image_dim, false) &&
+           r.u32("binding", b.binding, true, kMaxBinding) && r.enumeration("kind", kinds, b.kind) &&
+           r.string("image_dim", b.image_dim, false) &&
            r.u32("block_size", b.block_size, false, kMaxBlockSize) &&
            r.array("members", b.members, read_member, kMaxMembers, false);
+}
+
+// A descriptor: never a push constant (that is Reflection::push_constant, not a binding).
+bool read_binding(Reader& r, DescriptorBinding& b) {
+    return read_block(r, b, kKinds);
+}
+
+// A push-constant block: a block's name, size and members at set 0, binding 0, kind
+// push_constant, within the bytes any device can push.
+bool read_push_constant(Reader& r, DescriptorBinding& b) {
+    constexpr DescriptorKind kPush[] = {DescriptorKind::PushConstant};
+    if (!read_block(r, b, kPush)) return false;
+    if (b.set != 0 || b.binding != 0)
+        return r.fail(b.set != 0 ? "set" : "binding",
+                      std::to_string(b.set != 0 ? b.set : b.binding) +
+                          "; a push-constant block has set 0 and binding 0");
+    if (b.block_size == 0 || b.block_size > kMaxPushConstantBytes)
+        return r.fail("block_size", std::to_string(b.block_size) + "; expected 1 to " +
+                                        std::to_string(kMaxPushConstantBytes) +
+                                        " bytes of push constants");
+    return true;
 }
 
 } // namespace
@@ -229,6 +267,8 @@ const char* to_string(DescriptorKind k) {
         return "sampler";
     case DescriptorKind::CombinedImageSampler:
         return "combined_image_sampler";
+    case DescriptorKind::PushConstant:
+        return "push_constant";
     }
     return "unknown";
 }
@@ -243,6 +283,7 @@ std::string reflection_to_json(const Reflection& r) {
     // Only when there are some: a shader without them keeps the form it always had.
     if (!r.specialization_constants.empty())
         doc["specialization_constants"] = to_json_array(r.specialization_constants);
+    if (r.push_constant) doc["push_constant"] = to_json(*r.push_constant);
     // replace: a name that is not UTF-8 must not make serialisation throw.
     return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
@@ -278,13 +319,15 @@ std::optional<Reflection> reflection_from_json(const std::string& text, std::str
     }
     Reflection r;
     Reader reader(doc, "", error);
-    const bool ok = reader.enumeration("stage", kStages, r.stage) &&
-                    reader.string("entry_point", r.entry_point) &&
-                    reader.array("bindings", r.bindings, read_binding, kMaxBindings) &&
-                    reader.array("inputs", r.inputs, read_variable, kMaxStageVariables) &&
-                    reader.array("outputs", r.outputs, read_variable, kMaxStageVariables) &&
-                    reader.array("specialization_constants", r.specialization_constants,
-                                 read_specialization_constant, kMaxSpecializationConstants, false);
+    const bool ok =
+        reader.enumeration("stage", kStages, r.stage) &&
+        reader.string("entry_point", r.entry_point) &&
+        reader.array("bindings", r.bindings, read_binding, kMaxBindings) &&
+        reader.array("inputs", r.inputs, read_variable, kMaxStageVariables) &&
+        reader.array("outputs", r.outputs, read_variable, kMaxStageVariables) &&
+        reader.array("specialization_constants", r.specialization_constants,
+                     read_specialization_constant, kMaxSpecializationConstants, false) &&
+        reader.object("push_constant", r.push_constant, read_push_constant);
     if (!ok) return std::nullopt;
     return r;
 }

@@ -140,10 +140,15 @@ std::optional<std::vector<uint8_t>> UniformWriter::pack(const Reflection& reflec
         if (b.kind == DescriptorKind::UniformBuffer &&
             (b.name == variant_.block_name || variant_.block_name.empty()))
             block = &b;
+    // A binding map that makes the block a push constant keeps its layout (std140 / cbuffer
+    // offsets, generator/ir/binding_map.h): the same bytes, pushed instead of bound.
+    if (const auto& push = reflection.push_constant;
+        !block && push && (push->name == variant_.block_name || variant_.block_name.empty()))
+        block = &*push;
     if (!block) {
         if (variant_.parameters.empty()) return std::vector<uint8_t>{};
-        *error = "the reflection has no uniform block '" + variant_.block_name + "' (" +
-                 variant_name(variant_) + ")";
+        *error = "the reflection has no uniform block or push-constant block '" +
+                 variant_.block_name + "' (" + variant_name(variant_) + ")";
         return std::nullopt;
     }
     // size_t: a block_size near 2^32 must not wrap to an empty buffer the members then overrun.

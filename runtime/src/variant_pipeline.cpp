@@ -49,6 +49,10 @@ VkDescriptorType descriptor_type(DescriptorKind kind) {
         return VK_DESCRIPTOR_TYPE_SAMPLER;
     case DescriptorKind::CombinedImageSampler:
         return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    case DescriptorKind::PushConstant:
+        // No descriptor at all: push-constant blocks are kept out of set layouts and pool sizes
+        // (Reflection::push_constant, BindingLayout); this only keeps the switch whole.
+        return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     }
     return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 }
@@ -66,6 +70,8 @@ VariantPipeline& VariantPipeline::operator=(VariantPipeline&& o) noexcept {
     layout_ = o.layout_;
     shared_ = o.shared_;
     pipeline_ = o.pipeline_;
+    push_block_ = std::move(o.push_block_);
+    push_range_ = o.push_range_;
     o.set_layouts_.clear();
     o.layout_ = VK_NULL_HANDLE;
     o.pipeline_ = VK_NULL_HANDLE;
@@ -132,10 +138,56 @@ bool VariantPipeline::create_own_layout(VkDevice device, const StageUnion& all, 
     lci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
     lci.setLayoutCount = sets;
     lci.pSetLayouts = set_layouts_.data();
+    lci.pushConstantRangeCount = push_range_.size ? 1 : 0;
+    lci.pPushConstantRanges = push_range_.size ? &push_range_ : nullptr;
     if (VkResult r = vkCreatePipelineLayout(device, &lci, nullptr, &layout_); r != VK_SUCCESS) {
         *error = failed("vkCreatePipelineLayout", r);
         return false;
     }
+    return true;
+}
+
+bool VariantPipeline::union_push_constants(const VariantPipelineDesc& d, std::string* error) {
+    VkShaderStageFlags stages = 0;
+    for (const auto& [r, stage] :
+         {std::pair{d.vertex_reflection, VK_SHADER_STAGE_VERTEX_BIT},
+          std::pair{d.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}}) {
+        if (!r->push_constant) continue;
+        const DescriptorBinding& b = *r->push_constant;
+        // One range at offset 0 serves one block: two blocks would need two ranges and a
+        // layout of offsets neither stage states.
+        if (push_block_ && push_block_->name != b.name) {
+            *error = "the push-constant block is '" + push_block_->name +
+                     "' in the vertex stage and '" + b.name +
+                     "' in the fragment stage; expected one block";
+            return false;
+        }
+        // The larger block covers both stages' members (the fragment's on a tie: the stage
+        // UniformWriter::pack() reads).
+        if (!push_block_ || b.block_size >= push_block_->block_size) push_block_ = b;
+        stages |= static_cast<VkShaderStageFlags>(stage);
+    }
+    if (d.layout) {
+        // The map's range, whether or not these stages read it; check() saw the block fits.
+        if (const VkPushConstantRange* range = d.layout->push_constant_range())
+            push_range_ = *range;
+        return true;
+    }
+    if (!push_block_) return true;
+    const std::string what = "push-constant block '" + push_block_->name + "' of " +
+                             std::to_string(push_block_->block_size) + " bytes";
+    // size_t: a block_size near 2^32 must not wrap to a small range.
+    const size_t size = (size_t(push_block_->block_size) + 3) / 4 * 4;
+    if (size == 0) {
+        *error = what + "; expected a block of some bytes";
+        return false;
+    }
+    if (size > d.max_push_constants_size) {
+        *error = what + " exceeds the device's maxPushConstantsSize " +
+                 std::to_string(d.max_push_constants_size);
+        return false;
+    }
+    push_range_ = {stages, 0, static_cast<uint32_t>(size)};
     return true;
 }
 
@@ -172,13 +224,20 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
         }
         // One descriptor set layout per set number up to the largest: bounded as a reflection
         // file's are (reflection.cpp), whoever made this one.
-        for (const DescriptorBinding& b : r->bindings)
+        for (const DescriptorBinding& b : r->bindings) {
+            if (b.kind == DescriptorKind::PushConstant) {
+                *error = std::string(to_string(stage)) + " stage: push-constant block '" + b.name +
+                         "' among the descriptor bindings; expected it as the reflection's "
+                         "push_constant";
+                return std::nullopt;
+            }
             if (b.set >= kMaxDescriptorSets) {
                 *error = std::string(to_string(stage)) + " stage: binding '" + b.name +
                          "' in set " + std::to_string(b.set) + "; expected a set below " +
                          std::to_string(kMaxDescriptorSets);
                 return std::nullopt;
             }
+        }
     }
     p.device_ = device;
     // Union of the stages' bindings by (set, binding), stage flags or-ed together.
@@ -202,6 +261,7 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
     uint32_t sets = 0;
     for (const auto& [key, b] : all)
         sets = std::max(sets, key.first + 1);
+    if (!p.union_push_constants(d, error)) return std::nullopt;
     if (d.layout) {
         for (const Reflection* r : {d.vertex_reflection, d.fragment_reflection})
             if (std::string off = d.layout->check(*r); !off.empty()) {

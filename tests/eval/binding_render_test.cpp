@@ -80,3 +80,47 @@ TEST_CASE("every_binding_map_draws_the_default_maps_pixels", "[render][bindings]
         }
     }
 }
+
+// The block as a push constant (128 bytes: what every Vulkan device pushes, lavapipe's limit):
+// the runner pushes the bytes it would have put in the uniform buffer, and the images equal the
+// uniform buffer's pixel by pixel, GLSL equals HLSL, and both agree with the CPU evaluation of
+// the same graph within the float bound. Variants of the covering set whose block fits (no
+// arrays, at most 128 bytes) and the default variant.
+TEST_CASE("a_pushed_block_draws_the_uniform_buffers_pixels", "[render][bindings][push_constant]") {
+    Diagnostics ds;
+    const JsonSource src = *JsonSource::parse(R"({"watergen_bindings": 1, "base": "watergen",
+        "resources": {"WaterParams": {"kind": "push_constant"}}})",
+                                              "pushed.json", nullptr);
+    const std::optional<BindingMap> pushed = read_binding_map(src, ds);
+    REQUIRE(pushed);
+    REQUIRE(pushed->push_constant_bytes == 128);
+
+    RenderSettings settings{64, 64, 1, true, true};
+    settings.float_bound = true;
+    const SyntheticScene scene = make_synthetic_scene(settings.width, settings.height);
+    std::vector<Variant> variants = {default_variant()};
+    for (const Variant& v : pairwise_covering_variants())
+        if (variants.size() < 4 && v.key() != default_variant().key() &&
+            build_variant(v, nullptr, EmitOptions{false, {}, {}, &*pushed}).ok())
+            variants.push_back(v);
+    REQUIRE(variants.size() == 4);
+    for (const Variant& v : variants) {
+        INFO(v.key());
+        const VariantBuild b = build_variant(v, nullptr, EmitOptions{false, {}, {}, &*pushed});
+        REQUIRE(b.ok());
+        REQUIRE(b.languages[0].fragment.toolchain.reflection.push_constant);
+        const VariantRender got = render_variant(test::shared_runner(), b, scene, settings);
+        INFO(got.error);
+        REQUIRE(got.ok());
+        CHECK(got.validation_messages.empty());
+        const VariantRender want =
+            render_variant(test::shared_runner(), build_variant(v), scene,
+                           RenderSettings{settings.width, settings.height, 1, false, false});
+        REQUIRE(want.ok());
+        CHECK(max_abs(got.gpu_image[0], got.gpu_image[1]) == 0.0f);
+        for (size_t path = 0; path < 2; ++path) {
+            CHECK(max_abs(got.gpu_image[path], want.gpu_image[path]) == 0.0f);
+            CHECK(got.agreement[path].over_bound == 0);
+        }
+    }
+}

@@ -240,6 +240,21 @@ TEST_CASE("a_bad_map_file_is_an_error_at_its_line", "[bindings]") {
         {"{\"watergen_bindings\": 1, \"resources\": {\n  \"9lives\": {\"set\": 0, \"binding\": "
          "0}}}",
          2, "not a shader identifier"},
+        // Push constants (push_constant_test.cpp): no set, binding or register; a range in
+        // whole registers and at most 4096 bytes; one block.
+        {"{\"watergen_bindings\": 1, \"base\": \"watergen\", \"resources\": {\n"
+         "  \"WaterParams\": {\"kind\": \"push_constant\", \"set\": 1}}}",
+         2, "a push constant has no descriptor set, binding or HLSL register"},
+        {"{\"watergen_bindings\": 1, \"base\": \"watergen\",\n \"push_constant_bytes\": 100,\n"
+         " \"resources\": {\"WaterParams\": {\"kind\": \"push_constant\"}}}",
+         2, "expected a multiple of 16 bytes"},
+        {"{\"watergen_bindings\": 1, \"base\": \"watergen\",\n \"push_constant_bytes\": 8192,\n"
+         " \"resources\": {\"WaterParams\": {\"kind\": \"push_constant\"}}}",
+         2, "expected a whole number from 0 to 4096"},
+        {"{\"watergen_bindings\": 1, \"base\": \"watergen\", \"resources\": {\n"
+         "  \"WaterParams\": {\"kind\": \"push_constant\"},\n"
+         "  \"more_params\": {\"kind\": \"push_constant\", \"msl\": 9, \"gl\": 9}}}",
+         3, "are both push constants"},
     };
     for (const Case& c : cases) {
         INFO(c.text);

@@ -35,6 +35,16 @@ std::vector<float> default_block(uint32_t i) {
     });
 }
 
+// A file of generated/, as the header writer reads its output.
+std::optional<std::string> read_generated(const std::string& path) {
+    std::ifstream in(std::filesystem::path(test::source_dir()) / "generated" / path,
+                     std::ios::binary);
+    if (!in) return std::nullopt;
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
 } // namespace
 
 TEST_CASE("the_build_header_lists_every_variant_with_its_default_block", "[golden]") {
@@ -79,23 +89,11 @@ TEST_CASE("the_build_header_lists_every_variant_with_its_default_block", "[golde
 }
 
 TEST_CASE("the_build_header_is_what_the_generator_writes_for_that_output", "[golden]") {
-    const std::filesystem::path generated = std::filesystem::path(test::source_dir()) / "generated";
     std::string error;
-    const auto header = shaders_header(
-        [&](const std::string& path) -> std::optional<std::string> {
-            std::ifstream in(generated / path, std::ios::binary);
-            if (!in) return std::nullopt;
-            std::ostringstream s;
-            s << in.rdbuf();
-            return s.str();
-        },
-        &error);
+    const auto header = shaders_header(read_generated, &error);
     INFO(error);
     REQUIRE(header);
-    std::ifstream in(generated / kShadersHeader, std::ios::binary);
-    std::ostringstream committed;
-    committed << in.rdbuf();
-    CHECK(*header == committed.str());
+    CHECK(*header == read_generated(kShadersHeader));
     CHECK(header->find("kConstants") != std::string::npos);
 }
 
@@ -112,4 +110,31 @@ TEST_CASE("a_build_header_needs_its_manifest_and_descriptions", "[unit]") {
         },
         &error));
     CHECK(error == "s/k/variant.json: missing");
+}
+
+// A build whose map pushes the block: the header states the range and asserts that every
+// interface's struct fits in it (the generator has refused any variant whose block does not).
+TEST_CASE("a_pushed_build_header_states_its_range_and_asserts_each_block_fits", "[golden]") {
+    std::string error;
+    const auto header = shaders_header(
+        [&](const std::string& path) -> std::optional<std::string> {
+            std::optional<std::string> text = read_generated(path);
+            if (!text || path != "manifest.json") return text;
+            nlohmann::ordered_json m = nlohmann::ordered_json::parse(*text);
+            m["bindings"]["resources"]["WaterParams"] = {
+                {"kind", "push_constant"}, {"msl", 0}, {"gl", 0}};
+            m["bindings"]["push_constant_bytes"] = 512;
+            return m.dump(2);
+        },
+        &error);
+    INFO(error);
+    REQUIRE(header);
+    CHECK(header->find("inline constexpr uint32_t kPushConstantBytes = 512;") != std::string::npos);
+    CHECK(header->find("inline constexpr Slot WaterParams{0, 0, 0, 0, 0, 0}; // push_constant") !=
+          std::string::npos);
+    size_t asserts = 0;
+    for (size_t at = header->find("<= kPushConstantBytes);"); at != std::string::npos;
+         at = header->find("<= kPushConstantBytes);", at + 1))
+        ++asserts;
+    CHECK(asserts == 36); // one per interface of the example build
 }

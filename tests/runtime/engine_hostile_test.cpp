@@ -8,7 +8,10 @@
 
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <tuple>
+
+#include <nlohmann/json.hpp>
 
 #include "engine_builds.h"
 #include "watergen/runtime/binding_layout.h"
@@ -257,7 +260,8 @@ TEST_CASE("a manifest's binding map of the wrong shape is refused naming the key
     REQUIRE(text.find(kind) != std::string::npos);
     for (const auto& [from, to, says] :
          {std::tuple{kind, std::string("\"kind\": \"storage\""),
-                     std::string("kind: 'storage'; expected uniform_block, sampler or texture")},
+                     std::string("kind: 'storage'; expected uniform_block, sampler, texture or "
+                                 "push_constant")},
           std::tuple{kind, std::string("\"kind\": 7"), std::string("kind: expected a string")},
           std::tuple{std::string("\"map\": \"watergen\""), std::string("\"map\": []"),
                      std::string("bindings.map: expected a string")}}) {
@@ -282,4 +286,67 @@ TEST_CASE("a manifest's binding map of the wrong shape is refused naming the key
     twice.slots.back().binding = twice.slots.front().binding;
     CHECK_FALSE(BindingLayout::create(VK_NULL_HANDLE, twice, &error));
     CHECK(error.find("are both at set 0 binding 0") != std::string::npos);
+}
+
+// A map whose parameter block is a push constant: the slot has no set, binding or HLSL register,
+// and the map states the range's bytes; without them, at a size no range has, or with a second
+// push constant, an error naming the key.
+TEST_CASE("a manifest's push-constant slot and range are read or refused naming the key") {
+    const Copy copy;
+    const fs::path file = copy.out / "manifest.json";
+    const nlohmann::json original = nlohmann::json::parse(slurp(file));
+    auto open_with = [&](const std::function<void(nlohmann::json&)>& change, std::string* error) {
+        nlohmann::json doc = original;
+        nlohmann::json& map = doc["bindings"];
+        map["resources"]["WaterParams"] = {{"kind", "push_constant"}, {"msl", 5}, {"gl", 2}};
+        map["push_constant_bytes"] = 128;
+        change(map);
+        put(file, doc.dump(2));
+        return ShaderBuild::open(copy.out, error);
+    };
+    std::string error;
+    const auto b = open_with([](nlohmann::json&) {}, &error);
+    INFO(error);
+    REQUIRE(b);
+    CHECK(b->bindings().push_constant_bytes == 128);
+    CHECK(b->bindings().slots.size() == 14);
+    const MapSlot* params = b->bindings().find("WaterParams");
+    REQUIRE(params);
+    CHECK(params->kind == DescriptorKind::PushConstant);
+    CHECK(params->set == 0);
+    CHECK(params->binding == 0);
+    CHECK(params->msl == 5);
+    CHECK(params->gl == 2);
+    // A map without a push constant states no range, whatever else it says.
+    put(file, original.dump(2));
+    CHECK(copy.open().bindings().push_constant_bytes == 0);
+
+    const std::string at = file.string() + ": bindings.";
+    for (const auto& [change, says] :
+         std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>>{
+             {[](nlohmann::json& m) { m.erase("push_constant_bytes"); },
+              "push_constant_bytes: missing; expected an unsigned integer"},
+             {[](nlohmann::json& m) { m["push_constant_bytes"] = "128"; },
+              "push_constant_bytes: expected an unsigned integer"},
+             {[](nlohmann::json& m) { m["push_constant_bytes"] = 130; },
+              "push_constant_bytes: 130; expected a multiple of 4 from 4 to 4096 (the "
+              "push-constant range of 'WaterParams')"},
+             {[](nlohmann::json& m) { m["push_constant_bytes"] = 0; },
+              "push_constant_bytes: 0; expected a multiple of 4 from 4 to 4096 (the "
+              "push-constant range of 'WaterParams')"},
+             {[](nlohmann::json& m) { m["push_constant_bytes"] = 8192; },
+              "push_constant_bytes: 8192; expected a multiple of 4 from 4 to 4096 (the "
+              "push-constant range of 'WaterParams')"},
+             {[](nlohmann::json& m) { m["resources"]["WaterParams"].erase("msl"); },
+              "resources.WaterParams.msl: missing; expected an unsigned integer"},
+             {[](nlohmann::json& m) {
+                  m["resources"]["linear_clamp"] = {
+                      {"kind", "push_constant"}, {"msl", 0}, {"gl", 0}};
+              },
+              "resources.linear_clamp.kind: a second push_constant slot ('WaterParams' is "
+              "one); expected at most one"}}) {
+        INFO(says);
+        CHECK_FALSE(open_with(change, &error));
+        CHECK(error == at + says);
+    }
 }

@@ -35,29 +35,32 @@ Reflection sample_reflection() {
     return r;
 }
 
+void check_equal(const DescriptorBinding& x, const DescriptorBinding& y) {
+    CHECK(x.name == y.name);
+    CHECK(x.set == y.set);
+    CHECK(x.binding == y.binding);
+    CHECK(x.kind == y.kind);
+    CHECK(x.image_dim == y.image_dim);
+    CHECK(x.block_size == y.block_size);
+    REQUIRE(x.members.size() == y.members.size());
+    for (size_t m = 0; m < x.members.size(); ++m) {
+        CHECK(x.members[m].name == y.members[m].name);
+        CHECK(x.members[m].type == y.members[m].type);
+        CHECK(x.members[m].offset == y.members[m].offset);
+        CHECK(x.members[m].size == y.members[m].size);
+        CHECK(x.members[m].array_size == y.members[m].array_size);
+        CHECK(x.members[m].array_stride == y.members[m].array_stride);
+    }
+}
+
 void check_equal(const Reflection& a, const Reflection& b) {
     CHECK(a.stage == b.stage);
     CHECK(a.entry_point == b.entry_point);
+    REQUIRE(a.push_constant.has_value() == b.push_constant.has_value());
+    if (a.push_constant) check_equal(*a.push_constant, *b.push_constant);
     REQUIRE(a.bindings.size() == b.bindings.size());
-    for (size_t i = 0; i < a.bindings.size(); ++i) {
-        const auto& x = a.bindings[i];
-        const auto& y = b.bindings[i];
-        CHECK(x.name == y.name);
-        CHECK(x.set == y.set);
-        CHECK(x.binding == y.binding);
-        CHECK(x.kind == y.kind);
-        CHECK(x.image_dim == y.image_dim);
-        CHECK(x.block_size == y.block_size);
-        REQUIRE(x.members.size() == y.members.size());
-        for (size_t m = 0; m < x.members.size(); ++m) {
-            CHECK(x.members[m].name == y.members[m].name);
-            CHECK(x.members[m].type == y.members[m].type);
-            CHECK(x.members[m].offset == y.members[m].offset);
-            CHECK(x.members[m].size == y.members[m].size);
-            CHECK(x.members[m].array_size == y.members[m].array_size);
-            CHECK(x.members[m].array_stride == y.members[m].array_stride);
-        }
-    }
+    for (size_t i = 0; i < a.bindings.size(); ++i)
+        check_equal(a.bindings[i], b.bindings[i]);
     auto same_vars = [](const std::vector<StageVariable>& p, const std::vector<StageVariable>& q) {
         REQUIRE(p.size() == q.size());
         for (size_t i = 0; i < p.size(); ++i) {
@@ -256,4 +259,83 @@ TEST_CASE("reflection_from_json_names_a_bad_specialization_constant") {
         "min": 0}]})") == "specialization_constants[0].max: missing, expected a number");
     CHECK(error_for(base + "{}], \"x\": 1}").rfind("specialization_constants[0].id: missing", 0) ==
           0);
+}
+
+namespace {
+
+// The sample with its parameter block as a push constant (a binding map of kind push_constant):
+// the block leaves `bindings` for `push_constant`, same members and offsets.
+Reflection push_constant_reflection() {
+    Reflection r = sample_reflection();
+    DescriptorBinding block = r.bindings.front();
+    block.kind = DescriptorKind::PushConstant;
+    r.bindings.erase(r.bindings.begin());
+    r.push_constant = block;
+    return r;
+}
+
+const char* const kPushBase = R"({"stage": "fragment", "entry_point": "main", "bindings": [],
+  "inputs": [], "outputs": [], "push_constant": )";
+
+} // namespace
+
+TEST_CASE("reflection_json_round_trips_a_push_constant_block") {
+    const Reflection original = push_constant_reflection();
+    const std::string text = reflection_to_json(original);
+    CHECK(text.find("\"push_constant\": {") != std::string::npos);
+    CHECK(text.find("\"kind\": \"push_constant\"") != std::string::npos);
+    std::string error;
+    const auto back = reflection_from_json(text, &error);
+    INFO(error);
+    REQUIRE(back.has_value());
+    REQUIRE(back->push_constant.has_value());
+    CHECK(back->push_constant->name == "WaterParams");
+    CHECK(back->push_constant->block_size == 96);
+    CHECK(back->push_constant->members.size() == 4);
+    check_equal(original, *back);
+    CHECK(reflection_to_json(*back) == text);
+    // Without one the key is absent: every file written before keeps its form.
+    CHECK(reflection_to_json(sample_reflection()).find("push_constant") == std::string::npos);
+    const auto none = reflection_from_json(kValid, &error);
+    REQUIRE(none.has_value());
+    CHECK_FALSE(none->push_constant.has_value());
+}
+
+TEST_CASE("reflection_from_json_names_a_bad_push_constant_block") {
+    const std::string base = kPushBase;
+    const std::string block = R"({"name": "P", "set": 0, "binding": 0, "kind": "push_constant",
+        "block_size": 16, "members": [{"name": "a", "type": "vec4", "offset": 0, "size": 16}]})";
+    std::string error;
+    const auto good = reflection_from_json(base + block + "}", &error);
+    INFO(error);
+    REQUIRE(good.has_value());
+    REQUIRE(good->push_constant.has_value());
+    CHECK(good->push_constant->block_size == 16);
+
+    auto with = [&](const std::string& from, const std::string& to) {
+        std::string b = block;
+        REQUIRE(b.find(from) != std::string::npos);
+        b.replace(b.find(from), from.size(), to);
+        return base + b + "}";
+    };
+    CHECK(error_for(base + "3}") == "push_constant: expected an object");
+    CHECK(error_for(base + "[]}") == "push_constant: expected an object");
+    CHECK(error_for(with(R"("kind": "push_constant")", R"("kind": "uniform_buffer")")) ==
+          "push_constant.kind: expected one of push_constant; got \"uniform_buffer\"");
+    CHECK(error_for(with(R"("set": 0)", R"("set": 1)")) ==
+          "push_constant.set: 1; a push-constant block has set 0 and binding 0");
+    CHECK(error_for(with(R"("binding": 0)", R"("binding": 2)")) ==
+          "push_constant.binding: 2; a push-constant block has set 0 and binding 0");
+    CHECK(error_for(with(R"("block_size": 16)", R"("block_size": 0)")) ==
+          "push_constant.block_size: 0; expected 1 to 4096 bytes of push constants");
+    CHECK(error_for(with(R"("block_size": 16)", R"("block_size": 4100)")) ==
+          "push_constant.block_size: 4100; expected 1 to 4096 bytes of push constants");
+    CHECK(error_for(with(R"("name": "P", )", "")) ==
+          "push_constant.name: missing, expected a string");
+    CHECK(error_for(with(R"("offset": 0)", R"("offset": "x")")) ==
+          "push_constant.members[0].offset: expected an unsigned 32-bit integer");
+    // A push constant is never a descriptor binding.
+    std::string text = kValid;
+    text.replace(text.find("\"sampled_image\""), 15, "\"push_constant\"");
+    CHECK(error_for(text).rfind("bindings[0].kind: expected one of uniform_buffer,", 0) == 0);
 }

@@ -55,7 +55,7 @@ RenderRun run_render(VulkanRunner& runner, const RenderRequest& request) {
         return std::move(run);
     };
     const VariantBuild build =
-        build_variant(v, request.preset, EmitOptions{false, {}, request.unroll});
+        build_variant(v, request.preset, EmitOptions{false, {}, request.unroll, request.bindings});
     run.diagnostics = build.diagnostics;
     if (!build.ok()) return fail("");
     SyntheticScene scene =

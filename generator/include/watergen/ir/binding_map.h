@@ -8,6 +8,14 @@
 // SPIRV-Cross writes) and the GL binding point or texture unit (GLSL 330 and ESSL 300 cannot
 // spell one, so the engine sets it: glUniformBlockBinding, glUniform1i). Maps come from a
 // profile (water/binding_profiles.h) or a JSON file (plan/binding_map_file.h).
+//
+// The parameter block may instead be a push constant (kind PushConstant): GLSL
+// layout(push_constant, std140), HLSL [[vk::push_constant]] cbuffer, the same offsets as the
+// uniform block. It has no set, binding or HLSL register (glslang 12 decorates a push-constant
+// cbuffer that names a register with a DescriptorSet, which spirv-val rejects: VUID-
+// StandaloneSpirv-DescriptorSet-06491); Metal and GL still get a buffer index and a uniform
+// block binding (SPIRV-Cross writes it as a buffer / a uniform block there). The map states the
+// range's size, push_constant_bytes, and every variant's block must fit in it.
 #pragma once
 
 #include <cstdint>
@@ -17,8 +25,9 @@
 
 namespace watergen {
 
-enum class ResourceKind { UniformBlock, Sampler, Texture };
-const char* to_string(ResourceKind kind); // "uniform_block", "sampler", "texture"
+enum class ResourceKind { UniformBlock, Sampler, Texture, PushConstant };
+// "uniform_block", "sampler", "texture", "push_constant"
+const char* to_string(ResourceKind kind);
 std::optional<ResourceKind> parse_resource_kind(const std::string& word);
 
 // The resource names the emitters declare: the parameter block and the one sampler; every other
@@ -26,6 +35,11 @@ std::optional<ResourceKind> parse_resource_kind(const std::string& word);
 constexpr const char* kParamsResource = "WaterParams";
 constexpr const char* kSamplerResource = "linear_clamp";
 ResourceKind default_resource_kind(const std::string& name);
+
+// Vulkan guarantees 128 bytes of push constants (maxPushConstantsSize); desktop drivers give 256
+// (RADV, NVIDIA), Apple's 4096, the most any device reports.
+constexpr uint32_t kGuaranteedPushConstantBytes = 128;
+constexpr uint32_t kMaxPushConstantBytes = 4096;
 
 struct ResourceSlot {
     std::string name;
@@ -46,10 +60,15 @@ struct BindingConflict {
 struct BindingMap {
     std::string name; // the profile's name, or the file the map was read from
     std::vector<ResourceSlot> slots;
+    // The push-constant range of a map with a PushConstant slot: at most
+    // kMaxPushConstantBytes, a multiple of 16 (the block is whole 16-byte registers). A variant
+    // whose block is larger is an error naming both sizes.
+    uint32_t push_constant_bytes = kGuaranteedPushConstantBytes;
 
     const ResourceSlot* find(const std::string& resource) const;
-    // The first two slots that claim one place in one target (or one name twice); nullopt
-    // when none clash.
+    const ResourceSlot* push_constant() const; // the PushConstant slot, if any
+    // The first two slots that claim one place in one target (or one name twice, or two push
+    // constants); nullopt when none clash.
     std::optional<BindingConflict> conflict() const;
 };
 

@@ -15,6 +15,11 @@
 // register, Metal index, GL unit) and the set (HLSL space). "kind" ("uniform_block", "sampler",
 // "texture") defaults from the name (binding_map.h). Indices are at most kMaxBindingIndex, sets
 // at most kMaxSet (Vulkan guarantees maxBoundDescriptorSets >= 4).
+//
+// The parameter block as a push constant: {"WaterParams": {"kind": "push_constant"}} (only "msl"
+// and "gl" beside the kind: a push constant has no set, binding or register) and, at the top,
+// "push_constant_bytes" (the range's size: a multiple of 16 up to kMaxPushConstantBytes; default
+// kGuaranteedPushConstantBytes, the 128 every Vulkan device pushes).
 #pragma once
 
 #include <optional>

@@ -13,8 +13,10 @@ enum class CrossTarget { Glsl330, Essl300, Msl };
 
 // The Metal index of the resource at a Vulkan (set, binding): its [[buffer(n)]], [[texture(n)]]
 // or [[sampler(n)]], whichever its kind takes.
+// The push-constant block has no set or binding: its slot says push_constant instead.
 struct MslSlot {
     uint32_t set = 0, binding = 0, index = 0;
+    bool push_constant = false;
 };
 
 struct CrossResult {

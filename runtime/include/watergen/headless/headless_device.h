@@ -63,7 +63,8 @@ std::string format_api_version(uint32_t version);
 // What draw() binds.
 struct HeadlessDraw {
     uint32_t width = 256, height = 256;
-    // Bytes of each uniform buffer binding, by binding name (UniformWriter::pack()).
+    // Bytes of each uniform buffer binding, or of the push-constant block, by block name
+    // (UniformWriter::pack()).
     std::map<std::string, std::vector<uint8_t>> uniforms;
     // Images of the sampled-image bindings, by binding name; every sampler is clamp to edge
     // with `filter`.

@@ -27,14 +27,16 @@ struct DrawTarget {
     float clear = 0; // every channel
 };
 
-// What the descriptors are written from, by binding name: the bytes of each uniform block, the
+// What the descriptors and push constants are written from, by binding name: the bytes of each
+// uniform block (a uniform buffer, or the pipeline's push-constant block), the
 // image of each sampled-image and combined image-sampler binding (every sampler: `filter`, clamp
 // to edge). A binding with no entry fails the draw, naming it; entries no binding uses are
 // ignored. Read while create() runs, not kept.
 struct DrawBindings {
     const std::map<std::string, std::vector<uint8_t>>* uniforms = nullptr;
     // In place of `uniforms`: the bytes of the pipeline's one uniform block, whatever its name
-    // (a job of the test runner carries one block); more than one uniform binding is an error.
+    // (a job of the test runner carries one block): its uniform buffer or its push-constant
+    // block; more than one uniform binding, or one and a push-constant block, is an error.
     const std::vector<uint8_t>* sole_uniforms = nullptr;
     const std::map<std::string, TextureData>* textures = nullptr;
     TextureFilter filter = TextureFilter::Linear;

@@ -41,8 +41,10 @@ struct RenderJob {
     Reflection fragment_reflection;
     uint32_t width = 256;
     uint32_t height = 256;
-    // Bytes of the one UniformBuffer binding, laid out by the caller from reflection offsets.
-    // Must be at least the block's reflected block_size.
+    // Bytes of the one UniformBuffer binding, or of the push-constant block (a stage's
+    // Reflection::push_constant: pushed with vkCmdPushConstants, its block_size rounded up to
+    // 4), laid out by the caller from reflection offsets. Must be at least the block's
+    // reflected block_size. Shaders with both a uniform binding and a push-constant block fail.
     std::vector<uint8_t> uniforms;
     // Values of float specialization constants by constant_id (reflection's
     // specialization_constants), given to both stages at pipeline creation. A constant with no

@@ -27,7 +27,10 @@ enum class DescriptorKind {
     StorageBuffer,
     SampledImage,
     Sampler,
-    CombinedImageSampler
+    CombinedImageSampler,
+    // A push-constant block (Reflection::push_constant): bytes recorded into the command buffer
+    // with vkCmdPushConstants, not a descriptor; set and binding are 0.
+    PushConstant
 };
 
 struct DescriptorBinding {
@@ -60,7 +63,10 @@ struct SpecializationConstant {
 struct Reflection {
     ShaderStage stage = ShaderStage::Fragment;
     std::string entry_point = "main";
-    std::vector<DescriptorBinding> bindings;                      // sorted by (set, binding)
+    std::vector<DescriptorBinding> bindings; // sorted by (set, binding)
+    // The stage's push-constant block (kind PushConstant, block_size and members as a uniform
+    // block's), when a binding map makes the parameter block one; never among `bindings`.
+    std::optional<DescriptorBinding> push_constant;
     std::vector<StageVariable> inputs;                            // sorted by location
     std::vector<StageVariable> outputs;                           // sorted by location
     std::vector<SpecializationConstant> specialization_constants; // sorted by id

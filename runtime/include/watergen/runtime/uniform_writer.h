@@ -10,6 +10,12 @@
 // declares them, the reflection does not) are not written. The buffer is the reflected block
 // size rounded up to 16 bytes (both layouts size a block in 16-byte registers); padding is zero.
 //
+// Push constants: when the build's binding map makes the block a push constant, the reflection
+// has it as Reflection::push_constant, laid out as the uniform block would be (the generator
+// keeps the std140 / cbuffer offsets); pack() writes it the same way. Push the first
+// push_constant()->block_size bytes rounded up to 4 (VariantPipeline::push_constant()), not the
+// 16-byte rounded whole, which may be past the range.
+//
 // Values start at the manifest's defaults (the material's values). In the branching build mode
 // the variant's selector members are preset and cannot be set (they choose the variant).
 //
@@ -58,7 +64,8 @@ class UniformWriter {
     const std::vector<float>* value(const std::string& name) const;
 
     // The block's bytes laid out as `reflection` (a stage's reflection of one language path)
-    // says; std::nullopt and `error` when the reflection has no such block, or a member that
+    // says, its uniform buffer or else its push-constant block of the variant's block name;
+    // std::nullopt and `error` when the reflection has no such block, or a member that
     // the variant does not declare or whose reflected size does not fit its type.
     std::optional<std::vector<uint8_t>> pack(const Reflection& reflection,
                                              std::string* error) const;

@@ -11,6 +11,15 @@
 // layouts), with the stage flags of the stages that use each binding; or, given a
 // BindingLayout (binding_layout.h), that one layout of the build's binding map, shared by every
 // pipeline of the build and not re-derived (each stage's descriptors checked against it).
+//
+// Push constants: a stage's Reflection::push_constant (the parameter block, when the build's
+// binding map makes it a push constant) is no descriptor. With a layout of its own, the
+// pipeline layout has one push-constant range at offset 0 of both stages' block (one name; the
+// larger block_size rounded up to 4 bytes), with the stage flags of the stages that declare it;
+// with a shared layout, the BindingLayout's range (its size, vertex and fragment stages). The
+// engine records vkCmdPushConstants(cmd, layout(), push_constant_stages(), 0, n, bytes) with
+// the block's bytes (UniformWriter::pack(), the same std140 / cbuffer offsets as a uniform
+// buffer), n = push_constant()->block_size rounded up to 4.
 #pragma once
 
 #include <filesystem>
@@ -53,11 +62,16 @@ struct VariantPipelineDesc {
     // The build's one layout (BindingLayout::create from ShaderBuild::bindings()); it must
     // outlive the pipeline. Null: a layout of this pipeline's own from its reflection.
     const BindingLayout* layout = nullptr;
+    // The device's VkPhysicalDeviceLimits::maxPushConstantsSize: a layout of the pipeline's
+    // own with a larger push-constant block is an error naming both. The default is the 128
+    // bytes every Vulkan device has. (A shared layout was checked by BindingLayout::create.)
+    uint32_t max_push_constants_size = kGuaranteedPushConstantsSize;
 };
 
 class VariantPipeline {
   public:
-    // std::nullopt and `error` naming the Vulkan call and its VkResult (or the missing input).
+    // std::nullopt and `error` naming the Vulkan call and its VkResult (or the missing input,
+    // or stages whose descriptors or push-constant blocks disagree or do not fit).
     static std::optional<VariantPipeline> create(VkDevice device, const VariantPipelineDesc& desc,
                                                  std::string* error);
     // The same with another geometry (a companion pass's grid: create_pass_pipeline()).
@@ -82,6 +96,16 @@ class VariantPipeline {
     // slot of the map).
     std::vector<VkDescriptorPoolSize> pool_sizes(uint32_t copies = 1) const;
 
+    // The push-constant block the stages read (name, block_size: the larger of the two stages',
+    // members: that stage's); null when neither stage declares one.
+    const DescriptorBinding* push_constant() const { return push_block_ ? &*push_block_ : nullptr; }
+    // The stage flags vkCmdPushConstants must name: the range's (those of the stages declaring
+    // the block; vertex and fragment with a shared layout); 0 without a range.
+    VkShaderStageFlags push_constant_stages() const { return push_range_.stageFlags; }
+    // Bytes of the layout's push-constant range (at offset 0); 0 without one. At least
+    // push_constant()->block_size rounded up to 4.
+    uint32_t push_constant_size() const { return push_range_.size; }
+
   private:
     // Both stages' bindings by (set, binding), with the stage flags of the stages reading each.
     using StageUnion =
@@ -90,14 +114,21 @@ class VariantPipeline {
     void destroy();
     bool create_own_layout(VkDevice device, const StageUnion& all, uint32_t sets,
                            std::string* error);
+    // The union of both stages' push-constant blocks into push_block_ and push_range_; false
+    // and `error` when they disagree or the range exceeds `max_size` (own layout).
+    bool union_push_constants(const VariantPipelineDesc& d, std::string* error);
     VkDevice device_ = VK_NULL_HANDLE;
     std::vector<VkDescriptorSetLayout> set_layouts_;
     std::vector<std::vector<DescriptorBinding>> bindings_;
     VkPipelineLayout layout_ = VK_NULL_HANDLE; // own; null with a shared one
     const BindingLayout* shared_ = nullptr;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
+    std::optional<DescriptorBinding> push_block_;
+    VkPushConstantRange push_range_{}; // size 0: none
 };
 
+// A descriptor's type; never asked of a PushConstant (no descriptor), for which it says
+// VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER (the block's form as a buffer).
 VkDescriptorType descriptor_type(DescriptorKind kind);
 // Descriptor counts by type for one descriptor of each of `kinds`, `copies` times over: the
 // pool sizes of sets holding them.

@@ -32,6 +32,9 @@ struct RenderRequest {
     // --set): each must name a parameter of the variant, with its number of components. The
     // scene's depth buffer follows the depth conventions set here.
     std::map<std::string, std::vector<double>> values = {};
+    // Where the variant binds its resources (render --bindings); null: the default profile. The
+    // runner binds by reflection, so the draw follows the map (a pushed block is pushed).
+    const BindingMap* bindings = nullptr;
 };
 
 // Where a render of `variant` in `view` goes under `out`.
