@@ -91,6 +91,8 @@ OJson scene_json(const ManifestScene& s) {
                   {"waves", f.waves_animated ? "animated" : "static"},
                   {"precision", f.precision},
                   {"platforms", f.platforms}};
+    // Only when stated: the scenes that leave it out keep their manifest form.
+    if (f.scene_input != "any") j["facts"]["scene_input"] = f.scene_input;
     j["variants"] = s.plan->variants.size();
     j["skipped"] = s.plan->skipped;
     OJson fixed = OJson::object();

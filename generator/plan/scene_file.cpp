@@ -48,12 +48,14 @@ std::optional<SceneFacts> parse_scene(const JsonSource& src, Diagnostics& ds) {
     const std::vector<std::string> allowed = {
         "name",          "description",  "shoreline",     "bottom_in_view",     "water_depth",
         "camera_height", "camera_pitch", "sun_elevation", "reflection_sources", "waves",
-        "precision",     "platforms",    "fixed"};
-    // Optional: description, fixed, and bottom_in_view (most scenes show their bottom).
+        "precision",     "platforms",    "fixed",         "scene_input"};
+    // Optional: description, fixed, bottom_in_view (most scenes show their bottom) and
+    // scene_input (most engines can give either).
     std::vector<std::string> required;
     std::copy_if(allowed.begin(), allowed.end(), std::back_inserter(required),
                  [](const std::string& k) {
-                     return k != "description" && k != "fixed" && k != "bottom_in_view";
+                     return k != "description" && k != "fixed" && k != "bottom_in_view" &&
+                            k != "scene_input";
                  });
     if (!r.keys("", allowed, required,
                 "(a scene states every fact; see docs/user-guide.md \"Scene files\")"))
@@ -78,6 +80,9 @@ std::optional<SceneFacts> parse_scene(const JsonSource& src, Diagnostics& ds) {
                     r.string_in("/precision", {"full", "half", "any"}, s.precision);
     if (!ok) return std::nullopt;
     if (r.has("/bottom_in_view") && !r.boolean("/bottom_in_view", s.bottom_in_view))
+        return std::nullopt;
+    if (r.has("/scene_input") &&
+        !r.string_in("/scene_input", {"position_texture", "depth_buffer", "any"}, s.scene_input))
         return std::nullopt;
     s.waves_animated = waves == "animated";
     std::vector<std::string> sources_vocabulary = kReflectionSources;

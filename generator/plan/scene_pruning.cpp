@@ -32,9 +32,9 @@ struct SceneRule {
 const std::vector<SceneRule>& scene_rules() {
     static const std::vector<SceneRule> rules = [] {
         std::vector<SceneRule> list;
-        for (SceneFact fact :
-             {SceneFact::Shoreline, SceneFact::ReflectionSource, SceneFact::SunAboveHorizon,
-              SceneFact::BottomInView, SceneFact::BottomLit, SceneFact::Precision})
+        for (SceneFact fact : {SceneFact::Shoreline, SceneFact::ReflectionSource,
+                               SceneFact::SunAboveHorizon, SceneFact::BottomInView,
+                               SceneFact::BottomLit, SceneFact::Precision, SceneFact::SceneInput})
             for (size_t a = 0; a < axes().size(); ++a)
                 for (const auto& c : axes()[a].choices)
                     for (const auto& need : c.scene_needs)
@@ -59,6 +59,8 @@ std::string fact_key(SceneFact fact) {
         return "water_depth";
     case SceneFact::Precision:
         return "precision";
+    case SceneFact::SceneInput:
+        return "scene_input";
     }
     return "";
 }
@@ -109,6 +111,10 @@ std::string unmet(const SceneFacts& s, const Variant& v, const SceneNeed& need,
     case SceneFact::Precision:
         if (s.precision != "any" && s.precision != need.value)
             missing = "the scene targets precision " + s.precision;
+        break;
+    case SceneFact::SceneInput:
+        if (s.scene_input != "any" && s.scene_input != need.value)
+            missing = "the engine gives the scene's position as " + s.scene_input;
         break;
     }
     if (missing.empty() || need.consequence.empty()) return missing;

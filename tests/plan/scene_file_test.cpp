@@ -105,7 +105,11 @@ TEST_CASE("scene_errors_name_file_line_path_and_what_was_expected", "[scene]") {
           "s.json:2:19: error: /colour: unknown key 'colour'; expected one of name, description, "
           "shoreline, bottom_in_view, water_depth, "
           "camera_height, camera_pitch, sun_elevation, reflection_sources, waves, precision, "
-          "platforms, fixed");
+          "platforms, fixed, scene_input");
+    CHECK(error_of(scene_text("precision",
+                              "  \"precision\": \"full\", \"scene_input\": \"gbuffer\",")) ==
+          "s.json:10:24: error: /scene_input: unknown value 'gbuffer'; expected one of "
+          "position_texture, depth_buffer, any");
     CHECK(error_of(scene_text("name", "  \"name\": \"Lake One\","))
               .find("/name: scene name 'Lake One': expected lower-case") != std::string::npos);
     CHECK(error_of(scene_text("water_depth", "  \"water_depth\": [0, 30],")) ==

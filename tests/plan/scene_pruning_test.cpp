@@ -68,6 +68,21 @@ TEST_CASE("scene_facts_rule_out_choices_with_their_reason", "[pruning]") {
     REQUIRE(e);
     CHECK(e->axis == "precision");
     CHECK(e->reason == "the scene targets precision half");
+
+    // An engine that gives only a depth buffer rules out the position texture, and the other
+    // way round; a scene that does not say (the examples) keeps both.
+    SceneFacts depth_only = ocean;
+    depth_only.scene_input = "depth_buffer";
+    depth_only.where.fact["scene_input"] = {"engine.json", "/scene_input", {12, 3}};
+    e = scene_excludes(depth_only, with({{"scene_input", "position_texture"}}));
+    REQUIRE(e);
+    CHECK(e->axis == "scene_input");
+    CHECK(e->reason == "the engine gives the scene's position as depth_buffer");
+    CHECK(e->where.find("engine.json:12:3 /scene_input") != std::string::npos);
+    CHECK_FALSE(scene_excludes(depth_only, with({{"scene_input", "depth_buffer"}})));
+    CHECK(ocean.scene_input == "any");
+    CHECK_FALSE(scene_excludes(ocean, with({{"scene_input", "depth_buffer"}})));
+    CHECK_FALSE(scene_excludes(ocean, with({{"scene_input", "position_texture"}})));
 }
 
 TEST_CASE("a_sun_below_the_horizon_prunes_every_caustics_choice", "[pruning]") {

@@ -93,11 +93,13 @@ AxisInfo scene_input_axis() {
                      s.scene_pos = named(sample(texture(s.g, scene_position_texture()), s.uv).xyz(),
                                          "scene_pos");
                      s.to_scene = s.scene_pos - s.eye;
-                 }},
+                 },
+             .scene_needs = {{SceneFact::SceneInput, "position_texture", ""}}},
             feature_choice(
                 {.name = "depth_buffer",
                  .description = "world position unprojected from the depth buffer (conventions: "
-                                "reversed Z, NDC z range, NDC y, camera-relative)"},
+                                "reversed Z, NDC z range, NDC y, camera-relative)",
+                 .scene_needs = {{SceneFact::SceneInput, "depth_buffer", ""}}},
                 ChoiceNode{{inputs, inputs + 2},
                            [](Graph& g, const std::vector<Expr>& in) {
                                return scene_position_from_depth(g, in[0], in[1]).position;

@@ -41,7 +41,10 @@ struct SceneFacts {
     FactRange sun_elevation{-90, 90};            // degrees above the horizon
     std::vector<std::string> reflection_sources; // of kReflectionSources; empty = none
     bool waves_animated = true;
-    std::string precision = "any";                    // "full", "half" or "any"
+    std::string precision = "any"; // "full", "half" or "any"
+    // How the engine gives the scene's position: "position_texture", "depth_buffer" or "any"
+    // (the scene_input axis's choices; a scene may leave it out: any).
+    std::string scene_input = "any";
     std::vector<std::string> platforms;               // of kPlatforms
     std::map<std::string, std::vector<double>> fixed; // parameters the scene fixes
     SceneWhere where;

@@ -27,12 +27,14 @@ enum class SceneFact {
     BottomInView,     // the refracted scene shows the bottom somewhere
     BottomLit,        // sunlight reaches the bottom (the variant's extinction, the scene's depth)
     Precision,        // the scene targets the precision named by SceneNeed::value (or any)
+    SceneInput,       // the engine gives the scene's position as SceneNeed::value (or either)
 };
 
 // What a choice needs from a scene; a scene without it never shows the choice.
 struct SceneNeed {
     SceneFact fact = SceneFact::Shoreline;
-    // ReflectionSource: "cubemap", "planar" or "horizon_map"; Precision: "full" or "half".
+    // ReflectionSource: "cubemap", "planar" or "horizon_map"; Precision: "full" or "half";
+    // SceneInput: "position_texture" or "depth_buffer".
     std::string value{};
     std::string consequence{}; // ends the reason: "no shoreline, so <consequence>"; "" for none
 };
