@@ -25,6 +25,11 @@ const char* file_extension(Language l, ShaderStage s) {
         return glsl ? "frag.glsl" : "frag.hlsl";
     case ShaderStage::Compute:
         return glsl ? "comp.glsl" : "comp.hlsl";
+    // HLSL's hull and domain shaders, named by the stage tag like the HLSL vertex stage.
+    case ShaderStage::TessControl:
+        return glsl ? "tesc.glsl" : "tesc.hlsl";
+    case ShaderStage::TessEvaluation:
+        return glsl ? "tese.glsl" : "tese.hlsl";
     }
     return "";
 }
@@ -158,16 +163,18 @@ void check_push_constant_size(const UniformLayout& block, const BindingMap& map,
                      s && !s->origin.empty() ? "; " + s->origin : "")});
 }
 
-// `specialized`: EmitOptions::specialization_constants.
+// `specialized`: EmitOptions::specialization_constants. `block`: the parameters the block holds
+// when the stages of a pipeline share one (SkeletonOptions::block); null: those `g` reads.
 ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics,
                              const std::set<std::string>& specialized = {},
-                             const BindingMap* map = nullptr) {
+                             const BindingMap* map = nullptr,
+                             const std::vector<Parameter>* block = nullptr) {
     ShaderInterface in;
     std::set<std::string> used_uniforms, used_textures;
     collect_reads(g, used_uniforms, used_textures, in.varyings);
     check_specialization_names(g.parameters(), specialized, diagnostics);
-    for (Parameter p : g.parameters())
-        if (used_uniforms.count(p.name)) {
+    for (Parameter p : block ? *block : g.parameters())
+        if (block || used_uniforms.count(p.name)) {
             p.specialization = is_specialized(p, specialized);
             in.parameters.push_back(std::move(p));
         }
@@ -428,18 +435,47 @@ void attribute_to_nodes(const EmittedShader& shader, Diagnostics& diagnostics) {
 
 // ---- for the emitters of other stages (emitter_internal.h, vertex_emitter.cpp) ----
 
+std::vector<Parameter> parameters_read(const Graph& g) {
+    std::set<std::string> uniforms, textures;
+    std::vector<std::pair<std::string, Type>> varyings;
+    collect_reads(g, uniforms, textures, varyings);
+    std::vector<Parameter> out;
+    for (const Parameter& p : g.parameters())
+        if (uniforms.count(p.name)) out.push_back(p);
+    return out;
+}
+
 EmittedShader emit_from_skeleton(const Graph& g, Language language, ShaderStage stage,
                                  std::string_view skeleton, const std::string& file_name,
                                  const std::string& variant_key, Diagnostics& diagnostics,
                                  const BindingMap* bindings) {
+    return emit_from_skeleton(g, language, stage, skeleton, file_name, variant_key, diagnostics,
+                              SkeletonOptions{bindings, false, nullptr});
+}
+
+EmittedShader emit_from_skeleton(const Graph& g, Language language, ShaderStage stage,
+                                 std::string_view skeleton, const std::string& file_name,
+                                 const std::string& variant_key, Diagnostics& diagnostics,
+                                 const SkeletonOptions& options) {
     EmittedShader out;
     out.language = language;
     out.stage = stage;
     out.file_name = file_name;
     const GlslSyntax& syntax = syntax_for(language);
     const size_t before = diagnostics.size();
-    out.interface = interface_of(g, diagnostics, {}, bindings);
+    if (options.block)
+        for (const Parameter& read : parameters_read(g))
+            if (std::none_of(options.block->begin(), options.block->end(),
+                             [&](const Parameter& p) { return p.name == read.name; }))
+                diagnostics.push_back({Severity::Error, file_name, 0, 0, read.origin,
+                                       "parameter '" + read.name +
+                                           "' is read by this stage and missing from the shared "
+                                           "parameter block; expected a block holding every "
+                                           "stage's parameters (shared_block_parameters)"});
+    out.interface = interface_of(g, diagnostics, {}, options.bindings, options.block);
     if (errors_since(diagnostics, before)) return out;
+    // The skeleton computes these itself: no `in` declaration, no HLSL entry parameter.
+    if (options.skeleton_defines_varyings) out.interface.varyings.clear();
     std::vector<std::string> results;
     std::set<Op> used_ops;
     FragmentWriter writer(g, syntax);

@@ -38,9 +38,10 @@ StageFileNames stage_file_names(Language lang, ShaderStage stage, const std::str
 constexpr Language kLanguages[] = {Language::Glsl, Language::Hlsl};
 constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment};
 
-// `key`: the variant whose stamp the source carries (the memo finds the stage without it).
+} // namespace
+
 StageBuild build_stage(EmittedShader source, Diagnostics& all, const StageCompile& compile,
-                       const std::string& key, bool strict_half = false) {
+                       const std::string& key, bool strict_half) {
     StageBuild stage{std::move(source), {}};
     const CompileRequest request = stage_request(stage.source, strict_half);
     const CrossCompile cross = stage_cross(stage.source.language, compile);
@@ -61,6 +62,8 @@ StageBuild build_stage(EmittedShader source, Diagnostics& all, const StageCompil
     all.insert(all.end(), rest.begin(), rest.end());
     return stage;
 }
+
+namespace {
 
 std::string spirv_bytes(const std::vector<uint32_t>& words) {
     return std::string(reinterpret_cast<const char*>(words.data()),

@@ -25,6 +25,10 @@ EShLanguage to_glslang(ShaderStage stage) {
         return EShLangFragment;
     case ShaderStage::Compute:
         return EShLangCompute;
+    case ShaderStage::TessControl:
+        return EShLangTessControl;
+    case ShaderStage::TessEvaluation:
+        return EShLangTessEvaluation;
     }
     return EShLangFragment;
 }
@@ -116,7 +120,8 @@ void encode_op_name(uint32_t target, const std::string& name, std::vector<uint32
 
 void rename_hlsl_varyings(std::vector<uint32_t>& spirv, ShaderStage stage) {
     uint32_t varying_class = 0;
-    if (stage == ShaderStage::Vertex)
+    // A domain stage's outputs are what the fragment stage reads, as a vertex stage's are.
+    if (stage == ShaderStage::Vertex || stage == ShaderStage::TessEvaluation)
         varying_class = kStorageOutput;
     else if (stage == ShaderStage::Fragment)
         varying_class = kStorageInput;

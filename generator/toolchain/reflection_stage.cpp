@@ -16,6 +16,10 @@ spv::ExecutionModel to_model(ShaderStage stage) {
         return spv::ExecutionModelFragment;
     case ShaderStage::Compute:
         return spv::ExecutionModelGLCompute;
+    case ShaderStage::TessControl:
+        return spv::ExecutionModelTessellationControl;
+    case ShaderStage::TessEvaluation:
+        return spv::ExecutionModelTessellationEvaluation;
     }
     return spv::ExecutionModelFragment;
 }

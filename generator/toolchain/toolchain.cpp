@@ -23,12 +23,24 @@ void cross_compile_and_check(const CompileRequest& request, ToolchainOutputs& ou
     // GLSL 330 and ESSL 300 predate compute shaders, so compute only gets MSL; neither has
     // 16-bit arithmetic types (a strict-half module), which MSL has (`half`).
     const bool compute = request.stage == ShaderStage::Compute;
+    // Tessellation came to desktop GL in 4.0 and to ES in 3.2 (or GL_EXT_tessellation_shader);
+    // SPIRV-Cross writes Metal tessellation only as compute kernels that need the pipeline's
+    // other stages and buffers bound in its own way (CompilerMSL::Options::
+    // multi_patch_workgroup and friends), which no engine here would load: no MSL either.
+    const bool tessellation =
+        request.stage == ShaderStage::TessControl || request.stage == ShaderStage::TessEvaluation;
     const bool float16 = declares_capability(out.spirv, kCapabilityFloat16);
-    const bool gl_targets = !compute && !float16;
+    const bool gl_targets = !compute && !tessellation && !float16;
     if (compute)
         out.diagnostics.push_back(
             {Severity::Note, f, 0, 0, "",
              "GLSL 330 and ESSL 300 have no compute shaders; those outputs are skipped"});
+    else if (tessellation)
+        out.diagnostics.push_back(
+            {Severity::Note, f, 0, 0, "",
+             "GLSL 330 and ESSL 300 have no tessellation stages (GL 4.0, ES 3.2), and "
+             "SPIRV-Cross writes Metal tessellation only as compute kernels with their own "
+             "pipeline setup; the GLSL 330, ESSL 300 and MSL outputs are skipped"});
     else if (float16)
         out.diagnostics.push_back(
             {Severity::Note, f, 0, 0, "",
@@ -42,7 +54,7 @@ void cross_compile_and_check(const CompileRequest& request, ToolchainOutputs& ou
         bool wanted;
     } targets[] = {{CrossTarget::Glsl330, &out.glsl330, gl_targets},
                    {CrossTarget::Essl300, &out.essl300, gl_targets},
-                   {CrossTarget::Msl, &out.msl, true}};
+                   {CrossTarget::Msl, &out.msl, !tessellation}};
     for (const auto& t : targets) {
         if (!t.wanted) continue;
         CrossResult result = cross_compile(out.spirv_optimized, t.target,

@@ -13,14 +13,8 @@ namespace {
 void build_vertex(Graph& g, const std::string& model) {
     OriginScope scope(g, "mesh.vertex");
     Expr grid = varying(g, "grid_xz", Type::Vec2);
-    // Same names and defaults as the post-process pass (water_shader.cpp), so one uniform set
-    // drives both.
-    // Bound to the scene quantities as in the water pass, so scene facts would reach them.
-    Expr eye = bind(
-        scene_quantity::eye_position,
-        uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""}));
-    Expr level = bind(scene_quantity::water_level,
-                      uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""}));
+    Expr eye = mesh_eye_position(g);
+    Expr level = mesh_water_level(g);
     Expr time = bind(scene_quantity::time,
                      uniform(g, {"time", Type::Float, {0.0}, 0.0, 86400.0, "s", "000", ""}));
     Expr right =
@@ -76,6 +70,20 @@ void build_fragment(Graph& g) {
 }
 
 } // namespace
+
+// Same names and defaults as the post-process pass (water_shader.cpp), so one uniform set
+// drives both. Bound to the scene quantities as in the water pass, so scene facts would reach
+// them.
+Expr mesh_eye_position(Graph& g) {
+    return bind(
+        scene_quantity::eye_position,
+        uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""}));
+}
+
+Expr mesh_water_level(Graph& g) {
+    return bind(scene_quantity::water_level,
+                uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""}));
+}
 
 MeshShader build_mesh_shader(const std::string& wave_model) {
     MeshShader m{wave_model, Graph{}, Graph{}};

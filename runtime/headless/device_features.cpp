@@ -1,6 +1,7 @@
 // Optional device features: 16-bit shader arithmetic and 16-bit storage. lavapipe (Mesa 22.3)
 // has them; enabling them lets a probe run float16_t arithmetic in true binary16 instead of
-// the 32-bit "mediump" hint (watergen issue 14).
+// the 32-bit "mediump" hint (watergen issue 14). Tessellation shaders, for the tessellated mesh
+// path (issue 28): lavapipe has them too, up to level 64.
 #include "device_context.h"
 
 namespace watergen::headless_detail {
@@ -44,6 +45,7 @@ void choose_device_features(Context* ctx, uint32_t api, DeviceFeatures* out) {
     const VkPhysicalDeviceFeatures supported = out->core.features;
     out->core.features = VkPhysicalDeviceFeatures{};
     out->core.features.shaderInt16 = supported.shaderInt16;
+    out->core.features.tessellationShader = supported.tessellationShader;
     const VkPhysicalDevice16BitStorageFeatures storage = out->storage16;
     out->storage16 = VkPhysicalDevice16BitStorageFeatures{};
     out->storage16.sType = storage.sType;
@@ -58,6 +60,12 @@ void choose_device_features(Context* ctx, uint32_t api, DeviceFeatures* out) {
     info.storage_buffer_16bit = out->storage16.storageBuffer16BitAccess == VK_TRUE;
     info.uniform_storage_16bit = out->storage16.uniformAndStorageBuffer16BitAccess == VK_TRUE;
     info.float16_denorms_preserved = float16_denorms_preserved(ctx->physical, api);
+    info.tessellation_shader = out->core.features.tessellationShader == VK_TRUE;
+    if (info.tessellation_shader) {
+        VkPhysicalDeviceProperties props{};
+        vkGetPhysicalDeviceProperties(ctx->physical, &props);
+        info.max_tessellation_level = props.limits.maxTessellationGenerationLevel;
+    }
 }
 
 } // namespace watergen::headless_detail

@@ -54,7 +54,10 @@ void check_geometry(const DrawGeometry& g) {
         throw DeviceError(
             fmt::format("{} has {} vertex floats, not a whole number of {}-float vertices", what,
                         floats, stride));
-    if (!g.points && g.indices->size() % 3 != 0)
+    if (g.patch_control_points && g.indices->size() % g.patch_control_points != 0)
+        throw DeviceError(fmt::format("{} has {} indices, not whole patches of {}", what,
+                                      g.indices->size(), g.patch_control_points));
+    if (!g.points && !g.patch_control_points && g.indices->size() % 3 != 0)
         throw DeviceError(
             fmt::format("{} has {} indices, not whole triangles", what, g.indices->size()));
     const size_t vertex_count = floats / stride;

@@ -56,10 +56,19 @@ bool prepare(HeadlessDevice& device, const RenderJob& job, PreparedJob& p, Rende
                     fmt::format("timed_draws {} exceeds {}", job.timed_draws, kMaxTimedDraws));
     // 0x07230203 is the SPIR-V magic number; catching a wrong blob here gives a clearer
     // message than the driver would.
-    for (const auto& [spirv, what] :
-         {std::pair{&job.vertex_spirv, "vertex"}, std::pair{&job.fragment_spirv, "fragment"}})
+    // Tessellation stages are optional, both or neither: one alone is checked as missing.
+    const bool tessellated = !job.tess_control_spirv.empty() || !job.tess_evaluation_spirv.empty();
+    std::vector<std::pair<const std::vector<uint32_t>*, const char*>> modules = {
+        {&job.vertex_spirv, "vertex"}, {&job.fragment_spirv, "fragment"}};
+    if (tessellated)
+        modules.insert(modules.end(), {{&job.tess_control_spirv, "tess_control"},
+                                       {&job.tess_evaluation_spirv, "tess_evaluation"}});
+    for (const auto& [spirv, what] : modules)
         if (spirv->size() < 5 || (*spirv)[0] != 0x07230203u)
             return fail(error, fmt::format("{} SPIR-V is empty or not SPIR-V", what));
+    if (tessellated && !device.info().tessellation_shader)
+        return fail(error, "the job has tessellation stages; the device has no "
+                           "tessellationShader feature");
     // Additive blending needs a target format the device blends into: render_pass(format) checks.
     const VkRenderPass pass = job.additive_blend
                                   ? device.render_pass(VK_FORMAT_R32G32B32A32_SFLOAT, error)
@@ -80,9 +89,17 @@ bool prepare(HeadlessDevice& device, const RenderJob& job, PreparedJob& p, Rende
     VkPhysicalDeviceProperties props{};
     vkGetPhysicalDeviceProperties(device.physical(), &props);
     desc.max_push_constants_size = props.limits.maxPushConstantsSize;
+    if (tessellated) {
+        desc.tess_control_spirv = &job.tess_control_spirv;
+        desc.tess_evaluation_spirv = &job.tess_evaluation_spirv;
+        desc.tess_control_reflection = &job.tess_control_reflection;
+        desc.tess_evaluation_reflection = &job.tess_evaluation_reflection;
+    }
     PipelineGeometry geometry;
     if (!job.mesh.empty()) geometry.attribute_sizes = job.mesh.attribute_sizes;
     geometry.points = job.mesh.points;
+    geometry.patch_control_points = job.mesh.patch_control_points;
+    geometry.cull_back_faces = job.cull_back_faces;
     geometry.additive_blend = job.additive_blend;
     const bool count_first = counting(job) && job.count_first_draw;
     if (count_first) { // pipeline creation and the first draw: the JIT
@@ -98,8 +115,12 @@ bool prepare(HeadlessDevice& device, const RenderJob& job, PreparedJob& p, Rende
     const DrawTarget target{.width = job.width, .height = job.height};
     const DrawBindings bindings{
         .sole_uniforms = &job.uniforms, .textures = &job.textures, .filter = job.filter};
-    const DrawGeometry mesh{&job.mesh.vertices, &job.mesh.indices, job.mesh.attribute_sizes,
-                            job.mesh.points, "mesh"};
+    const DrawGeometry mesh{&job.mesh.vertices,
+                            &job.mesh.indices,
+                            job.mesh.attribute_sizes,
+                            job.mesh.points,
+                            "mesh",
+                            job.mesh.patch_control_points};
     p.draw = OffscreenDraw::create(device, *p.pipeline, target, bindings, mesh, error);
     return p.draw != nullptr;
 }

@@ -24,6 +24,12 @@ void FixedFunction::points() {
     assembly.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
 }
 
+void FixedFunction::patches(uint32_t control_points) {
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
+    tessellation.sType = VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO;
+    tessellation.patchControlPoints = control_points;
+}
+
 void FixedFunction::additive_blend() {
     VkPipelineColorBlendAttachmentState& b = blend_attachment;
     b.blendEnable = VK_TRUE;
@@ -56,6 +62,8 @@ void FixedFunction::apply(VkGraphicsPipelineCreateInfo& gci) const {
     gci.pRasterizationState = &raster;
     gci.pMultisampleState = &multisample;
     gci.pColorBlendState = &blend;
+    gci.pTessellationState =
+        assembly.topology == VK_PRIMITIVE_TOPOLOGY_PATCH_LIST ? &tessellation : nullptr;
 }
 
 } // namespace watergen::vk_state

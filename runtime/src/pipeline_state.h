@@ -9,7 +9,8 @@
 
 namespace watergen::vk_state {
 
-// Triangle list, filled, no culling (the generated triangle's winding does not matter), one
+// Triangle list, filled, no culling (the generated triangle's winding does not matter; `raster`
+// may ask for it), one
 // sample, raw output (no blending: tests compare exact floats). Points into itself: keep it
 // where it was made while the pipeline is created.
 struct FixedFunction {
@@ -21,13 +22,17 @@ struct FixedFunction {
     VkPipelineMultisampleStateCreateInfo multisample{};
     VkPipelineColorBlendAttachmentState blend_attachment{};
     VkPipelineColorBlendStateCreateInfo blend{};
+    VkPipelineTessellationStateCreateInfo tessellation{};
     // A point list (the vertex stage writes PointSize: Vulkan leaves the size undefined
     // otherwise).
     void points();
+    // A patch list of `control_points` points each, for tessellation stages.
+    void patches(uint32_t control_points);
     // ONE + ONE on colour and alpha: passes that accumulate (caustics) add every fragment into a
     // target cleared to 0. The target's format must support blending.
     void additive_blend();
-    // Sets gci's sType and points its assembly, rasterization, multisample and blend state here.
+    // Sets gci's sType and points its assembly, rasterization, multisample and blend state here
+    // (and its tessellation state, for patches).
     void apply(VkGraphicsPipelineCreateInfo& gci) const;
 };
 

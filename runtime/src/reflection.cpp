@@ -36,8 +36,8 @@ constexpr json_limits::Limits kLimits{size_t(1) << 16, 8, 4096};
 
 using nlohmann::json;
 
-constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment,
-                                   ShaderStage::Compute};
+constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment, ShaderStage::Compute,
+                                   ShaderStage::TessControl, ShaderStage::TessEvaluation};
 constexpr DescriptorKind kKinds[] = {DescriptorKind::UniformBuffer, DescriptorKind::StorageBuffer,
                                      DescriptorKind::SampledImage, DescriptorKind::Sampler,
                                      DescriptorKind::CombinedImageSampler};
@@ -251,6 +251,10 @@ const char* to_string(ShaderStage s) {
         return "fragment";
     case ShaderStage::Compute:
         return "compute";
+    case ShaderStage::TessControl:
+        return "tess_control";
+    case ShaderStage::TessEvaluation:
+        return "tess_evaluation";
     }
     return "unknown";
 }
@@ -340,6 +344,10 @@ const char* stage_tag(ShaderStage s) {
         return "frag";
     case ShaderStage::Compute:
         return "comp";
+    case ShaderStage::TessControl:
+        return "tesc";
+    case ShaderStage::TessEvaluation:
+        return "tese";
     }
     return "frag";
 }

@@ -23,6 +23,10 @@ uint32_t execution_model(ShaderStage s) {
         return 4;
     case ShaderStage::Compute:
         return 5;
+    case ShaderStage::TessControl:
+        return 1;
+    case ShaderStage::TessEvaluation:
+        return 2;
     }
     return 4;
 }

@@ -35,6 +35,29 @@ VkShaderModule make_module(VkDevice device, const std::vector<uint32_t>& spirv, 
     return m;
 }
 
+// One stage of the pipeline: its module, reflection and stage.
+struct StageInput {
+    const std::vector<uint32_t>* spirv;
+    const Reflection* reflection;
+    ShaderStage stage;
+    VkShaderStageFlagBits flag;
+};
+
+// The stages `d` names, in pipeline order (the tessellation stages when given).
+std::vector<StageInput> stages_of(const VariantPipelineDesc& d) {
+    std::vector<StageInput> out = {
+        {d.vertex_spirv, d.vertex_reflection, ShaderStage::Vertex, VK_SHADER_STAGE_VERTEX_BIT}};
+    if (d.tess_control_spirv || d.tess_evaluation_spirv) {
+        out.push_back({d.tess_control_spirv, d.tess_control_reflection, ShaderStage::TessControl,
+                       VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT});
+        out.push_back({d.tess_evaluation_spirv, d.tess_evaluation_reflection,
+                       ShaderStage::TessEvaluation, VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT});
+    }
+    out.push_back({d.fragment_spirv, d.fragment_reflection, ShaderStage::Fragment,
+                   VK_SHADER_STAGE_FRAGMENT_BIT});
+    return out;
+}
+
 } // namespace
 
 VkDescriptorType descriptor_type(DescriptorKind kind) {
@@ -149,23 +172,23 @@ bool VariantPipeline::create_own_layout(VkDevice device, const StageUnion& all, 
 
 bool VariantPipeline::union_push_constants(const VariantPipelineDesc& d, std::string* error) {
     VkShaderStageFlags stages = 0;
-    for (const auto& [r, stage] :
-         {std::pair{d.vertex_reflection, VK_SHADER_STAGE_VERTEX_BIT},
-          std::pair{d.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}}) {
-        if (!r->push_constant) continue;
-        const DescriptorBinding& b = *r->push_constant;
+    ShaderStage first = ShaderStage::Vertex; // the stage push_block_ was first seen in
+    for (const StageInput& in : stages_of(d)) {
+        if (!in.reflection->push_constant) continue;
+        const DescriptorBinding& b = *in.reflection->push_constant;
+        if (!push_block_) first = in.stage;
         // One range at offset 0 serves one block: two blocks would need two ranges and a
         // layout of offsets neither stage states.
         if (push_block_ && push_block_->name != b.name) {
-            *error = "the push-constant block is '" + push_block_->name +
-                     "' in the vertex stage and '" + b.name +
-                     "' in the fragment stage; expected one block";
+            *error = "the push-constant block is '" + push_block_->name + "' in the " +
+                     to_string(first) + " stage and '" + b.name + "' in the " +
+                     to_string(in.stage) + " stage; expected one block";
             return false;
         }
         // The larger block covers both stages' members (the fragment's on a tie: the stage
         // UniformWriter::pack() reads).
         if (!push_block_ || b.block_size >= push_block_->block_size) push_block_ = b;
-        stages |= static_cast<VkShaderStageFlags>(stage);
+        stages |= static_cast<VkShaderStageFlags>(in.flag);
     }
     if (d.layout) {
         // The map's range, whether or not these stages read it; check() saw the block fits.
@@ -206,6 +229,31 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
                  "pass";
         return std::nullopt;
     }
+    const bool tessellated = d.tess_control_spirv || d.tess_evaluation_spirv ||
+                             d.tess_control_reflection || d.tess_evaluation_reflection;
+    if (tessellated && (!d.tess_control_spirv || !d.tess_evaluation_spirv ||
+                        !d.tess_control_reflection || !d.tess_evaluation_reflection)) {
+        *error = "VariantPipelineDesc: expected both tessellation stages' SPIR-V and reflection, "
+                 "or neither";
+        return std::nullopt;
+    }
+    // A BindingLayout's bindings and range are visible to the vertex and fragment stages only.
+    if (tessellated && d.layout) {
+        *error = "VariantPipelineDesc: tessellation stages with a shared BindingLayout, whose "
+                 "bindings the vertex and fragment stages alone see; expected a layout of the "
+                 "pipeline's own (layout = null)";
+        return std::nullopt;
+    }
+    // Tessellation stages read patches, and patches go nowhere else.
+    if (tessellated != (geometry.patch_control_points > 0)) {
+        *error = tessellated ? "PipelineGeometry: tessellation stages need patches; expected "
+                               "patch_control_points > 0"
+                             : "PipelineGeometry: patches of " +
+                                   std::to_string(geometry.patch_control_points) +
+                                   " control points need tessellation stages";
+        return std::nullopt;
+    }
+    const std::vector<StageInput> inputs = stages_of(d);
     for (uint32_t floats : geometry.attribute_sizes)
         if (floats < 1 || floats > 4) {
             *error = "PipelineGeometry: a vertex attribute of " + std::to_string(floats) +
@@ -214,9 +262,7 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
         }
     VariantPipeline p;
     // The driver trusts the modules: a vertex module in the fragment slot crashed lavapipe.
-    for (const auto& [words, r, stage] :
-         {std::tuple{d.vertex_spirv, d.vertex_reflection, ShaderStage::Vertex},
-          std::tuple{d.fragment_spirv, d.fragment_reflection, ShaderStage::Fragment}}) {
+    for (const auto& [words, r, stage, flag] : inputs) {
         std::string why;
         if (!check_spirv(*words, stage, r->entry_point.empty() ? "main" : r->entry_point, &why)) {
             *error = std::string(to_string(stage)) + " stage: SPIR-V " + why;
@@ -242,9 +288,8 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
     p.device_ = device;
     // Union of the stages' bindings by (set, binding), stage flags or-ed together.
     StageUnion all;
-    for (const auto& [r, stage] : {std::pair{d.vertex_reflection, VK_SHADER_STAGE_VERTEX_BIT},
-                                   std::pair{d.fragment_reflection, VK_SHADER_STAGE_FRAGMENT_BIT}})
-        for (const DescriptorBinding& b : r->bindings) {
+    for (const StageInput& in : inputs)
+        for (const DescriptorBinding& b : in.reflection->bindings) {
             auto [it, fresh] = all.try_emplace({b.set, b.binding}, b, 0);
             DescriptorBinding& seen = it->second.first;
             if (!fresh && (seen.kind != b.kind || seen.name != b.name)) {
@@ -256,15 +301,15 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
             }
             // A block both stages declare needs the larger of their sizes.
             seen.block_size = std::max(seen.block_size, b.block_size);
-            it->second.second |= static_cast<VkShaderStageFlags>(stage);
+            it->second.second |= static_cast<VkShaderStageFlags>(in.flag);
         }
     uint32_t sets = 0;
     for (const auto& [key, b] : all)
         sets = std::max(sets, key.first + 1);
     if (!p.union_push_constants(d, error)) return std::nullopt;
     if (d.layout) {
-        for (const Reflection* r : {d.vertex_reflection, d.fragment_reflection})
-            if (std::string off = d.layout->check(*r); !off.empty()) {
+        for (const StageInput& in : inputs)
+            if (std::string off = d.layout->check(*in.reflection); !off.empty()) {
                 *error = off;
                 return std::nullopt;
             }
@@ -284,24 +329,32 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
     }
     VkSpecializationInfo spec{static_cast<uint32_t>(entries.size()), entries.data(),
                               data.size() * sizeof(float), data.data()};
-    VkShaderModule vs = make_module(device, *d.vertex_spirv, "vertex", error);
-    VkShaderModule fs = vs ? make_module(device, *d.fragment_spirv, "fragment", error) : nullptr;
-    if (!fs) {
-        if (vs) vkDestroyShaderModule(device, vs, nullptr);
-        return std::nullopt;
-    }
-    VkPipelineShaderStageCreateInfo stages[2]{};
-    for (int i = 0; i < 2; ++i) {
-        const Reflection& r = i == 0 ? *d.vertex_reflection : *d.fragment_reflection;
+    std::vector<VkShaderModule> modules;
+    auto destroy_modules = [&] {
+        for (VkShaderModule m : modules)
+            vkDestroyShaderModule(device, m, nullptr);
+    };
+    std::vector<VkPipelineShaderStageCreateInfo> stages(inputs.size());
+    for (size_t i = 0; i < inputs.size(); ++i) {
+        const VkShaderModule m =
+            make_module(device, *inputs[i].spirv, to_string(inputs[i].stage), error);
+        if (!m) {
+            destroy_modules();
+            return std::nullopt;
+        }
+        modules.push_back(m);
+        const Reflection& r = *inputs[i].reflection;
         stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-        stages[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
-        stages[i].module = i == 0 ? vs : fs;
+        stages[i].stage = inputs[i].flag;
+        stages[i].module = m;
         stages[i].pName = r.entry_point.empty() ? "main" : r.entry_point.c_str();
         stages[i].pSpecializationInfo = entries.empty() ? nullptr : &spec;
     }
     const vk_state::VertexInput vertex_input(geometry.attribute_sizes);
     vk_state::FixedFunction fixed;
     if (geometry.points) fixed.points();
+    if (geometry.patch_control_points) fixed.patches(geometry.patch_control_points);
+    if (geometry.cull_back_faces) fixed.raster.cullMode = VK_CULL_MODE_BACK_BIT;
     if (geometry.additive_blend) fixed.additive_blend();
     VkPipelineViewportStateCreateInfo viewport{};
     viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
@@ -315,8 +368,8 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
 
     VkGraphicsPipelineCreateInfo gci{};
     fixed.apply(gci);
-    gci.stageCount = 2;
-    gci.pStages = stages;
+    gci.stageCount = static_cast<uint32_t>(stages.size());
+    gci.pStages = stages.data();
     gci.pVertexInputState = &vertex_input.info;
     gci.pViewportState = &viewport;
     gci.pDynamicState = &dynamic;
@@ -325,8 +378,7 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
     gci.subpass = d.subpass;
     gci.flags = d.flags;
     const VkResult r = vkCreateGraphicsPipelines(device, d.cache, 1, &gci, nullptr, &p.pipeline_);
-    vkDestroyShaderModule(device, vs, nullptr);
-    vkDestroyShaderModule(device, fs, nullptr);
+    destroy_modules();
     if (r != VK_SUCCESS) {
         p.pipeline_ = VK_NULL_HANDLE;
         *error = failed("vkCreateGraphicsPipelines", r);

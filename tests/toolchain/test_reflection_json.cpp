@@ -171,7 +171,8 @@ TEST_CASE("reflection_from_json_names_the_bad_key") {
     CHECK(
         error_for(
             R"({"stage": "geometry", "entry_point": "main", "bindings": [], "inputs": [], "outputs": []})") ==
-        "stage: expected one of vertex, fragment, compute; got \"geometry\"");
+        "stage: expected one of vertex, fragment, compute, tess_control, tess_evaluation; got "
+        "\"geometry\"");
 
     std::string text = kValid;
     text.replace(text.find("\"binding\": 1"), 12, "\"binding\": \"one\"");

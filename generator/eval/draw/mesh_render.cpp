@@ -46,13 +46,8 @@ MeshData make_grid(uint32_t n, double x0, double x1, double z0, double z1) {
     return mesh;
 }
 
-MeshRender render_mesh(VulkanRunner& runner, const MeshBuild& build, const SyntheticScene& scene,
-                       const MeshRenderSettings& settings) {
-    MeshRender out;
-    if (!build.ok()) {
-        out.error = "mesh did not build";
-        return out;
-    }
+std::map<std::string, std::vector<double>> mesh_values(const SyntheticScene& scene,
+                                                       const MeshRenderSettings& settings) {
     const SceneCamera cam = scene_camera(settings.width, settings.height);
     std::map<std::string, std::vector<double>> values = scene.uniforms;
     values["mesh_camera_right"] = {cam.right[0], cam.right[1], cam.right[2]};
@@ -60,16 +55,36 @@ MeshRender render_mesh(VulkanRunner& runner, const MeshBuild& build, const Synth
     values["mesh_camera_forward"] = {cam.forward[0], cam.forward[1], cam.forward[2]};
     values["mesh_projection"] = {1.0 / (cam.tan_half_fov_y * cam.aspect), 1.0 / cam.tan_half_fov_y};
     values["eye_position"] = {cam.eye[0], cam.eye[1], cam.eye[2]};
+    return values;
+}
+
+MeshRender render_mesh(VulkanRunner& runner, const MeshBuild& build, const SyntheticScene& scene,
+                       const MeshRenderSettings& settings) {
+    MeshRender out;
+    if (!build.ok()) {
+        out.error = "mesh did not build";
+        return out;
+    }
+    const std::map<std::string, std::vector<double>> values = mesh_values(scene, settings);
     const MeshData grid =
         make_grid(settings.grid, settings.x0, settings.x1, settings.z0, settings.z1);
+    std::array<RenderJob, 2> jobs;
+    for (size_t i = 0; i < 2; ++i) {
+        jobs[i] = mesh_job(build.languages[i], grid, settings.width, settings.height, values,
+                           settings.timed_draws);
+        jobs[i].cull_back_faces = settings.cull_back_faces;
+    }
+    return render_language_pair(runner, jobs, settings);
+}
+
+MeshRender render_language_pair(VulkanRunner& runner, const std::array<RenderJob, 2>& jobs,
+                                const MeshRenderSettings& settings) {
+    MeshRender out;
     runner.clear_validation_messages();
     for (size_t i = 0; i < 2; ++i) {
-        const LanguageBuild& lang = build.languages[i];
-        const RenderJob job =
-            mesh_job(lang, grid, settings.width, settings.height, values, settings.timed_draws);
-        out.gpu[i] = runner.render(job);
+        out.gpu[i] = runner.render(jobs[i]);
         if (!out.gpu[i].ok) {
-            out.error = std::string(to_string(lang.language)) + " path: " + out.gpu[i].error;
+            out.error = std::string(i == 0 ? "glsl" : "hlsl") + " path: " + out.gpu[i].error;
             return out;
         }
         out.gpu_image[i] = ImageRGBA32F{settings.width, settings.height, out.gpu[i].rgba};

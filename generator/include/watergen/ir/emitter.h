@@ -18,7 +18,8 @@ namespace watergen {
 
 enum class Language { Glsl, Hlsl };
 const char* to_string(Language l);
-const char* file_extension(Language l, ShaderStage s); // "frag.glsl", "frag.hlsl", ...
+// "frag.glsl", "frag.hlsl", ..., "tesc.hlsl" (hull), "tese.hlsl" (domain).
+const char* file_extension(Language l, ShaderStage s);
 
 // The numbering of a shader emitted without a binding map (EmitOptions::bindings), in set 0:
 // the block, the sampler, then the textures it reads in declaration order. A build always

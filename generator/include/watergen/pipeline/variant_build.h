@@ -43,6 +43,13 @@ struct StageCompile {
     StageMemo* memo = nullptr; // none: every stage compiled
 };
 
+// One emitted stage through the toolchain (`compile` says how far), its reflection checked
+// against the slots it was emitted with; the diagnostics go to `all`, glslang's with the nodes
+// of the lines they name. `key`: the variant whose stamp the source carries (the memo finds the
+// stage without it).
+StageBuild build_stage(EmittedShader source, Diagnostics& all, const StageCompile& compile = {},
+                       const std::string& key = "", bool strict_half = false);
+
 // The request build_shader compiles `stage` with (its Metal indices from the stage's binding
 // slots), and how far its chain runs under `compile`.
 CompileRequest stage_request(const EmittedShader& stage, bool strict_half = false);

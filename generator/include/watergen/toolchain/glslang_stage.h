@@ -47,8 +47,9 @@ void glslang_warm_up();
 // What:   compiles one shader to SPIR-V 1.3 for Vulkan 1.1. GLSL must be `#version 450`;
 //         HLSL goes through glslang's HLSL front end with `entry_point`, and the result is
 //         legalised with the SPIRV-Tools legalisation recipe (HLSL-to-SPIR-V output is not
-//         valid Vulkan SPIR-V until then). HLSL varyings (vertex outputs, fragment inputs)
-//         flattened from structs lose glslang's "@entryPointOutput." / "param." prefix, so
+//         valid Vulkan SPIR-V until then). HLSL varyings (vertex and domain outputs,
+//         fragment inputs) flattened from structs lose glslang's "@entryPointOutput." /
+//         "param." prefix, so
 //         GLSL 330 / ESSL 300 output (which links varyings by name) of an HLSL vertex and
 //         fragment pair still links. glslang info-log lines become Diagnostics with
 //         file = request.file_name and the line glslang reported.

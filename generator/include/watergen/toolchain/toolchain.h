@@ -29,7 +29,9 @@ struct ToolchainOutputs {
 //         text) -> reflection of the unoptimised module. Stops after the first stage that
 //         reports an error (the three SPIRV-Cross targets all run before stopping), and
 //         leaves later outputs empty. Compute shaders skip the GLSL 330 / ESSL 300 outputs
-//         and their round trip (neither language has compute) with a Note.
+//         and their round trip (neither language has compute) with a Note; tessellation
+//         stages skip all three (neither GL language has them, and Metal tessellation is a
+//         compute kernel SPIRV-Cross writes only under its own pipeline options), with a Note.
 //         Diagnostic::file says which stage spoke, with F = request.file_name:
 //           F               glslang (lines are lines of request.source)
 //           F.spv           spirv-val of the compiled module, reflection

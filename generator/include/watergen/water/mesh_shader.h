@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "watergen/ir/dsl.h"
 #include "watergen/ir/ir.h"
 
 namespace watergen {
@@ -23,5 +24,10 @@ struct MeshShader {
 // (unit), mesh_projection (1 / (tan(fov_y / 2) aspect), 1 / tan(fov_y / 2)), mesh_near (m).
 // An unknown model records a diagnostic on the vertex graph.
 MeshShader build_mesh_shader(const std::string& wave_model);
+
+// The vertex stage's eye_position (m) and water_level (m) parameters, read in `g`: another
+// stage of a mesh pipeline (the tessellated path's control stage) declares them the same way.
+Expr mesh_eye_position(Graph& g);
+Expr mesh_water_level(Graph& g);
 
 } // namespace watergen

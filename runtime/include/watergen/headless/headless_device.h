@@ -55,6 +55,10 @@ struct DeviceInfo {
     bool storage_buffer_16bit = false;      // VkPhysicalDevice16BitStorageFeatures
     bool uniform_storage_16bit = false;     // ... uniformAndStorageBuffer16BitAccess
     bool float16_denorms_preserved = false; // FloatControls shaderDenormPreserveFloat16
+    // VkPhysicalDeviceFeatures::tessellationShader, enabled whenever supported (the
+    // tessellated mesh path), with the device's maxTessellationGenerationLevel (0 without).
+    bool tessellation_shader = false;
+    uint32_t max_tessellation_level = 0;
 };
 
 // "1.3.230" from a VK_MAKE_API_VERSION value.

@@ -44,14 +44,17 @@ struct DrawBindings {
 
 // The vertices drawn. No indices: the fullscreen triangle (3 vertices from gl_VertexIndex, no
 // buffers). Else an indexed list from one interleaved float vertex buffer at binding 0,
-// attribute i with attribute_sizes[i] floats (the pipeline's PipelineGeometry), triangles or
-// points. Read while create() runs, not kept.
+// attribute i with attribute_sizes[i] floats (the pipeline's PipelineGeometry), triangles,
+// points or patches. Read while create() runs, not kept.
 struct DrawGeometry {
     const std::vector<float>* vertices = nullptr;
     const std::vector<uint32_t>* indices = nullptr;
     std::vector<uint32_t> attribute_sizes;
     bool points = false;
     std::string what = "mesh"; // names the geometry in errors ("grid")
+    // > 0: the indices name patches of this many control points (the pipeline's
+    // PipelineGeometry::patch_control_points), not triangles.
+    uint32_t patch_control_points = 0;
 };
 
 namespace headless_detail {

@@ -23,7 +23,7 @@
 
 namespace watergen {
 
-// An indexed triangle (or point) list: one interleaved float vertex buffer,
+// An indexed triangle (or point, or patch) list: one interleaved float vertex buffer,
 // attribute i at location i with attribute_sizes[i] floats (1..4), and 32-bit indices. No depth
 // buffer: later triangles overwrite earlier ones, so order them back to front.
 struct MeshData {
@@ -31,6 +31,9 @@ struct MeshData {
     std::vector<uint32_t> attribute_sizes;
     std::vector<uint32_t> indices;
     bool points = false; // the indices name points (a point list), not triangles
+    // > 0: the indices name patches of this many control points, drawn through the job's
+    // tessellation stages (which need them).
+    uint32_t patch_control_points = 0;
     bool empty() const { return indices.empty(); }
 };
 
@@ -39,6 +42,14 @@ struct RenderJob {
     std::vector<uint32_t> fragment_spirv;
     Reflection vertex_reflection; // descriptor layout = union of both stages' bindings
     Reflection fragment_reflection;
+    // Tessellation control and evaluation stages, both or neither (empty SPIR-V): then `mesh`
+    // holds patches (MeshData::patch_control_points) and the device must have the
+    // tessellationShader feature (DeviceInfo::tessellation_shader). Their bindings join the
+    // union; `uniforms` fills the block all stages share.
+    std::vector<uint32_t> tess_control_spirv;
+    std::vector<uint32_t> tess_evaluation_spirv;
+    Reflection tess_control_reflection;
+    Reflection tess_evaluation_reflection;
     uint32_t width = 256;
     uint32_t height = 256;
     // Bytes of the one UniformBuffer binding, or of the push-constant block (a stage's
@@ -73,6 +84,9 @@ struct RenderJob {
     // Blend ONE + ONE into the target cleared to 0, so overlapping triangles add up (the
     // caustics pass accumulates light this way); false: each fragment replaces the pixel.
     bool additive_blend = false;
+    // Cull back faces (front faces counter-clockwise in the framebuffer): which way a mesh's
+    // triangles wind, seen on the device; false: no culling.
+    bool cull_back_faces = false;
 };
 
 struct RenderResult {

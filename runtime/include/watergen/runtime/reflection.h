@@ -10,7 +10,9 @@
 
 namespace watergen {
 
-enum class ShaderStage { Vertex, Fragment, Compute };
+// TessControl / TessEvaluation: the displaced-geometry path's patch stages (GLSL tesc / tese,
+// HLSL hull / domain).
+enum class ShaderStage { Vertex, Fragment, Compute, TessControl, TessEvaluation };
 
 struct UniformMember {
     std::string name;    // as declared in the source, e.g. "sun_direction"
@@ -78,7 +80,8 @@ std::string reflection_to_json(const Reflection& r);
 std::optional<Reflection> reflection_from_json(const std::string& text, std::string* error);
 
 const char* to_string(ShaderStage s);
-// "vert" / "frag" / "comp": the stage in file names (water.frag.spv) and tool flags.
+// "vert" / "frag" / "comp" / "tesc" / "tese": the stage in file names (water.frag.spv) and tool
+// flags.
 const char* stage_tag(ShaderStage s);
 const char* to_string(DescriptorKind k);
 

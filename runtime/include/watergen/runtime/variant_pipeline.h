@@ -5,7 +5,9 @@
 // The pipeline draws the generated vertex stage as it is (a fullscreen triangle from
 // gl_VertexIndex: vkCmdDraw(cmd, 3, 1, 0, 0), no vertex buffers), with viewport and scissor as
 // dynamic state, no blending, no depth, no culling; a companion pass (pass_pipeline.h) passes a
-// PipelineGeometry instead: its grid's vertex input, triangles or points, additive blending.
+// PipelineGeometry instead: its grid's vertex input, triangles or points, additive blending;
+// a mesh may instead be patches for tessellation stages, and ask for back faces culled. With
+// tessellation stages (VariantPipelineDesc), the unions below span all four stages.
 // Descriptor layouts are the union of both stages' bindings (a binding both declare agrees on
 // kind and name, and keeps the larger block size), one layout per set number (gaps get empty
 // layouts), with the stage flags of the stages that use each binding; or, given a
@@ -43,6 +45,12 @@ struct PipelineGeometry {
     std::vector<uint32_t> attribute_sizes;
     bool points = false;         // a point list; else a triangle list
     bool additive_blend = false; // ONE + ONE into the target; else no blending
+    // > 0: a patch list of this many control points (VK_PRIMITIVE_TOPOLOGY_PATCH_LIST), for a
+    // pipeline with tessellation stages (which then need it); 0: no patches.
+    uint32_t patch_control_points = 0;
+    // Cull back faces (front faces are counter-clockwise in the framebuffer); else no culling.
+    // For checking which way a geometry's triangles wind.
+    bool cull_back_faces = false;
 };
 
 struct VariantPipelineDesc {
@@ -66,6 +74,15 @@ struct VariantPipelineDesc {
     // own with a larger push-constant block is an error naming both. The default is the 128
     // bytes every Vulkan device has. (A shared layout was checked by BindingLayout::create.)
     uint32_t max_push_constants_size = kGuaranteedPushConstantsSize;
+    // Tessellation control and evaluation stages (both or neither; last here, so positional
+    // initialisers of the fields above still hold): drawn between the vertex and fragment
+    // stages, from patches (PipelineGeometry::patch_control_points), with a layout of the
+    // pipeline's own (`layout` null: a BindingLayout serves vertex and fragment stages only);
+    // the device must have enabled the tessellationShader feature.
+    const std::vector<uint32_t>* tess_control_spirv = nullptr;
+    const std::vector<uint32_t>* tess_evaluation_spirv = nullptr;
+    const Reflection* tess_control_reflection = nullptr;
+    const Reflection* tess_evaluation_reflection = nullptr;
 };
 
 class VariantPipeline {

@@ -40,6 +40,7 @@ struct MeshRenderSettings {
     uint32_t grid = 64;                         // vertices per side
     double x0 = -14, x1 = 14, z0 = -4, z1 = 30; // grid extent, m
     uint32_t timed_draws = 0;
+    bool cull_back_faces = false; // RenderJob::cull_back_faces: see which way triangles wind
 };
 
 struct MeshRender {
@@ -51,8 +52,17 @@ struct MeshRender {
     bool ok() const { return error.empty(); }
 };
 
+// The parameter values of a mesh draw: scene.uniforms (eye, time, level) and the synthetic
+// scene's camera at settings' size (mesh_camera_*, mesh_projection, eye_position).
+std::map<std::string, std::vector<double>> mesh_values(const SyntheticScene& scene,
+                                                       const MeshRenderSettings& settings);
+
 // Camera and sun of the synthetic scene at settings' size; scene.uniforms (eye, time, level)
 // override parameter defaults.
+// Draws the GLSL path's job (jobs[0]) and the HLSL path's, and compares the two images.
+MeshRender render_language_pair(VulkanRunner& runner, const std::array<RenderJob, 2>& jobs,
+                                const MeshRenderSettings& settings);
+
 MeshRender render_mesh(VulkanRunner& runner, const MeshBuild& build, const SyntheticScene& scene,
                        const MeshRenderSettings& settings);
 
