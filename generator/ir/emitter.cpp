@@ -136,8 +136,8 @@ std::optional<ResourceSlot> slot_of(const std::string& name, ResourceKind kind,
 // cbuffer's arrays at std430 strides (4 bytes for float[]) whatever its packoffsets say, where
 // the GLSL std140 block and a uniform-buffer cbuffer put one element per 16-byte register; the
 // two languages would read different bytes.
-void check_push_constant_size(const UniformLayout& block, const BindingMap& map,
-                              Diagnostics& diagnostics) {
+void check_push_constant_block(const UniformLayout& block, const BindingMap& map,
+                               Diagnostics& diagnostics) {
     for (const auto& m : block.members)
         if (m.array_size)
             diagnostics.push_back(
@@ -190,7 +190,7 @@ ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics,
     if (!in.uniforms.members.empty()) {
         const ResourceSlot* block = place(kParamsResource, ResourceKind::UniformBlock, 0, "");
         if (block && block->kind == ResourceKind::PushConstant)
-            check_push_constant_size(in.uniforms, *map, diagnostics);
+            check_push_constant_block(in.uniforms, *map, diagnostics);
     }
     if (!used_textures.empty()) place(kSamplerResource, ResourceKind::Sampler, 0, "");
     for (const auto& t : g.textures())

@@ -5,21 +5,28 @@
 
 namespace watergen {
 
-RenderJob mesh_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t width, uint32_t height,
-                   const std::map<std::string, std::vector<double>>& values, uint32_t timed_draws) {
+RenderJob geometry_job(const StageBuild& vertex, const StageBuild& fragment,
+                       const ShaderInterface& block, const MeshData& mesh, uint32_t width,
+                       uint32_t height, const std::map<std::string, std::vector<double>>& values,
+                       uint32_t timed_draws) {
     RenderJob job;
-    job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
-    job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
-    job.vertex_reflection = lang.vertex.toolchain.reflection;
-    job.fragment_reflection = lang.fragment.toolchain.reflection;
+    job.vertex_spirv = vertex.toolchain.spirv_optimized;
+    job.fragment_spirv = fragment.toolchain.spirv_optimized;
+    job.vertex_reflection = vertex.toolchain.reflection;
+    job.fragment_reflection = fragment.toolchain.reflection;
     job.width = width;
     job.height = height;
-    const ShaderInterface& in = lang.vertex.source.interface;
-    job.uniforms = pack_uniforms(in.uniforms, in.parameters, values);
-    job.specialization = specialization_values(in.specialization, values);
+    job.uniforms = pack_uniforms(block.uniforms, block.parameters, values);
+    job.specialization = specialization_values(block.specialization, values);
     job.timed_draws = timed_draws;
     job.mesh = mesh;
     return job;
+}
+
+RenderJob mesh_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t width, uint32_t height,
+                   const std::map<std::string, std::vector<double>>& values, uint32_t timed_draws) {
+    return geometry_job(lang.vertex, lang.fragment, lang.vertex.source.interface, mesh, width,
+                        height, values, timed_draws);
 }
 
 MeshBuild build_mesh(const std::string& wave_model) {

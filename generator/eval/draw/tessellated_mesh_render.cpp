@@ -21,23 +21,13 @@ RenderJob tessellated_mesh_job(const TessellatedLanguageBuild& lang, const MeshD
                                uint32_t width, uint32_t height,
                                const std::map<std::string, std::vector<double>>& values,
                                uint32_t timed_draws) {
-    RenderJob job;
-    job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
+    // Both patch stages declare the one block (and the same specialization constants).
+    RenderJob job = geometry_job(lang.vertex, lang.fragment, lang.evaluation.source.interface,
+                                 patches, width, height, values, timed_draws);
     job.tess_control_spirv = lang.control.toolchain.spirv_optimized;
     job.tess_evaluation_spirv = lang.evaluation.toolchain.spirv_optimized;
-    job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
-    job.vertex_reflection = lang.vertex.toolchain.reflection;
     job.tess_control_reflection = lang.control.toolchain.reflection;
     job.tess_evaluation_reflection = lang.evaluation.toolchain.reflection;
-    job.fragment_reflection = lang.fragment.toolchain.reflection;
-    job.width = width;
-    job.height = height;
-    // Both patch stages declare the one block (and the same specialization constants).
-    const ShaderInterface& in = lang.evaluation.source.interface;
-    job.uniforms = pack_uniforms(in.uniforms, in.parameters, values);
-    job.specialization = specialization_values(in.specialization, values);
-    job.timed_draws = timed_draws;
-    job.mesh = patches;
     return job;
 }
 

@@ -27,6 +27,13 @@ struct MeshBuild {
 RenderJob mesh_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t width, uint32_t height,
                    const std::map<std::string, std::vector<double>>& values, uint32_t timed_draws);
 
+// The runner job drawing `mesh` with `vertex` and `fragment`, the parameter block packed from
+// `values` over the defaults of the stage interface `block` declares it in.
+RenderJob geometry_job(const StageBuild& vertex, const StageBuild& fragment,
+                       const ShaderInterface& block, const MeshData& mesh, uint32_t width,
+                       uint32_t height, const std::map<std::string, std::vector<double>>& values,
+                       uint32_t timed_draws);
+
 // build_two_stages of build_mesh_shader(wave_model).
 MeshBuild build_mesh(const std::string& wave_model);
 
