@@ -26,7 +26,7 @@ endfunction()
 
 watergen_install_libraries(COMPONENT runtime EXPORT watergenTargets FOLDER runtime
   TARGETS watergen_runtime watergen_reflection
-  HEADERS reflection.h build_pass.h shader_build.h uniform_writer.h variant_pipeline.h
+  HEADERS reflection.h build_pass.h shader_build.h uniform_writer.h variant_pipeline.h water_grid.h
           binding_layout.h
           pass_pipeline.h spirv_check.h)
 install(TARGETS watergen EXPORT watergenTargets

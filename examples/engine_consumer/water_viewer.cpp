@@ -5,9 +5,11 @@
 // the pipeline in the one layout of the build's binding map (BindingLayout; with a pipeline
 // cache file) and draw it. A variant whose caustics read the build's caustics pass
 // (caustics=area_ratio, photon_splat) gets that pass drawn first, its texture bound as
-// caustics_map. Writes water.ppm and checks the pixels.
+// caustics_map. A mesh variant (geometry=mesh or tessellated) is drawn over the runtime
+// library's clipmap grid around the eye (water_grid.h), with the camera in its block. Writes
+// water.ppm and checks the pixels.
 //
-//   water_viewer [build-directory] [output.ppm] [scene] [caustics choice]
+//   water_viewer [build-directory] [output.ppm] [scene] [caustics choice] [geometry]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,6 +29,7 @@
 #include "watergen/runtime/pass_pipeline.h"
 #include "watergen/runtime/shader_build.h"
 #include "watergen/runtime/uniform_writer.h"
+#include "watergen/runtime/water_grid.h"
 
 using namespace watergen;
 
@@ -75,6 +78,8 @@ bool write_ppm(const std::string& path, const std::vector<float>& rgba, uint32_t
 struct Stages {
     std::vector<uint32_t> vs, fs;
     Reflection vr, fr;
+    std::vector<uint32_t> tcs, tes; // a tessellated variant's patch stages
+    Reflection tcr, ter;
 };
 
 // The GLSL path's SPIR-V and reflection of a variant or a pass's shader.
@@ -85,7 +90,57 @@ std::optional<Stages> load_stages(const ShaderBuild& build, const BuildVariant& 
     const auto vr = fs ? build.reflection(v, "glsl", ShaderStage::Vertex, error) : std::nullopt;
     const auto fr = vr ? build.reflection(v, "glsl", ShaderStage::Fragment, error) : std::nullopt;
     if (!fr) return std::nullopt;
-    return Stages{*vs, *fs, *vr, *fr};
+    Stages s{*vs, *fs, *vr, *fr, {}, {}, {}, {}};
+    if (v.geometry && v.geometry->tessellated()) {
+        const auto tcs = build.spirv(v, "glsl", ShaderStage::TessControl, error);
+        const auto tes =
+            tcs ? build.spirv(v, "glsl", ShaderStage::TessEvaluation, error) : std::nullopt;
+        const auto tcr =
+            tes ? build.reflection(v, "glsl", ShaderStage::TessControl, error) : std::nullopt;
+        const auto ter =
+            tcr ? build.reflection(v, "glsl", ShaderStage::TessEvaluation, error) : std::nullopt;
+        if (!ter) return std::nullopt;
+        s.tcs = *tcs, s.tes = *tes, s.tcr = *tcr, s.ter = *ter;
+    }
+    return s;
+}
+
+// The frame's camera: at the eye, looking down +z and 20 degrees down, 60 degrees vertical
+// field of view, a square image of `size` pixels.
+constexpr float kEye[3] = {0.0f, 6.0f, -20.0f};
+
+// A mesh variant's frame: the camera as its vertex stage takes it, and the grid around the
+// eye with its morph range. The grid: 0.5 m cells near the eye, 32 cells a ring, 8 levels.
+std::optional<WaterGrid> set_mesh_frame(const BuildVariant& v, UniformWriter& uniforms,
+                                        uint32_t size, std::string* error) {
+    const float pitch = -20.0f * 3.14159265f / 180.0f,
+                tan_half = std::tan(30.0f * 3.14159265f / 180.0f);
+    const std::vector<float> forward = {0.0f, std::sin(pitch), std::cos(pitch)};
+    const std::vector<float> up = {0.0f, std::cos(pitch), -std::sin(pitch)}; // forward x right
+    const WaterGridDesc desc{0.5, 32, 8};
+    const WaterGrid grid =
+        water_grid(desc, kEye[0], kEye[2],
+                   v.geometry->tessellated() ? GridTopology::Patches : GridTopology::Triangles);
+    const std::pair<const char*, std::vector<float>> values[] = {
+        {"mesh_camera_right", {1.0f, 0.0f, 0.0f}},
+        {"mesh_camera_up", up},
+        {"mesh_camera_forward", forward},
+        {"mesh_projection", {1.0f / tan_half, 1.0f / tan_half}},
+        {"mesh_pixel_angle", {2.0f * tan_half / float(size)}},
+        {"grid_morph_start", {float(grid.morph_start)}},
+        {"grid_morph_end", {float(grid.morph_end)}}};
+    for (const auto& [name, value] : values)
+        if (const Write w = uniforms.set(name, value); !w.ok) {
+            *error = w.error;
+            return std::nullopt;
+        }
+    std::printf("%s over the runtime's clipmap grid: %u vertices, %zu %s, 0.5 m cells near the "
+                "eye, 8 levels of 32 cells a ring
+                ",
+                v.geometry->name.c_str(),
+                grid.vertex_count(), grid.indices.size() / (grid.patch_control_points ? 4 : 3),
+                grid.patch_control_points ? "patches" : "triangles");
+    return grid;
 }
 
 // The variant's caustics pass, drawn as the engine would each frame before the water: the grid
@@ -171,8 +226,10 @@ std::optional<std::string> check_header_block(const std::string& scene, const Bu
 int main(int argc, char** argv) {
     const std::string dir = argc > 1 ? argv[1] : WATER_SHADER_DIR;
     const std::string image = argc > 2 ? argv[2] : "water.ppm";
-    const std::string scene_arg = argc > 3 ? argv[3] : "";
+    // "-": the build's first scene (for giving the arguments after it).
+    const std::string scene_arg = argc > 3 && std::string(argv[3]) != "-" ? argv[3] : "";
     const std::string caustics = argc > 4 ? argv[4] : "";
+    const std::string geometry = argc > 5 ? argv[5] : "";
     std::string error;
     const auto build = ShaderBuild::open(dir, &error);
     if (!build) return fail(error);
@@ -189,6 +246,7 @@ int main(int argc, char** argv) {
                                                  {"foam", "shore"},
                                                  {"precision", "full"}};
     if (!caustics.empty()) wanted["caustics"] = caustics;
+    if (!geometry.empty()) wanted["geometry"] = geometry;
     const std::string scene = scene_arg.empty() ? build->scenes().front() : scene_arg;
     const Selection sel = build->select(scene, wanted, Fallback::NearestKept);
     if (!sel.ok()) return fail(sel.error);
@@ -204,14 +262,21 @@ int main(int argc, char** argv) {
     UniformWriter uniforms(v);
     for (const auto& [name, value] :
          std::initializer_list<std::pair<const char*, std::vector<float>>>{
-             {"eye_position", {0.0f, 6.0f, -20.0f}}, {"sun_direction", sun}}) {
+             {"eye_position", {kEye[0], kEye[1], kEye[2]}}, {"sun_direction", sun}}) {
         const Write w = uniforms.set(name, value);
         if (!w.ok) return fail(w.error);
         if (!w.note.empty()) std::printf("  %s\n", w.note.c_str());
     }
+    constexpr uint32_t kSize = 128;
+    std::optional<WaterGrid> grid;
+    if (v.geometry) {
+        grid = set_mesh_frame(v, uniforms, kSize, &error);
+        if (!grid) return fail(error);
+    }
     const auto bytes = uniforms.pack(stages->fr, &error);
     if (!bytes) return fail(error);
-    if (auto why = check_header_block(scene, v, *bytes)) return fail(*why);
+    if (!v.geometry)
+        if (auto why = check_header_block(scene, v, *bytes)) return fail(*why);
 
     auto gpu = HeadlessDevice::create({}, &error);
     if (!gpu) return fail(error);
@@ -229,7 +294,22 @@ int main(int argc, char** argv) {
     desc.layout = &*layout;
     for (const auto& [id, value] : v.specialization) // specialized build mode: the selectors
         desc.specialization[id] = static_cast<float>(value);
-    auto pipeline = VariantPipeline::create(gpu->device(), desc, &error);
+    // A mesh variant: its grid's vertex input; a tessellated one also its patch stages, in a
+    // layout of its own (the build's BindingLayout serves vertex and fragment stages).
+    PipelineGeometry mesh;
+    if (v.geometry) {
+        mesh.attribute_sizes = v.geometry->attribute_sizes();
+        mesh.patch_control_points = v.geometry->patch_control_points;
+        if (v.geometry->tessellated()) {
+            desc.layout = nullptr;
+            desc.tess_control_spirv = &stages->tcs;
+            desc.tess_evaluation_spirv = &stages->tes;
+            desc.tess_control_reflection = &stages->tcr;
+            desc.tess_evaluation_reflection = &stages->ter;
+        }
+    }
+    auto pipeline = v.geometry ? VariantPipeline::create(gpu->device(), desc, mesh, &error)
+                               : VariantPipeline::create(gpu->device(), desc, &error);
     if (!pipeline) return fail(error);
     std::optional<TextureData> caustics_map;
     if (v.passes.count("caustics")) {
@@ -241,7 +321,13 @@ int main(int argc, char** argv) {
     vkDestroyPipelineCache(gpu->device(), cache->cache, nullptr);
 
     HeadlessDraw draw;
-    draw.width = draw.height = 128;
+    draw.width = draw.height = kSize;
+    if (grid) {
+        draw.vertices = &grid->vertices;
+        draw.indices = &grid->indices;
+        draw.attribute_sizes = v.geometry->attribute_sizes();
+        draw.patch_control_points = grid->patch_control_points;
+    }
     draw.uniforms[v.block_name] = *bytes;
     for (const TextureSlot& t : v.textures)
         draw.textures[t.name] =

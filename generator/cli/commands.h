@@ -18,6 +18,7 @@
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
 #include "watergen/runner/vulkan_runner.h"
+#include "watergen/runtime/water_grid.h"
 #include "watergen/water/presets.h"
 #include "watergen/water/variant.h"
 
@@ -62,6 +63,11 @@ void add_view_option(CLI::App& app, std::string& view);
 void add_instrument_options(CLI::App& app, uint32_t& draws, uint32_t& cost_size, bool& cost);
 // Adds --unroll hinted|all|none: the unroll hint every loop is emitted with.
 void add_unroll_option(CLI::App& app, LoopUnroll& unroll);
+// Adds --grid-spacing, --grid-rings and --grid-levels: the clipmap grid a mesh variant
+// (geometry=mesh or tessellated) is drawn over (watergen/runtime/water_grid.h).
+void add_grid_options(CLI::App& app, WaterGridDesc& grid);
+// Prints why the grid is out of range ("watergen: error: --grid-*: ..."); false then.
+bool check_grid(const WaterGridDesc& grid);
 
 // --shader-cache and --device.
 using RunnerSetup = DrawDeviceChoice;
@@ -115,6 +121,7 @@ Runner add_bench_agreement_command(CLI::App& bench, const Common& common);
 Runner add_bench_cpu_command(CLI::App& bench, const Common& common);
 Runner add_bench_unroll_command(CLI::App& bench, const Common& common);
 Runner add_bench_modes_command(CLI::App& bench, const Common& common);
+Runner add_bench_geometry_command(CLI::App& bench, const Common& common);
 
 // Prints a bench's error diagnostics, or else its error; false when there was either.
 bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error,

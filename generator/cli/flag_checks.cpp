@@ -62,6 +62,25 @@ void add_view_option(CLI::App& app, std::string& view) {
     app.add_option("--view", view, help)->check(CLI::IsMember(names));
 }
 
+void add_grid_options(CLI::App& app, WaterGridDesc& grid) {
+    // Ranges are checked as a whole by check_grid (water_grid_error knows the vertex cap).
+    app.add_option("--grid-spacing", grid.spacing,
+                   "a mesh variant's finest grid cell, m (default 0.5; the grid is a clipmap "
+                   "around the eye, each level twice as coarse as the one inside it)");
+    app.add_option("--grid-rings", grid.ring_cells,
+                   "cells from a level's centre to its edge (default 32, even, 16 to 512): the "
+                   "grid's density at every distance, about rings / distance cells per metre");
+    app.add_option("--grid-levels", grid.levels, "clipmap levels (default 8, 1 to 16)");
+}
+
+bool check_grid(const WaterGridDesc& grid) {
+    if (auto why = water_grid_error(grid)) {
+        std::fprintf(stderr, "watergen: error: --grid-*: %s\n", why->c_str());
+        return false;
+    }
+    return true;
+}
+
 void add_instrument_options(CLI::App& app, uint32_t& draws, uint32_t& cost_size, bool& cost) {
     app.add_option("--draws", draws, "timed draws per variant and round (default 3)")
         ->check(CLI::Range(1, 100));

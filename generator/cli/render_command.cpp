@@ -240,6 +240,7 @@ Runner add_render_command(CLI::App& app, const Common& common) {
                  "precision=full");
     add_unroll_option(app, r.unroll);
     add_view_option(app, r.view);
+    add_grid_options(app, r.grid);
     app.add_option("--set", o->sets,
                    "NAME=V[,V...]: a parameter's value for the GPU and the CPU alike, over the "
                    "preset's and the view's (repeatable); e.g. --scene_input depth_buffer --set "
@@ -258,6 +259,7 @@ Runner add_render_command(CLI::App& app, const Common& common) {
         if (!resolve_variant(o->request.variant, o->preset, &o->request.preset, common))
             return kUsage;
         o->request.out = o->out;
+        if (!check_grid(o->request.grid)) return kUsage;
         for (const std::string& item : o->sets)
             if (!parse_set(item, o->request.values)) return kUsage;
         if (!o->bindings.empty()) {

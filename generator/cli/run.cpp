@@ -171,6 +171,10 @@ int run(int argc, char** argv) {
         "modes", "the build modes side by side: build cost, SPIR-V size, pipeline, first and "
                  "steady draw per variant, image against the permutation");
     runners[modes] = add_bench_modes_command(*modes, common);
+    CLI::App* geometry = bench->add_subcommand(
+        "geometry", "per view, a variant as the screen pass, as meshes of several densities and "
+                    "tessellated: error against the exact surface, vertex counts, draw time");
+    runners[geometry] = add_bench_geometry_command(*geometry, common);
     // Hidden (no group): the child process of every ACO statistic (aco_worker.h).
     CLI::App* gpu_worker = app.add_subcommand("gpu-worker", "")->group("");
     runners[gpu_worker] = add_gpu_worker_command(*gpu_worker);

@@ -168,11 +168,22 @@ void check_push_constant_block(const UniformLayout& block, const BindingMap& map
 ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics,
                              const std::set<std::string>& specialized = {},
                              const BindingMap* map = nullptr,
-                             const std::vector<Parameter>* block = nullptr) {
+                             const std::vector<Parameter>* block = nullptr,
+                             const std::string& file_name = "") {
     ShaderInterface in;
     std::set<std::string> used_uniforms, used_textures;
     collect_reads(g, used_uniforms, used_textures, in.varyings);
     check_specialization_names(g.parameters(), specialized, diagnostics);
+    if (block)
+        for (const Parameter& read : g.parameters())
+            if (used_uniforms.count(read.name) &&
+                std::none_of(block->begin(), block->end(),
+                             [&](const Parameter& p) { return p.name == read.name; }))
+                diagnostics.push_back({Severity::Error, file_name, 0, 0, read.origin,
+                                       "parameter '" + read.name +
+                                           "' is read by this stage and missing from the shared "
+                                           "parameter block; expected a block holding every "
+                                           "stage's parameters (shared_block_parameters)"});
     for (Parameter p : block ? *block : g.parameters())
         if (block || used_uniforms.count(p.name)) {
             p.specialization = is_specialized(p, specialized);
@@ -269,8 +280,17 @@ EmittedShader emit_fragment(const Graph& g, Language language, const std::string
     }
     const GlslSyntax& syntax = syntax_for(language);
     const size_t before = diagnostics.size();
-    out.interface =
-        interface_of(g, diagnostics, options.specialization_constants, options.bindings);
+    out.interface = interface_of(g, diagnostics, options.specialization_constants, options.bindings,
+                                 options.block, file_name);
+    if (options.inputs) {
+        for (const auto& read : out.interface.varyings)
+            if (std::find(options.inputs->begin(), options.inputs->end(), read) ==
+                options.inputs->end())
+                diagnostics.push_back(
+                    {Severity::Error, file_name, 0, 0, "",
+                     "fragment input '" + read.first + "' is not written by the stage before"});
+        out.interface.varyings = *options.inputs;
+    }
     if (errors_since(diagnostics, before)) return out;
     std::vector<std::string> results;
     std::set<Op> used_ops;
@@ -463,16 +483,7 @@ EmittedShader emit_from_skeleton(const Graph& g, Language language, ShaderStage 
     out.file_name = file_name;
     const GlslSyntax& syntax = syntax_for(language);
     const size_t before = diagnostics.size();
-    if (options.block)
-        for (const Parameter& read : parameters_read(g))
-            if (std::none_of(options.block->begin(), options.block->end(),
-                             [&](const Parameter& p) { return p.name == read.name; }))
-                diagnostics.push_back({Severity::Error, file_name, 0, 0, read.origin,
-                                       "parameter '" + read.name +
-                                           "' is read by this stage and missing from the shared "
-                                           "parameter block; expected a block holding every "
-                                           "stage's parameters (shared_block_parameters)"});
-    out.interface = interface_of(g, diagnostics, {}, options.bindings, options.block);
+    out.interface = interface_of(g, diagnostics, {}, options.bindings, options.block, file_name);
     if (errors_since(diagnostics, before)) return out;
     // The skeleton computes these itself: no `in` declaration, no HLSL entry parameter.
     if (options.skeleton_defines_varyings) out.interface.varyings.clear();

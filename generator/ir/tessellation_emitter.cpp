@@ -113,7 +113,7 @@ EmittedShader emit_tess_evaluation(const Graph& g, Language language, const std:
                             diagnostics, options);
 }
 
-std::vector<Parameter> shared_block_parameters(std::initializer_list<const Graph*> graphs,
+std::vector<Parameter> shared_block_parameters(const std::vector<const Graph*>& graphs,
                                                Diagnostics& diagnostics) {
     std::vector<Parameter> block;
     for (const Graph* g : graphs)

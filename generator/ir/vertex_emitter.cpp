@@ -6,7 +6,8 @@ namespace watergen {
 
 EmittedShader emit_vertex(const Graph& g, Language language, const std::string& skeleton,
                           const std::string& file_name, const std::string& variant_key,
-                          Diagnostics& diagnostics, const BindingMap* bindings) {
+                          Diagnostics& diagnostics, const BindingMap* bindings,
+                          const std::vector<Parameter>* block) {
     const std::string name = std::string(to_string(language)) + "/" + skeleton + "." +
                              file_extension(language, ShaderStage::Vertex);
     const std::string_view text = template_text(name);
@@ -32,7 +33,7 @@ EmittedShader emit_vertex(const Graph& g, Language language, const std::string& 
     if (!position) return fail("vertex graph needs a vec4 output 'position' (clip space)");
     if (has_errors(g.diagnostics())) return fail("vertex graph has type errors");
     return emit_from_skeleton(g, language, ShaderStage::Vertex, text, file_name, variant_key,
-                              diagnostics, bindings);
+                              diagnostics, SkeletonOptions{bindings, false, block});
 }
 
 } // namespace watergen

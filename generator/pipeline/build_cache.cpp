@@ -114,8 +114,9 @@ std::optional<FileMap> verify_entry(const std::string& data, const std::string& 
 
 const std::string& toolchain_fingerprint() {
     // "files 2": an entry holds no SPIRV-Cross text of the HLSL path (entries of files 1 did).
+    // "files 3": variant.json lists the geometry axis among its choices (and a mesh's stages).
     static const std::string text =
-        std::string("watergen ") + WATERGEN_VERSION + "; files 2; glslang " +
+        std::string("watergen ") + WATERGEN_VERSION + "; files 3; glslang " +
         std::to_string(GLSLANG_VERSION_MAJOR) + "." + std::to_string(GLSLANG_VERSION_MINOR) + "." +
         std::to_string(GLSLANG_VERSION_PATCH) + "; SPIRV-Tools " + spvSoftwareVersionString() +
         "; SPIRV-Cross C API " + std::to_string(SPVC_C_API_VERSION_MAJOR) + "." +

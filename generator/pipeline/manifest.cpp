@@ -158,6 +158,8 @@ size_t add_output(OJson& v, size_t i, const std::vector<BuildJob>& jobs,
         if (d.contains("specialization_constants"))
             v["reflection"]["specialization_constants"] = d["specialization_constants"];
         v["spirv_instructions"] = d.value("spirv_instructions", OJson::object());
+        // A mesh variant's stages, vertex layout and grid (variant.json's "geometry").
+        if (d.contains("geometry")) v["geometry"] = d["geometry"];
     }
     return built;
 }

@@ -49,13 +49,9 @@ bool wanted(const std::string& path, const std::vector<Target>& targets) {
     return false;
 }
 
-std::string emitted_name(Language lang, ShaderStage stage) {
-    return std::string(to_string(lang)) + "/water." + file_extension(lang, stage);
-}
-
-// The stages a build compiles for a job, keyed by content (StageMemo): GLSL vertex, GLSL
-// fragment, HLSL vertex, HLSL fragment.
-using StageKeys = std::array<StageKey, 4>;
+// The stages a build compiles for a job, keyed by content (StageMemo): each language's in
+// pipeline order (vertex, [tessellation control, evaluation,] fragment), GLSL first.
+using StageKeys = std::vector<StageKey>;
 
 // What phase 1 learns of a shader from its sources, emitted once per language.
 struct ShaderHashes {
@@ -71,20 +67,22 @@ ShaderHashes hash_shader(const WaterShader& shader, const std::string& stamp_key
                          const EmitOptions& emit, const StageCompile& compile, Diagnostics& ds) {
     std::vector<std::string> parts{shader.key(), shader.preset}, shape{shader.preset};
     ShaderHashes h;
-    size_t k = 0;
-    for (Language lang : {Language::Glsl, Language::Hlsl}) {
-        const EmittedShader frag = emit_fragment(
-            shader.fragment, lang, emitted_name(lang, ShaderStage::Fragment), stamp_key, ds, emit);
-        if (has_errors(ds)) return h;
-        const EmittedShader vert =
-            emit_fullscreen_vertex(lang, emitted_name(lang, ShaderStage::Vertex), stamp_key);
-        for (const EmittedShader* e : {&frag, &vert}) {
-            parts.push_back(e->source);
-            shape.push_back(blank_stamp(e->source, stamp_key));
+    const std::array<LanguageBuild, 2> languages = emit_shader_stages(shader, emit, ds);
+    if (has_errors(ds)) return h;
+    for (const LanguageBuild& built : languages) {
+        const Language lang = built.language;
+        // The fragment's source first: the order the hashes of screen-pass builds have always
+        // had, so their cache entries stay valid.
+        std::vector<const StageBuild*> stages = built.stages();
+        std::rotate(stages.begin(), stages.end() - 1, stages.end());
+        for (const StageBuild* stage : stages) {
+            const EmittedShader& e = stage->source;
+            parts.push_back(e.source);
+            shape.push_back(blank_stamp(e.source, stamp_key));
+            h.stages.push_back(stage_key(stage_request(e), stage_cross(lang, compile), stamp_key));
         }
-        h.stages[k++] = stage_key(stage_request(vert), stage_cross(lang, compile), stamp_key);
-        h.stages[k++] = stage_key(stage_request(frag), stage_cross(lang, compile), stamp_key);
         if (lang != Language::Glsl) continue;
+        const EmittedShader& frag = built.fragment.source;
         parts.push_back(slots_text(frag.interface));
         shape.push_back(parts.back());
         for (const Parameter& p : frag.interface.parameters) {
@@ -266,7 +264,9 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
         if (options.sink && r.ok()) options.sink(i, r);
         report(i);
     };
-    const std::vector<std::string> expected_files = variant_file_names();
+    // A tessellated variant writes its patch stages too.
+    const std::array<std::vector<std::string>, 2> expected_files = {variant_file_names(false),
+                                                                    variant_file_names(true)};
     parallel_for(plan.to_build.size(), options.threads, [&](size_t k) {
         const size_t i = plan.to_build[k];
         JobResult& r = results[i];
@@ -276,7 +276,8 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
             return compose_job(material, jobs[i], composed);
         };
         std::optional<FileMap> all =
-            load_or_build(options, emit, compose, compile, r, expected_files);
+            load_or_build(options, emit, compose, compile, r,
+                          expected_files[jobs[i].variant.choice("geometry") == "tessellated"]);
         r.milliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();

@@ -7,10 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "watergen/ir/tessellation_emitter.h"
 #include "watergen/ir/vertex_emitter.h"
 #include "watergen/runtime/reflection.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
 #include "watergen/water/binding_profiles.h"
+#include "watergen/water/tessellated_mesh.h"
 
 namespace watergen {
 
@@ -25,7 +27,7 @@ struct StageFileNames {
 
 StageFileNames stage_file_names(Language lang, ShaderStage stage, const std::string& stem = kStem) {
     const std::string dir = std::string(to_string(lang)) + "/";
-    const std::string base = dir + stem + "." + (stage == ShaderStage::Vertex ? "vert" : "frag");
+    const std::string base = dir + stem + "." + stage_tag(stage);
     return {dir + stem + "." + file_extension(lang, stage),
             base + ".spv",
             base + ".opt.spv",
@@ -37,8 +39,18 @@ StageFileNames stage_file_names(Language lang, ShaderStage stage, const std::str
 
 constexpr Language kLanguages[] = {Language::Glsl, Language::Hlsl};
 constexpr ShaderStage kStages[] = {ShaderStage::Vertex, ShaderStage::Fragment};
+constexpr ShaderStage kPatchStages[] = {ShaderStage::TessControl, ShaderStage::TessEvaluation};
+
+bool is_patch_stage(ShaderStage s) {
+    return s == ShaderStage::TessControl || s == ShaderStage::TessEvaluation;
+}
 
 } // namespace
+
+std::vector<const StageBuild*> LanguageBuild::stages() const {
+    if (tessellated()) return {&vertex, &control, &evaluation, &fragment};
+    return {&vertex, &fragment};
+}
 
 StageBuild build_stage(EmittedShader source, Diagnostics& all, const StageCompile& compile,
                        const std::string& key, bool strict_half) {
@@ -90,6 +102,39 @@ nlohmann::ordered_json describe_parameter(const Parameter& p, const char* place_
     return j;
 }
 
+// What an engine needs to draw a mesh geometry besides the block: its stages, its vertex
+// layout and where its grid comes from (runtime/water_grid.h).
+nlohmann::ordered_json mesh_geometry_json(const MeshStages& m) {
+    nlohmann::ordered_json stages = nlohmann::ordered_json::array();
+    stages.push_back("vertex");
+    if (m.tessellated()) stages.insert(stages.end(), {"tess_control", "tess_evaluation"});
+    stages.push_back("fragment");
+    nlohmann::ordered_json inputs = nlohmann::ordered_json::array();
+    uint32_t location = 0, offset = 0;
+    for (const auto& [name, type] : mesh_vertex_inputs()) {
+        const uint32_t floats = static_cast<uint32_t>(component_count(type));
+        inputs.push_back(
+            {{"name", name}, {"location", location++}, {"floats", floats}, {"offset", offset}});
+        offset += floats * 4;
+    }
+    nlohmann::ordered_json j = {{"name", m.geometry},
+                                {"stages", stages},
+                                {"topology", m.tessellated() ? "patch_list" : "triangle_list"},
+                                {"vertex_stride", offset},
+                                {"vertex_inputs", inputs},
+                                {"grid",
+                                 {{"kind", "clipmap"},
+                                  {"made_by", "watergen::water_grid (runtime/water_grid.h)"},
+                                  {"parameters", {"grid_morph_start", "grid_morph_end"}}}},
+                                {"front_face", "counter_clockwise"}};
+    if (m.tessellated()) {
+        j["patch_control_points"] = 4;
+        j["tessellation"] = {{"max_factor", kMaxTessellationFactor},
+                             {"parameters", {"tess_scale", "tess_max"}}};
+    }
+    return j;
+}
+
 nlohmann::ordered_json describe(const VariantBuild& b) {
     nlohmann::ordered_json j;
     j["generator"] = stamp_text(b.shader.key());
@@ -117,12 +162,18 @@ nlohmann::ordered_json describe(const VariantBuild& b) {
     j["textures"] = textures;
     // Only when there are some, so variants without them keep their form.
     if (!in.specialization.empty()) j["specialization_constants"] = specialization_json(in);
+    if (b.shader.mesh) j["geometry"] = mesh_geometry_json(*b.shader.mesh);
     nlohmann::ordered_json counts = nlohmann::ordered_json::object();
-    for (const auto& lang : b.languages)
-        counts[to_string(lang.language)] = {
-            {"fragment", lang.fragment.toolchain.instruction_count},
-            {"fragment_optimized", lang.fragment.toolchain.instruction_count_optimized},
-            {"vertex", lang.vertex.toolchain.instruction_count}};
+    for (const auto& lang : b.languages) {
+        nlohmann::ordered_json& c = counts[to_string(lang.language)];
+        c = {{"fragment", lang.fragment.toolchain.instruction_count},
+             {"fragment_optimized", lang.fragment.toolchain.instruction_count_optimized},
+             {"vertex", lang.vertex.toolchain.instruction_count}};
+        if (lang.tessellated()) {
+            c["tess_control"] = lang.control.toolchain.instruction_count;
+            c["tess_evaluation"] = lang.evaluation.toolchain.instruction_count;
+        }
+    }
     j["spirv_instructions"] = counts;
     return j;
 }
@@ -252,6 +303,65 @@ VariantBuild build_variant(const Variant& variant, const Preset* preset,
     return build_shader(build_water_shader(variant, preset), options);
 }
 
+namespace {
+
+// Emits a mesh geometry's stages before the fragment for `out.language` into `out`, with the
+// block and binding map of `options`.
+void emit_mesh_stages(const MeshStages& m, const std::string& key, const EmitOptions& options,
+                      LanguageBuild& out, Diagnostics& ds) {
+    const Language lang = out.language;
+    auto file = [&](ShaderStage stage) { return stage_file_names(lang, stage).source; };
+    if (!m.tessellated()) {
+        out.vertex.source = emit_vertex(m.vertex, lang, "mesh", file(ShaderStage::Vertex), key, ds,
+                                        options.bindings, options.block);
+        return;
+    }
+    const PatchStageOptions patch{options.bindings, options.block};
+    out.vertex.source = emit_vertex(m.vertex, lang, "mesh_patch", file(ShaderStage::Vertex), key,
+                                    ds, options.bindings, options.block);
+    out.control.source =
+        emit_tess_control(m.control, lang, "mesh", file(ShaderStage::TessControl), key, ds, patch);
+    out.evaluation.source = emit_tess_evaluation(m.evaluation, lang, "mesh",
+                                                 file(ShaderStage::TessEvaluation), key, ds, patch);
+}
+
+} // namespace
+
+std::array<LanguageBuild, 2> emit_shader_stages(const WaterShader& shader, const EmitOptions& given,
+                                                Diagnostics& ds) {
+    std::array<LanguageBuild, 2> out;
+    const MeshStages* mesh = shader.mesh ? &*shader.mesh : nullptr;
+    std::vector<const Graph*> graphs;
+    if (mesh) graphs = mesh->graphs();
+    graphs.push_back(&shader.fragment);
+    for (const Graph* g : graphs)
+        ds.insert(ds.end(), g->diagnostics().begin(), g->diagnostics().end());
+    if (has_errors(ds)) return out;
+    // A mesh's stages bind one parameter block: each declares all of it.
+    EmitOptions options = given;
+    std::vector<Parameter> block;
+    const std::vector<std::pair<std::string, Type>> inputs = mesh_fragment_inputs();
+    if (mesh) {
+        block = shared_block_parameters(graphs, ds);
+        options.block = &block;
+        options.inputs = &inputs;
+    }
+    const std::string key = shader.key();
+    for (size_t i = 0; i < out.size() && !has_errors(ds); ++i) {
+        const Language lang = kLanguages[i];
+        out[i].language = lang;
+        out[i].fragment.source =
+            emit_fragment(shader.fragment, lang,
+                          stage_file_names(lang, ShaderStage::Fragment).source, key, ds, options);
+        if (mesh)
+            emit_mesh_stages(*mesh, key, options, out[i], ds);
+        else
+            out[i].vertex.source = emit_fullscreen_vertex(
+                lang, stage_file_names(lang, ShaderStage::Vertex).source, key);
+    }
+    return out;
+}
+
 VariantBuild build_shader(WaterShader shader, const EmitOptions& given,
                           const StageCompile& compile) {
     // A shader of nodes the profile does not know (a test's own, a user's) gets their textures
@@ -261,23 +371,15 @@ VariantBuild build_shader(WaterShader shader, const EmitOptions& given,
     if (!options.bindings)
         options.bindings = &fallback.emplace(default_map_for({&shader.fragment}));
     VariantBuild b{std::move(shader), {}, {}};
-    const Diagnostics& graph_errors = b.shader.fragment.diagnostics();
-    b.diagnostics.insert(b.diagnostics.end(), graph_errors.begin(), graph_errors.end());
+    b.languages = emit_shader_stages(b.shader, options, b.diagnostics);
     if (has_errors(b.diagnostics)) return b;
     const std::string key = b.shader.key();
-    for (size_t i = 0; i < b.languages.size(); ++i) {
-        const Language lang = kLanguages[i];
-        LanguageBuild& out = b.languages[i];
-        out.language = lang;
-        EmittedShader frag = emit_fragment(b.shader.fragment, lang,
-                                           stage_file_names(lang, ShaderStage::Fragment).source,
-                                           key, b.diagnostics, options);
-        if (has_errors(b.diagnostics)) return b;
-        out.fragment =
-            build_stage(std::move(frag), b.diagnostics, compile, key, options.strict_half);
-        out.vertex = build_stage(
-            emit_fullscreen_vertex(lang, stage_file_names(lang, ShaderStage::Vertex).source, key),
-            b.diagnostics, compile, key);
+    for (LanguageBuild& out : b.languages) {
+        out.fragment = build_stage(std::move(out.fragment.source), b.diagnostics, compile, key,
+                                   options.strict_half);
+        for (StageBuild* stage : {&out.vertex, &out.control, &out.evaluation})
+            if (!stage->source.file_name.empty())
+                *stage = build_stage(std::move(stage->source), b.diagnostics, compile, key);
     }
     return b;
 }
@@ -294,14 +396,15 @@ void add_stage_files(const std::array<LanguageBuild, 2>& languages, const std::s
                      const std::string& key, std::map<std::string, std::string>& files) {
     const std::string stamp = stamp_text(key);
     for (const auto& lang : languages) {
-        for (const StageBuild* s : {&lang.vertex, &lang.fragment}) {
+        for (const StageBuild* s : lang.stages()) {
             const StageFileNames names = stage_file_names(lang.language, s->source.stage, stem);
             const ToolchainOutputs& t = s->toolchain;
             files[names.source] = s->source.source;
             files[names.spirv] = spirv_bytes(t.spirv);
             files[names.spirv_optimized] = spirv_bytes(t.spirv_optimized);
             files[names.reflection] = reflection_to_json(t.reflection);
-            if (lang.language != Language::Glsl) continue;
+            // No cross-compilation target takes a patch stage (the toolchain's note says why).
+            if (lang.language != Language::Glsl || is_patch_stage(s->source.stage)) continue;
             files[names.glsl330] = with_stamp(stamp, t.glsl330);
             files[names.essl300] = with_stamp(stamp, t.essl300);
             files[names.msl] = with_stamp(stamp, t.msl);
@@ -309,20 +412,23 @@ void add_stage_files(const std::array<LanguageBuild, 2>& languages, const std::s
     }
 }
 
-std::vector<std::string> stage_file_list(const std::string& stem) {
+std::vector<std::string> stage_file_list(const std::string& stem, bool tessellated) {
     std::vector<std::string> names;
+    std::vector<ShaderStage> stages(std::begin(kStages), std::end(kStages));
+    if (tessellated) stages.insert(stages.end(), std::begin(kPatchStages), std::end(kPatchStages));
     for (Language lang : kLanguages)
-        for (ShaderStage stage : kStages) {
+        for (ShaderStage stage : stages) {
             const StageFileNames n = stage_file_names(lang, stage, stem);
             names.insert(names.end(), {n.source, n.spirv, n.spirv_optimized, n.reflection});
-            if (lang == Language::Glsl) names.insert(names.end(), {n.glsl330, n.essl300, n.msl});
+            if (lang == Language::Glsl && !is_patch_stage(stage))
+                names.insert(names.end(), {n.glsl330, n.essl300, n.msl});
         }
     std::sort(names.begin(), names.end());
     return names;
 }
 
-std::vector<std::string> variant_file_names() {
-    std::vector<std::string> names = stage_file_list(kStem);
+std::vector<std::string> variant_file_names(bool tessellated) {
+    std::vector<std::string> names = stage_file_list(kStem, tessellated);
     names.push_back("variant.json");
     std::sort(names.begin(), names.end());
     return names;

@@ -29,6 +29,14 @@ bool compatible(const Variant& partial, const std::vector<bool>& set) {
     return true;
 }
 
+// The geometry axis stays at the screen pass: a mesh's fragment is the same nodes, fed by its
+// vertex or evaluation stage instead of a search, and no CPU evaluation of a fragment alone
+// can check a rasterised mesh pixel by pixel (render_geometry draws meshes against the exact
+// surface instead).
+bool covered_axis(const AxisInfo& axis) {
+    return axis.name != "geometry";
+}
+
 } // namespace
 
 std::vector<Variant> pairwise_covering_variants() {
@@ -36,16 +44,17 @@ std::vector<Variant> pairwise_covering_variants() {
     const size_t n = list.size();
     std::set<Pair> uncovered;
     for (size_t a = 0; a < n; ++a)
-        for (size_t b = a + 1; b < n; ++b)
-            for (size_t i = 0; i < list[a].choices.size(); ++i)
-                for (size_t j = 0; j < list[b].choices.size(); ++j) {
-                    Variant v = default_variant();
-                    std::vector<bool> set(n, false);
-                    v.choices[a] = list[a].choices[i].name;
-                    v.choices[b] = list[b].choices[j].name;
-                    set[a] = set[b] = true;
-                    if (compatible(v, set)) uncovered.insert({a, i, b, j});
-                }
+        for (size_t b = a + 1; b < n && covered_axis(list[a]); ++b)
+            if (covered_axis(list[b]))
+                for (size_t i = 0; i < list[a].choices.size(); ++i)
+                    for (size_t j = 0; j < list[b].choices.size(); ++j) {
+                        Variant v = default_variant();
+                        std::vector<bool> set(n, false);
+                        v.choices[a] = list[a].choices[i].name;
+                        v.choices[b] = list[b].choices[j].name;
+                        set[a] = set[b] = true;
+                        if (compatible(v, set)) uncovered.insert({a, i, b, j});
+                    }
 
     std::vector<Variant> result;
     while (!uncovered.empty()) {

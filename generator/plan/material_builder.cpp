@@ -67,22 +67,29 @@ std::map<std::string, Parameter> declarations_of(const std::vector<Variant>& pro
     std::map<std::string, Parameter> declared;
     for (const Variant& v : probes) {
         const WaterShader s = build_water_shader(v, nullptr);
-        for (const Diagnostic& d : s.fragment.diagnostics())
-            if (d.severity == Severity::Error && !error->has_value()) *error = d;
-        for (const Parameter& p : s.fragment.parameters()) {
-            const auto [it, fresh] = declared.emplace(p.name, p);
-            const Parameter& first = it->second;
-            if (fresh || error->has_value() || first.author == p.author ||
-                same_definition(first, p))
-                continue;
-            *error = Diagnostic{Severity::Error,
-                                p.defined_at.file,
-                                p.defined_at.line,
-                                0,
-                                p.origin,
-                                definition_clash("parameter", p.name, p.origin, p.defined_at,
-                                                 first.origin, first.defined_at)};
-        }
+        // A mesh geometry's stages declare theirs too (the camera, the grid, the factors).
+        std::vector<const Graph*> graphs = {&s.fragment};
+        if (s.mesh)
+            for (const Graph* stage : s.mesh->graphs())
+                graphs.push_back(stage);
+        for (const Graph* g : graphs)
+            for (const Diagnostic& d : g->diagnostics())
+                if (d.severity == Severity::Error && !error->has_value()) *error = d;
+        for (const Graph* g : graphs)
+            for (const Parameter& p : g->parameters()) {
+                const auto [it, fresh] = declared.emplace(p.name, p);
+                const Parameter& first = it->second;
+                if (fresh || error->has_value() || first.author == p.author ||
+                    same_definition(first, p))
+                    continue;
+                *error = Diagnostic{Severity::Error,
+                                    p.defined_at.file,
+                                    p.defined_at.line,
+                                    0,
+                                    p.origin,
+                                    definition_clash("parameter", p.name, p.origin, p.defined_at,
+                                                     first.origin, first.defined_at)};
+            }
     }
     return declared;
 }

@@ -32,9 +32,10 @@ struct SceneRule {
 const std::vector<SceneRule>& scene_rules() {
     static const std::vector<SceneRule> rules = [] {
         std::vector<SceneRule> list;
-        for (SceneFact fact : {SceneFact::Shoreline, SceneFact::ReflectionSource,
-                               SceneFact::SunAboveHorizon, SceneFact::BottomInView,
-                               SceneFact::BottomLit, SceneFact::Precision, SceneFact::SceneInput})
+        for (SceneFact fact :
+             {SceneFact::Shoreline, SceneFact::ReflectionSource, SceneFact::SunAboveHorizon,
+              SceneFact::BottomInView, SceneFact::BottomLit, SceneFact::Precision,
+              SceneFact::SceneInput, SceneFact::CameraNear})
             for (size_t a = 0; a < axes().size(); ++a)
                 for (const auto& c : axes()[a].choices)
                     for (const auto& need : c.scene_needs)
@@ -61,6 +62,8 @@ std::string fact_key(SceneFact fact) {
         return "precision";
     case SceneFact::SceneInput:
         return "scene_input";
+    case SceneFact::CameraNear:
+        return "camera_height";
     }
     return "";
 }
@@ -80,6 +83,16 @@ std::string bottom_unlit(const SceneFacts& s, const Variant& v, const ParameterB
     return fmt::format("water at least {:g} m deep lets at most {:.2g} of the sunlight reach the "
                        "bottom (extinction={}, parameters at their most transparent; below 2^-24)",
                        s.water_depth.min, share, model->name);
+}
+
+// Why no patch ever gets a factor above 1: an edge's factor is tess_scale / its distance from
+// the eye (tessellated_mesh.h), at least the camera's height above the water level.
+std::string camera_never_near(const SceneFacts& s, const ParameterBounds& bounds) {
+    const double scale = bounds("tess_scale").second;
+    if (s.camera_height.min < scale) return "";
+    return fmt::format("the camera stays at least {:g} m above the water and tess_scale is at "
+                       "most {:g} m, so every tessellation factor is 1",
+                       s.camera_height.min, scale);
 }
 
 // Why the scene lacks what `need` asks for, or "" when it has it.
@@ -115,6 +128,9 @@ std::string unmet(const SceneFacts& s, const Variant& v, const SceneNeed& need,
     case SceneFact::SceneInput:
         if (s.scene_input != "any" && s.scene_input != need.value)
             missing = "the engine gives the scene's position as " + s.scene_input;
+        break;
+    case SceneFact::CameraNear:
+        if (bounds) missing = camera_never_near(s, *bounds);
         break;
     }
     if (missing.empty() || need.consequence.empty()) return missing;

@@ -13,15 +13,15 @@ namespace {
 struct Registry {
     // Order is the order of a variant key. Seeds: 000 Toman, 001 Lombard, 002 Mihalik,
     // 003 IceFall, 004 sum of sines / Gerstner / Atlas (../shared/docs/water-models.md).
-    // caustics and scene_input came last, in that order.
-    std::vector<AxisInfo> axes = {fresnel_axis(),   extinction_axis(), specular_axis(),
-                                  foam_axis(),      reflection_axis(), refraction_axis(),
-                                  normals_axis(),   waves_axis(),      shore_axis(),
-                                  precision_axis(), caustics_axis(),   scene_input_axis()};
+    // caustics, scene_input and geometry came last, in that order.
+    std::vector<AxisInfo> axes = {
+        fresnel_axis(),    extinction_axis(),  specular_axis(), foam_axis(),  reflection_axis(),
+        refraction_axis(), normals_axis(),     waves_axis(),    shore_axis(), precision_axis(),
+        caustics_axis(),   scene_input_axis(), geometry_axis()};
     // The order water_shader.cpp composes watergen's axes in: the surface first (waves,
     // normals), then what the view ray sees through and off it, then what lies on top.
-    // Precision composes nothing (it scopes the shading); scene_input composes in the skeleton,
-    // before the view ray; registered axes join on freezing.
+    // Precision composes nothing (it scopes the shading); geometry and scene_input compose in
+    // the skeleton, before the view ray; registered axes join on freezing.
     std::vector<std::string> composition = {"waves",      "normals",    "refraction", "caustics",
                                             "extinction", "reflection", "fresnel",    "specular",
                                             "foam",       "shore"};

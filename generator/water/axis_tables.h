@@ -18,5 +18,6 @@ AxisInfo shore_axis();
 AxisInfo precision_axis();
 AxisInfo caustics_axis();
 AxisInfo scene_input_axis();
+AxisInfo geometry_axis();
 
 } // namespace watergen

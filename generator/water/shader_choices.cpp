@@ -55,7 +55,8 @@ std::string selector_parameter(const std::string& axis) {
 
 bool permutation_only(const std::string& axis) {
     // A pass binds either a depth buffer or a position texture: never a switch between them.
-    return axis == "precision" || axis == "scene_input";
+    // Geometry changes the stages before the fragment.
+    return axis == "precision" || axis == "scene_input" || axis == "geometry";
 }
 
 ShaderChoices ShaderChoices::of(const Variant& v) {

@@ -5,14 +5,15 @@
 namespace watergen {
 
 // A field added to Surface must be added to surface_fields() too.
-static_assert(sizeof(Surface) == sizeof(Graph*) + 25 * sizeof(Expr), "surface_fields() is stale");
+static_assert(sizeof(Surface) == sizeof(Graph*) + 26 * sizeof(Expr), "surface_fields() is stale");
 
 std::vector<Expr*> surface_fields(Surface& s) {
-    return {&s.uv,          &s.scene_rgb,     &s.scene_pos,      &s.to_scene, &s.eye,
-            &s.level,       &s.view_ray,      &s.scene_distance, &s.time,     &s.sun_travel,
-            &s.sun_color,   &s.surface_point, &s.path,           &s.depth,    &s.is_water,
-            &s.wave_slope,  &s.normal,        &s.to_eye,         &s.n_dot_v,  &s.refracted,
-            &s.water_color, &s.reflected,     &s.fresnel,        &s.specular, &s.color};
+    return {&s.uv,         &s.grid_xz,     &s.scene_rgb,     &s.scene_pos,      &s.to_scene,
+            &s.eye,        &s.level,       &s.view_ray,      &s.scene_distance, &s.time,
+            &s.sun_travel, &s.sun_color,   &s.surface_point, &s.path,           &s.depth,
+            &s.is_water,   &s.wave_slope,  &s.normal,        &s.to_eye,         &s.n_dot_v,
+            &s.refracted,  &s.water_color, &s.reflected,     &s.fresnel,        &s.specular,
+            &s.color};
 }
 
 PlaneHit intersect_plane(const Surface& s, Expr height) {

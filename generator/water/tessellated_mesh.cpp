@@ -1,23 +1,21 @@
 #include "watergen/water/tessellated_mesh.h"
 
-#include <utility>
+#include <string>
 
 #include "watergen/ir/dsl.h"
 #include "watergen/water/mesh_shader.h"
 
 namespace watergen {
 
-namespace {
-
 void build_patch_vertex(Graph& g) {
-    OriginScope scope(g, "mesh.patch_vertex");
-    Expr grid = varying(g, "grid_xz", Type::Vec2);
+    OriginScope scope(g, "geometry.patch_vertex");
+    Expr grid = morphed_grid_point(g, mesh_eye_position(g));
     g.set_output("position", vec4(grid.x(), constant(g, 0.0), grid.y(), constant(g, 1.0)).id());
     g.set_output("grid_xz", grid.id());
 }
 
-void build_control(Graph& g) {
-    OriginScope scope(g, "mesh.tess_control");
+void build_tess_control(Graph& g) {
+    OriginScope scope(g, "geometry.tess_control");
     Expr corners[4];
     for (int i = 0; i < 4; ++i)
         corners[i] = varying(g, "corner_" + std::to_string(i), Type::Vec2);
@@ -48,17 +46,6 @@ void build_control(Graph& g) {
     // Inner 0 subdivides along u, as the edges v = 0 and v = 1 do; inner 1 along v.
     g.set_output("inner_0", max(outer_1, outer_3).id());
     g.set_output("inner_1", max(outer_0, outer_2).id());
-}
-
-} // namespace
-
-TessellatedMeshShader build_tessellated_mesh_shader(const std::string& wave_model) {
-    MeshShader mesh = build_mesh_shader(wave_model);
-    TessellatedMeshShader t{wave_model, Graph{}, Graph{}, std::move(mesh.vertex),
-                            std::move(mesh.fragment)};
-    build_patch_vertex(t.patch_vertex);
-    build_control(t.control);
-    return t;
 }
 
 } // namespace watergen

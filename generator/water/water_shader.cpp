@@ -52,20 +52,23 @@ void check_choices(Graph& g, const ShaderChoices& choices) {
 
 } // namespace
 
-WaterShader build_water_shader(const Variant& variant, const Preset* preset) {
-    return build_water_shader(ShaderChoices::of(variant), preset);
+WaterShader build_water_shader(const Variant& variant, const Preset* preset, SurfaceSearch search) {
+    return build_water_shader(ShaderChoices::of(variant), preset, search);
 }
 
-WaterShader build_water_shader(const ShaderChoices& choices, const Preset* preset) {
+WaterShader build_water_shader(const ShaderChoices& choices, const Preset* preset,
+                               SurfaceSearch search) {
     WaterShader shader{choices.first_variant(), preset ? preset->name : "", Graph{}, std::nullopt};
     if (choices.mode != BuildMode::Permutations) shader.switched = choices;
     Graph& g = shader.fragment;
     check_choices(g, choices);
     if (has_errors(g.diagnostics())) return shader;
     Surface s(g);
+    // What the fragment stage is given: the screen pass' uv, or a mesh's rasterised point
+    // (nodes/geometry.cpp).
+    compose_axis(s, choices, "geometry");
     {
         OriginScope scope(g, "surface");
-        s.uv = varying(g, "v_uv", Type::Vec2);
         s.scene_rgb = named(sample(texture(g, scene_color_texture()), s.uv).xyz(), "scene_rgb");
         s.eye = bind(
             scene_quantity::eye_position,
@@ -98,7 +101,11 @@ WaterShader build_water_shader(const ShaderChoices& choices, const Preset* prese
     bool surface_done = false;
     for (const std::string& axis : composition_order()) {
         if (surface_done && !shading) shading.emplace(g, relaxed);
-        compose_axis(s, choices, axis);
+        if (axis == "waves" && search == SurfaceSearch::Converged &&
+            choices.offered(axis).size() == 1)
+            compose_converged_waves(s, choices.offered(axis).front());
+        else
+            compose_axis(s, choices, axis);
         if (axis == "normals") {
             OriginScope scope(g, "surface");
             s.to_eye = -s.view_ray;
@@ -113,9 +120,24 @@ WaterShader build_water_shader(const ShaderChoices& choices, const Preset* prese
     if (has_errors(g.diagnostics())) return shader;
     Expr rgb = select(s.is_water, s.color, s.scene_rgb);
     g.set_output("color", vec4(rgb, constant(g, 1.0)).id());
-    if (preset)
-        for (const auto& name : apply_preset(g, *preset))
-            g.error("preset '" + preset->name + "': parameter '" + name + "' has another size");
+    if (const std::string& geometry = choices.offered("geometry").front();
+        geometry != "screen_pass") {
+        const std::vector<std::string>& waves = choices.offered("waves");
+        if (waves.size() != 1)
+            g.error("geometry=" + geometry +
+                    ": the grid is displaced by one wave model; offer one waves choice per shader");
+        else
+            shader.mesh = build_mesh_stages(geometry, waves.front());
+    }
+    if (preset) {
+        std::vector<Graph*> graphs = {&g};
+        if (shader.mesh)
+            for (Graph* stage : shader.mesh->graphs())
+                graphs.push_back(stage);
+        for (Graph* graph : graphs)
+            for (const auto& name : apply_preset(*graph, *preset))
+                g.error("preset '" + preset->name + "': parameter '" + name + "' has another size");
+    }
     return shader;
 }
 

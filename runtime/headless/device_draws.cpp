@@ -97,7 +97,18 @@ std::vector<float> HeadlessDevice::draw(const VariantPipeline& pipeline, const H
     const DrawTarget target{.width = in.width, .height = in.height};
     const DrawBindings bindings{
         .uniforms = &in.uniforms, .textures = &in.textures, .filter = in.filter};
-    auto texels = draw_once(*this, pipeline, target, bindings, DrawGeometry{}, error);
+    DrawGeometry geometry;
+    if (in.indices && !in.vertices) {
+        if (error) *error = "draw: indices without vertices";
+        return {};
+    }
+    if (in.indices) {
+        geometry.vertices = in.vertices;
+        geometry.indices = in.indices;
+        geometry.attribute_sizes = in.attribute_sizes;
+        geometry.patch_control_points = in.patch_control_points;
+    }
+    auto texels = draw_once(*this, pipeline, target, bindings, geometry, error);
     return texels ? std::move(*texels) : std::vector<float>{};
 }
 

@@ -164,6 +164,11 @@ bool read_back(const RenderJob& job, OffscreenDraw& draw, RenderResult& result,
     auto texels = draw.read_back(error);
     if (!texels) return false;
     result.rgba = std::move(*texels);
+    if (job.background.size() == result.rgba.size())
+        for (size_t p = 0; p < result.rgba.size(); p += 4)
+            if (result.rgba[p + 3] == 0.0f)
+                for (size_t c = 0; c < 3; ++c)
+                    result.rgba[p + c] = job.background[p + c];
     result.width = job.width;
     result.height = job.height;
     return true;

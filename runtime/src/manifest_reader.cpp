@@ -52,6 +52,9 @@ size_t estimated_bytes(const BuildVariant& v) {
     for (const std::string& r : v.removed_parameters)
         n += kEntry + r.size();
     n += kEntry * (v.specialization.size() + v.frozen.size() + v.passes.size());
+    if (v.geometry)
+        n += sizeof(VariantGeometry) +
+             kEntry * (v.geometry->stages.size() + v.geometry->vertex_inputs.size());
     for (const auto& [name, value] : v.selector_uniforms)
         n += kEntry + name.size();
     for (const auto& [lang, file] : v.frozen)

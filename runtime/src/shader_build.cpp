@@ -111,12 +111,50 @@ void read_served(ManifestReader& r, const json& entry, const std::string& path, 
             v.frozen[lang] = r.text(*frozen, path + ".frozen", lang.c_str());
 }
 
+// A mesh variant's "geometry" (variant.json's, copied into the manifest).
+void read_geometry(ManifestReader& r, const json& entry, const std::string& path, BuildVariant& v) {
+    const json* g = r.get(entry, path, "geometry", json::value_t::object, "an object", false);
+    if (!g) return;
+    const std::string gp = path + ".geometry";
+    VariantGeometry geo;
+    geo.name = r.text(*g, gp, "name");
+    if (const json* stages = r.get(*g, gp, "stages", json::value_t::array, "an array"))
+        for (size_t i = 0; i < stages->size(); ++i) {
+            if (!(*stages)[i].is_string() || stages->size() > 4) {
+                r.fail(at(gp + ".stages", i), "expected a stage name");
+                return;
+            }
+            geo.stages.push_back((*stages)[i].get<std::string>());
+        }
+    geo.vertex_stride = r.u32(*g, gp, "vertex_stride");
+    if (const json* inputs = r.get(*g, gp, "vertex_inputs", json::value_t::array, "an array"))
+        for (size_t i = 0; i < inputs->size() && i < 16; ++i) {
+            const std::string ip = at(gp + ".vertex_inputs", i);
+            VertexInput in{r.text((*inputs)[i], ip, "name"), r.u32((*inputs)[i], ip, "location"),
+                           r.u32((*inputs)[i], ip, "floats"), r.u32((*inputs)[i], ip, "offset")};
+            if (in.location != i || in.floats < 1 || in.floats > 4) {
+                r.fail(ip, "expected location " + std::to_string(i) + " and 1 to 4 floats");
+                return;
+            }
+            geo.vertex_inputs.push_back(std::move(in));
+        }
+    if (g->contains("patch_control_points")) {
+        geo.patch_control_points = r.u32(*g, gp, "patch_control_points");
+        if (geo.patch_control_points != 4) {
+            r.fail(gp + ".patch_control_points", "expected 4 (quad patches)");
+            return;
+        }
+    }
+    v.geometry = std::move(geo);
+}
+
 void read_shader_part(ManifestReader& r, const json& entry, const std::string& path,
                       BuildVariant& v) {
     v.shader_directory = r.text(entry, path, "directory");
     read_files(r, entry, path, v);
     read_reflection(r, entry, path, v);
     read_fold(r, entry, path, v);
+    read_geometry(r, entry, path, v);
 }
 
 bool unsafe_relative(const std::string& p) {
@@ -152,6 +190,13 @@ std::map<std::string, std::string> parse_key(const std::string& key, std::string
 }
 
 } // namespace
+
+std::vector<uint32_t> VariantGeometry::attribute_sizes() const {
+    std::vector<uint32_t> sizes;
+    for (const VertexInput& in : vertex_inputs)
+        sizes.push_back(in.floats);
+    return sizes;
+}
 
 std::optional<ShaderBuild> ShaderBuild::open(const fs::path& directory, std::string* error) {
     const fs::path file = directory / "manifest.json";

@@ -6,7 +6,7 @@
 // point is the bilinear interpolation of the 4 control points (corners (0, 0), (1, 0), (0, 1),
 // (1, 1)) at gl_TessCoord, written so it is exactly a corner at a corner (no mix(): a + t (b - a)
 // need not give b at t = 1), hence the same point on both patches of a shared edge. Then the
-// same wave displacement as the mesh vertex stage. Quads, fractional-odd spacing, clockwise:
+// same wave displacement as the mesh vertex stage, and the same outputs (mesh.vert.glsl). Quads, fractional-odd spacing, clockwise:
 // what the HLSL hull states with [domain("quad")], [partitioning("fractional_odd")],
 // [outputtopology("triangle_cw")]. Clockwise in Vulkan's upper-left (u, v) domain, with u along
 // +x and v along +z (up the screen), is counter-clockwise in the framebuffer: the water's upper
@@ -15,8 +15,9 @@
 layout(quads, fractional_odd_spacing, cw) in;
 {{declarations}}
 layout(location = 0) in vec2 control_grid_xz[];
-layout(location = 0) out vec3 v_normal;
-layout(location = 1) out vec3 v_world;
+layout(location = 0) out vec3 v_world;
+layout(location = 1) out vec2 v_grid;
+layout(location = 2) out vec4 v_clip;
 
 {{prelude}}
 void main() {
@@ -28,6 +29,7 @@ void main() {
     {{body}}
 
     gl_Position = {{output_position}};
-    v_normal = {{output_normal}};
     v_world = {{output_world}};
+    v_grid = {{output_grid}};
+    v_clip = {{output_clip}};
 }

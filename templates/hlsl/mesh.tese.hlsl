@@ -5,7 +5,7 @@
 // at SV_DomainLocation, written as mesh.tese.glsl writes it (exactly a corner at a corner, no
 // lerp()), then the same wave displacement as the mesh vertex stage. The hull
 // (mesh.tesc.hlsl) states the partitioning and the winding. Members after the position take
-// locations 0, 1 in order, like the GLSL skeleton's outputs.
+// locations 0, 1, 2 in order, like the GLSL skeleton's outputs.
 {{declarations}}
 
 struct PatchPoint {
@@ -14,8 +14,9 @@ struct PatchPoint {
 
 struct MeshVertex {
     float4 position : SV_Position;
-    float3 v_normal : TEXCOORD0;
-    float3 v_world : TEXCOORD1;
+    float3 v_world : TEXCOORD0;
+    float2 v_grid : TEXCOORD1;
+    float4 v_clip : TEXCOORD2;
 };
 
 {{prelude}}
@@ -31,7 +32,8 @@ MeshVertex main(const OutputPatch<PatchPoint, 4> patch_points, float2 domain : S
 
     MeshVertex o;
     o.position = {{output_position}};
-    o.v_normal = {{output_normal}};
     o.v_world = {{output_world}};
+    o.v_grid = {{output_grid}};
+    o.v_clip = {{output_clip}};
     return o;
 }

@@ -1,14 +1,15 @@
 // {{stamp}}
 
-// Mesh path: one vertex of the wave grid. The wave model displaces the grid point and gives
-// its analytic normal; both reach the mesh fragment stage interpolated. Members after the
-// position take locations 0, 1 in order, like the GLSL skeleton's outputs.
+// Mesh geometry: one vertex of the clipmap grid, morphed towards the coarser level and
+// displaced by the wave model. Members after the position take locations 0, 1, 2 in order,
+// like the GLSL skeleton's outputs (mesh_fragment_inputs()).
 {{declarations}}
 
 struct MeshVertex {
     float4 position : SV_Position;
-    float3 v_normal : TEXCOORD0;
-    float3 v_world : TEXCOORD1;
+    float3 v_world : TEXCOORD0;
+    float2 v_grid : TEXCOORD1;
+    float4 v_clip : TEXCOORD2;
 };
 
 {{prelude}}
@@ -17,7 +18,8 @@ MeshVertex main({{inputs}}) {
 
     MeshVertex o;
     o.position = {{output_position}};
-    o.v_normal = {{output_normal}};
     o.v_world = {{output_world}};
+    o.v_grid = {{output_grid}};
+    o.v_clip = {{output_clip}};
     return o;
 }

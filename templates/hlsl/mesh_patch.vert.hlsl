@@ -1,7 +1,8 @@
 // {{stamp}}
 
-// Tessellated mesh path, vertex stage: one control point of a quad patch, the undisplaced
-// grid point passed on to the hull stage (location 0, like mesh_patch.vert.glsl). Nothing is
+// Tessellated geometry, vertex stage: one control point of a quad patch, its grid point
+// morphed towards the coarser level as the mesh's vertex stage morphs it, passed on to the
+// hull stage (location 0, like mesh_patch.vert.glsl). Nothing is
 // displaced here; the domain stage displaces the points it generates. The position is written
 // for completeness (no later stage reads it).
 {{declarations}}

@@ -151,25 +151,38 @@ TEST_CASE("gerstner_amplitude_zero_is_a_flat_still_surface_on_the_gpu", "[probe]
 }
 
 TEST_CASE("mesh_vertex_stage_math_agrees_between_gpu_and_cpu", "[probe][waves][mesh]") {
-    // The mesh path's vertex graph itself, run as a compute shader over grid points: clip
-    // position, normal and displaced position against the CPU evaluator in float.
+    // The mesh geometry's vertex graph itself, run as a compute shader over grid points with
+    // their level attributes: the morph, clip position, displaced point and grid point against
+    // the CPU evaluator in float. Odd points morph by -h along x; the morph range puts the
+    // points near the eye at t = 0, the far ones at t = 1 and a band between.
     std::vector<double> grid;
     for (int j = 0; j < 16; ++j)
         for (int i = 0; i < 16; ++i)
-            grid.insert(grid.end(), {-14.0 + 28.0 * i / 15, -4.0 + 34.0 * j / 15});
+            grid.insert(grid.end(), {-14.0 + 28.0 * i / 15, -4.0 + 34.0 * j / 15,
+                                     i % 2 ? -0.5 : 0.0, 0.0, 0.5});
     const test::Uniforms camera = {{"eye_position", {0.0, 5.0, -7.0}},
                                    {"mesh_camera_forward", {0.0, -0.4695, 0.8829}},
                                    {"mesh_camera_up", {0.0, 0.8829, 0.4695}},
-                                   {"mesh_projection", {1.732, 1.732}}};
+                                   {"mesh_projection", {1.732, 1.732}},
+                                   {"grid_morph_start", {20.0}},
+                                   {"grid_morph_end", {40.0}}};
     for (const char* model : {"sum_of_sines", "gerstner"})
         for (Language lang : {Language::Glsl, Language::Hlsl}) {
-            const MeshShader mesh = build_mesh_shader(model);
+            const MeshStages mesh = build_mesh_stages("mesh", model);
             const ProbeRun run = probe(mesh.vertex, lang, grid, camera);
-            REQUIRE(run.layout.output_stride == 10); // position 4, normal 3, world 3
+            REQUIRE(run.layout.output_stride == 13); // position 4, world 3, grid 2, clip 4
             std::printf("mesh %-13s %s vertex stage: max|gpu - cpu float| %.3g\n", model,
                         to_string(lang), max_gap(run.gpu, run.cpu_float));
             // Clip coordinates up to ~40: a few float ulps of 40.
             CHECK(max_gap(run.gpu, run.cpu_float) <= 2e-5);
+            // The morphed grid point: t = clamp((d / 0.5 - 20) / 20, 0, 1), d = |x| or |z + 7|.
+            for (size_t t = 0; t < run.tuples; ++t) {
+                const double x = grid[t * 5], z = grid[t * 5 + 1], dx = grid[t * 5 + 2];
+                const double d = std::max(std::abs(x), std::abs(z + 7.0)) / 0.5;
+                const double morph = std::clamp((d - 20.0) / 20.0, 0.0, 1.0);
+                CHECK(run.cpu_float[t * 13 + 7] == Approx(x + dx * morph).margin(1e-5));
+                CHECK(run.gpu[t * 13 + 8] == Approx(z).margin(1e-5));
+            }
         }
 }
 

@@ -118,6 +118,17 @@ expect_match(draw-caustics "${out}"
 expect_match(draw-caustics "${out}" "bound as caustics_map")
 expect_match(draw-caustics "${out}" "0 non-finite")
 
+# A mesh variant: the installed generator builds examples/materials/mesh.json, and the consumer
+# draws its mesh over the runtime library's clipmap grid.
+file(COPY ${WATERGEN_SOURCE_DIR}/examples/materials/mesh.json DESTINATION ${WORK_DIR}/water)
+run(mesh-build ok out ${prefix}/bin/watergen build ${WORK_DIR}/water/mesh.json
+    --out ${WORK_DIR}/mesh-build)
+run(draw-mesh ok out ${bld}/water_viewer ${WORK_DIR}/mesh-build ${WORK_DIR}/mesh.ppm - none
+    mesh)
+expect_match(draw-mesh "${out}" "selected [^\n]*geometry=mesh")
+expect_match(draw-mesh "${out}" "mesh over the runtime's clipmap grid: [0-9]+ vertices")
+expect_match(draw-mesh "${out}" "0 non-finite")
+
 run(second-build ok out ${CMAKE_COMMAND} --build ${bld})
 expect_match(second-build "${out}" "ninja: no work to do")
 

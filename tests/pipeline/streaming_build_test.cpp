@@ -89,11 +89,11 @@ TEST_CASE("a shard plans only its own jobs and counts the whole space", "[unit]"
     const auto plan = plan_build(*material, {}, ds, BuildMode::Permutations, shard);
     REQUIRE(plan);
     CHECK(plan->jobs.size() == expected);
-    CHECK(expected > 200); // 1,443,840 / 4000 = 361 on average
+    CHECK(expected > 700); // 3,502,080 / 4000 = 876 on average
     for (const BuildJob& job : plan->jobs)
         CHECK(in_shard(shard, job_key(job)));
     REQUIRE(plan->manifest_scenes.size() == 1);
-    CHECK(plan->manifest_scenes[0].variants == 1443840); // the manifest counts the whole space
+    CHECK(plan->manifest_scenes[0].variants == 3502080); // the manifest counts the whole space
 }
 
 TEST_CASE("a shard of the full space builds in bounded memory", "[build]") {

@@ -1,9 +1,9 @@
-// The tessellated mesh path's emission and validation (issue 28): four stages per language
-// (patch vertex, tessellation control / hull, tessellation evaluation / domain, fragment)
-// through glslang's GLSL and HLSL front ends, spirv-val, spirv-opt and reflection; the patch
-// stages share one parameter block; both languages state the same domain, spacing and winding;
-// the GL and Metal targets skip the patch stages with a note; factors stay in [1, 64] whatever
-// tess_max holds. No device.
+// The tessellated geometry's emission and validation (geometry=tessellated): four stages per
+// language (patch vertex, tessellation control / hull, tessellation evaluation / domain, the
+// water fragment) through glslang's GLSL and HLSL front ends, spirv-val, spirv-opt and
+// reflection; all stages share one parameter block; both languages state the same domain,
+// spacing and winding; the GL and Metal targets skip the patch stages with a note; factors
+// stay in [1, 64] whatever tess_max holds. No device.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -14,12 +14,34 @@
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/dsl.h"
 #include "watergen/ir/tessellation_emitter.h"
-#include "watergen/pipeline/tessellated_mesh_build.h"
+#include "watergen/pipeline/variant_build.h"
 #include "watergen/runtime/reflection.h"
+#include "watergen/water/tessellated_mesh.h"
 
 using namespace watergen;
 
 namespace {
+
+// The default variant drawn as `geometry` with `model`'s waves and their analytic normals.
+Variant geometry_variant(const std::string& geometry, const std::string& model) {
+    Variant v = default_variant();
+    for (const auto& [axis, choice] : {std::pair<std::string, std::string>{"geometry", geometry},
+                                       {"waves", model},
+                                       {"normals", "analytic"}})
+        REQUIRE_FALSE(set_choice(v, axis, choice));
+    return v;
+}
+
+VariantBuild tessellated_build(const std::string& model) {
+    return build_variant(geometry_variant("tessellated", model));
+}
+
+// The control stage of the tessellated geometry on its own.
+Graph control_graph() {
+    Graph g;
+    build_tess_control(g);
+    return g;
+}
 
 std::string messages(const Diagnostics& ds) {
     std::string s;
@@ -86,9 +108,14 @@ TEST_CASE("tessellated_mesh_stages_compile_validate_and_reflect_in_both_language
           "[tessellation][mesh]") {
     for (const char* model : {"sum_of_sines", "gerstner"}) {
         INFO(model);
-        const TessellatedMeshBuild b = build_tessellated_mesh(model);
+        const VariantBuild b = tessellated_build(model);
         INFO(messages(b.diagnostics));
         REQUIRE(b.ok());
+        REQUIRE(b.shader.mesh);
+        std::vector<const Graph*> graphs = b.shader.mesh->graphs();
+        graphs.push_back(&b.shader.fragment);
+        Diagnostics ignored;
+        const std::vector<Parameter> shared = shared_block_parameters(graphs, ignored);
         const std::set<std::pair<uint32_t, uint32_t>> expected_modes = {
             {26, 4}, // OutputVertices 4
             {24, 0}, // Quads
@@ -97,7 +124,8 @@ TEST_CASE("tessellated_mesh_stages_compile_validate_and_reflect_in_both_language
         };
         std::array<const DescriptorBinding*, 2> evaluation_blocks{};
         for (size_t l = 0; l < 2; ++l) {
-            const TessellatedLanguageBuild& lang = b.languages[l];
+            const LanguageBuild& lang = b.languages[l];
+            REQUIRE(lang.tessellated());
             INFO(to_string(lang.language));
             const std::pair<const StageBuild*, ShaderStage> stages[] = {
                 {&lang.vertex, ShaderStage::Vertex},
@@ -114,16 +142,20 @@ TEST_CASE("tessellated_mesh_stages_compile_validate_and_reflect_in_both_language
                 CHECK(stage->toolchain.reflection.stage == kind);
                 CHECK(stage->toolchain.reflection.entry_point == "main");
             }
-            // The patch vertex stage: grid_xz in at location 0 and out at location 0, no block.
+            // The patch vertex stage: the grid's attributes in (the morph needs the level),
+            // the morphed grid_xz out at location 0, the block (the morph reads the eye).
             const Reflection& vert = lang.vertex.toolchain.reflection;
-            REQUIRE(vert.inputs.size() == 1);
+            REQUIRE(vert.inputs.size() == 2);
             CHECK(vert.inputs[0].name == "grid_xz");
             CHECK(vert.inputs[0].location == 0);
             CHECK(vert.inputs[0].type == "vec2");
+            CHECK(vert.inputs[1].name == "grid_lod");
+            CHECK(vert.inputs[1].location == 1);
+            CHECK(vert.inputs[1].type == "vec3");
             REQUIRE(vert.outputs.size() == 1);
             CHECK(vert.outputs[0].location == 0);
             CHECK(vert.outputs[0].type == "vec2");
-            CHECK(vert.bindings.empty());
+            CHECK(find_block(vert));
             // Control: per-control-point arrays of grid_xz in and out, the block.
             const Reflection& tesc = lang.control.toolchain.reflection;
             REQUIRE(tesc.inputs.size() == 1);
@@ -133,17 +165,18 @@ TEST_CASE("tessellated_mesh_stages_compile_validate_and_reflect_in_both_language
             CHECK(tesc.outputs[0].type == "vec2[4]");
             const DescriptorBinding* control_block = find_block(tesc);
             REQUIRE(control_block);
-            // Evaluation: the control points in, v_normal and v_world out, the block.
+            // Evaluation: the control points in; out, what the water fragment reads.
             const Reflection& tese = lang.evaluation.toolchain.reflection;
             REQUIRE(tese.inputs.size() == 1);
             CHECK(tese.inputs[0].location == 0);
-            REQUIRE(tese.outputs.size() == 2);
-            CHECK(tese.outputs[0].name == "v_normal");
-            CHECK(tese.outputs[0].location == 0);
-            CHECK(tese.outputs[0].type == "vec3");
-            CHECK(tese.outputs[1].name == "v_world");
-            CHECK(tese.outputs[1].location == 1);
-            CHECK(tese.outputs[1].type == "vec3");
+            const auto fragment_inputs = mesh_fragment_inputs();
+            REQUIRE(tese.outputs.size() == fragment_inputs.size());
+            const char* types[] = {"vec3", "vec2", "vec4"};
+            for (size_t o = 0; o < tese.outputs.size(); ++o) {
+                CHECK(tese.outputs[o].name == fragment_inputs[o].first);
+                CHECK(tese.outputs[o].location == o);
+                CHECK(tese.outputs[o].type == types[o]);
+            }
             const DescriptorBinding* block = find_block(tese);
             REQUIRE(block);
             evaluation_blocks[l] = block;
@@ -151,30 +184,34 @@ TEST_CASE("tessellated_mesh_stages_compile_validate_and_reflect_in_both_language
             for (const char* member : {"eye_position", "water_level", "time", "mesh_projection",
                                        "tess_scale", "tess_max"})
                 CHECK(find_member(*block, member));
-            // One uniform buffer for both patch stages: the same members at the same offsets.
-            CHECK(control_block->set == block->set);
-            CHECK(control_block->binding == block->binding);
-            CHECK(control_block->block_size == block->block_size);
-            REQUIRE(control_block->members.size() == block->members.size());
-            for (size_t m = 0; m < block->members.size(); ++m) {
-                CHECK(control_block->members[m].name == block->members[m].name);
-                CHECK(control_block->members[m].offset == block->members[m].offset);
+            // One uniform buffer for every stage: the same members at the same offsets.
+            for (const StageBuild* other : {&lang.vertex, &lang.control, &lang.fragment}) {
+                INFO(other->source.file_name);
+                const DescriptorBinding* b2 = find_block(other->toolchain.reflection);
+                REQUIRE(b2);
+                CHECK(b2->set == block->set);
+                CHECK(b2->binding == block->binding);
+                CHECK(b2->block_size == block->block_size);
+                REQUIRE(b2->members.size() == block->members.size());
+                for (size_t m = 0; m < block->members.size(); ++m) {
+                    CHECK(b2->members[m].name == block->members[m].name);
+                    CHECK(b2->members[m].offset == block->members[m].offset);
+                }
             }
             // Every parameter of the block but the loop counts (specialization constants).
             CHECK(block->members.size() ==
-                  size_t(std::count_if(b.block.begin(), b.block.end(),
+                  size_t(std::count_if(shared.begin(), shared.end(),
                                        [](const Parameter& p) { return !p.specialization; })));
-            // Fragment: reads no parameter.
-            CHECK(lang.fragment.toolchain.reflection.bindings.empty());
             // Domain, spacing, winding and patch size, over the two patch stages.
             std::set<std::pair<uint32_t, uint32_t>> modes =
                 execution_modes(lang.control.toolchain.spirv);
             const auto more = execution_modes(lang.evaluation.toolchain.spirv);
             modes.insert(more.begin(), more.end());
             CHECK(modes == expected_modes);
-            // The wave math lives in the evaluation stage alone.
+            // The displacement lives in the evaluation stage (the fragment evaluates the
+            // slope per pixel), not before it.
             CHECK(lang.evaluation.source.source.find("sin(") != std::string::npos);
-            for (const StageBuild* s : {&lang.vertex, &lang.control, &lang.fragment})
+            for (const StageBuild* s : {&lang.vertex, &lang.control})
                 CHECK(s->source.source.find("sin(") == std::string::npos);
         }
         // GLSL's block and HLSL's cbuffer agree.
@@ -194,10 +231,10 @@ TEST_CASE("tessellated_mesh_stages_compile_validate_and_reflect_in_both_language
 }
 
 TEST_CASE("tessellation_stages_skip_the_gl_and_metal_targets_with_a_note", "[tessellation][mesh]") {
-    const TessellatedMeshBuild b = build_tessellated_mesh("gerstner");
+    const VariantBuild b = tessellated_build("gerstner");
     INFO(messages(b.diagnostics));
     REQUIRE(b.ok());
-    for (const TessellatedLanguageBuild& lang : b.languages) {
+    for (const LanguageBuild& lang : b.languages) {
         INFO(to_string(lang.language));
         for (const StageBuild* s : {&lang.control, &lang.evaluation}) {
             INFO(s->source.file_name);
@@ -209,7 +246,7 @@ TEST_CASE("tessellation_stages_skip_the_gl_and_metal_targets_with_a_note", "[tes
                            "GLSL 330 and ESSL 300 have no tessellation stages"));
             CHECK(has_note(s->toolchain.diagnostics, "Metal tessellation only as compute kernels"));
         }
-        // The vertex and fragment stages cross-compile as the mesh path's do.
+        // The vertex and fragment stages cross-compile as the mesh geometry's do.
         for (const StageBuild* s : {&lang.vertex, &lang.fragment}) {
             INFO(s->source.file_name);
             CHECK(s->toolchain.glsl330.find("#version 330") != std::string::npos);
@@ -221,8 +258,8 @@ TEST_CASE("tessellation_stages_skip_the_gl_and_metal_targets_with_a_note", "[tes
 
 TEST_CASE("tessellation_factors_are_clamped_to_1_through_64_whatever_tess_max_holds",
           "[tessellation][mesh]") {
-    const TessellatedMeshShader s = build_tessellated_mesh_shader("gerstner");
-    REQUIRE_FALSE(has_errors(s.control.diagnostics()));
+    const Graph control = control_graph();
+    REQUIRE_FALSE(has_errors(control.diagnostics()));
     // A unit patch at the origin, the eye 10 m above its centre at water level 0: each edge
     // midpoint is sqrt(0.25 + 100) m away.
     const std::vector<std::vector<double>> patch = {
@@ -231,42 +268,42 @@ TEST_CASE("tessellation_factors_are_clamped_to_1_through_64_whatever_tess_max_ho
                                                     {"water_level", {0.0}},
                                                     {"tess_scale", {40.0}},
                                                     {"tess_max", {16.0}}};
-    auto f = factors(s.control, u, patch);
+    auto f = factors(control, u, patch);
     const double expected = 40.0 / std::sqrt(100.25);
     for (const char* name : {"outer_0", "outer_1", "outer_2", "outer_3", "inner_0", "inner_1"})
         CHECK(f[name] == Approx(expected).epsilon(1e-6));
     // tess_max beyond the guaranteed 64 is clamped in the shader, not trusted.
     u["tess_scale"] = {1e4};
     u["tess_max"] = {100.0};
-    f = factors(s.control, u, patch);
+    f = factors(control, u, patch);
     for (const char* name : {"outer_0", "outer_1", "outer_2", "outer_3", "inner_0", "inner_1"})
         CHECK(f[name] == 64.0);
     // tess_max 0 (and below) gives 1: the patch is drawn, never with 0 (culled) or less.
     for (double bad : {0.0, -5.0}) {
         u["tess_max"] = {bad};
-        f = factors(s.control, u, patch);
+        f = factors(control, u, patch);
         for (const char* name : {"outer_0", "outer_3", "inner_1"})
             CHECK(f[name] == 1.0);
     }
     // A negative scale gives 1 as well.
     u["tess_max"] = {16.0};
     u["tess_scale"] = {-40.0};
-    f = factors(s.control, u, patch);
+    f = factors(control, u, patch);
     CHECK(f["outer_2"] == 1.0);
     // The eye on an edge's midpoint: the distance floor keeps the quotient finite; the limit.
     u["tess_scale"] = {40.0};
     u["eye_position"] = {0.0, 0.0, -0.5};
-    f = factors(s.control, u, patch);
+    f = factors(control, u, patch);
     CHECK(f["outer_1"] == 16.0);
     CHECK(f["inner_0"] == 16.0);
     // Farther edges are coarser; each inner factor is the larger of the two edges across it.
     u["eye_position"] = {0.0, 1.0, -3.0};
-    f = factors(s.control, u, patch);
+    f = factors(control, u, patch);
     CHECK(f["outer_1"] > f["outer_3"]); // v = 0 is nearer than v = 1
     CHECK(f["inner_0"] == std::max(f["outer_1"], f["outer_3"]));
     CHECK(f["inner_1"] == std::max(f["outer_0"], f["outer_2"]));
     // The shaders hold the clamp.
-    const TessellatedMeshBuild b = build_tessellated_mesh("gerstner");
+    const VariantBuild b = tessellated_build("gerstner");
     REQUIRE(b.ok());
     CHECK(b.languages[0].control.source.source.find("clamp(params.tess_max, 1.0, 64.0)") !=
           std::string::npos);
@@ -299,7 +336,7 @@ TEST_CASE("patch_stage_emitters_report_what_a_skeleton_cannot_take", "[tessellat
     }
     {
         // A stage reading a parameter the shared block lacks.
-        const TessellatedMeshShader s = build_tessellated_mesh_shader("sum_of_sines");
+        const MeshStages s = build_mesh_stages("tessellated", "sum_of_sines");
         ds.clear();
         const std::vector<Parameter> block = shared_block_parameters({&s.evaluation}, ds);
         REQUIRE_FALSE(has_errors(ds));
@@ -325,7 +362,7 @@ TEST_CASE("patch_stage_emitters_report_what_a_skeleton_cannot_take", "[tessellat
 }
 
 TEST_CASE("reflection_json_round_trips_the_tessellation_stages", "[tessellation][reflection]") {
-    const TessellatedMeshBuild b = build_tessellated_mesh("sum_of_sines");
+    const VariantBuild b = tessellated_build("sum_of_sines");
     REQUIRE(b.ok());
     for (const StageBuild* s : {&b.languages[1].control, &b.languages[1].evaluation}) {
         const std::string text = reflection_to_json(s->toolchain.reflection);

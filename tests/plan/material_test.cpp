@@ -60,7 +60,8 @@ TEST_CASE("material_errors_name_file_line_path_and_what_was_expected", "[materia
     CHECK(error_of("{\"name\": \"x\",\n \"axes\": {\n  \"colour\": [\"blue\"]}}") ==
           "m.json:3:3: error: /axes/colour: unknown axis 'colour'; expected one of fresnel, "
           "extinction, specular, foam, "
-          "reflection, refraction, normals, waves, shore, precision, caustics, scene_input");
+          "reflection, refraction, normals, waves, shore, precision, caustics, scene_input, "
+          "geometry");
     CHECK(error_of("{\"name\": \"x\",\n \"axes\": {\"fresnel\": [\"schlick\",\n \"fancy\"]}}") ==
           "m.json:3:2: error: /axes/fresnel/1: unknown fresnel choice 'fancy'; expected one of "
           "none, power, schlick, exact");

@@ -369,3 +369,43 @@ TEST_CASE("a_fixed_eye_within_the_camera_height_plans", "[pruning]") {
     REQUIRE(plan);
     CHECK(plan->fixed.at("eye_position") == std::vector<double>{0, 7, -3});
 }
+
+TEST_CASE("a_camera_that_never_comes_near_the_water_prunes_tessellation", "[pruning]") {
+    // An edge's factor is tess_scale / its distance from the eye, at least the camera's height
+    // above the water: from at least tess_scale's largest value up, every factor is 1.
+    Diagnostics ds;
+    const Material m = *MaterialBuilder("geometry")
+                            .offer("waves", {"gerstner"})
+                            .offer("geometry", {"screen_pass", "mesh", "tessellated"})
+                            .range("tess_scale", 1.0, 30.0)
+                            .build(ds);
+    INFO((ds.empty() ? std::string() : format_diagnostic(ds[0])));
+    auto high = [](double lowest) {
+        const std::string text =
+            R"({"name": "high", "shoreline": false, "camera_height": {"min": )" +
+            std::to_string(lowest) +
+            R"(, "max": 400}, "camera_pitch": {"min": -60, "max": 10},
+            "sun_elevation": {"min": 10, "max": 75}, "reflection_sources": ["cubemap"],
+            "waves": "animated", "precision": "full", "platforms": ["vulkan"],
+            "water_depth": {"min": 1, "max": 50}})";
+        Diagnostic error;
+        auto src = JsonSource::parse(text, "high.json", &error);
+        REQUIRE(src);
+        Diagnostics d;
+        auto s = parse_scene(*src, d);
+        INFO((d.empty() ? std::string() : format_diagnostic(d[0])));
+        REQUIRE(s);
+        return *s;
+    };
+    const Variant tess = with({{"waves", "gerstner"}, {"geometry", "tessellated"}});
+    auto e = excludes(m, high(50), tess);
+    REQUIRE(e);
+    CHECK(e->axis == "geometry");
+    CHECK(e->reason == "the camera stays at least 50 m above the water and tess_scale is at most "
+                       "30 m, so every tessellation factor is 1, so the mesh geometry draws the "
+                       "same");
+    CHECK(e->where.find("high.json") != std::string::npos);
+    CHECK(e->where.find("/camera_height") != std::string::npos);
+    CHECK_FALSE(excludes(m, high(20), tess));
+    CHECK_FALSE(excludes(m, high(50), with({{"waves", "gerstner"}, {"geometry", "mesh"}})));
+}

@@ -3,9 +3,49 @@
 #include <algorithm>
 #include <cmath>
 
-#include "watergen/eval/draw/mesh_render.h"
+#include "watergen/ir/specialization.h"
+#include "watergen/ir/uniform_layout.h"
 
 namespace watergen {
+
+namespace {
+
+// n x n vertices with attribute grid_xz spanning [x0, x1] x [z0, z1], two triangles per cell.
+MeshData make_grid(uint32_t n, double x0, double x1, double z0, double z1) {
+    MeshData mesh;
+    mesh.attribute_sizes = {2};
+    if (n < 2) return mesh;
+    for (uint32_t j = 0; j < n; ++j)
+        for (uint32_t i = 0; i < n; ++i) {
+            mesh.vertices.push_back(static_cast<float>(x0 + (x1 - x0) * i / (n - 1)));
+            mesh.vertices.push_back(static_cast<float>(z0 + (z1 - z0) * j / (n - 1)));
+        }
+    for (uint32_t j = n - 1; j-- > 0;)
+        for (uint32_t i = 0; i + 1 < n; ++i) {
+            const uint32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+            mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});
+        }
+    return mesh;
+}
+
+// The pass's job: its vertex stage's block (the only one) packed from `values`.
+RenderJob pass_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t size,
+                   const std::map<std::string, std::vector<double>>& values, uint32_t timed_draws) {
+    RenderJob job;
+    job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
+    job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
+    job.vertex_reflection = lang.vertex.toolchain.reflection;
+    job.fragment_reflection = lang.fragment.toolchain.reflection;
+    job.width = job.height = size;
+    const ShaderInterface& block = lang.vertex.source.interface;
+    job.uniforms = pack_uniforms(block.uniforms, block.parameters, values);
+    job.specialization = specialization_values(block.specialization, values);
+    job.timed_draws = timed_draws;
+    job.mesh = mesh;
+    return job;
+}
+
+} // namespace
 
 std::map<std::string, std::vector<double>>
 caustics_values(const CausticsPassBuild& build,
@@ -53,8 +93,8 @@ RenderJob caustics_job(const CausticsPassBuild& build, size_t language,
         const double share = 1.0 / (double(settings.cells_per_texel) * settings.cells_per_texel);
         drawn["caustics_photon_share"] = {share};
     }
-    RenderJob job = mesh_job(build.languages[language], grid, settings.texels, settings.texels,
-                             drawn, settings.timed_draws);
+    RenderJob job =
+        pass_job(build.languages[language], grid, settings.texels, drawn, settings.timed_draws);
     job.additive_blend = true;
     return job;
 }

@@ -1,103 +1,156 @@
 #include "watergen/eval/draw/mesh_render.h"
 
+#include "watergen/eval/draw/variant_render.h"
 #include "watergen/ir/specialization.h"
 #include "watergen/ir/uniform_layout.h"
+#include "watergen/water/presets.h"
 
 namespace watergen {
 
-RenderJob geometry_job(const StageBuild& vertex, const StageBuild& fragment,
-                       const ShaderInterface& block, const MeshData& mesh, uint32_t width,
-                       uint32_t height, const std::map<std::string, std::vector<double>>& values,
-                       uint32_t timed_draws) {
-    RenderJob job;
-    job.vertex_spirv = vertex.toolchain.spirv_optimized;
-    job.fragment_spirv = fragment.toolchain.spirv_optimized;
-    job.vertex_reflection = vertex.toolchain.reflection;
-    job.fragment_reflection = fragment.toolchain.reflection;
-    job.width = width;
-    job.height = height;
-    job.uniforms = pack_uniforms(block.uniforms, block.parameters, values);
-    job.specialization = specialization_values(block.specialization, values);
-    job.timed_draws = timed_draws;
-    job.mesh = mesh;
-    return job;
+bool draws_mesh(const LanguageBuild& lang) {
+    return !lang.vertex.source.interface.varyings.empty();
 }
 
-RenderJob mesh_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t width, uint32_t height,
-                   const std::map<std::string, std::vector<double>>& values, uint32_t timed_draws) {
-    return geometry_job(lang.vertex, lang.fragment, lang.vertex.source.interface, mesh, width,
-                        height, values, timed_draws);
-}
-
-MeshBuild build_mesh(const std::string& wave_model) {
-    MeshBuild b{build_mesh_shader(wave_model), {}, {}};
-    b.languages = build_two_stages(b.shader.vertex, b.shader.fragment, "mesh", "mesh_" + wave_model,
-                                   "mesh." + wave_model, b.diagnostics);
-    return b;
-}
-
-MeshData make_grid(uint32_t n, double x0, double x1, double z0, double z1) {
+MeshData grid_mesh(const WaterGrid& grid) {
     MeshData mesh;
-    mesh.attribute_sizes = {2};
-    if (n < 2) return mesh;
-    for (uint32_t j = 0; j < n; ++j)
-        for (uint32_t i = 0; i < n; ++i) {
-            mesh.vertices.push_back(static_cast<float>(x0 + (x1 - x0) * i / (n - 1)));
-            mesh.vertices.push_back(static_cast<float>(z0 + (z1 - z0) * j / (n - 1)));
-        }
-    for (uint32_t j = n - 1; j-- > 0;) // far rows (large z) first
-        for (uint32_t i = 0; i + 1 < n; ++i) {
-            const uint32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-            mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});
-        }
+    mesh.vertices = grid.vertices;
+    mesh.attribute_sizes = {2, 3};
+    mesh.indices = grid.indices;
+    mesh.patch_control_points = grid.patch_control_points;
     return mesh;
 }
 
-std::map<std::string, std::vector<double>> mesh_values(const SyntheticScene& scene,
-                                                       const MeshRenderSettings& settings) {
-    const SceneCamera cam = scene_camera(settings.width, settings.height);
+std::map<std::string, std::vector<double>>
+mesh_values(const SyntheticScene& scene, const WaterGrid& grid, uint32_t width, uint32_t height) {
+    const SceneCamera cam = scene_camera(scene.view, width, height);
     std::map<std::string, std::vector<double>> values = scene.uniforms;
     values["mesh_camera_right"] = {cam.right[0], cam.right[1], cam.right[2]};
     values["mesh_camera_up"] = {cam.up[0], cam.up[1], cam.up[2]};
     values["mesh_camera_forward"] = {cam.forward[0], cam.forward[1], cam.forward[2]};
     values["mesh_projection"] = {1.0 / (cam.tan_half_fov_y * cam.aspect), 1.0 / cam.tan_half_fov_y};
     values["eye_position"] = {cam.eye[0], cam.eye[1], cam.eye[2]};
+    values["mesh_pixel_angle"] = {2.0 * cam.tan_half_fov_y / height};
+    values["grid_morph_start"] = {grid.morph_start};
+    values["grid_morph_end"] = {grid.morph_end};
     return values;
 }
 
-MeshRender render_mesh(VulkanRunner& runner, const MeshBuild& build, const SyntheticScene& scene,
-                       const MeshRenderSettings& settings) {
-    MeshRender out;
-    if (!build.ok()) {
-        out.error = "mesh did not build";
-        return out;
+RenderJob mesh_render_job(const LanguageBuild& lang, const SyntheticScene& scene,
+                          const MeshData& mesh,
+                          const std::map<std::string, std::vector<double>>& values, uint32_t width,
+                          uint32_t height, uint32_t timed_draws) {
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.timed_draws = timed_draws;
+    RenderJob job = scene_inputs_job(lang, scene, settings);
+    if (const auto it = scene.textures.find("scene_color"); it != scene.textures.end())
+        job.background = it->second.rgba;
+    // Every stage declares the one block (build_shader): the fragment's layout is all of them.
+    const ShaderInterface& in = lang.fragment.source.interface;
+    job.uniforms = pack_uniforms(in.uniforms, in.parameters, values);
+    job.specialization = specialization_values(in.specialization, values);
+    job.mesh = mesh;
+    if (lang.tessellated()) {
+        job.tess_control_spirv = lang.control.toolchain.spirv_optimized;
+        job.tess_evaluation_spirv = lang.evaluation.toolchain.spirv_optimized;
+        job.tess_control_reflection = lang.control.toolchain.reflection;
+        job.tess_evaluation_reflection = lang.evaluation.toolchain.reflection;
     }
-    const std::map<std::string, std::vector<double>> values = mesh_values(scene, settings);
-    const MeshData grid =
-        make_grid(settings.grid, settings.x0, settings.x1, settings.z0, settings.z1);
-    std::array<RenderJob, 2> jobs;
-    for (size_t i = 0; i < 2; ++i) {
-        jobs[i] = mesh_job(build.languages[i], grid, settings.width, settings.height, values,
-                           settings.timed_draws);
-        jobs[i].cull_back_faces = settings.cull_back_faces;
-    }
-    return render_language_pair(runner, jobs, settings);
+    return job;
 }
 
-MeshRender render_language_pair(VulkanRunner& runner, const std::array<RenderJob, 2>& jobs,
-                                const MeshRenderSettings& settings) {
+MeshRender render_mesh_variant(VulkanRunner& runner, const VariantBuild& build,
+                               const SyntheticScene& scene, const MeshRenderSettings& settings) {
     MeshRender out;
+    if (!build.ok()) {
+        out.error = "variant did not build";
+        return out;
+    }
+    if (!build.shader.mesh) {
+        out.error = "a screen-pass variant has no mesh to draw (geometry=mesh or tessellated)";
+        return out;
+    }
+    if (auto why = water_grid_error(settings.grid)) {
+        out.error = *why;
+        return out;
+    }
+    if (scene.width != settings.width || scene.height != settings.height) {
+        out.error = "scene size differs from the render size";
+        return out;
+    }
+    const SceneCamera cam = scene_camera(scene.view, settings.width, settings.height);
+    const WaterGrid grid = water_grid(settings.grid, cam.eye[0], cam.eye[2],
+                                      build.shader.mesh->tessellated() ? GridTopology::Patches
+                                                                       : GridTopology::Triangles);
+    const MeshData mesh = grid_mesh(grid);
+    out.vertices = grid.vertices.size() / WaterGrid::kFloatsPerVertex;
+    out.primitives = grid.indices.size() / (grid.patch_control_points ? 4 : 3);
+    std::map<std::string, std::vector<double>> values =
+        mesh_values(scene, grid, settings.width, settings.height);
+    for (const auto& [name, value] : settings.overrides)
+        values[name] = value;
     runner.clear_validation_messages();
     for (size_t i = 0; i < 2; ++i) {
-        out.gpu[i] = runner.render(jobs[i]);
+        RenderJob job = mesh_render_job(build.languages[i], scene, mesh, values, settings.width,
+                                        settings.height, settings.timed_draws);
+        job.cull_back_faces = settings.cull_back_faces;
+        out.gpu[i] = runner.render(job);
         if (!out.gpu[i].ok) {
-            out.error = std::string(i == 0 ? "glsl" : "hlsl") + " path: " + out.gpu[i].error;
+            out.error =
+                std::string(to_string(build.languages[i].language)) + " path: " + out.gpu[i].error;
             return out;
         }
         out.gpu_image[i] = ImageRGBA32F{settings.width, settings.height, out.gpu[i].rgba};
     }
+    for (size_t p = 0; p < out.gpu[0].rgba.size() / 4; ++p)
+        out.covered += out.gpu[0].rgba[p * 4 + 3] != 0.0f;
     out.validation_messages = runner.validation_messages();
     out.glsl_vs_hlsl = compare_images(out.gpu_image[0], out.gpu_image[1]);
+    return out;
+}
+
+Variant screen_pass_of(const Variant& mesh_variant) {
+    Variant v = mesh_variant;
+    set_choice(v, "geometry", "screen_pass");
+    return v;
+}
+
+VariantRender render_mesh_against_surface(VulkanRunner& runner, const VariantBuild& build,
+                                          const SyntheticScene& scene,
+                                          const RenderSettings& settings) {
+    VariantRender out;
+    out.key = build.shader.variant.key();
+    MeshRenderSettings mesh{settings.width, settings.height, settings.grid, settings.timed_draws};
+    MeshRender drawn = render_mesh_variant(runner, build, scene, mesh);
+    if (!drawn.ok()) {
+        out.error = drawn.error;
+        return out;
+    }
+    out.gpu = std::move(drawn.gpu);
+    out.gpu_image = std::move(drawn.gpu_image);
+    out.glsl_vs_hlsl = drawn.glsl_vs_hlsl;
+    out.validation_messages = std::move(drawn.validation_messages);
+    if (!settings.cpu_float && !settings.cpu_double) return out;
+    const WaterShader surface =
+        build_water_shader(screen_pass_of(build.shader.variant), find_preset(build.shader.preset),
+                           SurfaceSearch::Converged);
+    auto evaluate = [&](EvalPrecision precision, ImageRGBA32F& image) {
+        const EvalResult r = evaluate_image(surface.fragment, "color", scene.eval_inputs(),
+                                            settings.width, settings.height, precision);
+        if (!r.ok()) out.error = "CPU evaluator: " + r.error;
+        image = to_image(r, settings.width, settings.height);
+        return r.ok();
+    };
+    if (settings.cpu_float) {
+        if (!evaluate(EvalPrecision::Float, out.cpu_float)) return out;
+        out.glsl_vs_cpu_float = compare_images(out.gpu_image[0], out.cpu_float);
+        out.hlsl_vs_cpu_float = compare_images(out.gpu_image[1], out.cpu_float);
+    }
+    if (settings.cpu_double) {
+        if (!evaluate(EvalPrecision::Double, out.cpu_double)) return out;
+        out.glsl_vs_cpu_double = compare_images(out.gpu_image[0], out.cpu_double);
+    }
     return out;
 }
 

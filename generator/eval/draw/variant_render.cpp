@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "watergen/eval/draw/mesh_render.h"
 #include "watergen/ir/float_error.h"
 
 namespace watergen {
@@ -21,6 +22,18 @@ ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height) {
 
 RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene,
                           const RenderSettings& settings) {
+    if (!draws_mesh(lang)) return scene_inputs_job(lang, scene, settings);
+    const SceneCamera cam = scene_camera(scene.view, settings.width, settings.height);
+    const WaterGrid grid =
+        water_grid(settings.grid, cam.eye[0], cam.eye[2],
+                   lang.tessellated() ? GridTopology::Patches : GridTopology::Triangles);
+    return mesh_render_job(lang, scene, grid_mesh(grid),
+                           mesh_values(scene, grid, settings.width, settings.height),
+                           settings.width, settings.height, settings.timed_draws);
+}
+
+RenderJob scene_inputs_job(const LanguageBuild& lang, const SyntheticScene& scene,
+                           const RenderSettings& settings) {
     RenderJob job;
     job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
     job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
@@ -77,6 +90,7 @@ VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
         out.error = "scene size differs from the render size";
         return out;
     }
+    if (build.shader.mesh) return render_mesh_against_surface(runner, build, scene, settings);
     runner.clear_validation_messages();
     for (size_t i = 0; i < 2; ++i) {
         out.gpu[i] = runner.render(make_render_job(build.languages[i], scene, settings));

@@ -20,10 +20,13 @@ RenderReportInfo report_info(const VulkanRunner& runner, const RenderRequest& re
 
 // Puts `values` into the scene, each checked against the variant's parameter of that name,
 // and makes the depth buffer again for the conventions they set.
-std::optional<std::string> set_values(SyntheticScene& scene, const Graph& fragment,
+std::optional<std::string> set_values(SyntheticScene& scene, const WaterShader& shader,
                                       const std::map<std::string, std::vector<double>>& values) {
     for (const auto& [name, value] : values) {
-        const Parameter* p = fragment.find_parameter(name);
+        const Parameter* p = shader.fragment.find_parameter(name);
+        if (shader.mesh) // a mesh stage's (the camera, the grid, the factors)
+            for (const Graph* stage : shader.mesh->graphs())
+                if (!p) p = stage->find_parameter(name);
         if (!p) return "--set " + name + ": not a parameter of this variant";
         if (value.size() != value_count(*p))
             return fmt::format("--set {}: {} value(s), expected {}", name, value.size(),
@@ -60,7 +63,7 @@ RenderRun run_render(VulkanRunner& runner, const RenderRequest& request) {
     if (!build.ok()) return fail("");
     SyntheticScene scene =
         preset_scene(request.width, request.height, request.preset, request.view);
-    if (auto error = set_values(scene, build.shader.fragment, request.values)) {
+    if (auto error = set_values(scene, build.shader, request.values)) {
         run.error = v.key() + ": " + *error;
         run.status = RunStatus::BadInput;
         return run;
@@ -84,6 +87,7 @@ RenderRun run_render(VulkanRunner& runner, const RenderRequest& request) {
     }
     RenderSettings settings{request.width, request.height, request.draws, true};
     settings.float_bound = true;
+    settings.grid = request.grid;
     settings.tolerance = request.tolerance;
     run.render = render_variant(runner, build, scene, settings);
     if (!run.render.ok()) return fail(run.render.key + ": " + run.render.error);

@@ -245,8 +245,28 @@ WaveHit find_wave_surface(const Surface& s, const std::string& origin, const Wav
     return {hit.point, hit.distance, constant(g, {0.0, 0.0})};
 }
 
+// A mesh fragment (geometry mesh or tessellated): the surface is the rasterised point of the
+// displaced grid, and the slope the model's at its grid point, per fragment (not interpolated
+// from the vertices), band-limited to the pixel as the screen pass' is.
+void compose_mesh_waves(Surface& s, const WaveSearch& search) {
+    Graph& g = s.g;
+    FullPrecisionScope full(g);
+    set_water_column(s, named(length(s.surface_point - s.eye), "surface_distance"));
+    if (!search.model) return;
+    const SurfaceModel model = search.model(g, s.time);
+    Expr footprint = pixel_footprint(s);
+    s.wave_slope =
+        model.state.sample_at
+            ? model.state.sample_at(s.surface_point.xz(), footprint, s.grid_xz, false, true).slope
+            : model.sample(s.grid_xz, footprint, false, true).slope;
+}
+
 void compose_waves(Surface& s, const std::string& origin, const WaveSearch& search) {
     OriginScope scope(s.g, origin);
+    if (s.grid_xz.valid()) {
+        compose_mesh_waves(s, search);
+        return;
+    }
     if (!search.model) {
         const PlaneHit hit = intersect_plane(s, s.level);
         s.surface_point = hit.point;
@@ -281,6 +301,28 @@ ChoiceInfo waves_choice(ChoiceInfo info, WaveSearch search, const std::string& r
     return feature_choice(std::move(info), std::move(node),
                           [origin, search](Surface& s) { compose_waves(s, origin, search); });
 }
+
+} // namespace
+
+void compose_converged_waves(Surface& s, const std::string& choice) {
+    const std::string origin = "waves." + choice;
+    if (choice == "sum_of_sines")
+        compose_waves(
+            s, origin,
+            {&sum_of_sines_surface, kWaveSurfaceConvergedSteps, kWaveSurfaceConvergedSafeSteps});
+    else if (choice == "gerstner")
+        compose_waves(
+            s, origin,
+            {&gerstner_surface, kWaveSurfaceConvergedSteps, kWaveSurfaceConvergedSafeSteps});
+    else if (choice == "heightmap_march" || choice == "heightmap_march_converged")
+        compose_waves(
+            s, origin,
+            {&heightmap_surface, kHeightmapMarchConvergedSteps, kHeightmapMarchConvergedSafeSteps});
+    else
+        compose_choice(s, "waves", choice);
+}
+
+namespace {
 
 // The families' own nodes at full detail (no footprint): the catalog evaluates points, not pixels.
 std::vector<CatalogNode> wave_family_nodes() {

@@ -84,6 +84,14 @@ struct EmitOptions {
     // Where each resource is bound (binding_map.h); null: the dense numbering above. A
     // resource the shader reads that the map does not place is an error naming it.
     const BindingMap* bindings = nullptr;
+    // The parameter block when the stages of a pipeline share one (shared_block_parameters,
+    // tessellation_emitter.h): every member declared at its offset whatever this stage reads;
+    // a parameter read that the block lacks is an error. Null: the parameters the graph reads.
+    const std::vector<Parameter>* block = nullptr;
+    // The stage inputs in location order, as the stage before writes them (a mesh's
+    // mesh_fragment_inputs()): each declared, read or not; a Varying the graph reads that is
+    // not among them is an error. Null: the Varyings the graph reads, in order.
+    const std::vector<std::pair<std::string, Type>>* inputs = nullptr;
 };
 
 // "hinted", "all", "none" (the --unroll flag); nullopt for another word.

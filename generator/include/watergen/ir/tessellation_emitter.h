@@ -48,7 +48,7 @@ EmittedShader emit_tess_evaluation(const Graph& g, Language language, const std:
 // The parameters any of `graphs` reads, each once, in the order the graphs (then their
 // declarations) give: the block every stage of a pipeline declares. One name declared with two
 // definitions (same_definition) is an error naming both.
-std::vector<Parameter> shared_block_parameters(std::initializer_list<const Graph*> graphs,
+std::vector<Parameter> shared_block_parameters(const std::vector<const Graph*>& graphs,
                                                Diagnostics& diagnostics);
 
 } // namespace watergen

@@ -11,8 +11,11 @@ namespace watergen {
 // (e.g. skeleton "mesh" -> glsl/mesh.vert.glsl, hlsl/mesh.vert.hlsl). Each live Varying of `g`
 // is a vertex attribute (location = its index in creation order); the output "position"
 // (vec4, clip space) is required, and every other output must be one the skeleton writes.
+// `block`: the parameter block the pipeline's stages share (EmitOptions::block); null: the
+// parameters `g` reads.
 EmittedShader emit_vertex(const Graph& g, Language language, const std::string& skeleton,
                           const std::string& file_name, const std::string& variant_key,
-                          Diagnostics& diagnostics, const BindingMap* bindings = nullptr);
+                          Diagnostics& diagnostics, const BindingMap* bindings = nullptr,
+                          const std::vector<Parameter>* block = nullptr);
 
 } // namespace watergen

@@ -25,6 +25,11 @@ struct StageBuild {
 struct LanguageBuild {
     Language language = Language::Glsl;
     StageBuild vertex, fragment;
+    // A tessellated geometry's patch stages (tessellation control, evaluation); without a
+    // source file otherwise.
+    StageBuild control, evaluation;
+    bool tessellated() const { return !control.source.file_name.empty(); }
+    std::vector<const StageBuild*> stages() const; // those present, in pipeline order
 };
 
 struct VariantBuild {
@@ -76,6 +81,12 @@ Diagnostics check_reflected_bindings(const Reflection& reflection, const Emitted
 // EmitOptions), for rendering at 16 bits on the GPU; builds written to disk use the default.
 VariantBuild build_variant(const Variant& variant, const Preset* preset = nullptr,
                            const EmitOptions& options = {});
+// Every stage of both languages of a composed shader, emitted (sources and interfaces, no
+// toolchain): the fullscreen vertex stage and the fragment, or a mesh's stages
+// (WaterShader::mesh) sharing one parameter block with the fragment, whose inputs are then
+// mesh_fragment_inputs(). `options.bindings` must be set. Errors (the graphs' own first) to `ds`.
+std::array<LanguageBuild, 2> emit_shader_stages(const WaterShader& shader,
+                                                const EmitOptions& options, Diagnostics& ds);
 // Same for an already composed shader (a custom description, or a test's ill-typed one).
 VariantBuild build_shader(WaterShader shader, const EmitOptions& options = {},
                           const StageCompile& compile = {});
@@ -84,8 +95,9 @@ VariantBuild build_shader(WaterShader shader, const EmitOptions& options = {},
 // SPIR-V, reflection of both languages, SPIRV-Cross text of the GLSL path. Empty when the
 // build failed.
 std::map<std::string, std::string> variant_files(const VariantBuild& build);
-// The names variant_files gives every successful build, whatever the variant, sorted.
-std::vector<std::string> variant_file_names();
+// The names variant_files gives every successful build of a variant with (tessellated) or
+// without patch stages, sorted.
+std::vector<std::string> variant_file_names(bool tessellated = false);
 
 // The uniform block of a stage's interface as variant.json lists it ("uniform_block": name,
 // set, binding, size, members with their offsets, defaults, ranges and units).
@@ -110,8 +122,9 @@ std::array<LanguageBuild, 2> emit_two_stages(const Graph& vertex, const Graph& f
                                              const BindingMap* bindings = nullptr);
 void compile_two_stages(std::array<LanguageBuild, 2>& languages, Diagnostics& diagnostics,
                         const StageCompile& compile = {});
-// The names add_stage_files gives both languages' stages of `stem`, sorted.
-std::vector<std::string> stage_file_list(const std::string& stem);
+// The names add_stage_files gives both languages' stages of `stem`, sorted; with the patch
+// stages' when `tessellated`.
+std::vector<std::string> stage_file_list(const std::string& stem, bool tessellated = false);
 // The files of both languages of a build as variant_files writes them, under the names
 // <lang>/<stem>.<stage>.<kind> (sources, SPIR-V plain and optimised, reflection, and for the
 // GLSL path the cross-compiled texts stamped with `key`).

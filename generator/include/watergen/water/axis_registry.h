@@ -28,6 +28,7 @@ enum class SceneFact {
     BottomLit,        // sunlight reaches the bottom (the variant's extinction, the scene's depth)
     Precision,        // the scene targets the precision named by SceneNeed::value (or any)
     SceneInput,       // the engine gives the scene's position as SceneNeed::value (or either)
+    CameraNear,       // the camera comes close enough to the water for tessellation to refine it
 };
 
 // What a choice needs from a scene; a scene without it never shows the choice.

@@ -15,8 +15,11 @@ struct Surface {
     Graph& g;
 
     // Set by the skeleton (water_shader.cpp) before any axis runs; scene_pos and to_scene by
-    // the scene_input axis, which the skeleton composes first.
+    // the scene_input axis, which the skeleton composes after the geometry axis.
+    // uv by the geometry axis, first; a mesh's fragment also sets grid_xz and surface_point
+    // (the rasterised point), which the waves axis then takes instead of searching.
     Expr uv;             // vec2, screen position in [0, 1]^2, (0, 0) top-left
+    Expr grid_xz;        // vec2, the mesh's undisplaced grid point, m; invalid in the screen pass
     Expr scene_rgb;      // vec3, lit scene colour at uv (what lies under / behind the water)
     Expr scene_pos;      // vec3, world position of the scene at uv, m
     Expr to_scene;       // vec3, scene_pos - eye, m (a camera-relative input has it exactly)

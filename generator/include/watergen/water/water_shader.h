@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "watergen/ir/ir.h"
+#include "watergen/water/mesh_shader.h"
 #include "watergen/water/variant.h"
 
 namespace watergen {
@@ -65,17 +66,28 @@ std::vector<ShaderChoices> shaders_for(const std::vector<Variant>& variants, Bui
 struct WaterShader {
     Variant variant;    // the variant; for a switched shader, the one its selectors' defaults draw
     std::string preset; // name of the preset applied to the parameter defaults, "" for none
-    Graph fragment;     // inputs: varying v_uv; output "color" (vec4, linear HDR)
+    // Inputs: varying v_uv (the screen pass) or mesh_fragment_inputs(); output "color" (vec4,
+    // linear HDR).
+    Graph fragment;
     std::optional<ShaderChoices> switched = std::nullopt; // a shader serving several variants
+    // The stages before the fragment of a mesh geometry (geometry=mesh or tessellated); none
+    // for the screen pass, whose vertex stage is the fullscreen triangle.
+    std::optional<MeshStages> mesh = std::nullopt;
 
     // The variant's key, or the switched shader's (ShaderChoices::key).
     std::string key() const { return switched ? switched->key() : variant.key(); }
 };
 
+// How the screen pass finds the surface: as the waves choice ships, or its search run to
+// convergence (compose_converged_waves), the reference a mesh geometry is measured against.
+enum class SurfaceSearch { AsChosen, Converged };
+
 // Builds the fragment graph; type errors end up in fragment.diagnostics().
 // A preset replaces the defaults of the parameters it names.
-WaterShader build_water_shader(const Variant& variant, const Preset* preset = nullptr);
+WaterShader build_water_shader(const Variant& variant, const Preset* preset = nullptr,
+                               SurfaceSearch search = SurfaceSearch::AsChosen);
 // The same for several choices per axis (a permutation when every axis has one).
-WaterShader build_water_shader(const ShaderChoices& choices, const Preset* preset = nullptr);
+WaterShader build_water_shader(const ShaderChoices& choices, const Preset* preset = nullptr,
+                               SurfaceSearch search = SurfaceSearch::AsChosen);
 
 } // namespace watergen

@@ -74,6 +74,13 @@ struct HeadlessDraw {
     // with `filter`.
     std::map<std::string, TextureData> textures;
     TextureFilter filter = TextureFilter::Linear;
+    // A mesh variant's grid (water_grid(): interleaved floats, attribute_sizes per location,
+    // triangles or patches of patch_control_points), drawn indexed in its order; none: the
+    // fullscreen triangle. The pipeline's PipelineGeometry must say the same.
+    const std::vector<float>* vertices = nullptr;
+    const std::vector<uint32_t>* indices = nullptr;
+    std::vector<uint32_t> attribute_sizes = {};
+    uint32_t patch_control_points = 0;
 };
 
 namespace headless_detail {

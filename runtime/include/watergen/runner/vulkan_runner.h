@@ -87,6 +87,10 @@ struct RenderJob {
     // Cull back faces (front faces counter-clockwise in the framebuffer): which way a mesh's
     // triangles wind, seen on the device; false: no culling.
     bool cull_back_faces = false;
+    // RGBA32F, width x height x 4, row 0 at the top: what lies under the water (the scene an
+    // engine drew before it). A pixel no fragment wrote (alpha 0) takes its rgb and keeps alpha
+    // 0 in RenderResult::rgba. Empty: the cleared target (0) stays.
+    std::vector<float> background;
 };
 
 struct RenderResult {

@@ -49,6 +49,23 @@ struct TextureSlot {
     std::string type; // texture2D, textureCube
 };
 
+// How a mesh variant (geometry=mesh or tessellated) is drawn: its stages, its vertex layout
+// (attribute i at location i, interleaved floats) and its topology. The grid comes from
+// water_grid() (water_grid.h), whose vertices have exactly this layout.
+struct VertexInput {
+    std::string name; // "grid_xz", "grid_lod"
+    uint32_t location = 0, floats = 0, offset = 0;
+};
+struct VariantGeometry {
+    std::string name;                // "mesh" or "tessellated"
+    std::vector<std::string> stages; // "vertex", ["tess_control", "tess_evaluation",] "fragment"
+    std::vector<VertexInput> vertex_inputs;
+    uint32_t vertex_stride = 0;        // bytes
+    uint32_t patch_control_points = 0; // 4 for tessellated; 0: a triangle list
+    bool tessellated() const { return patch_control_points > 0; }
+    std::vector<uint32_t> attribute_sizes() const; // floats per input, location order
+};
+
 struct BuildVariant {
     std::string scene;
     std::string key;                            // "fresnel=schlick,extinction=absorb_scatter,..."
@@ -75,6 +92,8 @@ struct BuildVariant {
     std::map<std::string, PassReference> passes;
     // The stem of the shader's files: "<lang>/<stem>.<stage>...". "water"; a pass's "caustics".
     std::string file_stem = "water";
+    // A mesh variant's (the manifest's "geometry"); none for the fullscreen screen pass.
+    std::optional<VariantGeometry> geometry;
 };
 
 // A companion pass opened: the manifest's reference, and the pass as a shader (directory,

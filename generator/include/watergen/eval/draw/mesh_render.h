@@ -1,76 +1,79 @@
-// The mesh path end to end: build both languages of a MeshShader, draw it over an N x N grid
-// on the Vulkan runner with the synthetic scene's camera, and compare the two images.
+// A mesh geometry's variant (geometry=mesh or tessellated) drawn on the Vulkan runner: the
+// runtime library's clipmap grid (watergen/runtime/water_grid.h) around the scene's eye, seen
+// by the scene's camera, through both languages. The water is drawn over the lit scene, as an
+// engine draws it: a pixel no triangle covers shows the scene colour.
 #pragma once
 
 #include <array>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "watergen/eval/image/image_metrics.h"
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/runner/vulkan_runner.h"
-#include "watergen/water/mesh_shader.h"
+#include "watergen/runtime/water_grid.h"
 
 namespace watergen {
 
-struct MeshBuild {
-    MeshShader shader;
-    std::array<LanguageBuild, 2> languages; // GLSL, HLSL
-    Diagnostics diagnostics;
-    bool ok() const { return !has_errors(diagnostics); }
-};
-
-// The runner job of one language of a two-stage build drawing `mesh` at width x height, its
-// parameters packed from `values` over their defaults. Only the vertex stage may read
-// parameters (the pipeline has the one parameter block).
-RenderJob mesh_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t width, uint32_t height,
-                   const std::map<std::string, std::vector<double>>& values, uint32_t timed_draws);
-
-// The runner job drawing `mesh` with `vertex` and `fragment`, the parameter block packed from
-// `values` over the defaults of the stage interface `block` declares it in.
-RenderJob geometry_job(const StageBuild& vertex, const StageBuild& fragment,
-                       const ShaderInterface& block, const MeshData& mesh, uint32_t width,
-                       uint32_t height, const std::map<std::string, std::vector<double>>& values,
-                       uint32_t timed_draws);
-
-// build_two_stages of build_mesh_shader(wave_model).
-MeshBuild build_mesh(const std::string& wave_model);
-
-// n x n vertices with attribute grid_xz spanning [x0, x1] x [z0, z1], two triangles per cell,
-// rows ordered from z1 down to z0: back to front for a camera looking along +z (the runner has
-// no depth buffer).
-MeshData make_grid(uint32_t n, double x0, double x1, double z0, double z1);
-
 struct MeshRenderSettings {
-    uint32_t width = 128, height = 128;
-    uint32_t grid = 64;                         // vertices per side
-    double x0 = -14, x1 = 14, z0 = -4, z1 = 30; // grid extent, m
+    uint32_t width = 256, height = 256;
+    WaterGridDesc grid{};
     uint32_t timed_draws = 0;
     bool cull_back_faces = false; // RenderJob::cull_back_faces: see which way triangles wind
+    // Parameter values over the scene's and the camera's (tess_scale, tess_max, ...).
+    std::map<std::string, std::vector<double>> overrides{};
 };
 
+// The grid's vertices and indices as the runner draws them (attributes grid_xz, grid_lod).
+MeshData grid_mesh(const WaterGrid& grid);
+
+// Whether a built language path draws a mesh (its vertex stage takes the grid's attributes).
+bool draws_mesh(const LanguageBuild& lang);
+
+// The parameter values of a mesh draw: scene.uniforms (eye, time, level, sun), the scene
+// camera at width x height (mesh_camera_*, mesh_projection) and the grid's morph range.
+std::map<std::string, std::vector<double>>
+mesh_values(const SyntheticScene& scene, const WaterGrid& grid, uint32_t width, uint32_t height);
+
+// The runner job of one language of a mesh variant drawing `mesh` (triangles, or patches for
+// a tessellated one) with the scene's textures and the block packed from `values`, over the
+// scene's colour (RenderJob::background).
+RenderJob mesh_render_job(const LanguageBuild& lang, const SyntheticScene& scene,
+                          const MeshData& mesh,
+                          const std::map<std::string, std::vector<double>>& values, uint32_t width,
+                          uint32_t height, uint32_t timed_draws);
+
 struct MeshRender {
-    std::array<RenderResult, 2> gpu; // GLSL path, HLSL path
-    std::array<ImageRGBA32F, 2> gpu_image;
+    std::array<RenderResult, 2> gpu;       // GLSL path, HLSL path, over the scene's colour
+    std::array<ImageRGBA32F, 2> gpu_image; // the same as images
     ImageErrorStats glsl_vs_hlsl;
+    uint64_t vertices = 0, primitives = 0; // the grid's vertices; triangles or patches
+    uint64_t covered = 0;                  // pixels a fragment wrote (GLSL path)
     std::vector<std::string> validation_messages;
     std::string error;
     bool ok() const { return error.empty(); }
 };
 
-// The parameter values of a mesh draw: scene.uniforms (eye, time, level) and the synthetic
-// scene's camera at settings' size (mesh_camera_*, mesh_projection, eye_position).
-std::map<std::string, std::vector<double>> mesh_values(const SyntheticScene& scene,
-                                                       const MeshRenderSettings& settings);
+// Both languages of a mesh variant drawn over its grid; an error for a screen-pass variant, a
+// grid description out of range (water_grid_error) or a scene of another size.
+MeshRender render_mesh_variant(VulkanRunner& runner, const VariantBuild& build,
+                               const SyntheticScene& scene, const MeshRenderSettings& settings);
 
-// Camera and sun of the synthetic scene at settings' size; scene.uniforms (eye, time, level)
-// override parameter defaults.
-// Draws the GLSL path's job (jobs[0]) and the HLSL path's, and compares the two images.
-MeshRender render_language_pair(VulkanRunner& runner, const std::array<RenderJob, 2>& jobs,
-                                const MeshRenderSettings& settings);
+// The screen pass of the same choices (geometry=screen_pass), whose surface search finds
+// where each pixel's ray meets the surface to convergence: the exact surface a mesh
+// approximates, shaded by the same nodes.
+Variant screen_pass_of(const Variant& mesh_variant);
 
-MeshRender render_mesh(VulkanRunner& runner, const MeshBuild& build, const SyntheticScene& scene,
-                       const MeshRenderSettings& settings);
+// A mesh variant drawn (render_mesh_variant with settings.grid) and the screen pass of the same
+// choices evaluated on the CPU in double (and in float when settings.cpu_float) over the same
+// scene: glsl_vs_cpu_double is the mesh's error against the exact surface. No float bound or
+// agreement (a different model, not rounding).
+struct VariantRender;
+struct RenderSettings;
+VariantRender render_mesh_against_surface(VulkanRunner& runner, const VariantBuild& build,
+                                          const SyntheticScene& scene,
+                                          const RenderSettings& settings);
 
 } // namespace watergen

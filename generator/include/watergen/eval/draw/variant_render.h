@@ -11,6 +11,7 @@
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/runner/vulkan_runner.h"
+#include "watergen/runtime/water_grid.h"
 
 namespace watergen {
 
@@ -24,6 +25,8 @@ struct RenderSettings {
     // kFloatBoundRuns more double evaluations.
     bool float_bound = false;
     double tolerance = kAgreementTolerance;
+    // A mesh variant's grid (geometry=mesh or tessellated; the screen pass has none).
+    WaterGridDesc grid{};
 };
 
 // The float error bound's model (watergen/ir/float_error.h): every operation's result moved by
@@ -53,13 +56,22 @@ struct VariantRender {
 
 // Cost: two pipelines (each JIT-compiled by lavapipe at first draw, 0.1-0.5 s) plus
 // 1 + timed_draws draws per path, plus one CPU evaluation per precision.
+// A mesh variant (geometry=mesh or tessellated) is drawn over its grid (settings.grid) and
+// compared with the exact surface instead (render_mesh_against_surface, mesh_render.h): the
+// CPU images are the screen pass' of the same choices, and there is no float bound (the two
+// differ by the grid's geometric error, not by rounding).
 VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
                              const SyntheticScene& scene, const RenderSettings& settings);
 
 // The runner job for one language path of a built variant over `scene`: optimised SPIR-V, the
 // scene's textures by binding name, uniforms packed from the scene's values over the defaults.
+// A mesh variant's (draws_mesh) is drawn over settings.grid around the scene's eye, the scene
+// colour under it (mesh_render_job).
 RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene,
                           const RenderSettings& settings);
+// The same without the geometry: the stages, textures and block (the fullscreen triangle).
+RenderJob scene_inputs_job(const LanguageBuild& lang, const SyntheticScene& scene,
+                           const RenderSettings& settings);
 
 ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height);
 

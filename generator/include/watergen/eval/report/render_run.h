@@ -35,6 +35,7 @@ struct RenderRequest {
     // Where the variant binds its resources (render --bindings); null: the default profile. The
     // runner binds by reflection, so the draw follows the map (a pushed block is pushed).
     const BindingMap* bindings = nullptr;
+    WaterGridDesc grid{}; // a mesh variant's grid (render --grid-*)
 };
 
 // Where a render of `variant` in `view` goes under `out`.

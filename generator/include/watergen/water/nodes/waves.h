@@ -32,6 +32,16 @@ constexpr int kHeightmapMarchSteps = 4;
 constexpr int kHeightmapMarchSafeSteps = kHeightmapMarchSteps;
 constexpr int kHeightmapMarchConvergedSteps = 32;
 constexpr int kHeightmapMarchConvergedSafeSteps = 4;
+// The same searches run to convergence, for references (compose_converged_waves): the bracket
+// halves at least every other step, so 64 steps leave it far below a float ulp of any height.
+constexpr int kWaveSurfaceConvergedSteps = 64;
+constexpr int kWaveSurfaceConvergedSafeSteps = 4;
+
+// The waves axis' `choice` composed as a reference: its surface search run for
+// kWaveSurfaceConvergedSteps (the screen pass' 8 steps leave grazing rays short of the
+// crossing, waves_golden_test), so a mesh's geometric error is measured against the surface
+// itself. A choice without a search composes as it is.
+void compose_converged_waves(Surface& s, const std::string& choice);
 
 // v / |v|, or `fallback` when |v|^2 <= 1e-30 or is NaN (normalize of a zero vector is NaN on
 // the CPU and undefined on GPUs). Never produces a NaN itself.

@@ -1,0 +1,97 @@
+// Geometry bench: prints run_geometry_bench() (eval/bench/geometry_bench.h) as a table per view
+// and writes it to geometry.csv and geometry.json.
+#include <cstdio>
+
+#include "commands.h"
+#include "watergen/eval/bench/geometry_bench.h"
+
+namespace watergen::cli {
+
+namespace {
+
+void print_view(const GeometryBench& bench, const std::string& view) {
+    std::printf("\n%s\n%-12s %6s %9s %10s %10s %9s %8s %9s %8s %18s\n", view.c_str(), "geometry",
+                "rings", "tess_max", "vertices", "primitives", "max abs", "dE mean", "dE p99",
+                "draw ms", "draw / screen pass");
+    for (const GeometryBenchRow& r : bench.rows) {
+        if (r.view != view) continue;
+        const bool mesh = r.geometry != "screen_pass";
+        std::printf("%-12s %6s %9s %10llu %10llu %9.3g %8.3f %9.3f %8.2f %6.2f [%.2f, %.2f]\n",
+                    r.geometry.c_str(), mesh ? std::to_string(r.grid.ring_cells).c_str() : "-",
+                    r.tess_max > 0 ? std::to_string(int(r.tess_max)).c_str() : "-",
+                    static_cast<unsigned long long>(r.vertices),
+                    static_cast<unsigned long long>(r.primitives), r.vs_exact.max_abs,
+                    r.vs_exact.ciede2000_mean, r.vs_exact.ciede2000_p99, r.draw_ms,
+                    r.draw_time.ratio, r.draw_time.lo, r.draw_time.hi);
+    }
+    const uint32_t rings = rings_within(bench, view, 2.0);
+    if (rings)
+        std::printf("coarsest mesh within CIEDE2000 p99 <= 2: %u rings\n", rings);
+    else
+        std::printf("no mesh measured within CIEDE2000 p99 <= 2\n");
+}
+
+} // namespace
+
+Runner add_bench_geometry_command(CLI::App& app, const Common& common) {
+    struct Options {
+        GeometryBenchSettings settings;
+        Variant variant = default_variant();
+        std::string preset, out = "out/bench";
+        RunnerSetup runner;
+    };
+    auto o = std::make_shared<Options>();
+    // The default: Gerstner waves with their analytic normals, the rest watergen's defaults.
+    set_choice(o->variant, "waves", "gerstner");
+    set_choice(o->variant, "normals", "analytic");
+    add_variant_options(app, o->variant, o->preset);
+    app.add_option("--size", o->settings.size, "image width and height (default 512)")
+        ->check(CLI::Range(16, 4096));
+    app.add_option("--views", o->settings.views, "views of the synthetic scene (default: all)");
+    app.add_option("--rings", o->settings.rings,
+                   "the meshes' ring counts (default 16 32 64 128 256)")
+        ->check(CLI::Range(16, 512));
+    app.add_option("--rounds", o->settings.rounds, "interleaved timing rounds (default 5)")
+        ->check(CLI::Range(1, 100));
+    app.add_option("--out", o->out,
+                   "directory for geometry.csv and geometry.json "
+                   "(default out/bench)");
+    add_runner_options(app, o->runner);
+    return [o, &common]() {
+        const Preset* preset = nullptr;
+        if (!resolve_variant(o->variant, o->preset, &preset, common)) return kUsage;
+        if (preset) {
+            std::fprintf(stderr, "watergen: error: bench geometry draws the views' own values; "
+                                 "leave out --preset\n");
+            return kUsage;
+        }
+        for (const std::string& v : o->settings.views)
+            if (!find_scene_view(v)) {
+                std::fprintf(stderr, "watergen: error: --views: no view '%s'\n", v.c_str());
+                return kUsage;
+            }
+        std::string cache;
+        auto runner = create_runner(o->runner, &cache);
+        if (!runner) return kNoDevice;
+        const GeometryBench bench = run_geometry_bench(*runner, o->variant, o->settings);
+        if (!bench_succeeded({}, bench.error, common)) return kFailed;
+        std::printf("%s at %ux%u on %s; errors against the exact surface (the screen pass, its "
+                    "search converged, in double); mesh grids: %.2g m cells, %u levels; "
+                    "tessellated: %.2g m patches, 16 rings\n",
+                    bench.key.c_str(), o->settings.size, o->settings.size,
+                    runner->device_info().name.c_str(), o->settings.spacing, o->settings.levels,
+                    o->settings.patch_spacing);
+        std::vector<std::string> views;
+        for (const GeometryBenchRow& r : bench.rows)
+            if (views.empty() || views.back() != r.view) views.push_back(r.view);
+        for (const std::string& v : views)
+            print_view(bench, v);
+        if (!bench.timing_trustworthy)
+            std::printf("\nwarning: an A/A ratio left 1 +- 3%%: the machine was too busy for "
+                        "the draw-time ratios\n");
+        std::printf("\ndraw times are lavapipe's (a CPU), not a GPU's\n");
+        return write_bench_files(o->out, "geometry", bench.csv, bench.json) ? kOk : kFailed;
+    };
+}
+
+} // namespace watergen::cli
