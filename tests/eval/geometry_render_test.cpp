@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "geometry_variant.h"
 #include "shared_runner.h"
 #include "watergen/eval/draw/mesh_render.h"
 #include "watergen/eval/draw/variant_render.h"
@@ -15,17 +16,9 @@
 #include "watergen/ir/vertex_emitter.h"
 
 using namespace watergen;
+using watergen::test::geometry_variant;
 
 namespace {
-
-Variant geometry_variant(const std::string& geometry, const std::string& model) {
-    Variant v = default_variant();
-    for (const auto& [axis, choice] : {std::pair<std::string, std::string>{"geometry", geometry},
-                                       {"waves", model},
-                                       {"normals", "analytic"}})
-        REQUIRE_FALSE(set_choice(v, axis, choice));
-    return v;
-}
 
 VariantBuild geometry_build(const std::string& geometry, const std::string& model) {
     VariantBuild b = build_variant(geometry_variant(geometry, model));

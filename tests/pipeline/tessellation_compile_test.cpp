@@ -11,6 +11,7 @@
 #include <set>
 #include <utility>
 
+#include "geometry_variant.h"
 #include "watergen/ir/cpu_evaluator.h"
 #include "watergen/ir/dsl.h"
 #include "watergen/ir/tessellation_emitter.h"
@@ -19,18 +20,9 @@
 #include "watergen/water/tessellated_mesh.h"
 
 using namespace watergen;
+using watergen::test::geometry_variant;
 
 namespace {
-
-// The default variant drawn as `geometry` with `model`'s waves and their analytic normals.
-Variant geometry_variant(const std::string& geometry, const std::string& model) {
-    Variant v = default_variant();
-    for (const auto& [axis, choice] : {std::pair<std::string, std::string>{"geometry", geometry},
-                                       {"waves", model},
-                                       {"normals", "analytic"}})
-        REQUIRE_FALSE(set_choice(v, axis, choice));
-    return v;
-}
 
 VariantBuild tessellated_build(const std::string& model) {
     return build_variant(geometry_variant("tessellated", model));
