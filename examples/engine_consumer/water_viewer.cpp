@@ -135,10 +135,9 @@ std::optional<WaterGrid> set_mesh_frame(const BuildVariant& v, UniformWriter& un
             return std::nullopt;
         }
     std::printf("%s over the runtime's clipmap grid: %u vertices, %zu %s, 0.5 m cells near the "
-                "eye, 8 levels of 32 cells a ring
-                ",
-                v.geometry->name.c_str(),
-                grid.vertex_count(), grid.indices.size() / (grid.patch_control_points ? 4 : 3),
+                "eye, 8 levels of 32 cells a ring\n",
+                v.geometry->name.c_str(), grid.vertex_count(),
+                grid.indices.size() / (grid.patch_control_points ? 4 : 3),
                 grid.patch_control_points ? "patches" : "triangles");
     return grid;
 }

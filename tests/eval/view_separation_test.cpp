@@ -72,8 +72,8 @@ TEST_CASE("every_choice_of_every_axis_changes_the_image_in_some_view", "[views]"
     INFO(s.error);
     REQUIRE(s.ok());
     size_t expected_pairs = 0;
-    for (const AxisInfo& a : axes())
-        expected_pairs += a.choices.size() * (a.choices.size() - 1) / 2;
+    for (const AxisInfo& a : axes()) // every axis but geometry (drawn, not CPU-evaluated)
+        if (a.name != "geometry") expected_pairs += a.choices.size() * (a.choices.size() - 1) / 2;
     REQUIRE(s.pairs.size() == expected_pairs);
     for (const ChoicePair& p : s.pairs) {
         INFO(p.axis << ": " << p.first << " / " << p.second << " over " << p.base.key());
