@@ -116,8 +116,7 @@ std::string worst_pixel_text(const RenderRun& run) {
 }
 
 void print_agreement(const RenderRun& run) {
-    if (run.render.float_bound.empty() && run.render.key.find("geometry=") != std::string::npos) {
-        // A mesh: its images against the exact surface measure the grid, not rounding.
+    if (run.render.against_surface) {
         const ImageErrorStats& e = run.render.glsl_vs_cpu_double;
         std::printf("  against the exact surface (the screen pass, its search converged, in "
                     "double): max abs %.3g, CIEDE2000 mean %.3g, p99 %.3g: the grid's geometric "

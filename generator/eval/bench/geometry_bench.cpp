@@ -49,12 +49,9 @@ Entry mesh_entry(const VariantBuild& b, const SyntheticScene& scene, const Water
     e.row.geometry = b.shader.mesh->geometry;
     e.row.grid = desc;
     e.row.tess_max = tess_max;
-    const SceneCamera cam = scene_camera(scene.view, size, size);
-    const WaterGrid grid =
-        water_grid(desc, cam.eye[0], cam.eye[2],
-                   b.shader.mesh->tessellated() ? GridTopology::Patches : GridTopology::Triangles);
+    const WaterGrid grid = scene_grid(scene, desc, b.shader.mesh->tessellated(), size, size);
     e.row.vertices = grid.vertex_count();
-    e.row.primitives = grid.indices.size() / (grid.patch_control_points ? 4 : 3);
+    e.row.primitives = grid_primitives(grid);
     std::map<std::string, std::vector<double>> values = mesh_values(scene, grid, size, size);
     if (tess_max > 0) values["tess_max"] = {tess_max};
     const MeshData mesh = grid_mesh(grid);

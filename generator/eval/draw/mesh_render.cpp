@@ -7,6 +7,17 @@
 
 namespace watergen {
 
+WaterGrid scene_grid(const SyntheticScene& scene, const WaterGridDesc& desc, bool tessellated,
+                     uint32_t width, uint32_t height) {
+    const SceneCamera cam = scene_camera(scene.view, width, height);
+    return water_grid(desc, cam.eye[0], cam.eye[2],
+                      tessellated ? GridTopology::Patches : GridTopology::Triangles);
+}
+
+uint64_t grid_primitives(const WaterGrid& grid) {
+    return grid.indices.size() / (grid.patch_control_points ? grid.patch_control_points : 3);
+}
+
 bool draws_mesh(const LanguageBuild& lang) {
     return !lang.vertex.source.interface.varyings.empty();
 }
@@ -79,13 +90,11 @@ MeshRender render_mesh_variant(VulkanRunner& runner, const VariantBuild& build,
         out.error = "scene size differs from the render size";
         return out;
     }
-    const SceneCamera cam = scene_camera(scene.view, settings.width, settings.height);
-    const WaterGrid grid = water_grid(settings.grid, cam.eye[0], cam.eye[2],
-                                      build.shader.mesh->tessellated() ? GridTopology::Patches
-                                                                       : GridTopology::Triangles);
+    const WaterGrid grid = scene_grid(scene, settings.grid, build.shader.mesh->tessellated(),
+                                      settings.width, settings.height);
     const MeshData mesh = grid_mesh(grid);
-    out.vertices = grid.vertices.size() / WaterGrid::kFloatsPerVertex;
-    out.primitives = grid.indices.size() / (grid.patch_control_points ? 4 : 3);
+    out.vertices = grid.vertex_count();
+    out.primitives = grid_primitives(grid);
     std::map<std::string, std::vector<double>> values =
         mesh_values(scene, grid, settings.width, settings.height);
     for (const auto& [name, value] : settings.overrides)
@@ -121,6 +130,7 @@ VariantRender render_mesh_against_surface(VulkanRunner& runner, const VariantBui
                                           const RenderSettings& settings) {
     VariantRender out;
     out.key = build.shader.variant.key();
+    out.against_surface = true;
     MeshRenderSettings mesh{settings.width, settings.height, settings.grid, settings.timed_draws};
     MeshRender drawn = render_mesh_variant(runner, build, scene, mesh);
     if (!drawn.ok()) {

@@ -23,10 +23,8 @@ ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height) {
 RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene,
                           const RenderSettings& settings) {
     if (!draws_mesh(lang)) return scene_inputs_job(lang, scene, settings);
-    const SceneCamera cam = scene_camera(scene.view, settings.width, settings.height);
     const WaterGrid grid =
-        water_grid(settings.grid, cam.eye[0], cam.eye[2],
-                   lang.tessellated() ? GridTopology::Patches : GridTopology::Triangles);
+        scene_grid(scene, settings.grid, lang.tessellated(), settings.width, settings.height);
     return mesh_render_job(lang, scene, grid_mesh(grid),
                            mesh_values(scene, grid, settings.width, settings.height),
                            settings.width, settings.height, settings.timed_draws);

@@ -29,6 +29,13 @@ struct MeshRenderSettings {
 // The grid's vertices and indices as the runner draws them (attributes grid_xz, grid_lod).
 MeshData grid_mesh(const WaterGrid& grid);
 
+// The grid of `desc` around the eye of the scene's camera: patches for a tessellated variant.
+// Throws std::invalid_argument for a description out of range (check water_grid_error first).
+WaterGrid scene_grid(const SyntheticScene& scene, const WaterGridDesc& desc, bool tessellated,
+                     uint32_t width, uint32_t height);
+// Its triangles, or patches.
+uint64_t grid_primitives(const WaterGrid& grid);
+
 // Whether a built language path draws a mesh (its vertex stage takes the grid's attributes).
 bool draws_mesh(const LanguageBuild& lang);
 

@@ -40,6 +40,9 @@ constexpr double kFloatBoundFactor = 2.0;
 
 struct VariantRender {
     std::string key;
+    // A mesh variant's: the CPU images are the exact surface's (render_mesh_against_surface),
+    // so glsl_vs_cpu_double is the grid's geometric error and there is no float agreement.
+    bool against_surface = false;
     std::array<RenderResult, 2> gpu; // GLSL path, HLSL path (optimised SPIR-V)
     std::array<ImageRGBA32F, 2> gpu_image;
     ImageRGBA32F cpu_float, cpu_double; // CPU evaluator of the same graph and inputs
