@@ -68,6 +68,8 @@ void add_unroll_option(CLI::App& app, LoopUnroll& unroll);
 void add_grid_options(CLI::App& app, WaterGridDesc& grid);
 // Prints why the grid is out of range ("watergen: error: --grid-*: ..."); false then.
 bool check_grid(const WaterGridDesc& grid);
+// Adds --tess-max: a tessellated variant's largest factor (RenderSettings::tess_max).
+void add_tess_max_option(CLI::App& app, double& tess_max);
 
 // --shader-cache and --device.
 using RunnerSetup = DrawDeviceChoice;

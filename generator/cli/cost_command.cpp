@@ -32,6 +32,8 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
     add_unroll_option(app, o->job.unroll);
     add_target_option(app, o->targets);
     add_view_option(app, o->job.view);
+    add_grid_options(app, o->job.grid);
+    add_tess_max_option(app, o->job.tess_max);
     app.add_option("--scratch", o->scratch,
                    "directory under which each valgrind run keeps its dumps in a directory of "
                    "its own, removed afterwards (default: the system's temporary directory)");
@@ -43,6 +45,7 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
     return [o, &common]() {
         const Preset* preset = nullptr;
         if (!resolve_variant(o->job.variant, o->job.preset, &preset, common)) return kUsage;
+        if (!check_grid(o->job.grid)) return kUsage;
         if (o->counted) {
             const CountWorkerRun run = run_count_worker(o->job);
             print_diagnostics(run.diagnostics, common);

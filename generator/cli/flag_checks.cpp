@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "watergen/pipeline/parallel_build.h"
+#include "watergen/water/tessellated_mesh.h"
 
 namespace watergen::cli {
 
@@ -71,6 +72,13 @@ void add_grid_options(CLI::App& app, WaterGridDesc& grid) {
                    "cells from a level's centre to its edge (default 32, even, 16 to 512): the "
                    "grid's density at every distance, about rings / distance cells per metre");
     app.add_option("--grid-levels", grid.levels, "clipmap levels (default 8, 1 to 16)");
+}
+
+void add_tess_max_option(CLI::App& app, double& tess_max) {
+    app.add_option("--tess-max", tess_max,
+                   "a tessellated variant's largest tessellation factor (its tess_max parameter, "
+                   "1 to 64; default: the parameter's default)")
+        ->check(CLI::Range(1.0, kMaxTessellationFactor));
 }
 
 bool check_grid(const WaterGridDesc& grid) {

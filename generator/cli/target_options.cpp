@@ -45,7 +45,7 @@ void print_gpu_costs(const TargetCosts& t) {
     std::printf("%s: %s, %s (ACO on RADV's null device%s)\n", g.name.c_str(), g.isa.c_str(),
                 t.run.device.c_str(),
                 g.alias_of.empty() ? "" : (", the same code as " + g.alias_of).c_str());
-    std::printf("  %-28s %-8s %7s %9s %5s %5s %7s %7s %6s %6s %8s %8s\n", "pipeline", "stage",
+    std::printf("  %-28s %-15s %7s %9s %5s %5s %7s %7s %6s %6s %8s %8s\n", "pipeline", "stage",
                 "instr", "per-pixel", "VGPR", "SGPR", "spills", "scratch", "code", "waves",
                 "latency", "inv-thr");
     for (const auto& c : t.costs) {
@@ -56,7 +56,7 @@ void print_gpu_costs(const TargetCosts& t) {
         for (const auto& s : c.stages) {
             const std::string per_pixel =
                 s.per_pixel ? std::to_string(static_cast<long long>(*s.per_pixel)) : "-";
-            std::printf("  %-28s %-8s %7.0f %9s %5.0f %5.0f %7.0f %7.0f %6.0f %6.0f %8.0f %8.0f\n",
+            std::printf("  %-28s %-15s %7.0f %9s %5.0f %5.0f %7.0f %7.0f %6.0f %6.0f %8.0f %8.0f\n",
                         c.name.c_str(), s.stage.c_str(), s.instructions, per_pixel.c_str(), s.vgprs,
                         s.sgprs, s.spilled_vgprs + s.spilled_sgprs, s.scratch_bytes, s.code_bytes,
                         s.waves_per_simd, s.latency, s.inverse_throughput);

@@ -91,13 +91,13 @@ std::pair<double, double> Material::range(const std::string& parameter) const {
     return {lo, hi};
 }
 
-WaterShader Material::compose(const Variant& v) const {
-    return compose(ShaderChoices::of(v));
+WaterShader Material::compose(const Variant& v, SurfaceSearch search) const {
+    return compose(ShaderChoices::of(v), search);
 }
 
-WaterShader Material::compose(const ShaderChoices& choices) const {
+WaterShader Material::compose(const ShaderChoices& choices, SurfaceSearch search) const {
     WaterShader shader =
-        build_water_shader(choices, preset.empty() ? nullptr : find_preset(preset));
+        build_water_shader(choices, preset.empty() ? nullptr : find_preset(preset), search);
     if (has_errors(shader.fragment.diagnostics())) return shader;
     shader.fragment = with_settings(shader.fragment);
     return shader;

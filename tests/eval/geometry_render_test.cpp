@@ -125,6 +125,40 @@ TEST_CASE("a_denser_grid_comes_closer_to_the_exact_surface", "[render][waves][me
     CHECK(p99[1] < 5.0);
 }
 
+TEST_CASE("morph_weights_rise_to_1_within_a_level_and_restart_at_0_on_the_next", "[mesh]") {
+    // Up the centre column the ground point recedes from the eye: within a level the morph
+    // weight only grows, a level's outer cells are fully morphed (water_grid.h: t = 1 with a
+    // cell of margin) and the next level's inner cells still (t = 0 with three cells of
+    // margin), so the weight only ever falls from 1 to 0; past the grid or above the horizon
+    // it is -1.
+    const uint32_t n = 256;
+    const SyntheticScene scene = make_synthetic_scene(n, n);
+    const WaterGridDesc desc{0.5, 16, 6};
+    const WaterGrid grid = scene_grid(scene, desc, false, n, n);
+    const std::vector<double> t = morph_weights(scene, desc, grid, n, n);
+    REQUIRE(t.size() == size_t(n) * n);
+    for (double w : t)
+        CHECK((w == -1.0 || (w >= 0.0 && w <= 1.0)));
+    size_t falls = 0, blending = 0;
+    double previous = t[size_t(n - 1) * n + n / 2];
+    CHECK(previous == 0.0); // the bottom row sees the ground just ahead of the eye
+    for (uint32_t y = n - 1; y-- > 0;) {
+        const double w = t[size_t(y) * n + n / 2];
+        blending += w > 0.0 && w < 1.0;
+        if (w == -1.0) break; // past the grid
+        if (w < previous) {
+            INFO("row " << y);
+            CHECK(previous == 1.0);
+            CHECK(w == 0.0);
+            ++falls;
+        }
+        previous = w;
+    }
+    CHECK(falls >= 2); // the column crosses at least three levels
+    CHECK(blending > 0);
+    CHECK(t[n / 2] == -1.0); // the top row: sky above the beach
+}
+
 TEST_CASE("tessellated_at_factor_1_matches_the_mesh_over_the_same_cells",
           "[render][waves][mesh][tessellation]") {
     const SyntheticScene scene = make_synthetic_scene(128, 128);

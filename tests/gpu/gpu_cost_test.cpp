@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "covering_builds.h"
+#include "geometry_variant.h"
 #include "watergen/eval/measure/gpu_cost.h"
 
 using namespace watergen;
@@ -74,6 +75,40 @@ TEST_CASE("rdna2 compiles a Gerstner variant's two paths and reports every stage
     }
     // The GLSL and HLSL paths of this variant reach the same machine code size.
     CHECK(t.costs[0].stage("fragment")->instructions == t.costs[1].stage("fragment")->instructions);
+}
+
+TEST_CASE("a mesh and a tessellated variant compile on rdna2 with their own stages") {
+    // The grid's vertex input and, tessellated, quad patches and the tessellation feature: the
+    // stages the runtime draws. RADV merges the vertex and control stages (gfx9 on).
+    const VariantBuild mesh = build_variant(test::geometry_variant("mesh", "gerstner"));
+    const VariantBuild tess = build_variant(test::geometry_variant("tessellated", "gerstner"));
+    const VariantBuild pass = build_variant(test::geometry_variant("screen_pass", "gerstner"));
+    REQUIRE(mesh.ok());
+    REQUIRE(tess.ok());
+    REQUIRE(pass.ok());
+    const TargetCosts m = costs({"rdna2"}, mesh)[0];
+    const TargetCosts t = costs({"rdna2"}, tess)[0];
+    const TargetCosts p = costs({"rdna2"}, pass)[0];
+    for (const TargetCosts* run : {&m, &t})
+        for (const PipelineGpuCost& c : run->costs) {
+            REQUIRE(c.stage("vertex"));
+            REQUIRE(c.stage("fragment"));
+            CHECK(c.stage("fragment")->instructions > 100);
+        }
+    for (const PipelineGpuCost& c : t.costs) {
+        REQUIRE(c.stage("tess_evaluation"));
+        CHECK(c.stage("tess_evaluation")->instructions > 100); // displaces the patch point
+    }
+    CHECK_FALSE(m.costs[0].stage("tess_evaluation"));
+    // The mesh's vertex stage displaces the grid (the screen pass' draws a triangle); its
+    // fragment stage has no surface search, so it is cheaper per pixel than the screen pass'.
+    CHECK(m.costs[0].stage("vertex")->instructions > p.costs[0].stage("vertex")->instructions);
+    CHECK(m.costs[0].fragment_cost() < p.costs[0].fragment_cost() / 4);
+    if (mesa_22_3_6(m)) {
+        CHECK(m.costs[0].stage("vertex")->instructions == 501);
+        CHECK(m.costs[0].stage("fragment")->instructions == 437);
+        CHECK(t.costs[0].stage("tess_evaluation")->instructions == 514);
+    }
 }
 
 TEST_CASE("a variant compiled twice reports the same statistics") {

@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "watergen/eval/draw/mesh_render.h"
 #include "watergen/eval/measure/draw_cost.h"
 #include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/eval/report/compare_report.h"
@@ -29,11 +30,15 @@ CompareRequest compare_request(const CompareSetup& s) {
             strict.strict_half = true;
             return build_variant(v, preset, strict);
         };
-    if (s.from_material)
+    if (s.from_material) {
         request.build = [&s](const Variant& v) {
             return s.plan ? build_for_scene(s.material, *s.plan, v)
                           : build_shader(s.material.compose(v));
         };
+        request.exact_surface = [&s](const Variant& v) {
+            return exact_surface_fragment(s.material, s.plan ? &*s.plan : nullptr, v);
+        };
+    }
     return request;
 }
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "watergen/eval/draw/mesh_render.h"
 #include "watergen/eval/draw/variant_render.h"
 #include "watergen/pipeline/variant_build.h"
 
@@ -100,6 +101,13 @@ class Comparison {
                 return false;
             }
         }
+        // A mesh reference is measured as the exact surface it approximates.
+        cpu_fragment_ = builds_[0].shader.fragment;
+        if (run_.reference_on_cpu && draws_mesh(builds_[0].languages[0]))
+            cpu_fragment_ = request_.exact_surface
+                                ? request_.exact_surface(run_.reference)
+                                : exact_surface_fragment(preset_material(request_.preset), nullptr,
+                                                         run_.reference);
         const bool listed =
             std::any_of(request_.variants.begin(), request_.variants.end(),
                         [&](const Variant& v) { return v.key() == run_.reference.key(); });
@@ -167,9 +175,8 @@ class Comparison {
             return render_one(0, view, name, view_scene, reference, paths_differ);
         const SyntheticScene* scene = scene_for(0, view, view_scene);
         if (!scene) return false;
-        const EvalResult d =
-            evaluate_image(builds_[0].shader.fragment, "color", scene->eval_inputs(), scene->width,
-                           scene->height, EvalPrecision::Double);
+        const EvalResult d = evaluate_image(cpu_fragment_, "color", scene->eval_inputs(),
+                                            scene->width, scene->height, EvalPrecision::Double);
         if (!d.ok()) {
             run_.error = "CPU reference (" + name + "): " + d.error;
             return false;
@@ -177,13 +184,12 @@ class Comparison {
         reference = to_image(d, scene->width, scene->height);
         // What float rounding alone can move a pixel by: the CPU float image's own distance
         // from double, plus how far another float evaluation may be from it.
-        const EvalResult f =
-            evaluate_image(builds_[0].shader.fragment, "color", scene->eval_inputs(), scene->width,
-                           scene->height, EvalPrecision::Float);
+        const EvalResult f = evaluate_image(cpu_fragment_, "color", scene->eval_inputs(),
+                                            scene->width, scene->height, EvalPrecision::Float);
         std::string error = f.error;
         if (error.empty())
-            bound_ = float_bound(builds_[0].shader.fragment, scene->eval_inputs(), scene->width,
-                                 scene->height, d, error, &f);
+            bound_ = float_bound(cpu_fragment_, scene->eval_inputs(), scene->width, scene->height,
+                                 d, error, &f);
         if (!error.empty()) {
             run_.error = "CPU reference (" + name + "): " + error;
             return false;
@@ -263,6 +269,7 @@ class Comparison {
     CompareRun& run_;
     std::vector<Variant> order_;
     std::vector<VariantBuild> builds_;
+    Graph cpu_fragment_; // what a CPU reference evaluates (the exact surface of a mesh)
     size_t first_ = 0;
     SyntheticScene own_scene_;        // scene_for's copy with a variant's own textures
     std::vector<float> bound_;        // the view's float allowance per pixel (a CPU reference)

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "watergen/eval/compare/compare_run.h"
+#include "watergen/eval/draw/mesh_render.h"
 #include "watergen/eval/draw/variant_render.h"
 #include "watergen/ir/ir_fold.h"
 
@@ -88,8 +89,11 @@ std::string measure_pick_errors(VulkanRunner& runner, const Material& material,
     // The gold as the scene's build would ship it: the fold is exact where the view obeys the
     // scene's facts, and a view that does not (a camera pitch outside the scene's range) then
     // shows every candidate and the gold folded alike.
+    // A mesh gold is its exact surface (exact_surface_fragment).
     WaterShader gold = material.compose(pick.gold);
-    gold.fragment = fold_graph(gold.fragment, plan.facts).graph;
+    gold.fragment = pick.gold.choice("geometry") == "screen_pass"
+                        ? fold_graph(gold.fragment, plan.facts).graph
+                        : exact_surface_fragment(material, &plan, pick.gold);
     std::vector<ImageRGBA32F> references;
     for (const auto& [name, scene] : views) {
         const EvalResult d = evaluate_image(gold.fragment, "color", scene.eval_inputs(),

@@ -1,6 +1,10 @@
 #include "watergen/eval/draw/mesh_render.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "watergen/eval/draw/variant_render.h"
+#include "watergen/ir/ir_fold.h"
 #include "watergen/ir/specialization.h"
 #include "watergen/ir/uniform_layout.h"
 #include "watergen/water/presets.h"
@@ -16,6 +20,41 @@ WaterGrid scene_grid(const SyntheticScene& scene, const WaterGridDesc& desc, boo
 
 uint64_t grid_primitives(const WaterGrid& grid) {
     return grid.indices.size() / (grid.patch_control_points ? grid.patch_control_points : 3);
+}
+
+std::vector<double> morph_weights(const SyntheticScene& scene, const WaterGridDesc& desc,
+                                  const WaterGrid& grid, uint32_t width, uint32_t height) {
+    const SceneCamera cam = scene_camera(scene.view, width, height);
+    const auto centres = water_grid_snap(desc, cam.eye[0], cam.eye[2]);
+    const auto level_of = scene.uniforms.find("water_level");
+    const double level = level_of == scene.uniforms.end() ? 0.0 : level_of->second.at(0);
+    const double n = desc.ring_cells;
+    std::vector<double> out(size_t(width) * height, -1.0);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            // The ray through the pixel centre, as synthetic_scene.cpp casts it.
+            const double sx = (2.0 * (x + 0.5) / width - 1.0) * cam.tan_half_fov_y * cam.aspect;
+            const double sy = (1.0 - 2.0 * (y + 0.5) / height) * cam.tan_half_fov_y;
+            double d[3];
+            for (int k = 0; k < 3; ++k)
+                d[k] = cam.forward[k] + cam.right[k] * sx + cam.up[k] * sy;
+            const double t = (level - cam.eye[1]) / d[1];
+            if (!(t > 0) || !std::isfinite(t)) continue;
+            const double px = cam.eye[0] + t * d[0], pz = cam.eye[2] + t * d[2];
+            // The finest level whose square holds the point (an inner level covers the hole of
+            // the one outside it).
+            for (uint32_t k = 0; k < desc.levels; ++k) {
+                const double h = desc.spacing * std::ldexp(1.0, int(k));
+                const double cx = double(centres[k][0]) * 2 * h, cz = double(centres[k][1]) * 2 * h;
+                if (std::max(std::abs(px - cx), std::abs(pz - cz)) >= n * h) continue;
+                const double cells =
+                    std::max(std::abs(px - cam.eye[0]), std::abs(pz - cam.eye[2])) / h;
+                out[size_t(y) * width + x] = std::clamp(
+                    (cells - grid.morph_start) / (grid.morph_end - grid.morph_start), 0.0, 1.0);
+                break;
+            }
+        }
+    return out;
 }
 
 bool draws_mesh(const LanguageBuild& lang) {
@@ -123,6 +162,13 @@ Variant screen_pass_of(const Variant& mesh_variant) {
     Variant v = mesh_variant;
     set_choice(v, "geometry", "screen_pass");
     return v;
+}
+
+Graph exact_surface_fragment(const Material& material, const ScenePlan* plan,
+                             const Variant& mesh_variant) {
+    WaterShader surface = material.compose(screen_pass_of(mesh_variant), SurfaceSearch::Converged);
+    if (plan) surface.fragment = fold_graph(surface.fragment, plan->facts).graph;
+    return surface.fragment;
 }
 
 VariantRender render_mesh_against_surface(VulkanRunner& runner, const VariantBuild& build,

@@ -25,9 +25,10 @@ RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene
     if (!draws_mesh(lang)) return scene_inputs_job(lang, scene, settings);
     const WaterGrid grid =
         scene_grid(scene, settings.grid, lang.tessellated(), settings.width, settings.height);
-    return mesh_render_job(lang, scene, grid_mesh(grid),
-                           mesh_values(scene, grid, settings.width, settings.height),
-                           settings.width, settings.height, settings.timed_draws);
+    auto values = mesh_values(scene, grid, settings.width, settings.height);
+    if (settings.tess_max > 0) values["tess_max"] = {settings.tess_max};
+    return mesh_render_job(lang, scene, grid_mesh(grid), values, settings.width, settings.height,
+                           settings.timed_draws);
 }
 
 RenderJob scene_inputs_job(const LanguageBuild& lang, const SyntheticScene& scene,

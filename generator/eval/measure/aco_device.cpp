@@ -88,7 +88,10 @@ VkRenderPass make_render_pass(VkDevice device, VkFormat format, std::string* err
 }
 
 const char* stage_name(VkShaderStageFlags stages) {
-    if (stages & (VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT)) return "vertex";
+    if (stages & VK_SHADER_STAGE_VERTEX_BIT) return "vertex";
+    if (stages & VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT) return "tess_control";
+    if (stages & VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT) return "tess_evaluation";
+    if (stages & VK_SHADER_STAGE_GEOMETRY_BIT) return "vertex";
     if (stages & VK_SHADER_STAGE_FRAGMENT_BIT) return "fragment";
     return "other";
 }
@@ -218,6 +221,7 @@ std::unique_ptr<AcoDevice> AcoDevice::open(std::string* error, bool disassembly)
     want.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
     want.pNext = &want11;
     want.features.shaderInt16 = supported.features.shaderInt16;
+    want.features.tessellationShader = supported.features.tessellationShader; // mesh variants
     exec.pipelineExecutableInfo = VK_TRUE;
 
     const float priority = 1.0f;
@@ -264,8 +268,11 @@ AcoPipelineStatistics AcoDevice::compile(const AcoPipelineSource& source) {
     AcoPipelineStatistics out;
     out.name = source.name;
     // Creating it anyway would be invalid usage, and ACO for gfx6 aborts on 16-bit arithmetic.
-    if (!float16_ && (declares_capability(source.vertex, kCapabilityFloat16) ||
-                      declares_capability(source.fragment, kCapabilityFloat16))) {
+    const bool float16 = declares_capability(source.vertex, kCapabilityFloat16) ||
+                         declares_capability(source.fragment, kCapabilityFloat16) ||
+                         declares_capability(source.tess_control, kCapabilityFloat16) ||
+                         declares_capability(source.tess_evaluation, kCapabilityFloat16);
+    if (!float16_ && float16) {
         out.unsupported = true;
         out.error =
             name_ + " has no shaderFloat16: the shader's 16-bit arithmetic cannot run there";
@@ -276,6 +283,12 @@ AcoPipelineStatistics AcoDevice::compile(const AcoPipelineSource& source) {
     desc.fragment_spirv = &source.fragment;
     desc.vertex_reflection = &source.vertex_reflection;
     desc.fragment_reflection = &source.fragment_reflection;
+    if (!source.tess_control.empty()) {
+        desc.tess_control_spirv = &source.tess_control;
+        desc.tess_evaluation_spirv = &source.tess_evaluation;
+        desc.tess_control_reflection = &source.tess_control_reflection;
+        desc.tess_evaluation_reflection = &source.tess_evaluation_reflection;
+    }
     VkRenderPass& pass = h_->render_passes[source.format];
     if (!pass) pass = make_render_pass(h_->device, source.format, &out.error);
     if (!pass) return out;

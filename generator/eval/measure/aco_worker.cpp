@@ -35,7 +35,8 @@ std::optional<std::string> read_text(const fs::path& file) {
     return read_regular_file(file, kMaxJobFileBytes).bytes;
 }
 
-// Pipeline i's files: <i>.vert.spv, <i>.frag.spv and their .reflect.json.
+// Pipeline i's files: <i>.vert.spv, <i>.frag.spv (and a tessellated mesh's <i>.tesc.spv,
+// <i>.tese.spv) and their .reflect.json.
 fs::path file_of(const fs::path& dir, size_t i, const char* suffix) {
     return dir / (std::to_string(i) + suffix);
 }
@@ -54,6 +55,17 @@ std::string write_job(const fs::path& dir, const std::vector<AcoPipelineSource>&
             !write_bytes(file_of(dir, i, ".vert.reflect.json"), vr.data(), vr.size()) ||
             !write_bytes(file_of(dir, i, ".frag.reflect.json"), fr.data(), fr.size()))
             return "cannot write the job's files in " + dir.string();
+        if (!s.tess_control.empty()) {
+            const std::string cr = reflection_to_json(s.tess_control_reflection);
+            const std::string er = reflection_to_json(s.tess_evaluation_reflection);
+            if (!write_bytes(file_of(dir, i, ".tesc.spv"), s.tess_control.data(),
+                             s.tess_control.size() * 4) ||
+                !write_bytes(file_of(dir, i, ".tese.spv"), s.tess_evaluation.data(),
+                             s.tess_evaluation.size() * 4) ||
+                !write_bytes(file_of(dir, i, ".tesc.reflect.json"), cr.data(), cr.size()) ||
+                !write_bytes(file_of(dir, i, ".tese.reflect.json"), er.data(), er.size()))
+                return "cannot write the job's files in " + dir.string();
+        }
         json spec = json::object();
         for (const auto& [id, value] : s.specialization)
             spec[std::to_string(id)] = value;
@@ -61,7 +73,9 @@ std::string write_job(const fs::path& dir, const std::vector<AcoPipelineSource>&
         if (s.geometry)
             entry["geometry"] = {{"attribute_sizes", s.geometry->attribute_sizes},
                                  {"points", s.geometry->points},
-                                 {"additive_blend", s.geometry->additive_blend}};
+                                 {"additive_blend", s.geometry->additive_blend},
+                                 {"patch_control_points", s.geometry->patch_control_points}};
+        entry["tessellated"] = !s.tess_control.empty();
         job["pipelines"].push_back(entry);
     }
     const std::string text = job.dump(1);
@@ -94,14 +108,29 @@ std::string read_source(const fs::path& dir, size_t i, const json& entry, AcoPip
     if (!v || !f) return "pipeline " + std::to_string(i) + ": reflection: " + error;
     s.vertex_reflection = std::move(*v);
     s.fragment_reflection = std::move(*f);
+    if (entry.value("tessellated", false)) {
+        auto cs = read_spirv(file_of(dir, i, ".tesc.spv"));
+        auto es = read_spirv(file_of(dir, i, ".tese.spv"));
+        const auto cr = read_text(file_of(dir, i, ".tesc.reflect.json"));
+        const auto er = read_text(file_of(dir, i, ".tese.reflect.json"));
+        if (!cs || !es || !cr || !er)
+            return "pipeline " + std::to_string(i) + ": missing tessellation files";
+        auto c = reflection_from_json(*cr, &error);
+        auto e = reflection_from_json(*er, &error);
+        if (!c || !e) return "pipeline " + std::to_string(i) + ": reflection: " + error;
+        s.tess_control = std::move(*cs);
+        s.tess_evaluation = std::move(*es);
+        s.tess_control_reflection = std::move(*c);
+        s.tess_evaluation_reflection = std::move(*e);
+    }
     for (const auto& [id, value] : entry.at("specialization").items())
         s.specialization[static_cast<uint32_t>(std::stoul(id))] = value.get<float>();
     s.format = static_cast<VkFormat>(entry.at("format").get<int>());
     if (entry.contains("geometry")) {
         const json& g = entry.at("geometry");
-        s.geometry =
-            PipelineGeometry{g.at("attribute_sizes").get<std::vector<uint32_t>>(),
-                             g.at("points").get<bool>(), g.at("additive_blend").get<bool>()};
+        s.geometry = PipelineGeometry{
+            g.at("attribute_sizes").get<std::vector<uint32_t>>(), g.at("points").get<bool>(),
+            g.at("additive_blend").get<bool>(), g.value("patch_control_points", 0u)};
     }
     return "";
 }

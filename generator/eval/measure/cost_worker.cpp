@@ -3,6 +3,7 @@
 #include <functional>
 #include <map>
 
+#include <fmt/format.h>
 #include <valgrind/valgrind.h>
 
 #include "watergen/eval/draw/variant_render.h"
@@ -32,9 +33,16 @@ std::unique_ptr<VulkanRunner> open_device(CountWorkerRun& run) {
 }
 
 // Draws `lang` once more with the count on (RenderJob::counted_draw_label).
+// A mesh variant is drawn over `mesh`'s grid (RenderSettings::grid and tess_max).
 bool counted_draw(VulkanRunner& runner, const LanguageBuild& lang, const SyntheticScene& scene,
-                  const std::string& label, bool first_draw, CountWorkerRun& run) {
-    RenderJob job = make_render_job(lang, scene, {scene.width, scene.height, 0, false, false});
+                  const std::string& label, bool first_draw, CountWorkerRun& run,
+                  const RenderSettings& mesh = {}) {
+    RenderSettings settings = mesh;
+    settings.width = scene.width;
+    settings.height = scene.height;
+    settings.timed_draws = 0;
+    settings.cpu_double = settings.cpu_float = false;
+    RenderJob job = make_render_job(lang, scene, settings);
     job.counted_draw_label = label;
     job.count_first_draw = first_draw;
     const RenderResult r = runner.render(job);
@@ -54,7 +62,7 @@ bool built(const VariantBuild& b, CountWorkerRun& run) {
 // Each key's variant built with `build`, its GLSL path drawn over `scene` once with the steady
 // draw counted, labelled with the key ("<key>#2" for its second occurrence).
 CountWorkerRun draw_counted_keys(const std::vector<std::string>& keys, const SyntheticScene& scene,
-                                 const Build& build) {
+                                 const Build& build, const RenderSettings& mesh = {}) {
     CountWorkerRun run;
     auto runner = open_device(run);
     if (!runner) return run;
@@ -71,7 +79,7 @@ CountWorkerRun draw_counted_keys(const std::vector<std::string>& keys, const Syn
         if (!built(b, run)) return run;
         const int n = ++seen[key];
         const std::string label = n == 1 ? key : key + "#" + std::to_string(n);
-        if (!counted_draw(*runner, b.languages[0], scene, label, false, run)) return run;
+        if (!counted_draw(*runner, b.languages[0], scene, label, false, run, mesh)) return run;
     }
     return run;
 }
@@ -95,6 +103,10 @@ std::vector<std::string> count_worker_argv(const VariantCountJob& job,
     argv.insert(argv.end(), {"--view", job.view});
     argv.insert(argv.end(), {"--unroll", to_string(job.unroll)});
     if (job.strict_half) argv.push_back("--strict-half");
+    argv.insert(argv.end(), {"--grid-spacing", fmt::format("{}", job.grid.spacing), "--grid-rings",
+                             std::to_string(job.grid.ring_cells), "--grid-levels",
+                             std::to_string(job.grid.levels)});
+    if (job.tess_max > 0) argv.insert(argv.end(), {"--tess-max", fmt::format("{}", job.tess_max)});
     return argv;
 }
 
@@ -123,13 +135,16 @@ CountWorkerRun run_count_worker(const VariantCountJob& job) {
         const bool strict = job.strict_half && v.choice("precision") == "half";
         return build_variant(v, preset, EmitOptions{strict, {}, job.unroll});
     };
-    if (!job.keys.empty()) return draw_counted_keys(job.keys, scene, build);
+    RenderSettings mesh;
+    mesh.grid = job.grid;
+    mesh.tess_max = job.tess_max;
+    if (!job.keys.empty()) return draw_counted_keys(job.keys, scene, build, mesh);
     auto runner = open_device(run);
     if (!runner) return run;
     const VariantBuild b = build(job.variant);
     if (!built(b, run)) return run;
-    if (counted_draw(*runner, b.languages[0], scene, "glsl", true, run))
-        counted_draw(*runner, b.languages[1], scene, "hlsl", true, run);
+    if (counted_draw(*runner, b.languages[0], scene, "glsl", true, run, mesh))
+        counted_draw(*runner, b.languages[1], scene, "hlsl", true, run, mesh);
     return run;
 }
 

@@ -1,6 +1,7 @@
 #include "watergen/eval/measure/draw_cost.h"
 
 #include <algorithm>
+#include <future>
 #include <thread>
 #include <tuple>
 
@@ -61,6 +62,31 @@ count_material_costs(const std::string& material_path, const std::string& scene_
                 MaterialCountJob{material_path, scene_path, folded, size, part}, executable);
         },
         error);
+}
+
+std::optional<std::vector<std::map<std::string, uint64_t>>>
+count_jobs(const std::vector<VariantCountJob>& jobs, std::string* error) {
+    const std::filesystem::path executable = own_executable();
+    const size_t at_once = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::map<std::string, uint64_t>> out;
+    for (size_t first = 0; first < jobs.size(); first += at_once) {
+        std::vector<std::future<DrawCountRun>> runs;
+        for (size_t i = first; i < std::min(jobs.size(), first + at_once); ++i)
+            runs.push_back(std::async(std::launch::async, [&, i] {
+                return count_draws_under_valgrind(count_worker_argv(jobs[i], executable),
+                                                  std::filesystem::temp_directory_path());
+            }));
+        // Every run is waited for before an error returns: none outlives the call.
+        std::vector<DrawCountRun> done;
+        for (auto& run : runs)
+            done.push_back(run.get());
+        for (const DrawCountRun& run : done) {
+            const auto counts = steady_draw_counts(run, error);
+            if (!counts) return std::nullopt;
+            out.push_back(*counts);
+        }
+    }
+    return out;
 }
 
 VariantCost count_variant_cost(const VariantCountJob& job, uint32_t runs,

@@ -1,5 +1,7 @@
 #include "watergen/eval/measure/gpu_cost.h"
 
+#include "watergen/eval/draw/mesh_render.h"
+
 #include <thread>
 
 namespace watergen {
@@ -111,6 +113,20 @@ AcoPipelineSource aco_source(const LanguageBuild& lang, const std::string& name,
     s.vertex_reflection = lang.vertex.toolchain.reflection;
     s.fragment_reflection = lang.fragment.toolchain.reflection;
     s.specialization = specialization;
+    if (draws_mesh(lang)) {
+        // The grid's vertex input (grid_mesh: grid_xz, grid_lod), as quad patches when
+        // tessellated.
+        PipelineGeometry g;
+        g.attribute_sizes = {2, 3};
+        if (lang.tessellated()) {
+            g.patch_control_points = 4;
+            s.tess_control = lang.control.toolchain.spirv_optimized;
+            s.tess_evaluation = lang.evaluation.toolchain.spirv_optimized;
+            s.tess_control_reflection = lang.control.toolchain.reflection;
+            s.tess_evaluation_reflection = lang.evaluation.toolchain.reflection;
+        }
+        s.geometry = g;
+    }
     return s;
 }
 

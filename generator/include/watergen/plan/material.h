@@ -56,10 +56,12 @@ struct Material {
     std::map<std::string, Parameter> declared;
 
     // The variant's shader with the preset and the material's values applied; parameter
-    // metadata (min / max) narrowed to the material's ranges.
-    WaterShader compose(const Variant& v) const;
+    // metadata (min / max) narrowed to the material's ranges. `search`: the screen pass' surface
+    // search as chosen, or converged (the exact surface a mesh is measured against).
+    WaterShader compose(const Variant& v, SurfaceSearch search = SurfaceSearch::AsChosen) const;
     // The same for a shader serving several variants (water_shader.h, ShaderChoices).
-    WaterShader compose(const ShaderChoices& choices) const;
+    WaterShader compose(const ShaderChoices& choices,
+                        SurfaceSearch search = SurfaceSearch::AsChosen) const;
     // `g` with the material's parameter values and ranges on its declarations (compose() applies
     // them to the water shader; a companion pass gets the same, so one uniform set drives both).
     Graph with_settings(const Graph& g) const;

@@ -2,14 +2,18 @@
 // drawn as the screen pass and as meshes and tessellated meshes of several grid densities, each
 // image against the exact surface (the screen pass with its search run to convergence, in
 // double on the CPU), with the grid's vertex and primitive counts and the draw time on the
-// device, interleaved with the screen pass and A/A-checked. lavapipe's draw time is a CPU's.
+// device, interleaved with the screen pass and A/A-checked; optionally the instructions
+// lavapipe executes for each draw (valgrind) and ACO's statistics on AMD families (RADV's null
+// device). lavapipe's draw time and instruction counts are a CPU's.
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "watergen/eval/image/image_metrics.h"
+#include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/eval/measure/interleaved_timing.h"
 #include "watergen/runner/vulkan_runner.h"
 #include "watergen/runtime/water_grid.h"
@@ -26,8 +30,21 @@ struct GeometryBenchRow {
     uint64_t covered = 0;                  // pixels the draw wrote (all, for the screen pass)
     ImageErrorStats vs_exact;              // GLSL image against the exact surface
     double glsl_vs_hlsl = 0;               // max abs
-    RatioInterval draw_time;               // steady draw time / the screen pass'
-    double draw_ms = 0;                    // median steady draw
+    // The LOD morph's share of the error: covered pixels whose point on the mean water level
+    // lies where the grid blends toward the coarser level (0 < t < 1, morph_weights in
+    // mesh_render.h), their fraction and CIEDE2000 p99, and the p99 of the other covered pixels.
+    double morph_share = 0, morph_p99 = 0, still_p99 = 0;
+    RatioInterval draw_time; // steady draw time / the screen pass'
+    double draw_ms = 0;      // median steady draw
+    // GeometryBenchSettings::count: the instructions lavapipe executes for the steady draw
+    // (valgrind; 0 when not counted).
+    uint64_t instructions = 0;
+    // Per AMD target (GeometryBenchSettings::targets), an estimate of the frame's instructions
+    // on it: ACO's vertex-stage instructions per vertex times the grid's vertices plus its
+    // fragment instructions per pixel (loops weighted by trip count) times the covered pixels.
+    // Overdraw and vertex reuse are not modelled; none for a tessellated mesh, whose
+    // evaluation-stage invocations depend on the factors the control stage picks.
+    std::map<std::string, double> aco_frame;
 };
 
 struct GeometryBenchSettings {
@@ -40,6 +57,11 @@ struct GeometryBenchSettings {
     double patch_spacing = 4.0;
     std::vector<double> tess_max = {4, 16};
     uint32_t rounds = 5, draws = 2; // interleaved timing
+    // Count every row's steady draw under valgrind (a cost load does not move), the screen
+    // pass twice in one run (two pipelines: the count's A/A).
+    bool count = false;
+    // AMD families (not lavapipe) whose ACO statistics to take for the three geometries.
+    std::vector<GpuTarget> targets;
 };
 
 struct GeometryBench {
@@ -47,7 +69,13 @@ struct GeometryBench {
     GeometryBenchSettings settings;
     std::vector<GeometryBenchRow> rows; // per view: the screen pass, meshes, tessellated
     bool timing_trustworthy = true;     // every view's A/A within +-3%
-    std::string csv, json;              // geometry.csv, geometry.json
+    // settings.count: per view, the screen pass' two pipelines' counts differ by this
+    // fraction (|second / first - 1|).
+    std::map<std::string, double> count_aa;
+    // settings.targets: per target, the GLSL then HLSL path of the screen pass, the mesh and
+    // the tessellated mesh, in that order.
+    std::vector<TargetCosts> aco;
+    std::string csv, json; // geometry.csv, geometry.json
     std::string error;
     bool ok() const { return error.empty(); }
 };

@@ -35,6 +35,10 @@ struct CompareRequest {
     // composed by the material (and, for a scene, folded under its facts: pick.h
     // build_for_scene); the CPU reference evaluates the reference's built fragment graph.
     std::function<VariantBuild(const Variant&)> build;
+    // The fragment a CPU reference evaluates when the reference is a mesh variant (geometry
+    // mesh or tessellated): its exact surface as `build` composes it (exact_surface_fragment
+    // in mesh_render.h). Empty: composed with `preset` alone.
+    std::function<Graph(const Variant&)> exact_surface;
     bool both_paths = true; // false: the GLSL path only (the HLSL image is tested equal elsewhere)
     // Textures that replace a view's (by binding name) for one built variant, e.g. the caustics
     // map its own pass drew (compare_caustics.h); empty: the view's scene as it is. Used for

@@ -12,6 +12,8 @@
 #include "watergen/eval/image/image_metrics.h"
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/pipeline/variant_build.h"
+#include "watergen/plan/material.h"
+#include "watergen/plan/scene_pruning.h"
 #include "watergen/runner/vulkan_runner.h"
 #include "watergen/runtime/water_grid.h"
 
@@ -35,6 +37,15 @@ WaterGrid scene_grid(const SyntheticScene& scene, const WaterGridDesc& desc, boo
                      uint32_t width, uint32_t height);
 // Its triangles, or patches.
 uint64_t grid_primitives(const WaterGrid& grid);
+
+// Per pixel (row-major, row 0 at the top), the morph weight of the grid (`desc`, built as
+// `grid`) where the pixel's ray
+// meets the mean water level (y = water_level): t in [0, 1] of the clipmap level holding that
+// point (water_grid.h: 0 still, 1 on the coarser level's grid), or -1 where the ray misses the
+// water or the grid. Waves move the surface off the mean level, so a pixel near a band's edge
+// may be classed with its neighbour; the split of an image's error by band is what it is for.
+std::vector<double> morph_weights(const SyntheticScene& scene, const WaterGridDesc& desc,
+                                  const WaterGrid& grid, uint32_t width, uint32_t height);
 
 // Whether a built language path draws a mesh (its vertex stage takes the grid's attributes).
 bool draws_mesh(const LanguageBuild& lang);
@@ -72,6 +83,13 @@ MeshRender render_mesh_variant(VulkanRunner& runner, const VariantBuild& build,
 // where each pixel's ray meets the surface to convergence: the exact surface a mesh
 // approximates, shaded by the same nodes.
 Variant screen_pass_of(const Variant& mesh_variant);
+
+// That exact surface's fragment as a material ships its shaders: the screen pass of the mesh
+// variant's choices, search converged, composed by `material` and, with `plan`, folded under
+// the scene's facts (as build_for_scene folds). What a CPU reference of a mesh variant
+// evaluates: its own fragment needs the rasterised grid's inputs.
+Graph exact_surface_fragment(const Material& material, const ScenePlan* plan,
+                             const Variant& mesh_variant);
 
 // A mesh variant drawn (render_mesh_variant with settings.grid) and the screen pass of the same
 // choices evaluated on the CPU in double (and in float when settings.cpu_float) over the same

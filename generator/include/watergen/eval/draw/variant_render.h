@@ -27,6 +27,9 @@ struct RenderSettings {
     double tolerance = kAgreementTolerance;
     // A mesh variant's grid (geometry=mesh or tessellated; the screen pass has none).
     WaterGridDesc grid{};
+    // A tessellated variant's largest tessellation factor (its tess_max parameter, 1 to 64);
+    // 0: the parameter's default.
+    double tess_max = 0;
 };
 
 // The float error bound's model (watergen/ir/float_error.h): every operation's result moved by

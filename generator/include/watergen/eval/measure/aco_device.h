@@ -22,13 +22,17 @@
 
 namespace watergen {
 
-// One pipeline to compile: two stages as a build writes them, the specialization constants by
+// One pipeline to compile: the stages as a build writes them, the specialization constants by
 // id (a specialized build's selector values); the water pass's fullscreen triangle into an
-// RGBA16F target, or a companion pass's grid into its own float target.
+// RGBA16F target, a mesh variant's grid (geometry: its vertex input, patches for the
+// tessellation stages), or a companion pass's grid into its own float target.
 struct AcoPipelineSource {
     std::string name;
     std::vector<uint32_t> vertex, fragment;
     Reflection vertex_reflection, fragment_reflection;
+    // A tessellated mesh's patch stages (both or neither; empty: none).
+    std::vector<uint32_t> tess_control, tess_evaluation;
+    Reflection tess_control_reflection, tess_evaluation_reflection;
     std::map<uint32_t, float> specialization;
     std::optional<PipelineGeometry> geometry; // a companion pass (pass_geometry())
     VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -37,7 +41,9 @@ struct AcoPipelineSource {
 // What the driver reports for one executable of a pipeline (a stage, or stages merged: RADV
 // names them "Vertex Shader", "Fragment Shader", ...).
 struct AcoStageStatistics {
-    std::string stage;      // "vertex" or "fragment" (the lowest stage the executable holds)
+    // "vertex", "tess_control", "tess_evaluation" or "fragment": the lowest stage the
+    // executable holds (RADV merges the vertex and tessellation control stages from gfx9 on).
+    std::string stage;
     std::string executable; // the driver's name for it
     uint32_t subgroup_size = 0;
     // Every statistic the driver reports, by its name ("Instructions", "VGPRs", ...).

@@ -13,6 +13,7 @@
 #include "watergen/eval/draw/draw_device.h"
 #include "watergen/ir/emitter.h"
 #include "watergen/plan/scene_pruning.h"
+#include "watergen/runtime/water_grid.h"
 #include "watergen/water/variant.h"
 
 namespace watergen {
@@ -29,6 +30,9 @@ struct VariantCountJob {
     std::string preset, view = "beach"; // preset by name, "" for none
     LoopUnroll unroll = LoopUnroll::AsHinted;
     bool strict_half = false;
+    // A mesh variant's grid and largest tessellation factor (RenderSettings::grid, tess_max).
+    WaterGridDesc grid{};
+    double tess_max = 0;
 };
 
 // The keys' shaders as a build of the material ships them: composed by it and, for a scene,

@@ -34,6 +34,13 @@ count_material_costs(const std::string& material_path, const std::string& scene_
                      const std::vector<Variant>& variants, uint32_t size, std::string* error,
                      bool folded = true);
 
+// Each job's keys (VariantCountJob::keys: the steady draw of their GLSL paths, by label), every
+// job in a valgrind run of its own (so each may have its own grid, size or view), up to one run
+// per hardware thread at once. Output: per job, in order, its counts; nullopt and *error when a
+// run failed.
+std::optional<std::vector<std::map<std::string, uint64_t>>>
+count_jobs(const std::vector<VariantCountJob>& jobs, std::string* error);
+
 // One language path's counts over the runs: the smallest steady draw and JIT span ("first":
 // pipeline creation through the first draw), and by how much the runs differ (percent).
 struct PathCost {
