@@ -43,6 +43,11 @@ void print_view(const GeometryBench& bench, const std::string& view) {
         }
         std::printf("\n");
     }
+    if (const auto aa = bench.timing_aa.find(view); aa != bench.timing_aa.end())
+        std::printf("draw-time A/A (the screen pass against a second pipeline of itself): %.3f "
+                    "[%.3f, %.3f]%s\n",
+                    aa->second.ratio, aa->second.lo, aa->second.hi,
+                    aa->second.within(kAATolerance) ? "" : ": NOT within +-3%");
     if (const auto aa = bench.count_aa.find(view); aa != bench.count_aa.end())
         std::printf("instruction counts' A/A (the screen pass' second pipeline): %.4f%%\n",
                     100.0 * aa->second);

@@ -141,6 +141,13 @@ nlohmann::ordered_json errors_json(const ImageErrorStats& s) {
             {"ciede2000_p99", s.ciede2000_p99}};
 }
 
+nlohmann::ordered_json aa_json(const std::map<std::string, RatioInterval>& aa) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
+    for (const auto& [view, r] : aa)
+        j[view] = {{"ratio", r.ratio}, {"lo", r.lo}, {"hi", r.hi}};
+    return j;
+}
+
 void write_tables(GeometryBench& bench) {
     bench.csv = "view,geometry,spacing_m,rings,levels,tess_max,vertices,primitives,covered,"
                 "max_abs,rmse,ciede2000_mean,ciede2000_p99,glsl_vs_hlsl,draw_ms,draw_ratio,"
@@ -194,6 +201,7 @@ void write_tables(GeometryBench& bench) {
         {"draw_time", "lavapipe (a CPU): ratio to the screen pass, interleaved rounds, 95% "
                       "bootstrap interval"},
         {"timing_trustworthy", bench.timing_trustworthy},
+        {"timing_aa", aa_json(bench.timing_aa)},
         {"rows", rows}};
     if (!bench.count_aa.empty()) {
         doc["lavapipe_instructions"] = "instructions lavapipe executes for the steady draw "
@@ -309,6 +317,7 @@ GeometryBench run_geometry_bench(VulkanRunner& runner, const Variant& variant,
             return bench;
         }
         bench.timing_trustworthy = bench.timing_trustworthy && timing.trustworthy();
+        bench.timing_aa[name] = timing.aa;
         for (size_t k = 0; k < entries.size(); ++k) {
             GeometryBenchRow& row = entries[k].row;
             row.view = name;

@@ -69,6 +69,7 @@ struct GeometryBench {
     GeometryBenchSettings settings;
     std::vector<GeometryBenchRow> rows; // per view: the screen pass, meshes, tessellated
     bool timing_trustworthy = true;     // every view's A/A within +-3%
+    std::map<std::string, RatioInterval> timing_aa; // per view: the screen pass against itself
     // settings.count: per view, the screen pass' two pipelines' counts differ by this
     // fraction (|second / first - 1|).
     std::map<std::string, double> count_aa;
