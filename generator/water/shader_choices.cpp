@@ -85,7 +85,7 @@ std::string ShaderChoices::file_stem() const {
     for (size_t i = 0; i < axes().size() && i < choices.size(); ++i)
         if (spelled_in_key(axes()[i], choices[i]))
             parts.push_back(axes()[i].name + "-" + join(choices[i], "+"));
-    return join(parts, "_");
+    return capped_file_stem(join(parts, "_"), key());
 }
 
 bool ShaderChoices::covers(const Variant& v) const {

@@ -56,16 +56,29 @@ std::string Variant::key() const {
     return spell(choices, '=', ',');
 }
 
+namespace {
+
+std::string hash_hex(const std::string& text) {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx",
+                  static_cast<unsigned long long>(XXH64(text.data(), text.size(), 0)));
+    return hex;
+}
+
+} // namespace
+
+std::string capped_file_stem(std::string stem, const std::string& key) {
+    if (stem.size() <= kMaxFileStem) return stem;
+    stem.resize(kMaxFileStem - 17);
+    return stem + "-" + hash_hex(key);
+}
+
 std::string Variant::file_stem() const {
-    return spell(choices, '-', '_');
+    return capped_file_stem(spell(choices, '-', '_'), key());
 }
 
 std::string Variant::short_hash() const {
-    const std::string k = key();
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx",
-                  static_cast<unsigned long long>(XXH64(k.data(), k.size(), 0)));
-    return hex;
+    return hash_hex(key());
 }
 
 Variant default_variant() {
