@@ -119,7 +119,7 @@ Runner add_bench_geometry_command(CLI::App& app, const Common& common) {
         auto runner = create_runner(o->runner, &cache);
         if (!runner) return kNoDevice;
         const GeometryBench bench = run_geometry_bench(*runner, o->variant, o->settings);
-        if (!bench_succeeded({}, bench.error, common)) return kFailed;
+        if (!bench_succeeded({}, bench.error, common)) return bench.no_device ? kNoDevice : kFailed;
         std::printf("%s at %ux%u on %s; errors against the exact surface (the screen pass, its "
                     "search converged, in double); mesh grids: %.2g m cells, %u levels; "
                     "tessellated: %.2g m patches, 16 rings\n",

@@ -258,6 +258,7 @@ GeometryBench run_geometry_bench(VulkanRunner& runner, const Variant& variant,
         for (const TargetCosts& t : bench.aco) {
             if (!t.run.ok()) {
                 bench.error = t.run.target.name + ": " + t.run.error;
+                bench.no_device = t.run.no_device;
                 return bench;
             }
             for (const PipelineGpuCost& c : t.costs)

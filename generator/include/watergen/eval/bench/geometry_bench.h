@@ -78,6 +78,7 @@ struct GeometryBench {
     std::vector<TargetCosts> aco;
     std::string csv, json; // geometry.csv, geometry.json
     std::string error;
+    bool no_device = false; // the error is a target's missing null device (no radeon ICD)
     bool ok() const { return error.empty(); }
 };
 
