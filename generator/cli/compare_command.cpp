@@ -90,6 +90,7 @@ void print_caustics(const std::vector<ComparedCausticsPass>& passes, const Compa
 }
 
 int run_compare_command(const CompareOptions& o, const Common& common) {
+    if (!check_grid(o.spec.grid)) return kUsage;
     const CompareSetup setup = plan_compare(o.spec);
     print_diagnostics(setup.diagnostics, common);
     for (const std::string& note : setup.notes)
@@ -153,6 +154,7 @@ Runner add_compare_command(CLI::App& app, const Common& common) {
         ->check(CLI::Range(3, 1000));
     add_instrument_options(app, s.draws, s.cost_size, s.cost);
     add_target_option(app, s.targets);
+    add_grid_options(app, s.grid);
     app.add_flag("--strict-half", s.strict_half,
                  "build precision=half variants in explicit 16-bit types, so that lavapipe "
                  "computes them at 16 bits (with the default relaxed-precision hints it computes "

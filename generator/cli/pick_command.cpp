@@ -115,6 +115,7 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
     app.add_flag("--unfolded", o->unfolded, "")->group(""); // the worker draws them unpruned
     add_runner_options(app, o->runner);
     add_target_option(app, o->targets);
+    add_grid_options(app, r.grid);
     return [o, &common]() {
         PickRequest& r = o->request;
         const auto targets = resolve_targets(o->targets);
@@ -125,6 +126,7 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
             return kUsage;
         }
         r.target = targets->front();
+        if (!check_grid(r.grid)) return kUsage;
         Material m;
         std::vector<SceneFacts> scenes;
         if (!load_material_and_scenes(r.material_path, o->scenes, m, scenes, common)) return kUsage;
@@ -148,7 +150,8 @@ Runner add_pick_command(CLI::App& app, const Common& common) {
         }
         if (o->counted) {
             const MaterialCountJob job{r.material_path, o->scenes.empty() ? "" : o->scenes.front(),
-                                       !o->unfolded, r.cost_size, o->keys};
+                                       !o->unfolded,    r.cost_size,
+                                       o->keys,         r.grid};
             const CountWorkerRun run =
                 run_count_worker(job, m, plans.empty() ? nullptr : &plans.front());
             print_diagnostics(run.diagnostics, common);

@@ -50,6 +50,15 @@ TEST_CASE("a_variant_count_job_goes_to_watergen_cost_counted", "[cost]") {
     CHECK(value_of(argv, "--view") == "sun_glint");
     CHECK(value_of(argv, "--unroll") == "none");
     CHECK(has(argv, "--strict-half"));
+    // A mesh variant's grid and tessellation factor, so the worker draws what was measured.
+    CHECK(value_of(argv, "--grid-rings") == "32");
+    job.grid = {0.25, 64, 5};
+    job.tess_max = 16;
+    const auto mesh = count_worker_argv(job, "watergen");
+    CHECK(value_of(mesh, "--grid-spacing") == "0.25");
+    CHECK(value_of(mesh, "--grid-rings") == "64");
+    CHECK(value_of(mesh, "--grid-levels") == "5");
+    CHECK(value_of(mesh, "--tess-max") == "16");
     // Every axis of the variant, so the worker's own variant flags read it back.
     for (size_t a = 0; a < axes().size(); ++a)
         CHECK(value_of(argv, "--" + axes()[a].name) == job.variant.choices[a]);
@@ -76,8 +85,17 @@ TEST_CASE("a_material_count_job_sends_absolute_paths", "[cost]") {
     CHECK(has(argv, "--unfolded"));
     CHECK(value_of(argv, "--key") == "fresnel=exact");
     const auto built_in = count_worker_argv(MaterialCountJob{"", "", true, 64, {}}, "watergen");
-    CHECK(built_in ==
-          std::vector<std::string>{"watergen", "pick", "--counted", "--cost-size", "64"});
+    CHECK(built_in == std::vector<std::string>{"watergen", "pick", "--counted", "--cost-size", "64",
+                                               "--grid-spacing", "0.5", "--grid-rings", "32",
+                                               "--grid-levels", "8"});
+    // A mesh candidate's grid goes along (before --scene, which takes the words after it).
+    MaterialCountJob mesh = job;
+    mesh.grid = {0.25, 16, 4};
+    const auto with_grid = count_worker_argv(mesh, "watergen");
+    CHECK(value_of(with_grid, "--grid-spacing") == "0.25");
+    CHECK(value_of(with_grid, "--grid-rings") == "16");
+    CHECK(value_of(with_grid, "--grid-levels") == "4");
+    CHECK(with_grid[with_grid.size() - 2] == "--scene");
 }
 
 TEST_CASE("a_worker_outside_valgrind_refuses_before_any_device", "[cost]") {

@@ -24,6 +24,7 @@ CompareRequest compare_request(const CompareSetup& s) {
     request.rounds = s.spec.rounds;
     request.draws = s.spec.draws;
     request.views = s.views;
+    request.grid = s.spec.grid;
     if (s.spec.strict_half)
         request.build = [preset = s.preset](const Variant& v) {
             EmitOptions strict;
@@ -58,9 +59,10 @@ std::string add_costs(const CompareSetup& s, CompareRun& run) {
     std::string error;
     const auto costs =
         s.from_material
-            ? count_material_costs(o.material, o.scene, counted, o.cost_size, &error)
+            ? count_material_costs(o.material, o.scene, counted, o.cost_size, &error, true, o.grid)
             : count_draw_costs(counted, o.cost_size, s.preset ? s.preset->name : "",
-                               first_view.substr(0, first_view.find('@')), &error, o.strict_half);
+                               first_view.substr(0, first_view.find('@')), &error, o.strict_half,
+                               o.grid);
     if (!costs) return "instruction count: " + error;
     const double pixels = double(o.cost_size) * o.cost_size;
     for (CompareEntry& e : run.entries)

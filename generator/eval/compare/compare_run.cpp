@@ -146,7 +146,7 @@ class Comparison {
                     const SyntheticScene& view_scene, ImageRGBA32F& image, double& paths_differ) {
         const SyntheticScene* scene = scene_for(i, view, view_scene);
         if (!scene) return false;
-        const RenderSettings settings{scene->width, scene->height, 0, false, false};
+        const RenderSettings settings = settings_of(*scene);
         std::array<RenderResult, 2> paths;
         for (size_t l = 0; l < (request_.both_paths ? 2u : 1u); ++l) {
             // View 0's GLSL images are the timing's last draws (read back already); each is
@@ -165,6 +165,14 @@ class Comparison {
         paths_differ = request_.both_paths ? max_abs_difference(paths[0].rgba, paths[1].rgba) : 0.0;
         image = ImageRGBA32F{scene->width, scene->height, std::move(paths[0].rgba)};
         return true;
+    }
+
+    // How a view's scene is drawn: at its size, no timing or CPU pass, a mesh over the
+    // request's grid.
+    RenderSettings settings_of(const SyntheticScene& scene) const {
+        RenderSettings s{scene.width, scene.height, 0, false, false};
+        s.grid = request_.grid;
+        return s;
     }
 
     // The reference image of a view: the CPU double evaluation, or build 0's GLSL render (with
@@ -243,8 +251,7 @@ class Comparison {
         for (size_t i = 0; i < builds_.size(); ++i) {
             const SyntheticScene* scene = scene_for(i, 0, view_scene);
             if (!scene) return false;
-            jobs.push_back(make_render_job(builds_[i].languages[0], *scene,
-                                           {scene->width, scene->height, 0, false, false}));
+            jobs.push_back(make_render_job(builds_[i].languages[0], *scene, settings_of(*scene)));
         }
         InterleavedTiming t = time_interleaved(runner_, jobs, request_.rounds, request_.draws);
         if (!t.ok()) {

@@ -85,7 +85,7 @@ PickPlan plan_pick(const ScenePlan& plan, const std::map<std::string, std::strin
 std::string measure_pick_errors(VulkanRunner& runner, const Material& material,
                                 const ScenePlan& plan,
                                 const std::vector<std::pair<std::string, SyntheticScene>>& views,
-                                PickPlan& pick) {
+                                PickPlan& pick, const WaterGridDesc& grid) {
     // The gold as the scene's build would ship it: the fold is exact where the view obeys the
     // scene's facts, and a view that does not (a camera pitch outside the scene's range) then
     // shows every candidate and the gold folded alike.
@@ -111,8 +111,10 @@ std::string measure_pick_errors(VulkanRunner& runner, const Material& material,
                                               : format_diagnostic(build.diagnostics.front()));
         for (size_t i = 0; i < views.size(); ++i) {
             const SyntheticScene& scene = views[i].second;
-            const RenderResult r = runner.render(make_render_job(
-                build.languages[0], scene, {scene.width, scene.height, 0, false, false}));
+            RenderSettings settings{scene.width, scene.height, 0, false, false};
+            settings.grid = grid; // a mesh candidate's
+            const RenderResult r =
+                runner.render(make_render_job(build.languages[0], scene, settings));
             if (!r.ok) return c.variant.key() + " (" + views[i].first + "): " + r.error;
             const ImageErrorStats e =
                 compare_images(ImageRGBA32F{scene.width, scene.height, r.rgba}, references[i]);

@@ -62,8 +62,8 @@ std::string count_costs(const PickRequest& request, const Material& m, const Sce
                 c.cost_per_pixel = it->second;
         return "";
     }
-    const auto counts =
-        count_material_costs(request.material_path, scene_path, missing, request.cost_size, &error);
+    const auto counts = count_material_costs(request.material_path, scene_path, missing,
+                                             request.cost_size, &error, true, request.grid);
     if (!counts) return error;
     const double pixels = double(request.cost_size) * request.cost_size;
     for (PickCandidate& c : pick.candidates)
@@ -121,12 +121,12 @@ PickSceneRun pick_scene(VulkanRunner& runner, const Material& m, const ScenePlan
     }
     PickPlan& pick = run.pick;
     bool no_device = false;
-    std::string error = measure_pick_errors(runner, m, plan, views, pick);
+    std::string error = measure_pick_errors(runner, m, plan, views, pick, request.grid);
     if (error.empty()) error = count_costs(request, m, plan, scene_path, pick, &no_device);
     run.chosen = error.empty() ? cheapest_within(pick.candidates, request.budget) : -1;
     if (run.chosen >= 0) { // what each axis saved: the pick with that axis at the gold's
         add_axis_alternatives(pick, pick.candidates[size_t(run.chosen)].variant);
-        error = measure_pick_errors(runner, m, plan, views, pick);
+        error = measure_pick_errors(runner, m, plan, views, pick, request.grid);
         if (error.empty()) error = count_costs(request, m, plan, scene_path, pick, &no_device);
     }
     if (!error.empty()) {

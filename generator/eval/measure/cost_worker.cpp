@@ -121,6 +121,9 @@ std::vector<std::string> count_worker_argv(const MaterialCountJob& job,
     if (!job.folded) argv.push_back("--unfolded");
     for (const std::string& key : job.keys)
         argv.insert(argv.end(), {"--key", key});
+    argv.insert(argv.end(), {"--grid-spacing", fmt::format("{}", job.grid.spacing), "--grid-rings",
+                             std::to_string(job.grid.ring_cells), "--grid-levels",
+                             std::to_string(job.grid.levels)});
     if (!job.scene_path.empty())
         argv.insert(argv.end(), {"--scene", std::filesystem::absolute(job.scene_path).string()});
     return argv;
@@ -154,10 +157,15 @@ CountWorkerRun run_count_worker(const MaterialCountJob& job, const Material& mat
     if (!under_valgrind("pick", run)) return run;
     const SyntheticScene base = make_synthetic_scene(job.size, job.size);
     const SyntheticScene scene = plan ? conform_scene(base, *plan, material) : base;
-    return draw_counted_keys(job.keys, scene, [&](const Variant& v) {
-        return plan && job.folded ? build_for_scene(material, *plan, v)
-                                  : build_shader(material.compose(v));
-    });
+    RenderSettings mesh;
+    mesh.grid = job.grid;
+    return draw_counted_keys(
+        job.keys, scene,
+        [&](const Variant& v) {
+            return plan && job.folded ? build_for_scene(material, *plan, v)
+                                      : build_shader(material.compose(v));
+        },
+        mesh);
 }
 
 } // namespace watergen

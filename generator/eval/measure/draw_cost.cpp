@@ -35,17 +35,20 @@ std::pair<uint64_t, double> spread(const std::vector<uint64_t>& v) {
 
 std::optional<std::map<std::string, uint64_t>>
 count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
-                 const std::string& view, std::string* error, bool strict_half) {
+                 const std::string& view, std::string* error, bool strict_half,
+                 const WaterGridDesc& grid) {
     const std::filesystem::path executable = own_executable();
     return count_in_parallel(
         variants,
         [&](const std::vector<std::string>& part) {
-            return count_worker_argv(VariantCountJob{.keys = part,
-                                                     .size = size,
-                                                     .preset = preset,
-                                                     .view = view,
-                                                     .strict_half = strict_half},
-                                     executable);
+            VariantCountJob job;
+            job.keys = part;
+            job.size = size;
+            job.preset = preset;
+            job.view = view;
+            job.strict_half = strict_half;
+            job.grid = grid;
+            return count_worker_argv(job, executable);
         },
         error);
 }
@@ -53,13 +56,13 @@ count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std:
 std::optional<std::map<std::string, uint64_t>>
 count_material_costs(const std::string& material_path, const std::string& scene_path,
                      const std::vector<Variant>& variants, uint32_t size, std::string* error,
-                     bool folded) {
+                     bool folded, const WaterGridDesc& grid) {
     const std::filesystem::path executable = own_executable();
     return count_in_parallel(
         variants,
         [&](const std::vector<std::string>& part) {
             return count_worker_argv(
-                MaterialCountJob{material_path, scene_path, folded, size, part}, executable);
+                MaterialCountJob{material_path, scene_path, folded, size, part, grid}, executable);
         },
         error);
 }

@@ -16,6 +16,7 @@
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/runner/vulkan_runner.h"
+#include "watergen/runtime/water_grid.h"
 #include "watergen/water/presets.h"
 #include "watergen/water/variant.h"
 
@@ -39,6 +40,7 @@ struct CompareRequest {
     // mesh or tessellated): its exact surface as `build` composes it (exact_surface_fragment
     // in mesh_render.h). Empty: composed with `preset` alone.
     std::function<Graph(const Variant&)> exact_surface;
+    WaterGridDesc grid{};   // the grid a mesh variant is drawn over (RenderSettings::grid)
     bool both_paths = true; // false: the GLSL path only (the HLSL image is tested equal elsewhere)
     // Textures that replace a view's (by binding name) for one built variant, e.g. the caustics
     // map its own pass drew (compare_caustics.h); empty: the view's scene as it is. Used for

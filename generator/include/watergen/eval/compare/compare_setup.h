@@ -13,6 +13,7 @@
 #include "watergen/eval/measure/gpu_target.h"
 #include "watergen/eval/scene/synthetic_scene.h"
 #include "watergen/plan/scene_pruning.h"
+#include "watergen/runtime/water_grid.h"
 #include "watergen/water/presets.h"
 
 namespace watergen {
@@ -31,6 +32,7 @@ struct CompareSpec {
     // --target: cost targets (gpu_target.h); none: lavapipe. lavapipe's count is taken when it
     // is named (or none is) and `cost` holds; each AMD family's ACO statistics in any case.
     std::vector<std::string> targets;
+    WaterGridDesc grid{}; // the grid mesh variants are drawn (and counted) over
 };
 
 // At most this many variants are compared.

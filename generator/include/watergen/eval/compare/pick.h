@@ -22,6 +22,7 @@
 #include "watergen/pipeline/build_output.h"
 #include "watergen/plan/scene_pruning.h"
 #include "watergen/runner/vulkan_runner.h"
+#include "watergen/runtime/water_grid.h"
 
 namespace watergen {
 
@@ -66,7 +67,7 @@ PickPlan plan_pick(const ScenePlan& plan, const std::map<std::string, std::strin
 std::string measure_pick_errors(VulkanRunner& runner, const Material& material,
                                 const ScenePlan& plan,
                                 const std::vector<std::pair<std::string, SyntheticScene>>& views,
-                                PickPlan& pick);
+                                PickPlan& pick, const WaterGridDesc& grid = {});
 
 // The index of the cheapest reached candidate within the budget (ties: the smaller error), or
 // -1.

@@ -14,6 +14,7 @@
 #include "watergen/eval/compare/pick.h"
 #include "watergen/eval/draw/draw_device.h"
 #include "watergen/eval/measure/gpu_target.h"
+#include "watergen/runtime/water_grid.h"
 
 namespace watergen {
 
@@ -23,6 +24,7 @@ struct PickRequest {
     PickBudget budget;
     uint32_t size = 256;     // image size of the error measurement
     uint32_t cost_size = 64; // image size of the instruction count
+    WaterGridDesc grid{};    // the grid mesh candidates are drawn and counted over
     std::filesystem::path out = "out/pick";
     // Whose cost is traded: lavapipe's instructions per pixel counted under valgrind, or an AMD
     // family's fragment instructions from ACO, each loop weighted by its trip count

@@ -44,6 +44,7 @@ struct MaterialCountJob {
     bool folded = true;
     uint32_t size = 64;
     std::vector<std::string> keys;
+    WaterGridDesc grid{}; // a mesh variant's (RenderSettings::grid)
 };
 
 // `<executable> cost --counted ...` and `<executable> pick --counted ...` (paths made

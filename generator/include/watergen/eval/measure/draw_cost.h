@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "watergen/eval/measure/cost_worker.h"
+#include "watergen/runtime/water_grid.h"
 
 namespace watergen {
 
@@ -24,7 +25,8 @@ namespace watergen {
 // Cost:   about 5 s of JIT under valgrind per variant.
 std::optional<std::map<std::string, uint64_t>>
 count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std::string& preset,
-                 const std::string& view, std::string* error, bool strict_half = false);
+                 const std::string& view, std::string* error, bool strict_half = false,
+                 const WaterGridDesc& grid = {});
 
 // The same for a material's shaders (path "" = the built-in material) as a build ships them:
 // composed by the material and, with a scene file, folded under its facts (unless `folded` is
@@ -32,7 +34,7 @@ count_draw_costs(const std::vector<Variant>& variants, uint32_t size, const std:
 std::optional<std::map<std::string, uint64_t>>
 count_material_costs(const std::string& material_path, const std::string& scene_path,
                      const std::vector<Variant>& variants, uint32_t size, std::string* error,
-                     bool folded = true);
+                     bool folded = true, const WaterGridDesc& grid = {});
 
 // Each job's keys (VariantCountJob::keys: the steady draw of their GLSL paths, by label), every
 // job in a valgrind run of its own (so each may have its own grid, size or view), up to one run
