@@ -273,12 +273,12 @@ GeometryBench run_geometry_bench(VulkanRunner& runner, const Variant& variant,
         for (const SceneView& v : scene_views())
             views.push_back(v.name);
     const uint32_t n = settings.size;
-    const WaterShader exact =
-        build_water_shader(screen->shader.variant, nullptr, SurfaceSearch::Converged);
+    const Graph exact =
+        exact_surface_fragment(preset_material(nullptr), nullptr, mesh->shader.variant);
     for (const std::string& name : views) {
         const SyntheticScene scene = preset_scene(n, n, nullptr, name);
-        const EvalResult d = evaluate_image(exact.fragment, "color", scene.eval_inputs(), n, n,
-                                            EvalPrecision::Double);
+        const EvalResult d =
+            evaluate_image(exact, "color", scene.eval_inputs(), n, n, EvalPrecision::Double);
         if (!d.ok()) {
             bench.error = fail(name, "CPU evaluator: " + d.error);
             return bench;

@@ -90,14 +90,13 @@ std::string measure_pick_errors(VulkanRunner& runner, const Material& material,
     // scene's facts, and a view that does not (a camera pitch outside the scene's range) then
     // shows every candidate and the gold folded alike.
     // A mesh gold is its exact surface (exact_surface_fragment).
-    WaterShader gold = material.compose(pick.gold);
-    gold.fragment = pick.gold.choice("geometry") == "screen_pass"
-                        ? fold_graph(gold.fragment, plan.facts).graph
-                        : exact_surface_fragment(material, &plan, pick.gold);
+    const Graph gold = pick.gold.choice("geometry") == "screen_pass"
+                           ? fold_graph(material.compose(pick.gold).fragment, plan.facts).graph
+                           : exact_surface_fragment(material, &plan, pick.gold);
     std::vector<ImageRGBA32F> references;
     for (const auto& [name, scene] : views) {
-        const EvalResult d = evaluate_image(gold.fragment, "color", scene.eval_inputs(),
-                                            scene.width, scene.height, EvalPrecision::Double);
+        const EvalResult d = evaluate_image(gold, "color", scene.eval_inputs(), scene.width,
+                                            scene.height, EvalPrecision::Double);
         if (!d.ok()) return "the gold on the CPU (" + name + "): " + d.error;
         references.push_back(to_image(d, scene.width, scene.height));
     }

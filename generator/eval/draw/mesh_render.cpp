@@ -93,13 +93,10 @@ RenderJob mesh_render_job(const LanguageBuild& lang, const SyntheticScene& scene
     settings.width = width;
     settings.height = height;
     settings.timed_draws = timed_draws;
-    RenderJob job = scene_inputs_job(lang, scene, settings);
+    // Every stage declares the one block (build_shader): the fragment's layout is all of them.
+    RenderJob job = scene_inputs_job(lang, scene, settings, &values);
     if (const auto it = scene.textures.find("scene_color"); it != scene.textures.end())
         job.background = it->second.rgba;
-    // Every stage declares the one block (build_shader): the fragment's layout is all of them.
-    const ShaderInterface& in = lang.fragment.source.interface;
-    job.uniforms = pack_uniforms(in.uniforms, in.parameters, values);
-    job.specialization = specialization_values(in.specialization, values);
     job.mesh = mesh;
     if (lang.tessellated()) {
         job.tess_control_spirv = lang.control.toolchain.spirv_optimized;
@@ -188,12 +185,11 @@ VariantRender render_mesh_against_surface(VulkanRunner& runner, const VariantBui
     out.glsl_vs_hlsl = drawn.glsl_vs_hlsl;
     out.validation_messages = std::move(drawn.validation_messages);
     if (!settings.cpu_float && !settings.cpu_double) return out;
-    const WaterShader surface =
-        build_water_shader(screen_pass_of(build.shader.variant), find_preset(build.shader.preset),
-                           SurfaceSearch::Converged);
+    const Graph surface = exact_surface_fragment(preset_material(find_preset(build.shader.preset)),
+                                                 nullptr, build.shader.variant);
     auto evaluate = [&](EvalPrecision precision, ImageRGBA32F& image) {
-        const EvalResult r = evaluate_image(surface.fragment, "color", scene.eval_inputs(),
-                                            settings.width, settings.height, precision);
+        const EvalResult r = evaluate_image(surface, "color", scene.eval_inputs(), settings.width,
+                                            settings.height, precision);
         if (!r.ok()) out.error = "CPU evaluator: " + r.error;
         image = to_image(r, settings.width, settings.height);
         return r.ok();

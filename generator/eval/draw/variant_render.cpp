@@ -32,7 +32,8 @@ RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene
 }
 
 RenderJob scene_inputs_job(const LanguageBuild& lang, const SyntheticScene& scene,
-                           const RenderSettings& settings) {
+                           const RenderSettings& settings,
+                           const std::map<std::string, std::vector<double>>* values) {
     RenderJob job;
     job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
     job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
@@ -41,8 +42,9 @@ RenderJob scene_inputs_job(const LanguageBuild& lang, const SyntheticScene& scen
     job.width = settings.width;
     job.height = settings.height;
     const ShaderInterface& in = lang.fragment.source.interface;
-    job.uniforms = pack_uniforms(in.uniforms, in.parameters, scene.uniforms);
-    job.specialization = specialization_values(in.specialization, scene.uniforms);
+    const auto& block = values ? *values : scene.uniforms;
+    job.uniforms = pack_uniforms(in.uniforms, in.parameters, block);
+    job.specialization = specialization_values(in.specialization, block);
     for (const auto& t : in.textures)
         if (auto it = scene.textures.find(t.name); it != scene.textures.end())
             job.textures[t.name] = it->second;

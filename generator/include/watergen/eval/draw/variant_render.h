@@ -75,9 +75,11 @@ VariantRender render_variant(VulkanRunner& runner, const VariantBuild& build,
 // colour under it (mesh_render_job).
 RenderJob make_render_job(const LanguageBuild& lang, const SyntheticScene& scene,
                           const RenderSettings& settings);
-// The same without the geometry: the stages, textures and block (the fullscreen triangle).
+// The same without the geometry: the stages, textures and block (the fullscreen triangle), the
+// block packed from `values` (null: the scene's).
 RenderJob scene_inputs_job(const LanguageBuild& lang, const SyntheticScene& scene,
-                           const RenderSettings& settings);
+                           const RenderSettings& settings,
+                           const std::map<std::string, std::vector<double>>* values = nullptr);
 
 ImageRGBA32F to_image(const EvalResult& r, uint32_t width, uint32_t height);
 
