@@ -163,6 +163,9 @@ std::function<void(size_t, JobResult&)> job_sink(const std::vector<BuildJob>& jo
         for (const auto& [path, bytes] : r.files)
             errors.note(tree.write(dir + "/" + path, bytes));
         r.files.clear();
+        // Only a failed job's diagnostics reach the summary, and a sunk job did not fail: its
+        // notes (a skipped GL target per stage, each naming its file) would be kept for nothing.
+        Diagnostics().swap(r.diagnostics);
     };
 }
 
@@ -192,8 +195,8 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
         }
         for (const Variant& v : jobs[i].serves)
             for (const char* lang : {"glsl", "hlsl"})
-                if (std::binary_search(results[built].names.begin(), results[built].names.end(),
-                                       std::string(lang) + "/water.frag.opt.spv"))
+                if (const auto& names = results[built].file_names(); std::binary_search(
+                        names.begin(), names.end(), std::string(lang) + "/water.frag.opt.spv"))
                     work.push_back({i, built, v, lang});
     }
     std::vector<FrozenVariant> frozen(work.size());

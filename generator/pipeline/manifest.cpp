@@ -149,7 +149,7 @@ size_t add_output(OJson& v, size_t i, const std::vector<BuildJob>& jobs,
         v["same_as"] = r.same_as;
     }
     v["directory"] = job_directory(jobs[built]);
-    v["files"] = files_json(job_directory(jobs[built]), results[built].names);
+    v["files"] = files_json(job_directory(jobs[built]), results[built].file_names());
     if (const auto description = read(built, "variant.json")) {
         const OJson d = OJson::parse(*description);
         v["reflection"] = {{"uniform_block", d.value("uniform_block", OJson::object())},
@@ -321,7 +321,7 @@ std::map<std::string, uint32_t> selector_places(const std::optional<std::string>
 using Places = std::map<std::string, uint32_t>;
 
 bool has_file(const JobResult& r, const std::string& name) {
-    return std::binary_search(r.names.begin(), r.names.end(), name);
+    return std::binary_search(r.file_names().begin(), r.file_names().end(), name);
 }
 
 // The shader's entry; the selector places of its built job into `places`.

@@ -176,6 +176,26 @@ std::optional<FileMap> load_or_build(const BuildOptions& options, const EmitOpti
 
 } // namespace
 
+// Each distinct list of file names once, shared by the jobs that write it.
+class NameLists {
+  public:
+    std::shared_ptr<const std::vector<std::string>> intern(std::vector<std::string> names) {
+        std::lock_guard<std::mutex> guard(lock_);
+        const auto [it, fresh] = lists_.try_emplace(std::move(names));
+        if (fresh) it->second = std::make_shared<const std::vector<std::string>>(it->first);
+        return it->second;
+    }
+
+  private:
+    std::mutex lock_;
+    std::map<std::vector<std::string>, std::shared_ptr<const std::vector<std::string>>> lists_;
+};
+
+const std::vector<std::string>& JobResult::file_names() const {
+    static const std::vector<std::string> none;
+    return names ? *names : none;
+}
+
 std::string job_key(const BuildJob& job) {
     return job.shader ? job.shader->key() : job.variant.key();
 }
@@ -232,10 +252,12 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
     });
     const BuildPlan plan = plan_builds(jobs, results);
     // The stages of the jobs that will compile, so the memo keeps those more than one shares.
+    std::vector<StageKey> expected;
     for (size_t i : plan.to_build)
         for (const StageKey& key : stages[i])
-            if (!key.empty()) memo.expect(key);
+            if (!key.empty()) expected.push_back(key);
     std::vector<StageKeys>().swap(stages);
+    memo.expect(std::move(expected));
 
     std::mutex progress_lock;
     BuildProgress progress{0, jobs.size(), 0, 0, ""};
@@ -254,13 +276,16 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
     // The jobs that take each built job's files (same content in another scene), done on the
     // builder's thread as soon as its files exist: nothing is kept for them.
     std::map<size_t, std::vector<size_t>> copies;
+    NameLists name_lists;
     for (const auto& [i, from] : plan.copies)
         copies[from].push_back(i);
     auto finish = [&](size_t i, const FileMap* all) {
         JobResult& r = results[i];
         if (all) r.files = filter_targets(*all, jobs[i].targets);
+        std::vector<std::string> names;
         for (const auto& [name, bytes] : r.files)
-            r.names.push_back(name);
+            names.push_back(name);
+        r.names = name_lists.intern(std::move(names));
         if (options.sink && r.ok()) options.sink(i, r);
         report(i);
     };

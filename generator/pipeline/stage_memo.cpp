@@ -1,5 +1,6 @@
 #include "watergen/pipeline/stage_memo.h"
 
+#include <algorithm>
 #include <memory>
 
 #include <fmt/format.h>
@@ -65,6 +66,16 @@ void StageMemo::expect(const StageKey& key) {
     ++entries_[key].expected;
 }
 
+void StageMemo::expect(std::vector<StageKey> keys) {
+    std::sort(keys.begin(), keys.end());
+    std::lock_guard<std::mutex> hold(lock_);
+    for (size_t i = 0, j = 0; i < keys.size(); i = j) {
+        while (j < keys.size() && keys[j] == keys[i])
+            ++j;
+        if (j - i > 1 || entries_.count(keys[i])) entries_[keys[i]].expected += j - i;
+    }
+}
+
 ToolchainOutputs StageMemo::take(std::map<StageKey, Entry>::iterator it) {
     ++counts_.reused;
     if (--it->second.expected > 0) return it->second.outputs;
@@ -118,6 +129,11 @@ ToolchainOutputs StageMemo::run(const CompileRequest& request, CrossCompile cros
     hold.lock();
     ++counts_.compiled;
     return outputs;
+}
+
+size_t StageMemo::entries() const {
+    std::lock_guard<std::mutex> hold(lock_);
+    return entries_.size();
 }
 
 StageCounts StageMemo::counts() const {

@@ -117,6 +117,23 @@ TEST_CASE("a_stage_nobody_else_expects_or_past_the_budget_is_compiled_each_time"
     CHECK(tiny.counts().reused == 0);
 }
 
+TEST_CASE("a_plan_given_at_once_holds_only_the_stages_given_more_than_once", "[memo]") {
+    const std::string b = other_key();
+    const CompileRequest shared = vertex_request(Language::Glsl, kKeyA);
+    const CompileRequest own = vertex_request(Language::Hlsl, kKeyA);
+    const StageKey k = stage_key(shared, CrossCompile::Yes, kKeyA);
+    StageMemo memo;
+    memo.expect({stage_key(own, CrossCompile::No, kKeyA), k,
+                 stage_key(vertex_request(Language::Glsl, b), CrossCompile::Yes, b), k});
+    CHECK(memo.entries() == 1); // the stage three variants share; the HLSL one is its own
+    memo.run(own, CrossCompile::No, kKeyA);
+    for (int i = 0; i < 3; ++i)
+        memo.run(shared, CrossCompile::Yes, kKeyA);
+    CHECK(memo.counts().compiled == 2);
+    CHECK(memo.counts().reused == 2);
+    CHECK(memo.entries() == 0); // the last use let it go
+}
+
 TEST_CASE("threads_asking_for_one_stage_at_once_compile_it_once", "[memo]") {
     const CompileRequest r = vertex_request(Language::Hlsl, kKeyA);
     const StageKey key = stage_key(r, CrossCompile::No, kKeyA);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,7 +40,11 @@ struct JobResult {
     FoldReport fold;
     FileMap files; // relative to the variant directory, filtered by targets (empty once a
                    // BuildOptions::sink took them)
-    std::vector<std::string> names; // of `files`, sorted; kept when a sink takes the bytes
+    // The names of `files`, sorted; kept when a sink takes the bytes. One list is shared by
+    // every job that writes the same names (most of a build's): a list per job was most of a
+    // long build's memory.
+    std::shared_ptr<const std::vector<std::string>> names;
+    const std::vector<std::string>& file_names() const;
     bool cached = false;
     std::string cache_rejected; // why its cache entry failed verification (evicted, rebuilt); "" if
                                 // it did not

@@ -49,6 +49,10 @@ class StageMemo {
     // variant that finds its files in the cache never comes, so its share stays until the end:
     // within max_bytes).
     void expect(const StageKey& key);
+    // The same for a whole build's stages at once, one key per use. Only the keys given more
+    // than once get an entry (a build's fragments are mostly its own): a plan of millions of
+    // stages then holds 16 bytes each while it is counted, not an entry each.
+    void expect(std::vector<StageKey> keys);
 
     // The toolchain outputs of `request` (its stamp blanked, see stage_key) for a variant keyed
     // `variant_key`. Thread-safe; a caller that asks while another compiles the same stage waits
@@ -57,6 +61,8 @@ class StageMemo {
                          const std::string& variant_key);
 
     StageCounts counts() const;
+    // Stages planned or held now (what the memo's memory grows with).
+    size_t entries() const;
 
   private:
     struct Entry {
