@@ -161,14 +161,11 @@ struct VariantInfo { const char* scene; const char* key; const char* hash; uint3
 #endif
 )";
 
-} // namespace
+// The manifest's parse, from its text or from its file.
+using ParseManifest = std::function<JsonReadEnd(const JsonDocumentReader&, std::string*)>;
 
-std::optional<std::string> shaders_header(const ReadOutputFile& read, std::string* error) {
-    const std::optional<std::string> manifest = read("manifest.json");
-    if (!manifest) {
-        *error = "manifest.json: missing";
-        return std::nullopt;
-    }
+std::optional<std::string> header_of(const ParseManifest& parse, const ReadOutputFile& read,
+                                     std::string* error) {
     std::string material, map_name;
     OJson resources;
     uint32_t push_constant_bytes = 0;                // 0: the block is a uniform buffer
@@ -252,7 +249,7 @@ std::optional<std::string> shaders_header(const ReadOutputFile& read, std::strin
         return true;
     };
     std::string why;
-    const JsonReadEnd end = read_json_document(*manifest, reader, &why);
+    const JsonReadEnd end = parse(reader, &why);
     if (end == JsonReadEnd::Stopped) return std::nullopt;
     if (end == JsonReadEnd::Malformed) {
         *error = "manifest.json: " + why;
@@ -312,10 +309,30 @@ std::optional<std::string> shaders_header(const ReadOutputFile& read, std::strin
     return h;
 }
 
+} // namespace
+
+std::optional<std::string> shaders_header(const ReadOutputFile& read, std::string* error) {
+    const std::optional<std::string> manifest = read("manifest.json");
+    if (!manifest) {
+        *error = "manifest.json: missing";
+        return std::nullopt;
+    }
+    return header_of([&](const JsonDocumentReader& r,
+                         std::string* why) { return read_json_document(*manifest, r, why); },
+                     read, error);
+}
+
 std::optional<std::string> write_shaders_header(StagedTree& tree) {
+    // The manifest read as it goes, never whole: a build of a few thousand variants writes
+    // more than the tree reads back (tree.read's cap), and its text would be memory for nothing.
     std::string why;
+    std::FILE* manifest = std::fopen((tree.dir() / "manifest.json").c_str(), "rb");
+    if (!manifest) return std::string(kShadersHeader) + ": manifest.json: missing";
     const auto header =
-        shaders_header([&](const std::string& path) { return tree.read(path); }, &why);
+        header_of([&](const JsonDocumentReader& r,
+                      std::string* w) { return read_json_document(manifest, r, w); },
+                  [&](const std::string& path) { return tree.read(path); }, &why);
+    std::fclose(manifest);
     if (!header) return std::string(kShadersHeader) + ": " + why;
     return tree.write(kShadersHeader, *header);
 }

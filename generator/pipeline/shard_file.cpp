@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <functional>
 
+#include <fmt/format.h>
 #include <xxhash.h>
 
 #include "watergen/pipeline/json_document.h"
@@ -106,8 +107,10 @@ read_shard_document(const std::function<JsonReadEnd(const JsonDocumentReader&, s
                 return fail("shard.json: " + file.path +
                             " out of order or twice; expected the "
                             "files sorted by path, each once");
-            previous = file.path;
-            s.files.push_back(std::move(file));
+            if (!s.files.push_back(file))
+                return fail("shard.json: " + file.path + "'s hash '" + file.digest +
+                            "' is not 32 lowercase hexadecimal digits (an XXH3-128 digest)");
+            previous = std::move(file.path);
             return true;
         },
         [&](const std::string& array) { (array == "shapes" ? shapes : files) = true; }};
@@ -201,11 +204,44 @@ std::string check_variant_count(size_t jobs, size_t variants, const ShardFile& s
     return "";
 }
 
-bool ShardFile::lists(const std::string& path) const {
-    const auto it =
-        std::lower_bound(files.begin(), files.end(), path,
-                         [](const ListedFile& f, const std::string& p) { return f.path < p; });
-    return it != files.end() && it->path == path;
+namespace {
+
+// file_digest()'s text back into its two halves; false for anything else.
+bool parse_digest(const std::string& text, uint64_t& high, uint64_t& low) {
+    if (text.size() != 32) return false;
+    uint64_t halves[2] = {0, 0};
+    for (size_t i = 0; i < 32; ++i) {
+        const char c = text[i];
+        const int v = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+        if (v < 0) return false;
+        halves[i / 16] = halves[i / 16] << 4 | static_cast<uint64_t>(v);
+    }
+    high = halves[0];
+    low = halves[1];
+    return true;
+}
+
+} // namespace
+
+bool ListedFiles::push_back(const ListedFile& f) {
+    Entry e{{}, f.size, 0, 0};
+    if (!parse_digest(f.digest, e.high, e.low)) return false;
+    e.path = paths_.intern(f.path);
+    entries_.push_back(e);
+    return true;
+}
+
+ListedFile ListedFiles::operator[](size_t i) const {
+    const Entry& e = entries_[i];
+    // digest_text()'s form (build_cache.cpp, not in the fuzz target's sources).
+    return {paths_.text(e.path), e.size, fmt::format("{:016x}{:016x}", e.high, e.low)};
+}
+
+bool ListedFiles::contains(const std::string& path) const {
+    const auto it = std::lower_bound(
+        entries_.begin(), entries_.end(), path,
+        [&](const Entry& e, const std::string& p) { return paths_.compare(e.path, p) < 0; });
+    return it != entries_.end() && paths_.compare(it->path, path) == 0;
 }
 
 std::string check_shard_manifest(const OJson& manifest, const ShardFile& s) {

@@ -134,10 +134,11 @@ std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
     std::fclose(meta_in);
     if (!parsed) return where + why;
     s.meta = std::move(*parsed);
-    const ListedFile* listed_manifest = nullptr;
-    for (const ListedFile& f : s.meta.files) {
+    std::optional<ListedFile> listed_manifest;
+    for (size_t i = 0; i < s.meta.files.size(); ++i) {
+        const ListedFile f = s.meta.files[i];
         if (f.path == "manifest.json") {
-            listed_manifest = &f;
+            listed_manifest = f;
             continue;
         }
         // Kind and size now; the hash when the file is copied.
@@ -484,7 +485,7 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
     bool write_error = false;
     for (const ShardOutput& s : shards) {
         parallel_for(s.meta.files.size(), 0, [&](size_t i) {
-            const ListedFile& f = s.meta.files[i];
+            const ListedFile f = s.meta.files[i];
             if (f.path == "manifest.json" || f.path == kShardFile) return;
             const std::string to = destination(f.path);
             if (to.empty()) return;

@@ -48,31 +48,9 @@ std::optional<std::string> StagedTree::make_parent(const std::string& relative) 
     return std::nullopt;
 }
 
-uint32_t StagedTree::part(std::string_view text) {
-    if (const auto it = part_ids_.find(text); it != part_ids_.end()) return it->second;
-    parts_.emplace_back(text);
-    const auto id = static_cast<uint32_t>(parts_.size() - 1);
-    part_ids_.emplace(parts_.back(), id);
-    return id;
-}
-
 void StagedTree::record(const std::string& relative, uint64_t size, XXH128_hash_t digest) {
-    // <scene>/<job>/ is most of a path and the same for a job's twenty-odd files.
-    const size_t first = relative.find('/');
-    const size_t second = first == std::string::npos ? first : relative.find('/', first + 1);
-    const size_t split = second == std::string::npos ? 0 : second + 1;
     std::lock_guard<std::mutex> guard(lock_);
-    const uint32_t directory = part(std::string_view(relative).substr(0, split));
-    files_.push_back({directory, part(std::string_view(relative).substr(split)), size, digest});
-}
-
-bool StagedTree::path_less(const Entry& a, const Entry& b) const {
-    const std::string &ad = parts_[a.directory], &bd = parts_[b.directory];
-    if (a.directory == b.directory) return parts_[a.rest] < parts_[b.rest];
-    // Two job directories (each <scene>/<job>/) are never one the other's prefix: their order
-    // is their paths'. A top-level file ("" directory) is compared whole.
-    if (!ad.empty() && !bd.empty()) return ad < bd;
-    return ad + parts_[a.rest] < bd + parts_[b.rest];
+    files_.push_back({paths_.intern(relative), size, digest});
 }
 
 std::optional<std::string> StagedTree::write(const std::string& relative,
@@ -113,11 +91,11 @@ void StagedTree::for_each_file(const std::function<void(const RecordedFile&)>& e
     for (size_t i = 0; i < order.size(); ++i)
         order[i] = static_cast<uint32_t>(i);
     std::sort(order.begin(), order.end(),
-              [&](uint32_t a, uint32_t b) { return path_less(files_[a], files_[b]); });
+              [&](uint32_t a, uint32_t b) { return paths_.less(files_[a].path, files_[b].path); });
     RecordedFile f;
     for (const uint32_t i : order) {
         const Entry& e = files_[i];
-        f.path = parts_[e.directory] + parts_[e.rest];
+        f.path = paths_.text(e.path);
         f.size = e.size;
         f.digest = digest_text(e.digest.high64, e.digest.low64);
         each(f);

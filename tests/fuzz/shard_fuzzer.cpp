@@ -25,8 +25,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     if (shard->shard.index < 1 || shard->shard.index > shard->shard.count) std::abort();
     std::set<std::string> listed;
-    for (const ListedFile& f : shard->files) {
-        if (!is_plain_relative_path(f.path)) std::abort();
+    for (size_t i = 0; i < shard->files.size(); ++i) {
+        const ListedFile f = shard->files[i];
+        if (!is_plain_relative_path(f.path) || !shard->lists(f.path)) std::abort();
         listed.insert(f.path);
     }
     const auto manifest = nlohmann::ordered_json::parse(manifest_bytes, nullptr, false);

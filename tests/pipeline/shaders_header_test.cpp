@@ -14,6 +14,7 @@
 #include "build_test_support.h"
 #include "watergen/ir/uniform_layout.h"
 #include "watergen/pipeline/shaders_header.h"
+#include "watergen/pipeline/staged_tree.h"
 #include "watergen_shaders.h"
 
 using namespace watergen;
@@ -110,6 +111,31 @@ TEST_CASE("a_build_header_needs_its_manifest_and_descriptions", "[unit]") {
         },
         &error));
     CHECK(error == "s/k/variant.json: missing");
+}
+
+// A build of a few thousand variants writes a manifest larger than the staging tree reads back
+// (64 MB; 18 KB a variant with every target): the header reads it as it goes. Before, such a
+// build and the merge of its shards failed with "watergen_shaders.h: manifest.json: missing".
+TEST_CASE("the_header_of_a_tree_reads_a_manifest_past_the_trees_read_back_cap", "[unit]") {
+    const test::TempDir tmp("header-large-manifest");
+    std::string error;
+    const auto tree = StagedTree::open(tmp.path / "out", &error);
+    REQUIRE(tree);
+    nlohmann::ordered_json m = nlohmann::ordered_json::parse(*read_generated("manifest.json"));
+    const nlohmann::ordered_json first = m["variants"][0];
+    m["variants"] = nlohmann::ordered_json::array({first});
+    const std::string description = first["files"]["description"][0];
+    REQUIRE_FALSE(tree->write(description, *read_generated(description)));
+    m["padding"] = std::string(size_t(65) << 20, ' ');
+    REQUIRE_FALSE(tree->write("manifest.json", m.dump()));
+    REQUIRE_FALSE(tree->read("manifest.json")); // past the cap
+    const auto written = write_shaders_header(*tree);
+    INFO(written.value_or(""));
+    CHECK_FALSE(written);
+    const auto header = tree->read(kShadersHeader);
+    REQUIRE(header);
+    CHECK(header->find(first["key"].get<std::string>()) != std::string::npos);
+    CHECK(header->find("std::array<VariantInfo, 1> kVariants") != std::string::npos);
 }
 
 // A build whose map pushes the block: the header states the range and asserts that every

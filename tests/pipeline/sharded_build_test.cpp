@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "build_test_support.h"
+#include "watergen/pipeline/build_cache.h"
+#include "watergen/pipeline/shard_file.h"
 #include "watergen/pipeline/sharded_build.h"
 
 using namespace watergen;
@@ -64,6 +66,47 @@ TEST_CASE("shard_specs_are_i_of_n", "[shard]") {
 
 // Four shards merged are the single build, byte for byte: the manifest and every file, with
 // variants whose shader another shard built pointed at it as one build points them.
+// A merge holds every shard's file list: paths as interned parts, digests as 16 bytes. Looked
+// up and read back, they are the text shard.json gave, in path order ('-' sorts before '/').
+TEST_CASE("a_shard_file_list_reads_back_what_it_was_given", "[shard]") {
+    const std::vector<std::string> paths = {"manifest.json",
+                                            "passes/caustics/pass.json",
+                                            "s/a-b/glsl/water.frag.spv",
+                                            "s/a/glsl/water.frag.spv",
+                                            "s/a/hlsl/water.frag.spv",
+                                            "s/a/variant.json",
+                                            "shard.json",
+                                            "t/a/variant.json"};
+    ListedFiles files;
+    for (size_t i = 0; i < paths.size(); ++i)
+        REQUIRE(files.push_back({paths[i], i * 1000, file_digest(paths[i])}));
+    REQUIRE(files.size() == paths.size());
+    for (size_t i = 0; i < paths.size(); ++i) {
+        CHECK(files.contains(paths[i]));
+        const ListedFile f = files[i];
+        CHECK(f.path == paths[i]);
+        CHECK(f.size == i * 1000);
+        CHECK(f.digest == file_digest(paths[i]));
+    }
+    for (const char* absent : {"", "s", "s/", "s/a", "s/a/", "s/a/glsl", "s/a/glsl/water.frag",
+                               "s/a/variant.json/x", "s/a-b/variant.json", "a", "zzz"})
+        CHECK_FALSE(files.contains(absent));
+    // Only file_digest()'s text is a digest: anything else is refused, not kept.
+    const std::string digest = file_digest("x");
+    std::string upper = digest;
+    std::transform(upper.begin(), upper.end(), upper.begin(), ::toupper);
+    for (const std::string& bad : {digest.substr(1), digest + "0", upper, std::string(32, 'g')})
+        CHECK_FALSE(files.push_back({"u/a/variant.json", 1, bad}));
+    CHECK(files.size() == paths.size());
+    std::string why;
+    CHECK_FALSE(parse_shard_file(R"({"watergen_shard": 1, "index": 1, "count": 1,
+        "toolchain": "t", "inputs": "i", "variants": 0, "shapes": [],
+        "files": [["a/b/c", 1, "0123"]]})",
+                                 &why));
+    CHECK(why == "shard.json: a/b/c's hash '0123' is not 32 lowercase hexadecimal digits (an "
+                 "XXH3-128 digest)");
+}
+
 TEST_CASE("four_shards_merged_are_byte_identical_to_one_build", "[shard]") {
     const TempDir tmp("shards");
     const std::string material = default_material_path();

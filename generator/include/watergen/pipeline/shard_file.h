@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "watergen/pipeline/path_parts.h"
 #include "watergen/pipeline/sharded_build.h"
 
 namespace watergen {
@@ -26,13 +27,34 @@ struct ListedFile {
     std::string digest; // file_digest()
 };
 
+// shard.json's files, sorted by path, in about 40 bytes each (a merge holds every shard's list:
+// as strings a file took about 550): the path as PathParts, the digest as its 16 bytes.
+class ListedFiles {
+  public:
+    // Appends `f`, which the caller has checked comes after the last; false (nothing added)
+    // when its digest is not file_digest()'s text, 32 lowercase hexadecimal digits.
+    bool push_back(const ListedFile& f);
+    size_t size() const { return entries_.size(); }
+    bool empty() const { return entries_.empty(); }
+    ListedFile operator[](size_t i) const;
+    bool contains(const std::string& path) const;
+
+  private:
+    struct Entry {
+        PathParts::Path path;
+        uint64_t size, high, low;
+    };
+    PathParts paths_;
+    std::vector<Entry> entries_;
+};
+
 struct ShardFile {
     Shard shard;
     std::string toolchain, inputs;
     size_t variants = 0;
     std::map<std::pair<std::string, std::string>, std::string> shapes; // (scene, key) -> shape
-    std::vector<ListedFile> files;                                     // sorted by path
-    bool lists(const std::string& path) const;
+    ListedFiles files;                                                 // sorted by path
+    bool lists(const std::string& path) const { return files.contains(path); }
 };
 
 // shard.json's text as a ShardFile; nullopt and *why (what is wrong, what was expected). Read

@@ -8,7 +8,6 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -16,13 +15,13 @@
 #include <optional>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
 #include <xxhash.h>
 
 #include "watergen/pipeline/build_record.h"
+#include "watergen/pipeline/path_parts.h"
 
 namespace watergen {
 
@@ -79,22 +78,18 @@ class StagedTree {
     explicit StagedTree(std::filesystem::path dir) : dir_(std::move(dir)) {}
     std::optional<std::string> make_parent(const std::string& relative);
     void record(const std::string& relative, uint64_t size, XXH128_hash_t digest);
-    uint32_t part(std::string_view text); // the id of an interned path part
 
-    // A file as the tree keeps it: its path as two interned parts, <scene>/<job>/ and the rest
-    // ("" and the name at the top level).
+    // A file as the tree keeps it.
     struct Entry {
-        uint32_t directory, rest;
+        PathParts::Path path;
         uint64_t size;
         XXH128_hash_t digest;
     };
-    bool path_less(const Entry& a, const Entry& b) const;
 
     std::filesystem::path dir_;
     mutable std::mutex lock_;
     std::unordered_set<uint64_t> directories_; // made already (XXH64 of the path)
-    std::deque<std::string> parts_;            // stable: part_ids_ views them
-    std::unordered_map<std::string_view, uint32_t> part_ids_;
+    PathParts paths_;
     std::vector<Entry> files_; // in write order
     bool committed_ = false;
 };
