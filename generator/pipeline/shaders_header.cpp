@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <xxhash.h>
 
 #include "watergen/ir/ir.h"
 #include "watergen/ir/uniform_layout.h"
@@ -172,8 +173,10 @@ bool header_of(const ParseManifest& parse, const ReadOutputFile& read, const Wri
                std::string* error) {
     std::string material, map_name;
     OJson resources;
-    uint32_t push_constant_bytes = 0;                // 0: the block is a uniform buffer
-    std::map<std::string, size_t> interface_of_text; // block + constants -> interface
+    uint32_t push_constant_bytes = 0; // 0: the block is a uniform buffer
+    // XXH3-128 of block + constants -> interface: the texts are kept once, in `interfaces` (a
+    // build has an interface for every few variants, each a few KB of struct).
+    std::map<std::pair<uint64_t, uint64_t>, size_t> interface_of_text;
     // A modes build's shader's description -> interface (each read once); a permutations
     // build's variants have a description each, so only the last is remembered.
     std::map<std::string, size_t> interface_of_dir;
@@ -202,9 +205,11 @@ bool header_of(const ParseManifest& parse, const ReadOutputFile& read, const Wri
         }
         size_t count = 0;
         const std::string constants = constants_of(d, &count);
+        const std::string both = *block + "|" + constants;
+        const XXH128_hash_t h = XXH3_128bits(both.data(), both.size());
         const auto [it, fresh] =
-            interface_of_text.emplace(*block + "|" + constants, interfaces.size());
-        if (fresh) interfaces.push_back({*block, constants, count, 0, ""});
+            interface_of_text.emplace(std::make_pair(h.high64, h.low64), interfaces.size());
+        if (fresh) interfaces.push_back({std::move(*block), constants, count, 0, ""});
         if (!modes) interface_of_dir.clear();
         interface_of_dir.emplace(description, it->second);
         return it->second;
