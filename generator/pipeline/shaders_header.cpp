@@ -162,14 +162,12 @@ struct VariantInfo { const char* scene; const char* key; const char* hash; uint3
 #endif
 )";
 
-// The manifest's parse, from its text or from its file.
-using ParseManifest = std::function<JsonReadEnd(const JsonDocumentReader&, std::string*)>;
 using WriteHeader = std::function<void(std::string_view)>;
 
 // The header, written piece by piece: the manifest is parsed twice, once for its interfaces
 // and once for the variant table, so neither the table nor the header is ever held whole (a
 // build of thousands of variants writes megabytes of it). False with *error.
-bool header_of(const ParseManifest& parse, const ReadOutputFile& read, const WriteHeader& write,
+bool header_of(const ReadJsonDocument& parse, const ReadOutputFile& read, const WriteHeader& write,
                std::string* error) {
     std::string material, map_name;
     OJson resources;

@@ -65,9 +65,7 @@ namespace {
 
 // shard.json read one shape and one file at a time (a 1/20 shard of the full space lists
 // 829,842 files: its document would need several times the memory of its text).
-std::optional<ShardFile>
-read_shard_document(const std::function<JsonReadEnd(const JsonDocumentReader&, std::string*)>& read,
-                    std::string* why) {
+std::optional<ShardFile> read_shard_document(const ReadJsonDocument& read, std::string* why) {
     std::string fault;
     auto fail = [&](const std::string& w) {
         if (fault.empty()) fault = w;

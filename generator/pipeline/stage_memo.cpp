@@ -61,18 +61,13 @@ StageKey stage_key(const CompileRequest& request, CrossCompile cross,
     return key_of(request, blank_stamp(request.source, variant_key), cross);
 }
 
-void StageMemo::expect(const StageKey& key) {
-    std::lock_guard<std::mutex> hold(lock_);
-    ++entries_[key].expected;
-}
-
 void StageMemo::expect(std::vector<StageKey> keys) {
     std::sort(keys.begin(), keys.end());
     std::lock_guard<std::mutex> hold(lock_);
     for (size_t i = 0, j = 0; i < keys.size(); i = j) {
         while (j < keys.size() && keys[j] == keys[i])
             ++j;
-        if (j - i > 1 || entries_.count(keys[i])) entries_[keys[i]].expected += j - i;
+        if (j - i > 1) entries_[keys[i]].expected += j - i;
     }
 }
 

@@ -83,8 +83,7 @@ TEST_CASE("a_stage_compiled_once_serves_every_variant_that_expects_it", "[memo]"
         const CompileRequest ra = vertex_request(lang, kKeyA), rb = vertex_request(lang, b);
         const ToolchainOutputs alone = run_toolchain(ra);
         StageMemo memo;
-        memo.expect(stage_key(ra, CrossCompile::Yes, kKeyA));
-        memo.expect(stage_key(rb, CrossCompile::Yes, b));
+        memo.expect({stage_key(ra, CrossCompile::Yes, kKeyA), stage_key(rb, CrossCompile::Yes, b)});
         const ToolchainOutputs first = memo.run(ra, CrossCompile::Yes, kKeyA);
         const ToolchainOutputs second = memo.run(rb, CrossCompile::Yes, b);
         check_same(first, alone);
@@ -108,8 +107,7 @@ TEST_CASE("a_stage_nobody_else_expects_or_past_the_budget_is_compiled_each_time"
     CHECK(unplanned.counts().reused == 0);
 
     StageMemo tiny(0); // keeps nothing
-    tiny.expect(key);
-    tiny.expect(key);
+    tiny.expect({key, key});
     const ToolchainOutputs a = tiny.run(r, CrossCompile::Yes, kKeyA);
     const ToolchainOutputs b = tiny.run(r, CrossCompile::Yes, kKeyA);
     check_same(a, b);
@@ -139,8 +137,7 @@ TEST_CASE("threads_asking_for_one_stage_at_once_compile_it_once", "[memo]") {
     const StageKey key = stage_key(r, CrossCompile::No, kKeyA);
     constexpr int kThreads = 8;
     StageMemo memo;
-    for (int i = 0; i < kThreads; ++i)
-        memo.expect(key);
+    memo.expect(std::vector<StageKey>(kThreads, key));
     std::vector<ToolchainOutputs> got(kThreads);
     std::vector<std::thread> threads;
     for (int i = 0; i < kThreads; ++i)

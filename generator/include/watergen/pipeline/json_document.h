@@ -45,6 +45,8 @@ struct JsonDocumentReader {
 enum class JsonReadEnd { Done, Stopped, Malformed };
 // `why` names the byte and the fault of a malformed document.
 JsonReadEnd read_json_document(std::FILE* in, const JsonDocumentReader& reader, std::string* why);
+// One of the two above, bound to its input: a reader of a document from its text or its file.
+using ReadJsonDocument = std::function<JsonReadEnd(const JsonDocumentReader&, std::string*)>;
 JsonReadEnd read_json_document(std::string_view text, const JsonDocumentReader& reader,
                                std::string* why);
 

@@ -44,14 +44,11 @@ class StageMemo {
     static constexpr size_t kDefaultMaxBytes = size_t{64} << 20;
     explicit StageMemo(size_t max_bytes = kDefaultMaxBytes) : max_bytes_(max_bytes) {}
 
-    // Planning, before any run(): one more variant of the build will compile the stage `key`.
-    // Only a stage expected more than once is kept, and only until its last expected use (a
+    // Planning, before any run(): the stages the build's variants will compile, one key per
+    // use. Only a stage expected more than once is kept, and only until its last expected use (a
     // variant that finds its files in the cache never comes, so its share stays until the end:
-    // within max_bytes).
-    void expect(const StageKey& key);
-    // The same for a whole build's stages at once, one key per use. Only the keys given more
-    // than once get an entry (a build's fragments are mostly its own): a plan of millions of
-    // stages then holds 16 bytes each while it is counted, not an entry each.
+    // within max_bytes); only those get an entry (a build's fragments are mostly its own), so a
+    // plan of millions of stages holds 16 bytes each while it is counted, not an entry each.
     void expect(std::vector<StageKey> keys);
 
     // The toolchain outputs of `request` (its stamp blanked, see stage_key) for a variant keyed
