@@ -4,13 +4,11 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
-#include <fcntl.h>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <set>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 #include <xxhash.h>
@@ -24,6 +22,7 @@
 #include "watergen/pipeline/output_writer.h"
 #include "watergen/pipeline/safe_read.h"
 #include "watergen/pipeline/shard_file.h"
+#include "watergen/pipeline/spill_file.h"
 #include "watergen/pipeline/staged_tree.h"
 
 namespace watergen {
@@ -34,50 +33,21 @@ using OJson = nlohmann::ordered_json;
 namespace {
 
 // Where the merge keeps the variants of the shards' manifests (compact text) while it reads
-// them: an unlinked file in the staging directory, so memory holds an index, not documents.
+// them: a spill file in the staging directory, so memory holds an index, not documents.
 class Spool {
   public:
-    struct Ref {
-        uint64_t offset = 0, size = 0;
-    };
-    explicit Spool(const fs::path& dir) {
-        const fs::path path = dir / ".merge-spool";
-        fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-        if (fd_ >= 0) ::unlink(path.c_str());
-    }
-    ~Spool() {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    Spool(const Spool&) = delete;
-    Spool& operator=(const Spool&) = delete;
-    bool ok() const { return fd_ >= 0; }
-    std::optional<Ref> put(const std::string& text) {
-        const Ref r{end_, text.size()};
-        for (size_t done = 0; done < text.size();) {
-            const ssize_t n = ::pwrite(fd_, text.data() + done, text.size() - done,
-                                       static_cast<off_t>(end_ + done));
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) return std::nullopt;
-            done += static_cast<size_t>(n);
-        }
-        end_ += text.size();
-        return r;
-    }
+    using Ref = SpillFile::Ref;
+    explicit Spool(const fs::path& dir) : file_(dir, ".merge-spool") {}
+    bool ok() const { return file_.ok(); }
+    std::optional<Ref> put(const std::string& text) { return file_.append(text); }
     OJson get(Ref r) const {
-        std::string text(r.size, '\0');
-        for (size_t done = 0; done < r.size;) {
-            const ssize_t n = ::pread(fd_, text.data() + done, r.size - done,
-                                      static_cast<off_t>(r.offset + done));
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) return OJson();
-            done += static_cast<size_t>(n);
-        }
+        std::string text;
+        if (!file_.read(r.offset, r.size, text) || text.size() != r.size) return OJson();
         return OJson::parse(text, nullptr, false);
     }
 
   private:
-    int fd_ = -1;
-    uint64_t end_ = 0;
+    SpillFile file_;
 };
 
 // A variant of a shard's manifest, as the merge keeps it.

@@ -19,11 +19,12 @@ constexpr size_t kMaxReadBackBytes = size_t(64) << 20;
 
 } // namespace
 
-std::unique_ptr<StagedTree> StagedTree::open(const fs::path& out, std::string* error) {
+std::unique_ptr<StagedTree> StagedTree::open(const fs::path& out, std::string* error,
+                                             size_t run_files) {
     remove_stale_staging(out);
     const fs::path dir = make_staging_directory(out, error);
     if (dir.empty()) return nullptr;
-    return std::unique_ptr<StagedTree>(new StagedTree(dir));
+    return std::unique_ptr<StagedTree>(new StagedTree(dir, std::max<size_t>(run_files, 1)));
 }
 
 StagedTree::~StagedTree() {
@@ -48,17 +49,51 @@ std::optional<std::string> StagedTree::make_parent(const std::string& relative) 
     return std::nullopt;
 }
 
-void StagedTree::record(const std::string& relative, uint64_t size, XXH128_hash_t digest) {
+std::optional<std::string> StagedTree::record(const std::string& relative, uint64_t size,
+                                              XXH128_hash_t digest) {
     std::lock_guard<std::mutex> guard(lock_);
     files_.push_back({paths_.intern(relative), size, digest});
+    if (files_.size() < run_files_) return std::nullopt;
+    return spill();
+}
+
+namespace {
+
+// The positions of `files` in path order.
+template <typename Entries>
+std::vector<uint32_t> path_order(const Entries& files, const PathParts& paths) {
+    std::vector<uint32_t> order(files.size());
+    for (size_t i = 0; i < order.size(); ++i)
+        order[i] = static_cast<uint32_t>(i);
+    std::sort(order.begin(), order.end(),
+              [&](uint32_t a, uint32_t b) { return paths.less(files[a].path, files[b].path); });
+    return order;
+}
+
+} // namespace
+
+std::optional<std::string> StagedTree::spill() {
+    if (!runs_) runs_ = std::make_unique<FileRuns>(dir_);
+    if (!runs_->ok()) failure_ = "cannot create the build's spill file in " + dir_.string();
+    if (!failure_.empty()) return failure_;
+    FileRuns::Run run = runs_->begin_run();
+    for (const uint32_t i : path_order(files_, paths_))
+        run.add(paths_.text(files_[i].path), files_[i].size, files_[i].digest);
+    if (auto e = run.finish()) return failure_ = *e;
+    spilled_ += files_.size();
+    // A run holds its paths as text: the interned parts start again, and so does the memory of
+    // the directories made (making one again is harmless).
+    std::vector<Entry>().swap(files_);
+    paths_ = PathParts();
+    directories_.clear();
+    return std::nullopt;
 }
 
 std::optional<std::string> StagedTree::write(const std::string& relative,
                                              const std::string& bytes) {
     if (auto e = make_parent(relative)) return e;
     if (auto e = write_new_file(dir_ / relative, bytes)) return e;
-    record(relative, bytes.size(), XXH3_128bits(bytes.data(), bytes.size()));
-    return std::nullopt;
+    return record(relative, bytes.size(), XXH3_128bits(bytes.data(), bytes.size()));
 }
 
 StagedStream StagedTree::stream(const std::string& relative) {
@@ -87,29 +122,47 @@ bool StagedTree::has(const std::string& relative) const {
 
 void StagedTree::for_each_file(const std::function<void(const RecordedFile&)>& each) const {
     std::lock_guard<std::mutex> guard(lock_);
-    std::vector<uint32_t> order(files_.size());
-    for (size_t i = 0; i < order.size(); ++i)
-        order[i] = static_cast<uint32_t>(i);
-    std::sort(order.begin(), order.end(),
-              [&](uint32_t a, uint32_t b) { return paths_.less(files_[a].path, files_[b].path); });
+    const std::vector<uint32_t> order = path_order(files_, paths_);
     RecordedFile f;
-    for (const uint32_t i : order) {
-        const Entry& e = files_[i];
-        f.path = paths_.text(e.path);
-        f.size = e.size;
-        f.digest = digest_text(e.digest.high64, e.digest.low64);
+    auto give = [&](std::string path, uint64_t size, XXH128_hash_t digest) {
+        f.path = std::move(path);
+        f.size = size;
+        f.digest = digest_text(digest.high64, digest.low64);
         each(f);
+    };
+    if (!runs_) {
+        for (const uint32_t i : order)
+            give(paths_.text(files_[i].path), files_[i].size, files_[i].digest);
+        return;
     }
+    size_t next = 0;
+    const FileRuns::Next held = [&](RunRecord& r) {
+        if (next == order.size()) return false;
+        const Entry& e = files_[order[next++]];
+        r.path = paths_.text(e.path);
+        r.size = e.size;
+        r.digest = e.digest;
+        return true;
+    };
+    if (!runs_->merged(held, [&](const RunRecord& r) { give(r.path, r.size, r.digest); }) &&
+        failure_.empty())
+        failure_ = "cannot read the build's file list back from its spill file in " + dir_.string();
 }
 
 size_t StagedTree::count() const {
     std::lock_guard<std::mutex> guard(lock_);
-    return files_.size();
+    return spilled_ + files_.size();
+}
+
+std::string StagedTree::failure() const {
+    std::lock_guard<std::mutex> guard(lock_);
+    return failure_;
 }
 
 std::optional<std::string> StagedTree::commit(const fs::path& out) {
     committed_ = true; // swapped in, or removed by the swap's fallback on failure
-    auto e = swap_directory_into_place(dir_, out);
+    std::optional<std::string> e = failure();
+    if (e->empty()) e = swap_directory_into_place(dir_, out);
     if (e) {
         std::error_code ec;
         fs::remove_all(dir_, ec);
@@ -155,8 +208,7 @@ std::optional<std::string> StagedStream::close() {
                 "cannot write " + (tree_->dir() / relative_).string() + ": " + std::strerror(e);
     }
     if (!error_.empty()) return error_;
-    tree_->record(relative_, size_, XXH3_128bits_digest(state_.get()));
-    return std::nullopt;
+    return tree_->record(relative_, size_, XXH3_128bits_digest(state_.get()));
 }
 
 } // namespace watergen

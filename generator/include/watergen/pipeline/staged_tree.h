@@ -1,8 +1,9 @@
 // The output of a build as it is made: each file goes to a staging directory beside the output
 // as soon as it exists, so memory holds the files in flight, not the whole output. The tree
 // keeps what it wrote (path, size, digest) for the build record and shard.json, in 32 bytes a
-// file (each job directory's name once), and reads a file back for the steps that need one
-// again (the manifest's reflection, frozen modules).
+// file (each job directory's name once) up to a run's worth, then sorted into a spill file beside
+// it (file_runs.h): memory holds one run, whatever the build's size. It reads a file back for the
+// steps that need one again (the manifest's reflection, frozen modules).
 // Until commit() swaps it into place the output is untouched; a tree never committed is removed.
 #pragma once
 
@@ -21,6 +22,7 @@
 #include <xxhash.h>
 
 #include "watergen/pipeline/build_record.h"
+#include "watergen/pipeline/file_runs.h"
 #include "watergen/pipeline/path_parts.h"
 
 namespace watergen {
@@ -51,7 +53,10 @@ class StagedTree {
   public:
     // A fresh staging directory beside `out` (make_staging_directory, output_writer.h); nullptr
     // and the error in `error` when it cannot be made.
-    static std::unique_ptr<StagedTree> open(const std::filesystem::path& out, std::string* error);
+    // `run_files`: records held before they go to the spill file as one sorted run.
+    static constexpr size_t kRunFiles = size_t(1) << 18; // 8 MB of records, 9,500 variants' files
+    static std::unique_ptr<StagedTree> open(const std::filesystem::path& out, std::string* error,
+                                            size_t run_files = kRunFiles);
     ~StagedTree(); // removes the staging directory unless committed
     StagedTree(const StagedTree&) = delete;
     StagedTree& operator=(const StagedTree&) = delete;
@@ -63,9 +68,13 @@ class StagedTree {
     std::optional<std::string> read(const std::string& relative) const;
     bool has(const std::string& relative) const;
 
-    // Every file written, sorted by path, one at a time.
+    // Every file written, sorted by path, one at a time. A spilled run that cannot be read back
+    // ends the list early and fails the tree (failure()).
     void for_each_file(const std::function<void(const RecordedFile&)>& each) const;
     size_t count() const;
+    // Why the tree cannot be committed (its file list could not be spilled or read back); "" if
+    // it can.
+    std::string failure() const;
     const std::filesystem::path& dir() const { return dir_; }
 
     // Puts the tree in place of `out` in one step (renameat2 exchange where the file system
@@ -75,9 +84,12 @@ class StagedTree {
 
   private:
     friend class StagedStream;
-    explicit StagedTree(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    StagedTree(std::filesystem::path dir, size_t run_files)
+        : dir_(std::move(dir)), run_files_(run_files) {}
     std::optional<std::string> make_parent(const std::string& relative);
-    void record(const std::string& relative, uint64_t size, XXH128_hash_t digest);
+    std::optional<std::string> record(const std::string& relative, uint64_t size,
+                                      XXH128_hash_t digest);
+    std::optional<std::string> spill(); // with lock_ held
 
     // A file as the tree keeps it.
     struct Entry {
@@ -90,7 +102,11 @@ class StagedTree {
     mutable std::mutex lock_;
     std::unordered_set<uint64_t> directories_; // made already (XXH64 of the path)
     PathParts paths_;
-    std::vector<Entry> files_; // in write order
+    std::vector<Entry> files_; // in write order, since the last run
+    size_t run_files_;
+    std::unique_ptr<FileRuns> runs_; // made at the first run
+    size_t spilled_ = 0;             // records in runs_
+    mutable std::string failure_;
     bool committed_ = false;
 };
 
