@@ -73,23 +73,29 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
         plan.scenes.push_back(std::move(*p));
     }
     if (plan.scenes.empty()) {
-        // Sorted by key, each key made once (the full space has 1,443,840: the count
-        // the_full_space_has_1443840_variants pins). A permutations shard keeps its own only:
+        // Sorted by key, each key made once (the full space has 3,502,080: the count
+        // the_full_space_has_3502080_variants pins). A permutations shard keeps its own only:
         // the whole space's jobs would be most of a shard's memory.
-        const bool only_shard = shard.sharded() && mode == BuildMode::Permutations;
         size_t count = 0;
-        std::vector<std::pair<std::string, Variant>> keyed;
-        enumerate(material.space, [&](const Variant& v) {
-            ++count;
-            std::string key = v.key();
-            if (!only_shard || in_shard(shard, key)) keyed.emplace_back(std::move(key), v);
-        });
-        std::sort(keyed.begin(), keyed.end(),
-                  [](const auto& a, const auto& b) { return a.first < b.first; });
-        std::vector<Variant> unpruned;
-        for (auto& [key, v] : keyed)
-            unpruned.push_back(std::move(v));
-        add_jobs(plan, kUnprunedScene, unpruned, nullptr, material.targets, mode, shard);
+        if (mode == BuildMode::Permutations) {
+            plan.jobs = JobList::compact(kUnprunedScene, material.space, material.targets,
+                                         [&](const std::string& key) {
+                                             ++count;
+                                             return !shard.sharded() || in_shard(shard, key);
+                                         });
+        } else {
+            std::vector<std::pair<std::string, Variant>> keyed;
+            enumerate(material.space, [&](const Variant& v) {
+                ++count;
+                keyed.emplace_back(v.key(), v);
+            });
+            std::sort(keyed.begin(), keyed.end(),
+                      [](const auto& a, const auto& b) { return a.first < b.first; });
+            std::vector<Variant> unpruned;
+            for (auto& [key, v] : keyed)
+                unpruned.push_back(std::move(v));
+            add_jobs(plan, kUnprunedScene, unpruned, nullptr, material.targets, mode, shard);
+        }
         plan.manifest_scenes.push_back({kUnprunedScene, nullptr, count});
     }
     for (const ScenePlan& s : plan.scenes) {
@@ -156,10 +162,12 @@ struct WriteErrors {
 };
 
 // Writes a job's files under its directory into the tree as soon as they exist, and lets them go.
-std::function<void(size_t, JobResult&)> job_sink(const std::vector<BuildJob>& jobs,
-                                                 StagedTree& tree, WriteErrors& errors) {
-    return [&jobs, &tree, &errors](size_t i, JobResult& r) {
-        const std::string dir = job_directory(jobs[i]);
+// `batch`: the jobs of the batch being run, the first of them job `begin`.
+std::function<void(size_t, JobResult&)> job_sink(const std::vector<BuildJob>& batch,
+                                                 const size_t& begin, StagedTree& tree,
+                                                 WriteErrors& errors) {
+    return [&batch, &begin, &tree, &errors](size_t i, JobResult& r) {
+        const std::string dir = job_directory(batch[i - begin]);
         for (const auto& [path, bytes] : r.files)
             errors.note(tree.write(dir + "/" + path, bytes));
         r.files.clear();
@@ -181,18 +189,10 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
     };
     // A shader with the same shape as another's of its scene is that one's module: its
     // variants are frozen from it, beside its own, where the manifest points them.
-    std::map<std::pair<std::string, std::string>, size_t> index;
-    for (size_t i = 0; i < jobs.size(); ++i)
-        index[{jobs[i].scene, job_key(jobs[i])}] = i;
     std::vector<Work> work;
     for (size_t i = 0; i < jobs.size(); ++i) {
         if (!jobs[i].shader || !results[i].ok()) continue;
-        size_t built = i;
-        if (!results[i].same_as.empty()) {
-            const auto it = index.find({jobs[i].scene, results[i].same_as});
-            if (it == index.end()) continue;
-            built = it->second;
-        }
+        const size_t built = results[i].files_of(i);
         for (const Variant& v : jobs[i].serves)
             for (const char* lang : {"glsl", "hlsl"})
                 if (const auto& names = results[built].file_names(); std::binary_search(
@@ -316,19 +316,38 @@ BuildSummary build_material_now(const BuildRequest& request) {
     }
     WriteErrors errors;
     BuildOptions options = request.options;
-    options.sink = job_sink(plan->jobs, *tree, errors);
-    std::vector<JobResult> results =
-        run_build_jobs(request.material, plan->jobs, options, &s.stages);
+    std::vector<BuildJob> batch; // the jobs being run, from job `begin` on
+    size_t begin = 0;
+    // Job i, of the batch or (made again from the list) of an earlier one.
+    auto job_at = [&](size_t i) {
+        return i >= begin && i - begin < batch.size() ? batch[i - begin] : plan->jobs.at(i);
+    };
+    options.sink = job_sink(batch, begin, *tree, errors);
+    options.read_back = [&](size_t job,
+                            const std::vector<std::string>& names) -> std::optional<FileMap> {
+        const std::string dir = job_directory(plan->jobs.at(job)) + "/";
+        FileMap files;
+        for (const std::string& name : names) {
+            auto bytes = tree->read(dir + name);
+            if (!bytes) return std::nullopt;
+            files[name] = std::move(*bytes);
+        }
+        return files;
+    };
+    // A permutations build writes its manifest, and shard.json's shapes, a batch of jobs at a
+    // time: memory holds one batch's jobs and results. A modes build's manifest lists each
+    // shader's variants across shaders: it holds every result (its jobs are shaders, far fewer).
+    const bool streamed = request.mode == BuildMode::Permutations;
     s.shaders = plan->jobs.size();
-    for (const BuildJob& job : plan->jobs)
-        s.variants += job.shader ? job.serves.size() : 1;
-    for (size_t i = 0; i < results.size(); ++i)
-        count(plan->jobs[i], results[i], request.options.cache, s);
-    if (request.freeze && request.mode == BuildMode::Specialized)
-        add_frozen(plan->jobs, results, request.options, s, *tree, errors);
-    // The companion passes the built variants draw with, each once for the whole output.
-    PassesOutput passes =
-        build_needed_passes(request.material, plan->jobs, results, request.options);
+    s.variants = plan->jobs.size();
+    if (!streamed) {
+        s.variants = 0;
+        for (const BuildJob& job : plan->jobs.held())
+            s.variants += job.shader ? job.serves.size() : 1;
+    }
+    // The companion passes the variants draw with, each once for the whole output; first, as
+    // the manifest's entries point at them.
+    PassesOutput passes = build_needed_passes(request.material, plan->jobs, request.options);
     s.passes = passes.passes.size();
     s.passes_cached = passes.cached;
     s.cache_rejected += passes.cache_rejected.size();
@@ -338,31 +357,61 @@ BuildSummary build_material_now(const BuildRequest& request) {
     s.diagnostics.insert(s.diagnostics.end(), passes.diagnostics.begin(), passes.diagnostics.end());
     for (const auto& [path, bytes] : passes.files)
         errors.note(tree->write(path, bytes));
+    FileMap().swap(passes.files);
+
+    const ReadJobFile read = [&](size_t job, const std::string& name) {
+        return tree->read(job_directory(job_at(job)) + "/" + name);
+    };
+    StagedStream manifest = tree->stream("manifest.json");
+    const WriteText write = [&](std::string_view piece) { manifest.write(piece); };
+    std::optional<ManifestWriter> entries;
+    if (streamed)
+        entries.emplace(request.material, plan->manifest_scenes, passes.passes, read, write,
+                        request.options.bindings);
+    std::optional<StagedStream> shard_stream;
+    std::optional<ShardJsonWriter> shard_json;
+    if (request.shard.sharded()) {
+        shard_stream.emplace(tree->stream(kShardFile));
+        shard_json.emplace(request.shard, request.inputs_hash, s.variants,
+                           [&](std::string_view piece) { shard_stream->write(piece); });
+    }
+    BuildLedger ledger;
+    std::vector<JobResult> held; // a modes build's
+    const size_t batch_jobs =
+        std::max<size_t>(streamed ? request.batch_jobs : plan->jobs.size(), 1);
+    for (begin = 0; begin < plan->jobs.size(); begin += batch_jobs) {
+        batch = plan->jobs.range(begin, std::min(begin + batch_jobs, plan->jobs.size()));
+        std::vector<JobResult> results =
+            run_build_jobs(request.material, plan->jobs, begin, batch, options, ledger, &s.stages);
+        for (size_t k = 0; k < batch.size(); ++k) {
+            const JobResult& r = results[k];
+            count(batch[k], r, request.options.cache, s);
+            if (s.failed > 0) continue; // nothing is published: the rest is not written
+            if (entries)
+                entries->add(batch[k], r, r.files_of(begin + k), job_at(r.files_of(begin + k)));
+            if (shard_json) shard_json->add(batch[k], r);
+        }
+        if (!streamed) held = std::move(results);
+    }
+    if (request.freeze && request.mode == BuildMode::Specialized)
+        add_frozen(plan->jobs.held(), held, request.options, s, *tree, errors);
     const ListFiles list_files = [&](const std::function<void(const RecordedFile&)>& each) {
         tree->for_each_file(each);
     };
     if (s.failed == 0 && !errors.first) {
-        const ReadJobFile read = [&](size_t job, const std::string& name) {
-            return tree->read(job_directory(plan->jobs[job]) + "/" + name);
-        };
-        StagedStream manifest = tree->stream("manifest.json");
-        const WriteText write = [&](std::string_view piece) { manifest.write(piece); };
-        if (request.mode == BuildMode::Permutations)
-            write_manifest(request.material, plan->manifest_scenes, plan->jobs, results,
-                           passes.passes, read, write, request.options.bindings);
+        if (entries)
+            entries->end();
         else
             write_modes_manifest(request.material, request.mode, request.freeze,
-                                 plan->manifest_scenes, plan->jobs, results, passes.passes, read,
-                                 write, request.options.bindings);
+                                 plan->manifest_scenes, plan->jobs.held(), held, passes.passes,
+                                 read, write, request.options.bindings);
         errors.note(manifest.close());
         // The build's C++ header, from what it wrote; a shard's comes from the merge instead.
         if (!request.shard.sharded() && !errors.first) errors.note(write_shaders_header(*tree));
-        if (request.shard.sharded() && !errors.first) {
+        if (shard_json && !errors.first) {
             // Lists every file so far: shard.json is recorded once it is closed.
-            StagedStream shard = tree->stream(kShardFile);
-            write_shard_json(request.shard, request.inputs_hash, plan->jobs, results, s.variants,
-                             list_files, [&](std::string_view piece) { shard.write(piece); });
-            errors.note(shard.close());
+            shard_json->end(list_files);
+            errors.note(shard_stream->close());
         }
     }
     if (errors.first)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "watergen/pipeline/manifest.h"
 
@@ -135,23 +136,20 @@ CausticsPassBuild build_caustics_pass_files(const Material& material, const Caus
     return b;
 }
 
-PassesOutput build_needed_passes(const Material& material, const std::vector<BuildJob>& jobs,
-                                 const std::vector<JobResult>& results,
+PassesOutput build_needed_passes(const Material& material, const JobList& jobs,
                                  const BuildOptions& options) {
-    std::map<CausticsPassKey, std::vector<Target>> needed; // pass -> targets, all_targets() order
+    std::map<CausticsPassKey, std::set<Target>> wanted; // pass -> the targets of its variants
     for (size_t i = 0; i < jobs.size(); ++i) {
-        if (!results[i].ok()) continue;
-        const std::vector<Variant> one{jobs[i].variant};
-        for (const Variant& v : jobs[i].shader ? jobs[i].serves : one)
-            if (const auto key = caustics_pass_for(v)) {
-                std::vector<Target>& t = needed[*key];
-                t.insert(t.end(), jobs[i].targets.begin(), jobs[i].targets.end());
-            }
+        const BuildJob job = jobs.at(i);
+        const std::vector<Variant> one{job.variant};
+        for (const Variant& v : job.shader ? job.serves : one)
+            if (const auto key = caustics_pass_for(v))
+                wanted[*key].insert(job.targets.begin(), job.targets.end());
     }
+    std::map<CausticsPassKey, std::vector<Target>> needed; // in all_targets() order
     std::vector<CausticsPassKey> keys;
-    for (auto& [key, targets] : needed) {
-        std::sort(targets.begin(), targets.end());
-        targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
+    for (const auto& [key, targets] : wanted) {
+        needed[key].assign(targets.begin(), targets.end());
         keys.push_back(key);
     }
     std::vector<CausticsPassBuild> built(keys.size());

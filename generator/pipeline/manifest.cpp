@@ -106,8 +106,6 @@ OJson scene_json(const ManifestScene& s) {
     return j;
 }
 
-using JobIndex = std::map<std::pair<std::string, std::string>, size_t>; // (scene, key) -> job
-
 // What folding did to the job's shader.
 void add_fold(OJson& v, const BuildJob& job, const JobResult& r) {
     OJson folded = OJson::object();
@@ -134,22 +132,13 @@ void add_fold(OJson& v, const BuildJob& job, const JobResult& r) {
     v["live_ir_nodes"] = {{"before", r.fold.live_before}, {"after", r.fold.live_after}};
 }
 
-// Where the job's files are (its own, or those of the earlier job with the same shader), its
-// reflection and SPIR-V counts; returns the job whose files these are.
-size_t add_output(OJson& v, size_t i, const std::vector<BuildJob>& jobs,
-                  const std::vector<JobResult>& results, const JobIndex& index,
-                  const ReadJobFile& read) {
-    const BuildJob& job = jobs[i];
-    const JobResult& r = results[i];
-    size_t built = i;
-    if (!r.same_as.empty()) {
-        // Same shader as an earlier job of the scene: its files are that job's.
-        if (const auto it = index.find({job.scene, r.same_as}); it != index.end())
-            built = it->second;
-        v["same_as"] = r.same_as;
-    }
-    v["directory"] = job_directory(jobs[built]);
-    v["files"] = files_json(job_directory(jobs[built]), results[built].file_names());
+// Where the job's files are (its own, or those of `built_job`, the earlier job with the same
+// shader, which `r` names), its reflection and SPIR-V counts.
+void add_output(OJson& v, const JobResult& r, size_t built, const BuildJob& built_job,
+                const ReadJobFile& read) {
+    if (!r.same_as.empty()) v["same_as"] = r.same_as;
+    v["directory"] = job_directory(built_job);
+    v["files"] = files_json(job_directory(built_job), r.file_names());
     if (const auto description = read(built, "variant.json")) {
         const OJson d = OJson::parse(*description);
         v["reflection"] = {{"uniform_block", d.value("uniform_block", OJson::object())},
@@ -161,7 +150,6 @@ size_t add_output(OJson& v, size_t i, const std::vector<BuildJob>& jobs,
         // A mesh variant's stages, vertex layout and grid (variant.json's "geometry").
         if (d.contains("geometry")) v["geometry"] = d["geometry"];
     }
-    return built;
 }
 
 // The map's name as the manifest gives it: a profile's, or its file's (not the path, which
@@ -251,30 +239,42 @@ std::string job_directory(const BuildJob& job) {
                       : variant_directory(job.scene, job.variant);
 }
 
+ManifestWriter::ManifestWriter(const Material& material, const std::vector<ManifestScene>& scenes,
+                               const CausticsPasses& passes, const ReadJobFile& read,
+                               WriteText write, const BindingMap* bindings)
+    : material_(material), passes_(passes), read_(read), write_(std::move(write)),
+      doc_(header_json(material, scenes, bindings), write_) {
+    doc_.begin_array("variants");
+}
+
+void ManifestWriter::add(const BuildJob& job, const JobResult& r, size_t built,
+                         const BuildJob& built_job) {
+    OJson v;
+    v["scene"] = job.scene;
+    v["key"] = job.variant.key();
+    v["hash"] = job.variant.short_hash();
+    v["content_hash"] = r.content_hash;
+    v["nodes"] = nodes_json(job.variant);
+    add_fold(v, job, r);
+    add_output(v, r, built, built_job, read_);
+    add_passes(v, material_, job.variant, job, r, passes_);
+    doc_.element(v);
+}
+
+void ManifestWriter::end() {
+    doc_.end_array();
+    doc_.end();
+}
+
 void write_manifest(const Material& material, const std::vector<ManifestScene>& scenes,
                     const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
                     const CausticsPasses& passes, const ReadJobFile& read, const WriteText& write,
                     const BindingMap* bindings) {
-    JsonDocumentWriter doc(header_json(material, scenes, bindings), write);
-    JobIndex index;
+    // Jobs are sorted by (scene, key): the manifest's order.
+    ManifestWriter manifest(material, scenes, passes, read, write, bindings);
     for (size_t i = 0; i < jobs.size(); ++i)
-        index[{jobs[i].scene, job_key(jobs[i])}] = i;
-    doc.begin_array("variants");
-    for (const auto& [scene_key, i] : index) {
-        const BuildJob& job = jobs[i];
-        OJson v;
-        v["scene"] = job.scene;
-        v["key"] = job.variant.key();
-        v["hash"] = job.variant.short_hash();
-        v["content_hash"] = results[i].content_hash;
-        v["nodes"] = nodes_json(job.variant);
-        add_fold(v, job, results[i]);
-        add_output(v, i, jobs, results, index, read);
-        add_passes(v, material, job.variant, job, results[i], passes);
-        doc.element(v);
-    }
-    doc.end_array();
-    doc.end();
+        manifest.add(jobs[i], results[i], results[i].files_of(i), jobs[results[i].files_of(i)]);
+    manifest.end();
 }
 
 namespace {
@@ -326,8 +326,8 @@ bool has_file(const JobResult& r, const std::string& name) {
 
 // The shader's entry; the selector places of its built job into `places`.
 OJson shader_json(size_t i, const std::vector<BuildJob>& jobs,
-                  const std::vector<JobResult>& results, const JobIndex& index, BuildMode mode,
-                  const ReadJobFile& read, Places& places) {
+                  const std::vector<JobResult>& results, BuildMode mode, const ReadJobFile& read,
+                  Places& places) {
     const BuildJob& job = jobs[i];
     const ShaderChoices& s = *job.shader;
     OJson v;
@@ -338,7 +338,8 @@ OJson shader_json(size_t i, const std::vector<BuildJob>& jobs,
     for (const auto& a : axes())
         choices[a.name] = s.offered(a.name);
     v["axes"] = choices;
-    const size_t built = add_output(v, i, jobs, results, index, read);
+    const size_t built = results[i].files_of(i);
+    add_output(v, results[i], built, jobs[built], read);
     places = selector_places(read(built, "variant.json"), mode);
     OJson selectors = OJson::array();
     for (const auto& axis : s.switched_axes()) {
@@ -358,12 +359,9 @@ OJson shader_json(size_t i, const std::vector<BuildJob>& jobs,
 // freeze) the variant's own frozen SPIR-V.
 OJson served_json(const Material& material, const Variant& variant, size_t i,
                   const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                  const JobIndex& index, BuildMode mode, bool freeze, const CausticsPasses& passes,
-                  const Places& places) {
+                  BuildMode mode, bool freeze, const CausticsPasses& passes, const Places& places) {
     const BuildJob& job = jobs[i];
-    size_t built = i;
-    if (const auto it = index.find({job.scene, results[i].same_as}); it != index.end())
-        built = it->second;
+    const size_t built = results[i].files_of(i);
     OJson v;
     v["scene"] = job.scene;
     v["key"] = variant.key();
@@ -401,16 +399,17 @@ void write_modes_manifest(const Material& material, BuildMode mode, bool freeze,
     OJson head = header_json(material, scenes, bindings);
     head["mode"] = to_string(mode);
     JsonDocumentWriter doc(head, write);
-    JobIndex index;
-    for (size_t i = 0; i < jobs.size(); ++i)
-        index[{jobs[i].scene, job_key(jobs[i])}] = i;
     // Each variant once, sorted by (scene, key) across the shaders that serve them.
     std::vector<std::tuple<std::string, std::string, size_t, size_t>> served;
     std::vector<Places> places(jobs.size());
     doc.begin_array("shaders");
-    for (const auto& [scene_key, i] : index) {
+    std::vector<std::tuple<std::string, std::string, size_t>> order; // (scene, key, job)
+    for (size_t i = 0; i < jobs.size(); ++i)
+        order.emplace_back(jobs[i].scene, job_key(jobs[i]), i);
+    std::sort(order.begin(), order.end());
+    for (const auto& [scene, key, i] : order) {
         if (!jobs[i].shader) continue;
-        doc.element(shader_json(i, jobs, results, index, mode, read, places[i]));
+        doc.element(shader_json(i, jobs, results, mode, read, places[i]));
         for (size_t k = 0; k < jobs[i].serves.size(); ++k)
             served.emplace_back(jobs[i].scene, jobs[i].serves[k].key(), i, k);
     }
@@ -418,8 +417,8 @@ void write_modes_manifest(const Material& material, BuildMode mode, bool freeze,
     std::sort(served.begin(), served.end());
     doc.begin_array("variants");
     for (const auto& [scene, key, i, k] : served)
-        doc.element(served_json(material, jobs[i].serves[k], i, jobs, results, index, mode, freeze,
-                                passes, places[i]));
+        doc.element(served_json(material, jobs[i].serves[k], i, jobs, results, mode, freeze, passes,
+                                places[i]));
     doc.end_array();
     doc.end();
 }

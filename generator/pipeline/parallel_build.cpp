@@ -10,6 +10,7 @@
 #include <thread>
 
 #include <fmt/format.h>
+#include <xxhash.h>
 
 #include "watergen/pipeline/variant_build.h"
 #include "watergen/toolchain/glslang_stage.h"
@@ -129,28 +130,62 @@ void compose_and_hash(const Material& material, const BuildJob& job, const EmitO
 
 struct BuildPlan {
     std::vector<size_t> to_build;
-    std::vector<std::pair<size_t, size_t>> copies; // (job, job whose files it takes)
+    std::vector<std::pair<size_t, size_t>> copies;   // (job, job of the batch it takes files of)
+    std::vector<std::pair<size_t, size_t>> borrowed; // (job, job of an earlier batch)
 };
 
+// A content or shape hash's text as the ledger keys it: 16 bytes, not the text.
+BuildLedger::Hash128 hash_of(const std::string& text) {
+    const XXH128_hash_t h = XXH3_128bits(text.data(), text.size());
+    return {h.high64, h.low64};
+}
+
+bool has_targets(const std::vector<Target>& all, const std::vector<Target>& some) {
+    return std::all_of(some.begin(), some.end(),
+                       [&](Target t) { return std::find(all.begin(), all.end(), t) != all.end(); });
+}
+
 // Variants of one scene that folded to the same shader: build the first only. Equal
-// content in different scenes (the same variant folded alike) is built once and shared.
-BuildPlan plan_builds(const std::vector<BuildJob>& jobs, std::vector<JobResult>& results) {
+// content in different scenes (the same variant folded alike) is built once and shared: taken
+// from the builder when it is of this batch, read back when of an earlier one (if it kept every
+// target this job needs; else built again).
+BuildPlan plan_builds(const JobList& all, size_t begin, const std::vector<BuildJob>& batch,
+                      std::vector<JobResult>& results, BuildLedger& ledger, bool can_read_back) {
     BuildPlan plan;
-    std::map<std::pair<std::string, std::string>, size_t> first;
-    std::map<std::string, size_t> builder;
-    for (size_t i = 0; i < jobs.size(); ++i) {
-        if (!results[i].ok()) continue;
+    // A job of this batch, or (made again from the list) of an earlier one.
+    auto job = [&](size_t i) { return i >= begin ? batch[i - begin] : all.at(i); };
+    const std::string last_scene = all.empty() ? "" : all.at(all.size() - 1).scene;
+    for (size_t i = begin; i < begin + batch.size(); ++i) {
+        JobResult& r = results[i - begin];
+        const BuildJob& own = batch[i - begin];
+        if (!r.ok()) continue;
+        if (own.scene != ledger.scene) {
+            ledger.first.clear(); // a shape is the same shader only within a scene
+            ledger.scene = own.scene;
+        }
         auto [it, inserted] =
-            first.emplace(std::make_pair(jobs[i].scene, results[i].shape_hash), i);
+            ledger.first.try_emplace(hash_of(r.shape_hash), BuildLedger::Built{i, nullptr});
         if (!inserted) {
-            results[i].same_as = job_key(jobs[it->second]);
+            r.same_as = job_key(job(it->second.job));
+            r.same_as_job = it->second.job;
+            if (it->second.job < begin) r.names = it->second.names; // of an earlier batch
             continue;
         }
-        auto [b, fresh] = builder.emplace(results[i].content_hash, i);
-        if (fresh)
+        // Only a later scene can take this job's files: the last scene's are not kept.
+        const bool later_scenes = own.scene != last_scene;
+        const BuildLedger::Hash128 content = hash_of(r.content_hash);
+        const auto b = ledger.built.find(content);
+        if (b == ledger.built.end()) {
             plan.to_build.push_back(i);
-        else
-            plan.copies.emplace_back(i, b->second);
+            if (later_scenes) ledger.built.emplace(content, BuildLedger::Built{i, nullptr});
+        } else if (b->second.job >= begin) {
+            plan.copies.emplace_back(i, b->second.job);
+        } else if (can_read_back && b->second.names &&
+                   has_targets(job(b->second.job).targets, own.targets)) {
+            plan.borrowed.emplace_back(i, b->second.job);
+        } else {
+            plan.to_build.push_back(i);
+        }
     }
     return plan;
 }
@@ -196,10 +231,6 @@ const std::vector<std::string>& JobResult::file_names() const {
     return names ? *names : none;
 }
 
-std::string job_key(const BuildJob& job) {
-    return job.shader ? job.shader->key() : job.variant.key();
-}
-
 unsigned hardware_threads() {
     return std::max(1u, std::thread::hardware_concurrency());
 }
@@ -236,9 +267,24 @@ FileMap filter_targets(const FileMap& all, const std::vector<Target>& targets) {
     return kept;
 }
 
+BuildLedger::BuildLedger() : name_lists(std::make_unique<NameLists>()) {}
+BuildLedger::~BuildLedger() = default;
+
 std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs,
                                       const BuildOptions& options, StageCounts* stage_counts) {
-    std::vector<JobResult> results(jobs.size());
+    BuildLedger ledger;
+    return run_build_jobs(material, JobList(jobs), 0, jobs, options, ledger, stage_counts);
+}
+
+std::vector<JobResult> run_build_jobs(const Material& material, const JobList& list, size_t begin,
+                                      const std::vector<BuildJob>& batch,
+                                      const BuildOptions& options, BuildLedger& ledger,
+                                      StageCounts* stage_counts) {
+    const size_t end = begin + batch.size();
+    // Job i of the batch (begin <= i < end).
+    auto job = [&](size_t i) -> const BuildJob& { return batch[i - begin]; };
+    std::vector<JobResult> results(end - begin);
+    auto result = [&](size_t i) -> JobResult& { return results[i - begin]; };
     // glslang builds its tables once per process; do it before the threads race for it.
     glslang_warm_up();
 
@@ -246,46 +292,47 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
     const StageCompile compile{false, &memo};
     const EmitOptions emit =
         with_bindings(EmitOptions{false, {}, LoopUnroll::AsHinted, options.bindings});
-    std::vector<StageKeys> stages(jobs.size());
-    parallel_for(jobs.size(), options.threads, [&](size_t i) {
-        compose_and_hash(material, jobs[i], emit, compile, results[i], stages[i]);
+    std::vector<StageKeys> stages(results.size());
+    parallel_for(results.size(), options.threads, [&](size_t k) {
+        compose_and_hash(material, batch[k], emit, compile, results[k], stages[k]);
     });
-    const BuildPlan plan = plan_builds(jobs, results);
+    const BuildPlan plan =
+        plan_builds(list, begin, batch, results, ledger, static_cast<bool>(options.read_back));
     // The stages of the jobs that will compile, so the memo keeps those more than one shares.
     std::vector<StageKey> expected;
     for (size_t i : plan.to_build)
-        for (const StageKey& key : stages[i])
+        for (const StageKey& key : stages[i - begin])
             if (!key.empty()) expected.push_back(key);
     std::vector<StageKeys>().swap(stages);
     memo.expect(std::move(expected));
 
     std::mutex progress_lock;
-    BuildProgress progress{0, jobs.size(), 0, 0, ""};
+    BuildProgress& progress = ledger.progress;
+    progress.total = list.size();
     auto report = [&](size_t i) {
         if (!options.progress) return;
         std::lock_guard<std::mutex> lock(progress_lock);
         ++progress.done;
-        progress.cached += results[i].cached ? 1 : 0;
-        progress.failed += results[i].ok() ? 0 : 1;
-        progress.key = job_key(jobs[i]);
+        progress.cached += result(i).cached ? 1 : 0;
+        progress.failed += result(i).ok() ? 0 : 1;
+        progress.key = job_key(job(i));
         options.progress(progress);
     };
-    for (size_t i = 0; i < jobs.size(); ++i)
-        if (!results[i].ok() || !results[i].same_as.empty()) report(i);
+    for (size_t i = begin; i < end; ++i)
+        if (!result(i).ok() || !result(i).same_as.empty()) report(i);
 
     // The jobs that take each built job's files (same content in another scene), done on the
     // builder's thread as soon as its files exist: nothing is kept for them.
     std::map<size_t, std::vector<size_t>> copies;
-    NameLists name_lists;
     for (const auto& [i, from] : plan.copies)
         copies[from].push_back(i);
     auto finish = [&](size_t i, const FileMap* all) {
-        JobResult& r = results[i];
-        if (all) r.files = filter_targets(*all, jobs[i].targets);
+        JobResult& r = result(i);
+        if (all) r.files = filter_targets(*all, job(i).targets);
         std::vector<std::string> names;
         for (const auto& [name, bytes] : r.files)
             names.push_back(name);
-        r.names = name_lists.intern(std::move(names));
+        r.names = ledger.name_lists->intern(std::move(names));
         if (options.sink && r.ok()) options.sink(i, r);
         report(i);
     };
@@ -294,28 +341,65 @@ std::vector<JobResult> run_build_jobs(const Material& material, const std::vecto
                                                                     variant_file_names(true)};
     parallel_for(plan.to_build.size(), options.threads, [&](size_t k) {
         const size_t i = plan.to_build[k];
-        JobResult& r = results[i];
+        JobResult& r = result(i);
         const auto t0 = std::chrono::steady_clock::now();
         auto compose = [&] {
             Diagnostics composed; // reported in phase 1 already
-            return compose_job(material, jobs[i], composed);
+            return compose_job(material, job(i), composed);
         };
         std::optional<FileMap> all =
             load_or_build(options, emit, compose, compile, r,
-                          expected_files[jobs[i].variant.choice("geometry") == "tessellated"]);
+                          expected_files[job(i).variant.choice("geometry") == "tessellated"]);
         r.milliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
         finish(i, all ? &*all : nullptr);
         if (const auto it = copies.find(i); it != copies.end())
             for (size_t c : it->second) {
-                results[c].diagnostics = r.diagnostics;
-                results[c].cached = r.cached;
-                results[c].shared = true;
+                result(c).diagnostics = r.diagnostics;
+                result(c).cached = r.cached;
+                result(c).shared = true;
                 finish(c, all ? &*all : nullptr);
             }
     });
-    if (stage_counts) *stage_counts = memo.counts();
+    // Files an earlier batch wrote, read back for the jobs of later scenes that take them.
+    parallel_for(plan.borrowed.size(), options.threads, [&](size_t k) {
+        const auto [i, from] = plan.borrowed[k];
+        const auto it = ledger.built.find(hash_of(result(i).content_hash));
+        std::optional<FileMap> all = options.read_back(from, *it->second.names);
+        JobResult& r = result(i);
+        if (all) {
+            r.shared = true;
+        } else {
+            const BuildJob builder = list.at(from);
+            r.diagnostics.push_back({Severity::Error, "", 0, 0, "",
+                                     job(i).scene + ": " + job_key(job(i)) +
+                                         ": cannot read back the files it shares with " +
+                                         builder.scene + ": " + job_key(builder)});
+        }
+        finish(i, all ? &*all : nullptr);
+    });
+    // What later batches need of this one: the names of the files each first shape and each
+    // content's builder wrote; and the files of each job that points at an earlier one.
+    for (size_t i = begin; i < end; ++i) {
+        JobResult& r = result(i);
+        if (!r.ok()) continue;
+        if (!r.same_as.empty()) {
+            if (r.same_as_job >= begin) r.names = result(r.same_as_job).names;
+            continue;
+        }
+        if (auto it = ledger.first.find(hash_of(r.shape_hash));
+            it != ledger.first.end() && it->second.job == i)
+            it->second.names = r.names;
+        if (auto it = ledger.built.find(hash_of(r.content_hash));
+            it != ledger.built.end() && it->second.job == i)
+            it->second.names = r.names;
+    }
+    if (stage_counts) {
+        const StageCounts counted = memo.counts();
+        stage_counts->compiled += counted.compiled;
+        stage_counts->reused += counted.reused;
+    }
     return results;
 }
 

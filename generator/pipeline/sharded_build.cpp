@@ -286,9 +286,9 @@ std::string check_counts(const OJson& head, std::map<std::string, size_t> held) 
 
 } // namespace
 
-void write_shard_json(const Shard& shard, const std::string& inputs_hash,
-                      const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                      size_t variants, const ListFiles& files, const WriteText& write) {
+namespace {
+
+OJson shard_head(const Shard& shard, const std::string& inputs_hash, size_t variants) {
     OJson head;
     head["watergen_shard"] = 1;
     head["index"] = shard.index;
@@ -296,15 +296,27 @@ void write_shard_json(const Shard& shard, const std::string& inputs_hash,
     head["toolchain"] = toolchain_fingerprint();
     head["inputs"] = inputs_hash;
     head["variants"] = variants;
-    JsonDocumentWriter doc(head, write);
-    doc.begin_array("shapes");
-    for (size_t i = 0; i < jobs.size(); ++i)
-        doc.element({jobs[i].scene, job_key(jobs[i]), results[i].shape_hash});
-    doc.end_array();
-    doc.begin_array("files");
-    files([&](const RecordedFile& f) { doc.element({f.path, f.size, f.digest}); });
-    doc.end_array();
-    doc.end();
+    return head;
+}
+
+} // namespace
+
+ShardJsonWriter::ShardJsonWriter(const Shard& shard, const std::string& inputs_hash,
+                                 size_t variants, WriteText write)
+    : write_(std::move(write)), doc_(shard_head(shard, inputs_hash, variants), write_) {
+    doc_.begin_array("shapes");
+}
+
+void ShardJsonWriter::add(const BuildJob& job, const JobResult& r) {
+    doc_.element({job.scene, job_key(job), r.shape_hash});
+}
+
+void ShardJsonWriter::end(const ListFiles& files) {
+    doc_.end_array();
+    doc_.begin_array("files");
+    files([&](const RecordedFile& f) { doc_.element({f.path, f.size, f.digest}); });
+    doc_.end_array();
+    doc_.end();
 }
 
 MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,

@@ -27,6 +27,40 @@ TEST_CASE("output_is_byte_identical_for_one_thread_and_all_threads", "[build]") 
     CHECK(fa == reference_build()); // all threads, from the JSON file: the same bytes
 }
 
+TEST_CASE("a_build_run_a_few_jobs_at_a_time_writes_the_bytes_of_one_run", "[build]") {
+    // Batches of 3: variants of open_ocean point at shaders of earlier batches (same_as), and
+    // (with a twin of a scene, folded alike) a scene takes the files another scene's earlier
+    // batch built, read back from the staging tree.
+    const TempDir tmp("batches");
+    std::vector<SceneFacts> scenes = example_scenes();
+    SceneFacts twin = scenes.front();
+    twin.name += "_twin";
+    scenes.push_back(twin);
+    for (const bool with_twin : {false, true}) {
+        BuildRequest whole{default_material(), scenes, tmp.path / "whole", {}};
+        if (!with_twin) whole.scenes.pop_back();
+        BuildRequest batched = whole;
+        batched.out = tmp.path / "batched";
+        batched.batch_jobs = 3;
+        const BuildSummary a = build_material(whole), b = build_material(batched);
+        REQUIRE(a.ok());
+        REQUIRE(b.ok());
+        CHECK(b.variants == a.variants);
+        CHECK(b.same == a.same);
+        CHECK(b.same > 0);
+        CHECK(b.shared == a.shared);
+        CHECK(b.built == a.built);
+        CHECK(b.files == a.files);
+        CHECK(read_tree(batched.out) == read_tree(whole.out));
+        if (with_twin) {
+            CHECK(b.shared > 0);
+            CHECK(b.shared == b.variants - b.same - b.built); // the twin's, all shared
+        } else {
+            CHECK(read_tree(batched.out) == reference_build());
+        }
+    }
+}
+
 TEST_CASE("an_unchanged_variant_comes_from_the_cache_with_the_same_bytes", "[build]") {
     const TempDir tmp("cache");
     BuildRequest r{default_material(), example_scenes(), tmp.path / "out", {}};

@@ -22,7 +22,7 @@ constexpr const char* kUnprunedScene = "unpruned";
 
 struct BuildPlan {
     std::vector<ScenePlan> scenes; // sorted by name; empty: unpruned
-    std::vector<BuildJob> jobs;    // sorted by (scene, key); facts point into `scenes`
+    JobList jobs; // sorted by (scene, key); facts point into `scenes`; unpruned: compact
     std::vector<ManifestScene> manifest_scenes;
 };
 
@@ -78,6 +78,10 @@ struct BuildRequest {
     std::string inputs_hash = "";
     // Only the jobs of this shard (permutations mode), and shard.json beside the manifest.
     Shard shard = {};
+    // Jobs a permutations build runs at once (run_build_jobs over a range): memory holds one
+    // batch's results, a few KB a job; a stage two batches share is compiled once per batch.
+    // Output bytes do not depend on it.
+    size_t batch_jobs = 4096;
 };
 
 // The summary of a no-op build when the request's record (inputs_hash, shard, out, cache)

@@ -77,11 +77,11 @@ struct PassesOutput {
     Diagnostics diagnostics;
 };
 
-// The passes the variants of the jobs that built need (a shader of the specialized and
-// branching modes: those of every variant it serves), each built once on `options.threads`
-// workers, or copied from `options.cache`.
-PassesOutput build_needed_passes(const Material& material, const std::vector<BuildJob>& jobs,
-                                 const std::vector<JobResult>& results,
+// The passes the variants of the jobs need (a shader of the specialized and branching modes:
+// those of every variant it serves), each built once on `options.threads` workers, or copied
+// from `options.cache`. A build makes them before its jobs (its manifest's entries point at
+// them); it publishes nothing if a job fails, so the passes of jobs that fail are not missed.
+PassesOutput build_needed_passes(const Material& material, const JobList& jobs,
                                  const BuildOptions& options);
 
 // A water variant's "passes" entry: {"caustics": {method, wave_model, directory, files (those

@@ -42,6 +42,24 @@ void write_manifest(const Material& material, const std::vector<ManifestScene>& 
                     const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
                     const CausticsPasses& passes, const ReadJobFile& read, const WriteText& write,
                     const BindingMap* bindings = nullptr);
+// The same, written as a build's batches of jobs finish (each batch's entries in job order):
+// the head when made, an entry per add(), the rest at end().
+class ManifestWriter {
+  public:
+    ManifestWriter(const Material& material, const std::vector<ManifestScene>& scenes,
+                   const CausticsPasses& passes, const ReadJobFile& read, WriteText write,
+                   const BindingMap* bindings = nullptr);
+    // A job with its result; `built`: the job whose files it has (JobResult::files_of).
+    void add(const BuildJob& job, const JobResult& r, size_t built, const BuildJob& built_job);
+    void end();
+
+  private:
+    const Material& material_;
+    const CausticsPasses& passes_;
+    const ReadJobFile& read_;
+    WriteText write_; // before doc_, which writes through it
+    JsonDocumentWriter doc_;
+};
 // The same as one string, reading each job's files from its result (JobResult::files).
 std::string manifest_json(const Material& material, const std::vector<ManifestScene>& scenes,
                           const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,

@@ -9,33 +9,22 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "watergen/ir/binding_map.h"
 #include "watergen/ir/ir_fold.h"
 #include "watergen/pipeline/build_cache.h"
+#include "watergen/pipeline/job_list.h"
 #include "watergen/plan/material.h"
 
 namespace watergen {
-
-struct BuildJob {
-    std::string scene; // output directory of the scene
-    Variant variant;
-    const FoldFacts* facts = nullptr; // fold under these; nullptr builds the variant as composed
-    std::vector<Target> targets;
-    // Set in the specialized and branching modes: the job builds this shader, which draws the
-    // variants of `serves` (sorted by key); `variant` is the one its selectors' defaults draw.
-    std::optional<ShaderChoices> shader = std::nullopt;
-    std::vector<Variant> serves = {};
-};
-
-// The job's key: its variant's, or its shader's (ShaderChoices::key).
-std::string job_key(const BuildJob& job);
 
 struct JobResult {
     std::string content_hash; // cache key of the files
     std::string shape_hash;   // of the sources without the variant key
     std::string same_as;      // key of the earlier variant of the scene with the same shader
+    size_t same_as_job = 0;   // its job (when same_as is set), whose files `names` then lists
     bool folded = false;
     FoldReport fold;
     FileMap files; // relative to the variant directory, filtered by targets (empty once a
@@ -52,6 +41,8 @@ struct JobResult {
     Diagnostics diagnostics;
     double milliseconds = 0;
     bool ok() const { return !has_errors(diagnostics); }
+    // The job whose files job `i` (this result's) has: itself, or the one of same_as.
+    size_t files_of(size_t i) const { return same_as.empty() ? i : same_as_job; }
 };
 
 struct BuildProgress {
@@ -70,6 +61,11 @@ struct BuildOptions {
     std::function<void(size_t, JobResult&)> sink;
     // Where every shader's resources are bound (ir/binding_map.h); null: the watergen profile.
     const BindingMap* bindings = nullptr;
+    // A job of an earlier batch (run_build_jobs over a range) whose files a later job of another
+    // scene takes: its files (`names`) read back from where the sink put them; nullopt if they
+    // cannot be (the later job then builds its own). Unset: the later job builds its own.
+    std::function<std::optional<FileMap>(size_t job, const std::vector<std::string>& names)>
+        read_back;
 };
 
 unsigned hardware_threads();
@@ -85,6 +81,36 @@ void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>&
 
 struct StageCounts; // stage_memo.h
 
+class NameLists;
+
+// What the batches of one build's jobs pass on to the next (run_build_jobs over a range of
+// jobs): per shape of the current scene its first job, per content the job that built it (for
+// the scenes still to come), and the progress so far. It grows by the distinct shaders, about
+// 60 bytes each, not by their results.
+struct BuildLedger {
+    BuildLedger();
+    ~BuildLedger();
+    BuildLedger(const BuildLedger&) = delete;
+    BuildLedger& operator=(const BuildLedger&) = delete;
+
+    struct Hash128 {
+        uint64_t high = 0, low = 0;
+        bool operator==(const Hash128&) const = default;
+    };
+    struct HashOf {
+        size_t operator()(const Hash128& h) const { return static_cast<size_t>(h.low); }
+    };
+    struct Built {
+        size_t job = 0;
+        std::shared_ptr<const std::vector<std::string>> names; // once its files exist
+    };
+    std::string scene;                                // of the shapes in `first`
+    std::unordered_map<Hash128, Built, HashOf> first; // shape -> first job of the scene
+    std::unordered_map<Hash128, Built, HashOf> built; // content -> the job that built it
+    std::unique_ptr<NameLists> name_lists;
+    BuildProgress progress;
+};
+
 // Jobs must be sorted by (scene, job_key) for `same_as` to name the first of equal shaders.
 // A stage several jobs compile (the vertex shader every variant has; a fragment two scenes
 // fold alike) is compiled once (StageMemo); how many were compiled and reused goes to
@@ -92,6 +118,16 @@ struct StageCounts; // stage_memo.h
 // GLSL path only.
 std::vector<JobResult> run_build_jobs(const Material& material, const std::vector<BuildJob>& jobs,
                                       const BuildOptions& options,
+                                      StageCounts* stage_counts = nullptr);
+// The jobs `batch` of `list`, its jobs [begin, begin + batch.size()) (results[k] is job
+// begin + k), after the earlier ranges of the same build (`ledger`): a job with the shape or
+// content of an earlier range's job points at it or takes its files (BuildOptions::read_back),
+// as one run over all the jobs would. Progress counts every job of `list`; stage counts are
+// added to `stage_counts`. A build runs its jobs a batch at a time so that memory holds one
+// batch's jobs and results.
+std::vector<JobResult> run_build_jobs(const Material& material, const JobList& list, size_t begin,
+                                      const std::vector<BuildJob>& batch,
+                                      const BuildOptions& options, BuildLedger& ledger,
                                       StageCounts* stage_counts = nullptr);
 
 // The files of `all` a target list keeps (variant.json and a pass's pass.json always; see

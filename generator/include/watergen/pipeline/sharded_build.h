@@ -32,10 +32,19 @@ std::string shard_text(const Shard& shard);
 bool in_shard(const Shard& shard, const std::string& key);
 
 // The shard.json a shard's output carries (its `files` are the output's, manifest included),
-// written one shape and one file at a time.
-void write_shard_json(const Shard& shard, const std::string& inputs_hash,
-                      const std::vector<BuildJob>& jobs, const std::vector<JobResult>& results,
-                      size_t variants, const ListFiles& files, const WriteText& write);
+// written one shape and one file at a time: the head when made, a job's shape per add() as the
+// build's batches finish, and the file list at end().
+class ShardJsonWriter {
+  public:
+    ShardJsonWriter(const Shard& shard, const std::string& inputs_hash, size_t variants,
+                    WriteText write);
+    void add(const BuildJob& job, const JobResult& r);
+    void end(const ListFiles& files);
+
+  private:
+    WriteText write_; // before doc_, which writes through it
+    JsonDocumentWriter doc_;
+};
 
 constexpr const char* kShardFile = "shard.json";
 
