@@ -245,22 +245,23 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
 // it must run.
 std::optional<BuildSummary> up_to_date(const BuildRequest& request, const std::string& key,
                                        const fs::path& record) {
-    const auto r = read_record(record);
-    if (!r || r->key != key || !outputs_intact(request.out, *r, request.options.threads))
+    // Read a slice of files at a time: a large build's record is larger than its memory should be.
+    const auto r = read_record_head(record);
+    if (!r || r->key != key || !outputs_intact(request.out, record, request.options.threads))
         return std::nullopt;
     // Intact as recorded, manifest.json included; the record must also name what it names.
     SafeRead seen;
     std::FILE* manifest =
         open_regular_stream(normal_output_path(request.out) / "manifest.json", seen);
     if (!manifest) return std::nullopt;
-    const bool covered = record_covers_manifest(*r, manifest);
+    const bool covered = record_covers_manifest(record, manifest, record.parent_path());
     std::fclose(manifest);
     if (!covered) return std::nullopt;
     BuildSummary s;
     s.up_to_date = true;
     s.variants = r->variants;
     s.shaders = r->shaders;
-    s.files = r->files.size();
+    s.files = r->files;
     return s;
 }
 
@@ -300,10 +301,10 @@ BuildSummary build_material_now(const BuildRequest& request) {
         return s;
     }
     // Refuse an output that is not ours before spending time on the build.
-    std::vector<std::string> written; // what the last build into request.out wrote
-    if (const auto last = recorded ? read_record(record) : std::nullopt)
-        for (const RecordedFile& f : last->files)
-            written.push_back(f.path);
+    // What the last build into request.out wrote there, by first component.
+    std::vector<std::string> written;
+    if (auto tops = recorded ? record_top_entries(record) : std::nullopt)
+        written = std::move(*tops);
     const fs::path out = accepted_output(request.out, s, written);
     if (out.empty()) return s;
     // Every file goes to a staging tree beside the output as soon as it is built; the tree

@@ -5,9 +5,12 @@
 #include <cerrno>
 #include <fcntl.h>
 #include <fstream>
+#include <set>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "watergen/pipeline/file_runs.h"
+#include "watergen/pipeline/manifest_files.h"
 #include "watergen/pipeline/output_target.h"
 #include "watergen/pipeline/output_writer.h"
 #include "watergen/pipeline/parallel_build.h"
@@ -19,9 +22,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Description files are at most 4 MiB (json_source.h); a record file far below this.
+// Description files are at most 4 MiB (json_source.h).
 constexpr size_t kMaxInputBytes = size_t(8) << 20;
-constexpr size_t kMaxRecordBytes = size_t(512) << 20;
 
 std::optional<std::string> read_whole(const fs::path& path, size_t limit) {
     const SafeRead r = read_regular_file(path, limit);
@@ -120,9 +122,49 @@ BuildRecord make_record(const std::string& key, size_t variants, size_t shaders,
     return r;
 }
 
+namespace {
+
+// The record in `file` read by `use` (a RecordReader over it); false if it cannot be opened.
+bool with_record(const fs::path& file, const std::function<void(RecordReader&)>& use) {
+    SafeRead seen;
+    std::FILE* in = open_regular_stream(file, seen);
+    if (!in) return false;
+    RecordReader reader(in);
+    use(reader);
+    std::fclose(in);
+    return true;
+}
+
+} // namespace
+
 std::optional<BuildRecord> read_record(const fs::path& file) {
-    auto text = read_whole(file, kMaxRecordBytes);
-    return text ? parse_record(*text) : std::nullopt;
+    std::optional<BuildRecord> r;
+    with_record(file, [&](RecordReader& reader) {
+        BuildRecord all{reader.head().key, reader.head().variants, reader.head().shaders, {}};
+        for (RecordedFile f; reader.next(f);)
+            all.files.push_back(std::move(f));
+        if (reader.ok()) r = std::move(all);
+    });
+    return r;
+}
+
+std::optional<RecordHead> read_record_head(const fs::path& file) {
+    std::optional<RecordHead> r;
+    with_record(file, [&](RecordReader& reader) {
+        if (reader.ok()) r = reader.head();
+    });
+    return r;
+}
+
+std::optional<std::vector<std::string>> record_top_entries(const fs::path& file) {
+    std::optional<std::vector<std::string>> tops;
+    with_record(file, [&](RecordReader& reader) {
+        std::set<std::string> seen;
+        for (RecordedFile f; reader.next(f);)
+            seen.insert(f.path.substr(0, f.path.find('/')));
+        if (reader.ok()) tops.emplace(seen.begin(), seen.end());
+    });
+    return tops;
 }
 
 void store_record(const fs::path& file, const BuildRecord& record) {
@@ -144,15 +186,18 @@ void store_record(const fs::path& file, const std::string& key, size_t variants,
     });
 }
 
-bool outputs_intact(const fs::path& out, const BuildRecord& record, unsigned threads) {
+namespace {
+
+// Whether each of `files` (sorted by path) is in `out` as recorded.
+bool files_intact(const fs::path& out, const std::vector<RecordedFile>& files, unsigned threads) {
     // Files by directory (the sorted paths keep each directory's files together): each
     // directory opened once, its files opened relative to it, so no path is walked twice.
-    std::vector<std::pair<size_t, size_t>> dirs; // [begin, end) in record.files
+    std::vector<std::pair<size_t, size_t>> dirs; // [begin, end) in files
     auto parent = [&](size_t i) {
-        const std::string& p = record.files[i].path;
+        const std::string& p = files[i].path;
         return std::string_view(p).substr(0, p.rfind('/') + 1);
     };
-    for (size_t i = 0; i < record.files.size(); ++i)
+    for (size_t i = 0; i < files.size(); ++i)
         if (i == 0 || parent(i) != parent(i - 1))
             dirs.push_back({i, i + 1});
         else
@@ -165,7 +210,7 @@ bool outputs_intact(const fs::path& out, const BuildRecord& record, unsigned thr
         const int fd = open_beneath(out, sub);
         thread_local std::vector<char> buffer;
         for (size_t i = begin; fd >= 0 && intact && i < end; ++i) {
-            const RecordedFile& f = record.files[i];
+            const RecordedFile& f = files[i];
             const char* name = f.path.c_str() + parent(i).size();
             if (!holds_file(fd, name, f.size, f.digest, buffer)) intact = false;
         }
@@ -175,6 +220,76 @@ bool outputs_intact(const fs::path& out, const BuildRecord& record, unsigned thr
             ::close(fd);
     });
     return intact;
+}
+
+// Recorded files checked at once.
+constexpr size_t kFilesPerSlice = size_t(1) << 16;
+
+} // namespace
+
+bool outputs_intact(const fs::path& out, const BuildRecord& record, unsigned threads) {
+    return files_intact(out, record.files, threads);
+}
+
+bool outputs_intact(const fs::path& out, const fs::path& file, unsigned threads) {
+    bool intact = false;
+    const bool opened = with_record(file, [&](RecordReader& reader) {
+        std::vector<RecordedFile> slice;
+        RecordedFile f;
+        bool more = true;
+        intact = true;
+        while (intact && more) {
+            slice.clear();
+            while (slice.size() < kFilesPerSlice && (more = reader.next(f)))
+                slice.push_back(f);
+            intact = files_intact(out, slice, threads);
+        }
+        intact = intact && reader.ok();
+    });
+    return opened && intact;
+}
+
+bool record_covers_manifest(const fs::path& file, std::FILE* manifest, const fs::path& scratch,
+                            size_t names_per_run) {
+    FileRuns runs(scratch);
+    if (!runs.ok()) return false;
+    std::vector<std::string> held{"manifest.json"};
+    bool spilled = true;
+    auto sort_held = [&] {
+        std::sort(held.begin(), held.end());
+        held.erase(std::unique(held.begin(), held.end()), held.end());
+    };
+    const std::string why = manifest_named_files(manifest, [&](std::string&& p) {
+        held.push_back(std::move(p));
+        if (held.size() < names_per_run) return;
+        sort_held();
+        FileRuns::Run run = runs.begin_run();
+        for (const std::string& name : held)
+            run.add(name, 0, {});
+        spilled = spilled && !run.finish();
+        held.clear();
+    });
+    if (!why.empty() || !spilled) return false;
+    sort_held();
+    // Both in path order: one pass over the record finds each name or shows it missing.
+    bool all = true, read_back = false;
+    const bool opened = with_record(file, [&](RecordReader& reader) {
+        RecordedFile f;
+        bool have = reader.next(f);
+        size_t next = 0;
+        read_back = runs.merged(
+            [&](RunRecord& r) {
+                if (next == held.size()) return false;
+                r.path = held[next++];
+                return true;
+            },
+            [&](const RunRecord& name) {
+                while (all && have && f.path < name.path)
+                    have = reader.next(f);
+                all = all && have && f.path == name.path;
+            });
+    });
+    return opened && read_back && all;
 }
 
 } // namespace watergen

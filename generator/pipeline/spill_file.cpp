@@ -1,13 +1,19 @@
 #include "watergen/pipeline/spill_file.h"
 
+#include <atomic>
 #include <cerrno>
 #include <fcntl.h>
+#include <string>
 #include <unistd.h>
 
 namespace watergen {
 
 SpillFile::SpillFile(const std::filesystem::path& dir, const std::string& name) {
-    const std::filesystem::path path = dir / name;
+    // Its own name for the moment it has one: two processes may spill into one directory (two
+    // builds checking records in one cache).
+    static std::atomic<unsigned> made{0};
+    const std::filesystem::path path =
+        dir / (name + "." + std::to_string(::getpid()) + "." + std::to_string(made++));
     fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
     if (fd_ >= 0) ::unlink(path.c_str());
 }

@@ -239,3 +239,56 @@ TEST_CASE("a_record_covers_the_manifest_only_when_it_names_every_file_the_manife
     CHECK_FALSE(record_covers_manifest(
         r, R"({"variants": [{"directory": "s/v", "files": {"glsl": ["../a.glsl"]}}]})"));
 }
+
+TEST_CASE("a_record_read_one_file_at_a_time_vouches_as_the_record_read_whole", "[record]") {
+    const TempDir tmp("record-stream");
+    const std::string manifest =
+        R"({"variants": [{"directory": "s/v", "files": {"glsl": ["s/v/a.glsl", "s/v/c.glsl"]},
+        "passes": {"caustics": {"directory": "passes/p", "files": {"spirv": ["passes/p/b.spv"]}}}},
+        {"directory": "s/v", "same_as": "v", "files": {"glsl": ["s/v/a.glsl", "s/v/c.glsl"]}}]})";
+    const FileMap files = {{"manifest.json", manifest},
+                           {"s/v/a.glsl", "a"},
+                           {"s/v/c.glsl", "c"},
+                           {"passes/p/b.spv", "b"}};
+    const fs::path out = tmp.path / "out", file = tmp.path / "r.record";
+    for (const auto& [path, bytes] : files) {
+        fs::create_directories((out / path).parent_path());
+        std::ofstream(out / path) << bytes;
+    }
+    auto covers = [&](size_t names_per_run) {
+        std::FILE* in = std::fopen((out / "manifest.json").c_str(), "rb");
+        REQUIRE(in);
+        const bool covered = record_covers_manifest(file, in, tmp.path, names_per_run);
+        std::fclose(in);
+        return covered;
+    };
+    const BuildRecord whole = make_record("k", 2, 2, files);
+    store_record(file, whole);
+    CHECK(outputs_intact(out, file, 2));
+    CHECK(read_record_head(file)->files == 4);
+    CHECK(*record_top_entries(file) == std::vector<std::string>{"manifest.json", "passes", "s"});
+    for (const size_t per_run : {1, 2, 1000}) // the names in runs of 1 and 2, and held
+        CHECK(covers(per_run));
+    for (const char* lost : {"manifest.json", "s/v/a.glsl", "s/v/c.glsl", "passes/p/b.spv"}) {
+        BuildRecord less = whole;
+        std::erase_if(less.files, [&](const RecordedFile& f) { return f.path == lost; });
+        store_record(file, less);
+        INFO(lost);
+        CHECK(record_covers_manifest(less, manifest) == covers(1));
+        CHECK_FALSE(covers(1));
+        CHECK_FALSE(covers(1000));
+    }
+    // A changed byte; a record whose lines are out of path order (a reader matches in one pass).
+    store_record(file, whole);
+    std::ofstream(out / "s/v/c.glsl") << "C";
+    CHECK_FALSE(outputs_intact(out, file, 2));
+    std::string text = record_text(whole);
+    const size_t a = text.find(" s/v/a.glsl\n"), c = text.find(" s/v/c.glsl\n");
+    std::swap(text[a + 5], text[c + 5]);
+    CHECK_FALSE(parse_record(text));
+    // Nothing of the covering check's spill file is left beside the record.
+    size_t entries = 0;
+    for (const auto& e : fs::directory_iterator(tmp.path))
+        entries += e.path().filename().string()[0] == '.' ? 1 : 0;
+    CHECK(entries == 0);
+}

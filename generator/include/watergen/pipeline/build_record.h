@@ -26,6 +26,12 @@ struct RecordedFile {
     std::string digest; // file_digest()
 };
 
+// A record's head: what it was made from, and what it counts.
+struct RecordHead {
+    std::string key;
+    size_t variants = 0, shaders = 0, files = 0;
+};
+
 struct BuildRecord {
     std::string key;
     size_t variants = 0, shaders = 0;
@@ -55,9 +61,36 @@ std::string record_text(const BuildRecord& record);
 // Its parts: the head (key, counts) and one file's line.
 std::string record_head(const std::string& key, size_t variants, size_t shaders, size_t files);
 std::string record_line(const RecordedFile& file);
+// A record read one file at a time: a build of the whole space records about 96 million files,
+// more than a record read whole, or parsed into a BuildRecord, should take.
+class RecordReader {
+  public:
+    // Reads the head from `in` (which the caller closes); ok() is false if it is malformed.
+    explicit RecordReader(std::FILE* in);
+    const RecordHead& head() const { return head_; }
+    // The next file, paths strictly ascending; false at the end, or at a malformed line (ok()
+    // then says which).
+    bool next(RecordedFile& f);
+    // Whether every line so far was well formed and, once next() returned false, the record was
+    // whole: as many files as the head counts, and nothing after them.
+    bool ok() const { return ok_; }
+
+  private:
+    std::FILE* in_;
+    RecordHead head_;
+    size_t read_ = 0;
+    std::string last_;
+    bool ok_ = true;
+};
+
 // nullopt for anything that is not a well-formed record (then the build simply runs).
 std::optional<BuildRecord> parse_record(const std::string& text);
 std::optional<BuildRecord> read_record(const std::filesystem::path& file);
+// The record's head alone, nullopt if it is unreadable or malformed.
+std::optional<RecordHead> read_record_head(const std::filesystem::path& file);
+// The first component of every path the record names ("manifest.json", each scene's
+// directory), one each: what output_target.h needs of a record, without holding it.
+std::optional<std::vector<std::string>> record_top_entries(const std::filesystem::path& file);
 // Writes the record atomically (temporary + rename); a record that cannot be written only
 // costs the next build its shortcut, so failures are ignored.
 void store_record(const std::filesystem::path& file, const BuildRecord& record);
@@ -73,10 +106,19 @@ void store_record(const std::filesystem::path& file, const std::string& key, siz
 bool record_covers_manifest(const BuildRecord& record, const std::string& manifest);
 // The same for the manifest in `manifest`, read one variant at a time.
 bool record_covers_manifest(const BuildRecord& record, std::FILE* manifest);
+// The same for the record in `file`, read one file at a time: the manifest's names are sorted
+// into runs in a spill file in `scratch` (file_runs.h) and matched against the record's sorted
+// paths, so neither list is held.
+bool record_covers_manifest(const std::filesystem::path& file, std::FILE* manifest,
+                            const std::filesystem::path& scratch,
+                            size_t names_per_run = size_t(1) << 18);
 
 // Whether every recorded file is in `out`, a regular file of its size and digest (read on
 // `threads` workers; 0: all cores). No link is followed on the way: not `out`, not a directory
 // inside it, not a file.
 bool outputs_intact(const std::filesystem::path& out, const BuildRecord& record, unsigned threads);
+// The same for the record in `file`, read a slice of files at a time; false if it is malformed.
+bool outputs_intact(const std::filesystem::path& out, const std::filesystem::path& file,
+                    unsigned threads);
 
 } // namespace watergen
