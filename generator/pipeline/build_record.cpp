@@ -4,10 +4,12 @@
 #include <atomic>
 #include <cerrno>
 #include <fcntl.h>
-#include <fstream>
+#include <memory>
 #include <set>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include <xxhash.h>
 
 #include "watergen/pipeline/file_runs.h"
 #include "watergen/pipeline/manifest_files.h"
@@ -30,10 +32,29 @@ std::optional<std::string> read_whole(const fs::path& path, size_t limit) {
     return r.bytes;
 }
 
+// The XXH3-128 digest (file_digest()'s text) of the next `size` bytes of `fd`, read a buffer at a
+// time: a whole-space build's manifest alone is tens of gigabytes. nullopt if they cannot all be
+// read.
+std::optional<std::string> digest_of(int fd, uint64_t size, std::vector<char>& buffer) {
+    std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(),
+                                                                          XXH3_freeState);
+    XXH3_128bits_reset(state.get());
+    buffer.resize(size_t(1) << 20);
+    for (uint64_t left = size; left > 0;) {
+        const ssize_t n = ::read(fd, buffer.data(), std::min<uint64_t>(left, buffer.size()));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return std::nullopt;
+        XXH3_128bits_update(state.get(), buffer.data(), static_cast<size_t>(n));
+        left -= static_cast<uint64_t>(n);
+    }
+    const XXH128_hash_t h = XXH3_128bits_digest(state.get());
+    return digest_text(h.high64, h.low64);
+}
+
 // Whether `name` in the directory `dir` is a regular file (not a link, FIFO or device: never
 // followed, never waited on) of exactly `size` bytes with `digest`. One open and one fstat, a size
-// that differs costs no read, and the bytes go into the caller's reused buffer: no allocation per
-// file.
+// that differs costs no read, and the bytes go through the caller's reused buffer: no allocation
+// per file.
 bool holds_file(int dir, const char* name, uint64_t size, const std::string& digest,
                 std::vector<char>& buffer) {
     const int fd = ::openat(dir, name, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
@@ -41,17 +62,7 @@ bool holds_file(int dir, const char* name, uint64_t size, const std::string& dig
     struct stat st {};
     bool same =
         ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) == size;
-    if (same) {
-        buffer.resize(std::max<size_t>(buffer.size(), size));
-        size_t got = 0;
-        while (got < size) {
-            const ssize_t n = ::read(fd, buffer.data() + got, size - got);
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) break;
-            got += static_cast<size_t>(n);
-        }
-        same = got == size && file_digest(std::string_view(buffer.data(), size)) == digest;
-    }
+    same = same && digest_of(fd, size, buffer) == digest;
     ::close(fd);
     return same;
 }
@@ -95,13 +106,15 @@ std::optional<std::string> build_inputs_hash(const std::string& material_path,
 
 const std::string& executable_digest() {
     static const std::string digest = [] {
-        std::ifstream in("/proc/self/exe", std::ios::binary | std::ios::ate);
-        std::string bytes(in ? static_cast<size_t>(in.tellg()) : 0, '\0');
-        in.seekg(0);
         // Unreadable: a digest no record matches, so every build runs.
-        if (!in || !in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
-            return std::string("unreadable executable");
-        return file_digest(bytes);
+        const int fd = ::open("/proc/self/exe", O_RDONLY | O_CLOEXEC);
+        struct stat st {};
+        std::vector<char> buffer;
+        std::optional<std::string> d;
+        if (fd >= 0 && ::fstat(fd, &st) == 0)
+            d = digest_of(fd, static_cast<uint64_t>(st.st_size), buffer);
+        if (fd >= 0) ::close(fd);
+        return d ? *d : std::string("unreadable executable");
     }();
     return digest;
 }
