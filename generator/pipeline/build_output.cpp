@@ -300,8 +300,8 @@ BuildSummary build_material_now(const BuildRequest& request) {
         s.bad_input = true;
         return s;
     }
-    // Refuse an output that is not ours before spending time on the build.
-    // What the last build into request.out wrote there, by first component.
+    // Refuse an output that is not ours before spending time on the build. `written`: the first
+    // component of each file the last build into request.out wrote there.
     std::vector<std::string> written;
     if (auto tops = recorded ? record_top_entries(record) : std::nullopt)
         written = std::move(*tops);

@@ -1,7 +1,7 @@
 #include "watergen/pipeline/file_runs.h"
 
+#include <algorithm>
 #include <cstring>
-#include <queue>
 
 namespace watergen {
 
@@ -10,7 +10,7 @@ namespace {
 // A run's record on disk: path length (4 bytes), path, size, digest high and low (8 bytes each).
 constexpr size_t kFixedBytes = 4 + 3 * 8;
 // Bytes gathered before a write, and read ahead per run while merging.
-constexpr size_t kBufferBytes = size_t(1) << 16;
+constexpr size_t kBufferBytes = size_t(1) << 14;
 
 template <typename T> void put(std::string& out, T value) {
     char bytes[sizeof(T)];
@@ -69,9 +69,16 @@ class RunReader {
 
 } // namespace
 
+SpillFile* FileRuns::file() {
+    if (!file_) file_ = std::make_unique<SpillFile>(dir_, ".file-runs");
+    return file_->ok() ? file_.get() : nullptr;
+}
+
 FileRuns::Run FileRuns::begin_run() {
     Run run(*this);
-    run.begin_ = file_.end();
+    SpillFile* f = file();
+    run.failed_ = !f;
+    run.begin_ = f ? f->end() : 0;
     return run;
 }
 
@@ -85,7 +92,7 @@ void FileRuns::Run::add(std::string_view path, uint64_t size, XXH128_hash_t dige
 }
 
 std::optional<std::string> FileRuns::Run::flush() {
-    if (!failed_ && !buffer_.empty() && !runs_.file_.append(buffer_)) failed_ = true;
+    if (!failed_ && !buffer_.empty() && !runs_.file_->append(buffer_)) failed_ = true;
     buffer_.clear();
     if (failed_) return "cannot write the build's file list to its spill file beside the output";
     return std::nullopt;
@@ -93,33 +100,66 @@ std::optional<std::string> FileRuns::Run::flush() {
 
 std::optional<std::string> FileRuns::Run::finish() {
     if (auto e = flush()) return e;
-    runs_.runs_.push_back({begin_, runs_.file_.end() - begin_});
+    runs_.runs_.push_back({begin_, runs_.file_->end() - begin_});
     return std::nullopt;
 }
 
-bool FileRuns::merged(const Next& more, const std::function<void(const RunRecord&)>& each) const {
-    std::vector<RunReader> readers;
-    for (const SpillFile::Ref& run : runs_)
-        readers.emplace_back(file_, run);
-    // Source k < readers.size() is a run; the last is `more`.
-    const size_t sources = readers.size() + 1;
-    std::vector<RunRecord> head(sources);
-    auto advance = [&](size_t k) {
-        return k < readers.size() ? readers[k].next(head[k]) : more(head[k]);
-    };
-    auto later = [&](size_t a, size_t b) { return head[b].path < head[a].path; };
-    std::priority_queue<size_t, std::vector<size_t>, decltype(later)> queue(later);
-    for (size_t k = 0; k < sources; ++k)
-        if (advance(k)) queue.push(k);
-    while (!queue.empty()) {
-        const size_t k = queue.top();
-        queue.pop();
-        each(head[k]);
-        if (advance(k)) queue.push(k);
+struct FileRuns::Cursor::State {
+    std::vector<RunReader> readers; // source k < readers.size() is a run; the last is `more`
+    Next more;
+    std::vector<RunRecord> head;
+    std::vector<size_t> heap; // sources with a record in `head`, smallest path on top
+    bool started = false;
+    bool advance(size_t k) {
+        return k < readers.size() ? readers[k].next(head[k]) : more && more(head[k]);
     }
-    for (const RunReader& r : readers)
-        if (r.failed()) return false;
+    bool later(size_t a, size_t b) const { return head[b].path < head[a].path; }
+};
+
+FileRuns::Cursor::Cursor(std::unique_ptr<State> state) : state_(std::move(state)) {}
+FileRuns::Cursor::Cursor(Cursor&&) noexcept = default;
+FileRuns::Cursor::~Cursor() = default;
+
+bool FileRuns::Cursor::next(RunRecord& r) {
+    State& s = *state_;
+    auto later = [&](size_t a, size_t b) { return s.later(a, b); };
+    if (!s.started) {
+        s.started = true;
+        for (size_t k = 0; k < s.head.size(); ++k)
+            if (s.advance(k)) s.heap.push_back(k);
+        std::make_heap(s.heap.begin(), s.heap.end(), later);
+    }
+    if (s.heap.empty()) return false;
+    std::pop_heap(s.heap.begin(), s.heap.end(), later);
+    const size_t k = s.heap.back();
+    r = s.head[k];
+    if (s.advance(k))
+        std::push_heap(s.heap.begin(), s.heap.end(), later);
+    else
+        s.heap.pop_back();
     return true;
+}
+
+bool FileRuns::Cursor::failed() const {
+    for (const RunReader& r : state_->readers)
+        if (r.failed()) return true;
+    return false;
+}
+
+FileRuns::Cursor FileRuns::cursor(Next more) const {
+    auto state = std::make_unique<Cursor::State>();
+    for (const SpillFile::Ref& run : runs_)
+        state->readers.emplace_back(*file_, run);
+    state->more = std::move(more);
+    state->head.resize(state->readers.size() + 1);
+    return Cursor(std::move(state));
+}
+
+bool FileRuns::merged(const Next& more, const std::function<void(const RunRecord&)>& each) const {
+    Cursor c = cursor(more);
+    for (RunRecord r; c.next(r);)
+        each(r);
+    return !c.failed();
 }
 
 } // namespace watergen

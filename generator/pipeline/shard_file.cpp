@@ -61,11 +61,26 @@ bool in_shard(const Shard& shard, const std::string& key) {
     return !shard.sharded() || XXH64(key.data(), key.size(), 0) % shard.count == shard.index - 1;
 }
 
+bool parse_file_digest(const std::string& text, uint64_t& high, uint64_t& low) {
+    if (text.size() != 32) return false;
+    uint64_t halves[2] = {0, 0};
+    for (size_t i = 0; i < 32; ++i) {
+        const char c = text[i];
+        const int v = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+        if (v < 0) return false;
+        halves[i / 16] = halves[i / 16] << 4 | static_cast<uint64_t>(v);
+    }
+    high = halves[0];
+    low = halves[1];
+    return true;
+}
+
 namespace {
 
 // shard.json read one shape and one file at a time (a 1/20 shard of the full space lists
 // 829,842 files: its document would need several times the memory of its text).
-std::optional<ShardFile> read_shard_document(const ReadJsonDocument& read, std::string* why) {
+std::optional<ShardFile> read_shard_document(const ReadJsonDocument& read, const ShardSink& sink,
+                                             std::string* why) {
     std::string fault;
     auto fail = [&](const std::string& w) {
         if (fault.empty()) fault = w;
@@ -79,6 +94,7 @@ std::optional<ShardFile> read_shard_document(const ReadJsonDocument& read, std::
     OJson head = OJson::object();
     ShardFile s;
     std::string previous;
+    size_t shape_count = 0, file_count = 0;
     bool shapes = false, files = false;
     JsonDocumentReader reader{
         {"shapes", "files"},
@@ -89,26 +105,26 @@ std::optional<ShardFile> read_shard_document(const ReadJsonDocument& read, std::
         },
         [&](const std::string& array, OJson&& e) {
             if (array == "shapes") {
-                if (s.shapes.size() >= kMaxShardEntries) return too_many();
+                if (shape_count++ >= kMaxShardEntries) return too_many();
                 if (!is_string_triple(e) || !e[2].is_string())
                     return fail("shard.json: a shape is not [scene, key, hash]");
-                if (!s.shapes.emplace(std::make_pair(e[0], e[1]), e[2]).second)
-                    return fail("shard.json names variant " + e[0].get<std::string>() + "/" +
-                                e[1].get<std::string>() + " twice");
+                if (std::string w = sink.shape(e[0], e[1], e[2]); !w.empty()) return fail(w);
                 return true;
             }
-            if (s.files.size() >= kMaxShardEntries) return too_many();
+            if (file_count++ >= kMaxShardEntries) return too_many();
             if (!e.is_array() || e.size() != 3 || !e[0].is_string() || !is_uint(e[1]) ||
                 !e[2].is_string() || !is_plain_relative_path(e[0]))
                 return fail("shard.json: a file is not [relative path, size, hash]");
             ListedFile file{e[0], e[1].get<uint64_t>(), e[2]};
-            if (!s.files.empty() && file.path <= previous)
+            if (file_count > 1 && file.path <= previous)
                 return fail("shard.json: " + file.path +
                             " out of order or twice; expected the "
                             "files sorted by path, each once");
-            if (!s.files.push_back(file))
+            uint64_t high = 0, low = 0;
+            if (!parse_file_digest(file.digest, high, low))
                 return fail("shard.json: " + file.path + "'s hash '" + file.digest +
                             "' is not 32 lowercase hexadecimal digits (an XXH3-128 digest)");
+            if (std::string w = sink.file(file); !w.empty()) return fail(w);
             previous = std::move(file.path);
             return true;
         },
@@ -142,27 +158,60 @@ std::optional<ShardFile> read_shard_document(const ReadJsonDocument& read, std::
 
 } // namespace
 
+namespace {
+
+// shard.json read whole into a ShardFile: its shapes by (scene, key), its files in ListedFiles.
+std::optional<ShardFile> read_shard_held(const ReadJsonDocument& read, std::string* why) {
+    std::map<std::pair<std::string, std::string>, std::string> shapes;
+    ListedFiles files;
+    const ShardSink sink{
+        [&](const std::string& scene, const std::string& key, const std::string& shape) {
+            if (!shapes.emplace(std::make_pair(scene, key), shape).second)
+                return "shard.json names variant " + scene + "/" + key + " twice";
+            return std::string();
+        },
+        [&](const ListedFile& f) {
+            files.push_back(f); // its digest checked already
+            return std::string();
+        }};
+    std::optional<ShardFile> s = read_shard_document(read, sink, why);
+    if (s) {
+        s->shapes = std::move(shapes);
+        s->files = std::move(files);
+    }
+    return s;
+}
+
+} // namespace
+
 std::optional<ShardFile> parse_shard_file(const std::string& text, std::string* why) {
-    return read_shard_document(
+    return read_shard_held(
         [&](const JsonDocumentReader& r, std::string* w) { return read_json_document(text, r, w); },
         why);
 }
 
 std::optional<ShardFile> read_shard_file(std::FILE* in, std::string* why) {
-    return read_shard_document(
+    return read_shard_held(
         [&](const JsonDocumentReader& r, std::string* w) { return read_json_document(in, r, w); },
         why);
 }
 
-std::string check_shard_variant(const OJson& v, const ShardFile& s) {
+std::optional<ShardFile> read_shard_file(std::FILE* in, const ShardSink& sink, std::string* why) {
+    return read_shard_document(
+        [&](const JsonDocumentReader& r, std::string* w) { return read_json_document(in, r, w); },
+        sink, why);
+}
+
+std::string check_variant_entry(const OJson& v, const Shard& shard, const HasShape& has_shape,
+                                const std::function<bool(const std::string&)>& lists) {
     const OJson scene = v.value("scene", OJson()), key = v.value("key", OJson());
     if (!scene.is_string() || !key.is_string())
         return "a variant of manifest.json has no scene and key";
     const std::string id = scene.get<std::string>() + "/" + key.get<std::string>();
-    if (!s.shapes.count({scene, key}))
+    if (!has_shape(scene, key))
         return "variant " + id + " of manifest.json is not among shard.json's shapes";
-    if (!in_shard(s.shard, key))
-        return "variant " + id + " is not in shard " + shard_text(s.shard) +
+    if (!in_shard(shard, key))
+        return "variant " + id + " is not in shard " + shard_text(shard) +
                "'s key range (its key hashes to another shard)";
     std::vector<std::string> paths;
     if (std::string why = named_files(v, paths); !why.empty()) return "variant " + id + ": " + why;
@@ -171,9 +220,17 @@ std::string check_shard_variant(const OJson& v, const ShardFile& s) {
         return "variant " + id + ": \"directory\" " + v["directory"].dump() +
                " is outside its scene's directory " + scene.get<std::string>() + "/";
     for (const std::string& p : paths)
-        if (!s.lists(p))
-            return "variant " + id + " names " + p + ", which shard.json does not list";
+        if (!lists(p)) return "variant " + id + " names " + p + ", which shard.json does not list";
     return "";
+}
+
+std::string check_shard_variant(const OJson& v, const ShardFile& s) {
+    return check_variant_entry(
+        v, s.shard,
+        [&](const std::string& scene, const std::string& key) {
+            return s.shapes.count({scene, key}) > 0;
+        },
+        [&](const std::string& path) { return s.lists(path); });
 }
 
 std::string check_served_variant(const OJson& v, const ShardFile& s,
@@ -203,28 +260,9 @@ std::string check_variant_count(size_t jobs, size_t variants, const ShardFile& s
     return "";
 }
 
-namespace {
-
-// file_digest()'s text back into its two halves; false for anything else.
-bool parse_digest(const std::string& text, uint64_t& high, uint64_t& low) {
-    if (text.size() != 32) return false;
-    uint64_t halves[2] = {0, 0};
-    for (size_t i = 0; i < 32; ++i) {
-        const char c = text[i];
-        const int v = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
-        if (v < 0) return false;
-        halves[i / 16] = halves[i / 16] << 4 | static_cast<uint64_t>(v);
-    }
-    high = halves[0];
-    low = halves[1];
-    return true;
-}
-
-} // namespace
-
 bool ListedFiles::push_back(const ListedFile& f) {
     Entry e{{}, f.size, 0, 0};
-    if (!parse_digest(f.digest, e.high, e.low)) return false;
+    if (!parse_file_digest(f.digest, e.high, e.low)) return false;
     e.path = paths_.intern(f.path);
     entries_.push_back(e);
     return true;

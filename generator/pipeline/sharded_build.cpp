@@ -25,6 +25,8 @@
 #include "watergen/pipeline/spill_file.h"
 #include "watergen/pipeline/staged_tree.h"
 
+#include "merge_parts.h"
+
 namespace watergen {
 
 namespace fs = std::filesystem;
@@ -60,34 +62,12 @@ struct SpooledVariant {
 
 // A shard's output, checked against its shard.json: the manifest read one entry at a time into
 // the spool, the other files checked for kind and size (their hashes when copied).
-struct ShardOutput {
-    fs::path dir;
-    ShardFile meta;
-    OJson head;         // the manifest without its variants (and shaders)
-    std::string header; // head.dump(): shards of one build have the same
+struct ShardOutput : ShardHead {
     bool modes = false; // a specialized or branching build: its jobs are shaders
     // Its jobs: the variants of a permutations build, the shaders of a modes build.
     std::vector<SpooledVariant> jobs;
     std::vector<SpooledVariant> served; // a modes build's variants
 };
-
-std::string mismatch(const fs::path& dir, const ListedFile& f, const std::string& detail) {
-    return dir.string() + ": " + f.path + " does not match the size and hash shard.json records" +
-           detail;
-}
-
-// The XXH3-128 digest and size of what `in` holds from its start.
-std::pair<std::string, uint64_t> stream_digest(std::FILE* in) {
-    std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(),
-                                                                          XXH3_freeState);
-    XXH3_128bits_reset(state.get());
-    std::vector<char> buffer(size_t(1) << 16);
-    uint64_t size = 0;
-    for (size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), in)) > 0; size += n)
-        XXH3_128bits_update(state.get(), buffer.data(), n);
-    const XXH128_hash_t h = XXH3_128bits_digest(state.get());
-    return {digest_text(h.high64, h.low64), size};
-}
 
 // Reads `dir` as a shard's output; "" or why not.
 std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
@@ -189,49 +169,6 @@ std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
     return "";
 }
 
-// The shards, checked to be 1..N of one build; "" or why not.
-std::string check_set(const std::vector<ShardOutput>& shards) {
-    const ShardOutput& first = shards.front();
-    std::map<unsigned, const ShardOutput*> by_index;
-    for (const ShardOutput& s : shards) {
-        const std::string both = s.dir.string() + " and " + first.dir.string();
-        if (s.meta.toolchain != first.meta.toolchain)
-            return both + " were built by different watergen or toolchain versions ('" +
-                   s.meta.toolchain + "' and '" + first.meta.toolchain +
-                   "'); expected one for every shard";
-        if (s.meta.inputs != first.meta.inputs || s.header != first.header)
-            return both + " were built from different inputs (material, scenes or options); "
-                          "expected shards of one build";
-        if (s.meta.shard.count != first.meta.shard.count)
-            return both + " are shards of " + std::to_string(s.meta.shard.count) + " and of " +
-                   std::to_string(first.meta.shard.count) + "; expected shards of one build";
-        if (auto [it, fresh] = by_index.emplace(s.meta.shard.index, &s); !fresh)
-            return "shard " + shard_text(s.meta.shard) +
-                   " is given twice: " + it->second->dir.string() + " and " + s.dir.string();
-    }
-    for (unsigned i = 1; i <= first.meta.shard.count; ++i)
-        if (!by_index.count(i))
-            return "shard " + shard_text({i, first.meta.shard.count}) +
-                   " is missing; expected all of 1/" + std::to_string(first.meta.shard.count) +
-                   " .. " + shard_text({first.meta.shard.count, first.meta.shard.count});
-    return "";
-}
-
-// The fields of a manifest entry that name where its files are.
-const std::set<std::string> kOutputFields = {"same_as",    "directory",          "files",
-                                             "reflection", "spirv_instructions", "passes"};
-
-// `own` pointing at the files of `builder` (same shader), as manifest_json writes such an entry.
-OJson as_same(const OJson& own, const OJson& builder) {
-    OJson v = OJson::object();
-    for (const auto& [name, value] : own.items())
-        if (!kOutputFields.count(name)) v[name] = value;
-    v["same_as"] = builder["key"];
-    for (const auto& [name, value] : builder.items())
-        if (kOutputFields.count(name) && name != "same_as") v[name] = value;
-    return v;
-}
-
 // A modes build's variant whose shader another shard's shader of the same shape replaced, drawn
 // by that one, as one build writes it: its "shader" and its frozen modules' directory.
 void moved_to_its_shader(OJson& entry, const std::map<std::string, std::string>& moved) {
@@ -242,46 +179,6 @@ void moved_to_its_shader(OJson& entry, const std::map<std::string, std::string>&
         for (auto path = frozen->begin(); path != frozen->end(); ++path)
             if (path->is_string())
                 *path = to->second + path->get<std::string>().substr(to->first.size());
-}
-
-// Why OUT may not be the merge's output beside these shards: it is one, holds one or lies
-// inside one (links resolved); "" when apart from all.
-std::string out_apart_from_shards(const fs::path& out, const std::vector<fs::path>& dirs) {
-    std::error_code ec;
-    const fs::path o = fs::weakly_canonical(normal_output_path(out), ec);
-    for (const fs::path& d : dirs) {
-        const fs::path shard = fs::weakly_canonical(normal_output_path(d), ec);
-        const std::string both = out.string() + " and the shard " + d.string();
-        if (o == shard)
-            return "the output directory " + out.string() + " is the shard " + d.string() +
-                   "; expected an output directory apart from every shard";
-        if (path_holds(o, shard))
-            return "the output directory " + out.string() + " holds the shard " + d.string() +
-                   ", which the merge would delete with the old output; expected an output "
-                   "directory apart from every shard";
-        if (path_holds(shard, o))
-            return "the output directory " + out.string() + " lies inside the shard " + d.string() +
-                   "; expected an output directory apart from every shard";
-    }
-    return "";
-}
-
-// Every scene of the merged manifest's head holds as many variants as it counts (a shard that
-// lost a variant falls short), and no variant is of a scene it does not name.
-std::string check_counts(const OJson& head, std::map<std::string, size_t> held) {
-    for (const OJson& scene : head.value("scenes", OJson::array())) {
-        const std::string name = scene.value("name", "");
-        const OJson count = scene.value("variants", OJson());
-        if (!count.is_number_unsigned() || count.get<size_t>() != held[name])
-            return "scene " + name + ": the shards hold " + std::to_string(held[name]) +
-                   " variants, the build's manifest counts " + count.dump() +
-                   "; expected every variant of the build in one of the shards";
-        held.erase(name);
-    }
-    if (!held.empty())
-        return "variants of scene " + held.begin()->first +
-               ", which the build's manifest does not name";
-    return "";
 }
 
 } // namespace
@@ -319,29 +216,34 @@ void ShardJsonWriter::end(const ListFiles& files) {
     doc_.end();
 }
 
-MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
-                         const BuildCache& cache) {
+namespace {
+
+// Whether the shard in `dir` is of a specialized or branching build: its manifest's head names a
+// mode. False when it cannot tell (the streamed merge then reports what is wrong).
+bool modes_shard(const fs::path& dir) {
+    SafeRead seen;
+    std::FILE* in = open_regular_stream(dir / "manifest.json", seen);
+    if (!in) return false;
+    bool modes = false;
+    const JsonDocumentReader reader{{"variants", "shaders"},
+                                    [&](const std::string& name, OJson&&) {
+                                        modes = modes || name == "mode";
+                                        return true;
+                                    },
+                                    [](const std::string&, OJson&&) { return false; }};
+    read_json_document(in, reader, nullptr);
+    std::fclose(in);
+    return modes;
+}
+
+// The merge of a modes build's shards: every shard's shaders and variants held (as spooled
+// entries, keys and directories).
+MergeResult merge_held(const fs::path& out, const std::vector<fs::path>& dirs,
+                       const BuildCache& cache) {
     MergeResult m;
-    if (dirs.empty()) {
-        m.error = "no shard directories; expected the outputs of watergen build --shard 1/N .. N/N";
-        return m;
-    }
-    // Refused before anything is read: the merge replaces OUT whole, so a shard at, above or
-    // below it would be lost with the old tree, or would be read while being replaced.
-    if (m.error = out_apart_from_shards(out, dirs); !m.error.empty()) return m;
-    const OutputTarget target = check_output_target(out);
-    if (!target.ok()) {
-        m.error = out.string() + ": " + target.error;
-        return m;
-    }
-    // The merged tree is written beside OUT as it is made, and replaces OUT at the end.
-    std::string error;
-    const std::unique_ptr<StagedTree> tree = StagedTree::open(target.path, &error);
-    if (!tree) {
-        m.error = error;
-        m.write_failed = true;
-        return m;
-    }
+    fs::path target;
+    const std::unique_ptr<StagedTree> tree = start_merge(out, dirs, target, m);
+    if (!tree) return m;
     Spool spool(tree->dir());
     if (!spool.ok()) {
         m.error = "cannot create the merge's spool in " + tree->dir().string();
@@ -351,7 +253,10 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
     std::vector<ShardOutput> shards(dirs.size());
     for (size_t i = 0; i < dirs.size(); ++i)
         if (m.error = read_shard(dirs[i], shards[i], spool); !m.error.empty()) return m;
-    if (m.error = check_set(shards); !m.error.empty()) return m;
+    std::vector<const ShardHead*> heads;
+    for (const ShardOutput& shard : shards)
+        heads.push_back(&shard);
+    if (m.error = check_set(heads); !m.error.empty()) return m;
 
     // Every job once (a variant; a modes build's shader), sorted by (scene, key) as a build
     // sorts them; and each variant of a modes build once.
@@ -494,33 +399,20 @@ MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
             return m;
         }
     }
-    // The merged build's C++ header, as one build of the same inputs writes it.
-    if (auto e = write_shaders_header(*tree)) {
-        m.error = *e;
-        m.write_failed = true;
-        return m;
-    }
-    // Checked again: the merge took a while.
-    if (const OutputTarget again = check_output_target(out); !again.ok()) {
-        m.error = out.string() + ": " + again.error;
-        return m;
-    }
-    if (auto e = tree->commit(target.path)) {
-        m.error = *e;
-        m.write_failed = true;
-        return m;
-    }
     m.shards = shards.size();
-    m.variants = modes ? served.size() : all.size();
-    m.files = tree->count();
-    // What one unsharded build of these inputs records.
-    if (cache.enabled())
-        store_record(record_file(cache, out), record_key(shards.front().meta.inputs, ""),
-                     m.variants, all.size(), m.files,
-                     [&](const std::function<void(const RecordedFile&)>& each) {
-                         tree->for_each_file(each);
-                     });
+    finish_merge(*tree, out, target, shards.front().meta.inputs, modes ? served.size() : all.size(),
+                 all.size(), cache, m);
     return m;
+}
+
+} // namespace
+
+MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
+                         const BuildCache& cache) {
+    // A permutations build's shards are merged in bounded memory; a modes build's jobs are
+    // shaders, and its variants are listed across them: that merge holds them.
+    if (!dirs.empty() && modes_shard(dirs.front())) return merge_held(out, dirs, cache);
+    return merge_streamed(out, dirs, cache);
 }
 
 } // namespace watergen

@@ -1,7 +1,9 @@
 #include "watergen/pipeline/spill_file.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstring>
 #include <fcntl.h>
 #include <string>
 #include <unistd.h>
@@ -48,6 +50,42 @@ bool SpillFile::read(uint64_t offset, uint64_t size, std::string& out) const {
         done += static_cast<size_t>(n);
     }
     out.resize(done);
+    return true;
+}
+
+std::string spill_record(std::initializer_list<std::string_view> fields) {
+    std::string out;
+    for (std::string_view f : fields) {
+        const auto size = static_cast<uint32_t>(f.size());
+        out.append(reinterpret_cast<const char*>(&size), sizeof size);
+        out.append(f);
+    }
+    return out;
+}
+
+bool SpillReader::fill(size_t n) {
+    if (buffer_.size() - at_ >= n) return true;
+    if (next_ >= end_) return false;
+    std::string more;
+    const uint64_t want = std::min<uint64_t>(std::max<size_t>(n, size_t(1) << 16), end_ - next_);
+    if (!file_->read(next_, want, more) || more.empty()) return failed_ = true, false;
+    next_ += more.size();
+    buffer_.erase(0, at_);
+    at_ = 0;
+    buffer_ += more;
+    return buffer_.size() >= n || fill(n);
+}
+
+bool SpillReader::next(std::vector<std::string>& fields, size_t n) {
+    fields.resize(n);
+    for (size_t k = 0; k < n; ++k) {
+        if (!fill(sizeof(uint32_t))) return failed_ = failed_ || k > 0, false;
+        uint32_t size;
+        std::memcpy(&size, buffer_.data() + at_, sizeof size);
+        if (!fill(sizeof size + size)) return failed_ = true, false;
+        fields[k].assign(buffer_.data() + at_ + sizeof size, size);
+        at_ += sizeof size + size;
+    }
     return true;
 }
 

@@ -74,7 +74,6 @@ std::vector<uint32_t> path_order(const Entries& files, const PathParts& paths) {
 
 std::optional<std::string> StagedTree::spill() {
     if (!runs_) runs_ = std::make_unique<FileRuns>(dir_);
-    if (!runs_->ok()) failure_ = "cannot create the build's spill file in " + dir_.string();
     if (!failure_.empty()) return failure_;
     FileRuns::Run run = runs_->begin_run();
     for (const uint32_t i : path_order(files_, paths_))

@@ -255,10 +255,10 @@ TEST_CASE("a_record_read_one_file_at_a_time_vouches_as_the_record_read_whole", "
         fs::create_directories((out / path).parent_path());
         std::ofstream(out / path) << bytes;
     }
-    auto covers = [&](size_t names_per_run) {
+    auto covers = [&](size_t names_per_run, const fs::path& scratch) {
         std::FILE* in = std::fopen((out / "manifest.json").c_str(), "rb");
         REQUIRE(in);
-        const bool covered = record_covers_manifest(file, in, tmp.path, names_per_run);
+        const bool covered = record_covers_manifest(file, in, scratch, names_per_run);
         std::fclose(in);
         return covered;
     };
@@ -268,15 +268,19 @@ TEST_CASE("a_record_read_one_file_at_a_time_vouches_as_the_record_read_whole", "
     CHECK(read_record_head(file)->files == 4);
     CHECK(*record_top_entries(file) == std::vector<std::string>{"manifest.json", "passes", "s"});
     for (const size_t per_run : {1, 2, 1000}) // the names in runs of 1 and 2, and held
-        CHECK(covers(per_run));
+        CHECK(covers(per_run, tmp.path));
+    // Names that fit in memory need no spill file: a cache directory that cannot take one (here
+    // missing) still vouches; names that must spill there cannot be matched, and do not vouch.
+    CHECK(covers(1000, tmp.path / "missing"));
+    CHECK_FALSE(covers(1, tmp.path / "missing"));
     for (const char* lost : {"manifest.json", "s/v/a.glsl", "s/v/c.glsl", "passes/p/b.spv"}) {
         BuildRecord less = whole;
         std::erase_if(less.files, [&](const RecordedFile& f) { return f.path == lost; });
         store_record(file, less);
         INFO(lost);
-        CHECK(record_covers_manifest(less, manifest) == covers(1));
-        CHECK_FALSE(covers(1));
-        CHECK_FALSE(covers(1000));
+        CHECK(record_covers_manifest(less, manifest) == covers(1, tmp.path));
+        CHECK_FALSE(covers(1, tmp.path));
+        CHECK_FALSE(covers(1000, tmp.path));
     }
     // A changed byte; a record whose lines are out of path order (a reader matches in one pass).
     store_record(file, whole);

@@ -111,7 +111,7 @@ bool record_covers_manifest(const BuildRecord& record, std::FILE* manifest);
 // paths, so neither list is held.
 bool record_covers_manifest(const std::filesystem::path& file, std::FILE* manifest,
                             const std::filesystem::path& scratch,
-                            size_t names_per_run = size_t(1) << 18);
+                            size_t names_per_run = size_t(1) << 16);
 
 // Whether every recorded file is in `out`, a regular file of its size and digest (read on
 // `threads` workers; 0: all cores). No link is followed on the way: not `out`, not a directory

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -26,8 +27,9 @@ struct RunRecord {
 
 class FileRuns {
   public:
-    explicit FileRuns(const std::filesystem::path& dir) : file_(dir, ".file-runs") {}
-    bool ok() const { return file_.ok(); }
+    // The spill file is made in `dir` at the first run: a list that fits in one run writes
+    // nothing (a no-op check beside a read-only cache still works).
+    explicit FileRuns(std::filesystem::path dir) : dir_(std::move(dir)) {}
     size_t runs() const { return runs_.size(); }
 
     // Appends one run; add() must be given paths in ascending order. finish() stores it, or
@@ -48,13 +50,31 @@ class FileRuns {
     };
     Run begin_run();
 
-    // Every record of the runs and of `more` (in path order, false at its end) in path order;
-    // false when a run could not be read back.
+    // Every record of the runs and of `more` (in path order, false at its end) in path order,
+    // one at a time as next() is called.
     using Next = std::function<bool(RunRecord&)>;
+    class Cursor {
+      public:
+        Cursor(Cursor&&) noexcept;
+        ~Cursor();
+        // The next record; false at the end, or when a run could not be read back (failed()).
+        bool next(RunRecord& r);
+        bool failed() const;
+
+      private:
+        friend class FileRuns;
+        struct State;
+        explicit Cursor(std::unique_ptr<State> state);
+        std::unique_ptr<State> state_;
+    };
+    Cursor cursor(Next more = {}) const;
+    // The same handed to `each`; false when a run could not be read back.
     bool merged(const Next& more, const std::function<void(const RunRecord&)>& each) const;
 
   private:
-    SpillFile file_;
+    SpillFile* file(); // made on first use; nullptr if it cannot be
+    std::filesystem::path dir_;
+    std::unique_ptr<SpillFile> file_;
     std::vector<SpillFile::Ref> runs_;
 };
 

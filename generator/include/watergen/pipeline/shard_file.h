@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -20,6 +21,9 @@
 #include "watergen/pipeline/sharded_build.h"
 
 namespace watergen {
+
+// file_digest()'s text back into its two halves; false for anything else.
+bool parse_file_digest(const std::string& text, uint64_t& high, uint64_t& low);
 
 struct ListedFile {
     std::string path; // plain relative (is_plain_relative_path)
@@ -63,10 +67,29 @@ std::optional<ShardFile> parse_shard_file(const std::string& text, std::string* 
 // The same from an open file, read as it goes (a merge never holds shard.json's text).
 std::optional<ShardFile> read_shard_file(std::FILE* in, std::string* why);
 
+// Where a reader that holds neither list puts shard.json's shapes and files, in the file's order
+// (each file checked for form, order and digest first); a non-empty return is the fault that
+// stops the read.
+struct ShardSink {
+    std::function<std::string(const std::string& scene, const std::string& key,
+                              const std::string& shape)>
+        shape;
+    std::function<std::string(const ListedFile& file)> file;
+};
+// shard.json's head (shard, toolchain, inputs, variants) as a ShardFile without shapes or
+// files: those went to `sink`.
+std::optional<ShardFile> read_shard_file(std::FILE* in, const ShardSink& sink, std::string* why);
+
 // One variant of a permutations shard's manifest (or one shader of a modes shard's) against its
 // shard.json (a merge reads the manifest one entry at a time): in the shard's key range, among
 // its shapes, every file it names listed; "" or why not.
 std::string check_shard_variant(const nlohmann::ordered_json& variant, const ShardFile& shard);
+// The same against a shard's head and two questions: is (scene, key) the shape shard.json names
+// next (or at all), and is a path listed.
+using HasShape = std::function<bool(const std::string& scene, const std::string& key)>;
+std::string check_variant_entry(const nlohmann::ordered_json& variant, const Shard& shard,
+                                const HasShape& has_shape,
+                                const std::function<bool(const std::string&)>& lists);
 // One variant of a modes shard's manifest: drawn by one of the shard's shaders (`shaders`, their
 // directories), its frozen modules listed; "" or why not.
 std::string check_served_variant(const nlohmann::ordered_json& variant, const ShardFile& shard,

@@ -5,8 +5,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace watergen {
 
@@ -30,6 +33,28 @@ class SpillFile {
   private:
     int fd_ = -1;
     uint64_t end_ = 0;
+};
+
+// A record of fields (each length-prefixed) to append to a SpillFile.
+std::string spill_record(std::initializer_list<std::string_view> fields);
+
+// Reads records of a SpillFile back in order, [begin, end), a buffer at a time.
+class SpillReader {
+  public:
+    SpillReader(const SpillFile& file, uint64_t begin, uint64_t end)
+        : file_(&file), next_(begin), end_(end) {}
+    // The next record, which must have `n` fields; false at the end, or if it cannot be read
+    // (failed()).
+    bool next(std::vector<std::string>& fields, size_t n);
+    bool failed() const { return failed_; }
+
+  private:
+    bool fill(size_t n); // at least n unread bytes buffered
+    const SpillFile* file_;
+    uint64_t next_, end_;
+    std::string buffer_;
+    size_t at_ = 0;
+    bool failed_ = false;
 };
 
 } // namespace watergen

@@ -54,7 +54,7 @@ class StagedTree {
     // A fresh staging directory beside `out` (make_staging_directory, output_writer.h); nullptr
     // and the error in `error` when it cannot be made.
     // `run_files`: records held before they go to the spill file as one sorted run.
-    static constexpr size_t kRunFiles = size_t(1) << 18; // 8 MB of records, 9,500 variants' files
+    static constexpr size_t kRunFiles = size_t(1) << 16; // 2 MB of records, 2,400 variants' files
     static std::unique_ptr<StagedTree> open(const std::filesystem::path& out, std::string* error,
                                             size_t run_files = kRunFiles);
     ~StagedTree(); // removes the staging directory unless committed

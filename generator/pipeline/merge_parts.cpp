@@ -1,0 +1,170 @@
+#include "merge_parts.h"
+
+#include <xxhash.h>
+
+#include "watergen/pipeline/build_cache.h"
+#include "watergen/pipeline/build_record.h"
+#include "watergen/pipeline/output_target.h"
+#include "watergen/pipeline/shaders_header.h"
+
+namespace watergen {
+
+namespace fs = std::filesystem;
+using OJson = nlohmann::ordered_json;
+
+namespace {
+
+// Why OUT may not be the merge's output beside these shards: it is one, holds one or lies
+// inside one (links resolved); "" when apart from all.
+std::string out_apart_from_shards(const fs::path& out, const std::vector<fs::path>& dirs) {
+    std::error_code ec;
+    const fs::path o = fs::weakly_canonical(normal_output_path(out), ec);
+    for (const fs::path& d : dirs) {
+        const fs::path shard = fs::weakly_canonical(normal_output_path(d), ec);
+        const std::string both = out.string() + " and the shard " + d.string();
+        if (o == shard)
+            return "the output directory " + out.string() + " is the shard " + d.string() +
+                   "; expected an output directory apart from every shard";
+        if (path_holds(o, shard))
+            return "the output directory " + out.string() + " holds the shard " + d.string() +
+                   ", which the merge would delete with the old output; expected an output "
+                   "directory apart from every shard";
+        if (path_holds(shard, o))
+            return "the output directory " + out.string() + " lies inside the shard " + d.string() +
+                   "; expected an output directory apart from every shard";
+    }
+    return "";
+}
+
+} // namespace
+
+std::string mismatch(const fs::path& dir, const ListedFile& f, const std::string& detail) {
+    return dir.string() + ": " + f.path + " does not match the size and hash shard.json records" +
+           detail;
+}
+
+std::pair<std::string, uint64_t> stream_digest(std::FILE* in) {
+    std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(),
+                                                                          XXH3_freeState);
+    XXH3_128bits_reset(state.get());
+    std::vector<char> buffer(size_t(1) << 16);
+    uint64_t size = 0;
+    for (size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), in)) > 0; size += n)
+        XXH3_128bits_update(state.get(), buffer.data(), n);
+    const XXH128_hash_t h = XXH3_128bits_digest(state.get());
+    return {digest_text(h.high64, h.low64), size};
+}
+
+std::string check_set(const std::vector<const ShardHead*>& heads) {
+    const ShardHead& first = *heads.front();
+    std::map<unsigned, const ShardHead*> by_index;
+    for (const ShardHead* h : heads) {
+        const ShardHead& s = *h;
+        const std::string both = s.dir.string() + " and " + first.dir.string();
+        if (s.meta.toolchain != first.meta.toolchain)
+            return both + " were built by different watergen or toolchain versions ('" +
+                   s.meta.toolchain + "' and '" + first.meta.toolchain +
+                   "'); expected one for every shard";
+        if (s.meta.inputs != first.meta.inputs || s.header != first.header)
+            return both + " were built from different inputs (material, scenes or options); "
+                          "expected shards of one build";
+        if (s.meta.shard.count != first.meta.shard.count)
+            return both + " are shards of " + std::to_string(s.meta.shard.count) + " and of " +
+                   std::to_string(first.meta.shard.count) + "; expected shards of one build";
+        if (auto [it, fresh] = by_index.emplace(s.meta.shard.index, &s); !fresh)
+            return "shard " + shard_text(s.meta.shard) +
+                   " is given twice: " + it->second->dir.string() + " and " + s.dir.string();
+    }
+    for (unsigned i = 1; i <= first.meta.shard.count; ++i)
+        if (!by_index.count(i))
+            return "shard " + shard_text({i, first.meta.shard.count}) +
+                   " is missing; expected all of 1/" + std::to_string(first.meta.shard.count) +
+                   " .. " + shard_text({first.meta.shard.count, first.meta.shard.count});
+    return "";
+}
+
+const std::set<std::string> kOutputFields = {"same_as",    "directory",          "files",
+                                             "reflection", "spirv_instructions", "passes"};
+
+OJson as_same(const OJson& own, const OJson& builder) {
+    OJson v = OJson::object();
+    for (const auto& [name, value] : own.items())
+        if (!kOutputFields.count(name)) v[name] = value;
+    v["same_as"] = builder["key"];
+    for (const auto& [name, value] : builder.items())
+        if (kOutputFields.count(name) && name != "same_as") v[name] = value;
+    return v;
+}
+
+// A shard that lost a variant falls short; no variant may be of a scene the head does not name.
+std::string check_counts(const OJson& head, std::map<std::string, size_t> held) {
+    for (const OJson& scene : head.value("scenes", OJson::array())) {
+        const std::string name = scene.value("name", "");
+        const OJson count = scene.value("variants", OJson());
+        if (!count.is_number_unsigned() || count.get<size_t>() != held[name])
+            return "scene " + name + ": the shards hold " + std::to_string(held[name]) +
+                   " variants, the build's manifest counts " + count.dump() +
+                   "; expected every variant of the build in one of the shards";
+        held.erase(name);
+    }
+    if (!held.empty())
+        return "variants of scene " + held.begin()->first +
+               ", which the build's manifest does not name";
+    return "";
+}
+
+std::unique_ptr<StagedTree> start_merge(const fs::path& out, const std::vector<fs::path>& dirs,
+                                        fs::path& target, MergeResult& m) {
+    if (dirs.empty()) {
+        m.error = "no shard directories; expected the outputs of watergen build --shard 1/N .. N/N";
+        return nullptr;
+    }
+    // Refused before anything is read: the merge replaces OUT whole, so a shard at, above or
+    // below it would be lost with the old tree, or would be read while being replaced.
+    if (m.error = out_apart_from_shards(out, dirs); !m.error.empty()) return nullptr;
+    const OutputTarget checked = check_output_target(out);
+    if (!checked.ok()) {
+        m.error = out.string() + ": " + checked.error;
+        return nullptr;
+    }
+    target = checked.path;
+    // The merged tree is written beside OUT as it is made, and replaces OUT at the end.
+    std::string error;
+    std::unique_ptr<StagedTree> tree = StagedTree::open(target, &error);
+    if (!tree) {
+        m.error = error;
+        m.write_failed = true;
+    }
+    return tree;
+}
+
+void finish_merge(StagedTree& tree, const fs::path& out, const fs::path& target,
+                  const std::string& inputs, size_t variants, size_t shaders,
+                  const BuildCache& cache, MergeResult& m) {
+    // The merged build's C++ header, as one build of the same inputs writes it.
+    if (auto e = write_shaders_header(tree)) {
+        m.error = *e;
+        m.write_failed = true;
+        return;
+    }
+    // Checked again: the merge took a while.
+    if (const OutputTarget again = check_output_target(out); !again.ok()) {
+        m.error = out.string() + ": " + again.error;
+        return;
+    }
+    if (auto e = tree.commit(target)) {
+        m.error = *e;
+        m.write_failed = true;
+        return;
+    }
+    m.variants = variants;
+    m.files = tree.count();
+    // What one unsharded build of these inputs records.
+    if (cache.enabled())
+        store_record(record_file(cache, out), record_key(inputs, ""), variants, shaders, m.files,
+                     [&](const std::function<void(const RecordedFile&)>& each) {
+                         tree.for_each_file(each);
+                     });
+}
+
+} // namespace watergen

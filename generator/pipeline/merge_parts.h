@@ -1,0 +1,62 @@
+// What the two ways of `watergen merge` share (sharded_build.cpp: a modes build's shards, held;
+// streamed_merge.cpp: a permutations build's, streamed): the checks that the shards are one
+// build's, the merged entry of a variant whose shader another shard built, and the output's
+// start and end. Internal to the pipeline library.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "watergen/pipeline/shard_file.h"
+#include "watergen/pipeline/sharded_build.h"
+#include "watergen/pipeline/staged_tree.h"
+
+namespace watergen {
+
+// A shard's output as both merges know it: where, shard.json's head, the manifest's head.
+struct ShardHead {
+    std::filesystem::path dir;
+    ShardFile meta;              // a streamed merge's without shapes and files
+    nlohmann::ordered_json head; // the manifest without its variants (and shaders)
+    std::string header;          // head.dump(): shards of one build have the same
+};
+
+std::string mismatch(const std::filesystem::path& dir, const ListedFile& f,
+                     const std::string& detail);
+// The XXH3-128 digest and size of what `in` holds from its start.
+std::pair<std::string, uint64_t> stream_digest(std::FILE* in);
+// The shards, checked to be 1..N of one build; "" or why not.
+std::string check_set(const std::vector<const ShardHead*>& heads);
+// The fields of a manifest entry that name where its files are.
+extern const std::set<std::string> kOutputFields;
+// `own` pointing at the files of `builder` (same shader), as manifest_json writes such an entry.
+nlohmann::ordered_json as_same(const nlohmann::ordered_json& own,
+                               const nlohmann::ordered_json& builder);
+// Every scene of the merged manifest's head holds as many variants as it counts; "" or why not.
+std::string check_counts(const nlohmann::ordered_json& head, std::map<std::string, size_t> held);
+
+// The merge's staging tree beside OUT once OUT may be replaced and lies apart from every shard
+// (resolved into `target`); nullptr with m.error otherwise.
+std::unique_ptr<StagedTree> start_merge(const std::filesystem::path& out,
+                                        const std::vector<std::filesystem::path>& dirs,
+                                        std::filesystem::path& target, MergeResult& m);
+// The merge's end once its manifest and files are in the tree: the C++ header, OUT checked
+// again, the swap, and (with a cache) the record one build of these inputs stores. m.error on
+// failure.
+void finish_merge(StagedTree& tree, const std::filesystem::path& out,
+                  const std::filesystem::path& target, const std::string& inputs, size_t variants,
+                  size_t shaders, const BuildCache& cache, MergeResult& m);
+
+// merge_shards for the shards of a permutations build, holding no list that grows with them.
+MergeResult merge_streamed(const std::filesystem::path& out,
+                           const std::vector<std::filesystem::path>& dirs, const BuildCache& cache);
+
+} // namespace watergen
