@@ -1,10 +1,17 @@
 #include "merge_parts.h"
 
+#include <cerrno>
+#include <mutex>
+#include <sys/stat.h>
+
 #include <xxhash.h>
 
 #include "watergen/pipeline/build_cache.h"
 #include "watergen/pipeline/build_record.h"
+#include "watergen/pipeline/caustics_pass_build.h"
 #include "watergen/pipeline/output_target.h"
+#include "watergen/pipeline/parallel_build.h"
+#include "watergen/pipeline/safe_read.h"
 #include "watergen/pipeline/shaders_header.h"
 
 namespace watergen {
@@ -43,6 +50,9 @@ std::string mismatch(const fs::path& dir, const ListedFile& f, const std::string
            detail;
 }
 
+namespace {
+
+// The XXH3-128 digest and size of what `in` holds from its start.
 std::pair<std::string, uint64_t> stream_digest(std::FILE* in) {
     std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(),
                                                                           XXH3_freeState);
@@ -53,6 +63,99 @@ std::pair<std::string, uint64_t> stream_digest(std::FILE* in) {
         XXH3_128bits_update(state.get(), buffer.data(), n);
     const XXH128_hash_t h = XXH3_128bits_digest(state.get());
     return {digest_text(h.high64, h.low64), size};
+}
+
+} // namespace
+
+std::string listed_file_fault(const fs::path& dir, const ListedFile& f) {
+    struct stat st {};
+    if (::lstat((dir / f.path).c_str(), &st) != 0)
+        return mismatch(dir, f, errno == ENOENT ? " (missing)" : "");
+    if (!S_ISREG(st.st_mode) || static_cast<uint64_t>(st.st_size) != f.size)
+        return mismatch(
+            dir, f, S_ISREG(st.st_mode) ? "" : std::string(" (is ") + file_kind(st.st_mode) + ")");
+    return "";
+}
+
+std::FILE* open_shard_json(const fs::path& dir, std::string* why) {
+    SafeRead meta;
+    std::FILE* in = open_regular_stream(dir / kShardFile, meta);
+    if (!in)
+        *why = dir.string() + ": " +
+               (meta.missing ? "no shard.json; expected the output of watergen build --shard I/N"
+                             : "shard.json " + meta.why);
+    return in;
+}
+
+std::FILE* open_shard_manifest(const fs::path& dir, const std::optional<ListedFile>& listed,
+                               std::string* why) {
+    if (!listed) {
+        *why = dir.string() + ": no manifest.json of a build among the files shard.json lists";
+        return nullptr;
+    }
+    SafeRead seen;
+    std::FILE* in = open_regular_stream(dir / "manifest.json", seen);
+    if (!in) {
+        *why =
+            mismatch(dir, *listed, " (" + (seen.missing ? std::string("missing") : seen.why) + ")");
+        return nullptr;
+    }
+    // Hashed in one pass, then read again one variant at a time by the caller.
+    const auto [digest, size] = stream_digest(in);
+    std::rewind(in);
+    if (size != listed->size || digest != listed->digest) {
+        std::fclose(in);
+        *why = mismatch(dir, *listed, "");
+        return nullptr;
+    }
+    return in;
+}
+
+namespace {
+
+// Copies the shard's file `f` to `to` in `tree` if its bytes match the size and hash listed;
+// "" or why not, `wrote` when the shard was fine and the tree could not take it.
+std::string copy_one(StagedTree& tree, const fs::path& dir, const ListedFile& f,
+                     const std::string& to, bool& wrote) {
+    wrote = false;
+    const SafeRead r = read_regular_file(dir / f.path, f.size);
+    if (!r.bytes || r.bytes->size() != f.size || file_digest(*r.bytes) != f.digest)
+        return mismatch(dir, f,
+                        r.bytes ? "" : " (" + (r.missing ? std::string("missing") : r.why) + ")");
+    if (auto e = tree.write(to, *r.bytes)) {
+        wrote = true;
+        return *e;
+    }
+    return "";
+}
+
+} // namespace
+
+bool copy_listed(StagedTree& tree, const fs::path& dir,
+                 const std::vector<std::pair<ListedFile, std::string>>& files, MergeResult& m) {
+    std::mutex lock;
+    std::string first;
+    bool write_failed = false;
+    parallel_for(files.size(), 0, [&](size_t i) {
+        bool wrote = false;
+        const std::string why = copy_one(tree, dir, files[i].first, files[i].second, wrote);
+        if (why.empty()) return;
+        std::lock_guard<std::mutex> guard(lock);
+        if (first.empty()) first = why, write_failed = wrote;
+    });
+    if (first.empty()) return true;
+    m.error = first;
+    m.write_failed = write_failed;
+    return false;
+}
+
+std::string directory_of(const std::string& path) {
+    const size_t slash = path.find('/', path.find('/') + 1);
+    return slash == std::string::npos ? std::string() : path.substr(0, slash);
+}
+
+bool first_copy(const std::string& path, std::set<std::string>& copied) {
+    return path.rfind(std::string(kPassesDirectory) + "/", 0) != 0 || copied.insert(path).second;
 }
 
 std::string check_set(const std::vector<const ShardHead*>& heads) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -31,10 +32,28 @@ struct ShardHead {
 
 std::string mismatch(const std::filesystem::path& dir, const ListedFile& f,
                      const std::string& detail);
-// The XXH3-128 digest and size of what `in` holds from its start.
-std::pair<std::string, uint64_t> stream_digest(std::FILE* in);
+// A file shard.json lists (not the manifest) as the shard holds it: a regular file of its size
+// ("" or the mismatch); its hash is checked when it is copied.
+std::string listed_file_fault(const std::filesystem::path& dir, const ListedFile& f);
+// The shard's shard.json opened; nullptr and *why (no shard.json, or why it cannot be read).
+std::FILE* open_shard_json(const std::filesystem::path& dir, std::string* why);
+// The shard's manifest.json opened once its size and hash are what shard.json lists
+// (`listed`); nullptr and *why otherwise.
+std::FILE* open_shard_manifest(const std::filesystem::path& dir,
+                               const std::optional<ListedFile>& listed, std::string* why);
+// Copies each of the shard's files (a file, and where it goes in `tree`) on every core if its
+// bytes match the size and hash listed; false and m.error (m.write_failed when the shard was fine
+// and the tree could not take one) at the first that does not.
+bool copy_listed(StagedTree& tree, const std::filesystem::path& dir,
+                 const std::vector<std::pair<ListedFile, std::string>>& files, MergeResult& m);
+// Whether the merge copies this shard file of a companion pass: the passes are in every shard
+// that needs them, copied once (`copied`: those so far). True for any other file.
+bool first_copy(const std::string& path, std::set<std::string>& copied);
 // The shards, checked to be 1..N of one build; "" or why not.
 std::string check_set(const std::vector<const ShardHead*>& heads);
+// The job directory a path of the output lies in (<scene>/<name>: its first two parts); "" for a
+// file outside one.
+std::string directory_of(const std::string& path);
 // The fields of a manifest entry that name where its files are.
 extern const std::set<std::string> kOutputFields;
 // `own` pointing at the files of `builder` (same shader), as manifest_json writes such an entry.

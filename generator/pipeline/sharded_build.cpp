@@ -73,13 +73,9 @@ struct ShardOutput : ShardHead {
 std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
     s.dir = dir;
     const std::string where = dir.string() + ": ";
-    SafeRead meta;
-    std::FILE* meta_in = open_regular_stream(dir / kShardFile, meta);
-    if (!meta_in)
-        return where + (meta.missing
-                            ? "no shard.json; expected the output of watergen build --shard I/N"
-                            : "shard.json " + meta.why);
     std::string why;
+    std::FILE* meta_in = open_shard_json(dir, &why);
+    if (!meta_in) return why;
     auto parsed = read_shard_file(meta_in, &why);
     std::fclose(meta_in);
     if (!parsed) return where + why;
@@ -87,34 +83,13 @@ std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
     std::optional<ListedFile> listed_manifest;
     for (size_t i = 0; i < s.meta.files.size(); ++i) {
         const ListedFile f = s.meta.files[i];
-        if (f.path == "manifest.json") {
+        if (f.path == "manifest.json")
             listed_manifest = f;
-            continue;
-        }
-        // Kind and size now; the hash when the file is copied.
-        struct stat st {};
-        if (::lstat((dir / f.path).c_str(), &st) != 0)
-            return mismatch(dir, f, errno == ENOENT ? " (missing)" : "");
-        if (!S_ISREG(st.st_mode) || static_cast<uint64_t>(st.st_size) != f.size)
-            return mismatch(
-                dir, f,
-                S_ISREG(st.st_mode) ? "" : std::string(" (is ") + file_kind(st.st_mode) + ")");
+        else if (std::string fault = listed_file_fault(dir, f); !fault.empty())
+            return fault;
     }
-    if (!listed_manifest)
-        return where + "no manifest.json of a build among the files shard.json lists";
-    SafeRead seen;
-    std::FILE* in = open_regular_stream(dir / "manifest.json", seen);
-    if (!in)
-        return mismatch(dir, *listed_manifest,
-                        " (" + (seen.missing ? std::string("missing") : seen.why) + ")");
-    // Hashed in one pass, then read one variant at a time: each checked and spooled, the rest
-    // kept as the head.
-    const auto [digest, size] = stream_digest(in);
-    std::rewind(in);
-    if (size != listed_manifest->size || digest != listed_manifest->digest) {
-        std::fclose(in);
-        return mismatch(dir, *listed_manifest, "");
-    }
+    std::FILE* in = open_shard_manifest(dir, listed_manifest, &why);
+    if (!in) return why;
     s.head = OJson::object();
     bool has_variants = false, has_shaders = false;
     std::set<std::string> shaders; // the directories of a modes build's shaders
@@ -301,11 +276,6 @@ MergeResult merge_held(const fs::path& out, const std::vector<fs::path>& dirs,
     for (const auto& [id, where] : served)
         ++held[id.first];
     if (m.error = check_counts(shards.front().head, held); !m.error.empty()) return m;
-    // A job's directory is <scene>/<name>: the first two parts of a path.
-    auto directory_of = [](const std::string& path) {
-        const size_t slash = path.find('/', path.find('/') + 1);
-        return slash == std::string::npos ? std::string() : path.substr(0, slash);
-    };
     auto listed = [&](const std::string& path) {
         return std::any_of(shards.begin(), shards.end(),
                            [&](const auto& s) { return s.meta.lists(path); });
@@ -364,40 +334,17 @@ MergeResult merge_held(const fs::path& out, const std::vector<fs::path>& dirs,
         return m;
     }
 
-    // The shards' files, each checked against its size and hash as it is copied, one at a time
-    // per worker. The companion passes are in every shard that needs them: copied once.
-    std::mutex lock;
+    // The shards' files, each checked against its size and hash as it is copied.
     std::set<std::string> passes;
-    std::string copy_error;
-    bool write_error = false;
     for (const ShardOutput& s : shards) {
-        parallel_for(s.meta.files.size(), 0, [&](size_t i) {
-            const ListedFile f = s.meta.files[i];
-            if (f.path == "manifest.json" || f.path == kShardFile) return;
-            const std::string to = destination(f.path);
-            if (to.empty()) return;
-            if (f.path.rfind(std::string(kPassesDirectory) + "/", 0) == 0) {
-                std::lock_guard<std::mutex> guard(lock);
-                if (!passes.insert(f.path).second) return;
-            }
-            const SafeRead r = read_regular_file(s.dir / f.path, f.size);
-            std::string why;
-            bool wrote = false;
-            if (!r.bytes || r.bytes->size() != f.size || file_digest(*r.bytes) != f.digest)
-                why = mismatch(s.dir, f,
-                               r.bytes ? ""
-                                       : " (" + (r.missing ? std::string("missing") : r.why) + ")");
-            else if (auto e = tree->write(to, *r.bytes))
-                why = *e, wrote = true;
-            if (why.empty()) return;
-            std::lock_guard<std::mutex> guard(lock);
-            if (copy_error.empty()) copy_error = why, write_error = wrote;
-        });
-        if (!copy_error.empty()) {
-            m.error = copy_error;
-            m.write_failed = write_error;
-            return m;
+        std::vector<std::pair<ListedFile, std::string>> files;
+        for (size_t i = 0; i < s.meta.files.size(); ++i) {
+            ListedFile f = s.meta.files[i];
+            if (f.path == "manifest.json" || f.path == kShardFile) continue;
+            std::string to = destination(f.path);
+            if (!to.empty() && first_copy(f.path, passes)) files.emplace_back(std::move(f), to);
         }
+        if (!copy_listed(*tree, s.dir, files, m)) return m;
     }
     m.shards = shards.size();
     finish_merge(*tree, out, target, shards.front().meta.inputs, modes ? served.size() : all.size(),

@@ -126,12 +126,9 @@ std::string read_streamed(const fs::path& dir, const fs::path& scratch, Streamed
     s.files = std::make_unique<FileRuns>(scratch);
     const std::string no_spool = "cannot write the merge's spool in " + scratch.string();
     if (!s.shapes->ok() || !s.index->ok() || !s.texts->ok()) return no_spool;
-    SafeRead meta;
-    std::FILE* meta_in = open_regular_stream(dir / kShardFile, meta);
-    if (!meta_in)
-        return where + (meta.missing
-                            ? "no shard.json; expected the output of watergen build --shard I/N"
-                            : "shard.json " + meta.why);
+    std::string why;
+    std::FILE* meta_in = open_shard_json(dir, &why);
+    if (!meta_in) return why;
     std::optional<ListedFile> listed_manifest;
     size_t shapes = 0;
     bool spooled = true;
@@ -150,35 +147,15 @@ std::string read_streamed(const fs::path& dir, const fs::path& scratch, Streamed
                 listed_manifest = f;
                 return std::string();
             }
-            // Kind and size now; the hash when the file is copied.
-            struct stat st {};
-            if (::lstat((dir / f.path).c_str(), &st) != 0)
-                return mismatch(dir, f, errno == ENOENT ? " (missing)" : "");
-            if (!S_ISREG(st.st_mode) || static_cast<uint64_t>(st.st_size) != f.size)
-                return mismatch(
-                    dir, f,
-                    S_ISREG(st.st_mode) ? "" : std::string(" (is ") + file_kind(st.st_mode) + ")");
-            return std::string();
+            return listed_file_fault(dir, f); // kind and size now; the hash when copied
         }};
-    std::string why;
     auto parsed = read_shard_file(meta_in, sink, &why);
     std::fclose(meta_in);
     if (!parsed) return why.rfind(dir.string(), 0) == 0 ? why : where + why;
     if (run.finish() || !spooled) return no_spool;
     s.meta = std::move(*parsed);
-    if (!listed_manifest)
-        return where + "no manifest.json of a build among the files shard.json lists";
-    SafeRead seen;
-    std::FILE* in = open_regular_stream(dir / "manifest.json", seen);
-    if (!in)
-        return mismatch(dir, *listed_manifest,
-                        " (" + (seen.missing ? std::string("missing") : seen.why) + ")");
-    const auto [digest, size] = stream_digest(in);
-    std::rewind(in);
-    if (size != listed_manifest->size || digest != listed_manifest->digest) {
-        std::fclose(in);
-        return mismatch(dir, *listed_manifest, "");
-    }
+    std::FILE* in = open_shard_manifest(dir, listed_manifest, &why);
+    if (!in) return why;
     // Each entry beside the shape shard.json names in its place, its files gathered to be
     // matched against the shard's list, spooled with its shape.
     SpillReader shape_reader(*s.shapes, 0, s.shapes->end());
@@ -273,12 +250,6 @@ struct EntryCursor {
     }
 };
 
-// A job's directory is <scene>/<name>: the first two parts of a path.
-std::string directory_of(const std::string& path) {
-    const size_t slash = path.find('/', path.find('/') + 1);
-    return slash == std::string::npos ? std::string() : path.substr(0, slash);
-}
-
 } // namespace
 
 MergeResult merge_streamed(const fs::path& out, const std::vector<fs::path>& dirs,
@@ -368,48 +339,22 @@ MergeResult merge_streamed(const fs::path& out, const std::vector<fs::path>& dir
     }
 
     // The shards' files, each checked against its size and hash as it is copied, a slice at a
-    // time on every core. The companion passes are in every shard that needs them: copied once.
+    // time.
     std::set<std::string> passes;
     for (const StreamedShard& s : shards) {
         FileRuns::Cursor listed = s.files->cursor();
-        std::vector<ListedFile> slice;
+        std::vector<std::pair<ListedFile, std::string>> slice;
         RunRecord r;
         for (bool more = true; more;) {
             slice.clear();
             while (slice.size() < kFilesPerCopy && (more = listed.next(r))) {
                 if (r.path == "manifest.json" || r.path == kShardFile) continue;
                 if (dropped.count(hash_of(directory_of(r.path)))) continue;
-                if (r.path.rfind(std::string(kPassesDirectory) + "/", 0) == 0 &&
-                    !passes.insert(r.path).second)
-                    continue;
-                slice.push_back({r.path, r.size, digest_text(r.digest.high64, r.digest.low64)});
+                if (!first_copy(r.path, passes)) continue;
+                slice.push_back(
+                    {{r.path, r.size, digest_text(r.digest.high64, r.digest.low64)}, r.path});
             }
-            std::mutex lock;
-            std::string copy_error;
-            bool write_error = false;
-            parallel_for(slice.size(), 0, [&](size_t i) {
-                const ListedFile& f = slice[i];
-                const SafeRead read = read_regular_file(s.dir / f.path, f.size);
-                std::string why;
-                bool wrote = false;
-                if (!read.bytes || read.bytes->size() != f.size ||
-                    file_digest(*read.bytes) != f.digest)
-                    why = mismatch(s.dir, f,
-                                   read.bytes
-                                       ? ""
-                                       : " (" + (read.missing ? std::string("missing") : read.why) +
-                                             ")");
-                else if (auto e = tree->write(f.path, *read.bytes))
-                    why = *e, wrote = true;
-                if (why.empty()) return;
-                std::lock_guard<std::mutex> guard(lock);
-                if (copy_error.empty()) copy_error = why, write_error = wrote;
-            });
-            if (!copy_error.empty()) {
-                m.error = copy_error;
-                m.write_failed = write_error;
-                return m;
-            }
+            if (!copy_listed(*tree, s.dir, slice, m)) return m;
         }
         if (listed.failed()) {
             m.error = "cannot read the merge's spool in " + tree->dir().string();
