@@ -7,63 +7,32 @@ namespace watergen {
 
 namespace {
 
-// A run's record on disk: path length (4 bytes), path, size, digest high and low (8 bytes each).
-constexpr size_t kFixedBytes = 4 + 3 * 8;
-// Bytes gathered before a write, and read ahead per run while merging.
+// A run's record on disk: a spill record (spill_file.h) of the path and 24 bytes: size, digest
+// high and low.
+constexpr size_t kFixedBytes = 3 * 8;
+// Bytes gathered before a write.
 constexpr size_t kBufferBytes = size_t(1) << 14;
-
-template <typename T> void put(std::string& out, T value) {
-    char bytes[sizeof(T)];
-    std::memcpy(bytes, &value, sizeof(T));
-    out.append(bytes, sizeof(T));
-}
-
-template <typename T> T get(const char* at) {
-    T value;
-    std::memcpy(&value, at, sizeof(T));
-    return value;
-}
 
 // Reads one run back a buffer at a time.
 class RunReader {
   public:
     RunReader(const SpillFile& file, SpillFile::Ref run)
-        : file_(file), next_(run.offset), end_(run.offset + run.size) {}
+        : reader_(file, run.offset, run.offset + run.size) {}
     // The next record into `r`; false at the run's end or on a read error (failed()).
     bool next(RunRecord& r) {
-        if (!fill(kFixedBytes)) return false;
-        const auto length = get<uint32_t>(buffer_.data() + at_);
-        if (!fill(kFixedBytes + length)) return failed_ = true, false;
-        const char* p = buffer_.data() + at_ + 4;
-        r.path.assign(p, length);
-        p += length;
-        r.size = get<uint64_t>(p);
-        r.digest.high64 = get<uint64_t>(p + 8);
-        r.digest.low64 = get<uint64_t>(p + 16);
-        at_ += kFixedBytes + length;
+        if (!reader_.next(fields_, 2)) return false;
+        if (fields_[1].size() != kFixedBytes) return failed_ = true, false;
+        r.path = std::move(fields_[0]);
+        std::memcpy(&r.size, fields_[1].data(), 8);
+        std::memcpy(&r.digest.high64, fields_[1].data() + 8, 8);
+        std::memcpy(&r.digest.low64, fields_[1].data() + 16, 8);
         return true;
     }
-    bool failed() const { return failed_; }
+    bool failed() const { return failed_ || reader_.failed(); }
 
   private:
-    // At least `n` unread bytes in the buffer; false at the run's end (or on an error).
-    bool fill(size_t n) {
-        if (buffer_.size() - at_ >= n) return true;
-        if (next_ >= end_) return false;
-        std::string more;
-        if (!file_.read(next_, std::min<uint64_t>(std::max(n, kBufferBytes), end_ - next_), more) ||
-            more.empty())
-            return failed_ = true, false;
-        next_ += more.size();
-        buffer_.erase(0, at_);
-        at_ = 0;
-        buffer_ += more;
-        return buffer_.size() >= n || fill(n);
-    }
-    const SpillFile& file_;
-    uint64_t next_, end_;
-    std::string buffer_;
-    size_t at_ = 0;
+    SpillReader reader_;
+    std::vector<std::string> fields_;
     bool failed_ = false;
 };
 
@@ -83,11 +52,11 @@ FileRuns::Run FileRuns::begin_run() {
 }
 
 void FileRuns::Run::add(std::string_view path, uint64_t size, XXH128_hash_t digest) {
-    put(buffer_, static_cast<uint32_t>(path.size()));
-    buffer_.append(path);
-    put(buffer_, size);
-    put(buffer_, digest.high64);
-    put(buffer_, digest.low64);
+    char fixed[kFixedBytes];
+    std::memcpy(fixed, &size, 8);
+    std::memcpy(fixed + 8, &digest.high64, 8);
+    std::memcpy(fixed + 16, &digest.low64, 8);
+    buffer_ += spill_record({path, std::string_view(fixed, kFixedBytes)});
     if (buffer_.size() >= kBufferBytes) flush();
 }
 

@@ -67,7 +67,7 @@ bool SpillReader::fill(size_t n) {
     if (buffer_.size() - at_ >= n) return true;
     if (next_ >= end_) return false;
     std::string more;
-    const uint64_t want = std::min<uint64_t>(std::max<size_t>(n, size_t(1) << 16), end_ - next_);
+    const uint64_t want = std::min<uint64_t>(std::max<size_t>(n, size_t(1) << 14), end_ - next_);
     if (!file_->read(next_, want, more) || more.empty()) return failed_ = true, false;
     next_ += more.size();
     buffer_.erase(0, at_);
