@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 
 #include "watergen/ir/ir_fold.h"
 #include "watergen/pipeline/build_record.h"
@@ -21,23 +22,62 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The scene's jobs of the shard: one per variant, or one per shader of the mode.
-void add_jobs(BuildPlan& plan, const std::string& scene, const std::vector<Variant>& variants,
-              const FoldFacts* facts, const std::vector<Target>& targets, BuildMode mode,
-              const Shard& shard) {
-    auto kept = [&](const std::string& key) { return !shard.sharded() || in_shard(shard, key); };
-    if (mode == BuildMode::Permutations) {
-        for (const Variant& v : variants)
-            if (kept(v.key())) plan.jobs.push_back({scene, v, facts, targets});
-        return;
+// The scene's jobs of the shard in permutations mode: one per variant.
+void add_variant_jobs(BuildPlan& plan, const std::string& scene,
+                      const std::vector<Variant>& variants, const FoldFacts* facts,
+                      const std::vector<Target>& targets, const Shard& shard) {
+    for (const Variant& v : variants)
+        if (!shard.sharded() || in_shard(shard, v.key()))
+            plan.jobs.push_back({scene, v, facts, targets});
+}
+
+// The combination of the permutation-only axes' choices that `v` makes: its shader's, of those
+// shaders_for() makes in the specialized and branching modes.
+std::string fixed_choices(const Variant& v) {
+    std::string fixed;
+    for (size_t a = 0; a < axes().size(); ++a)
+        if (permutation_only(axes()[a].name)) fixed += v.choices[a] + ",";
+    return fixed;
+}
+
+// The scene's jobs of the shard in a mode: one per shader, each with the variants it serves,
+// kept a byte an axis (`variants`, sorted by key).
+void add_shader_jobs(BuildPlan& plan, const std::string& scene, const VariantList& variants,
+                     const FoldFacts* facts, const std::vector<Target>& targets, BuildMode mode,
+                     const Shard& shard) {
+    // shaders_for() offers each shader the choices its variants make: per combination of the
+    // permutation-only axes, each choice made on each axis, by one variant each.
+    std::map<std::string, std::pair<Variant, std::vector<std::set<std::string>>>> groups;
+    Variant v = default_variant();
+    for (size_t i = 0; i < variants.size(); ++i) {
+        variants.fill(i, v);
+        auto [it, fresh] = groups.try_emplace(fixed_choices(v), v, axes().size());
+        for (size_t a = 0; a < axes().size(); ++a)
+            it->second.second[a].insert(v.choices[a]);
     }
-    for (const ShaderChoices& s : shaders_for(variants, mode)) {
-        if (!kept(s.key())) continue;
-        BuildJob job{scene, s.first_variant(), facts, targets, s, {}};
-        for (const Variant& v : variants)
-            if (s.covers(v)) job.serves.push_back(v);
-        plan.jobs.push_back(std::move(job));
+    std::vector<Variant> representatives;
+    for (const auto& [fixed, group] : groups)
+        for (size_t a = 0; a < axes().size(); ++a)
+            for (const std::string& choice : group.second[a]) {
+                representatives.push_back(group.first);
+                representatives.back().choices[a] = choice;
+            }
+    const std::vector<ShaderChoices> shaders = shaders_for(representatives, mode);
+    std::map<std::string, size_t> shader_of; // fixed choices -> shader
+    std::vector<std::shared_ptr<VariantList>> serves(shaders.size());
+    for (size_t k = 0; k < shaders.size(); ++k) {
+        shader_of[fixed_choices(shaders[k].first_variant())] = k;
+        if (!shard.sharded() || in_shard(shard, shaders[k].key()))
+            serves[k] = std::make_shared<VariantList>(variants.choices());
     }
+    for (size_t i = 0; i < variants.size(); ++i) {
+        variants.fill(i, v);
+        if (const auto& list = serves[shader_of.at(fixed_choices(v))]) list->add_from(variants, i);
+    }
+    for (size_t k = 0; k < shaders.size(); ++k)
+        if (serves[k])
+            plan.jobs.push_back(
+                {scene, shaders[k].first_variant(), facts, targets, shaders[k], serves[k]});
 }
 
 } // namespace
@@ -84,22 +124,21 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
                                              return !shard.sharded() || in_shard(shard, key);
                                          });
         } else {
-            std::vector<std::pair<std::string, Variant>> keyed;
-            enumerate(material.space, [&](const Variant& v) {
-                ++count;
-                keyed.emplace_back(v.key(), v);
-            });
-            std::sort(keyed.begin(), keyed.end(),
-                      [](const auto& a, const auto& b) { return a.first < b.first; });
-            std::vector<Variant> unpruned;
-            for (auto& [key, v] : keyed)
-                unpruned.push_back(std::move(v));
-            add_jobs(plan, kUnprunedScene, unpruned, nullptr, material.targets, mode, shard);
+            VariantList unpruned(material.space.choices);
+            enumerate_indices(material.space,
+                              [&](const std::vector<size_t>& index) { unpruned.add(index); });
+            unpruned.sort_by_key();
+            count = unpruned.size();
+            add_shader_jobs(plan, kUnprunedScene, unpruned, nullptr, material.targets, mode, shard);
         }
         plan.manifest_scenes.push_back({kUnprunedScene, nullptr, count});
     }
     for (const ScenePlan& s : plan.scenes) {
-        add_jobs(plan, s.scene.name, s.variants, &s.facts, s.targets, mode, shard);
+        if (mode == BuildMode::Permutations)
+            add_variant_jobs(plan, s.scene.name, s.variants, &s.facts, s.targets, shard);
+        else
+            add_shader_jobs(plan, s.scene.name, VariantList::of(s.variants), &s.facts, s.targets,
+                            mode, shard);
         plan.manifest_scenes.push_back({s.scene.name, &s, s.variants.size()});
     }
     return plan;
@@ -193,11 +232,11 @@ void add_frozen(const std::vector<BuildJob>& jobs, const std::vector<JobResult>&
     for (size_t i = 0; i < jobs.size(); ++i) {
         if (!jobs[i].shader || !results[i].ok()) continue;
         const size_t built = results[i].files_of(i);
-        for (const Variant& v : jobs[i].serves)
+        for (size_t k = 0; k < jobs[i].serves->size(); ++k)
             for (const char* lang : {"glsl", "hlsl"})
                 if (const auto& names = results[built].file_names(); std::binary_search(
                         names.begin(), names.end(), std::string(lang) + "/water.frag.opt.spv"))
-                    work.push_back({i, built, v, lang});
+                    work.push_back({i, built, jobs[i].serves->at(k), lang});
     }
     std::vector<FrozenVariant> frozen(work.size());
     std::vector<char> failed(work.size(), 0);
@@ -344,7 +383,7 @@ BuildSummary build_material_now(const BuildRequest& request) {
     if (!streamed) {
         s.variants = 0;
         for (const BuildJob& job : plan->jobs.held())
-            s.variants += job.shader ? job.serves.size() : 1;
+            s.variants += job.shader ? job.serves->size() : 1;
     }
     // The companion passes the variants draw with, each once for the whole output; first, as
     // the manifest's entries point at them.

@@ -141,10 +141,16 @@ PassesOutput build_needed_passes(const Material& material, const JobList& jobs,
     std::map<CausticsPassKey, std::set<Target>> wanted; // pass -> the targets of its variants
     for (size_t i = 0; i < jobs.size(); ++i) {
         const BuildJob job = jobs.at(i);
-        const std::vector<Variant> one{job.variant};
-        for (const Variant& v : job.shader ? job.serves : one)
+        auto want = [&](const Variant& v) {
             if (const auto key = caustics_pass_for(v))
                 wanted[*key].insert(job.targets.begin(), job.targets.end());
+        };
+        if (!job.shader) want(job.variant);
+        Variant v = default_variant();
+        for (size_t k = 0; job.shader && k < job.serves->size(); ++k) {
+            job.serves->fill(k, v);
+            want(v);
+        }
     }
     std::map<CausticsPassKey, std::vector<Target>> needed; // in all_targets() order
     std::vector<CausticsPassKey> keys;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <queue>
 #include <set>
 #include <tuple>
 
@@ -350,7 +351,7 @@ OJson shader_json(size_t i, const std::vector<BuildJob>& jobs,
         selectors.push_back(sel);
     }
     v["selectors"] = selectors;
-    v["variants"] = job.serves.size();
+    v["variants"] = job.serves->size();
     add_fold(v, job, results[i]);
     return v;
 }
@@ -399,26 +400,46 @@ void write_modes_manifest(const Material& material, BuildMode mode, bool freeze,
     OJson head = header_json(material, scenes, bindings);
     head["mode"] = to_string(mode);
     JsonDocumentWriter doc(head, write);
-    // Each variant once, sorted by (scene, key) across the shaders that serve them.
-    std::vector<std::tuple<std::string, std::string, size_t, size_t>> served;
     std::vector<Places> places(jobs.size());
     doc.begin_array("shaders");
     std::vector<std::tuple<std::string, std::string, size_t>> order; // (scene, key, job)
     for (size_t i = 0; i < jobs.size(); ++i)
         order.emplace_back(jobs[i].scene, job_key(jobs[i]), i);
     std::sort(order.begin(), order.end());
+    std::map<std::string, std::vector<size_t>> shaders; // per scene, its shaders' jobs
     for (const auto& [scene, key, i] : order) {
         if (!jobs[i].shader) continue;
         doc.element(shader_json(i, jobs, results, mode, read, places[i]));
-        for (size_t k = 0; k < jobs[i].serves.size(); ++k)
-            served.emplace_back(jobs[i].scene, jobs[i].serves[k].key(), i, k);
+        shaders[scene].push_back(i);
     }
     doc.end_array();
-    std::sort(served.begin(), served.end());
+    // Each variant once, sorted by (scene, key): per scene, its shaders' lists (each sorted by
+    // key) merged one variant at a time.
     doc.begin_array("variants");
-    for (const auto& [scene, key, i, k] : served)
-        doc.element(served_json(material, jobs[i].serves[k], i, jobs, results, mode, freeze, passes,
-                                places[i]));
+    struct Next {
+        std::string key;
+        size_t job, k;
+        Variant variant;
+        bool operator>(const Next& o) const { return std::tie(key, job) > std::tie(o.key, o.job); }
+    };
+    for (const auto& [scene, served_by] : shaders) {
+        std::priority_queue<Next, std::vector<Next>, std::greater<>> next;
+        auto push = [&](size_t i, size_t k) {
+            if (k == jobs[i].serves->size()) return;
+            Variant v = jobs[i].serves->at(k);
+            std::string key = v.key();
+            next.push({std::move(key), i, k, std::move(v)});
+        };
+        for (size_t i : served_by)
+            push(i, 0);
+        while (!next.empty()) {
+            const Next n = next.top();
+            next.pop();
+            doc.element(served_json(material, n.variant, n.job, jobs, results, mode, freeze, passes,
+                                    places[n.job]));
+            push(n.job, n.k + 1);
+        }
+    }
     doc.end_array();
     doc.end();
 }

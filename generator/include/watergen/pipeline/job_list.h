@@ -7,12 +7,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "watergen/ir/ir_fold.h"
 #include "watergen/plan/material.h"
+#include "watergen/plan/variant_list.h"
 
 namespace watergen {
 
@@ -22,9 +24,10 @@ struct BuildJob {
     const FoldFacts* facts = nullptr; // fold under these; nullptr builds the variant as composed
     std::vector<Target> targets;
     // Set in the specialized and branching modes: the job builds this shader, which draws the
-    // variants of `serves` (sorted by key); `variant` is the one its selectors' defaults draw.
+    // variants of `serves` (sorted by key; shared by the job's copies); `variant` is the one
+    // its selectors' defaults draw.
     std::optional<ShaderChoices> shader = std::nullopt;
-    std::vector<Variant> serves = {};
+    std::shared_ptr<const VariantList> serves = nullptr;
 };
 
 // The job's key: its variant's, or its shader's (ShaderChoices::key).
@@ -41,7 +44,7 @@ class JobList {
                            const std::vector<Target>& targets,
                            const std::function<bool(const std::string& key)>& keep);
 
-    size_t size() const { return compact_ ? compact_->count : held_.size(); }
+    size_t size() const { return compact_ ? compact_->variants.size() : held_.size(); }
     bool empty() const { return size() == 0; }
     BuildJob at(size_t i) const;
     std::vector<BuildJob> range(size_t begin, size_t end) const;
@@ -52,10 +55,8 @@ class JobList {
   private:
     struct Compact {
         std::string scene;
-        std::vector<std::vector<std::string>> choices; // the space's, per axis
+        VariantList variants; // the jobs' variants, sorted by key
         std::vector<Target> targets;
-        size_t count = 0;
-        std::vector<uint8_t> indices; // count x choices.size(): per job its choice on each axis
     };
     std::vector<BuildJob> held_;
     std::optional<Compact> compact_;

@@ -1,0 +1,42 @@
+// A list of variants kept as one byte an axis (the position of its choice among the list's
+// choices on that axis): about 15 bytes a variant where a Variant's strings take about 550, so
+// that a list of the whole space (3.5 million variants) stays small. Sorting it by key makes no
+// key: two variants compare as their keys' characters from the first axis where they differ.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "watergen/water/variant.h"
+
+namespace watergen {
+
+class VariantList {
+  public:
+    // A list whose variants choose among `choices` (per axis, axes() order; < 256 an axis).
+    explicit VariantList(std::vector<std::vector<std::string>> choices = {});
+    // The variants as given, each choice among the distinct ones they make on its axis.
+    static VariantList of(const std::vector<Variant>& variants);
+
+    // The variant of choice `index[a]` of this list's choices on each axis a.
+    void add(const std::vector<size_t>& index);
+    // Variant `i` of `other`, whose choices must be this list's.
+    void add_from(const VariantList& other, size_t i);
+    void sort_by_key();
+
+    size_t size() const { return count_; }
+    bool empty() const { return count_ == 0; }
+    Variant at(size_t i) const;
+    // Sets `into` (a variant of axes().size() choices) to variant `i`, reusing its strings.
+    void fill(size_t i, Variant& into) const;
+    const std::vector<std::vector<std::string>>& choices() const { return choices_; }
+
+  private:
+    std::vector<std::vector<std::string>> choices_;
+    std::vector<uint8_t> indices_; // count_ x choices_.size()
+    size_t count_ = 0;
+};
+
+} // namespace watergen
