@@ -9,6 +9,7 @@
 #include <mutex>
 #include <set>
 #include <sys/stat.h>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 #include <xxhash.h>
@@ -60,17 +61,21 @@ struct SpooledVariant {
     bool same_as = false;  // it points at another variant's files
 };
 
-// A shard's output, checked against its shard.json: the manifest read one entry at a time into
-// the spool, the other files checked for kind and size (their hashes when copied).
+// A modes build's shard output, checked against its shard.json: the manifest read one entry at
+// a time into the spool, the other files checked for kind and size (their hashes when copied).
 struct ShardOutput : ShardHead {
-    bool modes = false; // a specialized or branching build: its jobs are shaders
-    // Its jobs: the variants of a permutations build, the shaders of a modes build.
-    std::vector<SpooledVariant> jobs;
-    std::vector<SpooledVariant> served; // a modes build's variants
+    bool modes = false;               // its manifest names a mode
+    std::vector<SpooledVariant> jobs; // its shaders
+    // Its variants, in the manifest's order (scene, key): per variant its scene, key and where
+    // the spool holds its entry (offset, size), in a spill file; their count per scene.
+    std::unique_ptr<SpillFile> served;
+    std::map<std::string, size_t> served_per_scene;
+    size_t served_count = 0;
 };
+constexpr size_t kServedFields = 4;
 
-// Reads `dir` as a shard's output; "" or why not.
-std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
+// Reads `dir` as a shard's output, its served variants' list in `scratch`; "" or why not.
+std::string read_shard(const fs::path& dir, const fs::path& scratch, ShardOutput& s, Spool& spool) {
     s.dir = dir;
     const std::string where = dir.string() + ": ";
     std::string why;
@@ -92,8 +97,32 @@ std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
     if (!in) return why;
     s.head = OJson::object();
     bool has_variants = false, has_shaders = false;
-    std::set<std::string> shaders; // the directories of a modes build's shaders
-    std::string bad;
+    std::set<std::string> shaders; // the directories of its shaders
+    std::string bad, last_scene, last_key;
+    s.served = std::make_unique<SpillFile>(scratch, ".merge-served");
+    if (!s.served->ok()) return "cannot write the merge's spool in " + scratch.string();
+    // A variant: its entry in the spool, listed in order (the shards' lists are merged in one
+    // pass).
+    auto served = [&](const OJson& v) {
+        const std::string scene = v["scene"], key = v["key"];
+        if (s.served_count > 0 && std::tie(scene, key) <= std::tie(last_scene, last_key)) {
+            bad = "variant " + scene + "/" + key +
+                  " of manifest.json is out of order or twice; expected the variants sorted by "
+                  "scene and key, each once";
+            return false;
+        }
+        last_scene = scene;
+        last_key = key;
+        const auto ref = spool.put(v.dump());
+        if (!ref || !s.served->append(spill_record(
+                        {scene, key, std::to_string(ref->offset), std::to_string(ref->size)}))) {
+            bad = "cannot write the merge's spool beside the output";
+            return false;
+        }
+        ++s.served_per_scene[scene];
+        ++s.served_count;
+        return true;
+    };
     auto spooled = [&](const OJson& v) -> std::optional<SpooledVariant> {
         const auto ref = spool.put(v.dump());
         if (!ref) {
@@ -113,19 +142,20 @@ std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
                                   return true;
                               },
                               [&](const std::string& array, OJson&& v) {
-                                  const bool served = s.modes && array == "variants";
-                                  if (!s.modes && array == "shaders")
-                                      bad = "a permutations manifest with shaders";
-                                  else if (served && !has_shaders)
+                                  const bool is_served = array == "variants";
+                                  if (!s.modes)
+                                      bad = "a permutations manifest in a merge of modes shards";
+                                  else if (is_served && !has_shaders)
                                       bad = "a modes manifest's variants before its shaders";
                                   else
-                                      bad = served ? check_served_variant(v, s.meta, shaders)
-                                                   : check_shard_variant(v, s.meta);
+                                      bad = is_served ? check_served_variant(v, s.meta, shaders)
+                                                      : check_shard_variant(v, s.meta);
                                   if (!bad.empty()) return false;
+                                  if (is_served) return served(v);
                                   auto entry = spooled(v);
                                   if (!entry) return false;
-                                  if (!served && s.modes) shaders.insert(entry->directory);
-                                  (served ? s.served : s.jobs).push_back(std::move(*entry));
+                                  shaders.insert(entry->directory);
+                                  s.jobs.push_back(std::move(*entry));
                                   return true;
                               },
                               [&](const std::string& array) {
@@ -134,10 +164,9 @@ std::string read_shard(const fs::path& dir, ShardOutput& s, Spool& spool) {
     const JsonReadEnd end = read_json_document(in, reader, nullptr);
     std::fclose(in);
     if (!bad.empty()) return where + bad;
-    if (end != JsonReadEnd::Done || !has_variants || s.modes != has_shaders)
+    if (end != JsonReadEnd::Done || !has_variants || !has_shaders)
         return where + "no manifest.json of a build among the files shard.json lists";
-    if (std::string count =
-            check_variant_count(s.jobs.size(), (s.modes ? s.served : s.jobs).size(), s.meta);
+    if (std::string count = check_variant_count(s.jobs.size(), s.served_count, s.meta);
         !count.empty())
         return where + count;
     s.header = s.head.dump();
@@ -211,10 +240,10 @@ bool modes_shard(const fs::path& dir) {
     return modes;
 }
 
-// The merge of a modes build's shards: every shard's shaders and variants held (as spooled
-// entries, keys and directories).
-MergeResult merge_held(const fs::path& out, const std::vector<fs::path>& dirs,
-                       const BuildCache& cache) {
+// The merge of a modes build's shards: the shaders held (as spooled entries, keys and
+// directories), the variants merged from the shards' lists one at a time.
+MergeResult merge_modes(const fs::path& out, const std::vector<fs::path>& dirs,
+                        const BuildCache& cache) {
     MergeResult m;
     fs::path target;
     const std::unique_ptr<StagedTree> tree = start_merge(out, dirs, target, m);
@@ -227,18 +256,17 @@ MergeResult merge_held(const fs::path& out, const std::vector<fs::path>& dirs,
     }
     std::vector<ShardOutput> shards(dirs.size());
     for (size_t i = 0; i < dirs.size(); ++i)
-        if (m.error = read_shard(dirs[i], shards[i], spool); !m.error.empty()) return m;
+        if (m.error = read_shard(dirs[i], tree->dir(), shards[i], spool); !m.error.empty())
+            return m;
     std::vector<const ShardHead*> heads;
     for (const ShardOutput& shard : shards)
         heads.push_back(&shard);
     if (m.error = check_set(heads); !m.error.empty()) return m;
 
-    // Every job once (a variant; a modes build's shader), sorted by (scene, key) as a build
-    // sorts them; and each variant of a modes build once.
+    // Every shader once, sorted by (scene, key) as a build sorts them.
     using Id = std::pair<std::string, std::string>;
     using Held = std::map<Id, std::pair<const SpooledVariant*, const ShardOutput*>>;
-    const bool modes = shards.front().modes; // the same for all: it is in the header
-    Held all, served;
+    Held all;
     auto gather = [&](Held& into, std::vector<SpooledVariant> ShardOutput::*entries,
                       const char* what) {
         for (const ShardOutput& s : shards)
@@ -253,9 +281,7 @@ MergeResult merge_held(const fs::path& out, const std::vector<fs::path>& dirs,
             }
         return true;
     };
-    if (!gather(all, &ShardOutput::jobs, modes ? "shader" : "variant") ||
-        !gather(served, &ShardOutput::served, "variant"))
-        return m;
+    if (!gather(all, &ShardOutput::jobs, "shader")) return m;
     // The first key of each shape of a scene is built; the others point at it. A modes build's
     // shader replaced so moves its variants, and their frozen modules, to the one built.
     std::map<Id, const SpooledVariant*> first;  // (scene, shape)
@@ -269,12 +295,12 @@ MergeResult merge_held(const fs::path& out, const std::vector<fs::path>& dirs,
         builder.push_back(fresh ? v : it->second);
         if (!fresh && !v->same_as) {
             dropped.insert(v->directory);
-            if (modes) moved[v->directory] = it->second->directory;
+            moved[v->directory] = it->second->directory;
         }
-        if (!modes) ++held[id.first];
     }
-    for (const auto& [id, where] : served)
-        ++held[id.first];
+    for (const ShardOutput& s : shards)
+        for (const auto& [scene, count] : s.served_per_scene)
+            held[scene] += count;
     if (m.error = check_counts(shards.front().head, held); !m.error.empty()) return m;
     auto listed = [&](const std::string& path) {
         return std::any_of(shards.begin(), shards.end(),
@@ -300,33 +326,80 @@ MergeResult merge_held(const fs::path& out, const std::vector<fs::path>& dirs,
     StagedStream manifest = tree->stream("manifest.json");
     const WriteText write = [&](std::string_view piece) { manifest.write(piece); };
     JsonDocumentWriter doc(shards.front().head, write);
-    auto write_entries = [&](const Held& entries, bool jobs) {
+    auto write_entry = [&](const OJson& entry) {
+        std::vector<std::string> paths;
+        if (m.error = named_files(entry, paths); !m.error.empty()) return false;
+        for (const std::string& p : paths)
+            if (!merged(p)) {
+                m.error = "the merged manifest would name " + p + ", which no shard holds";
+                return false;
+            }
+        doc.element(entry);
+        return true;
+    };
+    auto write_jobs = [&] {
         size_t k = 0;
-        for (const auto& [id, where] : entries) {
+        for (const auto& [id, where] : all) {
             OJson entry = spool.get(where.first->entry);
-            if (jobs && builder[k] != where.first)
-                entry = as_same(entry, spool.get(builder[k]->entry));
+            if (builder[k] != where.first) entry = as_same(entry, spool.get(builder[k]->entry));
             ++k;
-            if (!jobs) moved_to_its_shader(entry, moved);
-            std::vector<std::string> paths;
-            if (m.error = named_files(entry, paths); !m.error.empty()) return false;
-            for (const std::string& p : paths)
-                if (!merged(p)) {
-                    m.error = "the merged manifest would name " + p + ", which no shard holds";
-                    return false;
-                }
-            doc.element(entry);
+            if (!write_entry(entry)) return false;
         }
         return true;
     };
-    doc.begin_array(modes ? "shaders" : "variants");
-    if (!write_entries(all, true)) return m;
+    // The variants: the shards' lists (each in (scene, key) order) merged k ways.
+    auto write_served = [&] {
+        struct Cursor {
+            const ShardOutput* shard;
+            SpillReader reader;
+            std::vector<std::string> fields; // scene, key, offset, size
+        };
+        std::vector<Cursor> cursors;
+        for (const ShardOutput& s : shards)
+            cursors.push_back({&s, SpillReader(*s.served, 0, s.served->end()), {}});
+        auto later = [&](size_t a, size_t b) {
+            const auto& x = cursors[a].fields;
+            const auto& y = cursors[b].fields;
+            return std::tie(y[0], y[1]) < std::tie(x[0], x[1]);
+        };
+        std::vector<size_t> heap;
+        for (size_t k = 0; k < cursors.size(); ++k)
+            if (cursors[k].reader.next(cursors[k].fields, kServedFields)) heap.push_back(k);
+        std::make_heap(heap.begin(), heap.end(), later);
+        std::string scene, key, dir;
+        while (!heap.empty()) {
+            std::pop_heap(heap.begin(), heap.end(), later);
+            Cursor& c = cursors[heap.back()];
+            if (!dir.empty() && c.fields[0] == scene && c.fields[1] == key) {
+                m.error = "variant " + scene + "/" + key + " is in both " + dir + " and " +
+                          c.shard->dir.string();
+                return false;
+            }
+            scene = c.fields[0];
+            key = c.fields[1];
+            dir = c.shard->dir.string();
+            OJson entry = spool.get({std::stoull(c.fields[2]), std::stoull(c.fields[3])});
+            moved_to_its_shader(entry, moved);
+            if (!write_entry(entry)) return false;
+            if (c.reader.next(c.fields, kServedFields))
+                std::push_heap(heap.begin(), heap.end(), later);
+            else
+                heap.pop_back();
+        }
+        for (const Cursor& c : cursors)
+            if (c.reader.failed()) {
+                m.error = "cannot read the merge's spool in " + tree->dir().string();
+                m.write_failed = true;
+                return false;
+            }
+        return true;
+    };
+    doc.begin_array("shaders");
+    if (!write_jobs()) return m;
     doc.end_array();
-    if (modes) {
-        doc.begin_array("variants");
-        if (!write_entries(served, false)) return m;
-        doc.end_array();
-    }
+    doc.begin_array("variants");
+    if (!write_served()) return m;
+    doc.end_array();
     doc.end();
     if (auto e = manifest.close()) {
         m.error = *e;
@@ -347,8 +420,10 @@ MergeResult merge_held(const fs::path& out, const std::vector<fs::path>& dirs,
         if (!copy_listed(*tree, s.dir, files, m)) return m;
     }
     m.shards = shards.size();
-    finish_merge(*tree, out, target, shards.front().meta.inputs, modes ? served.size() : all.size(),
-                 all.size(), cache, m);
+    size_t variants = 0;
+    for (const ShardOutput& s : shards)
+        variants += s.served_count;
+    finish_merge(*tree, out, target, shards.front().meta.inputs, variants, all.size(), cache, m);
     return m;
 }
 
@@ -356,9 +431,8 @@ MergeResult merge_held(const fs::path& out, const std::vector<fs::path>& dirs,
 
 MergeResult merge_shards(const fs::path& out, const std::vector<fs::path>& dirs,
                          const BuildCache& cache) {
-    // A permutations build's shards are merged in bounded memory; a modes build's jobs are
-    // shaders, and its variants are listed across them: that merge holds them.
-    if (!dirs.empty() && modes_shard(dirs.front())) return merge_held(out, dirs, cache);
+    // A modes build's jobs are shaders, its variants listed across them: its own merge.
+    if (!dirs.empty() && modes_shard(dirs.front())) return merge_modes(out, dirs, cache);
     return merge_streamed(out, dirs, cache);
 }
 

@@ -325,7 +325,8 @@ TEST_CASE("merge_refuses_an_out_among_its_shards_and_shards_that_do_not_add_up",
 // Specialized (with frozen modules) and branching builds shard by shader: four shards merged
 // are the single build byte for byte, and the build after the merge is a no-op. The example
 // scenes make 3 shaders, so a shard of four may be empty, and merges as one. A variant drawn by
-// a shader its shard does not hold is refused, as are shards of two modes.
+// a shader its shard does not hold is refused, as are shards of two modes and variants out of
+// order.
 TEST_CASE("modes_shards_merged_are_byte_identical_to_one_build", "[shard]") {
     const TempDir tmp("shards-modes");
     const std::string material = default_material_path();
@@ -399,4 +400,14 @@ TEST_CASE("modes_shards_merged_are_byte_identical_to_one_build", "[shard]") {
     rehash(bad);
     std::replace(dirs.begin(), dirs.end(), with, bad.string());
     refused(dirs, "which is no shader of the shard's manifest");
+    // The merge joins the shards' variants in one pass: a shard's must be in (scene, key) order.
+    const fs::path swapped = tmp.path / "swapped-shard";
+    fs::copy(with, swapped, fs::copy_options::recursive);
+    OJson s = read_json(swapped / "manifest.json");
+    REQUIRE(s["variants"].size() > 1);
+    std::swap(s["variants"][0], s["variants"][1]);
+    write_json(swapped / "manifest.json", s);
+    rehash(swapped);
+    std::replace(dirs.begin(), dirs.end(), bad.string(), swapped.string());
+    refused(dirs, "is out of order or twice");
 }

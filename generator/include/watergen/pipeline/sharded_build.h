@@ -59,10 +59,10 @@ struct MergeResult {
 // different inputs or toolchains, a shard missing or given twice, a variant in two shards, a
 // file that does not match its recorded size and hash. With an enabled `cache`, then stores
 // the build record one build of the same inputs into `out` stores (build_record.h), so that
-// the next `watergen build` of those inputs into `out` is a no-op. A permutations build's shards
-// are merged in memory that does not grow with them (streamed_merge.cpp: their lists go to
-// spill files beside the merged tree); a modes build's shards, whose variants are listed across
-// shaders, are held.
+// the next `watergen build` of those inputs into `out` is a no-op. Shards are merged in memory
+// that does not grow with their variants: their lists go to spill files beside the merged tree
+// (streamed_merge.cpp for a permutations build; a modes build's shaders are held, its variants
+// spilled).
 MergeResult merge_shards(const std::filesystem::path& out,
                          const std::vector<std::filesystem::path>& shards,
                          const BuildCache& cache = {});
