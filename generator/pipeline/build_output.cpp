@@ -22,15 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The scene's jobs of the shard in permutations mode: one per variant.
-void add_variant_jobs(BuildPlan& plan, const std::string& scene,
-                      const std::vector<Variant>& variants, const FoldFacts* facts,
-                      const std::vector<Target>& targets, const Shard& shard) {
-    for (const Variant& v : variants)
-        if (!shard.sharded() || in_shard(shard, v.key()))
-            plan.jobs.push_back({scene, v, facts, targets});
-}
-
 // The combination of the permutation-only axes' choices that `v` makes: its shader's, of those
 // shaders_for() makes in the specialized and branching modes.
 std::string fixed_choices(const Variant& v) {
@@ -135,10 +126,11 @@ std::optional<BuildPlan> plan_build(const Material& material, const std::vector<
     }
     for (const ScenePlan& s : plan.scenes) {
         if (mode == BuildMode::Permutations)
-            add_variant_jobs(plan, s.scene.name, s.variants, &s.facts, s.targets, shard);
+            plan.jobs.add_scene(
+                s.scene.name, s.variants, &s.facts, s.targets,
+                [&](const std::string& key) { return !shard.sharded() || in_shard(shard, key); });
         else
-            add_shader_jobs(plan, s.scene.name, VariantList::of(s.variants), &s.facts, s.targets,
-                            mode, shard);
+            add_shader_jobs(plan, s.scene.name, s.variants, &s.facts, s.targets, mode, shard);
         plan.manifest_scenes.push_back({s.scene.name, &s, s.variants.size()});
     }
     return plan;

@@ -1,5 +1,8 @@
 #include "watergen/pipeline/job_list.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include "watergen/plan/variant_space.h"
 
 namespace watergen {
@@ -11,22 +14,40 @@ std::string job_key(const BuildJob& job) {
 JobList JobList::compact(const std::string& scene, const VariantSpace& space,
                          const std::vector<Target>& targets,
                          const std::function<bool(const std::string& key)>& keep) {
-    Compact c{scene, VariantList(space.choices), targets};
+    VariantList kept(space.choices);
     Variant v = default_variant();
     enumerate_indices(space, [&](const std::vector<size_t>& index) {
         for (size_t a = 0; a < index.size(); ++a)
             v.choices[a] = space.choices[a][index[a]];
-        if (keep(v.key())) c.variants.add(index);
+        if (keep(v.key())) kept.add(index);
     });
-    c.variants.sort_by_key();
+    kept.sort_by_key();
     JobList list;
-    list.compact_ = std::move(c);
+    list.add_scene(scene, kept, nullptr, targets, [](const std::string&) { return true; });
     return list;
 }
 
+void JobList::add_scene(const std::string& scene, const VariantList& variants,
+                        const FoldFacts* facts, const std::vector<Target>& targets,
+                        const std::function<bool(const std::string& key)>& keep) {
+    Compact c{scene, VariantList(variants.choices()), facts, targets, compact_count_};
+    Variant v = default_variant();
+    for (size_t i = 0; i < variants.size(); ++i) {
+        variants.fill(i, v);
+        if (keep(v.key())) c.variants.add_from(variants, i);
+    }
+    compact_count_ += c.variants.size();
+    compact_.push_back(std::move(c));
+}
+
 BuildJob JobList::at(size_t i) const {
-    if (!compact_) return held_[i];
-    return {compact_->scene, compact_->variants.at(i), nullptr, compact_->targets};
+    if (i < held_.size()) return held_[i];
+    i -= held_.size();
+    // The scene whose jobs hold i: the last to start at or before it.
+    const auto c = std::prev(
+        std::upper_bound(compact_.begin(), compact_.end(), i,
+                         [](size_t job, const Compact& scene) { return job < scene.first; }));
+    return {c->scene, c->variants.at(i - c->first), c->facts, c->targets};
 }
 
 std::vector<BuildJob> JobList::range(size_t begin, size_t end) const {

@@ -72,7 +72,7 @@ SceneExplanation explain_scene(const Material& m, const ScenePlan& plan,
     const size_t n = plan.variants.size();
     x.step = sample == 0 || n <= sample ? 1 : (n + sample - 1) / sample;
     for (size_t i = 0; i < n; ++i) {
-        const Variant& v = plan.variants[i];
+        const Variant v = plan.variants[i];
         if (i % x.step != 0 && v.key() != detail_key) continue;
         const WaterShader shader = m.compose(v);
         if (has_errors(shader.fragment.diagnostics())) {

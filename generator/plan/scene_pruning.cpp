@@ -143,7 +143,11 @@ void reach_variants(const Material& m, ScenePlan& plan) {
     std::map<std::string, uint32_t> group_of;
     uint32_t ordinal = 0;
     const ParameterBounds bounds = parameter_bounds(m, plan.fixed);
-    enumerate(m.space, [&](const Variant& v) {
+    plan.variants = VariantList(m.space.choices);
+    Variant v = default_variant();
+    enumerate_indices(m.space, [&](const std::vector<size_t>& index) {
+        for (size_t a = 0; a < index.size(); ++a)
+            v.choices[a] = m.space.choices[a][index[a]];
         if (auto e = scene_excludes(plan.scene, v, &bounds)) {
             SkippedGroup group{std::move(*e), 0};
             auto [it, fresh] =
@@ -153,12 +157,11 @@ void reach_variants(const Material& m, ScenePlan& plan) {
             plan.skipped_variants.push_back({ordinal, it->second});
             ++plan.skipped;
         } else {
-            plan.variants.push_back(v);
+            plan.variants.add(index);
         }
         ++ordinal;
     });
-    std::sort(plan.variants.begin(), plan.variants.end(),
-              [](const Variant& a, const Variant& b) { return a.key() < b.key(); });
+    plan.variants.sort_by_key();
     // Groups in text order; the variants' group indices follow them.
     std::vector<uint32_t> renumber(plan.skipped_groups.size());
     std::vector<SkippedGroup> sorted;

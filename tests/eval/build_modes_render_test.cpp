@@ -104,7 +104,8 @@ TEST_CASE("a_branching_shader_folded_under_a_scene_draws_what_it_draws_unfolded"
     REQUIRE(facts);
     const auto plan = plan_scene(m, *facts, ds);
     REQUIRE(plan);
-    const std::vector<ShaderChoices> shaders = shaders_for(plan->variants, BuildMode::Branching);
+    const std::vector<ShaderChoices> shaders = shaders_for(
+        std::vector<Variant>(plan->variants.begin(), plan->variants.end()), BuildMode::Branching);
     REQUIRE(shaders.size() == 1); // the lake targets half precision only
     WaterShader unfolded = m.compose(shaders[0]);
     WaterShader folded = unfolded;

@@ -100,14 +100,17 @@ bool select_from_material(CompareSetup& s) {
     if (!scenes.empty()) {
         s.plan = plan_scene(s.material, scenes.front(), s.diagnostics);
         if (!s.plan) return refuse(s, "");
-        s.variants = s.plan->variants;
-    } else {
-        enumerate(s.material.space, [&](const Variant& v) { s.variants.push_back(v); });
     }
-    if (s.variants.size() > kMaxComparedVariants)
+    // Counted before they are listed: the whole space would be millions of Variants.
+    const size_t count = s.plan ? s.plan->variants.size() : count_variants(s.material.space);
+    if (count > kMaxComparedVariants)
         return refuse(s, fmt::format("{} variants to compare; at most {} (give a --scene to "
                                      "compare its pruned set)",
-                                     s.variants.size(), kMaxComparedVariants));
+                                     count, kMaxComparedVariants));
+    if (s.plan)
+        s.variants.assign(s.plan->variants.begin(), s.plan->variants.end());
+    else
+        enumerate(s.material.space, [&](const Variant& v) { s.variants.push_back(v); });
     return true;
 }
 

@@ -43,8 +43,13 @@ class JobList {
     static JobList compact(const std::string& scene, const VariantSpace& space,
                            const std::vector<Target>& targets,
                            const std::function<bool(const std::string& key)>& keep);
+    // Appends the jobs of one scene (after those of the scenes before it): the variants of
+    // `variants` (sorted by key) that `keep` accepts, folded under `facts`, kept a byte an axis.
+    void add_scene(const std::string& scene, const VariantList& variants, const FoldFacts* facts,
+                   const std::vector<Target>& targets,
+                   const std::function<bool(const std::string& key)>& keep);
 
-    size_t size() const { return compact_ ? compact_->variants.size() : held_.size(); }
+    size_t size() const { return held_.size() + compact_count_; }
     bool empty() const { return size() == 0; }
     BuildJob at(size_t i) const;
     std::vector<BuildJob> range(size_t begin, size_t end) const;
@@ -56,10 +61,13 @@ class JobList {
     struct Compact {
         std::string scene;
         VariantList variants; // the jobs' variants, sorted by key
+        const FoldFacts* facts = nullptr;
         std::vector<Target> targets;
+        size_t first = 0; // the list's index of its first job
     };
     std::vector<BuildJob> held_;
-    std::optional<Compact> compact_;
+    std::vector<Compact> compact_; // one per scene, in order
+    size_t compact_count_ = 0;
 };
 
 } // namespace watergen

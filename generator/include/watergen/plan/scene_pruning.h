@@ -11,6 +11,7 @@
 #include "watergen/ir/ir_fold.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
+#include "watergen/plan/variant_list.h"
 #include "watergen/water/axis_registry.h"
 
 namespace watergen {
@@ -49,9 +50,9 @@ struct SkippedVariant {
 
 struct ScenePlan {
     SceneFacts scene;
-    FoldFacts facts;               // for fold_graph; scene facts about quantities keyed by handle
-    std::vector<Variant> variants; // reached, sorted by key
-    size_t skipped = 0;            // material variants the scene does not reach
+    FoldFacts facts;      // for fold_graph; scene facts about quantities keyed by handle
+    VariantList variants; // reached, sorted by key; a byte an axis
+    size_t skipped = 0;   // material variants the scene does not reach
     std::vector<SkippedGroup> skipped_groups;     // one per reason, sorted by text()
     std::vector<SkippedVariant> skipped_variants; // ascending ordinal
     std::vector<Target> targets; // material targets its platforms need, all_targets() order

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -29,9 +30,40 @@ class VariantList {
     size_t size() const { return count_; }
     bool empty() const { return count_ == 0; }
     Variant at(size_t i) const;
+    Variant operator[](size_t i) const { return at(i); }
+    Variant front() const { return at(0); }
+    Variant back() const { return at(count_ - 1); }
     // Sets `into` (a variant of axes().size() choices) to variant `i`, reusing its strings.
     void fill(size_t i, Variant& into) const;
     const std::vector<std::vector<std::string>>& choices() const { return choices_; }
+
+    // Visits the variants in order, each made as it is reached (by value).
+    class Iterator {
+      public:
+        using iterator_category = std::input_iterator_tag;
+        using value_type = Variant;
+        using difference_type = std::ptrdiff_t;
+        using pointer = const Variant*;
+        using reference = Variant;
+        Iterator(const VariantList* list, size_t i) : list_(list), i_(i) {}
+        Variant operator*() const { return list_->at(i_); }
+        Iterator& operator++() {
+            ++i_;
+            return *this;
+        }
+        Iterator operator++(int) {
+            Iterator was = *this;
+            ++i_;
+            return was;
+        }
+        bool operator==(const Iterator& o) const { return i_ == o.i_; }
+
+      private:
+        const VariantList* list_;
+        size_t i_;
+    };
+    Iterator begin() const { return {this, 0}; }
+    Iterator end() const { return {this, count_}; }
 
   private:
     std::vector<std::vector<std::string>> choices_;
