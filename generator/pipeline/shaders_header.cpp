@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 #include "watergen/ir/ir.h"
 #include "watergen/ir/uniform_layout.h"
 #include "watergen/pipeline/json_document.h"
+#include "watergen/pipeline/spill_file.h"
 #include "watergen/pipeline/staged_tree.h"
 
 namespace watergen {
@@ -71,12 +73,39 @@ std::string initialiser(const std::vector<double>& values, size_t first, uint32_
 // The name a block struct is made with, before its interface has a number.
 constexpr const char* kBlockPlaceholder = "WaterParams#";
 
+// Texts the header writes once it has read every variant: in a spill file beside the output
+// when it is written into a staging tree (a build has an interface for every few variants, each
+// a few KB of struct), else held.
+class HeldTexts {
+  public:
+    using Ref = SpillFile::Ref;
+    explicit HeldTexts(const std::filesystem::path* scratch) {
+        if (scratch) file_.emplace(*scratch, ".header-texts");
+    }
+    bool ok() const { return !file_ || file_->ok(); }
+    std::optional<Ref> put(const std::string& text) {
+        if (file_) return file_->append(text);
+        held_.push_back(text);
+        return Ref{held_.size() - 1, text.size()};
+    }
+    std::optional<std::string> get(Ref r) const {
+        if (!file_) return held_.at(r.offset);
+        std::string text;
+        if (!file_->read(r.offset, r.size, text) || text.size() != r.size) return std::nullopt;
+        return text;
+    }
+
+  private:
+    std::optional<SpillFile> file_;
+    std::vector<std::string> held_;
+};
+
 struct Interface {
-    std::string block;     // the uniform block's struct body and asserts, as written
-    std::string constants; // its specialization constants' initialiser list
+    HeldTexts::Ref block;     // the uniform block's struct body and asserts, as written
+    HeldTexts::Ref constants; // its specialization constants' initialiser list
+    HeldTexts::Ref first;     // the first variant's scene and key, for the comment
     size_t constant_count = 0;
     size_t variants = 0;
-    std::string first; // the first variant's scene and key, for the comment
 };
 
 // The struct of a variant.json's uniform block, named `name`; nullopt with *error.
@@ -166,14 +195,19 @@ using WriteHeader = std::function<void(std::string_view)>;
 
 // The header, written piece by piece: the manifest is parsed twice, once for its interfaces
 // and once for the variant table, so neither the table nor the header is ever held whole (a
-// build of thousands of variants writes megabytes of it). False with *error.
+// build of thousands of variants writes megabytes of it); the interfaces' texts go to a spill
+// file in `scratch` when given. False with *error.
 bool header_of(const ReadJsonDocument& parse, const ReadOutputFile& read, const WriteHeader& write,
-               std::string* error) {
+               const std::filesystem::path* scratch, std::string* error) {
+    HeldTexts texts(scratch);
+    if (!texts.ok()) {
+        *error = "cannot write a spill file in " + scratch->string();
+        return false;
+    }
     std::string material, map_name;
     OJson resources;
     uint32_t push_constant_bytes = 0; // 0: the block is a uniform buffer
-    // XXH3-128 of block + constants -> interface: the texts are kept once, in `interfaces` (a
-    // build has an interface for every few variants, each a few KB of struct).
+    // XXH3-128 of block + constants -> interface: the texts are kept once, in `texts`.
     std::map<std::pair<uint64_t, uint64_t>, size_t> interface_of_text;
     // A modes build's shader's description -> interface (each read once); a permutations
     // build's variants have a description each, so only the last is remembered.
@@ -181,7 +215,9 @@ bool header_of(const ReadJsonDocument& parse, const ReadOutputFile& read, const 
     std::vector<Interface> interfaces;
     std::vector<uint32_t> variant_interface; // per variant, in the manifest's order
     bool modes = false;
-    auto interface_at = [&](const std::string& description) -> std::optional<size_t> {
+    // The interface of a variant's description; `first` names the variant.
+    auto interface_at = [&](const std::string& description,
+                            const std::string& first) -> std::optional<size_t> {
         if (auto it = interface_of_dir.find(description); it != interface_of_dir.end())
             return it->second;
         const std::optional<std::string> text = read(description);
@@ -207,7 +243,14 @@ bool header_of(const ReadJsonDocument& parse, const ReadOutputFile& read, const 
         const XXH128_hash_t h = XXH3_128bits(both.data(), both.size());
         const auto [it, fresh] =
             interface_of_text.emplace(std::make_pair(h.high64, h.low64), interfaces.size());
-        if (fresh) interfaces.push_back({std::move(*block), constants, count, 0, ""});
+        if (fresh) {
+            const auto b = texts.put(*block), c = texts.put(constants), f = texts.put(first);
+            if (!b || !c || !f) {
+                *error = "cannot write a spill file in " + scratch->string();
+                return std::nullopt;
+            }
+            interfaces.push_back({*b, *c, *f, count, 0});
+        }
         if (!modes) interface_of_dir.clear();
         interface_of_dir.emplace(description, it->second);
         return it->second;
@@ -246,11 +289,10 @@ bool header_of(const ReadJsonDocument& parse, const ReadOutputFile& read, const 
             *error = "manifest.json: variant " + e.value("key", "") + " names no description";
             return false;
         }
-        const std::optional<size_t> i = interface_at(description);
+        const std::optional<size_t> i =
+            interface_at(description, e.value("scene", "") + " " + e.value("key", ""));
         if (!i) return false;
-        const std::string scene = e.value("scene", ""), key = e.value("key", "");
-        Interface& in = interfaces[*i];
-        if (in.variants++ == 0) in.first = scene + " " + key;
+        ++interfaces[*i].variants;
         variant_interface.push_back(static_cast<uint32_t>(*i));
         return true;
     };
@@ -286,9 +328,15 @@ bool header_of(const ReadJsonDocument& parse, const ReadOutputFile& read, const 
                           push_constant_bytes));
     for (size_t i = 0; i < interfaces.size(); ++i) {
         const Interface& in = interfaces[i];
+        auto block_text = texts.get(in.block), constants = texts.get(in.constants),
+             first = texts.get(in.first);
+        if (!block_text || !constants || !first) {
+            *error = "cannot read a spill file in " + scratch->string();
+            return false;
+        }
         write(fmt::format("\n// Interface {}: {} variant{} (the first: {}).\n", i, in.variants,
-                          in.variants == 1 ? "" : "s", in.first));
-        std::string block = in.block;
+                          in.variants == 1 ? "" : "s", *first));
+        std::string block = std::move(*block_text);
         const std::string name = "WaterParams" + std::to_string(i);
         for (size_t at = block.find(kBlockPlaceholder); at != std::string::npos;
              at = block.find(kBlockPlaceholder, at))
@@ -298,7 +346,7 @@ bool header_of(const ReadJsonDocument& parse, const ReadOutputFile& read, const 
             write(fmt::format("static_assert(sizeof({}) <= kPushConstantBytes);\n", name));
         write(fmt::format(
             "inline constexpr std::array<SpecializationConstant, {}> kConstants{}{{{{{}}}}};\n",
-            in.constant_count, i, in.constants));
+            in.constant_count, i, *constants));
     }
     write(fmt::format("\ninline constexpr std::array<VariantInfo, {}> kVariants{{{{\n",
                       variant_interface.size()));
@@ -345,7 +393,7 @@ std::optional<std::string> shaders_header(const ReadOutputFile& read, std::strin
     const bool made =
         header_of([&](const JsonDocumentReader& r,
                       std::string* why) { return read_json_document(*manifest, r, why); },
-                  read, [&](std::string_view piece) { header.append(piece); }, error);
+                  read, [&](std::string_view piece) { header.append(piece); }, nullptr, error);
     if (!made) return std::nullopt;
     return header;
 }
@@ -364,7 +412,7 @@ std::optional<std::string> write_shaders_header(StagedTree& tree) {
             return read_json_document(manifest, r, w);
         },
         [&](const std::string& path) { return tree.read(path); },
-        [&](std::string_view piece) { header.write(piece); }, &why);
+        [&](std::string_view piece) { header.write(piece); }, &tree.dir(), &why);
     std::fclose(manifest);
     const std::optional<std::string> closed = header.close();
     if (!made) return std::string(kShadersHeader) + ": " + why;
