@@ -1,8 +1,10 @@
 #include "merge_parts.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <mutex>
 #include <sys/stat.h>
+#include <tuple>
 
 #include <xxhash.h>
 
@@ -268,6 +270,39 @@ void finish_merge(StagedTree& tree, const fs::path& out, const fs::path& target,
                      [&](const std::function<void(const RecordedFile&)>& each) {
                          tree.for_each_file(each);
                      });
+}
+
+RecordMerge::RecordMerge(std::vector<SpillReader> lists, size_t fields) : n_(fields) {
+    for (SpillReader& r : lists)
+        cursors_.push_back({std::move(r), {}});
+    for (size_t k = 0; k < cursors_.size(); ++k)
+        if (cursors_[k].reader.next(cursors_[k].fields, n_)) heap_.push_back(k);
+    std::make_heap(heap_.begin(), heap_.end(), [this](size_t a, size_t b) { return later(a, b); });
+}
+
+bool RecordMerge::later(size_t a, size_t b) const {
+    const auto& x = cursors_[a].fields;
+    const auto& y = cursors_[b].fields;
+    return std::tie(y[0], y[1]) < std::tie(x[0], x[1]);
+}
+
+bool RecordMerge::next() {
+    auto cmp = [this](size_t a, size_t b) { return later(a, b); };
+    if (list_ != SIZE_MAX && cursors_[list_].reader.next(cursors_[list_].fields, n_)) {
+        heap_.push_back(list_);
+        std::push_heap(heap_.begin(), heap_.end(), cmp);
+    }
+    if (heap_.empty()) return false;
+    std::pop_heap(heap_.begin(), heap_.end(), cmp);
+    list_ = heap_.back();
+    heap_.pop_back();
+    fields_ = cursors_[list_].fields;
+    return true;
+}
+
+bool RecordMerge::failed() const {
+    return std::any_of(cursors_.begin(), cursors_.end(),
+                       [](const Cursor& c) { return c.reader.failed(); });
 }
 
 } // namespace watergen

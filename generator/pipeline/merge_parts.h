@@ -4,6 +4,7 @@
 // start and end. Internal to the pipeline library.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -18,6 +19,7 @@
 
 #include "watergen/pipeline/shard_file.h"
 #include "watergen/pipeline/sharded_build.h"
+#include "watergen/pipeline/spill_file.h"
 #include "watergen/pipeline/staged_tree.h"
 
 namespace watergen {
@@ -50,6 +52,30 @@ bool copy_listed(StagedTree& tree, const std::filesystem::path& dir,
 // that needs them, copied once (`copied`: those so far). True for any other file.
 bool first_copy(const std::string& path, std::set<std::string>& copied);
 // The shards, checked to be 1..N of one build; "" or why not.
+// The shards' lists of records (spill files, each sorted by its first two fields: scene, key)
+// merged k ways: each record in that order, with the list it came from.
+class RecordMerge {
+  public:
+    RecordMerge(std::vector<SpillReader> lists, size_t fields);
+    // Moves to the next record; false when every list is done (or one failed to read).
+    bool next();
+    const std::vector<std::string>& fields() const { return fields_; }
+    size_t list() const { return list_; }
+    bool failed() const; // a list could not be read back
+
+  private:
+    struct Cursor {
+        SpillReader reader;
+        std::vector<std::string> fields;
+    };
+    bool later(size_t a, size_t b) const;
+    std::vector<Cursor> cursors_;
+    std::vector<size_t> heap_;
+    size_t n_;
+    size_t list_ = SIZE_MAX; // the current record's list
+    std::vector<std::string> fields_;
+};
+
 std::string check_set(const std::vector<const ShardHead*>& heads);
 // The job directory a path of the output lies in (<scene>/<name>: its first two parts); "" for a
 // file outside one.

@@ -134,10 +134,8 @@ struct BuildPlan {
     std::vector<std::pair<size_t, size_t>> borrowed; // (job, job of an earlier batch)
 };
 
-// A content or shape hash's text as the ledger keys it: 16 bytes, not the text.
 BuildLedger::Hash128 hash_of(const std::string& text) {
-    const XXH128_hash_t h = XXH3_128bits(text.data(), text.size());
-    return {h.high64, h.low64};
+    return BuildLedger::hash_of(text);
 }
 
 bool has_targets(const std::vector<Target>& all, const std::vector<Target>& some) {
@@ -265,6 +263,11 @@ FileMap filter_targets(const FileMap& all, const std::vector<Target>& targets) {
     for (const auto& [path, bytes] : all)
         if (wanted(path, targets)) kept[path] = bytes;
     return kept;
+}
+
+BuildLedger::Hash128 BuildLedger::hash_of(std::string_view text) {
+    const XXH128_hash_t h = XXH3_128bits(text.data(), text.size());
+    return {h.high64, h.low64};
 }
 
 BuildLedger::BuildLedger() : name_lists(std::make_unique<NameLists>()) {}

@@ -349,49 +349,30 @@ MergeResult merge_modes(const fs::path& out, const std::vector<fs::path>& dirs,
     };
     // The variants: the shards' lists (each in (scene, key) order) merged k ways.
     auto write_served = [&] {
-        struct Cursor {
-            const ShardOutput* shard;
-            SpillReader reader;
-            std::vector<std::string> fields; // scene, key, offset, size
-        };
-        std::vector<Cursor> cursors;
+        std::vector<SpillReader> lists;
         for (const ShardOutput& s : shards)
-            cursors.push_back({&s, SpillReader(*s.served, 0, s.served->end()), {}});
-        auto later = [&](size_t a, size_t b) {
-            const auto& x = cursors[a].fields;
-            const auto& y = cursors[b].fields;
-            return std::tie(y[0], y[1]) < std::tie(x[0], x[1]);
-        };
-        std::vector<size_t> heap;
-        for (size_t k = 0; k < cursors.size(); ++k)
-            if (cursors[k].reader.next(cursors[k].fields, kServedFields)) heap.push_back(k);
-        std::make_heap(heap.begin(), heap.end(), later);
+            lists.emplace_back(*s.served, 0, s.served->end());
+        RecordMerge merge(std::move(lists), kServedFields);
         std::string scene, key, dir;
-        while (!heap.empty()) {
-            std::pop_heap(heap.begin(), heap.end(), later);
-            Cursor& c = cursors[heap.back()];
-            if (!dir.empty() && c.fields[0] == scene && c.fields[1] == key) {
-                m.error = "variant " + scene + "/" + key + " is in both " + dir + " and " +
-                          c.shard->dir.string();
+        while (merge.next()) {
+            const auto& f = merge.fields(); // scene, key, offset, size
+            const std::string& from = shards[merge.list()].dir.string();
+            if (!dir.empty() && f[0] == scene && f[1] == key) {
+                m.error = "variant " + scene + "/" + key + " is in both " + dir + " and " + from;
                 return false;
             }
-            scene = c.fields[0];
-            key = c.fields[1];
-            dir = c.shard->dir.string();
-            OJson entry = spool.get({std::stoull(c.fields[2]), std::stoull(c.fields[3])});
+            scene = f[0];
+            key = f[1];
+            dir = from;
+            OJson entry = spool.get({std::stoull(f[2]), std::stoull(f[3])});
             moved_to_its_shader(entry, moved);
             if (!write_entry(entry)) return false;
-            if (c.reader.next(c.fields, kServedFields))
-                std::push_heap(heap.begin(), heap.end(), later);
-            else
-                heap.pop_back();
         }
-        for (const Cursor& c : cursors)
-            if (c.reader.failed()) {
-                m.error = "cannot read the merge's spool in " + tree->dir().string();
-                m.write_failed = true;
-                return false;
-            }
+        if (merge.failed()) {
+            m.error = "cannot read the merge's spool in " + tree->dir().string();
+            m.write_failed = true;
+            return false;
+        }
         return true;
     };
     doc.begin_array("shaders");

@@ -18,8 +18,6 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include <xxhash.h>
-
 #include "watergen/pipeline/build_cache.h"
 #include "watergen/pipeline/caustics_pass_build.h"
 #include "watergen/pipeline/file_runs.h"
@@ -44,16 +42,11 @@ constexpr size_t kNamesPerRun = size_t(1) << 16;
 // Files copied at once (read, checked and written on every core).
 constexpr size_t kFilesPerCopy = 4096;
 
-struct Hash128 {
-    uint64_t high = 0, low = 0;
-    bool operator==(const Hash128&) const = default;
-};
-struct HashOf {
-    size_t operator()(const Hash128& h) const { return static_cast<size_t>(h.low); }
-};
+// Shapes and directories keyed by 16 bytes, as the build's ledger keys them.
+using Hash128 = BuildLedger::Hash128;
+using HashOf = BuildLedger::HashOf;
 Hash128 hash_of(std::string_view text) {
-    const XXH128_hash_t h = XXH3_128bits(text.data(), text.size());
-    return {h.high64, h.low64};
+    return BuildLedger::hash_of(text);
 }
 
 // Paths gathered into sorted runs (FileRuns) and listed back in order, duplicates and all.
@@ -235,20 +228,13 @@ std::string read_streamed(const fs::path& dir, const fs::path& scratch, Streamed
     return "";
 }
 
-// One shard's entries in order, the k-way merge's view of it.
-struct EntryCursor {
-    const StreamedShard* shard;
-    SpillReader reader;
-    std::vector<std::string> fields; // the current entry's kIndexFields
-    bool next() { return reader.next(fields, kIndexFields); }
-    OJson text() const {
-        std::string t;
-        const uint64_t size = std::stoull(fields[6]);
-        if (!shard->texts->read(std::stoull(fields[5]), size, t) || t.size() != size)
-            return OJson();
-        return OJson::parse(t, nullptr, false);
-    }
-};
+// The text of an entry of `shard` whose index record is `f`.
+OJson entry_text(const StreamedShard& shard, const std::vector<std::string>& f) {
+    std::string t;
+    const uint64_t size = std::stoull(f[6]);
+    if (!shard.texts->read(std::stoull(f[5]), size, t) || t.size() != size) return OJson();
+    return OJson::parse(t, nullptr, false);
+}
 
 } // namespace
 
@@ -267,18 +253,10 @@ MergeResult merge_streamed(const fs::path& out, const std::vector<fs::path>& dir
     if (m.error = check_set(heads); !m.error.empty()) return m;
 
     // The shards' entries merged in (scene, key) order, each written as one build writes it.
-    std::vector<EntryCursor> cursors;
+    std::vector<SpillReader> lists;
     for (const StreamedShard& s : shards)
-        cursors.push_back({&s, SpillReader(*s.index, 0, s.index->end()), {}});
-    auto later = [&](size_t a, size_t b) {
-        const auto& x = cursors[a].fields;
-        const auto& y = cursors[b].fields;
-        return std::tie(y[0], y[1]) < std::tie(x[0], x[1]);
-    };
-    std::vector<size_t> heap;
-    for (size_t k = 0; k < cursors.size(); ++k)
-        if (cursors[k].next()) heap.push_back(k);
-    std::make_heap(heap.begin(), heap.end(), later);
+        lists.emplace_back(*s.index, 0, s.index->end());
+    RecordMerge merge(std::move(lists), kIndexFields);
     StagedStream manifest = tree->stream("manifest.json");
     const WriteText write = [&](std::string_view piece) { manifest.write(piece); };
     JsonDocumentWriter doc(shards.front().head, write);
@@ -291,22 +269,21 @@ MergeResult merge_streamed(const fs::path& out, const std::vector<fs::path>& dir
     std::unordered_set<Hash128, HashOf> dropped; // directories another shard's shader replaces
     SortedNames named(tree->dir());
     bool spooled = true;
-    while (!heap.empty()) {
-        std::pop_heap(heap.begin(), heap.end(), later);
-        EntryCursor& c = cursors[heap.back()];
-        const std::vector<std::string> f = c.fields;
+    while (merge.next()) {
+        const StreamedShard& shard = shards[merge.list()];
+        const std::vector<std::string>& f = merge.fields();
         if (f[0] == scene && f[1] == last_key) {
             m.error = "variant " + f[0] + "/" + f[1] + " is in both " + last_dir + " and " +
-                      c.shard->dir.string();
+                      shard.dir.string();
             return m;
         }
         if (f[0] != scene) first.clear(); // a shape is one shader within a scene only
         scene = f[0];
         last_key = f[1];
-        last_dir = c.shard->dir.string();
-        OJson entry = c.text();
+        last_dir = shard.dir.string();
+        OJson entry = entry_text(shard, f);
         const auto [it, fresh] =
-            first.try_emplace(hash_of(f[2]), c.shard, std::array<std::string, 2>{f[5], f[6]});
+            first.try_emplace(hash_of(f[2]), &shard, std::array<std::string, 2>{f[5], f[6]});
         if (!fresh) {
             // Another shard built this shader first: this entry points at it, and its own
             // files (if it built them) are not copied.
@@ -322,15 +299,10 @@ MergeResult merge_streamed(const fs::path& out, const std::vector<fs::path>& dir
         for (std::string& p : paths)
             spooled = named.add(std::move(p)) && spooled;
         doc.element(entry);
-        if (c.next())
-            std::push_heap(heap.begin(), heap.end(), later);
-        else
-            heap.pop_back();
     }
     doc.end_array();
     doc.end();
-    for (const EntryCursor& c : cursors)
-        if (c.reader.failed()) spooled = false;
+    if (merge.failed()) spooled = false;
     if (m.error = check_counts(shards.front().head, held); !m.error.empty()) return m;
     if (auto e = manifest.close(); e || !spooled) {
         m.error = e ? *e : "cannot write the merge's spool in " + tree->dir().string();

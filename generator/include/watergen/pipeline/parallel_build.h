@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -100,6 +101,8 @@ struct BuildLedger {
     struct HashOf {
         size_t operator()(const Hash128& h) const { return static_cast<size_t>(h.low); }
     };
+    // A content or shape hash's text as the ledger keys it: 16 bytes (XXH3-128), not the text.
+    static Hash128 hash_of(std::string_view text);
     struct Built {
         size_t job = 0;
         std::shared_ptr<const std::vector<std::string>> names; // once its files exist
