@@ -305,4 +305,15 @@ bool RecordMerge::failed() const {
                        [](const Cursor& c) { return c.reader.failed(); });
 }
 
+std::string EntryOrder::next(const std::string& scene, const std::string& key) {
+    if (any_ && std::tie(scene, key) <= std::tie(scene_, key_))
+        return "variant " + scene + "/" + key +
+               " of manifest.json is out of order or twice; expected the variants sorted by "
+               "scene and key, each once";
+    any_ = true;
+    scene_ = scene;
+    key_ = key;
+    return "";
+}
+
 } // namespace watergen

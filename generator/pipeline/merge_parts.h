@@ -52,6 +52,17 @@ bool copy_listed(StagedTree& tree, const std::filesystem::path& dir,
 // that needs them, copied once (`copied`: those so far). True for any other file.
 bool first_copy(const std::string& path, std::set<std::string>& copied);
 // The shards, checked to be 1..N of one build; "" or why not.
+// A shard manifest's entries must come in (scene, key) order, each once: the shards' lists are
+// merged in one pass. next() is "" for the next entry in order, else why not.
+class EntryOrder {
+  public:
+    std::string next(const std::string& scene, const std::string& key);
+
+  private:
+    bool any_ = false;
+    std::string scene_, key_;
+};
+
 // The shards' lists of records (spill files, each sorted by its first two fields: scene, key)
 // merged k ways: each record in that order, with the list it came from.
 class RecordMerge {

@@ -98,21 +98,15 @@ std::string read_shard(const fs::path& dir, const fs::path& scratch, ShardOutput
     s.head = OJson::object();
     bool has_variants = false, has_shaders = false;
     std::set<std::string> shaders; // the directories of its shaders
-    std::string bad, last_scene, last_key;
+    std::string bad;
+    EntryOrder order;
     s.served = std::make_unique<SpillFile>(scratch, ".merge-served");
     if (!s.served->ok()) return "cannot write the merge's spool in " + scratch.string();
     // A variant: its entry in the spool, listed in order (the shards' lists are merged in one
     // pass).
     auto served = [&](const OJson& v) {
         const std::string scene = v["scene"], key = v["key"];
-        if (s.served_count > 0 && std::tie(scene, key) <= std::tie(last_scene, last_key)) {
-            bad = "variant " + scene + "/" + key +
-                  " of manifest.json is out of order or twice; expected the variants sorted by "
-                  "scene and key, each once";
-            return false;
-        }
-        last_scene = scene;
-        last_key = key;
+        if (bad = order.next(scene, key); !bad.empty()) return false;
         const auto ref = spool.put(v.dump());
         if (!ref || !s.served->append(spill_record(
                         {scene, key, std::to_string(ref->offset), std::to_string(ref->size)}))) {

@@ -154,7 +154,8 @@ std::string read_streamed(const fs::path& dir, const fs::path& scratch, Streamed
     SpillReader shape_reader(*s.shapes, 0, s.shapes->end());
     std::vector<std::string> shape;
     SortedNames named(scratch);
-    std::string bad, last_scene, last_key;
+    std::string bad;
+    EntryOrder order;
     bool has_variants = false, has_shaders = false;
     auto entry = [&](OJson&& v) {
         const bool next_shape = shape_reader.next(shape, 3);
@@ -169,15 +170,7 @@ std::string read_streamed(const fs::path& dir, const fs::path& scratch, Streamed
             });
         if (!bad.empty()) return false;
         const std::string scene = v["scene"], key = v["key"];
-        // The shards' entries are merged in one pass: each shard's must be in build order.
-        if (s.entries > 0 && std::tie(scene, key) <= std::tie(last_scene, last_key)) {
-            bad = "variant " + scene + "/" + key +
-                  " of manifest.json is out of order or twice; expected the variants sorted by "
-                  "scene and key, each once";
-            return false;
-        }
-        last_scene = scene;
-        last_key = key;
+        if (bad = order.next(scene, key); !bad.empty()) return false;
         const auto text = s.texts->append(v.dump());
         spooled =
             spooled && text &&
