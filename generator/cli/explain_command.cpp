@@ -57,17 +57,16 @@ void print_scene(const SceneExplanation& x) {
                 x.live_after);
 }
 
-void print_unreached(const std::vector<UnreachedVariant>& unreached, size_t limit) {
-    std::printf("\nnot generated: %zu variant%s no scene reaches\n", unreached.size(),
-                unreached.size() == 1 ? "" : "s");
+void print_unreached(const std::vector<UnreachedVariant>& unreached, size_t count, size_t limit) {
+    std::printf("\nnot generated: %zu variant%s no scene reaches\n", count, count == 1 ? "" : "s");
     for (size_t i = 0; i < unreached.size() && (limit == 0 || i < limit); ++i) {
         std::string line = unreached[i].key;
         for (const auto& [scene, why] : unreached[i].reasons)
             line += "\n    " + scene + ": " + why;
         std::printf("  %s\n", line.c_str());
     }
-    if (limit != 0 && unreached.size() > limit)
-        std::printf("  ... and %zu more (--limit 0 lists all)\n", unreached.size() - limit);
+    if (limit != 0 && count > limit)
+        std::printf("  ... and %zu more (--limit 0 lists all)\n", count - limit);
 }
 
 } // namespace
@@ -106,13 +105,13 @@ Runner add_explain_command(CLI::App& app, const Common& common) {
             detail = v->key();
         }
         Diagnostics ds;
-        const auto explained = explain_build(m, scenes, detail, o->sample, ds);
+        const auto explained = explain_build(m, scenes, detail, o->sample, o->limit, ds);
         if (!explained) return stop(ds, "", RunStatus::BadInput, common);
         const Explanation& e = explained->explanation;
         print_material(e.material);
         for (const auto& scene : e.scenes)
             print_scene(scene);
-        print_unreached(e.unreached, o->limit);
+        print_unreached(e.unreached, e.unreached_count, o->limit);
         return kOk;
     };
 }

@@ -92,38 +92,43 @@ SceneExplanation explain_scene(const Material& m, const ScenePlan& plan,
 }
 
 // Variants every plan skips, from the plans' skipped ordinals (one walk over the space).
-std::vector<UnreachedVariant> unreached_variants(const Material& m,
-                                                 const std::vector<ScenePlan>& scenes) {
-    std::vector<UnreachedVariant> out;
+// The first `listed` (0: all) of them into `out`; returns how many there are.
+size_t unreached_variants(const Material& m, const std::vector<ScenePlan>& scenes, size_t listed,
+                          std::vector<UnreachedVariant>& out) {
+    size_t count = 0;
     std::vector<size_t> cursor(scenes.size(), 0);
     uint32_t ordinal = 0;
     enumerate(m.space, [&](const Variant& v) {
         const uint32_t here = ordinal++;
         UnreachedVariant u;
+        const bool kept = listed == 0 || out.size() < listed;
         for (size_t s = 0; s < scenes.size(); ++s) {
             const auto& skipped = scenes[s].skipped_variants;
             size_t& c = cursor[s];
             while (c < skipped.size() && skipped[c].ordinal < here)
                 ++c;
             if (c == skipped.size() || skipped[c].ordinal != here) return;
-            u.reasons.push_back(
-                {scenes[s].scene.name, scenes[s].skipped_groups[skipped[c].group].text()});
+            if (kept)
+                u.reasons.push_back(
+                    {scenes[s].scene.name, scenes[s].skipped_groups[skipped[c].group].text()});
         }
+        ++count;
+        if (!kept) return;
         u.key = v.key();
         out.push_back(std::move(u));
     });
-    return out;
+    return count;
 }
 
 } // namespace
 
 Explanation explain_plans(const Material& m, const std::vector<ScenePlan>& scenes,
-                          const std::string& detail_key, size_t sample) {
+                          const std::string& detail_key, size_t sample, size_t listed) {
     Explanation e;
     e.material = overview(m);
     for (const ScenePlan& s : scenes)
         e.scenes.push_back(explain_scene(m, s, detail_key, sample));
-    e.unreached = unreached_variants(m, scenes);
+    e.unreached_count = unreached_variants(m, scenes, listed, e.unreached);
     return e;
 }
 

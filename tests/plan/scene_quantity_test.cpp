@@ -185,8 +185,15 @@ TEST_CASE("a_scene_plan_keeps_why_it_skips_each_variant", "[quantity]") {
     }
     const Explanation x = explain_plans(m, {ocean, lake}, "", 4);
     CHECK(x.unreached.size() == both);
+    CHECK(x.unreached_count == both);
     REQUIRE_FALSE(x.unreached.empty());
     CHECK(x.unreached[0].reasons.size() == 2);
+    // Listing a few counts them all, and lists the same first ones.
+    const Explanation few = explain_plans(m, {ocean, lake}, "", 4, 1);
+    CHECK(few.unreached_count == both);
+    REQUIRE(few.unreached.size() == 1);
+    CHECK(few.unreached[0].key == x.unreached[0].key);
+    CHECK(few.unreached[0].reasons == x.unreached[0].reasons);
     CHECK(x.scenes[0].folded == 4);
     CHECK(x.scenes[0].step == 4); // 16 variants, 4 folded
 }

@@ -18,10 +18,11 @@ struct BuildExplanation {
 };
 
 // nullptr with the error in `diagnostics` on bad input (plan_build's). `material` must outlive
-// the result. Folds at most `sample` variants per scene (0: all), always `detail_key`'s.
+// the result. Folds at most `sample` variants per scene (0: all), always `detail_key`'s; lists
+// the first `listed` variants no scene reaches (0: all).
 std::unique_ptr<BuildExplanation> explain_build(const Material& material,
                                                 const std::vector<SceneFacts>& scenes,
                                                 const std::string& detail_key, size_t sample,
-                                                Diagnostics& diagnostics);
+                                                size_t listed, Diagnostics& diagnostics);
 
 } // namespace watergen

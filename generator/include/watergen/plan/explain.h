@@ -51,14 +51,18 @@ struct UnreachedVariant {
 
 struct Explanation {
     MaterialOverview material;
-    std::vector<SceneExplanation> scenes;    // in the order of the plans
-    std::vector<UnreachedVariant> unreached; // enumeration order
+    std::vector<SceneExplanation> scenes; // in the order of the plans
+    // The first variants no scene reaches, in enumeration order (all, or as many as asked for),
+    // and how many there are: the full space with one scene leaves millions unreached.
+    std::vector<UnreachedVariant> unreached;
+    size_t unreached_count = 0;
 };
 
 // Explains the plans of `scenes` (planned against `material`, which must outlive the
 // result's plan pointers). Folds at most `sample` variants per scene, evenly spaced (0: all),
-// always including `detail_key` ("" for none), whose rewrites are listed one by one.
+// always including `detail_key` ("" for none), whose rewrites are listed one by one. Lists the
+// first `listed` variants no scene reaches (0: all) and counts them all.
 Explanation explain_plans(const Material& material, const std::vector<ScenePlan>& scenes,
-                          const std::string& detail_key, size_t sample);
+                          const std::string& detail_key, size_t sample, size_t listed = 0);
 
 } // namespace watergen
