@@ -23,21 +23,27 @@ JobList JobList::compact(const std::string& scene, const VariantSpace& space,
     });
     kept.sort_by_key();
     JobList list;
-    list.add_scene(scene, kept, nullptr, targets, [](const std::string&) { return true; });
+    list.add_compact(scene, std::move(kept), nullptr, targets);
     return list;
 }
 
 void JobList::add_scene(const std::string& scene, const VariantList& variants,
                         const FoldFacts* facts, const std::vector<Target>& targets,
                         const std::function<bool(const std::string& key)>& keep) {
-    Compact c{scene, VariantList(variants.choices()), facts, targets, compact_count_};
+    VariantList kept(variants.choices());
     Variant v = default_variant();
     for (size_t i = 0; i < variants.size(); ++i) {
         variants.fill(i, v);
-        if (keep(v.key())) c.variants.add_from(variants, i);
+        if (keep(v.key())) kept.add_from(variants, i);
     }
-    compact_count_ += c.variants.size();
-    compact_.push_back(std::move(c));
+    add_compact(scene, std::move(kept), facts, targets);
+}
+
+void JobList::add_compact(const std::string& scene, VariantList variants, const FoldFacts* facts,
+                          const std::vector<Target>& targets) {
+    const size_t count = variants.size();
+    compact_.push_back({scene, std::move(variants), facts, targets, compact_count_});
+    compact_count_ += count;
 }
 
 BuildJob JobList::at(size_t i) const {

@@ -221,11 +221,11 @@ std::string read_streamed(const fs::path& dir, const fs::path& scratch, Streamed
     return "";
 }
 
-// The text of an entry of `shard` whose index record is `f`.
-OJson entry_text(const StreamedShard& shard, const std::vector<std::string>& f) {
+// The text of an entry of `shard`: where its index record puts it (offset, size).
+OJson entry_text(const StreamedShard& shard, const std::string& offset, const std::string& size) {
     std::string t;
-    const uint64_t size = std::stoull(f[6]);
-    if (!shard.texts->read(std::stoull(f[5]), size, t) || t.size() != size) return OJson();
+    const uint64_t bytes = std::stoull(size);
+    if (!shard.texts->read(std::stoull(offset), bytes, t) || t.size() != bytes) return OJson();
     return OJson::parse(t, nullptr, false);
 }
 
@@ -274,16 +274,14 @@ MergeResult merge_streamed(const fs::path& out, const std::vector<fs::path>& dir
         scene = f[0];
         last_key = f[1];
         last_dir = shard.dir.string();
-        OJson entry = entry_text(shard, f);
+        OJson entry = entry_text(shard, f[5], f[6]);
         const auto [it, fresh] =
             first.try_emplace(hash_of(f[2]), &shard, std::array<std::string, 2>{f[5], f[6]});
         if (!fresh) {
             // Another shard built this shader first: this entry points at it, and its own
             // files (if it built them) are not copied.
-            std::string t;
-            const uint64_t size = std::stoull(it->second.second[1]);
-            it->second.first->texts->read(std::stoull(it->second.second[0]), size, t);
-            entry = as_same(entry, OJson::parse(t, nullptr, false));
+            const auto& [built, place] = it->second;
+            entry = as_same(entry, entry_text(*built, place[0], place[1]));
             if (f[4] == "0") dropped.insert(hash_of(f[3]));
         }
         ++held[scene];

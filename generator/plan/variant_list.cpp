@@ -2,7 +2,6 @@
 #include "watergen/water/axis_registry.h"
 
 #include <algorithm>
-#include <map>
 #include <numeric>
 #include <stdexcept>
 
@@ -13,25 +12,6 @@ VariantList::VariantList(std::vector<std::vector<std::string>> choices)
     for (const auto& list : choices_)
         if (list.size() > 256)
             throw std::invalid_argument("VariantList: an axis offers more than 256 choices");
-}
-
-VariantList VariantList::of(const std::vector<Variant>& variants) {
-    std::vector<std::map<std::string, size_t>> seen(axes().size());
-    std::vector<std::vector<std::string>> choices(axes().size());
-    std::vector<std::vector<size_t>> indices;
-    for (const Variant& v : variants) {
-        std::vector<size_t> index(choices.size());
-        for (size_t a = 0; a < choices.size() && a < v.choices.size(); ++a) {
-            const auto [it, fresh] = seen[a].emplace(v.choices[a], choices[a].size());
-            if (fresh) choices[a].push_back(v.choices[a]);
-            index[a] = it->second;
-        }
-        indices.push_back(std::move(index));
-    }
-    VariantList list(std::move(choices));
-    for (const auto& index : indices)
-        list.add(index);
-    return list;
 }
 
 void VariantList::add(const std::vector<size_t>& index) {

@@ -58,6 +58,9 @@ class JobList {
     void push_back(BuildJob job) { held_.push_back(std::move(job)); }
 
   private:
+    // Appends a scene's jobs of `variants` as they are.
+    void add_compact(const std::string& scene, VariantList variants, const FoldFacts* facts,
+                     const std::vector<Target>& targets);
     struct Compact {
         std::string scene;
         VariantList variants; // the jobs' variants, sorted by key

@@ -18,8 +18,6 @@ class VariantList {
   public:
     // A list whose variants choose among `choices` (per axis, axes() order; < 256 an axis).
     explicit VariantList(std::vector<std::vector<std::string>> choices = {});
-    // The variants as given, each choice among the distinct ones they make on its axis.
-    static VariantList of(const std::vector<Variant>& variants);
 
     // The variant of choice `index[a]` of this list's choices on each axis a.
     void add(const std::vector<size_t>& index);
