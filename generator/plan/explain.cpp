@@ -91,26 +91,22 @@ SceneExplanation explain_scene(const Material& m, const ScenePlan& plan,
     return x;
 }
 
-// Variants every plan skips, from the plans' skipped ordinals (one walk over the space).
-// The first `listed` (0: all) of them into `out`; returns how many there are.
+// Variants every plan skips, each scene's reason asked of scene_excludes again (as the plan
+// did: the plans only count them). The first `listed` (0: all) of them into `out`; returns how
+// many there are.
 size_t unreached_variants(const Material& m, const std::vector<ScenePlan>& scenes, size_t listed,
                           std::vector<UnreachedVariant>& out) {
+    std::vector<ParameterBounds> bounds;
+    for (const ScenePlan& s : scenes)
+        bounds.push_back(parameter_bounds(m, s.fixed));
     size_t count = 0;
-    std::vector<size_t> cursor(scenes.size(), 0);
-    uint32_t ordinal = 0;
     enumerate(m.space, [&](const Variant& v) {
-        const uint32_t here = ordinal++;
         UnreachedVariant u;
         const bool kept = listed == 0 || out.size() < listed;
         for (size_t s = 0; s < scenes.size(); ++s) {
-            const auto& skipped = scenes[s].skipped_variants;
-            size_t& c = cursor[s];
-            while (c < skipped.size() && skipped[c].ordinal < here)
-                ++c;
-            if (c == skipped.size() || skipped[c].ordinal != here) return;
-            if (kept)
-                u.reasons.push_back(
-                    {scenes[s].scene.name, scenes[s].skipped_groups[skipped[c].group].text()});
+            std::optional<Exclusion> e = scene_excludes(scenes[s].scene, v, &bounds[s]);
+            if (!e) return;
+            if (kept) u.reasons.push_back({scenes[s].scene.name, SkippedGroup{*e, 0}.text()});
         }
         ++count;
         if (!kept) return;

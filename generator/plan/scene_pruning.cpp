@@ -137,11 +137,10 @@ std::string unmet(const SceneFacts& s, const Variant& v, const SceneNeed& need,
     return missing + ", so " + need.consequence;
 }
 
-// Sorts the material's variants into those the scene reaches and those it skips, keeping
+// Sorts the material's variants into those the scene reaches and those it skips, counting
 // each skip's reason (grouped) for explain.
 void reach_variants(const Material& m, ScenePlan& plan) {
     std::map<std::string, uint32_t> group_of;
-    uint32_t ordinal = 0;
     const ParameterBounds bounds = parameter_bounds(m, plan.fixed);
     plan.variants = VariantList(m.space.choices);
     Variant v = default_variant();
@@ -154,24 +153,16 @@ void reach_variants(const Material& m, ScenePlan& plan) {
                 group_of.emplace(group.text(), static_cast<uint32_t>(plan.skipped_groups.size()));
             if (fresh) plan.skipped_groups.push_back(std::move(group));
             ++plan.skipped_groups[it->second].variants;
-            plan.skipped_variants.push_back({ordinal, it->second});
             ++plan.skipped;
         } else {
             plan.variants.add(index);
         }
-        ++ordinal;
     });
     plan.variants.sort_by_key();
-    // Groups in text order; the variants' group indices follow them.
-    std::vector<uint32_t> renumber(plan.skipped_groups.size());
-    std::vector<SkippedGroup> sorted;
-    for (const auto& [text, index] : group_of) {
-        renumber[index] = static_cast<uint32_t>(sorted.size());
+    std::vector<SkippedGroup> sorted; // in text order
+    for (const auto& [text, index] : group_of)
         sorted.push_back(std::move(plan.skipped_groups[index]));
-    }
     plan.skipped_groups = std::move(sorted);
-    for (auto& s : plan.skipped_variants)
-        s.group = renumber[s.group];
 }
 
 } // namespace

@@ -42,19 +42,14 @@ struct SkippedGroup {
                               // [open_ocean.json:11:3 /precision]"
 };
 
-// A skipped variant: its place in enumerate(material.space) order and its group.
-struct SkippedVariant {
-    uint32_t ordinal = 0;
-    uint32_t group = 0; // index into ScenePlan::skipped_groups
-};
-
 struct ScenePlan {
     SceneFacts scene;
     FoldFacts facts;      // for fold_graph; scene facts about quantities keyed by handle
     VariantList variants; // reached, sorted by key; a byte an axis
     size_t skipped = 0;   // material variants the scene does not reach
-    std::vector<SkippedGroup> skipped_groups;     // one per reason, sorted by text()
-    std::vector<SkippedVariant> skipped_variants; // ascending ordinal
+    // One per reason, sorted by text(). Which variant has which reason is not kept (8 bytes a
+    // variant per scene, most of a build's plan for the full space): scene_excludes gives it.
+    std::vector<SkippedGroup> skipped_groups;
     std::vector<Target> targets; // material targets its platforms need, all_targets() order
     std::map<std::string, std::vector<double>> fixed; // parameters that become constants
 };
