@@ -138,9 +138,16 @@ std::string unmet(const SceneFacts& s, const Variant& v, const SceneNeed& need,
 }
 
 // Sorts the material's variants into those the scene reaches and those it skips, counting
-// each skip's reason (grouped) for explain.
+// each skip's reason (grouped) for explain. A skipped variant finds its group by the parts of
+// its exclusion, not by formatting its text: the full space skips millions, and the text was
+// 11% of planning a scene.
 void reach_variants(const Material& m, ScenePlan& plan) {
-    std::map<std::string, uint32_t> group_of;
+    auto same = [](const Exclusion& a, const Exclusion& b) {
+        return a.reason == b.reason && a.axis == b.axis && a.choice == b.choice &&
+               a.where == b.where;
+    };
+    std::vector<SkippedGroup>& groups = plan.skipped_groups;
+    size_t last = 0; // the previous skipped variant's group: neighbours mostly share one
     const ParameterBounds bounds = parameter_bounds(m, plan.fixed);
     plan.variants = VariantList(m.space.choices);
     Variant v = default_variant();
@@ -148,21 +155,29 @@ void reach_variants(const Material& m, ScenePlan& plan) {
         for (size_t a = 0; a < index.size(); ++a)
             v.choices[a] = m.space.choices[a][index[a]];
         if (auto e = scene_excludes(plan.scene, v, &bounds)) {
-            SkippedGroup group{std::move(*e), 0};
-            auto [it, fresh] =
-                group_of.emplace(group.text(), static_cast<uint32_t>(plan.skipped_groups.size()));
-            if (fresh) plan.skipped_groups.push_back(std::move(group));
-            ++plan.skipped_groups[it->second].variants;
+            if (groups.empty() || !same(groups[last].exclusion, *e)) {
+                last = static_cast<size_t>(
+                    std::find_if(groups.begin(), groups.end(),
+                                 [&](const SkippedGroup& g) { return same(g.exclusion, *e); }) -
+                    groups.begin());
+                if (last == groups.size()) groups.push_back({std::move(*e), 0});
+            }
+            ++groups[last].variants;
             ++plan.skipped;
         } else {
             plan.variants.add(index);
         }
     });
     plan.variants.sort_by_key();
-    std::vector<SkippedGroup> sorted; // in text order
-    for (const auto& [text, index] : group_of)
-        sorted.push_back(std::move(plan.skipped_groups[index]));
-    plan.skipped_groups = std::move(sorted);
+    // In text order; groups of one text (parts that differ and print alike) counted as one.
+    std::map<std::string, SkippedGroup> by_text;
+    for (SkippedGroup& g : groups) {
+        const auto [it, fresh] = by_text.try_emplace(g.text(), g);
+        if (!fresh) it->second.variants += g.variants;
+    }
+    groups.clear();
+    for (auto& [text, g] : by_text)
+        groups.push_back(std::move(g));
 }
 
 } // namespace
