@@ -172,7 +172,7 @@ void reach_variants(const Material& m, ScenePlan& plan) {
     // In text order; groups of one text (parts that differ and print alike) counted as one.
     std::map<std::string, SkippedGroup> by_text;
     for (SkippedGroup& g : groups) {
-        const auto [it, fresh] = by_text.try_emplace(g.text(), g);
+        const auto [it, fresh] = by_text.try_emplace(g.text(), std::move(g)); // moved only if new
         if (!fresh) it->second.variants += g.variants;
     }
     groups.clear();
