@@ -169,8 +169,22 @@ Runner add_build_command(CLI::App& app, const Common& common) {
         ->take_all();
     return [o, &common]() {
         std::optional<std::vector<GpuTarget>> drivers;
-        if (!o->check_drivers.empty() && !(drivers = resolve_targets(o->check_drivers)))
-            return kUsage;
+        if (!o->check_drivers.empty()) {
+            if (!(drivers = resolve_targets(o->check_drivers, "--check-drivers"))) return kUsage;
+            // Only AMD families are checked here (the tests render every variant on lavapipe):
+            // a list with lavapipe would report pipelines it never created there.
+            if (has_lavapipe(*drivers)) {
+                std::string families;
+                for (const GpuTarget& t : gpu_targets())
+                    if (!t.is_lavapipe()) families += (families.empty() ? "" : ", ") + t.name;
+                std::fprintf(stderr,
+                             "watergen: error: --check-drivers: lavapipe is not a driver "
+                             "check (the render tests draw every variant on it); name "
+                             "AMD families: %s\n",
+                             families.c_str());
+                return kUsage;
+            }
+        }
         BuildFilesRequest request;
         request.material_path = o->material;
         request.scene_paths = o->scenes;

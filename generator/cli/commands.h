@@ -36,6 +36,15 @@ struct Common {
 
 using Runner = std::function<int()>;
 
+// The command line: parses argv and runs the subcommand it names (main.cpp). An exception
+// that escapes a subcommand ends it with its message and exit 1. run_with's `wrap` (for the
+// tests) is given each subcommand's path ("bench geometry") and runner and returns what runs.
+int run(int argc, char** argv);
+using RunnerWrap = std::function<Runner(const std::string& path, Runner runner)>;
+int run_with(int argc, char** argv, const RunnerWrap& wrap);
+// Every subcommand's path, parents' subcommands (bench) left out.
+std::vector<std::string> command_paths();
+
 // A finite number within [lo, hi] (CLI::Range would let NaN through).
 CLI::Validator finite_range(double lo, double hi);
 // --jobs,-j N (0, the default: every hardware thread) and the count a run uses: N, or
@@ -69,7 +78,9 @@ void add_grid_options(CLI::App& app, WaterGridDesc& grid);
 // Prints why the grid is out of range ("watergen: error: --grid-*: ..."); false then.
 bool check_grid(const WaterGridDesc& grid);
 // Adds --tess-max: a tessellated variant's largest factor (RenderSettings::tess_max).
-void add_tess_max_option(CLI::App& app, double& tess_max);
+CLI::Option* add_tess_max_option(CLI::App& app, double& tess_max);
+// A note that --tess-max was given for a variant that is not tessellated (it changes nothing).
+void note_unused_tess_max(const CLI::Option* option, const Variant& variant);
 
 // --shader-cache and --device.
 using RunnerSetup = DrawDeviceChoice;
@@ -90,7 +101,8 @@ Runner add_gpu_worker_command(CLI::App& app);
 // default.
 void add_target_option(CLI::App& app, std::vector<std::string>& targets);
 // The targets named; prints the error and returns nullopt on an unknown one (exit kUsage).
-std::optional<std::vector<GpuTarget>> resolve_targets(const std::vector<std::string>& words);
+std::optional<std::vector<GpuTarget>> resolve_targets(const std::vector<std::string>& words,
+                                                      const std::string& flag = "--target");
 // Whether every target's null device opened: prints each failure and returns the exit code
 // (kNoDevice when a device is missing, kFailed for a worker that died), or kOk.
 int check_target_runs(const std::vector<TargetCosts>& runs);

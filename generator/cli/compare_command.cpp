@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "commands.h"
 #include "watergen/eval/compare/compare_and_report.h"
 #include "watergen/eval/report/compare_report.h"
@@ -44,8 +46,11 @@ void print_table(const CompareRun& run, const CompareSetup& setup) {
         const std::string relation = e.relation.substr(0, e.relation.find(' '));
         char time[64];
         std::snprintf(time, sizeof time, "%.3f [%.3f, %.3f]", e.time.ratio, e.time.lo, e.time.hi);
-        std::printf("%-44s %-12s %24s %12.1f", differences(e.variant, run.reference).c_str(),
-                    relation.c_str(), time, e.cost_per_pixel);
+        // 0: not measured (--no-cost), a dash as in the report, never a cost of 0.
+        const std::string cost =
+            e.cost_per_pixel > 0 ? fmt::format("{:.1f}", e.cost_per_pixel) : std::string("-");
+        std::printf("%-44s %-12s %24s %12s", differences(e.variant, run.reference).c_str(),
+                    relation.c_str(), time, cost.c_str());
         for (const GpuTarget& t : setup.gpu_targets) {
             const auto it = e.target_costs.find(t.name);
             if (it == e.target_costs.end())

@@ -33,7 +33,7 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
     add_target_option(app, o->targets);
     add_view_option(app, o->job.view);
     add_grid_options(app, o->job.grid);
-    add_tess_max_option(app, o->job.tess_max);
+    const CLI::Option* tess_max = add_tess_max_option(app, o->job.tess_max);
     app.add_option("--scratch", o->scratch,
                    "directory under which each valgrind run keeps its dumps in a directory of "
                    "its own, removed afterwards (default: the system's temporary directory)");
@@ -42,10 +42,11 @@ Runner add_cost_command(CLI::App& app, const Common& common) {
     app.add_flag("--strict-half", o->job.strict_half,
                  "count a half variant written in explicit 16-bit types (as render --strict-half "
                  "draws it) instead of with mediump / min16float hints");
-    return [o, &common]() {
+    return [o, tess_max, &common]() {
         const Preset* preset = nullptr;
         if (!resolve_variant(o->job.variant, o->job.preset, &preset, common)) return kUsage;
         if (!check_grid(o->job.grid)) return kUsage;
+        if (!o->counted) note_unused_tess_max(tess_max, o->job.variant);
         if (o->counted) {
             const CountWorkerRun run = run_count_worker(o->job);
             print_diagnostics(run.diagnostics, common);

@@ -74,11 +74,19 @@ void add_grid_options(CLI::App& app, WaterGridDesc& grid) {
     app.add_option("--grid-levels", grid.levels, "clipmap levels (default 8, 1 to 16)");
 }
 
-void add_tess_max_option(CLI::App& app, double& tess_max) {
-    app.add_option("--tess-max", tess_max,
-                   "a tessellated variant's largest tessellation factor (its tess_max parameter, "
-                   "1 to 64; default: the parameter's default)")
-        ->check(CLI::Range(1.0, kMaxTessellationFactor));
+CLI::Option* add_tess_max_option(CLI::App& app, double& tess_max) {
+    return app
+        .add_option("--tess-max", tess_max,
+                    "a tessellated variant's largest tessellation factor (its tess_max "
+                    "parameter, 1 to 64; default: the parameter's default)")
+        ->check(finite_range(1.0, kMaxTessellationFactor));
+}
+
+void note_unused_tess_max(const CLI::Option* option, const Variant& variant) {
+    if (option->count() > 0 && variant.choice("geometry") != "tessellated")
+        std::fprintf(stderr,
+                     "watergen: note: --tess-max: geometry=%s is not tessellated; ignored\n",
+                     variant.choice("geometry").c_str());
 }
 
 bool check_grid(const WaterGridDesc& grid) {

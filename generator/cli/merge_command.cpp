@@ -39,6 +39,7 @@ Runner add_merge_command(CLI::App& app) {
             std::fprintf(stderr, "watergen: error: merge: %s; nothing written\n", m.error.c_str());
             return m.write_failed ? kFailed : kUsage;
         }
+        if (!m.warning.empty()) std::fprintf(stderr, "watergen: warning: %s\n", m.warning.c_str());
         std::printf("%s\n", fmt::format("merge: {} shards, {} variants -> {} ({} files)", m.shards,
                                         m.variants, o->out, m.files)
                                 .c_str());

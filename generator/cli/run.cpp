@@ -2,6 +2,9 @@
 // generator: watergen's own, and a project's with its registered nodes (main.cpp).
 #include <cstdio>
 #include <map>
+#include <new>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "watergen/plan/material.h"
@@ -72,27 +75,10 @@ int stop(const std::string& error, RunStatus status) {
     return exit_code(status);
 }
 
-int run(int argc, char** argv) {
-    // A project's generator (watergen_add_generator) registered its nodes before main: a failed
-    // registration stops it before anything is built from a registry without them.
-    if (const auto& errors = watergen::registration_errors(); !errors.empty()) {
-        print_diagnostics(errors, Common{});
-        return kUsage;
-    }
-    if (const auto error = watergen::check_registered_nodes()) {
-        print_diagnostics({*error}, Common{});
-        return kUsage;
-    }
-    CLI::App app{
-        "watergen: generates real-time water shaders (GLSL + HLSL) from one C++ description,\n"
-        "validates them with glslang and spirv-val, and cross-compiles them with SPIRV-Cross."};
-    app.require_subcommand(1);
-    Common common;
-    std::string format = "gcc";
-    app.add_option("--diagnostics-format", format,
-                   "how errors are printed: gcc (file:line:col) or msvc (file(line,col))")
-        ->check(CLI::IsMember({"gcc", "msvc"}));
-    std::map<CLI::App*, Runner> runners;
+namespace {
+
+// Every subcommand on `app`, each with the function that runs it.
+void add_commands(CLI::App& app, const Common& common, std::map<CLI::App*, Runner>& runners) {
     CLI::App* emit =
         app.add_subcommand("emit", "emit one variant (or --covering: the covering set) in GLSL and "
                                    "HLSL, validated and cross-compiled");
@@ -178,6 +164,47 @@ int run(int argc, char** argv) {
     // Hidden (no group): the child process of every ACO statistic (aco_worker.h).
     CLI::App* gpu_worker = app.add_subcommand("gpu-worker", "")->group("");
     runners[gpu_worker] = add_gpu_worker_command(*gpu_worker);
+}
+
+// "bench geometry" for bench's geometry subcommand.
+std::string command_path(const CLI::App* sub) {
+    std::string path = sub->get_name();
+    for (const CLI::App* p = sub->get_parent(); p && p->get_parent(); p = p->get_parent())
+        path = p->get_name() + " " + path;
+    return path;
+}
+
+void add_paths(const CLI::App& app, std::vector<std::string>& out) {
+    for (const CLI::App* sub : app.get_subcommands({})) {
+        if (sub->get_subcommands({}).empty())
+            out.push_back(command_path(sub));
+        else
+            add_paths(*sub, out);
+    }
+}
+
+int run_unguarded(int argc, char** argv, const RunnerWrap& wrap) {
+    // A project's generator (watergen_add_generator) registered its nodes before main: a failed
+    // registration stops it before anything is built from a registry without them.
+    if (const auto& errors = watergen::registration_errors(); !errors.empty()) {
+        print_diagnostics(errors, Common{});
+        return kUsage;
+    }
+    if (const auto error = watergen::check_registered_nodes()) {
+        print_diagnostics({*error}, Common{});
+        return kUsage;
+    }
+    CLI::App app{
+        "watergen: generates real-time water shaders (GLSL + HLSL) from one C++ description,\n"
+        "validates them with glslang and spirv-val, and cross-compiles them with SPIRV-Cross."};
+    app.require_subcommand(1);
+    Common common;
+    std::string format = "gcc";
+    app.add_option("--diagnostics-format", format,
+                   "how errors are printed: gcc (file:line:col) or msvc (file(line,col))")
+        ->check(CLI::IsMember({"gcc", "msvc"}));
+    std::map<CLI::App*, Runner> runners;
+    add_commands(app, common, runners);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -191,8 +218,40 @@ int run(int argc, char** argv) {
     common.format =
         format == "msvc" ? watergen::DiagnosticFormat::Msvc : watergen::DiagnosticFormat::Gcc;
     for (auto& [sub, runner] : runners)
-        if (sub->parsed()) return runner();
+        if (sub->parsed()) return wrap ? wrap(command_path(sub), runner)() : runner();
     return kUsage;
+}
+
+} // namespace
+
+std::vector<std::string> command_paths() {
+    CLI::App app;
+    Common common;
+    std::map<CLI::App*, Runner> runners;
+    add_commands(app, common, runners);
+    std::vector<std::string> paths;
+    add_paths(app, paths);
+    return paths;
+}
+
+int run_with(int argc, char** argv, const RunnerWrap& wrap) {
+    // Nothing a command throws reaches main: a failure the code did not foresee (memory, a
+    // library's exception) ends the run with exit 1 and what it was, and the destructors of
+    // what it made (staging trees, scratch directories) remove their partial files.
+    try {
+        return run_unguarded(argc, argv, wrap);
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "watergen: error: out of memory\n");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "watergen: error: %s\n", e.what());
+    } catch (...) {
+        std::fprintf(stderr, "watergen: error: an unknown exception\n");
+    }
+    return kFailed;
+}
+
+int run(int argc, char** argv) {
+    return run_with(argc, argv, {});
 }
 
 } // namespace watergen::cli

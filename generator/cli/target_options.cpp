@@ -14,10 +14,11 @@ void add_target_option(CLI::App& app, std::vector<std::string>& targets) {
         ->take_all();
 }
 
-std::optional<std::vector<GpuTarget>> resolve_targets(const std::vector<std::string>& words) {
+std::optional<std::vector<GpuTarget>> resolve_targets(const std::vector<std::string>& words,
+                                                      const std::string& flag) {
     std::string error;
-    auto targets =
-        parse_gpu_targets(words.empty() ? std::vector<std::string>{"lavapipe"} : words, &error);
+    auto targets = parse_gpu_targets(words.empty() ? std::vector<std::string>{"lavapipe"} : words,
+                                     &error, flag);
     if (!targets) std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
     return targets;
 }

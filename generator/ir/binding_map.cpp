@@ -1,4 +1,5 @@
 #include "watergen/ir/binding_map.h"
+#include "watergen/ir/diagnostic.h"
 
 #include <algorithm>
 #include <map>
@@ -118,6 +119,16 @@ std::optional<BindingConflict> BindingMap::conflict() const {
                                        i};
     }
     return std::nullopt;
+}
+
+bool only_binding_map_errors(const std::vector<Diagnostic>& diagnostics, const BindingMap* map) {
+    bool any = false;
+    for (const Diagnostic& d : diagnostics) {
+        if (d.severity != Severity::Error) continue;
+        if (!map || d.file != map->name) return false;
+        any = true;
+    }
+    return any;
 }
 
 } // namespace watergen

@@ -333,7 +333,7 @@ std::string declared_by(const std::string& origin, const SourceLocation& at) {
 bool same_definition(const Parameter& a, const Parameter& b) {
     return a.type == b.type && a.default_value == b.default_value && a.min == b.min &&
            a.max == b.max && a.unit == b.unit && a.seed == b.seed &&
-           a.specialization == b.specialization && a.array_size == b.array_size;
+           a.specialization == b.specialization && a.array_size == b.array_size && a.flag == b.flag;
 }
 
 std::string definition_clash(const std::string& what, const std::string& name,

@@ -1,4 +1,5 @@
 #include "watergen/pipeline/build_bench.h"
+#include "watergen/pipeline/output_writer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -118,11 +119,17 @@ bool measure_example(const BuildBenchRequest& r, unsigned all, const fs::path& w
 BuildBenchResult bench_build(const BuildBenchRequest& request) {
     BuildBenchResult out;
     const unsigned all = request.threads ? request.threads : hardware_threads();
+    // A directory of its own (never another run's, whatever its PID), or the one asked for.
+    std::string why;
     const fs::path work =
         request.work.empty()
-            ? fs::temp_directory_path() / fmt::format("watergen-bench-build-{}", ::getpid())
+            ? make_unique_directory(fs::temp_directory_path(), "watergen-bench-build-", &why)
             : request.work;
-    fs::remove_all(work);
+    if (work.empty()) {
+        out.diagnostics.push_back({Severity::Error, "", 0, 0, "", why});
+        return out;
+    }
+    if (!request.work.empty()) fs::remove_all(work);
     const Material full = full_material();
     const size_t n = measure_planning(full, request.scenes, out.rows);
 

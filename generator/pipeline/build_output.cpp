@@ -160,12 +160,17 @@ std::optional<std::string> publish(const fs::path& out,
 }
 
 // Counts a job's result in the summary.
-void count(const BuildJob& job, const JobResult& r, const BuildCache& cache, BuildSummary& s) {
+void count(const BuildJob& job, const JobResult& r, const BuildOptions& options, BuildSummary& s) {
+    const BuildCache& cache = options.cache;
     if (!r.cache_rejected.empty()) {
         ++s.cache_rejected;
         s.diagnostics.push_back(cache.rejected_warning(r.content_hash, r.cache_rejected));
     }
     if (!r.ok()) {
+        // A failure only on what the binding map cannot give is bad input (exit 2), the map
+        // being an input; one failure of another kind makes the build a failed one.
+        const bool map = only_binding_map_errors(r.diagnostics, options.bindings);
+        s.bad_input = s.failed == 0 ? map : s.bad_input && map;
         ++s.failed;
         for (const auto& d : r.diagnostics)
             s.diagnostics.push_back(d);
@@ -189,6 +194,10 @@ struct WriteErrors {
         if (!e) return;
         std::lock_guard<std::mutex> guard(lock);
         if (!first) first = std::move(e);
+    }
+    bool any() {
+        std::lock_guard<std::mutex> guard(lock);
+        return first.has_value();
     }
 };
 
@@ -285,7 +294,11 @@ std::optional<BuildSummary> up_to_date(const BuildRequest& request, const std::s
     std::FILE* manifest =
         open_regular_stream(normal_output_path(request.out) / "manifest.json", seen);
     if (!manifest) return std::nullopt;
-    const bool covered = record_covers_manifest(record, manifest, record.parent_path());
+    // The header (or a shard's shard.json) is not among the manifest's files: the record must
+    // vouch for it too, or a header deleted since would stay missing.
+    const bool covered = record_covers_manifest(
+        record, manifest, record.parent_path(),
+        {request.shard.sharded() ? std::string(kShardFile) : std::string(kShadersHeader)});
     std::fclose(manifest);
     if (!covered) return std::nullopt;
     BuildSummary s;
@@ -386,6 +399,8 @@ BuildSummary build_material_now(const BuildRequest& request) {
     s.diagnostics.insert(s.diagnostics.end(), passes.cache_rejected.begin(),
                          passes.cache_rejected.end());
     s.failed += passes.failed;
+    // A build that fails only on what the binding map cannot give is refused as bad input.
+    s.bad_input = passes.failed > 0 && passes.failed == passes.failed_by_map;
     s.diagnostics.insert(s.diagnostics.end(), passes.diagnostics.begin(), passes.diagnostics.end());
     for (const auto& [path, bytes] : passes.files)
         errors.note(tree->write(path, bytes));
@@ -411,21 +426,25 @@ BuildSummary build_material_now(const BuildRequest& request) {
     std::vector<JobResult> held; // a modes build's
     const size_t batch_jobs =
         std::max<size_t>(streamed ? request.batch_jobs : plan->jobs.size(), 1);
-    for (begin = 0; begin < plan->jobs.size(); begin += batch_jobs) {
+    // A write that failed (a full disk) ends the build after its batch: nothing is published,
+    // and the files the manifest would read back from the tree may be cut short.
+    for (begin = 0; begin < plan->jobs.size() && !errors.any(); begin += batch_jobs) {
         batch = plan->jobs.range(begin, std::min(begin + batch_jobs, plan->jobs.size()));
         std::vector<JobResult> results =
             run_build_jobs(request.material, plan->jobs, begin, batch, options, ledger, &s.stages);
+        const bool written = !errors.any();
         for (size_t k = 0; k < batch.size(); ++k) {
             const JobResult& r = results[k];
-            count(batch[k], r, request.options.cache, s);
-            if (s.failed > 0) continue; // nothing is published: the rest is not written
+            count(batch[k], r, request.options, s);
+            // Nothing is published after a failure: the rest is not written.
+            if (s.failed > 0 || !written) continue;
             if (entries)
                 entries->add(batch[k], r, r.files_of(begin + k), job_at(r.files_of(begin + k)));
             if (shard_json) shard_json->add(batch[k], r);
         }
         if (!streamed) held = std::move(results);
     }
-    if (request.freeze && request.mode == BuildMode::Specialized)
+    if (request.freeze && request.mode == BuildMode::Specialized && !errors.first)
         add_frozen(plan->jobs.held(), held, request.options, s, *tree, errors);
     const ListFiles list_files = [&](const std::function<void(const RecordedFile&)>& each) {
         tree->for_each_file(each);
@@ -457,7 +476,9 @@ BuildSummary build_material_now(const BuildRequest& request) {
         else if (auto failure = tree->commit(target))
             s.diagnostics.push_back({Severity::Error, request.out.string(), 0, 0, "", *failure});
         else if (recorded)
-            store_record(record, key, s.variants, s.shaders, s.files, list_files);
+            if (auto why = store_record(record, key, s.variants, s.shaders, s.files, list_files))
+                s.diagnostics.push_back(
+                    {Severity::Warning, record.string(), 0, 0, "", record_not_stored(*why)});
     }
     s.seconds = elapsed();
     return s;

@@ -180,23 +180,30 @@ std::optional<std::vector<std::string>> record_top_entries(const fs::path& file)
     return tops;
 }
 
-void store_record(const fs::path& file, const BuildRecord& record) {
-    store_record(file, record.key, record.variants, record.shaders, record.files.size(),
-                 [&](const std::function<void(const RecordedFile&)>& each) {
-                     for (const RecordedFile& f : record.files)
-                         each(f);
-                 });
+std::optional<std::string> store_record(const fs::path& file, const BuildRecord& record) {
+    return store_record(file, record.key, record.variants, record.shaders, record.files.size(),
+                        [&](const std::function<void(const RecordedFile&)>& each) {
+                            for (const RecordedFile& f : record.files)
+                                each(f);
+                        });
 }
 
-void store_record(const fs::path& file, const std::string& key, size_t variants, size_t shaders,
-                  size_t count, const ListFiles& files) {
+std::optional<std::string> store_record(const fs::path& file, const std::string& key,
+                                        size_t variants, size_t shaders, size_t count,
+                                        const ListFiles& files) {
     std::error_code ec;
     fs::create_directories(file.parent_path(), ec);
-    if (ec) return;
-    write_file_atomically(file, [&](const std::function<void(std::string_view)>& write) {
+    if (ec) return "cannot create " + file.parent_path().string() + ": " + ec.message();
+    return write_file_atomically(file, [&](const std::function<void(std::string_view)>& write) {
         write(record_head(key, variants, shaders, count));
         files([&](const RecordedFile& f) { write(record_line(f)); });
     });
+}
+
+std::string record_not_stored(const std::string& why) {
+    return "the build record was not stored (" + why +
+           "): the output is whole, but the next build of these inputs runs again instead of "
+           "finding it up to date";
 }
 
 namespace {
@@ -263,9 +270,10 @@ bool outputs_intact(const fs::path& out, const fs::path& file, unsigned threads)
 }
 
 bool record_covers_manifest(const fs::path& file, std::FILE* manifest, const fs::path& scratch,
-                            size_t names_per_run) {
+                            const std::vector<std::string>& also, size_t names_per_run) {
     FileRuns runs(scratch);
-    std::vector<std::string> held{"manifest.json"};
+    std::vector<std::string> held = also;
+    held.push_back("manifest.json");
     bool spilled = true;
     auto sort_held = [&] {
         std::sort(held.begin(), held.end());

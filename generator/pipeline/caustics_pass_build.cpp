@@ -171,6 +171,8 @@ PassesOutput build_needed_passes(const Material& material, const JobList& jobs,
         out.cached += built[k].cached ? 1 : 0;
         if (!built[k].ok()) {
             ++out.failed;
+            if (only_binding_map_errors(built[k].diagnostics, options.bindings))
+                ++out.failed_by_map;
             out.diagnostics.insert(out.diagnostics.end(), built[k].diagnostics.begin(),
                                    built[k].diagnostics.end());
             out.diagnostics.push_back({Severity::Error, "", 0, 0, "", dir + " failed to build"});

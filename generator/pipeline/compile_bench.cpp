@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "watergen/ir/emitter.h"
+#include "watergen/pipeline/output_writer.h"
 #include "watergen/plan/covering_array.h"
 #include "watergen/toolchain/tool_process_chain.h"
 #include "watergen/toolchain/toolchain.h"
@@ -72,10 +73,10 @@ std::string time_chains(const std::vector<CompileRequest>& requests, int repeat,
 
 CompileBench run_compile_bench(int repeat) {
     glslang_warm_up();
-    const std::filesystem::path work =
-        std::filesystem::temp_directory_path() / "watergen-bench-compile";
-    std::filesystem::create_directories(work);
     CompileBench bench;
+    const std::filesystem::path work = make_unique_directory(
+        std::filesystem::temp_directory_path(), "watergen-bench-compile-", &bench.error);
+    if (work.empty()) return bench;
     for (const Variant& v : pairwise_covering_variants()) {
         Diagnostics ds;
         const std::vector<CompileRequest> requests = compile_requests(v, ds);

@@ -1,5 +1,8 @@
 #include "watergen/pipeline/json_document.h"
 
+#include <array>
+#include <iterator>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -91,11 +94,13 @@ class PieceBuilder : public nlohmann::json_sax<OJson> {
         }
         return close();
     }
-    bool parse_error(std::size_t at, const std::string&,
+    bool parse_error(std::size_t, const std::string&,
                      const nlohmann::detail::exception& e) override {
-        error = "byte " + std::to_string(at) + ": " + e.what();
+        error = e.what(); // the byte: read_with's (the lexer counts the compacted text)
+        at_parse_error = true;
         return false;
     }
+    bool at_parse_error = false;
 
   private:
     bool fail(const std::string& what) {
@@ -108,8 +113,20 @@ class PieceBuilder : public nlohmann::json_sax<OJson> {
             in_document_ = true; // the document's own object: its members come one by one
             return true;
         }
+        if (stack_.size() >= reader_.max_depth)
+            return limit("nested deeper than " + std::to_string(reader_.max_depth) + " levels");
         stack_.push_back(std::move(value));
-        return true;
+        return count();
+    }
+    // Every value of the piece being built counts against the reader's limit.
+    bool count() {
+        if (stack_.empty() || ++values_ <= reader_.max_piece_values) return true;
+        return limit("more than " + std::to_string(reader_.max_piece_values) + " values");
+    }
+    bool limit(const std::string& what) {
+        error = (streaming_ ? "an element of " : "member ") + ("'" + name_ + "'") + " " + what +
+                ", past what the document holds";
+        return false;
     }
     bool close() {
         if (stack_.empty()) { // the document's end
@@ -123,6 +140,7 @@ class PieceBuilder : public nlohmann::json_sax<OJson> {
     bool put(OJson&& value) {
         if (!in_document_) return fail("a value");
         if (!stack_.empty()) {
+            if (!value.is_structured() && !count()) return false;
             OJson& parent = stack_.back();
             if (parent.is_object()) {
                 parent[keys_.back()] = std::move(value);
@@ -132,6 +150,7 @@ class PieceBuilder : public nlohmann::json_sax<OJson> {
             }
             return true;
         }
+        values_ = 0; // the piece is whole
         const bool go = streaming_ ? reader_.element(name_, std::move(value))
                                    : reader_.member(name_, std::move(value));
         if (!go) stopped = true;
@@ -143,26 +162,107 @@ class PieceBuilder : public nlohmann::json_sax<OJson> {
     std::string name_;
     std::vector<OJson> stack_;
     std::vector<std::string> keys_;
+    size_t values_ = 0; // in the piece being built
 };
 
-template <class Input>
-JsonReadEnd read_with(Input&& input, const JsonDocumentReader& reader, std::string* why) {
+// The document's bytes as the lexer pulls them, with each run of whitespace outside strings
+// read as one space. nlohmann's lexer keeps every byte since its last string or number (for its
+// error messages): a gigabyte of blanks after a bracket was a gigabyte held. Tokens are never
+// joined (a run still separates them), so the document means the same.
+class CompactText {
+  public:
+    CompactText(std::FILE* file, std::string_view text) : file_(file), text_(text) {
+        if (!file_) at_ = text_.data(), end_ = at_ + text_.size();
+        settle();
+    }
+    bool done() const { return at_ == end_; }
+    char current() const { return *at_; }
+    void next() {
+        const char c = *at_;
+        step();
+        if (string_) {
+            if (escaped_)
+                escaped_ = false;
+            else if (c == '\\')
+                escaped_ = true;
+            else if (c == '"')
+                string_ = false;
+        } else if (c == '"') {
+            string_ = true;
+        } else if (is_space(c)) {
+            while (!done() && is_space(*at_))
+                step();
+            return;
+        }
+        settle();
+    }
+    uint64_t consumed() const { return consumed_; } // bytes of the document read, blanks too
+
+  private:
+    static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+    void step() {
+        ++at_;
+        ++consumed_;
+        settle();
+    }
+    void settle() { // refills the buffer from the file when it is used up
+        if (at_ != end_ || !file_) return;
+        const size_t n = std::fread(buffer_.data(), 1, buffer_.size(), file_);
+        at_ = buffer_.data();
+        end_ = at_ + n;
+    }
+
+    std::FILE* file_;
+    std::string_view text_;
+    std::array<char, 1 << 16> buffer_{};
+    const char* at_ = nullptr;
+    const char* end_ = nullptr;
+    bool string_ = false, escaped_ = false;
+    uint64_t consumed_ = 0;
+};
+
+// CompactText as the input iterator nlohmann's sax_parse reads; the end compares equal to an
+// iterator whose text is done.
+struct CompactIterator {
+    using iterator_category = std::input_iterator_tag;
+    using value_type = char;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const char*;
+    using reference = char;
+
+    CompactText* text = nullptr; // nullptr: the end
+    char operator*() const { return text->current(); }
+    CompactIterator& operator++() {
+        text->next();
+        return *this;
+    }
+    bool operator==(const CompactIterator& o) const { return at_end() == o.at_end(); }
+    bool operator!=(const CompactIterator& o) const { return !(*this == o); }
+    bool at_end() const { return !text || text->done(); }
+};
+
+JsonReadEnd read_with(CompactText& text, const JsonDocumentReader& reader, std::string* why) {
     PieceBuilder b(reader);
-    if (OJson::sax_parse(std::forward<Input>(input), &b)) return JsonReadEnd::Done;
+    if (OJson::sax_parse(CompactIterator{&text}, CompactIterator{}, &b)) return JsonReadEnd::Done;
     if (b.stopped) return JsonReadEnd::Stopped;
-    if (why) *why = b.error.empty() ? "not a JSON document" : b.error;
+    if (why) {
+        *why = b.error.empty() ? "not a JSON document" : b.error;
+        if (b.at_parse_error) *why = "byte " + std::to_string(text.consumed()) + ": " + *why;
+    }
     return JsonReadEnd::Malformed;
 }
 
 } // namespace
 
 JsonReadEnd read_json_document(std::FILE* in, const JsonDocumentReader& reader, std::string* why) {
-    return read_with(in, reader, why);
+    const auto text = std::make_unique<CompactText>(in, std::string_view());
+    return read_with(*text, reader, why);
 }
 
 JsonReadEnd read_json_document(std::string_view text, const JsonDocumentReader& reader,
                                std::string* why) {
-    return read_with(text, reader, why);
+    CompactText compact(nullptr, text);
+    return read_with(compact, reader, why);
 }
 
 } // namespace watergen

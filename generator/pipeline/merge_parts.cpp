@@ -266,10 +266,12 @@ void finish_merge(StagedTree& tree, const fs::path& out, const fs::path& target,
     m.files = tree.count();
     // What one unsharded build of these inputs records.
     if (cache.enabled())
-        store_record(record_file(cache, out), record_key(inputs, ""), variants, shaders, m.files,
-                     [&](const std::function<void(const RecordedFile&)>& each) {
-                         tree.for_each_file(each);
-                     });
+        if (auto why =
+                store_record(record_file(cache, out), record_key(inputs, ""), variants, shaders,
+                             m.files, [&](const std::function<void(const RecordedFile&)>& each) {
+                                 tree.for_each_file(each);
+                             }))
+            m.warning = record_not_stored(*why);
 }
 
 RecordMerge::RecordMerge(std::vector<SpillReader> lists, size_t fields) : n_(fields) {

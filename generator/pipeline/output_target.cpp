@@ -28,13 +28,14 @@ fs::path normal_absolute(const fs::path& out, std::error_code& ec) {
     return p;
 }
 
-// Whether every entry of `dir` is the first component of a recorded path, and the record
-// names manifest.json: the directory holds nothing watergen's last build there did not write.
+// Whether every entry of `dir` is the first component of a recorded path: the directory holds
+// nothing watergen's last build there did not write. (A record that lost its manifest.json line
+// still names what that build wrote: refusing it would refuse every build until the record is
+// deleted by hand.)
 bool only_recorded_entries(const fs::path& dir, const std::vector<std::string>& recorded) {
     std::set<std::string> tops;
     for (const std::string& p : recorded)
         tops.insert(p.substr(0, p.find('/')));
-    if (!tops.count("manifest.json")) return false;
     std::error_code ec;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
         if (!tops.count(it->path().filename().string())) return false;

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <system_error>
@@ -213,6 +214,16 @@ std::optional<std::string> swap_directory_into_place(const fs::path& staging, co
 
 // A killed build leaves its staging directory ("<out>.tmp-<pid>", or "<out>.old.tmp-<pid>"
 // from the fallback commit) beside the output; remove those whose process is gone.
+fs::path make_unique_directory(const fs::path& root, const std::string& prefix,
+                               std::string* error) {
+    std::error_code ec;
+    fs::create_directories(root, ec);
+    std::string name = (root / (prefix + "XXXXXX")).string();
+    if (::mkdtemp(name.data())) return name;
+    if (error) *error = "cannot create " + name + ": " + std::strerror(errno);
+    return {};
+}
+
 void remove_stale_staging(const fs::path& out) {
     std::error_code ec;
     const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();

@@ -129,6 +129,9 @@ std::optional<ShardFile> read_shard_document(const ReadJsonDocument& read, const
             return true;
         },
         [&](const std::string& array) { (array == "shapes" ? shapes : files) = true; }};
+    // Its head's members are numbers and strings, its entries triples of them.
+    reader.max_depth = 2;
+    reader.max_piece_values = 16;
     std::string malformed;
     const JsonReadEnd end = read(reader, &malformed);
     auto failed = [&](const std::string& w) -> std::optional<ShardFile> {

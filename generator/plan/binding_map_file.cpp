@@ -1,9 +1,15 @@
 #include "watergen/plan/binding_map_file.h"
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <set>
+#include <vector>
 
 #include "watergen/plan/json_reader.h"
+#include "watergen/plan/variant_space.h"
 #include "watergen/water/binding_profiles.h"
+#include "watergen/water/water_shader.h"
 
 namespace watergen {
 namespace {
@@ -18,6 +24,79 @@ bool index_at(JsonReader& r, const std::string& pointer, uint32_t most, const st
                                    ", got " + r.at(pointer).dump());
     out = static_cast<uint32_t>(v);
     return true;
+}
+
+// Every resource a shader of this generator can read: the parameter block, the sampler, the
+// profiles' textures, and the textures each choice's nodes read (a project's registered nodes
+// too), each choice composed once with a variant its constraints allow.
+const std::set<std::string>& readable_resources() {
+    static const std::set<std::string> names = [] {
+        std::set<std::string> out = {kParamsResource, kSamplerResource};
+        for (const std::string& profile : binding_profile_names())
+            for (const ResourceSlot& slot : binding_profile(profile)->slots)
+                out.insert(slot.name);
+        const auto& list = axes();
+        auto read = [&](const Graph& g) {
+            for (const TextureInput& t : g.textures())
+                out.insert(t.name);
+        };
+        for (size_t a = 0; a < list.size(); ++a)
+            for (const auto& choice : list[a].choices) {
+                Variant v = default_variant();
+                v.choices[a] = choice.name;
+                // A choice the defaults rule out, with one other axis changed to allow it.
+                for (size_t b = 0; b < list.size() && check_constraints(v); ++b)
+                    for (const auto& other : list[b].choices) {
+                        if (b == a) break;
+                        Variant w = default_variant();
+                        w.choices[a] = choice.name;
+                        w.choices[b] = other.name;
+                        if (!check_constraints(w)) {
+                            v = w;
+                            break;
+                        }
+                    }
+                if (check_constraints(v)) continue;
+                const WaterShader shader = build_water_shader(v);
+                read(shader.fragment);
+                if (shader.mesh)
+                    for (const Graph* g : shader.mesh->graphs())
+                        read(*g);
+            }
+        return out;
+    }();
+    return names;
+}
+
+// Whether the file at `path` starts, after blanks, with '{': a JSON document, not a program.
+bool looks_like_json_object(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    for (char c; in.get(c);)
+        if (c != ' ' && c != '\t' && c != '\n' && c != '\r') return c == '{';
+    return false;
+}
+
+// The known name closest to `name` within 3 edits, for "did you mean"; "" when none is.
+std::string closest(const std::string& name, const std::set<std::string>& known) {
+    std::string best;
+    size_t best_distance = 4;
+    for (const std::string& k : known) {
+        std::vector<size_t> row(k.size() + 1);
+        for (size_t j = 0; j <= k.size(); ++j)
+            row[j] = j;
+        for (size_t i = 1; i <= name.size(); ++i) {
+            size_t diagonal = row[0];
+            row[0] = i;
+            for (size_t j = 1; j <= k.size(); ++j) {
+                const size_t up = row[j];
+                row[j] = std::min(
+                    {row[j] + 1, row[j - 1] + 1, diagonal + (name[i - 1] == k[j - 1] ? 0 : 1)});
+                diagonal = up;
+            }
+        }
+        if (row[k.size()] < best_distance) best_distance = row[k.size()], best = k;
+    }
+    return best;
 }
 
 } // namespace
@@ -107,6 +186,18 @@ std::optional<BindingMap> read_binding_map(const JsonSource& src, Diagnostics& d
         }
         if (slot->kind == ResourceKind::PushConstant) // what a base gave it means nothing now
             slot->set = slot->binding = slot->hlsl_register = slot->hlsl_space = 0;
+        // A name no node reads would only add a slot: a misspelt one would leave the resource
+        // it meant where the base put it.
+        if (fresh && !readable_resources().count(name)) {
+            const std::string near = closest(name, readable_resources());
+            std::string known;
+            for (const std::string& k : readable_resources())
+                known += (known.empty() ? "" : ", ") + k;
+            r.fail(at, "'" + name + "' is not a resource any shader of this generator reads" +
+                           (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                           "; expected one of " + known);
+            return std::nullopt;
+        }
         if (fresh) {
             auto given = [&](const char* key) { return r.has(at + "/" + key); };
             if (!given("hlsl_register")) slot->hlsl_register = slot->binding;
@@ -140,7 +231,19 @@ std::optional<BindingMap> read_binding_map(const JsonSource& src, Diagnostics& d
 }
 
 std::optional<BindingMap> load_binding_map(const std::string& profile_or_path, Diagnostics& ds) {
-    if (const BindingMap* profile = binding_profile(profile_or_path)) return *profile;
+    if (const BindingMap* profile = binding_profile(profile_or_path)) {
+        // A map file of the profile's name here would be shadowed by the profile without a
+        // word. (Another file of that name, a project's generator called watergen, is not one.)
+        if (looks_like_json_object(profile_or_path)) {
+            ds.push_back({Severity::Error, profile_or_path, 0, 0, "",
+                          "'" + profile_or_path +
+                              "' names both a binding profile and a file "
+                              "here; write ./" +
+                              profile_or_path + " for the file, or rename it"});
+            return std::nullopt;
+        }
+        return *profile;
+    }
     Diagnostic error;
     const auto src = JsonSource::load(profile_or_path, &error);
     if (!src) {

@@ -20,11 +20,12 @@ bool JsonReader::fail(const std::string& pointer, const std::string& what) {
 }
 
 bool JsonReader::has(const std::string& pointer) const {
-    return source_.root().contains(Json::json_pointer(pointer));
+    return source_.find(pointer) != nullptr;
 }
 
 const Json& JsonReader::at(const std::string& pointer) const {
-    return source_.root().at(Json::json_pointer(pointer));
+    if (const Json* value = source_.find(pointer)) return *value;
+    return source_.root().at(Json::json_pointer(pointer)); // throws, naming the pointer
 }
 
 std::vector<std::string> JsonReader::members(const std::string& pointer) const {

@@ -1,8 +1,10 @@
 #include "watergen/plan/json_source.h"
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <string_view>
+#include <unordered_set>
 #include <vector>
 
 #include <fmt/format.h>
@@ -62,17 +64,21 @@ std::string escape_pointer_token(const std::string& key) {
 
 } // namespace
 
+LineIndex::LineIndex(std::string_view text) : starts_{0}, size_(text.size()) {
+    for (size_t i = text.find('\n'); i != std::string_view::npos; i = text.find('\n', i + 1))
+        starts_.push_back(i + 1);
+}
+
+JsonPosition LineIndex::at(size_t offset) const {
+    offset = std::min(offset, size_);
+    // The last line starting at or before the offset.
+    const auto line = std::upper_bound(starts_.begin(), starts_.end(), offset) - 1;
+    return JsonPosition{static_cast<int>(line - starts_.begin()) + 1,
+                        static_cast<int>(offset - *line) + 1};
+}
+
 JsonPosition position_of_offset(const std::string& text, size_t offset) {
-    JsonPosition p{1, 1};
-    for (size_t i = 0; i < offset && i < text.size(); ++i) {
-        if (text[i] == '\n') {
-            ++p.line;
-            p.column = 1;
-        } else {
-            ++p.column;
-        }
-    }
-    return p;
+    return LineIndex(text).at(offset);
 }
 
 std::string json_child(const std::string& parent, const std::string& key) {
@@ -108,7 +114,7 @@ std::string json_describe(const Json& v) {
 class JsonSaxBuilder {
   public:
     JsonSaxBuilder(JsonSource& out, const std::string& text, const size_t& consumed)
-        : out_(out), text_(text), consumed_(consumed) {}
+        : out_(out), text_(text), lines_(text), consumed_(consumed) {}
 
     bool null() { return value(Json(nullptr), false); }
     bool boolean(bool b) { return value(Json(b), false); }
@@ -129,7 +135,10 @@ class JsonSaxBuilder {
     }
     bool key(std::string& k) {
         Frame& f = stack_.back();
-        if (f.node->contains(k)) {
+        // Json's objects keep their keys in order, and finding one is a walk through them:
+        // the frame's own set says whether a key came before (a walk per key made a file of
+        // many keys quadratic).
+        if (!f.keys.insert(k).second) {
             const JsonPosition p = token_start(true);
             error_ = Diagnostic{Severity::Error,
                                 out_.file_,
@@ -151,7 +160,7 @@ class JsonSaxBuilder {
         if (const size_t colon = what.find(": "); colon != std::string::npos)
             what = what.substr(colon + 2);
         const size_t offset = position > 0 ? position - 1 : 0;
-        const JsonPosition p = position_of_offset(text_, offset);
+        const JsonPosition p = lines_.at(offset);
         error_ =
             Diagnostic{Severity::Error, out_.file_, p.line, p.column, "", "invalid JSON: " + what};
         return false;
@@ -164,6 +173,7 @@ class JsonSaxBuilder {
         Json* node;
         std::string pointer;
         std::string key;
+        std::unordered_set<std::string> keys = {}; // an object's, so far
     };
 
     // Stops at the first container past the limit, before anything below it is stored.
@@ -183,7 +193,7 @@ class JsonSaxBuilder {
     }
 
     bool fail(const std::string& what) {
-        const JsonPosition p = position_of_offset(text_, consumed_);
+        const JsonPosition p = lines_.at(consumed_);
         error_ = Diagnostic{Severity::Error, out_.file_, p.line, p.column, "", what};
         return false;
     }
@@ -192,7 +202,7 @@ class JsonSaxBuilder {
     // consumed only their opening bracket).
     JsonPosition token_start(bool quoted, bool container = false) const {
         size_t i = consumed_;
-        if (container) return position_of_offset(text_, i > 0 ? i - 1 : 0);
+        if (container) return lines_.at(i > 0 ? i - 1 : 0);
         while (i > 0 && is_space(text_[i - 1]))
             --i;
         if (quoted) {
@@ -207,7 +217,7 @@ class JsonSaxBuilder {
                 }
                 --j;
             }
-            return position_of_offset(text_, j);
+            return lines_.at(j);
         }
         // Numbers are read one character past their end: step back over that look-ahead.
         if (i > 0 && !is_scalar_char(text_[i - 1])) {
@@ -217,7 +227,7 @@ class JsonSaxBuilder {
         }
         while (i > 0 && is_scalar_char(text_[i - 1]))
             --i;
-        return position_of_offset(text_, i);
+        return lines_.at(i);
     }
 
     bool value(Json v, bool quoted, bool container = false) {
@@ -236,8 +246,11 @@ class JsonSaxBuilder {
                 out_.positions_[pointer] = token_start(quoted, container);
             } else {
                 pointer = json_child(f.pointer, f.key);
-                slot = &(*f.node)[f.key];
-                *slot = std::move(v);
+                // Appended without the ordered map's search (key() saw it is new); a child's
+                // slot is used only while the parent gains nothing, so it stays valid.
+                auto& members = f.node->get_ref<Json::object_t&>();
+                members.Container::emplace_back(f.key, std::move(v));
+                slot = &members.back().second;
                 // Members are located at their key (recorded in key()).
             }
         }
@@ -247,6 +260,7 @@ class JsonSaxBuilder {
 
     JsonSource& out_;
     const std::string& text_;
+    const LineIndex lines_;
     const size_t& consumed_;
     std::vector<Frame> stack_;
     std::optional<Diagnostic> error_;
@@ -292,10 +306,18 @@ std::optional<JsonSource> JsonSource::parse(const std::string& input, const std:
                                  : Diagnostic{Severity::Error, file, 0, 0, "", "invalid JSON"};
         return std::nullopt;
     }
+    src.index();
     return src;
 }
 
 std::optional<JsonSource> JsonSource::load(const std::filesystem::path& path, Diagnostic* error) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        if (error)
+            *error = Diagnostic{
+                Severity::Error, path.string(), 0, 0, "", "is a directory; expected a JSON file"};
+        return std::nullopt;
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         if (error)
@@ -310,6 +332,45 @@ std::optional<JsonSource> JsonSource::load(const std::filesystem::path& path, Di
         text.append(chunk, static_cast<size_t>(in.gcount()));
     if (text.size() > enough) text.resize(enough);
     return parse(text, path.string(), error);
+}
+
+JsonSource::JsonSource(const JsonSource& other)
+    : file_(other.file_), root_(other.root_), positions_(other.positions_) {
+    index();
+}
+
+JsonSource& JsonSource::operator=(const JsonSource& other) {
+    if (this != &other) {
+        file_ = other.file_;
+        root_ = other.root_;
+        positions_ = other.positions_;
+        index();
+    }
+    return *this;
+}
+
+void JsonSource::index() {
+    values_.clear();
+    values_.reserve(positions_.size());
+    // Depth is bounded (kMaxJsonDepth): a stack of the containers still to visit.
+    std::vector<std::pair<std::string, const Json*>> todo = {{"", &root_}};
+    while (!todo.empty()) {
+        auto [pointer, value] = std::move(todo.back());
+        todo.pop_back();
+        if (value->is_object())
+            for (const auto& [key, child] : value->items())
+                todo.emplace_back(json_child(pointer, key), &child);
+        else if (value->is_array())
+            for (size_t i = 0; i < value->size(); ++i)
+                todo.emplace_back(json_child(pointer, i), &(*value)[i]);
+        if (!pointer.empty()) values_.emplace(std::move(pointer), value);
+    }
+}
+
+const Json* JsonSource::find(const std::string& pointer) const {
+    if (pointer.empty()) return &root_;
+    const auto it = values_.find(pointer);
+    return it == values_.end() ? nullptr : it->second;
 }
 
 JsonPosition JsonSource::position(const std::string& pointer) const {

@@ -389,6 +389,13 @@ std::optional<Diagnostic> MaterialBuilder::apply_setting(const ParameterCall& ca
                 "parameter '{}' is a {}{}: expected {} number{}, got {}", call.name,
                 type_name(p.type), p.array_size ? fmt::format("[{}]", p.array_size) : "", n,
                 n == 1 ? "" : "s", call.value->size()));
+        if (p.flag)
+            for (double x : *call.value)
+                if (x != 0 && x != 1)
+                    return call.at.error("parameter '" + call.name +
+                                         "' is a switch: expected 0 "
+                                         "or 1, got " +
+                                         spell_number(x));
         s.value = *call.value;
     }
     if (call.range) {

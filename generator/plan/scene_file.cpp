@@ -57,6 +57,15 @@ std::optional<SceneFacts> parse_scene(const JsonSource& src, Diagnostics& ds) {
                      return k != "description" && k != "fixed" && k != "bottom_in_view" &&
                             k != "scene_input";
                  });
+    // A material among the scenes: `build --scene a.json m.json` reads every file after
+    // --scene as a scene.
+    if (src.root().is_object() && src.root().contains("axes") && !src.root().contains("waves")) {
+        ds.push_back(src.error("/axes",
+                               "this is a material file (it offers \"axes\"), given where a scene "
+                               "was expected: --scene takes every file after it, so name the "
+                               "material before --scene"));
+        return std::nullopt;
+    }
     if (!r.keys("", allowed, required,
                 "(a scene states every fact; see docs/user-guide.md \"Scene files\")"))
         return std::nullopt;

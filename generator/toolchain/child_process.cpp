@@ -89,18 +89,17 @@ std::string run_child_process(const std::vector<std::string>& argv, const fs::pa
     for (const auto& a : argv)
         args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
-    // This environment minus the variables `env` sets, then `env`.
+    // This environment minus the variables `env` names, then those `env` sets.
+    const auto name_of = [](std::string_view entry) { return entry.substr(0, entry.find('=')); };
     std::vector<char*> envp;
     for (char** e = environ; *e; ++e) {
-        const std::string_view entry(*e);
-        bool overridden = false;
+        bool named = false;
         for (const auto& set : env)
-            overridden = overridden || entry.substr(0, entry.find('=') + 1) ==
-                                           std::string_view(set).substr(0, set.find('=') + 1);
-        if (!overridden) envp.push_back(*e);
+            named = named || name_of(*e) == name_of(set);
+        if (!named) envp.push_back(*e);
     }
     for (const auto& set : env)
-        envp.push_back(const_cast<char*>(set.c_str()));
+        if (set.find('=') != std::string::npos) envp.push_back(const_cast<char*>(set.c_str()));
     envp.push_back(nullptr);
     const std::string program = resolve_program(argv[0]);
     if (program.empty()) return argv[0] + ": cannot start: " + std::strerror(ENOENT);

@@ -254,6 +254,16 @@ std::optional<VariantPipeline> VariantPipeline::create(VkDevice device,
         return std::nullopt;
     }
     const std::vector<StageInput> inputs = stages_of(d);
+    if (geometry.attribute_sizes.size() > kMaxVertexAttributes ||
+        geometry.patch_control_points > kMaxPatchControlPoints) {
+        *error = "PipelineGeometry: " + std::to_string(geometry.attribute_sizes.size()) +
+                 " vertex attributes, patches of " + std::to_string(geometry.patch_control_points) +
+                 " control points; expected at "
+                 "most " +
+                 std::to_string(kMaxVertexAttributes) + " and " +
+                 std::to_string(kMaxPatchControlPoints) + " (what every Vulkan device takes)";
+        return std::nullopt;
+    }
     for (uint32_t floats : geometry.attribute_sizes)
         if (floats < 1 || floats > 4) {
             *error = "PipelineGeometry: a vertex attribute of " + std::to_string(floats) +

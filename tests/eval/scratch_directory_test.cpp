@@ -1,9 +1,13 @@
-// The counting workers' scratch directories: removed on every way out, and those of a process
-// that is gone (killed outright) swept by the next count.
+// The counting workers' scratch directories: removed on every way out, and those no process
+// holds the lock of (killed outright) swept by the next count; never one a live process holds,
+// whatever its PID says here.
 #include <catch2/catch.hpp>
 
 #include "build_test_support.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,12 +22,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A pid that named a process a moment ago and names none now (reaped).
-pid_t pid_of_a_finished_process() {
+// A process that holds `dir`'s lock until it is killed, as a count in another PID namespace
+// (another container sharing /tmp) does: its PID means nothing here.
+pid_t hold_lock(const fs::path& dir) {
+    int ready[2];
+    REQUIRE(::pipe(ready) == 0);
     const pid_t pid = ::fork();
-    if (pid == 0) ::_exit(0);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
+    if (pid == 0) {
+        const int fd = ::open((dir / ".lock").c_str(), O_RDWR | O_CREAT, 0600);
+        if (fd < 0 || ::flock(fd, LOCK_EX) != 0) ::_exit(1);
+        const char one = 1;
+        if (::write(ready[1], &one, 1) != 1) ::_exit(1);
+        for (;;)
+            ::pause();
+    }
+    char got = 0;
+    REQUIRE(::read(ready[0], &got, 1) == 1);
+    ::close(ready[0]);
+    ::close(ready[1]);
     return pid;
 }
 
@@ -38,11 +54,20 @@ TEST_CASE("a_scratch_directory_goes_with_everything_in_it", "[cost]") {
         REQUIRE(dir.error().empty());
         made = dir.path();
         CHECK(made.parent_path() == root);
-        CHECK(made.filename().string().rfind("watergen-count-" + std::to_string(::getpid()) + "-",
-                                             0) == 0);
+        // mkdtemp's name: the prefix and six characters of its own.
+        const std::string name = made.filename().string();
+        CHECK(name.rfind("watergen-count-", 0) == 0);
+        CHECK(name.size() == std::string("watergen-count-").size() + 6);
         REQUIRE(fs::is_directory(made));
+        CHECK(fs::is_regular_file(made / ".lock"));
         std::ofstream(made / "callgrind.out.1") << "dump";
         std::ofstream(made / "valgrind.stderr") << "log";
+        // Alive while it is ours: a sweep leaves it.
+        CHECK(sweep_stale_scratch(root, "watergen-count-") == 0);
+        CHECK(fs::is_directory(made));
+        // Two at once get two names.
+        const ScratchDirectory second(root, "watergen-count-");
+        CHECK(second.path() != made);
     }
     CHECK_FALSE(fs::exists(made));
     CHECK(fs::is_empty(root));
@@ -57,19 +82,28 @@ TEST_CASE("a_scratch_directory_under_a_file_says_why_it_cannot_be_made", "[cost]
           0);
 }
 
-TEST_CASE("the_scratch_of_a_process_that_is_gone_is_swept", "[cost]") {
+TEST_CASE("a_scratch_directory_is_swept_when_no_process_holds_its_lock", "[cost]") {
     const TempDir root_tmp("wg-sweep");
     const fs::path root = root_tmp.path;
-    const pid_t gone = pid_of_a_finished_process();
-    const fs::path stale = root / ("watergen-count-" + std::to_string(gone) + "-0");
-    const fs::path mine = root / ("watergen-count-" + std::to_string(::getpid()) + "-99");
-    const fs::path other = root / "watergen-counting-notes";
-    for (const fs::path& p : {stale, mine, other}) {
+    const fs::path stale = root / "watergen-count-aaaaaa";    // its process was killed
+    const fs::path held = root / "watergen-count-bbbbbb";     // a live count elsewhere
+    const fs::path unlocked = root / "watergen-count-cccccc"; // no lock file: not judged
+    const fs::path other = root / "watergen-counting-notes";  // not a scratch name
+    for (const fs::path& p : {stale, held, unlocked, other}) {
         fs::create_directories(p);
         std::ofstream(p / "callgrind.out.1") << "dump";
     }
+    std::ofstream(stale / ".lock");
+    const pid_t holder = hold_lock(held);
     CHECK(sweep_stale_scratch(root, "watergen-count-") == 1);
     CHECK_FALSE(fs::exists(stale));
-    CHECK(fs::exists(mine));  // this process is alive
-    CHECK(fs::exists(other)); // not a scratch name
+    CHECK(fs::exists(held / "callgrind.out.1"));
+    CHECK(fs::exists(unlocked));
+    CHECK(fs::exists(other));
+    // Its process gone (SIGKILL: nothing of its own ran), the lock is free: the next sweep.
+    ::kill(holder, SIGKILL);
+    int status = 0;
+    ::waitpid(holder, &status, 0);
+    CHECK(sweep_stale_scratch(root, "watergen-count-") == 1);
+    CHECK_FALSE(fs::exists(held));
 }

@@ -6,12 +6,16 @@
 // deterministic for one driver version and changes with the next; the relations hold for any.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "covering_builds.h"
 #include "geometry_variant.h"
+#include "watergen/eval/measure/aco_worker.h"
 #include "watergen/eval/measure/gpu_cost.h"
+#include "watergen/toolchain/child_process.h"
 
 using namespace watergen;
 
@@ -252,4 +256,105 @@ TEST_CASE("16-bit arithmetic on a family without it is reported, not compiled (g
     CHECK_FALSE(f->per_pixel);
     CHECK(f->per_pixel_note.find("CLRX") != std::string::npos);
     CHECK(gcn1[0].costs[0].fragment_cost() == f->instructions);
+}
+
+namespace {
+
+// The worker run on a job directory, as compile_on_targets runs it for rdna2: its exit and
+// what it said.
+std::string run_worker_on(const std::filesystem::path& dir) {
+    const auto icd = radeon_icd();
+    REQUIRE(icd);
+    return run_child_process({kWatergen.string(), "gpu-worker", dir.string()}, dir,
+                             {"VK_ICD_FILENAMES=" + icd->string(),
+                              "VK_DRIVER_FILES=" + icd->string(), "RADV_FORCE_FAMILY=navi21",
+                              "MESA_SHADER_CACHE_DISABLE=true"});
+}
+
+std::string read_all(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+} // namespace
+
+TEST_CASE("the worker refuses a job it cannot give a driver, with exit 2 and the key") {
+    const std::filesystem::path dir = std::filesystem::current_path() / "hostile-job";
+    struct Case {
+        std::string entry; // the pipeline's entry in job.json
+        const char* says;
+    };
+    std::string many = "[";
+    for (int i = 0; i < 100000; ++i)
+        many += i ? ",2" : "2";
+    many += "]";
+    const std::string base = R"("name": "p", "specialization": {}, "tessellated": false, )";
+    const Case cases[] = {
+        {base + R"("format": 97, "geometry": {"attribute_sizes": )" + many + "}",
+         "more than 16 vertex attributes"},
+        {base + R"("format": 0)", "\"format\": expected a colour format"},
+        {base + R"("format": -1)", "\"format\": expected a colour format"},
+        {base + R"("format": 999999)", "\"format\": expected a colour format"},
+        {base + R"("format": 126)", "\"format\": expected a colour format"}, // D32_SFLOAT
+        {base + R"("format": 97, "geometry": {"attribute_sizes": [5]})", "an attribute of 5"},
+        {base + R"("format": 97, "geometry": {"attribute_sizes": [2], "patch_control_points": 33})",
+         "patch_control_points 33"},
+        {R"("name": "p", "specialization": {"x": 1}, "format": 97)", "specialization 'x'"},
+        {R"("name": "p", "specialization": {"0": 1e39}, "format": 97)", "finite 32-bit float"},
+    };
+    for (const Case& c : cases) {
+        INFO(c.entry.substr(0, 200));
+        std::filesystem::remove_all(dir);
+        std::filesystem::create_directories(dir);
+        std::ofstream(dir / "job.json")
+            << R"({"disassembly": false, "pipelines": [{)" << c.entry << "}]}";
+        const std::string failure = run_worker_on(dir);
+        CHECK(failure.find("exit status 2") != std::string::npos);
+        CHECK(failure.find(c.says) != std::string::npos);
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("the worker writes only its own files: compiling.txt is never followed as a link") {
+    const std::filesystem::path dir = std::filesystem::current_path() / "linked-job";
+    const std::filesystem::path outside = std::filesystem::current_path() / "outside.txt";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::ofstream(outside) << "untouched";
+    const VariantBuild b = build_variant(default_variant());
+    REQUIRE(write_aco_job(dir, {aco_source(b.languages[0], "water glsl")}, false).empty());
+    std::filesystem::create_symlink(outside, dir / "compiling.txt");
+    CHECK(run_worker_on(dir).empty());
+    CHECK(read_all(outside) == "untouched");
+    CHECK(std::filesystem::is_symlink(dir / "compiling.txt"));
+    CHECK(std::filesystem::is_regular_file(dir / "result.json"));
+    std::filesystem::remove_all(dir);
+    std::filesystem::remove(outside);
+}
+
+TEST_CASE("a colour format the device does not render to is the pipeline's error, not a crash") {
+    const VariantBuild b = build_variant(default_variant());
+    AcoPipelineSource odd = aco_source(b.languages[0], "odd");
+    odd.format = VK_FORMAT_R4G4_UNORM_PACK8; // a colour format, but no colour attachment
+    const auto runs = compile_on_targets({*find_gpu_target("rdna2")}, {odd},
+                                         std::filesystem::current_path(), 1, kWatergen);
+    REQUIRE(runs[0].ok());
+    REQUIRE(runs[0].pipelines.size() == 1);
+    CHECK(runs[0].pipelines[0].error.find("cannot render to format 1") != std::string::npos);
+}
+
+TEST_CASE("a caller's VK_DRIVER_FILES does not choose the worker's driver") {
+    // CI pins lavapipe this way; the worker must still open RADV's null device.
+    const char* before = std::getenv("VK_DRIVER_FILES");
+    const std::string kept = before ? before : "";
+    ::setenv("VK_DRIVER_FILES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json", 1);
+    ::setenv("VK_ADD_DRIVER_FILES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json", 1);
+    const auto runs = costs({"rdna2"}, build_variant(gerstner()));
+    if (before)
+        ::setenv("VK_DRIVER_FILES", kept.c_str(), 1);
+    else
+        ::unsetenv("VK_DRIVER_FILES");
+    ::unsetenv("VK_ADD_DRIVER_FILES");
+    REQUIRE(runs.size() == 1);
+    CHECK(runs[0].run.device.find("NAVI21") != std::string::npos);
 }

@@ -187,8 +187,7 @@ TEST_CASE("a_map_file_reads_back_as_written_and_overrides_its_base", "[bindings]
     }
     Diagnostics ds;
     const auto m = parse_map(R"({"watergen_bindings": 1, "base": "watergen",
-        "resources": {"WaterParams": {"set": 3, "binding": 5, "hlsl_space": 3},
-                      "fog_volume": {"set": 1, "binding": 0, "msl": 20, "gl": 20}}})",
+        "resources": {"WaterParams": {"set": 3, "binding": 5, "hlsl_space": 3}}})",
                              ds);
     INFO(messages(ds));
     REQUIRE(m);
@@ -199,12 +198,21 @@ TEST_CASE("a_map_file_reads_back_as_written_and_overrides_its_base", "[bindings]
     CHECK(p->hlsl_space == 3);
     CHECK(p->hlsl_register == 0); // kept from the base
     CHECK(p->origin.rfind("map.json:2:", 0) == 0);
-    const ResourceSlot* fog = m->find("fog_volume");
-    REQUIRE(fog);
-    CHECK(fog->kind == ResourceKind::Texture);
-    CHECK(std::tie(fog->hlsl_register, fog->hlsl_space, fog->msl_index, fog->gl_unit) ==
+    CHECK(m->slots.size() == binding_profile("watergen")->slots.size());
+    // Without a base every resource is new: its register and space default to its binding and
+    // set, its kind to the name's.
+    Diagnostics fresh_ds;
+    const auto fresh = parse_map(R"({"watergen_bindings": 1,
+        "resources": {"scene_color": {"set": 1, "binding": 0, "msl": 20, "gl": 20}}})",
+                                 fresh_ds);
+    INFO(messages(fresh_ds));
+    REQUIRE(fresh);
+    const ResourceSlot* colour = fresh->find("scene_color");
+    REQUIRE(colour);
+    CHECK(colour->kind == ResourceKind::Texture);
+    CHECK(std::tie(colour->hlsl_register, colour->hlsl_space, colour->msl_index, colour->gl_unit) ==
           std::make_tuple(0u, 1u, 20u, 20u));
-    CHECK(m->slots.size() == binding_profile("watergen")->slots.size() + 1);
+    CHECK(fresh->slots.size() == 1);
 }
 
 TEST_CASE("a_bad_map_file_is_an_error_at_its_line", "[bindings]") {
@@ -222,8 +230,8 @@ TEST_CASE("a_bad_map_file_is_an_error_at_its_line", "[bindings]") {
          "resources 'WaterParams' (map.json:2:3) and 'scene_color' (map.json:3:3) are both at "
          "Vulkan set 0 binding 0"},
         {"{\"watergen_bindings\": 1, \"resources\": {\n"
-         "  \"a\": {\"set\": 0, \"binding\": 1, \"msl\": 4},\n"
-         "  \"b\": {\"set\": 0, \"binding\": 2, \"msl\": 4}}}",
+         "  \"scene_color\": {\"set\": 0, \"binding\": 1, \"msl\": 4},\n"
+         "  \"sky_cube\": {\"set\": 0, \"binding\": 2, \"msl\": 4}}}",
          3, "are both at Metal [[texture(4)]]"},
         {"{\"watergen_bindings\": 1, \"resources\": {\n  \"a\": {\"set\": -1, \"binding\": 0}}}", 2,
          "/resources/a/set: expected a whole number from 0 to 3 (Vulkan guarantees 4 bound "
@@ -240,6 +248,12 @@ TEST_CASE("a_bad_map_file_is_an_error_at_its_line", "[bindings]") {
         {"{\"watergen_bindings\": 1, \"resources\": {\n  \"9lives\": {\"set\": 0, \"binding\": "
          "0}}}",
          2, "not a shader identifier"},
+        // A name no shader reads (a misspelling): refused at its line with the name it meant.
+        {"{\"watergen_bindings\": 1, \"base\": \"watergen\", \"resources\": {\n"
+         "  \"scene_colour\": {\"set\": 0, \"binding\": 20}}}",
+         2,
+         "'scene_colour' is not a resource any shader of this generator reads (did you mean "
+         "'scene_color'?)"},
         // Push constants (push_constant_test.cpp): no set, binding or register; a range in
         // whole registers and at most 4096 bytes; one block.
         {"{\"watergen_bindings\": 1, \"base\": \"watergen\", \"resources\": {\n"
@@ -253,7 +267,7 @@ TEST_CASE("a_bad_map_file_is_an_error_at_its_line", "[bindings]") {
          2, "expected a whole number from 0 to 4096"},
         {"{\"watergen_bindings\": 1, \"base\": \"watergen\", \"resources\": {\n"
          "  \"WaterParams\": {\"kind\": \"push_constant\"},\n"
-         "  \"more_params\": {\"kind\": \"push_constant\", \"msl\": 9, \"gl\": 9}}}",
+         "  \"linear_clamp\": {\"kind\": \"push_constant\", \"msl\": 9, \"gl\": 9}}}",
          3, "are both push constants"},
     };
     for (const Case& c : cases) {

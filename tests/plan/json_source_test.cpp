@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "watergen/plan/binding_map_file.h"
 #include "watergen/plan/json_source.h"
+#include "watergen/plan/material.h"
 
 using namespace watergen;
 
@@ -146,4 +148,67 @@ TEST_CASE("json_byte_order_mark_is_skipped_and_not_counted", "[json]") {
     // Errors on the first line are placed alike too.
     CHECK_FALSE(JsonSource::parse("\xEF\xBB\xBF{\"a\": 1,}", "m.json", &error));
     CHECK(error.column == 9);
+}
+
+namespace {
+
+// CPU time of this process so far (user and system), in seconds: what a reader costs, whatever
+// else the machine runs.
+double cpu_seconds() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+           1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+// `head`, then lines ",\n  <open>i<close>" for i = 0, 1, ... as many as the description limit
+// allows, then `tail`.
+std::string filled(const std::string& head, const std::string& open, const std::string& close,
+                   const std::string& tail) {
+    std::string text = head;
+    for (size_t i = 0;; ++i) {
+        const std::string line = ",\n  " + open + std::to_string(i) + close;
+        if (text.size() + line.size() + tail.size() + 1 > kMaxJsonBytes) break;
+        text += line;
+    }
+    return text + "\n" + tail;
+}
+
+} // namespace
+
+// Every description reader is linear in its input: a position is found from a line index made
+// once, not by counting lines from the start for each token. At the 4 MiB limit the quadratic
+// reader took about 49 minutes (extrapolated from 107 s at 800 KB, main 334ad7f); the linear one
+// takes under a second of CPU in a release build (docs/measurements.md, "Hostile inputs"). The
+// budget, 20 s of CPU for the three, is 20 times that: it holds under sanitizers and load, and a
+// quadratic reader cannot meet it.
+TEST_CASE("a_4_MiB_description_is_read_in_linear_time", "[json]") {
+    const double start = cpu_seconds();
+    // A binding map of about 190,000 resources, refused at the first name no shader reads.
+    const std::string map =
+        filled("{\"watergen_bindings\": 1, \"resources\": {\"WaterParams\": {\"set\": 0, "
+               "\"binding\": 0}",
+               "\"r", "\": {\"set\": 0, \"binding\": 1}", "}}");
+    Diagnostic error;
+    const auto src = JsonSource::parse(map, "map.json", &error);
+    REQUIRE(src);
+    CHECK(src->position("/resources/r0").line == 2);
+    Diagnostics ds;
+    CHECK_FALSE(read_binding_map(*src, ds));
+    // A material with a list of more than 300,000 choices, refused at index 1.
+    const std::string material =
+        filled("{\"name\": \"m\", \"axes\": {\"fresnel\": [\"schlick\"", "\"c", "\"", "]}}");
+    const auto msrc = JsonSource::parse(material, "m.json", &error);
+    REQUIRE(msrc);
+    Diagnostics mds;
+    CHECK_FALSE(parse_material(*msrc, mds));
+    REQUIRE_FALSE(mds.empty());
+    CHECK(mds[0].line == 2);
+    // A syntax error at the very end: its line is found as fast.
+    const std::string broken = filled("[0", "", "", "}");
+    CHECK_FALSE(JsonSource::parse(broken, "b.json", &error));
+    CHECK(error.line > 300000);
+    const double spent = cpu_seconds() - start;
+    INFO("CPU seconds: " << spent);
+    CHECK(spent < 20.0);
 }

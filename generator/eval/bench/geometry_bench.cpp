@@ -11,6 +11,7 @@
 #include "watergen/eval/draw/variant_render.h"
 #include "watergen/eval/measure/draw_cost.h"
 #include "watergen/eval/scene/scene_views.h"
+#include "watergen/runtime/water_grid.h"
 #include "watergen/water/presets.h"
 
 namespace watergen {
@@ -236,6 +237,11 @@ GeometryBench run_geometry_bench(VulkanRunner& runner, const Variant& variant,
                                  const GeometryBenchSettings& settings) {
     GeometryBench bench;
     bench.settings = settings;
+    for (uint32_t rings : settings.rings)
+        if (auto why = water_grid_error({settings.spacing, rings, settings.levels})) {
+            bench.error = "rings " + std::to_string(rings) + ": " + *why;
+            return bench;
+        }
     std::string error;
     const auto screen = build_as(variant, "screen_pass", error);
     const auto mesh = build_as(variant, "mesh", error);

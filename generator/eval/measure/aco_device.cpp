@@ -289,6 +289,17 @@ AcoPipelineStatistics AcoDevice::compile(const AcoPipelineSource& source) {
         desc.tess_control_reflection = &source.tess_control_reflection;
         desc.tess_evaluation_reflection = &source.tess_evaluation_reflection;
     }
+    // A value that is no colour format (a depth format, or none at all) never reaches the
+    // driver, and the device must render to the one it is.
+    VkFormatProperties format{};
+    if (is_colour_format(source.format))
+        vkGetPhysicalDeviceFormatProperties(h_->physical, source.format, &format);
+    if (!(format.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT)) {
+        out.error = name_ + " cannot render to format " +
+                    std::to_string(static_cast<int64_t>(source.format)) +
+                    " (VkFormat): expected a colour format it renders to";
+        return out;
+    }
     VkRenderPass& pass = h_->render_passes[source.format];
     if (!pass) pass = make_render_pass(h_->device, source.format, &out.error);
     if (!pass) return out;

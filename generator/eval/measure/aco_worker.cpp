@@ -1,6 +1,12 @@
 #include "watergen/eval/measure/aco_worker.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <future>
@@ -22,10 +28,21 @@ using nlohmann::json;
 
 constexpr const char* kPrefix = "watergen-aco-";
 
+// A file of the job directory, created or truncated in place; never through a link (a job
+// directory's names are the protocol's, whoever put a link there).
 bool write_bytes(const fs::path& file, const void* data, size_t size) {
-    std::ofstream out(file, std::ios::binary);
-    out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
-    return static_cast<bool>(out);
+    const int fd =
+        ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0600);
+    if (fd < 0) return false;
+    const char* at = static_cast<const char*>(data);
+    bool ok = true;
+    for (size_t left = size; ok && left > 0;) {
+        const ssize_t n = ::write(fd, at, left);
+        if (n < 0 && errno == EINTR) continue;
+        ok = n > 0;
+        if (ok) at += n, left -= static_cast<size_t>(n);
+    }
+    return ::close(fd) == 0 && ok;
 }
 
 // The job's and the answer's files: written by this protocol, in a directory of its own.
@@ -41,8 +58,10 @@ fs::path file_of(const fs::path& dir, size_t i, const char* suffix) {
     return dir / (std::to_string(i) + suffix);
 }
 
-std::string write_job(const fs::path& dir, const std::vector<AcoPipelineSource>& sources,
-                      bool disassembly) {
+} // namespace
+
+std::string write_aco_job(const fs::path& dir, const std::vector<AcoPipelineSource>& sources,
+                          bool disassembly) {
     json job = json::object();
     job["disassembly"] = disassembly;
     job["pipelines"] = json::array();
@@ -84,6 +103,8 @@ std::string write_job(const fs::path& dir, const std::vector<AcoPipelineSource>&
     return "";
 }
 
+namespace {
+
 std::optional<std::vector<uint32_t>> read_spirv(const fs::path& file) {
     const auto bytes = read_text(file);
     if (!bytes || bytes->size() % 4 != 0) return std::nullopt;
@@ -92,9 +113,13 @@ std::optional<std::vector<uint32_t>> read_spirv(const fs::path& file) {
     return words;
 }
 
-// Pipeline i of the job as written by write_job; "" or what is wrong.
-std::string read_source(const fs::path& dir, size_t i, const json& entry, AcoPipelineSource& s) {
-    s.name = entry.value("name", "");
+// Pipeline i of the job, its entry parsed by parse_aco_job, its files read; "" or what is wrong.
+std::string read_source(const fs::path& dir, size_t i, AcoJobPipeline&& entry,
+                        AcoPipelineSource& s) {
+    s.name = std::move(entry.name);
+    s.specialization = std::move(entry.specialization);
+    s.format = entry.format;
+    s.geometry = std::move(entry.geometry);
     auto vs = read_spirv(file_of(dir, i, ".vert.spv"));
     auto fs_ = read_spirv(file_of(dir, i, ".frag.spv"));
     const auto vr = read_text(file_of(dir, i, ".vert.reflect.json"));
@@ -108,7 +133,7 @@ std::string read_source(const fs::path& dir, size_t i, const json& entry, AcoPip
     if (!v || !f) return "pipeline " + std::to_string(i) + ": reflection: " + error;
     s.vertex_reflection = std::move(*v);
     s.fragment_reflection = std::move(*f);
-    if (entry.value("tessellated", false)) {
+    if (entry.tessellated) {
         auto cs = read_spirv(file_of(dir, i, ".tesc.spv"));
         auto es = read_spirv(file_of(dir, i, ".tese.spv"));
         const auto cr = read_text(file_of(dir, i, ".tesc.reflect.json"));
@@ -122,15 +147,6 @@ std::string read_source(const fs::path& dir, size_t i, const json& entry, AcoPip
         s.tess_evaluation = std::move(*es);
         s.tess_control_reflection = std::move(*c);
         s.tess_evaluation_reflection = std::move(*e);
-    }
-    for (const auto& [id, value] : entry.at("specialization").items())
-        s.specialization[static_cast<uint32_t>(std::stoul(id))] = value.get<float>();
-    s.format = static_cast<VkFormat>(entry.at("format").get<int>());
-    if (entry.contains("geometry")) {
-        const json& g = entry.at("geometry");
-        s.geometry = PipelineGeometry{
-            g.at("attribute_sizes").get<std::vector<uint32_t>>(), g.at("points").get<bool>(),
-            g.at("additive_blend").get<bool>(), g.value("patch_control_points", 0u)};
     }
     return "";
 }
@@ -195,12 +211,14 @@ AcoTargetRun run_family(const GpuTarget& target, const fs::path& icd,
         run.error = dir.error();
         return run;
     }
-    run.error = write_job(dir.path(), sources, target.disassembly);
+    run.error = write_aco_job(dir.path(), sources, target.disassembly);
     if (!run.error.empty()) return run;
     const std::vector<std::string> argv = {worker.string(), "gpu-worker", dir.path().string()};
     // Mesa's shader cache off: every statistic comes from a compile, and nothing is written
-    // under the user's home.
+    // under the user's home. The loader reads VK_DRIVER_FILES before VK_ICD_FILENAMES and adds
+    // VK_ADD_DRIVER_FILES: a caller's (a CI that pins lavapipe) must not choose the worker's.
     const std::vector<std::string> env = {"VK_ICD_FILENAMES=" + icd.string(),
+                                          "VK_DRIVER_FILES=" + icd.string(), "VK_ADD_DRIVER_FILES",
                                           "RADV_FORCE_FAMILY=" + target.family,
                                           "MESA_SHADER_CACHE_DISABLE=true"};
     const std::string failure = run_child_process(argv, dir.path(), env);
@@ -294,26 +312,23 @@ namespace {
 
 int aco_worker(const fs::path& dir) {
     const auto text = read_text(dir / "job.json");
-    json job;
-    try {
-        if (!text) throw std::runtime_error("no job.json");
-        job = json::parse(*text);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "watergen: error: %s: %s\n", dir.string().c_str(), e.what());
+    std::string error = "no job.json";
+    std::optional<AcoJob> job = text ? parse_aco_job(*text, &error) : std::nullopt;
+    if (!job) {
+        std::fprintf(stderr, "watergen: error: %s/job.json: %s\n", dir.string().c_str(),
+                     error.c_str());
         return 2;
     }
-    std::string error;
-    const auto device = AcoDevice::open(&error, job.value("disassembly", true));
+    const auto device = AcoDevice::open(&error, job->disassembly);
     if (!device) {
         std::fprintf(stderr, "watergen: error: %s\n", error.c_str());
         return 3;
     }
     json result = {{"device", device->name()}, {"driver", device->driver_info()}};
     result["pipelines"] = json::array();
-    const json& list = job.at("pipelines");
-    for (size_t i = 0; i < list.size(); ++i) {
+    for (size_t i = 0; i < job->pipelines.size(); ++i) {
         AcoPipelineSource source;
-        error = read_source(dir, i, list[i], source);
+        error = read_source(dir, i, std::move(job->pipelines[i]), source);
         if (!error.empty()) {
             std::fprintf(stderr, "watergen: error: %s: %s\n", dir.string().c_str(), error.c_str());
             return 2;

@@ -1,7 +1,6 @@
 #include "watergen/eval/measure/gpu_target.h"
 
 #include <algorithm>
-#include <sstream>
 
 namespace watergen {
 
@@ -35,21 +34,29 @@ std::string gpu_target_names() {
 }
 
 std::optional<std::vector<GpuTarget>> parse_gpu_targets(const std::vector<std::string>& words,
-                                                        std::string* error) {
+                                                        std::string* error,
+                                                        const std::string& flag) {
     std::vector<GpuTarget> out;
     for (const std::string& word : words) {
-        std::istringstream in(word);
-        std::string name;
-        while (std::getline(in, name, ',')) {
-            if (name.empty()) continue;
+        // Every name between commas, the empty ones too ("a,", ",,"; getline drops a last one).
+        for (size_t begin = 0;;) {
+            const size_t comma = word.find(',', begin);
+            const std::string name = word.substr(begin, comma - begin);
+            if (name.empty()) {
+                *error = flag + " '" + word + "': an empty target name; expected one of " +
+                         gpu_target_names();
+                return std::nullopt;
+            }
             const GpuTarget* t = find_gpu_target(name);
             if (!t) {
-                *error = "--target " + name + ": not a target (one of " + gpu_target_names() + ")";
+                *error = flag + " " + name + ": not a target (one of " + gpu_target_names() + ")";
                 return std::nullopt;
             }
             if (std::none_of(out.begin(), out.end(),
                              [&](const GpuTarget& o) { return o.name == t->name; }))
                 out.push_back(*t);
+            if (comma == std::string::npos) break;
+            begin = comma + 1;
         }
     }
     return out;

@@ -3,6 +3,9 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <sys/file.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
@@ -101,22 +104,66 @@ void install_handlers() {
 
 } // namespace
 
+namespace {
+
+constexpr const char* kLockFile = ".lock";
+
+// <root>/<prefix>XXXXXX, locked from the moment it has that name: made by mkdtemp under a
+// hidden name, its lock file taken, then renamed (the lock is on the file, which the rename
+// keeps), so a sweep never sees one of ours unlocked while we live. Returns the lock's file
+// descriptor (-1 and `error` when it cannot be made) and sets `made`.
+int make_locked_directory(const fs::path& root, const std::string& prefix, fs::path& made,
+                          size_t& slot, std::string& error) {
+    std::error_code ec;
+    fs::create_directories(root, ec);
+    for (int attempt = 0; attempt < 16; ++attempt) {
+        std::string hidden = (root / ("." + prefix + "XXXXXX")).string();
+        if (!::mkdtemp(hidden.data())) {
+            error = "cannot create " + (root / prefix).string() + "XXXXXX: " + std::strerror(errno);
+            return -1;
+        }
+        const std::string suffix = hidden.substr(hidden.size() - 6);
+        const fs::path lock_path = fs::path(hidden) / kLockFile;
+        const int fd = ::open(lock_path.c_str(), O_CREAT | O_EXCL | O_RDWR | O_CLOEXEC, 0600);
+        if (fd < 0 || ::flock(fd, LOCK_EX) != 0) {
+            error = "cannot lock " + lock_path.string() + ": " + std::strerror(errno);
+            if (fd >= 0) ::close(fd);
+            fs::remove_all(hidden, ec);
+            return -1;
+        }
+        made = root / (prefix + suffix);
+        slot = take_slot(made); // before it has the name: a signal from now on removes it
+        if (::renameat2(AT_FDCWD, hidden.c_str(), AT_FDCWD, made.c_str(), RENAME_NOREPLACE) == 0)
+            return fd;
+        const int why = errno;
+        if (slot < kSlots) g_slots[slot].state.store(0);
+        slot = kSlots;
+        fs::remove_all(hidden, ec);
+        ::close(fd);
+        if (why != EEXIST) {
+            error = "cannot create " + made.string() + ": " + std::strerror(why);
+            return -1;
+        }
+    }
+    error = "cannot create " + (root / prefix).string() + "XXXXXX: every name tried exists";
+    return -1;
+}
+
+} // namespace
+
 ScratchDirectory::ScratchDirectory(const fs::path& root, const std::string& prefix)
     : slot_(kSlots) {
-    static std::atomic<unsigned> made{0};
     install_handlers();
     sweep_stale_scratch(root, prefix);
-    path_ = root / (prefix + std::to_string(::getpid()) + "-" + std::to_string(made++));
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-    slot_ = take_slot(path_); // before it exists: a signal from now on removes it
-    fs::create_directories(path_, ec);
-    if (ec) error_ = "cannot create " + path_.string() + ": " + ec.message();
+    lock_ = make_locked_directory(root, prefix, path_, slot_, error_);
 }
 
 ScratchDirectory::~ScratchDirectory() {
     std::error_code ec;
-    fs::remove_all(path_, ec);
+    if (lock_ >= 0) {
+        fs::remove_all(path_, ec); // while it is locked: no sweep takes it meanwhile
+        ::close(lock_);
+    }
     if (slot_ < kSlots) g_slots[slot_].state.store(0);
 }
 
@@ -126,16 +173,15 @@ size_t sweep_stale_scratch(const fs::path& root, const std::string& prefix) {
     for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
         const std::string name = it->path().filename().string();
         if (name.rfind(prefix, 0) != 0) continue;
-        const std::string rest = name.substr(prefix.size());
-        const size_t dash = rest.find('-');
-        if (dash == 0 || dash == std::string::npos ||
-            rest.substr(0, dash).find_first_not_of("0123456789") != std::string::npos)
-            continue;
-        const pid_t pid = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
-        // Gone (ESRCH): nobody will remove it. Alive, or not ours to ask (EPERM): left alone.
-        if (::kill(pid, 0) == 0 || errno != ESRCH) continue;
-        std::error_code remove_error;
-        if (fs::remove_all(it->path(), remove_error) > 0 && !remove_error) ++removed;
+        // Alive while its process (in whatever PID namespace) holds the lock; a directory with
+        // no lock file is not one of ours to judge.
+        const int fd = ::open((it->path() / kLockFile).c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0) continue;
+        if (::flock(fd, LOCK_EX | LOCK_NB) == 0) {
+            std::error_code remove_error;
+            if (fs::remove_all(it->path(), remove_error) > 0 && !remove_error) ++removed;
+        }
+        ::close(fd);
     }
     return removed;
 }

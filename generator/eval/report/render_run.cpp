@@ -31,10 +31,13 @@ std::optional<std::string> set_values(SyntheticScene& scene, const WaterShader& 
         if (value.size() != value_count(*p))
             return fmt::format("--set {}: {} value(s), expected {}", name, value.size(),
                                value_count(*p));
-        for (double x : value)
+        for (double x : value) {
             if (!(x >= p->min && x <= p->max))
                 return fmt::format("--set {}: {:g} is outside [{:g}, {:g}]", name, x, p->min,
                                    p->max);
+            if (p->flag && x != 0 && x != 1)
+                return fmt::format("--set {}: {:g}; expected 0 or 1 (a switch)", name, x);
+        }
         scene.uniforms[name] = value;
     }
     if (!values.empty()) add_depth_inputs(scene);

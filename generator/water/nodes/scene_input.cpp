@@ -17,6 +17,7 @@ namespace {
 Parameter convention(const char* name, double value) {
     Parameter p{name, Type::Float, {value}, 0.0, 1.0, "", "", ""};
     p.specialization = true;
+    p.flag = true;
     return p;
 }
 

@@ -72,4 +72,10 @@ struct BindingMap {
     std::optional<BindingConflict> conflict() const;
 };
 
+// Whether every error among `diagnostics` is the map's (an emitter's: a resource it places no
+// slot for, or as another kind, a push-constant range too small), and there is one: a build
+// that fails only so is refused as bad input, the map being an input.
+struct Diagnostic;
+bool only_binding_map_errors(const std::vector<Diagnostic>& diagnostics, const BindingMap* map);
+
 } // namespace watergen

@@ -175,6 +175,9 @@ struct Parameter {
     // The C++ that wrote this definition (its aggregate initialisation): a clash of two
     // definitions of one name names both places.
     SourceLocation defined_at = SourceLocation::current();
+    // A switch: 0 or 1 only (a convention the shader reads as > 0.5); 0.5 is refused, not
+    // drawn as 0.
+    bool flag = false;
 };
 
 // Numbers in a parameter's value: its type's components, times its elements for an array.

@@ -91,15 +91,20 @@ std::optional<RecordHead> read_record_head(const std::filesystem::path& file);
 // The first component of every path the record names ("manifest.json", each scene's
 // directory), one each: what output_target.h needs of a record, without holding it.
 std::optional<std::vector<std::string>> record_top_entries(const std::filesystem::path& file);
-// Writes the record atomically (temporary + rename); a record that cannot be written only
-// costs the next build its shortcut, so failures are ignored.
-void store_record(const std::filesystem::path& file, const BuildRecord& record);
+// Writes the record atomically (temporary + rename). A record that cannot be written only
+// costs the next build its shortcut: the caller says so as a warning (why, returned), and the
+// output stands.
+std::optional<std::string> store_record(const std::filesystem::path& file,
+                                        const BuildRecord& record);
 // Every file of an output, sorted by path, handed over one at a time.
 using ListFiles = std::function<void(const std::function<void(const RecordedFile&)>&)>;
 // The same record written one file at a time (`count` files), for an output too large to list
 // in memory.
-void store_record(const std::filesystem::path& file, const std::string& key, size_t variants,
-                  size_t shaders, size_t count, const ListFiles& files);
+std::optional<std::string> store_record(const std::filesystem::path& file, const std::string& key,
+                                        size_t variants, size_t shaders, size_t count,
+                                        const ListFiles& files);
+// The warning a build or merge gives when store_record fails.
+std::string record_not_stored(const std::string& why);
 
 // Whether the record names every file the manifest `manifest` names, and manifest.json: a
 // record that lost a line cannot vouch for an output that lost that file.
@@ -108,9 +113,11 @@ bool record_covers_manifest(const BuildRecord& record, const std::string& manife
 bool record_covers_manifest(const BuildRecord& record, std::FILE* manifest);
 // The same for the record in `file`, read one file at a time: the manifest's names are sorted
 // into runs in a spill file in `scratch` (file_runs.h) and matched against the record's sorted
-// paths, so neither list is held.
+// paths, so neither list is held. `also`: files the build writes that the manifest does not
+// name (watergen_shaders.h, shard.json), which the record must name too.
 bool record_covers_manifest(const std::filesystem::path& file, std::FILE* manifest,
                             const std::filesystem::path& scratch,
+                            const std::vector<std::string>& also = {},
                             size_t names_per_run = size_t(1) << 16);
 
 // Whether every recorded file is in `out`, a regular file of its size and digest (read on

@@ -72,6 +72,7 @@ struct PassesOutput {
     // passes/<pass>/<file> for the union of the targets of the variants drawn with each pass.
     FileMap files;
     size_t failed = 0;
+    size_t failed_by_map = 0;   // of those, failed only on the binding map (bad input)
     size_t cached = 0;          // copied from the build cache
     Diagnostics cache_rejected; // one warning per entry that failed verification (rebuilt)
     Diagnostics diagnostics;

@@ -41,6 +41,11 @@ struct JsonDocumentReader {
     std::function<bool(const std::string& name, nlohmann::ordered_json&& value)> member;
     std::function<bool(const std::string& array, nlohmann::ordered_json&& element)> element;
     std::function<void(const std::string& array)> array_begins = {}; // a streamed array opens
+    // Limits of one piece (a member, or an element of a streamed array): containers nested
+    // inside it, and values in it. A document past them is malformed: memory holds one piece,
+    // whatever the document says. (Blanks are never held: a run of them is read as one.)
+    size_t max_depth = 64;
+    size_t max_piece_values = size_t(1) << 22;
 };
 enum class JsonReadEnd { Done, Stopped, Malformed };
 // `why` names the byte and the fault of a malformed document.

@@ -48,6 +48,12 @@ void remove_stale_staging(const std::filesystem::path& dir);
 // hand", rather than left without a word.
 void remove_replaced_tree(const std::filesystem::path& old);
 
+// A new directory <root>/<prefix>XXXXXX of this process alone (mkdtemp: a name no other
+// process, in any PID namespace, has or gets); "" and the error in `error` when it cannot be
+// made. The caller removes it.
+std::filesystem::path make_unique_directory(const std::filesystem::path& root,
+                                            const std::string& prefix, std::string* error);
+
 // Creates `path` and writes `contents` to it; never through an existing name or a link
 // (O_EXCL | O_NOFOLLOW). The error names the path and carries errno's text.
 std::optional<std::string> write_new_file(const std::filesystem::path& path,

@@ -51,6 +51,7 @@ constexpr const char* kShardFile = "shard.json";
 struct MergeResult {
     std::string error;         // non-empty: nothing was written
     bool write_failed = false; // the shards were fine, the output could not be written
+    std::string warning;       // the output is written; its build record is not
     size_t shards = 0, variants = 0, files = 0;
 };
 

@@ -7,6 +7,9 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -39,8 +42,18 @@ class JsonSource {
     // no more than kMaxJsonBytes + 1 bytes, whatever the file's size.
     static std::optional<JsonSource> load(const std::filesystem::path& path, Diagnostic* error);
 
+    JsonSource() = default;
+    JsonSource(JsonSource&&) = default;
+    JsonSource& operator=(JsonSource&&) = default;
+    JsonSource(const JsonSource& other);
+    JsonSource& operator=(const JsonSource& other);
+
     const Json& root() const { return root_; }
     const std::string& file() const { return file_; }
+    // The value at `pointer`, found in an index made once: Json's objects keep their keys in
+    // order and find one by walking them, so a lookup per member of a large object through
+    // the DOM was quadratic. nullptr when there is none.
+    const Json* find(const std::string& pointer) const;
 
     // Where the value at `pointer` starts (its key, for object members).
     JsonPosition position(const std::string& pointer) const;
@@ -53,6 +66,8 @@ class JsonSource {
     std::string file_;
     Json root_;
     std::map<std::string, JsonPosition> positions_;
+    std::unordered_map<std::string, const Json*> values_; // every value below the root
+    void index();                                         // values_ from root_
     friend class JsonSaxBuilder;
 };
 
@@ -62,7 +77,20 @@ std::string json_child(const std::string& parent, size_t index);
 // "a number", "a string (\"abc\")", ...: what a value is, for "expected X, got Y".
 std::string json_describe(const Json& value);
 
-// Line and column (1-based) of byte `offset` in `text`.
+// The lines of a text, to give the line and column of many offsets: each in O(log lines), the
+// index made once in O(size). (Counting from the start for every token made a reader quadratic.)
+class LineIndex {
+  public:
+    explicit LineIndex(std::string_view text);
+    // Line and column (1-based, bytes) of byte `offset`; an offset past the end is the end.
+    JsonPosition at(size_t offset) const;
+
+  private:
+    std::vector<size_t> starts_; // each line's first byte
+    size_t size_;
+};
+
+// Line and column (1-based) of byte `offset` in `text` (one offset: LineIndex for many).
 JsonPosition position_of_offset(const std::string& text, size_t offset);
 
 } // namespace watergen

@@ -10,8 +10,8 @@ namespace watergen {
 
 // What:   runs argv[0] (from PATH, or a path) with stdin from /dev/null and stdout / stderr
 //         sent to <dir>/<name>.stdout and .stderr, <name> the file name of argv[0].
-//         The child gets this process's environment with `env` ("NAME=value") set over it;
-//         this process's own environment does not change.
+//         The child gets this process's environment with `env` over it: "NAME=value" sets
+//         NAME, a bare "NAME" removes it; this process's own environment does not change.
 // Output: "" on exit status 0; else "<argv[0]>: exit status N" (or "killed by signal N") and
 //         the start of its stderr (its stdout when stderr is empty).
 std::string run_child_process(const std::vector<std::string>& argv,

@@ -24,6 +24,7 @@
 // buffer), n = push_constant()->block_size rounded up to 4.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -36,6 +37,17 @@
 #include "watergen/runtime/reflection.h"
 
 namespace watergen {
+
+// Limits every Vulkan device meets (the spec's minimums of maxVertexInputAttributes and
+// maxTessellationPatchSize): a PipelineGeometry past them is refused before a driver sees it.
+constexpr size_t kMaxVertexAttributes = 16;
+constexpr uint32_t kMaxPatchControlPoints = 32;
+// Whether a VkFormat's value is a core colour format (not depth / stencil, not block
+// compressed): what a render pass's colour attachment may be; the device then says whether it
+// renders to it.
+inline bool is_colour_format(int64_t format) {
+    return format >= VK_FORMAT_R4G4_UNORM_PACK8 && format <= VK_FORMAT_E5B9G9R9_UFLOAT_PACK32;
+}
 
 // How the pipeline draws when it is not the water's fullscreen triangle: a companion pass's
 // grid (pass_geometry() in pass_pipeline.h makes one from the pass's draw description).

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "watergen/eval/measure/aco_device.h"
+#include "watergen/eval/measure/aco_job.h"
 #include "watergen/eval/measure/cost_worker.h"
 #include "watergen/eval/measure/gpu_target.h"
 
@@ -44,6 +45,11 @@ compile_on_targets(const std::vector<GpuTarget>& targets,
                    const std::vector<AcoPipelineSource>& sources,
                    const std::filesystem::path& scratch, unsigned workers,
                    const std::filesystem::path& worker = own_executable());
+
+// The job directory the worker reads: `sources`' SPIR-V and reflection files and job.json; ""
+// or why it could not be written.
+std::string write_aco_job(const std::filesystem::path& dir,
+                          const std::vector<AcoPipelineSource>& sources, bool disassembly);
 
 // The worker: reads DIR/job.json, compiles each pipeline on the null device the environment
 // names, writes DIR/result.json. Returns the exit code: 0, 3 without a device, 2 for a job it

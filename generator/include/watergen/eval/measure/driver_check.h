@@ -20,9 +20,9 @@ struct DriverCheck {
     bool ok() const { return error.empty() && failures.empty(); }
 };
 
-// What:   the check of the build in `build_dir` on `targets` (lavapipe, which renders every
-//         variant in the tests already, is left out). A worker that crashed names the
-//         pipeline it was compiling.
+// What:   the check of the build in `build_dir` on `targets`, AMD families only (lavapipe,
+//         which renders every variant in the tests already, or an empty list is an error, not
+//         a check that passed). A worker that crashed names the pipeline it was compiling.
 // Cost:   2-20 ms per pipeline and family, the families in parallel.
 DriverCheck check_build_on_drivers(const std::filesystem::path& build_dir,
                                    const std::vector<GpuTarget>& targets,

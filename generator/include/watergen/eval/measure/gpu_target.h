@@ -29,9 +29,11 @@ std::string gpu_target_names();
 
 // The targets `words` name (each a name or a comma-separated list, as --target repeated or
 // --target a,b), in the order given, each once; an alias stays itself (its costs are its
-// ISA's). nullopt and *error naming the unknown word and the known names.
+// ISA's). nullopt and *error (naming `flag`) for an unknown word or an empty name ("", "a,,b"):
+// a list that names nothing is refused, never read as the default.
 std::optional<std::vector<GpuTarget>> parse_gpu_targets(const std::vector<std::string>& words,
-                                                        std::string* error);
+                                                        std::string* error,
+                                                        const std::string& flag = "--target");
 
 // The AMD families among `targets` (lavapipe left out), and whether lavapipe is among them.
 std::vector<GpuTarget> amd_targets(const std::vector<GpuTarget>& targets);

@@ -3,7 +3,9 @@
 // worker that died) leaves nothing behind. While any exists, SIGINT, SIGTERM and SIGHUP to this
 // process kill the running workers (run_child_process's children), remove every scratch
 // directory still there, and then end the process as the signal would have. (A SIGKILL cannot
-// be caught: the next count sweeps the directories of processes that are gone.)
+// be caught: the next count sweeps the directories no process holds.) Each directory's
+// liveness is a lock its process holds (flock on its .lock file), not a PID: a PID names
+// another process, or none, in another PID namespace sharing the same /tmp.
 #pragma once
 
 #include <filesystem>
@@ -13,7 +15,8 @@ namespace watergen {
 
 class ScratchDirectory {
   public:
-    // <root>/<prefix><pid>-<n>, n counting this process's directories; error() says why not.
+    // <root>/<prefix>XXXXXX (mkdtemp's name), locked while this object lives; error() says
+    // why not.
     ScratchDirectory(const std::filesystem::path& root, const std::string& prefix);
     ~ScratchDirectory();
     ScratchDirectory(const ScratchDirectory&) = delete;
@@ -26,10 +29,11 @@ class ScratchDirectory {
     std::filesystem::path path_;
     std::string error_;
     size_t slot_;
+    int lock_ = -1; // the .lock file's descriptor, flock'ed
 };
 
-// Removes <root>/<prefix><pid>-* for every pid that is no longer a running process (left by a
-// process that was killed outright); returns how many went.
+// Removes <root>/<prefix>* whose lock no process holds (left by a process that was killed
+// outright); returns how many went. A directory without a lock file is left alone.
 size_t sweep_stale_scratch(const std::filesystem::path& root, const std::string& prefix);
 
 } // namespace watergen
