@@ -174,14 +174,11 @@ Runner add_build_command(CLI::App& app, const Common& common) {
             // Only AMD families are checked here (the tests render every variant on lavapipe):
             // a list with lavapipe would report pipelines it never created there.
             if (has_lavapipe(*drivers)) {
-                std::string families;
-                for (const GpuTarget& t : gpu_targets())
-                    if (!t.is_lavapipe()) families += (families.empty() ? "" : ", ") + t.name;
                 std::fprintf(stderr,
                              "watergen: error: --check-drivers: lavapipe is not a driver "
                              "check (the render tests draw every variant on it); name "
                              "AMD families: %s\n",
-                             families.c_str());
+                             amd_target_names().c_str());
                 return kUsage;
             }
         }

@@ -50,9 +50,8 @@ DriverCheck check_build_on_drivers(const std::filesystem::path& build_dir,
     // A check names only what it compiled: lavapipe, or no family at all, is refused rather
     // than reported as checked.
     if (has_lavapipe(targets) || targets.empty()) {
-        out.error = "the driver check compiles on AMD families only (" + gpu_target_names() +
-                    " without lavapipe); got " +
-                    (targets.empty() ? std::string("none") : std::string("lavapipe"));
+        out.error = "the driver check compiles on AMD families only (" + amd_target_names() +
+                    "); got " + (targets.empty() ? std::string("none") : std::string("lavapipe"));
         return out;
     }
     const auto build = ShaderBuild::open(build_dir, &out.error);

@@ -33,6 +33,13 @@ std::string gpu_target_names() {
     return out;
 }
 
+std::string amd_target_names() {
+    std::string out;
+    for (const auto& t : gpu_targets())
+        if (!t.is_lavapipe()) out += (out.empty() ? "" : ", ") + t.name;
+    return out;
+}
+
 std::optional<std::vector<GpuTarget>> parse_gpu_targets(const std::vector<std::string>& words,
                                                         std::string* error,
                                                         const std::string& flag) {

@@ -26,6 +26,8 @@ const std::vector<GpuTarget>& gpu_targets();
 const GpuTarget* find_gpu_target(const std::string& name);
 // "lavapipe, gcn1, ..., steamdeck": for help texts and errors.
 std::string gpu_target_names();
+// "gcn1, ..., steamdeck": the AMD families alone (what a driver check compiles on).
+std::string amd_target_names();
 
 // The targets `words` name (each a name or a comma-separated list, as --target repeated or
 // --target a,b), in the order given, each once; an alias stays itself (its costs are its
