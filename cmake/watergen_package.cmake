@@ -28,7 +28,7 @@ watergen_install_libraries(COMPONENT runtime EXPORT watergenTargets FOLDER runti
   TARGETS watergen_runtime watergen_reflection
   HEADERS reflection.h build_pass.h shader_build.h uniform_writer.h variant_pipeline.h water_grid.h
           binding_layout.h
-          pass_pipeline.h spirv_check.h)
+          pass_pipeline.h spirv_check.h manifest_schema.h)
 install(TARGETS watergen EXPORT watergenTargets
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT generator)
 install(EXPORT watergenTargets NAMESPACE watergen:: DESTINATION ${WATERGEN_PACKAGE_DIR}
@@ -43,11 +43,14 @@ watergen_install_libraries(COMPONENT headless EXPORT watergenHeadlessTargets FOL
 install(EXPORT watergenHeadlessTargets NAMESPACE watergen:: DESTINATION ${WATERGEN_PACKAGE_DIR}
   COMPONENT headless)
 
-# The authoring API: every library of the generator, their public headers (generator/include,
-# the test runner's), and the entry point watergen_add_generator() compiles. Its own export set
-# and targets file, loaded only with COMPONENTS generator (which needs headless too).
-set(WATERGEN_AUTHORING_LIBRARIES watergen_ir watergen_water watergen_caustics watergen_plan
-  watergen_toolchain watergen_pipeline watergen_runner watergen_eval_image watergen_eval_scene
+# The authoring API: every library of the generator, the headers a node needs, and the entry
+# point watergen_add_generator() compiles. Its own export set and targets file, loaded only with
+# COMPONENTS generator (which needs headless too).
+set(WATERGEN_AUTHORING_LIBRARIES watergen_ir_core watergen_ir_emit watergen_ir_cpu
+  watergen_ir_fold watergen_ir watergen_water watergen_caustics watergen_plan watergen_toolchain
+  watergen_pipeline_output watergen_pipeline_cache watergen_pipeline_variant watergen_pipeline_jobs
+  watergen_pipeline_manifest watergen_pipeline_record watergen_pipeline_shards
+  watergen_pipeline_build watergen_pipeline watergen_runner watergen_eval_image watergen_eval_scene
   watergen_eval_draw watergen_eval_measure watergen_eval_probe watergen_eval_report
   watergen_eval_compare watergen_eval_bench watergen_eval watergen_cli watergen_generator)
 foreach(library IN LISTS WATERGEN_AUTHORING_LIBRARIES)
@@ -59,8 +62,19 @@ foreach(library IN LISTS WATERGEN_AUTHORING_LIBRARIES)
 endforeach()
 install(TARGETS ${WATERGEN_AUTHORING_LIBRARIES} EXPORT watergenAuthoringTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT authoring)
-install(DIRECTORY generator/include/watergen/ runtime/include/watergen/runner
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/watergen COMPONENT authoring)
+# The headers a project's node includes: the IR and its DSL (ir/core), the axis registry, Surface
+# and watergen's nodes, whose functions a node may call; the headers those include are among
+# them (tests/package builds examples/custom_node against this install).
+file(GLOB WATERGEN_NODE_HEADERS RELATIVE ${PROJECT_SOURCE_DIR}/generator/include
+  ${PROJECT_SOURCE_DIR}/generator/include/watergen/ir/core/*.h
+  ${PROJECT_SOURCE_DIR}/generator/include/watergen/water/nodes/*.h)
+list(APPEND WATERGEN_NODE_HEADERS watergen/water/axis_registry.h watergen/water/node_catalog.h
+  watergen/water/surface.h)
+foreach(header IN LISTS WATERGEN_NODE_HEADERS)
+  get_filename_component(folder ${header} DIRECTORY)
+  install(FILES generator/include/${header} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${folder}
+    COMPONENT authoring)
+endforeach()
 install(FILES generator/cli/main.cpp DESTINATION ${WATERGEN_PACKAGE_DIR}
   RENAME generator_main.cpp COMPONENT authoring)
 install(EXPORT watergenAuthoringTargets NAMESPACE watergen:: DESTINATION ${WATERGEN_PACKAGE_DIR}

@@ -7,7 +7,7 @@
 // Usage: build_default_material OUT SCENE.json...
 #include <cstdio>
 
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
 

@@ -16,10 +16,19 @@ using namespace watergen;
 // The fog's parameters: defaults and ranges travel with the node, so materials, presets and
 // scene files can set them by name like watergen's own.
 Parameter fog_color() {
-    return {"fog_color", Type::Vec3, {0.62, 0.70, 0.78}, 0.0, 1e3, "", "004", ""};
+    return {.name = "fog_color",
+            .type = Type::Vec3,
+            .default_value = {0.62, 0.70, 0.78},
+            .max = 1e3,
+            .seed = "004"};
 }
 Parameter fog_density() {
-    return {"fog_density", Type::Float, {0.004}, 0.0, 10.0, "1/m", "004", ""};
+    return {.name = "fog_density",
+            .type = Type::Float,
+            .default_value = {0.004},
+            .max = 10.0,
+            .unit = "1/m",
+            .seed = "004"};
 }
 
 struct FogInputs {

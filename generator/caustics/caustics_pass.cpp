@@ -1,7 +1,9 @@
 #include "watergen/caustics/caustics_pass.h"
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/water/mesh_shader.h"
 #include "watergen/water/nodes/caustics.h"
+#include "watergen/water/nodes/fresnel.h"
 #include "watergen/water/nodes/waves.h"
 #include "watergen/water/scene_quantities.h"
 
@@ -19,18 +21,20 @@ struct RayToBottom {
     Expr area_normal; // dP/dz x dP/dx of the surface at the grid point
 };
 
-// The water pass's names and defaults for the shared parameters (water_shader.cpp,
-// fresnel.cpp): one uniform set drives every pass. Heights are taken from the water level and
+// The water pass' own definitions of the shared parameters (mesh_shader.h, nodes/fresnel.h):
+// one uniform set drives every pass. Heights are taken from the water level and
 // the bottom lies caustics_depth below it, so the level itself does not enter.
 RayToBottom trace(Graph& g, const std::string& model, Expr grid) {
-    Expr time = bind(scene_quantity::time,
-                     uniform(g, {"time", Type::Float, {0.0}, 0.0, 86400.0, "s", "000", ""}));
-    Expr sun = bind(
-        scene_quantity::sun_direction,
-        uniform(g, {"sun_direction", Type::Vec3, {-0.35, -0.75, 0.55}, -1.0, 1.0, "", "000", ""}));
-    Expr ior = uniform(g, {"ior_water", Type::Float, {1.33333}, 1.0, 3.0, "", "000", ""});
-    Expr depth =
-        uniform(g, {"caustics_depth", Type::Float, {5.0}, 0.0, 1e4, "m", "002", "caustics"});
+    Expr time = scene_time(g);
+    Expr sun = scene_sun_direction(g);
+    Expr ior = uniform(g, ior_water());
+    Expr depth = uniform(g, {.name = "caustics_depth",
+                             .type = Type::Float,
+                             .default_value = {5.0},
+                             .max = 1e4,
+                             .unit = "m",
+                             .seed = "002",
+                             .origin = "caustics"});
     Expr window = uniform(g, caustics_window()); // the water pass's caustics axis reads it too
     // The surface point as the grid point moved by `shift` (horizontal) and `height` (above
     // the water level), and its unit normal. Kept as displacements: under flat water they are
@@ -84,14 +88,12 @@ void build_area_ratio_vertex(Graph& g, const std::string& model) {
     g.set_output("offset", (r.to_beam - r.to_landing).id());
     // The clamp reaches the fragment stage as a varying: the runner binds one parameter block
     // for the pipeline, the vertex stage's (as in the mesh path, whose fragment reads none).
-    g.set_output("clamp", uniform(g, {"caustics_clamp",
-                                      Type::Float,
-                                      {5.0},
-                                      0.0,
-                                      1e30,
-                                      "",
-                                      "HDRP",
-                                      "largest area ratio a fragment adds"})
+    g.set_output("clamp", uniform(g, {.name = "caustics_clamp",
+                                      .type = Type::Float,
+                                      .default_value = {5.0},
+                                      .max = 1e30,
+                                      .seed = "HDRP",
+                                      .origin = "largest area ratio a fragment adds"})
                               .id());
 }
 
@@ -123,14 +125,12 @@ void build_photon_vertex(Graph& g, const std::string& model) {
     // patch of surface over the flux through the same patch of water plane (0 where the
     // surface faces away from the sun, shadowed by the waves in front), times the patch's
     // share of a texel (caustics_photon_share = grid cell area / texel area, set by the host).
-    Expr share = uniform(g, {"caustics_photon_share",
-                             Type::Float,
-                             {0.25},
-                             0.0,
-                             1e6,
-                             "",
-                             "002",
-                             "grid cell area over texel area"});
+    Expr share = uniform(g, {.name = "caustics_photon_share",
+                             .type = Type::Float,
+                             .default_value = {0.25},
+                             .max = 1e6,
+                             .seed = "002",
+                             .origin = "grid cell area over texel area"});
     Expr flux = max(dot(r.area_normal, -r.light) / -min(r.light.y(), -1e-6), 0.0);
     g.set_output("weight", named(flux * share, "photon_weight").id());
 }

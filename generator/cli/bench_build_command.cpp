@@ -3,8 +3,8 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "watergen/pipeline/build_bench.h"
-#include "watergen/pipeline/parallel_build.h"
+#include "watergen/eval/bench/build_bench.h"
+#include "watergen/pipeline/jobs/parallel_build.h"
 
 namespace watergen::cli {
 

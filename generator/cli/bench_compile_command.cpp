@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "watergen/pipeline/compile_bench.h"
+#include "watergen/eval/bench/compile_bench.h"
 
 namespace watergen::cli {
 

@@ -5,7 +5,7 @@
 
 #include "commands.h"
 #include "watergen/eval/bench/modes_bench.h"
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/output/output_writer.h"
 
 namespace watergen::cli {
 

@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/output/output_writer.h"
 
 namespace watergen::cli {
 

@@ -8,7 +8,7 @@
 
 #include "commands.h"
 #include "watergen/eval/bench/prune_bench.h"
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 
 namespace watergen::cli {
 

@@ -6,7 +6,7 @@
 
 #include "commands.h"
 #include "watergen/eval/bench/unroll_bench.h"
-#include "watergen/pipeline/compile_bench.h"
+#include "watergen/eval/measure/interleaved_timing.h" // median()
 
 namespace watergen::cli {
 

@@ -9,8 +9,8 @@
 
 #include "commands.h"
 #include "watergen/eval/measure/driver_check.h"
-#include "watergen/pipeline/build_files.h"
-#include "watergen/pipeline/build_progress.h"
+#include "watergen/pipeline/build/build_files.h"
+#include "watergen/pipeline/jobs/build_progress.h"
 #include "watergen/water/binding_profiles.h"
 
 namespace watergen::cli {

@@ -10,7 +10,7 @@
 #include "watergen/eval/compare/compare_and_report.h"
 #include "watergen/eval/report/compare_report.h"
 #include "watergen/eval/scene/scene_views.h"
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 
 namespace watergen::cli {
 

@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "watergen/pipeline/variant_emit.h"
+#include "watergen/pipeline/variant/variant_emit.h"
 #include "watergen/plan/covering_array.h"
 
 namespace watergen::cli {

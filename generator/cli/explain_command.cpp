@@ -7,8 +7,8 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "watergen/ir/text.h"
-#include "watergen/pipeline/build_explain.h"
+#include "watergen/ir/core/text.h"
+#include "watergen/pipeline/build/build_explain.h"
 
 namespace watergen::cli {
 

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "watergen/pipeline/parallel_build.h"
+#include "watergen/pipeline/jobs/parallel_build.h"
 #include "watergen/water/tessellated_mesh.h"
 
 namespace watergen::cli {

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
-#include "watergen/pipeline/sharded_build.h"
+#include "watergen/pipeline/shards/sharded_build.h"
 
 namespace watergen::cli {
 

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "watergen/ir/emitter.h"
+#include "watergen/ir/emit/emitter.h"
 
 namespace watergen {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <set>
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 
 namespace watergen {
 

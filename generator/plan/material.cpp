@@ -1,29 +1,9 @@
 #include "watergen/plan/material.h"
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 #include "watergen/water/presets.h"
 
 namespace watergen {
-
-namespace {
-
-// A copy of `g` whose parameter declarations carry `params` (same nodes, same ids).
-Graph with_parameters(const Graph& g, const std::vector<Parameter>& params) {
-    Graph out;
-    for (const Parameter& p : params)
-        out.declare_parameter(p);
-    for (const auto& t : g.textures())
-        out.declare_texture(t);
-    for (uint32_t id = 0; id < g.size(); ++id)
-        out.add(g.node(id));
-    for (const auto& o : g.outputs())
-        out.set_output(o.name, o.node);
-    for (const auto& b : g.bindings())
-        out.bind(b.quantity, b.node); // same ids: the scene facts still apply
-    return out;
-}
-
-} // namespace
 
 const std::vector<Target>& all_targets() {
     static const std::vector<Target> list = {Target::Glsl,      Target::Hlsl,    Target::Spirv,
@@ -96,23 +76,34 @@ WaterShader Material::compose(const Variant& v, SurfaceSearch search) const {
 }
 
 WaterShader Material::compose(const ShaderChoices& choices, SurfaceSearch search) const {
-    WaterShader shader =
-        build_water_shader(choices, preset.empty() ? nullptr : find_preset(preset), search);
+    WaterShader shader = build_water_shader(choices, nullptr, search);
+    const Preset* p = preset.empty() ? nullptr : find_preset(preset);
+    shader.preset = p ? p->name : "";
     if (has_errors(shader.fragment.diagnostics())) return shader;
-    shader.fragment = with_settings(shader.fragment);
+    std::vector<Graph*> graphs = {&shader.fragment};
+    if (shader.mesh)
+        for (Graph* stage : shader.mesh->graphs())
+            graphs.push_back(stage);
+    for (Graph* g : graphs)
+        for (const std::string& name : settle_parameters(*g))
+            shader.fragment.error("preset '" + preset + "': parameter '" + name +
+                                  "' has another size");
     return shader;
 }
 
-Graph Material::with_settings(const Graph& g) const {
-    std::vector<Parameter> params = g.parameters();
-    for (Parameter& p : params) {
-        auto it = parameters.find(p.name);
-        if (it == parameters.end()) continue;
-        if (it->second.value) p.default_value = *it->second.value;
-        if (it->second.min) p.min = *it->second.min;
-        if (it->second.max) p.max = *it->second.max;
+std::vector<std::string> Material::settle_parameters(Graph& g) const {
+    std::vector<std::string> mismatched;
+    if (const Preset* p = preset.empty() ? nullptr : find_preset(preset))
+        mismatched = apply_preset(g, *p);
+    for (const auto& [name, setting] : parameters) {
+        const Parameter* declared = g.find_parameter(name);
+        if (!declared) continue;
+        if (setting.value) g.set_parameter_default(name, *setting.value);
+        if (setting.min || setting.max)
+            g.set_parameter_range(name, setting.min.value_or(declared->min),
+                                  setting.max.value_or(declared->max));
     }
-    return with_parameters(g, params);
+    return mismatched;
 }
 
 Material preset_material(const Preset* preset) {

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 #include "watergen/water/presets.h"
 
 namespace watergen {

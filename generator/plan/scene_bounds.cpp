@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 #include "watergen/water/scene_quantities.h"
 
 namespace watergen::scene_bounds {

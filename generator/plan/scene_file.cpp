@@ -2,16 +2,97 @@
 
 #include <algorithm>
 #include <iterator>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 #include "watergen/plan/json_reader.h"
 
 namespace watergen {
 
 const std::vector<std::string> kReflectionSources = {"planar", "cubemap", "horizon_map"};
 const std::vector<std::string> kPlatforms = {"vulkan", "d3d", "opengl", "gles", "metal"};
+
+namespace {
+
+using OJson = nlohmann::ordered_json;
+
+OJson range_json(const FactRange& r) {
+    return {r.min, r.max};
+}
+
+} // namespace
+
+const std::vector<SceneKey>& scene_keys() {
+    static const std::vector<SceneKey> keys = [] {
+        const NumberBounds depth{0.0, 1.2e4, "m"}, height{0.0, 1e5, "m"};
+        const NumberBounds angle{-90.0, 90.0, "degrees"};
+        return std::vector<SceneKey>{
+            {.key = "name"},
+            {.key = "description", .required = false},
+            {.key = "shoreline",
+             .fact = SceneFact::Shoreline,
+             .manifest = [](const SceneFacts& f) { return OJson(f.shoreline); }},
+            // Optional: most scenes show their bottom.
+            {.key = "bottom_in_view", .required = false, .fact = SceneFact::BottomInView},
+            {.key = "water_depth",
+             .bounds = depth,
+             .fact = SceneFact::BottomLit,
+             .manifest = [](const SceneFacts& f) { return range_json(f.water_depth); }},
+            {.key = "camera_height",
+             .bounds = height,
+             .fact = SceneFact::CameraNear,
+             .manifest = [](const SceneFacts& f) { return range_json(f.camera_height); }},
+            {.key = "camera_pitch",
+             .bounds = angle,
+             .manifest = [](const SceneFacts& f) { return range_json(f.camera_pitch); }},
+            {.key = "sun_elevation",
+             .bounds = angle,
+             .fact = SceneFact::SunAboveHorizon,
+             .manifest = [](const SceneFacts& f) { return range_json(f.sun_elevation); }},
+            {.key = "reflection_sources",
+             .fact = SceneFact::ReflectionSource,
+             .manifest = [](const SceneFacts& f) { return OJson(f.reflection_sources); }},
+            {.key = "waves",
+             .choices = {"static", "animated"},
+             .manifest =
+                 [](const SceneFacts& f) {
+                     return OJson(f.waves_animated ? "animated" : "static");
+                 }},
+            {.key = "precision",
+             .choices = {"full", "half", "any"},
+             .fact = SceneFact::Precision,
+             .manifest = [](const SceneFacts& f) { return OJson(f.precision); }},
+            {.key = "platforms",
+             .manifest = [](const SceneFacts& f) { return OJson(f.platforms); }},
+            {.key = "fixed", .required = false},
+            // Optional: most engines can give either. Recorded only when stated, so the scenes
+            // that leave it out keep their manifest form.
+            {.key = "scene_input",
+             .required = false,
+             .choices = {"position_texture", "depth_buffer", "any"},
+             .fact = SceneFact::SceneInput,
+             .manifest =
+                 [](const SceneFacts& f) {
+                     return f.scene_input == "any" ? OJson() : OJson(f.scene_input);
+                 }},
+        };
+    }();
+    return keys;
+}
+
+const SceneKey& scene_key(std::string_view key) {
+    for (const SceneKey& k : scene_keys())
+        if (k.key == key) return k;
+    throw std::logic_error("no scene key '" + std::string(key) + "'");
+}
+
+const SceneKey& scene_key(SceneFact fact) {
+    for (const SceneKey& k : scene_keys())
+        if (k.fact == fact) return k;
+    throw std::logic_error("no scene key states this fact");
+}
 
 std::vector<Target> platform_targets(const std::string& platform) {
     // SPIR-V consumers get the module and its reflection; the others get their language.
@@ -45,18 +126,11 @@ std::optional<SceneFacts> parse_scene(const JsonSource& src, Diagnostics& ds) {
     r.on_read([&](const std::string& pointer) {
         s.where.fact[pointer.substr(1)] = {src.file(), pointer, src.position(pointer)};
     });
-    const std::vector<std::string> allowed = {
-        "name",          "description",  "shoreline",     "bottom_in_view",     "water_depth",
-        "camera_height", "camera_pitch", "sun_elevation", "reflection_sources", "waves",
-        "precision",     "platforms",    "fixed",         "scene_input"};
-    // Optional: description, fixed, bottom_in_view (most scenes show their bottom) and
-    // scene_input (most engines can give either).
-    std::vector<std::string> required;
-    std::copy_if(allowed.begin(), allowed.end(), std::back_inserter(required),
-                 [](const std::string& k) {
-                     return k != "description" && k != "fixed" && k != "bottom_in_view" &&
-                            k != "scene_input";
-                 });
+    std::vector<std::string> allowed, required;
+    for (const SceneKey& k : scene_keys()) {
+        allowed.emplace_back(k.key);
+        if (k.required) required.emplace_back(k.key);
+    }
     // A material among the scenes: `build --scene a.json m.json` reads every file after
     // --scene as a scene.
     if (src.root().is_object() && src.root().contains("axes") && !src.root().contains("waves")) {
@@ -78,21 +152,22 @@ std::optional<SceneFacts> parse_scene(const JsonSource& src, Diagnostics& ds) {
         return std::nullopt;
     }
     if (r.has("/description") && !r.string("/description", s.description)) return std::nullopt;
-    const NumberBounds depth{0.0, 1.2e4, "m"}, height{0.0, 1e5, "m"}, angle{-90.0, 90.0, "degrees"};
+    auto range = [&](const char* key, FactRange& out) {
+        return r.range(std::string("/") + key, out.min, out.max, &*scene_key(key).bounds);
+    };
+    auto choice = [&](const char* key, std::string& out) {
+        return r.string_in(std::string("/") + key, scene_key(key).choices, out);
+    };
     std::string waves;
-    const bool ok = r.boolean("/shoreline", s.shoreline) &&
-                    r.range("/water_depth", s.water_depth.min, s.water_depth.max, &depth) &&
-                    r.range("/camera_height", s.camera_height.min, s.camera_height.max, &height) &&
-                    r.range("/camera_pitch", s.camera_pitch.min, s.camera_pitch.max, &angle) &&
-                    r.range("/sun_elevation", s.sun_elevation.min, s.sun_elevation.max, &angle) &&
-                    r.string_in("/waves", {"static", "animated"}, waves) &&
-                    r.string_in("/precision", {"full", "half", "any"}, s.precision);
+    const bool ok = r.boolean("/shoreline", s.shoreline) && range("water_depth", s.water_depth) &&
+                    range("camera_height", s.camera_height) &&
+                    range("camera_pitch", s.camera_pitch) &&
+                    range("sun_elevation", s.sun_elevation) && choice("waves", waves) &&
+                    choice("precision", s.precision);
     if (!ok) return std::nullopt;
     if (r.has("/bottom_in_view") && !r.boolean("/bottom_in_view", s.bottom_in_view))
         return std::nullopt;
-    if (r.has("/scene_input") &&
-        !r.string_in("/scene_input", {"position_texture", "depth_buffer", "any"}, s.scene_input))
-        return std::nullopt;
+    if (r.has("/scene_input") && !choice("scene_input", s.scene_input)) return std::nullopt;
     s.waves_animated = waves == "animated";
     std::vector<std::string> sources_vocabulary = kReflectionSources;
     sources_vocabulary.push_back("none");

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 #include "watergen/water/scene_quantities.h"
 
 #include "scene_bounds.h"
@@ -43,29 +43,6 @@ const std::vector<SceneRule>& scene_rules() {
         return list;
     }();
     return rules;
-}
-
-// The key of SceneWhere::fact a need reads.
-std::string fact_key(SceneFact fact) {
-    switch (fact) {
-    case SceneFact::Shoreline:
-        return "shoreline";
-    case SceneFact::ReflectionSource:
-        return "reflection_sources";
-    case SceneFact::SunAboveHorizon:
-        return "sun_elevation";
-    case SceneFact::BottomInView:
-        return "bottom_in_view";
-    case SceneFact::BottomLit:
-        return "water_depth";
-    case SceneFact::Precision:
-        return "precision";
-    case SceneFact::SceneInput:
-        return "scene_input";
-    case SceneFact::CameraNear:
-        return "camera_height";
-    }
-    return "";
 }
 
 // Sunlight below this share of what enters the water lights nothing a float image can show:
@@ -204,7 +181,7 @@ std::optional<Exclusion> scene_excludes(const SceneFacts& scene, const Variant& 
         const std::string reason = unmet(scene, v, r.need, bounds);
         if (!reason.empty())
             return Exclusion{axes()[r.axis].name, r.choice, reason,
-                             scene.where.of(fact_key(r.need.fact))};
+                             scene.where.of(std::string(scene_key(r.need.fact).key))};
     }
     return std::nullopt;
 }

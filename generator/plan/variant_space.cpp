@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <optional>
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 
 namespace watergen {
 
@@ -105,8 +105,9 @@ void enumerate_indices(const VariantSpace& space,
     if (n != axes().size()) return;
     for (const auto& list : space.choices)
         if (list.empty()) return;
-    // The full space has 1,443,840 variants and a build enumerates it several times: rules are
-    // tested on indices, and no names are touched.
+    // The full space has millions of variants (3,502,080: the_full_space_has_3502080_variants)
+    // and a build enumerates it several times: rules are tested on indices, and no names are
+    // touched.
     const std::optional<std::vector<IndexedRule>> rules = index_rules(space);
     Variant named = default_variant(); // only when a rule names an unknown axis
     std::vector<size_t> index(n, 0);

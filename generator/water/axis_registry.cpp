@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "axis_tables.h"
-#include "watergen/ir/identifier.h"
+#include "watergen/ir/core/identifier.h"
 #include "watergen/water/surface.h"
 
 namespace watergen {

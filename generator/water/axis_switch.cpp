@@ -22,14 +22,11 @@ void compose_switch(Surface& s, const std::string& axis, const std::vector<std::
                     bool specialized) {
     Graph& g = s.g;
     OriginScope scope(g, "switch." + axis);
-    Parameter p{selector_parameter(axis),
-                Type::Float,
-                {0.0},
-                0.0,
-                static_cast<double>(choices.size() - 1),
-                "",
-                "",
-                "switch." + axis};
+    Parameter p{.name = selector_parameter(axis),
+                .type = Type::Float,
+                .default_value = {0.0},
+                .max = static_cast<double>(choices.size() - 1),
+                .origin = "switch." + axis};
     p.specialization = specialized;
     const Expr selector = uniform(g, p);
     const std::vector<Expr*> fields = surface_fields(s);

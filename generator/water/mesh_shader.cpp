@@ -14,30 +14,60 @@ std::vector<std::pair<std::string, Type>> mesh_vertex_inputs() {
     return {{"grid_xz", Type::Vec2}, {"grid_lod", Type::Vec3}};
 }
 
-// Same names and defaults as the water pass (water_shader.cpp), bound to the same scene
-// quantities, so one block and one set of scene facts drive every stage.
-Expr mesh_eye_position(Graph& g) {
-    return bind(
-        scene_quantity::eye_position,
-        uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""}));
+// The one definition of each, which the water pass (water_shader.cpp) and every mesh stage
+// read, bound to the scene quantities, so one block and one set of scene facts drive them all.
+Expr scene_eye_position(Graph& g) {
+    return bind(scene_quantity::eye_position, uniform(g, {.name = "eye_position",
+                                                          .type = Type::Vec3,
+                                                          .default_value = {0.0, 8.0, -30.0},
+                                                          .min = -1e5,
+                                                          .max = 1e5,
+                                                          .unit = "m",
+                                                          .seed = "000"}));
 }
 
-Expr mesh_water_level(Graph& g) {
-    return bind(scene_quantity::water_level,
-                uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""}));
+Expr scene_water_level(Graph& g) {
+    return bind(scene_quantity::water_level, uniform(g, {.name = "water_level",
+                                                         .type = Type::Float,
+                                                         .default_value = {0.0},
+                                                         .min = -1e5,
+                                                         .max = 1e5,
+                                                         .unit = "m",
+                                                         .seed = "000"}));
 }
 
-Expr mesh_time(Graph& g) {
-    return bind(scene_quantity::time,
-                uniform(g, {"time", Type::Float, {0.0}, 0.0, 86400.0, "s", "000", ""}));
+Expr scene_time(Graph& g) {
+    return bind(scene_quantity::time, uniform(g, {.name = "time",
+                                                  .type = Type::Float,
+                                                  .default_value = {0.0},
+                                                  .max = 86400.0,
+                                                  .unit = "s",
+                                                  .seed = "000"}));
+}
+
+Expr scene_sun_direction(Graph& g) {
+    return bind(scene_quantity::sun_direction, uniform(g, {.name = "sun_direction",
+                                                           .type = Type::Vec3,
+                                                           .default_value = {-0.35, -0.75, 0.55},
+                                                           .min = -1.0,
+                                                           .max = 1.0,
+                                                           .seed = "000"}));
 }
 
 Expr morphed_grid_point(Graph& g, Expr eye) {
     OriginScope scope(g, "geometry.morph");
     Expr xz = varying(g, "grid_xz", Type::Vec2);
     Expr lod = varying(g, "grid_lod", Type::Vec3);
-    Expr start = uniform(g, {"grid_morph_start", Type::Float, {1e6}, 0.0, 1e6, "cells", "", ""});
-    Expr end = uniform(g, {"grid_morph_end", Type::Float, {2e6}, 0.0, 1e6, "cells", "", ""});
+    Expr start = uniform(g, {.name = "grid_morph_start",
+                             .type = Type::Float,
+                             .default_value = {1e6},
+                             .max = 1e6,
+                             .unit = "cells"});
+    Expr end = uniform(g, {.name = "grid_morph_end",
+                           .type = Type::Float,
+                           .default_value = {2e6},
+                           .max = 1e6,
+                           .unit = "cells"});
     // A spacing of 0 (a hand-made grid without levels) never morphs rather than dividing by 0.
     Expr h = max(lod.z(), 1e-6);
     Expr d = max(abs(xz.x() - eye.x()), abs(xz.y() - eye.z())) / h;
@@ -48,23 +78,44 @@ Expr morphed_grid_point(Graph& g, Expr eye) {
 void displace_grid_point(Graph& g, const std::string& wave_model, Expr grid) {
     OriginScope scope(g, "geometry.displace");
     FullPrecisionScope full(g);
-    Expr eye = mesh_eye_position(g);
-    Expr level = mesh_water_level(g);
-    Expr time = mesh_time(g);
-    Expr right =
-        uniform(g, {"mesh_camera_right", Type::Vec3, {1.0, 0.0, 0.0}, -1.0, 1.0, "", "", ""});
-    Expr up = uniform(g, {"mesh_camera_up", Type::Vec3, {0.0, 1.0, 0.0}, -1.0, 1.0, "", "", ""});
-    Expr forward =
-        uniform(g, {"mesh_camera_forward", Type::Vec3, {0.0, 0.0, 1.0}, -1.0, 1.0, "", "", ""});
-    Expr projection =
-        uniform(g, {"mesh_projection", Type::Vec2, {1.0, 1.0}, 1e-3, 1e3, "", "", ""});
-    Expr near = uniform(g, {"mesh_near", Type::Float, {0.1}, 1e-4, 1e3, "m", "", ""});
+    Expr eye = scene_eye_position(g);
+    Expr level = scene_water_level(g);
+    Expr time = scene_time(g);
+    Expr right = uniform(g, {.name = "mesh_camera_right",
+                             .type = Type::Vec3,
+                             .default_value = {1.0, 0.0, 0.0},
+                             .min = -1.0,
+                             .max = 1.0});
+    Expr up = uniform(g, {.name = "mesh_camera_up",
+                          .type = Type::Vec3,
+                          .default_value = {0.0, 1.0, 0.0},
+                          .min = -1.0,
+                          .max = 1.0});
+    Expr forward = uniform(g, {.name = "mesh_camera_forward",
+                               .type = Type::Vec3,
+                               .default_value = {0.0, 0.0, 1.0},
+                               .min = -1.0,
+                               .max = 1.0});
+    Expr projection = uniform(g, {.name = "mesh_projection",
+                                  .type = Type::Vec2,
+                                  .default_value = {1.0, 1.0},
+                                  .min = 1e-3,
+                                  .max = 1e3});
+    Expr near = uniform(g, {.name = "mesh_near",
+                            .type = Type::Float,
+                            .default_value = {0.1},
+                            .min = 1e-4,
+                            .max = 1e3,
+                            .unit = "m"});
     // The screen pass' band limit (surface.h, pixel_footprint): no wave a pixel cannot show,
     // along the view where a grazing ray stretches the pixel most, at the point's undisplaced
     // place (pixel_angle * distance / |ray.y| = pixel_angle * distance^2 / height of the eye).
     // A pixel angle of 0 (the default) leaves the waves whole.
-    Expr pixel_angle =
-        uniform(g, {"mesh_pixel_angle", Type::Float, {0.0}, 0.0, 1.0, "rad", "", ""});
+    Expr pixel_angle = uniform(g, {.name = "mesh_pixel_angle",
+                                   .type = Type::Float,
+                                   .default_value = {0.0},
+                                   .max = 1.0,
+                                   .unit = "rad"});
     Expr flat = vec3(grid.x(), level, grid.y()) - eye;
     Expr footprint =
         named(pixel_angle * dot(flat, flat) / max(eye.y() - level, 1e-6), "wave_footprint");
@@ -110,7 +161,7 @@ MeshStages build_mesh_stages(const std::string& geometry, const std::string& wav
     if (geometry == "mesh") {
         OriginScope scope(m.vertex, "geometry.mesh");
         displace_grid_point(m.vertex, wave_model,
-                            morphed_grid_point(m.vertex, mesh_eye_position(m.vertex)));
+                            morphed_grid_point(m.vertex, scene_eye_position(m.vertex)));
     } else if (geometry == "tessellated") {
         build_patch_vertex(m.vertex);
         build_tess_control(m.control);

@@ -1,7 +1,7 @@
 #include "watergen/water/node_catalog.h"
 
-#include "watergen/ir/identifier.h"
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/identifier.h"
+#include "watergen/ir/core/text.h"
 #include "watergen/water/axis_registry.h"
 
 namespace watergen {

@@ -1,6 +1,6 @@
 #include "watergen/water/presets.h"
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 
 namespace watergen {
 

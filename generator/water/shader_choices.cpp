@@ -1,7 +1,8 @@
 // Build modes and the choices one shader composes per axis (water_shader.h).
 #include <algorithm>
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
+#include "watergen/water/axis_registry.h"
 #include "watergen/water/water_shader.h"
 
 namespace watergen {
@@ -54,9 +55,8 @@ std::string selector_parameter(const std::string& axis) {
 }
 
 bool permutation_only(const std::string& axis) {
-    // A pass binds either a depth buffer or a position texture: never a switch between them.
-    // Geometry changes the stages before the fragment.
-    return axis == "precision" || axis == "scene_input" || axis == "geometry";
+    const AxisInfo* info = find_axis(axis);
+    return info && info->permutation_only;
 }
 
 ShaderChoices ShaderChoices::of(const Variant& v) {

@@ -2,14 +2,14 @@
 
 #include <string>
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 #include "watergen/water/mesh_shader.h"
 
 namespace watergen {
 
 void build_patch_vertex(Graph& g) {
     OriginScope scope(g, "geometry.patch_vertex");
-    Expr grid = morphed_grid_point(g, mesh_eye_position(g));
+    Expr grid = morphed_grid_point(g, scene_eye_position(g));
     g.set_output("position", vec4(grid.x(), constant(g, 0.0), grid.y(), constant(g, 1.0)).id());
     g.set_output("grid_xz", grid.id());
 }
@@ -19,11 +19,18 @@ void build_tess_control(Graph& g) {
     Expr corners[4];
     for (int i = 0; i < 4; ++i)
         corners[i] = varying(g, "corner_" + std::to_string(i), Type::Vec2);
-    Expr eye = mesh_eye_position(g);
-    Expr level = mesh_water_level(g);
-    Expr scale = uniform(g, {"tess_scale", Type::Float, {40.0}, 0.0, 1e4, "m", "", ""});
-    Expr limit =
-        uniform(g, {"tess_max", Type::Float, {16.0}, 1.0, kMaxTessellationFactor, "", "", ""});
+    Expr eye = scene_eye_position(g);
+    Expr level = scene_water_level(g);
+    Expr scale = uniform(g, {.name = "tess_scale",
+                             .type = Type::Float,
+                             .default_value = {40.0},
+                             .max = 1e4,
+                             .unit = "m"});
+    Expr limit = uniform(g, {.name = "tess_max",
+                             .type = Type::Float,
+                             .default_value = {16.0},
+                             .min = 1.0,
+                             .max = kMaxTessellationFactor});
     // The range is not enforced where the block is filled, so the shader bounds it itself: a
     // tess_max of 100 (or 0) still gives factors in [1, 64].
     Expr top = named(clamp(limit, 1.0, kMaxTessellationFactor), "tess_limit");

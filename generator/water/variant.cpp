@@ -6,7 +6,7 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 
 namespace watergen {
 
@@ -34,8 +34,8 @@ const std::string& Variant::choice(const std::string& axis) const {
 namespace {
 
 // "axis<bind>choice" for every axis (but one left out at its default, keyed_at_default),
-// `separator` between them (a build makes one per variant
-// of the space, 1,443,840 for a shard of the full space: one string, no parts).
+// `separator` between them (a build makes one per variant of the space, 3,502,080 for a shard
+// of the full space, the_full_space_has_3502080_variants: one string, no parts).
 std::string spell(const std::vector<std::string>& choices, char bind, char separator) {
     std::string s;
     s.reserve(256);

@@ -70,19 +70,16 @@ WaterShader build_water_shader(const ShaderChoices& choices, const Preset* prese
     {
         OriginScope scope(g, "surface");
         s.scene_rgb = named(sample(texture(g, scene_color_texture()), s.uv).xyz(), "scene_rgb");
-        s.eye = bind(
-            scene_quantity::eye_position,
-            uniform(g, {"eye_position", Type::Vec3, {0.0, 8.0, -30.0}, -1e5, 1e5, "m", "000", ""}));
-        s.level = bind(scene_quantity::water_level,
-                       uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""}));
-        s.time = bind(scene_quantity::time,
-                      uniform(g, {"time", Type::Float, {0.0}, 0.0, 86400.0, "s", "000", ""}));
-        s.sun_travel = bind(
-            scene_quantity::sun_direction,
-            uniform(g,
-                    {"sun_direction", Type::Vec3, {-0.35, -0.75, 0.55}, -1.0, 1.0, "", "000", ""}));
-        s.sun_color =
-            uniform(g, {"sun_color", Type::Vec3, {1.0, 0.95, 0.85}, 0.0, 1e3, "", "000", ""});
+        // One definition each for every stage (mesh_shader.h): one block serves them all.
+        s.eye = scene_eye_position(g);
+        s.level = scene_water_level(g);
+        s.time = scene_time(g);
+        s.sun_travel = scene_sun_direction(g);
+        s.sun_color = uniform(g, {.name = "sun_color",
+                                  .type = Type::Vec3,
+                                  .default_value = {1.0, 0.95, 0.85},
+                                  .max = 1e3,
+                                  .seed = "000"});
     }
     // Where the scene lies behind the pixel: a texture or the depth buffer (nodes/scene_input).
     compose_axis(s, choices, "scene_input");

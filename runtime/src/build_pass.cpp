@@ -12,6 +12,7 @@ namespace watergen {
 
 using manifest::json;
 using manifest::ManifestReader;
+namespace mk = manifest_schema;
 
 namespace {
 
@@ -21,33 +22,37 @@ double number(ManifestReader& r, const json& o, const std::string& path, const c
 }
 
 void read_draw(ManifestReader& r, const json& entry, const std::string& path, PassDraw& d) {
-    const json* draw = r.get(entry, path, "draw", json::value_t::object, "an object");
+    const json* draw = r.get(entry, path, mk::pass::kDraw, json::value_t::object, "an object");
     if (!draw) return;
-    const std::string dp = path + ".draw";
-    d.primitive = r.text(*draw, dp, "primitive");
+    const std::string dp = path + "." + mk::pass::kDraw;
+    d.primitive = r.text(*draw, dp, mk::draw::kPrimitive);
     if (!r.failed() && d.primitive != "triangles" && d.primitive != "points")
-        r.fail(dp + ".primitive", "'" + d.primitive + "'; expected \"triangles\" or \"points\"");
-    d.attribute = r.text(*draw, dp, "attribute");
-    d.cells_per_texel = r.u32(*draw, dp, "cells_per_texel");
-    if (const json* m = r.get(*draw, dp, "margin", json::value_t::object, "an object")) {
-        d.margin_parameter = r.text(*m, dp + ".margin", "parameter");
-        d.margin_scale = number(r, *m, dp + ".margin", "scale");
-        d.margin_add = number(r, *m, dp + ".margin", "add");
+        r.fail(dp + "." + mk::draw::kPrimitive,
+               "'" + d.primitive + "'; expected \"triangles\" or \"points\"");
+    d.attribute = r.text(*draw, dp, mk::draw::kAttribute);
+    d.cells_per_texel = r.u32(*draw, dp, mk::draw::kCellsPerTexel);
+    if (const json* m = r.get(*draw, dp, mk::draw::kMargin, json::value_t::object, "an object")) {
+        const std::string mp = dp + "." + mk::draw::kMargin;
+        d.margin_parameter = r.text(*m, mp, mk::margin::kParameter);
+        d.margin_scale = number(r, *m, mp, mk::margin::kScale);
+        d.margin_add = number(r, *m, mp, mk::margin::kAdd);
     }
-    d.window_parameter = r.text(*draw, dp, "window");
-    d.texels = r.u32(*draw, dp, "texels");
+    d.window_parameter = r.text(*draw, dp, mk::draw::kWindow);
+    d.texels = r.u32(*draw, dp, mk::draw::kTexels);
     if (!r.failed() && (d.texels == 0 || d.cells_per_texel == 0))
         r.fail(dp, "texels and cells_per_texel must be at least 1");
-    d.format = r.text(*draw, dp, "format");
-    d.channel = r.text(*draw, dp, "channel");
-    d.clear = number(r, *draw, dp, "clear");
-    d.blend = r.text(*draw, dp, "blend");
-    if (d.primitive == "points") d.photon_share_parameter = r.text(*draw, dp, "photon_share");
+    d.format = r.text(*draw, dp, mk::draw::kFormat);
+    d.channel = r.text(*draw, dp, mk::draw::kChannel);
+    d.clear = number(r, *draw, dp, mk::draw::kClear);
+    d.blend = r.text(*draw, dp, mk::draw::kBlend);
+    if (d.primitive == "points")
+        d.photon_share_parameter = r.text(*draw, dp, mk::draw::kPhotonShare);
 }
 
 std::string pass_json_path(const PassReference& ref) {
-    for (const std::string& p :
-         ref.files.count("description") ? ref.files.at("description") : std::vector<std::string>{})
+    for (const std::string& p : ref.files.count(mk::files::kDescription)
+                                    ? ref.files.at(mk::files::kDescription)
+                                    : std::vector<std::string>{})
         if (p == ref.directory + "/pass.json") return p;
     return "";
 }
@@ -56,22 +61,26 @@ std::string pass_json_path(const PassReference& ref) {
 
 void manifest::read_passes(ManifestReader& r, const json& entry, const std::string& path,
                            std::map<std::string, PassReference>& passes) {
-    const json* list = r.get(entry, path, "passes", json::value_t::object, "an object", false);
+    const json* list =
+        r.get(entry, path, mk::variant::kPasses, json::value_t::object, "an object", false);
     if (!list) return;
     for (const auto& [name, e] : list->items()) {
-        const std::string pp = path + ".passes." + name;
+        const std::string pp = path + "." + mk::variant::kPasses + "." + name;
         if (!e.is_object()) return r.fail(pp, "expected an object");
         PassReference ref;
-        ref.method = r.text(e, pp, "method");
-        ref.wave_model = r.text(e, pp, "wave_model");
-        ref.directory = r.text(e, pp, "directory");
+        ref.method = r.text(e, pp, mk::pass::kMethod);
+        ref.wave_model = r.text(e, pp, mk::pass::kWaveModel);
+        ref.directory = r.text(e, pp, mk::pass::kDirectory);
         read_file_lists(r, e, pp, ref.files);
         read_draw(r, e, pp, ref.draw);
-        if (const json* values = r.get(e, pp, "values", json::value_t::object, "an object"))
+        if (const json* values =
+                r.get(e, pp, mk::pass::kValues, json::value_t::object, "an object"))
             for (const auto& [parameter, value] : values->items())
-                ref.values[parameter] = r.numbers(*values, pp + ".values", parameter.c_str());
+                ref.values[parameter] =
+                    r.numbers(*values, pp + "." + mk::pass::kValues, parameter.c_str());
         if (!r.failed() && pass_json_path(ref).empty())
-            r.fail(pp + ".files.description", "expected \"" + ref.directory + "/pass.json\"");
+            r.fail(pp + "." + mk::pass::kFiles + "." + mk::files::kDescription,
+                   "expected \"" + ref.directory + "/pass.json\"");
         passes[name] = std::move(ref);
     }
 }
@@ -110,7 +119,8 @@ std::optional<BuildPass> ShaderBuild::pass(const BuildVariant& v, const std::str
     s.files = p.reference.files;
     s.file_stem = name;
     manifest::read_uniform_block(r, doc, "", s);
-    if (!r.failed() && s.parameters.empty()) r.fail("uniform_block", "missing; expected an object");
+    if (!r.failed() && s.parameters.empty())
+        r.fail(mk::reflection::kUniformBlock, "missing; expected an object");
     if (r.failed()) return std::nullopt;
     // The scene's values: where the pass starts, and (as for the water variant, which folded
     // them) the only values it takes.

@@ -76,20 +76,21 @@ std::string at(const std::string& path, size_t i) {
 
 BuildBindings read_bindings(ManifestReader& r, const json& bindings) {
     BuildBindings out;
-    out.map = r.text(bindings, "bindings", "map");
+    const std::string at_bindings = mk::top::kBindings;
+    out.map = r.text(bindings, at_bindings, mk::bindings::kMap);
     const json* resources =
-        r.get(bindings, "bindings", "resources", json::value_t::object, "an object");
+        r.get(bindings, at_bindings, mk::bindings::kResources, json::value_t::object, "an object");
     if (!resources) return out;
     std::string push; // the push-constant slot's name, once one is read
     for (const auto& [name, slot] : resources->items()) {
-        const std::string path = "bindings.resources." + name;
+        const std::string path = at_bindings + "." + mk::bindings::kResources + "." + name;
         if (!slot.is_object()) {
             r.fail(path, "expected an object");
             return out;
         }
         MapSlot s;
         s.name = name;
-        const std::string kind = r.text(slot, path, "kind");
+        const std::string kind = r.text(slot, path, mk::resource::kKind);
         if (kind == "uniform_block")
             s.kind = DescriptorKind::UniformBuffer;
         else if (kind == "sampler")
@@ -99,33 +100,35 @@ BuildBindings read_bindings(ManifestReader& r, const json& bindings) {
         else if (kind == "push_constant")
             s.kind = DescriptorKind::PushConstant;
         else if (!r.failed())
-            r.fail(path + ".kind", "'" + kind +
-                                       "'; expected uniform_block, sampler, texture or "
-                                       "push_constant");
+            r.fail(path + "." + mk::resource::kKind,
+                   "'" + kind +
+                       "'; expected uniform_block, sampler, texture or "
+                       "push_constant");
         if (s.kind == DescriptorKind::PushConstant) {
-            // One range at offset 0 holds one block (generator/ir/binding_map.h).
+            // One range at offset 0 holds one block
+            // (generator/include/watergen/ir/emit/binding_map.h).
             if (!push.empty() && !r.failed())
-                r.fail(path + ".kind",
+                r.fail(path + "." + mk::resource::kKind,
                        "a second push_constant slot ('" + push + "' is one); expected at most one");
             push = name;
         } else {
             // A push constant has no set, binding or HLSL register: the keys are absent.
-            s.set = r.u32(slot, path, "set");
-            s.binding = r.u32(slot, path, "binding");
-            s.hlsl_register = r.u32(slot, path, "hlsl_register");
-            s.hlsl_space = r.u32(slot, path, "hlsl_space");
+            s.set = r.u32(slot, path, mk::resource::kSet);
+            s.binding = r.u32(slot, path, mk::resource::kBinding);
+            s.hlsl_register = r.u32(slot, path, mk::resource::kHlslRegister);
+            s.hlsl_space = r.u32(slot, path, mk::resource::kHlslSpace);
         }
-        s.msl = r.u32(slot, path, "msl");
-        s.gl = r.u32(slot, path, "gl");
+        s.msl = r.u32(slot, path, mk::resource::kMsl);
+        s.gl = r.u32(slot, path, mk::resource::kGl);
         if (r.failed()) return out;
         out.slots.push_back(std::move(s));
     }
     // The range's size, stated by a map with a push constant (and read only then: a map
     // without one has no range, whatever else it says).
     if (!push.empty()) {
-        const uint32_t bytes = r.u32(bindings, "bindings", "push_constant_bytes");
+        const uint32_t bytes = r.u32(bindings, at_bindings, mk::bindings::kPushConstantBytes);
         if (!r.failed() && (bytes < 4 || bytes > kMaxPushConstantRange || bytes % 4 != 0))
-            r.fail("bindings.push_constant_bytes",
+            r.fail(at_bindings + "." + mk::bindings::kPushConstantBytes,
                    std::to_string(bytes) + "; expected a multiple of 4 from 4 to " +
                        std::to_string(kMaxPushConstantRange) + " (the push-constant range of '" +
                        push + "')");
@@ -136,12 +139,14 @@ BuildBindings read_bindings(ManifestReader& r, const json& bindings) {
 
 void read_file_lists(ManifestReader& r, const json& entry, const std::string& path,
                      std::map<std::string, std::vector<std::string>>& files) {
-    const json* object = r.get(entry, path, "files", json::value_t::object, "an object");
+    // An entry's (namespace output) and a pass's "files" are spelled alike.
+    const json* object = r.get(entry, path, mk::output::kFiles, json::value_t::object, "an object");
     if (!object) return;
     for (const auto& [kind, list] : object->items()) {
-        if (!list.is_array()) return r.fail(path + ".files." + kind, "expected an array");
+        const std::string where = path + "." + mk::output::kFiles + "." + kind;
+        if (!list.is_array()) return r.fail(where, "expected an array");
         for (const json& p : list) {
-            if (!p.is_string()) return r.fail(path + ".files." + kind, "expected paths");
+            if (!p.is_string()) return r.fail(where, "expected paths");
             files[kind].push_back(p.get<std::string>());
         }
     }
@@ -149,25 +154,30 @@ void read_file_lists(ManifestReader& r, const json& entry, const std::string& pa
 
 void read_uniform_block(ManifestReader& r, const json& parent, const std::string& path,
                         BuildVariant& v) {
-    const json* block =
-        r.get(parent, path, "uniform_block", json::value_t::object, "an object", false);
+    // A manifest entry's "reflection" and a pass.json (at its top level) spell it alike.
+    const json* block = r.get(parent, path, mk::reflection::kUniformBlock, json::value_t::object,
+                              "an object", false);
     if (!block || block->empty()) return;
-    const std::string bp = path.empty() ? "uniform_block" : path + ".uniform_block";
-    v.block_name = r.text(*block, bp, "name");
-    const json* members = r.get(*block, bp, "members", json::value_t::array, "an array");
+    const std::string bp =
+        path.empty() ? mk::reflection::kUniformBlock : path + "." + mk::reflection::kUniformBlock;
+    v.block_name = r.text(*block, bp, mk::uniform_block::kName);
+    const json* members =
+        r.get(*block, bp, mk::uniform_block::kMembers, json::value_t::array, "an array");
     if (!members) return;
     for (size_t i = 0; i < members->size(); ++i) {
         const json& m = (*members)[i];
-        const std::string mp = at(bp + ".members", i);
+        const std::string mp = at(bp + "." + mk::uniform_block::kMembers, i);
         BlockParameter p;
-        p.name = r.text(m, mp, "name");
-        p.type = r.text(m, mp, "type");
-        if (m.contains("array_size")) p.array_size = r.u32(m, mp, "array_size");
-        p.offset = r.u32(m, mp, "offset");
-        p.default_value = r.numbers(m, mp, "default");
-        if (const json* lo = r.get(m, mp, "min", json::value_t::number_float, "a number", false))
+        p.name = r.text(m, mp, mk::member::kName);
+        p.type = r.text(m, mp, mk::member::kType);
+        if (m.contains(mk::member::kArraySize)) p.array_size = r.u32(m, mp, mk::member::kArraySize);
+        p.offset = r.u32(m, mp, mk::member::kOffset);
+        p.default_value = r.numbers(m, mp, mk::member::kDefault);
+        if (const json* lo =
+                r.get(m, mp, mk::member::kMin, json::value_t::number_float, "a number", false))
             p.min = lo->get<double>();
-        if (const json* hi = r.get(m, mp, "max", json::value_t::number_float, "a number", false))
+        if (const json* hi =
+                r.get(m, mp, mk::member::kMax, json::value_t::number_float, "a number", false))
             p.max = hi->get<double>();
         v.parameters.push_back(std::move(p));
     }

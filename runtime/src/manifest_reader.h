@@ -13,14 +13,17 @@
 #include <nlohmann/json.hpp>
 
 #include "watergen/runtime/build_pass.h"
+#include "watergen/runtime/manifest_schema.h"
 #include "watergen/runtime/shader_build.h"
 
 namespace watergen::manifest {
 
 using nlohmann::json;
+// The manifest's keys (manifest_schema.h), as the readers spell them.
+namespace mk = manifest_schema;
 
 // The largest manifest.json: the generator's own limit on the manifest it writes and reads back
-// (generator/pipeline/output_target.cpp); a build of more variants does not open anywhere.
+// (generator/pipeline/output/output_target.cpp); a build of more variants does not open anywhere.
 constexpr std::uintmax_t kMaxManifestBytes = std::uintmax_t(256) << 20;
 // The largest pass.json or reflection file: the generator writes a few KB (one uniform block of
 // at most kMaxBlockMembers members, a few bindings); 1 MiB is far beyond any of them.

@@ -20,6 +20,7 @@ using manifest::at;
 using manifest::ManifestReader;
 using manifest::read_bytes;
 using nlohmann::json;
+namespace mk = manifest_schema;
 
 namespace {
 
@@ -29,45 +30,49 @@ void read_files(ManifestReader& r, const json& entry, const std::string& path, B
 
 void read_reflection(ManifestReader& r, const json& entry, const std::string& path,
                      BuildVariant& v) {
-    const json* refl = r.get(entry, path, "reflection", json::value_t::object, "an object");
+    const json* refl =
+        r.get(entry, path, mk::output::kReflection, json::value_t::object, "an object");
     if (!refl) return;
-    const std::string rp = path + ".reflection";
+    const std::string rp = path + "." + mk::output::kReflection;
     manifest::read_uniform_block(r, *refl, rp, v);
-    if (const json* tex = r.get(*refl, rp, "textures", json::value_t::array, "an array", false))
+    if (const json* tex =
+            r.get(*refl, rp, mk::reflection::kTextures, json::value_t::array, "an array", false))
         for (size_t i = 0; i < tex->size(); ++i) {
-            const std::string tp = at(rp + ".textures", i);
+            const std::string tp = at(rp + "." + mk::reflection::kTextures, i);
             TextureSlot t;
-            t.name = r.text((*tex)[i], tp, "name");
-            t.binding = r.u32((*tex)[i], tp, "binding");
-            t.type = r.text((*tex)[i], tp, "type");
+            t.name = r.text((*tex)[i], tp, mk::texture::kName);
+            t.binding = r.u32((*tex)[i], tp, mk::texture::kBinding);
+            t.type = r.text((*tex)[i], tp, mk::texture::kType);
             v.textures.push_back(std::move(t));
         }
 }
 
 void read_fold(ManifestReader& r, const json& entry, const std::string& path, BuildVariant& v) {
-    if (const json* folded =
-            r.get(entry, path, "folded_parameters", json::value_t::object, "an object", false))
+    if (const json* folded = r.get(entry, path, mk::fold::kFoldedParameters, json::value_t::object,
+                                   "an object", false))
         for (const auto& [name, value] : folded->items())
             v.folded_parameters[name] =
-                r.numbers(*folded, path + ".folded_parameters", name.c_str());
-    if (const json* removed =
-            r.get(entry, path, "removed_parameters", json::value_t::array, "an array", false))
+                r.numbers(*folded, path + "." + mk::fold::kFoldedParameters, name.c_str());
+    if (const json* removed = r.get(entry, path, mk::fold::kRemovedParameters, json::value_t::array,
+                                    "an array", false))
         for (size_t i = 0; i < removed->size(); ++i)
-            v.removed_parameters.push_back(
-                r.text((*removed)[i], at(path + ".removed_parameters", i), "name"));
+            v.removed_parameters.push_back(r.text((*removed)[i],
+                                                  at(path + "." + mk::fold::kRemovedParameters, i),
+                                                  mk::removed::kName));
 }
 
 // The variant's own part: scene, key, hash, choices (from "nodes": axis -> "axis.choice").
 void read_identity(ManifestReader& r, const json& entry, const std::string& path, BuildVariant& v) {
-    v.scene = r.text(entry, path, "scene");
-    v.key = r.text(entry, path, "key");
-    v.hash = r.text(entry, path, "hash");
-    const json* nodes = r.get(entry, path, "nodes", json::value_t::object, "an object");
+    v.scene = r.text(entry, path, mk::variant::kScene);
+    v.key = r.text(entry, path, mk::variant::kKey);
+    v.hash = r.text(entry, path, mk::variant::kHash);
+    const json* nodes = r.get(entry, path, mk::variant::kNodes, json::value_t::object, "an object");
     if (!nodes) return;
     for (const auto& [axis, node] : nodes->items()) {
         const std::string prefix = axis + ".";
         if (!node.is_string() || node.get<std::string>().rfind(prefix, 0) != 0)
-            return r.fail(path + ".nodes." + axis, "expected \"" + prefix + "<choice>\"");
+            return r.fail(path + "." + mk::variant::kNodes + "." + axis,
+                          "expected \"" + prefix + "<choice>\"");
         v.choices[axis] = node.get<std::string>().substr(prefix.size());
     }
 }
@@ -75,11 +80,12 @@ void read_identity(ManifestReader& r, const json& entry, const std::string& path
 // Specialized / branching: the shader a variant is drawn with, and its selector values.
 void read_served(ManifestReader& r, const json& entry, const std::string& path, BuildVariant& v,
                  const std::map<std::string, BuildVariant>& shaders) {
-    const std::string shader = r.text(entry, path, "shader");
+    const std::string shader = r.text(entry, path, mk::variant::kShader);
     if (r.failed()) return;
     const auto it = shaders.find(shader);
     if (it == shaders.end())
-        return r.fail(path + ".shader", "'" + shader + "' is not a directory of \"shaders\"");
+        return r.fail(path + "." + mk::variant::kShader,
+                      "'" + shader + "' is not a directory of \"shaders\"");
     const BuildVariant& s = it->second;
     v.shader_directory = s.shader_directory;
     v.files = s.files;
@@ -88,60 +94,65 @@ void read_served(ManifestReader& r, const json& entry, const std::string& path, 
     v.textures = s.textures;
     v.folded_parameters = s.folded_parameters;
     v.removed_parameters = s.removed_parameters;
-    if (const json* sc =
-            r.get(entry, path, "specialization_constants", json::value_t::array, "an array", false))
+    if (const json* sc = r.get(entry, path, mk::variant::kSpecializationConstants,
+                               json::value_t::array, "an array", false))
         for (size_t i = 0; i < sc->size(); ++i) {
-            const std::string cp = at(path + ".specialization_constants", i);
-            const uint32_t id = r.u32((*sc)[i], cp, "id");
-            if (const json* value =
-                    r.get((*sc)[i], cp, "value", json::value_t::number_float, "a number"))
+            const std::string cp = at(path + "." + mk::variant::kSpecializationConstants, i);
+            const uint32_t id = r.u32((*sc)[i], cp, mk::placed::kId);
+            if (const json* value = r.get((*sc)[i], cp, mk::placed::kValue,
+                                          json::value_t::number_float, "a number"))
                 v.specialization[id] = value->get<double>();
         }
-    if (const json* un = r.get(entry, path, "uniforms", json::value_t::array, "an array", false))
+    if (const json* un =
+            r.get(entry, path, mk::variant::kUniforms, json::value_t::array, "an array", false))
         for (size_t i = 0; i < un->size(); ++i) {
-            const std::string up = at(path + ".uniforms", i);
-            const std::string name = r.text((*un)[i], up, "name");
-            if (const json* value =
-                    r.get((*un)[i], up, "value", json::value_t::number_float, "a number"))
+            const std::string up = at(path + "." + mk::variant::kUniforms, i);
+            const std::string name = r.text((*un)[i], up, mk::placed::kName);
+            if (const json* value = r.get((*un)[i], up, mk::placed::kValue,
+                                          json::value_t::number_float, "a number"))
                 v.selector_uniforms[name] = value->get<double>();
         }
     if (const json* frozen =
-            r.get(entry, path, "frozen", json::value_t::object, "an object", false))
+            r.get(entry, path, mk::variant::kFrozen, json::value_t::object, "an object", false))
         for (const auto& [lang, file] : frozen->items())
-            v.frozen[lang] = r.text(*frozen, path + ".frozen", lang.c_str());
+            v.frozen[lang] = r.text(*frozen, path + "." + mk::variant::kFrozen, lang.c_str());
 }
 
 // A mesh variant's "geometry" (variant.json's, copied into the manifest).
 void read_geometry(ManifestReader& r, const json& entry, const std::string& path, BuildVariant& v) {
-    const json* g = r.get(entry, path, "geometry", json::value_t::object, "an object", false);
+    const json* g =
+        r.get(entry, path, mk::output::kGeometry, json::value_t::object, "an object", false);
     if (!g) return;
-    const std::string gp = path + ".geometry";
+    const std::string gp = path + "." + mk::output::kGeometry;
     VariantGeometry geo;
-    geo.name = r.text(*g, gp, "name");
-    if (const json* stages = r.get(*g, gp, "stages", json::value_t::array, "an array"))
+    geo.name = r.text(*g, gp, mk::geometry::kName);
+    if (const json* stages = r.get(*g, gp, mk::geometry::kStages, json::value_t::array, "an array"))
         for (size_t i = 0; i < stages->size(); ++i) {
             if (!(*stages)[i].is_string() || stages->size() > 4) {
-                r.fail(at(gp + ".stages", i), "expected a stage name");
+                r.fail(at(gp + "." + mk::geometry::kStages, i), "expected a stage name");
                 return;
             }
             geo.stages.push_back((*stages)[i].get<std::string>());
         }
-    geo.vertex_stride = r.u32(*g, gp, "vertex_stride");
-    if (const json* inputs = r.get(*g, gp, "vertex_inputs", json::value_t::array, "an array"))
+    geo.vertex_stride = r.u32(*g, gp, mk::geometry::kVertexStride);
+    if (const json* inputs =
+            r.get(*g, gp, mk::geometry::kVertexInputs, json::value_t::array, "an array"))
         for (size_t i = 0; i < inputs->size() && i < 16; ++i) {
-            const std::string ip = at(gp + ".vertex_inputs", i);
-            VertexInput in{r.text((*inputs)[i], ip, "name"), r.u32((*inputs)[i], ip, "location"),
-                           r.u32((*inputs)[i], ip, "floats"), r.u32((*inputs)[i], ip, "offset")};
+            const std::string ip = at(gp + "." + mk::geometry::kVertexInputs, i);
+            VertexInput in{r.text((*inputs)[i], ip, mk::vertex_input::kName),
+                           r.u32((*inputs)[i], ip, mk::vertex_input::kLocation),
+                           r.u32((*inputs)[i], ip, mk::vertex_input::kFloats),
+                           r.u32((*inputs)[i], ip, mk::vertex_input::kOffset)};
             if (in.location != i || in.floats < 1 || in.floats > 4) {
                 r.fail(ip, "expected location " + std::to_string(i) + " and 1 to 4 floats");
                 return;
             }
             geo.vertex_inputs.push_back(std::move(in));
         }
-    if (g->contains("patch_control_points")) {
-        geo.patch_control_points = r.u32(*g, gp, "patch_control_points");
+    if (g->contains(mk::geometry::kPatchControlPoints)) {
+        geo.patch_control_points = r.u32(*g, gp, mk::geometry::kPatchControlPoints);
         if (geo.patch_control_points != 4) {
-            r.fail(gp + ".patch_control_points", "expected 4 (quad patches)");
+            r.fail(gp + "." + mk::geometry::kPatchControlPoints, "expected 4 (quad patches)");
             return;
         }
     }
@@ -150,7 +161,7 @@ void read_geometry(ManifestReader& r, const json& entry, const std::string& path
 
 void read_shader_part(ManifestReader& r, const json& entry, const std::string& path,
                       BuildVariant& v) {
-    v.shader_directory = r.text(entry, path, "directory");
+    v.shader_directory = r.text(entry, path, mk::output::kDirectory);
     read_files(r, entry, path, v);
     read_reflection(r, entry, path, v);
     read_fold(r, entry, path, v);
@@ -221,54 +232,56 @@ std::optional<ShaderBuild> ShaderBuild::open(const fs::path& directory, std::str
     ManifestReader r(file.string(), error);
     ShaderBuild b;
     b.directory_ = directory;
-    b.generator_ = r.text(doc, "", "generator");
-    if (!r.failed() && b.generator_.rfind("watergen ", 0) != 0)
-        r.fail("generator", "'" + b.generator_ + "'; expected \"watergen <version>\"");
-    if (doc.contains("mode")) b.mode_ = r.text(doc, "", "mode");
-    const json* material = r.get(doc, "", "material", json::value_t::object, "an object");
-    const json* axes =
-        material ? r.get(*material, "material", "axes", json::value_t::object, "an object")
-                 : nullptr;
+    b.generator_ = r.text(doc, "", mk::top::kGenerator);
+    if (!r.failed() && b.generator_.rfind(mk::top::kGeneratorPrefix, 0) != 0)
+        r.fail(mk::top::kGenerator, "'" + b.generator_ + "'; expected \"watergen <version>\"");
+    if (doc.contains(mk::top::kMode)) b.mode_ = r.text(doc, "", mk::top::kMode);
+    const json* material = r.get(doc, "", mk::top::kMaterial, json::value_t::object, "an object");
+    const json* axes = material ? r.get(*material, mk::top::kMaterial, mk::material::kAxes,
+                                        json::value_t::object, "an object")
+                                : nullptr;
+    const std::string at_axes = std::string(mk::top::kMaterial) + "." + mk::material::kAxes + ".";
     if (axes)
         for (const auto& [axis, list] : axes->items()) {
-            if (!list.is_array()) r.fail("material.axes." + axis, "expected an array of strings");
+            if (!list.is_array()) r.fail(at_axes + axis, "expected an array of strings");
             for (const json& c : list) {
                 if (!c.is_string()) {
-                    r.fail("material.axes." + axis, "expected an array of strings");
+                    r.fail(at_axes + axis, "expected an array of strings");
                     break;
                 }
                 b.axes_[axis].push_back(c.get<std::string>());
             }
         }
-    if (const json* map = r.get(doc, "", "bindings", json::value_t::object, "an object", false))
+    if (const json* map =
+            r.get(doc, "", mk::top::kBindings, json::value_t::object, "an object", false))
         b.bindings_ = manifest::read_bindings(r, *map);
-    if (const json* scenes = r.get(doc, "", "scenes", json::value_t::array, "an array"))
+    if (const json* scenes = r.get(doc, "", mk::top::kScenes, json::value_t::array, "an array"))
         for (size_t i = 0; i < scenes->size(); ++i)
-            b.scenes_.push_back(r.text((*scenes)[i], at("scenes", i), "name"));
+            b.scenes_.push_back(r.text((*scenes)[i], at(mk::top::kScenes, i), mk::scene::kName));
     std::map<std::string, BuildVariant> shaders; // by directory (modes)
     if (b.mode_ != "permutations")
-        if (const json* list = r.get(doc, "", "shaders", json::value_t::array, "an array"))
+        if (const json* list = r.get(doc, "", mk::top::kShaders, json::value_t::array, "an array"))
             for (size_t i = 0; i < list->size(); ++i) {
                 BuildVariant s;
-                read_shader_part(r, (*list)[i], at("shaders", i), s);
+                read_shader_part(r, (*list)[i], at(mk::top::kShaders, i), s);
                 shaders[s.shader_directory] = std::move(s);
             }
     size_t held = 0; // estimated bytes of the variants read (kMaxVariantBytes)
-    if (const json* list = r.get(doc, "", "variants", json::value_t::array, "an array"))
+    if (const json* list = r.get(doc, "", mk::top::kVariants, json::value_t::array, "an array"))
         for (size_t i = 0; i < list->size() && !r.failed(); ++i) {
             BuildVariant v;
-            read_identity(r, (*list)[i], at("variants", i), v);
+            const std::string vp = at(mk::top::kVariants, i);
+            read_identity(r, (*list)[i], vp, v);
             if (b.mode_ == "permutations")
-                read_shader_part(r, (*list)[i], at("variants", i), v);
+                read_shader_part(r, (*list)[i], vp, v);
             else
-                read_served(r, (*list)[i], at("variants", i), v, shaders);
-            manifest::read_passes(r, (*list)[i], at("variants", i), v.passes);
+                read_served(r, (*list)[i], vp, v, shaders);
+            manifest::read_passes(r, (*list)[i], vp, v.passes);
             held += manifest::estimated_bytes(v);
             if (!r.failed() && held > manifest::kMaxVariantBytes)
-                r.fail(at("variants", i),
-                       "the variants so far hold over " +
-                           std::to_string(manifest::kMaxVariantBytes >> 20) +
-                           " MiB in memory; expected a build of fewer or smaller variants");
+                r.fail(vp, "the variants so far hold over " +
+                               std::to_string(manifest::kMaxVariantBytes >> 20) +
+                               " MiB in memory; expected a build of fewer or smaller variants");
             b.variants_.push_back(std::move(v));
         }
     if (r.failed()) return std::nullopt;
@@ -333,8 +346,8 @@ std::optional<std::vector<uint32_t>> ShaderBuild::spirv(const BuildVariant& v,
     } else {
         const std::string suffix =
             "/" + language + "/" + v.file_stem + "." + stage_tag(stage) + ".opt.spv";
-        bytes = listed(v, "spirv", suffix, kMaxSpirvBytes, error);
-        if (const auto it = v.files.find("spirv"); it != v.files.end())
+        bytes = listed(v, mk::files::kSpirv, suffix, kMaxSpirvBytes, error);
+        if (const auto it = v.files.find(mk::files::kSpirv); it != v.files.end())
             for (const std::string& p : it->second)
                 if (p.size() >= suffix.size() &&
                     p.compare(p.size() - suffix.size(), suffix.size(), suffix) == 0) {
@@ -362,11 +375,13 @@ std::optional<std::vector<uint32_t>> ShaderBuild::spirv(const BuildVariant& v,
 std::optional<std::string> ShaderBuild::source(const BuildVariant& v, const std::string& kind,
                                                ShaderStage stage, std::string* error) const {
     const std::string tag = v.file_stem + "." + stage_tag(stage);
-    const std::map<std::string, std::string> suffix = {{"glsl", "/glsl/" + tag + ".glsl"},
-                                                       {"hlsl", "/hlsl/" + tag + ".hlsl"},
-                                                       {"glsl330", "/" + tag + ".330.glsl"},
-                                                       {"essl300", "/" + tag + ".300es.glsl"},
-                                                       {"msl", "/" + tag + ".metal"}};
+    // The manifest's file kinds (BuildVariant::files) and the ends of their paths.
+    const std::map<std::string, std::string> suffix = {
+        {mk::files::kGlsl, "/glsl/" + tag + ".glsl"},
+        {mk::files::kHlsl, "/hlsl/" + tag + ".hlsl"},
+        {mk::files::kGlsl330, "/" + tag + ".330.glsl"},
+        {mk::files::kEssl300, "/" + tag + ".300es.glsl"},
+        {mk::files::kMsl, "/" + tag + ".metal"}};
     const auto it = suffix.find(kind);
     if (it == suffix.end()) {
         *error = "source kind '" + kind + "'; expected glsl, hlsl, glsl330, essl300 or msl";
@@ -380,7 +395,8 @@ std::optional<Reflection> ShaderBuild::reflection(const BuildVariant& v,
                                                   std::string* error) const {
     const std::string suffix =
         "/" + language + "/" + v.file_stem + "." + stage_tag(stage) + ".reflect.json";
-    const auto text = listed(v, "reflection", suffix, manifest::kMaxDescriptionBytes, error);
+    const auto text =
+        listed(v, mk::files::kReflection, suffix, manifest::kMaxDescriptionBytes, error);
     if (!text) return std::nullopt;
     std::string why;
     auto r = reflection_from_json(*text, &why);

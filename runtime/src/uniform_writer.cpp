@@ -141,7 +141,8 @@ std::optional<std::vector<uint8_t>> UniformWriter::pack(const Reflection& reflec
             (b.name == variant_.block_name || variant_.block_name.empty()))
             block = &b;
     // A binding map that makes the block a push constant keeps its layout (std140 / cbuffer
-    // offsets, generator/ir/binding_map.h): the same bytes, pushed instead of bound.
+    // offsets, generator/include/watergen/ir/emit/binding_map.h): the same bytes, pushed instead of
+    // bound.
     if (const auto& push = reflection.push_constant;
         !block && push && (push->name == variant_.block_name || variant_.block_name.empty()))
         block = &*push;

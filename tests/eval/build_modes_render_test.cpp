@@ -10,7 +10,7 @@
 #include "shared_runner.h"
 #include "watergen/eval/compare/prune_measure.h"
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/plan/material.h"
 
 using namespace watergen;

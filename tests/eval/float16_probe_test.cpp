@@ -6,7 +6,7 @@
 // end" give different answers wherever they can.
 #include "shared_runner.h"
 
-#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 #include "watergen/toolchain/glslang_stage.h"
 #include "watergen/toolchain/reflection_stage.h"
 

@@ -12,8 +12,8 @@
 #include "shared_runner.h"
 #include "watergen/eval/draw/mesh_render.h"
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/ir/dsl.h"
-#include "watergen/ir/vertex_emitter.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/emit/vertex_emitter.h"
 
 using namespace watergen;
 using watergen::test::geometry_variant;

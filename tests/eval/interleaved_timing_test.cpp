@@ -7,7 +7,7 @@
 #include "shared_runner.h"
 #include "watergen/eval/draw/variant_render.h"
 #include "watergen/eval/measure/interleaved_timing.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 
 using namespace watergen;
 

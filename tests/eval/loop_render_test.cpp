@@ -12,8 +12,8 @@
 
 #include "shared_runner.h"
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/ir/dsl.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/water/water_shader.h"
 
 using namespace watergen;
@@ -28,7 +28,11 @@ WaterShader marching_shader(bool relaxed) {
     Graph& g = s.fragment;
     RelaxedScope scope(g, relaxed);
     Expr uv = varying(g, "v_uv", Type::Vec2);
-    Expr step_size = uniform(g, {"march_step", Type::Float, {0.013}, 0.001, 0.1, "", "", ""});
+    Expr step_size = uniform(g, {.name = "march_step",
+                                 .type = Type::Float,
+                                 .default_value = {0.013},
+                                 .min = 0.001,
+                                 .max = 0.1});
     Expr threshold = named(0.25 + 0.5 * uv.y(), "threshold");
     Expr scene = texture(g, scene_color_texture());
     const auto r = loop(g, 48, {uv.x(), constant(g, 0.0)}, [&](Expr, const std::vector<Expr>& c) {
@@ -47,7 +51,7 @@ WaterShader wave_table_shader(bool counted = false) {
     s.variant = default_variant();
     Graph& g = s.fragment;
     Expr uv = varying(g, "v_uv", Type::Vec2);
-    Parameter table{"wave_table", Type::Vec4, {}, -40.0, 40.0, "", "", ""};
+    Parameter table{.name = "wave_table", .type = Type::Vec4, .min = -40.0, .max = 40.0};
     table.array_size = 4;
     table.default_value = {0.5,   7.0,  3.0,  0.1, 0.25,   -11.0, 17.0, 2.0,
                            0.125, 23.0, -5.0, 4.0, 0.0625, 31.0,  37.0, -1.5};
@@ -55,10 +59,13 @@ WaterShader wave_table_shader(bool counted = false) {
         Expr w = element(table, i);
         return LoopStep{{c[0] + w.x() * sin(w.y() * uv.x() + w.z() * uv.y() + w.w())}, Expr()};
     };
-    const auto r =
-        counted ? loop(g, uniform(g, {"wave_count", Type::Float, {4.0}, 0.0, 4.0, "", "", ""}), 4,
-                       {constant(g, 0.0)}, wave)
-                : loop(g, 4, {constant(g, 0.0)}, wave);
+    const auto r = counted ? loop(g,
+                                  uniform(g, {.name = "wave_count",
+                                              .type = Type::Float,
+                                              .default_value = {4.0},
+                                              .max = 4.0}),
+                                  4, {constant(g, 0.0)}, wave)
+                           : loop(g, 4, {constant(g, 0.0)}, wave);
     g.set_output("color", vec4(r[0], uv.x(), uv.y(), constant(g, 1.0)).id());
     return s;
 }

@@ -9,8 +9,8 @@
 #include "render_agreement.h"
 #include "shared_runner.h"
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 #include "watergen/plan/variant_space.h"
 
 using namespace watergen;

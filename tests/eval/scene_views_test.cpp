@@ -13,7 +13,7 @@
 #include "shared_runner.h"
 #include "watergen/eval/bench/accuracy_bench.h"
 #include "watergen/eval/compare/view_separation.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 
 using namespace watergen;
 

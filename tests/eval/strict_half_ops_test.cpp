@@ -13,8 +13,8 @@
 #include <functional>
 
 #include "shared_runner.h"
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 
 using namespace watergen;
 

@@ -10,8 +10,8 @@
 
 #include "shared_runner.h"
 #include "watergen/eval/bench/half_bench.h"
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/plan/covering_array.h"
 
 using namespace watergen;

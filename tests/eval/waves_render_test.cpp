@@ -10,7 +10,7 @@
 #include "render_agreement.h"
 #include "shared_runner.h"
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 #include "watergen/plan/variant_space.h"
 #include "watergen/water/water_shader.h"
 

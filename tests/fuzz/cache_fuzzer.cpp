@@ -8,7 +8,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "watergen/pipeline/build_cache.h"
+#include "watergen/pipeline/cache/build_cache.h"
 
 namespace fs = std::filesystem;
 

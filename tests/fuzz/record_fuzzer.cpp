@@ -7,9 +7,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "watergen/pipeline/build_record.h"
-#include "watergen/pipeline/manifest_files.h"
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/manifest/manifest_files.h"
+#include "watergen/pipeline/output/output_writer.h"
+#include "watergen/pipeline/record/build_record.h"
 
 namespace {
 

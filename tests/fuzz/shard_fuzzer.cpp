@@ -7,9 +7,9 @@
 #include <set>
 #include <string>
 
-#include "watergen/pipeline/manifest_files.h"
-#include "watergen/pipeline/output_writer.h"
-#include "watergen/pipeline/shard_file.h"
+#include "watergen/pipeline/manifest/manifest_files.h"
+#include "watergen/pipeline/output/output_writer.h"
+#include "watergen/pipeline/shards/shard_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace watergen;

@@ -1,4 +1,4 @@
-// The compiled CPU evaluator (generator/ir/block_program.cpp and its kernels): what it computes
+// The compiled CPU evaluator (generator/ir/cpu/block_program.cpp and its kernels): what it computes
 // in float storage, lane-invariant arguments, values read in place, and errors.
 #include <catch2/catch.hpp>
 
@@ -7,8 +7,8 @@
 #include <cstring>
 #include <limits>
 
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 
 using namespace watergen;
 
@@ -175,7 +175,7 @@ TEST_CASE("only_the_selected_case_needs_its_inputs", "[switch]") {
     // time): a texture only another case samples need not be supplied, as on the GPU.
     Graph g;
     Expr x = varying(g, "x", Type::Float);
-    Expr sel = uniform(g, {"sel", Type::Float, {0.0}, 0.0, 1.0, "", "", ""});
+    Expr sel = uniform(g, {.name = "sel", .type = Type::Float, .default_value = {0.0}, .max = 1.0});
     const auto r = choose(g, sel * 1.0, 2, [&](Graph& body, int c) -> std::vector<Expr> {
         Expr xin = read_in(body, x);
         if (c == 0) return {xin * 3.0};
@@ -204,7 +204,7 @@ TEST_CASE("switches_and_loops_nest_in_each_other", "[switch]") {
     // c <- case 0: c + x; case 1: 4c + 1 by an inner loop (c <- 2c + j, j < 2), three times.
     Graph g;
     Expr x = varying(g, "x", Type::Float);
-    Expr sel = uniform(g, {"sel", Type::Float, {0.0}, 0.0, 1.0, "", "", ""});
+    Expr sel = uniform(g, {.name = "sel", .type = Type::Float, .default_value = {0.0}, .max = 1.0});
     const auto r = loop(g, 3, {x}, [&](Expr, const std::vector<Expr>& c) {
         return LoopStep{choose(c[0].graph(), sel, 2,
                                [&](Graph& body, int k) -> std::vector<Expr> {

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 
 using namespace watergen;
 
@@ -72,7 +72,7 @@ TEST_CASE("results_do_not_depend_on_the_thread_count", "[evaluator]") {
     // 1001 lanes: four blocks of 256 and a partial one, not whole quads at the end.
     Graph g;
     Expr x = varying(g, "x", Type::Float);
-    Expr k = uniform(g, {"k", Type::Float, {0.37}, 0.0, 1.0, "", "", ""});
+    Expr k = uniform(g, {.name = "k", .type = Type::Float, .default_value = {0.37}, .max = 1.0});
     Expr shared = sin(k * 3.0) + k * k; // the same on every lane: computed once per thread
     Expr f = sin(x * shared) * exp(-x * k) + ddx(x * x) + ddy(x);
     g.set_output("f", f.id());
@@ -104,7 +104,7 @@ TEST_CASE("derivative_of_an_infinite_parameter_is_nan_on_every_lane", "[evaluato
     // the GPU; and 0 for a finite one.
     Graph g;
     Expr x = varying(g, "x", Type::Float);
-    Expr k = uniform(g, {"k", Type::Float, {1.0}, 0.0, 1.0, "", "", ""});
+    Expr k = uniform(g, {.name = "k", .type = Type::Float, .default_value = {1.0}, .max = 1.0});
     g.set_output("d", (ddx(k) + x * 0.0).id());
     EvalInputs in;
     in.varyings["x"] = {1, 2, 3, 4};

@@ -9,8 +9,8 @@
 #include <tuple>
 #include <vector>
 
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 
 using namespace watergen;
 

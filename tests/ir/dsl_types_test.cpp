@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 using namespace watergen;
 
@@ -74,9 +74,9 @@ TEST_CASE("intrinsics_check_their_operands", "[dsl]") {
 
 TEST_CASE("parameters_declared_twice_must_agree", "[dsl]") {
     Graph g;
-    uniform(g, {"k", Type::Float, {1.0}, 0, 2, "", "", ""});
-    uniform(g, {"k", Type::Float, {1.0}, 0, 2, "", "", ""});
+    uniform(g, {.name = "k", .type = Type::Float, .default_value = {1.0}, .max = 2});
+    uniform(g, {.name = "k", .type = Type::Float, .default_value = {1.0}, .max = 2});
     CHECK(g.diagnostics().empty());
-    uniform(g, {"k", Type::Vec3, {1.0, 1.0, 1.0}, 0, 2, "", "", ""});
+    uniform(g, {.name = "k", .type = Type::Vec3, .default_value = {1.0, 1.0, 1.0}, .max = 2});
     CHECK(g.diagnostics().size() == 1);
 }

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "watergen/ir/dsl.h"
-#include "watergen/ir/float_error.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/float_error.h"
 
 using namespace watergen;
 
@@ -20,7 +20,7 @@ double f32(double v) {
 // change is what one more rounding adds, computed here by hand in the same order.
 TEST_CASE("attribution_measures_each_rounding_in_evaluation_order", "[evaluator][float_error]") {
     Graph g;
-    Expr a = uniform(g, {"a", Type::Float, {0.1}, 0.0, 1.0, "", "", ""});
+    Expr a = uniform(g, {.name = "a", .type = Type::Float, .default_value = {0.1}, .max = 1.0});
     Expr out = (a * a - 0.01) * 1e8;
     g.set_output("out", out.id());
     const std::vector<EvalSite> sites = evaluation_sites(g, "out", {});
@@ -61,7 +61,7 @@ TEST_CASE("attribution_measures_each_rounding_in_evaluation_order", "[evaluator]
 // most one binary32 ulp each (2^-23 relative).
 TEST_CASE("float_error_spread_moves_products_and_varyings_only", "[evaluator][float_error]") {
     Graph g;
-    Expr a = uniform(g, {"a", Type::Float, {0.37}, 0.0, 1.0, "", "", ""});
+    Expr a = uniform(g, {.name = "a", .type = Type::Float, .default_value = {0.37}, .max = 1.0});
     Expr u = varying(g, "v_uv", Type::Vec2).x();
     g.set_output("sum", (a + 0.3 - 0.1 + min(a, 0.2) + abs(a)).id());
     g.set_output("product", (u * 3.7).id());

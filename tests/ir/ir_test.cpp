@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 using namespace watergen;
 

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
-#include "watergen/ir/emitter.h"
-#include "watergen/ir/ir_fold.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
+#include "watergen/ir/emit/emitter.h"
+#include "watergen/ir/fold/ir_fold.h"
 
 using namespace watergen;
 
@@ -200,7 +200,7 @@ Graph counted(Expr (*count)(Graph&)) {
 }
 
 Expr count_parameter(Graph& g) {
-    return uniform(g, {"n", Type::Float, {3.0}, 0.0, 100.0, "", "", ""});
+    return uniform(g, {.name = "n", .type = Type::Float, .default_value = {3.0}, .max = 100.0});
 }
 
 double sum_for_count(const Graph& g, double n) {
@@ -310,7 +310,8 @@ TEST_CASE("a_loop_runs_the_trip_count_its_parameter_gives_floored_and_bounded", 
 TEST_CASE("a_trip_count_from_data_is_emitted_as_a_break_before_the_body", "[loop]") {
     Graph frag;
     Expr uv = varying(frag, "v_uv", Type::Vec2);
-    Expr n = uniform(frag, {"n", Type::Float, {3.0}, 0.0, 100.0, "", "", ""});
+    Expr n =
+        uniform(frag, {.name = "n", .type = Type::Float, .default_value = {3.0}, .max = 100.0});
     const auto r = loop(frag, n, 8, {uv.x()}, [&](Expr, const std::vector<Expr>& c) {
         return LoopStep{{c[0] * uv.y()}, Expr()};
     });
@@ -335,7 +336,7 @@ TEST_CASE("a_trip_count_from_data_is_emitted_as_a_break_before_the_body", "[loop
 TEST_CASE("a_trip_count_that_differs_between_pixels_is_a_diagnostic", "[loop]") {
     Graph g;
     Expr x = varying(g, "x", Type::Float);
-    Expr n = uniform(g, {"n", Type::Float, {3.0}, 0.0, 100.0, "", "", ""});
+    Expr n = uniform(g, {.name = "n", .type = Type::Float, .default_value = {3.0}, .max = 100.0});
     auto body = [](Expr, const std::vector<Expr>& c) { return LoopStep{c, Expr()}; };
     loop(g, n + x, 8, {x}, body);
     loop(g, vec2(n, n), 8, {x}, body);
@@ -425,7 +426,7 @@ TEST_CASE("a_loop_bound_with_a_trip_count_from_data_holds_for_no_iteration", "[l
     // max(result, 5) must stay (a bound of the fourth state alone would fold it to 5).
     Graph g;
     Expr x = varying(g, "x", Type::Float);
-    Expr n = uniform(g, {"n", Type::Float, {4.0}, 0.0, 100.0, "", "", ""});
+    Expr n = uniform(g, {.name = "n", .type = Type::Float, .default_value = {4.0}, .max = 100.0});
     const auto r = loop(g, n, 4, {constant(g, 10.0)}, [&](Expr, const std::vector<Expr>& c) {
         return LoopStep{{c[0] * 0.5}, Expr()};
     });
@@ -453,7 +454,8 @@ void set_colour(Graph& g, Expr value) {
 Graph drifting_sum() {
     Graph g;
     Expr x = varying(g, "v_uv", Type::Vec2).x();
-    Expr t = uniform(g, {"t", Type::Float, {1.0}, 0.0, 10.0, "s", "", ""});
+    Expr t = uniform(
+        g, {.name = "t", .type = Type::Float, .default_value = {1.0}, .max = 10.0, .unit = "s"});
     const auto r = loop(g, 4, {constant(g, 0.0)}, [&](Expr i, const std::vector<Expr>& c) {
         return LoopStep{{c[0] + x + t * (i + 1.0)}, Expr()};
     });
@@ -515,7 +517,8 @@ TEST_CASE("the_fold_leaves_a_body_term_whose_carried_value_may_overflow", "[loop
     // so c + 0 c is not c; the analysis widens c to infinity and must keep the product.
     Graph g;
     Expr x = varying(g, "v_uv", Type::Vec2).x();
-    Expr t = uniform(g, {"t", Type::Float, {1.0}, 0.0, 10.0, "s", "", ""});
+    Expr t = uniform(
+        g, {.name = "t", .type = Type::Float, .default_value = {1.0}, .max = 10.0, .unit = "s"});
     const auto r = loop(g, 200, {constant(g, 1.0)}, [&](Expr, const std::vector<Expr>& c) {
         return LoopStep{{c[0] * 2.0 + t * c[0]}, Expr()};
     });

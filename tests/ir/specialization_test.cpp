@@ -5,8 +5,8 @@
 #include <string>
 
 #include "specialization_support.h"
-#include "watergen/ir/emitter.h"
-#include "watergen/ir/specialization.h"
+#include "watergen/ir/emit/emitter.h"
+#include "watergen/ir/emit/specialization.h"
 
 using namespace watergen;
 
@@ -17,7 +17,7 @@ bool has_line(const std::string& source, const std::string& line) {
 }
 
 Parameter float_parameter(const char* name, double value) {
-    return {name, Type::Float, {value}, 0.0, 1.0, "", "", ""};
+    return {.name = name, .type = Type::Float, .default_value = {value}, .max = 1.0};
 }
 
 } // namespace
@@ -66,7 +66,11 @@ TEST_CASE("the_uniform_block_leaves_out_specialized_parameters", "[specializatio
 }
 
 TEST_CASE("a_matrix_cannot_be_a_specialization_constant", "[specialization]") {
-    Parameter m{"m", Type::Mat3, std::vector<double>(9, 0.0), 0, 1, "", "", "node.m"};
+    Parameter m{.name = "m",
+                .type = Type::Mat3,
+                .default_value = std::vector<double>(9, 0.0),
+                .max = 1,
+                .origin = "node.m"};
     m.specialization = true;
     Diagnostics ds;
     CHECK(specialization_slots({m}, ds).empty());

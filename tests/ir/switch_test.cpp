@@ -6,17 +6,17 @@
 #include <cmath>
 #include <limits>
 
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
-#include "watergen/ir/emitter.h"
-#include "watergen/ir/ir_fold.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
+#include "watergen/ir/emit/emitter.h"
+#include "watergen/ir/fold/ir_fold.h"
 #include "watergen/toolchain/toolchain.h"
 
 using namespace watergen;
 
 namespace {
 
-const Parameter kSelector{"sel", Type::Float, {0.0}, 0.0, 2.0, "", "", ""};
+const Parameter kSelector{.name = "sel", .type = Type::Float, .default_value = {0.0}, .max = 2.0};
 const Quantity kDoubled{"doubled", Type::Float, ""};
 
 // color = (r, x, 0, 1) with r from three cases: 2x, sin(x) + k (k computed outside), x + ddx(x)

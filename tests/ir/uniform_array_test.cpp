@@ -4,18 +4,18 @@
 
 #include <cstring>
 
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
-#include "watergen/ir/emitter.h"
-#include "watergen/ir/ir_fold.h"
-#include "watergen/ir/uniform_layout.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
+#include "watergen/ir/emit/emitter.h"
+#include "watergen/ir/emit/uniform_layout.h"
+#include "watergen/ir/fold/ir_fold.h"
 
 using namespace watergen;
 
 namespace {
 
 Parameter array_of(const char* name, Type t, uint32_t size, double first = 0.0) {
-    Parameter p{name, t, {}, -10, 10, "", "", ""};
+    Parameter p{.name = name, .type = t, .min = -10, .max = 10};
     p.array_size = size;
     for (size_t i = 0; i < value_count(p); ++i)
         p.default_value.push_back(first + static_cast<double>(i));
@@ -23,7 +23,7 @@ Parameter array_of(const char* name, Type t, uint32_t size, double first = 0.0) 
 }
 
 Parameter scalar(const char* name, double v) {
-    return {name, Type::Float, {v}, -10, 10, "", "", ""};
+    return {.name = name, .type = Type::Float, .default_value = {v}, .min = -10, .max = 10};
 }
 
 const UniformSlot* slot_of(const UniformLayout& l, const std::string& name) {

@@ -2,14 +2,16 @@
 
 #include <cstring>
 
-#include "watergen/ir/uniform_layout.h"
+#include "watergen/ir/emit/uniform_layout.h"
 
 using namespace watergen;
 
 namespace {
 Parameter p(const char* name, Type t) {
-    return {name, t, std::vector<double>(static_cast<size_t>(component_count(t)), 0.0), 0, 1, "",
-            "",   ""};
+    return {.name = name,
+            .type = t,
+            .default_value = std::vector<double>(static_cast<size_t>(component_count(t)), 0.0),
+            .max = 1};
 }
 uint32_t offset_of(const UniformLayout& l, const std::string& name) {
     for (const auto& m : l.members)
@@ -49,7 +51,11 @@ TEST_CASE("no_member_straddles_a_16_byte_register", "[layout]") {
 
 TEST_CASE("matrix_parameters_are_rejected", "[layout]") {
     Diagnostics ds;
-    Parameter m{"m", Type::Mat3, std::vector<double>(9, 0.0), 0, 1, "", "", "node.x"};
+    Parameter m{.name = "m",
+                .type = Type::Mat3,
+                .default_value = std::vector<double>(9, 0.0),
+                .max = 1,
+                .origin = "node.x"};
     layout_uniforms({m}, ds);
     REQUIRE(ds.size() == 1);
     CHECK(ds[0].node == "node.x");
@@ -57,8 +63,9 @@ TEST_CASE("matrix_parameters_are_rejected", "[layout]") {
 
 TEST_CASE("pack_writes_defaults_as_floats_at_their_offsets", "[layout]") {
     Diagnostics ds;
-    std::vector<Parameter> params = {{"v", Type::Vec3, {1.0, 2.0, 3.0}, 0, 9, "", "", ""},
-                                     {"s", Type::Float, {0.5}, 0, 9, "", "", ""}};
+    std::vector<Parameter> params = {
+        {.name = "v", .type = Type::Vec3, .default_value = {1.0, 2.0, 3.0}, .max = 9},
+        {.name = "s", .type = Type::Float, .default_value = {0.5}, .max = 9}};
     const auto l = layout_uniforms(params, ds);
     const auto bytes = pack_uniforms(l, params);
     REQUIRE(bytes.size() == 16);

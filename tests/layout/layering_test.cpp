@@ -38,23 +38,51 @@ struct Layer {
     std::set<std::string> may_include;
 };
 
+// The layers cut into rooms: generator/<house>/<room>, their headers in
+// generator/include/watergen/<house>/<room>; a room uses the rooms before it in its house.
+struct House {
+    std::string name;
+    std::vector<std::string> rooms;
+};
+const std::vector<House>& houses() {
+    static const std::vector<House> all = {
+        {"ir", {"core", "emit", "cpu", "fold"}},
+        {"pipeline",
+         {"output", "cache", "variant", "jobs", "manifest", "record", "shards", "build"}},
+        {"eval", {"image", "scene", "draw", "measure", "probe", "report", "compare", "bench"}},
+    };
+    return all;
+}
+bool is_house(const std::string& name) {
+    for (const House& h : houses())
+        if (h.name == name) return true;
+    return false;
+}
+
 // Generic first. The runtime: the engine library (runtime/src) includes only itself; the
 // headless device (runtime/headless) the runtime and itself; the test runner (runtime/runner)
 // those and itself; nothing in runtime/ includes the generator. runtime/reflection.h is the
-// shader interface types every layer shares. The evaluation rooms (generator/eval/<room>) may
-// use the whole generator, the runtime's three layers and the rooms before them; the CLI uses
-// everything.
+// shader interface types every layer shares; runtime/manifest_schema.h the keys of manifest.json,
+// which the pipeline's rooms write, merge and read back as the runtime reads them. The IR's rooms
+// use the rooms before them; the layers above the IR may use all of it. The pipeline's rooms use
+// the layers above the pipeline and the rooms before them; the evaluation rooms
+// (generator/eval/<room>) the whole generator, the runtime's three layers and the rooms before
+// them; the CLI uses everything.
 const std::vector<Layer>& layers() {
     static const std::vector<Layer> all = [] {
-        const std::vector<std::string> generator = {"ir",      "water",     "caustics",
-                                                    "plan",    "toolchain", "pipeline",
-                                                    "runtime", "headless",  "runner"};
-        const std::vector<std::string> rooms = {"image", "scene",  "draw",    "measure",
-                                                "probe", "report", "compare", "bench"};
         auto gen = [](const std::string& name, std::set<std::string> uses) {
             uses.insert(name);
             return Layer{
                 name, {"generator/" + name, "generator/include/watergen/" + name}, std::move(uses)};
+        };
+        auto rooms = [&](std::vector<Layer>& v, const std::string& house,
+                         std::set<std::string> below) {
+            for (const House& h : houses())
+                if (h.name == house)
+                    for (const std::string& room : h.rooms) {
+                        below.insert(house + "/" + room);
+                        v.push_back(gen(house + "/" + room, below));
+                    }
         };
         std::vector<Layer> v = {
             Layer{"runtime", {"runtime/src", "runtime/include/watergen/runtime"}, {"runtime"}},
@@ -64,22 +92,23 @@ const std::vector<Layer>& layers() {
             Layer{"runner",
                   {"runtime/runner", "runtime/include/watergen/runner"},
                   {"runtime", "headless", "runner"}},
-            gen("ir", {"runtime/reflection"}),
-            gen("water", {"ir", "runtime/reflection"}),
-            gen("caustics", {"ir", "water", "runtime/reflection"}),
-            gen("plan", {"ir", "water", "runtime/reflection"}),
-            gen("toolchain", {"ir", "runtime/reflection"}),
-            gen("pipeline", {"ir", "water", "caustics", "plan", "toolchain", "runtime/reflection"}),
         };
-        std::set<std::string> below(generator.begin(), generator.end());
-        for (const std::string& room : rooms) {
-            below.insert("eval/" + room);
-            v.push_back(Layer{"eval/" + room,
-                              {"generator/eval/" + room, "generator/include/watergen/eval/" + room},
-                              below});
-        }
-        below.insert("cli");
-        v.push_back(Layer{"cli", {"generator/cli"}, below});
+        rooms(v, "ir", {"runtime/reflection"});
+        v.push_back(gen("water", {"ir", "runtime/reflection"}));
+        v.push_back(gen("caustics", {"ir", "water", "runtime/reflection"}));
+        v.push_back(gen("plan", {"ir", "water", "runtime/reflection"}));
+        v.push_back(gen("toolchain", {"ir", "runtime/reflection"}));
+        rooms(v, "pipeline",
+              {"ir", "water", "caustics", "plan", "toolchain", "runtime/reflection",
+               "runtime/manifest_schema"});
+        rooms(v, "eval",
+              {"ir", "water", "caustics", "plan", "toolchain", "pipeline", "runtime", "headless",
+               "runner"});
+        std::set<std::string> everything;
+        for (const Layer& l : v)
+            everything.insert(l.name);
+        everything.insert("cli");
+        v.push_back(Layer{"cli", {"generator/cli"}, everything});
         return v;
     }();
     return all;
@@ -121,8 +150,15 @@ TEST_CASE("every_source_folder_belongs_to_a_layer", "[layout]") {
     for (const char* top : {"generator", "runtime"})
         for (const std::string& folder : folders_with_files(root, top)) {
             // Build files only.
-            if (folder == "generator" || folder == "runtime" || folder == "generator/eval")
+            if (folder == "generator" || folder == "runtime") continue;
+            if (folder.rfind("generator/", 0) == 0 && is_house(folder.substr(10))) {
+                for (const auto& e : fs::directory_iterator(root / folder))
+                    if (e.is_regular_file()) {
+                        INFO(e.path() << ": a house holds its rooms and its CMakeLists.txt only");
+                        CHECK(e.path().filename() == "CMakeLists.txt");
+                    }
                 continue;
+            }
             ++folders;
             INFO(folder << " is in no layer: add it to the layers of tests/layout and to "
                            "docs/layout.md");
@@ -161,8 +197,16 @@ TEST_CASE("include_rules_catch_an_upward_include", "[layout]") {
         REQUIRE(l != nullptr);
         return include_allowed(l->may_include, include);
     };
-    CHECK_FALSE(allowed("generator/ir", "water/water_shader.h"));
-    CHECK_FALSE(allowed("generator/pipeline", "eval/draw/variant_render.h"));
+    CHECK_FALSE(allowed("generator/ir/core", "water/water_shader.h"));
+    CHECK_FALSE(allowed("generator/ir/core", "ir/emit/emitter.h"));
+    CHECK_FALSE(allowed("generator/ir/cpu", "ir/fold/ir_fold.h"));
+    CHECK(allowed("generator/ir/fold", "ir/cpu/cpu_evaluator.h"));
+    CHECK_FALSE(allowed("generator/pipeline/build", "eval/draw/variant_render.h"));
+    CHECK_FALSE(allowed("generator/pipeline/output", "pipeline/cache/build_cache.h"));
+    CHECK_FALSE(allowed("generator/pipeline/shards", "pipeline/build/build_output.h"));
+    CHECK(allowed("generator/pipeline/build", "pipeline/shards/sharded_build.h"));
+    CHECK(allowed("generator/water", "ir/fold/ir_fold.h"));
+    CHECK(layer_of("generator/ir") == nullptr);
     CHECK_FALSE(allowed("generator/eval/scene", "eval/draw/caustics_pass_draw.h"));
     CHECK_FALSE(allowed("runtime/src", "ir/ir.h"));
     CHECK_FALSE(allowed("runtime/src", "headless/headless_device.h"));
@@ -170,10 +214,14 @@ TEST_CASE("include_rules_catch_an_upward_include", "[layout]") {
     CHECK_FALSE(allowed("runtime/headless", "ir/ir.h"));
     CHECK_FALSE(allowed("runtime/runner", "eval/probe/probe.h"));
     CHECK(allowed("runtime/headless", "runtime/variant_pipeline.h"));
+    CHECK(allowed("generator/pipeline/output", "runtime/manifest_schema.h"));
+    CHECK(allowed("generator/pipeline/shards", "runtime/manifest_schema.h"));
+    CHECK_FALSE(allowed("generator/pipeline/manifest", "runtime/shader_build.h"));
+    CHECK_FALSE(allowed("generator/plan", "runtime/manifest_schema.h"));
     CHECK(allowed("runtime/runner", "headless/offscreen_draw.h"));
     CHECK(allowed("generator/eval/draw", "runner/vulkan_runner.h"));
     CHECK(allowed("generator/eval/compare", "eval/report/compare_report.h"));
-    CHECK(allowed("generator/water/nodes", "ir/dsl.h"));
+    CHECK(allowed("generator/water/nodes", "ir/core/dsl.h"));
     CHECK(layer_of("generator/include/watergen/eval/draw")->name == "eval/draw");
     CHECK(layer_of("generator/somewhere_new") == nullptr);
 }
@@ -190,22 +238,25 @@ TEST_CASE("every_generator_layer_has_its_public_header_folder_and_nothing_else_d
     std::set<std::string> source_folders, header_folders;
     for (const auto& e : fs::directory_iterator(gen))
         if (e.is_directory() && e.path().filename() != "include" && e.path().filename() != "cli" &&
-            e.path().filename() != "eval")
+            !is_house(e.path().filename()))
             source_folders.insert(e.path().filename());
-    for (const auto& e : fs::directory_iterator(gen / "eval"))
-        if (e.is_directory()) source_folders.insert("eval/" + e.path().filename().string());
     for (const auto& e : fs::directory_iterator(gen / "include" / "watergen")) {
         if (!e.is_directory()) {
             FAIL_CHECK("a header outside every layer folder: " << e.path());
             continue;
         }
-        if (e.path().filename() != "eval") header_folders.insert(e.path().filename());
+        if (!is_house(e.path().filename())) header_folders.insert(e.path().filename());
     }
-    for (const auto& e : fs::directory_iterator(gen / "include" / "watergen" / "eval"))
-        if (e.is_directory())
-            header_folders.insert("eval/" + e.path().filename().string());
-        else
-            FAIL_CHECK("a header outside every room: " << e.path());
+    for (const House& h : houses()) {
+        for (const auto& e : fs::directory_iterator(gen / h.name))
+            if (e.is_directory())
+                source_folders.insert(h.name + "/" + e.path().filename().string());
+        for (const auto& e : fs::directory_iterator(gen / "include" / "watergen" / h.name))
+            if (e.is_directory())
+                header_folders.insert(h.name + "/" + e.path().filename().string());
+            else
+                FAIL_CHECK("a header outside every room: " << e.path());
+    }
     CHECK(source_folders == sources);
     CHECK(header_folders == headers);
 }
@@ -222,10 +273,12 @@ TEST_CASE("layout_table_names_every_folder", "[layout]") {
         listed.insert((*it)[1]);
     std::set<std::string> folders;
     for (const auto& e : fs::directory_iterator(root / "generator"))
-        if (e.is_directory() && e.path().filename() != "include" && e.path().filename() != "eval")
+        if (e.is_directory() && e.path().filename() != "include" && !is_house(e.path().filename()))
             folders.insert("generator/" + e.path().filename().string());
-    for (const auto& e : fs::directory_iterator(root / "generator" / "eval"))
-        if (e.is_directory()) folders.insert("generator/eval/" + e.path().filename().string());
+    for (const House& h : houses())
+        for (const auto& e : fs::directory_iterator(root / "generator" / h.name))
+            if (e.is_directory())
+                folders.insert("generator/" + h.name + "/" + e.path().filename().string());
     for (const auto& e : fs::directory_iterator(root / "runtime"))
         if (e.is_directory() && e.path().filename() != "include")
             folders.insert("runtime/" + e.path().filename().string());
@@ -234,4 +287,19 @@ TEST_CASE("layout_table_names_every_folder", "[layout]") {
     for (const auto& e : fs::directory_iterator(root / "tests"))
         if (e.is_directory()) folders.insert("tests/" + e.path().filename().string());
     CHECK(listed == folders);
+}
+
+TEST_CASE("no_source_folder_holds_more_than_15_cpp_files", "[layout]") {
+    // A folder of more is a room that wants cutting. The CLI, one file per command, is the
+    // exception.
+    const fs::path root = source_dir();
+    for (const char* top : {"generator", "runtime"})
+        for (const std::string& folder : folders_with_files(root, top)) {
+            if (folder == "generator/cli") continue;
+            size_t cpp = 0;
+            for (const auto& e : fs::directory_iterator(root / folder))
+                if (e.is_regular_file() && e.path().extension() == ".cpp") ++cpp;
+            INFO(folder << " holds " << cpp << " .cpp files");
+            CHECK(cpp <= 15);
+        }
 }

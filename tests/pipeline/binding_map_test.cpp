@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <set>
 
-#include "watergen/ir/emitter.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/ir/emit/emitter.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/plan/binding_map_file.h"
 #include "watergen/plan/covering_array.h"
 #include "watergen/water/binding_profiles.h"

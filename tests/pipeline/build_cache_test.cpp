@@ -3,8 +3,8 @@
 #include <fstream>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_cache.h"
-#include "watergen/pipeline/parallel_build.h"
+#include "watergen/pipeline/cache/build_cache.h"
+#include "watergen/pipeline/jobs/parallel_build.h"
 
 using namespace watergen;
 using namespace watergen::test;

@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 
 using namespace watergen;
 using namespace watergen::test;

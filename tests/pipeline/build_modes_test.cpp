@@ -8,7 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_output.h"
+#include "manifest_schema_walk.h"
+#include "watergen/pipeline/build/build_output.h"
 #include "watergen/plan/material.h"
 
 using namespace watergen;
@@ -26,6 +27,9 @@ TEST_CASE("the_specialized_manifest_lists_each_variant_with_its_constant_values"
     CHECK(s.shaders == 2); // full and half precision
     const auto tree = read_tree(r.out);
     const auto m = nlohmann::json::parse(tree.at("manifest.json"));
+    // Its keys are the schema's (runtime/manifest_schema.h), as generated/manifest.json's are.
+    for (const std::string& fault : unschemed_paths(m))
+        FAIL_CHECK(fault);
     CHECK(m["mode"] == "specialized");
     REQUIRE(m["shaders"].size() == 2);
     REQUIRE(m["variants"].size() == 144);
@@ -73,6 +77,8 @@ TEST_CASE("the_branching_manifest_places_the_selectors_in_the_uniform_block", "[
     CHECK(s.variants == 56); // the pruned scenes reach 16, 16 and 24 variants
     CHECK(s.shaders == 3);   // each scene targets one precision
     const auto m = nlohmann::json::parse(read_tree(r.out).at("manifest.json"));
+    for (const std::string& fault : unschemed_paths(m))
+        FAIL_CHECK(fault);
     REQUIRE(m["variants"].size() == 56);
     for (const auto& v : m["variants"]) {
         INFO(v["key"]);

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "watergen/pipeline/build_progress.h"
+#include "watergen/pipeline/jobs/build_progress.h"
 
 using namespace watergen;
 

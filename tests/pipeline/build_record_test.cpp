@@ -5,7 +5,7 @@
 #include <sys/wait.h>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_record.h"
+#include "watergen/pipeline/record/build_record.h"
 
 using namespace watergen;
 using namespace watergen::test;

@@ -6,8 +6,8 @@
 #include <sys/wait.h>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_output.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/build/build_output.h"
+#include "watergen/pipeline/variant/variant_build.h"
 
 using namespace watergen;
 using namespace watergen::test;

@@ -15,8 +15,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "watergen/pipeline/build_cache.h"
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/cache/build_cache.h"
+#include "watergen/pipeline/output/output_writer.h"
 
 using namespace watergen;
 using watergen::test::TempDir;

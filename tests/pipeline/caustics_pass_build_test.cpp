@@ -12,9 +12,9 @@
 #include <nlohmann/json.hpp>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_output.h"
-#include "watergen/pipeline/build_record.h"
-#include "watergen/pipeline/caustics_pass_build.h"
+#include "watergen/pipeline/build/build_output.h"
+#include "watergen/pipeline/manifest/caustics_pass_build.h"
+#include "watergen/pipeline/record/build_record.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
 
 using namespace watergen;

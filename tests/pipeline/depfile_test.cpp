@@ -7,7 +7,7 @@
 #include <sys/wait.h>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/depfile.h"
+#include "watergen/pipeline/output/depfile.h"
 
 using namespace watergen;
 using namespace watergen::test;

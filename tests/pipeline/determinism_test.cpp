@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include "covering_builds.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 
 using namespace watergen;
 

@@ -2,9 +2,9 @@
 
 #include <filesystem>
 
-#include "watergen/ir/dsl.h"
-#include "watergen/pipeline/output_writer.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/pipeline/output/output_writer.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/toolchain/glslang_stage.h"
 
 using namespace watergen;

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 
 using namespace watergen;
 using namespace watergen::test;

@@ -5,9 +5,9 @@
 #include <sys/stat.h>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_output.h"
-#include "watergen/pipeline/output_target.h"
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/build/build_output.h"
+#include "watergen/pipeline/output/output_target.h"
+#include "watergen/pipeline/output/output_writer.h"
 
 using namespace watergen;
 using namespace watergen::test;

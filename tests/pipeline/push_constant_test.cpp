@@ -5,8 +5,8 @@
 // naming both sizes, and so is a block holding an array (bad map entries: binding_map_test.cpp).
 #include <catch2/catch.hpp>
 
-#include "watergen/ir/emitter.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/ir/emit/emitter.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/plan/binding_map_file.h"
 #include "watergen/plan/covering_array.h"
 #include "watergen/water/binding_profiles.h"

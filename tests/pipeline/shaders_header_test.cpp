@@ -12,9 +12,9 @@
 #include <nlohmann/json.hpp>
 
 #include "build_test_support.h"
-#include "watergen/ir/uniform_layout.h"
-#include "watergen/pipeline/shaders_header.h"
-#include "watergen/pipeline/staged_tree.h"
+#include "watergen/ir/emit/uniform_layout.h"
+#include "watergen/pipeline/record/shaders_header.h"
+#include "watergen/pipeline/record/staged_tree.h"
 #include "watergen_shaders.h"
 
 using namespace watergen;

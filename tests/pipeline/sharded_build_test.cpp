@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_cache.h"
-#include "watergen/pipeline/shard_file.h"
-#include "watergen/pipeline/sharded_build.h"
+#include "watergen/pipeline/cache/build_cache.h"
+#include "watergen/pipeline/shards/shard_file.h"
+#include "watergen/pipeline/shards/sharded_build.h"
 
 using namespace watergen;
 using namespace watergen::test;

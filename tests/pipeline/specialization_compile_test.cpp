@@ -8,7 +8,7 @@
 #include <string>
 
 #include "specialization_support.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/toolchain/reflection_stage.h"
 #include "watergen/water/presets.h"
 

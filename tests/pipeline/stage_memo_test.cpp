@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <thread>
 
-#include "watergen/ir/vertex_emitter.h"
-#include "watergen/pipeline/stage_memo.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/ir/emit/vertex_emitter.h"
+#include "watergen/pipeline/variant/stage_memo.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/runtime/reflection.h"
 
 using namespace watergen;

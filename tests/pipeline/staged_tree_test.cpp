@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_cache.h"
-#include "watergen/pipeline/staged_tree.h"
+#include "watergen/pipeline/cache/build_cache.h"
+#include "watergen/pipeline/record/staged_tree.h"
 
 using namespace watergen;
 using namespace watergen::test;

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_output.h"
-#include "watergen/pipeline/json_document.h"
-#include "watergen/pipeline/sharded_build.h"
+#include "watergen/pipeline/build/build_output.h"
+#include "watergen/pipeline/output/json_document.h"
+#include "watergen/pipeline/shards/sharded_build.h"
 #include "watergen/plan/scene_file.h"
 
 using namespace watergen;

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/plan/covering_array.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
 

@@ -12,10 +12,10 @@
 #include <utility>
 
 #include "geometry_variant.h"
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
-#include "watergen/ir/tessellation_emitter.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
+#include "watergen/ir/emit/tessellation_emitter.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/runtime/reflection.h"
 #include "watergen/water/tessellated_mesh.h"
 
@@ -341,9 +341,17 @@ TEST_CASE("patch_stage_emitters_report_what_a_skeleton_cannot_take", "[tessellat
     {
         // Two stages declaring one parameter differently.
         Graph a, b;
-        Expr x = uniform(a, {"tess_scale", Type::Float, {40.0}, 0.0, 1e4, "m", "", ""});
+        Expr x = uniform(a, {.name = "tess_scale",
+                             .type = Type::Float,
+                             .default_value = {40.0},
+                             .max = 1e4,
+                             .unit = "m"});
         a.set_output("o", x.id());
-        Expr y = uniform(b, {"tess_scale", Type::Float, {20.0}, 0.0, 1e4, "m", "", ""});
+        Expr y = uniform(b, {.name = "tess_scale",
+                             .type = Type::Float,
+                             .default_value = {20.0},
+                             .max = 1e4,
+                             .unit = "m"});
         b.set_output("o", y.id());
         ds.clear();
         const std::vector<Parameter> block = shared_block_parameters({&a, &b}, ds);

@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "watergen/pipeline/manifest.h"
+#include "watergen/pipeline/manifest/manifest.h"
 #include "watergen/plan/material.h"
 
 using namespace watergen;

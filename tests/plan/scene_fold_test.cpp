@@ -4,10 +4,10 @@
 #include <cstdlib>
 
 #include "watergen/eval/compare/prune_measure.h"
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
-#include "watergen/ir/emitter.h"
-#include "watergen/ir/ir_fold.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
+#include "watergen/ir/emit/emitter.h"
+#include "watergen/ir/fold/ir_fold.h"
 #include "watergen/plan/scene_pruning.h"
 
 using namespace watergen;
@@ -20,7 +20,11 @@ struct Fixture {
     Fixture() {
         x = varying(g, "x", Type::Float);
         y = varying(g, "y", Type::Float);
-        t = uniform(g, {"t", Type::Float, {0.5}, 0.0, 1.0, "", "", "test"});
+        t = uniform(g, {.name = "t",
+                        .type = Type::Float,
+                        .default_value = {0.5},
+                        .max = 1.0,
+                        .origin = "test"});
         tex = sample(texture(g, {"img", Type::Texture2D, "", ""}), vec2(x, y)).x();
     }
     // Folds `e` as the only output; returns what the output became.
@@ -150,7 +154,12 @@ TEST_CASE("terms_that_vanish_at_depth_fold_to_zero", "[fold]") {
     constexpr Quantity kDepth{"test_depth", Type::Float, ""};
     Fixture f;
     Expr depth = bind(kDepth, named(max(f.x - f.y, 0.0), "water_depth"));
-    Expr k = uniform(f.g, {"k", Type::Float, {0.1}, 0.0, 10.0, "1/m", "", "test"});
+    Expr k = uniform(f.g, {.name = "k",
+                           .type = Type::Float,
+                           .default_value = {0.1},
+                           .max = 10.0,
+                           .unit = "1/m",
+                           .origin = "test"});
     Expr trans = named(exp(-k * depth), "transmittance");
     FoldFacts facts;
     facts.parameter_ranges["k"] = {{make_interval(0.05, 2.0)},
@@ -176,7 +185,12 @@ TEST_CASE("terms_that_vanish_at_depth_fold_to_zero", "[fold]") {
     shallow.quantity_ranges.clear();
     Fixture g2;
     Expr d2 = bind(kDepth, named(max(g2.x - g2.y, 0.0), "water_depth"));
-    Expr k2 = uniform(g2.g, {"k", Type::Float, {0.1}, 0.0, 10.0, "1/m", "", "test"});
+    Expr k2 = uniform(g2.g, {.name = "k",
+                             .type = Type::Float,
+                             .default_value = {0.1},
+                             .max = 10.0,
+                             .unit = "1/m",
+                             .origin = "test"});
     CHECK(output(g2.fold(g2.tex + g2.tex * named(exp(-k2 * d2), "transmittance"), shallow)).op ==
           Op::Add);
 }

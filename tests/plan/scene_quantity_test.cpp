@@ -6,8 +6,8 @@
 #include <map>
 #include <set>
 
-#include "watergen/ir/dsl.h"
-#include "watergen/ir/ir_fold.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/fold/ir_fold.h"
 #include "watergen/plan/explain.h"
 #include "watergen/plan/scene_pruning.h"
 #include "watergen/water/scene_quantities.h"
@@ -141,8 +141,12 @@ TEST_CASE("every_scene_fact_about_a_quantity_reaches_the_ir", "[quantity]") {
 
 TEST_CASE("a_quantity_bound_to_a_renamed_parameter_is_an_error", "[quantity]") {
     Graph g;
-    bind(scene_quantity::time,
-         uniform(g, {"seconds", Type::Float, {0.0}, 0.0, 10.0, "s", "", "test"}));
+    bind(scene_quantity::time, uniform(g, {.name = "seconds",
+                                           .type = Type::Float,
+                                           .default_value = {0.0},
+                                           .max = 10.0,
+                                           .unit = "s",
+                                           .origin = "test"}));
     REQUIRE(g.diagnostics().size() == 1);
     CHECK(g.diagnostics()[0].message ==
           "quantity 'time' stands for parameter 'time'; bound to parameter 'seconds'");

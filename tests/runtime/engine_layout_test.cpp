@@ -6,7 +6,7 @@
 
 #include "build_test_support.h"
 #include "engine_draw_support.h"
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 #include "watergen/plan/material.h"
 #include "watergen/runtime/binding_layout.h"
 #include "watergen/runtime/variant_pipeline.h"

@@ -13,7 +13,7 @@
 #include "watergen/eval/draw/mesh_render.h"
 #include "watergen/eval/draw/variant_render.h"
 #include "watergen/headless/headless_device.h"
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 #include "watergen/plan/material.h"
 #include "watergen/runtime/uniform_writer.h"
 #include "watergen/runtime/water_grid.h"

@@ -14,7 +14,7 @@
 #include "engine_draw_support.h"
 #include "shared_runner.h"
 #include "watergen/eval/draw/caustics_pass_draw.h"
-#include "watergen/pipeline/caustics_pass_build.h"
+#include "watergen/pipeline/manifest/caustics_pass_build.h"
 #include "watergen/runtime/pass_pipeline.h"
 
 using namespace watergen;

@@ -7,7 +7,7 @@
 #include <sys/wait.h>
 #include <thread>
 
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 
 namespace watergen::test {
 

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/plan/covering_array.h"
 
 namespace watergen::test {

@@ -42,5 +42,9 @@ inline std::string user_guide_text() {
 inline std::string user_guide_prose() {
     return doc_prose("user-guide.md");
 }
+// README.md, the front page, one space for each run of whitespace.
+inline std::string readme_prose() {
+    return doc_prose("../README.md");
+}
 
 } // namespace watergen::test

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "build_test_support.h"
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 #include "watergen/plan/material.h"
 #include "watergen/runtime/shader_build.h"
 

@@ -4,8 +4,8 @@
 #include <functional>
 #include <vector>
 
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 
 namespace watergen::test {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 #include "watergen/water/node_catalog.h"
 
 namespace watergen::test {

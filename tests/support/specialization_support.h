@@ -2,18 +2,27 @@
 // left in the uniform block (a float), for the emission and toolchain tests.
 #pragma once
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen::test {
 
 inline Parameter tint_parameter() {
-    Parameter tint{"tint", Type::Vec3, {0.25, -0.5, 2.0}, -1.0, 4.0, "", "", "test.tint"};
+    Parameter tint{.name = "tint",
+                   .type = Type::Vec3,
+                   .default_value = {0.25, -0.5, 2.0},
+                   .min = -1.0,
+                   .max = 4.0,
+                   .origin = "test.tint"};
     tint.specialization = true;
     return tint;
 }
 
 inline Parameter gain_parameter() {
-    return {"gain", Type::Float, {2.0}, 0.0, 8.0, "", "", "test.gain"};
+    return {.name = "gain",
+            .type = Type::Float,
+            .default_value = {2.0},
+            .max = 8.0,
+            .origin = "test.gain"};
 }
 
 // color = vec4(tint * gain * v_uv.x, 1)

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "watergen/eval/scene/scene_wave_inputs.h"
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/emitter.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
+#include "watergen/ir/emit/emitter.h"
 #include "watergen/water/node_catalog.h"
 
 namespace watergen::test {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 #include "watergen/water/node_catalog.h"
 #include "watergen/water/nodes.h"
 

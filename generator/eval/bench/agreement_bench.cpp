@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "watergen/ir/float_error.h"
+#include "watergen/ir/cpu/float_error.h"
 #include "watergen/plan/covering_array.h"
 
 namespace watergen {

@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "watergen/eval/bench/accuracy_bench.h"
+#include "watergen/eval/measure/interleaved_timing.h" // median()
 #include "watergen/eval/scene/synthetic_scene.h"
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/pipeline/compile_bench.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 #include "watergen/water/water_shader.h"
 
 namespace watergen {

@@ -11,7 +11,8 @@
 
 #include "watergen/eval/draw/variant_render.h"
 #include "watergen/eval/measure/gpu_cost.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/eval/measure/interleaved_timing.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/toolchain/spirv_tools_stage.h"
 
 namespace watergen {
@@ -22,13 +23,6 @@ using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 // What one variant is drawn from in one mode: a built shader, the selector values, and (frozen)

@@ -5,11 +5,11 @@
 
 #include "watergen/eval/measure/draw_cost.h"
 #include "watergen/eval/measure/gpu_cost.h"
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/emitter.h"
-#include "watergen/ir/ir_fold.h"
-#include "watergen/pipeline/build_output.h"
-#include "watergen/pipeline/compile_bench.h"
+#include "watergen/eval/measure/interleaved_timing.h" // median()
+#include "watergen/ir/cpu/cpu_evaluator.h"
+#include "watergen/ir/emit/emitter.h"
+#include "watergen/ir/fold/ir_fold.h"
+#include "watergen/pipeline/build/build_output.h"
 
 namespace watergen {
 

@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "watergen/eval/draw/variant_render.h"
+#include "watergen/eval/measure/interleaved_timing.h" // median()
 #include "watergen/eval/scene/synthetic_scene.h"
-#include "watergen/pipeline/compile_bench.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/water/axis_registry.h"
 
 namespace watergen {

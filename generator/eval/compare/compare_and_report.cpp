@@ -10,7 +10,7 @@
 #include "watergen/eval/measure/draw_cost.h"
 #include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/eval/report/compare_report.h"
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 
 namespace watergen {
 

@@ -6,7 +6,7 @@
 
 #include "watergen/eval/draw/mesh_render.h"
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 
 namespace watergen {
 

@@ -7,7 +7,7 @@
 
 #include "watergen/eval/report/compare_report.h"
 #include "watergen/eval/scene/scene_conform.h"
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 #include "watergen/plan/scene_file.h"
 
 namespace watergen {

@@ -6,7 +6,7 @@
 #include "watergen/eval/compare/compare_run.h"
 #include "watergen/eval/draw/mesh_render.h"
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/ir/ir_fold.h"
+#include "watergen/ir/fold/ir_fold.h"
 
 namespace watergen {
 

@@ -5,7 +5,7 @@
 #include "watergen/eval/measure/draw_cost.h"
 #include "watergen/eval/measure/gpu_cost.h"
 #include "watergen/eval/scene/scene_conform.h"
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/output/output_writer.h"
 
 namespace watergen {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "watergen/ir/ir_fold.h"
-#include "watergen/ir/uniform_layout.h"
+#include "watergen/ir/emit/uniform_layout.h"
+#include "watergen/ir/fold/ir_fold.h"
 
 namespace watergen {
 

@@ -1,7 +1,7 @@
 #include "watergen/eval/draw/caustics_bottom.h"
 
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 #include "watergen/water/axis_registry.h"
 #include "watergen/water/water_shader.h"
 
@@ -21,7 +21,7 @@ ImageRGBA32F caustics_lit_bottom(const std::string& caustics_choice, const Synth
     Expr rgb = sample(texture(g, scene_color_texture()), uv).xyz();
     Expr pos = sample(texture(g, scene_position_texture()), uv).xyz();
     // The water shader's own parameter: the scene sets it (0 in every view).
-    Expr level = uniform(g, {"water_level", Type::Float, {0.0}, -1e5, 1e5, "m", "000", ""});
+    Expr level = scene_water_level(g);
     Expr lit = choice->node->build(g, {rgb, pos.xz()});
     g.set_output("color", vec4(select(pos.y() < level, lit, rgb), constant(g, 1.0)).id());
     const EvalResult r = evaluate_image(g, "color", scene.eval_inputs(), scene.width, scene.height,

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "watergen/ir/specialization.h"
-#include "watergen/ir/uniform_layout.h"
+#include "watergen/ir/emit/specialization.h"
+#include "watergen/ir/emit/uniform_layout.h"
 
 namespace watergen {
 

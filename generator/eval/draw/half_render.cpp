@@ -1,7 +1,7 @@
 #include "watergen/eval/draw/half_render.h"
 
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
+#include "watergen/pipeline/variant/variant_build.h"
 
 namespace watergen {
 

@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/ir/ir_fold.h"
-#include "watergen/ir/specialization.h"
-#include "watergen/ir/uniform_layout.h"
+#include "watergen/ir/emit/specialization.h"
+#include "watergen/ir/emit/uniform_layout.h"
+#include "watergen/ir/fold/ir_fold.h"
 #include "watergen/water/presets.h"
 
 namespace watergen {

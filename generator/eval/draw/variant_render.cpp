@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "watergen/eval/draw/mesh_render.h"
-#include "watergen/ir/float_error.h"
+#include "watergen/ir/cpu/float_error.h"
 
 namespace watergen {
 

@@ -14,8 +14,8 @@
 #include <nlohmann/json.hpp>
 
 #include "watergen/eval/measure/scratch_directory.h"
-#include "watergen/pipeline/output_writer.h"
-#include "watergen/pipeline/safe_read.h"
+#include "watergen/pipeline/output/output_writer.h"
+#include "watergen/pipeline/output/safe_read.h"
 #include "watergen/toolchain/child_process.h"
 
 namespace watergen {

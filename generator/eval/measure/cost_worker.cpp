@@ -8,7 +8,7 @@
 
 #include "watergen/eval/draw/variant_render.h"
 #include "watergen/eval/scene/scene_conform.h"
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 
 namespace watergen {
 

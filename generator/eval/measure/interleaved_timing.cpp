@@ -3,9 +3,14 @@
 #include <algorithm>
 #include <string>
 
-#include "watergen/pipeline/compile_bench.h" // median()
-
 namespace watergen {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
 
 namespace {
 

@@ -1,6 +1,6 @@
 #include "watergen/eval/probe/probe_output.h"
 
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/output/output_writer.h"
 
 namespace watergen {
 

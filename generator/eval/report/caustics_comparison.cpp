@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/output/output_writer.h"
 
 namespace watergen {
 

@@ -14,7 +14,7 @@
 #include "watergen/eval/report/report_html.h"
 #include "watergen/eval/report/report_svg.h"
 #include "watergen/eval/report/target_fronts.h"
-#include "watergen/pipeline/output_writer.h"
+#include "watergen/pipeline/output/output_writer.h"
 
 namespace watergen {
 

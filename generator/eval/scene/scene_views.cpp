@@ -1,6 +1,6 @@
 #include "watergen/eval/scene/scene_views.h"
 
-#include "watergen/ir/text.h"
+#include "watergen/ir/core/text.h"
 
 namespace watergen {
 

@@ -19,26 +19,54 @@ TextureInput caustics_map_texture() {
 }
 
 Parameter caustics_window() {
-    return {"caustics_window", Type::Vec3, {-5.0, -5.0, 10.0}, -1e5, 1e5, "m", "002", "caustics"};
+    return {.name = "caustics_window",
+            .type = Type::Vec3,
+            .default_value = {-5.0, -5.0, 10.0},
+            .min = -1e5,
+            .max = 1e5,
+            .unit = "m",
+            .seed = "002",
+            .origin = "caustics"};
 }
 
 Parameter caustics_map_texels() {
-    return {"caustics_map_texels", Type::Float, {64.0}, 1.0, 16384.0, "texels", "002", "caustics"};
+    return {.name = "caustics_map_texels",
+            .type = Type::Float,
+            .default_value = {64.0},
+            .min = 1.0,
+            .max = 16384.0,
+            .unit = "texels",
+            .seed = "002",
+            .origin = "caustics"};
 }
 
 Expr caustics_lit(Graph& g, Expr refracted, Expr intensity) {
     // 0 leaves the bottom as the scene lit it; 1 applies the texture's intensity as it is.
-    Expr strength =
-        uniform(g, {"caustics_strength", Type::Float, {1.0}, 0.0, 4.0, "", "002", "caustics"});
+    Expr strength = uniform(g, {.name = "caustics_strength",
+                                .type = Type::Float,
+                                .default_value = {1.0},
+                                .max = 4.0,
+                                .seed = "002",
+                                .origin = "caustics"});
     return named(refracted * mix(constant(g, 1.0), intensity, strength), "caustics_lit");
 }
 
 Expr caustics_texture_intensity(Graph& g, Expr bottom_xz) {
     // Crest tiles one caustics texture over the bottom; its world size is artistic (10 m here).
-    Expr size =
-        uniform(g, {"caustics_tile_size", Type::Float, {10.0}, 1e-3, 1e4, "m", "", "caustics"});
-    Expr texels = uniform(
-        g, {"caustics_tile_texels", Type::Float, {64.0}, 2.0, 16384.0, "texels", "", "caustics"});
+    Expr size = uniform(g, {.name = "caustics_tile_size",
+                            .type = Type::Float,
+                            .default_value = {10.0},
+                            .min = 1e-3,
+                            .max = 1e4,
+                            .unit = "m",
+                            .origin = "caustics"});
+    Expr texels = uniform(g, {.name = "caustics_tile_texels",
+                              .type = Type::Float,
+                              .default_value = {64.0},
+                              .min = 2.0,
+                              .max = 16384.0,
+                              .unit = "texels",
+                              .origin = "caustics"});
     FullPrecisionScope geometry(g); // positions up to 1e5 m overflow binary16
     Expr uv = tile_coordinate(bottom_xz / size, texels);
     // Level 0: fract makes implicit derivatives jump at the tile's seams.

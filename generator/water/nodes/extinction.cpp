@@ -32,18 +32,30 @@ Expr extinction_linear(Graph& g, const ExtinctionInputs& in) {
     OriginScope scope(g, "extinction.linear");
     // 000: "extinction = [4.5; 75.0; 300.0]", the depths (m) at which r, g, b die out in clear
     // water.
-    Expr ext = uniform(
-        g, {"extinction_distances", Type::Vec3, {4.5, 75.0, 300.0}, 0.0, 1e6, "m", "000", ""});
+    Expr ext = uniform(g, {.name = "extinction_distances",
+                           .type = Type::Vec3,
+                           .default_value = {4.5, 75.0, 300.0},
+                           .max = 1e6,
+                           .unit = "m",
+                           .seed = "000"});
     // 000 names visibility, surfaceColor and depthColor without giving values; chosen: 4 m of
     // horizontal visibility, a clear blue-green surface colour, a dark blue deep colour.
-    Expr visibility =
-        uniform(g, {"extinction_visibility", Type::Float, {4.0}, 0.0, 1e6, "m", "000", ""});
-    Expr surface_color = uniform(
-        g,
-        {"extinction_surface_color", Type::Vec3, {0.0078, 0.5176, 0.7}, 0.0, 1.0, "", "000", ""});
-    Expr deep_color = uniform(
-        g,
-        {"extinction_deep_color", Type::Vec3, {0.0039, 0.00196, 0.145}, 0.0, 1.0, "", "000", ""});
+    Expr visibility = uniform(g, {.name = "extinction_visibility",
+                                  .type = Type::Float,
+                                  .default_value = {4.0},
+                                  .max = 1e6,
+                                  .unit = "m",
+                                  .seed = "000"});
+    Expr surface_color = uniform(g, {.name = "extinction_surface_color",
+                                     .type = Type::Vec3,
+                                     .default_value = {0.0078, 0.5176, 0.7},
+                                     .max = 1.0,
+                                     .seed = "000"});
+    Expr deep_color = uniform(g, {.name = "extinction_deep_color",
+                                  .type = Type::Vec3,
+                                  .default_value = {0.0039, 0.00196, 0.145},
+                                  .max = 1.0,
+                                  .seed = "000"});
     Expr depth = water_distance(in.depth);
     Expr path = water_distance(in.path);
     Expr horizontal = named(saturated_ratio(path, visibility), "visibility_fade");
@@ -57,9 +69,17 @@ Expr extinction_linear(Graph& g, const ExtinctionInputs& in) {
 Expr extinction_exponential(Graph& g, const ExtinctionInputs& in) {
     OriginScope scope(g, "extinction.exponential");
     // 002: "float a = exp(-d*k); newrefrcol = watercol + a*(refrcol-watercol);"
-    Expr k = uniform(g, {"extinction_density", Type::Float, {0.5}, 0.0, 100.0, "1/m", "002", ""});
-    Expr water = uniform(
-        g, {"extinction_water_color", Type::Vec3, {0.0, 0.2, 0.1}, 0.0, 1.0, "", "002", ""});
+    Expr k = uniform(g, {.name = "extinction_density",
+                         .type = Type::Float,
+                         .default_value = {0.5},
+                         .max = 100.0,
+                         .unit = "1/m",
+                         .seed = "002"});
+    Expr water = uniform(g, {.name = "extinction_water_color",
+                             .type = Type::Vec3,
+                             .default_value = {0.0, 0.2, 0.1},
+                             .max = 1.0,
+                             .seed = "002"});
     // d is 002's "length from surface to bottom" along the ray: our water path.
     Expr a = named(exp(-k * water_distance(in.path)), "fog_transmittance");
     return named(water + a * (in.refraction - water), "water_color");
@@ -68,16 +88,36 @@ Expr extinction_exponential(Graph& g, const ExtinctionInputs& in) {
 Expr extinction_absorb_scatter(Graph& g, const ExtinctionInputs& in) {
     OriginScope scope(g, "extinction.absorb_scatter");
     // 003, tropical ocean: K = (0.46, 0.09, 0.06), b = 0.11, scatter = (0.05, 0.05, 0.10).
-    Expr k = uniform(
-        g, {"absorb_coefficients", Type::Vec3, {0.46, 0.09, 0.06}, 0.0, 100.0, "1/m", "003", ""});
-    Expr b = uniform(g, {"scatter_coefficient", Type::Float, {0.11}, 0.0, 100.0, "1/m", "003", ""});
-    Expr scatter =
-        uniform(g, {"scatter_color", Type::Vec3, {0.05, 0.05, 0.10}, 0.0, 1.0, "", "003", ""});
+    Expr k = uniform(g, {.name = "absorb_coefficients",
+                         .type = Type::Vec3,
+                         .default_value = {0.46, 0.09, 0.06},
+                         .max = 100.0,
+                         .unit = "1/m",
+                         .seed = "003"});
+    Expr b = uniform(g, {.name = "scatter_coefficient",
+                         .type = Type::Float,
+                         .default_value = {0.11},
+                         .max = 100.0,
+                         .unit = "1/m",
+                         .seed = "003"});
+    Expr scatter = uniform(g, {.name = "scatter_color",
+                               .type = Type::Vec3,
+                               .default_value = {0.05, 0.05, 0.10},
+                               .max = 1.0,
+                               .seed = "003"});
     // 003: "WorldUnitsToMeters" scales K and b once for the game world.
-    Expr scale =
-        uniform(g, {"world_to_meters", Type::Float, {1.0}, 1e-6, 1e6, "m/unit", "003", ""});
-    Expr light =
-        uniform(g, {"incident_light", Type::Vec3, {1.0, 1.0, 1.0}, 0.0, 1e3, "", "003", ""});
+    Expr scale = uniform(g, {.name = "world_to_meters",
+                             .type = Type::Float,
+                             .default_value = {1.0},
+                             .min = 1e-6,
+                             .max = 1e6,
+                             .unit = "m/unit",
+                             .seed = "003"});
+    Expr light = uniform(g, {.name = "incident_light",
+                             .type = Type::Vec3,
+                             .default_value = {1.0, 1.0, 1.0},
+                             .max = 1e3,
+                             .seed = "003"});
     Expr depth = water_distance(in.depth);
     Expr path = water_distance(in.path);
     Expr transmittance = named(exp(-(k * scale) * (depth + path)), "transmittance");
@@ -89,14 +129,12 @@ Expr extinction_absorb_scatter(Graph& g, const ExtinctionInputs& in) {
 Expr extinction_beer_lambert(Graph& g, const ExtinctionInputs& in) {
     OriginScope scope(g, "extinction.beer_lambert");
     // Pope and Fry (1997), pure water absorption at 650 / 550 / 450 nm (r, g, b).
-    Expr a = uniform(g, {"extinction_pure_water_absorption",
-                         Type::Vec3,
-                         {0.340, 0.0565, 0.00922},
-                         0.0,
-                         100.0,
-                         "1/m",
-                         "Pope and Fry 1997",
-                         ""});
+    Expr a = uniform(g, {.name = "extinction_pure_water_absorption",
+                         .type = Type::Vec3,
+                         .default_value = {0.340, 0.0565, 0.00922},
+                         .max = 100.0,
+                         .unit = "1/m",
+                         .seed = "Pope and Fry 1997"});
     // Light goes down to the bed (depth) and back up along the view ray (path).
     Expr distance = named(water_distance(in.depth) + water_distance(in.path), "water_distance");
     return named(in.refraction * exp(-a * distance), "water_color");

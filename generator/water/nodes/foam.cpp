@@ -13,13 +13,24 @@ namespace {
 
 Parameter foam_existence() {
     // 000: e.x depth where shore foam starts to fade, e.y where it is gone, e.z crest height.
-    return {"foam_existence", Type::Vec3, {0.45, 4.35, 1.5}, 0.0, 100.0, "m", "000", ""};
+    return {.name = "foam_existence",
+            .type = Type::Vec3,
+            .default_value = {0.45, 4.35, 1.5},
+            .max = 100.0,
+            .unit = "m",
+            .seed = "000"};
 }
 
 Parameter foam_pattern_scale() {
     // 000 samples its foam photo at the surface point; scale and drift are chosen: 10 m per
     // pattern tile (the shortest wavelength is 2 m), drifting a tile in about 5 minutes.
-    return {"foam_pattern_scale", Type::Float, {0.1}, 1e-4, 100.0, "1/m", "000", ""};
+    return {.name = "foam_pattern_scale",
+            .type = Type::Float,
+            .default_value = {0.1},
+            .min = 1e-4,
+            .max = 100.0,
+            .unit = "1/m",
+            .seed = "000"};
 }
 
 // Turns relaxed precision off for geometry, whatever scope the caller is in.
@@ -38,8 +49,11 @@ class UnrelaxedScope {
 Expr blend_foam(Graph& g, const FoamInputs& in, Expr coverage) {
     // 000 multiplies a greyscale foam photo by the coverage; tinted and blended here so the
     // colour stays between the water colour and the foam colour.
-    Expr foam_color =
-        uniform(g, {"foam_color", Type::Vec3, {1.0, 1.0, 1.0}, 0.0, 1e3, "", "000", ""});
+    Expr foam_color = uniform(g, {.name = "foam_color",
+                                  .type = Type::Vec3,
+                                  .default_value = {1.0, 1.0, 1.0},
+                                  .max = 1e3,
+                                  .seed = "000"});
     return named(mix(in.color, foam_color * in.pattern, coverage), "foam_rgb");
 }
 
@@ -62,8 +76,13 @@ double foam_pattern_value(double u, double v) {
 
 Expr foam_pattern_coordinate(Graph& g, Expr world_xz, Expr time) {
     Expr scale = uniform(g, foam_pattern_scale());
-    Expr drift =
-        uniform(g, {"foam_pattern_drift", Type::Vec2, {0.003, 0.002}, -1.0, 1.0, "1/s", "000", ""});
+    Expr drift = uniform(g, {.name = "foam_pattern_drift",
+                             .type = Type::Vec2,
+                             .default_value = {0.003, 0.002},
+                             .min = -1.0,
+                             .max = 1.0,
+                             .unit = "1/s",
+                             .seed = "000"});
     Expr wrapped = fract(world_xz * scale + drift * time);
     const double n = kFoamPatternSize;
     return named((wrapped * (n - 1.0) + 0.5) / n, "foam_uv");
@@ -88,7 +107,12 @@ Expr foam_shore_coverage(Graph& g, Expr depth) {
 Expr foam_crest_coverage(Graph& g, Expr height) {
     Expr e = uniform(g, foam_existence());
     // 000's Hmax; it gives no value: twice e.z, so crest foam grows over the top half of 3 m waves.
-    Expr h_max = uniform(g, {"foam_max_height", Type::Float, {3.0}, 0.0, 100.0, "m", "000", ""});
+    Expr h_max = uniform(g, {.name = "foam_max_height",
+                             .type = Type::Float,
+                             .default_value = {3.0},
+                             .max = 100.0,
+                             .unit = "m",
+                             .seed = "000"});
     Expr span = h_max - e.z();
     // 000 draws no crest foam unless Hmax > e.z; saturated_ratio alone would turn a
     // non-positive span into foam everywhere above e.z.

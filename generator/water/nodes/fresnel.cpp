@@ -6,22 +6,41 @@
 namespace watergen {
 
 Parameter ior_air() {
-    return {"ior_air", Type::Float, {1.0}, 1.0, 3.0, "", "000", ""};
+    return {.name = "ior_air",
+            .type = Type::Float,
+            .default_value = {1.0},
+            .min = 1.0,
+            .max = 3.0,
+            .seed = "000"};
 }
 
 Parameter ior_water() {
-    return {"ior_water", Type::Float, {1.33333}, 1.0, 3.0, "", "000", ""};
+    return {.name = "ior_water",
+            .type = Type::Float,
+            .default_value = {1.33333},
+            .min = 1.0,
+            .max = 3.0,
+            .seed = "000"};
 }
 
 Expr fresnel_none(Graph& g, Expr c) {
     OriginScope scope(g, "fresnel.none");
     (void)c;
-    return uniform(g, {"fresnel_constant", Type::Float, {0.020408}, 0.0, 1.0, "", "000", ""});
+    return uniform(g, {.name = "fresnel_constant",
+                       .type = Type::Float,
+                       .default_value = {0.020408},
+                       .max = 1.0,
+                       .seed = "000"});
 }
 
 Expr fresnel_power(Graph& g, Expr c) {
     OriginScope scope(g, "fresnel.power");
-    Expr q = uniform(g, {"fresnel_power", Type::Float, {4.5}, 0.5, 16.0, "", "002", ""});
+    Expr q = uniform(g, {.name = "fresnel_power",
+                         .type = Type::Float,
+                         .default_value = {4.5},
+                         .min = 0.5,
+                         .max = 16.0,
+                         .seed = "002"});
     // pow(0, q) is 0 for q > 0 everywhere; the clamp keeps the base out of pow's undefined
     // negative range when c > 1 by rounding.
     return named(pow(saturate(1.0 - c), q), "fresnel");

@@ -58,6 +58,7 @@ AxisInfo geometry_axis() {
         }};
     // Keys and file names of every variant from before the axis stay as they were.
     axis.keyed_at_default = false;
+    axis.permutation_only = true; // the stages before the fragment differ
     return axis;
 }
 

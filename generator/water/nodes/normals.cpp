@@ -48,14 +48,31 @@ TangentFrame derivative_tangent_frame(Graph& g, Expr position, Expr uv) {
 
 Expr detail_normal(Graph& g, Expr base, Expr position, Expr time) {
     FullPrecisionScope full(g);
-    Expr scale =
-        uniform(g, {"detail_scale", Type::Vec2, {0.25, 0.6}, 0.0, 100.0, "1/m", "000", ""});
-    Expr scroll = uniform(
-        g,
-        {"detail_scroll", Type::Vec4, {0.02, 0.01, -0.015, 0.025}, -10.0, 10.0, "1/s", "000", ""});
-    Expr strength = uniform(g, {"detail_strength", Type::Float, {0.6}, 0.0, 10.0, "", "000", ""});
-    Expr texels =
-        uniform(g, {"detail_texels", Type::Float, {64.0}, 2.0, 16384.0, "texels", "000", ""});
+    Expr scale = uniform(g, {.name = "detail_scale",
+                             .type = Type::Vec2,
+                             .default_value = {0.25, 0.6},
+                             .max = 100.0,
+                             .unit = "1/m",
+                             .seed = "000"});
+    Expr scroll = uniform(g, {.name = "detail_scroll",
+                              .type = Type::Vec4,
+                              .default_value = {0.02, 0.01, -0.015, 0.025},
+                              .min = -10.0,
+                              .max = 10.0,
+                              .unit = "1/s",
+                              .seed = "000"});
+    Expr strength = uniform(g, {.name = "detail_strength",
+                                .type = Type::Float,
+                                .default_value = {0.6},
+                                .max = 10.0,
+                                .seed = "000"});
+    Expr texels = uniform(g, {.name = "detail_texels",
+                              .type = Type::Float,
+                              .default_value = {64.0},
+                              .min = 2.0,
+                              .max = 16384.0,
+                              .unit = "texels",
+                              .seed = "000"});
     Expr map = texture(g, detail_normal_map_texture());
     Expr zero = constant(g, 0.0);
     // 000: "the normal map has to be sampled several times with texture coordinates varying
@@ -65,8 +82,13 @@ Expr detail_normal(Graph& g, Expr base, Expr position, Expr time) {
     // The sampler has one mip level: where a pixel spans a good part of a tile the map would
     // alias into noise, so each layer's tangential part fades out as its uv footprint per pixel
     // grows to detail_max_footprint (1/8 tile: Nyquist for the map's 4 cycles per tile).
-    Expr max_footprint = uniform(
-        g, {"detail_max_footprint", Type::Float, {0.125}, 1e-6, 1e3, "tiles/pixel", "000", ""});
+    Expr max_footprint = uniform(g, {.name = "detail_max_footprint",
+                                     .type = Type::Float,
+                                     .default_value = {0.125},
+                                     .min = 1e-6,
+                                     .max = 1e3,
+                                     .unit = "tiles/pixel",
+                                     .seed = "000"});
     auto layer = [&](Expr uv, const char* name) {
         Expr footprint = max(length(ddx(uv)), length(ddy(uv)));
         Expr keep = saturate(1.0 - footprint / max_footprint);

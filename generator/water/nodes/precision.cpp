@@ -5,18 +5,21 @@
 namespace watergen {
 
 AxisInfo precision_axis() {
-    return {"precision",
-            "full",
-            {
-                {.name = "full",
-                 .description = "32-bit float everywhere",
-                 .gold = true,
-                 .scene_needs = {{SceneFact::Precision, "full", ""}}},
-                {.name = "half",
-                 .description = "shading math in mediump / min16float (positions stay 32-bit)",
-                 .approximates = "full",
-                 .scene_needs = {{SceneFact::Precision, "half", ""}}},
-            }};
+    AxisInfo axis{
+        "precision",
+        "full",
+        {
+            {.name = "full",
+             .description = "32-bit float everywhere",
+             .gold = true,
+             .scene_needs = {{SceneFact::Precision, "full", ""}}},
+            {.name = "half",
+             .description = "shading math in mediump / min16float (positions stay 32-bit)",
+             .approximates = "full",
+             .scene_needs = {{SceneFact::Precision, "half", ""}}},
+        }};
+    axis.permutation_only = true; // the types of all the shading change
+    return axis;
 }
 
 } // namespace watergen

@@ -7,7 +7,11 @@
 namespace watergen {
 
 Parameter sky_color() {
-    return {"sky_color", Type::Vec3, {0.55, 0.7, 0.9}, 0.0, 1e3, "", "000", ""};
+    return {.name = "sky_color",
+            .type = Type::Vec3,
+            .default_value = {0.55, 0.7, 0.9},
+            .max = 1e3,
+            .seed = "000"};
 }
 
 TextureInput sky_cube_texture() {
@@ -34,15 +38,32 @@ TextureInput fourier_coefs2_texture() {
 }
 
 Parameter reflection_fov_extension() {
-    return {"reflection_fov_extension", Type::Float, {1.5}, 1.0, 4.0, "", "002", ""};
+    return {.name = "reflection_fov_extension",
+            .type = Type::Float,
+            .default_value = {1.5},
+            .min = 1.0,
+            .max = 4.0,
+            .seed = "002"};
 }
 
 Parameter fourier_map_origin() {
-    return {"fourier_map_origin", Type::Vec2, {-40.0, -10.0}, -1e5, 1e5, "m", "003", ""};
+    return {.name = "fourier_map_origin",
+            .type = Type::Vec2,
+            .default_value = {-40.0, -10.0},
+            .min = -1e5,
+            .max = 1e5,
+            .unit = "m",
+            .seed = "003"};
 }
 
 Parameter fourier_map_size() {
-    return {"fourier_map_size", Type::Vec2, {80.0, 80.0}, 1e-3, 1e6, "m", "003", ""};
+    return {.name = "fourier_map_size",
+            .type = Type::Vec2,
+            .default_value = {80.0, 80.0},
+            .min = 1e-3,
+            .max = 1e6,
+            .unit = "m",
+            .seed = "003"};
 }
 
 namespace {
@@ -51,8 +72,12 @@ Parameter view_proj_column(const std::string& prefix, int k, const std::string& 
     // Identity until the engine sets the camera: finite lookups, never NaN.
     std::vector<double> column(4, 0.0);
     column[static_cast<size_t>(k)] = 1.0;
-    return {
-        prefix + "_view_proj_c" + std::to_string(k), Type::Vec4, column, -1e6, 1e6, "", seed, ""};
+    return {.name = prefix + "_view_proj_c" + std::to_string(k),
+            .type = Type::Vec4,
+            .default_value = column,
+            .min = -1e6,
+            .max = 1e6,
+            .seed = seed};
 }
 
 // A unit-length horizontal direction (x, z) of `v`, or (1, 0) when v is vertical: the seed's
@@ -89,8 +114,12 @@ Expr sky_cube_lookup(Graph& g, Expr view_ray, Expr normal) {
     OriginScope scope(g, "reflection.sky_cubemap");
     // 001 blurs the seam between the sky and the tinted mirror image: a band of 0.2 in -R.y
     // (about 12 degrees) stands in for the blur and keeps the colour's slope in R.y small.
-    Expr band =
-        uniform(g, {"reflection_horizon_band", Type::Float, {0.2}, 1e-3, 1.0, "", "001", ""});
+    Expr band = uniform(g, {.name = "reflection_horizon_band",
+                            .type = Type::Float,
+                            .default_value = {0.2},
+                            .min = 1e-3,
+                            .max = 1.0,
+                            .seed = "001"});
     // reflect() needs a unit normal, and the mirrored direction's y is compared with the band
     // as a unit ray's would be. Both are normalised scale-first (robust_normalize, waves.h):
     // dot(N, I) overflows once |N| |I| passes 65504 in 16-bit arithmetic (a view ray of length
@@ -112,7 +141,12 @@ Expr planar_reflection_uv(Graph& g, Expr surface_point, Expr normal) {
     OriginScope scope(g, "reflection.planar_projective");
     // 001: d = 4 ("no specific physical meaning"); the xz displacement of the point by the
     // normal stands in for the distortion of a moving surface.
-    Expr d = uniform(g, {"reflection_distortion", Type::Float, {4.0}, 0.0, 100.0, "m", "001", ""});
+    Expr d = uniform(g, {.name = "reflection_distortion",
+                         .type = Type::Float,
+                         .default_value = {4.0},
+                         .max = 100.0,
+                         .unit = "m",
+                         .seed = "001"});
     Expr fov = uniform(g, reflection_fov_extension());
     Expr displaced;
     {
@@ -143,8 +177,12 @@ Expr fourier_sky_weight(Graph& g, Expr coefs1, Expr coefs2, Expr ray) {
     OriginScope scope(g, "reflection.fourier_horizon");
     // 003 compares hard; +-0.05 (about 3 degrees) anti-aliases the horizon line and bounds the
     // weight's slope in the angle above the horizon to 1.5 / (2 * 0.05) = 15 per radian.
-    Expr transition =
-        uniform(g, {"fourier_transition", Type::Float, {0.05}, 1e-3, 1.0, "", "003", ""});
+    Expr transition = uniform(g, {.name = "fourier_transition",
+                                  .type = Type::Float,
+                                  .default_value = {0.05},
+                                  .min = 1e-3,
+                                  .max = 1.0,
+                                  .seed = "003"});
     Expr horizontal = length(ray.xz());
     Expr above = named((ray.y() - v * horizontal) * rsqrt(1.0 + v * v), "above_horizon");
     // The transition is >= 1e-3 by its range; at 0 smoothstep would divide 0 by 0.
@@ -156,8 +194,11 @@ Expr fourier_horizon_color(Graph& g, Expr coefs1, Expr coefs2, Expr ray) {
     Expr weight = fourier_sky_weight(g, coefs1, coefs2, ray);
     OriginScope scope(g, "reflection.fourier_horizon");
     // 003: the reflection is dark below the horizon (hills, shore), sky above.
-    Expr dark = uniform(
-        g, {"fourier_below_color", Type::Vec3, {0.05, 0.07, 0.06}, 0.0, 1e3, "", "003", ""});
+    Expr dark = uniform(g, {.name = "fourier_below_color",
+                            .type = Type::Vec3,
+                            .default_value = {0.05, 0.07, 0.06},
+                            .max = 1e3,
+                            .seed = "003"});
     return named(mix(dark, uniform(g, sky_color()), weight), "reflected");
 }
 
@@ -167,8 +208,11 @@ Expr reflection_sky_cubemap(Surface& s) {
     Expr lookup = sky_cube_lookup(s.g, s.view_ray, s.normal);
     OriginScope scope(s.g, "reflection.sky_cubemap");
     // 001 tints the mirrored lower half with the general water colour (and blurs it offline).
-    Expr tint = uniform(
-        s.g, {"reflection_lower_tint", Type::Vec3, {0.5, 0.62, 0.66}, 0.0, 1.0, "", "001", ""});
+    Expr tint = uniform(s.g, {.name = "reflection_lower_tint",
+                              .type = Type::Vec3,
+                              .default_value = {0.5, 0.62, 0.66},
+                              .max = 1.0,
+                              .seed = "001"});
     Expr sky = sample(texture(s.g, sky_cube_texture()), lookup.xyz()).xyz();
     return named(sky * mix(constant(s.g, {1.0, 1.0, 1.0}), tint, lookup.w()), "reflected");
 }

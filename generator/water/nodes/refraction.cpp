@@ -12,10 +12,17 @@ namespace watergen {
 Expr screen_distort_uv(Graph& g, Expr uv, Expr normal, Expr depth) {
     OriginScope scope(g, "refraction.screen_distort");
     // Screen-space offset per unit of horizontal normal; artistic in both seeds.
-    Expr strength =
-        uniform(g, {"refraction_distortion", Type::Float, {0.03}, 0.0, 1.0, "", "003", ""});
-    Expr fade_depth =
-        uniform(g, {"refraction_shore_fade_depth", Type::Float, {1.0}, 0.0, 100.0, "m", "000", ""});
+    Expr strength = uniform(g, {.name = "refraction_distortion",
+                                .type = Type::Float,
+                                .default_value = {0.03},
+                                .max = 1.0,
+                                .seed = "003"});
+    Expr fade_depth = uniform(g, {.name = "refraction_shore_fade_depth",
+                                  .type = Type::Float,
+                                  .default_value = {1.0},
+                                  .max = 100.0,
+                                  .unit = "m",
+                                  .seed = "000"});
     // A negative depth (scene a hair above the plane) gives no displacement. A fade depth of
     // 0 turns the fade off; dividing by it would give 0 / 0 at the shoreline, and clamp(NaN)
     // is undefined on GPUs.
@@ -44,9 +51,17 @@ Expr refracted_ray_point(Graph& g, Expr surface_point, Expr view_ray, Expr norma
     Expr r = refracted_direction(g, view_ray, normal);
     OriginScope scope(g, "refraction.refracted_ray");
     // 002: clamp(dv, 0.0, 2.0) / 3.0.
-    Expr dv_max = uniform(g, {"refraction_dv_max", Type::Float, {2.0}, 0.0, 100.0, "m", "002", ""});
-    Expr dv_scale =
-        uniform(g, {"refraction_dv_scale", Type::Float, {1.0 / 3.0}, 0.0, 10.0, "", "002", ""});
+    Expr dv_max = uniform(g, {.name = "refraction_dv_max",
+                              .type = Type::Float,
+                              .default_value = {2.0},
+                              .max = 100.0,
+                              .unit = "m",
+                              .seed = "002"});
+    Expr dv_scale = uniform(g, {.name = "refraction_dv_scale",
+                                .type = Type::Float,
+                                .default_value = {1.0 / 3.0},
+                                .max = 10.0,
+                                .seed = "002"});
     FullPrecisionScope geometry(g);
     // clamp(+inf, 0, max) = max: a bottomless pixel still lands a bounded step away.
     Expr dv = named(clamp(depth, constant(g, 0.0), dv_max) * dv_scale, "refraction_dv");

@@ -15,7 +15,7 @@ TextureInput scene_depth_texture() {
 namespace {
 
 Parameter convention(const char* name, double value) {
-    Parameter p{name, Type::Float, {value}, 0.0, 1.0, "", "", ""};
+    Parameter p{.name = name, .type = Type::Float, .default_value = {value}, .max = 1.0};
     p.specialization = true;
     p.flag = true;
     return p;
@@ -36,15 +36,25 @@ Parameter scene_camera_relative() {
     return convention("scene_camera_relative", 0.0);
 }
 Parameter scene_sky_depth_margin() {
-    return {"scene_sky_depth_margin", Type::Float, {0.0}, 0.0, 1.0, "", "", ""};
+    return {
+        .name = "scene_sky_depth_margin", .type = Type::Float, .default_value = {0.0}, .max = 1.0};
 }
 Parameter scene_sky_distance() {
-    return {"scene_sky_distance", Type::Float, {1000.0}, 1.0, 1e7, "m", "", ""};
+    return {.name = "scene_sky_distance",
+            .type = Type::Float,
+            .default_value = {1000.0},
+            .min = 1.0,
+            .max = 1e7,
+            .unit = "m"};
 }
 Parameter scene_inv_view_proj_column(int k) {
     std::vector<double> column(4, 0.0);
     column[static_cast<size_t>(k)] = 1.0;
-    return {"scene_inv_view_proj_c" + std::to_string(k), Type::Vec4, column, -1e6, 1e6, "", "", ""};
+    return {.name = "scene_inv_view_proj_c" + std::to_string(k),
+            .type = Type::Vec4,
+            .default_value = column,
+            .min = -1e6,
+            .max = 1e6};
 }
 
 SceneFromDepth scene_position_from_depth(Graph& g, Expr uv, Expr eye) {
@@ -114,6 +124,7 @@ AxisInfo scene_input_axis() {
         }};
     // Keys and file names of every variant from before the axis stay as they were.
     axis.keyed_at_default = false;
+    axis.permutation_only = true; // a pass binds a depth buffer or a position texture
     return axis;
 }
 

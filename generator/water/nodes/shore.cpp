@@ -8,7 +8,12 @@ namespace watergen {
 Expr shore_soft(Graph& g, Expr color, Expr refracted, Expr depth) {
     OriginScope scope(g, "shore.soft");
     // 000: blend back to the refracted scene near the shore; hardness 1 by default.
-    Expr hardness = uniform(g, {"shore_hardness", Type::Float, {1.0}, 0.0, 1e3, "1/m", "000", ""});
+    Expr hardness = uniform(g, {.name = "shore_hardness",
+                                .type = Type::Float,
+                                .default_value = {1.0},
+                                .max = 1e3,
+                                .unit = "1/m",
+                                .seed = "000"});
     return named(mix(refracted, color, saturate(max(depth, 0.0) * hardness)), "shore_color");
 }
 

@@ -71,8 +71,11 @@ Expr beckmann_distribution(Expr n_dot_h, Expr alpha) {
 Expr specular_toman_glare(Graph& g, const SpecularInputs& in) {
     OriginScope scope(g, "specular.toman_glare");
     // 000 suggests 0.5..0.7; the default is its upper end, 0.7.
-    Expr shininess =
-        uniform(g, {"specular_shininess", Type::Float, {0.7}, 0.0, 1.0, "", "000", ""});
+    Expr shininess = uniform(g, {.name = "specular_shininess",
+                                 .type = Type::Float,
+                                 .default_value = {0.7},
+                                 .max = 1.0,
+                                 .seed = "000"});
     // 000's eyeVecNorm here points from the surface to the camera (V): M = 2 (V.N) N - V is the
     // mirrored view ray, and the glare peaks where it points at the sun (-L). With the
     // eye-to-point vector the glare would sit opposite the sun.
@@ -97,8 +100,11 @@ Expr specular_toman_glare(Graph& g, const SpecularInputs& in) {
 Expr specular_blinn_phong(Graph& g, const SpecularInputs& in) {
     OriginScope scope(g, "specular.blinn_phong");
     // No seed gives one; 256 keeps the sun a small bright disc on calm water.
-    Expr exponent =
-        uniform(g, {"specular_exponent", Type::Float, {256.0}, 1.0, 8192.0, "", "", ""});
+    Expr exponent = uniform(g, {.name = "specular_exponent",
+                                .type = Type::Float,
+                                .default_value = {256.0},
+                                .min = 1.0,
+                                .max = 8192.0});
     Expr to_sun = -in.sun_travel;
     // sun_travel = V (water-models.md's "L = -V", L pointing at the light: the sun straight
     // opposite the eye, below the surface) makes -L + V zero: half_vector returns 0 there.
@@ -111,8 +117,11 @@ Expr specular_blinn_phong(Graph& g, const SpecularInputs& in) {
 Expr specular_ggx_sun(Graph& g, const SpecularInputs& in) {
     OriginScope scope(g, "specular.ggx_sun");
     // GGX width a (not squared); 0.3, the roughness of water-models.md's microfacet goldens.
-    Expr roughness =
-        uniform(g, {"specular_roughness", Type::Float, {0.3}, kMinAlpha, 1.0, "", "", ""});
+    Expr roughness = uniform(g, {.name = "specular_roughness",
+                                 .type = Type::Float,
+                                 .default_value = {0.3},
+                                 .min = kMinAlpha,
+                                 .max = 1.0});
     Expr n1 = uniform(g, ior_air());
     Expr n2 = uniform(g, ior_water());
     // Roughness 0 is a delta lobe (0 / 0 at N = H): clamp to the smallest width half can carry.

@@ -61,21 +61,24 @@ const WaveDefaults& gerstner_defaults() {
 // uniform block, the count keeps every wave loop a real loop: on lavapipe the Gerstner search drew
 // 2.4x the instructions (watergen cost --waves gerstner --size 64: 22.0M against 9.3M).
 Parameter wave_count(const WaveDefaults& d) {
-    Parameter p{std::string(d.family) + "_wave_count",
-                Type::Float,
-                {double(kDefaultWaveCount)},
-                0.0,
-                double(kMaxWaves),
-                "",
-                "004",
-                ""};
+    Parameter p{.name = std::string(d.family) + "_wave_count",
+                .type = Type::Float,
+                .default_value = {double(kDefaultWaveCount)},
+                .max = double(kMaxWaves),
+                .seed = "004"};
     p.specialization = true;
     return p;
 }
 
 Parameter wave_array(const WaveDefaults& d, const char* name, Type type,
                      const std::vector<double>& values, double lo, double hi, const char* unit) {
-    Parameter p{std::string(d.family) + name, type, values, lo, hi, unit, "004", ""};
+    Parameter p{.name = std::string(d.family) + name,
+                .type = type,
+                .default_value = values,
+                .min = lo,
+                .max = hi,
+                .unit = unit,
+                .seed = "004"};
     p.array_size = kMaxWaves;
     return p;
 }
@@ -98,15 +101,32 @@ std::vector<Expr> sum_over_waves(Graph& g, const WaveDefaults& d, Expr xz, Expr 
                                  Expr footprint, const std::vector<Expr>& initial,
                                  const WaveTerms& terms) {
     const std::string f = d.family;
-    std::vector<Expr> carried = {
-        uniform(g, {f + "_amplitude", Type::Float, {d.amplitude}, 0.0, 10.0, "m", "004", ""}),
-        uniform(g,
-                {f + "_frequency", Type::Float, {d.frequency}, 1e-3, 100.0, "rad/m", "004", ""})};
+    std::vector<Expr> carried = {uniform(g, {.name = f + "_amplitude",
+                                             .type = Type::Float,
+                                             .default_value = {d.amplitude},
+                                             .max = 10.0,
+                                             .unit = "m",
+                                             .seed = "004"}),
+                                 uniform(g, {.name = f + "_frequency",
+                                             .type = Type::Float,
+                                             .default_value = {d.frequency},
+                                             .min = 1e-3,
+                                             .max = 100.0,
+                                             .unit = "rad/m",
+                                             .seed = "004"})};
     carried.insert(carried.end(), initial.begin(), initial.end());
-    Expr amplitude_gain =
-        uniform(g, {f + "_amplitude_gain", Type::Float, {0.82}, 0.1, 2.0, "", "004", ""});
-    Expr frequency_gain =
-        uniform(g, {f + "_frequency_gain", Type::Float, {1.18}, 0.1, 4.0, "", "004", ""});
+    Expr amplitude_gain = uniform(g, {.name = f + "_amplitude_gain",
+                                      .type = Type::Float,
+                                      .default_value = {0.82},
+                                      .min = 0.1,
+                                      .max = 2.0,
+                                      .seed = "004"});
+    Expr frequency_gain = uniform(g, {.name = f + "_frequency_gain",
+                                      .type = Type::Float,
+                                      .default_value = {1.18},
+                                      .min = 0.1,
+                                      .max = 4.0,
+                                      .seed = "004"});
     const Parameter directions =
         wave_array(d, "_wave_directions", Type::Vec2, d.directions, -1.0, 1.0, "");
     const Parameter speeds =
@@ -162,8 +182,7 @@ using GerstnerTerms =
 std::vector<Expr> sum_over_gerstner_waves(Graph& g, Expr grid_xz, Expr time, Expr footprint,
                                           const std::vector<Expr>& initial,
                                           const GerstnerTerms& terms) {
-    Expr steepness =
-        uniform(g, {"gerstner_steepness", Type::Float, {0.5}, 0.0, 1.0, "", "004", ""});
+    Expr steepness = uniform(g, gerstner_steepness());
     // n, the waves summed (the loop runs no wave when floor(count) < 1).
     Expr n = min(floor(uniform(g, wave_count(gerstner_defaults()))), double(kMaxWaves));
     auto wave = [&](const Wave& w, const std::vector<Expr>& sums) {
@@ -374,8 +393,31 @@ Expr gerstner_grid_newton(Graph& g, Expr world_xz, Expr time, Expr x0, Expr foot
 
 // ---- height map ----
 
+Parameter gerstner_steepness() {
+    return {.name = "gerstner_steepness",
+            .type = Type::Float,
+            .default_value = {0.5},
+            .max = 1.0,
+            .seed = "004"};
+}
+
+Parameter heightmap_scale() {
+    return {.name = "heightmap_scale",
+            .type = Type::Float,
+            .default_value = {0.06},
+            .min = 1e-4,
+            .max = 100.0,
+            .unit = "1/m",
+            .seed = "000"};
+}
+
 Parameter heightmap_amplitude() {
-    return {"heightmap_amplitude", Type::Float, {0.3}, 0.0, 10.0, "m", "000", ""};
+    return {.name = "heightmap_amplitude",
+            .type = Type::Float,
+            .default_value = {0.3},
+            .max = 10.0,
+            .unit = "m",
+            .seed = "000"};
 }
 
 TextureInput height_map_texture() {
@@ -394,12 +436,21 @@ Expr heightmap_height(Graph& g, Expr xz, Expr time, Expr footprint) {
     // Shared by the march and the height-map normals: the caller's feature node owns it.
     OriginScope scope(g, g.origin().empty() ? "waves.heightmap" : g.origin());
     Expr amplitude = uniform(g, heightmap_amplitude());
-    Expr scale =
-        uniform(g, {"heightmap_scale", Type::Float, {0.06}, 1e-4, 100.0, "1/m", "000", ""});
-    Expr scroll =
-        uniform(g, {"heightmap_scroll", Type::Vec2, {0.01, -0.02}, -10.0, 10.0, "1/s", "000", ""});
-    Expr texels =
-        uniform(g, {"heightmap_texels", Type::Float, {64.0}, 2.0, 16384.0, "texels", "000", ""});
+    Expr scale = uniform(g, heightmap_scale());
+    Expr scroll = uniform(g, {.name = "heightmap_scroll",
+                              .type = Type::Vec2,
+                              .default_value = {0.01, -0.02},
+                              .min = -10.0,
+                              .max = 10.0,
+                              .unit = "1/s",
+                              .seed = "000"});
+    Expr texels = uniform(g, {.name = "heightmap_texels",
+                              .type = Type::Float,
+                              .default_value = {64.0},
+                              .min = 2.0,
+                              .max = 16384.0,
+                              .unit = "texels",
+                              .seed = "000"});
     Expr uv = xz * scale + time * scroll;
     // Level 0 explicitly: the tile wrap makes implicit derivatives jump at seams, and a
     // vertex stage or a probe has none.
@@ -410,8 +461,12 @@ Expr heightmap_height(Graph& g, Expr xz, Expr time, Expr footprint) {
         // Without mip levels the map can only fade as a whole: by its highest frequency
         // (heightmap_max_cycles per tile), between 4 and 2 footprints per wavelength as the
         // analytic waves do (sum_over_waves).
-        Expr cycles =
-            uniform(g, {"heightmap_max_cycles", Type::Float, {3.7}, 0.0, 1e4, "1/tile", "000", ""});
+        Expr cycles = uniform(g, {.name = "heightmap_max_cycles",
+                                  .type = Type::Float,
+                                  .default_value = {3.7},
+                                  .max = 1e4,
+                                  .unit = "1/tile",
+                                  .seed = "000"});
         amplitude =
             amplitude * named(saturate(2.0 - 4.0 * cycles * scale * footprint), "heightmap_fade");
     }
@@ -425,8 +480,12 @@ struct Differences {
 };
 
 Differences heightmap_differences(Graph& g, Expr xz, Expr time, Expr footprint = Expr()) {
-    Expr d =
-        uniform(g, {"heightmap_normal_offset", Type::Float, {0.25}, 0.0, 10.0, "m", "000", ""});
+    Expr d = uniform(g, {.name = "heightmap_normal_offset",
+                         .type = Type::Float,
+                         .default_value = {0.25},
+                         .max = 10.0,
+                         .unit = "m",
+                         .seed = "000"});
     Expr zero = constant(g, 0.0);
     Expr dx = vec2(d, zero), dz = vec2(zero, d);
     return {heightmap_height(g, xz - dx, time, footprint),
@@ -440,8 +499,11 @@ Differences heightmap_differences(Graph& g, Expr xz, Expr time, Expr footprint =
 Expr heightmap_normal(Graph& g, Expr xz, Expr time, Expr footprint) {
     FullPrecisionScope full(g);
     OriginScope scope(g, "normals.heightmap_diff");
-    Expr strength =
-        uniform(g, {"heightmap_normal_strength", Type::Float, {1.0}, 0.0, 100.0, "", "000", ""});
+    Expr strength = uniform(g, {.name = "heightmap_normal_strength",
+                                .type = Type::Float,
+                                .default_value = {1.0},
+                                .max = 100.0,
+                                .seed = "000"});
     const Differences h = heightmap_differences(g, xz, time, footprint);
     // 000: N = {W - E, 2d, S - N}. With d = 0 (or a flat map and strength 0 at d = 0) the vector
     // is zero: safe_normalize keeps the plane's normal instead of NaN.

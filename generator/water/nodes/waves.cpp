@@ -165,8 +165,7 @@ SurfaceModel sum_of_sines_surface(Graph& g, Expr time) {
 SurfaceModel gerstner_surface(Graph& g, Expr time) {
     OriginScope scope(g, "waves.gerstner");
     auto [top, slope] = gerstner_bounds(g, time);
-    Expr steepness =
-        uniform(g, {"gerstner_steepness", Type::Float, {0.5}, 0.0, 1.0, "", "004", ""});
+    Expr steepness = uniform(g, gerstner_steepness());
     // The height above world xz is the height of the grid point x0 with x0 + horizontal(x0)
     // = xz: one Newton step per search step refines x0 (gerstner_grid_newton). A fixed-point
     // step (a contraction by only Q) lagged metres behind when a grazing ray's S moved by
@@ -211,12 +210,15 @@ SurfaceModel gerstner_surface(Graph& g, Expr time) {
 SurfaceModel heightmap_surface(Graph& g, Expr time) {
     OriginScope scope(g, "waves.heightmap_march");
     Expr amplitude = uniform(g, heightmap_amplitude());
-    Expr scale =
-        uniform(g, {"heightmap_scale", Type::Float, {0.06}, 1e-4, 100.0, "1/m", "000", ""});
+    Expr scale = uniform(g, heightmap_scale());
     // A property of the texture: the largest |grad| of its values per tile (the scene's map
     // stays under 2 pi sum |w| |(m, n)| = 17.52, see render/scene_wave_inputs.cpp).
-    Expr gradient =
-        uniform(g, {"heightmap_max_gradient", Type::Float, {17.6}, 0.0, 1e4, "1/tile", "000", ""});
+    Expr gradient = uniform(g, {.name = "heightmap_max_gradient",
+                                .type = Type::Float,
+                                .default_value = {17.6},
+                                .max = 1e4,
+                                .unit = "1/tile",
+                                .seed = "000"});
     return {amplitude, named(amplitude * scale * gradient, "heightmap_max_slope"),
             [&g, time](Expr xz, Expr fp, bool height, bool slope) {
                 return SurfaceSample{height ? heightmap_height(g, xz, time, fp) : Expr(),

@@ -9,8 +9,14 @@ namespace {
 using namespace watergen;
 
 void declare_another_ior_water(Surface& s) {
-    s.fresnel =
-        saturate(uniform(s.g, {"ior_water", Type::Float, {1.5}, 1.0, 3.0, "", "001", ""}) - 1.0);
+    // A declaration of its own: GCC and clang both date it at its closing brace (WG_IOR_CLASH).
+    const Parameter ior{.name = "ior_water",
+                        .type = Type::Float,
+                        .default_value = {1.5},
+                        .min = 1.0,
+                        .max = 3.0,
+                        .seed = "001"};
+    s.fresnel = saturate(uniform(s.g, ior) - 1.0);
 }
 
 } // namespace

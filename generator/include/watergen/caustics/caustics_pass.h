@@ -14,7 +14,7 @@
 #include <optional>
 #include <string>
 
-#include "watergen/ir/ir.h"
+#include "watergen/ir/core/ir.h"
 
 namespace watergen {
 

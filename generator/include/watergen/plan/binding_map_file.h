@@ -27,8 +27,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "watergen/ir/binding_map.h"
-#include "watergen/ir/diagnostic.h"
+#include "watergen/ir/core/diagnostic.h"
+#include "watergen/ir/emit/binding_map.h"
 #include "watergen/plan/json_source.h"
 
 namespace watergen {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/diagnostic.h"
+#include "watergen/ir/core/diagnostic.h"
 #include "watergen/plan/json_source.h"
 
 namespace watergen {

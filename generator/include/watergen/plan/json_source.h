@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "watergen/ir/diagnostic.h"
+#include "watergen/ir/core/diagnostic.h"
 
 namespace watergen {
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/diagnostic.h"
+#include "watergen/ir/core/diagnostic.h"
 #include "watergen/plan/json_source.h"
 #include "watergen/plan/variant_space.h"
 #include "watergen/water/water_shader.h"
@@ -55,16 +55,18 @@ struct Material {
     // Parameters the offered nodes declare (name -> declaration), found by composing them.
     std::map<std::string, Parameter> declared;
 
-    // The variant's shader with the preset and the material's values applied; parameter
-    // metadata (min / max) narrowed to the material's ranges. `search`: the screen pass' surface
-    // search as chosen, or converged (the exact surface a mesh is measured against).
+    // The variant's shader, every graph of it (a mesh's vertex and tessellation stages as its
+    // fragment) through settle_parameters(). `search`: the screen pass' surface search as chosen,
+    // or converged (the exact surface a mesh is measured against). A scene's fixed values and
+    // ranges come after, folded into every graph alike (fold_water_shader, plan/shader_fold.h).
     WaterShader compose(const Variant& v, SurfaceSearch search = SurfaceSearch::AsChosen) const;
     // The same for a shader serving several variants (water_shader.h, ShaderChoices).
     WaterShader compose(const ShaderChoices& choices,
                         SurfaceSearch search = SurfaceSearch::AsChosen) const;
-    // `g` with the material's parameter values and ranges on its declarations (compose() applies
-    // them to the water shader; a companion pass gets the same, so one uniform set drives both).
-    Graph with_settings(const Graph& g) const;
+    // The parameter pass, in place, on each graph of a water shader and of its companion passes,
+    // so that one uniform set drives them all: the preset's defaults, then the material's values
+    // and ranges. Returns the preset's parameters `g` declares with another size.
+    std::vector<std::string> settle_parameters(Graph& g) const;
     // Parameter range after the material's narrowing.
     std::pair<double, double> range(const std::string& parameter) const;
 };

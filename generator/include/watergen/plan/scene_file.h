@@ -6,11 +6,16 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "watergen/ir/diagnostic.h"
+#include <nlohmann/json.hpp>
+
+#include "watergen/ir/core/diagnostic.h"
+#include "watergen/plan/json_reader.h"
 #include "watergen/plan/json_source.h"
 #include "watergen/plan/material.h"
+#include "watergen/water/axis_registry.h"
 
 namespace watergen {
 
@@ -49,6 +54,25 @@ struct SceneFacts {
     std::map<std::string, std::vector<double>> fixed; // parameters the scene fixes
     SceneWhere where;
 };
+
+// The keys of a scene file, in the order its errors list them: the one table the reader, the
+// pruning's "where" and the manifest's scene facts read.
+struct SceneKey {
+    std::string_view key;
+    bool required = true;
+    // A range's bounds (water_depth, camera_height, camera_pitch, sun_elevation).
+    std::optional<NumberBounds> bounds = std::nullopt;
+    // The choices of a string key (waves, precision, scene_input), in the order errors list them.
+    std::vector<std::string> choices = {};
+    // The fact of a choice's scene needs (axis_registry.h) this key states; pruning names it.
+    std::optional<SceneFact> fact = std::nullopt;
+    // The key's value in the manifest's "facts" of a pruned scene; null: not recorded there.
+    nlohmann::ordered_json (*manifest)(const SceneFacts&) = nullptr;
+};
+const std::vector<SceneKey>& scene_keys();
+const SceneKey& scene_key(std::string_view key); // one of scene_keys(), or a logic error
+// The key that states `fact`.
+const SceneKey& scene_key(SceneFact fact);
 
 // Vocabulary of the scene file (docs/user-guide.md "Scene files").
 extern const std::vector<std::string> kReflectionSources; // planar, cubemap, horizon_map

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/ir_fold.h"
+#include "watergen/ir/fold/ir_fold.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_file.h"
 #include "watergen/plan/variant_list.h"

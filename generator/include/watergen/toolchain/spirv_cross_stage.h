@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/diagnostic.h"
+#include "watergen/ir/core/diagnostic.h"
 
 namespace watergen {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/diagnostic.h"
+#include "watergen/ir/core/diagnostic.h"
 #include "watergen/runtime/reflection.h"
 #include "watergen/toolchain/glslang_stage.h"
 

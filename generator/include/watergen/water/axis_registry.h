@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "watergen/ir/source_location.h"
+#include "watergen/ir/core/source_location.h"
 #include "watergen/water/node_catalog.h"
 
 namespace watergen {
@@ -120,6 +120,11 @@ struct AxisInfo {
     // added to watergen later renames no variant that existed before it (keys, hashes, file
     // names and an engine's caches stay as they were). scene_input is such an axis.
     bool keyed_at_default = true;
+    // Always a permutation (one shader per choice, never a switch in a shared shader): an axis
+    // that changes the types of all the shading (precision), the resources a pass binds
+    // (scene_input: a depth buffer or a position texture) or the stages before the fragment
+    // (geometry).
+    bool permutation_only = false;
 };
 
 // Whether a key or file stem spells `axis` with `choices` offered (keyed_at_default).

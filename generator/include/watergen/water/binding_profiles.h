@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/binding_map.h"
+#include "watergen/ir/emit/binding_map.h"
 
 namespace watergen {
 

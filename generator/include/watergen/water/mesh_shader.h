@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "watergen/ir/dsl.h"
-#include "watergen/ir/ir.h"
+#include "watergen/ir/core/dsl.h"
+#include "watergen/ir/core/ir.h"
 
 namespace watergen {
 
@@ -38,11 +38,12 @@ struct MeshStages {
 };
 MeshStages build_mesh_stages(const std::string& geometry, const std::string& wave_model);
 
-// Parameters every mesh stage reads the same way as the water pass (one block serves all
-// stages): eye_position (m), water_level (m), time (s).
-Expr mesh_eye_position(Graph& g);
-Expr mesh_water_level(Graph& g);
-Expr mesh_time(Graph& g);
+// The parameters every stage reads, the water pass' fragment as each mesh stage (one definition,
+// one block for all stages): eye_position (m), water_level (m), time (s).
+Expr scene_eye_position(Graph& g);
+Expr scene_water_level(Graph& g);
+Expr scene_time(Graph& g);
+Expr scene_sun_direction(Graph& g); // unit, the direction the sunlight travels
 
 // The grid point of the attributes grid_xz and grid_lod, morphed towards the coarser level's
 // grid as it nears its level's outer edge: t = clamp((d / h - grid_morph_start) /

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

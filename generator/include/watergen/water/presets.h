@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/ir.h"
+#include "watergen/ir/core/ir.h"
 
 namespace watergen {
 

@@ -4,7 +4,7 @@
 // parameter names, so renaming a temporary or a uniform cannot silently drop a fact.
 #pragma once
 
-#include "watergen/ir/ir.h"
+#include "watergen/ir/core/ir.h"
 
 namespace watergen::scene_quantity {
 

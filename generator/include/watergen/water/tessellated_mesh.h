@@ -3,7 +3,7 @@
 // points as the mesh's vertex stage does. ir/tessellation_emitter.h writes the patch stages.
 #pragma once
 
-#include "watergen/ir/ir.h"
+#include "watergen/ir/core/ir.h"
 
 namespace watergen {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/ir.h"
+#include "watergen/ir/core/ir.h"
 #include "watergen/water/mesh_shader.h"
 #include "watergen/water/variant.h"
 
@@ -34,7 +34,7 @@ std::string build_mode_names(); // "permutations, specialized, branching"
 
 // The selector parameter of an axis: "axis_fresnel".
 std::string selector_parameter(const std::string& axis);
-// Whether an axis is always a permutation (one shader per choice): precision.
+// Whether an axis is always a permutation (one shader per choice): its AxisInfo says so.
 bool permutation_only(const std::string& axis);
 
 // The choices one shader composes on each axis: one per axis for a variant; several on the

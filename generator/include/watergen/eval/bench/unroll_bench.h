@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "watergen/eval/measure/gpu_cost.h"
-#include "watergen/ir/diagnostic.h"
+#include "watergen/ir/core/diagnostic.h"
 #include "watergen/runner/vulkan_runner.h"
 
 namespace watergen {

@@ -14,7 +14,7 @@
 #include "watergen/eval/image/image_metrics.h"
 #include "watergen/eval/measure/interleaved_timing.h"
 #include "watergen/eval/scene/synthetic_scene.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/runner/vulkan_runner.h"
 #include "watergen/runtime/water_grid.h"
 #include "watergen/water/presets.h"

@@ -19,7 +19,7 @@
 
 #include "watergen/eval/image/image_metrics.h"
 #include "watergen/eval/scene/synthetic_scene.h"
-#include "watergen/pipeline/build_output.h"
+#include "watergen/pipeline/build/build_output.h"
 #include "watergen/plan/scene_pruning.h"
 #include "watergen/runner/vulkan_runner.h"
 #include "watergen/runtime/water_grid.h"

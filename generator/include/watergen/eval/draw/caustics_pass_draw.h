@@ -13,7 +13,7 @@
 #include "watergen/caustics/caustics_reference.h"
 #include "watergen/eval/image/image_io.h"
 #include "watergen/eval/image/image_metrics.h"
-#include "watergen/pipeline/caustics_pass_build.h"
+#include "watergen/pipeline/manifest/caustics_pass_build.h"
 #include "watergen/runner/vulkan_runner.h"
 
 namespace watergen {

@@ -11,7 +11,7 @@
 
 #include "watergen/eval/image/image_metrics.h"
 #include "watergen/eval/scene/synthetic_scene.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/plan/material.h"
 #include "watergen/plan/scene_pruning.h"
 #include "watergen/runner/vulkan_runner.h"

@@ -9,7 +9,7 @@
 #include "watergen/eval/image/image_io.h"
 #include "watergen/eval/image/image_metrics.h"
 #include "watergen/eval/scene/synthetic_scene.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/runner/vulkan_runner.h"
 #include "watergen/runtime/water_grid.h"
 
@@ -32,7 +32,7 @@ struct RenderSettings {
     double tess_max = 0;
 };
 
-// The float error bound's model (watergen/ir/float_error.h): every operation's result moved by
+// The float error bound's model (watergen/ir/cpu/float_error.h): every operation's result moved by
 // up to one binary32 ulp (2^-23 relative: GPUs round to nearest, and their exp2, sin and fused
 // multiply-adds differ from correctly rounded by about an ulp), four seeded runs; two float
 // evaluations of a pixel are expected within twice the largest change any run makes, plus an

@@ -1,5 +1,5 @@
 // Agreement of a GPU image with the CPU's float image, pixel by pixel, against a tolerance plus
-// the float error to expect at each pixel (float_error_spread, watergen/ir/float_error.h): a
+// the float error to expect at each pixel (float_error_spread, watergen/ir/cpu/float_error.h): a
 // pixel over the tolerance is explained when it is within its own bound, and a failure when
 // it is not.
 #pragma once

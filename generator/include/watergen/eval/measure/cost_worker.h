@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "watergen/eval/draw/draw_device.h"
-#include "watergen/ir/emitter.h"
+#include "watergen/ir/emit/emitter.h"
 #include "watergen/plan/scene_pruning.h"
 #include "watergen/runtime/water_grid.h"
 #include "watergen/water/variant.h"

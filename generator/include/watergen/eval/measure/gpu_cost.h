@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "watergen/eval/measure/aco_worker.h"
-#include "watergen/ir/emitter.h"
-#include "watergen/pipeline/variant_build.h"
+#include "watergen/ir/emit/emitter.h"
+#include "watergen/pipeline/variant/variant_build.h"
 
 namespace watergen {
 

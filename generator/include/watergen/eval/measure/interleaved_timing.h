@@ -14,6 +14,9 @@
 
 namespace watergen {
 
+// The median of timed repetitions (0 for none), as every bench reports them.
+double median(std::vector<double> v);
+
 struct RatioInterval {
     double ratio = 0;      // median over rounds of (this round's time / the reference's)
     double lo = 0, hi = 0; // its 95% bootstrap interval

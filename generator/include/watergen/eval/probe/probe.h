@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "watergen/ir/cpu_evaluator.h"
-#include "watergen/ir/emitter.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
+#include "watergen/ir/emit/emitter.h"
 #include "watergen/runner/vulkan_runner.h"
 #include "watergen/water/node_catalog.h"
 

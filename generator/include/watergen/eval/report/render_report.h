@@ -12,7 +12,7 @@
 
 #include "watergen/eval/draw/half_render.h"
 #include "watergen/eval/draw/variant_render.h"
-#include "watergen/ir/float_error.h"
+#include "watergen/ir/cpu/float_error.h"
 
 namespace watergen {
 

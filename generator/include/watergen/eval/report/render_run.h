@@ -14,7 +14,7 @@
 #include "watergen/eval/draw/draw_device.h"
 #include "watergen/eval/draw/variant_caustics.h"
 #include "watergen/eval/report/render_report.h"
-#include "watergen/ir/float_error.h"
+#include "watergen/ir/cpu/float_error.h"
 
 namespace watergen {
 

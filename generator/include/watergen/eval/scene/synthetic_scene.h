@@ -24,7 +24,7 @@
 #include "watergen/caustics/caustics_pass.h"
 #include "watergen/eval/scene/scene_views.h"
 #include "watergen/headless/texture_data.h"
-#include "watergen/ir/cpu_evaluator.h"
+#include "watergen/ir/cpu/cpu_evaluator.h"
 #include "watergen/water/presets.h"
 
 namespace watergen {

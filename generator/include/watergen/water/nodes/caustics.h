@@ -3,7 +3,7 @@
 // intensity at the bottom point (1: the light of flat water).
 #pragma once
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

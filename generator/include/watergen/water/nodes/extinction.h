@@ -1,7 +1,7 @@
 // Extinction: what the water column does to the refracted colour.
 #pragma once
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

@@ -1,7 +1,7 @@
 // Fresnel: reflectance for c = cos(angle between the unit normal and the unit view vector).
 #pragma once
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

@@ -1,7 +1,7 @@
 // normals: the choices of the normals axis (water/nodes/normals.cpp declares them).
 #pragma once
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

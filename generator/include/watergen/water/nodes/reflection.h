@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

@@ -5,7 +5,7 @@
 // "refraction.refracted_ray_uv").
 #pragma once
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

@@ -7,7 +7,7 @@
 
 #include <array>
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

@@ -1,7 +1,7 @@
 // Shore: how the water meets the land.
 #pragma once
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

@@ -6,7 +6,7 @@
 // harbour-at-night preset) and, for the physically based lobes, when N.L <= 0 or N.V <= 0.
 #pragma once
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 

@@ -8,7 +8,7 @@
 #include <functional>
 #include <string>
 
-#include "watergen/ir/dsl.h"
+#include "watergen/ir/core/dsl.h"
 
 namespace watergen {
 
@@ -135,6 +135,8 @@ Expr heightmap_slope(Graph& g, Expr xz, Expr time, Expr footprint = Expr());
 Expr tile_coordinate(Expr uv, Expr texels);
 
 Parameter heightmap_amplitude(); // H, m: the height map's [-1, 1] scaled
+Parameter gerstner_steepness();  // Q of GPU Gems' Gerstner waves, 0 (sines) to 1 (sharp crests)
+Parameter heightmap_scale();     // 1/m: tiles a metre, the map's uv = xz * scale
 
 // ---- where the view ray meets the water (post-process pass) ----
 struct WaveHit {
