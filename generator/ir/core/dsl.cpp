@@ -1,4 +1,5 @@
 #include "watergen/ir/core/dsl.h"
+#include "watergen/ir/core/op_table.h"
 
 #include "dsl_internal.h"
 
@@ -18,49 +19,6 @@ std::string types_of(const std::vector<Expr>& args) {
     return s;
 }
 
-int expected_arity(Op op) {
-    switch (op) {
-    case Op::Neg:
-    case Op::Not:
-    case Op::Normalize:
-    case Op::Length:
-    case Op::Saturate:
-    case Op::Exp:
-    case Op::Exp2:
-    case Op::Log:
-    case Op::Sqrt:
-    case Op::Rsqrt:
-    case Op::Abs:
-    case Op::Sign:
-    case Op::Sin:
-    case Op::Cos:
-    case Op::Fract:
-    case Op::Floor:
-    case Op::Ddx:
-    case Op::Ddy:
-    case Op::Swizzle:
-    case Op::Splat:
-        return 1;
-    case Op::Select:
-    case Op::Mix:
-    case Op::Clamp:
-    case Op::Refract:
-    case Op::Smoothstep:
-    case Op::SampleLevel:
-        return 3;
-    case Op::Construct:
-        return -1;
-    default:
-        return 2;
-    }
-}
-
-bool is_componentwise_with_scalar_broadcast(Op op) {
-    return op == Op::Mix || op == Op::Clamp || op == Op::Min || op == Op::Max || op == Op::Pow ||
-           op == Op::Step || op == Op::Smoothstep || op == Op::Mod || op == Op::Atan2 ||
-           op == Op::Select;
-}
-
 // Type of `op` applied to `args`, or Type::Error with `why` filled in.
 Type infer(Op op, const std::vector<Expr>& args, std::string& why) {
     auto t = [&](size_t i) { return args[i].type(); };
@@ -69,11 +27,8 @@ Type infer(Op op, const std::vector<Expr>& args, std::string& why) {
             if (!is_float_numeric(t(i)) || t(i) != t(first)) return false;
         return true;
     };
-    switch (op) {
-    case Op::Add:
-    case Op::Sub:
-    case Op::Mul:
-    case Op::Div:
+    switch (op_info(op).typing) {
+    case OpTyping::Arithmetic:
         if (t(0) == Type::Int && t(1) == Type::Int) return Type::Int;
         if (op == Op::Mul && t(0) == Type::Mat3 && t(1) == Type::Vec3) return Type::Vec3;
         if (is_float_numeric(t(0)) && is_float_numeric(t(1))) {
@@ -83,44 +38,23 @@ Type infer(Op op, const std::vector<Expr>& args, std::string& why) {
         }
         why = "operand types differ";
         return Type::Error;
-    case Op::Neg:
-    case Op::Normalize:
-    case Op::Saturate:
-    case Op::Exp:
-    case Op::Exp2:
-    case Op::Log:
-    case Op::Sqrt:
-    case Op::Rsqrt:
-    case Op::Abs:
-    case Op::Sign:
-    case Op::Sin:
-    case Op::Cos:
-    case Op::Fract:
-    case Op::Floor:
-    case Op::Ddx:
-    case Op::Ddy:
+    case OpTyping::FloatUnary:
         if (is_float_numeric(t(0)) || (op == Op::Neg && t(0) == Type::Int)) return t(0);
         why = "expects a float scalar or vector";
         return Type::Error;
-    case Op::Less:
-    case Op::LessEqual:
-    case Op::Greater:
-    case Op::GreaterEqual:
-    case Op::Equal:
-    case Op::NotEqual:
+    case OpTyping::Compare:
         if (t(0) == t(1) && (t(0) == Type::Float || t(0) == Type::Int)) return Type::Bool;
         why = "compares two scalars of one type";
         return Type::Error;
-    case Op::And:
-    case Op::Or:
+    case OpTyping::Logic:
         if (t(0) == Type::Bool && t(1) == Type::Bool) return Type::Bool;
         why = "expects two bools";
         return Type::Error;
-    case Op::Not:
+    case OpTyping::LogicNot:
         if (t(0) == Type::Bool) return Type::Bool;
         why = "expects a bool";
         return Type::Error;
-    case Op::Select:
+    case OpTyping::Select:
         if (t(0) != Type::Bool) {
             why = "condition must be bool";
             return Type::Error;
@@ -128,50 +62,42 @@ Type infer(Op op, const std::vector<Expr>& args, std::string& why) {
         if (t(1) == t(2) && t(1) != Type::Error) return t(1);
         why = "branches differ in type";
         return Type::Error;
-    case Op::Dot:
+    case OpTyping::Dot:
         if (same_float(0)) return Type::Float;
         why = "expects two float vectors of one size";
         return Type::Error;
-    case Op::Length:
+    case OpTyping::Length:
         if (is_float_numeric(t(0))) return Type::Float;
         why = "expects a float vector";
         return Type::Error;
-    case Op::Cross:
+    case OpTyping::Cross:
         if (t(0) == Type::Vec3 && t(1) == Type::Vec3) return Type::Vec3;
         why = "expects two vec3";
         return Type::Error;
-    case Op::Reflect:
+    case OpTyping::Reflect:
         if (same_float(0) && is_vector(t(0))) return t(0);
         why = "expects two float vectors of one size";
         return Type::Error;
-    case Op::Refract:
+    case OpTyping::Refract:
         if (is_vector(t(0)) && t(0) == t(1) && t(2) == Type::Float) return t(0);
         why = "expects (vecN incident, vecN normal, float eta)";
         return Type::Error;
-    case Op::Mix:
-    case Op::Clamp:
-    case Op::Min:
-    case Op::Max:
-    case Op::Pow:
-    case Op::Step:
-    case Op::Smoothstep:
-    case Op::Mod:
-    case Op::Atan2:
+    case OpTyping::SameFloat:
         if (same_float(0)) return t(0);
         why = "operand types differ";
         return Type::Error;
-    case Op::Sample:
+    case OpTyping::Sample:
         if (t(0) == Type::Texture2D && t(1) == Type::Vec2) return Type::Vec4;
         if (t(0) == Type::TextureCube && t(1) == Type::Vec3) return Type::Vec4;
         why = "expects (texture2D, vec2) or (textureCube, vec3)";
         return Type::Error;
-    case Op::SampleLevel:
+    case OpTyping::SampleLevel:
         if (t(2) == Type::Float && ((t(0) == Type::Texture2D && t(1) == Type::Vec2) ||
                                     (t(0) == Type::TextureCube && t(1) == Type::Vec3)))
             return Type::Vec4;
         why = "expects (texture2D, vec2, float) or (textureCube, vec3, float)";
         return Type::Error;
-    case Op::Construct: {
+    case OpTyping::Construct: {
         int n = 0;
         for (const auto& a : args) {
             if (!is_float_numeric(a.type())) {
@@ -184,10 +110,11 @@ Type infer(Op op, const std::vector<Expr>& args, std::string& why) {
         why = "makes a vector of 2 to 4 components, got " + std::to_string(n);
         return Type::Error;
     }
-    default:
-        why = "is not built through make()";
-        return Type::Error;
+    case OpTyping::NotMade:
+        break;
     }
+    why = "is not built through make()";
+    return Type::Error;
 }
 
 } // namespace
@@ -235,8 +162,9 @@ Expr make(Op op, std::initializer_list<Expr> list) {
         if (a.valid() && &a.graph() != &g) a = bring_into(a, g);
     for (const auto& a : args)
         if (!a.valid()) return error_expr(g);
-    const int arity = expected_arity(op);
-    if (arity >= 0 && static_cast<int>(args.size()) != arity) {
+    const OpInfo& info = op_info(op);
+    const int arity = info.arity;
+    if (info.typing != OpTyping::NotMade && arity >= 0 && static_cast<int>(args.size()) != arity) {
         g.error(std::string(op_name(op)) + " expects " + std::to_string(arity) +
                 " arguments, got " + std::to_string(args.size()));
         return error_expr(g);
@@ -245,7 +173,7 @@ Expr make(Op op, std::initializer_list<Expr> list) {
         if (a.type() == Type::Error) return error_expr(g); // already reported
     // GLSL and HLSL both broadcast scalars in arithmetic, but not uniformly in intrinsics:
     // make the broadcast explicit so every back end sees matching operand types.
-    if (is_componentwise_with_scalar_broadcast(op)) {
+    if (info.broadcast) {
         Type widest = Type::Float;
         const size_t first = op == Op::Select ? 1 : 0;
         for (size_t i = first; i < args.size(); ++i)

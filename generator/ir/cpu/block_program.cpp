@@ -18,6 +18,8 @@
 //   the GPU, only that case's inputs must be supplied.
 #include "block_program.h"
 
+#include "watergen/ir/core/op_table.h"
+
 #include <algorithm>
 #include <map>
 #include <tuple>
@@ -58,31 +60,7 @@ struct LoopScope {
 // FloatPerturbation::relative moves those alone (a loop index 3 moved to 2.9999999 would pick
 // another array element).
 bool same_in_binary32(Op op) {
-    // + -, comparisons, && ||: the infix operations but * and /.
-    if (is_infix(op)) return op != Op::Mul && op != Op::Div;
-    switch (op) {
-    case Op::Constant:
-    case Op::Uniform:
-    case Op::UniformElement:
-    case Op::Neg:
-    case Op::Not:
-    case Op::Select:
-    case Op::Abs:
-    case Op::Sign:
-    case Op::Min:
-    case Op::Max:
-    case Op::Clamp:
-    case Op::Saturate:
-    case Op::Step:
-    case Op::Floor:
-    case Op::Fract:
-    case Op::Ddx:
-    case Op::Ddy:
-    case Op::LoopIndex:
-        return true;
-    default:
-        return false;
-    }
+    return op_info(op).exact_in_binary32;
 }
 
 // A texture sample, or components of one. lavapipe converts these to binary16 rounding

@@ -4,6 +4,8 @@
 
 #include "shader_syntax.h"
 
+#include "watergen/ir/core/op_table.h"
+
 namespace watergen {
 
 std::string GlslSyntax::type(Type t) const {
@@ -94,16 +96,8 @@ std::string GlslSyntax::call(Op op, Type result, const std::vector<std::string>&
     case Op::Saturate:
         if (half) return "clamp(" + a[0] + ", float16_t(0.0), float16_t(1.0))";
         return "clamp(" + a[0] + ", 0.0, 1.0)";
-    case Op::Rsqrt:
-        return fn("inversesqrt");
-    case Op::Atan2:
-        return fn("atan");
     case Op::MatMulVec:
         return "(" + a[0] + " * " + a[1] + ")";
-    case Op::Ddx:
-        return fn("dFdx");
-    case Op::Ddy:
-        return fn("dFdy");
     case Op::Sample:
     case Op::SampleLevel: {
         const std::string sampler =
@@ -116,7 +110,8 @@ std::string GlslSyntax::call(Op op, Type result, const std::vector<std::string>&
         break;
     }
     (void)result;
-    return fn(op_name(op));
+    const OpInfo& info = op_info(op);
+    return fn(info.glsl ? info.glsl : info.name);
 }
 
 std::vector<std::string> GlslSyntax::declarations(const ShaderInterface& in) const {

@@ -2,6 +2,8 @@
 
 #include "shader_syntax.h"
 
+#include "watergen/ir/core/op_table.h"
+
 namespace watergen {
 
 std::string HlslSyntax::type(Type t) const {
@@ -94,25 +96,10 @@ std::string HlslSyntax::call(Op op, Type result, const std::vector<std::string>&
     auto fn = [&](const char* name) {
         return std::string(name) + "(" + fmt::format("{}", fmt::join(a, ", ")) + ")";
     };
+    if (const char* name = op_info(op).hlsl) return fn(name);
     switch (op) {
-    case Op::Mix:
-        return fn("lerp");
-    case Op::Saturate:
-        return fn("saturate");
-    case Op::Rsqrt:
-        return fn("rsqrt");
-    case Op::Atan2:
-        return fn("atan2");
-    case Op::Fract:
-        return fn("frac");
-    case Op::Mod:
-        return fn("wg_mod"); // fmod truncates; GLSL mod floors
     case Op::MatMulVec:
         return "mul(" + a[1] + ", " + a[0] + ")";
-    case Op::Ddx:
-        return fn("ddx");
-    case Op::Ddy:
-        return fn("ddy");
     case Op::Sample:
         return a[0] + ".Sample(linear_clamp, " + a[1] + ")";
     case Op::SampleLevel:

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "folder.h"
+#include "watergen/ir/core/op_table.h"
 #include "watergen/ir/core/text.h"
 #include "watergen/ir/cpu/cpu_evaluator.h"
 
@@ -18,22 +19,13 @@ bool is_float_valued(Type t) {
     return is_float_numeric(t) || t == Type::Mat3;
 }
 
+// Whether a node of constant operands is itself a constant: its value is a function of its
+// operands' values alone (a loop's too: its body is part of it; a switch's cases are graphs of
+// their own).
 bool pure(Op op) {
-    switch (op) {
-    case Op::Constant:
-    case Op::Uniform:
-    case Op::UniformElement:
-    case Op::Varying:
-    case Op::Texture:
-    case Op::Sample:
-    case Op::SampleLevel:
-    case Op::Ddx:
-    case Op::Ddy:
-    case Op::Switch: // its cases are graphs of their own
-        return false;
-    default:
-        return true;
-    }
+    const OpKind k = op_info(op).kind;
+    return (k == OpKind::Math || k == OpKind::Control || k == OpKind::BodyInput) &&
+           op != Op::Switch;
 }
 
 // Evaluates one operation on constant arguments with the CPU evaluator, so folding and the

@@ -111,7 +111,11 @@ enum class Op : uint8_t {
     Switch,       // args: the selector, then each case's captured outer values, case after case
     SwitchResult, // args: the Switch; values[0] = result index; the selected case's result
 };
+// Every op has a row in op_table.cpp (op_table.h), which checks that it has one for each op up
+// to this, the last.
+constexpr Op kLastOp = Op::SwitchResult;
 
+// From the op table.
 const char* op_name(Op op);
 bool is_leaf(Op op);  // Constant, Uniform, Varying, Texture, LoopIndex, Carried, Captured
 bool is_infix(Op op); // written between its operands: + - * / comparisons && ||
