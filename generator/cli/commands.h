@@ -136,6 +136,7 @@ Runner add_bench_cpu_command(CLI::App& bench, const Common& common);
 Runner add_bench_unroll_command(CLI::App& bench, const Common& common);
 Runner add_bench_modes_command(CLI::App& bench, const Common& common);
 Runner add_bench_geometry_command(CLI::App& bench, const Common& common);
+Runner add_bench_stability_command(CLI::App& bench, const Common& common);
 
 // Prints a bench's error diagnostics, or else its error; false when there was either.
 bool bench_succeeded(const Diagnostics& diagnostics, const std::string& error,

@@ -1,3 +1,4 @@
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,12 +15,19 @@ namespace watergen::cli {
 
 namespace {
 
+// ", world offset (x, y, z) m" for a moved scene, else "".
+std::string offset_text(const RenderReportInfo& info) {
+    const auto& o = info.world_offset;
+    if (o[0] == 0 && o[1] == 0 && o[2] == 0) return "";
+    return fmt::format(", world offset ({:g}, {:g}, {:g}) m", o[0], o[1], o[2]);
+}
+
 void print_render(const VariantRender& r, const RenderReportInfo& info, uint32_t draws,
                   const std::filesystem::path& dir) {
     const DeviceInfo& dev = info.device;
-    std::printf("%s on %s (%s), %ux%u, view %s, Mesa shader cache %s\n", r.key.c_str(),
+    std::printf("%s on %s (%s), %ux%u, view %s%s, Mesa shader cache %s\n", r.key.c_str(),
                 dev.name.c_str(), dev.driver_info.c_str(), info.width, info.height,
-                info.view.c_str(), info.shader_cache.c_str());
+                info.view.c_str(), offset_text(info).c_str(), info.shader_cache.c_str());
     std::printf("  %-5s pipeline %7.2f ms   first draw %8.2f ms   steady draw %7.3f ms (median "
                 "of %u)\n",
                 "glsl", r.gpu[0].pipeline_ms, r.gpu[0].first_draw_ms, r.gpu[0].steady_draw_ms,
@@ -66,9 +74,9 @@ void print_stats_line(const char* label, const ImageErrorStats& s) {
 void print_half_render(const HalfRender& h, const RenderReportInfo& info,
                        const std::filesystem::path& dir) {
     const DeviceInfo& dev = info.device;
-    std::printf("%s, strict half (16-bit arithmetic) on %s (%s), %ux%u, view %s\n", h.key.c_str(),
+    std::printf("%s, strict half (16-bit arithmetic) on %s (%s), %ux%u, view %s%s\n", h.key.c_str(),
                 dev.name.c_str(), dev.driver_info.c_str(), info.width, info.height,
-                info.view.c_str());
+                info.view.c_str(), offset_text(info).c_str());
     const char* names[2] = {"glsl", "hlsl"};
     for (int i = 0; i < 2; ++i)
         std::printf("  %-5s first draw %8.2f ms   steady draw %7.3f ms\n", names[i],
@@ -178,7 +186,39 @@ bool parse_set(const std::string& item, std::map<std::string, std::vector<double
     return true;
 }
 
+// The largest |component| of --world-offset (m): 10,000 km, beyond the stability bench's
+// farthest offset (1,000 km) and within float's range with room to spare.
+constexpr double kMaxWorldOffset = 1e7;
+
+// "X,Y,Z" into offset; false after saying what is wrong.
+bool parse_world_offset(const std::string& text, std::array<double, 3>& offset) {
+    std::vector<double> v;
+    bool ok = !text.empty();
+    for (size_t at = 0; ok && at <= text.size();) {
+        size_t end = text.find(',', at);
+        if (end == std::string::npos) end = text.size();
+        const std::string number = text.substr(at, end - at);
+        char* stop = nullptr;
+        const double x = std::strtod(number.c_str(), &stop);
+        ok = !number.empty() && stop == number.c_str() + number.size() && std::isfinite(x) &&
+             std::abs(x) <= kMaxWorldOffset;
+        v.push_back(x);
+        at = end + 1;
+    }
+    if (!ok || v.size() != 3) {
+        std::fprintf(stderr,
+                     "watergen: error: --world-offset '%s': expected X,Y,Z, three finite numbers "
+                     "in metres, each within [-1e7, 1e7]\n",
+                     text.c_str());
+        return false;
+    }
+    offset = {v[0], v[1], v[2]};
+    return true;
+}
+
 struct RenderOptions {
+    std::string world_offset;
+    const CLI::Option* world_offset_flag = nullptr;
     std::vector<std::string> sets;
     std::string bindings;
     std::optional<BindingMap> map;
@@ -248,6 +288,13 @@ Runner add_render_command(CLI::App& app, const Common& common) {
                  "precision=full");
     add_unroll_option(app, r.unroll);
     add_view_option(app, r.view);
+    o->world_offset_flag = app.add_option(
+        "--world-offset", o->world_offset,
+        "X,Y,Z: move the whole synthetic scene, eye, seabed, spheres, water plane and "
+        "depth buffer included, by this many metres (each within [-1e7, 1e7]; "
+        "default 0,0,0), to see the water far from the world origin; a --set of a "
+        "scene position (eye_position, water_level, caustics_window, "
+        "fourier_map_origin) is relative to it: the offset is added");
     add_grid_options(app, r.grid);
     app.add_option("--set", o->sets,
                    "NAME=V[,V...]: a parameter's value for the GPU and the CPU alike, over the "
@@ -268,6 +315,9 @@ Runner add_render_command(CLI::App& app, const Common& common) {
             return kUsage;
         o->request.out = o->out;
         if (!check_grid(o->request.grid)) return kUsage;
+        if (o->world_offset_flag->count() > 0 &&
+            !parse_world_offset(o->world_offset, o->request.world_offset))
+            return kUsage;
         for (const std::string& item : o->sets)
             if (!parse_set(item, o->request.values)) return kUsage;
         if (!o->bindings.empty()) {

@@ -161,6 +161,11 @@ void add_commands(CLI::App& app, const Common& common, std::map<CLI::App*, Runne
         "geometry", "per view, a variant as the screen pass, as meshes of several densities and "
                     "tessellated: error against the exact surface, vertex counts, draw time");
     runners[geometry] = add_bench_geometry_command(*geometry, common);
+    CLI::App* stability = bench->add_subcommand(
+        "stability", "the waves against the CPU in double as time runs (to a year) and the world "
+                     "offset grows (to 1000 km), and at grazing elevations: every family, "
+                     "precision and geometry");
+    runners[stability] = add_bench_stability_command(*stability, common);
     // Hidden (no group): the child process of every ACO statistic (aco_worker.h).
     CLI::App* gpu_worker = app.add_subcommand("gpu-worker", "")->group("");
     runners[gpu_worker] = add_gpu_worker_command(*gpu_worker);

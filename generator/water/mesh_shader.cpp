@@ -20,8 +20,8 @@ Expr scene_eye_position(Graph& g) {
     return bind(scene_quantity::eye_position, uniform(g, {.name = "eye_position",
                                                           .type = Type::Vec3,
                                                           .default_value = {0.0, 8.0, -30.0},
-                                                          .min = -1e5,
-                                                          .max = 1e5,
+                                                          .min = -1e7,
+                                                          .max = 1e7,
                                                           .unit = "m",
                                                           .seed = "000"}));
 }
@@ -30,17 +30,22 @@ Expr scene_water_level(Graph& g) {
     return bind(scene_quantity::water_level, uniform(g, {.name = "water_level",
                                                          .type = Type::Float,
                                                          .default_value = {0.0},
-                                                         .min = -1e5,
-                                                         .max = 1e5,
+                                                         .min = -1e7,
+                                                         .max = 1e7,
                                                          .unit = "m",
                                                          .seed = "000"}));
 }
+
+// A game's clock runs for hours and a persistent world's for months: time takes a year (365.25
+// days); positions (the eye, the water level, the map windows) go 10,000 km from the world
+// origin. Whether the waves hold that far is `watergen bench stability`'s question.
+constexpr double kYearSeconds = 365.25 * 86400.0;
 
 Expr scene_time(Graph& g) {
     return bind(scene_quantity::time, uniform(g, {.name = "time",
                                                   .type = Type::Float,
                                                   .default_value = {0.0},
-                                                  .max = 86400.0,
+                                                  .max = kYearSeconds,
                                                   .unit = "s",
                                                   .seed = "000"}));
 }

@@ -128,6 +128,18 @@ Write UniformWriter::set(const std::string& name, std::span<const float> values)
             w.error = "parameter '" + name + "' (" + type_of(p) + "): value is not finite";
             return w;
         }
+    // The generator folded and bounded the shader for values within the declared range (an
+    // interval it proved may no longer hold outside it), so a value outside is refused rather
+    // than drawn wrong. Compared as floats, so the float nearest a bound (what an engine holding
+    // the bound in a float passes) is accepted.
+    for (size_t k = 0; k < values.size(); ++k)
+        if (values[k] < float(p.min) || values[k] > float(p.max)) {
+            w.error = "parameter '" + name + "' (" + type_of(p) +
+                      "): " + (values.size() > 1 ? "value " + std::to_string(k) + ", " : "") +
+                      numbers({double(values[k])}) + ", is outside its range [" + numbers({p.min}) +
+                      ", " + numbers({p.max}) + "]";
+            return w;
+        }
     slot.values.assign(values.begin(), values.end());
     w.ok = true;
     return w;

@@ -151,6 +151,15 @@ TEST_CASE("the uniform writer names the parameter and the types, and says what f
     Write r = w.set("eye_position", 1.0f);
     CHECK_FALSE(r.ok);
     CHECK(r.error == "parameter 'eye_position' is vec3; given float");
+    // Outside the declared range: refused, naming the component and the range; the shader was
+    // folded and bounded for values inside it. The bound itself is inside.
+    r = w.set("eye_position", {2e7f, 5.0f, -2.0f});
+    CHECK_FALSE(r.ok);
+    CHECK(r.error ==
+          "parameter 'eye_position' (vec3): value 0, 2e+07, is outside its range [-1e+07, 1e+07]");
+    CHECK(w.set("eye_position", {1e7f, 5.0f, -1e7f}).ok);
+    CHECK(*w.value("eye_position") == std::vector<float>{1e7f, 5.0f, -1e7f});
+    REQUIRE(w.set("eye_position", {0.0f, 5.0f, -2.0f}).ok);
     r = w.set("no_such_thing", {1.0f, 2.0f});
     CHECK_FALSE(r.ok);
     CHECK_THAT(r.error, Catch::StartsWith("unknown parameter 'no_such_thing' (given vec2): "

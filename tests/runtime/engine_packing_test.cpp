@@ -18,9 +18,13 @@ struct Counts {
     size_t variants = 0, blocks = 0, members = 0, floats = 0;
 };
 
-// A value no other float of the block has: parameter index, element, component.
-float marker(size_t parameter, size_t i) {
-    return 1000.0f * float(parameter + 1) + float(i) + 0.25f;
+// A value no other float of the block has, inside the parameter's range (the writer refuses
+// others): a point of [min, max] set by the parameter index, element and component. Blocks have
+// fewer than 64 parameters of at most 64 floats each, so the 4096 points are distinct floats for
+// every range wider than 1e-3 relative to its bounds.
+float marker(const BlockParameter& param, size_t parameter, size_t i) {
+    const double k = double(parameter * 64 + i + 1) / 4097.0;
+    return float(param.min + (param.max - param.min) * k);
 }
 
 void check_variant(const ShaderBuild& b, const BuildVariant& v, Counts& n) {
@@ -30,7 +34,7 @@ void check_variant(const ShaderBuild& b, const BuildVariant& v, Counts& n) {
         std::vector<float> values(type_components(param.type) *
                                   std::max<uint32_t>(param.array_size, 1));
         for (size_t i = 0; i < values.size(); ++i)
-            values[i] = marker(p, i);
+            values[i] = marker(param, p, i);
         const Write r = w.set(param.name, values);
         INFO(v.key << " " << param.name << ": " << r.error);
         REQUIRE(r.ok);
@@ -69,7 +73,7 @@ void check_variant(const ShaderBuild& b, const BuildVariant& v, Counts& n) {
                     REQUIRE(at + 4 <= bytes->size());
                     float f = 0;
                     std::memcpy(&f, bytes->data() + at, 4);
-                    CHECK(f == marker(p, size_t(e) * comps + c));
+                    CHECK(f == marker(param, p, size_t(e) * comps + c));
                     for (size_t k = 0; k < 4; ++k)
                         covered[at + k] = true;
                     ++n.floats;

@@ -409,10 +409,10 @@ TEST_CASE("a variant's block packed by UniformWriter is pushed through the build
     v.key = "push";
     v.scene = "test";
     v.block_name = "WaterParams";
-    v.parameters = {{"level", "float", 0, 0, {0.0}},
-                    {"rgb", "vec3", 0, 16, {0.0, 0.0, 0.0}},
-                    {"a", "float", 0, 28, {0.5}},
-                    {"tail", "float", 0, 32, {2.0}}};
+    v.parameters = {{"level", "float", 0, 0, {0.0}, 0.0, 1.0},
+                    {"rgb", "vec3", 0, 16, {0.0, 0.0, 0.0}, 0.0, 1.0},
+                    {"a", "float", 0, 28, {0.5}, 0.0, 1.0},
+                    {"tail", "float", 0, 32, {2.0}, 0.0, 4.0}};
     UniformWriter writer(v);
     CHECK(writer.set("level", 0.25f).ok);
     CHECK(writer.set("rgb", {0.0625f, 0.25f, 0.375f}).ok);

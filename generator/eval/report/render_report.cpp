@@ -148,6 +148,7 @@ nlohmann::ordered_json render_report_json(const VariantRender& r, const RenderRe
     j["variant"] = r.key;
     j["preset"] = info.preset;
     j["view"] = info.view;
+    j["world_offset"] = info.world_offset;
     j["image"] = {{"width", info.width}, {"height", info.height}, {"format", "RGBA32F"}};
     j["device"] = device_json(dev);
     j["mesa_shader_cache"] = info.shader_cache;
@@ -181,6 +182,7 @@ nlohmann::ordered_json half_render_report_json(const HalfRender& h, const Render
     j["variant"] = h.key;
     j["preset"] = info.preset;
     j["view"] = info.view;
+    j["world_offset"] = info.world_offset;
     j["strict_half"] = "relaxed math in explicit 16-bit types (GLSL float16_t, HLSL half); "
                        "reference: the same variant at precision=full, GLSL path";
     j["image"] = {{"width", info.width}, {"height", info.height}, {"format", "RGBA32F"}};

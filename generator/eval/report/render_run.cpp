@@ -15,11 +15,13 @@ RenderReportInfo report_info(const VulkanRunner& runner, const RenderRequest& re
             request.width,
             request.height,
             request.exposure,
-            request.view};
+            request.view,
+            request.world_offset};
 }
 
-// Puts `values` into the scene, each checked against the variant's parameter of that name,
-// and makes the depth buffer again for the conventions they set.
+// Puts `values` into the scene, each checked against the variant's parameter of that name
+// (a position as given, in the scene's own frame) and then moved by the scene's world offset
+// (placed_scene_value), and makes the depth buffer again for the conventions and eye they set.
 std::optional<std::string> set_values(SyntheticScene& scene, const WaterShader& shader,
                                       const std::map<std::string, std::vector<double>>& values) {
     for (const auto& [name, value] : values) {
@@ -38,7 +40,7 @@ std::optional<std::string> set_values(SyntheticScene& scene, const WaterShader& 
             if (p->flag && x != 0 && x != 1)
                 return fmt::format("--set {}: {:g}; expected 0 or 1 (a switch)", name, x);
         }
-        scene.uniforms[name] = value;
+        scene.uniforms[name] = placed_scene_value(name, value, scene.view.world_offset);
     }
     if (!values.empty()) add_depth_inputs(scene);
     return std::nullopt;
@@ -64,8 +66,8 @@ RenderRun run_render(VulkanRunner& runner, const RenderRequest& request) {
         build_variant(v, request.preset, EmitOptions{false, {}, request.unroll, request.bindings});
     run.diagnostics = build.diagnostics;
     if (!build.ok()) return fail("");
-    SyntheticScene scene =
-        preset_scene(request.width, request.height, request.preset, request.view);
+    SyntheticScene scene = preset_scene(request.width, request.height, request.preset, request.view,
+                                        request.world_offset);
     if (auto error = set_values(scene, build.shader, request.values)) {
         run.error = v.key() + ": " + *error;
         run.status = RunStatus::BadInput;
@@ -111,8 +113,8 @@ RenderRun run_render(VulkanRunner& runner, const RenderRequest& request) {
 
 HalfRenderRun run_strict_half_render(VulkanRunner& runner, const RenderRequest& request) {
     HalfRenderRun run;
-    const SyntheticScene scene =
-        preset_scene(request.width, request.height, request.preset, request.view);
+    const SyntheticScene scene = preset_scene(request.width, request.height, request.preset,
+                                              request.view, request.world_offset);
     run.half = render_strict_half(runner, request.variant, request.preset, scene,
                                   {request.width, request.height, request.draws});
     if (!run.half.ok()) {

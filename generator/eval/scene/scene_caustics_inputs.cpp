@@ -59,7 +59,9 @@ TextureData make_caustics_tile() {
 }
 
 // The caustics pass's map for the scene's waves (the Gerstner defaults at the scene's time and
-// sun) over the pass's default window, at the scene's caustics depth and margin.
+// sun) over the scene's window (the pass's default one, moved by the scene's world offset), at
+// the scene's caustics depth and margin. The reference evaluates the waves at the window's
+// absolute positions in double, so a far window gets the map of the waves there.
 TextureData make_caustics_map(const SyntheticScene& scene) {
     const CausticsPass pass = build_caustics_pass(CausticsMethod::AreaRatio, "gerstner");
     std::map<std::string, std::vector<double>> values;
@@ -67,6 +69,8 @@ TextureData make_caustics_map(const SyntheticScene& scene) {
         values[p.name] = p.default_value;
     for (const char* name : {"sun_direction", "time"})
         values[name] = scene.uniforms.at(name);
+    if (auto it = scene.uniforms.find(caustics_window().name); it != scene.uniforms.end())
+        values[it->first] = it->second;
     values["caustics_depth"] = {kSceneCausticsDepth};
     CausticsSetup s = caustics_reference_setup("gerstner", values, kTexels, kSceneCausticsMargin);
     s.photons_per_side = kPhotonsPerSide;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -15,6 +16,26 @@ namespace watergen::scene_geometry {
 using glm::dvec3;
 
 inline constexpr double kPi = std::numbers::pi;
+
+// A scene point defined around the origin placed at local + the world offset (scene_views.h),
+// and back. Exactly the local value where the offset is 0, so that a scene at offset 0 keeps
+// its bytes (-0 + 0 would be +0).
+inline double placed(double local, double offset) {
+    return offset == 0.0 ? local : local + offset;
+}
+inline double unplaced(double world, double offset) {
+    return offset == 0.0 ? world : world - offset;
+}
+inline dvec3 placed(const dvec3& local, const std::array<double, 3>& offset) {
+    return {placed(local.x, offset[0]), placed(local.y, offset[1]), placed(local.z, offset[2])};
+}
+inline dvec3 unplaced(const dvec3& world, const std::array<double, 3>& offset) {
+    return {unplaced(world.x, offset[0]), unplaced(world.y, offset[1]),
+            unplaced(world.z, offset[2])};
+}
+inline bool has_offset(const std::array<double, 3>& offset) {
+    return offset[0] != 0.0 || offset[1] != 0.0 || offset[2] != 0.0;
+}
 
 // Where the unit ray o + t d enters the sphere: its near side (t > 0), 0 when o lies inside it,
 // nothing when the sphere is missed or behind o.

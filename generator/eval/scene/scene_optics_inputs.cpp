@@ -3,6 +3,7 @@
 // texture is a smooth function of direction or position, evaluated at texel centres:
 // deterministic, no noise.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -20,6 +21,7 @@ using glm::dvec3;
 using scene_geometry::kPi;
 using scene_geometry::sphere_entry;
 using scene_geometry::sunlit;
+using scene_geometry::unplaced;
 
 constexpr uint32_t kSkyFaceSize = 32;
 constexpr uint32_t kFourierSize = 16;
@@ -174,9 +176,13 @@ double horizon_tangent(double x, double z, double a) {
 }
 
 // 003: eight Fourier coefficients of the horizon per texel (a0, a1, b1, a2 | b2, a3, b3, a4),
-// projected by numerical integration over the azimuth.
-void make_fourier_maps(SyntheticScene& scene, const std::vector<double>& origin,
+// projected by numerical integration over the azimuth. `origin` is in the world: the horizon
+// (the beach, the ridge) is the scene's, around the origin moved by the world offset.
+void make_fourier_maps(SyntheticScene& scene, const std::vector<double>& world_origin,
                        const std::vector<double>& size) {
+    const std::array<double, 3>& offset = scene.view.world_offset;
+    const double origin[2] = {unplaced(world_origin[0], offset[0]),
+                              unplaced(world_origin[1], offset[2])};
     TextureData c1{kFourierSize, kFourierSize, 1,
                    std::vector<float>(size_t(kFourierSize) * kFourierSize * 4)};
     TextureData c2 = c1;
@@ -214,6 +220,7 @@ void add_optics_inputs(SyntheticScene& scene) {
                         {sc.up[0], sc.up[1], sc.up[2]},
                         sc.tan_half_fov_y,
                         sc.aspect};
+    const std::array<double, 3>& offset = scene.view.world_offset;
     const double level = uniform_float(scene, "water_level", 0.0);
     const dvec3 to_sun =
         -glm::normalize(uniform_vec3(scene, "sun_direction", {-0.35, -0.75, 0.55}));
@@ -229,11 +236,17 @@ void add_optics_inputs(SyntheticScene& scene) {
     mirrored.up = mirror(camera.up);
     set_view_proj(scene, "reflection", mirrored);
 
-    // Textures and the uniforms that locate them agree: made for the scene's values.
+    // Textures and the uniforms that locate them agree: made for the scene's values. The
+    // matrices above are the world's; the reflection map is traced around the origin (the
+    // scene's own frame, scene_views.h), where its geometry is defined.
     const double fov_extension = scene_value(scene, reflection_fov_extension())[0];
+    const double local_level = unplaced(level, offset[1]);
+    Camera local_mirrored = mirrored;
+    local_mirrored.eye = {scene.view.eye[0], 2.0 * local_level - scene.view.eye[1],
+                          scene.view.eye[2]};
     scene.textures["reflection_map"] =
-        make_reflection_map(scene.width, scene.height, mirrored, fov_extension,
-                            {level, to_sun, scene.view.standing_sphere});
+        make_reflection_map(scene.width, scene.height, local_mirrored, fov_extension,
+                            {local_level, to_sun, scene.view.standing_sphere});
     scene.textures["sky_cube"] = make_sky_cube(to_sun);
     make_fourier_maps(scene, scene_value(scene, fourier_map_origin()),
                       scene_value(scene, fourier_map_size()));

@@ -5,13 +5,17 @@
 #include <glm/glm.hpp>
 
 #include "scene_geometry.h"
+#include "watergen/water/nodes/caustics.h"
+#include "watergen/water/nodes/reflection.h"
 
 namespace watergen {
 
 namespace {
 
 using glm::dvec3;
+using scene_geometry::has_offset;
 using scene_geometry::kPi;
+using scene_geometry::placed;
 using scene_geometry::sphere_entry;
 using scene_geometry::sunlit;
 
@@ -117,12 +121,10 @@ SceneCamera scene_camera(const SceneView& view, uint32_t width, uint32_t height)
     // 0.0 - sin: +0 at yaw 0 (-sin would give -0, a different byte in the uniforms).
     const dvec3 right{std::cos(yaw), 0.0, 0.0 - std::sin(yaw)};
     const dvec3 up = glm::cross(forward, right);
-    return {{view.eye[0], view.eye[1], view.eye[2]},
-            {forward.x, forward.y, forward.z},
-            {right.x, right.y, right.z},
-            {up.x, up.y, up.z},
-            std::tan(half_fov),
-            double(width) / height};
+    const dvec3 eye = placed(to_dvec3(view.eye), view.world_offset);
+    return {{eye.x, eye.y, eye.z},       {forward.x, forward.y, forward.z},
+            {right.x, right.y, right.z}, {up.x, up.y, up.z},
+            std::tan(half_fov),          double(width) / height};
 }
 
 SceneCamera scene_camera(uint32_t width, uint32_t height) {
@@ -142,7 +144,9 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const Scene
     TextureData position = color;
 
     const SceneCamera cam = scene_camera(view, width, height);
-    const dvec3 eye = to_dvec3(cam.eye);
+    // Traced and shaded around the origin, in double; stored moved by the offset.
+    const std::array<double, 3>& offset = view.world_offset;
+    const dvec3 eye = to_dvec3(view.eye);
     const dvec3 forward = to_dvec3(cam.forward), right = to_dvec3(cam.right), up = to_dvec3(cam.up);
     const double tan_half = cam.tan_half_fov_y, aspect = cam.aspect;
     const dvec3 sun_travel = glm::normalize(to_dvec3(view.sun_travel));
@@ -156,18 +160,24 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const Scene
             const Hit hit = trace(eye, d, spheres);
             const dvec3 p = eye + d * hit.t;
             const dvec3 c = (hit.ground || hit.sphere) ? shade(hit, p, -sun_travel) : sky(d);
+            const dvec3 world = placed(p, offset);
             const size_t i = (size_t(y) * width + x) * 4;
             for (int k = 0; k < 3; ++k) {
                 color.rgba[i + k] = static_cast<float>(c[k]);
-                position.rgba[i + k] = static_cast<float>(p[k]);
+                position.rgba[i + k] = static_cast<float>(world[k]);
             }
             color.rgba[i + 3] = 1.0f;
             position.rgba[i + 3] = static_cast<float>(hit.t);
         }
     s.textures["scene_color"] = std::move(color);
     s.textures["scene_position"] = std::move(position);
-    s.uniforms["eye_position"] = {eye.x, eye.y, eye.z};
-    s.uniforms["water_level"] = {0.0};
+    s.uniforms["eye_position"] = placed_scene_value("eye_position", {eye.x, eye.y, eye.z}, offset);
+    s.uniforms["water_level"] = placed_scene_value("water_level", {0.0}, offset);
+    // The windows of the textures made over the scene (the Fourier horizon, the caustics map)
+    // move with it; at offset 0 they are the parameters' defaults, left unset as of old.
+    if (has_offset(offset))
+        for (const Parameter& p : {fourier_map_origin(), caustics_window()})
+            s.uniforms[p.name] = placed_scene_value(p.name, p.default_value, offset);
     s.uniforms["sun_direction"] = {sun_travel.x, sun_travel.y, sun_travel.z};
     s.uniforms["time"] = {0.0};
     add_foam_inputs(s);
@@ -178,14 +188,31 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const Scene
     return s;
 }
 
+std::vector<double> placed_scene_value(const std::string& name, std::vector<double> value,
+                                       const std::array<double, 3>& world_offset) {
+    // Which components of each position parameter are which world axes.
+    static const std::map<std::string, std::vector<int>> kAxes = {
+        {"eye_position", {0, 1, 2}},
+        {"water_level", {1}},
+        {"caustics_window", {0, 2}},    // x0, z0 (size stays)
+        {"fourier_map_origin", {0, 2}}, // x, z
+    };
+    const auto it = kAxes.find(name);
+    if (it == kAxes.end()) return value;
+    for (size_t k = 0; k < it->second.size() && k < value.size(); ++k)
+        value[k] = placed(value[k], world_offset[size_t(it->second[k])]);
+    return value;
+}
+
 SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset,
-                            const std::string& view) {
+                            const std::string& view, const std::array<double, 3>& world_offset) {
     const SceneView* seen_from = find_scene_view(view);
-    SyntheticScene scene =
-        make_synthetic_scene(width, height, seen_from ? *seen_from : beach_view());
+    SceneView moved = seen_from ? *seen_from : beach_view();
+    moved.world_offset = world_offset;
+    SyntheticScene scene = make_synthetic_scene(width, height, moved);
     if (preset)
         for (const auto& [name, values] : preset->values)
-            scene.uniforms[name] = values;
+            scene.uniforms[name] = placed_scene_value(name, values, world_offset);
     return scene;
 }
 

@@ -22,8 +22,8 @@ Parameter caustics_window() {
     return {.name = "caustics_window",
             .type = Type::Vec3,
             .default_value = {-5.0, -5.0, 10.0},
-            .min = -1e5,
-            .max = 1e5,
+            .min = -1e7,
+            .max = 1e7,
             .unit = "m",
             .seed = "002",
             .origin = "caustics"};

@@ -50,8 +50,8 @@ Parameter fourier_map_origin() {
     return {.name = "fourier_map_origin",
             .type = Type::Vec2,
             .default_value = {-40.0, -10.0},
-            .min = -1e5,
-            .max = 1e5,
+            .min = -1e7,
+            .max = 1e7,
             .unit = "m",
             .seed = "003"};
 }

@@ -3,6 +3,7 @@
 // and NaN/Inf counts per side). Written into a staging directory and swapped in whole.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -21,8 +22,9 @@ struct RenderReportInfo {
     std::string shader_cache; // "off" or the directory
     DeviceInfo device;
     uint32_t width = 0, height = 0;
-    double exposure = 1.0;      // of the PNG previews only
-    std::string view = "beach"; // of the synthetic scene (scene_views.h)
+    double exposure = 1.0;                // of the PNG previews only
+    std::string view = "beach";           // of the synthetic scene (scene_views.h)
+    std::array<double, 3> world_offset{}; // m: where the scene stood (SceneView::world_offset)
 };
 
 // Pixels non-finite on the GPU (either path) where the CPU float image is finite: a variant

@@ -5,6 +5,7 @@
 // renders of one variant in several views sit side by side. --strict-half is its own run.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -22,6 +23,10 @@ struct RenderRequest {
     Variant variant = default_variant();
     const Preset* preset = nullptr;
     std::string view = "beach";
+    // Where the scene stands (SceneView::world_offset, m): the whole scene, eye included, moves
+    // by it. Values given for the scene's positions (eye_position, water_level, the x0, z0 of
+    // caustics_window and fourier_map_origin) are relative to it: the offset is added to them.
+    std::array<double, 3> world_offset{};
     uint32_t width = 256, height = 256, draws = 10; // timed draws after the first (JIT) draw
     double exposure = 1.0;                          // of the PNG previews
     double tolerance = kAgreementTolerance;         // GPU against CPU float, beyond the bound
@@ -30,7 +35,8 @@ struct RenderRequest {
     std::string shader_cache; // Mesa's shader cache as the device was opened (render.json)
     // Parameter values over the preset's and the view's, for the GPU and the CPU alike (render
     // --set): each must name a parameter of the variant, with its number of components. The
-    // scene's depth buffer follows the depth conventions set here.
+    // scene's depth buffer follows the depth conventions set here and the eye set here; a
+    // position is given in the scene's own frame and moved by world_offset (placed_scene_value).
     std::map<std::string, std::vector<double>> values = {};
     // Where the variant binds its resources (render --bindings); null: the default profile. The
     // runner binds by reflection, so the draw follows the map (a pushed block is pushed).

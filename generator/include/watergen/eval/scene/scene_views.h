@@ -9,6 +9,7 @@
 // geometry to reflect. `beach` is the camera and sun every render used before views existed.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,14 @@ struct SceneView {
     // Direction the sunlight travels (000's L; -L points at the sun); the scene normalises it.
     double sun_travel[3] = {-0.35, -0.75, 0.55};
     std::optional<StandingSphere> standing_sphere = std::nullopt;
+    // Where the scene stands in the world (m): the whole scene, eye included, is moved by it.
+    // Its content (seabed, spheres, sand ripples, the sky's points, the horizon) is defined
+    // around the origin and placed at local + offset, the eye at eye + offset, the water plane
+    // at y = offset y. The scene computes in double and rounds to float only what it stores in
+    // textures (scene_position: the moved world positions, as an engine's absolute position
+    // texture holds them). Wave, foam and texture patterns follow world positions, so they
+    // differ between offsets; flat water looks the same at every offset.
+    std::array<double, 3> world_offset{};
 };
 
 // Every view, `beach` first (the default of every command).

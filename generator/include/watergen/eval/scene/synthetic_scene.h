@@ -1,8 +1,9 @@
 // The synthetic scene every variant is rendered over, on the GPU and on the CPU alike.
 //
-// World: metres, y up, water plane at y = 0 (uniform water_level). The camera and the sun are a
-// view's (scene_views.h); the default, `beach`, stands at (0, 5, -7) above the beach and looks
-// down the +z axis, pitched 28 degrees down, vertical field of view 60 degrees. The seabed is
+// World: metres, y up, water plane at y = 0 (uniform water_level), all of it moved by the
+// view's world_offset (scene_views.h; what follows is the scene at offset 0). The camera and the
+// sun are a view's (scene_views.h); the default, `beach`, stands at (0, 5, -7) above the beach and
+// looks down the +z axis, pitched 28 degrees down, vertical field of view 60 degrees. The seabed is
 // the plane y = 2 - 0.25 (z + 12): dry beach for z < -4, the shoreline at z = -4, 10 m deep at
 // z = 36 and deeper beyond. A sphere of radius 1 m at (1.5, -1.3, 3) sits half buried in the
 // seabed, its top 0.3 m under the surface; a view may stand another sphere out of the water
@@ -17,6 +18,7 @@
 // where the pixel-centre uv is exact in float; other sizes blend neighbours by ~1e-7).
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -49,10 +51,21 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height);
 SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const SceneView& view);
 
 // The scene at width x height seen from the view named `view` (beach for a name that is none),
-// its uniforms following the preset if any: a preset's values, its sun_direction among them,
-// replace the view's. What the commands draw a variant named by flags over.
+// moved by `world_offset` (SceneView::world_offset), its uniforms following the preset if any:
+// a preset's values, its sun_direction among them, replace the view's (a position among them
+// moved by the offset, placed_scene_value). What the commands draw a variant named by flags
+// over.
 SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* preset,
-                            const std::string& view = "beach");
+                            const std::string& view = "beach",
+                            const std::array<double, 3>& world_offset = {});
+
+// A value of one of the scene's position parameters given in the scene's own frame (around
+// the origin) moved by the world offset: eye_position + offset, water_level + offset y, the
+// x0, z0 of caustics_window and fourier_map_origin + offset x, z. Any other parameter's value
+// (and every value at offset 0) is returned as it is. The scene's own values go through it, and
+// so do render --set's.
+std::vector<double> placed_scene_value(const std::string& name, std::vector<double> value,
+                                       const std::array<double, 3>& world_offset);
 
 // Inputs of the node families, each in its own file under render/: textures and uniforms the
 // nodes of those axes read (their binding names are the TextureInput names the nodes declare),
@@ -88,7 +101,8 @@ inline constexpr uint32_t kSceneCausticsTexels = 64;
 TextureData caustics_texture(const std::vector<double>& intensity, uint32_t texels);
 
 // The camera of a view (nodes that project world points to the screen read its matrices,
-// scene_optics_inputs.cpp); without a view, the beach camera.
+// scene_optics_inputs.cpp); without a view, the beach camera. Its eye is in the world: the
+// view's eye moved by the view's world_offset.
 struct SceneCamera {
     double eye[3];
     double forward[3], right[3], up[3]; // unit; right x up = forward

@@ -1,0 +1,84 @@
+// The stability bench (`watergen bench stability`): how far the GPU's water is from the CPU
+// evaluator in double as the game clock runs and the camera travels. Games run for hours and
+// their cameras cross kilometres; a wave phase of 10^6 rad keeps about 0.06 rad in binary32,
+// and Vulkan guarantees sin and cos to 2^-11 only inside [-pi, pi]. Every figure is against the
+// same graph in double over the same scene, moved by its world offset (SceneView::world_offset:
+// the seabed, the spheres, the position texture, the depth buffer and the optics move with the
+// eye), so growth with time or distance is the shader's rounding, not a change of scene.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "watergen/eval/draw/variant_render.h"
+
+namespace watergen {
+
+// One scene of the sweep: a view, the time and the world offset (along +x).
+struct StabilityPoint {
+    std::string sweep; // "view" (each view at the origin and the far corner), "time", "distance",
+                       // "elevation"
+    std::string view;  // a scene view's name; "elevation" points: grazing at that pitch
+    double time = 0;   // s
+    double offset = 0; // m from the world origin, along +x
+    double elevation = 0; // degrees below the horizon of the view's centre; 0: the view's own
+};
+
+// The points a sweep of these times, offsets and elevations runs: every view at the origin and
+// at (corner_time, corner_offset); the time and distance sweeps in sun_glint; the elevations in
+// grazing at the origin and the corner.
+std::vector<StabilityPoint> stability_points(const std::vector<double>& times,
+                                             const std::vector<double>& offsets,
+                                             const std::vector<double>& elevations,
+                                             double corner_time, double corner_offset);
+
+// Defaults: the sweep. Times 0, 1 h, 1 day, 1 week, 1 year (365.25 days); offsets 0,
+// 1, 10, 100, 1000 km; elevations 10, 3, 1, 0.5 degrees; the corner 1 week and 100 km.
+std::vector<double> default_stability_times();
+std::vector<double> default_stability_offsets();
+std::vector<double> default_stability_elevations();
+
+// A variant of the sweep: its waves, precision and geometry choices (other axes at the
+// default, normals analytic), at one size.
+struct StabilityCase {
+    std::string waves, precision, geometry;
+    uint32_t size = 512;
+};
+
+struct StabilityRow {
+    StabilityCase what;
+    StabilityPoint where;
+    std::string key;
+    // GPU against the CPU in double, per language path (GLSL, HLSL): max abs over linear RGB
+    // and the 99th percentile of CIEDE2000. A mesh variant's CPU image is the exact surface's,
+    // so its figure includes the grid's own geometric error (the same at every point).
+    std::array<double, 2> max_abs{}, de00_p99{};
+    // Pixels over the tolerance plus the float bound (screen pass only: GPU against CPU float).
+    std::array<uint64_t, 2> over_bound{};
+    uint64_t gpu_nan_inf = 0;   // non-finite GPU pixels where the CPU's are finite
+    double ratio_to_origin = 0; // GLSL max abs over the same case and view at t = 0, offset 0
+    double ratio_de00 = 0;      // the same for dE00 p99 (0 where the origin's is 0)
+};
+
+struct StabilityBench {
+    std::vector<StabilityRow> rows;
+    std::string csv, json, html; // stability.csv, stability.json, stability.html
+    std::string error;           // "<variant key> <point>: <what>"
+    bool ok() const { return error.empty(); }
+};
+
+// The variant a case draws, or why it cannot be made.
+std::optional<Variant> stability_variant(const StabilityCase& c, std::string& error);
+
+// What:   render_variant of every case at every point (one build per case), with both
+//         language paths, the CPU double image and the float bound; rows in case order, then
+//         point order. `progress` (may be null) is told each row as it is done.
+// Cost:   per row two pipelines and six CPU evaluations: a few seconds at 512x512 on this
+//         project's 2-core machine (the command prints the measured total).
+StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<StabilityCase>& cases,
+                                   const std::vector<StabilityPoint>& points,
+                                   void (*progress)(const StabilityRow&) = nullptr);
+
+} // namespace watergen
