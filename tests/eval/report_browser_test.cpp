@@ -1,9 +1,11 @@
 // The comparison report in a real browser: headless Chromium (installed by scripts/setup) opens
-// report.html written from a made-up comparison and takes a screenshot. The page must log
+// report.html written from a made-up comparison and takes a screenshot; the stability bench's
+// page draws its log-log plots. The page must log
 // nothing to the console, and the images, heat maps, plots and caustics textures must be drawn:
 // each leaves colours in the screenshot that nothing else on the page has.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +16,8 @@
 #include <fmt/core.h>
 
 #include "compare_report_support.h"
+#include "watergen/eval/bench/stability_bench.h"
+#include "watergen/eval/bench/stability_plot.h"
 #include "watergen/eval/image/heat_map.h"
 #include "watergen/eval/report/report_svg.h"
 
@@ -150,5 +154,53 @@ document.body.setAttribute('data-result', `labels=${labels.length} overlaps=${pa
          {">reference</text>", ">waves=gerstner</text>", ">waves=sum_of_sines</text>"})
         CHECK(page.find(apart) != std::string::npos);
     CHECK(test::count_occurrences(page, "<title>") == 11);
+    if (!std::getenv("KEEP_REPORT")) fs::remove_all(dir);
+}
+
+TEST_CASE("the_stability_page_draws_log_log_lines_in_chromium", "[browser]") {
+    REQUIRE(run("command -v chromium > /dev/null") == 0);
+    // One case whose error grows tenfold per decade of time and of distance: on log-log axes its
+    // points lie on a straight line, equally spaced in x and in y, inside the plot.
+    std::vector<StabilityRow> rows;
+    const StabilityCase c{"gerstner", "full", "screen_pass", 64};
+    rows.push_back({c, {"view", "sun_glint", 0, 0, 0}, "k", {1e-5, 1e-5}});
+    for (int d = 3; d <= 6; ++d) {
+        const double x = std::pow(10.0, d), e = std::pow(10.0, d - 8);
+        rows.push_back({c, {"time", "sun_glint", x, 0, 0}, "k", {e, e}});
+        rows.push_back({c, {"distance", "sun_glint", 0, x, 0}, "k", {e, e}});
+    }
+    const std::string page = stability_html(rows);
+    CHECK(test::count_occurrences(page, "<svg") == 2);
+    CHECK(test::count_occurrences(page, "<tr>") == 1 + 9);         // the heading and every row
+    CHECK(test::count_occurrences(page, "stroke-dasharray") == 2); // the origin's figure, twice
+
+    const fs::path dir = fs::current_path() / "scratch-stability-page";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "stability.html") << page.substr(0, page.rfind("</body>")) + R"(<script>
+const out = [...document.querySelectorAll('svg')].map(svg => {
+  const box = svg.getBoundingClientRect();
+  const c = [...svg.querySelectorAll('circle')].map(e => e.getBoundingClientRect());
+  const inside = c.every(r => r.left >= box.left && r.right <= box.right &&
+                              r.top >= box.top && r.bottom <= box.bottom);
+  const dx = c.slice(1).map((r, i) => r.left - c[i].left), dy = c.slice(1).map((r, i) => r.top - c[i].top);
+  const even = v => v.every(d => Math.abs(d - v[0]) < 0.6);
+  return `points=${c.length} inside=${inside} even_x=${even(dx)} even_y=${even(dy)} rising=${dy.every(d => d < 0)}`;
+});
+document.body.setAttribute('data-result', out.join(';'));
+</script></body></html>)";
+    const std::string dom = (dir / "dom.html").string();
+    REQUIRE(run(fmt::format("timeout 60 chromium --headless=new --no-sandbox --disable-gpu "
+                            "--user-data-dir='{}' --dump-dom 'file://{}' > '{}' 2>/dev/null",
+                            (dir / "profile").string(), (dir / "stability.html").string(), dom)) ==
+            0);
+    const std::string text = test::read_file_text(dom);
+    const auto at = text.find("data-result=\"");
+    REQUIRE(at != std::string::npos);
+    const std::string result = text.substr(at + 13, text.find('"', at + 13) - at - 13);
+    const std::string one = "points=4 inside=true even_x=true even_y=true rising=true";
+    CHECK(result == one + ";" + one);
+    // A plot with nothing to draw says so.
+    CHECK(log_log_svg("t", "x", "y", {}).find("no point to draw") != std::string::npos);
     if (!std::getenv("KEEP_REPORT")) fs::remove_all(dir);
 }
