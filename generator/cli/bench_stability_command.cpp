@@ -2,6 +2,7 @@
 // writes stability.csv, stability.json and stability.html; exits 1 when a point within the
 // corner (time and distance) is more than --max-ratio times its case's figure at the origin.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -17,11 +18,16 @@ namespace watergen::cli {
 namespace {
 
 void print_row(const StabilityRow& r) {
-    std::printf("%-16s %-5s %-11s %5u %-9s %-10s %10.4g %10.4g %5.3g %9.3g %9.3g %8.3g %6llu\n",
+    std::printf("%-16s %-5s %-11s %5u %-9s %-10s %10.4g %10.4g %5.3g %9.3g %9.3g %8.3g %6llu",
                 r.what.waves.c_str(), r.what.precision.c_str(), r.what.geometry.c_str(),
                 r.what.size, r.where.sweep.c_str(), r.where.view.c_str(), r.where.time,
                 r.where.offset, r.where.elevation, r.max_abs[0], r.max_abs[1], r.de00_p99[0],
                 static_cast<unsigned long long>(r.over_bound[0] + r.over_bound[1]));
+    // A half case in 16-bit arithmetic against the CPU's half model.
+    if (std::isfinite(r.strict_max_abs))
+        std::printf("  strict half %.3g (%lld ulps)", r.strict_max_abs,
+                    static_cast<long long>(r.strict_max_ulps));
+    std::printf("\n");
     std::fflush(stdout);
 }
 
@@ -117,7 +123,8 @@ Runner add_bench_stability_command(CLI::App& app, const Common& common) {
         size_t over = 0;
         for (const StabilityRow& r : bench.rows)
             if (r.where.time <= o->corner_time && r.where.offset <= o->corner_offset &&
-                !(r.ratio_to_origin <= o->max_ratio))
+                (!(r.ratio_to_origin <= o->max_ratio) ||
+                 (std::isfinite(r.strict_ratio) && !(r.strict_ratio <= o->max_ratio))))
                 ++over;
         std::printf("%zu rows in %.0f s; %zu within the corner (%g s, %g m) over %g x their "
                     "figure at the origin\n",

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "watergen/eval/bench/stability_plot.h"
+#include "watergen/eval/draw/half_render.h"
 #include "watergen/eval/draw/variant_caustics.h"
 #include "watergen/eval/scene/synthetic_scene.h"
 
@@ -41,13 +42,19 @@ double ratio(double value, double origin) {
     return value > 0 ? INFINITY : 1.0;
 }
 
+std::string optional(double v) {
+    return std::isfinite(v) ? fmt::format("{:.6g}", v) : "";
+}
+
 std::string csv_row(const StabilityRow& r) {
-    return fmt::format("\"{}\",{},{},{},{},{},{:g},{:g},{:g},\"{}\",{:.6g},{:.6g},{:.6g},{:.6g},{},"
-                       "{},{},{:.6g},{:.6g}\n",
-                       r.key, r.what.waves, r.what.precision, r.what.geometry, r.what.size,
-                       r.where.sweep, r.where.time, r.where.offset, r.where.elevation, r.where.view,
-                       r.max_abs[0], r.max_abs[1], r.de00_p99[0], r.de00_p99[1], r.over_bound[0],
-                       r.over_bound[1], r.gpu_nan_inf, r.ratio_to_origin, r.ratio_de00);
+    return fmt::format(
+        "\"{}\",{},{},{},{},{},{:g},{:g},{:g},\"{}\",{:.6g},{:.6g},{:.6g},{:.6g},{},"
+        "{},{},{:.6g},{:.6g},{},{},{},{}\n",
+        r.key, r.what.waves, r.what.precision, r.what.geometry, r.what.size, r.where.sweep,
+        r.where.time, r.where.offset, r.where.elevation, r.where.view, r.max_abs[0], r.max_abs[1],
+        r.de00_p99[0], r.de00_p99[1], r.over_bound[0], r.over_bound[1], r.gpu_nan_inf,
+        r.ratio_to_origin, r.ratio_de00, optional(r.strict_max_abs), optional(r.strict_de00),
+        r.strict_max_ulps >= 0 ? std::to_string(r.strict_max_ulps) : "", optional(r.strict_ratio));
 }
 
 nlohmann::ordered_json row_json(const StabilityRow& r) {
@@ -70,7 +77,13 @@ nlohmann::ordered_json row_json(const StabilityRow& r) {
             {"over_float_bound", {{"glsl", r.over_bound[0]}, {"hlsl", r.over_bound[1]}}},
             {"gpu_nan_inf_pixels", r.gpu_nan_inf},
             {"max_abs_over_origin", finite_or_null(r.ratio_to_origin)},
-            {"de00_p99_over_origin", finite_or_null(r.ratio_de00)}};
+            {"de00_p99_over_origin", finite_or_null(r.ratio_de00)},
+            {"strict_half_vs_cpu_half",
+             {{"max_abs", finite_or_null(r.strict_max_abs)},
+              {"de00_p99", finite_or_null(r.strict_de00)},
+              {"max_ulps", r.strict_max_ulps >= 0 ? nlohmann::ordered_json(r.strict_max_ulps)
+                                                  : nlohmann::ordered_json(nullptr)},
+              {"max_abs_over_origin", finite_or_null(r.strict_ratio)}}}};
 }
 
 } // namespace
@@ -139,7 +152,11 @@ StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<Stabi
         RenderSettings settings{c.size, c.size, 1, true};
         settings.float_bound = true;
         // The figure at the origin, per view and elevation, that the other points are held to.
-        std::map<std::tuple<std::string, double>, std::array<double, 2>> origin;
+        std::map<std::tuple<std::string, double>, std::array<double, 3>> origin;
+        // Strict half where the device has 16-bit arithmetic; the screen pass only (a mesh's
+        // figure is against the exact surface, not a half model).
+        const bool strict = c.precision == "half" && c.geometry == "screen_pass" &&
+                            runner.device_info().shader_float16;
         for (const StabilityPoint& p : points) {
             const SyntheticScene scene = point_scene(p, c.size);
             const VariantRender r = render_variant(runner, build, scene, settings);
@@ -154,11 +171,23 @@ StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<Stabi
             row.over_bound = {r.agreement[0].over_bound, r.agreement[1].over_bound};
             row.gpu_nan_inf = r.glsl_vs_cpu_double.nan_inf_where_reference_finite +
                               hlsl.nan_inf_where_reference_finite;
+            if (strict) {
+                const HalfRender h = render_strict_half(runner, *v, nullptr, scene, settings);
+                if (!h.ok()) {
+                    bench.error = h.key + " " + point_label(p) + ": strict half: " + h.error;
+                    return bench;
+                }
+                row.strict_max_abs = h.vs_cpu_half[0].max_abs;
+                row.strict_de00 = h.vs_cpu_half[0].ciede2000_p99;
+                row.strict_max_ulps = h.ulps_vs_cpu_half[0].max_ulps;
+            }
             const auto at = std::make_tuple(p.view, p.elevation);
-            if (p.time == 0 && p.offset == 0) origin[at] = {row.max_abs[0], row.de00_p99[0]};
+            if (p.time == 0 && p.offset == 0)
+                origin[at] = {row.max_abs[0], row.de00_p99[0], row.strict_max_abs};
             if (auto it = origin.find(at); it != origin.end()) {
                 row.ratio_to_origin = ratio(row.max_abs[0], it->second[0]);
                 row.ratio_de00 = ratio(row.de00_p99[0], it->second[1]);
+                if (strict) row.strict_ratio = ratio(row.strict_max_abs, it->second[2]);
             }
             if (progress) progress(row);
             bench.rows.push_back(std::move(row));
@@ -167,7 +196,8 @@ StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<Stabi
     bench.csv = "variant,waves,precision,geometry,size,sweep,time_s,offset_m,elevation_degrees,"
                 "view,glsl_vs_cpu_double_max_abs,hlsl_vs_cpu_double_max_abs,glsl_de00_p99,"
                 "hlsl_de00_p99,glsl_over_float_bound,hlsl_over_float_bound,gpu_nan_inf_pixels,"
-                "max_abs_over_origin,de00_p99_over_origin\n";
+                "max_abs_over_origin,de00_p99_over_origin,strict_half_max_abs,strict_half_de00_p99,"
+                "strict_half_max_ulps,strict_half_max_abs_over_origin\n";
     nlohmann::ordered_json rows = nlohmann::ordered_json::array();
     for (const StabilityRow& r : bench.rows) {
         bench.csv += csv_row(r);

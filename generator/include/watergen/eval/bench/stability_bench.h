@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -60,6 +61,12 @@ struct StabilityRow {
     uint64_t gpu_nan_inf = 0;   // non-finite GPU pixels where the CPU's are finite
     double ratio_to_origin = 0; // GLSL max abs over the same case and view at t = 0, offset 0
     double ratio_de00 = 0;      // the same for dE00 p99 (0 where the origin's is 0)
+    // A half screen-pass case also in 16-bit arithmetic on the GPU (render_strict_half: lavapipe
+    // runs relaxed precision at 32 bits, so the figures above are the float ones), against its
+    // own reference, the CPU evaluator's half model of the same graph: GLSL max abs, dE00 p99,
+    // most binary16 ulps apart, and the max abs over the origin's. NaN (-1) where not drawn.
+    double strict_max_abs = NAN, strict_de00 = NAN, strict_ratio = NAN;
+    int64_t strict_max_ulps = -1;
 };
 
 struct StabilityBench {
