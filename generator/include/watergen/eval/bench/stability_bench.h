@@ -82,8 +82,9 @@ std::optional<Variant> stability_variant(const StabilityCase& c, std::string& er
 // What:   render_variant of every case at every point (one build per case), with both
 //         language paths, the CPU double image and the float bound; rows in case order, then
 //         point order. `progress` (may be null) is told each row as it is done.
-// Cost:   per row two pipelines and six CPU evaluations: a few seconds at 512x512 on this
-//         project's 2-core machine (the command prints the measured total).
+// Cost:   per row two pipelines and six CPU evaluations, and with strict half three more
+//         builds and a CPU half evaluation: about 6 s a row at 512x512 on this project's 2-core
+//         machine (979 s for Gerstner's 168 rows at 15a4795), four times that at 1024x1024.
 StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<StabilityCase>& cases,
                                    const std::vector<StabilityPoint>& points,
                                    void (*progress)(const StabilityRow&) = nullptr);
