@@ -84,7 +84,7 @@ std::optional<Variant> stability_variant(const StabilityCase& c, std::string& er
 //         point order. `progress` (may be null) is told each row as it is done.
 // Cost:   per row two pipelines and six CPU evaluations, and with strict half three more
 //         builds and a CPU half evaluation: about 6 s a row at 512x512 on this project's 2-core
-//         machine (979 s for Gerstner's 168 rows at 15a4795), four times that at 1024x1024.
+//         machine (979 s for Gerstner's 168 rows at 15a4795); 1024x1024 has four times the pixels.
 StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<StabilityCase>& cases,
                                    const std::vector<StabilityPoint>& points,
                                    void (*progress)(const StabilityRow&) = nullptr);
