@@ -157,6 +157,12 @@ StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<Stabi
         // figure is against the exact surface, not a half model).
         const bool strict = c.precision == "half" && c.geometry == "screen_pass" &&
                             runner.device_info().shader_float16;
+        const StrictHalfBuilds strict_builds =
+            strict ? build_strict_half(*v, nullptr) : StrictHalfBuilds{};
+        if (!strict_builds.ok()) {
+            bench.error = strict_builds.key + ": strict half: " + strict_builds.error;
+            return bench;
+        }
         for (const StabilityPoint& p : points) {
             const SyntheticScene scene = point_scene(p, c.size);
             const VariantRender r = render_variant(runner, build, scene, settings);
@@ -172,7 +178,7 @@ StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<Stabi
             row.gpu_nan_inf = r.glsl_vs_cpu_double.nan_inf_where_reference_finite +
                               hlsl.nan_inf_where_reference_finite;
             if (strict) {
-                const HalfRender h = render_strict_half(runner, *v, nullptr, scene, settings);
+                const HalfRender h = render_strict_half(runner, strict_builds, scene, settings);
                 if (!h.ok()) {
                     bench.error = h.key + " " + point_label(p) + ": strict half: " + h.error;
                     return bench;

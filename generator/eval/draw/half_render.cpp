@@ -14,42 +14,65 @@ HalfAgreement half_agreement(const ImageRGBA32F& test, const ImageRGBA32F& refer
     return a;
 }
 
-HalfRender render_strict_half(VulkanRunner& runner, const Variant& variant, const Preset* preset,
-                              const SyntheticScene& scene, const RenderSettings& settings) {
-    HalfRender out;
+StrictHalfBuilds build_strict_half(const Variant& variant, const Preset* preset) {
+    StrictHalfBuilds out;
     out.key = variant.key();
     if (variant.choice("precision") != "half") {
         out.error = "strict half renders a precision=half variant; this one is precision=" +
                     variant.choice("precision");
         return out;
     }
+    out.strict = build_variant(variant, preset, EmitOptions{true});
+    if (!out.strict.ok()) {
+        out.diagnostics = out.strict.diagnostics;
+        out.error = "the strict-half build failed";
+        return out;
+    }
+    Variant full_variant = variant;
+    set_choice(full_variant, "precision", "full");
+    out.full = build_variant(full_variant, preset, EmitOptions{false});
+    if (!out.full.ok()) {
+        out.diagnostics = out.full.diagnostics;
+        out.error = "the precision=full build failed";
+    }
+    return out;
+}
+
+HalfRender render_strict_half(VulkanRunner& runner, const Variant& variant, const Preset* preset,
+                              const SyntheticScene& scene, const RenderSettings& settings) {
+    const StrictHalfBuilds builds = build_strict_half(variant, preset);
+    if (!builds.ok()) {
+        HalfRender out;
+        out.key = builds.key;
+        out.diagnostics = builds.diagnostics;
+        out.error = builds.error;
+        return out;
+    }
+    return render_strict_half(runner, builds, scene, settings);
+}
+
+HalfRender render_strict_half(VulkanRunner& runner, const StrictHalfBuilds& builds,
+                              const SyntheticScene& scene, const RenderSettings& settings) {
+    HalfRender out;
+    out.key = builds.key;
     RenderSettings gpu_only = settings;
     gpu_only.cpu_float = false;
     gpu_only.cpu_double = false;
-    // Builds and renders one variant into `render`, keeping its graph in `graph`; false (and
-    // out's error) on failure.
-    Graph strict_graph, full_graph;
-    auto build_and_render = [&](const Variant& v, bool strict, const char* what,
-                                VariantRender& render, Graph& graph) {
-        VariantBuild build = build_variant(v, preset, EmitOptions{strict});
-        if (!build.ok()) {
-            out.diagnostics = build.diagnostics;
-            out.error = std::string("the ") + what + " build failed";
-            return false;
-        }
-        render = render_variant(runner, build, scene, gpu_only);
-        if (!render.ok()) out.error = std::string(what) + ": " + render.error;
-        graph = std::move(build.shader.fragment);
-        return render.ok();
-    };
-    if (!build_and_render(variant, true, "strict-half", out.strict, strict_graph)) return out;
-    Variant full_variant = variant;
-    set_choice(full_variant, "precision", "full");
-    if (!build_and_render(full_variant, false, "precision=full", out.full, full_graph)) return out;
+    out.strict = render_variant(runner, builds.strict, scene, gpu_only);
+    if (!out.strict.ok()) {
+        out.error = "strict-half: " + out.strict.error;
+        return out;
+    }
+    out.full = render_variant(runner, builds.full, scene, gpu_only);
+    if (!out.full.ok()) {
+        out.error = "precision=full: " + out.full.error;
+        return out;
+    }
 
     // Strict half changes only emission: the CPU model evaluates the same graph.
-    const EvalResult half = evaluate_image(strict_graph, "color", scene.eval_inputs(),
-                                           settings.width, settings.height, EvalPrecision::Half);
+    const EvalResult half =
+        evaluate_image(builds.strict.shader.fragment, "color", scene.eval_inputs(), settings.width,
+                       settings.height, EvalPrecision::Half);
     if (!half.ok()) {
         out.error = "CPU evaluator: " + half.error;
         return out;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "watergen/eval/draw/variant_render.h"
+#include "watergen/pipeline/variant/variant_build.h"
 #include "watergen/water/presets.h"
 
 namespace watergen {
@@ -36,6 +37,19 @@ struct HalfRender {
 // Cost:   three variant builds' worth of toolchain runs, four pipelines (JIT), one CPU half
 //         evaluation (about 35 us per pixel).
 HalfRender render_strict_half(VulkanRunner& runner, const Variant& variant, const Preset* preset,
+                              const SyntheticScene& scene, const RenderSettings& settings);
+
+// The two builds render_strict_half draws: the variant with strict_half and at precision=full.
+// Built once, they draw over any number of scenes (the stability bench's points).
+struct StrictHalfBuilds {
+    std::string key;
+    VariantBuild strict, full;
+    Diagnostics diagnostics; // of a build that failed
+    std::string error;
+    bool ok() const { return error.empty(); }
+};
+StrictHalfBuilds build_strict_half(const Variant& variant, const Preset* preset);
+HalfRender render_strict_half(VulkanRunner& runner, const StrictHalfBuilds& builds,
                               const SyntheticScene& scene, const RenderSettings& settings);
 
 } // namespace watergen
