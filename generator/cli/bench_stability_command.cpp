@@ -120,6 +120,14 @@ Runner add_bench_stability_command(CLI::App& app, const Common& common) {
         if (!bench_succeeded({}, bench.error, common)) return kFailed;
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (!runner->device_info().shader_float16)
+            for (const StabilityCase& c : cases)
+                if (c.precision == "half" && c.geometry == "screen_pass") {
+                    std::printf("note: %s has no shaderFloat16: the half cases were drawn in "
+                                "relaxed precision only, not in 16-bit arithmetic\n",
+                                runner->device_info().name.c_str());
+                    break;
+                }
         size_t over = 0;
         for (const StabilityRow& r : bench.rows)
             if (r.where.time <= o->corner_time && r.where.offset <= o->corner_offset &&
