@@ -54,7 +54,9 @@ struct WaterParams0 {
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
+    // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
@@ -65,8 +67,10 @@ struct WaterParams0 {
     float reflection_fov_extension = 1.5f;
     Vec3 sky_color = {0.55f, 0.7f, 0.9f};
     float ior_air = 1.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float ior_water = 1.33333f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams0, reflection_view_proj_c0) == 0);
 static_assert(offsetof(WaterParams0, reflection_view_proj_c1) == 16);
@@ -82,7 +86,8 @@ static_assert(offsetof(WaterParams0, incident_light) == 112);
 static_assert(offsetof(WaterParams0, reflection_fov_extension) == 124);
 static_assert(offsetof(WaterParams0, sky_color) == 128);
 static_assert(offsetof(WaterParams0, ior_air) == 140);
-static_assert(offsetof(WaterParams0, ior_water) == 144);
+static_assert(offsetof(WaterParams0, frame_centre) == 144);
+static_assert(offsetof(WaterParams0, ior_water) == 152);
 static_assert(sizeof(WaterParams0) == 160);
 inline constexpr std::array<SpecializationConstant, 0> kConstants0{{}};
 
@@ -91,7 +96,9 @@ struct WaterParams1 {
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
+    // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
@@ -102,9 +109,10 @@ struct WaterParams1 {
     float reflection_fov_extension = 1.5f;
     Vec3 sky_color = {0.55f, 0.7f, 0.9f};
     float ior_air = 1.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
-    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams1, reflection_view_proj_c0) == 0);
 static_assert(offsetof(WaterParams1, reflection_view_proj_c1) == 16);
@@ -120,19 +128,24 @@ static_assert(offsetof(WaterParams1, incident_light) == 112);
 static_assert(offsetof(WaterParams1, reflection_fov_extension) == 124);
 static_assert(offsetof(WaterParams1, sky_color) == 128);
 static_assert(offsetof(WaterParams1, ior_air) == 140);
-static_assert(offsetof(WaterParams1, ior_water) == 144);
-static_assert(offsetof(WaterParams1, shore_hardness) == 148);
+static_assert(offsetof(WaterParams1, frame_centre) == 144);
+static_assert(offsetof(WaterParams1, ior_water) == 152);
+static_assert(offsetof(WaterParams1, shore_hardness) == 156);
 static_assert(sizeof(WaterParams1) == 160);
 inline constexpr std::array<SpecializationConstant, 0> kConstants1{{}};
 
 // Interface 2: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none).
 struct WaterParams2 {
-    Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
+    Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
+    // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
@@ -143,6 +156,8 @@ struct WaterParams2 {
     float gerstner_amplitude_gain = 0.82f;
     Vec3 sky_color = {0.55f, 0.7f, 0.9f};
     float gerstner_frequency_gain = 1.18f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float gerstner_steepness = 0.5f;
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
@@ -150,42 +165,48 @@ struct WaterParams2 {
     float reflection_fov_extension = 1.5f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
-    float pad0[1]{};
+    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams2, gerstner_wave_directions) == 0);
+static_assert(offsetof(WaterParams2, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams2, gerstner_wave_speeds) == 128);
-static_assert(offsetof(WaterParams2, reflection_view_proj_c0) == 256);
-static_assert(offsetof(WaterParams2, reflection_view_proj_c1) == 272);
-static_assert(offsetof(WaterParams2, reflection_view_proj_c2) == 288);
-static_assert(offsetof(WaterParams2, reflection_view_proj_c3) == 304);
-static_assert(offsetof(WaterParams2, eye_position) == 320);
-static_assert(offsetof(WaterParams2, time) == 332);
-static_assert(offsetof(WaterParams2, absorb_coefficients) == 336);
-static_assert(offsetof(WaterParams2, gerstner_amplitude) == 348);
-static_assert(offsetof(WaterParams2, scatter_color) == 352);
-static_assert(offsetof(WaterParams2, gerstner_frequency) == 364);
-static_assert(offsetof(WaterParams2, incident_light) == 368);
-static_assert(offsetof(WaterParams2, gerstner_amplitude_gain) == 380);
-static_assert(offsetof(WaterParams2, sky_color) == 384);
-static_assert(offsetof(WaterParams2, gerstner_frequency_gain) == 396);
-static_assert(offsetof(WaterParams2, gerstner_steepness) == 400);
-static_assert(offsetof(WaterParams2, refraction_distortion) == 404);
-static_assert(offsetof(WaterParams2, refraction_shore_fade_depth) == 408);
-static_assert(offsetof(WaterParams2, scatter_coefficient) == 412);
-static_assert(offsetof(WaterParams2, reflection_fov_extension) == 416);
-static_assert(offsetof(WaterParams2, ior_air) == 420);
-static_assert(offsetof(WaterParams2, ior_water) == 424);
-static_assert(sizeof(WaterParams2) == 432);
+static_assert(offsetof(WaterParams2, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams2, reflection_view_proj_c0) == 384);
+static_assert(offsetof(WaterParams2, reflection_view_proj_c1) == 400);
+static_assert(offsetof(WaterParams2, reflection_view_proj_c2) == 416);
+static_assert(offsetof(WaterParams2, reflection_view_proj_c3) == 432);
+static_assert(offsetof(WaterParams2, eye_position) == 448);
+static_assert(offsetof(WaterParams2, time) == 460);
+static_assert(offsetof(WaterParams2, absorb_coefficients) == 464);
+static_assert(offsetof(WaterParams2, gerstner_amplitude) == 476);
+static_assert(offsetof(WaterParams2, scatter_color) == 480);
+static_assert(offsetof(WaterParams2, gerstner_frequency) == 492);
+static_assert(offsetof(WaterParams2, incident_light) == 496);
+static_assert(offsetof(WaterParams2, gerstner_amplitude_gain) == 508);
+static_assert(offsetof(WaterParams2, sky_color) == 512);
+static_assert(offsetof(WaterParams2, gerstner_frequency_gain) == 524);
+static_assert(offsetof(WaterParams2, frame_centre) == 528);
+static_assert(offsetof(WaterParams2, gerstner_steepness) == 536);
+static_assert(offsetof(WaterParams2, refraction_distortion) == 540);
+static_assert(offsetof(WaterParams2, refraction_shore_fade_depth) == 544);
+static_assert(offsetof(WaterParams2, scatter_coefficient) == 548);
+static_assert(offsetof(WaterParams2, reflection_fov_extension) == 552);
+static_assert(offsetof(WaterParams2, ior_air) == 556);
+static_assert(offsetof(WaterParams2, ior_water) == 560);
+static_assert(sizeof(WaterParams2) == 576);
 inline constexpr std::array<SpecializationConstant, 1> kConstants2{{{"gerstner_wave_count", 0}}};
 
 // Interface 3: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none).
 struct WaterParams3 {
-    Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
+    Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
+    // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
@@ -196,6 +217,8 @@ struct WaterParams3 {
     float gerstner_amplitude_gain = 0.82f;
     Vec3 sky_color = {0.55f, 0.7f, 0.9f};
     float gerstner_frequency_gain = 1.18f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float gerstner_steepness = 0.5f;
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
@@ -204,32 +227,35 @@ struct WaterParams3 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
+    float pad0[2]{};
 };
-static_assert(offsetof(WaterParams3, gerstner_wave_directions) == 0);
+static_assert(offsetof(WaterParams3, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams3, gerstner_wave_speeds) == 128);
-static_assert(offsetof(WaterParams3, reflection_view_proj_c0) == 256);
-static_assert(offsetof(WaterParams3, reflection_view_proj_c1) == 272);
-static_assert(offsetof(WaterParams3, reflection_view_proj_c2) == 288);
-static_assert(offsetof(WaterParams3, reflection_view_proj_c3) == 304);
-static_assert(offsetof(WaterParams3, eye_position) == 320);
-static_assert(offsetof(WaterParams3, time) == 332);
-static_assert(offsetof(WaterParams3, absorb_coefficients) == 336);
-static_assert(offsetof(WaterParams3, gerstner_amplitude) == 348);
-static_assert(offsetof(WaterParams3, scatter_color) == 352);
-static_assert(offsetof(WaterParams3, gerstner_frequency) == 364);
-static_assert(offsetof(WaterParams3, incident_light) == 368);
-static_assert(offsetof(WaterParams3, gerstner_amplitude_gain) == 380);
-static_assert(offsetof(WaterParams3, sky_color) == 384);
-static_assert(offsetof(WaterParams3, gerstner_frequency_gain) == 396);
-static_assert(offsetof(WaterParams3, gerstner_steepness) == 400);
-static_assert(offsetof(WaterParams3, refraction_distortion) == 404);
-static_assert(offsetof(WaterParams3, refraction_shore_fade_depth) == 408);
-static_assert(offsetof(WaterParams3, scatter_coefficient) == 412);
-static_assert(offsetof(WaterParams3, reflection_fov_extension) == 416);
-static_assert(offsetof(WaterParams3, ior_air) == 420);
-static_assert(offsetof(WaterParams3, ior_water) == 424);
-static_assert(offsetof(WaterParams3, shore_hardness) == 428);
-static_assert(sizeof(WaterParams3) == 432);
+static_assert(offsetof(WaterParams3, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams3, reflection_view_proj_c0) == 384);
+static_assert(offsetof(WaterParams3, reflection_view_proj_c1) == 400);
+static_assert(offsetof(WaterParams3, reflection_view_proj_c2) == 416);
+static_assert(offsetof(WaterParams3, reflection_view_proj_c3) == 432);
+static_assert(offsetof(WaterParams3, eye_position) == 448);
+static_assert(offsetof(WaterParams3, time) == 460);
+static_assert(offsetof(WaterParams3, absorb_coefficients) == 464);
+static_assert(offsetof(WaterParams3, gerstner_amplitude) == 476);
+static_assert(offsetof(WaterParams3, scatter_color) == 480);
+static_assert(offsetof(WaterParams3, gerstner_frequency) == 492);
+static_assert(offsetof(WaterParams3, incident_light) == 496);
+static_assert(offsetof(WaterParams3, gerstner_amplitude_gain) == 508);
+static_assert(offsetof(WaterParams3, sky_color) == 512);
+static_assert(offsetof(WaterParams3, gerstner_frequency_gain) == 524);
+static_assert(offsetof(WaterParams3, frame_centre) == 528);
+static_assert(offsetof(WaterParams3, gerstner_steepness) == 536);
+static_assert(offsetof(WaterParams3, refraction_distortion) == 540);
+static_assert(offsetof(WaterParams3, refraction_shore_fade_depth) == 544);
+static_assert(offsetof(WaterParams3, scatter_coefficient) == 548);
+static_assert(offsetof(WaterParams3, reflection_fov_extension) == 552);
+static_assert(offsetof(WaterParams3, ior_air) == 556);
+static_assert(offsetof(WaterParams3, ior_water) == 560);
+static_assert(offsetof(WaterParams3, shore_hardness) == 564);
+static_assert(sizeof(WaterParams3) == 576);
 inline constexpr std::array<SpecializationConstant, 1> kConstants3{{{"gerstner_wave_count", 0}}};
 
 // Interface 4: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=shore,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none).
@@ -237,7 +263,9 @@ struct WaterParams4 {
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
+    // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
@@ -252,7 +280,11 @@ struct WaterParams4 {
     float ior_air = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float ior_water = 1.33333f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float foam_pattern_scale = 0.1f;
     float pad0[1]{};
 };
@@ -274,9 +306,11 @@ static_assert(offsetof(WaterParams4, foam_existence) == 144);
 static_assert(offsetof(WaterParams4, ior_air) == 156);
 static_assert(offsetof(WaterParams4, foam_color) == 160);
 static_assert(offsetof(WaterParams4, ior_water) == 172);
-static_assert(offsetof(WaterParams4, foam_pattern_drift) == 176);
-static_assert(offsetof(WaterParams4, foam_pattern_scale) == 184);
-static_assert(sizeof(WaterParams4) == 192);
+static_assert(offsetof(WaterParams4, frame_centre) == 176);
+static_assert(offsetof(WaterParams4, foam_pattern_drift) == 184);
+static_assert(offsetof(WaterParams4, foam_pattern_offset) == 192);
+static_assert(offsetof(WaterParams4, foam_pattern_scale) == 200);
+static_assert(sizeof(WaterParams4) == 208);
 inline constexpr std::array<SpecializationConstant, 0> kConstants4{{}};
 
 // Interface 5: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=shore,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=full,caustics=none).
@@ -284,7 +318,9 @@ struct WaterParams5 {
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
+    // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
@@ -299,7 +335,11 @@ struct WaterParams5 {
     float ior_air = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float ior_water = 1.33333f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
 };
@@ -321,20 +361,26 @@ static_assert(offsetof(WaterParams5, foam_existence) == 144);
 static_assert(offsetof(WaterParams5, ior_air) == 156);
 static_assert(offsetof(WaterParams5, foam_color) == 160);
 static_assert(offsetof(WaterParams5, ior_water) == 172);
-static_assert(offsetof(WaterParams5, foam_pattern_drift) == 176);
-static_assert(offsetof(WaterParams5, foam_pattern_scale) == 184);
-static_assert(offsetof(WaterParams5, shore_hardness) == 188);
-static_assert(sizeof(WaterParams5) == 192);
+static_assert(offsetof(WaterParams5, frame_centre) == 176);
+static_assert(offsetof(WaterParams5, foam_pattern_drift) == 184);
+static_assert(offsetof(WaterParams5, foam_pattern_offset) == 192);
+static_assert(offsetof(WaterParams5, foam_pattern_scale) == 200);
+static_assert(offsetof(WaterParams5, shore_hardness) == 204);
+static_assert(sizeof(WaterParams5) == 208);
 inline constexpr std::array<SpecializationConstant, 0> kConstants5{{}};
 
 // Interface 6: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=shore,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none).
 struct WaterParams6 {
-    Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
+    Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
+    // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
@@ -349,7 +395,11 @@ struct WaterParams6 {
     float gerstner_steepness = 0.5f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float refraction_distortion = 0.03f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_fov_extension = 1.5f;
@@ -357,44 +407,51 @@ struct WaterParams6 {
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
 };
-static_assert(offsetof(WaterParams6, gerstner_wave_directions) == 0);
+static_assert(offsetof(WaterParams6, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams6, gerstner_wave_speeds) == 128);
-static_assert(offsetof(WaterParams6, reflection_view_proj_c0) == 256);
-static_assert(offsetof(WaterParams6, reflection_view_proj_c1) == 272);
-static_assert(offsetof(WaterParams6, reflection_view_proj_c2) == 288);
-static_assert(offsetof(WaterParams6, reflection_view_proj_c3) == 304);
-static_assert(offsetof(WaterParams6, eye_position) == 320);
-static_assert(offsetof(WaterParams6, time) == 332);
-static_assert(offsetof(WaterParams6, absorb_coefficients) == 336);
-static_assert(offsetof(WaterParams6, gerstner_amplitude) == 348);
-static_assert(offsetof(WaterParams6, scatter_color) == 352);
-static_assert(offsetof(WaterParams6, gerstner_frequency) == 364);
-static_assert(offsetof(WaterParams6, incident_light) == 368);
-static_assert(offsetof(WaterParams6, gerstner_amplitude_gain) == 380);
-static_assert(offsetof(WaterParams6, sky_color) == 384);
-static_assert(offsetof(WaterParams6, gerstner_frequency_gain) == 396);
-static_assert(offsetof(WaterParams6, foam_existence) == 400);
-static_assert(offsetof(WaterParams6, gerstner_steepness) == 412);
-static_assert(offsetof(WaterParams6, foam_color) == 416);
-static_assert(offsetof(WaterParams6, refraction_distortion) == 428);
-static_assert(offsetof(WaterParams6, foam_pattern_drift) == 432);
-static_assert(offsetof(WaterParams6, refraction_shore_fade_depth) == 440);
-static_assert(offsetof(WaterParams6, scatter_coefficient) == 444);
-static_assert(offsetof(WaterParams6, reflection_fov_extension) == 448);
-static_assert(offsetof(WaterParams6, ior_air) == 452);
-static_assert(offsetof(WaterParams6, ior_water) == 456);
-static_assert(offsetof(WaterParams6, foam_pattern_scale) == 460);
-static_assert(sizeof(WaterParams6) == 464);
+static_assert(offsetof(WaterParams6, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams6, reflection_view_proj_c0) == 384);
+static_assert(offsetof(WaterParams6, reflection_view_proj_c1) == 400);
+static_assert(offsetof(WaterParams6, reflection_view_proj_c2) == 416);
+static_assert(offsetof(WaterParams6, reflection_view_proj_c3) == 432);
+static_assert(offsetof(WaterParams6, eye_position) == 448);
+static_assert(offsetof(WaterParams6, time) == 460);
+static_assert(offsetof(WaterParams6, absorb_coefficients) == 464);
+static_assert(offsetof(WaterParams6, gerstner_amplitude) == 476);
+static_assert(offsetof(WaterParams6, scatter_color) == 480);
+static_assert(offsetof(WaterParams6, gerstner_frequency) == 492);
+static_assert(offsetof(WaterParams6, incident_light) == 496);
+static_assert(offsetof(WaterParams6, gerstner_amplitude_gain) == 508);
+static_assert(offsetof(WaterParams6, sky_color) == 512);
+static_assert(offsetof(WaterParams6, gerstner_frequency_gain) == 524);
+static_assert(offsetof(WaterParams6, foam_existence) == 528);
+static_assert(offsetof(WaterParams6, gerstner_steepness) == 540);
+static_assert(offsetof(WaterParams6, foam_color) == 544);
+static_assert(offsetof(WaterParams6, refraction_distortion) == 556);
+static_assert(offsetof(WaterParams6, frame_centre) == 560);
+static_assert(offsetof(WaterParams6, foam_pattern_drift) == 568);
+static_assert(offsetof(WaterParams6, foam_pattern_offset) == 576);
+static_assert(offsetof(WaterParams6, refraction_shore_fade_depth) == 584);
+static_assert(offsetof(WaterParams6, scatter_coefficient) == 588);
+static_assert(offsetof(WaterParams6, reflection_fov_extension) == 592);
+static_assert(offsetof(WaterParams6, ior_air) == 596);
+static_assert(offsetof(WaterParams6, ior_water) == 600);
+static_assert(offsetof(WaterParams6, foam_pattern_scale) == 604);
+static_assert(sizeof(WaterParams6) == 608);
 inline constexpr std::array<SpecializationConstant, 1> kConstants6{{{"gerstner_wave_count", 0}}};
 
 // Interface 7: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=shore,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none).
 struct WaterParams7 {
-    Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
+    Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
+    // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
@@ -409,7 +466,11 @@ struct WaterParams7 {
     float gerstner_steepness = 0.5f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float refraction_distortion = 0.03f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_fov_extension = 1.5f;
@@ -419,39 +480,43 @@ struct WaterParams7 {
     float shore_hardness = 1.0f;
     float pad0[3]{};
 };
-static_assert(offsetof(WaterParams7, gerstner_wave_directions) == 0);
+static_assert(offsetof(WaterParams7, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams7, gerstner_wave_speeds) == 128);
-static_assert(offsetof(WaterParams7, reflection_view_proj_c0) == 256);
-static_assert(offsetof(WaterParams7, reflection_view_proj_c1) == 272);
-static_assert(offsetof(WaterParams7, reflection_view_proj_c2) == 288);
-static_assert(offsetof(WaterParams7, reflection_view_proj_c3) == 304);
-static_assert(offsetof(WaterParams7, eye_position) == 320);
-static_assert(offsetof(WaterParams7, time) == 332);
-static_assert(offsetof(WaterParams7, absorb_coefficients) == 336);
-static_assert(offsetof(WaterParams7, gerstner_amplitude) == 348);
-static_assert(offsetof(WaterParams7, scatter_color) == 352);
-static_assert(offsetof(WaterParams7, gerstner_frequency) == 364);
-static_assert(offsetof(WaterParams7, incident_light) == 368);
-static_assert(offsetof(WaterParams7, gerstner_amplitude_gain) == 380);
-static_assert(offsetof(WaterParams7, sky_color) == 384);
-static_assert(offsetof(WaterParams7, gerstner_frequency_gain) == 396);
-static_assert(offsetof(WaterParams7, foam_existence) == 400);
-static_assert(offsetof(WaterParams7, gerstner_steepness) == 412);
-static_assert(offsetof(WaterParams7, foam_color) == 416);
-static_assert(offsetof(WaterParams7, refraction_distortion) == 428);
-static_assert(offsetof(WaterParams7, foam_pattern_drift) == 432);
-static_assert(offsetof(WaterParams7, refraction_shore_fade_depth) == 440);
-static_assert(offsetof(WaterParams7, scatter_coefficient) == 444);
-static_assert(offsetof(WaterParams7, reflection_fov_extension) == 448);
-static_assert(offsetof(WaterParams7, ior_air) == 452);
-static_assert(offsetof(WaterParams7, ior_water) == 456);
-static_assert(offsetof(WaterParams7, foam_pattern_scale) == 460);
-static_assert(offsetof(WaterParams7, shore_hardness) == 464);
-static_assert(sizeof(WaterParams7) == 480);
+static_assert(offsetof(WaterParams7, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams7, reflection_view_proj_c0) == 384);
+static_assert(offsetof(WaterParams7, reflection_view_proj_c1) == 400);
+static_assert(offsetof(WaterParams7, reflection_view_proj_c2) == 416);
+static_assert(offsetof(WaterParams7, reflection_view_proj_c3) == 432);
+static_assert(offsetof(WaterParams7, eye_position) == 448);
+static_assert(offsetof(WaterParams7, time) == 460);
+static_assert(offsetof(WaterParams7, absorb_coefficients) == 464);
+static_assert(offsetof(WaterParams7, gerstner_amplitude) == 476);
+static_assert(offsetof(WaterParams7, scatter_color) == 480);
+static_assert(offsetof(WaterParams7, gerstner_frequency) == 492);
+static_assert(offsetof(WaterParams7, incident_light) == 496);
+static_assert(offsetof(WaterParams7, gerstner_amplitude_gain) == 508);
+static_assert(offsetof(WaterParams7, sky_color) == 512);
+static_assert(offsetof(WaterParams7, gerstner_frequency_gain) == 524);
+static_assert(offsetof(WaterParams7, foam_existence) == 528);
+static_assert(offsetof(WaterParams7, gerstner_steepness) == 540);
+static_assert(offsetof(WaterParams7, foam_color) == 544);
+static_assert(offsetof(WaterParams7, refraction_distortion) == 556);
+static_assert(offsetof(WaterParams7, frame_centre) == 560);
+static_assert(offsetof(WaterParams7, foam_pattern_drift) == 568);
+static_assert(offsetof(WaterParams7, foam_pattern_offset) == 576);
+static_assert(offsetof(WaterParams7, refraction_shore_fade_depth) == 584);
+static_assert(offsetof(WaterParams7, scatter_coefficient) == 588);
+static_assert(offsetof(WaterParams7, reflection_fov_extension) == 592);
+static_assert(offsetof(WaterParams7, ior_air) == 596);
+static_assert(offsetof(WaterParams7, ior_water) == 600);
+static_assert(offsetof(WaterParams7, foam_pattern_scale) == 604);
+static_assert(offsetof(WaterParams7, shore_hardness) == 608);
+static_assert(sizeof(WaterParams7) == 624);
 inline constexpr std::array<SpecializationConstant, 1> kConstants7{{{"gerstner_wave_count", 0}}};
 
 // Interface 8: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams8 {
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float refraction_distortion = 0.03f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
@@ -466,6 +531,9 @@ struct WaterParams8 {
     float ior_water = 1.33333f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float specular_exponent = 256.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams8, eye_position) == 0);
 static_assert(offsetof(WaterParams8, refraction_distortion) == 12);
@@ -481,11 +549,13 @@ static_assert(offsetof(WaterParams8, incident_light) == 80);
 static_assert(offsetof(WaterParams8, ior_water) == 92);
 static_assert(offsetof(WaterParams8, reflection_lower_tint) == 96);
 static_assert(offsetof(WaterParams8, specular_exponent) == 108);
-static_assert(sizeof(WaterParams8) == 112);
+static_assert(offsetof(WaterParams8, frame_centre) == 112);
+static_assert(sizeof(WaterParams8) == 128);
 inline constexpr std::array<SpecializationConstant, 0> kConstants8{{}};
 
 // Interface 9: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams9 {
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float refraction_distortion = 0.03f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
@@ -500,8 +570,10 @@ struct WaterParams9 {
     float ior_water = 1.33333f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float specular_exponent = 256.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float shore_hardness = 1.0f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams9, eye_position) == 0);
 static_assert(offsetof(WaterParams9, refraction_distortion) == 12);
@@ -517,126 +589,156 @@ static_assert(offsetof(WaterParams9, incident_light) == 80);
 static_assert(offsetof(WaterParams9, ior_water) == 92);
 static_assert(offsetof(WaterParams9, reflection_lower_tint) == 96);
 static_assert(offsetof(WaterParams9, specular_exponent) == 108);
-static_assert(offsetof(WaterParams9, shore_hardness) == 112);
+static_assert(offsetof(WaterParams9, frame_centre) == 112);
+static_assert(offsetof(WaterParams9, shore_hardness) == 120);
 static_assert(sizeof(WaterParams9) == 128);
 inline constexpr std::array<SpecializationConstant, 0> kConstants9{{}};
 
 // Interface 10: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams10 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
+    // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
+    float refraction_shore_fade_depth = 1.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float caustics_strength = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
-    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams10, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams10, eye_position) == 128);
-static_assert(offsetof(WaterParams10, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams10, sun_direction) == 144);
-static_assert(offsetof(WaterParams10, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams10, sun_color) == 160);
-static_assert(offsetof(WaterParams10, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams10, caustics_window) == 176);
-static_assert(offsetof(WaterParams10, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams10, absorb_coefficients) == 192);
-static_assert(offsetof(WaterParams10, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams10, scatter_color) == 208);
-static_assert(offsetof(WaterParams10, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams10, incident_light) == 224);
-static_assert(offsetof(WaterParams10, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams10, reflection_lower_tint) == 240);
-static_assert(offsetof(WaterParams10, caustics_strength) == 252);
-static_assert(offsetof(WaterParams10, scatter_coefficient) == 256);
-static_assert(offsetof(WaterParams10, reflection_horizon_band) == 260);
-static_assert(offsetof(WaterParams10, ior_air) == 264);
-static_assert(offsetof(WaterParams10, ior_water) == 268);
-static_assert(offsetof(WaterParams10, specular_exponent) == 272);
-static_assert(sizeof(WaterParams10) == 288);
+static_assert(offsetof(WaterParams10, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams10, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams10, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams10, eye_position) == 384);
+static_assert(offsetof(WaterParams10, time) == 396);
+static_assert(offsetof(WaterParams10, sun_direction) == 400);
+static_assert(offsetof(WaterParams10, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams10, sun_color) == 416);
+static_assert(offsetof(WaterParams10, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams10, caustics_window) == 432);
+static_assert(offsetof(WaterParams10, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams10, absorb_coefficients) == 448);
+static_assert(offsetof(WaterParams10, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams10, scatter_color) == 464);
+static_assert(offsetof(WaterParams10, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams10, incident_light) == 480);
+static_assert(offsetof(WaterParams10, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams10, reflection_lower_tint) == 496);
+static_assert(offsetof(WaterParams10, refraction_shore_fade_depth) == 508);
+static_assert(offsetof(WaterParams10, frame_centre) == 512);
+static_assert(offsetof(WaterParams10, caustics_strength) == 520);
+static_assert(offsetof(WaterParams10, scatter_coefficient) == 524);
+static_assert(offsetof(WaterParams10, reflection_horizon_band) == 528);
+static_assert(offsetof(WaterParams10, ior_air) == 532);
+static_assert(offsetof(WaterParams10, ior_water) == 536);
+static_assert(offsetof(WaterParams10, specular_exponent) == 540);
+static_assert(sizeof(WaterParams10) == 544);
 inline constexpr std::array<SpecializationConstant, 1> kConstants10{{{"gerstner_wave_count", 0}}};
 
-// Interface 11: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
+// Interface 11: 5 variants (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams11 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
+    float refraction_distortion = 0.03f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
-    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams11, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams11, eye_position) == 128);
-static_assert(offsetof(WaterParams11, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams11, sun_direction) == 144);
-static_assert(offsetof(WaterParams11, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams11, sun_color) == 160);
-static_assert(offsetof(WaterParams11, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams11, absorb_coefficients) == 176);
-static_assert(offsetof(WaterParams11, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams11, scatter_color) == 192);
-static_assert(offsetof(WaterParams11, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams11, incident_light) == 208);
-static_assert(offsetof(WaterParams11, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams11, reflection_lower_tint) == 224);
-static_assert(offsetof(WaterParams11, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams11, scatter_coefficient) == 240);
-static_assert(offsetof(WaterParams11, reflection_horizon_band) == 244);
-static_assert(offsetof(WaterParams11, ior_air) == 248);
-static_assert(offsetof(WaterParams11, ior_water) == 252);
-static_assert(offsetof(WaterParams11, specular_exponent) == 256);
-static_assert(sizeof(WaterParams11) == 272);
+static_assert(offsetof(WaterParams11, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams11, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams11, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams11, eye_position) == 384);
+static_assert(offsetof(WaterParams11, time) == 396);
+static_assert(offsetof(WaterParams11, sun_direction) == 400);
+static_assert(offsetof(WaterParams11, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams11, sun_color) == 416);
+static_assert(offsetof(WaterParams11, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams11, absorb_coefficients) == 432);
+static_assert(offsetof(WaterParams11, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams11, scatter_color) == 448);
+static_assert(offsetof(WaterParams11, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams11, incident_light) == 464);
+static_assert(offsetof(WaterParams11, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams11, reflection_lower_tint) == 480);
+static_assert(offsetof(WaterParams11, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams11, frame_centre) == 496);
+static_assert(offsetof(WaterParams11, refraction_shore_fade_depth) == 504);
+static_assert(offsetof(WaterParams11, scatter_coefficient) == 508);
+static_assert(offsetof(WaterParams11, reflection_horizon_band) == 512);
+static_assert(offsetof(WaterParams11, ior_air) == 516);
+static_assert(offsetof(WaterParams11, ior_water) == 520);
+static_assert(offsetof(WaterParams11, specular_exponent) == 524);
+static_assert(sizeof(WaterParams11) == 528);
 inline constexpr std::array<SpecializationConstant, 1> kConstants11{{{"gerstner_wave_count", 0}}};
 
 // Interface 12: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams12 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
+    // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
+    float refraction_shore_fade_depth = 1.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float caustics_strength = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -644,50 +746,61 @@ struct WaterParams12 {
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float shore_hardness = 1.0f;
-    float pad0[2]{};
+    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams12, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams12, eye_position) == 128);
-static_assert(offsetof(WaterParams12, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams12, sun_direction) == 144);
-static_assert(offsetof(WaterParams12, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams12, sun_color) == 160);
-static_assert(offsetof(WaterParams12, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams12, caustics_window) == 176);
-static_assert(offsetof(WaterParams12, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams12, absorb_coefficients) == 192);
-static_assert(offsetof(WaterParams12, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams12, scatter_color) == 208);
-static_assert(offsetof(WaterParams12, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams12, incident_light) == 224);
-static_assert(offsetof(WaterParams12, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams12, reflection_lower_tint) == 240);
-static_assert(offsetof(WaterParams12, caustics_strength) == 252);
-static_assert(offsetof(WaterParams12, scatter_coefficient) == 256);
-static_assert(offsetof(WaterParams12, reflection_horizon_band) == 260);
-static_assert(offsetof(WaterParams12, ior_air) == 264);
-static_assert(offsetof(WaterParams12, ior_water) == 268);
-static_assert(offsetof(WaterParams12, specular_exponent) == 272);
-static_assert(offsetof(WaterParams12, shore_hardness) == 276);
-static_assert(sizeof(WaterParams12) == 288);
+static_assert(offsetof(WaterParams12, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams12, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams12, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams12, eye_position) == 384);
+static_assert(offsetof(WaterParams12, time) == 396);
+static_assert(offsetof(WaterParams12, sun_direction) == 400);
+static_assert(offsetof(WaterParams12, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams12, sun_color) == 416);
+static_assert(offsetof(WaterParams12, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams12, caustics_window) == 432);
+static_assert(offsetof(WaterParams12, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams12, absorb_coefficients) == 448);
+static_assert(offsetof(WaterParams12, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams12, scatter_color) == 464);
+static_assert(offsetof(WaterParams12, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams12, incident_light) == 480);
+static_assert(offsetof(WaterParams12, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams12, reflection_lower_tint) == 496);
+static_assert(offsetof(WaterParams12, refraction_shore_fade_depth) == 508);
+static_assert(offsetof(WaterParams12, frame_centre) == 512);
+static_assert(offsetof(WaterParams12, caustics_strength) == 520);
+static_assert(offsetof(WaterParams12, scatter_coefficient) == 524);
+static_assert(offsetof(WaterParams12, reflection_horizon_band) == 528);
+static_assert(offsetof(WaterParams12, ior_air) == 532);
+static_assert(offsetof(WaterParams12, ior_water) == 536);
+static_assert(offsetof(WaterParams12, specular_exponent) == 540);
+static_assert(offsetof(WaterParams12, shore_hardness) == 544);
+static_assert(sizeof(WaterParams12) == 560);
 inline constexpr std::array<SpecializationConstant, 1> kConstants12{{{"gerstner_wave_count", 0}}};
 
 // Interface 13: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams13 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
+    float refraction_distortion = 0.03f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -695,339 +808,433 @@ struct WaterParams13 {
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float shore_hardness = 1.0f;
-    float pad0[2]{};
+    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams13, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams13, eye_position) == 128);
-static_assert(offsetof(WaterParams13, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams13, sun_direction) == 144);
-static_assert(offsetof(WaterParams13, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams13, sun_color) == 160);
-static_assert(offsetof(WaterParams13, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams13, absorb_coefficients) == 176);
-static_assert(offsetof(WaterParams13, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams13, scatter_color) == 192);
-static_assert(offsetof(WaterParams13, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams13, incident_light) == 208);
-static_assert(offsetof(WaterParams13, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams13, reflection_lower_tint) == 224);
-static_assert(offsetof(WaterParams13, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams13, scatter_coefficient) == 240);
-static_assert(offsetof(WaterParams13, reflection_horizon_band) == 244);
-static_assert(offsetof(WaterParams13, ior_air) == 248);
-static_assert(offsetof(WaterParams13, ior_water) == 252);
-static_assert(offsetof(WaterParams13, specular_exponent) == 256);
-static_assert(offsetof(WaterParams13, shore_hardness) == 260);
-static_assert(sizeof(WaterParams13) == 272);
+static_assert(offsetof(WaterParams13, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams13, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams13, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams13, eye_position) == 384);
+static_assert(offsetof(WaterParams13, time) == 396);
+static_assert(offsetof(WaterParams13, sun_direction) == 400);
+static_assert(offsetof(WaterParams13, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams13, sun_color) == 416);
+static_assert(offsetof(WaterParams13, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams13, absorb_coefficients) == 432);
+static_assert(offsetof(WaterParams13, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams13, scatter_color) == 448);
+static_assert(offsetof(WaterParams13, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams13, incident_light) == 464);
+static_assert(offsetof(WaterParams13, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams13, reflection_lower_tint) == 480);
+static_assert(offsetof(WaterParams13, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams13, frame_centre) == 496);
+static_assert(offsetof(WaterParams13, refraction_shore_fade_depth) == 504);
+static_assert(offsetof(WaterParams13, scatter_coefficient) == 508);
+static_assert(offsetof(WaterParams13, reflection_horizon_band) == 512);
+static_assert(offsetof(WaterParams13, ior_air) == 516);
+static_assert(offsetof(WaterParams13, ior_water) == 520);
+static_assert(offsetof(WaterParams13, specular_exponent) == 524);
+static_assert(offsetof(WaterParams13, shore_hardness) == 528);
+static_assert(sizeof(WaterParams13) == 544);
 inline constexpr std::array<SpecializationConstant, 1> kConstants13{{{"gerstner_wave_count", 0}}};
 
 // Interface 14: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams14 {
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float refraction_distortion = 0.03f;
+    float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float scatter_coefficient = 0.11f;
+    float refraction_shore_fade_depth = 1.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float reflection_horizon_band = 0.2f;
+    float scatter_coefficient = 0.11f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float ior_air = 1.0f;
+    float reflection_horizon_band = 0.2f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float ior_water = 1.33333f;
+    float ior_air = 1.0f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float specular_exponent = 256.0f;
+    float ior_water = 1.33333f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float foam_pattern_scale = 0.1f;
+    float specular_exponent = 256.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
-    float pad0[1]{};
+    float foam_pattern_scale = 0.1f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams14, eye_position) == 0);
-static_assert(offsetof(WaterParams14, refraction_distortion) == 12);
+static_assert(offsetof(WaterParams14, time) == 12);
 static_assert(offsetof(WaterParams14, sun_direction) == 16);
-static_assert(offsetof(WaterParams14, refraction_shore_fade_depth) == 28);
+static_assert(offsetof(WaterParams14, refraction_distortion) == 28);
 static_assert(offsetof(WaterParams14, sun_color) == 32);
-static_assert(offsetof(WaterParams14, scatter_coefficient) == 44);
+static_assert(offsetof(WaterParams14, refraction_shore_fade_depth) == 44);
 static_assert(offsetof(WaterParams14, absorb_coefficients) == 48);
-static_assert(offsetof(WaterParams14, reflection_horizon_band) == 60);
+static_assert(offsetof(WaterParams14, scatter_coefficient) == 60);
 static_assert(offsetof(WaterParams14, scatter_color) == 64);
-static_assert(offsetof(WaterParams14, ior_air) == 76);
+static_assert(offsetof(WaterParams14, reflection_horizon_band) == 76);
 static_assert(offsetof(WaterParams14, incident_light) == 80);
-static_assert(offsetof(WaterParams14, ior_water) == 92);
+static_assert(offsetof(WaterParams14, ior_air) == 92);
 static_assert(offsetof(WaterParams14, reflection_lower_tint) == 96);
-static_assert(offsetof(WaterParams14, specular_exponent) == 108);
+static_assert(offsetof(WaterParams14, ior_water) == 108);
 static_assert(offsetof(WaterParams14, foam_existence) == 112);
-static_assert(offsetof(WaterParams14, foam_pattern_scale) == 124);
+static_assert(offsetof(WaterParams14, specular_exponent) == 124);
 static_assert(offsetof(WaterParams14, foam_color) == 128);
-static_assert(sizeof(WaterParams14) == 144);
+static_assert(offsetof(WaterParams14, foam_pattern_scale) == 140);
+static_assert(offsetof(WaterParams14, frame_centre) == 144);
+static_assert(offsetof(WaterParams14, foam_pattern_drift) == 152);
+static_assert(offsetof(WaterParams14, foam_pattern_offset) == 160);
+static_assert(sizeof(WaterParams14) == 176);
 inline constexpr std::array<SpecializationConstant, 0> kConstants14{{}};
 
 // Interface 15: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams15 {
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float refraction_distortion = 0.03f;
+    float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float scatter_coefficient = 0.11f;
+    float refraction_shore_fade_depth = 1.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float reflection_horizon_band = 0.2f;
+    float scatter_coefficient = 0.11f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float ior_air = 1.0f;
+    float reflection_horizon_band = 0.2f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float ior_water = 1.33333f;
+    float ior_air = 1.0f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float specular_exponent = 256.0f;
+    float ior_water = 1.33333f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float foam_pattern_scale = 0.1f;
+    float specular_exponent = 256.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float foam_pattern_scale = 0.1f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float shore_hardness = 1.0f;
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams15, eye_position) == 0);
-static_assert(offsetof(WaterParams15, refraction_distortion) == 12);
+static_assert(offsetof(WaterParams15, time) == 12);
 static_assert(offsetof(WaterParams15, sun_direction) == 16);
-static_assert(offsetof(WaterParams15, refraction_shore_fade_depth) == 28);
+static_assert(offsetof(WaterParams15, refraction_distortion) == 28);
 static_assert(offsetof(WaterParams15, sun_color) == 32);
-static_assert(offsetof(WaterParams15, scatter_coefficient) == 44);
+static_assert(offsetof(WaterParams15, refraction_shore_fade_depth) == 44);
 static_assert(offsetof(WaterParams15, absorb_coefficients) == 48);
-static_assert(offsetof(WaterParams15, reflection_horizon_band) == 60);
+static_assert(offsetof(WaterParams15, scatter_coefficient) == 60);
 static_assert(offsetof(WaterParams15, scatter_color) == 64);
-static_assert(offsetof(WaterParams15, ior_air) == 76);
+static_assert(offsetof(WaterParams15, reflection_horizon_band) == 76);
 static_assert(offsetof(WaterParams15, incident_light) == 80);
-static_assert(offsetof(WaterParams15, ior_water) == 92);
+static_assert(offsetof(WaterParams15, ior_air) == 92);
 static_assert(offsetof(WaterParams15, reflection_lower_tint) == 96);
-static_assert(offsetof(WaterParams15, specular_exponent) == 108);
+static_assert(offsetof(WaterParams15, ior_water) == 108);
 static_assert(offsetof(WaterParams15, foam_existence) == 112);
-static_assert(offsetof(WaterParams15, foam_pattern_scale) == 124);
+static_assert(offsetof(WaterParams15, specular_exponent) == 124);
 static_assert(offsetof(WaterParams15, foam_color) == 128);
-static_assert(offsetof(WaterParams15, shore_hardness) == 140);
-static_assert(sizeof(WaterParams15) == 144);
+static_assert(offsetof(WaterParams15, foam_pattern_scale) == 140);
+static_assert(offsetof(WaterParams15, frame_centre) == 144);
+static_assert(offsetof(WaterParams15, foam_pattern_drift) == 152);
+static_assert(offsetof(WaterParams15, foam_pattern_offset) == 160);
+static_assert(offsetof(WaterParams15, shore_hardness) == 168);
+static_assert(sizeof(WaterParams15) == 176);
 inline constexpr std::array<SpecializationConstant, 0> kConstants15{{}};
 
 // Interface 16: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams16 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
+    // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float caustics_strength = 1.0f;
+    float refraction_shore_fade_depth = 1.0f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float scatter_coefficient = 0.11f;
+    float caustics_strength = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float scatter_coefficient = 0.11f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float foam_pattern_scale = 0.1f;
+    float pad0[1]{};
 };
-static_assert(offsetof(WaterParams16, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams16, eye_position) == 128);
-static_assert(offsetof(WaterParams16, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams16, sun_direction) == 144);
-static_assert(offsetof(WaterParams16, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams16, sun_color) == 160);
-static_assert(offsetof(WaterParams16, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams16, caustics_window) == 176);
-static_assert(offsetof(WaterParams16, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams16, absorb_coefficients) == 192);
-static_assert(offsetof(WaterParams16, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams16, scatter_color) == 208);
-static_assert(offsetof(WaterParams16, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams16, incident_light) == 224);
-static_assert(offsetof(WaterParams16, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams16, reflection_lower_tint) == 240);
-static_assert(offsetof(WaterParams16, caustics_strength) == 252);
-static_assert(offsetof(WaterParams16, foam_existence) == 256);
-static_assert(offsetof(WaterParams16, scatter_coefficient) == 268);
-static_assert(offsetof(WaterParams16, foam_color) == 272);
-static_assert(offsetof(WaterParams16, reflection_horizon_band) == 284);
-static_assert(offsetof(WaterParams16, ior_air) == 288);
-static_assert(offsetof(WaterParams16, ior_water) == 292);
-static_assert(offsetof(WaterParams16, specular_exponent) == 296);
-static_assert(offsetof(WaterParams16, foam_pattern_scale) == 300);
-static_assert(sizeof(WaterParams16) == 304);
+static_assert(offsetof(WaterParams16, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams16, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams16, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams16, eye_position) == 384);
+static_assert(offsetof(WaterParams16, time) == 396);
+static_assert(offsetof(WaterParams16, sun_direction) == 400);
+static_assert(offsetof(WaterParams16, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams16, sun_color) == 416);
+static_assert(offsetof(WaterParams16, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams16, caustics_window) == 432);
+static_assert(offsetof(WaterParams16, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams16, absorb_coefficients) == 448);
+static_assert(offsetof(WaterParams16, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams16, scatter_color) == 464);
+static_assert(offsetof(WaterParams16, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams16, incident_light) == 480);
+static_assert(offsetof(WaterParams16, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams16, reflection_lower_tint) == 496);
+static_assert(offsetof(WaterParams16, refraction_shore_fade_depth) == 508);
+static_assert(offsetof(WaterParams16, foam_existence) == 512);
+static_assert(offsetof(WaterParams16, caustics_strength) == 524);
+static_assert(offsetof(WaterParams16, foam_color) == 528);
+static_assert(offsetof(WaterParams16, scatter_coefficient) == 540);
+static_assert(offsetof(WaterParams16, frame_centre) == 544);
+static_assert(offsetof(WaterParams16, foam_pattern_drift) == 552);
+static_assert(offsetof(WaterParams16, foam_pattern_offset) == 560);
+static_assert(offsetof(WaterParams16, reflection_horizon_band) == 568);
+static_assert(offsetof(WaterParams16, ior_air) == 572);
+static_assert(offsetof(WaterParams16, ior_water) == 576);
+static_assert(offsetof(WaterParams16, specular_exponent) == 580);
+static_assert(offsetof(WaterParams16, foam_pattern_scale) == 584);
+static_assert(sizeof(WaterParams16) == 592);
 inline constexpr std::array<SpecializationConstant, 1> kConstants16{{{"gerstner_wave_count", 0}}};
 
 // Interface 17: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams17 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float scatter_coefficient = 0.11f;
+    float refraction_shore_fade_depth = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float scatter_coefficient = 0.11f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float foam_pattern_scale = 0.1f;
+    float pad0[1]{};
 };
-static_assert(offsetof(WaterParams17, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams17, eye_position) == 128);
-static_assert(offsetof(WaterParams17, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams17, sun_direction) == 144);
-static_assert(offsetof(WaterParams17, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams17, sun_color) == 160);
-static_assert(offsetof(WaterParams17, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams17, absorb_coefficients) == 176);
-static_assert(offsetof(WaterParams17, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams17, scatter_color) == 192);
-static_assert(offsetof(WaterParams17, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams17, incident_light) == 208);
-static_assert(offsetof(WaterParams17, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams17, reflection_lower_tint) == 224);
-static_assert(offsetof(WaterParams17, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams17, foam_existence) == 240);
-static_assert(offsetof(WaterParams17, scatter_coefficient) == 252);
-static_assert(offsetof(WaterParams17, foam_color) == 256);
-static_assert(offsetof(WaterParams17, reflection_horizon_band) == 268);
-static_assert(offsetof(WaterParams17, ior_air) == 272);
-static_assert(offsetof(WaterParams17, ior_water) == 276);
-static_assert(offsetof(WaterParams17, specular_exponent) == 280);
-static_assert(offsetof(WaterParams17, foam_pattern_scale) == 284);
-static_assert(sizeof(WaterParams17) == 288);
+static_assert(offsetof(WaterParams17, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams17, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams17, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams17, eye_position) == 384);
+static_assert(offsetof(WaterParams17, time) == 396);
+static_assert(offsetof(WaterParams17, sun_direction) == 400);
+static_assert(offsetof(WaterParams17, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams17, sun_color) == 416);
+static_assert(offsetof(WaterParams17, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams17, absorb_coefficients) == 432);
+static_assert(offsetof(WaterParams17, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams17, scatter_color) == 448);
+static_assert(offsetof(WaterParams17, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams17, incident_light) == 464);
+static_assert(offsetof(WaterParams17, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams17, reflection_lower_tint) == 480);
+static_assert(offsetof(WaterParams17, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams17, foam_existence) == 496);
+static_assert(offsetof(WaterParams17, refraction_shore_fade_depth) == 508);
+static_assert(offsetof(WaterParams17, foam_color) == 512);
+static_assert(offsetof(WaterParams17, scatter_coefficient) == 524);
+static_assert(offsetof(WaterParams17, frame_centre) == 528);
+static_assert(offsetof(WaterParams17, foam_pattern_drift) == 536);
+static_assert(offsetof(WaterParams17, foam_pattern_offset) == 544);
+static_assert(offsetof(WaterParams17, reflection_horizon_band) == 552);
+static_assert(offsetof(WaterParams17, ior_air) == 556);
+static_assert(offsetof(WaterParams17, ior_water) == 560);
+static_assert(offsetof(WaterParams17, specular_exponent) == 564);
+static_assert(offsetof(WaterParams17, foam_pattern_scale) == 568);
+static_assert(sizeof(WaterParams17) == 576);
 inline constexpr std::array<SpecializationConstant, 1> kConstants17{{{"gerstner_wave_count", 0}}};
 
 // Interface 18: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams18 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
+    // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float caustics_strength = 1.0f;
+    float refraction_shore_fade_depth = 1.0f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float scatter_coefficient = 0.11f;
+    float caustics_strength = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float scatter_coefficient = 0.11f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
-    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams18, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams18, eye_position) == 128);
-static_assert(offsetof(WaterParams18, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams18, sun_direction) == 144);
-static_assert(offsetof(WaterParams18, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams18, sun_color) == 160);
-static_assert(offsetof(WaterParams18, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams18, caustics_window) == 176);
-static_assert(offsetof(WaterParams18, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams18, absorb_coefficients) == 192);
-static_assert(offsetof(WaterParams18, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams18, scatter_color) == 208);
-static_assert(offsetof(WaterParams18, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams18, incident_light) == 224);
-static_assert(offsetof(WaterParams18, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams18, reflection_lower_tint) == 240);
-static_assert(offsetof(WaterParams18, caustics_strength) == 252);
-static_assert(offsetof(WaterParams18, foam_existence) == 256);
-static_assert(offsetof(WaterParams18, scatter_coefficient) == 268);
-static_assert(offsetof(WaterParams18, foam_color) == 272);
-static_assert(offsetof(WaterParams18, reflection_horizon_band) == 284);
-static_assert(offsetof(WaterParams18, ior_air) == 288);
-static_assert(offsetof(WaterParams18, ior_water) == 292);
-static_assert(offsetof(WaterParams18, specular_exponent) == 296);
-static_assert(offsetof(WaterParams18, foam_pattern_scale) == 300);
-static_assert(offsetof(WaterParams18, shore_hardness) == 304);
-static_assert(sizeof(WaterParams18) == 320);
+static_assert(offsetof(WaterParams18, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams18, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams18, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams18, eye_position) == 384);
+static_assert(offsetof(WaterParams18, time) == 396);
+static_assert(offsetof(WaterParams18, sun_direction) == 400);
+static_assert(offsetof(WaterParams18, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams18, sun_color) == 416);
+static_assert(offsetof(WaterParams18, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams18, caustics_window) == 432);
+static_assert(offsetof(WaterParams18, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams18, absorb_coefficients) == 448);
+static_assert(offsetof(WaterParams18, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams18, scatter_color) == 464);
+static_assert(offsetof(WaterParams18, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams18, incident_light) == 480);
+static_assert(offsetof(WaterParams18, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams18, reflection_lower_tint) == 496);
+static_assert(offsetof(WaterParams18, refraction_shore_fade_depth) == 508);
+static_assert(offsetof(WaterParams18, foam_existence) == 512);
+static_assert(offsetof(WaterParams18, caustics_strength) == 524);
+static_assert(offsetof(WaterParams18, foam_color) == 528);
+static_assert(offsetof(WaterParams18, scatter_coefficient) == 540);
+static_assert(offsetof(WaterParams18, frame_centre) == 544);
+static_assert(offsetof(WaterParams18, foam_pattern_drift) == 552);
+static_assert(offsetof(WaterParams18, foam_pattern_offset) == 560);
+static_assert(offsetof(WaterParams18, reflection_horizon_band) == 568);
+static_assert(offsetof(WaterParams18, ior_air) == 572);
+static_assert(offsetof(WaterParams18, ior_water) == 576);
+static_assert(offsetof(WaterParams18, specular_exponent) == 580);
+static_assert(offsetof(WaterParams18, foam_pattern_scale) == 584);
+static_assert(offsetof(WaterParams18, shore_hardness) == 588);
+static_assert(sizeof(WaterParams18) == 592);
 inline constexpr std::array<SpecializationConstant, 1> kConstants18{{{"gerstner_wave_count", 0}}};
 
 // Interface 19: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams19 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float scatter_coefficient = 0.11f;
+    float refraction_shore_fade_depth = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float scatter_coefficient = 0.11f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
-    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams19, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams19, eye_position) == 128);
-static_assert(offsetof(WaterParams19, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams19, sun_direction) == 144);
-static_assert(offsetof(WaterParams19, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams19, sun_color) == 160);
-static_assert(offsetof(WaterParams19, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams19, absorb_coefficients) == 176);
-static_assert(offsetof(WaterParams19, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams19, scatter_color) == 192);
-static_assert(offsetof(WaterParams19, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams19, incident_light) == 208);
-static_assert(offsetof(WaterParams19, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams19, reflection_lower_tint) == 224);
-static_assert(offsetof(WaterParams19, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams19, foam_existence) == 240);
-static_assert(offsetof(WaterParams19, scatter_coefficient) == 252);
-static_assert(offsetof(WaterParams19, foam_color) == 256);
-static_assert(offsetof(WaterParams19, reflection_horizon_band) == 268);
-static_assert(offsetof(WaterParams19, ior_air) == 272);
-static_assert(offsetof(WaterParams19, ior_water) == 276);
-static_assert(offsetof(WaterParams19, specular_exponent) == 280);
-static_assert(offsetof(WaterParams19, foam_pattern_scale) == 284);
-static_assert(offsetof(WaterParams19, shore_hardness) == 288);
-static_assert(sizeof(WaterParams19) == 304);
+static_assert(offsetof(WaterParams19, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams19, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams19, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams19, eye_position) == 384);
+static_assert(offsetof(WaterParams19, time) == 396);
+static_assert(offsetof(WaterParams19, sun_direction) == 400);
+static_assert(offsetof(WaterParams19, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams19, sun_color) == 416);
+static_assert(offsetof(WaterParams19, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams19, absorb_coefficients) == 432);
+static_assert(offsetof(WaterParams19, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams19, scatter_color) == 448);
+static_assert(offsetof(WaterParams19, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams19, incident_light) == 464);
+static_assert(offsetof(WaterParams19, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams19, reflection_lower_tint) == 480);
+static_assert(offsetof(WaterParams19, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams19, foam_existence) == 496);
+static_assert(offsetof(WaterParams19, refraction_shore_fade_depth) == 508);
+static_assert(offsetof(WaterParams19, foam_color) == 512);
+static_assert(offsetof(WaterParams19, scatter_coefficient) == 524);
+static_assert(offsetof(WaterParams19, frame_centre) == 528);
+static_assert(offsetof(WaterParams19, foam_pattern_drift) == 536);
+static_assert(offsetof(WaterParams19, foam_pattern_offset) == 544);
+static_assert(offsetof(WaterParams19, reflection_horizon_band) == 552);
+static_assert(offsetof(WaterParams19, ior_air) == 556);
+static_assert(offsetof(WaterParams19, ior_water) == 560);
+static_assert(offsetof(WaterParams19, specular_exponent) == 564);
+static_assert(offsetof(WaterParams19, foam_pattern_scale) == 568);
+static_assert(offsetof(WaterParams19, shore_hardness) == 572);
+static_assert(sizeof(WaterParams19) == 576);
 inline constexpr std::array<SpecializationConstant, 1> kConstants19{{{"gerstner_wave_count", 0}}};
 
 // Interface 20: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams20 {
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
@@ -1038,8 +1245,10 @@ struct WaterParams20 {
     float reflection_horizon_band = 0.2f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float ior_air = 1.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float ior_water = 1.33333f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams20, eye_position) == 0);
 static_assert(offsetof(WaterParams20, refraction_distortion) == 12);
@@ -1051,12 +1260,14 @@ static_assert(offsetof(WaterParams20, incident_light) == 48);
 static_assert(offsetof(WaterParams20, reflection_horizon_band) == 60);
 static_assert(offsetof(WaterParams20, reflection_lower_tint) == 64);
 static_assert(offsetof(WaterParams20, ior_air) == 76);
-static_assert(offsetof(WaterParams20, ior_water) == 80);
+static_assert(offsetof(WaterParams20, frame_centre) == 80);
+static_assert(offsetof(WaterParams20, ior_water) == 88);
 static_assert(sizeof(WaterParams20) == 96);
 inline constexpr std::array<SpecializationConstant, 0> kConstants20{{}};
 
 // Interface 21: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams21 {
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
@@ -1067,9 +1278,10 @@ struct WaterParams21 {
     float reflection_horizon_band = 0.2f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float ior_air = 1.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
-    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams21, eye_position) == 0);
 static_assert(offsetof(WaterParams21, refraction_distortion) == 12);
@@ -1081,25 +1293,34 @@ static_assert(offsetof(WaterParams21, incident_light) == 48);
 static_assert(offsetof(WaterParams21, reflection_horizon_band) == 60);
 static_assert(offsetof(WaterParams21, reflection_lower_tint) == 64);
 static_assert(offsetof(WaterParams21, ior_air) == 76);
-static_assert(offsetof(WaterParams21, ior_water) == 80);
-static_assert(offsetof(WaterParams21, shore_hardness) == 84);
+static_assert(offsetof(WaterParams21, frame_centre) == 80);
+static_assert(offsetof(WaterParams21, ior_water) == 88);
+static_assert(offsetof(WaterParams21, shore_hardness) == 92);
 static_assert(sizeof(WaterParams21) == 96);
 inline constexpr std::array<SpecializationConstant, 0> kConstants21{{}};
 
 // Interface 22: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams22 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
+    // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
+    float gerstner_steepness = 0.5f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
     float caustics_strength = 1.0f;
@@ -1107,42 +1328,53 @@ struct WaterParams22 {
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
-    float pad0[2]{};
+    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams22, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams22, eye_position) == 128);
-static_assert(offsetof(WaterParams22, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams22, caustics_window) == 144);
-static_assert(offsetof(WaterParams22, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams22, absorb_coefficients) == 160);
-static_assert(offsetof(WaterParams22, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams22, scatter_color) == 176);
-static_assert(offsetof(WaterParams22, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams22, incident_light) == 192);
-static_assert(offsetof(WaterParams22, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams22, reflection_lower_tint) == 208);
-static_assert(offsetof(WaterParams22, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams22, refraction_shore_fade_depth) == 224);
-static_assert(offsetof(WaterParams22, caustics_strength) == 228);
-static_assert(offsetof(WaterParams22, scatter_coefficient) == 232);
-static_assert(offsetof(WaterParams22, reflection_horizon_band) == 236);
-static_assert(offsetof(WaterParams22, ior_air) == 240);
-static_assert(offsetof(WaterParams22, ior_water) == 244);
-static_assert(sizeof(WaterParams22) == 256);
+static_assert(offsetof(WaterParams22, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams22, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams22, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams22, eye_position) == 384);
+static_assert(offsetof(WaterParams22, time) == 396);
+static_assert(offsetof(WaterParams22, caustics_window) == 400);
+static_assert(offsetof(WaterParams22, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams22, absorb_coefficients) == 416);
+static_assert(offsetof(WaterParams22, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams22, scatter_color) == 432);
+static_assert(offsetof(WaterParams22, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams22, incident_light) == 448);
+static_assert(offsetof(WaterParams22, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams22, reflection_lower_tint) == 464);
+static_assert(offsetof(WaterParams22, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams22, frame_centre) == 480);
+static_assert(offsetof(WaterParams22, refraction_distortion) == 488);
+static_assert(offsetof(WaterParams22, refraction_shore_fade_depth) == 492);
+static_assert(offsetof(WaterParams22, caustics_strength) == 496);
+static_assert(offsetof(WaterParams22, scatter_coefficient) == 500);
+static_assert(offsetof(WaterParams22, reflection_horizon_band) == 504);
+static_assert(offsetof(WaterParams22, ior_air) == 508);
+static_assert(offsetof(WaterParams22, ior_water) == 512);
+static_assert(sizeof(WaterParams22) == 528);
 inline constexpr std::array<SpecializationConstant, 1> kConstants22{{{"gerstner_wave_count", 0}}};
 
-// Interface 23: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
+// Interface 23: 5 variants (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams23 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
+    float gerstner_frequency_gain = 1.18f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float gerstner_steepness = 0.5f;
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
@@ -1150,42 +1382,54 @@ struct WaterParams23 {
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
-    float pad0[2]{};
+    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams23, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams23, eye_position) == 128);
-static_assert(offsetof(WaterParams23, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams23, absorb_coefficients) == 144);
-static_assert(offsetof(WaterParams23, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams23, scatter_color) == 160);
-static_assert(offsetof(WaterParams23, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams23, incident_light) == 176);
-static_assert(offsetof(WaterParams23, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams23, reflection_lower_tint) == 192);
-static_assert(offsetof(WaterParams23, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams23, refraction_distortion) == 208);
-static_assert(offsetof(WaterParams23, refraction_shore_fade_depth) == 212);
-static_assert(offsetof(WaterParams23, scatter_coefficient) == 216);
-static_assert(offsetof(WaterParams23, reflection_horizon_band) == 220);
-static_assert(offsetof(WaterParams23, ior_air) == 224);
-static_assert(offsetof(WaterParams23, ior_water) == 228);
-static_assert(sizeof(WaterParams23) == 240);
+static_assert(offsetof(WaterParams23, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams23, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams23, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams23, eye_position) == 384);
+static_assert(offsetof(WaterParams23, time) == 396);
+static_assert(offsetof(WaterParams23, absorb_coefficients) == 400);
+static_assert(offsetof(WaterParams23, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams23, scatter_color) == 416);
+static_assert(offsetof(WaterParams23, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams23, incident_light) == 432);
+static_assert(offsetof(WaterParams23, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams23, reflection_lower_tint) == 448);
+static_assert(offsetof(WaterParams23, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams23, frame_centre) == 464);
+static_assert(offsetof(WaterParams23, gerstner_steepness) == 472);
+static_assert(offsetof(WaterParams23, refraction_distortion) == 476);
+static_assert(offsetof(WaterParams23, refraction_shore_fade_depth) == 480);
+static_assert(offsetof(WaterParams23, scatter_coefficient) == 484);
+static_assert(offsetof(WaterParams23, reflection_horizon_band) == 488);
+static_assert(offsetof(WaterParams23, ior_air) == 492);
+static_assert(offsetof(WaterParams23, ior_water) == 496);
+static_assert(sizeof(WaterParams23) == 512);
 inline constexpr std::array<SpecializationConstant, 1> kConstants23{{{"gerstner_wave_count", 0}}};
 
 // Interface 24: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams24 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
+    // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
+    float gerstner_steepness = 0.5f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
     float caustics_strength = 1.0f;
@@ -1194,43 +1438,54 @@ struct WaterParams24 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
-    float pad0[1]{};
+    float pad0[2]{};
 };
-static_assert(offsetof(WaterParams24, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams24, eye_position) == 128);
-static_assert(offsetof(WaterParams24, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams24, caustics_window) == 144);
-static_assert(offsetof(WaterParams24, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams24, absorb_coefficients) == 160);
-static_assert(offsetof(WaterParams24, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams24, scatter_color) == 176);
-static_assert(offsetof(WaterParams24, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams24, incident_light) == 192);
-static_assert(offsetof(WaterParams24, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams24, reflection_lower_tint) == 208);
-static_assert(offsetof(WaterParams24, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams24, refraction_shore_fade_depth) == 224);
-static_assert(offsetof(WaterParams24, caustics_strength) == 228);
-static_assert(offsetof(WaterParams24, scatter_coefficient) == 232);
-static_assert(offsetof(WaterParams24, reflection_horizon_band) == 236);
-static_assert(offsetof(WaterParams24, ior_air) == 240);
-static_assert(offsetof(WaterParams24, ior_water) == 244);
-static_assert(offsetof(WaterParams24, shore_hardness) == 248);
-static_assert(sizeof(WaterParams24) == 256);
+static_assert(offsetof(WaterParams24, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams24, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams24, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams24, eye_position) == 384);
+static_assert(offsetof(WaterParams24, time) == 396);
+static_assert(offsetof(WaterParams24, caustics_window) == 400);
+static_assert(offsetof(WaterParams24, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams24, absorb_coefficients) == 416);
+static_assert(offsetof(WaterParams24, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams24, scatter_color) == 432);
+static_assert(offsetof(WaterParams24, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams24, incident_light) == 448);
+static_assert(offsetof(WaterParams24, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams24, reflection_lower_tint) == 464);
+static_assert(offsetof(WaterParams24, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams24, frame_centre) == 480);
+static_assert(offsetof(WaterParams24, refraction_distortion) == 488);
+static_assert(offsetof(WaterParams24, refraction_shore_fade_depth) == 492);
+static_assert(offsetof(WaterParams24, caustics_strength) == 496);
+static_assert(offsetof(WaterParams24, scatter_coefficient) == 500);
+static_assert(offsetof(WaterParams24, reflection_horizon_band) == 504);
+static_assert(offsetof(WaterParams24, ior_air) == 508);
+static_assert(offsetof(WaterParams24, ior_water) == 512);
+static_assert(offsetof(WaterParams24, shore_hardness) == 516);
+static_assert(sizeof(WaterParams24) == 528);
 inline constexpr std::array<SpecializationConstant, 1> kConstants24{{{"gerstner_wave_count", 0}}};
 
 // Interface 25: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams25 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
+    float gerstner_frequency_gain = 1.18f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float gerstner_steepness = 0.5f;
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
@@ -1239,216 +1494,284 @@ struct WaterParams25 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
-    float pad0[1]{};
+    float pad0[2]{};
 };
-static_assert(offsetof(WaterParams25, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams25, eye_position) == 128);
-static_assert(offsetof(WaterParams25, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams25, absorb_coefficients) == 144);
-static_assert(offsetof(WaterParams25, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams25, scatter_color) == 160);
-static_assert(offsetof(WaterParams25, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams25, incident_light) == 176);
-static_assert(offsetof(WaterParams25, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams25, reflection_lower_tint) == 192);
-static_assert(offsetof(WaterParams25, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams25, refraction_distortion) == 208);
-static_assert(offsetof(WaterParams25, refraction_shore_fade_depth) == 212);
-static_assert(offsetof(WaterParams25, scatter_coefficient) == 216);
-static_assert(offsetof(WaterParams25, reflection_horizon_band) == 220);
-static_assert(offsetof(WaterParams25, ior_air) == 224);
-static_assert(offsetof(WaterParams25, ior_water) == 228);
-static_assert(offsetof(WaterParams25, shore_hardness) == 232);
-static_assert(sizeof(WaterParams25) == 240);
+static_assert(offsetof(WaterParams25, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams25, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams25, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams25, eye_position) == 384);
+static_assert(offsetof(WaterParams25, time) == 396);
+static_assert(offsetof(WaterParams25, absorb_coefficients) == 400);
+static_assert(offsetof(WaterParams25, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams25, scatter_color) == 416);
+static_assert(offsetof(WaterParams25, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams25, incident_light) == 432);
+static_assert(offsetof(WaterParams25, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams25, reflection_lower_tint) == 448);
+static_assert(offsetof(WaterParams25, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams25, frame_centre) == 464);
+static_assert(offsetof(WaterParams25, gerstner_steepness) == 472);
+static_assert(offsetof(WaterParams25, refraction_distortion) == 476);
+static_assert(offsetof(WaterParams25, refraction_shore_fade_depth) == 480);
+static_assert(offsetof(WaterParams25, scatter_coefficient) == 484);
+static_assert(offsetof(WaterParams25, reflection_horizon_band) == 488);
+static_assert(offsetof(WaterParams25, ior_air) == 492);
+static_assert(offsetof(WaterParams25, ior_water) == 496);
+static_assert(offsetof(WaterParams25, shore_hardness) == 500);
+static_assert(sizeof(WaterParams25) == 512);
 inline constexpr std::array<SpecializationConstant, 1> kConstants25{{{"gerstner_wave_count", 0}}};
 
 // Interface 26: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams26 {
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float refraction_distortion = 0.03f;
+    float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float scatter_coefficient = 0.11f;
+    float refraction_shore_fade_depth = 1.0f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float reflection_horizon_band = 0.2f;
+    float scatter_coefficient = 0.11f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float ior_air = 1.0f;
+    float reflection_horizon_band = 0.2f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float ior_water = 1.33333f;
+    float ior_air = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float ior_water = 1.33333f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float foam_pattern_scale = 0.1f;
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams26, eye_position) == 0);
-static_assert(offsetof(WaterParams26, refraction_distortion) == 12);
+static_assert(offsetof(WaterParams26, time) == 12);
 static_assert(offsetof(WaterParams26, absorb_coefficients) == 16);
-static_assert(offsetof(WaterParams26, refraction_shore_fade_depth) == 28);
+static_assert(offsetof(WaterParams26, refraction_distortion) == 28);
 static_assert(offsetof(WaterParams26, scatter_color) == 32);
-static_assert(offsetof(WaterParams26, scatter_coefficient) == 44);
+static_assert(offsetof(WaterParams26, refraction_shore_fade_depth) == 44);
 static_assert(offsetof(WaterParams26, incident_light) == 48);
-static_assert(offsetof(WaterParams26, reflection_horizon_band) == 60);
+static_assert(offsetof(WaterParams26, scatter_coefficient) == 60);
 static_assert(offsetof(WaterParams26, reflection_lower_tint) == 64);
-static_assert(offsetof(WaterParams26, ior_air) == 76);
+static_assert(offsetof(WaterParams26, reflection_horizon_band) == 76);
 static_assert(offsetof(WaterParams26, foam_existence) == 80);
-static_assert(offsetof(WaterParams26, ior_water) == 92);
+static_assert(offsetof(WaterParams26, ior_air) == 92);
 static_assert(offsetof(WaterParams26, foam_color) == 96);
-static_assert(offsetof(WaterParams26, foam_pattern_scale) == 108);
-static_assert(sizeof(WaterParams26) == 112);
+static_assert(offsetof(WaterParams26, ior_water) == 108);
+static_assert(offsetof(WaterParams26, frame_centre) == 112);
+static_assert(offsetof(WaterParams26, foam_pattern_drift) == 120);
+static_assert(offsetof(WaterParams26, foam_pattern_offset) == 128);
+static_assert(offsetof(WaterParams26, foam_pattern_scale) == 136);
+static_assert(sizeof(WaterParams26) == 144);
 inline constexpr std::array<SpecializationConstant, 0> kConstants26{{}};
 
 // Interface 27: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams27 {
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float refraction_distortion = 0.03f;
+    float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float scatter_coefficient = 0.11f;
+    float refraction_shore_fade_depth = 1.0f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float reflection_horizon_band = 0.2f;
+    float scatter_coefficient = 0.11f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float ior_air = 1.0f;
+    float reflection_horizon_band = 0.2f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float ior_water = 1.33333f;
+    float ior_air = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float ior_water = 1.33333f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
-    float pad0[3]{};
 };
 static_assert(offsetof(WaterParams27, eye_position) == 0);
-static_assert(offsetof(WaterParams27, refraction_distortion) == 12);
+static_assert(offsetof(WaterParams27, time) == 12);
 static_assert(offsetof(WaterParams27, absorb_coefficients) == 16);
-static_assert(offsetof(WaterParams27, refraction_shore_fade_depth) == 28);
+static_assert(offsetof(WaterParams27, refraction_distortion) == 28);
 static_assert(offsetof(WaterParams27, scatter_color) == 32);
-static_assert(offsetof(WaterParams27, scatter_coefficient) == 44);
+static_assert(offsetof(WaterParams27, refraction_shore_fade_depth) == 44);
 static_assert(offsetof(WaterParams27, incident_light) == 48);
-static_assert(offsetof(WaterParams27, reflection_horizon_band) == 60);
+static_assert(offsetof(WaterParams27, scatter_coefficient) == 60);
 static_assert(offsetof(WaterParams27, reflection_lower_tint) == 64);
-static_assert(offsetof(WaterParams27, ior_air) == 76);
+static_assert(offsetof(WaterParams27, reflection_horizon_band) == 76);
 static_assert(offsetof(WaterParams27, foam_existence) == 80);
-static_assert(offsetof(WaterParams27, ior_water) == 92);
+static_assert(offsetof(WaterParams27, ior_air) == 92);
 static_assert(offsetof(WaterParams27, foam_color) == 96);
-static_assert(offsetof(WaterParams27, foam_pattern_scale) == 108);
-static_assert(offsetof(WaterParams27, shore_hardness) == 112);
-static_assert(sizeof(WaterParams27) == 128);
+static_assert(offsetof(WaterParams27, ior_water) == 108);
+static_assert(offsetof(WaterParams27, frame_centre) == 112);
+static_assert(offsetof(WaterParams27, foam_pattern_drift) == 120);
+static_assert(offsetof(WaterParams27, foam_pattern_offset) == 128);
+static_assert(offsetof(WaterParams27, foam_pattern_scale) == 136);
+static_assert(offsetof(WaterParams27, shore_hardness) == 140);
+static_assert(sizeof(WaterParams27) == 144);
 inline constexpr std::array<SpecializationConstant, 0> kConstants27{{}};
 
 // Interface 28: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams28 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
+    // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float refraction_shore_fade_depth = 1.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float caustics_strength = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
-    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams28, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams28, eye_position) == 128);
-static_assert(offsetof(WaterParams28, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams28, caustics_window) == 144);
-static_assert(offsetof(WaterParams28, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams28, absorb_coefficients) == 160);
-static_assert(offsetof(WaterParams28, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams28, scatter_color) == 176);
-static_assert(offsetof(WaterParams28, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams28, incident_light) == 192);
-static_assert(offsetof(WaterParams28, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams28, reflection_lower_tint) == 208);
-static_assert(offsetof(WaterParams28, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams28, foam_existence) == 224);
-static_assert(offsetof(WaterParams28, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams28, foam_color) == 240);
-static_assert(offsetof(WaterParams28, caustics_strength) == 252);
-static_assert(offsetof(WaterParams28, scatter_coefficient) == 256);
-static_assert(offsetof(WaterParams28, reflection_horizon_band) == 260);
-static_assert(offsetof(WaterParams28, ior_air) == 264);
-static_assert(offsetof(WaterParams28, ior_water) == 268);
-static_assert(offsetof(WaterParams28, foam_pattern_scale) == 272);
-static_assert(sizeof(WaterParams28) == 288);
+static_assert(offsetof(WaterParams28, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams28, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams28, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams28, eye_position) == 384);
+static_assert(offsetof(WaterParams28, time) == 396);
+static_assert(offsetof(WaterParams28, caustics_window) == 400);
+static_assert(offsetof(WaterParams28, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams28, absorb_coefficients) == 416);
+static_assert(offsetof(WaterParams28, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams28, scatter_color) == 432);
+static_assert(offsetof(WaterParams28, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams28, incident_light) == 448);
+static_assert(offsetof(WaterParams28, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams28, reflection_lower_tint) == 464);
+static_assert(offsetof(WaterParams28, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams28, foam_existence) == 480);
+static_assert(offsetof(WaterParams28, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams28, foam_color) == 496);
+static_assert(offsetof(WaterParams28, refraction_shore_fade_depth) == 508);
+static_assert(offsetof(WaterParams28, frame_centre) == 512);
+static_assert(offsetof(WaterParams28, foam_pattern_drift) == 520);
+static_assert(offsetof(WaterParams28, foam_pattern_offset) == 528);
+static_assert(offsetof(WaterParams28, caustics_strength) == 536);
+static_assert(offsetof(WaterParams28, scatter_coefficient) == 540);
+static_assert(offsetof(WaterParams28, reflection_horizon_band) == 544);
+static_assert(offsetof(WaterParams28, ior_air) == 548);
+static_assert(offsetof(WaterParams28, ior_water) == 552);
+static_assert(offsetof(WaterParams28, foam_pattern_scale) == 556);
+static_assert(sizeof(WaterParams28) == 560);
 inline constexpr std::array<SpecializationConstant, 1> kConstants28{{{"gerstner_wave_count", 0}}};
 
 // Interface 29: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams29 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float refraction_distortion = 0.03f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
-    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams29, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams29, eye_position) == 128);
-static_assert(offsetof(WaterParams29, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams29, absorb_coefficients) == 144);
-static_assert(offsetof(WaterParams29, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams29, scatter_color) == 160);
-static_assert(offsetof(WaterParams29, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams29, incident_light) == 176);
-static_assert(offsetof(WaterParams29, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams29, reflection_lower_tint) == 192);
-static_assert(offsetof(WaterParams29, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams29, foam_existence) == 208);
-static_assert(offsetof(WaterParams29, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams29, foam_color) == 224);
-static_assert(offsetof(WaterParams29, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams29, scatter_coefficient) == 240);
-static_assert(offsetof(WaterParams29, reflection_horizon_band) == 244);
-static_assert(offsetof(WaterParams29, ior_air) == 248);
-static_assert(offsetof(WaterParams29, ior_water) == 252);
-static_assert(offsetof(WaterParams29, foam_pattern_scale) == 256);
-static_assert(sizeof(WaterParams29) == 272);
+static_assert(offsetof(WaterParams29, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams29, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams29, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams29, eye_position) == 384);
+static_assert(offsetof(WaterParams29, time) == 396);
+static_assert(offsetof(WaterParams29, absorb_coefficients) == 400);
+static_assert(offsetof(WaterParams29, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams29, scatter_color) == 416);
+static_assert(offsetof(WaterParams29, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams29, incident_light) == 432);
+static_assert(offsetof(WaterParams29, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams29, reflection_lower_tint) == 448);
+static_assert(offsetof(WaterParams29, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams29, foam_existence) == 464);
+static_assert(offsetof(WaterParams29, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams29, foam_color) == 480);
+static_assert(offsetof(WaterParams29, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams29, frame_centre) == 496);
+static_assert(offsetof(WaterParams29, foam_pattern_drift) == 504);
+static_assert(offsetof(WaterParams29, foam_pattern_offset) == 512);
+static_assert(offsetof(WaterParams29, refraction_shore_fade_depth) == 520);
+static_assert(offsetof(WaterParams29, scatter_coefficient) == 524);
+static_assert(offsetof(WaterParams29, reflection_horizon_band) == 528);
+static_assert(offsetof(WaterParams29, ior_air) == 532);
+static_assert(offsetof(WaterParams29, ior_water) == 536);
+static_assert(offsetof(WaterParams29, foam_pattern_scale) == 540);
+static_assert(sizeof(WaterParams29) == 544);
 inline constexpr std::array<SpecializationConstant, 1> kConstants29{{{"gerstner_wave_count", 0}}};
 
 // Interface 30: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams30 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
+    // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float refraction_shore_fade_depth = 1.0f;
+    float refraction_distortion = 0.03f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float refraction_shore_fade_depth = 1.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float caustics_strength = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -1456,50 +1779,66 @@ struct WaterParams30 {
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
-    float pad0[2]{};
+    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams30, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams30, eye_position) == 128);
-static_assert(offsetof(WaterParams30, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams30, caustics_window) == 144);
-static_assert(offsetof(WaterParams30, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams30, absorb_coefficients) == 160);
-static_assert(offsetof(WaterParams30, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams30, scatter_color) == 176);
-static_assert(offsetof(WaterParams30, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams30, incident_light) == 192);
-static_assert(offsetof(WaterParams30, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams30, reflection_lower_tint) == 208);
-static_assert(offsetof(WaterParams30, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams30, foam_existence) == 224);
-static_assert(offsetof(WaterParams30, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams30, foam_color) == 240);
-static_assert(offsetof(WaterParams30, caustics_strength) == 252);
-static_assert(offsetof(WaterParams30, scatter_coefficient) == 256);
-static_assert(offsetof(WaterParams30, reflection_horizon_band) == 260);
-static_assert(offsetof(WaterParams30, ior_air) == 264);
-static_assert(offsetof(WaterParams30, ior_water) == 268);
-static_assert(offsetof(WaterParams30, foam_pattern_scale) == 272);
-static_assert(offsetof(WaterParams30, shore_hardness) == 276);
-static_assert(sizeof(WaterParams30) == 288);
+static_assert(offsetof(WaterParams30, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams30, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams30, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams30, eye_position) == 384);
+static_assert(offsetof(WaterParams30, time) == 396);
+static_assert(offsetof(WaterParams30, caustics_window) == 400);
+static_assert(offsetof(WaterParams30, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams30, absorb_coefficients) == 416);
+static_assert(offsetof(WaterParams30, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams30, scatter_color) == 432);
+static_assert(offsetof(WaterParams30, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams30, incident_light) == 448);
+static_assert(offsetof(WaterParams30, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams30, reflection_lower_tint) == 464);
+static_assert(offsetof(WaterParams30, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams30, foam_existence) == 480);
+static_assert(offsetof(WaterParams30, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams30, foam_color) == 496);
+static_assert(offsetof(WaterParams30, refraction_shore_fade_depth) == 508);
+static_assert(offsetof(WaterParams30, frame_centre) == 512);
+static_assert(offsetof(WaterParams30, foam_pattern_drift) == 520);
+static_assert(offsetof(WaterParams30, foam_pattern_offset) == 528);
+static_assert(offsetof(WaterParams30, caustics_strength) == 536);
+static_assert(offsetof(WaterParams30, scatter_coefficient) == 540);
+static_assert(offsetof(WaterParams30, reflection_horizon_band) == 544);
+static_assert(offsetof(WaterParams30, ior_air) == 548);
+static_assert(offsetof(WaterParams30, ior_water) == 552);
+static_assert(offsetof(WaterParams30, foam_pattern_scale) == 556);
+static_assert(offsetof(WaterParams30, shore_hardness) == 560);
+static_assert(sizeof(WaterParams30) == 576);
 inline constexpr std::array<SpecializationConstant, 1> kConstants30{{{"gerstner_wave_count", 0}}};
 
 // Interface 31: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams31 {
+    // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float gerstner_amplitude = 0.2f;
+    float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_frequency = 0.7f;
+    float gerstner_amplitude = 0.2f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_amplitude_gain = 0.82f;
+    float gerstner_frequency = 0.7f;
     Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float gerstner_frequency_gain = 1.18f;
+    float gerstner_amplitude_gain = 0.82f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float gerstner_steepness = 0.5f;
+    float gerstner_frequency_gain = 1.18f;
     Vec3 foam_existence = {0.45f, 4.35f, 1.5f};
-    float refraction_distortion = 0.03f;
+    float gerstner_steepness = 0.5f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
+    float refraction_distortion = 0.03f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    Vec2 foam_pattern_drift = {0.003f, 0.002f};
+    // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 foam_pattern_offset = {0.0f, 0.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -1507,34 +1846,41 @@ struct WaterParams31 {
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
-    float pad0[2]{};
+    float pad0[3]{};
 };
-static_assert(offsetof(WaterParams31, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams31, eye_position) == 128);
-static_assert(offsetof(WaterParams31, gerstner_amplitude) == 140);
-static_assert(offsetof(WaterParams31, absorb_coefficients) == 144);
-static_assert(offsetof(WaterParams31, gerstner_frequency) == 156);
-static_assert(offsetof(WaterParams31, scatter_color) == 160);
-static_assert(offsetof(WaterParams31, gerstner_amplitude_gain) == 172);
-static_assert(offsetof(WaterParams31, incident_light) == 176);
-static_assert(offsetof(WaterParams31, gerstner_frequency_gain) == 188);
-static_assert(offsetof(WaterParams31, reflection_lower_tint) == 192);
-static_assert(offsetof(WaterParams31, gerstner_steepness) == 204);
-static_assert(offsetof(WaterParams31, foam_existence) == 208);
-static_assert(offsetof(WaterParams31, refraction_distortion) == 220);
-static_assert(offsetof(WaterParams31, foam_color) == 224);
-static_assert(offsetof(WaterParams31, refraction_shore_fade_depth) == 236);
-static_assert(offsetof(WaterParams31, scatter_coefficient) == 240);
-static_assert(offsetof(WaterParams31, reflection_horizon_band) == 244);
-static_assert(offsetof(WaterParams31, ior_air) == 248);
-static_assert(offsetof(WaterParams31, ior_water) == 252);
-static_assert(offsetof(WaterParams31, foam_pattern_scale) == 256);
-static_assert(offsetof(WaterParams31, shore_hardness) == 260);
-static_assert(sizeof(WaterParams31) == 272);
+static_assert(offsetof(WaterParams31, gerstner_wave_phases) == 0);
+static_assert(offsetof(WaterParams31, gerstner_wave_speeds) == 128);
+static_assert(offsetof(WaterParams31, gerstner_wave_directions) == 256);
+static_assert(offsetof(WaterParams31, eye_position) == 384);
+static_assert(offsetof(WaterParams31, time) == 396);
+static_assert(offsetof(WaterParams31, absorb_coefficients) == 400);
+static_assert(offsetof(WaterParams31, gerstner_amplitude) == 412);
+static_assert(offsetof(WaterParams31, scatter_color) == 416);
+static_assert(offsetof(WaterParams31, gerstner_frequency) == 428);
+static_assert(offsetof(WaterParams31, incident_light) == 432);
+static_assert(offsetof(WaterParams31, gerstner_amplitude_gain) == 444);
+static_assert(offsetof(WaterParams31, reflection_lower_tint) == 448);
+static_assert(offsetof(WaterParams31, gerstner_frequency_gain) == 460);
+static_assert(offsetof(WaterParams31, foam_existence) == 464);
+static_assert(offsetof(WaterParams31, gerstner_steepness) == 476);
+static_assert(offsetof(WaterParams31, foam_color) == 480);
+static_assert(offsetof(WaterParams31, refraction_distortion) == 492);
+static_assert(offsetof(WaterParams31, frame_centre) == 496);
+static_assert(offsetof(WaterParams31, foam_pattern_drift) == 504);
+static_assert(offsetof(WaterParams31, foam_pattern_offset) == 512);
+static_assert(offsetof(WaterParams31, refraction_shore_fade_depth) == 520);
+static_assert(offsetof(WaterParams31, scatter_coefficient) == 524);
+static_assert(offsetof(WaterParams31, reflection_horizon_band) == 528);
+static_assert(offsetof(WaterParams31, ior_air) == 532);
+static_assert(offsetof(WaterParams31, ior_water) == 536);
+static_assert(offsetof(WaterParams31, foam_pattern_scale) == 540);
+static_assert(offsetof(WaterParams31, shore_hardness) == 544);
+static_assert(sizeof(WaterParams31) == 560);
 inline constexpr std::array<SpecializationConstant, 1> kConstants31{{{"gerstner_wave_count", 0}}};
 
 // Interface 32: 4 variants (the first: open_ocean fresnel=exact,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none).
 struct WaterParams32 {
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
     float scatter_coefficient = 0.11f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
@@ -1547,6 +1893,9 @@ struct WaterParams32 {
     float specular_exponent = 256.0f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float pad0[1]{};
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
+    float pad1[2]{};
 };
 static_assert(offsetof(WaterParams32, eye_position) == 0);
 static_assert(offsetof(WaterParams32, scatter_coefficient) == 12);
@@ -1559,126 +1908,36 @@ static_assert(offsetof(WaterParams32, ior_water) == 60);
 static_assert(offsetof(WaterParams32, incident_light) == 64);
 static_assert(offsetof(WaterParams32, specular_exponent) == 76);
 static_assert(offsetof(WaterParams32, reflection_lower_tint) == 80);
-static_assert(sizeof(WaterParams32) == 96);
+static_assert(offsetof(WaterParams32, frame_centre) == 96);
+static_assert(sizeof(WaterParams32) == 112);
 inline constexpr std::array<SpecializationConstant, 0> kConstants32{{}};
 
-// Interface 33: 4 variants (the first: open_ocean fresnel=exact,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none).
+// Interface 33: 4 variants (the first: open_ocean fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none).
 struct WaterParams33 {
-    Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
-    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
+    // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float time = 0.0f;
-    Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
-    float gerstner_amplitude = 0.2f;
-    Vec3 sun_color = {1.0f, 0.95f, 0.85f};
-    float gerstner_frequency = 0.7f;
-    Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_amplitude_gain = 0.82f;
-    Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_frequency_gain = 1.18f;
-    Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float gerstner_steepness = 0.5f;
-    Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float refraction_distortion = 0.03f;
-    float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
+    Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
     float reflection_horizon_band = 0.2f;
+    Vec3 incident_light = {1.0f, 1.0f, 1.0f};
     float ior_air = 1.0f;
+    Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float ior_water = 1.33333f;
-    float specular_exponent = 256.0f;
+    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
+    Vec2 frame_centre = {0.0f, -0.0f};
     float pad0[2]{};
 };
-static_assert(offsetof(WaterParams33, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams33, gerstner_wave_speeds) == 128);
-static_assert(offsetof(WaterParams33, eye_position) == 256);
-static_assert(offsetof(WaterParams33, time) == 268);
-static_assert(offsetof(WaterParams33, sun_direction) == 272);
-static_assert(offsetof(WaterParams33, gerstner_amplitude) == 284);
-static_assert(offsetof(WaterParams33, sun_color) == 288);
-static_assert(offsetof(WaterParams33, gerstner_frequency) == 300);
-static_assert(offsetof(WaterParams33, absorb_coefficients) == 304);
-static_assert(offsetof(WaterParams33, gerstner_amplitude_gain) == 316);
-static_assert(offsetof(WaterParams33, scatter_color) == 320);
-static_assert(offsetof(WaterParams33, gerstner_frequency_gain) == 332);
-static_assert(offsetof(WaterParams33, incident_light) == 336);
-static_assert(offsetof(WaterParams33, gerstner_steepness) == 348);
-static_assert(offsetof(WaterParams33, reflection_lower_tint) == 352);
-static_assert(offsetof(WaterParams33, refraction_distortion) == 364);
-static_assert(offsetof(WaterParams33, refraction_shore_fade_depth) == 368);
-static_assert(offsetof(WaterParams33, scatter_coefficient) == 372);
-static_assert(offsetof(WaterParams33, reflection_horizon_band) == 376);
-static_assert(offsetof(WaterParams33, ior_air) == 380);
-static_assert(offsetof(WaterParams33, ior_water) == 384);
-static_assert(offsetof(WaterParams33, specular_exponent) == 388);
-static_assert(sizeof(WaterParams33) == 400);
-inline constexpr std::array<SpecializationConstant, 1> kConstants33{{{"gerstner_wave_count", 0}}};
-
-// Interface 34: 4 variants (the first: open_ocean fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none).
-struct WaterParams34 {
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float scatter_coefficient = 0.11f;
-    Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float reflection_horizon_band = 0.2f;
-    Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float ior_air = 1.0f;
-    Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float ior_water = 1.33333f;
-};
-static_assert(offsetof(WaterParams34, eye_position) == 0);
-static_assert(offsetof(WaterParams34, scatter_coefficient) == 12);
-static_assert(offsetof(WaterParams34, scatter_color) == 16);
-static_assert(offsetof(WaterParams34, reflection_horizon_band) == 28);
-static_assert(offsetof(WaterParams34, incident_light) == 32);
-static_assert(offsetof(WaterParams34, ior_air) == 44);
-static_assert(offsetof(WaterParams34, reflection_lower_tint) == 48);
-static_assert(offsetof(WaterParams34, ior_water) == 60);
-static_assert(sizeof(WaterParams34) == 64);
-inline constexpr std::array<SpecializationConstant, 0> kConstants34{{}};
-
-// Interface 35: 4 variants (the first: open_ocean fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none).
-struct WaterParams35 {
-    Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
-    FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
-    float time = 0.0f;
-    Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
-    float gerstner_amplitude = 0.2f;
-    Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
-    float gerstner_frequency = 0.7f;
-    Vec3 incident_light = {1.0f, 1.0f, 1.0f};
-    float gerstner_amplitude_gain = 0.82f;
-    Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
-    float gerstner_frequency_gain = 1.18f;
-    float gerstner_steepness = 0.5f;
-    float refraction_distortion = 0.03f;
-    float refraction_shore_fade_depth = 1.0f;
-    float scatter_coefficient = 0.11f;
-    float reflection_horizon_band = 0.2f;
-    float ior_air = 1.0f;
-    float ior_water = 1.33333f;
-    float pad0[1]{};
-};
-static_assert(offsetof(WaterParams35, gerstner_wave_directions) == 0);
-static_assert(offsetof(WaterParams35, gerstner_wave_speeds) == 128);
-static_assert(offsetof(WaterParams35, eye_position) == 256);
-static_assert(offsetof(WaterParams35, time) == 268);
-static_assert(offsetof(WaterParams35, absorb_coefficients) == 272);
-static_assert(offsetof(WaterParams35, gerstner_amplitude) == 284);
-static_assert(offsetof(WaterParams35, scatter_color) == 288);
-static_assert(offsetof(WaterParams35, gerstner_frequency) == 300);
-static_assert(offsetof(WaterParams35, incident_light) == 304);
-static_assert(offsetof(WaterParams35, gerstner_amplitude_gain) == 316);
-static_assert(offsetof(WaterParams35, reflection_lower_tint) == 320);
-static_assert(offsetof(WaterParams35, gerstner_frequency_gain) == 332);
-static_assert(offsetof(WaterParams35, gerstner_steepness) == 336);
-static_assert(offsetof(WaterParams35, refraction_distortion) == 340);
-static_assert(offsetof(WaterParams35, refraction_shore_fade_depth) == 344);
-static_assert(offsetof(WaterParams35, scatter_coefficient) == 348);
-static_assert(offsetof(WaterParams35, reflection_horizon_band) == 352);
-static_assert(offsetof(WaterParams35, ior_air) == 356);
-static_assert(offsetof(WaterParams35, ior_water) == 360);
-static_assert(sizeof(WaterParams35) == 368);
-inline constexpr std::array<SpecializationConstant, 1> kConstants35{{{"gerstner_wave_count", 0}}};
+static_assert(offsetof(WaterParams33, eye_position) == 0);
+static_assert(offsetof(WaterParams33, scatter_coefficient) == 12);
+static_assert(offsetof(WaterParams33, scatter_color) == 16);
+static_assert(offsetof(WaterParams33, reflection_horizon_band) == 28);
+static_assert(offsetof(WaterParams33, incident_light) == 32);
+static_assert(offsetof(WaterParams33, ior_air) == 44);
+static_assert(offsetof(WaterParams33, reflection_lower_tint) == 48);
+static_assert(offsetof(WaterParams33, ior_water) == 60);
+static_assert(offsetof(WaterParams33, frame_centre) == 64);
+static_assert(sizeof(WaterParams33) == 80);
+inline constexpr std::array<SpecializationConstant, 0> kConstants33{{}};
 
 inline constexpr std::array<VariantInfo, 56> kVariants{{
     {"harbour_night", "fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none", "e9f218b03c8c187d", 0},
@@ -1723,20 +1982,20 @@ inline constexpr std::array<VariantInfo, 56> kVariants{{
     {"mountain_lake", "fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none", "d26cd4c146632466", 31},
     {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none", "7bc47dcc0004d43c", 32},
     {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=full,caustics=none", "d197cc2805c4f96b", 32},
-    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none", "6c1335b398c7002b", 33},
-    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none", "3d9d44095a2dc0e7", 33},
-    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none", "6bb3caf894f528e0", 34},
-    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=full,caustics=none", "4c7a5071c7c2b278", 34},
-    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none", "8ceb3f59554d165a", 35},
-    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none", "c8c464538448b786", 35},
+    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none", "6c1335b398c7002b", 11},
+    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none", "3d9d44095a2dc0e7", 11},
+    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none", "6bb3caf894f528e0", 33},
+    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=full,caustics=none", "4c7a5071c7c2b278", 33},
+    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none", "8ceb3f59554d165a", 23},
+    {"open_ocean", "fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none", "c8c464538448b786", 23},
     {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none", "17a8ab430a69f14c", 32},
     {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=full,caustics=none", "28a40f861046645d", 32},
-    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none", "3f5277d8b5e06c74", 33},
-    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none", "8f18d99237c545c5", 33},
-    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none", "5c72320daffbca43", 34},
-    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=full,caustics=none", "b07b3214c918c9c1", 34},
-    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none", "ee4f6047d1b279cc", 35},
-    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none", "3d19474a2df7aa34", 35},
+    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none", "3f5277d8b5e06c74", 11},
+    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none", "8f18d99237c545c5", 11},
+    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none", "5c72320daffbca43", 33},
+    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=full,caustics=none", "b07b3214c918c9c1", 33},
+    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none", "ee4f6047d1b279cc", 23},
+    {"open_ocean", "fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none", "3d19474a2df7aa34", 23},
 }};
 
 // Calls f with interface i's uniform block at its defaults (f's result for each interface
@@ -1810,12 +2069,8 @@ constexpr decltype(auto) with_interface(uint32_t i, F&& f) {
         return f(WaterParams31{});
     case 32:
         return f(WaterParams32{});
-    case 33:
-        return f(WaterParams33{});
-    case 34:
-        return f(WaterParams34{});
     default:
-        return f(WaterParams35{});
+        return f(WaterParams33{});
     }
 }
 

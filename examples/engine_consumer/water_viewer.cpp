@@ -160,6 +160,7 @@ std::optional<TextureData> draw_caustics(const ShaderBuild& build, const BuildVa
     }
     const auto grid = pass_grid(d, window, depth.empty() ? 0.0 : depth[0], error);
     if (!grid) return std::nullopt;
+    uniforms.set_frame({grid->centre, {}}); // the pass works in its grid's frame
     for (const auto& [name, value] : grid->values)
         if (const Write w = uniforms.set(name, value); !w.ok) return *error = w.error, std::nullopt;
     if (const Write w = uniforms.set("sun_direction", sun); !w.ok)

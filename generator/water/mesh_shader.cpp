@@ -23,7 +23,8 @@ Expr scene_eye_position(Graph& g) {
                                                           .min = -1e7,
                                                           .max = 1e7,
                                                           .unit = "m",
-                                                          .seed = "000"}));
+                                                          .seed = "000",
+                                                          .host = {HostRule::FramePoint, {}}}));
 }
 
 Expr scene_water_level(Graph& g) {

@@ -168,7 +168,9 @@ std::optional<PassGrid> pass_grid(const PassDraw& draw, std::span<const double> 
     const double extent = cells * texel / draw.cells_per_texel;
     // Points at the cell centres: under flat water none lies on a texel's edge.
     const double h = g.points ? extent / cells / 2 : 0;
-    const double a = x0 + h, b = x0 + extent - h, c = z0 + h, d = z0 + extent - h;
+    g.centre = frame_centre_of(window[0], window[1]);
+    const double a = x0 + h - g.centre.x, b = x0 + extent - h - g.centre.x;
+    const double c = z0 + h - g.centre.z, d = z0 + extent - h - g.centre.z;
     for (uint32_t j = 0; j < n; ++j)
         for (uint32_t i = 0; i < n; ++i) {
             g.vertices.push_back(static_cast<float>(n > 1 ? a + (b - a) * i / (n - 1) : a));

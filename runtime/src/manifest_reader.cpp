@@ -179,6 +179,30 @@ void read_uniform_block(ManifestReader& r, const json& parent, const std::string
         if (const json* hi =
                 r.get(m, mp, mk::member::kMax, json::value_t::number_float, "a number", false))
             p.max = hi->get<double>();
+        if (const json* host =
+                r.get(m, mp, mk::member::kHost, json::value_t::object, "an object", false)) {
+            const std::string hp = mp + "." + mk::member::kHost;
+            const std::string rule = r.text(*host, hp, mk::host::kRule);
+            if (const auto known = host_rule_from_name(rule))
+                p.host.rule = *known;
+            else if (!r.failed())
+                r.fail(hp + "." + mk::host::kRule,
+                       "unknown rule '" + rule + "'; expected one of runtime/host_values.h's");
+            if (const json* in =
+                    r.get(*host, hp, mk::host::kInputs, json::value_t::array, "an array")) {
+                for (const json& name : *in) {
+                    if (!name.is_string()) {
+                        r.fail(hp + "." + mk::host::kInputs, "expected an array of strings");
+                        break;
+                    }
+                    p.host.inputs.push_back(name.get<std::string>());
+                }
+                if (!r.failed() && p.host.inputs.size() != host_rule_inputs(p.host.rule))
+                    r.fail(hp + "." + mk::host::kInputs,
+                           "expected " + std::to_string(host_rule_inputs(p.host.rule)) +
+                               " parameters for rule " + rule);
+            }
+        }
         v.parameters.push_back(std::move(p));
     }
 }

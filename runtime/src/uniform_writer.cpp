@@ -59,28 +59,61 @@ uint32_t type_components(const std::string& type) {
 
 UniformWriter::UniformWriter(const BuildVariant& variant) : variant_(variant) {
     for (const BlockParameter& p : variant.parameters) {
-        Slot s{&p, std::vector<float>(p.default_value.begin(), p.default_value.end())};
+        Slot s{&p, p.default_value};
         if (const auto sel = variant.selector_uniforms.find(p.name);
             sel != variant.selector_uniforms.end())
-            s.values.assign(1, static_cast<float>(sel->second));
+            s.values.assign(1, sel->second);
         values_[p.name] = std::move(s);
     }
 }
 
-const std::vector<float>* UniformWriter::value(const std::string& name) const {
+std::optional<std::vector<float>> UniformWriter::value(const std::string& name) const {
     const auto it = values_.find(name);
-    return it == values_.end() ? nullptr : &it->second.values;
+    if (it == values_.end()) return std::nullopt;
+    return std::vector<float>(it->second.values.begin(), it->second.values.end());
+}
+
+bool UniformWriter::computed(const std::string& name) const {
+    const auto it = values_.find(name);
+    return it != values_.end() && host_rule_computed(it->second.parameter->host.rule);
+}
+
+Frame UniformWriter::frame() const {
+    if (frame_) return *frame_;
+    Frame f{{}, origin_};
+    if (const auto it = values_.find("eye_position");
+        it != values_.end() && it->second.parameter->host.rule == HostRule::FramePoint &&
+        it->second.values.size() == 3)
+        f.centre = frame_centre_of(it->second.values[0], it->second.values[2]);
+    return f;
 }
 
 Write UniformWriter::set(const std::string& name, std::span<const float> values) {
+    const std::vector<double> wide(values.begin(), values.end());
+    return set(name, std::span<const double>(wide));
+}
+
+Write UniformWriter::set(const std::string& name, std::span<const double> values) {
     Write w;
     const auto it = values_.find(name);
     if (it == values_.end()) {
+        for (const auto& [member, slot] : values_) {
+            const auto& in = slot.parameter->host.inputs;
+            if (std::find(in.begin(), in.end(), name) == in.end()) continue;
+            for (double v : values)
+                if (!std::isfinite(v)) {
+                    w.error = "parameter '" + name + "': value is not finite";
+                    return w;
+                }
+            host_inputs_[name].assign(values.begin(), values.end());
+            w.ok = true;
+            return w;
+        }
         if (const auto f = variant_.folded_parameters.find(name);
             f != variant_.folded_parameters.end()) {
             const bool same = f->second.size() == values.size() &&
                               std::equal(values.begin(), values.end(), f->second.begin(),
-                                         [](float a, double b) { return a == float(b); });
+                                         [](double a, double b) { return float(a) == float(b); });
             if (same) {
                 w.ok = true;
                 w.note = "parameter '" + name + "' was folded to " + numbers(f->second) +
@@ -110,6 +143,15 @@ Write UniformWriter::set(const std::string& name, std::span<const float> values)
     }
     Slot& slot = it->second;
     const BlockParameter& p = *slot.parameter;
+    if (host_rule_computed(p.host.rule)) {
+        std::string from;
+        for (const std::string& in : p.host.inputs)
+            from += (from.empty() ? "" : ", ") + in;
+        w.error = "parameter '" + name + "' is computed on the host (" +
+                  host_rule_name(p.host.rule) + (from.empty() ? "" : " of " + from) + "); set " +
+                  (from.empty() ? "the eye position" : from) + " instead";
+        return w;
+    }
     if (variant_.selector_uniforms.count(name)) {
         w.error = "parameter '" + name + "' selects the variant (branching build mode); select " +
                   "another variant instead of setting it";
@@ -123,8 +165,8 @@ Write UniformWriter::set(const std::string& name, std::span<const float> values)
                   (p.array_size ? " (expected " + std::to_string(expected) + " floats)" : "");
         return w;
     }
-    for (float v : values)
-        if (!std::isfinite(v)) {
+    for (double v : values)
+        if (!std::isfinite(v) || !std::isfinite(float(v))) {
             w.error = "parameter '" + name + "' (" + type_of(p) + "): value is not finite";
             return w;
         }
@@ -133,11 +175,11 @@ Write UniformWriter::set(const std::string& name, std::span<const float> values)
     // than drawn wrong. Compared as floats, so the float nearest a bound (what an engine holding
     // the bound in a float passes) is accepted.
     for (size_t k = 0; k < values.size(); ++k)
-        if (values[k] < float(p.min) || values[k] > float(p.max)) {
+        if (float(values[k]) < float(p.min) || float(values[k]) > float(p.max)) {
             w.error = "parameter '" + name + "' (" + type_of(p) +
                       "): " + (values.size() > 1 ? "value " + std::to_string(k) + ", " : "") +
-                      numbers({double(values[k])}) + ", is outside its range [" + numbers({p.min}) +
-                      ", " + numbers({p.max}) + "]";
+                      numbers({values[k]}) + ", is outside its range [" + numbers({p.min}) + ", " +
+                      numbers({p.max}) + "]";
             return w;
         }
     slot.values.assign(values.begin(), values.end());
@@ -164,6 +206,25 @@ std::optional<std::vector<uint8_t>> UniformWriter::pack(const Reflection& reflec
                  variant_.block_name + "' (" + variant_name(variant_) + ")";
         return std::nullopt;
     }
+    // The values the shader reads: each host rule applied in double (host_values.h).
+    const Frame frame = this->frame();
+    const GivenValues given = [&](const std::string& name) -> const std::vector<double>* {
+        if (const auto it = values_.find(name); it != values_.end()) return &it->second.values;
+        if (const auto it = host_inputs_.find(name); it != host_inputs_.end()) return &it->second;
+        return nullptr;
+    };
+    std::map<std::string, std::vector<double>> host;
+    for (const auto& [name, slot] : values_) {
+        if (slot.parameter->host.rule == HostRule::Given) continue;
+        std::string why;
+        auto v = host_value(slot.parameter->host, slot.values, given, frame, &why);
+        if (!v) {
+            *error = "parameter '" + name + "' of " + variant_name(variant_) + ": " + why +
+                     (why.find("has no value") != std::string::npos ? "; set it" : "");
+            return std::nullopt;
+        }
+        host[name] = std::move(*v);
+    }
     // size_t: a block_size near 2^32 must not wrap to an empty buffer the members then overrun.
     std::vector<uint8_t> bytes((size_t(block->block_size) + 15) / 16 * 16, 0);
     for (const UniformMember& m : block->members) {
@@ -189,7 +250,9 @@ std::optional<std::vector<uint8_t>> UniformWriter::pack(const Reflection& reflec
                      ") does not fit parameter type " + type_of(p);
             return std::nullopt;
         }
-        const std::vector<float>& values = it->second.values;
+        const auto computed = host.find(m.name);
+        const std::vector<double>& values =
+            computed != host.end() ? computed->second : it->second.values;
         if (values.size() != size_t(comps) * count) {
             *error = "parameter '" + m.name + "' has " + std::to_string(values.size()) +
                      " values in the manifest; " + type_of(p) + " needs " +
@@ -198,7 +261,7 @@ std::optional<std::vector<uint8_t>> UniformWriter::pack(const Reflection& reflec
         }
         for (uint32_t e = 0; e < count; ++e)
             for (uint32_t c = 0; c < comps; ++c) {
-                const float f = values[size_t(e) * comps + c];
+                const float f = static_cast<float>(values[size_t(e) * comps + c]);
                 uint8_t* at = bytes.data() + m.offset + size_t(e) * stride + c * 4;
                 if (base == "int") {
                     const int32_t i = static_cast<int32_t>(f);

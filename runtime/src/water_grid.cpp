@@ -105,10 +105,13 @@ void add_level(const WaterGridDesc& d, const Level& level, double eye_x, double 
         for (int32_t i = -n; i <= n; ++i) {
             if (at(i, j) == UINT32_MAX) continue;
             at(i, j) = out.vertex_count();
-            out.vertices.insert(out.vertices.end(),
-                                {float(double(fine(level.snap[0], i, level.k)) * d.spacing),
-                                 float(double(fine(level.snap[1], j, level.k)) * d.spacing),
-                                 (i & 1) ? to_coarse : 0.0f, (j & 1) ? to_coarse : 0.0f, float(h)});
+            // Exact in double (integers times a spacing, less a multiple of 64 m), then
+            // rounded once.
+            out.vertices.insert(
+                out.vertices.end(),
+                {float(double(fine(level.snap[0], i, level.k)) * d.spacing - out.origin.x),
+                 float(double(fine(level.snap[1], j, level.k)) * d.spacing - out.origin.z),
+                 (i & 1) ? to_coarse : 0.0f, (j & 1) ? to_coarse : 0.0f, float(h)});
         }
 
     // Farthest first, so that nearer cells overwrite them without a depth buffer; (j, i) makes
@@ -161,6 +164,7 @@ WaterGrid water_grid(const WaterGridDesc& desc, double eye_x, double eye_z, Grid
     const uint64_t n = desc.ring_cells;
     WaterGrid out;
     out.topology = topology;
+    out.origin = frame_centre_of(eye_x, eye_z);
     out.patch_control_points = topology == GridTopology::Patches ? 4 : 0;
     out.morph_start = double(n / 2) + 4.0;
     out.morph_end = double(n) - 3.0;
@@ -186,10 +190,11 @@ std::array<double, 2> water_grid_morphed(const WaterGrid& grid, uint32_t vertex,
                                 std::to_string(grid.vertex_count()));
     const float* v = grid.vertices.data() + size_t(vertex) * WaterGrid::kFloatsPerVertex;
     const double x = v[0], z = v[1], h = v[4];
-    const double d = std::max(std::abs(x - eye_x), std::abs(z - eye_z)) / h;
+    const double ex = eye_x - grid.origin.x, ez = eye_z - grid.origin.z; // in the frame
+    const double d = std::max(std::abs(x - ex), std::abs(z - ez)) / h;
     const double t =
         std::clamp((d - grid.morph_start) / (grid.morph_end - grid.morph_start), 0.0, 1.0);
-    return {x + t * double(v[2]), z + t * double(v[3])};
+    return {x + t * double(v[2]) + grid.origin.x, z + t * double(v[3]) + grid.origin.z};
 }
 
 } // namespace watergen

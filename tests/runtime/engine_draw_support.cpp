@@ -31,8 +31,8 @@ StageFiles stage_files(const ShaderBuild& b, const BuildVariant& v, const std::s
 
 void set_values(UniformWriter& writer, const std::map<std::string, std::vector<double>>& values) {
     for (const auto& [name, v] : values) {
-        if (!writer.has(name)) continue;
-        const Write w = writer.set(name, std::vector<float>(v.begin(), v.end()));
+        if (!writer.has(name) || writer.computed(name)) continue;
+        const Write w = writer.set(name, std::span<const double>(v));
         INFO(name << ": " << w.error);
         REQUIRE(w.ok);
     }
@@ -85,6 +85,7 @@ EnginePass engine_pass(const ShaderBuild& b, const BuildPass& pass, const std::s
     INFO(error);
     REQUIRE(grid);
     UniformWriter writer(pass.shader);
+    writer.set_frame({grid->centre, {}}); // the grid's frame (build_pass.h)
     set_values(writer, values);
     for (const auto& [name, v] : grid->values)
         REQUIRE(writer.set(name, v).ok);

@@ -21,9 +21,10 @@ struct Vertex {
     double x, z, to_x, to_z, h;
 };
 
+// In world coordinates: the grid's floats are relative to its frame centre (exact in double).
 Vertex vertex(const WaterGrid& g, uint32_t v) {
     const float* f = g.vertices.data() + size_t(v) * WaterGrid::kFloatsPerVertex;
-    return {f[0], f[1], f[2], f[3], f[4]};
+    return {f[0] + g.origin.x, f[1] + g.origin.z, f[2], f[3], f[4]};
 }
 
 // A cell's corners a = (i, j), b = (i+1, j), c = (i, j+1), d = (i+1, j+1), in draw order.

@@ -30,7 +30,8 @@ MeshData make_grid(uint32_t n, double x0, double x1, double z0, double z1) {
 
 // The pass's job: its vertex stage's block (the only one) packed from `values`.
 RenderJob pass_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t size,
-                   const std::map<std::string, std::vector<double>>& values, uint32_t timed_draws) {
+                   const std::map<std::string, std::vector<double>>& values,
+                   const FrameCentre& centre, uint32_t timed_draws) {
     RenderJob job;
     job.vertex_spirv = lang.vertex.toolchain.spirv_optimized;
     job.fragment_spirv = lang.fragment.toolchain.spirv_optimized;
@@ -38,7 +39,7 @@ RenderJob pass_job(const LanguageBuild& lang, const MeshData& mesh, uint32_t siz
     job.fragment_reflection = lang.fragment.toolchain.reflection;
     job.width = job.height = size;
     const ShaderInterface& block = lang.vertex.source.interface;
-    job.uniforms = pack_uniforms(block.uniforms, block.parameters, values);
+    job.uniforms = pack_uniforms(block.uniforms, block.parameters, values, centre);
     job.specialization = specialization_values(block.specialization, values);
     job.timed_draws = timed_draws;
     job.mesh = mesh;
@@ -82,8 +83,12 @@ RenderJob caustics_job(const CausticsPassBuild& build, size_t language,
     // centre, so that under flat water no photon lies on a texel's edge and every texel
     // catches exactly cells_per_texel^2 of them.
     const double h = photons ? extent / cells / 2 : 0;
-    MeshData grid =
-        make_grid(photons ? cells : cells + 1, x0 + h, x0 + extent - h, z0 + h, z0 + extent - h);
+    // The pass works in the frame of the window's corner (runtime/host_values.h): its grid
+    // and its window relative to that centre, its wave phases reduced there, so the map is as
+    // exact 1,000 km from the world origin as at it.
+    const FrameCentre c = frame_centre_of(window[0], window[1]);
+    MeshData grid = make_grid(photons ? cells : cells + 1, x0 + h - c.x, x0 + extent - h - c.x,
+                              z0 + h - c.z, z0 + extent - h - c.z);
     std::map<std::string, std::vector<double>> drawn = values;
     if (photons) {
         grid.points = true;
@@ -94,7 +99,7 @@ RenderJob caustics_job(const CausticsPassBuild& build, size_t language,
         drawn["caustics_photon_share"] = {share};
     }
     RenderJob job =
-        pass_job(build.languages[language], grid, settings.texels, drawn, settings.timed_draws);
+        pass_job(build.languages[language], grid, settings.texels, drawn, c, settings.timed_draws);
     job.additive_blend = true;
     return job;
 }

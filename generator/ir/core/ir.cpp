@@ -178,7 +178,8 @@ std::string declared_by(const std::string& origin, const SourceLocation& at) {
 bool same_definition(const Parameter& a, const Parameter& b) {
     return a.type == b.type && a.default_value == b.default_value && a.min == b.min &&
            a.max == b.max && a.unit == b.unit && a.seed == b.seed &&
-           a.specialization == b.specialization && a.array_size == b.array_size && a.flag == b.flag;
+           a.specialization == b.specialization && a.array_size == b.array_size &&
+           a.flag == b.flag && a.host == b.host;
 }
 
 std::string definition_clash(const std::string& what, const std::string& name,
@@ -230,7 +231,8 @@ void Graph::declare_parameter(const Parameter& p) {
             return;
         }
         if (existing->type != p.type || existing->default_value != p.default_value ||
-            existing->specialization != p.specialization || existing->array_size != p.array_size)
+            existing->specialization != p.specialization || existing->array_size != p.array_size ||
+            !(existing->host == p.host))
             error("parameter '" + p.name +
                   "' declared twice with different type, default, specialization or array size "
                   "(first by " +

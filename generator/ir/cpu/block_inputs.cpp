@@ -4,7 +4,8 @@
 namespace watergen {
 
 const void* input_data(const Graph& top, const Graph& g, const Node& n, uint32_t comps,
-                       const EvalInputs& in, std::vector<Check>& checks) {
+                       const EvalInputs& in, const ParameterValues& host,
+                       std::vector<Check>& checks) {
     auto fail = [&](std::string message) { checks.push_back({std::move(message)}); };
     switch (n.op) {
     case Op::Constant:
@@ -12,7 +13,9 @@ const void* input_data(const Graph& top, const Graph& g, const Node& n, uint32_t
         return n.values.data();
     case Op::Uniform: {
         const std::vector<double>* v = nullptr;
-        if (auto it = in.uniforms.find(n.name); it != in.uniforms.end())
+        if (auto it = host.find(n.name); it != host.end())
+            v = &it->second;
+        else if (auto it = in.uniforms.find(n.name); it != in.uniforms.end())
             v = &it->second;
         else if (const Parameter* p = top.find_parameter(n.name))
             v = &p->default_value;
@@ -23,8 +26,10 @@ const void* input_data(const Graph& top, const Graph& g, const Node& n, uint32_t
     case Op::UniformElement: {
         const Parameter* p = top.find_parameter(n.name);
         const std::vector<double>* v = p ? &p->default_value : nullptr;
-        if (auto it = in.uniforms.find(n.name);
-            p && it != in.uniforms.end() && it->second.size() == v->size())
+        if (auto it = host.find(n.name); p && it != host.end())
+            v = &it->second;
+        else if (auto it = in.uniforms.find(n.name);
+                 p && it != in.uniforms.end() && it->second.size() == v->size())
             v = &it->second;
         if (p && p->array_size != 0 && v->size() == p->array_size * size_t(comps)) return v->data();
         fail("array '" + n.name + "': no value with " + std::to_string(comps) +

@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
 #include <tuple>
 #include <unordered_map>
 
@@ -321,7 +322,7 @@ Value Compiler::compile_op(Context& ctx, uint32_t id, const std::vector<Value>& 
     ins.comps = comps;
     ins.per_lane = !uniform;
     ins.round = rounding(ctx.g, id);
-    ins.data = input_data(top_, ctx.g, n, comps, in_, program_.checks);
+    ins.data = input_data(top_, ctx.g, n, comps, in_, program_.host, program_.checks);
     std::vector<Operand> reads;
     for (size_t i = 0; i < args.size() && i < 3; ++i) {
         ins.args[i] = args[i].at;
@@ -515,6 +516,11 @@ void Compiler::compile(uint32_t root) {
 Program compile_program(const Graph& g, uint32_t root, const EvalInputs& in, EvalPrecision p) {
     Program program;
     program.wide = p == EvalPrecision::Double;
+    try {
+        program.host = host_values(g.parameters(), in.uniforms, in.frame_centre);
+    } catch (const std::invalid_argument& e) {
+        program.checks.push_back({e.what()});
+    }
     Compiler(g, in, p, program).compile(root);
     return program;
 }

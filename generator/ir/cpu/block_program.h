@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "watergen/ir/core/shader_values.h"
 #include "watergen/ir/cpu/cpu_evaluator.h"
 
 namespace watergen {
@@ -81,6 +82,9 @@ struct Program {
     Operand root;
     uint32_t root_comps = 0;
     std::vector<EvalSite> sites; // double programs: the operations that compute values
+    // The values of parameters with a host rule (ir/core/shader_values.h), which the
+    // instructions reading them point into (a map: its values never move).
+    ParameterValues host;
 };
 
 // What a kernel sees: the arena, the block and the enclosing loops' iteration.

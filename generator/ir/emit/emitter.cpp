@@ -173,6 +173,7 @@ ShaderInterface interface_of(const Graph& g, Diagnostics& diagnostics,
     ShaderInterface in;
     std::set<std::string> used_uniforms, used_textures;
     collect_reads(g, used_uniforms, used_textures, in.varyings);
+    add_host_inputs(g.parameters(), used_uniforms);
     check_specialization_names(g.parameters(), specialized, diagnostics);
     if (block)
         for (const Parameter& read : g.parameters())
@@ -459,6 +460,7 @@ std::vector<Parameter> parameters_read(const Graph& g) {
     std::set<std::string> uniforms, textures;
     std::vector<std::pair<std::string, Type>> varyings;
     collect_reads(g, uniforms, textures, varyings);
+    add_host_inputs(g.parameters(), uniforms);
     std::vector<Parameter> out;
     for (const Parameter& p : g.parameters())
         if (uniforms.count(p.name)) out.push_back(p);

@@ -73,8 +73,10 @@ UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnost
 
 std::vector<uint8_t> pack_uniforms(const UniformLayout& layout,
                                    const std::vector<Parameter>& parameters,
-                                   const std::map<std::string, std::vector<double>>& overrides) {
+                                   const std::map<std::string, std::vector<double>>& overrides,
+                                   const std::optional<FrameCentre>& centre) {
     std::vector<uint8_t> bytes(layout.size, 0);
+    const ParameterValues host = host_values(parameters, overrides, centre);
     for (const auto& slot : layout.members)
         for (const auto& p : parameters) {
             if (p.name != slot.name) continue;
@@ -82,6 +84,7 @@ std::vector<uint8_t> pack_uniforms(const UniformLayout& layout,
             if (auto it = overrides.find(p.name);
                 it != overrides.end() && it->second.size() == p.default_value.size())
                 values = &it->second;
+            if (auto it = host.find(p.name); it != host.end()) values = &it->second;
             // Element e of an array starts at offset + e * kArrayStride.
             const auto components = static_cast<size_t>(component_count(p.type));
             for (size_t i = 0; i < values->size(); ++i) {

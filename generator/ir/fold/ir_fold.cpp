@@ -115,11 +115,19 @@ void Folder::resolve_quantities() {
 }
 
 void Folder::declare_inputs() {
+    // What host rules read (runtime/host_values.h): the host computes from them, fixed or not.
+    std::set<std::string> host_inputs;
+    for (const Parameter& p : in_.parameters())
+        if (p.host.rule != HostRule::Given) {
+            host_inputs.insert(p.name);
+            host_inputs.insert(p.host.inputs.begin(), p.host.inputs.end());
+        }
     for (Parameter p : in_.parameters()) {
         if (auto it = f_.fixed.find(p.name); it != f_.fixed.end()) {
             // Loop bodies read arrays element by element, which the fold does not turn into
-            // constants: a fixed array stays a parameter whose default is the fixed value.
-            if (!p.array_size) continue;
+            // constants: a fixed array stays a parameter whose default is the fixed value. So
+            // does a value a host rule reads or makes.
+            if (!p.array_size && !host_inputs.count(p.name)) continue;
             if (it->second.value.size() == p.default_value.size())
                 p.default_value = it->second.value;
         }

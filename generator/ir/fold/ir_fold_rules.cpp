@@ -8,6 +8,7 @@
 
 #include "folder.h"
 #include "watergen/ir/core/op_table.h"
+#include "watergen/ir/core/shader_values.h"
 #include "watergen/ir/core/text.h"
 #include "watergen/ir/cpu/cpu_evaluator.h"
 
@@ -122,6 +123,26 @@ std::pair<Intervals, FactSet> Folder::leaf_bounds(const Graph& g, const Node& n,
                                                   uint32_t id) const {
     // An array element: every element lies in the parameter's range.
     if (n.op == Op::Uniform || n.op == Op::UniformElement) {
+        // A value the host computes or moves into the frame (ir/core/shader_values.h) ranges
+        // as its rule says; of the facts on the value as set, only a frame point's height
+        // (its y, which the frame keeps) still holds.
+        if (const Parameter* p = declarations_.find_parameter(n.name);
+            p && p->host.rule != HostRule::Given) {
+            Intervals v;
+            for (const auto& [lo, hi] : host_value_range(*p))
+                v.push_back(make_interval(lo, hi));
+            FactSet facts;
+            if (auto it = f_.parameter_ranges.find(n.name); it != f_.parameter_ranges.end() &&
+                                                            p->host.rule == HostRule::FramePoint &&
+                                                            v.size() == 3) {
+                const Intervals given = bounds_of(it->second, n.type);
+                if (given.size() == 3) {
+                    v[1] = given[1];
+                    facts = single(it->second.fact);
+                }
+            }
+            if (v.size() == static_cast<size_t>(component_count(n.type))) return {v, facts};
+        }
         if (auto it = f_.parameter_ranges.find(n.name); it != f_.parameter_ranges.end())
             return {bounds_of(it->second, n.type), single(it->second.fact)};
         if (const Parameter* p = declarations_.find_parameter(n.name))
@@ -359,7 +380,10 @@ uint32_t Folder::rewrite(uint32_t in_id) {
     for (auto& a : n.args)
         a = map_[a];
 
-    if (n.op == Op::Uniform) {
+    // A value the host computes or moves (shader_values.h) is not the value fixed: it stays.
+    const Parameter* declared =
+        n.op == Op::Uniform ? declarations_.find_parameter(n.name) : nullptr;
+    if (n.op == Op::Uniform && !(declared && declared->host.rule != HostRule::Given)) {
         if (auto it = f_.fixed.find(n.name);
             it != f_.fixed.end() &&
             it->second.value.size() == static_cast<size_t>(component_count(n.type))) {

@@ -115,13 +115,42 @@ std::optional<std::string> block_struct(const OJson& block, const std::string& n
                                         std::string* error) {
     std::string body, asserts;
     uint32_t cursor = 0, pads = 0;
+    // A member with a host rule starts at what the shader reads for the defaults (the frame
+    // of the default eye): the rule's value of them, as UniformWriter::pack computes it.
+    std::map<std::string, std::vector<double>> defaults;
+    for (const OJson& m : block.at(mk::uniform_block::kMembers))
+        defaults[m.at(mk::member::kName).get<std::string>()] =
+            m.at(mk::member::kDefault).get<std::vector<double>>();
+    Frame frame;
+    if (auto eye = defaults.find("eye_position"); eye != defaults.end() && eye->second.size() == 3)
+        frame.centre = frame_centre_of(eye->second[0], eye->second[2]);
+    const GivenValues given = [&](const std::string& n) -> const std::vector<double>* {
+        auto it = defaults.find(n);
+        return it == defaults.end() ? nullptr : &it->second;
+    };
     for (const OJson& m : block.at(mk::uniform_block::kMembers)) {
         const std::string member = m.at(mk::member::kName).get<std::string>();
         const std::string type = m.at(mk::member::kType).get<std::string>();
         const uint32_t n = components(type);
         const uint32_t offset = m.at(mk::member::kOffset).get<uint32_t>();
         const uint32_t array = m.value(mk::member::kArraySize, 0u);
-        const std::vector<double> values = m.at(mk::member::kDefault).get<std::vector<double>>();
+        std::vector<double> values = m.at(mk::member::kDefault).get<std::vector<double>>();
+        std::string note;
+        if (const auto host = m.find(mk::member::kHost); host != m.end()) {
+            HostValue h;
+            h.rule = host_rule_from_name(host->at(mk::host::kRule).get<std::string>())
+                         .value_or(HostRule::Given);
+            h.inputs = host->at(mk::host::kInputs).get<std::vector<std::string>>();
+            std::string why;
+            if (auto v = host_value(h, values, given, frame, &why); v && v->size() == values.size())
+                values = *v;
+            std::string from;
+            for (const std::string& in : h.inputs)
+                from += (from.empty() ? " of " : ", ") + in;
+            note = fmt::format("    // {}{}: computed on the host in double "
+                               "(UniformWriter::pack, runtime/host_values.h)\n",
+                               host_rule_name(h.rule), from);
+        }
         if (n == 0 || offset < cursor || offset % 4 != 0 ||
             values.size() != n * std::max(array, 1u)) {
             *error = "uniform block member '" + member + "' (" + type + " at " +
@@ -130,6 +159,7 @@ std::optional<std::string> block_struct(const OJson& block, const std::string& n
         }
         if (offset > cursor)
             body += fmt::format("    float pad{}[{}]{{}};\n", pads++, (offset - cursor) / 4);
+        body += note;
         if (array) {
             std::string init;
             for (uint32_t e = 0; e < array; ++e)

@@ -105,6 +105,9 @@ nlohmann::ordered_json describe_parameter(const Parameter& p, const char* place_
         j[mk::member::kArraySize] = p.array_size;
         j[mk::member::kArrayStride] = kArrayStride;
     }
+    if (p.host.rule != HostRule::Given)
+        j[mk::member::kHost] = {{mk::host::kRule, host_rule_name(p.host.rule)},
+                                {mk::host::kInputs, p.host.inputs}};
     return j;
 }
 

@@ -1,6 +1,7 @@
 #include "watergen/water/nodes/caustics.h"
 
 #include "axis_tables.h"
+#include "watergen/water/frame.h"
 #include "watergen/water/nodes/waves.h"
 #include "watergen/water/surface.h"
 
@@ -26,7 +27,8 @@ Parameter caustics_window() {
             .max = 1e7,
             .unit = "m",
             .seed = "002",
-            .origin = "caustics"};
+            .origin = "caustics",
+            .host = {HostRule::FramePointXZ, {}}};
 }
 
 Parameter caustics_map_texels() {
@@ -60,6 +62,8 @@ Expr caustics_texture_intensity(Graph& g, Expr bottom_xz) {
                             .max = 1e4,
                             .unit = "m",
                             .origin = "caustics"});
+    // bottom_xz is in the frame (frame.h): the host adds c / size mod 1 (0 without an eye).
+    Expr offset = uniform(g, tile_offset("caustics_tile_offset", "caustics_tile_size"));
     Expr texels = uniform(g, {.name = "caustics_tile_texels",
                               .type = Type::Float,
                               .default_value = {64.0},
@@ -68,7 +72,7 @@ Expr caustics_texture_intensity(Graph& g, Expr bottom_xz) {
                               .unit = "texels",
                               .origin = "caustics"});
     FullPrecisionScope geometry(g); // positions up to 1e5 m overflow binary16
-    Expr uv = tile_coordinate(bottom_xz / size, texels);
+    Expr uv = tile_coordinate(bottom_xz / size + offset, texels);
     // Level 0: fract makes implicit derivatives jump at the tile's seams.
     return named(sample_level(texture(g, caustics_tile_texture()), uv, constant(g, 0.0)).x(),
                  "caustics_intensity");

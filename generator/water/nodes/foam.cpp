@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "axis_tables.h"
+#include "watergen/water/frame.h"
 #include "watergen/water/nodes/extinction.h"
 #include "watergen/water/surface.h"
 
@@ -76,14 +77,20 @@ double foam_pattern_value(double u, double v) {
 
 Expr foam_pattern_coordinate(Graph& g, Expr world_xz, Expr time) {
     Expr scale = uniform(g, foam_pattern_scale());
-    Expr drift = uniform(g, {.name = "foam_pattern_drift",
-                             .type = Type::Vec2,
-                             .default_value = {0.003, 0.002},
-                             .min = -1.0,
-                             .max = 1.0,
-                             .unit = "1/s",
-                             .seed = "000"});
-    Expr wrapped = fract(world_xz * scale + drift * time);
+    const Parameter drift_parameter{.name = "foam_pattern_drift",
+                                    .type = Type::Vec2,
+                                    .default_value = {0.003, 0.002},
+                                    .min = -1.0,
+                                    .max = 1.0,
+                                    .unit = "1/s",
+                                    .seed = "000"};
+    Expr drift = uniform(g, drift_parameter);
+    // With the scene's clock the position is in the frame (frame.h): the host adds c scale +
+    // drift t mod 1.
+    Expr offset = is_scene_clock(time) ? scroll_offset(g, "foam_pattern_offset",
+                                                       foam_pattern_scale(), drift_parameter)
+                                       : drift * time;
+    Expr wrapped = fract(world_xz * scale + offset);
     const double n = kFoamPatternSize;
     return named((wrapped * (n - 1.0) + 0.5) / n, "foam_uv");
 }

@@ -3,6 +3,7 @@
 #include "watergen/water/nodes/normals.h"
 
 #include "axis_tables.h"
+#include "watergen/water/frame.h"
 #include "watergen/water/nodes/waves.h"
 #include "watergen/water/surface.h"
 
@@ -48,19 +49,21 @@ TangentFrame derivative_tangent_frame(Graph& g, Expr position, Expr uv) {
 
 Expr detail_normal(Graph& g, Expr base, Expr position, Expr time) {
     FullPrecisionScope full(g);
-    Expr scale = uniform(g, {.name = "detail_scale",
-                             .type = Type::Vec2,
-                             .default_value = {0.25, 0.6},
-                             .max = 100.0,
-                             .unit = "1/m",
-                             .seed = "000"});
-    Expr scroll = uniform(g, {.name = "detail_scroll",
-                              .type = Type::Vec4,
-                              .default_value = {0.02, 0.01, -0.015, 0.025},
-                              .min = -10.0,
-                              .max = 10.0,
-                              .unit = "1/s",
-                              .seed = "000"});
+    const Parameter scale_parameter{.name = "detail_scale",
+                                    .type = Type::Vec2,
+                                    .default_value = {0.25, 0.6},
+                                    .max = 100.0,
+                                    .unit = "1/m",
+                                    .seed = "000"};
+    const Parameter scroll_parameter{.name = "detail_scroll",
+                                     .type = Type::Vec4,
+                                     .default_value = {0.02, 0.01, -0.015, 0.025},
+                                     .min = -10.0,
+                                     .max = 10.0,
+                                     .unit = "1/s",
+                                     .seed = "000"};
+    Expr scale = uniform(g, scale_parameter);
+    Expr scroll = uniform(g, scroll_parameter);
     Expr strength = uniform(g, {.name = "detail_strength",
                                 .type = Type::Float,
                                 .default_value = {0.6},
@@ -77,8 +80,13 @@ Expr detail_normal(Graph& g, Expr base, Expr position, Expr time) {
     Expr zero = constant(g, 0.0);
     // 000: "the normal map has to be sampled several times with texture coordinates varying
     // over time": two layers; the second only rescales uv, so it shares the first's frame.
-    Expr uv1 = named(position.xz() * scale.x() + time * scroll.xy(), "detail_uv");
-    Expr uv2 = named(position.xz() * scale.y() + time * scroll.swizzle("zw"), "detail_uv2");
+    // With the scene's clock the position is in the frame (frame.h): the host adds c scale +
+    // scroll t, each pair reduced mod 1.
+    Expr offset = is_scene_clock(time)
+                      ? scroll_offset(g, "detail_uv_offset", scale_parameter, scroll_parameter)
+                      : vec4(time * scroll.xy(), time * scroll.swizzle("zw"));
+    Expr uv1 = named(position.xz() * scale.x() + offset.xy(), "detail_uv");
+    Expr uv2 = named(position.xz() * scale.y() + offset.swizzle("zw"), "detail_uv2");
     // The sampler has one mip level: where a pixel spans a good part of a tile the map would
     // alias into noise, so each layer's tangential part fades out as its uv footprint per pixel
     // grows to detail_max_footprint (1/8 tile: Nyquist for the map's 4 cycles per tile).

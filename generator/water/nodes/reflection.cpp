@@ -53,7 +53,8 @@ Parameter fourier_map_origin() {
             .min = -1e7,
             .max = 1e7,
             .unit = "m",
-            .seed = "003"};
+            .seed = "003",
+            .host = {HostRule::FramePointXZ, {}}};
 }
 
 Parameter fourier_map_size() {
@@ -72,12 +73,17 @@ Parameter view_proj_column(const std::string& prefix, int k, const std::string& 
     // Identity until the engine sets the camera: finite lookups, never NaN.
     std::vector<double> column(4, 0.0);
     column[static_cast<size_t>(k)] = 1.0;
-    return {.name = prefix + "_view_proj_c" + std::to_string(k),
+    // The engine's world-to-clip matrix; the host moves its translation into the frame.
+    const std::string name = prefix + "_view_proj_c";
+    HostValue host;
+    if (k == 3) host = {HostRule::FrameWorldToClip, {name + "0", name + "2"}};
+    return {.name = name + std::to_string(k),
             .type = Type::Vec4,
             .default_value = column,
             .min = -1e6,
             .max = 1e6,
-            .seed = seed};
+            .seed = seed,
+            .host = host};
 }
 
 // A unit-length horizontal direction (x, z) of `v`, or (1, 0) when v is vertical: the seed's

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "axis_tables.h"
+#include "watergen/water/frame.h"
 #include "watergen/water/surface.h"
 #include "watergen/water/water_shader.h"
 
@@ -50,11 +51,14 @@ Parameter scene_sky_distance() {
 Parameter scene_inv_view_proj_column(int k) {
     std::vector<double> column(4, 0.0);
     column[static_cast<size_t>(k)] = 1.0;
+    // The engine's clip-to-world matrix; the host moves what it gives into the frame, unless it
+    // gives camera-relative positions (scene_camera_relative).
     return {.name = "scene_inv_view_proj_c" + std::to_string(k),
             .type = Type::Vec4,
             .default_value = column,
             .min = -1e6,
-            .max = 1e6};
+            .max = 1e6,
+            .host = {HostRule::FrameClipToWorld, {"scene_camera_relative"}}};
 }
 
 SceneFromDepth scene_position_from_depth(Graph& g, Expr uv, Expr eye) {
@@ -101,8 +105,13 @@ AxisInfo scene_input_axis() {
              .compose =
                  [](Surface& s) {
                      OriginScope scope(s.g, "surface");
-                     s.scene_pos = named(sample(texture(s.g, scene_position_texture()), s.uv).xyz(),
-                                         "scene_pos");
+                     // The texture holds world positions: less the frame centre, exact for
+                     // a position within a factor 2 of it (Sterbenz).
+                     Expr centre = uniform(s.g, frame_centre());
+                     s.scene_pos =
+                         named(sample(texture(s.g, scene_position_texture()), s.uv).xyz() -
+                                   vec3(centre.x(), constant(s.g, 0.0), centre.y()),
+                               "scene_pos");
                      s.to_scene = s.scene_pos - s.eye;
                  },
              .scene_needs = {{SceneFact::SceneInput, "position_texture", ""}}},

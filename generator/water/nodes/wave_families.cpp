@@ -2,6 +2,8 @@
 // normals and the bounds the surface search (waves.cpp) needs.
 #include "watergen/water/nodes/waves.h"
 
+#include "watergen/water/frame.h"
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -131,6 +133,16 @@ std::vector<Expr> sum_over_waves(Graph& g, const WaveDefaults& d, Expr xz, Expr 
         wave_array(d, "_wave_directions", Type::Vec2, d.directions, -1.0, 1.0, "");
     const Parameter speeds =
         wave_array(d, "_wave_speeds", Type::Float, d.phase_speeds, -100.0, 100.0, "rad/s");
+    // With the scene's clock, xz is in the frame (frame.h) and wave i's phase is f_i (d_i . xz)
+    // plus its offset f_i (d_i . c) + s_i t from the host, reduced into [-pi, pi): the float
+    // phase stays within f_i times the distance from the frame centre at any time and place.
+    // A catalog node's time and world xz go in as given.
+    const bool framed = is_scene_clock(time);
+    const Parameter phases = wave_phase_offsets(f, kMaxWaves);
+    if (framed) { // declared in the block the loop body reads them from
+        uniform(g, phases);
+        g.declare_parameter(speeds); // the host reads it
+    }
     Graph& where = xz.graph();
     FullPrecisionScope full(where);
     const auto sums = loop(
@@ -141,8 +153,9 @@ std::vector<Expr> sum_over_waves(Graph& g, const WaveDefaults& d, Expr xz, Expr 
             // wavelength 2 pi / f_i drops from 4 to 2 footprints, i.e. f_i fp from pi / 2 to pi.
             if (footprint.valid())
                 w.fade = named(saturate(2.0 - w.frequency * footprint * (2.0 / kPi)), "wave_fade");
-            w.theta =
-                named(w.frequency * dot(w.direction, xz) + time * element(speeds, i), "wave_theta");
+            w.theta = named(w.frequency * dot(w.direction, xz) +
+                                (framed ? element(phases, i) : time * element(speeds, i)),
+                            "wave_theta");
             std::vector<Expr> next = {c[0] * amplitude_gain, c[1] * frequency_gain};
             const std::vector<Expr> added = terms(w, std::vector<Expr>(c.begin() + 2, c.end()));
             next.insert(next.end(), added.begin(), added.end());
@@ -411,6 +424,16 @@ Parameter heightmap_scale() {
             .seed = "000"};
 }
 
+Parameter heightmap_scroll() {
+    return {.name = "heightmap_scroll",
+            .type = Type::Vec2,
+            .default_value = {0.01, -0.02},
+            .min = -10.0,
+            .max = 10.0,
+            .unit = "1/s",
+            .seed = "000"};
+}
+
 Parameter heightmap_amplitude() {
     return {.name = "heightmap_amplitude",
             .type = Type::Float,
@@ -437,13 +460,7 @@ Expr heightmap_height(Graph& g, Expr xz, Expr time, Expr footprint) {
     OriginScope scope(g, g.origin().empty() ? "waves.heightmap" : g.origin());
     Expr amplitude = uniform(g, heightmap_amplitude());
     Expr scale = uniform(g, heightmap_scale());
-    Expr scroll = uniform(g, {.name = "heightmap_scroll",
-                              .type = Type::Vec2,
-                              .default_value = {0.01, -0.02},
-                              .min = -10.0,
-                              .max = 10.0,
-                              .unit = "1/s",
-                              .seed = "000"});
+    Expr scroll = uniform(g, heightmap_scroll());
     Expr texels = uniform(g, {.name = "heightmap_texels",
                               .type = Type::Float,
                               .default_value = {64.0},
@@ -451,7 +468,11 @@ Expr heightmap_height(Graph& g, Expr xz, Expr time, Expr footprint) {
                               .max = 16384.0,
                               .unit = "texels",
                               .seed = "000"});
-    Expr uv = xz * scale + time * scroll;
+    // With the scene's clock xz is in the frame: the host adds c scale + scroll t mod 1.
+    Expr uv = is_scene_clock(time)
+                  ? xz * scale + scroll_offset(g, "heightmap_uv_offset", heightmap_scale(),
+                                               heightmap_scroll())
+                  : xz * scale + time * scroll;
     // Level 0 explicitly: the tile wrap makes implicit derivatives jump at seams, and a
     // vertex stage or a probe has none.
     Expr b = sample_level(texture(g, height_map_texture()), tile_coordinate(uv, texels),

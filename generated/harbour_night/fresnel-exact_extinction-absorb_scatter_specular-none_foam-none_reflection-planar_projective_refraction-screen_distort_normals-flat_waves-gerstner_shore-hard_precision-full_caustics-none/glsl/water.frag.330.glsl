@@ -20,8 +20,9 @@ const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
 
 layout(std140) uniform WaterParams
 {
-    vec2 gerstner_wave_directions[8];
+    float gerstner_wave_phases[8];
     float gerstner_wave_speeds[8];
+    vec2 gerstner_wave_directions[8];
     vec4 reflection_view_proj_c0;
     vec4 reflection_view_proj_c1;
     vec4 reflection_view_proj_c2;
@@ -36,6 +37,7 @@ layout(std140) uniform WaterParams
     float gerstner_amplitude_gain;
     vec3 sky_color;
     float gerstner_frequency_gain;
+    vec2 frame_centre;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -57,181 +59,182 @@ void main()
     vec4 _25 = texture(scene_color, v_uv);
     vec3 _26 = _25.xyz;
     vec4 _33 = texture(scene_position, v_uv);
-    vec3 _49 = _33.xyz - params.eye_position;
-    float _53 = length(_49);
-    vec3 _60 = _49 / vec3(max(_53, 9.9999999747524270787835121154785e-07));
-    vec3 _63 = dFdx(_60);
-    vec3 _66 = dFdy(_60);
-    float _68 = max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
-    float _1018;
-    float _1020;
-    _1020 = 0.0;
-    _1018 = 0.0;
-    float _106;
-    float _111;
+    vec3 _54 = _33.xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
+    vec3 _61 = _54 - params.eye_position;
+    float _65 = length(_61);
+    vec3 _72 = _61 / vec3(max(_65, 9.9999999747524270787835121154785e-07));
+    vec3 _75 = dFdx(_72);
+    vec3 _78 = dFdy(_72);
+    float _80 = max(length(_75), length(_78));
+    float _83 = floor(gerstner_wave_count);
+    float _1021;
+    float _1023;
+    _1023 = 0.0;
+    _1021 = 0.0;
     float _116;
     float _121;
-    int _1017 = 0;
-    float _1019 = params.gerstner_amplitude;
-    float _1021 = params.gerstner_frequency;
-    for (; _1017 < 8; _1021 = _121, _1020 = _111, _1019 = _116, _1018 = _106, _1017++)
+    float _126;
+    float _131;
+    int _1020 = 0;
+    float _1022 = params.gerstner_amplitude;
+    float _1024 = params.gerstner_frequency;
+    for (; _1020 < 8; _1024 = _131, _1023 = _121, _1022 = _126, _1021 = _116, _1020++)
     {
-        if (!(float(_1017) < _71))
+        if (!(float(_1020) < _83))
         {
             break;
         }
-        _106 = _1018 + _1019;
-        _111 = _1019 * _1021 + _1020;
-        _116 = _1019 * params.gerstner_amplitude_gain;
-        _121 = _1021 * params.gerstner_frequency_gain;
+        _116 = _1021 + _1022;
+        _121 = _1022 * _1024 + _1023;
+        _126 = _1022 * params.gerstner_amplitude_gain;
+        _131 = _1024 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
-    vec2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1020 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1018;
-    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
-    float _1025;
-    vec2 _1030;
-    _1030 = (params.eye_position + (_60 * max((_1018 - params.eye_position.y) / _162, 0.0))).xz;
-    _1025 = _1018;
-    vec2 _406;
-    float _676;
-    float _681;
-    float _691;
-    int _1024 = 0;
-    float _1058 = _1018;
-    float _1063 = _158;
+    float _147 = _72.y;
+    float _151 = max(-_147, 9.9999999747524270787835121154785e-07);
+    vec2 _155 = _72.xz;
+    float _164 = 1.0 / (1.0 + (((_1023 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_155)) / _151));
+    float _167 = -_1021;
+    float _171 = min(_147, -9.9999999747524270787835121154785e-07);
+    float _1028;
+    vec2 _1033;
+    _1033 = (params.eye_position + (_72 * max((_1021 - params.eye_position.y) / _171, 0.0))).xz;
+    _1028 = _1021;
+    vec2 _412;
+    float _679;
+    float _684;
+    float _694;
+    int _1027 = 0;
+    float _1061 = _1021;
+    float _1066 = _167;
     SPIRV_CROSS_LOOP
-    for (; _1024 < 9; _1063 = _681, _1058 = _676, _1030 = _406, _1025 = _691, _1024++)
+    for (; _1027 < 9; _1066 = _684, _1061 = _679, _1033 = _412, _1028 = _694, _1027++)
     {
-        float _207 = max((_1025 - params.eye_position.y) / _162, 0.0);
-        vec2 _217 = (params.eye_position + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
-        vec2 _1032;
-        vec3 _1033;
-        _1033 = vec3(0.0);
-        _1032 = vec2(0.0);
-        float _323;
-        float _327;
-        vec2 _334;
-        vec3 _348;
-        int _1027 = 0;
-        float _1028 = params.gerstner_frequency;
-        float _1031 = params.gerstner_amplitude;
-        for (; _1027 < 8; _1033 = _348, _1032 = _334, _1031 = _323, _1028 = _327, _1027++)
+        float _217 = max((_1028 - params.eye_position.y) / _171, 0.0);
+        vec2 _227 = (params.eye_position + (_72 * _217)).xz;
+        float _233 = (_80 * _217) / _151;
+        vec2 _1035;
+        vec3 _1036;
+        _1036 = vec3(0.0);
+        _1035 = vec2(0.0);
+        float _329;
+        float _333;
+        vec2 _340;
+        vec3 _354;
+        int _1030 = 0;
+        float _1031 = params.gerstner_frequency;
+        float _1034 = params.gerstner_amplitude;
+        for (; _1030 < 8; _1036 = _354, _1035 = _340, _1034 = _329, _1031 = _333, _1030++)
         {
-            float _242 = float(_1027);
-            if (!(_242 < _71))
+            float _252 = float(_1030);
+            if (!(_252 < _83))
             {
                 break;
             }
-            int _254 = clamp(int(_242), 0, 7);
-            float _282 = _1028 * dot(params.gerstner_wave_directions[_254], _1030) + (params.time * params.gerstner_wave_speeds[_254]);
-            float _296 = ((params.gerstner_steepness / (_71 * max(_1028 * _1031, 9.9999999747524270787835121154785e-07))) * _1031) * clamp((-(_1028 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _315 = (_296 * _1028) * sin(_282);
-            float _319 = _315 * params.gerstner_wave_directions[_254].x;
-            _323 = _1031 * params.gerstner_amplitude_gain;
-            _327 = _1028 * params.gerstner_frequency_gain;
-            _334 = _1032 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
-            _348 = _1033 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
+            int _264 = clamp(int(_252), 0, 7);
+            float _289 = _1031 * dot(params.gerstner_wave_directions[_264], _1033) + params.gerstner_wave_phases[_264];
+            float _303 = ((params.gerstner_steepness / (_83 * max(_1031 * _1034, 9.9999999747524270787835121154785e-07))) * _1034) * clamp((-(_1031 * _233)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _321 = (_303 * _1031) * sin(_289);
+            float _325 = _321 * params.gerstner_wave_directions[_264].x;
+            _329 = _1034 * params.gerstner_amplitude_gain;
+            _333 = _1031 * params.gerstner_frequency_gain;
+            _340 = _1035 + (params.gerstner_wave_directions[_264] * (_303 * cos(_289)));
+            _354 = _1036 + vec3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
         }
-        float _354 = 1.0 - _1033.x;
-        float _359 = 1.0 - _1033.z;
-        float _363 = -_1033.y;
-        vec2 _369 = (_1030 + _1032) - _217;
-        float _382 = _369.x;
-        float _385 = _369.y;
-        _406 = _1030 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
-        vec3 _1040;
-        vec3 _1041;
-        vec3 _1042;
-        _1042 = vec3(0.0, 0.0, 1.0);
-        _1041 = vec3(1.0, 0.0, 0.0);
-        _1040 = vec3(0.0);
-        float _521;
-        float _525;
-        vec3 _537;
-        vec3 _542;
-        vec3 _547;
-        int _1037 = 0;
-        float _1038 = params.gerstner_frequency;
-        float _1039 = params.gerstner_amplitude;
-        for (; _1037 < 8; _1042 = _547, _1041 = _542, _1040 = _537, _1039 = _521, _1038 = _525, _1037++)
+        float _360 = 1.0 - _1036.x;
+        float _365 = 1.0 - _1036.z;
+        float _369 = -_1036.y;
+        vec2 _375 = (_1033 + _1035) - _227;
+        float _388 = _375.x;
+        float _391 = _375.y;
+        _412 = _1033 - (vec2(_365 * _388 + (-(_369 * _391)), _360 * _391 + (-(_369 * _388))) / vec2(max(_360 * _365 + (-(_369 * _369)), 0.039999999105930328369140625)));
+        vec3 _1043;
+        vec3 _1044;
+        vec3 _1045;
+        _1045 = vec3(0.0, 0.0, 1.0);
+        _1044 = vec3(1.0, 0.0, 0.0);
+        _1043 = vec3(0.0);
+        float _524;
+        float _528;
+        vec3 _540;
+        vec3 _545;
+        vec3 _550;
+        int _1040 = 0;
+        float _1041 = params.gerstner_frequency;
+        float _1042 = params.gerstner_amplitude;
+        for (; _1040 < 8; _1045 = _550, _1044 = _545, _1043 = _540, _1042 = _524, _1041 = _528, _1040++)
         {
-            float _427 = float(_1037);
-            if (!(_427 < _71))
+            float _433 = float(_1040);
+            if (!(_433 < _83))
             {
                 break;
             }
-            int _438 = clamp(int(_427), 0, 7);
-            float _447 = clamp((-(_1038 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _463 = _1038 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
-            float _477 = ((params.gerstner_steepness / (_71 * max(_1038 * _1039, 9.9999999747524270787835121154785e-07))) * _1039) * _447;
-            float _481 = _1039 * _447;
-            float _484 = sin(_463);
-            float _487 = cos(_463);
-            float _497 = _477 * _487;
-            float _504 = -((_477 * _1038) * _484);
-            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1038) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1039 * params.gerstner_amplitude_gain;
-            _525 = _1038 * params.gerstner_frequency_gain;
-            _537 = _1040 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1041 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1042 + (_517 * params.gerstner_wave_directions[_438].y);
+            int _444 = clamp(int(_433), 0, 7);
+            float _453 = clamp((-(_1041 * _233)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _466 = _1041 * dot(params.gerstner_wave_directions[_444], _412) + params.gerstner_wave_phases[_444];
+            float _480 = ((params.gerstner_steepness / (_83 * max(_1041 * _1042, 9.9999999747524270787835121154785e-07))) * _1042) * _453;
+            float _484 = _1042 * _453;
+            float _487 = sin(_466);
+            float _490 = cos(_466);
+            float _500 = _480 * _490;
+            float _507 = -((_480 * _1041) * _487);
+            vec3 _520 = vec3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1041) * _490, _507 * params.gerstner_wave_directions[_444].y);
+            _524 = _1042 * params.gerstner_amplitude_gain;
+            _528 = _1041 * params.gerstner_frequency_gain;
+            _540 = _1043 + vec3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
+            _545 = _1044 + (_520 * params.gerstner_wave_directions[_444].x);
+            _550 = _1045 + (_520 * params.gerstner_wave_directions[_444].y);
         }
-        vec3 _553 = cross(_1042, _1041);
-        float _557 = dot(_553, _553);
-        vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
-        bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
-        vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1024);
-        bool _601 = _600 < 1.0;
-        float _605 = (_1040.y + dot(_585, _217 - (_406 + _1040.xz))) - _1025;
-        float _618 = (-dot(_585, _146)) / _142;
-        float _631 = clamp(1.0 / max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0) * _605 + _1025;
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1025 : _1058;
-        float _644 = _634 ? _1063 : _1025;
-        _676 = _601 ? _1025 : _639;
-        _681 = _601 ? _1063 : _644;
-        _691 = (_600 < 8.0) ? (_601 ? (_155 * _605 + _1025) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1025;
+        vec3 _556 = cross(_1045, _1044);
+        float _560 = dot(_556, _556);
+        vec3 _567 = _556 * inversesqrt(max(_560, 1.0000000031710768509710513471353e-30));
+        bvec3 _577 = bvec3(_560 > 1.0000000031710768509710513471353e-30);
+        vec3 _578 = vec3(_577.x ? _567.x : vec3(0.0, 1.0, 0.0).x, _577.y ? _567.y : vec3(0.0, 1.0, 0.0).y, _577.z ? _567.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _588 = (-_578.xz) / vec2(max(_578.y, 9.9999997473787516355514526367188e-05));
+        float _603 = float(_1027);
+        bool _604 = _603 < 1.0;
+        float _608 = (_1043.y + dot(_588, _227 - (_412 + _1043.xz))) - _1028;
+        float _621 = (-dot(_588, _155)) / _151;
+        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _164, 1.0) * _608 + _1028;
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1028 : _1061;
+        float _647 = _637 ? _1066 : _1028;
+        _679 = _604 ? _1028 : _642;
+        _684 = _604 ? _1066 : _647;
+        _694 = (_603 < 8.0) ? (_604 ? (_164 * _608 + _1028) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1028;
     }
-    float _705 = max((_1025 - params.eye_position.y) / _162, 0.0);
-    vec3 _712 = params.eye_position + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    vec4 _772 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    float _777 = clamp(max(_53 - _705, 0.0), 0.0, 30000.0);
-    vec4 _834 = (((params.reflection_view_proj_c0 * _712.x) + (params.reflection_view_proj_c1 * _723)) + (params.reflection_view_proj_c2 * _712.z)) + params.reflection_view_proj_c3;
-    float _838 = _834.w;
-    bool _841 = _838 > 9.9999997473787516355514526367188e-05;
-    vec2 _858 = clamp((((_834.xy / vec2(_838)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _864 = bvec2(_841);
-    float _868 = float(_841);
-    vec4 _884 = texture(reflection_map, vec3(vec2(_864.x ? _858.x : vec2(0.5).x, _864.y ? _858.y : vec2(0.5).y), _868).xy);
-    vec3 _1026;
-    if (_868 > 0.5)
+    float _708 = max((_1028 - params.eye_position.y) / _171, 0.0);
+    vec3 _715 = params.eye_position + (_72 * _708);
+    float _723 = _54.y;
+    float _726 = _715.y;
+    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    float _780 = clamp(max(_65 - _708, 0.0), 0.0, 30000.0);
+    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
+    float _841 = _837.w;
+    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
+    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _867 = bvec2(_844);
+    float _871 = float(_844);
+    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
+    vec3 _1029;
+    if (_871 > 0.5)
     {
-        _1026 = _884.xyz;
+        _1029 = _887.xyz;
     }
     else
     {
-        _1026 = params.sky_color;
+        _1029 = params.sky_color;
     }
-    float _903 = clamp((-_60).y, 0.0, 1.0);
-    float _911 = params.ior_air / params.ior_water;
-    float _915 = _911 * _911;
-    float _919 = (-_903) * _903 + 1.0;
-    float _925 = sqrt(max((-_915) * _919 + 1.0, 0.0));
-    float _930 = params.ior_water * _925;
-    float _944 = (params.ior_air * _903 + (-_930)) / max(params.ior_air * _903 + _930, 1.0000000031710768509710513471353e-30);
-    float _949 = params.ior_air * _925;
-    float _963 = (params.ior_water * _903 + (-_949)) / max(params.ior_water * _903 + _949, 1.0000000031710768509710513471353e-30);
-    vec3 _985 = mix(mix(params.scatter_color, _772.xyz * exp((-params.absorb_coefficients) * (max(_723 - _720, 0.0) + _777)), vec3(exp((-params.scatter_coefficient) * _777))) * params.incident_light, _1026, vec3(((_915 * _919) >= 1.0) ? 1.0 : (0.5 * (_944 * _944 + (_963 * _963)))));
-    bvec3 _990 = bvec3((_720 < _723) && (_138 < 0.0));
-    out_color = vec4(vec3(_990.x ? _985.x : _26.x, _990.y ? _985.y : _26.y, _990.z ? _985.z : _26.z), 1.0);
+    float _906 = clamp((-_72).y, 0.0, 1.0);
+    float _914 = params.ior_air / params.ior_water;
+    float _918 = _914 * _914;
+    float _922 = (-_906) * _906 + 1.0;
+    float _928 = sqrt(max((-_918) * _922 + 1.0, 0.0));
+    float _933 = params.ior_water * _928;
+    float _947 = (params.ior_air * _906 + (-_933)) / max(params.ior_air * _906 + _933, 1.0000000031710768509710513471353e-30);
+    float _952 = params.ior_air * _928;
+    float _966 = (params.ior_water * _906 + (-_952)) / max(params.ior_water * _906 + _952, 1.0000000031710768509710513471353e-30);
+    vec3 _988 = mix(mix(params.scatter_color, _775.xyz * exp((-params.absorb_coefficients) * (max(_726 - _723, 0.0) + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _1029, vec3(((_918 * _922) >= 1.0) ? 1.0 : (0.5 * (_947 * _947 + (_966 * _966)))));
+    bvec3 _993 = bvec3((_723 < _726) && (_147 < 0.0));
+    out_color = vec4(vec3(_993.x ? _988.x : _26.x, _993.y ? _988.y : _26.y, _993.z ? _988.z : _26.z), 1.0);
 }
 

@@ -20,9 +20,11 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 156) float ior_air;
     layout(offset = 160) vec3 foam_color;
     layout(offset = 172) float ior_water;
-    layout(offset = 176) vec2 foam_pattern_drift;
-    layout(offset = 184) float foam_pattern_scale;
-    layout(offset = 188) float shore_hardness;
+    layout(offset = 176) vec2 frame_centre;
+    layout(offset = 184) vec2 foam_pattern_drift;
+    layout(offset = 192) vec2 foam_pattern_offset;
+    layout(offset = 200) float foam_pattern_scale;
+    layout(offset = 204) float shore_hardness;
 } params;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
@@ -35,92 +37,92 @@ layout(location = 0) out vec4 out_color;
 void main() {
     // surface
     vec3 scene_rgb = texture(sampler2D(scene_color, linear_clamp), v_uv).xyz;
-    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz;
-    vec3 t10 = scene_pos - params.eye_position;
-    float scene_distance = length(t10);
-    vec3 view_ray = t10 / max(scene_distance, 1e-06);
+    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
+    vec3 t14 = scene_pos - params.eye_position;
+    float scene_distance = length(t14);
+    vec3 view_ray = t14 / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t15 = view_ray.y;
-    float view_ray_y = min(t15, -1e-06);
-    float t20 = (-params.eye_position.y) / view_ray_y;
-    vec3 surface_point = params.eye_position + (view_ray * t20);
-    float water_path = max(scene_distance - t20, 0.0);
-    float t25 = scene_pos.y;
-    float t26 = surface_point.y;
-    float water_depth = max(t26 - t25, 0.0);
-    bool t31 = (t25 < t26) && (t15 < 0.0);
+    float t19 = view_ray.y;
+    float view_ray_y = min(t19, -1e-06);
+    float t24 = (-params.eye_position.y) / view_ray_y;
+    vec3 surface_point = params.eye_position + (view_ray * t24);
+    float water_path = max(scene_distance - t24, 0.0);
+    float t29 = scene_pos.y;
+    float t30 = surface_point.y;
+    float water_depth = max(t30 - t29, 0.0);
+    bool t35 = (t29 < t30) && (t19 < 0.0);
 
     // surface
     float n_dot_v = dot(vec3(0.0, 1.0, 0.0), -view_ray);
 
     // refraction.screen_distort
-    float t39 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
-    bool t40 = params.refraction_shore_fade_depth > 0.0;
-    float distortion_fade = t40 ? t39 : 1.0;
+    float t43 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
+    bool t44 = params.refraction_shore_fade_depth > 0.0;
+    float distortion_fade = t44 ? t43 : 1.0;
     vec2 refraction_uv = clamp(v_uv + (vec2(0.0) * (params.refraction_distortion * distortion_fade)), 0.0, 1.0);
     vec3 refracted = texture(sampler2D(scene_color, linear_clamp), refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    float t54 = clamp(water_path, 0.0, 30000.0);
-    vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t54));
-    float inverse_scatter = exp((-params.scatter_coefficient) * t54);
+    float t58 = clamp(water_path, 0.0, 30000.0);
+    vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t58));
+    float inverse_scatter = exp((-params.scatter_coefficient) * t58);
     vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.planar_projective
-    vec4 reflection_clip = (((params.reflection_view_proj_c0 * surface_point.x) + (params.reflection_view_proj_c1 * t26)) + (params.reflection_view_proj_c2 * surface_point.z)) + params.reflection_view_proj_c3;
-    float t79 = reflection_clip.w;
-    bool reflection_in_front = t79 > 0.0001;
-    vec2 t88 = clamp(((0.5 * (reflection_clip.xy / t79)) / params.reflection_fov_extension) + 0.5, 0.0, 1.0);
-    vec2 reflection_uv = reflection_in_front ? t88 : vec2(0.5);
-    float t91 = reflection_in_front ? 1.0 : 0.0;
-    vec3 t92 = vec3(reflection_uv, t91);
-    vec2 t93 = t92.xy;
-    vec3 t96 = texture(sampler2D(reflection_map, linear_clamp), t93).xyz;
-    bool t99 = t92.z > 0.5;
-    vec3 reflected = t99 ? t96 : params.sky_color;
+    vec4 reflection_clip = (((params.reflection_view_proj_c0 * surface_point.x) + (params.reflection_view_proj_c1 * t30)) + (params.reflection_view_proj_c2 * surface_point.z)) + params.reflection_view_proj_c3;
+    float t83 = reflection_clip.w;
+    bool reflection_in_front = t83 > 0.0001;
+    vec2 t92 = clamp(((0.5 * (reflection_clip.xy / t83)) / params.reflection_fov_extension) + 0.5, 0.0, 1.0);
+    vec2 reflection_uv = reflection_in_front ? t92 : vec2(0.5);
+    float t95 = reflection_in_front ? 1.0 : 0.0;
+    vec3 t96 = vec3(reflection_uv, t95);
+    vec2 t97 = t96.xy;
+    vec3 t100 = texture(sampler2D(reflection_map, linear_clamp), t97).xyz;
+    bool t103 = t96.z > 0.5;
+    vec3 reflected = t103 ? t100 : params.sky_color;
 
     // fresnel.exact
     float cos_incident = clamp(n_dot_v, 0.0, 1.0);
-    float t106 = params.ior_air / params.ior_water;
-    float sin2_transmitted = (t106 * t106) * (1.0 - (cos_incident * cos_incident));
+    float t110 = params.ior_air / params.ior_water;
+    float sin2_transmitted = (t110 * t110) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t112 = params.ior_water * cos_transmitted;
-    float t113 = params.ior_air * cos_incident;
-    float t118 = (t113 - t112) / max(t113 + t112, 1e-30);
-    float t119 = params.ior_air * cos_transmitted;
-    float t120 = params.ior_water * cos_incident;
-    float t124 = (t120 - t119) / max(t120 + t119, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t118 * t118) + (t124 * t124));
-    bool t129 = sin2_transmitted >= 1.0;
-    float fresnel = t129 ? 1.0 : fresnel_unpolarised;
+    float t116 = params.ior_water * cos_transmitted;
+    float t117 = params.ior_air * cos_incident;
+    float t122 = (t117 - t116) / max(t117 + t116, 1e-30);
+    float t123 = params.ior_air * cos_transmitted;
+    float t124 = params.ior_water * cos_incident;
+    float t128 = (t124 - t123) / max(t124 + t123, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t122 * t122) + (t128 * t128));
+    bool t133 = sin2_transmitted >= 1.0;
+    float fresnel = t133 ? 1.0 : fresnel_unpolarised;
 
     // compose
-    vec3 t132 = mix(water_color, reflected, vec3(fresnel));
+    vec3 t136 = mix(water_color, reflected, vec3(fresnel));
 
     // foam.shore
-    vec2 t133 = surface_point.xz;
-    vec2 foam_uv = ((fract((t133 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + 0.5) / 256.0;
-    float foam_footprint = max(length(dFdx(t133)), length(dFdy(t133)));
+    vec2 t137 = surface_point.xz;
+    vec2 foam_uv = ((fract((t137 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + 0.5) / 256.0;
+    float foam_footprint = max(length(dFdx(t137)), length(dFdy(t137)));
     float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
     float foam_pattern_2 = mix(foam_texel, 0.6, foam_aliasing);
-    float t163 = params.foam_existence.x;
-    float t164 = water_depth - t163;
-    float t166 = params.foam_existence.y - t163;
-    float t170 = clamp(t164 / max(t166, 5.9604645e-08), 0.0, 1.0);
-    bool t171 = t164 >= t166;
-    float t172 = t171 ? 1.0 : t170;
-    float t173 = 1.0 - t172;
-    bool t174 = t164 < 0.0;
-    float shore_foam = t174 ? 1.0 : t173;
-    vec3 foam_rgb = mix(t132, params.foam_color * foam_pattern_2, vec3(shore_foam));
+    float t166 = params.foam_existence.x;
+    float t167 = water_depth - t166;
+    float t169 = params.foam_existence.y - t166;
+    float t173 = clamp(t167 / max(t169, 5.9604645e-08), 0.0, 1.0);
+    bool t174 = t167 >= t169;
+    float t175 = t174 ? 1.0 : t173;
+    float t176 = 1.0 - t175;
+    bool t177 = t167 < 0.0;
+    float shore_foam = t177 ? 1.0 : t176;
+    vec3 foam_rgb = mix(t136, params.foam_color * foam_pattern_2, vec3(shore_foam));
 
     // shore.soft
     vec3 shore_color = mix(refracted, foam_rgb, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));
 
     // compose
-    vec3 t185 = t31 ? shore_color : scene_rgb;
+    vec3 t188 = t35 ? shore_color : scene_rgb;
 
-    out_color = vec4(t185, 1.0);
+    out_color = vec4(t188, 1.0);
 }

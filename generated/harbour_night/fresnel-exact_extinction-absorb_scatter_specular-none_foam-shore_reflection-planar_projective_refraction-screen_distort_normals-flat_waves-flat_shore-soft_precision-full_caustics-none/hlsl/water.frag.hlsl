@@ -19,9 +19,11 @@
     float ior_air : packoffset(c9.w);
     float3 foam_color : packoffset(c10.x);
     float ior_water : packoffset(c10.w);
-    float2 foam_pattern_drift : packoffset(c11.x);
-    float foam_pattern_scale : packoffset(c11.z);
-    float shore_hardness : packoffset(c11.w);
+    float2 frame_centre : packoffset(c11.x);
+    float2 foam_pattern_drift : packoffset(c11.z);
+    float2 foam_pattern_offset : packoffset(c12.x);
+    float foam_pattern_scale : packoffset(c12.z);
+    float shore_hardness : packoffset(c12.w);
 };
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0, space0);
 [[vk::binding(2, 0)]] Texture2D scene_color : register(t0, space0);
@@ -32,92 +34,92 @@
 float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     // surface
     float3 scene_rgb = scene_color.Sample(linear_clamp, v_uv).xyz;
-    float3 scene_pos = scene_position.Sample(linear_clamp, v_uv).xyz;
-    float3 t10 = scene_pos - eye_position;
-    float scene_distance = length(t10);
-    float3 view_ray = t10 / max(scene_distance, 1e-06);
+    float3 scene_pos = scene_position.Sample(linear_clamp, v_uv).xyz - float3(frame_centre.x, 0.0, frame_centre.y);
+    float3 t14 = scene_pos - eye_position;
+    float scene_distance = length(t14);
+    float3 view_ray = t14 / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t15 = view_ray.y;
-    float view_ray_y = min(t15, -1e-06);
-    float t20 = (-eye_position.y) / view_ray_y;
-    float3 surface_point = eye_position + (view_ray * t20);
-    float water_path = max(scene_distance - t20, 0.0);
-    float t25 = scene_pos.y;
-    float t26 = surface_point.y;
-    float water_depth = max(t26 - t25, 0.0);
-    bool t31 = (t25 < t26) && (t15 < 0.0);
+    float t19 = view_ray.y;
+    float view_ray_y = min(t19, -1e-06);
+    float t24 = (-eye_position.y) / view_ray_y;
+    float3 surface_point = eye_position + (view_ray * t24);
+    float water_path = max(scene_distance - t24, 0.0);
+    float t29 = scene_pos.y;
+    float t30 = surface_point.y;
+    float water_depth = max(t30 - t29, 0.0);
+    bool t35 = (t29 < t30) && (t19 < 0.0);
 
     // surface
     float n_dot_v = dot(float3(0.0, 1.0, 0.0), -view_ray);
 
     // refraction.screen_distort
-    float t39 = saturate(water_depth / refraction_shore_fade_depth);
-    bool t40 = refraction_shore_fade_depth > 0.0;
-    float distortion_fade = t40 ? t39 : 1.0;
+    float t43 = saturate(water_depth / refraction_shore_fade_depth);
+    bool t44 = refraction_shore_fade_depth > 0.0;
+    float distortion_fade = t44 ? t43 : 1.0;
     float2 refraction_uv = saturate(v_uv + (float2(0.0, 0.0) * (refraction_distortion * distortion_fade)));
     float3 refracted = scene_color.Sample(linear_clamp, refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    float t54 = clamp(water_path, 0.0, 30000.0);
-    float3 transmittance = exp((-absorb_coefficients) * (water_depth + t54));
-    float inverse_scatter = exp((-scatter_coefficient) * t54);
+    float t58 = clamp(water_path, 0.0, 30000.0);
+    float3 transmittance = exp((-absorb_coefficients) * (water_depth + t58));
+    float inverse_scatter = exp((-scatter_coefficient) * t58);
     float3 water_color = lerp(scatter_color, refracted * transmittance, (float3)(inverse_scatter)) * incident_light;
 
     // reflection.planar_projective
-    float4 reflection_clip = (((reflection_view_proj_c0 * surface_point.x) + (reflection_view_proj_c1 * t26)) + (reflection_view_proj_c2 * surface_point.z)) + reflection_view_proj_c3;
-    float t79 = reflection_clip.w;
-    bool reflection_in_front = t79 > 0.0001;
-    float2 t88 = saturate(((0.5 * (reflection_clip.xy / t79)) / reflection_fov_extension) + 0.5);
-    float2 reflection_uv = reflection_in_front ? t88 : float2(0.5, 0.5);
-    float t91 = reflection_in_front ? 1.0 : 0.0;
-    float3 t92 = float3(reflection_uv, t91);
-    float2 t93 = t92.xy;
-    float3 t96 = reflection_map.Sample(linear_clamp, t93).xyz;
-    bool t99 = t92.z > 0.5;
-    float3 reflected = t99 ? t96 : sky_color;
+    float4 reflection_clip = (((reflection_view_proj_c0 * surface_point.x) + (reflection_view_proj_c1 * t30)) + (reflection_view_proj_c2 * surface_point.z)) + reflection_view_proj_c3;
+    float t83 = reflection_clip.w;
+    bool reflection_in_front = t83 > 0.0001;
+    float2 t92 = saturate(((0.5 * (reflection_clip.xy / t83)) / reflection_fov_extension) + 0.5);
+    float2 reflection_uv = reflection_in_front ? t92 : float2(0.5, 0.5);
+    float t95 = reflection_in_front ? 1.0 : 0.0;
+    float3 t96 = float3(reflection_uv, t95);
+    float2 t97 = t96.xy;
+    float3 t100 = reflection_map.Sample(linear_clamp, t97).xyz;
+    bool t103 = t96.z > 0.5;
+    float3 reflected = t103 ? t100 : sky_color;
 
     // fresnel.exact
     float cos_incident = saturate(n_dot_v);
-    float t106 = ior_air / ior_water;
-    float sin2_transmitted = (t106 * t106) * (1.0 - (cos_incident * cos_incident));
+    float t110 = ior_air / ior_water;
+    float sin2_transmitted = (t110 * t110) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t112 = ior_water * cos_transmitted;
-    float t113 = ior_air * cos_incident;
-    float t118 = (t113 - t112) / max(t113 + t112, 1e-30);
-    float t119 = ior_air * cos_transmitted;
-    float t120 = ior_water * cos_incident;
-    float t124 = (t120 - t119) / max(t120 + t119, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t118 * t118) + (t124 * t124));
-    bool t129 = sin2_transmitted >= 1.0;
-    float fresnel = t129 ? 1.0 : fresnel_unpolarised;
+    float t116 = ior_water * cos_transmitted;
+    float t117 = ior_air * cos_incident;
+    float t122 = (t117 - t116) / max(t117 + t116, 1e-30);
+    float t123 = ior_air * cos_transmitted;
+    float t124 = ior_water * cos_incident;
+    float t128 = (t124 - t123) / max(t124 + t123, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t122 * t122) + (t128 * t128));
+    bool t133 = sin2_transmitted >= 1.0;
+    float fresnel = t133 ? 1.0 : fresnel_unpolarised;
 
     // compose
-    float3 t132 = lerp(water_color, reflected, (float3)(fresnel));
+    float3 t136 = lerp(water_color, reflected, (float3)(fresnel));
 
     // foam.shore
-    float2 t133 = surface_point.xz;
-    float2 foam_uv = ((frac((t133 * foam_pattern_scale) + (foam_pattern_drift * time)) * 255.0) + 0.5) / 256.0;
-    float foam_footprint = max(length(ddx(t133)), length(ddy(t133)));
+    float2 t137 = surface_point.xz;
+    float2 foam_uv = ((frac((t137 * foam_pattern_scale) + foam_pattern_offset) * 255.0) + 0.5) / 256.0;
+    float foam_footprint = max(length(ddx(t137)), length(ddy(t137)));
     float foam_texel = foam_pattern.SampleLevel(linear_clamp, foam_uv, 0.0).x;
     float foam_aliasing = saturate((4.0 * ((foam_footprint * foam_pattern_scale) * 5.0)) - 1.0);
     float foam_pattern_2 = lerp(foam_texel, 0.6, foam_aliasing);
-    float t163 = foam_existence.x;
-    float t164 = water_depth - t163;
-    float t166 = foam_existence.y - t163;
-    float t170 = saturate(t164 / max(t166, 5.9604645e-08));
-    bool t171 = t164 >= t166;
-    float t172 = t171 ? 1.0 : t170;
-    float t173 = 1.0 - t172;
-    bool t174 = t164 < 0.0;
-    float shore_foam = t174 ? 1.0 : t173;
-    float3 foam_rgb = lerp(t132, foam_color * foam_pattern_2, (float3)(shore_foam));
+    float t166 = foam_existence.x;
+    float t167 = water_depth - t166;
+    float t169 = foam_existence.y - t166;
+    float t173 = saturate(t167 / max(t169, 5.9604645e-08));
+    bool t174 = t167 >= t169;
+    float t175 = t174 ? 1.0 : t173;
+    float t176 = 1.0 - t175;
+    bool t177 = t167 < 0.0;
+    float shore_foam = t177 ? 1.0 : t176;
+    float3 foam_rgb = lerp(t136, foam_color * foam_pattern_2, (float3)(shore_foam));
 
     // shore.soft
     float3 shore_color = lerp(refracted, foam_rgb, (float3)(saturate(water_depth * shore_hardness)));
 
     // compose
-    float3 t185 = t31 ? shore_color : scene_rgb;
+    float3 t188 = t35 ? shore_color : scene_rgb;
 
-    return float4(t185, 1.0);
+    return float4(t188, 1.0);
 }

@@ -20,8 +20,9 @@ const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
 
 layout(std140) uniform WaterParams
 {
-    vec2 gerstner_wave_directions[8];
+    float gerstner_wave_phases[8];
     float gerstner_wave_speeds[8];
+    vec2 gerstner_wave_directions[8];
     vec4 reflection_view_proj_c0;
     vec4 reflection_view_proj_c1;
     vec4 reflection_view_proj_c2;
@@ -40,7 +41,9 @@ layout(std140) uniform WaterParams
     float gerstner_steepness;
     vec3 foam_color;
     float refraction_distortion;
+    vec2 frame_centre;
     vec2 foam_pattern_drift;
+    vec2 foam_pattern_offset;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_fov_extension;
@@ -63,180 +66,181 @@ void main()
     vec4 _25 = texture(scene_color, v_uv);
     vec3 _26 = _25.xyz;
     vec4 _33 = texture(scene_position, v_uv);
-    vec3 _49 = _33.xyz - params.eye_position;
-    float _53 = length(_49);
-    vec3 _60 = _49 / vec3(max(_53, 9.9999999747524270787835121154785e-07));
-    vec3 _63 = dFdx(_60);
-    vec3 _66 = dFdy(_60);
-    float _68 = max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
+    vec3 _54 = _33.xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
+    vec3 _61 = _54 - params.eye_position;
+    float _65 = length(_61);
+    vec3 _72 = _61 / vec3(max(_65, 9.9999999747524270787835121154785e-07));
+    vec3 _75 = dFdx(_72);
+    vec3 _78 = dFdy(_72);
+    float _80 = max(length(_75), length(_78));
+    float _83 = floor(gerstner_wave_count);
     float _1091;
     float _1093;
     _1093 = 0.0;
     _1091 = 0.0;
-    float _106;
-    float _111;
     float _116;
     float _121;
+    float _126;
+    float _131;
     int _1090 = 0;
     float _1092 = params.gerstner_amplitude;
     float _1094 = params.gerstner_frequency;
-    for (; _1090 < 8; _1094 = _121, _1093 = _111, _1092 = _116, _1091 = _106, _1090++)
+    for (; _1090 < 8; _1094 = _131, _1093 = _121, _1092 = _126, _1091 = _116, _1090++)
     {
-        if (!(float(_1090) < _71))
+        if (!(float(_1090) < _83))
         {
             break;
         }
-        _106 = _1091 + _1092;
-        _111 = _1092 * _1094 + _1093;
-        _116 = _1092 * params.gerstner_amplitude_gain;
-        _121 = _1094 * params.gerstner_frequency_gain;
+        _116 = _1091 + _1092;
+        _121 = _1092 * _1094 + _1093;
+        _126 = _1092 * params.gerstner_amplitude_gain;
+        _131 = _1094 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
-    vec2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1093 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1091;
-    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _147 = _72.y;
+    float _151 = max(-_147, 9.9999999747524270787835121154785e-07);
+    vec2 _155 = _72.xz;
+    float _164 = 1.0 / (1.0 + (((_1093 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_155)) / _151));
+    float _167 = -_1091;
+    float _171 = min(_147, -9.9999999747524270787835121154785e-07);
     float _1098;
     vec2 _1103;
-    _1103 = (params.eye_position + (_60 * max((_1091 - params.eye_position.y) / _162, 0.0))).xz;
+    _1103 = (params.eye_position + (_72 * max((_1091 - params.eye_position.y) / _171, 0.0))).xz;
     _1098 = _1091;
-    vec2 _406;
-    float _676;
-    float _681;
-    float _691;
+    vec2 _412;
+    float _679;
+    float _684;
+    float _694;
     int _1097 = 0;
     float _1131 = _1091;
-    float _1136 = _158;
+    float _1136 = _167;
     SPIRV_CROSS_LOOP
-    for (; _1097 < 9; _1136 = _681, _1131 = _676, _1103 = _406, _1098 = _691, _1097++)
+    for (; _1097 < 9; _1136 = _684, _1131 = _679, _1103 = _412, _1098 = _694, _1097++)
     {
-        float _207 = max((_1098 - params.eye_position.y) / _162, 0.0);
-        vec2 _217 = (params.eye_position + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
+        float _217 = max((_1098 - params.eye_position.y) / _171, 0.0);
+        vec2 _227 = (params.eye_position + (_72 * _217)).xz;
+        float _233 = (_80 * _217) / _151;
         vec2 _1105;
         vec3 _1106;
         _1106 = vec3(0.0);
         _1105 = vec2(0.0);
-        float _323;
-        float _327;
-        vec2 _334;
-        vec3 _348;
+        float _329;
+        float _333;
+        vec2 _340;
+        vec3 _354;
         int _1100 = 0;
         float _1101 = params.gerstner_frequency;
         float _1104 = params.gerstner_amplitude;
-        for (; _1100 < 8; _1106 = _348, _1105 = _334, _1104 = _323, _1101 = _327, _1100++)
+        for (; _1100 < 8; _1106 = _354, _1105 = _340, _1104 = _329, _1101 = _333, _1100++)
         {
-            float _242 = float(_1100);
-            if (!(_242 < _71))
+            float _252 = float(_1100);
+            if (!(_252 < _83))
             {
                 break;
             }
-            int _254 = clamp(int(_242), 0, 7);
-            float _282 = _1101 * dot(params.gerstner_wave_directions[_254], _1103) + (params.time * params.gerstner_wave_speeds[_254]);
-            float _296 = ((params.gerstner_steepness / (_71 * max(_1101 * _1104, 9.9999999747524270787835121154785e-07))) * _1104) * clamp((-(_1101 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _315 = (_296 * _1101) * sin(_282);
-            float _319 = _315 * params.gerstner_wave_directions[_254].x;
-            _323 = _1104 * params.gerstner_amplitude_gain;
-            _327 = _1101 * params.gerstner_frequency_gain;
-            _334 = _1105 + (params.gerstner_wave_directions[_254] * (_296 * cos(_282)));
-            _348 = _1106 + vec3(_319 * params.gerstner_wave_directions[_254].x, _319 * params.gerstner_wave_directions[_254].y, (_315 * params.gerstner_wave_directions[_254].y) * params.gerstner_wave_directions[_254].y);
+            int _264 = clamp(int(_252), 0, 7);
+            float _289 = _1101 * dot(params.gerstner_wave_directions[_264], _1103) + params.gerstner_wave_phases[_264];
+            float _303 = ((params.gerstner_steepness / (_83 * max(_1101 * _1104, 9.9999999747524270787835121154785e-07))) * _1104) * clamp((-(_1101 * _233)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _321 = (_303 * _1101) * sin(_289);
+            float _325 = _321 * params.gerstner_wave_directions[_264].x;
+            _329 = _1104 * params.gerstner_amplitude_gain;
+            _333 = _1101 * params.gerstner_frequency_gain;
+            _340 = _1105 + (params.gerstner_wave_directions[_264] * (_303 * cos(_289)));
+            _354 = _1106 + vec3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
         }
-        float _354 = 1.0 - _1106.x;
-        float _359 = 1.0 - _1106.z;
-        float _363 = -_1106.y;
-        vec2 _369 = (_1103 + _1105) - _217;
-        float _382 = _369.x;
-        float _385 = _369.y;
-        _406 = _1103 - (vec2(_359 * _382 + (-(_363 * _385)), _354 * _385 + (-(_363 * _382))) / vec2(max(_354 * _359 + (-(_363 * _363)), 0.039999999105930328369140625)));
+        float _360 = 1.0 - _1106.x;
+        float _365 = 1.0 - _1106.z;
+        float _369 = -_1106.y;
+        vec2 _375 = (_1103 + _1105) - _227;
+        float _388 = _375.x;
+        float _391 = _375.y;
+        _412 = _1103 - (vec2(_365 * _388 + (-(_369 * _391)), _360 * _391 + (-(_369 * _388))) / vec2(max(_360 * _365 + (-(_369 * _369)), 0.039999999105930328369140625)));
         vec3 _1113;
         vec3 _1114;
         vec3 _1115;
         _1115 = vec3(0.0, 0.0, 1.0);
         _1114 = vec3(1.0, 0.0, 0.0);
         _1113 = vec3(0.0);
-        float _521;
-        float _525;
-        vec3 _537;
-        vec3 _542;
-        vec3 _547;
+        float _524;
+        float _528;
+        vec3 _540;
+        vec3 _545;
+        vec3 _550;
         int _1110 = 0;
         float _1111 = params.gerstner_frequency;
         float _1112 = params.gerstner_amplitude;
-        for (; _1110 < 8; _1115 = _547, _1114 = _542, _1113 = _537, _1112 = _521, _1111 = _525, _1110++)
+        for (; _1110 < 8; _1115 = _550, _1114 = _545, _1113 = _540, _1112 = _524, _1111 = _528, _1110++)
         {
-            float _427 = float(_1110);
-            if (!(_427 < _71))
+            float _433 = float(_1110);
+            if (!(_433 < _83))
             {
                 break;
             }
-            int _438 = clamp(int(_427), 0, 7);
-            float _447 = clamp((-(_1111 * _223)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _463 = _1111 * dot(params.gerstner_wave_directions[_438], _406) + (params.time * params.gerstner_wave_speeds[_438]);
-            float _477 = ((params.gerstner_steepness / (_71 * max(_1111 * _1112, 9.9999999747524270787835121154785e-07))) * _1112) * _447;
-            float _481 = _1112 * _447;
-            float _484 = sin(_463);
-            float _487 = cos(_463);
-            float _497 = _477 * _487;
-            float _504 = -((_477 * _1111) * _484);
-            vec3 _517 = vec3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1111) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1112 * params.gerstner_amplitude_gain;
-            _525 = _1111 * params.gerstner_frequency_gain;
-            _537 = _1113 + vec3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1114 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1115 + (_517 * params.gerstner_wave_directions[_438].y);
+            int _444 = clamp(int(_433), 0, 7);
+            float _453 = clamp((-(_1111 * _233)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _466 = _1111 * dot(params.gerstner_wave_directions[_444], _412) + params.gerstner_wave_phases[_444];
+            float _480 = ((params.gerstner_steepness / (_83 * max(_1111 * _1112, 9.9999999747524270787835121154785e-07))) * _1112) * _453;
+            float _484 = _1112 * _453;
+            float _487 = sin(_466);
+            float _490 = cos(_466);
+            float _500 = _480 * _490;
+            float _507 = -((_480 * _1111) * _487);
+            vec3 _520 = vec3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1111) * _490, _507 * params.gerstner_wave_directions[_444].y);
+            _524 = _1112 * params.gerstner_amplitude_gain;
+            _528 = _1111 * params.gerstner_frequency_gain;
+            _540 = _1113 + vec3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
+            _545 = _1114 + (_520 * params.gerstner_wave_directions[_444].x);
+            _550 = _1115 + (_520 * params.gerstner_wave_directions[_444].y);
         }
-        vec3 _553 = cross(_1115, _1114);
-        float _557 = dot(_553, _553);
-        vec3 _564 = _553 * inversesqrt(max(_557, 1.0000000031710768509710513471353e-30));
-        bvec3 _574 = bvec3(_557 > 1.0000000031710768509710513471353e-30);
-        vec3 _575 = vec3(_574.x ? _564.x : vec3(0.0, 1.0, 0.0).x, _574.y ? _564.y : vec3(0.0, 1.0, 0.0).y, _574.z ? _564.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _585 = (-_575.xz) / vec2(max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1097);
-        bool _601 = _600 < 1.0;
-        float _605 = (_1113.y + dot(_585, _217 - (_406 + _1113.xz))) - _1098;
-        float _618 = (-dot(_585, _146)) / _142;
-        float _631 = clamp(1.0 / max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0) * _605 + _1098;
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1098 : _1131;
-        float _644 = _634 ? _1136 : _1098;
-        _676 = _601 ? _1098 : _639;
-        _681 = _601 ? _1136 : _644;
-        _691 = (_600 < 8.0) ? (_601 ? (_155 * _605 + _1098) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1098;
+        vec3 _556 = cross(_1115, _1114);
+        float _560 = dot(_556, _556);
+        vec3 _567 = _556 * inversesqrt(max(_560, 1.0000000031710768509710513471353e-30));
+        bvec3 _577 = bvec3(_560 > 1.0000000031710768509710513471353e-30);
+        vec3 _578 = vec3(_577.x ? _567.x : vec3(0.0, 1.0, 0.0).x, _577.y ? _567.y : vec3(0.0, 1.0, 0.0).y, _577.z ? _567.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _588 = (-_578.xz) / vec2(max(_578.y, 9.9999997473787516355514526367188e-05));
+        float _603 = float(_1097);
+        bool _604 = _603 < 1.0;
+        float _608 = (_1113.y + dot(_588, _227 - (_412 + _1113.xz))) - _1098;
+        float _621 = (-dot(_588, _155)) / _151;
+        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _164, 1.0) * _608 + _1098;
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1098 : _1131;
+        float _647 = _637 ? _1136 : _1098;
+        _679 = _604 ? _1098 : _642;
+        _684 = _604 ? _1136 : _647;
+        _694 = (_603 < 8.0) ? (_604 ? (_164 * _608 + _1098) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1098;
     }
-    float _705 = max((_1098 - params.eye_position.y) / _162, 0.0);
-    vec3 _712 = params.eye_position + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float _728 = max(_723 - _720, 0.0);
-    vec4 _772 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    vec3 _773 = _772.xyz;
-    float _777 = clamp(max(_53 - _705, 0.0), 0.0, 30000.0);
-    vec4 _834 = (((params.reflection_view_proj_c0 * _712.x) + (params.reflection_view_proj_c1 * _723)) + (params.reflection_view_proj_c2 * _712.z)) + params.reflection_view_proj_c3;
-    float _838 = _834.w;
-    bool _841 = _838 > 9.9999997473787516355514526367188e-05;
-    vec2 _858 = clamp((((_834.xy / vec2(_838)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _864 = bvec2(_841);
-    float _868 = float(_841);
-    vec4 _884 = texture(reflection_map, vec3(vec2(_864.x ? _858.x : vec2(0.5).x, _864.y ? _858.y : vec2(0.5).y), _868).xy);
+    float _708 = max((_1098 - params.eye_position.y) / _171, 0.0);
+    vec3 _715 = params.eye_position + (_72 * _708);
+    float _723 = _54.y;
+    float _726 = _715.y;
+    float _731 = max(_726 - _723, 0.0);
+    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    vec3 _776 = _775.xyz;
+    float _780 = clamp(max(_65 - _708, 0.0), 0.0, 30000.0);
+    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
+    float _841 = _837.w;
+    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
+    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _867 = bvec2(_844);
+    float _871 = float(_844);
+    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
     vec3 _1099;
-    if (_868 > 0.5)
+    if (_871 > 0.5)
     {
-        _1099 = _884.xyz;
+        _1099 = _887.xyz;
     }
     else
     {
         _1099 = params.sky_color;
     }
-    float _914 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _922 = 1.0 - clamp((-_60).y, 0.0, 1.0);
-    float _926 = _922 * _922;
-    vec2 _946 = _712.xz;
-    float _1007 = _728 - params.foam_existence.x;
+    float _917 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _925 = 1.0 - clamp((-_72).y, 0.0, 1.0);
+    float _929 = _925 * _925;
+    vec2 _949 = _715.xz;
+    float _1007 = _731 - params.foam_existence.x;
     float _1012 = params.foam_existence.y - params.foam_existence.x;
-    vec3 _1058 = mix(_773, mix(mix(mix(params.scatter_color, _773 * exp((-params.absorb_coefficients) * (_728 + _777)), vec3(exp((-params.scatter_coefficient) * _777))) * params.incident_light, _1099, vec3(_914 * _914 + (((-_914) * _914 + 1.0) * ((_926 * _926) * _922)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_946 * params.foam_pattern_scale) + (params.foam_pattern_drift * params.time)) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_946)), length(dFdy(_946))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1007 < 0.0) ? 1.0 : (1.0 - ((_1007 >= _1012) ? 1.0 : clamp(_1007 / max(_1012, 5.9604644775390625e-08), 0.0, 1.0))))), vec3(clamp(_728 * params.shore_hardness, 0.0, 1.0)));
-    bvec3 _1063 = bvec3((_720 < _723) && (_138 < 0.0));
+    vec3 _1058 = mix(_776, mix(mix(mix(params.scatter_color, _776 * exp((-params.absorb_coefficients) * (_731 + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _1099, vec3(_917 * _917 + (((-_917) * _917 + 1.0) * ((_929 * _929) * _925)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_949 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_949)), length(dFdy(_949))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1007 < 0.0) ? 1.0 : (1.0 - ((_1007 >= _1012) ? 1.0 : clamp(_1007 / max(_1012, 5.9604644775390625e-08), 0.0, 1.0))))), vec3(clamp(_731 * params.shore_hardness, 0.0, 1.0)));
+    bvec3 _1063 = bvec3((_723 < _726) && (_147 < 0.0));
     out_color = vec4(vec3(_1063.x ? _1058.x : _26.x, _1063.y ? _1058.y : _26.y, _1063.z ? _1058.z : _26.z), 1.0);
 }
 

@@ -6,20 +6,24 @@ using namespace metal;
 
 struct WaterParams
 {
+    float4 gerstner_wave_phases[8];
+    float4 gerstner_wave_speeds[8];
     float4 gerstner_wave_directions[8];
     packed_float3 eye_position;
-    float gerstner_amplitude;
+    float time;
     packed_float3 sun_direction;
-    float gerstner_frequency;
+    float gerstner_amplitude;
     packed_float3 sun_color;
-    float gerstner_amplitude_gain;
+    float gerstner_frequency;
     packed_float3 absorb_coefficients;
-    float gerstner_frequency_gain;
+    float gerstner_amplitude_gain;
     packed_float3 scatter_color;
-    float gerstner_steepness;
+    float gerstner_frequency_gain;
     packed_float3 incident_light;
-    float refraction_distortion;
+    float gerstner_steepness;
     packed_float3 reflection_lower_tint;
+    float refraction_distortion;
+    float2 frame_centre;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -47,169 +51,170 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _48 = _33.xyz - float3(params.eye_position);
-    float _52 = length(_48);
-    float3 _59 = _48 / float3(fast::max(_52, 9.9999999747524270787835121154785e-07));
-    float3 _62 = dfdx(_59);
-    float3 _65 = dfdy(_59);
-    float _67 = fast::max(length(_62), length(_65));
-    float _70 = floor(gerstner_wave_count);
-    float _1065;
-    float _1067;
-    _1067 = 0.0;
-    _1065 = 0.0;
-    float _105;
-    float _110;
+    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
+    float3 _61 = _54 - float3(params.eye_position);
+    float _65 = length(_61);
+    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
+    float3 _75 = dfdx(_72);
+    float3 _78 = dfdy(_72);
+    float _80 = fast::max(length(_75), length(_78));
+    float _83 = floor(gerstner_wave_count);
+    float _1090;
+    float _1092;
+    _1092 = 0.0;
+    _1090 = 0.0;
     float _115;
-    float _119;
-    int _1064 = 0;
-    float _1066 = params.gerstner_amplitude;
-    float _1068 = params.gerstner_frequency;
-    for (; _1064 < 8; _1068 = _119, _1067 = _110, _1066 = _115, _1065 = _105, _1064++)
+    float _120;
+    float _125;
+    float _130;
+    int _1089 = 0;
+    float _1091 = params.gerstner_amplitude;
+    float _1093 = params.gerstner_frequency;
+    for (; _1089 < 8; _1093 = _130, _1092 = _120, _1091 = _125, _1090 = _115, _1089++)
     {
-        if (!(float(_1064) < _70))
+        if (!(float(_1089) < _83))
         {
             break;
         }
-        _105 = _1065 + _1066;
-        _110 = fma(_1066, _1068, _1067);
-        _115 = _1066 * params.gerstner_amplitude_gain;
-        _119 = _1068 * params.gerstner_frequency_gain;
+        _115 = _1090 + _1091;
+        _120 = fma(_1091, _1093, _1092);
+        _125 = _1091 * params.gerstner_amplitude_gain;
+        _130 = _1093 * params.gerstner_frequency_gain;
     }
-    float _135 = _59.y;
-    float _139 = fast::max(-_135, 9.9999999747524270787835121154785e-07);
-    float2 _143 = _59.xz;
-    float _152 = 1.0 / (1.0 + (((_1067 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_143)) / _139));
-    float _155 = -_1065;
-    float _159 = fast::min(_135, -9.9999999747524270787835121154785e-07);
-    float _1072;
-    float2 _1076;
-    _1076 = (float3(params.eye_position) + (_59 * fast::max((_1065 - params.eye_position[1u]) / _159, 0.0))).xz;
-    _1072 = _1065;
-    float2 _394;
-    float _654;
-    float _659;
-    float _669;
-    int _1071 = 0;
-    float _1104 = _1065;
-    float _1109 = _155;
-    for (; _1071 < 9; _1109 = _659, _1104 = _654, _1076 = _394, _1072 = _669, _1071++)
+    float _146 = _72.y;
+    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
+    float2 _154 = _72.xz;
+    float _163 = 1.0 / (1.0 + (((_1092 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
+    float _166 = -_1090;
+    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
+    float _1097;
+    float2 _1101;
+    _1101 = (float3(params.eye_position) + (_72 * fast::max((_1090 - params.eye_position[1u]) / _170, 0.0))).xz;
+    _1097 = _1090;
+    float2 _412;
+    float _679;
+    float _684;
+    float _694;
+    int _1096 = 0;
+    float _1129 = _1090;
+    float _1134 = _166;
+    for (; _1096 < 9; _1134 = _684, _1129 = _679, _1101 = _412, _1097 = _694, _1096++)
     {
-        float _205 = fast::max((_1072 - params.eye_position[1u]) / _159, 0.0);
-        float2 _215 = (float3(params.eye_position) + (_59 * _205)).xz;
-        float _221 = (_67 * _205) / _139;
-        float2 _1078;
-        float3 _1079;
-        _1079 = float3(0.0);
-        _1078 = float2(0.0);
-        float _311;
-        float _315;
-        float2 _322;
-        float3 _336;
-        int _1073 = 0;
-        float _1074 = params.gerstner_frequency;
-        float _1077 = params.gerstner_amplitude;
-        for (; _1073 < 8; _1079 = _336, _1078 = _322, _1077 = _311, _1074 = _315, _1073++)
+        float _216 = fast::max((_1097 - params.eye_position[1u]) / _170, 0.0);
+        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
+        float _232 = (_80 * _216) / _150;
+        float2 _1103;
+        float3 _1104;
+        _1104 = float3(0.0);
+        _1103 = float2(0.0);
+        float _329;
+        float _333;
+        float2 _340;
+        float3 _354;
+        int _1098 = 0;
+        float _1099 = params.gerstner_frequency;
+        float _1102 = params.gerstner_amplitude;
+        for (; _1098 < 8; _1104 = _354, _1103 = _340, _1102 = _329, _1099 = _333, _1098++)
         {
-            float _240 = float(_1073);
-            if (!(_240 < _70))
+            float _251 = float(_1098);
+            if (!(_251 < _83))
             {
                 break;
             }
-            int _252 = clamp(int(_240), 0, 7);
-            float _270 = _1074 * dot(params.gerstner_wave_directions[_252].xy, _1076);
-            float _284 = ((params.gerstner_steepness / (_70 * fast::max(_1074 * _1077, 9.9999999747524270787835121154785e-07))) * _1077) * fast::clamp(fma(-(_1074 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _303 = (_284 * _1074) * sin(_270);
-            float _307 = _303 * params.gerstner_wave_directions[_252].x;
-            _311 = _1077 * params.gerstner_amplitude_gain;
-            _315 = _1074 * params.gerstner_frequency_gain;
-            _322 = _1078 + (params.gerstner_wave_directions[_252].xy * (_284 * cos(_270)));
-            _336 = _1079 + float3(_307 * params.gerstner_wave_directions[_252].x, _307 * params.gerstner_wave_directions[_252].y, (_303 * params.gerstner_wave_directions[_252].y) * params.gerstner_wave_directions[_252].y);
+            int _264 = clamp(int(_251), 0, 7);
+            float _289 = fma(_1099, dot(params.gerstner_wave_directions[_264].xy, _1101), params.gerstner_wave_phases[_264].x);
+            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_1099 * _1102, 9.9999999747524270787835121154785e-07))) * _1102) * fast::clamp(fma(-(_1099 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _321 = (_303 * _1099) * sin(_289);
+            float _325 = _321 * params.gerstner_wave_directions[_264].x;
+            _329 = _1102 * params.gerstner_amplitude_gain;
+            _333 = _1099 * params.gerstner_frequency_gain;
+            _340 = _1103 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
+            _354 = _1104 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
         }
-        float _342 = 1.0 - _1079.x;
-        float _347 = 1.0 - _1079.z;
-        float _351 = -_1079.y;
-        float2 _357 = (_1076 + _1078) - _215;
-        float _370 = _357.x;
-        float _373 = _357.y;
-        _394 = _1076 - (float2(fma(_347, _370, -(_351 * _373)), fma(_342, _373, -(_351 * _370))) / float2(fast::max(fma(_342, _347, -(_351 * _351)), 0.039999999105930328369140625)));
-        float3 _1086;
-        float3 _1087;
-        float3 _1088;
-        _1088 = float3(0.0, 0.0, 1.0);
-        _1087 = float3(1.0, 0.0, 0.0);
-        _1086 = float3(0.0);
-        float _499;
-        float _503;
-        float3 _515;
-        float3 _520;
-        float3 _525;
-        int _1083 = 0;
-        float _1084 = params.gerstner_frequency;
-        float _1085 = params.gerstner_amplitude;
-        for (; _1083 < 8; _1088 = _525, _1087 = _520, _1086 = _515, _1085 = _499, _1084 = _503, _1083++)
+        float _360 = 1.0 - _1104.x;
+        float _365 = 1.0 - _1104.z;
+        float _369 = -_1104.y;
+        float2 _375 = (_1101 + _1103) - _226;
+        float _388 = _375.x;
+        float _391 = _375.y;
+        _412 = _1101 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
+        float3 _1111;
+        float3 _1112;
+        float3 _1113;
+        _1113 = float3(0.0, 0.0, 1.0);
+        _1112 = float3(1.0, 0.0, 0.0);
+        _1111 = float3(0.0);
+        float _524;
+        float _528;
+        float3 _540;
+        float3 _545;
+        float3 _550;
+        int _1108 = 0;
+        float _1109 = params.gerstner_frequency;
+        float _1110 = params.gerstner_amplitude;
+        for (; _1108 < 8; _1113 = _550, _1112 = _545, _1111 = _540, _1110 = _524, _1109 = _528, _1108++)
         {
-            float _415 = float(_1083);
-            if (!(_415 < _70))
+            float _433 = float(_1108);
+            if (!(_433 < _83))
             {
                 break;
             }
-            int _426 = clamp(int(_415), 0, 7);
-            float _435 = fast::clamp(fma(-(_1084 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _441 = _1084 * dot(params.gerstner_wave_directions[_426].xy, _394);
-            float _455 = ((params.gerstner_steepness / (_70 * fast::max(_1084 * _1085, 9.9999999747524270787835121154785e-07))) * _1085) * _435;
-            float _459 = _1085 * _435;
-            float _462 = sin(_441);
-            float _465 = cos(_441);
-            float _475 = _455 * _465;
-            float _482 = -((_455 * _1084) * _462);
-            float3 _495 = float3(_482 * params.gerstner_wave_directions[_426].x, (_459 * _1084) * _465, _482 * params.gerstner_wave_directions[_426].y);
-            _499 = _1085 * params.gerstner_amplitude_gain;
-            _503 = _1084 * params.gerstner_frequency_gain;
-            _515 = _1086 + float3(_475 * params.gerstner_wave_directions[_426].x, _459 * _462, _475 * params.gerstner_wave_directions[_426].y);
-            _520 = _1087 + (_495 * params.gerstner_wave_directions[_426].x);
-            _525 = _1088 + (_495 * params.gerstner_wave_directions[_426].y);
+            int _444 = clamp(int(_433), 0, 7);
+            float _453 = fast::clamp(fma(-(_1109 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _466 = fma(_1109, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
+            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1109 * _1110, 9.9999999747524270787835121154785e-07))) * _1110) * _453;
+            float _484 = _1110 * _453;
+            float _487 = sin(_466);
+            float _490 = cos(_466);
+            float _500 = _480 * _490;
+            float _507 = -((_480 * _1109) * _487);
+            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1109) * _490, _507 * params.gerstner_wave_directions[_444].y);
+            _524 = _1110 * params.gerstner_amplitude_gain;
+            _528 = _1109 * params.gerstner_frequency_gain;
+            _540 = _1111 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
+            _545 = _1112 + (_520 * params.gerstner_wave_directions[_444].x);
+            _550 = _1113 + (_520 * params.gerstner_wave_directions[_444].y);
         }
-        float3 _531 = cross(_1088, _1087);
-        float _535 = dot(_531, _531);
-        float3 _553 = select(float3(0.0, 1.0, 0.0), _531 * rsqrt(fast::max(_535, 1.0000000031710768509710513471353e-30)), bool3(_535 > 1.0000000031710768509710513471353e-30));
-        float2 _563 = (-_553.xz) / float2(fast::max(_553.y, 9.9999997473787516355514526367188e-05));
-        float _578 = float(_1071);
-        bool _579 = _578 < 1.0;
-        float _583 = (_1086.y + dot(_563, _215 - (_394 + _1086.xz))) - _1072;
-        float _596 = (-dot(_563, _143)) / _139;
-        float _609 = fma(fast::clamp(1.0 / fast::max(1.0 - _596, 9.9999999747524270787835121154785e-07), _152, 1.0), _583, _1072);
-        bool _612 = _583 < 0.0;
-        float _617 = _612 ? _1072 : _1104;
-        float _622 = _612 ? _1109 : _1072;
-        _654 = _579 ? _1072 : _617;
-        _659 = _579 ? _1109 : _622;
-        _669 = (_578 < 8.0) ? (_579 ? fma(_152, _583, _1072) : ((((_609 < _622) || (_609 > _617)) || (_596 >= 1.0)) ? (0.5 * (_622 + _617)) : _609)) : _1072;
+        float3 _556 = cross(_1113, _1112);
+        float _560 = dot(_556, _556);
+        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
+        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
+        float _603 = float(_1096);
+        bool _604 = _603 < 1.0;
+        float _608 = (_1111.y + dot(_588, _226 - (_412 + _1111.xz))) - _1097;
+        float _621 = (-dot(_588, _154)) / _150;
+        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _1097);
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1097 : _1129;
+        float _647 = _637 ? _1134 : _1097;
+        _679 = _604 ? _1097 : _642;
+        _684 = _604 ? _1134 : _647;
+        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _1097) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1097;
     }
-    float _683 = fast::max((_1072 - params.eye_position[1u]) / _159, 0.0);
-    float3 _690 = float3(params.eye_position) + (_59 * _683);
-    float _698 = _33.y;
-    float _701 = _690.y;
-    float _706 = fast::max(_701 - _698, 0.0);
-    float3 _716 = -_59;
-    float3 _753 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
-    float _757 = fast::clamp(fast::max(_52 - _683, 0.0), 0.0, 30000.0);
-    float3 _790 = abs(_59);
-    float3 _803 = _59 / float3(fast::max(fast::max(fast::max(_790.x, _790.y), _790.z), 1.0000000031710768509710513471353e-30));
-    float _807 = dot(_803, _803);
-    float3 _826 = reflect(select(float3(0.0, -1.0, 0.0), _803 * rsqrt(fast::max(_807, 1.0000000031710768509710513471353e-30)), bool3(_807 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _829 = _826.y;
-    float _855 = smoothstep(0.0, params.reflection_horizon_band, -_829);
-    float _901 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _909 = 1.0 - fast::clamp(_716.y, 0.0, 1.0);
-    float _913 = _909 * _909;
-    float3 _929 = -float3(params.sun_direction);
-    float3 _933 = _929 + _716;
-    float _945 = fast::max(fast::max(abs(_933.x), abs(_933.y)), abs(_933.z));
-    float3 _952 = _933 / float3(fast::max(_945, 5.9604644775390625e-08));
-    float _971 = fast::clamp(select(float3(0.0), _952 / float3(fast::max(length(_952), 1.0)), bool3(_945 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1025 = mix(_753, mix(mix(float3(params.scatter_color), _753 * exp((-float3(params.absorb_coefficients)) * (_706 + _757)), float3(exp((-params.scatter_coefficient) * _757))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_826.x, abs(_829), _826.z), bool3(dot(_826, _826) > 9.9999999600419720025001879548654e-13)), _855).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_855)), float3(fma(_901, _901, fma(-_901, _901, 1.0) * ((_913 * _913) * _909)))) + (float3(params.sun_color) * ((_929.y > 0.0) ? ((_971 > 6.103515625e-05) ? pow(fast::max(_971, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(fast::clamp(_706 * params.shore_hardness, 0.0, 1.0)));
-    out.out_color = float4(select(_25.xyz, _1025, bool3((_698 < _701) && (_135 < 0.0))), 1.0);
+    float _708 = fast::max((_1097 - params.eye_position[1u]) / _170, 0.0);
+    float3 _715 = float3(params.eye_position) + (_72 * _708);
+    float _723 = _54.y;
+    float _726 = _715.y;
+    float _731 = fast::max(_726 - _723, 0.0);
+    float3 _741 = -_72;
+    float3 _778 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
+    float _782 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
+    float3 _816 = abs(_72);
+    float3 _829 = _72 / float3(fast::max(fast::max(fast::max(_816.x, _816.y), _816.z), 1.0000000031710768509710513471353e-30));
+    float _833 = dot(_829, _829);
+    float3 _852 = reflect(select(float3(0.0, -1.0, 0.0), _829 * rsqrt(fast::max(_833, 1.0000000031710768509710513471353e-30)), bool3(_833 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _855 = _852.y;
+    float _881 = smoothstep(0.0, params.reflection_horizon_band, -_855);
+    float _927 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _935 = 1.0 - fast::clamp(_741.y, 0.0, 1.0);
+    float _939 = _935 * _935;
+    float3 _955 = -float3(params.sun_direction);
+    float3 _959 = _955 + _741;
+    float _971 = fast::max(fast::max(abs(_959.x), abs(_959.y)), abs(_959.z));
+    float3 _978 = _959 / float3(fast::max(_971, 5.9604644775390625e-08));
+    float _997 = fast::clamp(select(float3(0.0), _978 / float3(fast::max(length(_978), 1.0)), bool3(_971 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1050 = mix(_778, mix(mix(float3(params.scatter_color), _778 * exp((-float3(params.absorb_coefficients)) * (_731 + _782)), float3(exp((-params.scatter_coefficient) * _782))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_852.x, abs(_855), _852.z), bool3(dot(_852, _852) > 9.9999999600419720025001879548654e-13)), _881).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_881)), float3(fma(_927, _927, fma(-_927, _927, 1.0) * ((_939 * _939) * _935)))) + (float3(params.sun_color) * ((_955.y > 0.0) ? ((_997 > 6.103515625e-05) ? pow(fast::max(_997, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), float3(fast::clamp(_731 * params.shore_hardness, 0.0, 1.0)));
+    out.out_color = float4(select(_25.xyz, _1050, bool3((_723 < _726) && (_146 < 0.0))), 1.0);
     return out;
 }
 

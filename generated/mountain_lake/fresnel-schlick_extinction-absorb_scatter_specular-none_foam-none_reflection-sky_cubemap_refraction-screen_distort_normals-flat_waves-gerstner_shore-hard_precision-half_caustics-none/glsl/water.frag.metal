@@ -6,16 +6,20 @@ using namespace metal;
 
 struct WaterParams
 {
+    float4 gerstner_wave_phases[8];
+    float4 gerstner_wave_speeds[8];
     float4 gerstner_wave_directions[8];
     packed_float3 eye_position;
-    float gerstner_amplitude;
+    float time;
     packed_float3 absorb_coefficients;
-    float gerstner_frequency;
+    float gerstner_amplitude;
     packed_float3 scatter_color;
-    float gerstner_amplitude_gain;
+    float gerstner_frequency;
     packed_float3 incident_light;
-    float gerstner_frequency_gain;
+    float gerstner_amplitude_gain;
     packed_float3 reflection_lower_tint;
+    float gerstner_frequency_gain;
+    float2 frame_centre;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -43,161 +47,162 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _48 = _33.xyz - float3(params.eye_position);
-    float _52 = length(_48);
-    float3 _59 = _48 / float3(fast::max(_52, 9.9999999747524270787835121154785e-07));
-    float3 _62 = dfdx(_59);
-    float3 _65 = dfdy(_59);
-    float _67 = fast::max(length(_62), length(_65));
-    float _70 = floor(gerstner_wave_count);
-    float _964;
-    float _966;
-    _966 = 0.0;
-    _964 = 0.0;
-    float _105;
-    float _110;
+    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
+    float3 _61 = _54 - float3(params.eye_position);
+    float _65 = length(_61);
+    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
+    float3 _75 = dfdx(_72);
+    float3 _78 = dfdy(_72);
+    float _80 = fast::max(length(_75), length(_78));
+    float _83 = floor(gerstner_wave_count);
+    float _989;
+    float _991;
+    _991 = 0.0;
+    _989 = 0.0;
     float _115;
-    float _119;
-    int _963 = 0;
-    float _965 = params.gerstner_amplitude;
-    float _967 = params.gerstner_frequency;
-    for (; _963 < 8; _967 = _119, _966 = _110, _965 = _115, _964 = _105, _963++)
+    float _120;
+    float _125;
+    float _130;
+    int _988 = 0;
+    float _990 = params.gerstner_amplitude;
+    float _992 = params.gerstner_frequency;
+    for (; _988 < 8; _992 = _130, _991 = _120, _990 = _125, _989 = _115, _988++)
     {
-        if (!(float(_963) < _70))
+        if (!(float(_988) < _83))
         {
             break;
         }
-        _105 = _964 + _965;
-        _110 = fma(_965, _967, _966);
-        _115 = _965 * params.gerstner_amplitude_gain;
-        _119 = _967 * params.gerstner_frequency_gain;
+        _115 = _989 + _990;
+        _120 = fma(_990, _992, _991);
+        _125 = _990 * params.gerstner_amplitude_gain;
+        _130 = _992 * params.gerstner_frequency_gain;
     }
-    float _135 = _59.y;
-    float _139 = fast::max(-_135, 9.9999999747524270787835121154785e-07);
-    float2 _143 = _59.xz;
-    float _152 = 1.0 / (1.0 + (((_966 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_143)) / _139));
-    float _155 = -_964;
-    float _159 = fast::min(_135, -9.9999999747524270787835121154785e-07);
-    float _971;
-    float2 _975;
-    _975 = (float3(params.eye_position) + (_59 * fast::max((_964 - params.eye_position[1u]) / _159, 0.0))).xz;
-    _971 = _964;
-    float2 _394;
-    float _654;
-    float _659;
-    float _669;
-    int _970 = 0;
-    float _1003 = _964;
-    float _1008 = _155;
-    for (; _970 < 9; _1008 = _659, _1003 = _654, _975 = _394, _971 = _669, _970++)
+    float _146 = _72.y;
+    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
+    float2 _154 = _72.xz;
+    float _163 = 1.0 / (1.0 + (((_991 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
+    float _166 = -_989;
+    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
+    float _996;
+    float2 _1000;
+    _1000 = (float3(params.eye_position) + (_72 * fast::max((_989 - params.eye_position[1u]) / _170, 0.0))).xz;
+    _996 = _989;
+    float2 _412;
+    float _679;
+    float _684;
+    float _694;
+    int _995 = 0;
+    float _1028 = _989;
+    float _1033 = _166;
+    for (; _995 < 9; _1033 = _684, _1028 = _679, _1000 = _412, _996 = _694, _995++)
     {
-        float _205 = fast::max((_971 - params.eye_position[1u]) / _159, 0.0);
-        float2 _215 = (float3(params.eye_position) + (_59 * _205)).xz;
-        float _221 = (_67 * _205) / _139;
-        float2 _977;
-        float3 _978;
-        _978 = float3(0.0);
-        _977 = float2(0.0);
-        float _311;
-        float _315;
-        float2 _322;
-        float3 _336;
-        int _972 = 0;
-        float _973 = params.gerstner_frequency;
-        float _976 = params.gerstner_amplitude;
-        for (; _972 < 8; _978 = _336, _977 = _322, _976 = _311, _973 = _315, _972++)
+        float _216 = fast::max((_996 - params.eye_position[1u]) / _170, 0.0);
+        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
+        float _232 = (_80 * _216) / _150;
+        float2 _1002;
+        float3 _1003;
+        _1003 = float3(0.0);
+        _1002 = float2(0.0);
+        float _329;
+        float _333;
+        float2 _340;
+        float3 _354;
+        int _997 = 0;
+        float _998 = params.gerstner_frequency;
+        float _1001 = params.gerstner_amplitude;
+        for (; _997 < 8; _1003 = _354, _1002 = _340, _1001 = _329, _998 = _333, _997++)
         {
-            float _240 = float(_972);
-            if (!(_240 < _70))
+            float _251 = float(_997);
+            if (!(_251 < _83))
             {
                 break;
             }
-            int _252 = clamp(int(_240), 0, 7);
-            float _270 = _973 * dot(params.gerstner_wave_directions[_252].xy, _975);
-            float _284 = ((params.gerstner_steepness / (_70 * fast::max(_973 * _976, 9.9999999747524270787835121154785e-07))) * _976) * fast::clamp(fma(-(_973 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _303 = (_284 * _973) * sin(_270);
-            float _307 = _303 * params.gerstner_wave_directions[_252].x;
-            _311 = _976 * params.gerstner_amplitude_gain;
-            _315 = _973 * params.gerstner_frequency_gain;
-            _322 = _977 + (params.gerstner_wave_directions[_252].xy * (_284 * cos(_270)));
-            _336 = _978 + float3(_307 * params.gerstner_wave_directions[_252].x, _307 * params.gerstner_wave_directions[_252].y, (_303 * params.gerstner_wave_directions[_252].y) * params.gerstner_wave_directions[_252].y);
+            int _264 = clamp(int(_251), 0, 7);
+            float _289 = fma(_998, dot(params.gerstner_wave_directions[_264].xy, _1000), params.gerstner_wave_phases[_264].x);
+            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_998 * _1001, 9.9999999747524270787835121154785e-07))) * _1001) * fast::clamp(fma(-(_998 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _321 = (_303 * _998) * sin(_289);
+            float _325 = _321 * params.gerstner_wave_directions[_264].x;
+            _329 = _1001 * params.gerstner_amplitude_gain;
+            _333 = _998 * params.gerstner_frequency_gain;
+            _340 = _1002 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
+            _354 = _1003 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
         }
-        float _342 = 1.0 - _978.x;
-        float _347 = 1.0 - _978.z;
-        float _351 = -_978.y;
-        float2 _357 = (_975 + _977) - _215;
-        float _370 = _357.x;
-        float _373 = _357.y;
-        _394 = _975 - (float2(fma(_347, _370, -(_351 * _373)), fma(_342, _373, -(_351 * _370))) / float2(fast::max(fma(_342, _347, -(_351 * _351)), 0.039999999105930328369140625)));
-        float3 _985;
-        float3 _986;
-        float3 _987;
-        _987 = float3(0.0, 0.0, 1.0);
-        _986 = float3(1.0, 0.0, 0.0);
-        _985 = float3(0.0);
-        float _499;
-        float _503;
-        float3 _515;
-        float3 _520;
-        float3 _525;
-        int _982 = 0;
-        float _983 = params.gerstner_frequency;
-        float _984 = params.gerstner_amplitude;
-        for (; _982 < 8; _987 = _525, _986 = _520, _985 = _515, _984 = _499, _983 = _503, _982++)
+        float _360 = 1.0 - _1003.x;
+        float _365 = 1.0 - _1003.z;
+        float _369 = -_1003.y;
+        float2 _375 = (_1000 + _1002) - _226;
+        float _388 = _375.x;
+        float _391 = _375.y;
+        _412 = _1000 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
+        float3 _1010;
+        float3 _1011;
+        float3 _1012;
+        _1012 = float3(0.0, 0.0, 1.0);
+        _1011 = float3(1.0, 0.0, 0.0);
+        _1010 = float3(0.0);
+        float _524;
+        float _528;
+        float3 _540;
+        float3 _545;
+        float3 _550;
+        int _1007 = 0;
+        float _1008 = params.gerstner_frequency;
+        float _1009 = params.gerstner_amplitude;
+        for (; _1007 < 8; _1012 = _550, _1011 = _545, _1010 = _540, _1009 = _524, _1008 = _528, _1007++)
         {
-            float _415 = float(_982);
-            if (!(_415 < _70))
+            float _433 = float(_1007);
+            if (!(_433 < _83))
             {
                 break;
             }
-            int _426 = clamp(int(_415), 0, 7);
-            float _435 = fast::clamp(fma(-(_983 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _441 = _983 * dot(params.gerstner_wave_directions[_426].xy, _394);
-            float _455 = ((params.gerstner_steepness / (_70 * fast::max(_983 * _984, 9.9999999747524270787835121154785e-07))) * _984) * _435;
-            float _459 = _984 * _435;
-            float _462 = sin(_441);
-            float _465 = cos(_441);
-            float _475 = _455 * _465;
-            float _482 = -((_455 * _983) * _462);
-            float3 _495 = float3(_482 * params.gerstner_wave_directions[_426].x, (_459 * _983) * _465, _482 * params.gerstner_wave_directions[_426].y);
-            _499 = _984 * params.gerstner_amplitude_gain;
-            _503 = _983 * params.gerstner_frequency_gain;
-            _515 = _985 + float3(_475 * params.gerstner_wave_directions[_426].x, _459 * _462, _475 * params.gerstner_wave_directions[_426].y);
-            _520 = _986 + (_495 * params.gerstner_wave_directions[_426].x);
-            _525 = _987 + (_495 * params.gerstner_wave_directions[_426].y);
+            int _444 = clamp(int(_433), 0, 7);
+            float _453 = fast::clamp(fma(-(_1008 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _466 = fma(_1008, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
+            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1008 * _1009, 9.9999999747524270787835121154785e-07))) * _1009) * _453;
+            float _484 = _1009 * _453;
+            float _487 = sin(_466);
+            float _490 = cos(_466);
+            float _500 = _480 * _490;
+            float _507 = -((_480 * _1008) * _487);
+            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1008) * _490, _507 * params.gerstner_wave_directions[_444].y);
+            _524 = _1009 * params.gerstner_amplitude_gain;
+            _528 = _1008 * params.gerstner_frequency_gain;
+            _540 = _1010 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
+            _545 = _1011 + (_520 * params.gerstner_wave_directions[_444].x);
+            _550 = _1012 + (_520 * params.gerstner_wave_directions[_444].y);
         }
-        float3 _531 = cross(_987, _986);
-        float _535 = dot(_531, _531);
-        float3 _553 = select(float3(0.0, 1.0, 0.0), _531 * rsqrt(fast::max(_535, 1.0000000031710768509710513471353e-30)), bool3(_535 > 1.0000000031710768509710513471353e-30));
-        float2 _563 = (-_553.xz) / float2(fast::max(_553.y, 9.9999997473787516355514526367188e-05));
-        float _578 = float(_970);
-        bool _579 = _578 < 1.0;
-        float _583 = (_985.y + dot(_563, _215 - (_394 + _985.xz))) - _971;
-        float _596 = (-dot(_563, _143)) / _139;
-        float _609 = fma(fast::clamp(1.0 / fast::max(1.0 - _596, 9.9999999747524270787835121154785e-07), _152, 1.0), _583, _971);
-        bool _612 = _583 < 0.0;
-        float _617 = _612 ? _971 : _1003;
-        float _622 = _612 ? _1008 : _971;
-        _654 = _579 ? _971 : _617;
-        _659 = _579 ? _1008 : _622;
-        _669 = (_578 < 8.0) ? (_579 ? fma(_152, _583, _971) : ((((_609 < _622) || (_609 > _617)) || (_596 >= 1.0)) ? (0.5 * (_622 + _617)) : _609)) : _971;
+        float3 _556 = cross(_1012, _1011);
+        float _560 = dot(_556, _556);
+        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
+        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
+        float _603 = float(_995);
+        bool _604 = _603 < 1.0;
+        float _608 = (_1010.y + dot(_588, _226 - (_412 + _1010.xz))) - _996;
+        float _621 = (-dot(_588, _154)) / _150;
+        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _996);
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _996 : _1028;
+        float _647 = _637 ? _1033 : _996;
+        _679 = _604 ? _996 : _642;
+        _684 = _604 ? _1033 : _647;
+        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _996) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _996;
     }
-    float _683 = fast::max((_971 - params.eye_position[1u]) / _159, 0.0);
-    float3 _690 = float3(params.eye_position) + (_59 * _683);
-    float _698 = _33.y;
-    float _701 = _690.y;
-    float _755 = fast::clamp(fast::max(_52 - _683, 0.0), 0.0, 30000.0);
-    float3 _789 = abs(_59);
-    float3 _802 = _59 / float3(fast::max(fast::max(fast::max(_789.x, _789.y), _789.z), 1.0000000031710768509710513471353e-30));
-    float _806 = dot(_802, _802);
-    float3 _825 = reflect(select(float3(0.0, -1.0, 0.0), _802 * rsqrt(fast::max(_806, 1.0000000031710768509710513471353e-30)), bool3(_806 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _828 = _825.y;
-    float _854 = smoothstep(0.0, params.reflection_horizon_band, -_828);
-    float _899 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _907 = 1.0 - fast::clamp((-_59).y, 0.0, 1.0);
-    float _911 = _907 * _907;
-    float3 _934 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_701 - _698, 0.0) + _755)), float3(exp((-params.scatter_coefficient) * _755))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_825.x, abs(_828), _825.z), bool3(dot(_825, _825) > 9.9999999600419720025001879548654e-13)), _854).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_854)), float3(fma(_899, _899, fma(-_899, _899, 1.0) * ((_911 * _911) * _907)))), bool3((_698 < _701) && (_135 < 0.0)));
-    out.out_color = float4(_934, 1.0);
+    float _708 = fast::max((_996 - params.eye_position[1u]) / _170, 0.0);
+    float3 _715 = float3(params.eye_position) + (_72 * _708);
+    float _723 = _54.y;
+    float _726 = _715.y;
+    float _780 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
+    float3 _813 = abs(_72);
+    float3 _826 = _72 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
+    float _830 = dot(_826, _826);
+    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _852 = _849.y;
+    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
+    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _932 = 1.0 - fast::clamp((-_72).y, 0.0, 1.0);
+    float _936 = _932 * _932;
+    float3 _959 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _780)), float3(exp((-params.scatter_coefficient) * _780))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(fma(_924, _924, fma(-_924, _924, 1.0) * ((_936 * _936) * _932)))), bool3((_723 < _726) && (_146 < 0.0)));
+    out.out_color = float4(_959, 1.0);
     return out;
 }
 

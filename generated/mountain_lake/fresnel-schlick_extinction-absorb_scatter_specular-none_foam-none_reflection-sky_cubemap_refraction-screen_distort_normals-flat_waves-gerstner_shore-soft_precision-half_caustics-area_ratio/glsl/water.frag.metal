@@ -6,18 +6,22 @@ using namespace metal;
 
 struct WaterParams
 {
+    float4 gerstner_wave_phases[8];
+    float4 gerstner_wave_speeds[8];
     float4 gerstner_wave_directions[8];
     packed_float3 eye_position;
-    float gerstner_amplitude;
+    float time;
     packed_float3 caustics_window;
-    float gerstner_frequency;
+    float gerstner_amplitude;
     packed_float3 absorb_coefficients;
-    float gerstner_amplitude_gain;
+    float gerstner_frequency;
     packed_float3 scatter_color;
-    float gerstner_frequency_gain;
+    float gerstner_amplitude_gain;
     packed_float3 incident_light;
-    float gerstner_steepness;
+    float gerstner_frequency_gain;
     packed_float3 reflection_lower_tint;
+    float gerstner_steepness;
+    float2 frame_centre;
     float refraction_distortion;
     float refraction_shore_fade_depth;
     float caustics_strength;
@@ -46,166 +50,167 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _48 = _33.xyz - float3(params.eye_position);
-    float _52 = length(_48);
-    float3 _59 = _48 / float3(fast::max(_52, 9.9999999747524270787835121154785e-07));
-    float3 _62 = dfdx(_59);
-    float3 _65 = dfdy(_59);
-    float _67 = fast::max(length(_62), length(_65));
-    float _70 = floor(gerstner_wave_count);
-    float _1029;
-    float _1031;
-    _1031 = 0.0;
-    _1029 = 0.0;
-    float _105;
-    float _110;
+    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
+    float3 _61 = _54 - float3(params.eye_position);
+    float _65 = length(_61);
+    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
+    float3 _75 = dfdx(_72);
+    float3 _78 = dfdy(_72);
+    float _80 = fast::max(length(_75), length(_78));
+    float _83 = floor(gerstner_wave_count);
+    float _1054;
+    float _1056;
+    _1056 = 0.0;
+    _1054 = 0.0;
     float _115;
-    float _119;
-    int _1028 = 0;
-    float _1030 = params.gerstner_amplitude;
-    float _1032 = params.gerstner_frequency;
-    for (; _1028 < 8; _1032 = _119, _1031 = _110, _1030 = _115, _1029 = _105, _1028++)
+    float _120;
+    float _125;
+    float _130;
+    int _1053 = 0;
+    float _1055 = params.gerstner_amplitude;
+    float _1057 = params.gerstner_frequency;
+    for (; _1053 < 8; _1057 = _130, _1056 = _120, _1055 = _125, _1054 = _115, _1053++)
     {
-        if (!(float(_1028) < _70))
+        if (!(float(_1053) < _83))
         {
             break;
         }
-        _105 = _1029 + _1030;
-        _110 = fma(_1030, _1032, _1031);
-        _115 = _1030 * params.gerstner_amplitude_gain;
-        _119 = _1032 * params.gerstner_frequency_gain;
+        _115 = _1054 + _1055;
+        _120 = fma(_1055, _1057, _1056);
+        _125 = _1055 * params.gerstner_amplitude_gain;
+        _130 = _1057 * params.gerstner_frequency_gain;
     }
-    float _135 = _59.y;
-    float _139 = fast::max(-_135, 9.9999999747524270787835121154785e-07);
-    float2 _143 = _59.xz;
-    float _152 = 1.0 / (1.0 + (((_1031 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_143)) / _139));
-    float _155 = -_1029;
-    float _159 = fast::min(_135, -9.9999999747524270787835121154785e-07);
-    float _1036;
-    float2 _1040;
-    _1040 = (float3(params.eye_position) + (_59 * fast::max((_1029 - params.eye_position[1u]) / _159, 0.0))).xz;
-    _1036 = _1029;
-    float2 _394;
-    float _654;
-    float _659;
-    float _669;
-    int _1035 = 0;
-    float _1068 = _1029;
-    float _1073 = _155;
-    for (; _1035 < 9; _1073 = _659, _1068 = _654, _1040 = _394, _1036 = _669, _1035++)
+    float _146 = _72.y;
+    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
+    float2 _154 = _72.xz;
+    float _163 = 1.0 / (1.0 + (((_1056 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
+    float _166 = -_1054;
+    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
+    float _1061;
+    float2 _1065;
+    _1065 = (float3(params.eye_position) + (_72 * fast::max((_1054 - params.eye_position[1u]) / _170, 0.0))).xz;
+    _1061 = _1054;
+    float2 _412;
+    float _679;
+    float _684;
+    float _694;
+    int _1060 = 0;
+    float _1093 = _1054;
+    float _1098 = _166;
+    for (; _1060 < 9; _1098 = _684, _1093 = _679, _1065 = _412, _1061 = _694, _1060++)
     {
-        float _205 = fast::max((_1036 - params.eye_position[1u]) / _159, 0.0);
-        float2 _215 = (float3(params.eye_position) + (_59 * _205)).xz;
-        float _221 = (_67 * _205) / _139;
-        float2 _1042;
-        float3 _1043;
-        _1043 = float3(0.0);
-        _1042 = float2(0.0);
-        float _311;
-        float _315;
-        float2 _322;
-        float3 _336;
-        int _1037 = 0;
-        float _1038 = params.gerstner_frequency;
-        float _1041 = params.gerstner_amplitude;
-        for (; _1037 < 8; _1043 = _336, _1042 = _322, _1041 = _311, _1038 = _315, _1037++)
+        float _216 = fast::max((_1061 - params.eye_position[1u]) / _170, 0.0);
+        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
+        float _232 = (_80 * _216) / _150;
+        float2 _1067;
+        float3 _1068;
+        _1068 = float3(0.0);
+        _1067 = float2(0.0);
+        float _329;
+        float _333;
+        float2 _340;
+        float3 _354;
+        int _1062 = 0;
+        float _1063 = params.gerstner_frequency;
+        float _1066 = params.gerstner_amplitude;
+        for (; _1062 < 8; _1068 = _354, _1067 = _340, _1066 = _329, _1063 = _333, _1062++)
         {
-            float _240 = float(_1037);
-            if (!(_240 < _70))
+            float _251 = float(_1062);
+            if (!(_251 < _83))
             {
                 break;
             }
-            int _252 = clamp(int(_240), 0, 7);
-            float _270 = _1038 * dot(params.gerstner_wave_directions[_252].xy, _1040);
-            float _284 = ((params.gerstner_steepness / (_70 * fast::max(_1038 * _1041, 9.9999999747524270787835121154785e-07))) * _1041) * fast::clamp(fma(-(_1038 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _303 = (_284 * _1038) * sin(_270);
-            float _307 = _303 * params.gerstner_wave_directions[_252].x;
-            _311 = _1041 * params.gerstner_amplitude_gain;
-            _315 = _1038 * params.gerstner_frequency_gain;
-            _322 = _1042 + (params.gerstner_wave_directions[_252].xy * (_284 * cos(_270)));
-            _336 = _1043 + float3(_307 * params.gerstner_wave_directions[_252].x, _307 * params.gerstner_wave_directions[_252].y, (_303 * params.gerstner_wave_directions[_252].y) * params.gerstner_wave_directions[_252].y);
+            int _264 = clamp(int(_251), 0, 7);
+            float _289 = fma(_1063, dot(params.gerstner_wave_directions[_264].xy, _1065), params.gerstner_wave_phases[_264].x);
+            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_1063 * _1066, 9.9999999747524270787835121154785e-07))) * _1066) * fast::clamp(fma(-(_1063 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _321 = (_303 * _1063) * sin(_289);
+            float _325 = _321 * params.gerstner_wave_directions[_264].x;
+            _329 = _1066 * params.gerstner_amplitude_gain;
+            _333 = _1063 * params.gerstner_frequency_gain;
+            _340 = _1067 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
+            _354 = _1068 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
         }
-        float _342 = 1.0 - _1043.x;
-        float _347 = 1.0 - _1043.z;
-        float _351 = -_1043.y;
-        float2 _357 = (_1040 + _1042) - _215;
-        float _370 = _357.x;
-        float _373 = _357.y;
-        _394 = _1040 - (float2(fma(_347, _370, -(_351 * _373)), fma(_342, _373, -(_351 * _370))) / float2(fast::max(fma(_342, _347, -(_351 * _351)), 0.039999999105930328369140625)));
-        float3 _1050;
-        float3 _1051;
-        float3 _1052;
-        _1052 = float3(0.0, 0.0, 1.0);
-        _1051 = float3(1.0, 0.0, 0.0);
-        _1050 = float3(0.0);
-        float _499;
-        float _503;
-        float3 _515;
-        float3 _520;
-        float3 _525;
-        int _1047 = 0;
-        float _1048 = params.gerstner_frequency;
-        float _1049 = params.gerstner_amplitude;
-        for (; _1047 < 8; _1052 = _525, _1051 = _520, _1050 = _515, _1049 = _499, _1048 = _503, _1047++)
+        float _360 = 1.0 - _1068.x;
+        float _365 = 1.0 - _1068.z;
+        float _369 = -_1068.y;
+        float2 _375 = (_1065 + _1067) - _226;
+        float _388 = _375.x;
+        float _391 = _375.y;
+        _412 = _1065 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
+        float3 _1075;
+        float3 _1076;
+        float3 _1077;
+        _1077 = float3(0.0, 0.0, 1.0);
+        _1076 = float3(1.0, 0.0, 0.0);
+        _1075 = float3(0.0);
+        float _524;
+        float _528;
+        float3 _540;
+        float3 _545;
+        float3 _550;
+        int _1072 = 0;
+        float _1073 = params.gerstner_frequency;
+        float _1074 = params.gerstner_amplitude;
+        for (; _1072 < 8; _1077 = _550, _1076 = _545, _1075 = _540, _1074 = _524, _1073 = _528, _1072++)
         {
-            float _415 = float(_1047);
-            if (!(_415 < _70))
+            float _433 = float(_1072);
+            if (!(_433 < _83))
             {
                 break;
             }
-            int _426 = clamp(int(_415), 0, 7);
-            float _435 = fast::clamp(fma(-(_1048 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _441 = _1048 * dot(params.gerstner_wave_directions[_426].xy, _394);
-            float _455 = ((params.gerstner_steepness / (_70 * fast::max(_1048 * _1049, 9.9999999747524270787835121154785e-07))) * _1049) * _435;
-            float _459 = _1049 * _435;
-            float _462 = sin(_441);
-            float _465 = cos(_441);
-            float _475 = _455 * _465;
-            float _482 = -((_455 * _1048) * _462);
-            float3 _495 = float3(_482 * params.gerstner_wave_directions[_426].x, (_459 * _1048) * _465, _482 * params.gerstner_wave_directions[_426].y);
-            _499 = _1049 * params.gerstner_amplitude_gain;
-            _503 = _1048 * params.gerstner_frequency_gain;
-            _515 = _1050 + float3(_475 * params.gerstner_wave_directions[_426].x, _459 * _462, _475 * params.gerstner_wave_directions[_426].y);
-            _520 = _1051 + (_495 * params.gerstner_wave_directions[_426].x);
-            _525 = _1052 + (_495 * params.gerstner_wave_directions[_426].y);
+            int _444 = clamp(int(_433), 0, 7);
+            float _453 = fast::clamp(fma(-(_1073 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _466 = fma(_1073, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
+            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1073 * _1074, 9.9999999747524270787835121154785e-07))) * _1074) * _453;
+            float _484 = _1074 * _453;
+            float _487 = sin(_466);
+            float _490 = cos(_466);
+            float _500 = _480 * _490;
+            float _507 = -((_480 * _1073) * _487);
+            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1073) * _490, _507 * params.gerstner_wave_directions[_444].y);
+            _524 = _1074 * params.gerstner_amplitude_gain;
+            _528 = _1073 * params.gerstner_frequency_gain;
+            _540 = _1075 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
+            _545 = _1076 + (_520 * params.gerstner_wave_directions[_444].x);
+            _550 = _1077 + (_520 * params.gerstner_wave_directions[_444].y);
         }
-        float3 _531 = cross(_1052, _1051);
-        float _535 = dot(_531, _531);
-        float3 _553 = select(float3(0.0, 1.0, 0.0), _531 * rsqrt(fast::max(_535, 1.0000000031710768509710513471353e-30)), bool3(_535 > 1.0000000031710768509710513471353e-30));
-        float2 _563 = (-_553.xz) / float2(fast::max(_553.y, 9.9999997473787516355514526367188e-05));
-        float _578 = float(_1035);
-        bool _579 = _578 < 1.0;
-        float _583 = (_1050.y + dot(_563, _215 - (_394 + _1050.xz))) - _1036;
-        float _596 = (-dot(_563, _143)) / _139;
-        float _609 = fma(fast::clamp(1.0 / fast::max(1.0 - _596, 9.9999999747524270787835121154785e-07), _152, 1.0), _583, _1036);
-        bool _612 = _583 < 0.0;
-        float _617 = _612 ? _1036 : _1068;
-        float _622 = _612 ? _1073 : _1036;
-        _654 = _579 ? _1036 : _617;
-        _659 = _579 ? _1073 : _622;
-        _669 = (_578 < 8.0) ? (_579 ? fma(_152, _583, _1036) : ((((_609 < _622) || (_609 > _617)) || (_596 >= 1.0)) ? (0.5 * (_622 + _617)) : _609)) : _1036;
+        float3 _556 = cross(_1077, _1076);
+        float _560 = dot(_556, _556);
+        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
+        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
+        float _603 = float(_1060);
+        bool _604 = _603 < 1.0;
+        float _608 = (_1075.y + dot(_588, _226 - (_412 + _1075.xz))) - _1061;
+        float _621 = (-dot(_588, _154)) / _150;
+        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _1061);
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1061 : _1093;
+        float _647 = _637 ? _1098 : _1061;
+        _679 = _604 ? _1061 : _642;
+        _684 = _604 ? _1098 : _647;
+        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _1061) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1061;
     }
-    float _683 = fast::max((_1036 - params.eye_position[1u]) / _159, 0.0);
-    float3 _690 = float3(params.eye_position) + (_59 * _683);
-    float _698 = _33.y;
-    float _701 = _690.y;
-    float _706 = fast::max(_701 - _698, 0.0);
-    float2 _765 = (_33.xz - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
-    float _768 = _765.x;
-    float _771 = _765.y;
-    float3 _803 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * mix(1.0, ((((_768 >= 0.0) && (_768 <= 1.0)) && (_771 >= 0.0)) && (_771 <= 1.0)) ? caustics_map.sample(linear_clamp, _765, level(0.0)).x : 1.0, params.caustics_strength);
-    float _807 = fast::clamp(fast::max(_52 - _683, 0.0), 0.0, 30000.0);
-    float3 _840 = abs(_59);
-    float3 _853 = _59 / float3(fast::max(fast::max(fast::max(_840.x, _840.y), _840.z), 1.0000000031710768509710513471353e-30));
-    float _857 = dot(_853, _853);
-    float3 _876 = reflect(select(float3(0.0, -1.0, 0.0), _853 * rsqrt(fast::max(_857, 1.0000000031710768509710513471353e-30)), bool3(_857 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _879 = _876.y;
-    float _905 = smoothstep(0.0, params.reflection_horizon_band, -_879);
-    float _951 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _959 = 1.0 - fast::clamp((-_59).y, 0.0, 1.0);
-    float _963 = _959 * _959;
-    float3 _997 = select(_25.xyz, mix(_803, mix(mix(float3(params.scatter_color), _803 * exp((-float3(params.absorb_coefficients)) * (_706 + _807)), float3(exp((-params.scatter_coefficient) * _807))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_876.x, abs(_879), _876.z), bool3(dot(_876, _876) > 9.9999999600419720025001879548654e-13)), _905).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_905)), float3(fma(_951, _951, fma(-_951, _951, 1.0) * ((_963 * _963) * _959)))), float3(fast::clamp(_706 * params.shore_hardness, 0.0, 1.0))), bool3((_698 < _701) && (_135 < 0.0)));
-    out.out_color = float4(_997, 1.0);
+    float _708 = fast::max((_1061 - params.eye_position[1u]) / _170, 0.0);
+    float3 _715 = float3(params.eye_position) + (_72 * _708);
+    float _723 = _54.y;
+    float _726 = _715.y;
+    float _731 = fast::max(_726 - _723, 0.0);
+    float2 _790 = (_54.xz - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
+    float _793 = _790.x;
+    float _796 = _790.y;
+    float3 _828 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * mix(1.0, ((((_793 >= 0.0) && (_793 <= 1.0)) && (_796 >= 0.0)) && (_796 <= 1.0)) ? caustics_map.sample(linear_clamp, _790, level(0.0)).x : 1.0, params.caustics_strength);
+    float _832 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
+    float3 _865 = abs(_72);
+    float3 _878 = _72 / float3(fast::max(fast::max(fast::max(_865.x, _865.y), _865.z), 1.0000000031710768509710513471353e-30));
+    float _882 = dot(_878, _878);
+    float3 _901 = reflect(select(float3(0.0, -1.0, 0.0), _878 * rsqrt(fast::max(_882, 1.0000000031710768509710513471353e-30)), bool3(_882 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _904 = _901.y;
+    float _930 = smoothstep(0.0, params.reflection_horizon_band, -_904);
+    float _976 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _984 = 1.0 - fast::clamp((-_72).y, 0.0, 1.0);
+    float _988 = _984 * _984;
+    float3 _1022 = select(_25.xyz, mix(_828, mix(mix(float3(params.scatter_color), _828 * exp((-float3(params.absorb_coefficients)) * (_731 + _832)), float3(exp((-params.scatter_coefficient) * _832))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_901.x, abs(_904), _901.z), bool3(dot(_901, _901) > 9.9999999600419720025001879548654e-13)), _930).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_930)), float3(fma(_976, _976, fma(-_976, _976, 1.0) * ((_988 * _988) * _984)))), float3(fast::clamp(_731 * params.shore_hardness, 0.0, 1.0))), bool3((_723 < _726) && (_146 < 0.0)));
+    out.out_color = float4(_1022, 1.0);
     return out;
 }
 

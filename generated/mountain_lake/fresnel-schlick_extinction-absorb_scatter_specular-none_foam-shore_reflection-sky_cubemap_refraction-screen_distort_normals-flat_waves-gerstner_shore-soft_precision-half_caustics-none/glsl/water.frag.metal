@@ -6,20 +6,26 @@ using namespace metal;
 
 struct WaterParams
 {
+    float4 gerstner_wave_phases[8];
+    float4 gerstner_wave_speeds[8];
     float4 gerstner_wave_directions[8];
     packed_float3 eye_position;
-    float gerstner_amplitude;
+    float time;
     packed_float3 absorb_coefficients;
-    float gerstner_frequency;
+    float gerstner_amplitude;
     packed_float3 scatter_color;
-    float gerstner_amplitude_gain;
+    float gerstner_frequency;
     packed_float3 incident_light;
-    float gerstner_frequency_gain;
+    float gerstner_amplitude_gain;
     packed_float3 reflection_lower_tint;
-    float gerstner_steepness;
+    float gerstner_frequency_gain;
     packed_float3 foam_existence;
-    float refraction_distortion;
+    float gerstner_steepness;
     packed_float3 foam_color;
+    float refraction_distortion;
+    float2 frame_centre;
+    float2 foam_pattern_drift;
+    float2 foam_pattern_offset;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -47,166 +53,167 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _48 = _33.xyz - float3(params.eye_position);
-    float _52 = length(_48);
-    float3 _59 = _48 / float3(fast::max(_52, 9.9999999747524270787835121154785e-07));
-    float3 _62 = dfdx(_59);
-    float3 _65 = dfdy(_59);
-    float _67 = fast::max(length(_62), length(_65));
-    float _70 = floor(gerstner_wave_count);
-    float _1072;
-    float _1074;
-    _1074 = 0.0;
-    _1072 = 0.0;
-    float _105;
-    float _110;
+    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
+    float3 _61 = _54 - float3(params.eye_position);
+    float _65 = length(_61);
+    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
+    float3 _75 = dfdx(_72);
+    float3 _78 = dfdy(_72);
+    float _80 = fast::max(length(_75), length(_78));
+    float _83 = floor(gerstner_wave_count);
+    float _1101;
+    float _1103;
+    _1103 = 0.0;
+    _1101 = 0.0;
     float _115;
-    float _119;
-    int _1071 = 0;
-    float _1073 = params.gerstner_amplitude;
-    float _1075 = params.gerstner_frequency;
-    for (; _1071 < 8; _1075 = _119, _1074 = _110, _1073 = _115, _1072 = _105, _1071++)
+    float _120;
+    float _125;
+    float _130;
+    int _1100 = 0;
+    float _1102 = params.gerstner_amplitude;
+    float _1104 = params.gerstner_frequency;
+    for (; _1100 < 8; _1104 = _130, _1103 = _120, _1102 = _125, _1101 = _115, _1100++)
     {
-        if (!(float(_1071) < _70))
+        if (!(float(_1100) < _83))
         {
             break;
         }
-        _105 = _1072 + _1073;
-        _110 = fma(_1073, _1075, _1074);
-        _115 = _1073 * params.gerstner_amplitude_gain;
-        _119 = _1075 * params.gerstner_frequency_gain;
+        _115 = _1101 + _1102;
+        _120 = fma(_1102, _1104, _1103);
+        _125 = _1102 * params.gerstner_amplitude_gain;
+        _130 = _1104 * params.gerstner_frequency_gain;
     }
-    float _135 = _59.y;
-    float _139 = fast::max(-_135, 9.9999999747524270787835121154785e-07);
-    float2 _143 = _59.xz;
-    float _152 = 1.0 / (1.0 + (((_1074 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_143)) / _139));
-    float _155 = -_1072;
-    float _159 = fast::min(_135, -9.9999999747524270787835121154785e-07);
-    float _1079;
-    float2 _1083;
-    _1083 = (float3(params.eye_position) + (_59 * fast::max((_1072 - params.eye_position[1u]) / _159, 0.0))).xz;
-    _1079 = _1072;
-    float2 _394;
-    float _654;
-    float _659;
-    float _669;
-    int _1078 = 0;
-    float _1111 = _1072;
-    float _1116 = _155;
-    for (; _1078 < 9; _1116 = _659, _1111 = _654, _1083 = _394, _1079 = _669, _1078++)
+    float _146 = _72.y;
+    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
+    float2 _154 = _72.xz;
+    float _163 = 1.0 / (1.0 + (((_1103 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
+    float _166 = -_1101;
+    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
+    float _1108;
+    float2 _1112;
+    _1112 = (float3(params.eye_position) + (_72 * fast::max((_1101 - params.eye_position[1u]) / _170, 0.0))).xz;
+    _1108 = _1101;
+    float2 _412;
+    float _679;
+    float _684;
+    float _694;
+    int _1107 = 0;
+    float _1140 = _1101;
+    float _1145 = _166;
+    for (; _1107 < 9; _1145 = _684, _1140 = _679, _1112 = _412, _1108 = _694, _1107++)
     {
-        float _205 = fast::max((_1079 - params.eye_position[1u]) / _159, 0.0);
-        float2 _215 = (float3(params.eye_position) + (_59 * _205)).xz;
-        float _221 = (_67 * _205) / _139;
-        float2 _1085;
-        float3 _1086;
-        _1086 = float3(0.0);
-        _1085 = float2(0.0);
-        float _311;
-        float _315;
-        float2 _322;
-        float3 _336;
-        int _1080 = 0;
-        float _1081 = params.gerstner_frequency;
-        float _1084 = params.gerstner_amplitude;
-        for (; _1080 < 8; _1086 = _336, _1085 = _322, _1084 = _311, _1081 = _315, _1080++)
+        float _216 = fast::max((_1108 - params.eye_position[1u]) / _170, 0.0);
+        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
+        float _232 = (_80 * _216) / _150;
+        float2 _1114;
+        float3 _1115;
+        _1115 = float3(0.0);
+        _1114 = float2(0.0);
+        float _329;
+        float _333;
+        float2 _340;
+        float3 _354;
+        int _1109 = 0;
+        float _1110 = params.gerstner_frequency;
+        float _1113 = params.gerstner_amplitude;
+        for (; _1109 < 8; _1115 = _354, _1114 = _340, _1113 = _329, _1110 = _333, _1109++)
         {
-            float _240 = float(_1080);
-            if (!(_240 < _70))
+            float _251 = float(_1109);
+            if (!(_251 < _83))
             {
                 break;
             }
-            int _252 = clamp(int(_240), 0, 7);
-            float _270 = _1081 * dot(params.gerstner_wave_directions[_252].xy, _1083);
-            float _284 = ((params.gerstner_steepness / (_70 * fast::max(_1081 * _1084, 9.9999999747524270787835121154785e-07))) * _1084) * fast::clamp(fma(-(_1081 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _303 = (_284 * _1081) * sin(_270);
-            float _307 = _303 * params.gerstner_wave_directions[_252].x;
-            _311 = _1084 * params.gerstner_amplitude_gain;
-            _315 = _1081 * params.gerstner_frequency_gain;
-            _322 = _1085 + (params.gerstner_wave_directions[_252].xy * (_284 * cos(_270)));
-            _336 = _1086 + float3(_307 * params.gerstner_wave_directions[_252].x, _307 * params.gerstner_wave_directions[_252].y, (_303 * params.gerstner_wave_directions[_252].y) * params.gerstner_wave_directions[_252].y);
+            int _264 = clamp(int(_251), 0, 7);
+            float _289 = fma(_1110, dot(params.gerstner_wave_directions[_264].xy, _1112), params.gerstner_wave_phases[_264].x);
+            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_1110 * _1113, 9.9999999747524270787835121154785e-07))) * _1113) * fast::clamp(fma(-(_1110 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _321 = (_303 * _1110) * sin(_289);
+            float _325 = _321 * params.gerstner_wave_directions[_264].x;
+            _329 = _1113 * params.gerstner_amplitude_gain;
+            _333 = _1110 * params.gerstner_frequency_gain;
+            _340 = _1114 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
+            _354 = _1115 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
         }
-        float _342 = 1.0 - _1086.x;
-        float _347 = 1.0 - _1086.z;
-        float _351 = -_1086.y;
-        float2 _357 = (_1083 + _1085) - _215;
-        float _370 = _357.x;
-        float _373 = _357.y;
-        _394 = _1083 - (float2(fma(_347, _370, -(_351 * _373)), fma(_342, _373, -(_351 * _370))) / float2(fast::max(fma(_342, _347, -(_351 * _351)), 0.039999999105930328369140625)));
-        float3 _1093;
-        float3 _1094;
-        float3 _1095;
-        _1095 = float3(0.0, 0.0, 1.0);
-        _1094 = float3(1.0, 0.0, 0.0);
-        _1093 = float3(0.0);
-        float _499;
-        float _503;
-        float3 _515;
-        float3 _520;
-        float3 _525;
-        int _1090 = 0;
-        float _1091 = params.gerstner_frequency;
-        float _1092 = params.gerstner_amplitude;
-        for (; _1090 < 8; _1095 = _525, _1094 = _520, _1093 = _515, _1092 = _499, _1091 = _503, _1090++)
+        float _360 = 1.0 - _1115.x;
+        float _365 = 1.0 - _1115.z;
+        float _369 = -_1115.y;
+        float2 _375 = (_1112 + _1114) - _226;
+        float _388 = _375.x;
+        float _391 = _375.y;
+        _412 = _1112 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
+        float3 _1122;
+        float3 _1123;
+        float3 _1124;
+        _1124 = float3(0.0, 0.0, 1.0);
+        _1123 = float3(1.0, 0.0, 0.0);
+        _1122 = float3(0.0);
+        float _524;
+        float _528;
+        float3 _540;
+        float3 _545;
+        float3 _550;
+        int _1119 = 0;
+        float _1120 = params.gerstner_frequency;
+        float _1121 = params.gerstner_amplitude;
+        for (; _1119 < 8; _1124 = _550, _1123 = _545, _1122 = _540, _1121 = _524, _1120 = _528, _1119++)
         {
-            float _415 = float(_1090);
-            if (!(_415 < _70))
+            float _433 = float(_1119);
+            if (!(_433 < _83))
             {
                 break;
             }
-            int _426 = clamp(int(_415), 0, 7);
-            float _435 = fast::clamp(fma(-(_1091 * _221), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _441 = _1091 * dot(params.gerstner_wave_directions[_426].xy, _394);
-            float _455 = ((params.gerstner_steepness / (_70 * fast::max(_1091 * _1092, 9.9999999747524270787835121154785e-07))) * _1092) * _435;
-            float _459 = _1092 * _435;
-            float _462 = sin(_441);
-            float _465 = cos(_441);
-            float _475 = _455 * _465;
-            float _482 = -((_455 * _1091) * _462);
-            float3 _495 = float3(_482 * params.gerstner_wave_directions[_426].x, (_459 * _1091) * _465, _482 * params.gerstner_wave_directions[_426].y);
-            _499 = _1092 * params.gerstner_amplitude_gain;
-            _503 = _1091 * params.gerstner_frequency_gain;
-            _515 = _1093 + float3(_475 * params.gerstner_wave_directions[_426].x, _459 * _462, _475 * params.gerstner_wave_directions[_426].y);
-            _520 = _1094 + (_495 * params.gerstner_wave_directions[_426].x);
-            _525 = _1095 + (_495 * params.gerstner_wave_directions[_426].y);
+            int _444 = clamp(int(_433), 0, 7);
+            float _453 = fast::clamp(fma(-(_1120 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _466 = fma(_1120, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
+            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1120 * _1121, 9.9999999747524270787835121154785e-07))) * _1121) * _453;
+            float _484 = _1121 * _453;
+            float _487 = sin(_466);
+            float _490 = cos(_466);
+            float _500 = _480 * _490;
+            float _507 = -((_480 * _1120) * _487);
+            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1120) * _490, _507 * params.gerstner_wave_directions[_444].y);
+            _524 = _1121 * params.gerstner_amplitude_gain;
+            _528 = _1120 * params.gerstner_frequency_gain;
+            _540 = _1122 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
+            _545 = _1123 + (_520 * params.gerstner_wave_directions[_444].x);
+            _550 = _1124 + (_520 * params.gerstner_wave_directions[_444].y);
         }
-        float3 _531 = cross(_1095, _1094);
-        float _535 = dot(_531, _531);
-        float3 _553 = select(float3(0.0, 1.0, 0.0), _531 * rsqrt(fast::max(_535, 1.0000000031710768509710513471353e-30)), bool3(_535 > 1.0000000031710768509710513471353e-30));
-        float2 _563 = (-_553.xz) / float2(fast::max(_553.y, 9.9999997473787516355514526367188e-05));
-        float _578 = float(_1078);
-        bool _579 = _578 < 1.0;
-        float _583 = (_1093.y + dot(_563, _215 - (_394 + _1093.xz))) - _1079;
-        float _596 = (-dot(_563, _143)) / _139;
-        float _609 = fma(fast::clamp(1.0 / fast::max(1.0 - _596, 9.9999999747524270787835121154785e-07), _152, 1.0), _583, _1079);
-        bool _612 = _583 < 0.0;
-        float _617 = _612 ? _1079 : _1111;
-        float _622 = _612 ? _1116 : _1079;
-        _654 = _579 ? _1079 : _617;
-        _659 = _579 ? _1116 : _622;
-        _669 = (_578 < 8.0) ? (_579 ? fma(_152, _583, _1079) : ((((_609 < _622) || (_609 > _617)) || (_596 >= 1.0)) ? (0.5 * (_622 + _617)) : _609)) : _1079;
+        float3 _556 = cross(_1124, _1123);
+        float _560 = dot(_556, _556);
+        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
+        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
+        float _603 = float(_1107);
+        bool _604 = _603 < 1.0;
+        float _608 = (_1122.y + dot(_588, _226 - (_412 + _1122.xz))) - _1108;
+        float _621 = (-dot(_588, _154)) / _150;
+        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _1108);
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1108 : _1140;
+        float _647 = _637 ? _1145 : _1108;
+        _679 = _604 ? _1108 : _642;
+        _684 = _604 ? _1145 : _647;
+        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _1108) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1108;
     }
-    float _683 = fast::max((_1079 - params.eye_position[1u]) / _159, 0.0);
-    float3 _690 = float3(params.eye_position) + (_59 * _683);
-    float _698 = _33.y;
-    float _701 = _690.y;
-    float _706 = fast::max(_701 - _698, 0.0);
-    float3 _751 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
-    float _755 = fast::clamp(fast::max(_52 - _683, 0.0), 0.0, 30000.0);
-    float3 _789 = abs(_59);
-    float3 _802 = _59 / float3(fast::max(fast::max(fast::max(_789.x, _789.y), _789.z), 1.0000000031710768509710513471353e-30));
-    float _806 = dot(_802, _802);
-    float3 _825 = reflect(select(float3(0.0, -1.0, 0.0), _802 * rsqrt(fast::max(_806, 1.0000000031710768509710513471353e-30)), bool3(_806 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _828 = _825.y;
-    float _854 = smoothstep(0.0, params.reflection_horizon_band, -_828);
-    float _899 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _907 = 1.0 - fast::clamp((-_59).y, 0.0, 1.0);
-    float _911 = _907 * _907;
-    float2 _931 = _690.xz;
-    float _985 = _706 - params.foam_existence[0u];
-    float _990 = params.foam_existence[1u] - params.foam_existence[0u];
-    float3 _1036 = mix(_751, mix(mix(mix(float3(params.scatter_color), _751 * exp((-float3(params.absorb_coefficients)) * (_706 + _755)), float3(exp((-params.scatter_coefficient) * _755))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_825.x, abs(_828), _825.z), bool3(dot(_825, _825) > 9.9999999600419720025001879548654e-13)), _854).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_854)), float3(fma(_899, _899, fma(-_899, _899, 1.0) * ((_911 * _911) * _907)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract(_931 * params.foam_pattern_scale) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_931)), length(dfdy(_931))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_985 < 0.0) ? 1.0 : (1.0 - ((_985 >= _990) ? 1.0 : fast::clamp(_985 / fast::max(_990, 5.9604644775390625e-08), 0.0, 1.0))))), float3(fast::clamp(_706 * params.shore_hardness, 0.0, 1.0)));
-    out.out_color = float4(select(_25.xyz, _1036, bool3((_698 < _701) && (_135 < 0.0))), 1.0);
+    float _708 = fast::max((_1108 - params.eye_position[1u]) / _170, 0.0);
+    float3 _715 = float3(params.eye_position) + (_72 * _708);
+    float _723 = _54.y;
+    float _726 = _715.y;
+    float _731 = fast::max(_726 - _723, 0.0);
+    float3 _776 = scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz;
+    float _780 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
+    float3 _813 = abs(_72);
+    float3 _826 = _72 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
+    float _830 = dot(_826, _826);
+    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _852 = _849.y;
+    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
+    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _932 = 1.0 - fast::clamp((-_72).y, 0.0, 1.0);
+    float _936 = _932 * _932;
+    float2 _956 = _715.xz;
+    float _1014 = _731 - params.foam_existence[0u];
+    float _1019 = params.foam_existence[1u] - params.foam_existence[0u];
+    float3 _1065 = mix(_776, mix(mix(mix(float3(params.scatter_color), _776 * exp((-float3(params.absorb_coefficients)) * (_731 + _780)), float3(exp((-params.scatter_coefficient) * _780))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(fma(_924, _924, fma(-_924, _924, 1.0) * ((_936 * _936) * _932)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract((_956 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_956)), length(dfdy(_956))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1014 < 0.0) ? 1.0 : (1.0 - ((_1014 >= _1019) ? 1.0 : fast::clamp(_1014 / fast::max(_1019, 5.9604644775390625e-08), 0.0, 1.0))))), float3(fast::clamp(_731 * params.shore_hardness, 0.0, 1.0)));
+    out.out_color = float4(select(_25.xyz, _1065, bool3((_723 < _726) && (_146 < 0.0))), 1.0);
     return out;
 }
 

@@ -6,8 +6,9 @@ using namespace metal;
 
 struct WaterParams
 {
-    float4 gerstner_wave_directions[8];
+    float4 gerstner_wave_phases[8];
     float4 gerstner_wave_speeds[8];
+    float4 gerstner_wave_directions[8];
     packed_float3 eye_position;
     float time;
     packed_float3 sun_direction;
@@ -22,6 +23,7 @@ struct WaterParams
     float gerstner_steepness;
     packed_float3 reflection_lower_tint;
     float refraction_distortion;
+    float2 frame_centre;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -48,172 +50,173 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _49 = _33.xyz - float3(params.eye_position);
-    float _53 = length(_49);
-    float3 _60 = _49 / float3(fast::max(_53, 9.9999999747524270787835121154785e-07));
-    float3 _63 = dfdx(_60);
-    float3 _66 = dfdy(_60);
-    float _68 = fast::max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
-    float _1102;
+    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
+    float3 _61 = _54 - float3(params.eye_position);
+    float _65 = length(_61);
+    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
+    float3 _75 = dfdx(_72);
+    float3 _78 = dfdy(_72);
+    float _80 = fast::max(length(_75), length(_78));
+    float _83 = floor(gerstner_wave_count);
     float _1104;
+    float _1106;
+    _1106 = 0.0;
     _1104 = 0.0;
-    _1102 = 0.0;
-    float _106;
-    float _111;
-    float _116;
-    float _121;
-    int _1101 = 0;
-    float _1103 = params.gerstner_amplitude;
-    float _1105 = params.gerstner_frequency;
-    for (; _1101 < 8; _1105 = _121, _1104 = _111, _1103 = _116, _1102 = _106, _1101++)
+    float _115;
+    float _120;
+    float _125;
+    float _130;
+    int _1103 = 0;
+    float _1105 = params.gerstner_amplitude;
+    float _1107 = params.gerstner_frequency;
+    for (; _1103 < 8; _1107 = _130, _1106 = _120, _1105 = _125, _1104 = _115, _1103++)
     {
-        if (!(float(_1101) < _71))
+        if (!(float(_1103) < _83))
         {
             break;
         }
-        _106 = _1102 + _1103;
-        _111 = fma(_1103, _1105, _1104);
-        _116 = _1103 * params.gerstner_amplitude_gain;
-        _121 = _1105 * params.gerstner_frequency_gain;
+        _115 = _1104 + _1105;
+        _120 = fma(_1105, _1107, _1106);
+        _125 = _1105 * params.gerstner_amplitude_gain;
+        _130 = _1107 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
-    float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1104 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1102;
-    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _1109;
-    float2 _1113;
-    _1113 = (float3(params.eye_position) + (_60 * fast::max((_1102 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _1109 = _1102;
-    float2 _406;
-    float _676;
-    float _681;
-    float _691;
-    int _1108 = 0;
-    float _1141 = _1102;
-    float _1146 = _158;
-    for (; _1108 < 9; _1146 = _681, _1141 = _676, _1113 = _406, _1109 = _691, _1108++)
+    float _146 = _72.y;
+    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
+    float2 _154 = _72.xz;
+    float _163 = 1.0 / (1.0 + (((_1106 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
+    float _166 = -_1104;
+    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
+    float _1111;
+    float2 _1115;
+    _1115 = (float3(params.eye_position) + (_72 * fast::max((_1104 - params.eye_position[1u]) / _170, 0.0))).xz;
+    _1111 = _1104;
+    float2 _412;
+    float _679;
+    float _684;
+    float _694;
+    int _1110 = 0;
+    float _1143 = _1104;
+    float _1148 = _166;
+    for (; _1110 < 9; _1148 = _684, _1143 = _679, _1115 = _412, _1111 = _694, _1110++)
     {
-        float _207 = fast::max((_1109 - params.eye_position[1u]) / _162, 0.0);
-        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
-        float2 _1115;
-        float3 _1116;
-        _1116 = float3(0.0);
-        _1115 = float2(0.0);
-        float _323;
-        float _327;
-        float2 _334;
-        float3 _348;
-        int _1110 = 0;
-        float _1111 = params.gerstner_frequency;
-        float _1114 = params.gerstner_amplitude;
-        for (; _1110 < 8; _1116 = _348, _1115 = _334, _1114 = _323, _1111 = _327, _1110++)
+        float _216 = fast::max((_1111 - params.eye_position[1u]) / _170, 0.0);
+        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
+        float _232 = (_80 * _216) / _150;
+        float2 _1117;
+        float3 _1118;
+        _1118 = float3(0.0);
+        _1117 = float2(0.0);
+        float _329;
+        float _333;
+        float2 _340;
+        float3 _354;
+        int _1112 = 0;
+        float _1113 = params.gerstner_frequency;
+        float _1116 = params.gerstner_amplitude;
+        for (; _1112 < 8; _1118 = _354, _1117 = _340, _1116 = _329, _1113 = _333, _1112++)
         {
-            float _242 = float(_1110);
-            if (!(_242 < _71))
+            float _251 = float(_1112);
+            if (!(_251 < _83))
             {
                 break;
             }
-            int _253 = clamp(int(_242), 0, 7);
-            float _282 = fma(_1111, dot(params.gerstner_wave_directions[_253].xy, _1113), params.time * params.gerstner_wave_speeds[_253].x);
-            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_1111 * _1114, 9.9999999747524270787835121154785e-07))) * _1114) * fast::clamp(fma(-(_1111 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _315 = (_296 * _1111) * sin(_282);
-            float _319 = _315 * params.gerstner_wave_directions[_253].x;
-            _323 = _1114 * params.gerstner_amplitude_gain;
-            _327 = _1111 * params.gerstner_frequency_gain;
-            _334 = _1115 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
-            _348 = _1116 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            int _264 = clamp(int(_251), 0, 7);
+            float _289 = fma(_1113, dot(params.gerstner_wave_directions[_264].xy, _1115), params.gerstner_wave_phases[_264].x);
+            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_1113 * _1116, 9.9999999747524270787835121154785e-07))) * _1116) * fast::clamp(fma(-(_1113 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _321 = (_303 * _1113) * sin(_289);
+            float _325 = _321 * params.gerstner_wave_directions[_264].x;
+            _329 = _1116 * params.gerstner_amplitude_gain;
+            _333 = _1113 * params.gerstner_frequency_gain;
+            _340 = _1117 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
+            _354 = _1118 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
         }
-        float _354 = 1.0 - _1116.x;
-        float _359 = 1.0 - _1116.z;
-        float _363 = -_1116.y;
-        float2 _369 = (_1113 + _1115) - _217;
-        float _382 = _369.x;
-        float _385 = _369.y;
-        _406 = _1113 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
-        float3 _1123;
-        float3 _1124;
+        float _360 = 1.0 - _1118.x;
+        float _365 = 1.0 - _1118.z;
+        float _369 = -_1118.y;
+        float2 _375 = (_1115 + _1117) - _226;
+        float _388 = _375.x;
+        float _391 = _375.y;
+        _412 = _1115 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
         float3 _1125;
-        _1125 = float3(0.0, 0.0, 1.0);
-        _1124 = float3(1.0, 0.0, 0.0);
-        _1123 = float3(0.0);
-        float _521;
-        float _525;
-        float3 _537;
-        float3 _542;
-        float3 _547;
-        int _1120 = 0;
-        float _1121 = params.gerstner_frequency;
-        float _1122 = params.gerstner_amplitude;
-        for (; _1120 < 8; _1125 = _547, _1124 = _542, _1123 = _537, _1122 = _521, _1121 = _525, _1120++)
+        float3 _1126;
+        float3 _1127;
+        _1127 = float3(0.0, 0.0, 1.0);
+        _1126 = float3(1.0, 0.0, 0.0);
+        _1125 = float3(0.0);
+        float _524;
+        float _528;
+        float3 _540;
+        float3 _545;
+        float3 _550;
+        int _1122 = 0;
+        float _1123 = params.gerstner_frequency;
+        float _1124 = params.gerstner_amplitude;
+        for (; _1122 < 8; _1127 = _550, _1126 = _545, _1125 = _540, _1124 = _524, _1123 = _528, _1122++)
         {
-            float _427 = float(_1120);
-            if (!(_427 < _71))
+            float _433 = float(_1122);
+            if (!(_433 < _83))
             {
                 break;
             }
-            int _438 = clamp(int(_427), 0, 7);
-            float _447 = fast::clamp(fma(-(_1121 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _463 = fma(_1121, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
-            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1121 * _1122, 9.9999999747524270787835121154785e-07))) * _1122) * _447;
-            float _481 = _1122 * _447;
-            float _484 = sin(_463);
-            float _487 = cos(_463);
-            float _497 = _477 * _487;
-            float _504 = -((_477 * _1121) * _484);
-            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1121) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1122 * params.gerstner_amplitude_gain;
-            _525 = _1121 * params.gerstner_frequency_gain;
-            _537 = _1123 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1124 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1125 + (_517 * params.gerstner_wave_directions[_438].y);
+            int _444 = clamp(int(_433), 0, 7);
+            float _453 = fast::clamp(fma(-(_1123 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _466 = fma(_1123, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
+            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1123 * _1124, 9.9999999747524270787835121154785e-07))) * _1124) * _453;
+            float _484 = _1124 * _453;
+            float _487 = sin(_466);
+            float _490 = cos(_466);
+            float _500 = _480 * _490;
+            float _507 = -((_480 * _1123) * _487);
+            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1123) * _490, _507 * params.gerstner_wave_directions[_444].y);
+            _524 = _1124 * params.gerstner_amplitude_gain;
+            _528 = _1123 * params.gerstner_frequency_gain;
+            _540 = _1125 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
+            _545 = _1126 + (_520 * params.gerstner_wave_directions[_444].x);
+            _550 = _1127 + (_520 * params.gerstner_wave_directions[_444].y);
         }
-        float3 _553 = cross(_1125, _1124);
-        float _557 = dot(_553, _553);
-        float3 _575 = select(float3(0.0, 1.0, 0.0), _553 * rsqrt(fast::max(_557, 1.0000000031710768509710513471353e-30)), bool3(_557 > 1.0000000031710768509710513471353e-30));
-        float2 _585 = (-_575.xz) / float2(fast::max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1108);
-        bool _601 = _600 < 1.0;
-        float _605 = (_1123.y + dot(_585, _217 - (_406 + _1123.xz))) - _1109;
-        float _618 = (-dot(_585, _146)) / _142;
-        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0), _605, _1109);
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1109 : _1141;
-        float _644 = _634 ? _1146 : _1109;
-        _676 = _601 ? _1109 : _639;
-        _681 = _601 ? _1146 : _644;
-        _691 = (_600 < 8.0) ? (_601 ? fma(_155, _605, _1109) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1109;
+        float3 _556 = cross(_1127, _1126);
+        float _560 = dot(_556, _556);
+        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
+        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
+        float _603 = float(_1110);
+        bool _604 = _603 < 1.0;
+        float _608 = (_1125.y + dot(_588, _226 - (_412 + _1125.xz))) - _1111;
+        float _621 = (-dot(_588, _154)) / _150;
+        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _1111);
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1111 : _1143;
+        float _647 = _637 ? _1148 : _1111;
+        _679 = _604 ? _1111 : _642;
+        _684 = _604 ? _1148 : _647;
+        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _1111) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1111;
     }
-    float _705 = fast::max((_1109 - params.eye_position[1u]) / _162, 0.0);
-    float3 _712 = float3(params.eye_position) + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float3 _738 = -_60;
-    float _779 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
-    float3 _813 = abs(_60);
-    float3 _826 = _60 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
-    float _830 = dot(_826, _826);
-    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _852 = _849.y;
-    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
-    float _913 = fast::clamp(_738.y, 0.0, 1.0);
-    float _921 = params.ior_air / params.ior_water;
-    float _925 = _921 * _921;
-    float _929 = fma(-_913, _913, 1.0);
-    float _935 = sqrt(fast::max(fma(-_925, _929, 1.0), 0.0));
-    float _940 = params.ior_water * _935;
-    float _954 = fma(params.ior_air, _913, -_940) / fast::max(fma(params.ior_air, _913, _940), 1.0000000031710768509710513471353e-30);
-    float _959 = params.ior_air * _935;
-    float _973 = fma(params.ior_water, _913, -_959) / fast::max(fma(params.ior_water, _913, _959), 1.0000000031710768509710513471353e-30);
-    float3 _996 = (-float3(params.sun_direction)) + _738;
-    float _1008 = fast::max(fast::max(abs(_996.x), abs(_996.y)), abs(_996.z));
-    float3 _1015 = _996 / float3(fast::max(_1008, 5.9604644775390625e-08));
-    float _1034 = fast::clamp(select(float3(0.0), _1015 / float3(fast::max(length(_1015), 1.0)), bool3(_1008 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1069 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_723 - _720, 0.0) + _779)), float3(exp((-params.scatter_coefficient) * _779))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(((_925 * _929) >= 1.0) ? 1.0 : (0.5 * fma(_954, _954, _973 * _973)))) + (float3(params.sun_color) * ((_1034 > 6.103515625e-05) ? pow(fast::max(_1034, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_720 < _723) && (_138 < 0.0)));
-    out.out_color = float4(_1069, 1.0);
+    float _708 = fast::max((_1111 - params.eye_position[1u]) / _170, 0.0);
+    float3 _715 = float3(params.eye_position) + (_72 * _708);
+    float _723 = _54.y;
+    float _726 = _715.y;
+    float3 _741 = -_72;
+    float _782 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
+    float3 _816 = abs(_72);
+    float3 _829 = _72 / float3(fast::max(fast::max(fast::max(_816.x, _816.y), _816.z), 1.0000000031710768509710513471353e-30));
+    float _833 = dot(_829, _829);
+    float3 _852 = reflect(select(float3(0.0, -1.0, 0.0), _829 * rsqrt(fast::max(_833, 1.0000000031710768509710513471353e-30)), bool3(_833 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _855 = _852.y;
+    float _881 = smoothstep(0.0, params.reflection_horizon_band, -_855);
+    float _916 = fast::clamp(_741.y, 0.0, 1.0);
+    float _924 = params.ior_air / params.ior_water;
+    float _928 = _924 * _924;
+    float _932 = fma(-_916, _916, 1.0);
+    float _938 = sqrt(fast::max(fma(-_928, _932, 1.0), 0.0));
+    float _943 = params.ior_water * _938;
+    float _957 = fma(params.ior_air, _916, -_943) / fast::max(fma(params.ior_air, _916, _943), 1.0000000031710768509710513471353e-30);
+    float _962 = params.ior_air * _938;
+    float _976 = fma(params.ior_water, _916, -_962) / fast::max(fma(params.ior_water, _916, _962), 1.0000000031710768509710513471353e-30);
+    float3 _999 = (-float3(params.sun_direction)) + _741;
+    float _1011 = fast::max(fast::max(abs(_999.x), abs(_999.y)), abs(_999.z));
+    float3 _1018 = _999 / float3(fast::max(_1011, 5.9604644775390625e-08));
+    float _1037 = fast::clamp(select(float3(0.0), _1018 / float3(fast::max(length(_1018), 1.0)), bool3(_1011 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1071 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _782)), float3(exp((-params.scatter_coefficient) * _782))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_852.x, abs(_855), _852.z), bool3(dot(_852, _852) > 9.9999999600419720025001879548654e-13)), _881).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_881)), float3(((_928 * _932) >= 1.0) ? 1.0 : (0.5 * fma(_957, _957, _976 * _976)))) + (float3(params.sun_color) * ((_1037 > 6.103515625e-05) ? pow(fast::max(_1037, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_723 < _726) && (_146 < 0.0)));
+    out.out_color = float4(_1071, 1.0);
     return out;
 }
 

@@ -6,8 +6,9 @@ using namespace metal;
 
 struct WaterParams
 {
-    float4 gerstner_wave_directions[8];
+    float4 gerstner_wave_phases[8];
     float4 gerstner_wave_speeds[8];
+    float4 gerstner_wave_directions[8];
     packed_float3 eye_position;
     float time;
     packed_float3 absorb_coefficients;
@@ -18,6 +19,7 @@ struct WaterParams
     float gerstner_amplitude_gain;
     packed_float3 reflection_lower_tint;
     float gerstner_frequency_gain;
+    float2 frame_centre;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -45,167 +47,168 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _49 = _33.xyz - float3(params.eye_position);
-    float _53 = length(_49);
-    float3 _60 = _49 / float3(fast::max(_53, 9.9999999747524270787835121154785e-07));
-    float3 _63 = dfdx(_60);
-    float3 _66 = dfdy(_60);
-    float _68 = fast::max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
-    float _1029;
+    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
+    float3 _61 = _54 - float3(params.eye_position);
+    float _65 = length(_61);
+    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
+    float3 _75 = dfdx(_72);
+    float3 _78 = dfdy(_72);
+    float _80 = fast::max(length(_75), length(_78));
+    float _83 = floor(gerstner_wave_count);
     float _1031;
+    float _1033;
+    _1033 = 0.0;
     _1031 = 0.0;
-    _1029 = 0.0;
-    float _106;
-    float _111;
-    float _116;
-    float _121;
-    int _1028 = 0;
-    float _1030 = params.gerstner_amplitude;
-    float _1032 = params.gerstner_frequency;
-    for (; _1028 < 8; _1032 = _121, _1031 = _111, _1030 = _116, _1029 = _106, _1028++)
+    float _115;
+    float _120;
+    float _125;
+    float _130;
+    int _1030 = 0;
+    float _1032 = params.gerstner_amplitude;
+    float _1034 = params.gerstner_frequency;
+    for (; _1030 < 8; _1034 = _130, _1033 = _120, _1032 = _125, _1031 = _115, _1030++)
     {
-        if (!(float(_1028) < _71))
+        if (!(float(_1030) < _83))
         {
             break;
         }
-        _106 = _1029 + _1030;
-        _111 = fma(_1030, _1032, _1031);
-        _116 = _1030 * params.gerstner_amplitude_gain;
-        _121 = _1032 * params.gerstner_frequency_gain;
+        _115 = _1031 + _1032;
+        _120 = fma(_1032, _1034, _1033);
+        _125 = _1032 * params.gerstner_amplitude_gain;
+        _130 = _1034 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
-    float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_1031 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_1029;
-    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _1036;
-    float2 _1040;
-    _1040 = (float3(params.eye_position) + (_60 * fast::max((_1029 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _1036 = _1029;
-    float2 _406;
-    float _676;
-    float _681;
-    float _691;
-    int _1035 = 0;
-    float _1068 = _1029;
-    float _1073 = _158;
-    for (; _1035 < 9; _1073 = _681, _1068 = _676, _1040 = _406, _1036 = _691, _1035++)
+    float _146 = _72.y;
+    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
+    float2 _154 = _72.xz;
+    float _163 = 1.0 / (1.0 + (((_1033 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
+    float _166 = -_1031;
+    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
+    float _1038;
+    float2 _1042;
+    _1042 = (float3(params.eye_position) + (_72 * fast::max((_1031 - params.eye_position[1u]) / _170, 0.0))).xz;
+    _1038 = _1031;
+    float2 _412;
+    float _679;
+    float _684;
+    float _694;
+    int _1037 = 0;
+    float _1070 = _1031;
+    float _1075 = _166;
+    for (; _1037 < 9; _1075 = _684, _1070 = _679, _1042 = _412, _1038 = _694, _1037++)
     {
-        float _207 = fast::max((_1036 - params.eye_position[1u]) / _162, 0.0);
-        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
-        float2 _1042;
-        float3 _1043;
-        _1043 = float3(0.0);
-        _1042 = float2(0.0);
-        float _323;
-        float _327;
-        float2 _334;
-        float3 _348;
-        int _1037 = 0;
-        float _1038 = params.gerstner_frequency;
-        float _1041 = params.gerstner_amplitude;
-        for (; _1037 < 8; _1043 = _348, _1042 = _334, _1041 = _323, _1038 = _327, _1037++)
+        float _216 = fast::max((_1038 - params.eye_position[1u]) / _170, 0.0);
+        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
+        float _232 = (_80 * _216) / _150;
+        float2 _1044;
+        float3 _1045;
+        _1045 = float3(0.0);
+        _1044 = float2(0.0);
+        float _329;
+        float _333;
+        float2 _340;
+        float3 _354;
+        int _1039 = 0;
+        float _1040 = params.gerstner_frequency;
+        float _1043 = params.gerstner_amplitude;
+        for (; _1039 < 8; _1045 = _354, _1044 = _340, _1043 = _329, _1040 = _333, _1039++)
         {
-            float _242 = float(_1037);
-            if (!(_242 < _71))
+            float _251 = float(_1039);
+            if (!(_251 < _83))
             {
                 break;
             }
-            int _253 = clamp(int(_242), 0, 7);
-            float _282 = fma(_1038, dot(params.gerstner_wave_directions[_253].xy, _1040), params.time * params.gerstner_wave_speeds[_253].x);
-            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_1038 * _1041, 9.9999999747524270787835121154785e-07))) * _1041) * fast::clamp(fma(-(_1038 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _315 = (_296 * _1038) * sin(_282);
-            float _319 = _315 * params.gerstner_wave_directions[_253].x;
-            _323 = _1041 * params.gerstner_amplitude_gain;
-            _327 = _1038 * params.gerstner_frequency_gain;
-            _334 = _1042 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
-            _348 = _1043 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            int _264 = clamp(int(_251), 0, 7);
+            float _289 = fma(_1040, dot(params.gerstner_wave_directions[_264].xy, _1042), params.gerstner_wave_phases[_264].x);
+            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_1040 * _1043, 9.9999999747524270787835121154785e-07))) * _1043) * fast::clamp(fma(-(_1040 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _321 = (_303 * _1040) * sin(_289);
+            float _325 = _321 * params.gerstner_wave_directions[_264].x;
+            _329 = _1043 * params.gerstner_amplitude_gain;
+            _333 = _1040 * params.gerstner_frequency_gain;
+            _340 = _1044 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
+            _354 = _1045 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
         }
-        float _354 = 1.0 - _1043.x;
-        float _359 = 1.0 - _1043.z;
-        float _363 = -_1043.y;
-        float2 _369 = (_1040 + _1042) - _217;
-        float _382 = _369.x;
-        float _385 = _369.y;
-        _406 = _1040 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
-        float3 _1050;
-        float3 _1051;
+        float _360 = 1.0 - _1045.x;
+        float _365 = 1.0 - _1045.z;
+        float _369 = -_1045.y;
+        float2 _375 = (_1042 + _1044) - _226;
+        float _388 = _375.x;
+        float _391 = _375.y;
+        _412 = _1042 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
         float3 _1052;
-        _1052 = float3(0.0, 0.0, 1.0);
-        _1051 = float3(1.0, 0.0, 0.0);
-        _1050 = float3(0.0);
-        float _521;
-        float _525;
-        float3 _537;
-        float3 _542;
-        float3 _547;
-        int _1047 = 0;
-        float _1048 = params.gerstner_frequency;
-        float _1049 = params.gerstner_amplitude;
-        for (; _1047 < 8; _1052 = _547, _1051 = _542, _1050 = _537, _1049 = _521, _1048 = _525, _1047++)
+        float3 _1053;
+        float3 _1054;
+        _1054 = float3(0.0, 0.0, 1.0);
+        _1053 = float3(1.0, 0.0, 0.0);
+        _1052 = float3(0.0);
+        float _524;
+        float _528;
+        float3 _540;
+        float3 _545;
+        float3 _550;
+        int _1049 = 0;
+        float _1050 = params.gerstner_frequency;
+        float _1051 = params.gerstner_amplitude;
+        for (; _1049 < 8; _1054 = _550, _1053 = _545, _1052 = _540, _1051 = _524, _1050 = _528, _1049++)
         {
-            float _427 = float(_1047);
-            if (!(_427 < _71))
+            float _433 = float(_1049);
+            if (!(_433 < _83))
             {
                 break;
             }
-            int _438 = clamp(int(_427), 0, 7);
-            float _447 = fast::clamp(fma(-(_1048 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _463 = fma(_1048, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
-            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1048 * _1049, 9.9999999747524270787835121154785e-07))) * _1049) * _447;
-            float _481 = _1049 * _447;
-            float _484 = sin(_463);
-            float _487 = cos(_463);
-            float _497 = _477 * _487;
-            float _504 = -((_477 * _1048) * _484);
-            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1048) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1049 * params.gerstner_amplitude_gain;
-            _525 = _1048 * params.gerstner_frequency_gain;
-            _537 = _1050 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1051 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1052 + (_517 * params.gerstner_wave_directions[_438].y);
+            int _444 = clamp(int(_433), 0, 7);
+            float _453 = fast::clamp(fma(-(_1050 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _466 = fma(_1050, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
+            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1050 * _1051, 9.9999999747524270787835121154785e-07))) * _1051) * _453;
+            float _484 = _1051 * _453;
+            float _487 = sin(_466);
+            float _490 = cos(_466);
+            float _500 = _480 * _490;
+            float _507 = -((_480 * _1050) * _487);
+            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1050) * _490, _507 * params.gerstner_wave_directions[_444].y);
+            _524 = _1051 * params.gerstner_amplitude_gain;
+            _528 = _1050 * params.gerstner_frequency_gain;
+            _540 = _1052 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
+            _545 = _1053 + (_520 * params.gerstner_wave_directions[_444].x);
+            _550 = _1054 + (_520 * params.gerstner_wave_directions[_444].y);
         }
-        float3 _553 = cross(_1052, _1051);
-        float _557 = dot(_553, _553);
-        float3 _575 = select(float3(0.0, 1.0, 0.0), _553 * rsqrt(fast::max(_557, 1.0000000031710768509710513471353e-30)), bool3(_557 > 1.0000000031710768509710513471353e-30));
-        float2 _585 = (-_575.xz) / float2(fast::max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_1035);
-        bool _601 = _600 < 1.0;
-        float _605 = (_1050.y + dot(_585, _217 - (_406 + _1050.xz))) - _1036;
-        float _618 = (-dot(_585, _146)) / _142;
-        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0), _605, _1036);
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _1036 : _1068;
-        float _644 = _634 ? _1073 : _1036;
-        _676 = _601 ? _1036 : _639;
-        _681 = _601 ? _1073 : _644;
-        _691 = (_600 < 8.0) ? (_601 ? fma(_155, _605, _1036) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _1036;
+        float3 _556 = cross(_1054, _1053);
+        float _560 = dot(_556, _556);
+        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
+        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
+        float _603 = float(_1037);
+        bool _604 = _603 < 1.0;
+        float _608 = (_1052.y + dot(_588, _226 - (_412 + _1052.xz))) - _1038;
+        float _621 = (-dot(_588, _154)) / _150;
+        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _1038);
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _1038 : _1070;
+        float _647 = _637 ? _1075 : _1038;
+        _679 = _604 ? _1038 : _642;
+        _684 = _604 ? _1075 : _647;
+        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _1038) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1038;
     }
-    float _705 = fast::max((_1036 - params.eye_position[1u]) / _162, 0.0);
-    float3 _712 = float3(params.eye_position) + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float _777 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
-    float3 _811 = abs(_60);
-    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
-    float _828 = dot(_824, _824);
-    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _850 = _847.y;
-    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
-    float _911 = fast::clamp((-_60).y, 0.0, 1.0);
-    float _919 = params.ior_air / params.ior_water;
-    float _923 = _919 * _919;
-    float _927 = fma(-_911, _911, 1.0);
-    float _933 = sqrt(fast::max(fma(-_923, _927, 1.0), 0.0));
-    float _938 = params.ior_water * _933;
-    float _952 = fma(params.ior_air, _911, -_938) / fast::max(fma(params.ior_air, _911, _938), 1.0000000031710768509710513471353e-30);
-    float _957 = params.ior_air * _933;
-    float _971 = fma(params.ior_water, _911, -_957) / fast::max(fma(params.ior_water, _911, _957), 1.0000000031710768509710513471353e-30);
-    float3 _999 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_723 - _720, 0.0) + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(((_923 * _927) >= 1.0) ? 1.0 : (0.5 * fma(_952, _952, _971 * _971)))), bool3((_720 < _723) && (_138 < 0.0)));
-    out.out_color = float4(_999, 1.0);
+    float _708 = fast::max((_1038 - params.eye_position[1u]) / _170, 0.0);
+    float3 _715 = float3(params.eye_position) + (_72 * _708);
+    float _723 = _54.y;
+    float _726 = _715.y;
+    float _780 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
+    float3 _813 = abs(_72);
+    float3 _826 = _72 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
+    float _830 = dot(_826, _826);
+    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _852 = _849.y;
+    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
+    float _913 = fast::clamp((-_72).y, 0.0, 1.0);
+    float _921 = params.ior_air / params.ior_water;
+    float _925 = _921 * _921;
+    float _929 = fma(-_913, _913, 1.0);
+    float _935 = sqrt(fast::max(fma(-_925, _929, 1.0), 0.0));
+    float _940 = params.ior_water * _935;
+    float _954 = fma(params.ior_air, _913, -_940) / fast::max(fma(params.ior_air, _913, _940), 1.0000000031710768509710513471353e-30);
+    float _959 = params.ior_air * _935;
+    float _973 = fma(params.ior_water, _913, -_959) / fast::max(fma(params.ior_water, _913, _959), 1.0000000031710768509710513471353e-30);
+    float3 _1001 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _780)), float3(exp((-params.scatter_coefficient) * _780))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(((_925 * _929) >= 1.0) ? 1.0 : (0.5 * fma(_954, _954, _973 * _973)))), bool3((_723 < _726) && (_146 < 0.0)));
+    out.out_color = float4(_1001, 1.0);
     return out;
 }
 

@@ -6,8 +6,9 @@ using namespace metal;
 
 struct WaterParams
 {
-    float4 gerstner_wave_directions[8];
+    float4 gerstner_wave_phases[8];
     float4 gerstner_wave_speeds[8];
+    float4 gerstner_wave_directions[8];
     packed_float3 eye_position;
     float time;
     packed_float3 absorb_coefficients;
@@ -18,6 +19,7 @@ struct WaterParams
     float gerstner_amplitude_gain;
     packed_float3 reflection_lower_tint;
     float gerstner_frequency_gain;
+    float2 frame_centre;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -45,161 +47,162 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _49 = _33.xyz - float3(params.eye_position);
-    float _53 = length(_49);
-    float3 _60 = _49 / float3(fast::max(_53, 9.9999999747524270787835121154785e-07));
-    float3 _63 = dfdx(_60);
-    float3 _66 = dfdy(_60);
-    float _68 = fast::max(length(_63), length(_66));
-    float _71 = floor(gerstner_wave_count);
-    float _987;
+    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
+    float3 _61 = _54 - float3(params.eye_position);
+    float _65 = length(_61);
+    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
+    float3 _75 = dfdx(_72);
+    float3 _78 = dfdy(_72);
+    float _80 = fast::max(length(_75), length(_78));
+    float _83 = floor(gerstner_wave_count);
     float _989;
+    float _991;
+    _991 = 0.0;
     _989 = 0.0;
-    _987 = 0.0;
-    float _106;
-    float _111;
-    float _116;
-    float _121;
-    int _986 = 0;
-    float _988 = params.gerstner_amplitude;
-    float _990 = params.gerstner_frequency;
-    for (; _986 < 8; _990 = _121, _989 = _111, _988 = _116, _987 = _106, _986++)
+    float _115;
+    float _120;
+    float _125;
+    float _130;
+    int _988 = 0;
+    float _990 = params.gerstner_amplitude;
+    float _992 = params.gerstner_frequency;
+    for (; _988 < 8; _992 = _130, _991 = _120, _990 = _125, _989 = _115, _988++)
     {
-        if (!(float(_986) < _71))
+        if (!(float(_988) < _83))
         {
             break;
         }
-        _106 = _987 + _988;
-        _111 = fma(_988, _990, _989);
-        _116 = _988 * params.gerstner_amplitude_gain;
-        _121 = _990 * params.gerstner_frequency_gain;
+        _115 = _989 + _990;
+        _120 = fma(_990, _992, _991);
+        _125 = _990 * params.gerstner_amplitude_gain;
+        _130 = _992 * params.gerstner_frequency_gain;
     }
-    float _138 = _60.y;
-    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
-    float2 _146 = _60.xz;
-    float _155 = 1.0 / (1.0 + (((_989 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
-    float _158 = -_987;
-    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
-    float _994;
-    float2 _998;
-    _998 = (float3(params.eye_position) + (_60 * fast::max((_987 - params.eye_position[1u]) / _162, 0.0))).xz;
-    _994 = _987;
-    float2 _406;
-    float _676;
-    float _681;
-    float _691;
-    int _993 = 0;
-    float _1026 = _987;
-    float _1031 = _158;
-    for (; _993 < 9; _1031 = _681, _1026 = _676, _998 = _406, _994 = _691, _993++)
+    float _146 = _72.y;
+    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
+    float2 _154 = _72.xz;
+    float _163 = 1.0 / (1.0 + (((_991 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
+    float _166 = -_989;
+    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
+    float _996;
+    float2 _1000;
+    _1000 = (float3(params.eye_position) + (_72 * fast::max((_989 - params.eye_position[1u]) / _170, 0.0))).xz;
+    _996 = _989;
+    float2 _412;
+    float _679;
+    float _684;
+    float _694;
+    int _995 = 0;
+    float _1028 = _989;
+    float _1033 = _166;
+    for (; _995 < 9; _1033 = _684, _1028 = _679, _1000 = _412, _996 = _694, _995++)
     {
-        float _207 = fast::max((_994 - params.eye_position[1u]) / _162, 0.0);
-        float2 _217 = (float3(params.eye_position) + (_60 * _207)).xz;
-        float _223 = (_68 * _207) / _142;
-        float2 _1000;
-        float3 _1001;
-        _1001 = float3(0.0);
-        _1000 = float2(0.0);
-        float _323;
-        float _327;
-        float2 _334;
-        float3 _348;
-        int _995 = 0;
-        float _996 = params.gerstner_frequency;
-        float _999 = params.gerstner_amplitude;
-        for (; _995 < 8; _1001 = _348, _1000 = _334, _999 = _323, _996 = _327, _995++)
+        float _216 = fast::max((_996 - params.eye_position[1u]) / _170, 0.0);
+        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
+        float _232 = (_80 * _216) / _150;
+        float2 _1002;
+        float3 _1003;
+        _1003 = float3(0.0);
+        _1002 = float2(0.0);
+        float _329;
+        float _333;
+        float2 _340;
+        float3 _354;
+        int _997 = 0;
+        float _998 = params.gerstner_frequency;
+        float _1001 = params.gerstner_amplitude;
+        for (; _997 < 8; _1003 = _354, _1002 = _340, _1001 = _329, _998 = _333, _997++)
         {
-            float _242 = float(_995);
-            if (!(_242 < _71))
+            float _251 = float(_997);
+            if (!(_251 < _83))
             {
                 break;
             }
-            int _253 = clamp(int(_242), 0, 7);
-            float _282 = fma(_996, dot(params.gerstner_wave_directions[_253].xy, _998), params.time * params.gerstner_wave_speeds[_253].x);
-            float _296 = ((params.gerstner_steepness / (_71 * fast::max(_996 * _999, 9.9999999747524270787835121154785e-07))) * _999) * fast::clamp(fma(-(_996 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _315 = (_296 * _996) * sin(_282);
-            float _319 = _315 * params.gerstner_wave_directions[_253].x;
-            _323 = _999 * params.gerstner_amplitude_gain;
-            _327 = _996 * params.gerstner_frequency_gain;
-            _334 = _1000 + (params.gerstner_wave_directions[_253].xy * (_296 * cos(_282)));
-            _348 = _1001 + float3(_319 * params.gerstner_wave_directions[_253].x, _319 * params.gerstner_wave_directions[_253].y, (_315 * params.gerstner_wave_directions[_253].y) * params.gerstner_wave_directions[_253].y);
+            int _264 = clamp(int(_251), 0, 7);
+            float _289 = fma(_998, dot(params.gerstner_wave_directions[_264].xy, _1000), params.gerstner_wave_phases[_264].x);
+            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_998 * _1001, 9.9999999747524270787835121154785e-07))) * _1001) * fast::clamp(fma(-(_998 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _321 = (_303 * _998) * sin(_289);
+            float _325 = _321 * params.gerstner_wave_directions[_264].x;
+            _329 = _1001 * params.gerstner_amplitude_gain;
+            _333 = _998 * params.gerstner_frequency_gain;
+            _340 = _1002 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
+            _354 = _1003 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
         }
-        float _354 = 1.0 - _1001.x;
-        float _359 = 1.0 - _1001.z;
-        float _363 = -_1001.y;
-        float2 _369 = (_998 + _1000) - _217;
-        float _382 = _369.x;
-        float _385 = _369.y;
-        _406 = _998 - (float2(fma(_359, _382, -(_363 * _385)), fma(_354, _385, -(_363 * _382))) / float2(fast::max(fma(_354, _359, -(_363 * _363)), 0.039999999105930328369140625)));
-        float3 _1008;
-        float3 _1009;
+        float _360 = 1.0 - _1003.x;
+        float _365 = 1.0 - _1003.z;
+        float _369 = -_1003.y;
+        float2 _375 = (_1000 + _1002) - _226;
+        float _388 = _375.x;
+        float _391 = _375.y;
+        _412 = _1000 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
         float3 _1010;
-        _1010 = float3(0.0, 0.0, 1.0);
-        _1009 = float3(1.0, 0.0, 0.0);
-        _1008 = float3(0.0);
-        float _521;
-        float _525;
-        float3 _537;
-        float3 _542;
-        float3 _547;
-        int _1005 = 0;
-        float _1006 = params.gerstner_frequency;
-        float _1007 = params.gerstner_amplitude;
-        for (; _1005 < 8; _1010 = _547, _1009 = _542, _1008 = _537, _1007 = _521, _1006 = _525, _1005++)
+        float3 _1011;
+        float3 _1012;
+        _1012 = float3(0.0, 0.0, 1.0);
+        _1011 = float3(1.0, 0.0, 0.0);
+        _1010 = float3(0.0);
+        float _524;
+        float _528;
+        float3 _540;
+        float3 _545;
+        float3 _550;
+        int _1007 = 0;
+        float _1008 = params.gerstner_frequency;
+        float _1009 = params.gerstner_amplitude;
+        for (; _1007 < 8; _1012 = _550, _1011 = _545, _1010 = _540, _1009 = _524, _1008 = _528, _1007++)
         {
-            float _427 = float(_1005);
-            if (!(_427 < _71))
+            float _433 = float(_1007);
+            if (!(_433 < _83))
             {
                 break;
             }
-            int _438 = clamp(int(_427), 0, 7);
-            float _447 = fast::clamp(fma(-(_1006 * _223), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _463 = fma(_1006, dot(params.gerstner_wave_directions[_438].xy, _406), params.time * params.gerstner_wave_speeds[_438].x);
-            float _477 = ((params.gerstner_steepness / (_71 * fast::max(_1006 * _1007, 9.9999999747524270787835121154785e-07))) * _1007) * _447;
-            float _481 = _1007 * _447;
-            float _484 = sin(_463);
-            float _487 = cos(_463);
-            float _497 = _477 * _487;
-            float _504 = -((_477 * _1006) * _484);
-            float3 _517 = float3(_504 * params.gerstner_wave_directions[_438].x, (_481 * _1006) * _487, _504 * params.gerstner_wave_directions[_438].y);
-            _521 = _1007 * params.gerstner_amplitude_gain;
-            _525 = _1006 * params.gerstner_frequency_gain;
-            _537 = _1008 + float3(_497 * params.gerstner_wave_directions[_438].x, _481 * _484, _497 * params.gerstner_wave_directions[_438].y);
-            _542 = _1009 + (_517 * params.gerstner_wave_directions[_438].x);
-            _547 = _1010 + (_517 * params.gerstner_wave_directions[_438].y);
+            int _444 = clamp(int(_433), 0, 7);
+            float _453 = fast::clamp(fma(-(_1008 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _466 = fma(_1008, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
+            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1008 * _1009, 9.9999999747524270787835121154785e-07))) * _1009) * _453;
+            float _484 = _1009 * _453;
+            float _487 = sin(_466);
+            float _490 = cos(_466);
+            float _500 = _480 * _490;
+            float _507 = -((_480 * _1008) * _487);
+            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1008) * _490, _507 * params.gerstner_wave_directions[_444].y);
+            _524 = _1009 * params.gerstner_amplitude_gain;
+            _528 = _1008 * params.gerstner_frequency_gain;
+            _540 = _1010 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
+            _545 = _1011 + (_520 * params.gerstner_wave_directions[_444].x);
+            _550 = _1012 + (_520 * params.gerstner_wave_directions[_444].y);
         }
-        float3 _553 = cross(_1010, _1009);
-        float _557 = dot(_553, _553);
-        float3 _575 = select(float3(0.0, 1.0, 0.0), _553 * rsqrt(fast::max(_557, 1.0000000031710768509710513471353e-30)), bool3(_557 > 1.0000000031710768509710513471353e-30));
-        float2 _585 = (-_575.xz) / float2(fast::max(_575.y, 9.9999997473787516355514526367188e-05));
-        float _600 = float(_993);
-        bool _601 = _600 < 1.0;
-        float _605 = (_1008.y + dot(_585, _217 - (_406 + _1008.xz))) - _994;
-        float _618 = (-dot(_585, _146)) / _142;
-        float _631 = fma(fast::clamp(1.0 / fast::max(1.0 - _618, 9.9999999747524270787835121154785e-07), _155, 1.0), _605, _994);
-        bool _634 = _605 < 0.0;
-        float _639 = _634 ? _994 : _1026;
-        float _644 = _634 ? _1031 : _994;
-        _676 = _601 ? _994 : _639;
-        _681 = _601 ? _1031 : _644;
-        _691 = (_600 < 8.0) ? (_601 ? fma(_155, _605, _994) : ((((_631 < _644) || (_631 > _639)) || (_618 >= 1.0)) ? (0.5 * (_644 + _639)) : _631)) : _994;
+        float3 _556 = cross(_1012, _1011);
+        float _560 = dot(_556, _556);
+        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
+        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
+        float _603 = float(_995);
+        bool _604 = _603 < 1.0;
+        float _608 = (_1010.y + dot(_588, _226 - (_412 + _1010.xz))) - _996;
+        float _621 = (-dot(_588, _154)) / _150;
+        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _996);
+        bool _637 = _608 < 0.0;
+        float _642 = _637 ? _996 : _1028;
+        float _647 = _637 ? _1033 : _996;
+        _679 = _604 ? _996 : _642;
+        _684 = _604 ? _1033 : _647;
+        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _996) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _996;
     }
-    float _705 = fast::max((_994 - params.eye_position[1u]) / _162, 0.0);
-    float3 _712 = float3(params.eye_position) + (_60 * _705);
-    float _720 = _33.y;
-    float _723 = _712.y;
-    float _777 = fast::clamp(fast::max(_53 - _705, 0.0), 0.0, 30000.0);
-    float3 _811 = abs(_60);
-    float3 _824 = _60 / float3(fast::max(fast::max(fast::max(_811.x, _811.y), _811.z), 1.0000000031710768509710513471353e-30));
-    float _828 = dot(_824, _824);
-    float3 _847 = reflect(select(float3(0.0, -1.0, 0.0), _824 * rsqrt(fast::max(_828, 1.0000000031710768509710513471353e-30)), bool3(_828 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _850 = _847.y;
-    float _876 = smoothstep(0.0, params.reflection_horizon_band, -_850);
-    float _922 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _930 = 1.0 - fast::clamp((-_60).y, 0.0, 1.0);
-    float _934 = _930 * _930;
-    float3 _957 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_723 - _720, 0.0) + _777)), float3(exp((-params.scatter_coefficient) * _777))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_847.x, abs(_850), _847.z), bool3(dot(_847, _847) > 9.9999999600419720025001879548654e-13)), _876).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_876)), float3(fma(_922, _922, fma(-_922, _922, 1.0) * ((_934 * _934) * _930)))), bool3((_720 < _723) && (_138 < 0.0)));
-    out.out_color = float4(_957, 1.0);
+    float _708 = fast::max((_996 - params.eye_position[1u]) / _170, 0.0);
+    float3 _715 = float3(params.eye_position) + (_72 * _708);
+    float _723 = _54.y;
+    float _726 = _715.y;
+    float _780 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
+    float3 _813 = abs(_72);
+    float3 _826 = _72 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
+    float _830 = dot(_826, _826);
+    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _852 = _849.y;
+    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
+    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _932 = 1.0 - fast::clamp((-_72).y, 0.0, 1.0);
+    float _936 = _932 * _932;
+    float3 _959 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _780)), float3(exp((-params.scatter_coefficient) * _780))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(fma(_924, _924, fma(-_924, _924, 1.0) * ((_936 * _936) * _932)))), bool3((_723 < _726) && (_146 < 0.0)));
+    out.out_color = float4(_959, 1.0);
     return out;
 }
 

@@ -8,8 +8,9 @@ const float gerstner_wave_count = SPIRV_CROSS_CONSTANT_ID_0;
 
 layout(std140) uniform WaterParams
 {
-    vec2 gerstner_wave_directions[8];
+    float gerstner_wave_phases[8];
     float gerstner_wave_speeds[8];
+    vec2 gerstner_wave_directions[8];
     vec3 sun_direction;
     float time;
     vec3 caustics_window;
@@ -32,57 +33,57 @@ void main()
 {
     float _10 = floor(gerstner_wave_count);
     float _14 = min(_10, 8.0);
+    vec3 _338;
+    vec3 _339;
     vec3 _340;
-    vec3 _341;
-    vec3 _342;
-    _342 = vec3(0.0, 0.0, 1.0);
-    _341 = vec3(1.0, 0.0, 0.0);
-    _340 = vec3(0.0);
-    float _147;
-    vec3 _159;
-    float _164;
-    vec3 _169;
-    vec3 _174;
-    int _337 = 0;
-    float _338 = params.gerstner_frequency;
-    float _339 = params.gerstner_amplitude;
-    for (; _337 < 8; _342 = _174, _341 = _169, _340 = _159, _339 = _164, _338 = _147, _337++)
+    _340 = vec3(0.0, 0.0, 1.0);
+    _339 = vec3(1.0, 0.0, 0.0);
+    _338 = vec3(0.0);
+    float _145;
+    vec3 _157;
+    float _162;
+    vec3 _167;
+    vec3 _172;
+    int _335 = 0;
+    float _336 = params.gerstner_frequency;
+    float _337 = params.gerstner_amplitude;
+    for (; _335 < 8; _340 = _172, _339 = _167, _338 = _157, _337 = _162, _336 = _145, _335++)
     {
-        float _55 = float(_337);
-        if (!(_55 < _10))
+        float _57 = float(_335);
+        if (!(_57 < _10))
         {
             break;
         }
-        int _68 = clamp(int(_55), 0, 7);
-        float _91 = _338 * dot(params.gerstner_wave_directions[_68], grid_xz) + (params.time * params.gerstner_wave_speeds[_68]);
-        float _104 = (params.gerstner_steepness / (_14 * max(_338 * _339, 9.9999999747524270787835121154785e-07))) * _339;
-        float _107 = sin(_91);
-        float _110 = cos(_91);
-        float _122 = _104 * _110;
-        float _129 = -((_104 * _338) * _107);
-        vec3 _142 = vec3(_129 * params.gerstner_wave_directions[_68].x, (_339 * _338) * _110, _129 * params.gerstner_wave_directions[_68].y);
-        _147 = _338 * params.gerstner_frequency_gain;
-        _159 = _340 + vec3(_122 * params.gerstner_wave_directions[_68].x, _339 * _107, _122 * params.gerstner_wave_directions[_68].y);
-        _164 = _339 * params.gerstner_amplitude_gain;
-        _169 = _341 + (_142 * params.gerstner_wave_directions[_68].x);
-        _174 = _342 + (_142 * params.gerstner_wave_directions[_68].y);
+        int _71 = clamp(int(_57), 0, 7);
+        float _89 = _336 * dot(params.gerstner_wave_directions[_71], grid_xz) + params.gerstner_wave_phases[_71];
+        float _102 = (params.gerstner_steepness / (_14 * max(_336 * _337, 9.9999999747524270787835121154785e-07))) * _337;
+        float _105 = sin(_89);
+        float _108 = cos(_89);
+        float _120 = _102 * _108;
+        float _127 = -((_102 * _336) * _105);
+        vec3 _140 = vec3(_127 * params.gerstner_wave_directions[_71].x, (_337 * _336) * _108, _127 * params.gerstner_wave_directions[_71].y);
+        _145 = _336 * params.gerstner_frequency_gain;
+        _157 = _338 + vec3(_120 * params.gerstner_wave_directions[_71].x, _337 * _105, _120 * params.gerstner_wave_directions[_71].y);
+        _162 = _337 * params.gerstner_amplitude_gain;
+        _167 = _339 + (_140 * params.gerstner_wave_directions[_71].x);
+        _172 = _340 + (_140 * params.gerstner_wave_directions[_71].y);
     }
-    vec3 _180 = cross(_342, _341);
-    float _184 = dot(_180, _180);
-    vec3 _191 = _180 * inversesqrt(max(_184, 1.0000000031710768509710513471353e-30));
-    bvec3 _201 = bvec3(_184 > 1.0000000031710768509710513471353e-30);
-    vec2 _209 = vec2(_340.xz);
-    float _220 = dot(params.sun_direction, params.sun_direction);
-    vec3 _227 = params.sun_direction * inversesqrt(max(_220, 1.0000000031710768509710513471353e-30));
-    bvec3 _236 = bvec3(_220 > 1.0000000031710768509710513471353e-30);
-    vec3 _237 = vec3(_236.x ? _227.x : vec3(0.0, -1.0, 0.0).x, _236.y ? _227.y : vec3(0.0, -1.0, 0.0).y, _236.z ? _227.z : vec3(0.0, -1.0, 0.0).z);
-    vec3 _245 = refract(_237, vec3(_201.x ? _191.x : vec3(0.0, 1.0, 0.0).x, _201.y ? _191.y : vec3(0.0, 1.0, 0.0).y, _201.z ? _191.z : vec3(0.0, 1.0, 0.0).z), 1.0 / params.ior_water);
-    vec2 _264 = _209 + (vec2(_245.xz) * ((_340.y + params.caustics_depth) / max(-_245.y, 9.9999999747524270787835121154785e-07)));
-    vec2 _268 = grid_xz + _264;
-    vec2 _281 = (_268 - vec2(params.caustics_window.x, params.caustics_window.y)) / vec2(params.caustics_window.z);
-    gl_Position = vec4(_281.x * 2.0 + (-1.0), _281.y * 2.0 + (-1.0), 0.0, 1.0);
-    v_landing = _268;
-    v_offset = (_209 - (vec2(_237.xz) * (_340.y / min(_237.y, -9.9999999747524270787835121154785e-07)))) - _264;
+    vec3 _179 = cross(_340, _339);
+    float _183 = dot(_179, _179);
+    vec3 _190 = _179 * inversesqrt(max(_183, 1.0000000031710768509710513471353e-30));
+    bvec3 _200 = bvec3(_183 > 1.0000000031710768509710513471353e-30);
+    vec2 _208 = vec2(_338.xz);
+    float _219 = dot(params.sun_direction, params.sun_direction);
+    vec3 _226 = params.sun_direction * inversesqrt(max(_219, 1.0000000031710768509710513471353e-30));
+    bvec3 _235 = bvec3(_219 > 1.0000000031710768509710513471353e-30);
+    vec3 _236 = vec3(_235.x ? _226.x : vec3(0.0, -1.0, 0.0).x, _235.y ? _226.y : vec3(0.0, -1.0, 0.0).y, _235.z ? _226.z : vec3(0.0, -1.0, 0.0).z);
+    vec3 _244 = refract(_236, vec3(_200.x ? _190.x : vec3(0.0, 1.0, 0.0).x, _200.y ? _190.y : vec3(0.0, 1.0, 0.0).y, _200.z ? _190.z : vec3(0.0, 1.0, 0.0).z), 1.0 / params.ior_water);
+    vec2 _262 = _208 + (vec2(_244.xz) * ((_338.y + params.caustics_depth) / max(-_244.y, 9.9999999747524270787835121154785e-07)));
+    vec2 _266 = grid_xz + _262;
+    vec2 _279 = (_266 - vec2(params.caustics_window.x, params.caustics_window.y)) / vec2(params.caustics_window.z);
+    gl_Position = vec4(_279.x * 2.0 + (-1.0), _279.y * 2.0 + (-1.0), 0.0, 1.0);
+    v_landing = _266;
+    v_offset = (_208 - (vec2(_236.xz) * (_338.y / min(_236.y, -9.9999999747524270787835121154785e-07)))) - _262;
     v_clamp = params.caustics_clamp;
 }
 

@@ -6,19 +6,20 @@
 // sunlight refracted through the surface meets the bottom. The fragment stage takes the landing
 // point, the beam point's offset from it and the clamp, in this order.
 layout(set = 0, binding = 0, std140) uniform WaterParams {
-    layout(offset = 0) vec2 gerstner_wave_directions[8];
+    layout(offset = 0) float gerstner_wave_phases[8];
     layout(offset = 128) float gerstner_wave_speeds[8];
-    layout(offset = 256) vec3 sun_direction;
-    layout(offset = 268) float time;
-    layout(offset = 272) vec3 caustics_window;
-    layout(offset = 284) float ior_water;
-    layout(offset = 288) float caustics_depth;
-    layout(offset = 292) float gerstner_steepness;
-    layout(offset = 296) float gerstner_amplitude;
-    layout(offset = 300) float gerstner_frequency;
-    layout(offset = 304) float gerstner_amplitude_gain;
-    layout(offset = 308) float gerstner_frequency_gain;
-    layout(offset = 312) float caustics_clamp;
+    layout(offset = 256) vec2 gerstner_wave_directions[8];
+    layout(offset = 384) vec3 sun_direction;
+    layout(offset = 396) float time;
+    layout(offset = 400) vec3 caustics_window;
+    layout(offset = 412) float ior_water;
+    layout(offset = 416) float caustics_depth;
+    layout(offset = 420) float gerstner_steepness;
+    layout(offset = 424) float gerstner_amplitude;
+    layout(offset = 428) float gerstner_frequency;
+    layout(offset = 432) float gerstner_amplitude_gain;
+    layout(offset = 436) float gerstner_frequency_gain;
+    layout(offset = 440) float caustics_clamp;
 } params;
 layout(constant_id = 0) const float gerstner_wave_count = 4.0;
 layout(location = 0) in vec2 grid_xz;
@@ -30,50 +31,50 @@ void main() {
     // waves.gerstner
     float trip_count = floor(gerstner_wave_count);
     float t14 = min(trip_count, 8.0);
-    float loop19_c0 = params.gerstner_amplitude;
-    float loop19_c1 = params.gerstner_frequency;
-    vec3 loop19_c2 = vec3(0.0);
-    vec3 loop19_c3 = vec3(1.0, 0.0, 0.0);
-    vec3 loop19_c4 = vec3(0.0, 0.0, 1.0);
-    for (int loop19_i = 0; loop19_i < 8; ++loop19_i) {
-        if (!(float(loop19_i) < trip_count)) break;
+    float loop20_c0 = params.gerstner_amplitude;
+    float loop20_c1 = params.gerstner_frequency;
+    vec3 loop20_c2 = vec3(0.0);
+    vec3 loop20_c3 = vec3(1.0, 0.0, 0.0);
+    vec3 loop20_c4 = vec3(0.0, 0.0, 1.0);
+    for (int loop20_i = 0; loop20_i < 8; ++loop20_i) {
+        if (!(float(loop20_i) < trip_count)) break;
         // waves.gerstner
-        vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop19_i)), 0, 7)];
-        float wave_theta = (loop19_c1 * dot(gerstner_wave_directions_2, grid_xz)) + (params.time * params.gerstner_wave_speeds[clamp(int(float(loop19_i)), 0, 7)]);
-        float t25 = (params.gerstner_steepness / (t14 * max(loop19_c1 * loop19_c0, 1e-06))) * loop19_c0;
+        vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop20_i)), 0, 7)];
+        float wave_theta = (loop20_c1 * dot(gerstner_wave_directions_2, grid_xz)) + params.gerstner_wave_phases[clamp(int(float(loop20_i)), 0, 7)];
+        float t23 = (params.gerstner_steepness / (t14 * max(loop20_c1 * loop20_c0, 1e-06))) * loop20_c0;
         float gerstner_sin = sin(wave_theta);
         float gerstner_cos = cos(wave_theta);
-        float t28 = gerstner_wave_directions_2.x;
-        float t29 = gerstner_wave_directions_2.y;
-        float t30 = t25 * gerstner_cos;
-        float t40 = -((t25 * loop19_c1) * gerstner_sin);
-        vec3 t43_2 = vec3((t40 * t28), ((loop19_c0 * loop19_c1) * gerstner_cos), (t40 * t29));
-        loop19_c1 = loop19_c1 * params.gerstner_frequency_gain;
-        loop19_c2 = loop19_c2 + vec3((t30 * t28), (loop19_c0 * gerstner_sin), (t30 * t29));
-        loop19_c0 = loop19_c0 * params.gerstner_amplitude_gain;
-        loop19_c3 = loop19_c3 + (t28 * t43_2);
-        loop19_c4 = loop19_c4 + (t29 * t43_2);
+        float t26 = gerstner_wave_directions_2.x;
+        float t27_2 = gerstner_wave_directions_2.y;
+        float t28_2 = t23 * gerstner_cos;
+        float t38_2 = -((t23 * loop20_c1) * gerstner_sin);
+        vec3 t41 = vec3((t38_2 * t26), ((loop20_c0 * loop20_c1) * gerstner_cos), (t38_2 * t27_2));
+        loop20_c1 = loop20_c1 * params.gerstner_frequency_gain;
+        loop20_c2 = loop20_c2 + vec3((t28_2 * t26), (loop20_c0 * gerstner_sin), (t28_2 * t27_2));
+        loop20_c0 = loop20_c0 * params.gerstner_amplitude_gain;
+        loop20_c3 = loop20_c3 + (t26 * t41);
+        loop20_c4 = loop20_c4 + (t27_2 * t41);
     }
-    vec3 t26 = cross(loop19_c4, loop19_c3);
-    float t27 = dot(t26, t26);
-    vec3 t31 = t26 * inversesqrt(max(t27, 1e-30));
-    bool t32 = t27 > 1e-30;
-    vec3 gerstner_normal = t32 ? t31 : vec3(0.0, 1.0, 0.0);
+    vec3 t27 = cross(loop20_c4, loop20_c3);
+    float t28 = dot(t27, t27);
+    vec3 t32 = t27 * inversesqrt(max(t28, 1e-30));
+    bool t33 = t28 > 1e-30;
+    vec3 gerstner_normal = t33 ? t32 : vec3(0.0, 1.0, 0.0);
 
     // caustics.area_ratio.vertex
-    vec2 t36 = vec2(loop19_c2.x, loop19_c2.z);
-    float t37 = loop19_c2.y;
-    float t39 = dot(params.sun_direction, params.sun_direction);
-    vec3 t42 = params.sun_direction * inversesqrt(max(t39, 1e-30));
-    bool t43 = t39 > 1e-30;
-    vec3 t44 = t43 ? t42 : vec3(0.0, (-1.0), 0.0);
-    vec3 refracted = refract(t44, gerstner_normal, 1.0 / params.ior_water);
-    vec2 t61 = t36 + (vec2(refracted.x, refracted.z) * ((t37 + params.caustics_depth) / max(-refracted.y, 1e-06)));
-    vec2 landing = grid_xz + t61;
-    vec2 t74 = (landing - vec2(params.caustics_window.x, params.caustics_window.y)) / params.caustics_window.z;
+    vec2 t37 = vec2(loop20_c2.x, loop20_c2.z);
+    float t38 = loop20_c2.y;
+    float t40 = dot(params.sun_direction, params.sun_direction);
+    vec3 t43 = params.sun_direction * inversesqrt(max(t40, 1e-30));
+    bool t44 = t40 > 1e-30;
+    vec3 t45 = t44 ? t43 : vec3(0.0, (-1.0), 0.0);
+    vec3 refracted = refract(t45, gerstner_normal, 1.0 / params.ior_water);
+    vec2 t62 = t37 + (vec2(refracted.x, refracted.z) * ((t38 + params.caustics_depth) / max(-refracted.y, 1e-06)));
+    vec2 landing = grid_xz + t62;
+    vec2 t75 = (landing - vec2(params.caustics_window.x, params.caustics_window.y)) / params.caustics_window.z;
 
-    gl_Position = vec4(((t74.x * 2.0) - 1.0), ((t74.y * 2.0) - 1.0), 0.0, 1.0);
+    gl_Position = vec4(((t75.x * 2.0) - 1.0), ((t75.y * 2.0) - 1.0), 0.0, 1.0);
     v_landing = landing;
-    v_offset = (t36 - (vec2(t44.x, t44.z) * (t37 / min(t44.y, -1e-06)))) - t61;
+    v_offset = (t37 - (vec2(t45.x, t45.z) * (t38 / min(t45.y, -1e-06)))) - t62;
     v_clamp = params.caustics_clamp;
 }

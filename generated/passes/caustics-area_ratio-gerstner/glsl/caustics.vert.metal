@@ -9,8 +9,9 @@ constant float gerstner_wave_count = is_function_constant_defined(gerstner_wave_
 
 struct WaterParams
 {
-    float4 gerstner_wave_directions[8];
+    float4 gerstner_wave_phases[8];
     float4 gerstner_wave_speeds[8];
+    float4 gerstner_wave_directions[8];
     packed_float3 sun_direction;
     float time;
     packed_float3 caustics_window;
@@ -42,53 +43,53 @@ vertex main0_out main0(main0_in in [[stage_in]], constant WaterParams& params [[
     main0_out out = {};
     float _10 = floor(gerstner_wave_count);
     float _14 = fast::min(_10, 8.0);
+    float3 _338;
+    float3 _339;
     float3 _340;
-    float3 _341;
-    float3 _342;
-    _342 = float3(0.0, 0.0, 1.0);
-    _341 = float3(1.0, 0.0, 0.0);
-    _340 = float3(0.0);
-    float _147;
-    float3 _159;
-    float _164;
-    float3 _169;
-    float3 _174;
-    int _337 = 0;
-    float _338 = params.gerstner_frequency;
-    float _339 = params.gerstner_amplitude;
-    for (; _337 < 8; _342 = _174, _341 = _169, _340 = _159, _339 = _164, _338 = _147, _337++)
+    _340 = float3(0.0, 0.0, 1.0);
+    _339 = float3(1.0, 0.0, 0.0);
+    _338 = float3(0.0);
+    float _145;
+    float3 _157;
+    float _162;
+    float3 _167;
+    float3 _172;
+    int _335 = 0;
+    float _336 = params.gerstner_frequency;
+    float _337 = params.gerstner_amplitude;
+    for (; _335 < 8; _340 = _172, _339 = _167, _338 = _157, _337 = _162, _336 = _145, _335++)
     {
-        float _55 = float(_337);
-        if (!(_55 < _10))
+        float _57 = float(_335);
+        if (!(_57 < _10))
         {
             break;
         }
-        int _68 = clamp(int(_55), 0, 7);
-        float _91 = fma(_338, dot(params.gerstner_wave_directions[_68].xy, in.grid_xz), params.time * params.gerstner_wave_speeds[_68].x);
-        float _104 = (params.gerstner_steepness / (_14 * fast::max(_338 * _339, 9.9999999747524270787835121154785e-07))) * _339;
-        float _107 = sin(_91);
-        float _110 = cos(_91);
-        float _122 = _104 * _110;
-        float _129 = -((_104 * _338) * _107);
-        float3 _142 = float3(_129 * params.gerstner_wave_directions[_68].x, (_339 * _338) * _110, _129 * params.gerstner_wave_directions[_68].y);
-        _147 = _338 * params.gerstner_frequency_gain;
-        _159 = _340 + float3(_122 * params.gerstner_wave_directions[_68].x, _339 * _107, _122 * params.gerstner_wave_directions[_68].y);
-        _164 = _339 * params.gerstner_amplitude_gain;
-        _169 = _341 + (_142 * params.gerstner_wave_directions[_68].x);
-        _174 = _342 + (_142 * params.gerstner_wave_directions[_68].y);
+        int _71 = clamp(int(_57), 0, 7);
+        float _89 = fma(_336, dot(params.gerstner_wave_directions[_71].xy, in.grid_xz), params.gerstner_wave_phases[_71].x);
+        float _102 = (params.gerstner_steepness / (_14 * fast::max(_336 * _337, 9.9999999747524270787835121154785e-07))) * _337;
+        float _105 = sin(_89);
+        float _108 = cos(_89);
+        float _120 = _102 * _108;
+        float _127 = -((_102 * _336) * _105);
+        float3 _140 = float3(_127 * params.gerstner_wave_directions[_71].x, (_337 * _336) * _108, _127 * params.gerstner_wave_directions[_71].y);
+        _145 = _336 * params.gerstner_frequency_gain;
+        _157 = _338 + float3(_120 * params.gerstner_wave_directions[_71].x, _337 * _105, _120 * params.gerstner_wave_directions[_71].y);
+        _162 = _337 * params.gerstner_amplitude_gain;
+        _167 = _339 + (_140 * params.gerstner_wave_directions[_71].x);
+        _172 = _340 + (_140 * params.gerstner_wave_directions[_71].y);
     }
-    float3 _180 = cross(_342, _341);
-    float _184 = dot(_180, _180);
-    float2 _209 = float2(_340.xz);
-    float _220 = dot(float3(params.sun_direction), float3(params.sun_direction));
-    float3 _237 = select(float3(0.0, -1.0, 0.0), float3(params.sun_direction) * rsqrt(fast::max(_220, 1.0000000031710768509710513471353e-30)), bool3(_220 > 1.0000000031710768509710513471353e-30));
-    float3 _245 = refract(_237, select(float3(0.0, 1.0, 0.0), _180 * rsqrt(fast::max(_184, 1.0000000031710768509710513471353e-30)), bool3(_184 > 1.0000000031710768509710513471353e-30)), 1.0 / params.ior_water);
-    float2 _264 = _209 + (float2(_245.xz) * ((_340.y + params.caustics_depth) / fast::max(-_245.y, 9.9999999747524270787835121154785e-07)));
-    float2 _268 = in.grid_xz + _264;
-    float2 _281 = (_268 - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
-    out.gl_Position = float4(fma(_281.x, 2.0, -1.0), fma(_281.y, 2.0, -1.0), 0.0, 1.0);
-    out.v_landing = _268;
-    out.v_offset = (_209 - (float2(_237.xz) * (_340.y / fast::min(_237.y, -9.9999999747524270787835121154785e-07)))) - _264;
+    float3 _179 = cross(_340, _339);
+    float _183 = dot(_179, _179);
+    float2 _208 = float2(_338.xz);
+    float _219 = dot(float3(params.sun_direction), float3(params.sun_direction));
+    float3 _236 = select(float3(0.0, -1.0, 0.0), float3(params.sun_direction) * rsqrt(fast::max(_219, 1.0000000031710768509710513471353e-30)), bool3(_219 > 1.0000000031710768509710513471353e-30));
+    float3 _244 = refract(_236, select(float3(0.0, 1.0, 0.0), _179 * rsqrt(fast::max(_183, 1.0000000031710768509710513471353e-30)), bool3(_183 > 1.0000000031710768509710513471353e-30)), 1.0 / params.ior_water);
+    float2 _262 = _208 + (float2(_244.xz) * ((_338.y + params.caustics_depth) / fast::max(-_244.y, 9.9999999747524270787835121154785e-07)));
+    float2 _266 = in.grid_xz + _262;
+    float2 _279 = (_266 - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
+    out.gl_Position = float4(fma(_279.x, 2.0, -1.0), fma(_279.y, 2.0, -1.0), 0.0, 1.0);
+    out.v_landing = _266;
+    out.v_offset = (_208 - (float2(_236.xz) * (_338.y / fast::min(_236.y, -9.9999999747524270787835121154785e-07)))) - _262;
     out.v_clamp = params.caustics_clamp;
     return out;
 }

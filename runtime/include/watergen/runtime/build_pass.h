@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "watergen/runtime/host_values.h"
+
 namespace watergen {
 
 struct PassDraw {
@@ -50,7 +52,11 @@ struct PassReference {
 };
 
 struct PassGrid {
-    std::vector<float> vertices;   // the attribute, two floats per vertex
+    std::vector<float> vertices; // the attribute, two floats per vertex, less `centre`
+    // The frame the vertices are in (host_values.h): the window corner's frame_centre_of, so
+    // the grid is exact however far the window is from the world origin. Pack the pass with
+    // UniformWriter::set_frame({centre, the floating origin}).
+    FrameCentre centre;
     std::vector<uint32_t> indices; // a triangle list, or one index per point
     bool points = false;
     uint32_t texels = 0; // the target's side

@@ -242,7 +242,14 @@ inline constexpr char kSeed[] = "seed";                // string: the seed's sec
 inline constexpr char kNode[] = "node";                // string: the node that declares it
 inline constexpr char kArraySize[] = "array_size";     // unsigned: an array's only
 inline constexpr char kArrayStride[] = "array_stride"; // unsigned: an array's only
+inline constexpr char kHost[] = "host"; // object (namespace host): how the host makes the value
 } // namespace member
+
+// A member's "host" (runtime/host_values.h); absent for a value the shader reads as set.
+namespace host {
+inline constexpr char kRule[] = "rule";     // string: host_rule_name
+inline constexpr char kInputs[] = "inputs"; // array of parameter strings the rule reads
+} // namespace host
 
 // "sampler".
 namespace sampler {
@@ -521,6 +528,10 @@ inline constexpr ManifestKey kManifestKeys[] = {
     {"/shaders/*/reflection/uniform_block/members/*/seed", JsonType::String, kNobody},
     {"/shaders/*/reflection/uniform_block/members/*/node", JsonType::String, kNobody},
     {"/shaders/*/reflection/uniform_block/members/*/array_size", JsonType::Integer, kRuntime},
+    {"/shaders/*/reflection/uniform_block/members/*/host", JsonType::Object, kRuntime},
+    {"/shaders/*/reflection/uniform_block/members/*/host/rule", JsonType::String, kRuntime},
+    {"/shaders/*/reflection/uniform_block/members/*/host/inputs", JsonType::Array, kRuntime},
+    {"/shaders/*/reflection/uniform_block/members/*/host/inputs/*", JsonType::String, kRuntime},
     // For people: a parameter's unit, where it comes from (the seed's section, its node) and its
     // array stride (always 16: std140 and cbuffer registers).
     {"/shaders/*/reflection/uniform_block/members/*/array_stride", JsonType::Integer, kNobody},
@@ -707,6 +718,10 @@ inline constexpr ManifestKey kManifestKeys[] = {
     {"/variants/*/reflection/uniform_block/members/*/seed", JsonType::String, kNobody},
     {"/variants/*/reflection/uniform_block/members/*/node", JsonType::String, kNobody},
     {"/variants/*/reflection/uniform_block/members/*/array_size", JsonType::Integer, kRuntime},
+    {"/variants/*/reflection/uniform_block/members/*/host", JsonType::Object, kRuntime},
+    {"/variants/*/reflection/uniform_block/members/*/host/rule", JsonType::String, kRuntime},
+    {"/variants/*/reflection/uniform_block/members/*/host/inputs", JsonType::Array, kRuntime},
+    {"/variants/*/reflection/uniform_block/members/*/host/inputs/*", JsonType::String, kRuntime},
     // For people: a parameter's unit, where it comes from (the seed's section, its node) and its
     // array stride (always 16: std140 and cbuffer registers).
     {"/variants/*/reflection/uniform_block/members/*/array_stride", JsonType::Integer, kNobody},

@@ -28,6 +28,7 @@
 
 #include "watergen/runtime/binding_layout.h"
 #include "watergen/runtime/build_pass.h"
+#include "watergen/runtime/host_values.h"
 #include "watergen/runtime/reflection.h"
 
 namespace watergen {
@@ -41,6 +42,7 @@ struct BlockParameter {
     uint32_t offset = 0;     // where the generator placed it (valid for std140 and cbuffer)
     std::vector<double> default_value;
     double min = 0, max = 0;
+    HostValue host{}; // how the host makes the value the shader reads (host_values.h)
 };
 
 struct TextureSlot {

@@ -27,6 +27,14 @@
 //  - removed without a value (its term is gone from this variant): any value is a no-op that
 //    succeeds and says so in Write::note.
 // Unknown names and wrong types are errors naming both the parameter and the types.
+//
+// Time and distance (host_values.h): values are kept in double as set, and pack() makes what
+// the shader reads from them. Set the time (seconds, up to a year) and every position in world
+// coordinates, in double, or relative to a floating origin the engine names with
+// set_floating_origin(); the writer moves the eye, the windows and the matrices into the frame
+// around the eye and computes the wave phases and tile offsets in double. A computed member
+// (a phase offset) cannot be set. A companion pass (caustics) is packed in its grid's frame:
+// set_frame({PassGrid::centre, the floating origin}).
 #pragma once
 
 #include <cstdint>
@@ -59,9 +67,22 @@ class UniformWriter {
     Write set(const std::string& name, std::initializer_list<float> values) {
         return set(name, std::span(values.begin(), values.size()));
     }
+    // The same in double: what the host rules compute from (time, world positions).
+    Write set(const std::string& name, std::span<const double> values);
+    Write set_time(double seconds) { return set("time", std::span(&seconds, 1)); }
+    // Positions set are relative to the world point (x, z) (an engine's floating origin); the
+    // waves and tiles stay where they are in the world as the origin moves. Default (0, 0).
+    void set_floating_origin(double x, double z) { origin_ = {x, z}; }
+    // The frame pack() uses: given by set_frame, else around the eye_position set (in the
+    // floating origin's coordinates).
+    Frame frame() const;
+    void set_frame(const Frame& frame) { frame_ = frame; }
 
     bool has(const std::string& name) const { return values_.count(name) != 0; }
-    const std::vector<float>* value(const std::string& name) const;
+    // Whether pack() computes the member from others (a host rule's): set() refuses it.
+    bool computed(const std::string& name) const;
+    // The value as set (rounded to float), not what pack() writes for a host rule.
+    std::optional<std::vector<float>> value(const std::string& name) const;
 
     // The block's bytes laid out as `reflection` (a stage's reflection of one language path)
     // says, its uniform buffer or else its push-constant block of the variant's block name;
@@ -73,10 +94,15 @@ class UniformWriter {
   private:
     struct Slot {
         const BlockParameter* parameter;
-        std::vector<float> values;
+        std::vector<double> values;
     };
     const BuildVariant& variant_;
     std::map<std::string, Slot> values_;
+    // Inputs of host rules that are not block members (a specialization constant a rule
+    // reads, e.g. scene_camera_relative), as set.
+    std::map<std::string, std::vector<double>> host_inputs_;
+    FrameCentre origin_{};
+    std::optional<Frame> frame_;
 };
 
 // Components of a GLSL scalar / vector type name ("vec3" -> 3); 0 for anything else.

@@ -24,10 +24,12 @@
 //    margin: it stays put and meets level k - 1's fully morphed edge vertex for vertex.
 // n >= 16 keeps morph_start < morph_end.
 //
-// Precision: the vertices are floats (the vertex attribute is a vec2). With a dyadic spacing
-// (0.5, 0.25 m, ...) every grid point and every morphed point is exact within 2^23 spacings
-// of the origin; another spacing meets its neighbour level only to float rounding. An engine
-// far from the origin keeps its world origin near the camera.
+// Precision: the vertices are floats (the vertex attribute is a vec2) in the shader's frame:
+// relative to the frame centre (WaterGrid::origin, frame_centre_of(eye): host_values.h), which
+// the uniform writer moves the eye and every other position into too. With a dyadic spacing
+// (0.5, 0.25 m, ...) every grid point and every morphed point is then exact, however far the
+// eye is from the world origin (within 2^50 spacings); another spacing meets its neighbour
+// level only to float rounding.
 #pragma once
 
 #include <array>
@@ -35,6 +37,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "watergen/runtime/host_values.h"
 
 namespace watergen {
 
@@ -51,12 +55,15 @@ struct WaterGridDesc {
 enum class GridTopology { Triangles, Patches };
 
 struct WaterGrid {
-    // Interleaved per vertex: grid_xz (2 floats: world x, z of the undisplaced point, m) then
-    // grid_lod (3 floats: to_coarse x, to_coarse z, spacing h of the vertex's level, m).
+    // Interleaved per vertex: grid_xz (2 floats: x, z of the undisplaced point less `origin`, m)
+    // then grid_lod (3 floats: to_coarse x, to_coarse z, spacing h of the vertex's level, m).
     // to_coarse is -h on an axis where the vertex is odd relative to its level's centre (the
     // next even vertex is on the coarser level's grid line), else 0. Vertices are shared
     // within a level, not across levels; levels coarsest first, each row by row (z, then x).
     std::vector<float> vertices;
+    // The frame centre the vertices' grid_xz are relative to (world x, z, m): the eye's
+    // frame_centre_of, the one the uniform writer uses for the eye of the same frame.
+    FrameCentre origin;
     static constexpr uint32_t kFloatsPerVertex = 5; // attribute sizes {2, 3}
     // Triangles (3 per) or quad patches (4 per). Draw order, for a renderer without a depth
     // buffer where later triangles overwrite earlier ones: coarsest level first, within a level
@@ -99,7 +106,8 @@ std::vector<std::array<int64_t, 2>> water_grid_snap(const WaterGridDesc& desc, d
 uint64_t water_grid_vertex_count(const WaterGridDesc& desc);
 
 // The morphed grid point (x, z) of `vertex` as the vertex stage computes it, in double from the
-// grid's floats: grid_xz + t to_coarse with t as above. Throws std::out_of_range for a vertex
+// grid's floats: grid_xz + t to_coarse with t as above, in world coordinates (origin added;
+// the eye too is in world coordinates). Throws std::out_of_range for a vertex
 // past the grid's.
 std::array<double, 2> water_grid_morphed(const WaterGrid& grid, uint32_t vertex, double eye_x,
                                          double eye_z);

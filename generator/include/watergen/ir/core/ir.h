@@ -13,6 +13,7 @@
 
 #include "watergen/ir/core/diagnostic.h"
 #include "watergen/ir/core/source_location.h"
+#include "watergen/runtime/host_values.h"
 
 namespace watergen {
 
@@ -182,6 +183,10 @@ struct Parameter {
     // A switch: 0 or 1 only (a convention the shader reads as > 0.5); 0.5 is refused, not
     // drawn as 0.
     bool flag = false;
+    // How the host makes the value the shader reads from the values set (runtime/host_values.h):
+    // a world position moved into the shader's frame, or a phase or tile offset computed in
+    // double from the time and the frame centre. Given: the value as set.
+    HostValue host{};
 };
 
 // Numbers in a parameter's value: its type's components, times its elements for an array.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "watergen/ir/core/ir.h"
+#include "watergen/runtime/host_values.h"
 
 namespace watergen {
 
@@ -78,6 +79,9 @@ struct FloatPerturbation {
 
 struct EvalInputs {
     std::map<std::string, std::vector<double>> uniforms; // overrides of parameter defaults
+    // The frame the host rules move positions into (ir/core/shader_values.h); by default the
+    // eye's. A companion pass takes its water pass' centre.
+    std::optional<FrameCentre> frame_centre;
     std::map<std::string, TextureView> textures;
     Filter filter = Filter::Linear;
     // Per-lane fragment inputs: name -> lanes x components, lane-major.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "watergen/ir/core/ir.h"
+#include "watergen/ir/core/shader_values.h"
 
 namespace watergen {
 
@@ -37,9 +38,11 @@ UniformLayout layout_uniforms(const std::vector<Parameter>& parameters, Diagnost
 
 // Writes parameter values (double -> float) at their offsets, array elements kArrayStride
 // apart: the value in `overrides` when present (and of the right size, every element of an
-// array), else the parameter's default.
-std::vector<uint8_t>
-pack_uniforms(const UniformLayout& layout, const std::vector<Parameter>& parameters,
-              const std::map<std::string, std::vector<double>>& overrides = {});
+// array), else the parameter's default, through its host rule (shader_values.h) in the frame
+// of `centre` (by default the eye's).
+std::vector<uint8_t> pack_uniforms(const UniformLayout& layout,
+                                   const std::vector<Parameter>& parameters,
+                                   const std::map<std::string, std::vector<double>>& overrides = {},
+                                   const std::optional<FrameCentre>& centre = std::nullopt);
 
 } // namespace watergen

@@ -137,6 +137,7 @@ Expr tile_coordinate(Expr uv, Expr texels);
 Parameter heightmap_amplitude(); // H, m: the height map's [-1, 1] scaled
 Parameter gerstner_steepness();  // Q of GPU Gems' Gerstner waves, 0 (sines) to 1 (sharp crests)
 Parameter heightmap_scale();     // 1/m: tiles a metre, the map's uv = xz * scale
+Parameter heightmap_scroll();    // 1/s: the uv the map scrolls per second
 
 // ---- where the view ray meets the water (post-process pass) ----
 struct WaveHit {
