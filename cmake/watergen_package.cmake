@@ -26,7 +26,8 @@ endfunction()
 
 watergen_install_libraries(COMPONENT runtime EXPORT watergenTargets FOLDER runtime
   TARGETS watergen_runtime watergen_reflection
-  HEADERS reflection.h build_pass.h shader_build.h uniform_writer.h variant_pipeline.h water_grid.h
+  HEADERS reflection.h host_values.h build_pass.h shader_build.h uniform_writer.h
+          variant_pipeline.h water_grid.h
           binding_layout.h
           pass_pipeline.h spirv_check.h manifest_schema.h)
 install(TARGETS watergen EXPORT watergenTargets

@@ -47,6 +47,27 @@ std::string base_type(const std::string& type) {
     return type.substr(0, type.find('['));
 }
 
+// Setting a parameter the scene folded: the folded value again is a no-op that says so,
+// another value an error naming the value, the scene and the variant.
+Write folded_write(const BuildVariant& v, const std::string& name,
+                   const std::vector<double>& folded, std::span<const double> values) {
+    Write w;
+    const bool same = folded.size() == values.size() &&
+                      std::equal(values.begin(), values.end(), folded.begin(),
+                                 [](double a, double b) { return float(a) == float(b); });
+    if (same) {
+        w.ok = true;
+        w.note = "parameter '" + name + "' was folded to " + numbers(folded) + " by scene " +
+                 v.scene + "; the same value is a no-op";
+    } else {
+        w.error = "parameter '" + name + "' was folded to " + numbers(folded) + " by scene " +
+                  v.scene + " (" + variant_name(v) + "); the shader cannot take " +
+                  numbers(std::vector<double>(values.begin(), values.end())) +
+                  ": change the scene's facts or leave it unset";
+    }
+    return w;
+}
+
 } // namespace
 
 uint32_t type_components(const std::string& type) {
@@ -110,23 +131,8 @@ Write UniformWriter::set(const std::string& name, std::span<const double> values
             return w;
         }
         if (const auto f = variant_.folded_parameters.find(name);
-            f != variant_.folded_parameters.end()) {
-            const bool same = f->second.size() == values.size() &&
-                              std::equal(values.begin(), values.end(), f->second.begin(),
-                                         [](double a, double b) { return float(a) == float(b); });
-            if (same) {
-                w.ok = true;
-                w.note = "parameter '" + name + "' was folded to " + numbers(f->second) +
-                         " by scene " + variant_.scene + "; the same value is a no-op";
-            } else {
-                w.error = "parameter '" + name + "' was folded to " + numbers(f->second) +
-                          " by scene " + variant_.scene + " (" + variant_name(variant_) +
-                          "); the shader cannot take " +
-                          numbers(std::vector<double>(values.begin(), values.end())) +
-                          ": change the scene's facts or leave it unset";
-            }
-            return w;
-        }
+            f != variant_.folded_parameters.end())
+            return folded_write(variant_, name, f->second, values);
         const auto& removed = variant_.removed_parameters;
         if (std::find(removed.begin(), removed.end(), name) != removed.end()) {
             w.ok = true;
@@ -143,6 +149,10 @@ Write UniformWriter::set(const std::string& name, std::span<const double> values
     }
     Slot& slot = it->second;
     const BlockParameter& p = *slot.parameter;
+    // A fixed value a host rule still reads (the scene fixed time = 0): the member stays, the
+    // value does not change.
+    if (const auto f = variant_.folded_parameters.find(name); f != variant_.folded_parameters.end())
+        return folded_write(variant_, name, f->second, values);
     if (host_rule_computed(p.host.rule)) {
         std::string from;
         for (const std::string& in : p.host.inputs)

@@ -62,7 +62,8 @@ bool is_house(const std::string& name) {
 // Generic first. The runtime: the engine library (runtime/src) includes only itself; the
 // headless device (runtime/headless) the runtime and itself; the test runner (runtime/runner)
 // those and itself; nothing in runtime/ includes the generator. runtime/reflection.h is the
-// shader interface types every layer shares; runtime/manifest_schema.h the keys of manifest.json,
+// shader interface types every layer shares, runtime/host_values.h the values every packer
+// computes on the host; runtime/manifest_schema.h the keys of manifest.json,
 // which the pipeline's rooms write, merge and read back as the runtime reads them. The IR's rooms
 // use the rooms before them; the layers above the IR may use all of it. The pipeline's rooms use
 // the layers above the pipeline and the rooms before them; the evaluation rooms
@@ -93,14 +94,14 @@ const std::vector<Layer>& layers() {
                   {"runtime/runner", "runtime/include/watergen/runner"},
                   {"runtime", "headless", "runner"}},
         };
-        rooms(v, "ir", {"runtime/reflection"});
-        v.push_back(gen("water", {"ir", "runtime/reflection"}));
-        v.push_back(gen("caustics", {"ir", "water", "runtime/reflection"}));
-        v.push_back(gen("plan", {"ir", "water", "runtime/reflection"}));
-        v.push_back(gen("toolchain", {"ir", "runtime/reflection"}));
+        rooms(v, "ir", {"runtime/reflection", "runtime/host_values"});
+        v.push_back(gen("water", {"ir", "runtime/reflection", "runtime/host_values"}));
+        v.push_back(gen("caustics", {"ir", "water", "runtime/reflection", "runtime/host_values"}));
+        v.push_back(gen("plan", {"ir", "water", "runtime/reflection", "runtime/host_values"}));
+        v.push_back(gen("toolchain", {"ir", "runtime/reflection", "runtime/host_values"}));
         rooms(v, "pipeline",
               {"ir", "water", "caustics", "plan", "toolchain", "runtime/reflection",
-               "runtime/manifest_schema"});
+               "runtime/host_values", "runtime/manifest_schema"});
         rooms(v, "eval",
               {"ir", "water", "caustics", "plan", "toolchain", "pipeline", "runtime", "headless",
                "runner"});

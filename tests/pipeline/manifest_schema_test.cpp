@@ -231,7 +231,8 @@ OJson variant_reading(const BuildVariant& v) {
     OJson parameters = OJson::array(), textures = OJson::array(), passes = OJson::object();
     for (const BlockParameter& p : v.parameters)
         parameters.push_back(
-            OJson::array({p.name, p.type, p.array_size, p.offset, p.default_value, p.min, p.max}));
+            OJson::array({p.name, p.type, p.array_size, p.offset, p.default_value, p.min, p.max,
+                          host_rule_name(p.host.rule), p.host.inputs}));
     for (const TextureSlot& t : v.textures)
         textures.push_back(OJson::array({t.name, t.binding, t.type}));
     OJson specialization = OJson::object();

@@ -5,6 +5,7 @@
 // where the generator placed the parameter (std140 and cbuffer agree).
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstring>
 
 #include "engine_builds.h"
@@ -31,6 +32,7 @@ void check_variant(const ShaderBuild& b, const BuildVariant& v, Counts& n) {
     UniformWriter w(v);
     for (size_t p = 0; p < v.parameters.size(); ++p) {
         const BlockParameter& param = v.parameters[p];
+        if (w.computed(param.name)) continue; // pack() computes it (host_values.h)
         std::vector<float> values(type_components(param.type) *
                                   std::max<uint32_t>(param.array_size, 1));
         for (size_t i = 0; i < values.size(); ++i)
@@ -73,7 +75,12 @@ void check_variant(const ShaderBuild& b, const BuildVariant& v, Counts& n) {
                     REQUIRE(at + 4 <= bytes->size());
                     float f = 0;
                     std::memcpy(&f, bytes->data() + at, 4);
-                    CHECK(f == marker(param, p, size_t(e) * comps + c));
+                    // A host rule's member is what the rule makes of the markers
+                    // (host_values_test holds the rules); the others are the markers.
+                    if (param.host.rule == HostRule::Given)
+                        CHECK(f == marker(param, p, size_t(e) * comps + c));
+                    else
+                        CHECK(std::isfinite(f));
                     for (size_t k = 0; k < 4; ++k)
                         covered[at + k] = true;
                     ++n.floats;

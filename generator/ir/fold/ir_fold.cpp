@@ -128,6 +128,10 @@ void Folder::declare_inputs() {
             // constants: a fixed array stays a parameter whose default is the fixed value. So
             // does a value a host rule reads or makes.
             if (!p.array_size && !host_inputs.count(p.name)) continue;
+            // The host computes from the fixed value: the parameter is folded all the same
+            // (a writer refuses another value, a companion pass takes this one).
+            if (host_inputs.count(p.name) && !p.array_size)
+                report_.folded_parameters[p.name] = it->second.value;
             if (it->second.value.size() == p.default_value.size())
                 p.default_value = it->second.value;
         }
