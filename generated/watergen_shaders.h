@@ -55,9 +55,9 @@ struct WaterParams0 {
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_shore_fade_depth = 1.0f;
@@ -67,10 +67,8 @@ struct WaterParams0 {
     float reflection_fov_extension = 1.5f;
     Vec3 sky_color = {0.55f, 0.7f, 0.9f};
     float ior_air = 1.0f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float ior_water = 1.33333f;
-    float pad0[1]{};
+    float pad0[3]{};
 };
 static_assert(offsetof(WaterParams0, reflection_view_proj_c0) == 0);
 static_assert(offsetof(WaterParams0, reflection_view_proj_c1) == 16);
@@ -86,8 +84,7 @@ static_assert(offsetof(WaterParams0, incident_light) == 112);
 static_assert(offsetof(WaterParams0, reflection_fov_extension) == 124);
 static_assert(offsetof(WaterParams0, sky_color) == 128);
 static_assert(offsetof(WaterParams0, ior_air) == 140);
-static_assert(offsetof(WaterParams0, frame_centre) == 144);
-static_assert(offsetof(WaterParams0, ior_water) == 152);
+static_assert(offsetof(WaterParams0, ior_water) == 144);
 static_assert(sizeof(WaterParams0) == 160);
 inline constexpr std::array<SpecializationConstant, 0> kConstants0{{}};
 
@@ -97,9 +94,9 @@ struct WaterParams1 {
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_shore_fade_depth = 1.0f;
@@ -109,10 +106,9 @@ struct WaterParams1 {
     float reflection_fov_extension = 1.5f;
     Vec3 sky_color = {0.55f, 0.7f, 0.9f};
     float ior_air = 1.0f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams1, reflection_view_proj_c0) == 0);
 static_assert(offsetof(WaterParams1, reflection_view_proj_c1) == 16);
@@ -128,25 +124,24 @@ static_assert(offsetof(WaterParams1, incident_light) == 112);
 static_assert(offsetof(WaterParams1, reflection_fov_extension) == 124);
 static_assert(offsetof(WaterParams1, sky_color) == 128);
 static_assert(offsetof(WaterParams1, ior_air) == 140);
-static_assert(offsetof(WaterParams1, frame_centre) == 144);
-static_assert(offsetof(WaterParams1, ior_water) == 152);
-static_assert(offsetof(WaterParams1, shore_hardness) == 156);
+static_assert(offsetof(WaterParams1, ior_water) == 144);
+static_assert(offsetof(WaterParams1, shore_hardness) == 148);
 static_assert(sizeof(WaterParams1) == 160);
 inline constexpr std::array<SpecializationConstant, 0> kConstants1{{}};
 
 // Interface 2: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none).
 struct WaterParams2 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -156,8 +151,6 @@ struct WaterParams2 {
     float gerstner_amplitude_gain = 0.82f;
     Vec3 sky_color = {0.55f, 0.7f, 0.9f};
     float gerstner_frequency_gain = 1.18f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float gerstner_steepness = 0.5f;
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
@@ -165,7 +158,7 @@ struct WaterParams2 {
     float reflection_fov_extension = 1.5f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams2, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams2, gerstner_wave_speeds) == 128);
@@ -184,30 +177,29 @@ static_assert(offsetof(WaterParams2, incident_light) == 496);
 static_assert(offsetof(WaterParams2, gerstner_amplitude_gain) == 508);
 static_assert(offsetof(WaterParams2, sky_color) == 512);
 static_assert(offsetof(WaterParams2, gerstner_frequency_gain) == 524);
-static_assert(offsetof(WaterParams2, frame_centre) == 528);
-static_assert(offsetof(WaterParams2, gerstner_steepness) == 536);
-static_assert(offsetof(WaterParams2, refraction_distortion) == 540);
-static_assert(offsetof(WaterParams2, refraction_shore_fade_depth) == 544);
-static_assert(offsetof(WaterParams2, scatter_coefficient) == 548);
-static_assert(offsetof(WaterParams2, reflection_fov_extension) == 552);
-static_assert(offsetof(WaterParams2, ior_air) == 556);
-static_assert(offsetof(WaterParams2, ior_water) == 560);
-static_assert(sizeof(WaterParams2) == 576);
+static_assert(offsetof(WaterParams2, gerstner_steepness) == 528);
+static_assert(offsetof(WaterParams2, refraction_distortion) == 532);
+static_assert(offsetof(WaterParams2, refraction_shore_fade_depth) == 536);
+static_assert(offsetof(WaterParams2, scatter_coefficient) == 540);
+static_assert(offsetof(WaterParams2, reflection_fov_extension) == 544);
+static_assert(offsetof(WaterParams2, ior_air) == 548);
+static_assert(offsetof(WaterParams2, ior_water) == 552);
+static_assert(sizeof(WaterParams2) == 560);
 inline constexpr std::array<SpecializationConstant, 1> kConstants2{{{"gerstner_wave_count", 0}}};
 
 // Interface 3: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none).
 struct WaterParams3 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -217,8 +209,6 @@ struct WaterParams3 {
     float gerstner_amplitude_gain = 0.82f;
     Vec3 sky_color = {0.55f, 0.7f, 0.9f};
     float gerstner_frequency_gain = 1.18f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float gerstner_steepness = 0.5f;
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
@@ -227,7 +217,6 @@ struct WaterParams3 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
-    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams3, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams3, gerstner_wave_speeds) == 128);
@@ -246,16 +235,15 @@ static_assert(offsetof(WaterParams3, incident_light) == 496);
 static_assert(offsetof(WaterParams3, gerstner_amplitude_gain) == 508);
 static_assert(offsetof(WaterParams3, sky_color) == 512);
 static_assert(offsetof(WaterParams3, gerstner_frequency_gain) == 524);
-static_assert(offsetof(WaterParams3, frame_centre) == 528);
-static_assert(offsetof(WaterParams3, gerstner_steepness) == 536);
-static_assert(offsetof(WaterParams3, refraction_distortion) == 540);
-static_assert(offsetof(WaterParams3, refraction_shore_fade_depth) == 544);
-static_assert(offsetof(WaterParams3, scatter_coefficient) == 548);
-static_assert(offsetof(WaterParams3, reflection_fov_extension) == 552);
-static_assert(offsetof(WaterParams3, ior_air) == 556);
-static_assert(offsetof(WaterParams3, ior_water) == 560);
-static_assert(offsetof(WaterParams3, shore_hardness) == 564);
-static_assert(sizeof(WaterParams3) == 576);
+static_assert(offsetof(WaterParams3, gerstner_steepness) == 528);
+static_assert(offsetof(WaterParams3, refraction_distortion) == 532);
+static_assert(offsetof(WaterParams3, refraction_shore_fade_depth) == 536);
+static_assert(offsetof(WaterParams3, scatter_coefficient) == 540);
+static_assert(offsetof(WaterParams3, reflection_fov_extension) == 544);
+static_assert(offsetof(WaterParams3, ior_air) == 548);
+static_assert(offsetof(WaterParams3, ior_water) == 552);
+static_assert(offsetof(WaterParams3, shore_hardness) == 556);
+static_assert(sizeof(WaterParams3) == 560);
 inline constexpr std::array<SpecializationConstant, 1> kConstants3{{{"gerstner_wave_count", 0}}};
 
 // Interface 4: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=shore,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none).
@@ -264,9 +252,9 @@ struct WaterParams4 {
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_distortion = 0.03f;
@@ -280,13 +268,11 @@ struct WaterParams4 {
     float ior_air = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float ior_water = 1.33333f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float foam_pattern_scale = 0.1f;
-    float pad0[1]{};
+    float pad0[3]{};
 };
 static_assert(offsetof(WaterParams4, reflection_view_proj_c0) == 0);
 static_assert(offsetof(WaterParams4, reflection_view_proj_c1) == 16);
@@ -306,10 +292,9 @@ static_assert(offsetof(WaterParams4, foam_existence) == 144);
 static_assert(offsetof(WaterParams4, ior_air) == 156);
 static_assert(offsetof(WaterParams4, foam_color) == 160);
 static_assert(offsetof(WaterParams4, ior_water) == 172);
-static_assert(offsetof(WaterParams4, frame_centre) == 176);
-static_assert(offsetof(WaterParams4, foam_pattern_drift) == 184);
-static_assert(offsetof(WaterParams4, foam_pattern_offset) == 192);
-static_assert(offsetof(WaterParams4, foam_pattern_scale) == 200);
+static_assert(offsetof(WaterParams4, foam_pattern_drift) == 176);
+static_assert(offsetof(WaterParams4, foam_pattern_offset) == 184);
+static_assert(offsetof(WaterParams4, foam_pattern_scale) == 192);
 static_assert(sizeof(WaterParams4) == 208);
 inline constexpr std::array<SpecializationConstant, 0> kConstants4{{}};
 
@@ -319,9 +304,9 @@ struct WaterParams5 {
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_distortion = 0.03f;
@@ -335,13 +320,12 @@ struct WaterParams5 {
     float ior_air = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float ior_water = 1.33333f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams5, reflection_view_proj_c0) == 0);
 static_assert(offsetof(WaterParams5, reflection_view_proj_c1) == 16);
@@ -361,27 +345,26 @@ static_assert(offsetof(WaterParams5, foam_existence) == 144);
 static_assert(offsetof(WaterParams5, ior_air) == 156);
 static_assert(offsetof(WaterParams5, foam_color) == 160);
 static_assert(offsetof(WaterParams5, ior_water) == 172);
-static_assert(offsetof(WaterParams5, frame_centre) == 176);
-static_assert(offsetof(WaterParams5, foam_pattern_drift) == 184);
-static_assert(offsetof(WaterParams5, foam_pattern_offset) == 192);
-static_assert(offsetof(WaterParams5, foam_pattern_scale) == 200);
-static_assert(offsetof(WaterParams5, shore_hardness) == 204);
+static_assert(offsetof(WaterParams5, foam_pattern_drift) == 176);
+static_assert(offsetof(WaterParams5, foam_pattern_offset) == 184);
+static_assert(offsetof(WaterParams5, foam_pattern_scale) == 192);
+static_assert(offsetof(WaterParams5, shore_hardness) == 196);
 static_assert(sizeof(WaterParams5) == 208);
 inline constexpr std::array<SpecializationConstant, 0> kConstants5{{}};
 
 // Interface 6: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=shore,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none).
 struct WaterParams6 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -395,17 +378,16 @@ struct WaterParams6 {
     float gerstner_steepness = 0.5f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float refraction_distortion = 0.03f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_fov_extension = 1.5f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams6, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams6, gerstner_wave_speeds) == 128);
@@ -428,31 +410,30 @@ static_assert(offsetof(WaterParams6, foam_existence) == 528);
 static_assert(offsetof(WaterParams6, gerstner_steepness) == 540);
 static_assert(offsetof(WaterParams6, foam_color) == 544);
 static_assert(offsetof(WaterParams6, refraction_distortion) == 556);
-static_assert(offsetof(WaterParams6, frame_centre) == 560);
-static_assert(offsetof(WaterParams6, foam_pattern_drift) == 568);
-static_assert(offsetof(WaterParams6, foam_pattern_offset) == 576);
-static_assert(offsetof(WaterParams6, refraction_shore_fade_depth) == 584);
-static_assert(offsetof(WaterParams6, scatter_coefficient) == 588);
-static_assert(offsetof(WaterParams6, reflection_fov_extension) == 592);
-static_assert(offsetof(WaterParams6, ior_air) == 596);
-static_assert(offsetof(WaterParams6, ior_water) == 600);
-static_assert(offsetof(WaterParams6, foam_pattern_scale) == 604);
+static_assert(offsetof(WaterParams6, foam_pattern_drift) == 560);
+static_assert(offsetof(WaterParams6, foam_pattern_offset) == 568);
+static_assert(offsetof(WaterParams6, refraction_shore_fade_depth) == 576);
+static_assert(offsetof(WaterParams6, scatter_coefficient) == 580);
+static_assert(offsetof(WaterParams6, reflection_fov_extension) == 584);
+static_assert(offsetof(WaterParams6, ior_air) == 588);
+static_assert(offsetof(WaterParams6, ior_water) == 592);
+static_assert(offsetof(WaterParams6, foam_pattern_scale) == 596);
 static_assert(sizeof(WaterParams6) == 608);
 inline constexpr std::array<SpecializationConstant, 1> kConstants6{{{"gerstner_wave_count", 0}}};
 
 // Interface 7: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=shore,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none).
 struct WaterParams7 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, 0.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -466,11 +447,9 @@ struct WaterParams7 {
     float gerstner_steepness = 0.5f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float refraction_distortion = 0.03f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_fov_extension = 1.5f;
@@ -478,7 +457,7 @@ struct WaterParams7 {
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams7, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams7, gerstner_wave_speeds) == 128);
@@ -501,23 +480,22 @@ static_assert(offsetof(WaterParams7, foam_existence) == 528);
 static_assert(offsetof(WaterParams7, gerstner_steepness) == 540);
 static_assert(offsetof(WaterParams7, foam_color) == 544);
 static_assert(offsetof(WaterParams7, refraction_distortion) == 556);
-static_assert(offsetof(WaterParams7, frame_centre) == 560);
-static_assert(offsetof(WaterParams7, foam_pattern_drift) == 568);
-static_assert(offsetof(WaterParams7, foam_pattern_offset) == 576);
-static_assert(offsetof(WaterParams7, refraction_shore_fade_depth) == 584);
-static_assert(offsetof(WaterParams7, scatter_coefficient) == 588);
-static_assert(offsetof(WaterParams7, reflection_fov_extension) == 592);
-static_assert(offsetof(WaterParams7, ior_air) == 596);
-static_assert(offsetof(WaterParams7, ior_water) == 600);
-static_assert(offsetof(WaterParams7, foam_pattern_scale) == 604);
-static_assert(offsetof(WaterParams7, shore_hardness) == 608);
-static_assert(sizeof(WaterParams7) == 624);
+static_assert(offsetof(WaterParams7, foam_pattern_drift) == 560);
+static_assert(offsetof(WaterParams7, foam_pattern_offset) == 568);
+static_assert(offsetof(WaterParams7, refraction_shore_fade_depth) == 576);
+static_assert(offsetof(WaterParams7, scatter_coefficient) == 580);
+static_assert(offsetof(WaterParams7, reflection_fov_extension) == 584);
+static_assert(offsetof(WaterParams7, ior_air) == 588);
+static_assert(offsetof(WaterParams7, ior_water) == 592);
+static_assert(offsetof(WaterParams7, foam_pattern_scale) == 596);
+static_assert(offsetof(WaterParams7, shore_hardness) == 600);
+static_assert(sizeof(WaterParams7) == 608);
 inline constexpr std::array<SpecializationConstant, 1> kConstants7{{{"gerstner_wave_count", 0}}};
 
 // Interface 8: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams8 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float refraction_distortion = 0.03f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float refraction_shore_fade_depth = 1.0f;
@@ -531,9 +509,6 @@ struct WaterParams8 {
     float ior_water = 1.33333f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float specular_exponent = 256.0f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
-    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams8, eye_position) == 0);
 static_assert(offsetof(WaterParams8, refraction_distortion) == 12);
@@ -549,14 +524,13 @@ static_assert(offsetof(WaterParams8, incident_light) == 80);
 static_assert(offsetof(WaterParams8, ior_water) == 92);
 static_assert(offsetof(WaterParams8, reflection_lower_tint) == 96);
 static_assert(offsetof(WaterParams8, specular_exponent) == 108);
-static_assert(offsetof(WaterParams8, frame_centre) == 112);
-static_assert(sizeof(WaterParams8) == 128);
+static_assert(sizeof(WaterParams8) == 112);
 inline constexpr std::array<SpecializationConstant, 0> kConstants8{{}};
 
 // Interface 9: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams9 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float refraction_distortion = 0.03f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float refraction_shore_fade_depth = 1.0f;
@@ -570,10 +544,8 @@ struct WaterParams9 {
     float ior_water = 1.33333f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float specular_exponent = 256.0f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float shore_hardness = 1.0f;
-    float pad0[1]{};
+    float pad0[3]{};
 };
 static_assert(offsetof(WaterParams9, eye_position) == 0);
 static_assert(offsetof(WaterParams9, refraction_distortion) == 12);
@@ -589,26 +561,25 @@ static_assert(offsetof(WaterParams9, incident_light) == 80);
 static_assert(offsetof(WaterParams9, ior_water) == 92);
 static_assert(offsetof(WaterParams9, reflection_lower_tint) == 96);
 static_assert(offsetof(WaterParams9, specular_exponent) == 108);
-static_assert(offsetof(WaterParams9, frame_centre) == 112);
-static_assert(offsetof(WaterParams9, shore_hardness) == 120);
+static_assert(offsetof(WaterParams9, shore_hardness) == 112);
 static_assert(sizeof(WaterParams9) == 128);
 inline constexpr std::array<SpecializationConstant, 0> kConstants9{{}};
 
 // Interface 10: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams10 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
     float gerstner_frequency = 0.7f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
+    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
     float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency_gain = 1.18f;
@@ -618,14 +589,13 @@ struct WaterParams10 {
     float refraction_distortion = 0.03f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float refraction_shore_fade_depth = 1.0f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float caustics_strength = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams10, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams10, gerstner_wave_speeds) == 128);
@@ -646,24 +616,23 @@ static_assert(offsetof(WaterParams10, incident_light) == 480);
 static_assert(offsetof(WaterParams10, refraction_distortion) == 492);
 static_assert(offsetof(WaterParams10, reflection_lower_tint) == 496);
 static_assert(offsetof(WaterParams10, refraction_shore_fade_depth) == 508);
-static_assert(offsetof(WaterParams10, frame_centre) == 512);
-static_assert(offsetof(WaterParams10, caustics_strength) == 520);
-static_assert(offsetof(WaterParams10, scatter_coefficient) == 524);
-static_assert(offsetof(WaterParams10, reflection_horizon_band) == 528);
-static_assert(offsetof(WaterParams10, ior_air) == 532);
-static_assert(offsetof(WaterParams10, ior_water) == 536);
-static_assert(offsetof(WaterParams10, specular_exponent) == 540);
+static_assert(offsetof(WaterParams10, caustics_strength) == 512);
+static_assert(offsetof(WaterParams10, scatter_coefficient) == 516);
+static_assert(offsetof(WaterParams10, reflection_horizon_band) == 520);
+static_assert(offsetof(WaterParams10, ior_air) == 524);
+static_assert(offsetof(WaterParams10, ior_water) == 528);
+static_assert(offsetof(WaterParams10, specular_exponent) == 532);
 static_assert(sizeof(WaterParams10) == 544);
 inline constexpr std::array<SpecializationConstant, 1> kConstants10{{{"gerstner_wave_count", 0}}};
 
 // Interface 11: 5 variants (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams11 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
@@ -677,14 +646,13 @@ struct WaterParams11 {
     float gerstner_steepness = 0.5f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float refraction_distortion = 0.03f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams11, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams11, gerstner_wave_speeds) == 128);
@@ -703,31 +671,30 @@ static_assert(offsetof(WaterParams11, incident_light) == 464);
 static_assert(offsetof(WaterParams11, gerstner_steepness) == 476);
 static_assert(offsetof(WaterParams11, reflection_lower_tint) == 480);
 static_assert(offsetof(WaterParams11, refraction_distortion) == 492);
-static_assert(offsetof(WaterParams11, frame_centre) == 496);
-static_assert(offsetof(WaterParams11, refraction_shore_fade_depth) == 504);
-static_assert(offsetof(WaterParams11, scatter_coefficient) == 508);
-static_assert(offsetof(WaterParams11, reflection_horizon_band) == 512);
-static_assert(offsetof(WaterParams11, ior_air) == 516);
-static_assert(offsetof(WaterParams11, ior_water) == 520);
-static_assert(offsetof(WaterParams11, specular_exponent) == 524);
+static_assert(offsetof(WaterParams11, refraction_shore_fade_depth) == 496);
+static_assert(offsetof(WaterParams11, scatter_coefficient) == 500);
+static_assert(offsetof(WaterParams11, reflection_horizon_band) == 504);
+static_assert(offsetof(WaterParams11, ior_air) == 508);
+static_assert(offsetof(WaterParams11, ior_water) == 512);
+static_assert(offsetof(WaterParams11, specular_exponent) == 516);
 static_assert(sizeof(WaterParams11) == 528);
 inline constexpr std::array<SpecializationConstant, 1> kConstants11{{{"gerstner_wave_count", 0}}};
 
 // Interface 12: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams12 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
     float gerstner_frequency = 0.7f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
+    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
     float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency_gain = 1.18f;
@@ -737,8 +704,6 @@ struct WaterParams12 {
     float refraction_distortion = 0.03f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float refraction_shore_fade_depth = 1.0f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float caustics_strength = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -746,7 +711,7 @@ struct WaterParams12 {
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float shore_hardness = 1.0f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams12, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams12, gerstner_wave_speeds) == 128);
@@ -767,25 +732,24 @@ static_assert(offsetof(WaterParams12, incident_light) == 480);
 static_assert(offsetof(WaterParams12, refraction_distortion) == 492);
 static_assert(offsetof(WaterParams12, reflection_lower_tint) == 496);
 static_assert(offsetof(WaterParams12, refraction_shore_fade_depth) == 508);
-static_assert(offsetof(WaterParams12, frame_centre) == 512);
-static_assert(offsetof(WaterParams12, caustics_strength) == 520);
-static_assert(offsetof(WaterParams12, scatter_coefficient) == 524);
-static_assert(offsetof(WaterParams12, reflection_horizon_band) == 528);
-static_assert(offsetof(WaterParams12, ior_air) == 532);
-static_assert(offsetof(WaterParams12, ior_water) == 536);
-static_assert(offsetof(WaterParams12, specular_exponent) == 540);
-static_assert(offsetof(WaterParams12, shore_hardness) == 544);
-static_assert(sizeof(WaterParams12) == 560);
+static_assert(offsetof(WaterParams12, caustics_strength) == 512);
+static_assert(offsetof(WaterParams12, scatter_coefficient) == 516);
+static_assert(offsetof(WaterParams12, reflection_horizon_band) == 520);
+static_assert(offsetof(WaterParams12, ior_air) == 524);
+static_assert(offsetof(WaterParams12, ior_water) == 528);
+static_assert(offsetof(WaterParams12, specular_exponent) == 532);
+static_assert(offsetof(WaterParams12, shore_hardness) == 536);
+static_assert(sizeof(WaterParams12) == 544);
 inline constexpr std::array<SpecializationConstant, 1> kConstants12{{{"gerstner_wave_count", 0}}};
 
 // Interface 13: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams13 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
@@ -799,8 +763,6 @@ struct WaterParams13 {
     float gerstner_steepness = 0.5f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float refraction_distortion = 0.03f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -808,7 +770,7 @@ struct WaterParams13 {
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float shore_hardness = 1.0f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams13, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams13, gerstner_wave_speeds) == 128);
@@ -827,21 +789,20 @@ static_assert(offsetof(WaterParams13, incident_light) == 464);
 static_assert(offsetof(WaterParams13, gerstner_steepness) == 476);
 static_assert(offsetof(WaterParams13, reflection_lower_tint) == 480);
 static_assert(offsetof(WaterParams13, refraction_distortion) == 492);
-static_assert(offsetof(WaterParams13, frame_centre) == 496);
-static_assert(offsetof(WaterParams13, refraction_shore_fade_depth) == 504);
-static_assert(offsetof(WaterParams13, scatter_coefficient) == 508);
-static_assert(offsetof(WaterParams13, reflection_horizon_band) == 512);
-static_assert(offsetof(WaterParams13, ior_air) == 516);
-static_assert(offsetof(WaterParams13, ior_water) == 520);
-static_assert(offsetof(WaterParams13, specular_exponent) == 524);
-static_assert(offsetof(WaterParams13, shore_hardness) == 528);
-static_assert(sizeof(WaterParams13) == 544);
+static_assert(offsetof(WaterParams13, refraction_shore_fade_depth) == 496);
+static_assert(offsetof(WaterParams13, scatter_coefficient) == 500);
+static_assert(offsetof(WaterParams13, reflection_horizon_band) == 504);
+static_assert(offsetof(WaterParams13, ior_air) == 508);
+static_assert(offsetof(WaterParams13, ior_water) == 512);
+static_assert(offsetof(WaterParams13, specular_exponent) == 516);
+static_assert(offsetof(WaterParams13, shore_hardness) == 520);
+static_assert(sizeof(WaterParams13) == 528);
 inline constexpr std::array<SpecializationConstant, 1> kConstants13{{{"gerstner_wave_count", 0}}};
 
 // Interface 14: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams14 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float refraction_distortion = 0.03f;
@@ -859,12 +820,9 @@ struct WaterParams14 {
     float specular_exponent = 256.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float foam_pattern_scale = 0.1f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
-    float pad0[2]{};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
 };
 static_assert(offsetof(WaterParams14, eye_position) == 0);
 static_assert(offsetof(WaterParams14, time) == 12);
@@ -884,16 +842,15 @@ static_assert(offsetof(WaterParams14, foam_existence) == 112);
 static_assert(offsetof(WaterParams14, specular_exponent) == 124);
 static_assert(offsetof(WaterParams14, foam_color) == 128);
 static_assert(offsetof(WaterParams14, foam_pattern_scale) == 140);
-static_assert(offsetof(WaterParams14, frame_centre) == 144);
-static_assert(offsetof(WaterParams14, foam_pattern_drift) == 152);
-static_assert(offsetof(WaterParams14, foam_pattern_offset) == 160);
-static_assert(sizeof(WaterParams14) == 176);
+static_assert(offsetof(WaterParams14, foam_pattern_drift) == 144);
+static_assert(offsetof(WaterParams14, foam_pattern_offset) == 152);
+static_assert(sizeof(WaterParams14) == 160);
 inline constexpr std::array<SpecializationConstant, 0> kConstants14{{}};
 
 // Interface 15: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams15 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float refraction_distortion = 0.03f;
@@ -911,13 +868,11 @@ struct WaterParams15 {
     float specular_exponent = 256.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float foam_pattern_scale = 0.1f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float shore_hardness = 1.0f;
-    float pad0[1]{};
+    float pad0[3]{};
 };
 static_assert(offsetof(WaterParams15, eye_position) == 0);
 static_assert(offsetof(WaterParams15, time) == 12);
@@ -937,28 +892,27 @@ static_assert(offsetof(WaterParams15, foam_existence) == 112);
 static_assert(offsetof(WaterParams15, specular_exponent) == 124);
 static_assert(offsetof(WaterParams15, foam_color) == 128);
 static_assert(offsetof(WaterParams15, foam_pattern_scale) == 140);
-static_assert(offsetof(WaterParams15, frame_centre) == 144);
-static_assert(offsetof(WaterParams15, foam_pattern_drift) == 152);
-static_assert(offsetof(WaterParams15, foam_pattern_offset) == 160);
-static_assert(offsetof(WaterParams15, shore_hardness) == 168);
+static_assert(offsetof(WaterParams15, foam_pattern_drift) == 144);
+static_assert(offsetof(WaterParams15, foam_pattern_offset) == 152);
+static_assert(offsetof(WaterParams15, shore_hardness) == 160);
 static_assert(sizeof(WaterParams15) == 176);
 inline constexpr std::array<SpecializationConstant, 0> kConstants15{{}};
 
 // Interface 16: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams16 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
     float gerstner_frequency = 0.7f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
+    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
     float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency_gain = 1.18f;
@@ -972,17 +926,15 @@ struct WaterParams16 {
     float caustics_strength = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float scatter_coefficient = 0.11f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float foam_pattern_scale = 0.1f;
-    float pad0[1]{};
+    float pad0[3]{};
 };
 static_assert(offsetof(WaterParams16, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams16, gerstner_wave_speeds) == 128);
@@ -1007,25 +959,24 @@ static_assert(offsetof(WaterParams16, foam_existence) == 512);
 static_assert(offsetof(WaterParams16, caustics_strength) == 524);
 static_assert(offsetof(WaterParams16, foam_color) == 528);
 static_assert(offsetof(WaterParams16, scatter_coefficient) == 540);
-static_assert(offsetof(WaterParams16, frame_centre) == 544);
-static_assert(offsetof(WaterParams16, foam_pattern_drift) == 552);
-static_assert(offsetof(WaterParams16, foam_pattern_offset) == 560);
-static_assert(offsetof(WaterParams16, reflection_horizon_band) == 568);
-static_assert(offsetof(WaterParams16, ior_air) == 572);
-static_assert(offsetof(WaterParams16, ior_water) == 576);
-static_assert(offsetof(WaterParams16, specular_exponent) == 580);
-static_assert(offsetof(WaterParams16, foam_pattern_scale) == 584);
+static_assert(offsetof(WaterParams16, foam_pattern_drift) == 544);
+static_assert(offsetof(WaterParams16, foam_pattern_offset) == 552);
+static_assert(offsetof(WaterParams16, reflection_horizon_band) == 560);
+static_assert(offsetof(WaterParams16, ior_air) == 564);
+static_assert(offsetof(WaterParams16, ior_water) == 568);
+static_assert(offsetof(WaterParams16, specular_exponent) == 572);
+static_assert(offsetof(WaterParams16, foam_pattern_scale) == 576);
 static_assert(sizeof(WaterParams16) == 592);
 inline constexpr std::array<SpecializationConstant, 1> kConstants16{{{"gerstner_wave_count", 0}}};
 
 // Interface 17: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams17 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
@@ -1043,17 +994,15 @@ struct WaterParams17 {
     float refraction_shore_fade_depth = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float scatter_coefficient = 0.11f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float foam_pattern_scale = 0.1f;
-    float pad0[1]{};
+    float pad0[3]{};
 };
 static_assert(offsetof(WaterParams17, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams17, gerstner_wave_speeds) == 128);
@@ -1076,32 +1025,31 @@ static_assert(offsetof(WaterParams17, foam_existence) == 496);
 static_assert(offsetof(WaterParams17, refraction_shore_fade_depth) == 508);
 static_assert(offsetof(WaterParams17, foam_color) == 512);
 static_assert(offsetof(WaterParams17, scatter_coefficient) == 524);
-static_assert(offsetof(WaterParams17, frame_centre) == 528);
-static_assert(offsetof(WaterParams17, foam_pattern_drift) == 536);
-static_assert(offsetof(WaterParams17, foam_pattern_offset) == 544);
-static_assert(offsetof(WaterParams17, reflection_horizon_band) == 552);
-static_assert(offsetof(WaterParams17, ior_air) == 556);
-static_assert(offsetof(WaterParams17, ior_water) == 560);
-static_assert(offsetof(WaterParams17, specular_exponent) == 564);
-static_assert(offsetof(WaterParams17, foam_pattern_scale) == 568);
+static_assert(offsetof(WaterParams17, foam_pattern_drift) == 528);
+static_assert(offsetof(WaterParams17, foam_pattern_offset) == 536);
+static_assert(offsetof(WaterParams17, reflection_horizon_band) == 544);
+static_assert(offsetof(WaterParams17, ior_air) == 548);
+static_assert(offsetof(WaterParams17, ior_water) == 552);
+static_assert(offsetof(WaterParams17, specular_exponent) == 556);
+static_assert(offsetof(WaterParams17, foam_pattern_scale) == 560);
 static_assert(sizeof(WaterParams17) == 576);
 inline constexpr std::array<SpecializationConstant, 1> kConstants17{{{"gerstner_wave_count", 0}}};
 
 // Interface 18: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams18 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
     float gerstner_frequency = 0.7f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
+    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
     float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency_gain = 1.18f;
@@ -1115,17 +1063,16 @@ struct WaterParams18 {
     float caustics_strength = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float scatter_coefficient = 0.11f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams18, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams18, gerstner_wave_speeds) == 128);
@@ -1150,26 +1097,25 @@ static_assert(offsetof(WaterParams18, foam_existence) == 512);
 static_assert(offsetof(WaterParams18, caustics_strength) == 524);
 static_assert(offsetof(WaterParams18, foam_color) == 528);
 static_assert(offsetof(WaterParams18, scatter_coefficient) == 540);
-static_assert(offsetof(WaterParams18, frame_centre) == 544);
-static_assert(offsetof(WaterParams18, foam_pattern_drift) == 552);
-static_assert(offsetof(WaterParams18, foam_pattern_offset) == 560);
-static_assert(offsetof(WaterParams18, reflection_horizon_band) == 568);
-static_assert(offsetof(WaterParams18, ior_air) == 572);
-static_assert(offsetof(WaterParams18, ior_water) == 576);
-static_assert(offsetof(WaterParams18, specular_exponent) == 580);
-static_assert(offsetof(WaterParams18, foam_pattern_scale) == 584);
-static_assert(offsetof(WaterParams18, shore_hardness) == 588);
+static_assert(offsetof(WaterParams18, foam_pattern_drift) == 544);
+static_assert(offsetof(WaterParams18, foam_pattern_offset) == 552);
+static_assert(offsetof(WaterParams18, reflection_horizon_band) == 560);
+static_assert(offsetof(WaterParams18, ior_air) == 564);
+static_assert(offsetof(WaterParams18, ior_water) == 568);
+static_assert(offsetof(WaterParams18, specular_exponent) == 572);
+static_assert(offsetof(WaterParams18, foam_pattern_scale) == 576);
+static_assert(offsetof(WaterParams18, shore_hardness) == 580);
 static_assert(sizeof(WaterParams18) == 592);
 inline constexpr std::array<SpecializationConstant, 1> kConstants18{{{"gerstner_wave_count", 0}}};
 
 // Interface 19: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams19 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
@@ -1187,17 +1133,16 @@ struct WaterParams19 {
     float refraction_shore_fade_depth = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float scatter_coefficient = 0.11f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams19, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams19, gerstner_wave_speeds) == 128);
@@ -1220,22 +1165,21 @@ static_assert(offsetof(WaterParams19, foam_existence) == 496);
 static_assert(offsetof(WaterParams19, refraction_shore_fade_depth) == 508);
 static_assert(offsetof(WaterParams19, foam_color) == 512);
 static_assert(offsetof(WaterParams19, scatter_coefficient) == 524);
-static_assert(offsetof(WaterParams19, frame_centre) == 528);
-static_assert(offsetof(WaterParams19, foam_pattern_drift) == 536);
-static_assert(offsetof(WaterParams19, foam_pattern_offset) == 544);
-static_assert(offsetof(WaterParams19, reflection_horizon_band) == 552);
-static_assert(offsetof(WaterParams19, ior_air) == 556);
-static_assert(offsetof(WaterParams19, ior_water) == 560);
-static_assert(offsetof(WaterParams19, specular_exponent) == 564);
-static_assert(offsetof(WaterParams19, foam_pattern_scale) == 568);
-static_assert(offsetof(WaterParams19, shore_hardness) == 572);
+static_assert(offsetof(WaterParams19, foam_pattern_drift) == 528);
+static_assert(offsetof(WaterParams19, foam_pattern_offset) == 536);
+static_assert(offsetof(WaterParams19, reflection_horizon_band) == 544);
+static_assert(offsetof(WaterParams19, ior_air) == 548);
+static_assert(offsetof(WaterParams19, ior_water) == 552);
+static_assert(offsetof(WaterParams19, specular_exponent) == 556);
+static_assert(offsetof(WaterParams19, foam_pattern_scale) == 560);
+static_assert(offsetof(WaterParams19, shore_hardness) == 564);
 static_assert(sizeof(WaterParams19) == 576);
 inline constexpr std::array<SpecializationConstant, 1> kConstants19{{{"gerstner_wave_count", 0}}};
 
 // Interface 20: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams20 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_shore_fade_depth = 1.0f;
@@ -1245,10 +1189,8 @@ struct WaterParams20 {
     float reflection_horizon_band = 0.2f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float ior_air = 1.0f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float ior_water = 1.33333f;
-    float pad0[1]{};
+    float pad0[3]{};
 };
 static_assert(offsetof(WaterParams20, eye_position) == 0);
 static_assert(offsetof(WaterParams20, refraction_distortion) == 12);
@@ -1260,15 +1202,14 @@ static_assert(offsetof(WaterParams20, incident_light) == 48);
 static_assert(offsetof(WaterParams20, reflection_horizon_band) == 60);
 static_assert(offsetof(WaterParams20, reflection_lower_tint) == 64);
 static_assert(offsetof(WaterParams20, ior_air) == 76);
-static_assert(offsetof(WaterParams20, frame_centre) == 80);
-static_assert(offsetof(WaterParams20, ior_water) == 88);
+static_assert(offsetof(WaterParams20, ior_water) == 80);
 static_assert(sizeof(WaterParams20) == 96);
 inline constexpr std::array<SpecializationConstant, 0> kConstants20{{}};
 
 // Interface 21: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams21 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_shore_fade_depth = 1.0f;
@@ -1278,10 +1219,9 @@ struct WaterParams21 {
     float reflection_horizon_band = 0.2f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float ior_air = 1.0f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams21, eye_position) == 0);
 static_assert(offsetof(WaterParams21, refraction_distortion) == 12);
@@ -1293,23 +1233,22 @@ static_assert(offsetof(WaterParams21, incident_light) == 48);
 static_assert(offsetof(WaterParams21, reflection_horizon_band) == 60);
 static_assert(offsetof(WaterParams21, reflection_lower_tint) == 64);
 static_assert(offsetof(WaterParams21, ior_air) == 76);
-static_assert(offsetof(WaterParams21, frame_centre) == 80);
-static_assert(offsetof(WaterParams21, ior_water) == 88);
-static_assert(offsetof(WaterParams21, shore_hardness) == 92);
+static_assert(offsetof(WaterParams21, ior_water) == 80);
+static_assert(offsetof(WaterParams21, shore_hardness) == 84);
 static_assert(sizeof(WaterParams21) == 96);
 inline constexpr std::array<SpecializationConstant, 0> kConstants21{{}};
 
 // Interface 22: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams22 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
+    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
     float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency = 0.7f;
@@ -1319,8 +1258,6 @@ struct WaterParams22 {
     float gerstner_frequency_gain = 1.18f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float gerstner_steepness = 0.5f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
     float caustics_strength = 1.0f;
@@ -1328,7 +1265,7 @@ struct WaterParams22 {
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams22, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams22, gerstner_wave_speeds) == 128);
@@ -1345,25 +1282,24 @@ static_assert(offsetof(WaterParams22, incident_light) == 448);
 static_assert(offsetof(WaterParams22, gerstner_frequency_gain) == 460);
 static_assert(offsetof(WaterParams22, reflection_lower_tint) == 464);
 static_assert(offsetof(WaterParams22, gerstner_steepness) == 476);
-static_assert(offsetof(WaterParams22, frame_centre) == 480);
-static_assert(offsetof(WaterParams22, refraction_distortion) == 488);
-static_assert(offsetof(WaterParams22, refraction_shore_fade_depth) == 492);
-static_assert(offsetof(WaterParams22, caustics_strength) == 496);
-static_assert(offsetof(WaterParams22, scatter_coefficient) == 500);
-static_assert(offsetof(WaterParams22, reflection_horizon_band) == 504);
-static_assert(offsetof(WaterParams22, ior_air) == 508);
-static_assert(offsetof(WaterParams22, ior_water) == 512);
-static_assert(sizeof(WaterParams22) == 528);
+static_assert(offsetof(WaterParams22, refraction_distortion) == 480);
+static_assert(offsetof(WaterParams22, refraction_shore_fade_depth) == 484);
+static_assert(offsetof(WaterParams22, caustics_strength) == 488);
+static_assert(offsetof(WaterParams22, scatter_coefficient) == 492);
+static_assert(offsetof(WaterParams22, reflection_horizon_band) == 496);
+static_assert(offsetof(WaterParams22, ior_air) == 500);
+static_assert(offsetof(WaterParams22, ior_water) == 504);
+static_assert(sizeof(WaterParams22) == 512);
 inline constexpr std::array<SpecializationConstant, 1> kConstants22{{{"gerstner_wave_count", 0}}};
 
 // Interface 23: 5 variants (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams23 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -1373,8 +1309,6 @@ struct WaterParams23 {
     float gerstner_amplitude_gain = 0.82f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float gerstner_frequency_gain = 1.18f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float gerstner_steepness = 0.5f;
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
@@ -1382,7 +1316,7 @@ struct WaterParams23 {
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams23, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams23, gerstner_wave_speeds) == 128);
@@ -1397,28 +1331,27 @@ static_assert(offsetof(WaterParams23, incident_light) == 432);
 static_assert(offsetof(WaterParams23, gerstner_amplitude_gain) == 444);
 static_assert(offsetof(WaterParams23, reflection_lower_tint) == 448);
 static_assert(offsetof(WaterParams23, gerstner_frequency_gain) == 460);
-static_assert(offsetof(WaterParams23, frame_centre) == 464);
-static_assert(offsetof(WaterParams23, gerstner_steepness) == 472);
-static_assert(offsetof(WaterParams23, refraction_distortion) == 476);
-static_assert(offsetof(WaterParams23, refraction_shore_fade_depth) == 480);
-static_assert(offsetof(WaterParams23, scatter_coefficient) == 484);
-static_assert(offsetof(WaterParams23, reflection_horizon_band) == 488);
-static_assert(offsetof(WaterParams23, ior_air) == 492);
-static_assert(offsetof(WaterParams23, ior_water) == 496);
-static_assert(sizeof(WaterParams23) == 512);
+static_assert(offsetof(WaterParams23, gerstner_steepness) == 464);
+static_assert(offsetof(WaterParams23, refraction_distortion) == 468);
+static_assert(offsetof(WaterParams23, refraction_shore_fade_depth) == 472);
+static_assert(offsetof(WaterParams23, scatter_coefficient) == 476);
+static_assert(offsetof(WaterParams23, reflection_horizon_band) == 480);
+static_assert(offsetof(WaterParams23, ior_air) == 484);
+static_assert(offsetof(WaterParams23, ior_water) == 488);
+static_assert(sizeof(WaterParams23) == 496);
 inline constexpr std::array<SpecializationConstant, 1> kConstants23{{{"gerstner_wave_count", 0}}};
 
 // Interface 24: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams24 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
+    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
     float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency = 0.7f;
@@ -1428,8 +1361,6 @@ struct WaterParams24 {
     float gerstner_frequency_gain = 1.18f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float gerstner_steepness = 0.5f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
     float caustics_strength = 1.0f;
@@ -1438,7 +1369,6 @@ struct WaterParams24 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
-    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams24, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams24, gerstner_wave_speeds) == 128);
@@ -1455,26 +1385,25 @@ static_assert(offsetof(WaterParams24, incident_light) == 448);
 static_assert(offsetof(WaterParams24, gerstner_frequency_gain) == 460);
 static_assert(offsetof(WaterParams24, reflection_lower_tint) == 464);
 static_assert(offsetof(WaterParams24, gerstner_steepness) == 476);
-static_assert(offsetof(WaterParams24, frame_centre) == 480);
-static_assert(offsetof(WaterParams24, refraction_distortion) == 488);
-static_assert(offsetof(WaterParams24, refraction_shore_fade_depth) == 492);
-static_assert(offsetof(WaterParams24, caustics_strength) == 496);
-static_assert(offsetof(WaterParams24, scatter_coefficient) == 500);
-static_assert(offsetof(WaterParams24, reflection_horizon_band) == 504);
-static_assert(offsetof(WaterParams24, ior_air) == 508);
-static_assert(offsetof(WaterParams24, ior_water) == 512);
-static_assert(offsetof(WaterParams24, shore_hardness) == 516);
-static_assert(sizeof(WaterParams24) == 528);
+static_assert(offsetof(WaterParams24, refraction_distortion) == 480);
+static_assert(offsetof(WaterParams24, refraction_shore_fade_depth) == 484);
+static_assert(offsetof(WaterParams24, caustics_strength) == 488);
+static_assert(offsetof(WaterParams24, scatter_coefficient) == 492);
+static_assert(offsetof(WaterParams24, reflection_horizon_band) == 496);
+static_assert(offsetof(WaterParams24, ior_air) == 500);
+static_assert(offsetof(WaterParams24, ior_water) == 504);
+static_assert(offsetof(WaterParams24, shore_hardness) == 508);
+static_assert(sizeof(WaterParams24) == 512);
 inline constexpr std::array<SpecializationConstant, 1> kConstants24{{{"gerstner_wave_count", 0}}};
 
 // Interface 25: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams25 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -1484,8 +1413,6 @@ struct WaterParams25 {
     float gerstner_amplitude_gain = 0.82f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float gerstner_frequency_gain = 1.18f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     float gerstner_steepness = 0.5f;
     float refraction_distortion = 0.03f;
     float refraction_shore_fade_depth = 1.0f;
@@ -1494,7 +1421,6 @@ struct WaterParams25 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
-    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams25, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams25, gerstner_wave_speeds) == 128);
@@ -1509,22 +1435,21 @@ static_assert(offsetof(WaterParams25, incident_light) == 432);
 static_assert(offsetof(WaterParams25, gerstner_amplitude_gain) == 444);
 static_assert(offsetof(WaterParams25, reflection_lower_tint) == 448);
 static_assert(offsetof(WaterParams25, gerstner_frequency_gain) == 460);
-static_assert(offsetof(WaterParams25, frame_centre) == 464);
-static_assert(offsetof(WaterParams25, gerstner_steepness) == 472);
-static_assert(offsetof(WaterParams25, refraction_distortion) == 476);
-static_assert(offsetof(WaterParams25, refraction_shore_fade_depth) == 480);
-static_assert(offsetof(WaterParams25, scatter_coefficient) == 484);
-static_assert(offsetof(WaterParams25, reflection_horizon_band) == 488);
-static_assert(offsetof(WaterParams25, ior_air) == 492);
-static_assert(offsetof(WaterParams25, ior_water) == 496);
-static_assert(offsetof(WaterParams25, shore_hardness) == 500);
-static_assert(sizeof(WaterParams25) == 512);
+static_assert(offsetof(WaterParams25, gerstner_steepness) == 464);
+static_assert(offsetof(WaterParams25, refraction_distortion) == 468);
+static_assert(offsetof(WaterParams25, refraction_shore_fade_depth) == 472);
+static_assert(offsetof(WaterParams25, scatter_coefficient) == 476);
+static_assert(offsetof(WaterParams25, reflection_horizon_band) == 480);
+static_assert(offsetof(WaterParams25, ior_air) == 484);
+static_assert(offsetof(WaterParams25, ior_water) == 488);
+static_assert(offsetof(WaterParams25, shore_hardness) == 492);
+static_assert(sizeof(WaterParams25) == 496);
 inline constexpr std::array<SpecializationConstant, 1> kConstants25{{{"gerstner_wave_count", 0}}};
 
 // Interface 26: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams26 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_distortion = 0.03f;
@@ -1538,13 +1463,11 @@ struct WaterParams26 {
     float ior_air = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float ior_water = 1.33333f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float foam_pattern_scale = 0.1f;
-    float pad0[1]{};
+    float pad0[3]{};
 };
 static_assert(offsetof(WaterParams26, eye_position) == 0);
 static_assert(offsetof(WaterParams26, time) == 12);
@@ -1560,17 +1483,16 @@ static_assert(offsetof(WaterParams26, foam_existence) == 80);
 static_assert(offsetof(WaterParams26, ior_air) == 92);
 static_assert(offsetof(WaterParams26, foam_color) == 96);
 static_assert(offsetof(WaterParams26, ior_water) == 108);
-static_assert(offsetof(WaterParams26, frame_centre) == 112);
-static_assert(offsetof(WaterParams26, foam_pattern_drift) == 120);
-static_assert(offsetof(WaterParams26, foam_pattern_offset) == 128);
-static_assert(offsetof(WaterParams26, foam_pattern_scale) == 136);
+static_assert(offsetof(WaterParams26, foam_pattern_drift) == 112);
+static_assert(offsetof(WaterParams26, foam_pattern_offset) == 120);
+static_assert(offsetof(WaterParams26, foam_pattern_scale) == 128);
 static_assert(sizeof(WaterParams26) == 144);
 inline constexpr std::array<SpecializationConstant, 0> kConstants26{{}};
 
 // Interface 27: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams27 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_distortion = 0.03f;
@@ -1584,13 +1506,12 @@ struct WaterParams27 {
     float ior_air = 1.0f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float ior_water = 1.33333f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams27, eye_position) == 0);
 static_assert(offsetof(WaterParams27, time) == 12);
@@ -1606,25 +1527,24 @@ static_assert(offsetof(WaterParams27, foam_existence) == 80);
 static_assert(offsetof(WaterParams27, ior_air) == 92);
 static_assert(offsetof(WaterParams27, foam_color) == 96);
 static_assert(offsetof(WaterParams27, ior_water) == 108);
-static_assert(offsetof(WaterParams27, frame_centre) == 112);
-static_assert(offsetof(WaterParams27, foam_pattern_drift) == 120);
-static_assert(offsetof(WaterParams27, foam_pattern_offset) == 128);
-static_assert(offsetof(WaterParams27, foam_pattern_scale) == 136);
-static_assert(offsetof(WaterParams27, shore_hardness) == 140);
+static_assert(offsetof(WaterParams27, foam_pattern_drift) == 112);
+static_assert(offsetof(WaterParams27, foam_pattern_offset) == 120);
+static_assert(offsetof(WaterParams27, foam_pattern_scale) == 128);
+static_assert(offsetof(WaterParams27, shore_hardness) == 132);
 static_assert(sizeof(WaterParams27) == 144);
 inline constexpr std::array<SpecializationConstant, 0> kConstants27{{}};
 
 // Interface 28: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams28 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
+    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
     float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency = 0.7f;
@@ -1638,17 +1558,16 @@ struct WaterParams28 {
     float refraction_distortion = 0.03f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float refraction_shore_fade_depth = 1.0f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float caustics_strength = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams28, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams28, gerstner_wave_speeds) == 128);
@@ -1669,26 +1588,25 @@ static_assert(offsetof(WaterParams28, foam_existence) == 480);
 static_assert(offsetof(WaterParams28, refraction_distortion) == 492);
 static_assert(offsetof(WaterParams28, foam_color) == 496);
 static_assert(offsetof(WaterParams28, refraction_shore_fade_depth) == 508);
-static_assert(offsetof(WaterParams28, frame_centre) == 512);
-static_assert(offsetof(WaterParams28, foam_pattern_drift) == 520);
-static_assert(offsetof(WaterParams28, foam_pattern_offset) == 528);
-static_assert(offsetof(WaterParams28, caustics_strength) == 536);
-static_assert(offsetof(WaterParams28, scatter_coefficient) == 540);
-static_assert(offsetof(WaterParams28, reflection_horizon_band) == 544);
-static_assert(offsetof(WaterParams28, ior_air) == 548);
-static_assert(offsetof(WaterParams28, ior_water) == 552);
-static_assert(offsetof(WaterParams28, foam_pattern_scale) == 556);
+static_assert(offsetof(WaterParams28, foam_pattern_drift) == 512);
+static_assert(offsetof(WaterParams28, foam_pattern_offset) == 520);
+static_assert(offsetof(WaterParams28, caustics_strength) == 528);
+static_assert(offsetof(WaterParams28, scatter_coefficient) == 532);
+static_assert(offsetof(WaterParams28, reflection_horizon_band) == 536);
+static_assert(offsetof(WaterParams28, ior_air) == 540);
+static_assert(offsetof(WaterParams28, ior_water) == 544);
+static_assert(offsetof(WaterParams28, foam_pattern_scale) == 548);
 static_assert(sizeof(WaterParams28) == 560);
 inline constexpr std::array<SpecializationConstant, 1> kConstants28{{{"gerstner_wave_count", 0}}};
 
 // Interface 29: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams29 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -1702,17 +1620,16 @@ struct WaterParams29 {
     float gerstner_steepness = 0.5f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float refraction_distortion = 0.03f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
+    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams29, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams29, gerstner_wave_speeds) == 128);
@@ -1731,29 +1648,28 @@ static_assert(offsetof(WaterParams29, foam_existence) == 464);
 static_assert(offsetof(WaterParams29, gerstner_steepness) == 476);
 static_assert(offsetof(WaterParams29, foam_color) == 480);
 static_assert(offsetof(WaterParams29, refraction_distortion) == 492);
-static_assert(offsetof(WaterParams29, frame_centre) == 496);
-static_assert(offsetof(WaterParams29, foam_pattern_drift) == 504);
-static_assert(offsetof(WaterParams29, foam_pattern_offset) == 512);
-static_assert(offsetof(WaterParams29, refraction_shore_fade_depth) == 520);
-static_assert(offsetof(WaterParams29, scatter_coefficient) == 524);
-static_assert(offsetof(WaterParams29, reflection_horizon_band) == 528);
-static_assert(offsetof(WaterParams29, ior_air) == 532);
-static_assert(offsetof(WaterParams29, ior_water) == 536);
-static_assert(offsetof(WaterParams29, foam_pattern_scale) == 540);
+static_assert(offsetof(WaterParams29, foam_pattern_drift) == 496);
+static_assert(offsetof(WaterParams29, foam_pattern_offset) == 504);
+static_assert(offsetof(WaterParams29, refraction_shore_fade_depth) == 512);
+static_assert(offsetof(WaterParams29, scatter_coefficient) == 516);
+static_assert(offsetof(WaterParams29, reflection_horizon_band) == 520);
+static_assert(offsetof(WaterParams29, ior_air) == 524);
+static_assert(offsetof(WaterParams29, ior_water) == 528);
+static_assert(offsetof(WaterParams29, foam_pattern_scale) == 532);
 static_assert(sizeof(WaterParams29) == 544);
 inline constexpr std::array<SpecializationConstant, 1> kConstants29{{{"gerstner_wave_count", 0}}};
 
 // Interface 30: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams30 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, -5.0f, 10.0f};
+    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
     float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency = 0.7f;
@@ -1767,11 +1683,9 @@ struct WaterParams30 {
     float refraction_distortion = 0.03f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float refraction_shore_fade_depth = 1.0f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float caustics_strength = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -1779,7 +1693,7 @@ struct WaterParams30 {
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams30, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams30, gerstner_wave_speeds) == 128);
@@ -1800,27 +1714,26 @@ static_assert(offsetof(WaterParams30, foam_existence) == 480);
 static_assert(offsetof(WaterParams30, refraction_distortion) == 492);
 static_assert(offsetof(WaterParams30, foam_color) == 496);
 static_assert(offsetof(WaterParams30, refraction_shore_fade_depth) == 508);
-static_assert(offsetof(WaterParams30, frame_centre) == 512);
-static_assert(offsetof(WaterParams30, foam_pattern_drift) == 520);
-static_assert(offsetof(WaterParams30, foam_pattern_offset) == 528);
-static_assert(offsetof(WaterParams30, caustics_strength) == 536);
-static_assert(offsetof(WaterParams30, scatter_coefficient) == 540);
-static_assert(offsetof(WaterParams30, reflection_horizon_band) == 544);
-static_assert(offsetof(WaterParams30, ior_air) == 548);
-static_assert(offsetof(WaterParams30, ior_water) == 552);
-static_assert(offsetof(WaterParams30, foam_pattern_scale) == 556);
-static_assert(offsetof(WaterParams30, shore_hardness) == 560);
-static_assert(sizeof(WaterParams30) == 576);
+static_assert(offsetof(WaterParams30, foam_pattern_drift) == 512);
+static_assert(offsetof(WaterParams30, foam_pattern_offset) == 520);
+static_assert(offsetof(WaterParams30, caustics_strength) == 528);
+static_assert(offsetof(WaterParams30, scatter_coefficient) == 532);
+static_assert(offsetof(WaterParams30, reflection_horizon_band) == 536);
+static_assert(offsetof(WaterParams30, ior_air) == 540);
+static_assert(offsetof(WaterParams30, ior_water) == 544);
+static_assert(offsetof(WaterParams30, foam_pattern_scale) == 548);
+static_assert(offsetof(WaterParams30, shore_hardness) == 552);
+static_assert(sizeof(WaterParams30) == 560);
 inline constexpr std::array<SpecializationConstant, 1> kConstants30{{{"gerstner_wave_count", 0}}};
 
 // Interface 31: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams31 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}, {0.0f}};
+    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -1834,11 +1747,9 @@ struct WaterParams31 {
     float gerstner_steepness = 0.5f;
     Vec3 foam_color = {1.0f, 1.0f, 1.0f};
     float refraction_distortion = 0.03f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 0.0f};
+    Vec2 foam_pattern_offset = {0.0f, 1.0f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -1846,7 +1757,7 @@ struct WaterParams31 {
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
-    float pad0[3]{};
+    float pad0[1]{};
 };
 static_assert(offsetof(WaterParams31, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams31, gerstner_wave_speeds) == 128);
@@ -1865,23 +1776,22 @@ static_assert(offsetof(WaterParams31, foam_existence) == 464);
 static_assert(offsetof(WaterParams31, gerstner_steepness) == 476);
 static_assert(offsetof(WaterParams31, foam_color) == 480);
 static_assert(offsetof(WaterParams31, refraction_distortion) == 492);
-static_assert(offsetof(WaterParams31, frame_centre) == 496);
-static_assert(offsetof(WaterParams31, foam_pattern_drift) == 504);
-static_assert(offsetof(WaterParams31, foam_pattern_offset) == 512);
-static_assert(offsetof(WaterParams31, refraction_shore_fade_depth) == 520);
-static_assert(offsetof(WaterParams31, scatter_coefficient) == 524);
-static_assert(offsetof(WaterParams31, reflection_horizon_band) == 528);
-static_assert(offsetof(WaterParams31, ior_air) == 532);
-static_assert(offsetof(WaterParams31, ior_water) == 536);
-static_assert(offsetof(WaterParams31, foam_pattern_scale) == 540);
-static_assert(offsetof(WaterParams31, shore_hardness) == 544);
-static_assert(sizeof(WaterParams31) == 560);
+static_assert(offsetof(WaterParams31, foam_pattern_drift) == 496);
+static_assert(offsetof(WaterParams31, foam_pattern_offset) == 504);
+static_assert(offsetof(WaterParams31, refraction_shore_fade_depth) == 512);
+static_assert(offsetof(WaterParams31, scatter_coefficient) == 516);
+static_assert(offsetof(WaterParams31, reflection_horizon_band) == 520);
+static_assert(offsetof(WaterParams31, ior_air) == 524);
+static_assert(offsetof(WaterParams31, ior_water) == 528);
+static_assert(offsetof(WaterParams31, foam_pattern_scale) == 532);
+static_assert(offsetof(WaterParams31, shore_hardness) == 536);
+static_assert(sizeof(WaterParams31) == 544);
 inline constexpr std::array<SpecializationConstant, 1> kConstants31{{{"gerstner_wave_count", 0}}};
 
 // Interface 32: 4 variants (the first: open_ocean fresnel=exact,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none).
 struct WaterParams32 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float scatter_coefficient = 0.11f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float reflection_horizon_band = 0.2f;
@@ -1893,9 +1803,6 @@ struct WaterParams32 {
     float specular_exponent = 256.0f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float pad0[1]{};
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
-    float pad1[2]{};
 };
 static_assert(offsetof(WaterParams32, eye_position) == 0);
 static_assert(offsetof(WaterParams32, scatter_coefficient) == 12);
@@ -1908,14 +1815,13 @@ static_assert(offsetof(WaterParams32, ior_water) == 60);
 static_assert(offsetof(WaterParams32, incident_light) == 64);
 static_assert(offsetof(WaterParams32, specular_exponent) == 76);
 static_assert(offsetof(WaterParams32, reflection_lower_tint) == 80);
-static_assert(offsetof(WaterParams32, frame_centre) == 96);
-static_assert(sizeof(WaterParams32) == 112);
+static_assert(sizeof(WaterParams32) == 96);
 inline constexpr std::array<SpecializationConstant, 0> kConstants32{{}};
 
 // Interface 33: 4 variants (the first: open_ocean fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none).
 struct WaterParams33 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, -30.0f};
+    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
     float scatter_coefficient = 0.11f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
     float reflection_horizon_band = 0.2f;
@@ -1923,9 +1829,6 @@ struct WaterParams33 {
     float ior_air = 1.0f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float ior_water = 1.33333f;
-    // frame_centre: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 frame_centre = {0.0f, -0.0f};
-    float pad0[2]{};
 };
 static_assert(offsetof(WaterParams33, eye_position) == 0);
 static_assert(offsetof(WaterParams33, scatter_coefficient) == 12);
@@ -1935,8 +1838,7 @@ static_assert(offsetof(WaterParams33, incident_light) == 32);
 static_assert(offsetof(WaterParams33, ior_air) == 44);
 static_assert(offsetof(WaterParams33, reflection_lower_tint) == 48);
 static_assert(offsetof(WaterParams33, ior_water) == 60);
-static_assert(offsetof(WaterParams33, frame_centre) == 64);
-static_assert(sizeof(WaterParams33) == 80);
+static_assert(sizeof(WaterParams33) == 64);
 inline constexpr std::array<SpecializationConstant, 0> kConstants33{{}};
 
 inline constexpr std::array<VariantInfo, 56> kVariants{{

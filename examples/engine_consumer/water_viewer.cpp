@@ -40,10 +40,14 @@ int fail(const std::string& what) {
     return 1;
 }
 
-// Stand-ins for the engine's frame: the opaque scene's colour, its world positions and a sky.
+// The frame's camera: at the eye, looking down +z and 20 degrees down, 60 degrees vertical
+// field of view, a square image of `size` pixels.
+constexpr float kEye[3] = {0.0f, 6.0f, -20.0f};
+
+// Stand-ins for the engine's frame: the opaque scene's colour, its positions and a sky.
 // Constant images, except the positions: a flat bottom 2 m below the water spanning the caustics
 // pass's default window (x and z from -5 to 5 m across the screen), so that a caustics variant
-// shows the pass's pattern.
+// shows the pass's pattern. Written as the shader reads them: the point less the eye.
 TextureData texture_for(const TextureSlot& slot) {
     const bool cube = slot.type == "textureCube";
     if (slot.name == "scene_position") {
@@ -51,8 +55,9 @@ TextureData texture_for(const TextureSlot& slot) {
         TextureData t{n, n, 1, {}};
         for (uint32_t j = 0; j < n; ++j)
             for (uint32_t i = 0; i < n; ++i)
-                t.rgba.insert(t.rgba.end(), {-5.0f + 10.0f * (i + 0.5f) / n, -2.0f,
-                                             -5.0f + 10.0f * (j + 0.5f) / n, 1.0f});
+                t.rgba.insert(t.rgba.end(),
+                              {-5.0f + 10.0f * (i + 0.5f) / n - kEye[0], -2.0f - kEye[1],
+                               -5.0f + 10.0f * (j + 0.5f) / n - kEye[2], 1.0f});
         return t;
     }
     float texel[4] = {0.5f, 0.5f, 0.5f, 1.0f};
@@ -104,10 +109,6 @@ std::optional<Stages> load_stages(const ShaderBuild& build, const BuildVariant& 
     }
     return s;
 }
-
-// The frame's camera: at the eye, looking down +z and 20 degrees down, 60 degrees vertical
-// field of view, a square image of `size` pixels.
-constexpr float kEye[3] = {0.0f, 6.0f, -20.0f};
 
 // A mesh variant's frame: the camera as its vertex stage takes it, and the grid around the
 // eye with its morph range. The grid: 0.5 m cells near the eye, 32 cells a ring, 8 levels.

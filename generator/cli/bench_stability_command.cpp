@@ -1,6 +1,7 @@
 // Stability bench: prints run_stability_bench() (eval/bench/stability_bench.h) row by row and
 // writes stability.csv, stability.json and stability.html; exits 1 when a point within the
-// corner (time and distance) is more than --max-ratio times its case's figure at the origin.
+// corner (time and distance) is more than --max-ratio times its case's figure at the origin
+// (stability_row_within: max abs, dE00 p99, strict half).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +24,9 @@ void print_row(const StabilityRow& r) {
                 r.what.size, r.where.sweep.c_str(), r.where.view.c_str(), r.where.time,
                 r.where.offset, r.where.elevation, r.max_abs[0], r.max_abs[1], r.de00_p99[0],
                 static_cast<unsigned long long>(r.over_bound[0] + r.over_bound[1]));
+    std::printf(" %9.3g %6llu", r.continuous.max_abs,
+                static_cast<unsigned long long>(r.continuous.discontinuous));
+    if (std::isfinite(r.before.max_abs)) std::printf("  before %.4g", r.before.max_abs);
     // A half case in 16-bit arithmetic against the CPU's half model.
     if (std::isfinite(r.strict_max_abs))
         std::printf("  strict half %.3g (%lld ulps)", r.strict_max_abs,
@@ -52,7 +56,7 @@ Runner add_bench_stability_command(CLI::App& app, const Common& common) {
         std::vector<double> offsets = default_stability_offsets();
         std::vector<double> elevations = default_stability_elevations();
         double corner_time = 604800, corner_offset = 1e5, max_ratio = 2.0;
-        std::string out = "out/bench";
+        std::string out = "out/bench", before;
         RunnerSetup runner;
     };
     auto o = std::make_shared<Options>();
@@ -89,8 +93,12 @@ Runner add_bench_stability_command(CLI::App& app, const Common& common) {
         ->check(finite_range(0, 1e7));
     app.add_option("--max-ratio", o->max_ratio,
                    "exit 1 when a point no later and no further than the corner has more than "
-                   "this times its case's max abs at the origin (default 2)")
+                   "this times its case's max abs or dE00 p99 at the origin, past the floors "
+                   "1e-5 and 0.01 (default 2)")
         ->check(finite_range(1, 1e9));
+    app.add_option("--before", o->before,
+                   "a stability.csv from before a change (an earlier commit's bench): each row "
+                   "shows its case and point's figure from there beside this run's");
     app.add_option("--out", o->out,
                    "directory for stability.csv, .json and .html (default out/bench)");
     add_runner_options(app, o->runner);
@@ -105,6 +113,12 @@ Runner add_bench_stability_command(CLI::App& app, const Common& common) {
                         if (!stability_variant(c, error)) return stop(error, RunStatus::BadInput);
                         cases.push_back(c);
                     }
+        std::optional<StabilityBeforeTable> before;
+        if (!o->before.empty()) {
+            std::string error;
+            before = read_stability_before(o->before, error);
+            if (!before) return stop(error, RunStatus::BadInput);
+        }
         const std::vector<StabilityPoint> points =
             stability_points(o->times, o->offsets, o->elevations, o->corner_time, o->corner_offset);
         std::string cache;
@@ -112,11 +126,12 @@ Runner add_bench_stability_command(CLI::App& app, const Common& common) {
         if (!runner) return kNoDevice;
         std::printf("%zu cases x %zu points on %s; GPU against the CPU in double\n", cases.size(),
                     points.size(), runner->device_info().name.c_str());
-        std::printf("%-16s %-5s %-11s %5s %-9s %-10s %10s %10s %5s %9s %9s %8s %6s\n", "waves",
-                    "prec", "geometry", "size", "sweep", "view", "time s", "offset m", "elev",
-                    "glsl max", "hlsl max", "dE00 p99", ">bound");
+        std::printf("%-16s %-5s %-11s %5s %-9s %-10s %10s %10s %5s %9s %9s %8s %6s %9s %6s\n",
+                    "waves", "prec", "geometry", "size", "sweep", "view", "time s", "offset m",
+                    "elev", "glsl max", "hlsl max", "dE00 p99", ">bound", "cont max", "disc");
         const auto start = std::chrono::steady_clock::now();
-        const StabilityBench bench = run_stability_bench(*runner, cases, points, &print_row);
+        const StabilityBench bench =
+            run_stability_bench(*runner, cases, points, &print_row, before ? &*before : nullptr);
         if (!bench_succeeded({}, bench.error, common)) return kFailed;
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -131,8 +146,7 @@ Runner add_bench_stability_command(CLI::App& app, const Common& common) {
         size_t over = 0;
         for (const StabilityRow& r : bench.rows)
             if (r.where.time <= o->corner_time && r.where.offset <= o->corner_offset &&
-                (!(r.ratio_to_origin <= o->max_ratio) ||
-                 (std::isfinite(r.strict_ratio) && !(r.strict_ratio <= o->max_ratio))))
+                !stability_row_within(r, o->max_ratio))
                 ++over;
         std::printf("%zu rows in %.0f s; %zu within the corner (%g s, %g m) over %g x their "
                     "figure at the origin\n",

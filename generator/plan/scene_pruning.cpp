@@ -191,10 +191,10 @@ FoldFacts base_facts(const Material& m) {
     // The renderer's contract for the water pass inputs (synthetic_scene.h honours it).
     const size_t uv = f.add_fact("v_uv lies in [0, 1]", "");
     f.input_ranges["v_uv"] = {{make_interval(0.0, 1.0)}, uv};
-    const size_t tex =
-        f.add_fact("scene textures are finite: colour in [0, 65504], positions within 100 km, "
-                   "window depth in [0, 1]",
-                   "");
+    const size_t tex = f.add_fact(
+        "scene textures are finite: colour in [0, 65504], positions within 100 km of the eye, "
+        "window depth in [0, 1]",
+        "");
     f.input_ranges["scene_color"] = {{make_interval(0.0, 65504.0)}, tex};
     f.input_ranges["scene_position"] = {{make_interval(-1e5, 1e5), make_interval(-1e5, 1e5),
                                          make_interval(-1e5, 1e5), make_interval(0.0, 1e6)},

@@ -51,15 +51,4 @@ Parameter tile_offset(const std::string& name, const std::string& size) {
     return p;
 }
 
-Parameter frame_centre() {
-    Parameter p{.name = "frame_centre",
-                .type = Type::Vec2,
-                .default_value = {0.0, 0.0},
-                .min = -kFrameReach,
-                .max = kFrameReach,
-                .unit = "m"};
-    p.host = {HostRule::FrameCentre, {}};
-    return p;
-}
-
 } // namespace watergen

@@ -17,7 +17,7 @@ TextureInput scene_color_texture() {
 }
 
 TextureInput scene_position_texture() {
-    return {"scene_position", Type::Texture2D, "world position of the scene surface, xyz in m", ""};
+    return {"scene_position", Type::Texture2D, "scene surface position less the eye, xyz in m", ""};
 }
 
 namespace {

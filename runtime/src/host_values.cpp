@@ -72,7 +72,7 @@ struct Names {
     size_t inputs;
 };
 
-constexpr std::array<Names, 9> kRules = {{
+constexpr std::array<Names, 8> kRules = {{
     {HostRule::Given, "given", false, 0},
     {HostRule::FramePoint, "frame_point", false, 0},
     {HostRule::FramePointXZ, "frame_point_xz", false, 0},
@@ -81,7 +81,6 @@ constexpr std::array<Names, 9> kRules = {{
     {HostRule::WavePhases, "wave_phases", true, 5},
     {HostRule::ScrollOffset, "scroll_offset", true, 3},
     {HostRule::TileOffset, "tile_offset", true, 1},
-    {HostRule::FrameCentre, "frame_centre", true, 0},
 }};
 
 const Names& row(HostRule rule) {
@@ -223,10 +222,6 @@ std::optional<std::vector<double>> host_value(const HostValue& h, const std::vec
         out = {tile(frame.origin.x, c.x), tile(frame.origin.z, c.z)};
         return out;
     }
-    case HostRule::FrameCentre:
-        if (own.size() != 2) break;
-        out = {c.x, c.z};
-        return out;
     }
     *error = std::string("host rule ") + host_rule_name(h.rule) + " cannot make " +
              std::to_string(own.size()) + " values";

@@ -105,7 +105,7 @@ void add_level(const WaterGridDesc& d, const Level& level, double eye_x, double 
         for (int32_t i = -n; i <= n; ++i) {
             if (at(i, j) == UINT32_MAX) continue;
             at(i, j) = out.vertex_count();
-            // Exact in double (integers times a spacing, less a multiple of 64 m), then
+            // Exact in double (integers times a spacing, less a whole number of metres), then
             // rounded once.
             out.vertices.insert(
                 out.vertices.end(),

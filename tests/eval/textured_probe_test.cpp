@@ -109,8 +109,8 @@ TEST_CASE("every_catalog_node_that_reads_a_texture_is_probed_here", "[probe][tex
 
 TEST_CASE("the_depth_buffer_node_unprojects_to_the_scene_positions", "[probe][textures]") {
     // At texel centres of the 64x64 scene, with its eye and inverse view-projection (default
-    // conventions: reversed Z, NDC z 0..1), the node returns the scene_position texel: the
-    // depth buffer is that texture's float positions projected in double and rounded to float.
+    // conventions: reversed Z, NDC z 0..1), the node returns the eye plus the scene_position
+    // texel: the depth buffer is those points projected in double and rounded to float.
     const SyntheticScene scene = make_synthetic_scene(64, 64);
     const TextureData& position = scene.textures.at("scene_position");
     const std::vector<double>& eye = scene.uniforms.at("eye_position");
@@ -119,7 +119,7 @@ TEST_CASE("the_depth_buffer_node_unprojects_to_the_scene_positions", "[probe][te
         for (uint32_t x = 0; x < 64; x += 3) {
             tuples.insert(tuples.end(), {(x + 0.5) / 64, (y + 0.5) / 64, eye[0], eye[1], eye[2]});
             for (int k = 0; k < 3; ++k)
-                expected.push_back(position.rgba[(size_t(y) * 64 + x) * 4 + k]);
+                expected.push_back(eye[size_t(k)] + position.rgba[(size_t(y) * 64 + x) * 4 + k]);
         }
     for (Language lang : {Language::Glsl, Language::Hlsl}) {
         INFO(to_string(lang));

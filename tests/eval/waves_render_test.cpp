@@ -43,11 +43,10 @@ Variant wave_variant(const std::string& waves, const std::string& normals) {
 // (0..4 at 128x128), which look up: set_water_column keeps those out of the water, so they
 // must show the scene unchanged (the waves there would be evaluated ~1e6 m away).
 std::vector<bool> looking_down(const SyntheticScene& scene) {
-    const TextureData& p = scene.textures.at("scene_position");
-    const double eye_y = scene.uniforms.at("eye_position")[1];
+    const TextureData& p = scene.textures.at("scene_position"); // less the eye
     std::vector<bool> down(size_t(p.width) * p.height);
     for (size_t i = 0; i < down.size(); ++i)
-        down[i] = p.rgba[i * 4 + 1] < eye_y;
+        down[i] = p.rgba[i * 4 + 1] < 0.0f;
     return down;
 }
 

@@ -140,11 +140,11 @@ TEST_CASE("frame rules move points and matrices so the frame's point maps as the
     }
 }
 
-TEST_CASE("the frame centre is the eye rounded to the 64 m lattice", "[host_values]") {
-    CHECK(frame_centre_of(0.0, -30.0) == FrameCentre{0.0, 0.0});
-    CHECK(frame_centre_of(31.9, 32.0) == FrameCentre{0.0, 64.0});
-    CHECK(frame_centre_of(1e5 + 20, -1e6 - 40) == FrameCentre{100032.0, -1000064.0});
-    // Exact in float: the shader subtracts it from world positions (a position texture).
+TEST_CASE("the frame centre is the eye rounded to the whole metre", "[host_values]") {
+    CHECK(frame_centre_of(0.0, -0.3) == FrameCentre{0.0, 0.0});
+    CHECK(frame_centre_of(0.49, 0.5) == FrameCentre{0.0, 1.0});
+    CHECK(frame_centre_of(1e5 + 20.2, -1e6 - 40.7) == FrameCentre{100020.0, -1000041.0});
+    // Exact in float: a vertex buffer is made relative to it (water_grid.h).
     const FrameCentre far = frame_centre_of(9.99e6, -9.99e6);
     CHECK(double(float(far.x)) == far.x);
     CHECK(double(float(far.z)) == far.z);

@@ -339,9 +339,10 @@ SceneSearch search_scene(const std::string& choice, EvalPrecision p = EvalPrecis
     const SyntheticScene scene = make_synthetic_scene(128, 128);
     Graph g;
     Surface s(g);
-    s.scene_pos =
-        sample(texture(g, scene_position_texture()), varying(g, "v_uv", Type::Vec2)).xyz();
     s.eye = constant(g, {0.0, 5.0, -7.0});
+    // The texel is the scene point less the eye.
+    s.scene_pos =
+        s.eye + sample(texture(g, scene_position_texture()), varying(g, "v_uv", Type::Vec2)).xyz();
     s.level = constant(g, 0.0);
     s.time = constant(g, 0.0);
     Expr to_scene = s.scene_pos - s.eye;
@@ -368,9 +369,9 @@ SceneSearch search_scene(const std::string& choice, EvalPrecision p = EvalPrecis
     const TextureData& pos = scene.textures.at("scene_position");
     SceneSearch out;
     for (size_t i = 0; i < size_t(pos.width) * pos.height; ++i)
-        if (pos.rgba[i * 4 + 1] < 5.0) {
+        if (pos.rgba[i * 4 + 1] < 0.0f) {
             for (int c = 0; c < 3; ++c)
-                out.positions.push_back(pos.rgba[i * 4 + c]);
+                out.positions.push_back(scene.position_eye[size_t(c)] + pos.rgba[i * 4 + c]);
             for (int c = 0; c < 4; ++c)
                 out.hit.push_back(r.values[i * 4 + c]);
             out.residual.push_back(res.values[i]);

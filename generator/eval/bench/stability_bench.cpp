@@ -19,18 +19,6 @@ namespace {
 
 constexpr double kHour = 3600, kDay = 24 * kHour, kWeek = 7 * kDay, kYear = 365.25 * kDay;
 
-// The scene a point draws: its view (at its pitch, for an elevation), moved by its offset, at
-// its time. The caustics map is Gerstner at the scene's time, so it is made again for it.
-SyntheticScene point_scene(const StabilityPoint& p, uint32_t size) {
-    SceneView view = *find_scene_view(p.view);
-    if (p.elevation > 0) view.pitch_degrees = -p.elevation;
-    view.world_offset = {p.offset, 0.0, 0.0};
-    SyntheticScene scene = make_synthetic_scene(size, size, view);
-    scene.uniforms["time"] = {p.time};
-    if (p.time != 0) add_caustics_inputs(scene);
-    return scene;
-}
-
 std::string point_label(const StabilityPoint& p) {
     std::string s = fmt::format("{} t={:g}s x={:g}m", p.view, p.time, p.offset);
     if (p.elevation > 0) s += fmt::format(" elevation={:g}deg", p.elevation);
@@ -49,12 +37,15 @@ std::string optional(double v) {
 std::string csv_row(const StabilityRow& r) {
     return fmt::format(
         "\"{}\",{},{},{},{},{},{:g},{:g},{:g},\"{}\",{:.6g},{:.6g},{:.6g},{:.6g},{},"
-        "{},{},{:.6g},{:.6g},{},{},{},{}\n",
+        "{},{},{:.6g},{:.6g},{},{},{},{},{},{},{},{},{},{}\n",
         r.key, r.what.waves, r.what.precision, r.what.geometry, r.what.size, r.where.sweep,
         r.where.time, r.where.offset, r.where.elevation, r.where.view, r.max_abs[0], r.max_abs[1],
         r.de00_p99[0], r.de00_p99[1], r.over_bound[0], r.over_bound[1], r.gpu_nan_inf,
         r.ratio_to_origin, r.ratio_de00, optional(r.strict_max_abs), optional(r.strict_de00),
-        r.strict_max_ulps >= 0 ? std::to_string(r.strict_max_ulps) : "", optional(r.strict_ratio));
+        r.strict_max_ulps >= 0 ? std::to_string(r.strict_max_ulps) : "", optional(r.strict_ratio),
+        optional(r.before.max_abs), optional(r.before.de00_p99), optional(r.before.strict_max_abs),
+        optional(r.continuous.max_abs), optional(r.continuous.past_bound),
+        r.continuous.discontinuous);
 }
 
 nlohmann::ordered_json row_json(const StabilityRow& r) {
@@ -83,10 +74,70 @@ nlohmann::ordered_json row_json(const StabilityRow& r) {
               {"de00_p99", finite_or_null(r.strict_de00)},
               {"max_ulps", r.strict_max_ulps >= 0 ? nlohmann::ordered_json(r.strict_max_ulps)
                                                   : nlohmann::ordered_json(nullptr)},
-              {"max_abs_over_origin", finite_or_null(r.strict_ratio)}}}};
+              {"max_abs_over_origin", finite_or_null(r.strict_ratio)}}},
+            {"glsl_continuous",
+             {{"max_abs", finite_or_null(r.continuous.max_abs)},
+              {"past_float_bound", finite_or_null(r.continuous.past_bound)},
+              {"discontinuous_pixels", r.continuous.discontinuous}}},
+            {"before",
+             {{"glsl_max_abs", finite_or_null(r.before.max_abs)},
+              {"glsl_de00_p99", finite_or_null(r.before.de00_p99)},
+              {"strict_half_max_abs", finite_or_null(r.before.strict_max_abs)}}}};
 }
 
 } // namespace
+
+SyntheticScene stability_scene(const StabilityPoint& p, uint32_t size) {
+    SceneView view = *find_scene_view(p.view);
+    if (p.elevation > 0) view.pitch_degrees = -p.elevation;
+    view.world_offset = {p.offset, 0.0, 0.0};
+    SyntheticScene scene = make_synthetic_scene(size, size, view);
+    scene.uniforms["time"] = {p.time};
+    if (p.time != 0) add_caustics_inputs(scene); // the map is Gerstner at the scene's time
+    return scene;
+}
+
+ContinuousError continuous_error(const VariantRender& r, size_t path) {
+    ContinuousError f;
+    const ImageRGBA32F& gpu = r.gpu_image[path];
+    if (r.float_bound.size() * 4 != gpu.rgba.size() || r.cpu_double.rgba.size() != gpu.rgba.size())
+        return {NAN, NAN, 0};
+    for (size_t p = 0; p < r.float_bound.size(); ++p) {
+        if (!(r.float_bound[p] <= kDiscontinuousBound)) {
+            ++f.discontinuous;
+            continue;
+        }
+        for (size_t c = 0; c < 3; ++c) {
+            const double e = std::fabs(double(gpu.rgba[p * 4 + c]) - r.cpu_double.rgba[p * 4 + c]);
+            f.max_abs = std::max(f.max_abs, e);
+            f.past_bound = std::max(f.past_bound, e - r.float_bound[p]);
+        }
+    }
+    return f;
+}
+
+bool stability_row_within(const StabilityRow& r, double max_ratio) {
+    // The ratios are value / origin (a zero origin: infinity for any value above it); a NaN
+    // fails both comparisons.
+    auto within = [&](double value, double ratio_to_origin, double floor) {
+        return value <= floor || ratio_to_origin <= max_ratio;
+    };
+    if (std::isfinite(r.continuous.past_bound) && std::isfinite(r.origin_continuous.past_bound)) {
+        const double pixels = double(r.what.size) * r.what.size;
+        if (!stability_within(r.continuous.past_bound, r.origin_continuous.past_bound, max_ratio,
+                              kAgreementTolerance) ||
+            !stability_within(double(r.continuous.discontinuous),
+                              double(r.origin_continuous.discontinuous), max_ratio, pixels / 1000))
+            return false;
+    } else if (!within(r.max_abs[0], r.ratio_to_origin, kStabilityMaxAbsFloor)) {
+        return false;
+    }
+    if (!within(r.de00_p99[0], r.ratio_de00, kStabilityDe00Floor)) return false;
+    if (std::isfinite(r.strict_ratio) &&
+        !within(r.strict_max_abs, r.strict_ratio, kStabilityMaxAbsFloor))
+        return false;
+    return true;
+}
 
 std::vector<double> default_stability_times() {
     return {0, kHour, kDay, kWeek, kYear};
@@ -135,7 +186,8 @@ std::optional<Variant> stability_variant(const StabilityCase& c, std::string& er
 
 StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<StabilityCase>& cases,
                                    const std::vector<StabilityPoint>& points,
-                                   void (*progress)(const StabilityRow&)) {
+                                   void (*progress)(const StabilityRow&),
+                                   const StabilityBeforeTable* before) {
     StabilityBench bench;
     for (const StabilityCase& c : cases) {
         std::string error;
@@ -153,6 +205,7 @@ StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<Stabi
         settings.float_bound = true;
         // The figure at the origin, per view and elevation, that the other points are held to.
         std::map<std::tuple<std::string, double>, std::array<double, 3>> origin;
+        std::map<std::tuple<std::string, double>, ContinuousError> origin_continuous;
         // Strict half where the device has 16-bit arithmetic; the screen pass only (a mesh's
         // figure is against the exact surface, not a half model).
         const bool strict = c.precision == "half" && c.geometry == "screen_pass" &&
@@ -164,7 +217,7 @@ StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<Stabi
             return bench;
         }
         for (const StabilityPoint& p : points) {
-            const SyntheticScene scene = point_scene(p, c.size);
+            const SyntheticScene scene = stability_scene(p, c.size);
             const VariantRender r = render_variant(runner, build, scene, settings);
             if (!r.ok()) {
                 bench.error = r.key + " " + point_label(p) + ": " + r.error;
@@ -175,6 +228,7 @@ StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<Stabi
             row.max_abs = {r.glsl_vs_cpu_double.max_abs, hlsl.max_abs};
             row.de00_p99 = {r.glsl_vs_cpu_double.ciede2000_p99, hlsl.ciede2000_p99};
             row.over_bound = {r.agreement[0].over_bound, r.agreement[1].over_bound};
+            row.continuous = continuous_error(r, 0);
             row.gpu_nan_inf = r.glsl_vs_cpu_double.nan_inf_where_reference_finite +
                               hlsl.nan_inf_where_reference_finite;
             if (strict) {
@@ -189,12 +243,17 @@ StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<Stabi
             }
             const auto at = std::make_tuple(p.view, p.elevation);
             if (p.time == 0 && p.offset == 0)
-                origin[at] = {row.max_abs[0], row.de00_p99[0], row.strict_max_abs};
+                origin[at] = {row.max_abs[0], row.de00_p99[0], row.strict_max_abs},
+                origin_continuous[at] = row.continuous;
             if (auto it = origin.find(at); it != origin.end()) {
                 row.ratio_to_origin = ratio(row.max_abs[0], it->second[0]);
+                row.origin_continuous = origin_continuous[at];
                 row.ratio_de00 = ratio(row.de00_p99[0], it->second[1]);
                 if (strict) row.strict_ratio = ratio(row.strict_max_abs, it->second[2]);
             }
+            if (before)
+                if (auto it = before->find(stability_join_key(c, p)); it != before->end())
+                    row.before = it->second;
             if (progress) progress(row);
             bench.rows.push_back(std::move(row));
         }
@@ -203,7 +262,9 @@ StabilityBench run_stability_bench(VulkanRunner& runner, const std::vector<Stabi
                 "view,glsl_vs_cpu_double_max_abs,hlsl_vs_cpu_double_max_abs,glsl_de00_p99,"
                 "hlsl_de00_p99,glsl_over_float_bound,hlsl_over_float_bound,gpu_nan_inf_pixels,"
                 "max_abs_over_origin,de00_p99_over_origin,strict_half_max_abs,strict_half_de00_p99,"
-                "strict_half_max_ulps,strict_half_max_abs_over_origin\n";
+                "strict_half_max_ulps,strict_half_max_abs_over_origin,before_glsl_max_abs,"
+                "before_glsl_de00_p99,before_strict_half_max_abs,glsl_continuous_max_abs,"
+                "glsl_past_float_bound,discontinuous_pixels\n";
     nlohmann::ordered_json rows = nlohmann::ordered_json::array();
     for (const StabilityRow& r : bench.rows) {
         bench.csv += csv_row(r);

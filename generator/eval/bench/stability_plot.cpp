@@ -77,7 +77,8 @@ std::string log_log_svg(const std::string& title, const std::string& x_label,
                 svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"{}\"/>",
                                    px(x), py(y), colour);
             }
-        svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\"/>", line, colour);
+        svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\"{}/>", line, colour,
+                           series[i].dashed ? " stroke-dasharray=\"1 3\"" : "");
         if (drawable(1.0, series[i].reference))
             svg +=
                 fmt::format("<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"{}\" "
@@ -96,6 +97,17 @@ std::string stability_html(const std::vector<StabilityRow>& rows) {
     for (const StabilityRow& r : rows) {
         const std::string label = fmt::format("{} {} {} {}", r.what.waves, r.what.precision,
                                               r.what.geometry, r.what.size);
+        if (std::isfinite(r.before.max_abs)) {
+            const std::string was = label + " before";
+            if (r.where.sweep == "time") {
+                by_time[was].dashed = true;
+                by_time[was].points.push_back({r.where.time, r.before.max_abs});
+            }
+            if (r.where.sweep == "distance") {
+                by_distance[was].dashed = true;
+                by_distance[was].points.push_back({r.where.offset, r.before.max_abs});
+            }
+        }
         if (r.where.view == "sun_glint" && r.where.time == 0 && r.where.offset == 0)
             by_time[label].reference = by_distance[label].reference = r.max_abs[0];
         if (r.where.sweep == "time") by_time[label].points.push_back({r.where.time, r.max_abs[0]});
@@ -116,7 +128,8 @@ std::string stability_html(const std::vector<StabilityRow>& rows) {
         "td,th{padding:2px 6px;text-align:right}td.k{text-align:left}</style>"
         "</head><body><h1>Stability: GPU against the CPU in double</h1>\n<p>"
         "The same graph in double over the same scene moved by its world offset; "
-        "GLSL path, max abs over linear RGB; dashed: the figure at the origin at time 0.</p>\n";
+        "GLSL path, max abs over linear RGB; dashed: the figure at the origin at time 0; dotted: "
+        "the --before run's figures, where given.</p>\n";
     html += log_log_svg("sun_glint, world origin: error against time", "time (s)",
                         "max abs vs double", values(by_time)) +
             "\n";
@@ -125,14 +138,17 @@ std::string stability_html(const std::vector<StabilityRow>& rows) {
             "\n";
     html += "<table><tr><th>variant</th><th>sweep</th><th>view</th><th>time (s)</th>"
             "<th>offset (m)</th><th>elevation</th><th>GLSL max abs</th><th>HLSL max abs</th>"
-            "<th>GLSL dE00 p99</th><th>over bound</th><th>x origin</th></tr>\n";
+            "<th>GLSL dE00 p99</th><th>over bound</th><th>x origin</th><th>GLSL max abs "
+            "before</th></tr>\n";
     for (const StabilityRow& r : rows)
-        html += fmt::format("<tr><td class=\"k\">{}</td><td class=\"k\">{}</td><td class=\"k\">{}"
-                            "</td><td>{:g}</td><td>{:g}</td><td>{:g}</td><td>{:.3g}</td><td>{:.3g}"
-                            "</td><td>{:.3g}</td><td>{}</td><td>{:.3g}</td></tr>\n",
-                            html_escape(r.key), r.where.sweep, r.where.view, r.where.time,
-                            r.where.offset, r.where.elevation, r.max_abs[0], r.max_abs[1],
-                            r.de00_p99[0], r.over_bound[0] + r.over_bound[1], r.ratio_to_origin);
+        html += fmt::format(
+            "<tr><td class=\"k\">{}</td><td class=\"k\">{}</td><td class=\"k\">{}"
+            "</td><td>{:g}</td><td>{:g}</td><td>{:g}</td><td>{:.3g}</td><td>{:.3g}"
+            "</td><td>{:.3g}</td><td>{}</td><td>{:.3g}</td><td>{}</td></tr>\n",
+            html_escape(r.key), r.where.sweep, r.where.view, r.where.time, r.where.offset,
+            r.where.elevation, r.max_abs[0], r.max_abs[1], r.de00_p99[0],
+            r.over_bound[0] + r.over_bound[1], r.ratio_to_origin,
+            std::isfinite(r.before.max_abs) ? fmt::format("{:.3g}", r.before.max_abs) : "");
     return html + "</table></body></html>\n";
 }
 

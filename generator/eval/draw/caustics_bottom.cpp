@@ -19,7 +19,8 @@ ImageRGBA32F caustics_lit_bottom(const std::string& caustics_choice, const Synth
     Graph g;
     Expr uv = varying(g, "v_uv", Type::Vec2);
     Expr rgb = sample(texture(g, scene_color_texture()), uv).xyz();
-    Expr pos = sample(texture(g, scene_position_texture()), uv).xyz();
+    // The texel is the bottom less the eye (scene_input.h): the eye puts it back in the frame.
+    Expr pos = scene_eye_position(g) + sample(texture(g, scene_position_texture()), uv).xyz();
     // The water shader's own parameter: the scene sets it (0 in every view).
     Expr level = scene_water_level(g);
     Expr lit = choice->node->build(g, {rgb, pos.xz()});

@@ -21,7 +21,8 @@ RenderReportInfo report_info(const VulkanRunner& runner, const RenderRequest& re
 
 // Puts `values` into the scene, each checked against the variant's parameter of that name
 // (a position as given, in the scene's own frame) and then moved by the scene's world offset
-// (placed_scene_value), and makes the depth buffer again for the conventions and eye they set.
+// (placed_scene_value); scene_position follows the eye they set, and the depth buffer is
+// made again for the conventions and eye.
 std::optional<std::string> set_values(SyntheticScene& scene, const WaterShader& shader,
                                       const std::map<std::string, std::vector<double>>& values) {
     for (const auto& [name, value] : values) {
@@ -42,7 +43,10 @@ std::optional<std::string> set_values(SyntheticScene& scene, const WaterShader& 
         }
         scene.uniforms[name] = placed_scene_value(name, value, scene.view.world_offset);
     }
-    if (!values.empty()) add_depth_inputs(scene);
+    if (!values.empty()) {
+        follow_scene_eye(scene); // the eye moves over the scene, which stays
+        add_depth_inputs(scene);
+    }
     return std::nullopt;
 }
 

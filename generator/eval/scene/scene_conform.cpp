@@ -69,11 +69,13 @@ SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, 
         }
         s.uniforms[sun_name] = sun;
     }
+    follow_scene_eye(s); // the texels relative to the conformed eye
     if (auto it = s.textures.find("scene_position"); it != s.textures.end() && eye.size() == 3) {
         size_t moved = 0;
         auto& rgba = it->second.rgba;
+        const std::array<double, 3>& at = s.position_eye;
         for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
-            const double px = rgba[i], py = rgba[i + 1], pz = rgba[i + 2];
+            const double px = at[0] + rgba[i], py = at[1] + rgba[i + 1], pz = at[2] + rgba[i + 2];
             if (!(py < level)) continue; // not under the water plane: not a water pixel
             // Waves move the surface around the plane: keep a margin from restrictive bounds
             // so that the depth under a displaced surface still obeys the fact.
@@ -87,9 +89,9 @@ SyntheticScene conform_scene(const SyntheticScene& base, const ScenePlan& plan, 
             const double t = (eye[1] - (level - d)) / (eye[1] - py);
             const double nx = eye[0] + (px - eye[0]) * t, ny = level - d,
                          nz = eye[2] + (pz - eye[2]) * t;
-            rgba[i] = static_cast<float>(nx);
-            rgba[i + 1] = static_cast<float>(ny);
-            rgba[i + 2] = static_cast<float>(nz);
+            rgba[i] = static_cast<float>(nx - at[0]);
+            rgba[i + 1] = static_cast<float>(ny - at[1]);
+            rgba[i + 2] = static_cast<float>(nz - at[2]);
             rgba[i + 3] = static_cast<float>(std::sqrt((nx - eye[0]) * (nx - eye[0]) +
                                                        (ny - eye[1]) * (ny - eye[1]) +
                                                        (nz - eye[2]) * (nz - eye[2])));

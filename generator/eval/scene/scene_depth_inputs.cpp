@@ -81,14 +81,17 @@ void add_depth_inputs(SyntheticScene& scene) {
         eye = {it->second[0], it->second[1], it->second[2]};
     const dmat4 view_proj = projection(cam, k) * view_matrix(cam, eye, k.camera_relative);
 
+    // The texels are relative to position_eye (follow_scene_eye): world = it + texel.
+    const dvec3 at{scene.position_eye[0], scene.position_eye[1], scene.position_eye[2]};
     const TextureData& from = position->second;
     TextureData depth{from.width, from.height, 1, std::vector<float>(from.rgba.size(), 0.0f)};
     const double far_depth = k.reversed ? 0.0 : 1.0;
     for (size_t i = 0; i + 3 < from.rgba.size(); i += 4) {
         double window = far_depth; // the clear value: nothing drawn here
         if (from.rgba[i + 3] < kSceneSkyDistance) {
-            const dvec3 p{from.rgba[i], from.rgba[i + 1], from.rgba[i + 2]};
-            const dvec4 q = view_proj * dvec4(k.camera_relative ? p - eye : p, 1.0);
+            const dvec3 texel{from.rgba[i], from.rgba[i + 1], from.rgba[i + 2]};
+            const dvec3 p = k.camera_relative ? texel + (at - eye) : at + texel;
+            const dvec4 q = view_proj * dvec4(p, 1.0);
             const double ndc_z = q.z / q.w;
             window = k.gl_range ? 0.5 * ndc_z + 0.5 : ndc_z;
         }

@@ -144,7 +144,8 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const Scene
     TextureData position = color;
 
     const SceneCamera cam = scene_camera(view, width, height);
-    // Traced and shaded around the origin, in double; stored moved by the offset.
+    // Traced and shaded around the origin, in double; positions stored relative to the eye, so
+    // the same bytes at every offset, and the eye and the parameters' positions moved by it.
     const std::array<double, 3>& offset = view.world_offset;
     const dvec3 eye = to_dvec3(view.eye);
     const dvec3 forward = to_dvec3(cam.forward), right = to_dvec3(cam.right), up = to_dvec3(cam.up);
@@ -160,11 +161,10 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const Scene
             const Hit hit = trace(eye, d, spheres);
             const dvec3 p = eye + d * hit.t;
             const dvec3 c = (hit.ground || hit.sphere) ? shade(hit, p, -sun_travel) : sky(d);
-            const dvec3 world = placed(p, offset);
             const size_t i = (size_t(y) * width + x) * 4;
             for (int k = 0; k < 3; ++k) {
                 color.rgba[i + k] = static_cast<float>(c[k]);
-                position.rgba[i + k] = static_cast<float>(world[k]);
+                position.rgba[i + k] = static_cast<float>(p[k] - eye[k]); // camera-relative
             }
             color.rgba[i + 3] = 1.0f;
             position.rgba[i + 3] = static_cast<float>(hit.t);
@@ -172,6 +172,8 @@ SyntheticScene make_synthetic_scene(uint32_t width, uint32_t height, const Scene
     s.textures["scene_color"] = std::move(color);
     s.textures["scene_position"] = std::move(position);
     s.uniforms["eye_position"] = placed_scene_value("eye_position", {eye.x, eye.y, eye.z}, offset);
+    const std::vector<double>& placed_eye = s.uniforms["eye_position"];
+    s.position_eye = {placed_eye[0], placed_eye[1], placed_eye[2]};
     s.uniforms["water_level"] = placed_scene_value("water_level", {0.0}, offset);
     // The windows of the textures made over the scene (the Fourier horizon, the caustics map)
     // move with it; at offset 0 they are the parameters' defaults, left unset as of old.
@@ -213,7 +215,34 @@ SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* prese
     if (preset)
         for (const auto& [name, values] : preset->values)
             scene.uniforms[name] = placed_scene_value(name, values, world_offset);
+    if (scene.uniforms["eye_position"] !=
+        std::vector<double>(scene.position_eye.begin(), scene.position_eye.end())) {
+        follow_scene_eye(scene);
+        add_depth_inputs(scene);
+    }
     return scene;
+}
+
+void follow_scene_eye(SyntheticScene& scene) {
+    const auto eye = scene.uniforms.find("eye_position");
+    const auto position = scene.textures.find("scene_position");
+    if (eye == scene.uniforms.end() || eye->second.size() != 3 || position == scene.textures.end())
+        return;
+    const std::array<double, 3> to{eye->second[0], eye->second[1], eye->second[2]};
+    if (to == scene.position_eye) return;
+    const std::array<double, 3>& from = scene.position_eye;
+    std::vector<float>& rgba = position->second.rgba;
+    for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
+        if (!(rgba[i + 3] < kSceneSkyDistance)) continue; // the sky lies at infinity
+        double r2 = 0;
+        for (int k = 0; k < 3; ++k) {
+            const double d = (double(rgba[i + k]) + from[size_t(k)]) - to[size_t(k)];
+            rgba[i + k] = static_cast<float>(d);
+            r2 += d * d;
+        }
+        rgba[i + 3] = static_cast<float>(std::sqrt(r2));
+    }
+    scene.position_eye = to;
 }
 
 } // namespace watergen

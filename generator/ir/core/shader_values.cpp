@@ -65,9 +65,6 @@ std::vector<std::pair<double, double>> host_value_range(const Parameter& p) {
     case HostRule::TileOffset:
         out.assign(n, {0.0, 1.0});
         break;
-    case HostRule::FrameCentre:
-        out.assign(n, {-kFrameReach, kFrameReach});
-        break;
     }
     return out;
 }

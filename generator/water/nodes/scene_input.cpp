@@ -101,18 +101,17 @@ AxisInfo scene_input_axis() {
         "position_texture",
         {
             {.name = "position_texture",
-             .description = "world position from the scene_position texture the engine writes",
+             .description = "scene position from the scene_position texture the engine writes, "
+                            "relative to the eye",
              .compose =
                  [](Surface& s) {
                      OriginScope scope(s.g, "surface");
-                     // The texture holds world positions: less the frame centre, exact for
-                     // a position within a factor 2 of it (Sterbenz).
-                     Expr centre = uniform(s.g, frame_centre());
-                     s.scene_pos =
-                         named(sample(texture(s.g, scene_position_texture()), s.uv).xyz() -
-                                   vec3(centre.x(), constant(s.g, 0.0), centre.y()),
-                               "scene_pos");
-                     s.to_scene = s.scene_pos - s.eye;
+                     // The texture holds the scene point less the eye (what a large-world
+                     // engine's G-buffer holds): exact in float near the eye at any distance
+                     // from the world origin, where a world position would keep centimetres.
+                     s.to_scene = named(sample(texture(s.g, scene_position_texture()), s.uv).xyz(),
+                                        "to_scene");
+                     s.scene_pos = named(s.eye + s.to_scene, "scene_pos");
                  },
              .scene_needs = {{SceneFact::SceneInput, "position_texture", ""}}},
             feature_choice(

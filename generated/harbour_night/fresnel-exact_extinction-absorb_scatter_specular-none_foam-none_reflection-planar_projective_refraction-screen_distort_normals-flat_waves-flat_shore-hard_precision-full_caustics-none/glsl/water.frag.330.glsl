@@ -17,7 +17,6 @@ layout(std140) uniform WaterParams
     float reflection_fov_extension;
     vec3 sky_color;
     float ior_air;
-    vec2 frame_centre;
     float ior_water;
 } params;
 
@@ -33,44 +32,44 @@ void main()
     vec4 _25 = texture(scene_color, v_uv);
     vec3 _26 = _25.xyz;
     vec4 _33 = texture(scene_position, v_uv);
-    vec3 _50 = _33.xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 _57 = _50 - params.eye_position;
-    float _61 = length(_57);
-    vec3 _68 = _57 / vec3(max(_61, 9.9999999747524270787835121154785e-07));
-    float _71 = _68.y;
-    float _81 = (-params.eye_position.y) / min(_71, -9.9999999747524270787835121154785e-07);
-    vec3 _88 = params.eye_position + (_68 * _81);
-    float _96 = _50.y;
-    float _99 = _88.y;
-    vec4 _154 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    float _159 = clamp(max(_61 - _81, 0.0), 0.0, 30000.0);
-    vec4 _218 = (((params.reflection_view_proj_c0 * _88.x) + (params.reflection_view_proj_c1 * _99)) + (params.reflection_view_proj_c2 * _88.z)) + params.reflection_view_proj_c3;
-    float _222 = _218.w;
-    bool _226 = _222 > 9.9999997473787516355514526367188e-05;
-    vec2 _244 = clamp((((_218.xy / vec2(_222)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _250 = bvec2(_226);
-    float _254 = float(_226);
-    vec4 _270 = texture(reflection_map, vec3(vec2(_250.x ? _244.x : vec2(0.5).x, _250.y ? _244.y : vec2(0.5).y), _254).xy);
-    vec3 _394;
-    if (_254 > 0.5)
+    vec3 _34 = _33.xyz;
+    vec3 _45 = params.eye_position + _34;
+    float _49 = length(_34);
+    vec3 _56 = _34 / vec3(max(_49, 9.9999999747524270787835121154785e-07));
+    float _61 = _56.y;
+    float _72 = (-params.eye_position.y) / min(_61, -9.9999999747524270787835121154785e-07);
+    vec3 _79 = params.eye_position + (_56 * _72);
+    float _88 = _45.y;
+    float _91 = _79.y;
+    vec4 _146 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    float _151 = clamp(max(_49 - _72, 0.0), 0.0, 30000.0);
+    vec4 _211 = (((params.reflection_view_proj_c0 * _79.x) + (params.reflection_view_proj_c1 * _91)) + (params.reflection_view_proj_c2 * _79.z)) + params.reflection_view_proj_c3;
+    float _215 = _211.w;
+    bool _219 = _215 > 9.9999997473787516355514526367188e-05;
+    vec2 _237 = clamp((((_211.xy / vec2(_215)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _243 = bvec2(_219);
+    float _247 = float(_219);
+    vec4 _263 = texture(reflection_map, vec3(vec2(_243.x ? _237.x : vec2(0.5).x, _243.y ? _237.y : vec2(0.5).y), _247).xy);
+    vec3 _387;
+    if (_247 > 0.5)
     {
-        _394 = _270.xyz;
+        _387 = _263.xyz;
     }
     else
     {
-        _394 = params.sky_color;
+        _387 = params.sky_color;
     }
-    float _289 = clamp((-_68).y, 0.0, 1.0);
-    float _297 = params.ior_air / params.ior_water;
-    float _301 = _297 * _297;
-    float _305 = (-_289) * _289 + 1.0;
-    float _311 = sqrt(max((-_301) * _305 + 1.0, 0.0));
-    float _316 = params.ior_water * _311;
-    float _331 = (params.ior_air * _289 + (-_316)) / max(params.ior_air * _289 + _316, 1.0000000031710768509710513471353e-30);
-    float _336 = params.ior_air * _311;
-    float _350 = (params.ior_water * _289 + (-_336)) / max(params.ior_water * _289 + _336, 1.0000000031710768509710513471353e-30);
-    vec3 _372 = mix(mix(params.scatter_color, _154.xyz * exp((-params.absorb_coefficients) * (max(_99 - _96, 0.0) + _159)), vec3(exp((-params.scatter_coefficient) * _159))) * params.incident_light, _394, vec3(((_301 * _305) >= 1.0) ? 1.0 : (0.5 * (_331 * _331 + (_350 * _350)))));
-    bvec3 _378 = bvec3((_96 < _99) && (_71 < 0.0));
-    out_color = vec4(vec3(_378.x ? _372.x : _26.x, _378.y ? _372.y : _26.y, _378.z ? _372.z : _26.z), 1.0);
+    float _282 = clamp((-_56).y, 0.0, 1.0);
+    float _290 = params.ior_air / params.ior_water;
+    float _294 = _290 * _290;
+    float _298 = (-_282) * _282 + 1.0;
+    float _304 = sqrt(max((-_294) * _298 + 1.0, 0.0));
+    float _309 = params.ior_water * _304;
+    float _324 = (params.ior_air * _282 + (-_309)) / max(params.ior_air * _282 + _309, 1.0000000031710768509710513471353e-30);
+    float _329 = params.ior_air * _304;
+    float _343 = (params.ior_water * _282 + (-_329)) / max(params.ior_water * _282 + _329, 1.0000000031710768509710513471353e-30);
+    vec3 _365 = mix(mix(params.scatter_color, _146.xyz * exp((-params.absorb_coefficients) * (max(_91 - _88, 0.0) + _151)), vec3(exp((-params.scatter_coefficient) * _151))) * params.incident_light, _387, vec3(((_294 * _298) >= 1.0) ? 1.0 : (0.5 * (_324 * _324 + (_343 * _343)))));
+    bvec3 _371 = bvec3((_88 < _91) && (_61 < 0.0));
+    out_color = vec4(vec3(_371.x ? _365.x : _26.x, _371.y ? _365.y : _26.y, _371.z ? _365.z : _26.z), 1.0);
 }
 

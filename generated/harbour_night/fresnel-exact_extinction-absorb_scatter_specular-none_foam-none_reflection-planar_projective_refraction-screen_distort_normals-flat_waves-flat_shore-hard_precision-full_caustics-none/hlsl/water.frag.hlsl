@@ -15,8 +15,7 @@
     float reflection_fov_extension : packoffset(c7.w);
     float3 sky_color : packoffset(c8.x);
     float ior_air : packoffset(c8.w);
-    float2 frame_centre : packoffset(c9.x);
-    float ior_water : packoffset(c9.z);
+    float ior_water : packoffset(c9.x);
 };
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0, space0);
 [[vk::binding(2, 0)]] Texture2D scene_color : register(t0, space0);
@@ -26,69 +25,69 @@
 float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     // surface
     float3 scene_rgb = scene_color.Sample(linear_clamp, v_uv).xyz;
-    float3 scene_pos = scene_position.Sample(linear_clamp, v_uv).xyz - float3(frame_centre.x, 0.0, frame_centre.y);
-    float3 t14 = scene_pos - eye_position;
-    float scene_distance = length(t14);
-    float3 view_ray = t14 / max(scene_distance, 1e-06);
+    float3 to_scene = scene_position.Sample(linear_clamp, v_uv).xyz;
+    float3 scene_pos = eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    float3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t19 = view_ray.y;
-    float view_ray_y = min(t19, -1e-06);
-    float t24 = (-eye_position.y) / view_ray_y;
-    float3 surface_point = eye_position + (view_ray * t24);
-    float water_path = max(scene_distance - t24, 0.0);
-    float t29 = scene_pos.y;
-    float t30 = surface_point.y;
-    float water_depth = max(t30 - t29, 0.0);
-    bool t35 = (t29 < t30) && (t19 < 0.0);
+    float t14 = view_ray.y;
+    float view_ray_y = min(t14, -1e-06);
+    float t19 = (-eye_position.y) / view_ray_y;
+    float3 surface_point = eye_position + (view_ray * t19);
+    float water_path = max(scene_distance - t19, 0.0);
+    float t24 = scene_pos.y;
+    float t25 = surface_point.y;
+    float water_depth = max(t25 - t24, 0.0);
+    bool t30 = (t24 < t25) && (t14 < 0.0);
 
     // surface
     float n_dot_v = dot(float3(0.0, 1.0, 0.0), -view_ray);
 
     // refraction.screen_distort
-    float t43 = saturate(water_depth / refraction_shore_fade_depth);
-    bool t44 = refraction_shore_fade_depth > 0.0;
-    float distortion_fade = t44 ? t43 : 1.0;
+    float t38 = saturate(water_depth / refraction_shore_fade_depth);
+    bool t39 = refraction_shore_fade_depth > 0.0;
+    float distortion_fade = t39 ? t38 : 1.0;
     float2 refraction_uv = saturate(v_uv + (float2(0.0, 0.0) * (refraction_distortion * distortion_fade)));
     float3 refracted = scene_color.Sample(linear_clamp, refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    float t58 = clamp(water_path, 0.0, 30000.0);
-    float3 transmittance = exp((-absorb_coefficients) * (water_depth + t58));
-    float inverse_scatter = exp((-scatter_coefficient) * t58);
+    float t53 = clamp(water_path, 0.0, 30000.0);
+    float3 transmittance = exp((-absorb_coefficients) * (water_depth + t53));
+    float inverse_scatter = exp((-scatter_coefficient) * t53);
     float3 water_color = lerp(scatter_color, refracted * transmittance, (float3)(inverse_scatter)) * incident_light;
 
     // reflection.planar_projective
-    float4 reflection_clip = (((reflection_view_proj_c0 * surface_point.x) + (reflection_view_proj_c1 * t30)) + (reflection_view_proj_c2 * surface_point.z)) + reflection_view_proj_c3;
-    float t83 = reflection_clip.w;
-    bool reflection_in_front = t83 > 0.0001;
-    float2 t92 = saturate(((0.5 * (reflection_clip.xy / t83)) / reflection_fov_extension) + 0.5);
-    float2 reflection_uv = reflection_in_front ? t92 : float2(0.5, 0.5);
-    float t95 = reflection_in_front ? 1.0 : 0.0;
-    float3 t96 = float3(reflection_uv, t95);
-    float2 t97 = t96.xy;
-    float3 t100 = reflection_map.Sample(linear_clamp, t97).xyz;
-    bool t103 = t96.z > 0.5;
-    float3 reflected = t103 ? t100 : sky_color;
+    float4 reflection_clip = (((reflection_view_proj_c0 * surface_point.x) + (reflection_view_proj_c1 * t25)) + (reflection_view_proj_c2 * surface_point.z)) + reflection_view_proj_c3;
+    float t78 = reflection_clip.w;
+    bool reflection_in_front = t78 > 0.0001;
+    float2 t87 = saturate(((0.5 * (reflection_clip.xy / t78)) / reflection_fov_extension) + 0.5);
+    float2 reflection_uv = reflection_in_front ? t87 : float2(0.5, 0.5);
+    float t90 = reflection_in_front ? 1.0 : 0.0;
+    float3 t91 = float3(reflection_uv, t90);
+    float2 t92 = t91.xy;
+    float3 t95 = reflection_map.Sample(linear_clamp, t92).xyz;
+    bool t98 = t91.z > 0.5;
+    float3 reflected = t98 ? t95 : sky_color;
 
     // fresnel.exact
     float cos_incident = saturate(n_dot_v);
-    float t110 = ior_air / ior_water;
-    float sin2_transmitted = (t110 * t110) * (1.0 - (cos_incident * cos_incident));
+    float t105 = ior_air / ior_water;
+    float sin2_transmitted = (t105 * t105) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t116 = ior_water * cos_transmitted;
-    float t117 = ior_air * cos_incident;
-    float t122 = (t117 - t116) / max(t117 + t116, 1e-30);
-    float t123 = ior_air * cos_transmitted;
-    float t124 = ior_water * cos_incident;
-    float t128 = (t124 - t123) / max(t124 + t123, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t122 * t122) + (t128 * t128));
-    bool t133 = sin2_transmitted >= 1.0;
-    float fresnel = t133 ? 1.0 : fresnel_unpolarised;
+    float t111 = ior_water * cos_transmitted;
+    float t112 = ior_air * cos_incident;
+    float t117 = (t112 - t111) / max(t112 + t111, 1e-30);
+    float t118 = ior_air * cos_transmitted;
+    float t119 = ior_water * cos_incident;
+    float t123 = (t119 - t118) / max(t119 + t118, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t117 * t117) + (t123 * t123));
+    bool t128 = sin2_transmitted >= 1.0;
+    float fresnel = t128 ? 1.0 : fresnel_unpolarised;
 
     // compose
-    float3 t136 = lerp(water_color, reflected, (float3)(fresnel));
-    float3 t137 = t35 ? t136 : scene_rgb;
+    float3 t131 = lerp(water_color, reflected, (float3)(fresnel));
+    float3 t132 = t30 ? t131 : scene_rgb;
 
-    return float4(t137, 1.0);
+    return float4(t132, 1.0);
 }

@@ -20,11 +20,10 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 156) float ior_air;
     layout(offset = 160) vec3 foam_color;
     layout(offset = 172) float ior_water;
-    layout(offset = 176) vec2 frame_centre;
-    layout(offset = 184) vec2 foam_pattern_drift;
-    layout(offset = 192) vec2 foam_pattern_offset;
-    layout(offset = 200) float foam_pattern_scale;
-    layout(offset = 204) float shore_hardness;
+    layout(offset = 176) vec2 foam_pattern_drift;
+    layout(offset = 184) vec2 foam_pattern_offset;
+    layout(offset = 192) float foam_pattern_scale;
+    layout(offset = 196) float shore_hardness;
 } params;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
@@ -37,92 +36,92 @@ layout(location = 0) out vec4 out_color;
 void main() {
     // surface
     vec3 scene_rgb = texture(sampler2D(scene_color, linear_clamp), v_uv).xyz;
-    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 t14 = scene_pos - params.eye_position;
-    float scene_distance = length(t14);
-    vec3 view_ray = t14 / max(scene_distance, 1e-06);
+    vec3 to_scene = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz;
+    vec3 scene_pos = params.eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    vec3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t19 = view_ray.y;
-    float view_ray_y = min(t19, -1e-06);
-    float t24 = (-params.eye_position.y) / view_ray_y;
-    vec3 surface_point = params.eye_position + (view_ray * t24);
-    float water_path = max(scene_distance - t24, 0.0);
-    float t29 = scene_pos.y;
-    float t30 = surface_point.y;
-    float water_depth = max(t30 - t29, 0.0);
-    bool t35 = (t29 < t30) && (t19 < 0.0);
+    float t14 = view_ray.y;
+    float view_ray_y = min(t14, -1e-06);
+    float t19 = (-params.eye_position.y) / view_ray_y;
+    vec3 surface_point = params.eye_position + (view_ray * t19);
+    float water_path = max(scene_distance - t19, 0.0);
+    float t24 = scene_pos.y;
+    float t25 = surface_point.y;
+    float water_depth = max(t25 - t24, 0.0);
+    bool t30 = (t24 < t25) && (t14 < 0.0);
 
     // surface
     float n_dot_v = dot(vec3(0.0, 1.0, 0.0), -view_ray);
 
     // refraction.screen_distort
-    float t43 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
-    bool t44 = params.refraction_shore_fade_depth > 0.0;
-    float distortion_fade = t44 ? t43 : 1.0;
+    float t38 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
+    bool t39 = params.refraction_shore_fade_depth > 0.0;
+    float distortion_fade = t39 ? t38 : 1.0;
     vec2 refraction_uv = clamp(v_uv + (vec2(0.0) * (params.refraction_distortion * distortion_fade)), 0.0, 1.0);
     vec3 refracted = texture(sampler2D(scene_color, linear_clamp), refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    float t58 = clamp(water_path, 0.0, 30000.0);
-    vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t58));
-    float inverse_scatter = exp((-params.scatter_coefficient) * t58);
+    float t53 = clamp(water_path, 0.0, 30000.0);
+    vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t53));
+    float inverse_scatter = exp((-params.scatter_coefficient) * t53);
     vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.planar_projective
-    vec4 reflection_clip = (((params.reflection_view_proj_c0 * surface_point.x) + (params.reflection_view_proj_c1 * t30)) + (params.reflection_view_proj_c2 * surface_point.z)) + params.reflection_view_proj_c3;
-    float t83 = reflection_clip.w;
-    bool reflection_in_front = t83 > 0.0001;
-    vec2 t92 = clamp(((0.5 * (reflection_clip.xy / t83)) / params.reflection_fov_extension) + 0.5, 0.0, 1.0);
-    vec2 reflection_uv = reflection_in_front ? t92 : vec2(0.5);
-    float t95 = reflection_in_front ? 1.0 : 0.0;
-    vec3 t96 = vec3(reflection_uv, t95);
-    vec2 t97 = t96.xy;
-    vec3 t100 = texture(sampler2D(reflection_map, linear_clamp), t97).xyz;
-    bool t103 = t96.z > 0.5;
-    vec3 reflected = t103 ? t100 : params.sky_color;
+    vec4 reflection_clip = (((params.reflection_view_proj_c0 * surface_point.x) + (params.reflection_view_proj_c1 * t25)) + (params.reflection_view_proj_c2 * surface_point.z)) + params.reflection_view_proj_c3;
+    float t78 = reflection_clip.w;
+    bool reflection_in_front = t78 > 0.0001;
+    vec2 t87 = clamp(((0.5 * (reflection_clip.xy / t78)) / params.reflection_fov_extension) + 0.5, 0.0, 1.0);
+    vec2 reflection_uv = reflection_in_front ? t87 : vec2(0.5);
+    float t90 = reflection_in_front ? 1.0 : 0.0;
+    vec3 t91 = vec3(reflection_uv, t90);
+    vec2 t92 = t91.xy;
+    vec3 t95 = texture(sampler2D(reflection_map, linear_clamp), t92).xyz;
+    bool t98 = t91.z > 0.5;
+    vec3 reflected = t98 ? t95 : params.sky_color;
 
     // fresnel.exact
     float cos_incident = clamp(n_dot_v, 0.0, 1.0);
-    float t110 = params.ior_air / params.ior_water;
-    float sin2_transmitted = (t110 * t110) * (1.0 - (cos_incident * cos_incident));
+    float t105 = params.ior_air / params.ior_water;
+    float sin2_transmitted = (t105 * t105) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t116 = params.ior_water * cos_transmitted;
-    float t117 = params.ior_air * cos_incident;
-    float t122 = (t117 - t116) / max(t117 + t116, 1e-30);
-    float t123 = params.ior_air * cos_transmitted;
-    float t124 = params.ior_water * cos_incident;
-    float t128 = (t124 - t123) / max(t124 + t123, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t122 * t122) + (t128 * t128));
-    bool t133 = sin2_transmitted >= 1.0;
-    float fresnel = t133 ? 1.0 : fresnel_unpolarised;
+    float t111 = params.ior_water * cos_transmitted;
+    float t112 = params.ior_air * cos_incident;
+    float t117 = (t112 - t111) / max(t112 + t111, 1e-30);
+    float t118 = params.ior_air * cos_transmitted;
+    float t119 = params.ior_water * cos_incident;
+    float t123 = (t119 - t118) / max(t119 + t118, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t117 * t117) + (t123 * t123));
+    bool t128 = sin2_transmitted >= 1.0;
+    float fresnel = t128 ? 1.0 : fresnel_unpolarised;
 
     // compose
-    vec3 t136 = mix(water_color, reflected, vec3(fresnel));
+    vec3 t131 = mix(water_color, reflected, vec3(fresnel));
 
     // foam.shore
-    vec2 t137 = surface_point.xz;
-    vec2 foam_uv = ((fract((t137 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + 0.5) / 256.0;
-    float foam_footprint = max(length(dFdx(t137)), length(dFdy(t137)));
+    vec2 t132 = surface_point.xz;
+    vec2 foam_uv = ((fract((t132 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + 0.5) / 256.0;
+    float foam_footprint = max(length(dFdx(t132)), length(dFdy(t132)));
     float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
     float foam_pattern_2 = mix(foam_texel, 0.6, foam_aliasing);
-    float t166 = params.foam_existence.x;
-    float t167 = water_depth - t166;
-    float t169 = params.foam_existence.y - t166;
-    float t173 = clamp(t167 / max(t169, 5.9604645e-08), 0.0, 1.0);
-    bool t174 = t167 >= t169;
-    float t175 = t174 ? 1.0 : t173;
-    float t176 = 1.0 - t175;
-    bool t177 = t167 < 0.0;
-    float shore_foam = t177 ? 1.0 : t176;
-    vec3 foam_rgb = mix(t136, params.foam_color * foam_pattern_2, vec3(shore_foam));
+    float t161 = params.foam_existence.x;
+    float t162 = water_depth - t161;
+    float t164 = params.foam_existence.y - t161;
+    float t168 = clamp(t162 / max(t164, 5.9604645e-08), 0.0, 1.0);
+    bool t169 = t162 >= t164;
+    float t170 = t169 ? 1.0 : t168;
+    float t171 = 1.0 - t170;
+    bool t172 = t162 < 0.0;
+    float shore_foam = t172 ? 1.0 : t171;
+    vec3 foam_rgb = mix(t131, params.foam_color * foam_pattern_2, vec3(shore_foam));
 
     // shore.soft
     vec3 shore_color = mix(refracted, foam_rgb, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));
 
     // compose
-    vec3 t188 = t35 ? shore_color : scene_rgb;
+    vec3 t183 = t30 ? shore_color : scene_rgb;
 
-    out_color = vec4(t188, 1.0);
+    out_color = vec4(t183, 1.0);
 }

@@ -37,7 +37,6 @@ layout(std140) uniform WaterParams
     float gerstner_amplitude_gain;
     vec3 sky_color;
     float gerstner_frequency_gain;
-    vec2 frame_centre;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -59,176 +58,176 @@ void main()
     vec4 _25 = texture(scene_color, v_uv);
     vec3 _26 = _25.xyz;
     vec4 _33 = texture(scene_position, v_uv);
-    vec3 _54 = _33.xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 _61 = _54 - params.eye_position;
-    float _65 = length(_61);
-    vec3 _72 = _61 / vec3(max(_65, 9.9999999747524270787835121154785e-07));
-    vec3 _75 = dFdx(_72);
-    vec3 _78 = dFdy(_72);
-    float _80 = max(length(_75), length(_78));
-    float _83 = floor(gerstner_wave_count);
-    float _979;
-    float _981;
-    _981 = 0.0;
-    _979 = 0.0;
-    float _116;
-    float _121;
-    float _126;
-    float _131;
-    int _978 = 0;
-    float _980 = params.gerstner_amplitude;
-    float _982 = params.gerstner_frequency;
-    for (; _978 < 8; _982 = _131, _981 = _121, _980 = _126, _979 = _116, _978++)
+    vec3 _34 = _33.xyz;
+    vec3 _50 = params.eye_position + _34;
+    float _54 = length(_34);
+    vec3 _61 = _34 / vec3(max(_54, 9.9999999747524270787835121154785e-07));
+    vec3 _64 = dFdx(_61);
+    vec3 _67 = dFdy(_61);
+    float _69 = max(length(_64), length(_67));
+    float _72 = floor(gerstner_wave_count);
+    float _972;
+    float _974;
+    _974 = 0.0;
+    _972 = 0.0;
+    float _107;
+    float _112;
+    float _117;
+    float _122;
+    int _971 = 0;
+    float _973 = params.gerstner_amplitude;
+    float _975 = params.gerstner_frequency;
+    for (; _971 < 8; _975 = _122, _974 = _112, _973 = _117, _972 = _107, _971++)
     {
-        if (!(float(_978) < _83))
+        if (!(float(_971) < _72))
         {
             break;
         }
-        _116 = _979 + _980;
-        _121 = _980 * _982 + _981;
-        _126 = _980 * params.gerstner_amplitude_gain;
-        _131 = _982 * params.gerstner_frequency_gain;
+        _107 = _972 + _973;
+        _112 = _973 * _975 + _974;
+        _117 = _973 * params.gerstner_amplitude_gain;
+        _122 = _975 * params.gerstner_frequency_gain;
     }
-    float _147 = _72.y;
-    float _151 = max(-_147, 9.9999999747524270787835121154785e-07);
-    vec2 _155 = _72.xz;
-    float _164 = 1.0 / (1.0 + (((_981 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_155)) / _151));
-    float _167 = -_979;
-    float _171 = min(_147, -9.9999999747524270787835121154785e-07);
-    float _986;
-    vec2 _991;
-    _991 = (params.eye_position + (_72 * max((_979 - params.eye_position.y) / _171, 0.0))).xz;
-    _986 = _979;
-    vec2 _412;
-    float _679;
-    float _684;
-    float _694;
-    int _985 = 0;
-    float _1019 = _979;
-    float _1024 = _167;
+    float _139 = _61.y;
+    float _143 = max(-_139, 9.9999999747524270787835121154785e-07);
+    vec2 _147 = _61.xz;
+    float _156 = 1.0 / (1.0 + (((_974 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_147)) / _143));
+    float _159 = -_972;
+    float _163 = min(_139, -9.9999999747524270787835121154785e-07);
+    float _979;
+    vec2 _984;
+    _984 = (params.eye_position + (_61 * max((_972 - params.eye_position.y) / _163, 0.0))).xz;
+    _979 = _972;
+    vec2 _405;
+    float _672;
+    float _677;
+    float _687;
+    int _978 = 0;
+    float _1012 = _972;
+    float _1017 = _159;
     SPIRV_CROSS_LOOP
-    for (; _985 < 9; _1024 = _684, _1019 = _679, _991 = _412, _986 = _694, _985++)
+    for (; _978 < 9; _1017 = _677, _1012 = _672, _984 = _405, _979 = _687, _978++)
     {
-        float _217 = max((_986 - params.eye_position.y) / _171, 0.0);
-        vec2 _227 = (params.eye_position + (_72 * _217)).xz;
-        float _233 = (_80 * _217) / _151;
-        vec2 _993;
+        float _209 = max((_979 - params.eye_position.y) / _163, 0.0);
+        vec2 _219 = (params.eye_position + (_61 * _209)).xz;
+        float _225 = (_69 * _209) / _143;
+        vec2 _986;
+        vec3 _987;
+        _987 = vec3(0.0);
+        _986 = vec2(0.0);
+        float _322;
+        float _326;
+        vec2 _333;
+        vec3 _347;
+        int _981 = 0;
+        float _982 = params.gerstner_frequency;
+        float _985 = params.gerstner_amplitude;
+        for (; _981 < 8; _987 = _347, _986 = _333, _985 = _322, _982 = _326, _981++)
+        {
+            float _244 = float(_981);
+            if (!(_244 < _72))
+            {
+                break;
+            }
+            int _256 = clamp(int(_244), 0, 7);
+            float _281 = _982 * dot(params.gerstner_wave_directions[_256], _984) + params.gerstner_wave_phases[_256];
+            float _295 = ((params.gerstner_steepness / (_72 * max(_982 * _985, 9.9999999747524270787835121154785e-07))) * _985) * clamp((-(_982 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _314 = (_295 * _982) * sin(_281);
+            float _318 = _314 * params.gerstner_wave_directions[_256].x;
+            _322 = _985 * params.gerstner_amplitude_gain;
+            _326 = _982 * params.gerstner_frequency_gain;
+            _333 = _986 + (params.gerstner_wave_directions[_256] * (_295 * cos(_281)));
+            _347 = _987 + vec3(_318 * params.gerstner_wave_directions[_256].x, _318 * params.gerstner_wave_directions[_256].y, (_314 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _353 = 1.0 - _987.x;
+        float _358 = 1.0 - _987.z;
+        float _362 = -_987.y;
+        vec2 _368 = (_984 + _986) - _219;
+        float _381 = _368.x;
+        float _384 = _368.y;
+        _405 = _984 - (vec2(_358 * _381 + (-(_362 * _384)), _353 * _384 + (-(_362 * _381))) / vec2(max(_353 * _358 + (-(_362 * _362)), 0.039999999105930328369140625)));
         vec3 _994;
+        vec3 _995;
+        vec3 _996;
+        _996 = vec3(0.0, 0.0, 1.0);
+        _995 = vec3(1.0, 0.0, 0.0);
         _994 = vec3(0.0);
-        _993 = vec2(0.0);
-        float _329;
-        float _333;
-        vec2 _340;
-        vec3 _354;
-        int _988 = 0;
-        float _989 = params.gerstner_frequency;
-        float _992 = params.gerstner_amplitude;
-        for (; _988 < 8; _994 = _354, _993 = _340, _992 = _329, _989 = _333, _988++)
+        float _517;
+        float _521;
+        vec3 _533;
+        vec3 _538;
+        vec3 _543;
+        int _991 = 0;
+        float _992 = params.gerstner_frequency;
+        float _993 = params.gerstner_amplitude;
+        for (; _991 < 8; _996 = _543, _995 = _538, _994 = _533, _993 = _517, _992 = _521, _991++)
         {
-            float _252 = float(_988);
-            if (!(_252 < _83))
+            float _426 = float(_991);
+            if (!(_426 < _72))
             {
                 break;
             }
-            int _264 = clamp(int(_252), 0, 7);
-            float _289 = _989 * dot(params.gerstner_wave_directions[_264], _991) + params.gerstner_wave_phases[_264];
-            float _303 = ((params.gerstner_steepness / (_83 * max(_989 * _992, 9.9999999747524270787835121154785e-07))) * _992) * clamp((-(_989 * _233)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _321 = (_303 * _989) * sin(_289);
-            float _325 = _321 * params.gerstner_wave_directions[_264].x;
-            _329 = _992 * params.gerstner_amplitude_gain;
-            _333 = _989 * params.gerstner_frequency_gain;
-            _340 = _993 + (params.gerstner_wave_directions[_264] * (_303 * cos(_289)));
-            _354 = _994 + vec3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
+            int _437 = clamp(int(_426), 0, 7);
+            float _446 = clamp((-(_992 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _459 = _992 * dot(params.gerstner_wave_directions[_437], _405) + params.gerstner_wave_phases[_437];
+            float _473 = ((params.gerstner_steepness / (_72 * max(_992 * _993, 9.9999999747524270787835121154785e-07))) * _993) * _446;
+            float _477 = _993 * _446;
+            float _480 = sin(_459);
+            float _483 = cos(_459);
+            float _493 = _473 * _483;
+            float _500 = -((_473 * _992) * _480);
+            vec3 _513 = vec3(_500 * params.gerstner_wave_directions[_437].x, (_477 * _992) * _483, _500 * params.gerstner_wave_directions[_437].y);
+            _517 = _993 * params.gerstner_amplitude_gain;
+            _521 = _992 * params.gerstner_frequency_gain;
+            _533 = _994 + vec3(_493 * params.gerstner_wave_directions[_437].x, _477 * _480, _493 * params.gerstner_wave_directions[_437].y);
+            _538 = _995 + (_513 * params.gerstner_wave_directions[_437].x);
+            _543 = _996 + (_513 * params.gerstner_wave_directions[_437].y);
         }
-        float _360 = 1.0 - _994.x;
-        float _365 = 1.0 - _994.z;
-        float _369 = -_994.y;
-        vec2 _375 = (_991 + _993) - _227;
-        float _388 = _375.x;
-        float _391 = _375.y;
-        _412 = _991 - (vec2(_365 * _388 + (-(_369 * _391)), _360 * _391 + (-(_369 * _388))) / vec2(max(_360 * _365 + (-(_369 * _369)), 0.039999999105930328369140625)));
-        vec3 _1001;
-        vec3 _1002;
-        vec3 _1003;
-        _1003 = vec3(0.0, 0.0, 1.0);
-        _1002 = vec3(1.0, 0.0, 0.0);
-        _1001 = vec3(0.0);
-        float _524;
-        float _528;
-        vec3 _540;
-        vec3 _545;
-        vec3 _550;
-        int _998 = 0;
-        float _999 = params.gerstner_frequency;
-        float _1000 = params.gerstner_amplitude;
-        for (; _998 < 8; _1003 = _550, _1002 = _545, _1001 = _540, _1000 = _524, _999 = _528, _998++)
-        {
-            float _433 = float(_998);
-            if (!(_433 < _83))
-            {
-                break;
-            }
-            int _444 = clamp(int(_433), 0, 7);
-            float _453 = clamp((-(_999 * _233)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _466 = _999 * dot(params.gerstner_wave_directions[_444], _412) + params.gerstner_wave_phases[_444];
-            float _480 = ((params.gerstner_steepness / (_83 * max(_999 * _1000, 9.9999999747524270787835121154785e-07))) * _1000) * _453;
-            float _484 = _1000 * _453;
-            float _487 = sin(_466);
-            float _490 = cos(_466);
-            float _500 = _480 * _490;
-            float _507 = -((_480 * _999) * _487);
-            vec3 _520 = vec3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _999) * _490, _507 * params.gerstner_wave_directions[_444].y);
-            _524 = _1000 * params.gerstner_amplitude_gain;
-            _528 = _999 * params.gerstner_frequency_gain;
-            _540 = _1001 + vec3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
-            _545 = _1002 + (_520 * params.gerstner_wave_directions[_444].x);
-            _550 = _1003 + (_520 * params.gerstner_wave_directions[_444].y);
-        }
-        vec3 _556 = cross(_1003, _1002);
-        float _560 = dot(_556, _556);
-        vec3 _567 = _556 * inversesqrt(max(_560, 1.0000000031710768509710513471353e-30));
-        bvec3 _577 = bvec3(_560 > 1.0000000031710768509710513471353e-30);
-        vec3 _578 = vec3(_577.x ? _567.x : vec3(0.0, 1.0, 0.0).x, _577.y ? _567.y : vec3(0.0, 1.0, 0.0).y, _577.z ? _567.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _588 = (-_578.xz) / vec2(max(_578.y, 9.9999997473787516355514526367188e-05));
-        float _603 = float(_985);
-        bool _604 = _603 < 1.0;
-        float _608 = (_1001.y + dot(_588, _227 - (_412 + _1001.xz))) - _986;
-        float _621 = (-dot(_588, _155)) / _151;
-        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _164, 1.0) * _608 + _986;
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _986 : _1019;
-        float _647 = _637 ? _1024 : _986;
-        _679 = _604 ? _986 : _642;
-        _684 = _604 ? _1024 : _647;
-        _694 = (_603 < 8.0) ? (_604 ? (_164 * _608 + _986) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _986;
+        vec3 _549 = cross(_996, _995);
+        float _553 = dot(_549, _549);
+        vec3 _560 = _549 * inversesqrt(max(_553, 1.0000000031710768509710513471353e-30));
+        bvec3 _570 = bvec3(_553 > 1.0000000031710768509710513471353e-30);
+        vec3 _571 = vec3(_570.x ? _560.x : vec3(0.0, 1.0, 0.0).x, _570.y ? _560.y : vec3(0.0, 1.0, 0.0).y, _570.z ? _560.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _581 = (-_571.xz) / vec2(max(_571.y, 9.9999997473787516355514526367188e-05));
+        float _596 = float(_978);
+        bool _597 = _596 < 1.0;
+        float _601 = (_994.y + dot(_581, _219 - (_405 + _994.xz))) - _979;
+        float _614 = (-dot(_581, _147)) / _143;
+        float _627 = clamp(1.0 / max(1.0 - _614, 9.9999999747524270787835121154785e-07), _156, 1.0) * _601 + _979;
+        bool _630 = _601 < 0.0;
+        float _635 = _630 ? _979 : _1012;
+        float _640 = _630 ? _1017 : _979;
+        _672 = _597 ? _979 : _635;
+        _677 = _597 ? _1017 : _640;
+        _687 = (_596 < 8.0) ? (_597 ? (_156 * _601 + _979) : ((((_627 < _640) || (_627 > _635)) || (_614 >= 1.0)) ? (0.5 * (_640 + _635)) : _627)) : _979;
     }
-    float _708 = max((_986 - params.eye_position.y) / _171, 0.0);
-    vec3 _715 = params.eye_position + (_72 * _708);
-    float _723 = _54.y;
-    float _726 = _715.y;
-    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    float _780 = clamp(max(_65 - _708, 0.0), 0.0, 30000.0);
-    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
-    float _841 = _837.w;
-    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
-    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _867 = bvec2(_844);
-    float _871 = float(_844);
-    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
-    vec3 _987;
-    if (_871 > 0.5)
+    float _701 = max((_979 - params.eye_position.y) / _163, 0.0);
+    vec3 _708 = params.eye_position + (_61 * _701);
+    float _716 = _50.y;
+    float _719 = _708.y;
+    vec4 _768 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    float _773 = clamp(max(_54 - _701, 0.0), 0.0, 30000.0);
+    vec4 _830 = (((params.reflection_view_proj_c0 * _708.x) + (params.reflection_view_proj_c1 * _719)) + (params.reflection_view_proj_c2 * _708.z)) + params.reflection_view_proj_c3;
+    float _834 = _830.w;
+    bool _837 = _834 > 9.9999997473787516355514526367188e-05;
+    vec2 _854 = clamp((((_830.xy / vec2(_834)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _860 = bvec2(_837);
+    float _864 = float(_837);
+    vec4 _880 = texture(reflection_map, vec3(vec2(_860.x ? _854.x : vec2(0.5).x, _860.y ? _854.y : vec2(0.5).y), _864).xy);
+    vec3 _980;
+    if (_864 > 0.5)
     {
-        _987 = _887.xyz;
+        _980 = _880.xyz;
     }
     else
     {
-        _987 = params.sky_color;
+        _980 = params.sky_color;
     }
-    float _917 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _925 = 1.0 - clamp((-_72).y, 0.0, 1.0);
-    float _929 = _925 * _925;
-    vec3 _946 = mix(mix(params.scatter_color, _775.xyz * exp((-params.absorb_coefficients) * (max(_726 - _723, 0.0) + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _987, vec3(_917 * _917 + (((-_917) * _917 + 1.0) * ((_929 * _929) * _925))));
-    bvec3 _951 = bvec3((_723 < _726) && (_147 < 0.0));
-    out_color = vec4(vec3(_951.x ? _946.x : _26.x, _951.y ? _946.y : _26.y, _951.z ? _946.z : _26.z), 1.0);
+    float _910 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _918 = 1.0 - clamp((-_61).y, 0.0, 1.0);
+    float _922 = _918 * _918;
+    vec3 _939 = mix(mix(params.scatter_color, _768.xyz * exp((-params.absorb_coefficients) * (max(_719 - _716, 0.0) + _773)), vec3(exp((-params.scatter_coefficient) * _773))) * params.incident_light, _980, vec3(_910 * _910 + (((-_910) * _910 + 1.0) * ((_922 * _922) * _918))));
+    bvec3 _944 = bvec3((_716 < _719) && (_139 < 0.0));
+    out_color = vec4(vec3(_944.x ? _939.x : _26.x, _944.y ? _939.y : _26.y, _944.z ? _939.z : _26.z), 1.0);
 }
 

@@ -18,14 +18,13 @@
     float gerstner_amplitude_gain : packoffset(c31.w);
     float3 sky_color : packoffset(c32.x);
     float gerstner_frequency_gain : packoffset(c32.w);
-    float2 frame_centre : packoffset(c33.x);
-    float gerstner_steepness : packoffset(c33.z);
-    float refraction_distortion : packoffset(c33.w);
-    float refraction_shore_fade_depth : packoffset(c34.x);
-    float scatter_coefficient : packoffset(c34.y);
-    float reflection_fov_extension : packoffset(c34.z);
-    float ior_air : packoffset(c34.w);
-    float ior_water : packoffset(c35.x);
+    float gerstner_steepness : packoffset(c33.x);
+    float refraction_distortion : packoffset(c33.y);
+    float refraction_shore_fade_depth : packoffset(c33.z);
+    float scatter_coefficient : packoffset(c33.w);
+    float reflection_fov_extension : packoffset(c34.x);
+    float ior_air : packoffset(c34.y);
+    float ior_water : packoffset(c34.z);
 };
 [[vk::constant_id(0)]] const float gerstner_wave_count = 4.0;
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0, space0);
@@ -36,44 +35,44 @@
 float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     // surface
     float3 scene_rgb = scene_color.Sample(linear_clamp, v_uv).xyz;
-    float3 scene_pos = scene_position.Sample(linear_clamp, v_uv).xyz - float3(frame_centre.x, 0.0, frame_centre.y);
-    float3 t14 = scene_pos - eye_position;
-    float scene_distance = length(t14);
-    float3 view_ray = t14 / max(scene_distance, 1e-06);
+    float3 to_scene = scene_position.Sample(linear_clamp, v_uv).xyz;
+    float3 scene_pos = eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    float3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.gerstner
     float pixel_angle = max(length(ddx(view_ray)), length(ddy(view_ray)));
     float trip_count = floor(gerstner_wave_count);
-    float loop31_c0 = gerstner_amplitude;
-    float loop31_c1 = gerstner_frequency;
-    float loop31_c2 = 0.0;
-    float loop31_c3 = 0.0;
-    for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
-        if (!(((float)loop31_i) < trip_count)) break;
-        loop31_c2 = loop31_c2 + loop31_c0;
-        loop31_c3 = loop31_c3 + (loop31_c0 * loop31_c1);
-        loop31_c0 = loop31_c0 * gerstner_amplitude_gain;
-        loop31_c1 = loop31_c1 * gerstner_frequency_gain;
+    float loop26_c0 = gerstner_amplitude;
+    float loop26_c1 = gerstner_frequency;
+    float loop26_c2 = 0.0;
+    float loop26_c3 = 0.0;
+    for (int loop26_i = 0; loop26_i < 8; ++loop26_i) {
+        if (!(((float)loop26_i) < trip_count)) break;
+        loop26_c2 = loop26_c2 + loop26_c0;
+        loop26_c3 = loop26_c3 + (loop26_c0 * loop26_c1);
+        loop26_c0 = loop26_c0 * gerstner_amplitude_gain;
+        loop26_c1 = loop26_c1 * gerstner_frequency_gain;
     }
-    float gerstner_max_slope = loop31_c3 / max(1.0 - gerstner_steepness, 0.2);
-    float t40 = view_ray.y;
-    float search_ray_down = max(-t40, 1e-06);
-    float2 t43 = view_ray.xz;
-    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t43)) / search_ray_down));
-    float t49 = -loop31_c2;
-    float view_ray_y = min(t40, -1e-06);
-    float t52 = eye_position.y;
-    float surface_distance = max((loop31_c2 - t52) / view_ray_y, 0.0);
+    float gerstner_max_slope = loop26_c3 / max(1.0 - gerstner_steepness, 0.2);
+    float t35 = view_ray.y;
+    float search_ray_down = max(-t35, 1e-06);
+    float2 t38 = view_ray.xz;
+    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t38)) / search_ray_down));
+    float t44 = -loop26_c2;
+    float view_ray_y = min(t35, -1e-06);
+    float t47 = eye_position.y;
+    float surface_distance = max((loop26_c2 - t47) / view_ray_y, 0.0);
     float3 surface_point = eye_position + (view_ray * surface_distance);
-    float2 t58 = surface_point.xz;
-    float loop60_c0 = loop31_c2;
-    float loop60_c1 = loop31_c2;
-    float loop60_c2 = t49;
-    float2 loop60_c3 = t58;
-    float2 loop60_c4 = float2(0.0, 0.0);
-    [loop] for (int loop60_i = 0; loop60_i < 9; ++loop60_i) {
+    float2 t53 = surface_point.xz;
+    float loop55_c0 = loop26_c2;
+    float loop55_c1 = loop26_c2;
+    float loop55_c2 = t44;
+    float2 loop55_c3 = t53;
+    float2 loop55_c4 = float2(0.0, 0.0);
+    [loop] for (int loop55_i = 0; loop55_i < 9; ++loop55_i) {
         // waves.gerstner
-        float surface_distance_3 = max((loop60_c0 - t52) / view_ray_y, 0.0);
+        float surface_distance_3 = max((loop55_c0 - t47) / view_ray_y, 0.0);
         float3 surface_point_3 = eye_position + (view_ray * surface_distance_3);
         float2 t15 = surface_point_3.xz;
         float pixel_footprint = (pixel_angle * surface_distance_3) / search_ray_down;
@@ -86,27 +85,27 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
             // waves.gerstner
             float2 gerstner_wave_directions_2 = gerstner_wave_directions[clamp(((int)(float)loop29_i), 0, 7)];
             float wave_fade = saturate(2.0 - ((loop29_c1 * pixel_footprint) * 0.63661975));
-            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop60_c3)) + gerstner_wave_phases[clamp(((int)(float)loop29_i), 0, 7)];
+            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop55_c3)) + gerstner_wave_phases[clamp(((int)(float)loop29_i), 0, 7)];
             float t30 = ((gerstner_steepness / (trip_count * max(loop29_c1 * loop29_c0, 1e-06))) * loop29_c0) * wave_fade;
             float gerstner_sin = sin(wave_theta);
             float gerstner_cos = cos(wave_theta);
             float t34_2 = gerstner_wave_directions_2.x;
-            float t35 = gerstner_wave_directions_2.y;
-            float t38_2 = (t30 * loop29_c1) * gerstner_sin;
-            float t41 = t38_2 * t34_2;
+            float t35_2 = gerstner_wave_directions_2.y;
+            float t38_3 = (t30 * loop29_c1) * gerstner_sin;
+            float t41 = t38_3 * t34_2;
             loop29_c0 = loop29_c0 * gerstner_amplitude_gain;
             loop29_c1 = loop29_c1 * gerstner_frequency_gain;
             loop29_c2 = loop29_c2 + ((t30 * gerstner_cos) * gerstner_wave_directions_2);
-            loop29_c3 = loop29_c3 + float3((t41 * t34_2), (t41 * t35), ((t38_2 * t35) * t35));
+            loop29_c3 = loop29_c3 + float3((t41 * t34_2), (t41 * t35_2), ((t38_3 * t35_2) * t35_2));
         }
         float t34 = 1.0 - loop29_c3.x;
         float t36 = 1.0 - loop29_c3.z;
-        float t38 = -loop29_c3.y;
-        float2 gerstner_grid_residual = (loop60_c3 + loop29_c2) - t15;
-        float gerstner_grid_det = max((t34 * t36) - (t38 * t38), 0.04);
+        float t38_2 = -loop29_c3.y;
+        float2 gerstner_grid_residual = (loop55_c3 + loop29_c2) - t15;
+        float gerstner_grid_det = max((t34 * t36) - (t38_2 * t38_2), 0.04);
         float t46 = gerstner_grid_residual.x;
         float t48 = gerstner_grid_residual.y;
-        float2 gerstner_grid_point = loop60_c3 - (float2(((t36 * t46) - (t38 * t48)), ((t34 * t48) - (t38 * t46))) / gerstner_grid_det);
+        float2 gerstner_grid_point = loop55_c3 - (float2(((t36 * t46) - (t38_2 * t48)), ((t34 * t48) - (t38_2 * t46))) / gerstner_grid_det);
         float loop59_c0 = gerstner_amplitude;
         float loop59_c1 = gerstner_frequency;
         float3 loop59_c2 = float3(0.0, 0.0, 0.0);
@@ -122,94 +121,94 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
             float t32 = loop59_c0 * wave_fade_2;
             float gerstner_sin_2 = sin(wave_theta_2);
             float gerstner_cos_2 = cos(wave_theta_2);
-            float t35_2 = gerstner_wave_directions_3.x;
+            float t35_3 = gerstner_wave_directions_3.x;
             float t36_2 = gerstner_wave_directions_3.y;
             float t37 = t31 * gerstner_cos_2;
-            float t47 = -((t31 * loop59_c1) * gerstner_sin_2);
-            float3 t50 = float3((t47 * t35_2), ((t32 * loop59_c1) * gerstner_cos_2), (t47 * t36_2));
+            float t47_2 = -((t31 * loop59_c1) * gerstner_sin_2);
+            float3 t50 = float3((t47_2 * t35_3), ((t32 * loop59_c1) * gerstner_cos_2), (t47_2 * t36_2));
             loop59_c0 = loop59_c0 * gerstner_amplitude_gain;
             loop59_c1 = loop59_c1 * gerstner_frequency_gain;
-            loop59_c2 = loop59_c2 + float3((t37 * t35_2), (t32 * gerstner_sin_2), (t37 * t36_2));
-            loop59_c3 = loop59_c3 + (t35_2 * t50);
+            loop59_c2 = loop59_c2 + float3((t37 * t35_3), (t32 * gerstner_sin_2), (t37 * t36_2));
+            loop59_c3 = loop59_c3 + (t35_3 * t50);
             loop59_c4 = loop59_c4 + (t36_2 * t50);
         }
         float3 t63 = cross(loop59_c4, loop59_c3);
-        float t64 = dot(t63, t63);
-        float3 t68 = t63 * rsqrt(max(t64, 1e-30));
-        bool t69_2 = t64 > 1e-30;
-        float3 gerstner_normal = t69_2 ? t68 : float3(0.0, 1.0, 0.0);
+        float t64_2 = dot(t63, t63);
+        float3 t68 = t63 * rsqrt(max(t64_2, 1e-30));
+        bool t69 = t64_2 > 1e-30;
+        float3 gerstner_normal = t69 ? t68 : float3(0.0, 1.0, 0.0);
         float2 wave_slope = (-gerstner_normal.xz) / max(gerstner_normal.y, 0.0001);
         float gerstner_height = loop59_c2.y + dot(wave_slope, t15 - (gerstner_grid_point + loop59_c2.xz));
-        bool t84 = ((float)loop60_i) < 1.0;
-        float t85 = gerstner_height - loop60_c0;
-        float search_level = loop60_c0 + (search_relaxation * t85);
-        float t92 = (-dot(wave_slope, t43)) / search_ray_down;
+        bool t84 = ((float)loop55_i) < 1.0;
+        float t85 = gerstner_height - loop55_c0;
+        float search_level = loop55_c0 + (search_relaxation * t85);
+        float t92 = (-dot(wave_slope, t38)) / search_ray_down;
         float search_step = clamp(1.0 / max(1.0 - t92, 1e-06), search_relaxation, 1.0);
-        float search_level_2 = loop60_c0 + (search_step * t85);
+        float search_level_2 = loop55_c0 + (search_step * t85);
         bool t100 = t85 < 0.0;
-        float search_high = t100 ? loop60_c0 : loop60_c1;
-        float search_low = t100 ? loop60_c2 : loop60_c0;
+        float search_high = t100 ? loop55_c0 : loop55_c1;
+        float search_low = t100 ? loop55_c2 : loop55_c0;
         bool t107 = ((search_level_2 < search_low) || (search_level_2 > search_high)) || (t92 >= 1.0);
         float t110 = 0.5 * (search_low + search_high);
         float search_level_3 = t107 ? t110 : search_level_2;
         float search_level_4 = t84 ? search_level : search_level_3;
-        float t113 = t84 ? loop60_c0 : search_high;
-        float t114 = t84 ? loop60_c2 : search_low;
-        bool t116 = ((float)loop60_i) < 8.0;
-        float t117 = t116 ? search_level_4 : loop60_c0;
-        loop60_c0 = t117;
-        loop60_c1 = t113;
-        loop60_c2 = t114;
-        loop60_c3 = gerstner_grid_point;
-        loop60_c4 = wave_slope;
+        float t113 = t84 ? loop55_c0 : search_high;
+        float t114 = t84 ? loop55_c2 : search_low;
+        bool t116 = ((float)loop55_i) < 8.0;
+        float t117 = t116 ? search_level_4 : loop55_c0;
+        loop55_c0 = t117;
+        loop55_c1 = t113;
+        loop55_c2 = t114;
+        loop55_c3 = gerstner_grid_point;
+        loop55_c4 = wave_slope;
     }
-    float surface_distance_2 = max((loop60_c0 - t52) / view_ray_y, 0.0);
+    float surface_distance_2 = max((loop55_c0 - t47) / view_ray_y, 0.0);
     float3 surface_point_2 = eye_position + (view_ray * surface_distance_2);
     float water_path = max(scene_distance - surface_distance_2, 0.0);
-    float t69 = scene_pos.y;
-    float t70 = surface_point_2.y;
-    float water_depth = max(t70 - t69, 0.0);
-    bool t75 = (t69 < t70) && (t40 < 0.0);
+    float t64 = scene_pos.y;
+    float t65 = surface_point_2.y;
+    float water_depth = max(t65 - t64, 0.0);
+    bool t70 = (t64 < t65) && (t35 < 0.0);
 
     // surface
     float n_dot_v = dot(float3(0.0, 1.0, 0.0), -view_ray);
 
     // refraction.screen_distort
-    float t81 = saturate(water_depth / refraction_shore_fade_depth);
-    bool t82 = refraction_shore_fade_depth > 0.0;
-    float distortion_fade = t82 ? t81 : 1.0;
+    float t76 = saturate(water_depth / refraction_shore_fade_depth);
+    bool t77 = refraction_shore_fade_depth > 0.0;
+    float distortion_fade = t77 ? t76 : 1.0;
     float2 refraction_uv = saturate(v_uv + (float2(0.0, 0.0) * (refraction_distortion * distortion_fade)));
     float3 refracted = scene_color.Sample(linear_clamp, refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    float t95 = clamp(water_path, 0.0, 30000.0);
-    float3 transmittance = exp((-absorb_coefficients) * (water_depth + t95));
-    float inverse_scatter = exp((-scatter_coefficient) * t95);
+    float t90 = clamp(water_path, 0.0, 30000.0);
+    float3 transmittance = exp((-absorb_coefficients) * (water_depth + t90));
+    float inverse_scatter = exp((-scatter_coefficient) * t90);
     float3 water_color = lerp(scatter_color, refracted * transmittance, (float3)(inverse_scatter)) * incident_light;
 
     // reflection.planar_projective
-    float4 reflection_clip = (((reflection_view_proj_c0 * surface_point_2.x) + (reflection_view_proj_c1 * t70)) + (reflection_view_proj_c2 * surface_point_2.z)) + reflection_view_proj_c3;
-    float t120 = reflection_clip.w;
-    bool reflection_in_front = t120 > 0.0001;
-    float2 t129 = saturate(((0.5 * (reflection_clip.xy / t120)) / reflection_fov_extension) + 0.5);
-    float2 reflection_uv = reflection_in_front ? t129 : float2(0.5, 0.5);
-    float t132 = reflection_in_front ? 1.0 : 0.0;
-    float3 t133 = float3(reflection_uv, t132);
-    float2 t134 = t133.xy;
-    float3 t137 = reflection_map.Sample(linear_clamp, t134).xyz;
-    bool t140 = t133.z > 0.5;
-    float3 reflected = t140 ? t137 : sky_color;
+    float4 reflection_clip = (((reflection_view_proj_c0 * surface_point_2.x) + (reflection_view_proj_c1 * t65)) + (reflection_view_proj_c2 * surface_point_2.z)) + reflection_view_proj_c3;
+    float t115 = reflection_clip.w;
+    bool reflection_in_front = t115 > 0.0001;
+    float2 t124 = saturate(((0.5 * (reflection_clip.xy / t115)) / reflection_fov_extension) + 0.5);
+    float2 reflection_uv = reflection_in_front ? t124 : float2(0.5, 0.5);
+    float t127 = reflection_in_front ? 1.0 : 0.0;
+    float3 t128 = float3(reflection_uv, t127);
+    float2 t129 = t128.xy;
+    float3 t132 = reflection_map.Sample(linear_clamp, t129).xyz;
+    bool t135 = t128.z > 0.5;
+    float3 reflected = t135 ? t132 : sky_color;
 
     // fresnel.schlick
-    float t146 = (ior_air - ior_water) / (ior_air + ior_water);
-    float fresnel_r0 = t146 * t146;
+    float t141 = (ior_air - ior_water) / (ior_air + ior_water);
+    float fresnel_r0 = t141 * t141;
     float one_minus_c = 1.0 - saturate(n_dot_v);
-    float t150 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t150 * t150) * one_minus_c));
+    float t145 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t145 * t145) * one_minus_c));
 
     // compose
-    float3 t157 = lerp(water_color, reflected, (float3)(fresnel));
-    float3 t158 = t75 ? t157 : scene_rgb;
+    float3 t152 = lerp(water_color, reflected, (float3)(fresnel));
+    float3 t153 = t70 ? t152 : scene_rgb;
 
-    return float4(t158, 1.0);
+    return float4(t153, 1.0);
 }

@@ -21,7 +21,6 @@ layout(std140) uniform WaterParams
     float ior_air;
     vec3 foam_color;
     float ior_water;
-    vec2 frame_centre;
     vec2 foam_pattern_drift;
     vec2 foam_pattern_offset;
     float foam_pattern_scale;
@@ -41,43 +40,43 @@ void main()
     vec4 _25 = texture(scene_color, v_uv);
     vec3 _26 = _25.xyz;
     vec4 _33 = texture(scene_position, v_uv);
-    vec3 _50 = _33.xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 _57 = _50 - params.eye_position;
-    float _61 = length(_57);
-    vec3 _68 = _57 / vec3(max(_61, 9.9999999747524270787835121154785e-07));
-    float _71 = _68.y;
-    float _81 = (-params.eye_position.y) / min(_71, -9.9999999747524270787835121154785e-07);
-    vec3 _88 = params.eye_position + (_68 * _81);
-    float _96 = _50.y;
-    float _99 = _88.y;
-    float _104 = max(_99 - _96, 0.0);
-    vec4 _154 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    vec3 _155 = _154.xyz;
-    float _159 = clamp(max(_61 - _81, 0.0), 0.0, 30000.0);
-    vec4 _218 = (((params.reflection_view_proj_c0 * _88.x) + (params.reflection_view_proj_c1 * _99)) + (params.reflection_view_proj_c2 * _88.z)) + params.reflection_view_proj_c3;
-    float _222 = _218.w;
-    bool _226 = _222 > 9.9999997473787516355514526367188e-05;
-    vec2 _244 = clamp((((_218.xy / vec2(_222)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _250 = bvec2(_226);
-    float _254 = float(_226);
-    vec4 _270 = texture(reflection_map, vec3(vec2(_250.x ? _244.x : vec2(0.5).x, _250.y ? _244.y : vec2(0.5).y), _254).xy);
-    vec3 _464;
-    if (_254 > 0.5)
+    vec3 _34 = _33.xyz;
+    vec3 _45 = params.eye_position + _34;
+    float _49 = length(_34);
+    vec3 _56 = _34 / vec3(max(_49, 9.9999999747524270787835121154785e-07));
+    float _61 = _56.y;
+    float _72 = (-params.eye_position.y) / min(_61, -9.9999999747524270787835121154785e-07);
+    vec3 _79 = params.eye_position + (_56 * _72);
+    float _88 = _45.y;
+    float _91 = _79.y;
+    float _96 = max(_91 - _88, 0.0);
+    vec4 _146 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    vec3 _147 = _146.xyz;
+    float _151 = clamp(max(_49 - _72, 0.0), 0.0, 30000.0);
+    vec4 _211 = (((params.reflection_view_proj_c0 * _79.x) + (params.reflection_view_proj_c1 * _91)) + (params.reflection_view_proj_c2 * _79.z)) + params.reflection_view_proj_c3;
+    float _215 = _211.w;
+    bool _219 = _215 > 9.9999997473787516355514526367188e-05;
+    vec2 _237 = clamp((((_211.xy / vec2(_215)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _243 = bvec2(_219);
+    float _247 = float(_219);
+    vec4 _263 = texture(reflection_map, vec3(vec2(_243.x ? _237.x : vec2(0.5).x, _243.y ? _237.y : vec2(0.5).y), _247).xy);
+    vec3 _457;
+    if (_247 > 0.5)
     {
-        _464 = _270.xyz;
+        _457 = _263.xyz;
     }
     else
     {
-        _464 = params.sky_color;
+        _457 = params.sky_color;
     }
-    float _300 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _308 = 1.0 - clamp((-_68).y, 0.0, 1.0);
-    float _312 = _308 * _308;
-    vec2 _332 = _88.xz;
-    float _391 = _104 - params.foam_existence.x;
-    float _396 = params.foam_existence.y - params.foam_existence.x;
-    vec3 _442 = mix(_155, mix(mix(mix(params.scatter_color, _155 * exp((-params.absorb_coefficients) * (_104 + _159)), vec3(exp((-params.scatter_coefficient) * _159))) * params.incident_light, _464, vec3(_300 * _300 + (((-_300) * _300 + 1.0) * ((_312 * _312) * _308)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_332 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_332)), length(dFdy(_332))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_391 < 0.0) ? 1.0 : (1.0 - ((_391 >= _396) ? 1.0 : clamp(_391 / max(_396, 5.9604644775390625e-08), 0.0, 1.0))))), vec3(clamp(_104 * params.shore_hardness, 0.0, 1.0)));
-    bvec3 _448 = bvec3((_96 < _99) && (_71 < 0.0));
-    out_color = vec4(vec3(_448.x ? _442.x : _26.x, _448.y ? _442.y : _26.y, _448.z ? _442.z : _26.z), 1.0);
+    float _293 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _301 = 1.0 - clamp((-_56).y, 0.0, 1.0);
+    float _305 = _301 * _301;
+    vec2 _325 = _79.xz;
+    float _384 = _96 - params.foam_existence.x;
+    float _389 = params.foam_existence.y - params.foam_existence.x;
+    vec3 _435 = mix(_147, mix(mix(mix(params.scatter_color, _147 * exp((-params.absorb_coefficients) * (_96 + _151)), vec3(exp((-params.scatter_coefficient) * _151))) * params.incident_light, _457, vec3(_293 * _293 + (((-_293) * _293 + 1.0) * ((_305 * _305) * _301)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_325 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_325)), length(dFdy(_325))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_384 < 0.0) ? 1.0 : (1.0 - ((_384 >= _389) ? 1.0 : clamp(_384 / max(_389, 5.9604644775390625e-08), 0.0, 1.0))))), vec3(clamp(_96 * params.shore_hardness, 0.0, 1.0)));
+    bvec3 _441 = bvec3((_88 < _91) && (_61 < 0.0));
+    out_color = vec4(vec3(_441.x ? _435.x : _26.x, _441.y ? _435.y : _26.y, _441.z ? _435.z : _26.z), 1.0);
 }
 

@@ -19,11 +19,10 @@
     float ior_air : packoffset(c9.w);
     float3 foam_color : packoffset(c10.x);
     float ior_water : packoffset(c10.w);
-    float2 frame_centre : packoffset(c11.x);
-    float2 foam_pattern_drift : packoffset(c11.z);
-    float2 foam_pattern_offset : packoffset(c12.x);
-    float foam_pattern_scale : packoffset(c12.z);
-    float shore_hardness : packoffset(c12.w);
+    float2 foam_pattern_drift : packoffset(c11.x);
+    float2 foam_pattern_offset : packoffset(c11.z);
+    float foam_pattern_scale : packoffset(c12.x);
+    float shore_hardness : packoffset(c12.y);
 };
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0, space0);
 [[vk::binding(2, 0)]] Texture2D scene_color : register(t0, space0);
@@ -34,84 +33,84 @@
 float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     // surface
     float3 scene_rgb = scene_color.Sample(linear_clamp, v_uv).xyz;
-    float3 scene_pos = scene_position.Sample(linear_clamp, v_uv).xyz - float3(frame_centre.x, 0.0, frame_centre.y);
-    float3 t14 = scene_pos - eye_position;
-    float scene_distance = length(t14);
-    float3 view_ray = t14 / max(scene_distance, 1e-06);
+    float3 to_scene = scene_position.Sample(linear_clamp, v_uv).xyz;
+    float3 scene_pos = eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    float3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t19 = view_ray.y;
-    float view_ray_y = min(t19, -1e-06);
-    float t24 = (-eye_position.y) / view_ray_y;
-    float3 surface_point = eye_position + (view_ray * t24);
-    float water_path = max(scene_distance - t24, 0.0);
-    float t29 = scene_pos.y;
-    float t30 = surface_point.y;
-    float water_depth = max(t30 - t29, 0.0);
-    bool t35 = (t29 < t30) && (t19 < 0.0);
+    float t14 = view_ray.y;
+    float view_ray_y = min(t14, -1e-06);
+    float t19 = (-eye_position.y) / view_ray_y;
+    float3 surface_point = eye_position + (view_ray * t19);
+    float water_path = max(scene_distance - t19, 0.0);
+    float t24 = scene_pos.y;
+    float t25 = surface_point.y;
+    float water_depth = max(t25 - t24, 0.0);
+    bool t30 = (t24 < t25) && (t14 < 0.0);
 
     // surface
     float n_dot_v = dot(float3(0.0, 1.0, 0.0), -view_ray);
 
     // refraction.screen_distort
-    float t43 = saturate(water_depth / refraction_shore_fade_depth);
-    bool t44 = refraction_shore_fade_depth > 0.0;
-    float distortion_fade = t44 ? t43 : 1.0;
+    float t38 = saturate(water_depth / refraction_shore_fade_depth);
+    bool t39 = refraction_shore_fade_depth > 0.0;
+    float distortion_fade = t39 ? t38 : 1.0;
     float2 refraction_uv = saturate(v_uv + (float2(0.0, 0.0) * (refraction_distortion * distortion_fade)));
     float3 refracted = scene_color.Sample(linear_clamp, refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    float t58 = clamp(water_path, 0.0, 30000.0);
-    float3 transmittance = exp((-absorb_coefficients) * (water_depth + t58));
-    float inverse_scatter = exp((-scatter_coefficient) * t58);
+    float t53 = clamp(water_path, 0.0, 30000.0);
+    float3 transmittance = exp((-absorb_coefficients) * (water_depth + t53));
+    float inverse_scatter = exp((-scatter_coefficient) * t53);
     float3 water_color = lerp(scatter_color, refracted * transmittance, (float3)(inverse_scatter)) * incident_light;
 
     // reflection.planar_projective
-    float4 reflection_clip = (((reflection_view_proj_c0 * surface_point.x) + (reflection_view_proj_c1 * t30)) + (reflection_view_proj_c2 * surface_point.z)) + reflection_view_proj_c3;
-    float t83 = reflection_clip.w;
-    bool reflection_in_front = t83 > 0.0001;
-    float2 t92 = saturate(((0.5 * (reflection_clip.xy / t83)) / reflection_fov_extension) + 0.5);
-    float2 reflection_uv = reflection_in_front ? t92 : float2(0.5, 0.5);
-    float t95 = reflection_in_front ? 1.0 : 0.0;
-    float3 t96 = float3(reflection_uv, t95);
-    float2 t97 = t96.xy;
-    float3 t100 = reflection_map.Sample(linear_clamp, t97).xyz;
-    bool t103 = t96.z > 0.5;
-    float3 reflected = t103 ? t100 : sky_color;
+    float4 reflection_clip = (((reflection_view_proj_c0 * surface_point.x) + (reflection_view_proj_c1 * t25)) + (reflection_view_proj_c2 * surface_point.z)) + reflection_view_proj_c3;
+    float t78 = reflection_clip.w;
+    bool reflection_in_front = t78 > 0.0001;
+    float2 t87 = saturate(((0.5 * (reflection_clip.xy / t78)) / reflection_fov_extension) + 0.5);
+    float2 reflection_uv = reflection_in_front ? t87 : float2(0.5, 0.5);
+    float t90 = reflection_in_front ? 1.0 : 0.0;
+    float3 t91 = float3(reflection_uv, t90);
+    float2 t92 = t91.xy;
+    float3 t95 = reflection_map.Sample(linear_clamp, t92).xyz;
+    bool t98 = t91.z > 0.5;
+    float3 reflected = t98 ? t95 : sky_color;
 
     // fresnel.schlick
-    float t109 = (ior_air - ior_water) / (ior_air + ior_water);
-    float fresnel_r0 = t109 * t109;
+    float t104 = (ior_air - ior_water) / (ior_air + ior_water);
+    float fresnel_r0 = t104 * t104;
     float one_minus_c = 1.0 - saturate(n_dot_v);
-    float t113 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t113 * t113) * one_minus_c));
+    float t108 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t108 * t108) * one_minus_c));
 
     // compose
-    float3 t120 = lerp(water_color, reflected, (float3)(fresnel));
+    float3 t115 = lerp(water_color, reflected, (float3)(fresnel));
 
     // foam.shore
-    float2 t121 = surface_point.xz;
-    float2 foam_uv = ((frac((t121 * foam_pattern_scale) + foam_pattern_offset) * 255.0) + 0.5) / 256.0;
-    float foam_footprint = max(length(ddx(t121)), length(ddy(t121)));
+    float2 t116 = surface_point.xz;
+    float2 foam_uv = ((frac((t116 * foam_pattern_scale) + foam_pattern_offset) * 255.0) + 0.5) / 256.0;
+    float foam_footprint = max(length(ddx(t116)), length(ddy(t116)));
     float foam_texel = foam_pattern.SampleLevel(linear_clamp, foam_uv, 0.0).x;
     float foam_aliasing = saturate((4.0 * ((foam_footprint * foam_pattern_scale) * 5.0)) - 1.0);
     float foam_pattern_2 = lerp(foam_texel, 0.6, foam_aliasing);
-    float t150 = foam_existence.x;
-    float t151 = water_depth - t150;
-    float t153 = foam_existence.y - t150;
-    float t157 = saturate(t151 / max(t153, 5.9604645e-08));
-    bool t158 = t151 >= t153;
-    float t159 = t158 ? 1.0 : t157;
-    float t160 = 1.0 - t159;
-    bool t161 = t151 < 0.0;
-    float shore_foam = t161 ? 1.0 : t160;
-    float3 foam_rgb = lerp(t120, foam_color * foam_pattern_2, (float3)(shore_foam));
+    float t145 = foam_existence.x;
+    float t146 = water_depth - t145;
+    float t148 = foam_existence.y - t145;
+    float t152 = saturate(t146 / max(t148, 5.9604645e-08));
+    bool t153 = t146 >= t148;
+    float t154 = t153 ? 1.0 : t152;
+    float t155 = 1.0 - t154;
+    bool t156 = t146 < 0.0;
+    float shore_foam = t156 ? 1.0 : t155;
+    float3 foam_rgb = lerp(t115, foam_color * foam_pattern_2, (float3)(shore_foam));
 
     // shore.soft
     float3 shore_color = lerp(refracted, foam_rgb, (float3)(saturate(water_depth * shore_hardness)));
 
     // compose
-    float3 t172 = t35 ? shore_color : scene_rgb;
+    float3 t167 = t30 ? shore_color : scene_rgb;
 
-    return float4(t172, 1.0);
+    return float4(t167, 1.0);
 }

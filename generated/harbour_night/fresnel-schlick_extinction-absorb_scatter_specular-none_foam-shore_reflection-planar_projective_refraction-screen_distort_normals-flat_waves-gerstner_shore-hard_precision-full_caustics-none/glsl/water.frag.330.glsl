@@ -41,7 +41,6 @@ layout(std140) uniform WaterParams
     float gerstner_steepness;
     vec3 foam_color;
     float refraction_distortion;
-    vec2 frame_centre;
     vec2 foam_pattern_drift;
     vec2 foam_pattern_offset;
     float refraction_shore_fade_depth;
@@ -65,180 +64,180 @@ void main()
     vec4 _25 = texture(scene_color, v_uv);
     vec3 _26 = _25.xyz;
     vec4 _33 = texture(scene_position, v_uv);
-    vec3 _54 = _33.xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 _61 = _54 - params.eye_position;
-    float _65 = length(_61);
-    vec3 _72 = _61 / vec3(max(_65, 9.9999999747524270787835121154785e-07));
-    vec3 _75 = dFdx(_72);
-    vec3 _78 = dFdy(_72);
-    float _80 = max(length(_75), length(_78));
-    float _83 = floor(gerstner_wave_count);
-    float _1080;
-    float _1082;
-    _1082 = 0.0;
-    _1080 = 0.0;
-    float _116;
-    float _121;
-    float _126;
-    float _131;
-    int _1079 = 0;
-    float _1081 = params.gerstner_amplitude;
-    float _1083 = params.gerstner_frequency;
-    for (; _1079 < 8; _1083 = _131, _1082 = _121, _1081 = _126, _1080 = _116, _1079++)
+    vec3 _34 = _33.xyz;
+    vec3 _50 = params.eye_position + _34;
+    float _54 = length(_34);
+    vec3 _61 = _34 / vec3(max(_54, 9.9999999747524270787835121154785e-07));
+    vec3 _64 = dFdx(_61);
+    vec3 _67 = dFdy(_61);
+    float _69 = max(length(_64), length(_67));
+    float _72 = floor(gerstner_wave_count);
+    float _1073;
+    float _1075;
+    _1075 = 0.0;
+    _1073 = 0.0;
+    float _107;
+    float _112;
+    float _117;
+    float _122;
+    int _1072 = 0;
+    float _1074 = params.gerstner_amplitude;
+    float _1076 = params.gerstner_frequency;
+    for (; _1072 < 8; _1076 = _122, _1075 = _112, _1074 = _117, _1073 = _107, _1072++)
     {
-        if (!(float(_1079) < _83))
+        if (!(float(_1072) < _72))
         {
             break;
         }
-        _116 = _1080 + _1081;
-        _121 = _1081 * _1083 + _1082;
-        _126 = _1081 * params.gerstner_amplitude_gain;
-        _131 = _1083 * params.gerstner_frequency_gain;
+        _107 = _1073 + _1074;
+        _112 = _1074 * _1076 + _1075;
+        _117 = _1074 * params.gerstner_amplitude_gain;
+        _122 = _1076 * params.gerstner_frequency_gain;
     }
-    float _147 = _72.y;
-    float _151 = max(-_147, 9.9999999747524270787835121154785e-07);
-    vec2 _155 = _72.xz;
-    float _164 = 1.0 / (1.0 + (((_1082 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_155)) / _151));
-    float _167 = -_1080;
-    float _171 = min(_147, -9.9999999747524270787835121154785e-07);
-    float _1087;
-    vec2 _1092;
-    _1092 = (params.eye_position + (_72 * max((_1080 - params.eye_position.y) / _171, 0.0))).xz;
-    _1087 = _1080;
-    vec2 _412;
-    float _679;
-    float _684;
-    float _694;
-    int _1086 = 0;
-    float _1120 = _1080;
-    float _1125 = _167;
+    float _139 = _61.y;
+    float _143 = max(-_139, 9.9999999747524270787835121154785e-07);
+    vec2 _147 = _61.xz;
+    float _156 = 1.0 / (1.0 + (((_1075 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_147)) / _143));
+    float _159 = -_1073;
+    float _163 = min(_139, -9.9999999747524270787835121154785e-07);
+    float _1080;
+    vec2 _1085;
+    _1085 = (params.eye_position + (_61 * max((_1073 - params.eye_position.y) / _163, 0.0))).xz;
+    _1080 = _1073;
+    vec2 _405;
+    float _672;
+    float _677;
+    float _687;
+    int _1079 = 0;
+    float _1113 = _1073;
+    float _1118 = _159;
     SPIRV_CROSS_LOOP
-    for (; _1086 < 9; _1125 = _684, _1120 = _679, _1092 = _412, _1087 = _694, _1086++)
+    for (; _1079 < 9; _1118 = _677, _1113 = _672, _1085 = _405, _1080 = _687, _1079++)
     {
-        float _217 = max((_1087 - params.eye_position.y) / _171, 0.0);
-        vec2 _227 = (params.eye_position + (_72 * _217)).xz;
-        float _233 = (_80 * _217) / _151;
-        vec2 _1094;
+        float _209 = max((_1080 - params.eye_position.y) / _163, 0.0);
+        vec2 _219 = (params.eye_position + (_61 * _209)).xz;
+        float _225 = (_69 * _209) / _143;
+        vec2 _1087;
+        vec3 _1088;
+        _1088 = vec3(0.0);
+        _1087 = vec2(0.0);
+        float _322;
+        float _326;
+        vec2 _333;
+        vec3 _347;
+        int _1082 = 0;
+        float _1083 = params.gerstner_frequency;
+        float _1086 = params.gerstner_amplitude;
+        for (; _1082 < 8; _1088 = _347, _1087 = _333, _1086 = _322, _1083 = _326, _1082++)
+        {
+            float _244 = float(_1082);
+            if (!(_244 < _72))
+            {
+                break;
+            }
+            int _256 = clamp(int(_244), 0, 7);
+            float _281 = _1083 * dot(params.gerstner_wave_directions[_256], _1085) + params.gerstner_wave_phases[_256];
+            float _295 = ((params.gerstner_steepness / (_72 * max(_1083 * _1086, 9.9999999747524270787835121154785e-07))) * _1086) * clamp((-(_1083 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _314 = (_295 * _1083) * sin(_281);
+            float _318 = _314 * params.gerstner_wave_directions[_256].x;
+            _322 = _1086 * params.gerstner_amplitude_gain;
+            _326 = _1083 * params.gerstner_frequency_gain;
+            _333 = _1087 + (params.gerstner_wave_directions[_256] * (_295 * cos(_281)));
+            _347 = _1088 + vec3(_318 * params.gerstner_wave_directions[_256].x, _318 * params.gerstner_wave_directions[_256].y, (_314 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _353 = 1.0 - _1088.x;
+        float _358 = 1.0 - _1088.z;
+        float _362 = -_1088.y;
+        vec2 _368 = (_1085 + _1087) - _219;
+        float _381 = _368.x;
+        float _384 = _368.y;
+        _405 = _1085 - (vec2(_358 * _381 + (-(_362 * _384)), _353 * _384 + (-(_362 * _381))) / vec2(max(_353 * _358 + (-(_362 * _362)), 0.039999999105930328369140625)));
         vec3 _1095;
+        vec3 _1096;
+        vec3 _1097;
+        _1097 = vec3(0.0, 0.0, 1.0);
+        _1096 = vec3(1.0, 0.0, 0.0);
         _1095 = vec3(0.0);
-        _1094 = vec2(0.0);
-        float _329;
-        float _333;
-        vec2 _340;
-        vec3 _354;
-        int _1089 = 0;
-        float _1090 = params.gerstner_frequency;
-        float _1093 = params.gerstner_amplitude;
-        for (; _1089 < 8; _1095 = _354, _1094 = _340, _1093 = _329, _1090 = _333, _1089++)
+        float _517;
+        float _521;
+        vec3 _533;
+        vec3 _538;
+        vec3 _543;
+        int _1092 = 0;
+        float _1093 = params.gerstner_frequency;
+        float _1094 = params.gerstner_amplitude;
+        for (; _1092 < 8; _1097 = _543, _1096 = _538, _1095 = _533, _1094 = _517, _1093 = _521, _1092++)
         {
-            float _252 = float(_1089);
-            if (!(_252 < _83))
+            float _426 = float(_1092);
+            if (!(_426 < _72))
             {
                 break;
             }
-            int _264 = clamp(int(_252), 0, 7);
-            float _289 = _1090 * dot(params.gerstner_wave_directions[_264], _1092) + params.gerstner_wave_phases[_264];
-            float _303 = ((params.gerstner_steepness / (_83 * max(_1090 * _1093, 9.9999999747524270787835121154785e-07))) * _1093) * clamp((-(_1090 * _233)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _321 = (_303 * _1090) * sin(_289);
-            float _325 = _321 * params.gerstner_wave_directions[_264].x;
-            _329 = _1093 * params.gerstner_amplitude_gain;
-            _333 = _1090 * params.gerstner_frequency_gain;
-            _340 = _1094 + (params.gerstner_wave_directions[_264] * (_303 * cos(_289)));
-            _354 = _1095 + vec3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
+            int _437 = clamp(int(_426), 0, 7);
+            float _446 = clamp((-(_1093 * _225)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _459 = _1093 * dot(params.gerstner_wave_directions[_437], _405) + params.gerstner_wave_phases[_437];
+            float _473 = ((params.gerstner_steepness / (_72 * max(_1093 * _1094, 9.9999999747524270787835121154785e-07))) * _1094) * _446;
+            float _477 = _1094 * _446;
+            float _480 = sin(_459);
+            float _483 = cos(_459);
+            float _493 = _473 * _483;
+            float _500 = -((_473 * _1093) * _480);
+            vec3 _513 = vec3(_500 * params.gerstner_wave_directions[_437].x, (_477 * _1093) * _483, _500 * params.gerstner_wave_directions[_437].y);
+            _517 = _1094 * params.gerstner_amplitude_gain;
+            _521 = _1093 * params.gerstner_frequency_gain;
+            _533 = _1095 + vec3(_493 * params.gerstner_wave_directions[_437].x, _477 * _480, _493 * params.gerstner_wave_directions[_437].y);
+            _538 = _1096 + (_513 * params.gerstner_wave_directions[_437].x);
+            _543 = _1097 + (_513 * params.gerstner_wave_directions[_437].y);
         }
-        float _360 = 1.0 - _1095.x;
-        float _365 = 1.0 - _1095.z;
-        float _369 = -_1095.y;
-        vec2 _375 = (_1092 + _1094) - _227;
-        float _388 = _375.x;
-        float _391 = _375.y;
-        _412 = _1092 - (vec2(_365 * _388 + (-(_369 * _391)), _360 * _391 + (-(_369 * _388))) / vec2(max(_360 * _365 + (-(_369 * _369)), 0.039999999105930328369140625)));
-        vec3 _1102;
-        vec3 _1103;
-        vec3 _1104;
-        _1104 = vec3(0.0, 0.0, 1.0);
-        _1103 = vec3(1.0, 0.0, 0.0);
-        _1102 = vec3(0.0);
-        float _524;
-        float _528;
-        vec3 _540;
-        vec3 _545;
-        vec3 _550;
-        int _1099 = 0;
-        float _1100 = params.gerstner_frequency;
-        float _1101 = params.gerstner_amplitude;
-        for (; _1099 < 8; _1104 = _550, _1103 = _545, _1102 = _540, _1101 = _524, _1100 = _528, _1099++)
-        {
-            float _433 = float(_1099);
-            if (!(_433 < _83))
-            {
-                break;
-            }
-            int _444 = clamp(int(_433), 0, 7);
-            float _453 = clamp((-(_1100 * _233)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _466 = _1100 * dot(params.gerstner_wave_directions[_444], _412) + params.gerstner_wave_phases[_444];
-            float _480 = ((params.gerstner_steepness / (_83 * max(_1100 * _1101, 9.9999999747524270787835121154785e-07))) * _1101) * _453;
-            float _484 = _1101 * _453;
-            float _487 = sin(_466);
-            float _490 = cos(_466);
-            float _500 = _480 * _490;
-            float _507 = -((_480 * _1100) * _487);
-            vec3 _520 = vec3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1100) * _490, _507 * params.gerstner_wave_directions[_444].y);
-            _524 = _1101 * params.gerstner_amplitude_gain;
-            _528 = _1100 * params.gerstner_frequency_gain;
-            _540 = _1102 + vec3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
-            _545 = _1103 + (_520 * params.gerstner_wave_directions[_444].x);
-            _550 = _1104 + (_520 * params.gerstner_wave_directions[_444].y);
-        }
-        vec3 _556 = cross(_1104, _1103);
-        float _560 = dot(_556, _556);
-        vec3 _567 = _556 * inversesqrt(max(_560, 1.0000000031710768509710513471353e-30));
-        bvec3 _577 = bvec3(_560 > 1.0000000031710768509710513471353e-30);
-        vec3 _578 = vec3(_577.x ? _567.x : vec3(0.0, 1.0, 0.0).x, _577.y ? _567.y : vec3(0.0, 1.0, 0.0).y, _577.z ? _567.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _588 = (-_578.xz) / vec2(max(_578.y, 9.9999997473787516355514526367188e-05));
-        float _603 = float(_1086);
-        bool _604 = _603 < 1.0;
-        float _608 = (_1102.y + dot(_588, _227 - (_412 + _1102.xz))) - _1087;
-        float _621 = (-dot(_588, _155)) / _151;
-        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _164, 1.0) * _608 + _1087;
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1087 : _1120;
-        float _647 = _637 ? _1125 : _1087;
-        _679 = _604 ? _1087 : _642;
-        _684 = _604 ? _1125 : _647;
-        _694 = (_603 < 8.0) ? (_604 ? (_164 * _608 + _1087) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1087;
+        vec3 _549 = cross(_1097, _1096);
+        float _553 = dot(_549, _549);
+        vec3 _560 = _549 * inversesqrt(max(_553, 1.0000000031710768509710513471353e-30));
+        bvec3 _570 = bvec3(_553 > 1.0000000031710768509710513471353e-30);
+        vec3 _571 = vec3(_570.x ? _560.x : vec3(0.0, 1.0, 0.0).x, _570.y ? _560.y : vec3(0.0, 1.0, 0.0).y, _570.z ? _560.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _581 = (-_571.xz) / vec2(max(_571.y, 9.9999997473787516355514526367188e-05));
+        float _596 = float(_1079);
+        bool _597 = _596 < 1.0;
+        float _601 = (_1095.y + dot(_581, _219 - (_405 + _1095.xz))) - _1080;
+        float _614 = (-dot(_581, _147)) / _143;
+        float _627 = clamp(1.0 / max(1.0 - _614, 9.9999999747524270787835121154785e-07), _156, 1.0) * _601 + _1080;
+        bool _630 = _601 < 0.0;
+        float _635 = _630 ? _1080 : _1113;
+        float _640 = _630 ? _1118 : _1080;
+        _672 = _597 ? _1080 : _635;
+        _677 = _597 ? _1118 : _640;
+        _687 = (_596 < 8.0) ? (_597 ? (_156 * _601 + _1080) : ((((_627 < _640) || (_627 > _635)) || (_614 >= 1.0)) ? (0.5 * (_640 + _635)) : _627)) : _1080;
     }
-    float _708 = max((_1087 - params.eye_position.y) / _171, 0.0);
-    vec3 _715 = params.eye_position + (_72 * _708);
-    float _723 = _54.y;
-    float _726 = _715.y;
-    float _731 = max(_726 - _723, 0.0);
-    vec4 _775 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
-    float _780 = clamp(max(_65 - _708, 0.0), 0.0, 30000.0);
-    vec4 _837 = (((params.reflection_view_proj_c0 * _715.x) + (params.reflection_view_proj_c1 * _726)) + (params.reflection_view_proj_c2 * _715.z)) + params.reflection_view_proj_c3;
-    float _841 = _837.w;
-    bool _844 = _841 > 9.9999997473787516355514526367188e-05;
-    vec2 _861 = clamp((((_837.xy / vec2(_841)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
-    bvec2 _867 = bvec2(_844);
-    float _871 = float(_844);
-    vec4 _887 = texture(reflection_map, vec3(vec2(_867.x ? _861.x : vec2(0.5).x, _867.y ? _861.y : vec2(0.5).y), _871).xy);
-    vec3 _1088;
-    if (_871 > 0.5)
+    float _701 = max((_1080 - params.eye_position.y) / _163, 0.0);
+    vec3 _708 = params.eye_position + (_61 * _701);
+    float _716 = _50.y;
+    float _719 = _708.y;
+    float _724 = max(_719 - _716, 0.0);
+    vec4 _768 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0)));
+    float _773 = clamp(max(_54 - _701, 0.0), 0.0, 30000.0);
+    vec4 _830 = (((params.reflection_view_proj_c0 * _708.x) + (params.reflection_view_proj_c1 * _719)) + (params.reflection_view_proj_c2 * _708.z)) + params.reflection_view_proj_c3;
+    float _834 = _830.w;
+    bool _837 = _834 > 9.9999997473787516355514526367188e-05;
+    vec2 _854 = clamp((((_830.xy / vec2(_834)) * 0.5) / vec2(params.reflection_fov_extension)) + vec2(0.5), vec2(0.0), vec2(1.0));
+    bvec2 _860 = bvec2(_837);
+    float _864 = float(_837);
+    vec4 _880 = texture(reflection_map, vec3(vec2(_860.x ? _854.x : vec2(0.5).x, _860.y ? _854.y : vec2(0.5).y), _864).xy);
+    vec3 _1081;
+    if (_864 > 0.5)
     {
-        _1088 = _887.xyz;
+        _1081 = _880.xyz;
     }
     else
     {
-        _1088 = params.sky_color;
+        _1081 = params.sky_color;
     }
-    float _917 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _925 = 1.0 - clamp((-_72).y, 0.0, 1.0);
-    float _929 = _925 * _925;
-    vec2 _949 = _715.xz;
-    float _1007 = _731 - params.foam_existence.x;
-    float _1012 = params.foam_existence.y - params.foam_existence.x;
-    vec3 _1047 = mix(mix(mix(params.scatter_color, _775.xyz * exp((-params.absorb_coefficients) * (_731 + _780)), vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light, _1088, vec3(_917 * _917 + (((-_917) * _917 + 1.0) * ((_929 * _929) * _925)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_949 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_949)), length(dFdy(_949))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1007 < 0.0) ? 1.0 : (1.0 - ((_1007 >= _1012) ? 1.0 : clamp(_1007 / max(_1012, 5.9604644775390625e-08), 0.0, 1.0)))));
-    bvec3 _1052 = bvec3((_723 < _726) && (_147 < 0.0));
-    out_color = vec4(vec3(_1052.x ? _1047.x : _26.x, _1052.y ? _1047.y : _26.y, _1052.z ? _1047.z : _26.z), 1.0);
+    float _910 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _918 = 1.0 - clamp((-_61).y, 0.0, 1.0);
+    float _922 = _918 * _918;
+    vec2 _942 = _708.xz;
+    float _1000 = _724 - params.foam_existence.x;
+    float _1005 = params.foam_existence.y - params.foam_existence.x;
+    vec3 _1040 = mix(mix(mix(params.scatter_color, _768.xyz * exp((-params.absorb_coefficients) * (_724 + _773)), vec3(exp((-params.scatter_coefficient) * _773))) * params.incident_light, _1081, vec3(_910 * _910 + (((-_910) * _910 + 1.0) * ((_922 * _922) * _918)))), params.foam_color * mix(textureLod(foam_pattern, ((fract((_942 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + vec2(0.5)) * vec2(0.00390625), 0.0).x, 0.60000002384185791015625, clamp((max(length(dFdx(_942)), length(dFdy(_942))) * params.foam_pattern_scale) * 20.0 + (-1.0), 0.0, 1.0)), vec3((_1000 < 0.0) ? 1.0 : (1.0 - ((_1000 >= _1005) ? 1.0 : clamp(_1000 / max(_1005, 5.9604644775390625e-08), 0.0, 1.0)))));
+    bvec3 _1045 = bvec3((_716 < _719) && (_139 < 0.0));
+    out_color = vec4(vec3(_1045.x ? _1040.x : _26.x, _1045.y ? _1040.y : _26.y, _1045.z ? _1040.z : _26.z), 1.0);
 }
 

@@ -20,7 +20,6 @@ struct WaterParams
     float ior_water;
     packed_float3 reflection_lower_tint;
     float specular_exponent;
-    float2 frame_centre;
 };
 
 struct main0_out
@@ -36,33 +35,33 @@ struct main0_in
 fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params [[buffer(0)]], texture2d<float> scene_color [[texture(0)]], texture2d<float> scene_position [[texture(1)]], texturecube<float> sky_cube [[texture(2)]], sampler linear_clamp [[sampler(0)]])
 {
     main0_out out = {};
-    float3 _50 = scene_position.sample(linear_clamp, in.v_uv).xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _57 = _50 - float3(params.eye_position);
-    float _61 = length(_57);
-    float3 _68 = _57 / float3(fast::max(_61, 9.9999999747524270787835121154785e-07));
-    float _71 = _68.y;
-    float _81 = (-params.eye_position[1u]) / fast::min(_71, -9.9999999747524270787835121154785e-07);
-    float3 _88 = float3(params.eye_position) + (_68 * _81);
-    float _96 = _50.y;
-    float _99 = _88.y;
-    float3 _116 = -_68;
-    float _161 = fast::clamp(fast::max(_61 - _81, 0.0), 0.0, 30000.0);
-    float3 _196 = abs(_68);
-    float3 _211 = _68 / float3(fast::max(fast::max(fast::max(_196.x, _196.y), _196.z), 1.0000000031710768509710513471353e-30));
-    float _215 = dot(_211, _211);
-    float3 _235 = reflect(select(float3(0.0, -1.0, 0.0), _211 * rsqrt(fast::max(_215, 1.0000000031710768509710513471353e-30)), bool3(_215 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _238 = _235.y;
-    float _264 = smoothstep(0.0, params.reflection_horizon_band, -_238);
-    float _310 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _318 = 1.0 - fast::clamp(_116.y, 0.0, 1.0);
-    float _322 = _318 * _318;
-    float3 _338 = -float3(params.sun_direction);
-    float3 _342 = _338 + _116;
-    float _354 = fast::max(fast::max(abs(_342.x), abs(_342.y)), abs(_342.z));
-    float3 _361 = _342 / float3(fast::max(_354, 5.9604644775390625e-08));
-    float _381 = fast::clamp(select(float3(0.0), _361 / float3(fast::max(length(_361), 1.0)), bool3(_354 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _430 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_99 - _96, 0.0) + _161)), float3(exp((-params.scatter_coefficient) * _161))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_235.x, abs(_238), _235.z), bool3(dot(_235, _235) > 9.9999999600419720025001879548654e-13)), _264).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_264)), float3(fma(_310, _310, fma(-_310, _310, 1.0) * ((_322 * _322) * _318)))) + (float3(params.sun_color) * ((_338.y > 0.0) ? ((_381 > 6.103515625e-05) ? pow(fast::max(_381, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), bool3((_96 < _99) && (_71 < 0.0)));
-    out.out_color = float4(_430, 1.0);
+    float3 _34 = scene_position.sample(linear_clamp, in.v_uv).xyz;
+    float3 _45 = float3(params.eye_position) + _34;
+    float _49 = length(_34);
+    float3 _56 = _34 / float3(fast::max(_49, 9.9999999747524270787835121154785e-07));
+    float _61 = _56.y;
+    float _72 = (-params.eye_position[1u]) / fast::min(_61, -9.9999999747524270787835121154785e-07);
+    float3 _79 = float3(params.eye_position) + (_56 * _72);
+    float _88 = _45.y;
+    float _91 = _79.y;
+    float3 _108 = -_56;
+    float _153 = fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0);
+    float3 _188 = abs(_56);
+    float3 _204 = _56 / float3(fast::max(fast::max(fast::max(_188.x, _188.y), _188.z), 1.0000000031710768509710513471353e-30));
+    float _208 = dot(_204, _204);
+    float3 _228 = reflect(select(float3(0.0, -1.0, 0.0), _204 * rsqrt(fast::max(_208, 1.0000000031710768509710513471353e-30)), bool3(_208 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _231 = _228.y;
+    float _257 = smoothstep(0.0, params.reflection_horizon_band, -_231);
+    float _303 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _311 = 1.0 - fast::clamp(_108.y, 0.0, 1.0);
+    float _315 = _311 * _311;
+    float3 _331 = -float3(params.sun_direction);
+    float3 _335 = _331 + _108;
+    float _347 = fast::max(fast::max(abs(_335.x), abs(_335.y)), abs(_335.z));
+    float3 _354 = _335 / float3(fast::max(_347, 5.9604644775390625e-08));
+    float _374 = fast::clamp(select(float3(0.0), _354 / float3(fast::max(length(_354), 1.0)), bool3(_347 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _423 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_91 - _88, 0.0) + _153)), float3(exp((-params.scatter_coefficient) * _153))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_228.x, abs(_231), _228.z), bool3(dot(_228, _228) > 9.9999999600419720025001879548654e-13)), _257).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_257)), float3(fma(_303, _303, fma(-_303, _303, 1.0) * ((_315 * _315) * _311)))) + (float3(params.sun_color) * ((_331.y > 0.0) ? ((_374 > 6.103515625e-05) ? pow(fast::max(_374, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), bool3((_88 < _91) && (_61 < 0.0)));
+    out.out_color = float4(_423, 1.0);
     return out;
 }
 

@@ -16,8 +16,7 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 92) float ior_water;
     layout(offset = 96) vec3 reflection_lower_tint;
     layout(offset = 108) float specular_exponent;
-    layout(offset = 112) vec2 frame_centre;
-    layout(offset = 120) float shore_hardness;
+    layout(offset = 112) float shore_hardness;
 } params;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
@@ -29,77 +28,77 @@ layout(location = 0) out vec4 out_color;
 void main() {
     // surface
     vec3 scene_rgb = texture(sampler2D(scene_color, linear_clamp), v_uv).xyz;
-    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 t16 = scene_pos - params.eye_position;
-    float scene_distance = length(t16);
-    vec3 view_ray = t16 / max(scene_distance, 1e-06);
+    vec3 to_scene = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz;
+    vec3 scene_pos = params.eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    vec3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t21 = view_ray.y;
-    float view_ray_y = min(t21, -1e-06);
-    float t26 = (-params.eye_position.y) / view_ray_y;
-    vec3 surface_point = params.eye_position + (view_ray * t26);
-    float water_path = max(scene_distance - t26, 0.0);
-    float t31 = scene_pos.y;
-    float t32 = surface_point.y;
-    float water_depth = max(t32 - t31, 0.0);
-    bool t37 = (t31 < t32) && (t21 < 0.0);
+    float t16 = view_ray.y;
+    float view_ray_y = min(t16, -1e-06);
+    float t21 = (-params.eye_position.y) / view_ray_y;
+    vec3 surface_point = params.eye_position + (view_ray * t21);
+    float water_path = max(scene_distance - t21, 0.0);
+    float t26 = scene_pos.y;
+    float t27 = surface_point.y;
+    float water_depth = max(t27 - t26, 0.0);
+    bool t32 = (t26 < t27) && (t16 < 0.0);
 
     // surface
-    vec3 t39 = -view_ray;
-    float n_dot_v = dot(vec3(0.0, 1.0, 0.0), t39);
+    vec3 t34 = -view_ray;
+    float n_dot_v = dot(vec3(0.0, 1.0, 0.0), t34);
 
     // refraction.screen_distort
-    mediump float t45 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
-    bool t47 = params.refraction_shore_fade_depth > 0.0;
-    mediump float distortion_fade = t47 ? t45 : 1.0;
+    mediump float t40 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
+    bool t42 = params.refraction_shore_fade_depth > 0.0;
+    mediump float distortion_fade = t42 ? t40 : 1.0;
     mediump vec2 refraction_uv = clamp(v_uv + (vec2(0.0) * (params.refraction_distortion * distortion_fade)), 0.0, 1.0);
     mediump vec3 refracted = texture(sampler2D(scene_color, linear_clamp), refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    mediump float t61 = clamp(water_path, 0.0, 30000.0);
-    mediump vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t61));
-    mediump float inverse_scatter = exp((-params.scatter_coefficient) * t61);
+    mediump float t56 = clamp(water_path, 0.0, 30000.0);
+    mediump vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t56));
+    mediump float inverse_scatter = exp((-params.scatter_coefficient) * t56);
     mediump vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 t75 = abs(view_ray);
-    mediump vec3 t83 = view_ray / max(max(max(t75.x, t75.y), t75.z), 1e-30);
-    mediump float t84 = dot(t83, t83);
-    mediump vec3 t87 = t83 * inversesqrt(max(t84, 1e-30));
-    bool t88 = t84 > 1e-30;
-    mediump vec3 t89 = t88 ? t87 : vec3(0.0, (-1.0), 0.0);
-    mediump vec3 reflected_ray = reflect(t89, vec3(0.0, 1.0, 0.0));
-    mediump float t93 = reflected_ray.y;
-    mediump vec3 t96 = vec3(reflected_ray.x, abs(t93), reflected_ray.z);
-    bool t99 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t99 ? t96 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t93);
-    mediump vec4 t103 = vec4(sky_direction, below_horizon);
-    mediump vec3 t105 = t103.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t105).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t103.w));
+    mediump vec3 t70 = abs(view_ray);
+    mediump vec3 t78 = view_ray / max(max(max(t70.x, t70.y), t70.z), 1e-30);
+    mediump float t79 = dot(t78, t78);
+    mediump vec3 t82 = t78 * inversesqrt(max(t79, 1e-30));
+    bool t83 = t79 > 1e-30;
+    mediump vec3 t84 = t83 ? t82 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t84, vec3(0.0, 1.0, 0.0));
+    mediump float t88 = reflected_ray.y;
+    mediump vec3 t91 = vec3(reflected_ray.x, abs(t88), reflected_ray.z);
+    bool t94 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t94 ? t91 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t88);
+    mediump vec4 t98 = vec4(sky_direction, below_horizon);
+    mediump vec3 t100 = t98.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t100).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t98.w));
 
     // fresnel.schlick
-    mediump float t118 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t118 * t118;
+    mediump float t113 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t113 * t113;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t122 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t122 * t122) * one_minus_c));
+    mediump float t117 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t117 * t117) * one_minus_c));
 
     // specular.blinn_phong
-    mediump vec3 t129 = -params.sun_direction;
-    mediump vec3 t130 = t129 + t39;
-    mediump float t138 = max(max(abs(t130.x), abs(t130.y)), abs(t130.z));
-    mediump vec3 t141 = t130 / max(t138, 5.9604645e-08);
-    mediump vec3 t144 = t141 / max(length(t141), 1.0);
-    bool t146 = t138 > 5.9604645e-08;
-    mediump vec3 half_vector = t146 ? t144 : vec3(0.0);
-    mediump float t149 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
-    mediump float t152 = pow(max(t149, 6.1035156e-05), params.specular_exponent);
-    bool t153 = t149 > 6.1035156e-05;
-    mediump float t154 = t153 ? t152 : 0.0;
-    bool t159 = (t129.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t129) > 0.0);
-    mediump float specular_intensity = t159 ? t154 : 0.0;
+    mediump vec3 t124 = -params.sun_direction;
+    mediump vec3 t125 = t124 + t34;
+    mediump float t133 = max(max(abs(t125.x), abs(t125.y)), abs(t125.z));
+    mediump vec3 t136 = t125 / max(t133, 5.9604645e-08);
+    mediump vec3 t139 = t136 / max(length(t136), 1.0);
+    bool t141 = t133 > 5.9604645e-08;
+    mediump vec3 half_vector = t141 ? t139 : vec3(0.0);
+    mediump float t144 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
+    mediump float t147 = pow(max(t144, 6.1035156e-05), params.specular_exponent);
+    bool t148 = t144 > 6.1035156e-05;
+    mediump float t149 = t148 ? t147 : 0.0;
+    bool t154 = (t124.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t124) > 0.0);
+    mediump float specular_intensity = t154 ? t149 : 0.0;
     mediump vec3 specular = specular_intensity * params.sun_color;
 
     // compose
@@ -109,7 +108,7 @@ void main() {
     mediump vec3 shore_color = mix(refracted, water_rgb, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));
 
     // compose
-    mediump vec3 t170 = t37 ? shore_color : scene_rgb;
+    mediump vec3 t165 = t32 ? shore_color : scene_rgb;
 
-    out_color = vec4(t170, 1.0);
+    out_color = vec4(t165, 1.0);
 }

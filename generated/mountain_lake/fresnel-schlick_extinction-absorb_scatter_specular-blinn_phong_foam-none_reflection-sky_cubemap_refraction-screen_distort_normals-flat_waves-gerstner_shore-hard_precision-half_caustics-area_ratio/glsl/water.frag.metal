@@ -25,7 +25,6 @@ struct WaterParams
     float refraction_distortion;
     packed_float3 reflection_lower_tint;
     float refraction_shore_fade_depth;
-    float2 frame_centre;
     float caustics_strength;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -52,171 +51,171 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _61 = _54 - float3(params.eye_position);
-    float _65 = length(_61);
-    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
-    float3 _75 = dfdx(_72);
-    float3 _78 = dfdy(_72);
-    float _80 = fast::max(length(_75), length(_78));
-    float _83 = floor(gerstner_wave_count);
-    float _1133;
-    float _1135;
-    _1135 = 0.0;
-    _1133 = 0.0;
-    float _115;
-    float _120;
-    float _125;
-    float _130;
-    int _1132 = 0;
-    float _1134 = params.gerstner_amplitude;
-    float _1136 = params.gerstner_frequency;
-    for (; _1132 < 8; _1136 = _130, _1135 = _120, _1134 = _125, _1133 = _115, _1132++)
+    float3 _34 = _33.xyz;
+    float3 _50 = float3(params.eye_position) + _34;
+    float _54 = length(_34);
+    float3 _61 = _34 / float3(fast::max(_54, 9.9999999747524270787835121154785e-07));
+    float3 _64 = dfdx(_61);
+    float3 _67 = dfdy(_61);
+    float _69 = fast::max(length(_64), length(_67));
+    float _72 = floor(gerstner_wave_count);
+    float _1126;
+    float _1128;
+    _1128 = 0.0;
+    _1126 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1125 = 0;
+    float _1127 = params.gerstner_amplitude;
+    float _1129 = params.gerstner_frequency;
+    for (; _1125 < 8; _1129 = _121, _1128 = _111, _1127 = _116, _1126 = _106, _1125++)
     {
-        if (!(float(_1132) < _83))
+        if (!(float(_1125) < _72))
         {
             break;
         }
-        _115 = _1133 + _1134;
-        _120 = fma(_1134, _1136, _1135);
-        _125 = _1134 * params.gerstner_amplitude_gain;
-        _130 = _1136 * params.gerstner_frequency_gain;
+        _106 = _1126 + _1127;
+        _111 = fma(_1127, _1129, _1128);
+        _116 = _1127 * params.gerstner_amplitude_gain;
+        _121 = _1129 * params.gerstner_frequency_gain;
     }
-    float _146 = _72.y;
-    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
-    float2 _154 = _72.xz;
-    float _163 = 1.0 / (1.0 + (((_1135 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
-    float _166 = -_1133;
-    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
-    float _1140;
-    float2 _1144;
-    _1144 = (float3(params.eye_position) + (_72 * fast::max((_1133 - params.eye_position[1u]) / _170, 0.0))).xz;
-    _1140 = _1133;
-    float2 _412;
-    float _679;
-    float _684;
-    float _694;
-    int _1139 = 0;
-    float _1172 = _1133;
-    float _1177 = _166;
-    for (; _1139 < 9; _1177 = _684, _1172 = _679, _1144 = _412, _1140 = _694, _1139++)
+    float _138 = _61.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _61.xz;
+    float _155 = 1.0 / (1.0 + (((_1128 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1126;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _1133;
+    float2 _1137;
+    _1137 = (float3(params.eye_position) + (_61 * fast::max((_1126 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1133 = _1126;
+    float2 _405;
+    float _672;
+    float _677;
+    float _687;
+    int _1132 = 0;
+    float _1165 = _1126;
+    float _1170 = _158;
+    for (; _1132 < 9; _1170 = _677, _1165 = _672, _1137 = _405, _1133 = _687, _1132++)
     {
-        float _216 = fast::max((_1140 - params.eye_position[1u]) / _170, 0.0);
-        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
-        float _232 = (_80 * _216) / _150;
-        float2 _1146;
+        float _208 = fast::max((_1133 - params.eye_position[1u]) / _162, 0.0);
+        float2 _218 = (float3(params.eye_position) + (_61 * _208)).xz;
+        float _224 = (_69 * _208) / _142;
+        float2 _1139;
+        float3 _1140;
+        _1140 = float3(0.0);
+        _1139 = float2(0.0);
+        float _322;
+        float _326;
+        float2 _333;
+        float3 _347;
+        int _1134 = 0;
+        float _1135 = params.gerstner_frequency;
+        float _1138 = params.gerstner_amplitude;
+        for (; _1134 < 8; _1140 = _347, _1139 = _333, _1138 = _322, _1135 = _326, _1134++)
+        {
+            float _243 = float(_1134);
+            if (!(_243 < _72))
+            {
+                break;
+            }
+            int _256 = clamp(int(_243), 0, 7);
+            float _281 = fma(_1135, dot(params.gerstner_wave_directions[_256].xy, _1137), params.gerstner_wave_phases[_256].x);
+            float _295 = ((params.gerstner_steepness / (_72 * fast::max(_1135 * _1138, 9.9999999747524270787835121154785e-07))) * _1138) * fast::clamp(fma(-(_1135 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _314 = (_295 * _1135) * sin(_281);
+            float _318 = _314 * params.gerstner_wave_directions[_256].x;
+            _322 = _1138 * params.gerstner_amplitude_gain;
+            _326 = _1135 * params.gerstner_frequency_gain;
+            _333 = _1139 + (params.gerstner_wave_directions[_256].xy * (_295 * cos(_281)));
+            _347 = _1140 + float3(_318 * params.gerstner_wave_directions[_256].x, _318 * params.gerstner_wave_directions[_256].y, (_314 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _353 = 1.0 - _1140.x;
+        float _358 = 1.0 - _1140.z;
+        float _362 = -_1140.y;
+        float2 _368 = (_1137 + _1139) - _218;
+        float _381 = _368.x;
+        float _384 = _368.y;
+        _405 = _1137 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
         float3 _1147;
+        float3 _1148;
+        float3 _1149;
+        _1149 = float3(0.0, 0.0, 1.0);
+        _1148 = float3(1.0, 0.0, 0.0);
         _1147 = float3(0.0);
-        _1146 = float2(0.0);
-        float _329;
-        float _333;
-        float2 _340;
-        float3 _354;
-        int _1141 = 0;
-        float _1142 = params.gerstner_frequency;
-        float _1145 = params.gerstner_amplitude;
-        for (; _1141 < 8; _1147 = _354, _1146 = _340, _1145 = _329, _1142 = _333, _1141++)
+        float _517;
+        float _521;
+        float3 _533;
+        float3 _538;
+        float3 _543;
+        int _1144 = 0;
+        float _1145 = params.gerstner_frequency;
+        float _1146 = params.gerstner_amplitude;
+        for (; _1144 < 8; _1149 = _543, _1148 = _538, _1147 = _533, _1146 = _517, _1145 = _521, _1144++)
         {
-            float _251 = float(_1141);
-            if (!(_251 < _83))
+            float _426 = float(_1144);
+            if (!(_426 < _72))
             {
                 break;
             }
-            int _264 = clamp(int(_251), 0, 7);
-            float _289 = fma(_1142, dot(params.gerstner_wave_directions[_264].xy, _1144), params.gerstner_wave_phases[_264].x);
-            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_1142 * _1145, 9.9999999747524270787835121154785e-07))) * _1145) * fast::clamp(fma(-(_1142 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _321 = (_303 * _1142) * sin(_289);
-            float _325 = _321 * params.gerstner_wave_directions[_264].x;
-            _329 = _1145 * params.gerstner_amplitude_gain;
-            _333 = _1142 * params.gerstner_frequency_gain;
-            _340 = _1146 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
-            _354 = _1147 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
+            int _437 = clamp(int(_426), 0, 7);
+            float _446 = fast::clamp(fma(-(_1145 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _459 = fma(_1145, dot(params.gerstner_wave_directions[_437].xy, _405), params.gerstner_wave_phases[_437].x);
+            float _473 = ((params.gerstner_steepness / (_72 * fast::max(_1145 * _1146, 9.9999999747524270787835121154785e-07))) * _1146) * _446;
+            float _477 = _1146 * _446;
+            float _480 = sin(_459);
+            float _483 = cos(_459);
+            float _493 = _473 * _483;
+            float _500 = -((_473 * _1145) * _480);
+            float3 _513 = float3(_500 * params.gerstner_wave_directions[_437].x, (_477 * _1145) * _483, _500 * params.gerstner_wave_directions[_437].y);
+            _517 = _1146 * params.gerstner_amplitude_gain;
+            _521 = _1145 * params.gerstner_frequency_gain;
+            _533 = _1147 + float3(_493 * params.gerstner_wave_directions[_437].x, _477 * _480, _493 * params.gerstner_wave_directions[_437].y);
+            _538 = _1148 + (_513 * params.gerstner_wave_directions[_437].x);
+            _543 = _1149 + (_513 * params.gerstner_wave_directions[_437].y);
         }
-        float _360 = 1.0 - _1147.x;
-        float _365 = 1.0 - _1147.z;
-        float _369 = -_1147.y;
-        float2 _375 = (_1144 + _1146) - _226;
-        float _388 = _375.x;
-        float _391 = _375.y;
-        _412 = _1144 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
-        float3 _1154;
-        float3 _1155;
-        float3 _1156;
-        _1156 = float3(0.0, 0.0, 1.0);
-        _1155 = float3(1.0, 0.0, 0.0);
-        _1154 = float3(0.0);
-        float _524;
-        float _528;
-        float3 _540;
-        float3 _545;
-        float3 _550;
-        int _1151 = 0;
-        float _1152 = params.gerstner_frequency;
-        float _1153 = params.gerstner_amplitude;
-        for (; _1151 < 8; _1156 = _550, _1155 = _545, _1154 = _540, _1153 = _524, _1152 = _528, _1151++)
-        {
-            float _433 = float(_1151);
-            if (!(_433 < _83))
-            {
-                break;
-            }
-            int _444 = clamp(int(_433), 0, 7);
-            float _453 = fast::clamp(fma(-(_1152 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _466 = fma(_1152, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
-            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1152 * _1153, 9.9999999747524270787835121154785e-07))) * _1153) * _453;
-            float _484 = _1153 * _453;
-            float _487 = sin(_466);
-            float _490 = cos(_466);
-            float _500 = _480 * _490;
-            float _507 = -((_480 * _1152) * _487);
-            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1152) * _490, _507 * params.gerstner_wave_directions[_444].y);
-            _524 = _1153 * params.gerstner_amplitude_gain;
-            _528 = _1152 * params.gerstner_frequency_gain;
-            _540 = _1154 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
-            _545 = _1155 + (_520 * params.gerstner_wave_directions[_444].x);
-            _550 = _1156 + (_520 * params.gerstner_wave_directions[_444].y);
-        }
-        float3 _556 = cross(_1156, _1155);
-        float _560 = dot(_556, _556);
-        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
-        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
-        float _603 = float(_1139);
-        bool _604 = _603 < 1.0;
-        float _608 = (_1154.y + dot(_588, _226 - (_412 + _1154.xz))) - _1140;
-        float _621 = (-dot(_588, _154)) / _150;
-        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _1140);
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1140 : _1172;
-        float _647 = _637 ? _1177 : _1140;
-        _679 = _604 ? _1140 : _642;
-        _684 = _604 ? _1177 : _647;
-        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _1140) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1140;
+        float3 _549 = cross(_1149, _1148);
+        float _553 = dot(_549, _549);
+        float3 _571 = select(float3(0.0, 1.0, 0.0), _549 * rsqrt(fast::max(_553, 1.0000000031710768509710513471353e-30)), bool3(_553 > 1.0000000031710768509710513471353e-30));
+        float2 _581 = (-_571.xz) / float2(fast::max(_571.y, 9.9999997473787516355514526367188e-05));
+        float _596 = float(_1132);
+        bool _597 = _596 < 1.0;
+        float _601 = (_1147.y + dot(_581, _218 - (_405 + _1147.xz))) - _1133;
+        float _614 = (-dot(_581, _146)) / _142;
+        float _627 = fma(fast::clamp(1.0 / fast::max(1.0 - _614, 9.9999999747524270787835121154785e-07), _155, 1.0), _601, _1133);
+        bool _630 = _601 < 0.0;
+        float _635 = _630 ? _1133 : _1165;
+        float _640 = _630 ? _1170 : _1133;
+        _672 = _597 ? _1133 : _635;
+        _677 = _597 ? _1170 : _640;
+        _687 = (_596 < 8.0) ? (_597 ? fma(_155, _601, _1133) : ((((_627 < _640) || (_627 > _635)) || (_614 >= 1.0)) ? (0.5 * (_640 + _635)) : _627)) : _1133;
     }
-    float _708 = fast::max((_1140 - params.eye_position[1u]) / _170, 0.0);
-    float3 _715 = float3(params.eye_position) + (_72 * _708);
-    float _723 = _54.y;
-    float _726 = _715.y;
-    float3 _741 = -_72;
-    float2 _791 = (_54.xz - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
-    float _794 = _791.x;
-    float _797 = _791.y;
-    float _833 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
-    float3 _868 = abs(_72);
-    float3 _881 = _72 / float3(fast::max(fast::max(fast::max(_868.x, _868.y), _868.z), 1.0000000031710768509710513471353e-30));
-    float _885 = dot(_881, _881);
-    float3 _904 = reflect(select(float3(0.0, -1.0, 0.0), _881 * rsqrt(fast::max(_885, 1.0000000031710768509710513471353e-30)), bool3(_885 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _907 = _904.y;
-    float _933 = smoothstep(0.0, params.reflection_horizon_band, -_907);
-    float _979 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _987 = 1.0 - fast::clamp(_741.y, 0.0, 1.0);
-    float _991 = _987 * _987;
-    float3 _1007 = -float3(params.sun_direction);
-    float3 _1011 = _1007 + _741;
-    float _1023 = fast::max(fast::max(abs(_1011.x), abs(_1011.y)), abs(_1011.z));
-    float3 _1030 = _1011 / float3(fast::max(_1023, 5.9604644775390625e-08));
-    float _1049 = fast::clamp(select(float3(0.0), _1030 / float3(fast::max(length(_1030), 1.0)), bool3(_1023 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1091 = mix(mix(float3(params.scatter_color), (scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * mix(1.0, ((((_794 >= 0.0) && (_794 <= 1.0)) && (_797 >= 0.0)) && (_797 <= 1.0)) ? caustics_map.sample(linear_clamp, _791, level(0.0)).x : 1.0, params.caustics_strength)) * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _833)), float3(exp((-params.scatter_coefficient) * _833))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_904.x, abs(_907), _904.z), bool3(dot(_904, _904) > 9.9999999600419720025001879548654e-13)), _933).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_933)), float3(fma(_979, _979, fma(-_979, _979, 1.0) * ((_991 * _991) * _987)))) + (float3(params.sun_color) * ((_1007.y > 0.0) ? ((_1049 > 6.103515625e-05) ? pow(fast::max(_1049, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0));
-    out.out_color = float4(select(_25.xyz, _1091, bool3((_723 < _726) && (_146 < 0.0))), 1.0);
+    float _701 = fast::max((_1133 - params.eye_position[1u]) / _162, 0.0);
+    float3 _708 = float3(params.eye_position) + (_61 * _701);
+    float _716 = _50.y;
+    float _719 = _708.y;
+    float3 _734 = -_61;
+    float2 _784 = (_50.xz - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
+    float _787 = _784.x;
+    float _790 = _784.y;
+    float _826 = fast::clamp(fast::max(_54 - _701, 0.0), 0.0, 30000.0);
+    float3 _861 = abs(_61);
+    float3 _874 = _61 / float3(fast::max(fast::max(fast::max(_861.x, _861.y), _861.z), 1.0000000031710768509710513471353e-30));
+    float _878 = dot(_874, _874);
+    float3 _897 = reflect(select(float3(0.0, -1.0, 0.0), _874 * rsqrt(fast::max(_878, 1.0000000031710768509710513471353e-30)), bool3(_878 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _900 = _897.y;
+    float _926 = smoothstep(0.0, params.reflection_horizon_band, -_900);
+    float _972 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _980 = 1.0 - fast::clamp(_734.y, 0.0, 1.0);
+    float _984 = _980 * _980;
+    float3 _1000 = -float3(params.sun_direction);
+    float3 _1004 = _1000 + _734;
+    float _1016 = fast::max(fast::max(abs(_1004.x), abs(_1004.y)), abs(_1004.z));
+    float3 _1023 = _1004 / float3(fast::max(_1016, 5.9604644775390625e-08));
+    float _1042 = fast::clamp(select(float3(0.0), _1023 / float3(fast::max(length(_1023), 1.0)), bool3(_1016 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1084 = mix(mix(float3(params.scatter_color), (scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * mix(1.0, ((((_787 >= 0.0) && (_787 <= 1.0)) && (_790 >= 0.0)) && (_790 <= 1.0)) ? caustics_map.sample(linear_clamp, _784, level(0.0)).x : 1.0, params.caustics_strength)) * exp((-float3(params.absorb_coefficients)) * (fast::max(_719 - _716, 0.0) + _826)), float3(exp((-params.scatter_coefficient) * _826))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_897.x, abs(_900), _897.z), bool3(dot(_897, _897) > 9.9999999600419720025001879548654e-13)), _926).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_926)), float3(fma(_972, _972, fma(-_972, _972, 1.0) * ((_984 * _984) * _980)))) + (float3(params.sun_color) * ((_1000.y > 0.0) ? ((_1042 > 6.103515625e-05) ? pow(fast::max(_1042, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0));
+    out.out_color = float4(select(_25.xyz, _1084, bool3((_716 < _719) && (_138 < 0.0))), 1.0);
     return out;
 }
 

@@ -23,7 +23,6 @@ struct WaterParams
     float gerstner_steepness;
     packed_float3 reflection_lower_tint;
     float refraction_distortion;
-    float2 frame_centre;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -50,168 +49,168 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _61 = _54 - float3(params.eye_position);
-    float _65 = length(_61);
-    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
-    float3 _75 = dfdx(_72);
-    float3 _78 = dfdy(_72);
-    float _80 = fast::max(length(_75), length(_78));
-    float _83 = floor(gerstner_wave_count);
-    float _1079;
-    float _1081;
-    _1081 = 0.0;
-    _1079 = 0.0;
-    float _115;
-    float _120;
-    float _125;
-    float _130;
-    int _1078 = 0;
-    float _1080 = params.gerstner_amplitude;
-    float _1082 = params.gerstner_frequency;
-    for (; _1078 < 8; _1082 = _130, _1081 = _120, _1080 = _125, _1079 = _115, _1078++)
+    float3 _34 = _33.xyz;
+    float3 _50 = float3(params.eye_position) + _34;
+    float _54 = length(_34);
+    float3 _61 = _34 / float3(fast::max(_54, 9.9999999747524270787835121154785e-07));
+    float3 _64 = dfdx(_61);
+    float3 _67 = dfdy(_61);
+    float _69 = fast::max(length(_64), length(_67));
+    float _72 = floor(gerstner_wave_count);
+    float _1072;
+    float _1074;
+    _1074 = 0.0;
+    _1072 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1071 = 0;
+    float _1073 = params.gerstner_amplitude;
+    float _1075 = params.gerstner_frequency;
+    for (; _1071 < 8; _1075 = _121, _1074 = _111, _1073 = _116, _1072 = _106, _1071++)
     {
-        if (!(float(_1078) < _83))
+        if (!(float(_1071) < _72))
         {
             break;
         }
-        _115 = _1079 + _1080;
-        _120 = fma(_1080, _1082, _1081);
-        _125 = _1080 * params.gerstner_amplitude_gain;
-        _130 = _1082 * params.gerstner_frequency_gain;
+        _106 = _1072 + _1073;
+        _111 = fma(_1073, _1075, _1074);
+        _116 = _1073 * params.gerstner_amplitude_gain;
+        _121 = _1075 * params.gerstner_frequency_gain;
     }
-    float _146 = _72.y;
-    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
-    float2 _154 = _72.xz;
-    float _163 = 1.0 / (1.0 + (((_1081 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
-    float _166 = -_1079;
-    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
-    float _1086;
-    float2 _1090;
-    _1090 = (float3(params.eye_position) + (_72 * fast::max((_1079 - params.eye_position[1u]) / _170, 0.0))).xz;
-    _1086 = _1079;
-    float2 _412;
-    float _679;
-    float _684;
-    float _694;
-    int _1085 = 0;
-    float _1118 = _1079;
-    float _1123 = _166;
-    for (; _1085 < 9; _1123 = _684, _1118 = _679, _1090 = _412, _1086 = _694, _1085++)
+    float _138 = _61.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _61.xz;
+    float _155 = 1.0 / (1.0 + (((_1074 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1072;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _1079;
+    float2 _1083;
+    _1083 = (float3(params.eye_position) + (_61 * fast::max((_1072 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1079 = _1072;
+    float2 _405;
+    float _672;
+    float _677;
+    float _687;
+    int _1078 = 0;
+    float _1111 = _1072;
+    float _1116 = _158;
+    for (; _1078 < 9; _1116 = _677, _1111 = _672, _1083 = _405, _1079 = _687, _1078++)
     {
-        float _216 = fast::max((_1086 - params.eye_position[1u]) / _170, 0.0);
-        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
-        float _232 = (_80 * _216) / _150;
-        float2 _1092;
+        float _208 = fast::max((_1079 - params.eye_position[1u]) / _162, 0.0);
+        float2 _218 = (float3(params.eye_position) + (_61 * _208)).xz;
+        float _224 = (_69 * _208) / _142;
+        float2 _1085;
+        float3 _1086;
+        _1086 = float3(0.0);
+        _1085 = float2(0.0);
+        float _322;
+        float _326;
+        float2 _333;
+        float3 _347;
+        int _1080 = 0;
+        float _1081 = params.gerstner_frequency;
+        float _1084 = params.gerstner_amplitude;
+        for (; _1080 < 8; _1086 = _347, _1085 = _333, _1084 = _322, _1081 = _326, _1080++)
+        {
+            float _243 = float(_1080);
+            if (!(_243 < _72))
+            {
+                break;
+            }
+            int _256 = clamp(int(_243), 0, 7);
+            float _281 = fma(_1081, dot(params.gerstner_wave_directions[_256].xy, _1083), params.gerstner_wave_phases[_256].x);
+            float _295 = ((params.gerstner_steepness / (_72 * fast::max(_1081 * _1084, 9.9999999747524270787835121154785e-07))) * _1084) * fast::clamp(fma(-(_1081 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _314 = (_295 * _1081) * sin(_281);
+            float _318 = _314 * params.gerstner_wave_directions[_256].x;
+            _322 = _1084 * params.gerstner_amplitude_gain;
+            _326 = _1081 * params.gerstner_frequency_gain;
+            _333 = _1085 + (params.gerstner_wave_directions[_256].xy * (_295 * cos(_281)));
+            _347 = _1086 + float3(_318 * params.gerstner_wave_directions[_256].x, _318 * params.gerstner_wave_directions[_256].y, (_314 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _353 = 1.0 - _1086.x;
+        float _358 = 1.0 - _1086.z;
+        float _362 = -_1086.y;
+        float2 _368 = (_1083 + _1085) - _218;
+        float _381 = _368.x;
+        float _384 = _368.y;
+        _405 = _1083 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
         float3 _1093;
+        float3 _1094;
+        float3 _1095;
+        _1095 = float3(0.0, 0.0, 1.0);
+        _1094 = float3(1.0, 0.0, 0.0);
         _1093 = float3(0.0);
-        _1092 = float2(0.0);
-        float _329;
-        float _333;
-        float2 _340;
-        float3 _354;
-        int _1087 = 0;
-        float _1088 = params.gerstner_frequency;
-        float _1091 = params.gerstner_amplitude;
-        for (; _1087 < 8; _1093 = _354, _1092 = _340, _1091 = _329, _1088 = _333, _1087++)
+        float _517;
+        float _521;
+        float3 _533;
+        float3 _538;
+        float3 _543;
+        int _1090 = 0;
+        float _1091 = params.gerstner_frequency;
+        float _1092 = params.gerstner_amplitude;
+        for (; _1090 < 8; _1095 = _543, _1094 = _538, _1093 = _533, _1092 = _517, _1091 = _521, _1090++)
         {
-            float _251 = float(_1087);
-            if (!(_251 < _83))
+            float _426 = float(_1090);
+            if (!(_426 < _72))
             {
                 break;
             }
-            int _264 = clamp(int(_251), 0, 7);
-            float _289 = fma(_1088, dot(params.gerstner_wave_directions[_264].xy, _1090), params.gerstner_wave_phases[_264].x);
-            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_1088 * _1091, 9.9999999747524270787835121154785e-07))) * _1091) * fast::clamp(fma(-(_1088 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _321 = (_303 * _1088) * sin(_289);
-            float _325 = _321 * params.gerstner_wave_directions[_264].x;
-            _329 = _1091 * params.gerstner_amplitude_gain;
-            _333 = _1088 * params.gerstner_frequency_gain;
-            _340 = _1092 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
-            _354 = _1093 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
+            int _437 = clamp(int(_426), 0, 7);
+            float _446 = fast::clamp(fma(-(_1091 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _459 = fma(_1091, dot(params.gerstner_wave_directions[_437].xy, _405), params.gerstner_wave_phases[_437].x);
+            float _473 = ((params.gerstner_steepness / (_72 * fast::max(_1091 * _1092, 9.9999999747524270787835121154785e-07))) * _1092) * _446;
+            float _477 = _1092 * _446;
+            float _480 = sin(_459);
+            float _483 = cos(_459);
+            float _493 = _473 * _483;
+            float _500 = -((_473 * _1091) * _480);
+            float3 _513 = float3(_500 * params.gerstner_wave_directions[_437].x, (_477 * _1091) * _483, _500 * params.gerstner_wave_directions[_437].y);
+            _517 = _1092 * params.gerstner_amplitude_gain;
+            _521 = _1091 * params.gerstner_frequency_gain;
+            _533 = _1093 + float3(_493 * params.gerstner_wave_directions[_437].x, _477 * _480, _493 * params.gerstner_wave_directions[_437].y);
+            _538 = _1094 + (_513 * params.gerstner_wave_directions[_437].x);
+            _543 = _1095 + (_513 * params.gerstner_wave_directions[_437].y);
         }
-        float _360 = 1.0 - _1093.x;
-        float _365 = 1.0 - _1093.z;
-        float _369 = -_1093.y;
-        float2 _375 = (_1090 + _1092) - _226;
-        float _388 = _375.x;
-        float _391 = _375.y;
-        _412 = _1090 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
-        float3 _1100;
-        float3 _1101;
-        float3 _1102;
-        _1102 = float3(0.0, 0.0, 1.0);
-        _1101 = float3(1.0, 0.0, 0.0);
-        _1100 = float3(0.0);
-        float _524;
-        float _528;
-        float3 _540;
-        float3 _545;
-        float3 _550;
-        int _1097 = 0;
-        float _1098 = params.gerstner_frequency;
-        float _1099 = params.gerstner_amplitude;
-        for (; _1097 < 8; _1102 = _550, _1101 = _545, _1100 = _540, _1099 = _524, _1098 = _528, _1097++)
-        {
-            float _433 = float(_1097);
-            if (!(_433 < _83))
-            {
-                break;
-            }
-            int _444 = clamp(int(_433), 0, 7);
-            float _453 = fast::clamp(fma(-(_1098 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _466 = fma(_1098, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
-            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1098 * _1099, 9.9999999747524270787835121154785e-07))) * _1099) * _453;
-            float _484 = _1099 * _453;
-            float _487 = sin(_466);
-            float _490 = cos(_466);
-            float _500 = _480 * _490;
-            float _507 = -((_480 * _1098) * _487);
-            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1098) * _490, _507 * params.gerstner_wave_directions[_444].y);
-            _524 = _1099 * params.gerstner_amplitude_gain;
-            _528 = _1098 * params.gerstner_frequency_gain;
-            _540 = _1100 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
-            _545 = _1101 + (_520 * params.gerstner_wave_directions[_444].x);
-            _550 = _1102 + (_520 * params.gerstner_wave_directions[_444].y);
-        }
-        float3 _556 = cross(_1102, _1101);
-        float _560 = dot(_556, _556);
-        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
-        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
-        float _603 = float(_1085);
-        bool _604 = _603 < 1.0;
-        float _608 = (_1100.y + dot(_588, _226 - (_412 + _1100.xz))) - _1086;
-        float _621 = (-dot(_588, _154)) / _150;
-        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _1086);
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1086 : _1118;
-        float _647 = _637 ? _1123 : _1086;
-        _679 = _604 ? _1086 : _642;
-        _684 = _604 ? _1123 : _647;
-        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _1086) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1086;
+        float3 _549 = cross(_1095, _1094);
+        float _553 = dot(_549, _549);
+        float3 _571 = select(float3(0.0, 1.0, 0.0), _549 * rsqrt(fast::max(_553, 1.0000000031710768509710513471353e-30)), bool3(_553 > 1.0000000031710768509710513471353e-30));
+        float2 _581 = (-_571.xz) / float2(fast::max(_571.y, 9.9999997473787516355514526367188e-05));
+        float _596 = float(_1078);
+        bool _597 = _596 < 1.0;
+        float _601 = (_1093.y + dot(_581, _218 - (_405 + _1093.xz))) - _1079;
+        float _614 = (-dot(_581, _146)) / _142;
+        float _627 = fma(fast::clamp(1.0 / fast::max(1.0 - _614, 9.9999999747524270787835121154785e-07), _155, 1.0), _601, _1079);
+        bool _630 = _601 < 0.0;
+        float _635 = _630 ? _1079 : _1111;
+        float _640 = _630 ? _1116 : _1079;
+        _672 = _597 ? _1079 : _635;
+        _677 = _597 ? _1116 : _640;
+        _687 = (_596 < 8.0) ? (_597 ? fma(_155, _601, _1079) : ((((_627 < _640) || (_627 > _635)) || (_614 >= 1.0)) ? (0.5 * (_640 + _635)) : _627)) : _1079;
     }
-    float _708 = fast::max((_1086 - params.eye_position[1u]) / _170, 0.0);
-    float3 _715 = float3(params.eye_position) + (_72 * _708);
-    float _723 = _54.y;
-    float _726 = _715.y;
-    float3 _741 = -_72;
-    float _782 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
-    float3 _816 = abs(_72);
-    float3 _829 = _72 / float3(fast::max(fast::max(fast::max(_816.x, _816.y), _816.z), 1.0000000031710768509710513471353e-30));
-    float _833 = dot(_829, _829);
-    float3 _852 = reflect(select(float3(0.0, -1.0, 0.0), _829 * rsqrt(fast::max(_833, 1.0000000031710768509710513471353e-30)), bool3(_833 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _855 = _852.y;
-    float _881 = smoothstep(0.0, params.reflection_horizon_band, -_855);
-    float _927 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _935 = 1.0 - fast::clamp(_741.y, 0.0, 1.0);
-    float _939 = _935 * _935;
-    float3 _955 = -float3(params.sun_direction);
-    float3 _959 = _955 + _741;
-    float _971 = fast::max(fast::max(abs(_959.x), abs(_959.y)), abs(_959.z));
-    float3 _978 = _959 / float3(fast::max(_971, 5.9604644775390625e-08));
-    float _997 = fast::clamp(select(float3(0.0), _978 / float3(fast::max(length(_978), 1.0)), bool3(_971 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1045 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _782)), float3(exp((-params.scatter_coefficient) * _782))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_852.x, abs(_855), _852.z), bool3(dot(_852, _852) > 9.9999999600419720025001879548654e-13)), _881).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_881)), float3(fma(_927, _927, fma(-_927, _927, 1.0) * ((_939 * _939) * _935)))) + (float3(params.sun_color) * ((_955.y > 0.0) ? ((_997 > 6.103515625e-05) ? pow(fast::max(_997, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), bool3((_723 < _726) && (_146 < 0.0)));
-    out.out_color = float4(_1045, 1.0);
+    float _701 = fast::max((_1079 - params.eye_position[1u]) / _162, 0.0);
+    float3 _708 = float3(params.eye_position) + (_61 * _701);
+    float _716 = _50.y;
+    float _719 = _708.y;
+    float3 _734 = -_61;
+    float _775 = fast::clamp(fast::max(_54 - _701, 0.0), 0.0, 30000.0);
+    float3 _809 = abs(_61);
+    float3 _822 = _61 / float3(fast::max(fast::max(fast::max(_809.x, _809.y), _809.z), 1.0000000031710768509710513471353e-30));
+    float _826 = dot(_822, _822);
+    float3 _845 = reflect(select(float3(0.0, -1.0, 0.0), _822 * rsqrt(fast::max(_826, 1.0000000031710768509710513471353e-30)), bool3(_826 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _848 = _845.y;
+    float _874 = smoothstep(0.0, params.reflection_horizon_band, -_848);
+    float _920 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _928 = 1.0 - fast::clamp(_734.y, 0.0, 1.0);
+    float _932 = _928 * _928;
+    float3 _948 = -float3(params.sun_direction);
+    float3 _952 = _948 + _734;
+    float _964 = fast::max(fast::max(abs(_952.x), abs(_952.y)), abs(_952.z));
+    float3 _971 = _952 / float3(fast::max(_964, 5.9604644775390625e-08));
+    float _990 = fast::clamp(select(float3(0.0), _971 / float3(fast::max(length(_971), 1.0)), bool3(_964 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1038 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_719 - _716, 0.0) + _775)), float3(exp((-params.scatter_coefficient) * _775))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_845.x, abs(_848), _845.z), bool3(dot(_845, _845) > 9.9999999600419720025001879548654e-13)), _874).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_874)), float3(fma(_920, _920, fma(-_920, _920, 1.0) * ((_932 * _932) * _928)))) + (float3(params.sun_color) * ((_948.y > 0.0) ? ((_990 > 6.103515625e-05) ? pow(fast::max(_990, 6.103515625e-05), params.specular_exponent) : 0.0) : 0.0)), bool3((_716 < _719) && (_138 < 0.0)));
+    out.out_color = float4(_1038, 1.0);
     return out;
 }
 

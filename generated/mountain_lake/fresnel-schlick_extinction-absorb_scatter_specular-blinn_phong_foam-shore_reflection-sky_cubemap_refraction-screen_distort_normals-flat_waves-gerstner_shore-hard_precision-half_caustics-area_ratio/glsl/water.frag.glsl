@@ -26,14 +26,13 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 524) float caustics_strength;
     layout(offset = 528) vec3 foam_color;
     layout(offset = 540) float scatter_coefficient;
-    layout(offset = 544) vec2 frame_centre;
-    layout(offset = 552) vec2 foam_pattern_drift;
-    layout(offset = 560) vec2 foam_pattern_offset;
-    layout(offset = 568) float reflection_horizon_band;
-    layout(offset = 572) float ior_air;
-    layout(offset = 576) float ior_water;
-    layout(offset = 580) float specular_exponent;
-    layout(offset = 584) float foam_pattern_scale;
+    layout(offset = 544) vec2 foam_pattern_drift;
+    layout(offset = 552) vec2 foam_pattern_offset;
+    layout(offset = 560) float reflection_horizon_band;
+    layout(offset = 564) float ior_air;
+    layout(offset = 568) float ior_water;
+    layout(offset = 572) float specular_exponent;
+    layout(offset = 576) float foam_pattern_scale;
 } params;
 layout(constant_id = 0) const float gerstner_wave_count = 4.0;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
@@ -48,44 +47,44 @@ layout(location = 0) out vec4 out_color;
 void main() {
     // surface
     vec3 scene_rgb = texture(sampler2D(scene_color, linear_clamp), v_uv).xyz;
-    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 t16 = scene_pos - params.eye_position;
-    float scene_distance = length(t16);
-    vec3 view_ray = t16 / max(scene_distance, 1e-06);
+    vec3 to_scene = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz;
+    vec3 scene_pos = params.eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    vec3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.gerstner
     float pixel_angle = max(length(dFdx(view_ray)), length(dFdy(view_ray)));
     float trip_count = floor(gerstner_wave_count);
-    float loop33_c0 = params.gerstner_amplitude;
-    float loop33_c1 = params.gerstner_frequency;
-    float loop33_c2 = 0.0;
-    float loop33_c3 = 0.0;
-    for (int loop33_i = 0; loop33_i < 8; ++loop33_i) {
-        if (!(float(loop33_i) < trip_count)) break;
-        loop33_c2 = loop33_c2 + loop33_c0;
-        loop33_c3 = loop33_c3 + (loop33_c0 * loop33_c1);
-        loop33_c0 = loop33_c0 * params.gerstner_amplitude_gain;
-        loop33_c1 = loop33_c1 * params.gerstner_frequency_gain;
+    float loop28_c0 = params.gerstner_amplitude;
+    float loop28_c1 = params.gerstner_frequency;
+    float loop28_c2 = 0.0;
+    float loop28_c3 = 0.0;
+    for (int loop28_i = 0; loop28_i < 8; ++loop28_i) {
+        if (!(float(loop28_i) < trip_count)) break;
+        loop28_c2 = loop28_c2 + loop28_c0;
+        loop28_c3 = loop28_c3 + (loop28_c0 * loop28_c1);
+        loop28_c0 = loop28_c0 * params.gerstner_amplitude_gain;
+        loop28_c1 = loop28_c1 * params.gerstner_frequency_gain;
     }
-    float gerstner_max_slope = loop33_c3 / max(1.0 - params.gerstner_steepness, 0.2);
-    float t42 = view_ray.y;
-    float search_ray_down = max(-t42, 1e-06);
-    vec2 t45 = view_ray.xz;
-    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t45)) / search_ray_down));
-    float t51 = -loop33_c2;
-    float view_ray_y = min(t42, -1e-06);
-    float t54 = params.eye_position.y;
-    float surface_distance = max((loop33_c2 - t54) / view_ray_y, 0.0);
+    float gerstner_max_slope = loop28_c3 / max(1.0 - params.gerstner_steepness, 0.2);
+    float t37 = view_ray.y;
+    float search_ray_down = max(-t37, 1e-06);
+    vec2 t40 = view_ray.xz;
+    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t40)) / search_ray_down));
+    float t46 = -loop28_c2;
+    float view_ray_y = min(t37, -1e-06);
+    float t49 = params.eye_position.y;
+    float surface_distance = max((loop28_c2 - t49) / view_ray_y, 0.0);
     vec3 surface_point = params.eye_position + (view_ray * surface_distance);
-    vec2 t60 = surface_point.xz;
-    float loop62_c0 = loop33_c2;
-    float loop62_c1 = loop33_c2;
-    float loop62_c2 = t51;
-    vec2 loop62_c3 = t60;
-    vec2 loop62_c4 = vec2(0.0);
-    [[dont_unroll]] for (int loop62_i = 0; loop62_i < 9; ++loop62_i) {
+    vec2 t55 = surface_point.xz;
+    float loop57_c0 = loop28_c2;
+    float loop57_c1 = loop28_c2;
+    float loop57_c2 = t46;
+    vec2 loop57_c3 = t55;
+    vec2 loop57_c4 = vec2(0.0);
+    [[dont_unroll]] for (int loop57_i = 0; loop57_i < 9; ++loop57_i) {
         // waves.gerstner
-        float surface_distance_3 = max((loop62_c0 - t54) / view_ray_y, 0.0);
+        float surface_distance_3 = max((loop57_c0 - t49) / view_ray_y, 0.0);
         vec3 surface_point_3 = params.eye_position + (view_ray * surface_distance_3);
         vec2 t15 = surface_point_3.xz;
         float pixel_footprint = (pixel_angle * surface_distance_3) / search_ray_down;
@@ -98,7 +97,7 @@ void main() {
             // waves.gerstner
             vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop29_i)), 0, 7)];
             float wave_fade = clamp(2.0 - ((loop29_c1 * pixel_footprint) * 0.63661975), 0.0, 1.0);
-            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop62_c3)) + params.gerstner_wave_phases[clamp(int(float(loop29_i)), 0, 7)];
+            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop57_c3)) + params.gerstner_wave_phases[clamp(int(float(loop29_i)), 0, 7)];
             float t30 = ((params.gerstner_steepness / (trip_count * max(loop29_c1 * loop29_c0, 1e-06))) * loop29_c0) * wave_fade;
             float gerstner_sin = sin(wave_theta);
             float gerstner_cos = cos(wave_theta);
@@ -114,11 +113,11 @@ void main() {
         float t34 = 1.0 - loop29_c3.x;
         float t36 = 1.0 - loop29_c3.z;
         float t38 = -loop29_c3.y;
-        vec2 gerstner_grid_residual = (loop62_c3 + loop29_c2) - t15;
+        vec2 gerstner_grid_residual = (loop57_c3 + loop29_c2) - t15;
         float gerstner_grid_det = max((t34 * t36) - (t38 * t38), 0.04);
-        float t46 = gerstner_grid_residual.x;
+        float t46_2 = gerstner_grid_residual.x;
         float t48 = gerstner_grid_residual.y;
-        vec2 gerstner_grid_point = loop62_c3 - (vec2(((t36 * t46) - (t38 * t48)), ((t34 * t48) - (t38 * t46))) / gerstner_grid_det);
+        vec2 gerstner_grid_point = loop57_c3 - (vec2(((t36 * t46_2) - (t38 * t48)), ((t34 * t48) - (t38 * t46_2))) / gerstner_grid_det);
         float loop59_c0 = params.gerstner_amplitude;
         float loop59_c1 = params.gerstner_frequency;
         vec3 loop59_c2 = vec3(0.0);
@@ -136,12 +135,12 @@ void main() {
             float gerstner_cos_2 = cos(wave_theta_2);
             float t35_2 = gerstner_wave_directions_3.x;
             float t36_2 = gerstner_wave_directions_3.y;
-            float t37 = t31 * gerstner_cos_2;
+            float t37_2 = t31 * gerstner_cos_2;
             float t47 = -((t31 * loop59_c1) * gerstner_sin_2);
             vec3 t50 = vec3((t47 * t35_2), ((t32 * loop59_c1) * gerstner_cos_2), (t47 * t36_2));
             loop59_c0 = loop59_c0 * params.gerstner_amplitude_gain;
             loop59_c1 = loop59_c1 * params.gerstner_frequency_gain;
-            loop59_c2 = loop59_c2 + vec3((t37 * t35_2), (t32 * gerstner_sin_2), (t37 * t36_2));
+            loop59_c2 = loop59_c2 + vec3((t37_2 * t35_2), (t32 * gerstner_sin_2), (t37_2 * t36_2));
             loop59_c3 = loop59_c3 + (t35_2 * t50);
             loop59_c4 = loop59_c4 + (t36_2 * t50);
         }
@@ -152,126 +151,126 @@ void main() {
         vec3 gerstner_normal = t69 ? t68 : vec3(0.0, 1.0, 0.0);
         vec2 wave_slope = (-gerstner_normal.xz) / max(gerstner_normal.y, 0.0001);
         float gerstner_height = loop59_c2.y + dot(wave_slope, t15 - (gerstner_grid_point + loop59_c2.xz));
-        bool t84_2 = float(loop62_i) < 1.0;
-        float t85 = gerstner_height - loop62_c0;
-        float search_level = loop62_c0 + (search_relaxation * t85);
-        float t92 = (-dot(wave_slope, t45)) / search_ray_down;
+        bool t84 = float(loop57_i) < 1.0;
+        float t85 = gerstner_height - loop57_c0;
+        float search_level = loop57_c0 + (search_relaxation * t85);
+        float t92 = (-dot(wave_slope, t40)) / search_ray_down;
         float search_step = clamp(1.0 / max(1.0 - t92, 1e-06), search_relaxation, 1.0);
-        float search_level_2 = loop62_c0 + (search_step * t85);
+        float search_level_2 = loop57_c0 + (search_step * t85);
         bool t100 = t85 < 0.0;
-        float search_high = t100 ? loop62_c0 : loop62_c1;
-        float search_low = t100 ? loop62_c2 : loop62_c0;
-        bool t107_2 = ((search_level_2 < search_low) || (search_level_2 > search_high)) || (t92 >= 1.0);
+        float search_high = t100 ? loop57_c0 : loop57_c1;
+        float search_low = t100 ? loop57_c2 : loop57_c0;
+        bool t107 = ((search_level_2 < search_low) || (search_level_2 > search_high)) || (t92 >= 1.0);
         float t110 = 0.5 * (search_low + search_high);
-        float search_level_3 = t107_2 ? t110 : search_level_2;
-        float search_level_4 = t84_2 ? search_level : search_level_3;
-        float t113 = t84_2 ? loop62_c0 : search_high;
-        float t114_2 = t84_2 ? loop62_c2 : search_low;
-        bool t116 = float(loop62_i) < 8.0;
-        float t117 = t116 ? search_level_4 : loop62_c0;
-        loop62_c0 = t117;
-        loop62_c1 = t113;
-        loop62_c2 = t114_2;
-        loop62_c3 = gerstner_grid_point;
-        loop62_c4 = wave_slope;
+        float search_level_3 = t107 ? t110 : search_level_2;
+        float search_level_4 = t84 ? search_level : search_level_3;
+        float t113 = t84 ? loop57_c0 : search_high;
+        float t114 = t84 ? loop57_c2 : search_low;
+        bool t116 = float(loop57_i) < 8.0;
+        float t117 = t116 ? search_level_4 : loop57_c0;
+        loop57_c0 = t117;
+        loop57_c1 = t113;
+        loop57_c2 = t114;
+        loop57_c3 = gerstner_grid_point;
+        loop57_c4 = wave_slope;
     }
-    float surface_distance_2 = max((loop62_c0 - t54) / view_ray_y, 0.0);
+    float surface_distance_2 = max((loop57_c0 - t49) / view_ray_y, 0.0);
     vec3 surface_point_2 = params.eye_position + (view_ray * surface_distance_2);
     float water_path = max(scene_distance - surface_distance_2, 0.0);
-    float t71 = scene_pos.y;
-    float t72 = surface_point_2.y;
-    float water_depth = max(t72 - t71, 0.0);
-    bool t77 = (t71 < t72) && (t42 < 0.0);
+    float t66 = scene_pos.y;
+    float t67 = surface_point_2.y;
+    float water_depth = max(t67 - t66, 0.0);
+    bool t72 = (t66 < t67) && (t37 < 0.0);
 
     // surface
-    vec3 t78 = -view_ray;
-    float n_dot_v = dot(vec3(0.0, 1.0, 0.0), t78);
+    vec3 t73 = -view_ray;
+    float n_dot_v = dot(vec3(0.0, 1.0, 0.0), t73);
 
     // refraction.screen_distort
-    mediump float t84 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
-    bool t86 = params.refraction_shore_fade_depth > 0.0;
-    mediump float distortion_fade = t86 ? t84 : 1.0;
+    mediump float t79 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
+    bool t81 = params.refraction_shore_fade_depth > 0.0;
+    mediump float distortion_fade = t81 ? t79 : 1.0;
     mediump vec2 refraction_uv = clamp(v_uv + (vec2(0.0) * (params.refraction_distortion * distortion_fade)), 0.0, 1.0);
     mediump vec3 refracted = texture(sampler2D(scene_color, linear_clamp), refraction_uv).xyz;
 
     // caustics.area_ratio
     vec2 caustics_uv = (scene_pos.xz - vec2(params.caustics_window.x, params.caustics_window.y)) / params.caustics_window.z;
-    float t103 = caustics_uv.x;
-    float t107 = caustics_uv.y;
-    bool t111 = (((t103 >= 0.0) && (t103 <= 1.0)) && (t107 >= 0.0)) && (t107 <= 1.0);
-    float t114 = textureLod(sampler2D(caustics_map, linear_clamp), caustics_uv, 0.0).x;
-    float caustics_intensity = t111 ? t114 : 1.0;
+    float t98 = caustics_uv.x;
+    float t102 = caustics_uv.y;
+    bool t106 = (((t98 >= 0.0) && (t98 <= 1.0)) && (t102 >= 0.0)) && (t102 <= 1.0);
+    float t109 = textureLod(sampler2D(caustics_map, linear_clamp), caustics_uv, 0.0).x;
+    float caustics_intensity = t106 ? t109 : 1.0;
     vec3 caustics_lit = refracted * mix(1.0, caustics_intensity, params.caustics_strength);
 
     // extinction.absorb_scatter
-    mediump float t124 = clamp(water_path, 0.0, 30000.0);
-    mediump vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t124));
-    mediump float inverse_scatter = exp((-params.scatter_coefficient) * t124);
+    mediump float t119 = clamp(water_path, 0.0, 30000.0);
+    mediump vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t119));
+    mediump float inverse_scatter = exp((-params.scatter_coefficient) * t119);
     mediump vec3 water_color = mix(params.scatter_color, caustics_lit * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 t138 = abs(view_ray);
-    mediump vec3 t146 = view_ray / max(max(max(t138.x, t138.y), t138.z), 1e-30);
-    mediump float t147 = dot(t146, t146);
-    mediump vec3 t150 = t146 * inversesqrt(max(t147, 1e-30));
-    bool t151 = t147 > 1e-30;
-    mediump vec3 t152 = t151 ? t150 : vec3(0.0, (-1.0), 0.0);
-    mediump vec3 reflected_ray = reflect(t152, vec3(0.0, 1.0, 0.0));
-    mediump float t156 = reflected_ray.y;
-    mediump vec3 t159 = vec3(reflected_ray.x, abs(t156), reflected_ray.z);
-    bool t162 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t162 ? t159 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t156);
-    mediump vec4 t166 = vec4(sky_direction, below_horizon);
-    mediump vec3 t168 = t166.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t168).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t166.w));
+    mediump vec3 t133 = abs(view_ray);
+    mediump vec3 t141 = view_ray / max(max(max(t133.x, t133.y), t133.z), 1e-30);
+    mediump float t142 = dot(t141, t141);
+    mediump vec3 t145 = t141 * inversesqrt(max(t142, 1e-30));
+    bool t146 = t142 > 1e-30;
+    mediump vec3 t147 = t146 ? t145 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t147, vec3(0.0, 1.0, 0.0));
+    mediump float t151 = reflected_ray.y;
+    mediump vec3 t154 = vec3(reflected_ray.x, abs(t151), reflected_ray.z);
+    bool t157 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t157 ? t154 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t151);
+    mediump vec4 t161 = vec4(sky_direction, below_horizon);
+    mediump vec3 t163 = t161.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t163).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t161.w));
 
     // fresnel.schlick
-    mediump float t181 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t181 * t181;
+    mediump float t176 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t176 * t176;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t185 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t185 * t185) * one_minus_c));
+    mediump float t180 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t180 * t180) * one_minus_c));
 
     // specular.blinn_phong
-    mediump vec3 t192 = -params.sun_direction;
-    mediump vec3 t193 = t192 + t78;
-    mediump float t201 = max(max(abs(t193.x), abs(t193.y)), abs(t193.z));
-    mediump vec3 t204 = t193 / max(t201, 5.9604645e-08);
-    mediump vec3 t207 = t204 / max(length(t204), 1.0);
-    bool t209 = t201 > 5.9604645e-08;
-    mediump vec3 half_vector = t209 ? t207 : vec3(0.0);
-    mediump float t212 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
-    mediump float t215 = pow(max(t212, 6.1035156e-05), params.specular_exponent);
-    bool t216 = t212 > 6.1035156e-05;
-    mediump float t217 = t216 ? t215 : 0.0;
-    bool t222 = (t192.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t192) > 0.0);
-    mediump float specular_intensity = t222 ? t217 : 0.0;
+    mediump vec3 t187 = -params.sun_direction;
+    mediump vec3 t188 = t187 + t73;
+    mediump float t196 = max(max(abs(t188.x), abs(t188.y)), abs(t188.z));
+    mediump vec3 t199 = t188 / max(t196, 5.9604645e-08);
+    mediump vec3 t202 = t199 / max(length(t199), 1.0);
+    bool t204 = t196 > 5.9604645e-08;
+    mediump vec3 half_vector = t204 ? t202 : vec3(0.0);
+    mediump float t207 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
+    mediump float t210 = pow(max(t207, 6.1035156e-05), params.specular_exponent);
+    bool t211 = t207 > 6.1035156e-05;
+    mediump float t212 = t211 ? t210 : 0.0;
+    bool t217 = (t187.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t187) > 0.0);
+    mediump float specular_intensity = t217 ? t212 : 0.0;
     mediump vec3 specular = specular_intensity * params.sun_color;
 
     // compose
     mediump vec3 water_rgb = mix(water_color, reflected, vec3(fresnel)) + specular;
 
     // foam.shore
-    vec2 t228 = surface_point_2.xz;
-    vec2 foam_uv = ((fract((t228 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + 0.5) / 256.0;
-    float foam_footprint = max(length(dFdx(t228)), length(dFdy(t228)));
+    vec2 t223 = surface_point_2.xz;
+    vec2 foam_uv = ((fract((t223 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + 0.5) / 256.0;
+    float foam_footprint = max(length(dFdx(t223)), length(dFdy(t223)));
     mediump float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     mediump float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
     mediump float foam_pattern_2 = mix(foam_texel, 0.6, foam_aliasing);
-    mediump float t258 = params.foam_existence.x;
-    mediump float t259 = water_depth - t258;
-    mediump float t261 = params.foam_existence.y - t258;
-    mediump float t264 = clamp(t259 / max(t261, 5.9604645e-08), 0.0, 1.0);
-    bool t265 = t259 >= t261;
-    mediump float t266 = t265 ? 1.0 : t264;
-    mediump float t267 = 1.0 - t266;
-    bool t268 = t259 < 0.0;
-    mediump float shore_foam = t268 ? 1.0 : t267;
+    mediump float t253 = params.foam_existence.x;
+    mediump float t254 = water_depth - t253;
+    mediump float t256 = params.foam_existence.y - t253;
+    mediump float t259 = clamp(t254 / max(t256, 5.9604645e-08), 0.0, 1.0);
+    bool t260 = t254 >= t256;
+    mediump float t261 = t260 ? 1.0 : t259;
+    mediump float t262 = 1.0 - t261;
+    bool t263 = t254 < 0.0;
+    mediump float shore_foam = t263 ? 1.0 : t262;
     mediump vec3 foam_rgb = mix(water_rgb, params.foam_color * foam_pattern_2, vec3(shore_foam));
 
     // compose
-    mediump vec3 t274 = t77 ? foam_rgb : scene_rgb;
+    mediump vec3 t269 = t72 ? foam_rgb : scene_rgb;
 
-    out_color = vec4(t274, 1.0);
+    out_color = vec4(t269, 1.0);
 }

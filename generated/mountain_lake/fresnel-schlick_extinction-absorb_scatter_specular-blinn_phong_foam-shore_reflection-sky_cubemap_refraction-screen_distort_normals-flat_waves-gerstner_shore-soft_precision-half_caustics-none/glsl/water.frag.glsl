@@ -24,15 +24,14 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 508) float refraction_shore_fade_depth;
     layout(offset = 512) vec3 foam_color;
     layout(offset = 524) float scatter_coefficient;
-    layout(offset = 528) vec2 frame_centre;
-    layout(offset = 536) vec2 foam_pattern_drift;
-    layout(offset = 544) vec2 foam_pattern_offset;
-    layout(offset = 552) float reflection_horizon_band;
-    layout(offset = 556) float ior_air;
-    layout(offset = 560) float ior_water;
-    layout(offset = 564) float specular_exponent;
-    layout(offset = 568) float foam_pattern_scale;
-    layout(offset = 572) float shore_hardness;
+    layout(offset = 528) vec2 foam_pattern_drift;
+    layout(offset = 536) vec2 foam_pattern_offset;
+    layout(offset = 544) float reflection_horizon_band;
+    layout(offset = 548) float ior_air;
+    layout(offset = 552) float ior_water;
+    layout(offset = 556) float specular_exponent;
+    layout(offset = 560) float foam_pattern_scale;
+    layout(offset = 564) float shore_hardness;
 } params;
 layout(constant_id = 0) const float gerstner_wave_count = 4.0;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
@@ -46,44 +45,44 @@ layout(location = 0) out vec4 out_color;
 void main() {
     // surface
     vec3 scene_rgb = texture(sampler2D(scene_color, linear_clamp), v_uv).xyz;
-    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 t16 = scene_pos - params.eye_position;
-    float scene_distance = length(t16);
-    vec3 view_ray = t16 / max(scene_distance, 1e-06);
+    vec3 to_scene = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz;
+    vec3 scene_pos = params.eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    vec3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.gerstner
     float pixel_angle = max(length(dFdx(view_ray)), length(dFdy(view_ray)));
     float trip_count = floor(gerstner_wave_count);
-    float loop33_c0 = params.gerstner_amplitude;
-    float loop33_c1 = params.gerstner_frequency;
-    float loop33_c2 = 0.0;
-    float loop33_c3 = 0.0;
-    for (int loop33_i = 0; loop33_i < 8; ++loop33_i) {
-        if (!(float(loop33_i) < trip_count)) break;
-        loop33_c2 = loop33_c2 + loop33_c0;
-        loop33_c3 = loop33_c3 + (loop33_c0 * loop33_c1);
-        loop33_c0 = loop33_c0 * params.gerstner_amplitude_gain;
-        loop33_c1 = loop33_c1 * params.gerstner_frequency_gain;
+    float loop28_c0 = params.gerstner_amplitude;
+    float loop28_c1 = params.gerstner_frequency;
+    float loop28_c2 = 0.0;
+    float loop28_c3 = 0.0;
+    for (int loop28_i = 0; loop28_i < 8; ++loop28_i) {
+        if (!(float(loop28_i) < trip_count)) break;
+        loop28_c2 = loop28_c2 + loop28_c0;
+        loop28_c3 = loop28_c3 + (loop28_c0 * loop28_c1);
+        loop28_c0 = loop28_c0 * params.gerstner_amplitude_gain;
+        loop28_c1 = loop28_c1 * params.gerstner_frequency_gain;
     }
-    float gerstner_max_slope = loop33_c3 / max(1.0 - params.gerstner_steepness, 0.2);
-    float t42 = view_ray.y;
-    float search_ray_down = max(-t42, 1e-06);
-    vec2 t45 = view_ray.xz;
-    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t45)) / search_ray_down));
-    float t51 = -loop33_c2;
-    float view_ray_y = min(t42, -1e-06);
-    float t54 = params.eye_position.y;
-    float surface_distance = max((loop33_c2 - t54) / view_ray_y, 0.0);
+    float gerstner_max_slope = loop28_c3 / max(1.0 - params.gerstner_steepness, 0.2);
+    float t37 = view_ray.y;
+    float search_ray_down = max(-t37, 1e-06);
+    vec2 t40 = view_ray.xz;
+    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t40)) / search_ray_down));
+    float t46 = -loop28_c2;
+    float view_ray_y = min(t37, -1e-06);
+    float t49 = params.eye_position.y;
+    float surface_distance = max((loop28_c2 - t49) / view_ray_y, 0.0);
     vec3 surface_point = params.eye_position + (view_ray * surface_distance);
-    vec2 t60 = surface_point.xz;
-    float loop62_c0 = loop33_c2;
-    float loop62_c1 = loop33_c2;
-    float loop62_c2 = t51;
-    vec2 loop62_c3 = t60;
-    vec2 loop62_c4 = vec2(0.0);
-    [[dont_unroll]] for (int loop62_i = 0; loop62_i < 9; ++loop62_i) {
+    vec2 t55 = surface_point.xz;
+    float loop57_c0 = loop28_c2;
+    float loop57_c1 = loop28_c2;
+    float loop57_c2 = t46;
+    vec2 loop57_c3 = t55;
+    vec2 loop57_c4 = vec2(0.0);
+    [[dont_unroll]] for (int loop57_i = 0; loop57_i < 9; ++loop57_i) {
         // waves.gerstner
-        float surface_distance_3 = max((loop62_c0 - t54) / view_ray_y, 0.0);
+        float surface_distance_3 = max((loop57_c0 - t49) / view_ray_y, 0.0);
         vec3 surface_point_3 = params.eye_position + (view_ray * surface_distance_3);
         vec2 t15 = surface_point_3.xz;
         float pixel_footprint = (pixel_angle * surface_distance_3) / search_ray_down;
@@ -96,7 +95,7 @@ void main() {
             // waves.gerstner
             vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop29_i)), 0, 7)];
             float wave_fade = clamp(2.0 - ((loop29_c1 * pixel_footprint) * 0.63661975), 0.0, 1.0);
-            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop62_c3)) + params.gerstner_wave_phases[clamp(int(float(loop29_i)), 0, 7)];
+            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop57_c3)) + params.gerstner_wave_phases[clamp(int(float(loop29_i)), 0, 7)];
             float t30 = ((params.gerstner_steepness / (trip_count * max(loop29_c1 * loop29_c0, 1e-06))) * loop29_c0) * wave_fade;
             float gerstner_sin = sin(wave_theta);
             float gerstner_cos = cos(wave_theta);
@@ -112,11 +111,11 @@ void main() {
         float t34 = 1.0 - loop29_c3.x;
         float t36 = 1.0 - loop29_c3.z;
         float t38 = -loop29_c3.y;
-        vec2 gerstner_grid_residual = (loop62_c3 + loop29_c2) - t15;
+        vec2 gerstner_grid_residual = (loop57_c3 + loop29_c2) - t15;
         float gerstner_grid_det = max((t34 * t36) - (t38 * t38), 0.04);
-        float t46 = gerstner_grid_residual.x;
+        float t46_2 = gerstner_grid_residual.x;
         float t48 = gerstner_grid_residual.y;
-        vec2 gerstner_grid_point = loop62_c3 - (vec2(((t36 * t46) - (t38 * t48)), ((t34 * t48) - (t38 * t46))) / gerstner_grid_det);
+        vec2 gerstner_grid_point = loop57_c3 - (vec2(((t36 * t46_2) - (t38 * t48)), ((t34 * t48) - (t38 * t46_2))) / gerstner_grid_det);
         float loop59_c0 = params.gerstner_amplitude;
         float loop59_c1 = params.gerstner_frequency;
         vec3 loop59_c2 = vec3(0.0);
@@ -134,12 +133,12 @@ void main() {
             float gerstner_cos_2 = cos(wave_theta_2);
             float t35_2 = gerstner_wave_directions_3.x;
             float t36_2 = gerstner_wave_directions_3.y;
-            float t37 = t31 * gerstner_cos_2;
+            float t37_2 = t31 * gerstner_cos_2;
             float t47 = -((t31 * loop59_c1) * gerstner_sin_2);
             vec3 t50 = vec3((t47 * t35_2), ((t32 * loop59_c1) * gerstner_cos_2), (t47 * t36_2));
             loop59_c0 = loop59_c0 * params.gerstner_amplitude_gain;
             loop59_c1 = loop59_c1 * params.gerstner_frequency_gain;
-            loop59_c2 = loop59_c2 + vec3((t37 * t35_2), (t32 * gerstner_sin_2), (t37 * t36_2));
+            loop59_c2 = loop59_c2 + vec3((t37_2 * t35_2), (t32 * gerstner_sin_2), (t37_2 * t36_2));
             loop59_c3 = loop59_c3 + (t35_2 * t50);
             loop59_c4 = loop59_c4 + (t36_2 * t50);
         }
@@ -150,120 +149,120 @@ void main() {
         vec3 gerstner_normal = t69 ? t68 : vec3(0.0, 1.0, 0.0);
         vec2 wave_slope = (-gerstner_normal.xz) / max(gerstner_normal.y, 0.0001);
         float gerstner_height = loop59_c2.y + dot(wave_slope, t15 - (gerstner_grid_point + loop59_c2.xz));
-        bool t84_2 = float(loop62_i) < 1.0;
-        float t85 = gerstner_height - loop62_c0;
-        float search_level = loop62_c0 + (search_relaxation * t85);
-        float t92 = (-dot(wave_slope, t45)) / search_ray_down;
+        bool t84 = float(loop57_i) < 1.0;
+        float t85 = gerstner_height - loop57_c0;
+        float search_level = loop57_c0 + (search_relaxation * t85);
+        float t92 = (-dot(wave_slope, t40)) / search_ray_down;
         float search_step = clamp(1.0 / max(1.0 - t92, 1e-06), search_relaxation, 1.0);
-        float search_level_2 = loop62_c0 + (search_step * t85);
-        bool t100_2 = t85 < 0.0;
-        float search_high = t100_2 ? loop62_c0 : loop62_c1;
-        float search_low = t100_2 ? loop62_c2 : loop62_c0;
+        float search_level_2 = loop57_c0 + (search_step * t85);
+        bool t100 = t85 < 0.0;
+        float search_high = t100 ? loop57_c0 : loop57_c1;
+        float search_low = t100 ? loop57_c2 : loop57_c0;
         bool t107 = ((search_level_2 < search_low) || (search_level_2 > search_high)) || (t92 >= 1.0);
         float t110 = 0.5 * (search_low + search_high);
         float search_level_3 = t107 ? t110 : search_level_2;
-        float search_level_4 = t84_2 ? search_level : search_level_3;
-        float t113 = t84_2 ? loop62_c0 : search_high;
-        float t114_2 = t84_2 ? loop62_c2 : search_low;
-        bool t116 = float(loop62_i) < 8.0;
-        float t117 = t116 ? search_level_4 : loop62_c0;
-        loop62_c0 = t117;
-        loop62_c1 = t113;
-        loop62_c2 = t114_2;
-        loop62_c3 = gerstner_grid_point;
-        loop62_c4 = wave_slope;
+        float search_level_4 = t84 ? search_level : search_level_3;
+        float t113 = t84 ? loop57_c0 : search_high;
+        float t114 = t84 ? loop57_c2 : search_low;
+        bool t116 = float(loop57_i) < 8.0;
+        float t117_2 = t116 ? search_level_4 : loop57_c0;
+        loop57_c0 = t117_2;
+        loop57_c1 = t113;
+        loop57_c2 = t114;
+        loop57_c3 = gerstner_grid_point;
+        loop57_c4 = wave_slope;
     }
-    float surface_distance_2 = max((loop62_c0 - t54) / view_ray_y, 0.0);
+    float surface_distance_2 = max((loop57_c0 - t49) / view_ray_y, 0.0);
     vec3 surface_point_2 = params.eye_position + (view_ray * surface_distance_2);
     float water_path = max(scene_distance - surface_distance_2, 0.0);
-    float t71 = scene_pos.y;
-    float t72 = surface_point_2.y;
-    float water_depth = max(t72 - t71, 0.0);
-    bool t77 = (t71 < t72) && (t42 < 0.0);
+    float t66 = scene_pos.y;
+    float t67 = surface_point_2.y;
+    float water_depth = max(t67 - t66, 0.0);
+    bool t72 = (t66 < t67) && (t37 < 0.0);
 
     // surface
-    vec3 t78 = -view_ray;
-    float n_dot_v = dot(vec3(0.0, 1.0, 0.0), t78);
+    vec3 t73 = -view_ray;
+    float n_dot_v = dot(vec3(0.0, 1.0, 0.0), t73);
 
     // refraction.screen_distort
-    mediump float t84 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
-    bool t86 = params.refraction_shore_fade_depth > 0.0;
-    mediump float distortion_fade = t86 ? t84 : 1.0;
+    mediump float t79 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
+    bool t81 = params.refraction_shore_fade_depth > 0.0;
+    mediump float distortion_fade = t81 ? t79 : 1.0;
     mediump vec2 refraction_uv = clamp(v_uv + (vec2(0.0) * (params.refraction_distortion * distortion_fade)), 0.0, 1.0);
     mediump vec3 refracted = texture(sampler2D(scene_color, linear_clamp), refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    mediump float t100 = clamp(water_path, 0.0, 30000.0);
-    mediump vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t100));
-    mediump float inverse_scatter = exp((-params.scatter_coefficient) * t100);
+    mediump float t95 = clamp(water_path, 0.0, 30000.0);
+    mediump vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t95));
+    mediump float inverse_scatter = exp((-params.scatter_coefficient) * t95);
     mediump vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 t114 = abs(view_ray);
-    mediump vec3 t122 = view_ray / max(max(max(t114.x, t114.y), t114.z), 1e-30);
-    mediump float t123 = dot(t122, t122);
-    mediump vec3 t126 = t122 * inversesqrt(max(t123, 1e-30));
-    bool t127 = t123 > 1e-30;
-    mediump vec3 t128 = t127 ? t126 : vec3(0.0, (-1.0), 0.0);
-    mediump vec3 reflected_ray = reflect(t128, vec3(0.0, 1.0, 0.0));
-    mediump float t132 = reflected_ray.y;
-    mediump vec3 t135 = vec3(reflected_ray.x, abs(t132), reflected_ray.z);
-    bool t138 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t138 ? t135 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t132);
-    mediump vec4 t142 = vec4(sky_direction, below_horizon);
-    mediump vec3 t144 = t142.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t144).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t142.w));
+    mediump vec3 t109 = abs(view_ray);
+    mediump vec3 t117 = view_ray / max(max(max(t109.x, t109.y), t109.z), 1e-30);
+    mediump float t118 = dot(t117, t117);
+    mediump vec3 t121 = t117 * inversesqrt(max(t118, 1e-30));
+    bool t122 = t118 > 1e-30;
+    mediump vec3 t123 = t122 ? t121 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t123, vec3(0.0, 1.0, 0.0));
+    mediump float t127 = reflected_ray.y;
+    mediump vec3 t130 = vec3(reflected_ray.x, abs(t127), reflected_ray.z);
+    bool t133 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t133 ? t130 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t127);
+    mediump vec4 t137 = vec4(sky_direction, below_horizon);
+    mediump vec3 t139 = t137.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t139).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t137.w));
 
     // fresnel.schlick
-    mediump float t157 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t157 * t157;
+    mediump float t152 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t152 * t152;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t161 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t161 * t161) * one_minus_c));
+    mediump float t156 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t156 * t156) * one_minus_c));
 
     // specular.blinn_phong
-    mediump vec3 t168 = -params.sun_direction;
-    mediump vec3 t169 = t168 + t78;
-    mediump float t177 = max(max(abs(t169.x), abs(t169.y)), abs(t169.z));
-    mediump vec3 t180 = t169 / max(t177, 5.9604645e-08);
-    mediump vec3 t183 = t180 / max(length(t180), 1.0);
-    bool t185 = t177 > 5.9604645e-08;
-    mediump vec3 half_vector = t185 ? t183 : vec3(0.0);
-    mediump float t188 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
-    mediump float t191 = pow(max(t188, 6.1035156e-05), params.specular_exponent);
-    bool t192 = t188 > 6.1035156e-05;
-    mediump float t193 = t192 ? t191 : 0.0;
-    bool t198 = (t168.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t168) > 0.0);
-    mediump float specular_intensity = t198 ? t193 : 0.0;
+    mediump vec3 t163 = -params.sun_direction;
+    mediump vec3 t164 = t163 + t73;
+    mediump float t172 = max(max(abs(t164.x), abs(t164.y)), abs(t164.z));
+    mediump vec3 t175 = t164 / max(t172, 5.9604645e-08);
+    mediump vec3 t178 = t175 / max(length(t175), 1.0);
+    bool t180 = t172 > 5.9604645e-08;
+    mediump vec3 half_vector = t180 ? t178 : vec3(0.0);
+    mediump float t183 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
+    mediump float t186 = pow(max(t183, 6.1035156e-05), params.specular_exponent);
+    bool t187 = t183 > 6.1035156e-05;
+    mediump float t188 = t187 ? t186 : 0.0;
+    bool t193 = (t163.y > 0.0) && (dot(vec3(0.0, 1.0, 0.0), t163) > 0.0);
+    mediump float specular_intensity = t193 ? t188 : 0.0;
     mediump vec3 specular = specular_intensity * params.sun_color;
 
     // compose
     mediump vec3 water_rgb = mix(water_color, reflected, vec3(fresnel)) + specular;
 
     // foam.shore
-    vec2 t204 = surface_point_2.xz;
-    vec2 foam_uv = ((fract((t204 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + 0.5) / 256.0;
-    float foam_footprint = max(length(dFdx(t204)), length(dFdy(t204)));
+    vec2 t199 = surface_point_2.xz;
+    vec2 foam_uv = ((fract((t199 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + 0.5) / 256.0;
+    float foam_footprint = max(length(dFdx(t199)), length(dFdy(t199)));
     mediump float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     mediump float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
     mediump float foam_pattern_2 = mix(foam_texel, 0.6, foam_aliasing);
-    mediump float t234 = params.foam_existence.x;
-    mediump float t235 = water_depth - t234;
-    mediump float t237 = params.foam_existence.y - t234;
-    mediump float t240 = clamp(t235 / max(t237, 5.9604645e-08), 0.0, 1.0);
-    bool t241 = t235 >= t237;
-    mediump float t242 = t241 ? 1.0 : t240;
-    mediump float t243 = 1.0 - t242;
-    bool t244 = t235 < 0.0;
-    mediump float shore_foam = t244 ? 1.0 : t243;
+    mediump float t229 = params.foam_existence.x;
+    mediump float t230 = water_depth - t229;
+    mediump float t232 = params.foam_existence.y - t229;
+    mediump float t235 = clamp(t230 / max(t232, 5.9604645e-08), 0.0, 1.0);
+    bool t236 = t230 >= t232;
+    mediump float t237 = t236 ? 1.0 : t235;
+    mediump float t238 = 1.0 - t237;
+    bool t239 = t230 < 0.0;
+    mediump float shore_foam = t239 ? 1.0 : t238;
     mediump vec3 foam_rgb = mix(water_rgb, params.foam_color * foam_pattern_2, vec3(shore_foam));
 
     // shore.soft
     mediump vec3 shore_color = mix(refracted, foam_rgb, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));
 
     // compose
-    mediump vec3 t255 = t77 ? shore_color : scene_rgb;
+    mediump vec3 t250 = t72 ? shore_color : scene_rgb;
 
-    out_color = vec4(t255, 1.0);
+    out_color = vec4(t250, 1.0);
 }

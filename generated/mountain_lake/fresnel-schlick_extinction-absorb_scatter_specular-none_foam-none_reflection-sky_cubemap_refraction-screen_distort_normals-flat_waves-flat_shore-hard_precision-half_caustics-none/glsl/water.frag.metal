@@ -16,7 +16,6 @@ struct WaterParams
     float reflection_horizon_band;
     packed_float3 reflection_lower_tint;
     float ior_air;
-    float2 frame_centre;
     float ior_water;
 };
 
@@ -33,27 +32,27 @@ struct main0_in
 fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params [[buffer(0)]], texture2d<float> scene_color [[texture(0)]], texture2d<float> scene_position [[texture(1)]], texturecube<float> sky_cube [[texture(2)]], sampler linear_clamp [[sampler(0)]])
 {
     main0_out out = {};
-    float3 _50 = scene_position.sample(linear_clamp, in.v_uv).xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _57 = _50 - float3(params.eye_position);
-    float _61 = length(_57);
-    float3 _68 = _57 / float3(fast::max(_61, 9.9999999747524270787835121154785e-07));
-    float _71 = _68.y;
-    float _81 = (-params.eye_position[1u]) / fast::min(_71, -9.9999999747524270787835121154785e-07);
-    float3 _88 = float3(params.eye_position) + (_68 * _81);
-    float _96 = _50.y;
-    float _99 = _88.y;
-    float _159 = fast::clamp(fast::max(_61 - _81, 0.0), 0.0, 30000.0);
-    float3 _194 = abs(_68);
-    float3 _209 = _68 / float3(fast::max(fast::max(fast::max(_194.x, _194.y), _194.z), 1.0000000031710768509710513471353e-30));
-    float _213 = dot(_209, _209);
-    float3 _233 = reflect(select(float3(0.0, -1.0, 0.0), _209 * rsqrt(fast::max(_213, 1.0000000031710768509710513471353e-30)), bool3(_213 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _236 = _233.y;
-    float _262 = smoothstep(0.0, params.reflection_horizon_band, -_236);
-    float _308 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _316 = 1.0 - fast::clamp((-_68).y, 0.0, 1.0);
-    float _320 = _316 * _316;
-    float3 _343 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_99 - _96, 0.0) + _159)), float3(exp((-params.scatter_coefficient) * _159))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_233.x, abs(_236), _233.z), bool3(dot(_233, _233) > 9.9999999600419720025001879548654e-13)), _262).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_262)), float3(fma(_308, _308, fma(-_308, _308, 1.0) * ((_320 * _320) * _316)))), bool3((_96 < _99) && (_71 < 0.0)));
-    out.out_color = float4(_343, 1.0);
+    float3 _34 = scene_position.sample(linear_clamp, in.v_uv).xyz;
+    float3 _45 = float3(params.eye_position) + _34;
+    float _49 = length(_34);
+    float3 _56 = _34 / float3(fast::max(_49, 9.9999999747524270787835121154785e-07));
+    float _61 = _56.y;
+    float _72 = (-params.eye_position[1u]) / fast::min(_61, -9.9999999747524270787835121154785e-07);
+    float3 _79 = float3(params.eye_position) + (_56 * _72);
+    float _88 = _45.y;
+    float _91 = _79.y;
+    float _151 = fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0);
+    float3 _186 = abs(_56);
+    float3 _202 = _56 / float3(fast::max(fast::max(fast::max(_186.x, _186.y), _186.z), 1.0000000031710768509710513471353e-30));
+    float _206 = dot(_202, _202);
+    float3 _226 = reflect(select(float3(0.0, -1.0, 0.0), _202 * rsqrt(fast::max(_206, 1.0000000031710768509710513471353e-30)), bool3(_206 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _229 = _226.y;
+    float _255 = smoothstep(0.0, params.reflection_horizon_band, -_229);
+    float _301 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _309 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
+    float _313 = _309 * _309;
+    float3 _336 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_91 - _88, 0.0) + _151)), float3(exp((-params.scatter_coefficient) * _151))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_226.x, abs(_229), _226.z), bool3(dot(_226, _226) > 9.9999999600419720025001879548654e-13)), _255).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_255)), float3(fma(_301, _301, fma(-_301, _301, 1.0) * ((_313 * _313) * _309)))), bool3((_88 < _91) && (_61 < 0.0)));
+    out.out_color = float4(_336, 1.0);
     return out;
 }
 

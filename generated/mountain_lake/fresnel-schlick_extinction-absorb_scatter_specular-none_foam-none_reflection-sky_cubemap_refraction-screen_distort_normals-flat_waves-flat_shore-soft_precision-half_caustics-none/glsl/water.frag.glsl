@@ -12,9 +12,8 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 60) float reflection_horizon_band;
     layout(offset = 64) vec3 reflection_lower_tint;
     layout(offset = 76) float ior_air;
-    layout(offset = 80) vec2 frame_centre;
-    layout(offset = 88) float ior_water;
-    layout(offset = 92) float shore_hardness;
+    layout(offset = 80) float ior_water;
+    layout(offset = 84) float shore_hardness;
 } params;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
@@ -26,70 +25,70 @@ layout(location = 0) out vec4 out_color;
 void main() {
     // surface
     vec3 scene_rgb = texture(sampler2D(scene_color, linear_clamp), v_uv).xyz;
-    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 t14 = scene_pos - params.eye_position;
-    float scene_distance = length(t14);
-    vec3 view_ray = t14 / max(scene_distance, 1e-06);
+    vec3 to_scene = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz;
+    vec3 scene_pos = params.eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    vec3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t19 = view_ray.y;
-    float view_ray_y = min(t19, -1e-06);
-    float t24 = (-params.eye_position.y) / view_ray_y;
-    vec3 surface_point = params.eye_position + (view_ray * t24);
-    float water_path = max(scene_distance - t24, 0.0);
-    float t29 = scene_pos.y;
-    float t30 = surface_point.y;
-    float water_depth = max(t30 - t29, 0.0);
-    bool t35 = (t29 < t30) && (t19 < 0.0);
+    float t14 = view_ray.y;
+    float view_ray_y = min(t14, -1e-06);
+    float t19 = (-params.eye_position.y) / view_ray_y;
+    vec3 surface_point = params.eye_position + (view_ray * t19);
+    float water_path = max(scene_distance - t19, 0.0);
+    float t24 = scene_pos.y;
+    float t25 = surface_point.y;
+    float water_depth = max(t25 - t24, 0.0);
+    bool t30 = (t24 < t25) && (t14 < 0.0);
 
     // surface
     float n_dot_v = dot(vec3(0.0, 1.0, 0.0), -view_ray);
 
     // refraction.screen_distort
-    mediump float t43 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
-    bool t45 = params.refraction_shore_fade_depth > 0.0;
-    mediump float distortion_fade = t45 ? t43 : 1.0;
+    mediump float t38 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
+    bool t40 = params.refraction_shore_fade_depth > 0.0;
+    mediump float distortion_fade = t40 ? t38 : 1.0;
     mediump vec2 refraction_uv = clamp(v_uv + (vec2(0.0) * (params.refraction_distortion * distortion_fade)), 0.0, 1.0);
     mediump vec3 refracted = texture(sampler2D(scene_color, linear_clamp), refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    mediump float t59 = clamp(water_path, 0.0, 30000.0);
-    mediump vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t59));
-    mediump float inverse_scatter = exp((-params.scatter_coefficient) * t59);
+    mediump float t54 = clamp(water_path, 0.0, 30000.0);
+    mediump vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t54));
+    mediump float inverse_scatter = exp((-params.scatter_coefficient) * t54);
     mediump vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 t73 = abs(view_ray);
-    mediump vec3 t81 = view_ray / max(max(max(t73.x, t73.y), t73.z), 1e-30);
-    mediump float t82 = dot(t81, t81);
-    mediump vec3 t85 = t81 * inversesqrt(max(t82, 1e-30));
-    bool t86 = t82 > 1e-30;
-    mediump vec3 t87 = t86 ? t85 : vec3(0.0, (-1.0), 0.0);
-    mediump vec3 reflected_ray = reflect(t87, vec3(0.0, 1.0, 0.0));
-    mediump float t91 = reflected_ray.y;
-    mediump vec3 t94 = vec3(reflected_ray.x, abs(t91), reflected_ray.z);
-    bool t97 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t97 ? t94 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t91);
-    mediump vec4 t101 = vec4(sky_direction, below_horizon);
-    mediump vec3 t103 = t101.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t103).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t101.w));
+    mediump vec3 t68 = abs(view_ray);
+    mediump vec3 t76 = view_ray / max(max(max(t68.x, t68.y), t68.z), 1e-30);
+    mediump float t77 = dot(t76, t76);
+    mediump vec3 t80 = t76 * inversesqrt(max(t77, 1e-30));
+    bool t81 = t77 > 1e-30;
+    mediump vec3 t82 = t81 ? t80 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t82, vec3(0.0, 1.0, 0.0));
+    mediump float t86 = reflected_ray.y;
+    mediump vec3 t89 = vec3(reflected_ray.x, abs(t86), reflected_ray.z);
+    bool t92 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t92 ? t89 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t86);
+    mediump vec4 t96 = vec4(sky_direction, below_horizon);
+    mediump vec3 t98 = t96.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t98).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t96.w));
 
     // fresnel.schlick
-    mediump float t116 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t116 * t116;
+    mediump float t111 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t111 * t111;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t120 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t120 * t120) * one_minus_c));
+    mediump float t115 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t115 * t115) * one_minus_c));
 
     // compose
-    mediump vec3 t127 = mix(water_color, reflected, vec3(fresnel));
+    mediump vec3 t122 = mix(water_color, reflected, vec3(fresnel));
 
     // shore.soft
-    mediump vec3 shore_color = mix(refracted, t127, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));
+    mediump vec3 shore_color = mix(refracted, t122, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));
 
     // compose
-    mediump vec3 t133 = t35 ? shore_color : scene_rgb;
+    mediump vec3 t128 = t30 ? shore_color : scene_rgb;
 
-    out_color = vec4(t133, 1.0);
+    out_color = vec4(t128, 1.0);
 }

@@ -25,7 +25,6 @@ layout(std140) uniform WaterParams
     float gerstner_frequency_gain;
     vec3 reflection_lower_tint;
     float gerstner_steepness;
-    vec2 frame_centre;
     float refraction_distortion;
     float refraction_shore_fade_depth;
     float caustics_strength;
@@ -48,182 +47,182 @@ void main()
     vec4 _25 = texture(scene_color, v_uv);
     vec3 _26 = _25.xyz;
     vec4 _33 = texture(scene_position, v_uv);
-    vec3 _54 = _33.xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 _61 = _54 - params.eye_position;
-    float _65 = length(_61);
-    vec3 _72 = _61 / vec3(max(_65, 9.9999999747524270787835121154785e-07));
-    vec3 _75 = dFdx(_72);
-    vec3 _78 = dFdy(_72);
-    float _80 = max(length(_75), length(_78));
-    float _83 = floor(gerstner_wave_count);
-    float _1043;
-    float _1045;
-    _1045 = 0.0;
-    _1043 = 0.0;
-    float _115;
-    float _120;
-    float _125;
-    float _130;
-    int _1042 = 0;
-    float _1044 = params.gerstner_amplitude;
-    float _1046 = params.gerstner_frequency;
-    for (; _1042 < 8; _1046 = _130, _1045 = _120, _1044 = _125, _1043 = _115, _1042++)
+    vec3 _34 = _33.xyz;
+    vec3 _50 = params.eye_position + _34;
+    float _54 = length(_34);
+    vec3 _61 = _34 / vec3(max(_54, 9.9999999747524270787835121154785e-07));
+    vec3 _64 = dFdx(_61);
+    vec3 _67 = dFdy(_61);
+    float _69 = max(length(_64), length(_67));
+    float _72 = floor(gerstner_wave_count);
+    float _1036;
+    float _1038;
+    _1038 = 0.0;
+    _1036 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1035 = 0;
+    float _1037 = params.gerstner_amplitude;
+    float _1039 = params.gerstner_frequency;
+    for (; _1035 < 8; _1039 = _121, _1038 = _111, _1037 = _116, _1036 = _106, _1035++)
     {
-        if (!(float(_1042) < _83))
+        if (!(float(_1035) < _72))
         {
             break;
         }
-        _115 = _1043 + _1044;
-        _120 = _1044 * _1046 + _1045;
-        _125 = _1044 * params.gerstner_amplitude_gain;
-        _130 = _1046 * params.gerstner_frequency_gain;
+        _106 = _1036 + _1037;
+        _111 = _1037 * _1039 + _1038;
+        _116 = _1037 * params.gerstner_amplitude_gain;
+        _121 = _1039 * params.gerstner_frequency_gain;
     }
-    float _146 = _72.y;
-    float _150 = max(-_146, 9.9999999747524270787835121154785e-07);
-    vec2 _154 = _72.xz;
-    float _163 = 1.0 / (1.0 + (((_1045 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
-    float _166 = -_1043;
-    float _170 = min(_146, -9.9999999747524270787835121154785e-07);
-    float _1050;
-    vec2 _1054;
-    _1054 = (params.eye_position + (_72 * max((_1043 - params.eye_position.y) / _170, 0.0))).xz;
-    _1050 = _1043;
-    vec2 _412;
-    float _679;
-    float _684;
-    float _694;
-    int _1049 = 0;
-    float _1082 = _1043;
-    float _1087 = _166;
-    for (; _1049 < 9; _1087 = _684, _1082 = _679, _1054 = _412, _1050 = _694, _1049++)
+    float _138 = _61.y;
+    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
+    vec2 _146 = _61.xz;
+    float _155 = 1.0 / (1.0 + (((_1038 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1036;
+    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _1043;
+    vec2 _1047;
+    _1047 = (params.eye_position + (_61 * max((_1036 - params.eye_position.y) / _162, 0.0))).xz;
+    _1043 = _1036;
+    vec2 _405;
+    float _672;
+    float _677;
+    float _687;
+    int _1042 = 0;
+    float _1075 = _1036;
+    float _1080 = _158;
+    for (; _1042 < 9; _1080 = _677, _1075 = _672, _1047 = _405, _1043 = _687, _1042++)
     {
-        float _216 = max((_1050 - params.eye_position.y) / _170, 0.0);
-        vec2 _226 = (params.eye_position + (_72 * _216)).xz;
-        float _232 = (_80 * _216) / _150;
-        vec2 _1056;
+        float _208 = max((_1043 - params.eye_position.y) / _162, 0.0);
+        vec2 _218 = (params.eye_position + (_61 * _208)).xz;
+        float _224 = (_69 * _208) / _142;
+        vec2 _1049;
+        vec3 _1050;
+        _1050 = vec3(0.0);
+        _1049 = vec2(0.0);
+        float _322;
+        float _326;
+        vec2 _333;
+        vec3 _347;
+        int _1044 = 0;
+        float _1045 = params.gerstner_frequency;
+        float _1048 = params.gerstner_amplitude;
+        for (; _1044 < 8; _1050 = _347, _1049 = _333, _1048 = _322, _1045 = _326, _1044++)
+        {
+            float _243 = float(_1044);
+            if (!(_243 < _72))
+            {
+                break;
+            }
+            int _256 = clamp(int(_243), 0, 7);
+            float _281 = _1045 * dot(params.gerstner_wave_directions[_256], _1047) + params.gerstner_wave_phases[_256];
+            float _295 = ((params.gerstner_steepness / (_72 * max(_1045 * _1048, 9.9999999747524270787835121154785e-07))) * _1048) * clamp((-(_1045 * _224)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _314 = (_295 * _1045) * sin(_281);
+            float _318 = _314 * params.gerstner_wave_directions[_256].x;
+            _322 = _1048 * params.gerstner_amplitude_gain;
+            _326 = _1045 * params.gerstner_frequency_gain;
+            _333 = _1049 + (params.gerstner_wave_directions[_256] * (_295 * cos(_281)));
+            _347 = _1050 + vec3(_318 * params.gerstner_wave_directions[_256].x, _318 * params.gerstner_wave_directions[_256].y, (_314 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _353 = 1.0 - _1050.x;
+        float _358 = 1.0 - _1050.z;
+        float _362 = -_1050.y;
+        vec2 _368 = (_1047 + _1049) - _218;
+        float _381 = _368.x;
+        float _384 = _368.y;
+        _405 = _1047 - (vec2(_358 * _381 + (-(_362 * _384)), _353 * _384 + (-(_362 * _381))) / vec2(max(_353 * _358 + (-(_362 * _362)), 0.039999999105930328369140625)));
         vec3 _1057;
+        vec3 _1058;
+        vec3 _1059;
+        _1059 = vec3(0.0, 0.0, 1.0);
+        _1058 = vec3(1.0, 0.0, 0.0);
         _1057 = vec3(0.0);
-        _1056 = vec2(0.0);
-        float _329;
-        float _333;
-        vec2 _340;
-        vec3 _354;
-        int _1051 = 0;
-        float _1052 = params.gerstner_frequency;
-        float _1055 = params.gerstner_amplitude;
-        for (; _1051 < 8; _1057 = _354, _1056 = _340, _1055 = _329, _1052 = _333, _1051++)
+        float _517;
+        float _521;
+        vec3 _533;
+        vec3 _538;
+        vec3 _543;
+        int _1054 = 0;
+        float _1055 = params.gerstner_frequency;
+        float _1056 = params.gerstner_amplitude;
+        for (; _1054 < 8; _1059 = _543, _1058 = _538, _1057 = _533, _1056 = _517, _1055 = _521, _1054++)
         {
-            float _251 = float(_1051);
-            if (!(_251 < _83))
+            float _426 = float(_1054);
+            if (!(_426 < _72))
             {
                 break;
             }
-            int _264 = clamp(int(_251), 0, 7);
-            float _289 = _1052 * dot(params.gerstner_wave_directions[_264], _1054) + params.gerstner_wave_phases[_264];
-            float _303 = ((params.gerstner_steepness / (_83 * max(_1052 * _1055, 9.9999999747524270787835121154785e-07))) * _1055) * clamp((-(_1052 * _232)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _321 = (_303 * _1052) * sin(_289);
-            float _325 = _321 * params.gerstner_wave_directions[_264].x;
-            _329 = _1055 * params.gerstner_amplitude_gain;
-            _333 = _1052 * params.gerstner_frequency_gain;
-            _340 = _1056 + (params.gerstner_wave_directions[_264] * (_303 * cos(_289)));
-            _354 = _1057 + vec3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
+            int _437 = clamp(int(_426), 0, 7);
+            float _446 = clamp((-(_1055 * _224)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _459 = _1055 * dot(params.gerstner_wave_directions[_437], _405) + params.gerstner_wave_phases[_437];
+            float _473 = ((params.gerstner_steepness / (_72 * max(_1055 * _1056, 9.9999999747524270787835121154785e-07))) * _1056) * _446;
+            float _477 = _1056 * _446;
+            float _480 = sin(_459);
+            float _483 = cos(_459);
+            float _493 = _473 * _483;
+            float _500 = -((_473 * _1055) * _480);
+            vec3 _513 = vec3(_500 * params.gerstner_wave_directions[_437].x, (_477 * _1055) * _483, _500 * params.gerstner_wave_directions[_437].y);
+            _517 = _1056 * params.gerstner_amplitude_gain;
+            _521 = _1055 * params.gerstner_frequency_gain;
+            _533 = _1057 + vec3(_493 * params.gerstner_wave_directions[_437].x, _477 * _480, _493 * params.gerstner_wave_directions[_437].y);
+            _538 = _1058 + (_513 * params.gerstner_wave_directions[_437].x);
+            _543 = _1059 + (_513 * params.gerstner_wave_directions[_437].y);
         }
-        float _360 = 1.0 - _1057.x;
-        float _365 = 1.0 - _1057.z;
-        float _369 = -_1057.y;
-        vec2 _375 = (_1054 + _1056) - _226;
-        float _388 = _375.x;
-        float _391 = _375.y;
-        _412 = _1054 - (vec2(_365 * _388 + (-(_369 * _391)), _360 * _391 + (-(_369 * _388))) / vec2(max(_360 * _365 + (-(_369 * _369)), 0.039999999105930328369140625)));
-        vec3 _1064;
-        vec3 _1065;
-        vec3 _1066;
-        _1066 = vec3(0.0, 0.0, 1.0);
-        _1065 = vec3(1.0, 0.0, 0.0);
-        _1064 = vec3(0.0);
-        float _524;
-        float _528;
-        vec3 _540;
-        vec3 _545;
-        vec3 _550;
-        int _1061 = 0;
-        float _1062 = params.gerstner_frequency;
-        float _1063 = params.gerstner_amplitude;
-        for (; _1061 < 8; _1066 = _550, _1065 = _545, _1064 = _540, _1063 = _524, _1062 = _528, _1061++)
-        {
-            float _433 = float(_1061);
-            if (!(_433 < _83))
-            {
-                break;
-            }
-            int _444 = clamp(int(_433), 0, 7);
-            float _453 = clamp((-(_1062 * _232)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _466 = _1062 * dot(params.gerstner_wave_directions[_444], _412) + params.gerstner_wave_phases[_444];
-            float _480 = ((params.gerstner_steepness / (_83 * max(_1062 * _1063, 9.9999999747524270787835121154785e-07))) * _1063) * _453;
-            float _484 = _1063 * _453;
-            float _487 = sin(_466);
-            float _490 = cos(_466);
-            float _500 = _480 * _490;
-            float _507 = -((_480 * _1062) * _487);
-            vec3 _520 = vec3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1062) * _490, _507 * params.gerstner_wave_directions[_444].y);
-            _524 = _1063 * params.gerstner_amplitude_gain;
-            _528 = _1062 * params.gerstner_frequency_gain;
-            _540 = _1064 + vec3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
-            _545 = _1065 + (_520 * params.gerstner_wave_directions[_444].x);
-            _550 = _1066 + (_520 * params.gerstner_wave_directions[_444].y);
-        }
-        vec3 _556 = cross(_1066, _1065);
-        float _560 = dot(_556, _556);
-        vec3 _567 = _556 * inversesqrt(max(_560, 1.0000000031710768509710513471353e-30));
-        bvec3 _577 = bvec3(_560 > 1.0000000031710768509710513471353e-30);
-        vec3 _578 = vec3(_577.x ? _567.x : vec3(0.0, 1.0, 0.0).x, _577.y ? _567.y : vec3(0.0, 1.0, 0.0).y, _577.z ? _567.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _588 = (-_578.xz) / vec2(max(_578.y, 9.9999997473787516355514526367188e-05));
-        float _603 = float(_1049);
-        bool _604 = _603 < 1.0;
-        float _608 = (_1064.y + dot(_588, _226 - (_412 + _1064.xz))) - _1050;
-        float _621 = (-dot(_588, _154)) / _150;
-        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0) * _608 + _1050;
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1050 : _1082;
-        float _647 = _637 ? _1087 : _1050;
-        _679 = _604 ? _1050 : _642;
-        _684 = _604 ? _1087 : _647;
-        _694 = (_603 < 8.0) ? (_604 ? (_163 * _608 + _1050) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1050;
+        vec3 _549 = cross(_1059, _1058);
+        float _553 = dot(_549, _549);
+        vec3 _560 = _549 * inversesqrt(max(_553, 1.0000000031710768509710513471353e-30));
+        bvec3 _570 = bvec3(_553 > 1.0000000031710768509710513471353e-30);
+        vec3 _571 = vec3(_570.x ? _560.x : vec3(0.0, 1.0, 0.0).x, _570.y ? _560.y : vec3(0.0, 1.0, 0.0).y, _570.z ? _560.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _581 = (-_571.xz) / vec2(max(_571.y, 9.9999997473787516355514526367188e-05));
+        float _596 = float(_1042);
+        bool _597 = _596 < 1.0;
+        float _601 = (_1057.y + dot(_581, _218 - (_405 + _1057.xz))) - _1043;
+        float _614 = (-dot(_581, _146)) / _142;
+        float _627 = clamp(1.0 / max(1.0 - _614, 9.9999999747524270787835121154785e-07), _155, 1.0) * _601 + _1043;
+        bool _630 = _601 < 0.0;
+        float _635 = _630 ? _1043 : _1075;
+        float _640 = _630 ? _1080 : _1043;
+        _672 = _597 ? _1043 : _635;
+        _677 = _597 ? _1080 : _640;
+        _687 = (_596 < 8.0) ? (_597 ? (_155 * _601 + _1043) : ((((_627 < _640) || (_627 > _635)) || (_614 >= 1.0)) ? (0.5 * (_640 + _635)) : _627)) : _1043;
     }
-    float _708 = max((_1050 - params.eye_position.y) / _170, 0.0);
-    vec3 _715 = params.eye_position + (_72 * _708);
-    float _723 = _54.y;
-    float _726 = _715.y;
-    vec2 _790 = (_54.xz - vec2(params.caustics_window.x, params.caustics_window.y)) / vec2(params.caustics_window.z);
-    float _793 = _790.x;
-    float _796 = _790.y;
-    float _832 = clamp(max(_65 - _708, 0.0), 0.0, 30000.0);
-    vec3 _862 = mix(params.scatter_color, (texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0))).xyz * mix(1.0, ((((_793 >= 0.0) && (_793 <= 1.0)) && (_796 >= 0.0)) && (_796 <= 1.0)) ? textureLod(caustics_map, _790, 0.0).x : 1.0, params.caustics_strength)) * exp((-params.absorb_coefficients) * (max(_726 - _723, 0.0) + _832)), vec3(exp((-params.scatter_coefficient) * _832))) * params.incident_light;
-    mediump vec3 mp_copy_862 = _862;
-    vec3 _865 = abs(_72);
-    vec3 _878 = _72 / vec3(max(max(max(_865.x, _865.y), _865.z), 1.0000000031710768509710513471353e-30));
-    mediump vec3 mp_copy_878 = _878;
-    mediump float _882 = dot(_878, _878);
-    mediump vec3 _888 = mp_copy_878 * inversesqrt(max(_882, 1.0000000031710768509710513471353e-30));
-    bvec3 _897 = bvec3(_882 > 1.0000000031710768509710513471353e-30);
-    vec3 _898 = vec3(_897.x ? _888.x : vec3(0.0, -1.0, 0.0).x, _897.y ? _888.y : vec3(0.0, -1.0, 0.0).y, _897.z ? _888.z : vec3(0.0, -1.0, 0.0).z);
-    mediump vec3 mp_copy_898 = _898;
-    mediump vec3 _901 = reflect(mp_copy_898, vec3(0.0, 1.0, 0.0));
-    mediump float _904 = _901.y;
-    mediump vec3 _912 = vec3(_901.x, abs(_904), _901.z);
-    bvec3 _922 = bvec3(dot(_901, _901) > 9.9999999600419720025001879548654e-13);
-    float _930 = smoothstep(0.0, params.reflection_horizon_band, -_904);
-    vec3 _962 = texture(sky_cube, vec4(vec3(_922.x ? _912.x : vec3(0.0, 1.0, 0.0).x, _922.y ? _912.y : vec3(0.0, 1.0, 0.0).y, _922.z ? _912.z : vec3(0.0, 1.0, 0.0).z), _930).xyz).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(_930));
-    mediump vec3 mp_copy_962 = _962;
-    float _976 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float mp_copy_976 = _976;
-    float _984 = 1.0 - clamp((-_72).y, 0.0, 1.0);
-    mediump float mp_copy_984 = _984;
-    mediump float _988 = mp_copy_984 * mp_copy_984;
-    float _1091 = -_976;
-    mediump float mp_copy_1091 = _1091;
-    mediump vec3 _1005 = mix(mp_copy_862, mp_copy_962, vec3(mp_copy_976 * mp_copy_976 + ((mp_copy_1091 * mp_copy_976 + 1.0) * ((_988 * _988) * mp_copy_984))));
-    bvec3 _1010 = bvec3((_723 < _726) && (_146 < 0.0));
-    out_color = vec4(vec3(_1010.x ? _1005.x : _26.x, _1010.y ? _1005.y : _26.y, _1010.z ? _1005.z : _26.z), 1.0);
+    float _701 = max((_1043 - params.eye_position.y) / _162, 0.0);
+    vec3 _708 = params.eye_position + (_61 * _701);
+    float _716 = _50.y;
+    float _719 = _708.y;
+    vec2 _783 = (_50.xz - vec2(params.caustics_window.x, params.caustics_window.y)) / vec2(params.caustics_window.z);
+    float _786 = _783.x;
+    float _789 = _783.y;
+    float _825 = clamp(max(_54 - _701, 0.0), 0.0, 30000.0);
+    vec3 _855 = mix(params.scatter_color, (texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0))).xyz * mix(1.0, ((((_786 >= 0.0) && (_786 <= 1.0)) && (_789 >= 0.0)) && (_789 <= 1.0)) ? textureLod(caustics_map, _783, 0.0).x : 1.0, params.caustics_strength)) * exp((-params.absorb_coefficients) * (max(_719 - _716, 0.0) + _825)), vec3(exp((-params.scatter_coefficient) * _825))) * params.incident_light;
+    mediump vec3 mp_copy_855 = _855;
+    vec3 _858 = abs(_61);
+    vec3 _871 = _61 / vec3(max(max(max(_858.x, _858.y), _858.z), 1.0000000031710768509710513471353e-30));
+    mediump vec3 mp_copy_871 = _871;
+    mediump float _875 = dot(_871, _871);
+    mediump vec3 _881 = mp_copy_871 * inversesqrt(max(_875, 1.0000000031710768509710513471353e-30));
+    bvec3 _890 = bvec3(_875 > 1.0000000031710768509710513471353e-30);
+    vec3 _891 = vec3(_890.x ? _881.x : vec3(0.0, -1.0, 0.0).x, _890.y ? _881.y : vec3(0.0, -1.0, 0.0).y, _890.z ? _881.z : vec3(0.0, -1.0, 0.0).z);
+    mediump vec3 mp_copy_891 = _891;
+    mediump vec3 _894 = reflect(mp_copy_891, vec3(0.0, 1.0, 0.0));
+    mediump float _897 = _894.y;
+    mediump vec3 _905 = vec3(_894.x, abs(_897), _894.z);
+    bvec3 _915 = bvec3(dot(_894, _894) > 9.9999999600419720025001879548654e-13);
+    float _923 = smoothstep(0.0, params.reflection_horizon_band, -_897);
+    vec3 _955 = texture(sky_cube, vec4(vec3(_915.x ? _905.x : vec3(0.0, 1.0, 0.0).x, _915.y ? _905.y : vec3(0.0, 1.0, 0.0).y, _915.z ? _905.z : vec3(0.0, 1.0, 0.0).z), _923).xyz).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(_923));
+    mediump vec3 mp_copy_955 = _955;
+    float _969 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float mp_copy_969 = _969;
+    float _977 = 1.0 - clamp((-_61).y, 0.0, 1.0);
+    mediump float mp_copy_977 = _977;
+    mediump float _981 = mp_copy_977 * mp_copy_977;
+    float _1084 = -_969;
+    mediump float mp_copy_1084 = _1084;
+    mediump vec3 _998 = mix(mp_copy_855, mp_copy_955, vec3(mp_copy_969 * mp_copy_969 + ((mp_copy_1084 * mp_copy_969 + 1.0) * ((_981 * _981) * mp_copy_977))));
+    bvec3 _1003 = bvec3((_716 < _719) && (_138 < 0.0));
+    out_color = vec4(vec3(_1003.x ? _998.x : _26.x, _1003.y ? _998.y : _26.y, _1003.z ? _998.z : _26.z), 1.0);
 }
 

@@ -23,7 +23,6 @@ layout(std140) uniform WaterParams
     float gerstner_amplitude_gain;
     vec3 reflection_lower_tint;
     float gerstner_frequency_gain;
-    vec2 frame_centre;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -46,183 +45,183 @@ void main()
     vec4 _25 = texture(scene_color, v_uv);
     vec3 _26 = _25.xyz;
     vec4 _33 = texture(scene_position, v_uv);
-    vec3 _54 = _33.xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 _61 = _54 - params.eye_position;
-    float _65 = length(_61);
-    vec3 _72 = _61 / vec3(max(_65, 9.9999999747524270787835121154785e-07));
-    vec3 _75 = dFdx(_72);
-    vec3 _78 = dFdy(_72);
-    float _80 = max(length(_75), length(_78));
-    float _83 = floor(gerstner_wave_count);
-    float _1000;
-    float _1002;
-    _1002 = 0.0;
-    _1000 = 0.0;
-    float _115;
-    float _120;
-    float _125;
-    float _130;
-    int _999 = 0;
-    float _1001 = params.gerstner_amplitude;
-    float _1003 = params.gerstner_frequency;
-    for (; _999 < 8; _1003 = _130, _1002 = _120, _1001 = _125, _1000 = _115, _999++)
+    vec3 _34 = _33.xyz;
+    vec3 _50 = params.eye_position + _34;
+    float _54 = length(_34);
+    vec3 _61 = _34 / vec3(max(_54, 9.9999999747524270787835121154785e-07));
+    vec3 _64 = dFdx(_61);
+    vec3 _67 = dFdy(_61);
+    float _69 = max(length(_64), length(_67));
+    float _72 = floor(gerstner_wave_count);
+    float _993;
+    float _995;
+    _995 = 0.0;
+    _993 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _992 = 0;
+    float _994 = params.gerstner_amplitude;
+    float _996 = params.gerstner_frequency;
+    for (; _992 < 8; _996 = _121, _995 = _111, _994 = _116, _993 = _106, _992++)
     {
-        if (!(float(_999) < _83))
+        if (!(float(_992) < _72))
         {
             break;
         }
-        _115 = _1000 + _1001;
-        _120 = _1001 * _1003 + _1002;
-        _125 = _1001 * params.gerstner_amplitude_gain;
-        _130 = _1003 * params.gerstner_frequency_gain;
+        _106 = _993 + _994;
+        _111 = _994 * _996 + _995;
+        _116 = _994 * params.gerstner_amplitude_gain;
+        _121 = _996 * params.gerstner_frequency_gain;
     }
-    float _146 = _72.y;
-    float _150 = max(-_146, 9.9999999747524270787835121154785e-07);
-    vec2 _154 = _72.xz;
-    float _163 = 1.0 / (1.0 + (((_1002 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
-    float _166 = -_1000;
-    float _170 = min(_146, -9.9999999747524270787835121154785e-07);
-    float _1007;
-    vec2 _1011;
-    _1011 = (params.eye_position + (_72 * max((_1000 - params.eye_position.y) / _170, 0.0))).xz;
-    _1007 = _1000;
-    vec2 _412;
-    float _679;
-    float _684;
-    float _694;
-    int _1006 = 0;
-    float _1039 = _1000;
-    float _1044 = _166;
-    for (; _1006 < 9; _1044 = _684, _1039 = _679, _1011 = _412, _1007 = _694, _1006++)
+    float _138 = _61.y;
+    float _142 = max(-_138, 9.9999999747524270787835121154785e-07);
+    vec2 _146 = _61.xz;
+    float _155 = 1.0 / (1.0 + (((_995 / max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_993;
+    float _162 = min(_138, -9.9999999747524270787835121154785e-07);
+    float _1000;
+    vec2 _1004;
+    _1004 = (params.eye_position + (_61 * max((_993 - params.eye_position.y) / _162, 0.0))).xz;
+    _1000 = _993;
+    vec2 _405;
+    float _672;
+    float _677;
+    float _687;
+    int _999 = 0;
+    float _1032 = _993;
+    float _1037 = _158;
+    for (; _999 < 9; _1037 = _677, _1032 = _672, _1004 = _405, _1000 = _687, _999++)
     {
-        float _216 = max((_1007 - params.eye_position.y) / _170, 0.0);
-        vec2 _226 = (params.eye_position + (_72 * _216)).xz;
-        float _232 = (_80 * _216) / _150;
-        vec2 _1013;
+        float _208 = max((_1000 - params.eye_position.y) / _162, 0.0);
+        vec2 _218 = (params.eye_position + (_61 * _208)).xz;
+        float _224 = (_69 * _208) / _142;
+        vec2 _1006;
+        vec3 _1007;
+        _1007 = vec3(0.0);
+        _1006 = vec2(0.0);
+        float _322;
+        float _326;
+        vec2 _333;
+        vec3 _347;
+        int _1001 = 0;
+        float _1002 = params.gerstner_frequency;
+        float _1005 = params.gerstner_amplitude;
+        for (; _1001 < 8; _1007 = _347, _1006 = _333, _1005 = _322, _1002 = _326, _1001++)
+        {
+            float _243 = float(_1001);
+            if (!(_243 < _72))
+            {
+                break;
+            }
+            int _256 = clamp(int(_243), 0, 7);
+            float _281 = _1002 * dot(params.gerstner_wave_directions[_256], _1004) + params.gerstner_wave_phases[_256];
+            float _295 = ((params.gerstner_steepness / (_72 * max(_1002 * _1005, 9.9999999747524270787835121154785e-07))) * _1005) * clamp((-(_1002 * _224)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _314 = (_295 * _1002) * sin(_281);
+            float _318 = _314 * params.gerstner_wave_directions[_256].x;
+            _322 = _1005 * params.gerstner_amplitude_gain;
+            _326 = _1002 * params.gerstner_frequency_gain;
+            _333 = _1006 + (params.gerstner_wave_directions[_256] * (_295 * cos(_281)));
+            _347 = _1007 + vec3(_318 * params.gerstner_wave_directions[_256].x, _318 * params.gerstner_wave_directions[_256].y, (_314 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _353 = 1.0 - _1007.x;
+        float _358 = 1.0 - _1007.z;
+        float _362 = -_1007.y;
+        vec2 _368 = (_1004 + _1006) - _218;
+        float _381 = _368.x;
+        float _384 = _368.y;
+        _405 = _1004 - (vec2(_358 * _381 + (-(_362 * _384)), _353 * _384 + (-(_362 * _381))) / vec2(max(_353 * _358 + (-(_362 * _362)), 0.039999999105930328369140625)));
         vec3 _1014;
+        vec3 _1015;
+        vec3 _1016;
+        _1016 = vec3(0.0, 0.0, 1.0);
+        _1015 = vec3(1.0, 0.0, 0.0);
         _1014 = vec3(0.0);
-        _1013 = vec2(0.0);
-        float _329;
-        float _333;
-        vec2 _340;
-        vec3 _354;
-        int _1008 = 0;
-        float _1009 = params.gerstner_frequency;
-        float _1012 = params.gerstner_amplitude;
-        for (; _1008 < 8; _1014 = _354, _1013 = _340, _1012 = _329, _1009 = _333, _1008++)
+        float _517;
+        float _521;
+        vec3 _533;
+        vec3 _538;
+        vec3 _543;
+        int _1011 = 0;
+        float _1012 = params.gerstner_frequency;
+        float _1013 = params.gerstner_amplitude;
+        for (; _1011 < 8; _1016 = _543, _1015 = _538, _1014 = _533, _1013 = _517, _1012 = _521, _1011++)
         {
-            float _251 = float(_1008);
-            if (!(_251 < _83))
+            float _426 = float(_1011);
+            if (!(_426 < _72))
             {
                 break;
             }
-            int _264 = clamp(int(_251), 0, 7);
-            float _289 = _1009 * dot(params.gerstner_wave_directions[_264], _1011) + params.gerstner_wave_phases[_264];
-            float _303 = ((params.gerstner_steepness / (_83 * max(_1009 * _1012, 9.9999999747524270787835121154785e-07))) * _1012) * clamp((-(_1009 * _232)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _321 = (_303 * _1009) * sin(_289);
-            float _325 = _321 * params.gerstner_wave_directions[_264].x;
-            _329 = _1012 * params.gerstner_amplitude_gain;
-            _333 = _1009 * params.gerstner_frequency_gain;
-            _340 = _1013 + (params.gerstner_wave_directions[_264] * (_303 * cos(_289)));
-            _354 = _1014 + vec3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
+            int _437 = clamp(int(_426), 0, 7);
+            float _446 = clamp((-(_1012 * _224)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
+            float _459 = _1012 * dot(params.gerstner_wave_directions[_437], _405) + params.gerstner_wave_phases[_437];
+            float _473 = ((params.gerstner_steepness / (_72 * max(_1012 * _1013, 9.9999999747524270787835121154785e-07))) * _1013) * _446;
+            float _477 = _1013 * _446;
+            float _480 = sin(_459);
+            float _483 = cos(_459);
+            float _493 = _473 * _483;
+            float _500 = -((_473 * _1012) * _480);
+            vec3 _513 = vec3(_500 * params.gerstner_wave_directions[_437].x, (_477 * _1012) * _483, _500 * params.gerstner_wave_directions[_437].y);
+            _517 = _1013 * params.gerstner_amplitude_gain;
+            _521 = _1012 * params.gerstner_frequency_gain;
+            _533 = _1014 + vec3(_493 * params.gerstner_wave_directions[_437].x, _477 * _480, _493 * params.gerstner_wave_directions[_437].y);
+            _538 = _1015 + (_513 * params.gerstner_wave_directions[_437].x);
+            _543 = _1016 + (_513 * params.gerstner_wave_directions[_437].y);
         }
-        float _360 = 1.0 - _1014.x;
-        float _365 = 1.0 - _1014.z;
-        float _369 = -_1014.y;
-        vec2 _375 = (_1011 + _1013) - _226;
-        float _388 = _375.x;
-        float _391 = _375.y;
-        _412 = _1011 - (vec2(_365 * _388 + (-(_369 * _391)), _360 * _391 + (-(_369 * _388))) / vec2(max(_360 * _365 + (-(_369 * _369)), 0.039999999105930328369140625)));
-        vec3 _1021;
-        vec3 _1022;
-        vec3 _1023;
-        _1023 = vec3(0.0, 0.0, 1.0);
-        _1022 = vec3(1.0, 0.0, 0.0);
-        _1021 = vec3(0.0);
-        float _524;
-        float _528;
-        vec3 _540;
-        vec3 _545;
-        vec3 _550;
-        int _1018 = 0;
-        float _1019 = params.gerstner_frequency;
-        float _1020 = params.gerstner_amplitude;
-        for (; _1018 < 8; _1023 = _550, _1022 = _545, _1021 = _540, _1020 = _524, _1019 = _528, _1018++)
-        {
-            float _433 = float(_1018);
-            if (!(_433 < _83))
-            {
-                break;
-            }
-            int _444 = clamp(int(_433), 0, 7);
-            float _453 = clamp((-(_1019 * _232)) * 0.636619746685028076171875 + 2.0, 0.0, 1.0);
-            float _466 = _1019 * dot(params.gerstner_wave_directions[_444], _412) + params.gerstner_wave_phases[_444];
-            float _480 = ((params.gerstner_steepness / (_83 * max(_1019 * _1020, 9.9999999747524270787835121154785e-07))) * _1020) * _453;
-            float _484 = _1020 * _453;
-            float _487 = sin(_466);
-            float _490 = cos(_466);
-            float _500 = _480 * _490;
-            float _507 = -((_480 * _1019) * _487);
-            vec3 _520 = vec3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1019) * _490, _507 * params.gerstner_wave_directions[_444].y);
-            _524 = _1020 * params.gerstner_amplitude_gain;
-            _528 = _1019 * params.gerstner_frequency_gain;
-            _540 = _1021 + vec3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
-            _545 = _1022 + (_520 * params.gerstner_wave_directions[_444].x);
-            _550 = _1023 + (_520 * params.gerstner_wave_directions[_444].y);
-        }
-        vec3 _556 = cross(_1023, _1022);
-        float _560 = dot(_556, _556);
-        vec3 _567 = _556 * inversesqrt(max(_560, 1.0000000031710768509710513471353e-30));
-        bvec3 _577 = bvec3(_560 > 1.0000000031710768509710513471353e-30);
-        vec3 _578 = vec3(_577.x ? _567.x : vec3(0.0, 1.0, 0.0).x, _577.y ? _567.y : vec3(0.0, 1.0, 0.0).y, _577.z ? _567.z : vec3(0.0, 1.0, 0.0).z);
-        vec2 _588 = (-_578.xz) / vec2(max(_578.y, 9.9999997473787516355514526367188e-05));
-        float _603 = float(_1006);
-        bool _604 = _603 < 1.0;
-        float _608 = (_1021.y + dot(_588, _226 - (_412 + _1021.xz))) - _1007;
-        float _621 = (-dot(_588, _154)) / _150;
-        float _634 = clamp(1.0 / max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0) * _608 + _1007;
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1007 : _1039;
-        float _647 = _637 ? _1044 : _1007;
-        _679 = _604 ? _1007 : _642;
-        _684 = _604 ? _1044 : _647;
-        _694 = (_603 < 8.0) ? (_604 ? (_163 * _608 + _1007) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1007;
+        vec3 _549 = cross(_1016, _1015);
+        float _553 = dot(_549, _549);
+        vec3 _560 = _549 * inversesqrt(max(_553, 1.0000000031710768509710513471353e-30));
+        bvec3 _570 = bvec3(_553 > 1.0000000031710768509710513471353e-30);
+        vec3 _571 = vec3(_570.x ? _560.x : vec3(0.0, 1.0, 0.0).x, _570.y ? _560.y : vec3(0.0, 1.0, 0.0).y, _570.z ? _560.z : vec3(0.0, 1.0, 0.0).z);
+        vec2 _581 = (-_571.xz) / vec2(max(_571.y, 9.9999997473787516355514526367188e-05));
+        float _596 = float(_999);
+        bool _597 = _596 < 1.0;
+        float _601 = (_1014.y + dot(_581, _218 - (_405 + _1014.xz))) - _1000;
+        float _614 = (-dot(_581, _146)) / _142;
+        float _627 = clamp(1.0 / max(1.0 - _614, 9.9999999747524270787835121154785e-07), _155, 1.0) * _601 + _1000;
+        bool _630 = _601 < 0.0;
+        float _635 = _630 ? _1000 : _1032;
+        float _640 = _630 ? _1037 : _1000;
+        _672 = _597 ? _1000 : _635;
+        _677 = _597 ? _1037 : _640;
+        _687 = (_596 < 8.0) ? (_597 ? (_155 * _601 + _1000) : ((((_627 < _640) || (_627 > _635)) || (_614 >= 1.0)) ? (0.5 * (_640 + _635)) : _627)) : _1000;
     }
-    float _708 = max((_1007 - params.eye_position.y) / _170, 0.0);
-    vec3 _715 = params.eye_position + (_72 * _708);
-    float _723 = _54.y;
-    float _726 = _715.y;
-    float _731 = max(_726 - _723, 0.0);
-    mediump vec3 _776 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0))).xyz;
-    float _780 = clamp(max(_65 - _708, 0.0), 0.0, 30000.0);
-    vec3 _790 = exp((-params.absorb_coefficients) * (_731 + _780));
-    mediump vec3 mp_copy_790 = _790;
-    vec3 _810 = mix(params.scatter_color, _776 * mp_copy_790, vec3(exp((-params.scatter_coefficient) * _780))) * params.incident_light;
-    mediump vec3 mp_copy_810 = _810;
-    vec3 _813 = abs(_72);
-    vec3 _826 = _72 / vec3(max(max(max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
-    mediump vec3 mp_copy_826 = _826;
-    mediump float _830 = dot(_826, _826);
-    mediump vec3 _836 = mp_copy_826 * inversesqrt(max(_830, 1.0000000031710768509710513471353e-30));
-    bvec3 _845 = bvec3(_830 > 1.0000000031710768509710513471353e-30);
-    vec3 _846 = vec3(_845.x ? _836.x : vec3(0.0, -1.0, 0.0).x, _845.y ? _836.y : vec3(0.0, -1.0, 0.0).y, _845.z ? _836.z : vec3(0.0, -1.0, 0.0).z);
-    mediump vec3 mp_copy_846 = _846;
-    mediump vec3 _849 = reflect(mp_copy_846, vec3(0.0, 1.0, 0.0));
-    mediump float _852 = _849.y;
-    mediump vec3 _860 = vec3(_849.x, abs(_852), _849.z);
-    bvec3 _870 = bvec3(dot(_849, _849) > 9.9999999600419720025001879548654e-13);
-    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
-    vec3 _910 = texture(sky_cube, vec4(vec3(_870.x ? _860.x : vec3(0.0, 1.0, 0.0).x, _870.y ? _860.y : vec3(0.0, 1.0, 0.0).y, _870.z ? _860.z : vec3(0.0, 1.0, 0.0).z), _878).xyz).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(_878));
-    mediump vec3 mp_copy_910 = _910;
-    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float mp_copy_924 = _924;
-    float _932 = 1.0 - clamp((-_72).y, 0.0, 1.0);
-    mediump float mp_copy_932 = _932;
-    mediump float _936 = mp_copy_932 * mp_copy_932;
-    float _1048 = -_924;
-    mediump float mp_copy_1048 = _1048;
-    mediump vec3 _964 = mix(_776, mix(mp_copy_810, mp_copy_910, vec3(mp_copy_924 * mp_copy_924 + ((mp_copy_1048 * mp_copy_924 + 1.0) * ((_936 * _936) * mp_copy_932)))), vec3(clamp(_731 * params.shore_hardness, 0.0, 1.0)));
-    bvec3 _969 = bvec3((_723 < _726) && (_146 < 0.0));
-    out_color = vec4(vec3(_969.x ? _964.x : _26.x, _969.y ? _964.y : _26.y, _969.z ? _964.z : _26.z), 1.0);
+    float _701 = max((_1000 - params.eye_position.y) / _162, 0.0);
+    vec3 _708 = params.eye_position + (_61 * _701);
+    float _716 = _50.y;
+    float _719 = _708.y;
+    float _724 = max(_719 - _716, 0.0);
+    mediump vec3 _769 = texture(scene_color, clamp(v_uv, vec2(0.0), vec2(1.0))).xyz;
+    float _773 = clamp(max(_54 - _701, 0.0), 0.0, 30000.0);
+    vec3 _783 = exp((-params.absorb_coefficients) * (_724 + _773));
+    mediump vec3 mp_copy_783 = _783;
+    vec3 _803 = mix(params.scatter_color, _769 * mp_copy_783, vec3(exp((-params.scatter_coefficient) * _773))) * params.incident_light;
+    mediump vec3 mp_copy_803 = _803;
+    vec3 _806 = abs(_61);
+    vec3 _819 = _61 / vec3(max(max(max(_806.x, _806.y), _806.z), 1.0000000031710768509710513471353e-30));
+    mediump vec3 mp_copy_819 = _819;
+    mediump float _823 = dot(_819, _819);
+    mediump vec3 _829 = mp_copy_819 * inversesqrt(max(_823, 1.0000000031710768509710513471353e-30));
+    bvec3 _838 = bvec3(_823 > 1.0000000031710768509710513471353e-30);
+    vec3 _839 = vec3(_838.x ? _829.x : vec3(0.0, -1.0, 0.0).x, _838.y ? _829.y : vec3(0.0, -1.0, 0.0).y, _838.z ? _829.z : vec3(0.0, -1.0, 0.0).z);
+    mediump vec3 mp_copy_839 = _839;
+    mediump vec3 _842 = reflect(mp_copy_839, vec3(0.0, 1.0, 0.0));
+    mediump float _845 = _842.y;
+    mediump vec3 _853 = vec3(_842.x, abs(_845), _842.z);
+    bvec3 _863 = bvec3(dot(_842, _842) > 9.9999999600419720025001879548654e-13);
+    float _871 = smoothstep(0.0, params.reflection_horizon_band, -_845);
+    vec3 _903 = texture(sky_cube, vec4(vec3(_863.x ? _853.x : vec3(0.0, 1.0, 0.0).x, _863.y ? _853.y : vec3(0.0, 1.0, 0.0).y, _863.z ? _853.z : vec3(0.0, 1.0, 0.0).z), _871).xyz).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(_871));
+    mediump vec3 mp_copy_903 = _903;
+    float _917 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float mp_copy_917 = _917;
+    float _925 = 1.0 - clamp((-_61).y, 0.0, 1.0);
+    mediump float mp_copy_925 = _925;
+    mediump float _929 = mp_copy_925 * mp_copy_925;
+    float _1041 = -_917;
+    mediump float mp_copy_1041 = _1041;
+    mediump vec3 _957 = mix(_769, mix(mp_copy_803, mp_copy_903, vec3(mp_copy_917 * mp_copy_917 + ((mp_copy_1041 * mp_copy_917 + 1.0) * ((_929 * _929) * mp_copy_925)))), vec3(clamp(_724 * params.shore_hardness, 0.0, 1.0)));
+    bvec3 _962 = bvec3((_716 < _719) && (_138 < 0.0));
+    out_color = vec4(vec3(_962.x ? _957.x : _26.x, _962.y ? _957.y : _26.y, _962.z ? _957.z : _26.z), 1.0);
 }
 

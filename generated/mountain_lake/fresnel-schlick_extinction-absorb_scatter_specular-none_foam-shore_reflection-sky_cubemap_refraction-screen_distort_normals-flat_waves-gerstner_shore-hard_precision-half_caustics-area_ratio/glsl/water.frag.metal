@@ -25,7 +25,6 @@ struct WaterParams
     float refraction_distortion;
     packed_float3 foam_color;
     float refraction_shore_fade_depth;
-    float2 frame_centre;
     float2 foam_pattern_drift;
     float2 foam_pattern_offset;
     float caustics_strength;
@@ -54,169 +53,169 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _61 = _54 - float3(params.eye_position);
-    float _65 = length(_61);
-    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
-    float3 _75 = dfdx(_72);
-    float3 _78 = dfdy(_72);
-    float _80 = fast::max(length(_75), length(_78));
-    float _83 = floor(gerstner_wave_count);
-    float _1144;
-    float _1146;
-    _1146 = 0.0;
-    _1144 = 0.0;
-    float _115;
-    float _120;
-    float _125;
-    float _130;
-    int _1143 = 0;
-    float _1145 = params.gerstner_amplitude;
-    float _1147 = params.gerstner_frequency;
-    for (; _1143 < 8; _1147 = _130, _1146 = _120, _1145 = _125, _1144 = _115, _1143++)
+    float3 _34 = _33.xyz;
+    float3 _50 = float3(params.eye_position) + _34;
+    float _54 = length(_34);
+    float3 _61 = _34 / float3(fast::max(_54, 9.9999999747524270787835121154785e-07));
+    float3 _64 = dfdx(_61);
+    float3 _67 = dfdy(_61);
+    float _69 = fast::max(length(_64), length(_67));
+    float _72 = floor(gerstner_wave_count);
+    float _1137;
+    float _1139;
+    _1139 = 0.0;
+    _1137 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1136 = 0;
+    float _1138 = params.gerstner_amplitude;
+    float _1140 = params.gerstner_frequency;
+    for (; _1136 < 8; _1140 = _121, _1139 = _111, _1138 = _116, _1137 = _106, _1136++)
     {
-        if (!(float(_1143) < _83))
+        if (!(float(_1136) < _72))
         {
             break;
         }
-        _115 = _1144 + _1145;
-        _120 = fma(_1145, _1147, _1146);
-        _125 = _1145 * params.gerstner_amplitude_gain;
-        _130 = _1147 * params.gerstner_frequency_gain;
+        _106 = _1137 + _1138;
+        _111 = fma(_1138, _1140, _1139);
+        _116 = _1138 * params.gerstner_amplitude_gain;
+        _121 = _1140 * params.gerstner_frequency_gain;
     }
-    float _146 = _72.y;
-    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
-    float2 _154 = _72.xz;
-    float _163 = 1.0 / (1.0 + (((_1146 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
-    float _166 = -_1144;
-    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
-    float _1151;
-    float2 _1155;
-    _1155 = (float3(params.eye_position) + (_72 * fast::max((_1144 - params.eye_position[1u]) / _170, 0.0))).xz;
-    _1151 = _1144;
-    float2 _412;
-    float _679;
-    float _684;
-    float _694;
-    int _1150 = 0;
-    float _1183 = _1144;
-    float _1188 = _166;
-    for (; _1150 < 9; _1188 = _684, _1183 = _679, _1155 = _412, _1151 = _694, _1150++)
+    float _138 = _61.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _61.xz;
+    float _155 = 1.0 / (1.0 + (((_1139 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1137;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _1144;
+    float2 _1148;
+    _1148 = (float3(params.eye_position) + (_61 * fast::max((_1137 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1144 = _1137;
+    float2 _405;
+    float _672;
+    float _677;
+    float _687;
+    int _1143 = 0;
+    float _1176 = _1137;
+    float _1181 = _158;
+    for (; _1143 < 9; _1181 = _677, _1176 = _672, _1148 = _405, _1144 = _687, _1143++)
     {
-        float _216 = fast::max((_1151 - params.eye_position[1u]) / _170, 0.0);
-        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
-        float _232 = (_80 * _216) / _150;
-        float2 _1157;
+        float _208 = fast::max((_1144 - params.eye_position[1u]) / _162, 0.0);
+        float2 _218 = (float3(params.eye_position) + (_61 * _208)).xz;
+        float _224 = (_69 * _208) / _142;
+        float2 _1150;
+        float3 _1151;
+        _1151 = float3(0.0);
+        _1150 = float2(0.0);
+        float _322;
+        float _326;
+        float2 _333;
+        float3 _347;
+        int _1145 = 0;
+        float _1146 = params.gerstner_frequency;
+        float _1149 = params.gerstner_amplitude;
+        for (; _1145 < 8; _1151 = _347, _1150 = _333, _1149 = _322, _1146 = _326, _1145++)
+        {
+            float _243 = float(_1145);
+            if (!(_243 < _72))
+            {
+                break;
+            }
+            int _256 = clamp(int(_243), 0, 7);
+            float _281 = fma(_1146, dot(params.gerstner_wave_directions[_256].xy, _1148), params.gerstner_wave_phases[_256].x);
+            float _295 = ((params.gerstner_steepness / (_72 * fast::max(_1146 * _1149, 9.9999999747524270787835121154785e-07))) * _1149) * fast::clamp(fma(-(_1146 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _314 = (_295 * _1146) * sin(_281);
+            float _318 = _314 * params.gerstner_wave_directions[_256].x;
+            _322 = _1149 * params.gerstner_amplitude_gain;
+            _326 = _1146 * params.gerstner_frequency_gain;
+            _333 = _1150 + (params.gerstner_wave_directions[_256].xy * (_295 * cos(_281)));
+            _347 = _1151 + float3(_318 * params.gerstner_wave_directions[_256].x, _318 * params.gerstner_wave_directions[_256].y, (_314 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _353 = 1.0 - _1151.x;
+        float _358 = 1.0 - _1151.z;
+        float _362 = -_1151.y;
+        float2 _368 = (_1148 + _1150) - _218;
+        float _381 = _368.x;
+        float _384 = _368.y;
+        _405 = _1148 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
         float3 _1158;
+        float3 _1159;
+        float3 _1160;
+        _1160 = float3(0.0, 0.0, 1.0);
+        _1159 = float3(1.0, 0.0, 0.0);
         _1158 = float3(0.0);
-        _1157 = float2(0.0);
-        float _329;
-        float _333;
-        float2 _340;
-        float3 _354;
-        int _1152 = 0;
-        float _1153 = params.gerstner_frequency;
-        float _1156 = params.gerstner_amplitude;
-        for (; _1152 < 8; _1158 = _354, _1157 = _340, _1156 = _329, _1153 = _333, _1152++)
+        float _517;
+        float _521;
+        float3 _533;
+        float3 _538;
+        float3 _543;
+        int _1155 = 0;
+        float _1156 = params.gerstner_frequency;
+        float _1157 = params.gerstner_amplitude;
+        for (; _1155 < 8; _1160 = _543, _1159 = _538, _1158 = _533, _1157 = _517, _1156 = _521, _1155++)
         {
-            float _251 = float(_1152);
-            if (!(_251 < _83))
+            float _426 = float(_1155);
+            if (!(_426 < _72))
             {
                 break;
             }
-            int _264 = clamp(int(_251), 0, 7);
-            float _289 = fma(_1153, dot(params.gerstner_wave_directions[_264].xy, _1155), params.gerstner_wave_phases[_264].x);
-            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_1153 * _1156, 9.9999999747524270787835121154785e-07))) * _1156) * fast::clamp(fma(-(_1153 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _321 = (_303 * _1153) * sin(_289);
-            float _325 = _321 * params.gerstner_wave_directions[_264].x;
-            _329 = _1156 * params.gerstner_amplitude_gain;
-            _333 = _1153 * params.gerstner_frequency_gain;
-            _340 = _1157 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
-            _354 = _1158 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
+            int _437 = clamp(int(_426), 0, 7);
+            float _446 = fast::clamp(fma(-(_1156 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _459 = fma(_1156, dot(params.gerstner_wave_directions[_437].xy, _405), params.gerstner_wave_phases[_437].x);
+            float _473 = ((params.gerstner_steepness / (_72 * fast::max(_1156 * _1157, 9.9999999747524270787835121154785e-07))) * _1157) * _446;
+            float _477 = _1157 * _446;
+            float _480 = sin(_459);
+            float _483 = cos(_459);
+            float _493 = _473 * _483;
+            float _500 = -((_473 * _1156) * _480);
+            float3 _513 = float3(_500 * params.gerstner_wave_directions[_437].x, (_477 * _1156) * _483, _500 * params.gerstner_wave_directions[_437].y);
+            _517 = _1157 * params.gerstner_amplitude_gain;
+            _521 = _1156 * params.gerstner_frequency_gain;
+            _533 = _1158 + float3(_493 * params.gerstner_wave_directions[_437].x, _477 * _480, _493 * params.gerstner_wave_directions[_437].y);
+            _538 = _1159 + (_513 * params.gerstner_wave_directions[_437].x);
+            _543 = _1160 + (_513 * params.gerstner_wave_directions[_437].y);
         }
-        float _360 = 1.0 - _1158.x;
-        float _365 = 1.0 - _1158.z;
-        float _369 = -_1158.y;
-        float2 _375 = (_1155 + _1157) - _226;
-        float _388 = _375.x;
-        float _391 = _375.y;
-        _412 = _1155 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
-        float3 _1165;
-        float3 _1166;
-        float3 _1167;
-        _1167 = float3(0.0, 0.0, 1.0);
-        _1166 = float3(1.0, 0.0, 0.0);
-        _1165 = float3(0.0);
-        float _524;
-        float _528;
-        float3 _540;
-        float3 _545;
-        float3 _550;
-        int _1162 = 0;
-        float _1163 = params.gerstner_frequency;
-        float _1164 = params.gerstner_amplitude;
-        for (; _1162 < 8; _1167 = _550, _1166 = _545, _1165 = _540, _1164 = _524, _1163 = _528, _1162++)
-        {
-            float _433 = float(_1162);
-            if (!(_433 < _83))
-            {
-                break;
-            }
-            int _444 = clamp(int(_433), 0, 7);
-            float _453 = fast::clamp(fma(-(_1163 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _466 = fma(_1163, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
-            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1163 * _1164, 9.9999999747524270787835121154785e-07))) * _1164) * _453;
-            float _484 = _1164 * _453;
-            float _487 = sin(_466);
-            float _490 = cos(_466);
-            float _500 = _480 * _490;
-            float _507 = -((_480 * _1163) * _487);
-            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1163) * _490, _507 * params.gerstner_wave_directions[_444].y);
-            _524 = _1164 * params.gerstner_amplitude_gain;
-            _528 = _1163 * params.gerstner_frequency_gain;
-            _540 = _1165 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
-            _545 = _1166 + (_520 * params.gerstner_wave_directions[_444].x);
-            _550 = _1167 + (_520 * params.gerstner_wave_directions[_444].y);
-        }
-        float3 _556 = cross(_1167, _1166);
-        float _560 = dot(_556, _556);
-        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
-        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
-        float _603 = float(_1150);
-        bool _604 = _603 < 1.0;
-        float _608 = (_1165.y + dot(_588, _226 - (_412 + _1165.xz))) - _1151;
-        float _621 = (-dot(_588, _154)) / _150;
-        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _1151);
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1151 : _1183;
-        float _647 = _637 ? _1188 : _1151;
-        _679 = _604 ? _1151 : _642;
-        _684 = _604 ? _1188 : _647;
-        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _1151) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1151;
+        float3 _549 = cross(_1160, _1159);
+        float _553 = dot(_549, _549);
+        float3 _571 = select(float3(0.0, 1.0, 0.0), _549 * rsqrt(fast::max(_553, 1.0000000031710768509710513471353e-30)), bool3(_553 > 1.0000000031710768509710513471353e-30));
+        float2 _581 = (-_571.xz) / float2(fast::max(_571.y, 9.9999997473787516355514526367188e-05));
+        float _596 = float(_1143);
+        bool _597 = _596 < 1.0;
+        float _601 = (_1158.y + dot(_581, _218 - (_405 + _1158.xz))) - _1144;
+        float _614 = (-dot(_581, _146)) / _142;
+        float _627 = fma(fast::clamp(1.0 / fast::max(1.0 - _614, 9.9999999747524270787835121154785e-07), _155, 1.0), _601, _1144);
+        bool _630 = _601 < 0.0;
+        float _635 = _630 ? _1144 : _1176;
+        float _640 = _630 ? _1181 : _1144;
+        _672 = _597 ? _1144 : _635;
+        _677 = _597 ? _1181 : _640;
+        _687 = (_596 < 8.0) ? (_597 ? fma(_155, _601, _1144) : ((((_627 < _640) || (_627 > _635)) || (_614 >= 1.0)) ? (0.5 * (_640 + _635)) : _627)) : _1144;
     }
-    float _708 = fast::max((_1151 - params.eye_position[1u]) / _170, 0.0);
-    float3 _715 = float3(params.eye_position) + (_72 * _708);
-    float _723 = _54.y;
-    float _726 = _715.y;
-    float _731 = fast::max(_726 - _723, 0.0);
-    float2 _790 = (_54.xz - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
-    float _793 = _790.x;
-    float _796 = _790.y;
-    float _832 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
-    float3 _865 = abs(_72);
-    float3 _878 = _72 / float3(fast::max(fast::max(fast::max(_865.x, _865.y), _865.z), 1.0000000031710768509710513471353e-30));
-    float _882 = dot(_878, _878);
-    float3 _901 = reflect(select(float3(0.0, -1.0, 0.0), _878 * rsqrt(fast::max(_882, 1.0000000031710768509710513471353e-30)), bool3(_882 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _904 = _901.y;
-    float _930 = smoothstep(0.0, params.reflection_horizon_band, -_904);
-    float _976 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _984 = 1.0 - fast::clamp((-_72).y, 0.0, 1.0);
-    float _988 = _984 * _984;
-    float2 _1008 = _715.xz;
-    float _1066 = _731 - params.foam_existence[0u];
-    float _1071 = params.foam_existence[1u] - params.foam_existence[0u];
-    float3 _1106 = mix(mix(mix(float3(params.scatter_color), (scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * mix(1.0, ((((_793 >= 0.0) && (_793 <= 1.0)) && (_796 >= 0.0)) && (_796 <= 1.0)) ? caustics_map.sample(linear_clamp, _790, level(0.0)).x : 1.0, params.caustics_strength)) * exp((-float3(params.absorb_coefficients)) * (_731 + _832)), float3(exp((-params.scatter_coefficient) * _832))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_901.x, abs(_904), _901.z), bool3(dot(_901, _901) > 9.9999999600419720025001879548654e-13)), _930).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_930)), float3(fma(_976, _976, fma(-_976, _976, 1.0) * ((_988 * _988) * _984)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract((_1008 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_1008)), length(dfdy(_1008))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1066 < 0.0) ? 1.0 : (1.0 - ((_1066 >= _1071) ? 1.0 : fast::clamp(_1066 / fast::max(_1071, 5.9604644775390625e-08), 0.0, 1.0)))));
-    out.out_color = float4(select(_25.xyz, _1106, bool3((_723 < _726) && (_146 < 0.0))), 1.0);
+    float _701 = fast::max((_1144 - params.eye_position[1u]) / _162, 0.0);
+    float3 _708 = float3(params.eye_position) + (_61 * _701);
+    float _716 = _50.y;
+    float _719 = _708.y;
+    float _724 = fast::max(_719 - _716, 0.0);
+    float2 _783 = (_50.xz - float2(params.caustics_window[0u], params.caustics_window[1u])) / float2(params.caustics_window[2u]);
+    float _786 = _783.x;
+    float _789 = _783.y;
+    float _825 = fast::clamp(fast::max(_54 - _701, 0.0), 0.0, 30000.0);
+    float3 _858 = abs(_61);
+    float3 _871 = _61 / float3(fast::max(fast::max(fast::max(_858.x, _858.y), _858.z), 1.0000000031710768509710513471353e-30));
+    float _875 = dot(_871, _871);
+    float3 _894 = reflect(select(float3(0.0, -1.0, 0.0), _871 * rsqrt(fast::max(_875, 1.0000000031710768509710513471353e-30)), bool3(_875 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _897 = _894.y;
+    float _923 = smoothstep(0.0, params.reflection_horizon_band, -_897);
+    float _969 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _977 = 1.0 - fast::clamp((-_61).y, 0.0, 1.0);
+    float _981 = _977 * _977;
+    float2 _1001 = _708.xz;
+    float _1059 = _724 - params.foam_existence[0u];
+    float _1064 = params.foam_existence[1u] - params.foam_existence[0u];
+    float3 _1099 = mix(mix(mix(float3(params.scatter_color), (scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * mix(1.0, ((((_786 >= 0.0) && (_786 <= 1.0)) && (_789 >= 0.0)) && (_789 <= 1.0)) ? caustics_map.sample(linear_clamp, _783, level(0.0)).x : 1.0, params.caustics_strength)) * exp((-float3(params.absorb_coefficients)) * (_724 + _825)), float3(exp((-params.scatter_coefficient) * _825))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_894.x, abs(_897), _894.z), bool3(dot(_894, _894) > 9.9999999600419720025001879548654e-13)), _923).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_923)), float3(fma(_969, _969, fma(-_969, _969, 1.0) * ((_981 * _981) * _977)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract((_1001 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_1001)), length(dfdy(_1001))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1059 < 0.0) ? 1.0 : (1.0 - ((_1059 >= _1064) ? 1.0 : fast::clamp(_1059 / fast::max(_1064, 5.9604644775390625e-08), 0.0, 1.0)))));
+    out.out_color = float4(select(_25.xyz, _1099, bool3((_716 < _719) && (_138 < 0.0))), 1.0);
     return out;
 }
 

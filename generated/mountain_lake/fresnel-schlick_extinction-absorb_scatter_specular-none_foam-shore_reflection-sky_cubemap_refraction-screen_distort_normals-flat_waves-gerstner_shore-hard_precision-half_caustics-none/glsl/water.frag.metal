@@ -23,7 +23,6 @@ struct WaterParams
     float gerstner_steepness;
     packed_float3 foam_color;
     float refraction_distortion;
-    float2 frame_centre;
     float2 foam_pattern_drift;
     float2 foam_pattern_offset;
     float refraction_shore_fade_depth;
@@ -52,166 +51,166 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _61 = _54 - float3(params.eye_position);
-    float _65 = length(_61);
-    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
-    float3 _75 = dfdx(_72);
-    float3 _78 = dfdy(_72);
-    float _80 = fast::max(length(_75), length(_78));
-    float _83 = floor(gerstner_wave_count);
-    float _1090;
-    float _1092;
-    _1092 = 0.0;
-    _1090 = 0.0;
-    float _115;
-    float _120;
-    float _125;
-    float _130;
-    int _1089 = 0;
-    float _1091 = params.gerstner_amplitude;
-    float _1093 = params.gerstner_frequency;
-    for (; _1089 < 8; _1093 = _130, _1092 = _120, _1091 = _125, _1090 = _115, _1089++)
+    float3 _34 = _33.xyz;
+    float3 _50 = float3(params.eye_position) + _34;
+    float _54 = length(_34);
+    float3 _61 = _34 / float3(fast::max(_54, 9.9999999747524270787835121154785e-07));
+    float3 _64 = dfdx(_61);
+    float3 _67 = dfdy(_61);
+    float _69 = fast::max(length(_64), length(_67));
+    float _72 = floor(gerstner_wave_count);
+    float _1083;
+    float _1085;
+    _1085 = 0.0;
+    _1083 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1082 = 0;
+    float _1084 = params.gerstner_amplitude;
+    float _1086 = params.gerstner_frequency;
+    for (; _1082 < 8; _1086 = _121, _1085 = _111, _1084 = _116, _1083 = _106, _1082++)
     {
-        if (!(float(_1089) < _83))
+        if (!(float(_1082) < _72))
         {
             break;
         }
-        _115 = _1090 + _1091;
-        _120 = fma(_1091, _1093, _1092);
-        _125 = _1091 * params.gerstner_amplitude_gain;
-        _130 = _1093 * params.gerstner_frequency_gain;
+        _106 = _1083 + _1084;
+        _111 = fma(_1084, _1086, _1085);
+        _116 = _1084 * params.gerstner_amplitude_gain;
+        _121 = _1086 * params.gerstner_frequency_gain;
     }
-    float _146 = _72.y;
-    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
-    float2 _154 = _72.xz;
-    float _163 = 1.0 / (1.0 + (((_1092 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
-    float _166 = -_1090;
-    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
-    float _1097;
-    float2 _1101;
-    _1101 = (float3(params.eye_position) + (_72 * fast::max((_1090 - params.eye_position[1u]) / _170, 0.0))).xz;
-    _1097 = _1090;
-    float2 _412;
-    float _679;
-    float _684;
-    float _694;
-    int _1096 = 0;
-    float _1129 = _1090;
-    float _1134 = _166;
-    for (; _1096 < 9; _1134 = _684, _1129 = _679, _1101 = _412, _1097 = _694, _1096++)
+    float _138 = _61.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _61.xz;
+    float _155 = 1.0 / (1.0 + (((_1085 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1083;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _1090;
+    float2 _1094;
+    _1094 = (float3(params.eye_position) + (_61 * fast::max((_1083 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1090 = _1083;
+    float2 _405;
+    float _672;
+    float _677;
+    float _687;
+    int _1089 = 0;
+    float _1122 = _1083;
+    float _1127 = _158;
+    for (; _1089 < 9; _1127 = _677, _1122 = _672, _1094 = _405, _1090 = _687, _1089++)
     {
-        float _216 = fast::max((_1097 - params.eye_position[1u]) / _170, 0.0);
-        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
-        float _232 = (_80 * _216) / _150;
-        float2 _1103;
+        float _208 = fast::max((_1090 - params.eye_position[1u]) / _162, 0.0);
+        float2 _218 = (float3(params.eye_position) + (_61 * _208)).xz;
+        float _224 = (_69 * _208) / _142;
+        float2 _1096;
+        float3 _1097;
+        _1097 = float3(0.0);
+        _1096 = float2(0.0);
+        float _322;
+        float _326;
+        float2 _333;
+        float3 _347;
+        int _1091 = 0;
+        float _1092 = params.gerstner_frequency;
+        float _1095 = params.gerstner_amplitude;
+        for (; _1091 < 8; _1097 = _347, _1096 = _333, _1095 = _322, _1092 = _326, _1091++)
+        {
+            float _243 = float(_1091);
+            if (!(_243 < _72))
+            {
+                break;
+            }
+            int _256 = clamp(int(_243), 0, 7);
+            float _281 = fma(_1092, dot(params.gerstner_wave_directions[_256].xy, _1094), params.gerstner_wave_phases[_256].x);
+            float _295 = ((params.gerstner_steepness / (_72 * fast::max(_1092 * _1095, 9.9999999747524270787835121154785e-07))) * _1095) * fast::clamp(fma(-(_1092 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _314 = (_295 * _1092) * sin(_281);
+            float _318 = _314 * params.gerstner_wave_directions[_256].x;
+            _322 = _1095 * params.gerstner_amplitude_gain;
+            _326 = _1092 * params.gerstner_frequency_gain;
+            _333 = _1096 + (params.gerstner_wave_directions[_256].xy * (_295 * cos(_281)));
+            _347 = _1097 + float3(_318 * params.gerstner_wave_directions[_256].x, _318 * params.gerstner_wave_directions[_256].y, (_314 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _353 = 1.0 - _1097.x;
+        float _358 = 1.0 - _1097.z;
+        float _362 = -_1097.y;
+        float2 _368 = (_1094 + _1096) - _218;
+        float _381 = _368.x;
+        float _384 = _368.y;
+        _405 = _1094 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
         float3 _1104;
+        float3 _1105;
+        float3 _1106;
+        _1106 = float3(0.0, 0.0, 1.0);
+        _1105 = float3(1.0, 0.0, 0.0);
         _1104 = float3(0.0);
-        _1103 = float2(0.0);
-        float _329;
-        float _333;
-        float2 _340;
-        float3 _354;
-        int _1098 = 0;
-        float _1099 = params.gerstner_frequency;
-        float _1102 = params.gerstner_amplitude;
-        for (; _1098 < 8; _1104 = _354, _1103 = _340, _1102 = _329, _1099 = _333, _1098++)
+        float _517;
+        float _521;
+        float3 _533;
+        float3 _538;
+        float3 _543;
+        int _1101 = 0;
+        float _1102 = params.gerstner_frequency;
+        float _1103 = params.gerstner_amplitude;
+        for (; _1101 < 8; _1106 = _543, _1105 = _538, _1104 = _533, _1103 = _517, _1102 = _521, _1101++)
         {
-            float _251 = float(_1098);
-            if (!(_251 < _83))
+            float _426 = float(_1101);
+            if (!(_426 < _72))
             {
                 break;
             }
-            int _264 = clamp(int(_251), 0, 7);
-            float _289 = fma(_1099, dot(params.gerstner_wave_directions[_264].xy, _1101), params.gerstner_wave_phases[_264].x);
-            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_1099 * _1102, 9.9999999747524270787835121154785e-07))) * _1102) * fast::clamp(fma(-(_1099 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _321 = (_303 * _1099) * sin(_289);
-            float _325 = _321 * params.gerstner_wave_directions[_264].x;
-            _329 = _1102 * params.gerstner_amplitude_gain;
-            _333 = _1099 * params.gerstner_frequency_gain;
-            _340 = _1103 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
-            _354 = _1104 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
+            int _437 = clamp(int(_426), 0, 7);
+            float _446 = fast::clamp(fma(-(_1102 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _459 = fma(_1102, dot(params.gerstner_wave_directions[_437].xy, _405), params.gerstner_wave_phases[_437].x);
+            float _473 = ((params.gerstner_steepness / (_72 * fast::max(_1102 * _1103, 9.9999999747524270787835121154785e-07))) * _1103) * _446;
+            float _477 = _1103 * _446;
+            float _480 = sin(_459);
+            float _483 = cos(_459);
+            float _493 = _473 * _483;
+            float _500 = -((_473 * _1102) * _480);
+            float3 _513 = float3(_500 * params.gerstner_wave_directions[_437].x, (_477 * _1102) * _483, _500 * params.gerstner_wave_directions[_437].y);
+            _517 = _1103 * params.gerstner_amplitude_gain;
+            _521 = _1102 * params.gerstner_frequency_gain;
+            _533 = _1104 + float3(_493 * params.gerstner_wave_directions[_437].x, _477 * _480, _493 * params.gerstner_wave_directions[_437].y);
+            _538 = _1105 + (_513 * params.gerstner_wave_directions[_437].x);
+            _543 = _1106 + (_513 * params.gerstner_wave_directions[_437].y);
         }
-        float _360 = 1.0 - _1104.x;
-        float _365 = 1.0 - _1104.z;
-        float _369 = -_1104.y;
-        float2 _375 = (_1101 + _1103) - _226;
-        float _388 = _375.x;
-        float _391 = _375.y;
-        _412 = _1101 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
-        float3 _1111;
-        float3 _1112;
-        float3 _1113;
-        _1113 = float3(0.0, 0.0, 1.0);
-        _1112 = float3(1.0, 0.0, 0.0);
-        _1111 = float3(0.0);
-        float _524;
-        float _528;
-        float3 _540;
-        float3 _545;
-        float3 _550;
-        int _1108 = 0;
-        float _1109 = params.gerstner_frequency;
-        float _1110 = params.gerstner_amplitude;
-        for (; _1108 < 8; _1113 = _550, _1112 = _545, _1111 = _540, _1110 = _524, _1109 = _528, _1108++)
-        {
-            float _433 = float(_1108);
-            if (!(_433 < _83))
-            {
-                break;
-            }
-            int _444 = clamp(int(_433), 0, 7);
-            float _453 = fast::clamp(fma(-(_1109 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _466 = fma(_1109, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
-            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1109 * _1110, 9.9999999747524270787835121154785e-07))) * _1110) * _453;
-            float _484 = _1110 * _453;
-            float _487 = sin(_466);
-            float _490 = cos(_466);
-            float _500 = _480 * _490;
-            float _507 = -((_480 * _1109) * _487);
-            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1109) * _490, _507 * params.gerstner_wave_directions[_444].y);
-            _524 = _1110 * params.gerstner_amplitude_gain;
-            _528 = _1109 * params.gerstner_frequency_gain;
-            _540 = _1111 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
-            _545 = _1112 + (_520 * params.gerstner_wave_directions[_444].x);
-            _550 = _1113 + (_520 * params.gerstner_wave_directions[_444].y);
-        }
-        float3 _556 = cross(_1113, _1112);
-        float _560 = dot(_556, _556);
-        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
-        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
-        float _603 = float(_1096);
-        bool _604 = _603 < 1.0;
-        float _608 = (_1111.y + dot(_588, _226 - (_412 + _1111.xz))) - _1097;
-        float _621 = (-dot(_588, _154)) / _150;
-        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _1097);
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1097 : _1129;
-        float _647 = _637 ? _1134 : _1097;
-        _679 = _604 ? _1097 : _642;
-        _684 = _604 ? _1134 : _647;
-        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _1097) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1097;
+        float3 _549 = cross(_1106, _1105);
+        float _553 = dot(_549, _549);
+        float3 _571 = select(float3(0.0, 1.0, 0.0), _549 * rsqrt(fast::max(_553, 1.0000000031710768509710513471353e-30)), bool3(_553 > 1.0000000031710768509710513471353e-30));
+        float2 _581 = (-_571.xz) / float2(fast::max(_571.y, 9.9999997473787516355514526367188e-05));
+        float _596 = float(_1089);
+        bool _597 = _596 < 1.0;
+        float _601 = (_1104.y + dot(_581, _218 - (_405 + _1104.xz))) - _1090;
+        float _614 = (-dot(_581, _146)) / _142;
+        float _627 = fma(fast::clamp(1.0 / fast::max(1.0 - _614, 9.9999999747524270787835121154785e-07), _155, 1.0), _601, _1090);
+        bool _630 = _601 < 0.0;
+        float _635 = _630 ? _1090 : _1122;
+        float _640 = _630 ? _1127 : _1090;
+        _672 = _597 ? _1090 : _635;
+        _677 = _597 ? _1127 : _640;
+        _687 = (_596 < 8.0) ? (_597 ? fma(_155, _601, _1090) : ((((_627 < _640) || (_627 > _635)) || (_614 >= 1.0)) ? (0.5 * (_640 + _635)) : _627)) : _1090;
     }
-    float _708 = fast::max((_1097 - params.eye_position[1u]) / _170, 0.0);
-    float3 _715 = float3(params.eye_position) + (_72 * _708);
-    float _723 = _54.y;
-    float _726 = _715.y;
-    float _731 = fast::max(_726 - _723, 0.0);
-    float _780 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
-    float3 _813 = abs(_72);
-    float3 _826 = _72 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
-    float _830 = dot(_826, _826);
-    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _852 = _849.y;
-    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
-    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _932 = 1.0 - fast::clamp((-_72).y, 0.0, 1.0);
-    float _936 = _932 * _932;
-    float2 _956 = _715.xz;
-    float _1014 = _731 - params.foam_existence[0u];
-    float _1019 = params.foam_existence[1u] - params.foam_existence[0u];
-    float3 _1060 = select(_25.xyz, mix(mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (_731 + _780)), float3(exp((-params.scatter_coefficient) * _780))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(fma(_924, _924, fma(-_924, _924, 1.0) * ((_936 * _936) * _932)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract((_956 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_956)), length(dfdy(_956))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1014 < 0.0) ? 1.0 : (1.0 - ((_1014 >= _1019) ? 1.0 : fast::clamp(_1014 / fast::max(_1019, 5.9604644775390625e-08), 0.0, 1.0))))), bool3((_723 < _726) && (_146 < 0.0)));
-    out.out_color = float4(_1060, 1.0);
+    float _701 = fast::max((_1090 - params.eye_position[1u]) / _162, 0.0);
+    float3 _708 = float3(params.eye_position) + (_61 * _701);
+    float _716 = _50.y;
+    float _719 = _708.y;
+    float _724 = fast::max(_719 - _716, 0.0);
+    float _773 = fast::clamp(fast::max(_54 - _701, 0.0), 0.0, 30000.0);
+    float3 _806 = abs(_61);
+    float3 _819 = _61 / float3(fast::max(fast::max(fast::max(_806.x, _806.y), _806.z), 1.0000000031710768509710513471353e-30));
+    float _823 = dot(_819, _819);
+    float3 _842 = reflect(select(float3(0.0, -1.0, 0.0), _819 * rsqrt(fast::max(_823, 1.0000000031710768509710513471353e-30)), bool3(_823 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _845 = _842.y;
+    float _871 = smoothstep(0.0, params.reflection_horizon_band, -_845);
+    float _917 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _925 = 1.0 - fast::clamp((-_61).y, 0.0, 1.0);
+    float _929 = _925 * _925;
+    float2 _949 = _708.xz;
+    float _1007 = _724 - params.foam_existence[0u];
+    float _1012 = params.foam_existence[1u] - params.foam_existence[0u];
+    float3 _1053 = select(_25.xyz, mix(mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (_724 + _773)), float3(exp((-params.scatter_coefficient) * _773))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_842.x, abs(_845), _842.z), bool3(dot(_842, _842) > 9.9999999600419720025001879548654e-13)), _871).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_871)), float3(fma(_917, _917, fma(-_917, _917, 1.0) * ((_929 * _929) * _925)))), float3(params.foam_color) * mix(foam_pattern.sample(linear_clamp, (((fract((_949 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + float2(0.5)) * float2(0.00390625)), level(0.0)).x, 0.60000002384185791015625, fast::clamp(fma(fast::max(length(dfdx(_949)), length(dfdy(_949))) * params.foam_pattern_scale, 20.0, -1.0), 0.0, 1.0)), float3((_1007 < 0.0) ? 1.0 : (1.0 - ((_1007 >= _1012) ? 1.0 : fast::clamp(_1007 / fast::max(_1012, 5.9604644775390625e-08), 0.0, 1.0))))), bool3((_716 < _719) && (_138 < 0.0)));
+    out.out_color = float4(_1053, 1.0);
     return out;
 }
 

@@ -22,16 +22,15 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 492) float refraction_distortion;
     layout(offset = 496) vec3 foam_color;
     layout(offset = 508) float refraction_shore_fade_depth;
-    layout(offset = 512) vec2 frame_centre;
-    layout(offset = 520) vec2 foam_pattern_drift;
-    layout(offset = 528) vec2 foam_pattern_offset;
-    layout(offset = 536) float caustics_strength;
-    layout(offset = 540) float scatter_coefficient;
-    layout(offset = 544) float reflection_horizon_band;
-    layout(offset = 548) float ior_air;
-    layout(offset = 552) float ior_water;
-    layout(offset = 556) float foam_pattern_scale;
-    layout(offset = 560) float shore_hardness;
+    layout(offset = 512) vec2 foam_pattern_drift;
+    layout(offset = 520) vec2 foam_pattern_offset;
+    layout(offset = 528) float caustics_strength;
+    layout(offset = 532) float scatter_coefficient;
+    layout(offset = 536) float reflection_horizon_band;
+    layout(offset = 540) float ior_air;
+    layout(offset = 544) float ior_water;
+    layout(offset = 548) float foam_pattern_scale;
+    layout(offset = 552) float shore_hardness;
 } params;
 layout(constant_id = 0) const float gerstner_wave_count = 4.0;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
@@ -46,44 +45,44 @@ layout(location = 0) out vec4 out_color;
 void main() {
     // surface
     vec3 scene_rgb = texture(sampler2D(scene_color, linear_clamp), v_uv).xyz;
-    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 t14 = scene_pos - params.eye_position;
-    float scene_distance = length(t14);
-    vec3 view_ray = t14 / max(scene_distance, 1e-06);
+    vec3 to_scene = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz;
+    vec3 scene_pos = params.eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    vec3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.gerstner
     float pixel_angle = max(length(dFdx(view_ray)), length(dFdy(view_ray)));
     float trip_count = floor(gerstner_wave_count);
-    float loop31_c0 = params.gerstner_amplitude;
-    float loop31_c1 = params.gerstner_frequency;
-    float loop31_c2 = 0.0;
-    float loop31_c3 = 0.0;
-    for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
-        if (!(float(loop31_i) < trip_count)) break;
-        loop31_c2 = loop31_c2 + loop31_c0;
-        loop31_c3 = loop31_c3 + (loop31_c0 * loop31_c1);
-        loop31_c0 = loop31_c0 * params.gerstner_amplitude_gain;
-        loop31_c1 = loop31_c1 * params.gerstner_frequency_gain;
+    float loop26_c0 = params.gerstner_amplitude;
+    float loop26_c1 = params.gerstner_frequency;
+    float loop26_c2 = 0.0;
+    float loop26_c3 = 0.0;
+    for (int loop26_i = 0; loop26_i < 8; ++loop26_i) {
+        if (!(float(loop26_i) < trip_count)) break;
+        loop26_c2 = loop26_c2 + loop26_c0;
+        loop26_c3 = loop26_c3 + (loop26_c0 * loop26_c1);
+        loop26_c0 = loop26_c0 * params.gerstner_amplitude_gain;
+        loop26_c1 = loop26_c1 * params.gerstner_frequency_gain;
     }
-    float gerstner_max_slope = loop31_c3 / max(1.0 - params.gerstner_steepness, 0.2);
-    float t40 = view_ray.y;
-    float search_ray_down = max(-t40, 1e-06);
-    vec2 t43 = view_ray.xz;
-    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t43)) / search_ray_down));
-    float t49 = -loop31_c2;
-    float view_ray_y = min(t40, -1e-06);
-    float t52 = params.eye_position.y;
-    float surface_distance = max((loop31_c2 - t52) / view_ray_y, 0.0);
+    float gerstner_max_slope = loop26_c3 / max(1.0 - params.gerstner_steepness, 0.2);
+    float t35 = view_ray.y;
+    float search_ray_down = max(-t35, 1e-06);
+    vec2 t38 = view_ray.xz;
+    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t38)) / search_ray_down));
+    float t44 = -loop26_c2;
+    float view_ray_y = min(t35, -1e-06);
+    float t47 = params.eye_position.y;
+    float surface_distance = max((loop26_c2 - t47) / view_ray_y, 0.0);
     vec3 surface_point = params.eye_position + (view_ray * surface_distance);
-    vec2 t58 = surface_point.xz;
-    float loop60_c0 = loop31_c2;
-    float loop60_c1 = loop31_c2;
-    float loop60_c2 = t49;
-    vec2 loop60_c3 = t58;
-    vec2 loop60_c4 = vec2(0.0);
-    [[dont_unroll]] for (int loop60_i = 0; loop60_i < 9; ++loop60_i) {
+    vec2 t53 = surface_point.xz;
+    float loop55_c0 = loop26_c2;
+    float loop55_c1 = loop26_c2;
+    float loop55_c2 = t44;
+    vec2 loop55_c3 = t53;
+    vec2 loop55_c4 = vec2(0.0);
+    [[dont_unroll]] for (int loop55_i = 0; loop55_i < 9; ++loop55_i) {
         // waves.gerstner
-        float surface_distance_3 = max((loop60_c0 - t52) / view_ray_y, 0.0);
+        float surface_distance_3 = max((loop55_c0 - t47) / view_ray_y, 0.0);
         vec3 surface_point_3 = params.eye_position + (view_ray * surface_distance_3);
         vec2 t15 = surface_point_3.xz;
         float pixel_footprint = (pixel_angle * surface_distance_3) / search_ray_down;
@@ -96,27 +95,27 @@ void main() {
             // waves.gerstner
             vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop29_i)), 0, 7)];
             float wave_fade = clamp(2.0 - ((loop29_c1 * pixel_footprint) * 0.63661975), 0.0, 1.0);
-            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop60_c3)) + params.gerstner_wave_phases[clamp(int(float(loop29_i)), 0, 7)];
+            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop55_c3)) + params.gerstner_wave_phases[clamp(int(float(loop29_i)), 0, 7)];
             float t30 = ((params.gerstner_steepness / (trip_count * max(loop29_c1 * loop29_c0, 1e-06))) * loop29_c0) * wave_fade;
             float gerstner_sin = sin(wave_theta);
             float gerstner_cos = cos(wave_theta);
             float t34_2 = gerstner_wave_directions_2.x;
-            float t35 = gerstner_wave_directions_2.y;
-            float t38_2 = (t30 * loop29_c1) * gerstner_sin;
-            float t41 = t38_2 * t34_2;
+            float t35_2 = gerstner_wave_directions_2.y;
+            float t38_3 = (t30 * loop29_c1) * gerstner_sin;
+            float t41 = t38_3 * t34_2;
             loop29_c0 = loop29_c0 * params.gerstner_amplitude_gain;
             loop29_c1 = loop29_c1 * params.gerstner_frequency_gain;
             loop29_c2 = loop29_c2 + ((t30 * gerstner_cos) * gerstner_wave_directions_2);
-            loop29_c3 = loop29_c3 + vec3((t41 * t34_2), (t41 * t35), ((t38_2 * t35) * t35));
+            loop29_c3 = loop29_c3 + vec3((t41 * t34_2), (t41 * t35_2), ((t38_3 * t35_2) * t35_2));
         }
         float t34 = 1.0 - loop29_c3.x;
         float t36 = 1.0 - loop29_c3.z;
-        float t38 = -loop29_c3.y;
-        vec2 gerstner_grid_residual = (loop60_c3 + loop29_c2) - t15;
-        float gerstner_grid_det = max((t34 * t36) - (t38 * t38), 0.04);
+        float t38_2 = -loop29_c3.y;
+        vec2 gerstner_grid_residual = (loop55_c3 + loop29_c2) - t15;
+        float gerstner_grid_det = max((t34 * t36) - (t38_2 * t38_2), 0.04);
         float t46 = gerstner_grid_residual.x;
         float t48 = gerstner_grid_residual.y;
-        vec2 gerstner_grid_point = loop60_c3 - (vec2(((t36 * t46) - (t38 * t48)), ((t34 * t48) - (t38 * t46))) / gerstner_grid_det);
+        vec2 gerstner_grid_point = loop55_c3 - (vec2(((t36 * t46) - (t38_2 * t48)), ((t34 * t48) - (t38_2 * t46))) / gerstner_grid_det);
         float loop59_c0 = params.gerstner_amplitude;
         float loop59_c1 = params.gerstner_frequency;
         vec3 loop59_c2 = vec3(0.0);
@@ -132,130 +131,130 @@ void main() {
             float t32 = loop59_c0 * wave_fade_2;
             float gerstner_sin_2 = sin(wave_theta_2);
             float gerstner_cos_2 = cos(wave_theta_2);
-            float t35_2 = gerstner_wave_directions_3.x;
+            float t35_3 = gerstner_wave_directions_3.x;
             float t36_2 = gerstner_wave_directions_3.y;
             float t37 = t31 * gerstner_cos_2;
-            float t47 = -((t31 * loop59_c1) * gerstner_sin_2);
-            vec3 t50 = vec3((t47 * t35_2), ((t32 * loop59_c1) * gerstner_cos_2), (t47 * t36_2));
+            float t47_2 = -((t31 * loop59_c1) * gerstner_sin_2);
+            vec3 t50 = vec3((t47_2 * t35_3), ((t32 * loop59_c1) * gerstner_cos_2), (t47_2 * t36_2));
             loop59_c0 = loop59_c0 * params.gerstner_amplitude_gain;
             loop59_c1 = loop59_c1 * params.gerstner_frequency_gain;
-            loop59_c2 = loop59_c2 + vec3((t37 * t35_2), (t32 * gerstner_sin_2), (t37 * t36_2));
-            loop59_c3 = loop59_c3 + (t35_2 * t50);
+            loop59_c2 = loop59_c2 + vec3((t37 * t35_3), (t32 * gerstner_sin_2), (t37 * t36_2));
+            loop59_c3 = loop59_c3 + (t35_3 * t50);
             loop59_c4 = loop59_c4 + (t36_2 * t50);
         }
         vec3 t63 = cross(loop59_c4, loop59_c3);
-        float t64 = dot(t63, t63);
-        vec3 t68 = t63 * inversesqrt(max(t64, 1e-30));
-        bool t69_2 = t64 > 1e-30;
-        vec3 gerstner_normal = t69_2 ? t68 : vec3(0.0, 1.0, 0.0);
+        float t64_2 = dot(t63, t63);
+        vec3 t68 = t63 * inversesqrt(max(t64_2, 1e-30));
+        bool t69 = t64_2 > 1e-30;
+        vec3 gerstner_normal = t69 ? t68 : vec3(0.0, 1.0, 0.0);
         vec2 wave_slope = (-gerstner_normal.xz) / max(gerstner_normal.y, 0.0001);
         float gerstner_height = loop59_c2.y + dot(wave_slope, t15 - (gerstner_grid_point + loop59_c2.xz));
-        bool t84_2 = float(loop60_i) < 1.0;
-        float t85 = gerstner_height - loop60_c0;
-        float search_level = loop60_c0 + (search_relaxation * t85);
-        float t92 = (-dot(wave_slope, t43)) / search_ray_down;
+        bool t84 = float(loop55_i) < 1.0;
+        float t85 = gerstner_height - loop55_c0;
+        float search_level = loop55_c0 + (search_relaxation * t85);
+        float t92 = (-dot(wave_slope, t38)) / search_ray_down;
         float search_step = clamp(1.0 / max(1.0 - t92, 1e-06), search_relaxation, 1.0);
-        float search_level_2 = loop60_c0 + (search_step * t85);
-        bool t100 = t85 < 0.0;
-        float search_high = t100 ? loop60_c0 : loop60_c1;
-        float search_low = t100 ? loop60_c2 : loop60_c0;
-        bool t107 = ((search_level_2 < search_low) || (search_level_2 > search_high)) || (t92 >= 1.0);
+        float search_level_2 = loop55_c0 + (search_step * t85);
+        bool t100_2 = t85 < 0.0;
+        float search_high = t100_2 ? loop55_c0 : loop55_c1;
+        float search_low = t100_2 ? loop55_c2 : loop55_c0;
+        bool t107_2 = ((search_level_2 < search_low) || (search_level_2 > search_high)) || (t92 >= 1.0);
         float t110 = 0.5 * (search_low + search_high);
-        float search_level_3 = t107 ? t110 : search_level_2;
-        float search_level_4 = t84_2 ? search_level : search_level_3;
-        float t113 = t84_2 ? loop60_c0 : search_high;
-        float t114 = t84_2 ? loop60_c2 : search_low;
-        bool t116 = float(loop60_i) < 8.0;
-        float t117 = t116 ? search_level_4 : loop60_c0;
-        loop60_c0 = t117;
-        loop60_c1 = t113;
-        loop60_c2 = t114;
-        loop60_c3 = gerstner_grid_point;
-        loop60_c4 = wave_slope;
+        float search_level_3 = t107_2 ? t110 : search_level_2;
+        float search_level_4 = t84 ? search_level : search_level_3;
+        float t113 = t84 ? loop55_c0 : search_high;
+        float t114 = t84 ? loop55_c2 : search_low;
+        bool t116 = float(loop55_i) < 8.0;
+        float t117_2 = t116 ? search_level_4 : loop55_c0;
+        loop55_c0 = t117_2;
+        loop55_c1 = t113;
+        loop55_c2 = t114;
+        loop55_c3 = gerstner_grid_point;
+        loop55_c4 = wave_slope;
     }
-    float surface_distance_2 = max((loop60_c0 - t52) / view_ray_y, 0.0);
+    float surface_distance_2 = max((loop55_c0 - t47) / view_ray_y, 0.0);
     vec3 surface_point_2 = params.eye_position + (view_ray * surface_distance_2);
     float water_path = max(scene_distance - surface_distance_2, 0.0);
-    float t69 = scene_pos.y;
-    float t70 = surface_point_2.y;
-    float water_depth = max(t70 - t69, 0.0);
-    bool t75 = (t69 < t70) && (t40 < 0.0);
+    float t64 = scene_pos.y;
+    float t65 = surface_point_2.y;
+    float water_depth = max(t65 - t64, 0.0);
+    bool t70 = (t64 < t65) && (t35 < 0.0);
 
     // surface
     float n_dot_v = dot(vec3(0.0, 1.0, 0.0), -view_ray);
 
     // refraction.screen_distort
-    mediump float t82 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
-    bool t84 = params.refraction_shore_fade_depth > 0.0;
-    mediump float distortion_fade = t84 ? t82 : 1.0;
+    mediump float t77 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
+    bool t79 = params.refraction_shore_fade_depth > 0.0;
+    mediump float distortion_fade = t79 ? t77 : 1.0;
     mediump vec2 refraction_uv = clamp(v_uv + (vec2(0.0) * (params.refraction_distortion * distortion_fade)), 0.0, 1.0);
     mediump vec3 refracted = texture(sampler2D(scene_color, linear_clamp), refraction_uv).xyz;
 
     // caustics.area_ratio
     vec2 caustics_uv = (scene_pos.xz - vec2(params.caustics_window.x, params.caustics_window.y)) / params.caustics_window.z;
-    float t101 = caustics_uv.x;
-    float t105 = caustics_uv.y;
-    bool t109 = (((t101 >= 0.0) && (t101 <= 1.0)) && (t105 >= 0.0)) && (t105 <= 1.0);
-    float t112 = textureLod(sampler2D(caustics_map, linear_clamp), caustics_uv, 0.0).x;
-    float caustics_intensity = t109 ? t112 : 1.0;
+    float t96 = caustics_uv.x;
+    float t100 = caustics_uv.y;
+    bool t104 = (((t96 >= 0.0) && (t96 <= 1.0)) && (t100 >= 0.0)) && (t100 <= 1.0);
+    float t107 = textureLod(sampler2D(caustics_map, linear_clamp), caustics_uv, 0.0).x;
+    float caustics_intensity = t104 ? t107 : 1.0;
     vec3 caustics_lit = refracted * mix(1.0, caustics_intensity, params.caustics_strength);
 
     // extinction.absorb_scatter
-    mediump float t122 = clamp(water_path, 0.0, 30000.0);
-    mediump vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t122));
-    mediump float inverse_scatter = exp((-params.scatter_coefficient) * t122);
+    mediump float t117 = clamp(water_path, 0.0, 30000.0);
+    mediump vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t117));
+    mediump float inverse_scatter = exp((-params.scatter_coefficient) * t117);
     mediump vec3 water_color = mix(params.scatter_color, caustics_lit * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    mediump vec3 t136 = abs(view_ray);
-    mediump vec3 t144 = view_ray / max(max(max(t136.x, t136.y), t136.z), 1e-30);
-    mediump float t145 = dot(t144, t144);
-    mediump vec3 t148 = t144 * inversesqrt(max(t145, 1e-30));
-    bool t149 = t145 > 1e-30;
-    mediump vec3 t150 = t149 ? t148 : vec3(0.0, (-1.0), 0.0);
-    mediump vec3 reflected_ray = reflect(t150, vec3(0.0, 1.0, 0.0));
-    mediump float t154 = reflected_ray.y;
-    mediump vec3 t157 = vec3(reflected_ray.x, abs(t154), reflected_ray.z);
-    bool t160 = dot(reflected_ray, reflected_ray) > 1e-12;
-    mediump vec3 sky_direction = t160 ? t157 : vec3(0.0, 1.0, 0.0);
-    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t154);
-    mediump vec4 t164 = vec4(sky_direction, below_horizon);
-    mediump vec3 t166 = t164.xyz;
-    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t166).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t164.w));
+    mediump vec3 t131 = abs(view_ray);
+    mediump vec3 t139 = view_ray / max(max(max(t131.x, t131.y), t131.z), 1e-30);
+    mediump float t140 = dot(t139, t139);
+    mediump vec3 t143 = t139 * inversesqrt(max(t140, 1e-30));
+    bool t144 = t140 > 1e-30;
+    mediump vec3 t145 = t144 ? t143 : vec3(0.0, (-1.0), 0.0);
+    mediump vec3 reflected_ray = reflect(t145, vec3(0.0, 1.0, 0.0));
+    mediump float t149 = reflected_ray.y;
+    mediump vec3 t152 = vec3(reflected_ray.x, abs(t149), reflected_ray.z);
+    bool t155 = dot(reflected_ray, reflected_ray) > 1e-12;
+    mediump vec3 sky_direction = t155 ? t152 : vec3(0.0, 1.0, 0.0);
+    mediump float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t149);
+    mediump vec4 t159 = vec4(sky_direction, below_horizon);
+    mediump vec3 t161 = t159.xyz;
+    mediump vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t161).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t159.w));
 
     // fresnel.schlick
-    mediump float t179 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    mediump float fresnel_r0 = t179 * t179;
+    mediump float t174 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    mediump float fresnel_r0 = t174 * t174;
     mediump float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    mediump float t183 = one_minus_c * one_minus_c;
-    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t183 * t183) * one_minus_c));
+    mediump float t178 = one_minus_c * one_minus_c;
+    mediump float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t178 * t178) * one_minus_c));
 
     // compose
-    mediump vec3 t190 = mix(water_color, reflected, vec3(fresnel));
+    mediump vec3 t185 = mix(water_color, reflected, vec3(fresnel));
 
     // foam.shore
-    vec2 t191 = surface_point_2.xz;
-    vec2 foam_uv = ((fract((t191 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + 0.5) / 256.0;
-    float foam_footprint = max(length(dFdx(t191)), length(dFdy(t191)));
+    vec2 t186 = surface_point_2.xz;
+    vec2 foam_uv = ((fract((t186 * params.foam_pattern_scale) + params.foam_pattern_offset) * 255.0) + 0.5) / 256.0;
+    float foam_footprint = max(length(dFdx(t186)), length(dFdy(t186)));
     mediump float foam_texel = textureLod(sampler2D(foam_pattern, linear_clamp), foam_uv, 0.0).x;
     mediump float foam_aliasing = clamp((4.0 * ((foam_footprint * params.foam_pattern_scale) * 5.0)) - 1.0, 0.0, 1.0);
     mediump float foam_pattern_2 = mix(foam_texel, 0.6, foam_aliasing);
-    mediump float t221 = params.foam_existence.x;
-    mediump float t222 = water_depth - t221;
-    mediump float t224 = params.foam_existence.y - t221;
-    mediump float t228 = clamp(t222 / max(t224, 5.9604645e-08), 0.0, 1.0);
-    bool t229 = t222 >= t224;
-    mediump float t230 = t229 ? 1.0 : t228;
-    mediump float t231 = 1.0 - t230;
-    bool t232 = t222 < 0.0;
-    mediump float shore_foam = t232 ? 1.0 : t231;
-    mediump vec3 foam_rgb = mix(t190, params.foam_color * foam_pattern_2, vec3(shore_foam));
+    mediump float t216 = params.foam_existence.x;
+    mediump float t217 = water_depth - t216;
+    mediump float t219 = params.foam_existence.y - t216;
+    mediump float t223 = clamp(t217 / max(t219, 5.9604645e-08), 0.0, 1.0);
+    bool t224 = t217 >= t219;
+    mediump float t225 = t224 ? 1.0 : t223;
+    mediump float t226 = 1.0 - t225;
+    bool t227 = t217 < 0.0;
+    mediump float shore_foam = t227 ? 1.0 : t226;
+    mediump vec3 foam_rgb = mix(t185, params.foam_color * foam_pattern_2, vec3(shore_foam));
 
     // shore.soft
     mediump vec3 shore_color = mix(caustics_lit, foam_rgb, vec3(clamp(water_depth * params.shore_hardness, 0.0, 1.0)));
 
     // compose
-    mediump vec3 t243 = t75 ? shore_color : scene_rgb;
+    mediump vec3 t238 = t70 ? shore_color : scene_rgb;
 
-    out_color = vec4(t243, 1.0);
+    out_color = vec4(t238, 1.0);
 }

@@ -17,7 +17,6 @@ struct WaterParams
     packed_float3 incident_light;
     float specular_exponent;
     float3 reflection_lower_tint;
-    float2 frame_centre;
 };
 
 struct main0_out
@@ -33,34 +32,33 @@ struct main0_in
 fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params [[buffer(0)]], texture2d<float> scene_color [[texture(0)]], texture2d<float> scene_position [[texture(1)]], texturecube<float> sky_cube [[texture(2)]], sampler linear_clamp [[sampler(0)]])
 {
     main0_out out = {};
-    float3 _50 = scene_position.sample(linear_clamp, in.v_uv).xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _57 = _50 - float3(params.eye_position);
-    float _61 = length(_57);
-    float3 _68 = _57 / float3(fast::max(_61, 9.9999999747524270787835121154785e-07));
-    float _71 = _68.y;
-    float _81 = (-params.eye_position[1u]) / fast::min(_71, -9.9999999747524270787835121154785e-07);
-    float3 _107 = -_68;
-    float3 _137 = abs(_68);
-    float3 _152 = _68 / float3(fast::max(fast::max(fast::max(_137.x, _137.y), _137.z), 1.0000000031710768509710513471353e-30));
-    float _156 = dot(_152, _152);
-    float3 _176 = reflect(select(float3(0.0, -1.0, 0.0), _152 * rsqrt(fast::max(_156, 1.0000000031710768509710513471353e-30)), bool3(_156 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _179 = _176.y;
-    float _205 = smoothstep(0.0, params.reflection_horizon_band, -_179);
-    float _240 = fast::clamp(_107.y, 0.0, 1.0);
-    float _248 = params.ior_air / params.ior_water;
-    float _252 = _248 * _248;
-    float _256 = fma(-_240, _240, 1.0);
-    float _262 = sqrt(fast::max(fma(-_252, _256, 1.0), 0.0));
-    float _267 = params.ior_water * _262;
-    float _281 = fma(params.ior_air, _240, -_267) / fast::max(fma(params.ior_air, _240, _267), 1.0000000031710768509710513471353e-30);
-    float _286 = params.ior_air * _262;
-    float _300 = fma(params.ior_water, _240, -_286) / fast::max(fma(params.ior_water, _240, _286), 1.0000000031710768509710513471353e-30);
-    float3 _324 = (-float3(params.sun_direction)) + _107;
-    float _336 = fast::max(fast::max(abs(_324.x), abs(_324.y)), abs(_324.z));
-    float3 _343 = _324 / float3(fast::max(_336, 5.9604644775390625e-08));
-    float _362 = fast::clamp(select(float3(0.0), _343 / float3(fast::max(length(_343), 1.0)), bool3(_336 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _397 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_61 - _81, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_176.x, abs(_179), _176.z), bool3(dot(_176, _176) > 9.9999999600419720025001879548654e-13)), _205).xyz).xyz * mix(float3(1.0), params.reflection_lower_tint, float3(_205)), float3(((_252 * _256) >= 1.0) ? 1.0 : (0.5 * fma(_281, _281, _300 * _300)))) + (float3(params.sun_color) * ((_362 > 6.103515625e-05) ? pow(fast::max(_362, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_50.y < (float3(params.eye_position) + (_68 * _81)).y) && (_71 < 0.0)));
-    out.out_color = float4(_397, 1.0);
+    float3 _34 = scene_position.sample(linear_clamp, in.v_uv).xyz;
+    float _49 = length(_34);
+    float3 _56 = _34 / float3(fast::max(_49, 9.9999999747524270787835121154785e-07));
+    float _61 = _56.y;
+    float _72 = (-params.eye_position[1u]) / fast::min(_61, -9.9999999747524270787835121154785e-07);
+    float3 _99 = -_56;
+    float3 _129 = abs(_56);
+    float3 _145 = _56 / float3(fast::max(fast::max(fast::max(_129.x, _129.y), _129.z), 1.0000000031710768509710513471353e-30));
+    float _149 = dot(_145, _145);
+    float3 _169 = reflect(select(float3(0.0, -1.0, 0.0), _145 * rsqrt(fast::max(_149, 1.0000000031710768509710513471353e-30)), bool3(_149 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _172 = _169.y;
+    float _198 = smoothstep(0.0, params.reflection_horizon_band, -_172);
+    float _233 = fast::clamp(_99.y, 0.0, 1.0);
+    float _241 = params.ior_air / params.ior_water;
+    float _245 = _241 * _241;
+    float _249 = fma(-_233, _233, 1.0);
+    float _255 = sqrt(fast::max(fma(-_245, _249, 1.0), 0.0));
+    float _260 = params.ior_water * _255;
+    float _274 = fma(params.ior_air, _233, -_260) / fast::max(fma(params.ior_air, _233, _260), 1.0000000031710768509710513471353e-30);
+    float _279 = params.ior_air * _255;
+    float _293 = fma(params.ior_water, _233, -_279) / fast::max(fma(params.ior_water, _233, _279), 1.0000000031710768509710513471353e-30);
+    float3 _317 = (-float3(params.sun_direction)) + _99;
+    float _329 = fast::max(fast::max(abs(_317.x), abs(_317.y)), abs(_317.z));
+    float3 _336 = _317 / float3(fast::max(_329, 5.9604644775390625e-08));
+    float _355 = fast::clamp(select(float3(0.0), _336 / float3(fast::max(length(_336), 1.0)), bool3(_329 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _390 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_169.x, abs(_172), _169.z), bool3(dot(_169, _169) > 9.9999999600419720025001879548654e-13)), _198).xyz).xyz * mix(float3(1.0), params.reflection_lower_tint, float3(_198)), float3(((_245 * _249) >= 1.0) ? 1.0 : (0.5 * fma(_274, _274, _293 * _293)))) + (float3(params.sun_color) * ((_355 > 6.103515625e-05) ? pow(fast::max(_355, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3(((float3(params.eye_position) + _34).y < (float3(params.eye_position) + (_56 * _72)).y) && (_61 < 0.0)));
+    out.out_color = float4(_390, 1.0);
     return out;
 }
 

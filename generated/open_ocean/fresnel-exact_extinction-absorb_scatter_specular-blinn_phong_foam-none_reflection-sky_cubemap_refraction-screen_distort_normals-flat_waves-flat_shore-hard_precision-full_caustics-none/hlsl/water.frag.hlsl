@@ -12,7 +12,6 @@
     float3 incident_light : packoffset(c4.x);
     float specular_exponent : packoffset(c4.w);
     float3 reflection_lower_tint : packoffset(c5.x);
-    float2 frame_centre : packoffset(c6.x);
 };
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0, space0);
 [[vk::binding(2, 0)]] Texture2D scene_color : register(t0, space0);
@@ -22,75 +21,75 @@
 float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     // surface
     float3 scene_rgb = scene_color.Sample(linear_clamp, v_uv).xyz;
-    float3 scene_pos = scene_position.Sample(linear_clamp, v_uv).xyz - float3(frame_centre.x, 0.0, frame_centre.y);
-    float3 t16 = scene_pos - eye_position;
-    float scene_distance = length(t16);
-    float3 view_ray = t16 / max(scene_distance, 1e-06);
+    float3 to_scene = scene_position.Sample(linear_clamp, v_uv).xyz;
+    float3 scene_pos = eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    float3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t21 = view_ray.y;
-    float view_ray_y = min(t21, -1e-06);
-    float t26 = (-eye_position.y) / view_ray_y;
-    float3 surface_point = eye_position + (view_ray * t26);
-    float water_path = max(scene_distance - t26, 0.0);
-    bool t35 = (scene_pos.y < surface_point.y) && (t21 < 0.0);
+    float t16 = view_ray.y;
+    float view_ray_y = min(t16, -1e-06);
+    float t21 = (-eye_position.y) / view_ray_y;
+    float3 surface_point = eye_position + (view_ray * t21);
+    float water_path = max(scene_distance - t21, 0.0);
+    bool t30 = (scene_pos.y < surface_point.y) && (t16 < 0.0);
 
     // surface
-    float3 t37 = -view_ray;
-    float n_dot_v = dot(float3(0.0, 1.0, 0.0), t37);
+    float3 t32 = -view_ray;
+    float n_dot_v = dot(float3(0.0, 1.0, 0.0), t32);
 
     // extinction.absorb_scatter
     float inverse_scatter = exp((-scatter_coefficient) * clamp(water_path, 0.0, 30000.0));
     float3 water_color = lerp(scatter_color, float3(0.0, 0.0, 0.0), (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 t54 = abs(view_ray);
-    float3 t62 = view_ray / max(max(max(t54.x, t54.y), t54.z), 1e-30);
-    float t63 = dot(t62, t62);
-    float3 t66 = t62 * rsqrt(max(t63, 1e-30));
-    bool t67 = t63 > 1e-30;
-    float3 t68 = t67 ? t66 : float3(0.0, (-1.0), 0.0);
-    float3 reflected_ray = reflect(t68, float3(0.0, 1.0, 0.0));
-    float t71 = reflected_ray.y;
-    float3 t74 = float3(reflected_ray.x, abs(t71), reflected_ray.z);
-    bool t77 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t77 ? t74 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t71);
-    float4 t81 = float4(sky_direction, below_horizon);
-    float3 t83 = t81.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t83).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t81.w));
+    float3 t49 = abs(view_ray);
+    float3 t57 = view_ray / max(max(max(t49.x, t49.y), t49.z), 1e-30);
+    float t58 = dot(t57, t57);
+    float3 t61 = t57 * rsqrt(max(t58, 1e-30));
+    bool t62 = t58 > 1e-30;
+    float3 t63 = t62 ? t61 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t63, float3(0.0, 1.0, 0.0));
+    float t66 = reflected_ray.y;
+    float3 t69 = float3(reflected_ray.x, abs(t66), reflected_ray.z);
+    bool t72 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t72 ? t69 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t66);
+    float4 t76 = float4(sky_direction, below_horizon);
+    float3 t78 = t76.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t78).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t76.w));
 
     // fresnel.exact
     float cos_incident = saturate(n_dot_v);
-    float t97 = ior_air / ior_water;
-    float sin2_transmitted = (t97 * t97) * (1.0 - (cos_incident * cos_incident));
+    float t92 = ior_air / ior_water;
+    float sin2_transmitted = (t92 * t92) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t103 = ior_water * cos_transmitted;
-    float t104 = ior_air * cos_incident;
-    float t108 = (t104 - t103) / max(t104 + t103, 1e-30);
-    float t109 = ior_air * cos_transmitted;
-    float t110 = ior_water * cos_incident;
-    float t114 = (t110 - t109) / max(t110 + t109, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t108 * t108) + (t114 * t114));
-    bool t120 = sin2_transmitted >= 1.0;
-    float fresnel = t120 ? 1.0 : fresnel_unpolarised;
+    float t98 = ior_water * cos_transmitted;
+    float t99 = ior_air * cos_incident;
+    float t103 = (t99 - t98) / max(t99 + t98, 1e-30);
+    float t104 = ior_air * cos_transmitted;
+    float t105 = ior_water * cos_incident;
+    float t109 = (t105 - t104) / max(t105 + t104, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t103 * t103) + (t109 * t109));
+    bool t115 = sin2_transmitted >= 1.0;
+    float fresnel = t115 ? 1.0 : fresnel_unpolarised;
 
     // specular.blinn_phong
-    float3 t124 = (-sun_direction) + t37;
-    float t132 = max(max(abs(t124.x), abs(t124.y)), abs(t124.z));
-    float3 t135 = t124 / max(t132, 5.9604645e-08);
-    float3 t138 = t135 / max(length(t135), 1.0);
-    bool t139 = t132 > 5.9604645e-08;
-    float3 half_vector = t139 ? t138 : float3(0.0, 0.0, 0.0);
-    float t142 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
-    float t145 = pow(max(t142, 6.1035156e-05), specular_exponent);
-    bool t146 = t142 > 6.1035156e-05;
-    float t147 = t146 ? t145 : 0.0;
-    float3 specular = t147 * sun_color;
+    float3 t119 = (-sun_direction) + t32;
+    float t127 = max(max(abs(t119.x), abs(t119.y)), abs(t119.z));
+    float3 t130 = t119 / max(t127, 5.9604645e-08);
+    float3 t133 = t130 / max(length(t130), 1.0);
+    bool t134 = t127 > 5.9604645e-08;
+    float3 half_vector = t134 ? t133 : float3(0.0, 0.0, 0.0);
+    float t137 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
+    float t140 = pow(max(t137, 6.1035156e-05), specular_exponent);
+    bool t141 = t137 > 6.1035156e-05;
+    float t142 = t141 ? t140 : 0.0;
+    float3 specular = t142 * sun_color;
 
     // compose
     float3 water_rgb = lerp(water_color, reflected, (float3)(fresnel)) + specular;
-    float3 t152 = t35 ? water_rgb : scene_rgb;
+    float3 t147 = t30 ? water_rgb : scene_rgb;
 
-    return float4(t152, 1.0);
+    return float4(t147, 1.0);
 }

@@ -23,7 +23,6 @@ struct WaterParams
     float gerstner_steepness;
     packed_float3 reflection_lower_tint;
     float refraction_distortion;
-    float2 frame_centre;
     float refraction_shore_fade_depth;
     float scatter_coefficient;
     float reflection_horizon_band;
@@ -50,173 +49,173 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _61 = _54 - float3(params.eye_position);
-    float _65 = length(_61);
-    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
-    float3 _75 = dfdx(_72);
-    float3 _78 = dfdy(_72);
-    float _80 = fast::max(length(_75), length(_78));
-    float _83 = floor(gerstner_wave_count);
-    float _1104;
-    float _1106;
-    _1106 = 0.0;
-    _1104 = 0.0;
-    float _115;
-    float _120;
-    float _125;
-    float _130;
-    int _1103 = 0;
-    float _1105 = params.gerstner_amplitude;
-    float _1107 = params.gerstner_frequency;
-    for (; _1103 < 8; _1107 = _130, _1106 = _120, _1105 = _125, _1104 = _115, _1103++)
+    float3 _34 = _33.xyz;
+    float3 _50 = float3(params.eye_position) + _34;
+    float _54 = length(_34);
+    float3 _61 = _34 / float3(fast::max(_54, 9.9999999747524270787835121154785e-07));
+    float3 _64 = dfdx(_61);
+    float3 _67 = dfdy(_61);
+    float _69 = fast::max(length(_64), length(_67));
+    float _72 = floor(gerstner_wave_count);
+    float _1097;
+    float _1099;
+    _1099 = 0.0;
+    _1097 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _1096 = 0;
+    float _1098 = params.gerstner_amplitude;
+    float _1100 = params.gerstner_frequency;
+    for (; _1096 < 8; _1100 = _121, _1099 = _111, _1098 = _116, _1097 = _106, _1096++)
     {
-        if (!(float(_1103) < _83))
+        if (!(float(_1096) < _72))
         {
             break;
         }
-        _115 = _1104 + _1105;
-        _120 = fma(_1105, _1107, _1106);
-        _125 = _1105 * params.gerstner_amplitude_gain;
-        _130 = _1107 * params.gerstner_frequency_gain;
+        _106 = _1097 + _1098;
+        _111 = fma(_1098, _1100, _1099);
+        _116 = _1098 * params.gerstner_amplitude_gain;
+        _121 = _1100 * params.gerstner_frequency_gain;
     }
-    float _146 = _72.y;
-    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
-    float2 _154 = _72.xz;
-    float _163 = 1.0 / (1.0 + (((_1106 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
-    float _166 = -_1104;
-    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
-    float _1111;
-    float2 _1115;
-    _1115 = (float3(params.eye_position) + (_72 * fast::max((_1104 - params.eye_position[1u]) / _170, 0.0))).xz;
-    _1111 = _1104;
-    float2 _412;
-    float _679;
-    float _684;
-    float _694;
-    int _1110 = 0;
-    float _1143 = _1104;
-    float _1148 = _166;
-    for (; _1110 < 9; _1148 = _684, _1143 = _679, _1115 = _412, _1111 = _694, _1110++)
+    float _138 = _61.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _61.xz;
+    float _155 = 1.0 / (1.0 + (((_1099 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_1097;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _1104;
+    float2 _1108;
+    _1108 = (float3(params.eye_position) + (_61 * fast::max((_1097 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _1104 = _1097;
+    float2 _405;
+    float _672;
+    float _677;
+    float _687;
+    int _1103 = 0;
+    float _1136 = _1097;
+    float _1141 = _158;
+    for (; _1103 < 9; _1141 = _677, _1136 = _672, _1108 = _405, _1104 = _687, _1103++)
     {
-        float _216 = fast::max((_1111 - params.eye_position[1u]) / _170, 0.0);
-        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
-        float _232 = (_80 * _216) / _150;
-        float2 _1117;
+        float _208 = fast::max((_1104 - params.eye_position[1u]) / _162, 0.0);
+        float2 _218 = (float3(params.eye_position) + (_61 * _208)).xz;
+        float _224 = (_69 * _208) / _142;
+        float2 _1110;
+        float3 _1111;
+        _1111 = float3(0.0);
+        _1110 = float2(0.0);
+        float _322;
+        float _326;
+        float2 _333;
+        float3 _347;
+        int _1105 = 0;
+        float _1106 = params.gerstner_frequency;
+        float _1109 = params.gerstner_amplitude;
+        for (; _1105 < 8; _1111 = _347, _1110 = _333, _1109 = _322, _1106 = _326, _1105++)
+        {
+            float _243 = float(_1105);
+            if (!(_243 < _72))
+            {
+                break;
+            }
+            int _256 = clamp(int(_243), 0, 7);
+            float _281 = fma(_1106, dot(params.gerstner_wave_directions[_256].xy, _1108), params.gerstner_wave_phases[_256].x);
+            float _295 = ((params.gerstner_steepness / (_72 * fast::max(_1106 * _1109, 9.9999999747524270787835121154785e-07))) * _1109) * fast::clamp(fma(-(_1106 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _314 = (_295 * _1106) * sin(_281);
+            float _318 = _314 * params.gerstner_wave_directions[_256].x;
+            _322 = _1109 * params.gerstner_amplitude_gain;
+            _326 = _1106 * params.gerstner_frequency_gain;
+            _333 = _1110 + (params.gerstner_wave_directions[_256].xy * (_295 * cos(_281)));
+            _347 = _1111 + float3(_318 * params.gerstner_wave_directions[_256].x, _318 * params.gerstner_wave_directions[_256].y, (_314 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _353 = 1.0 - _1111.x;
+        float _358 = 1.0 - _1111.z;
+        float _362 = -_1111.y;
+        float2 _368 = (_1108 + _1110) - _218;
+        float _381 = _368.x;
+        float _384 = _368.y;
+        _405 = _1108 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
         float3 _1118;
+        float3 _1119;
+        float3 _1120;
+        _1120 = float3(0.0, 0.0, 1.0);
+        _1119 = float3(1.0, 0.0, 0.0);
         _1118 = float3(0.0);
-        _1117 = float2(0.0);
-        float _329;
-        float _333;
-        float2 _340;
-        float3 _354;
-        int _1112 = 0;
-        float _1113 = params.gerstner_frequency;
-        float _1116 = params.gerstner_amplitude;
-        for (; _1112 < 8; _1118 = _354, _1117 = _340, _1116 = _329, _1113 = _333, _1112++)
+        float _517;
+        float _521;
+        float3 _533;
+        float3 _538;
+        float3 _543;
+        int _1115 = 0;
+        float _1116 = params.gerstner_frequency;
+        float _1117 = params.gerstner_amplitude;
+        for (; _1115 < 8; _1120 = _543, _1119 = _538, _1118 = _533, _1117 = _517, _1116 = _521, _1115++)
         {
-            float _251 = float(_1112);
-            if (!(_251 < _83))
+            float _426 = float(_1115);
+            if (!(_426 < _72))
             {
                 break;
             }
-            int _264 = clamp(int(_251), 0, 7);
-            float _289 = fma(_1113, dot(params.gerstner_wave_directions[_264].xy, _1115), params.gerstner_wave_phases[_264].x);
-            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_1113 * _1116, 9.9999999747524270787835121154785e-07))) * _1116) * fast::clamp(fma(-(_1113 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _321 = (_303 * _1113) * sin(_289);
-            float _325 = _321 * params.gerstner_wave_directions[_264].x;
-            _329 = _1116 * params.gerstner_amplitude_gain;
-            _333 = _1113 * params.gerstner_frequency_gain;
-            _340 = _1117 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
-            _354 = _1118 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
+            int _437 = clamp(int(_426), 0, 7);
+            float _446 = fast::clamp(fma(-(_1116 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _459 = fma(_1116, dot(params.gerstner_wave_directions[_437].xy, _405), params.gerstner_wave_phases[_437].x);
+            float _473 = ((params.gerstner_steepness / (_72 * fast::max(_1116 * _1117, 9.9999999747524270787835121154785e-07))) * _1117) * _446;
+            float _477 = _1117 * _446;
+            float _480 = sin(_459);
+            float _483 = cos(_459);
+            float _493 = _473 * _483;
+            float _500 = -((_473 * _1116) * _480);
+            float3 _513 = float3(_500 * params.gerstner_wave_directions[_437].x, (_477 * _1116) * _483, _500 * params.gerstner_wave_directions[_437].y);
+            _517 = _1117 * params.gerstner_amplitude_gain;
+            _521 = _1116 * params.gerstner_frequency_gain;
+            _533 = _1118 + float3(_493 * params.gerstner_wave_directions[_437].x, _477 * _480, _493 * params.gerstner_wave_directions[_437].y);
+            _538 = _1119 + (_513 * params.gerstner_wave_directions[_437].x);
+            _543 = _1120 + (_513 * params.gerstner_wave_directions[_437].y);
         }
-        float _360 = 1.0 - _1118.x;
-        float _365 = 1.0 - _1118.z;
-        float _369 = -_1118.y;
-        float2 _375 = (_1115 + _1117) - _226;
-        float _388 = _375.x;
-        float _391 = _375.y;
-        _412 = _1115 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
-        float3 _1125;
-        float3 _1126;
-        float3 _1127;
-        _1127 = float3(0.0, 0.0, 1.0);
-        _1126 = float3(1.0, 0.0, 0.0);
-        _1125 = float3(0.0);
-        float _524;
-        float _528;
-        float3 _540;
-        float3 _545;
-        float3 _550;
-        int _1122 = 0;
-        float _1123 = params.gerstner_frequency;
-        float _1124 = params.gerstner_amplitude;
-        for (; _1122 < 8; _1127 = _550, _1126 = _545, _1125 = _540, _1124 = _524, _1123 = _528, _1122++)
-        {
-            float _433 = float(_1122);
-            if (!(_433 < _83))
-            {
-                break;
-            }
-            int _444 = clamp(int(_433), 0, 7);
-            float _453 = fast::clamp(fma(-(_1123 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _466 = fma(_1123, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
-            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1123 * _1124, 9.9999999747524270787835121154785e-07))) * _1124) * _453;
-            float _484 = _1124 * _453;
-            float _487 = sin(_466);
-            float _490 = cos(_466);
-            float _500 = _480 * _490;
-            float _507 = -((_480 * _1123) * _487);
-            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1123) * _490, _507 * params.gerstner_wave_directions[_444].y);
-            _524 = _1124 * params.gerstner_amplitude_gain;
-            _528 = _1123 * params.gerstner_frequency_gain;
-            _540 = _1125 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
-            _545 = _1126 + (_520 * params.gerstner_wave_directions[_444].x);
-            _550 = _1127 + (_520 * params.gerstner_wave_directions[_444].y);
-        }
-        float3 _556 = cross(_1127, _1126);
-        float _560 = dot(_556, _556);
-        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
-        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
-        float _603 = float(_1110);
-        bool _604 = _603 < 1.0;
-        float _608 = (_1125.y + dot(_588, _226 - (_412 + _1125.xz))) - _1111;
-        float _621 = (-dot(_588, _154)) / _150;
-        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _1111);
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _1111 : _1143;
-        float _647 = _637 ? _1148 : _1111;
-        _679 = _604 ? _1111 : _642;
-        _684 = _604 ? _1148 : _647;
-        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _1111) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _1111;
+        float3 _549 = cross(_1120, _1119);
+        float _553 = dot(_549, _549);
+        float3 _571 = select(float3(0.0, 1.0, 0.0), _549 * rsqrt(fast::max(_553, 1.0000000031710768509710513471353e-30)), bool3(_553 > 1.0000000031710768509710513471353e-30));
+        float2 _581 = (-_571.xz) / float2(fast::max(_571.y, 9.9999997473787516355514526367188e-05));
+        float _596 = float(_1103);
+        bool _597 = _596 < 1.0;
+        float _601 = (_1118.y + dot(_581, _218 - (_405 + _1118.xz))) - _1104;
+        float _614 = (-dot(_581, _146)) / _142;
+        float _627 = fma(fast::clamp(1.0 / fast::max(1.0 - _614, 9.9999999747524270787835121154785e-07), _155, 1.0), _601, _1104);
+        bool _630 = _601 < 0.0;
+        float _635 = _630 ? _1104 : _1136;
+        float _640 = _630 ? _1141 : _1104;
+        _672 = _597 ? _1104 : _635;
+        _677 = _597 ? _1141 : _640;
+        _687 = (_596 < 8.0) ? (_597 ? fma(_155, _601, _1104) : ((((_627 < _640) || (_627 > _635)) || (_614 >= 1.0)) ? (0.5 * (_640 + _635)) : _627)) : _1104;
     }
-    float _708 = fast::max((_1111 - params.eye_position[1u]) / _170, 0.0);
-    float3 _715 = float3(params.eye_position) + (_72 * _708);
-    float _723 = _54.y;
-    float _726 = _715.y;
-    float3 _741 = -_72;
-    float _782 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
-    float3 _816 = abs(_72);
-    float3 _829 = _72 / float3(fast::max(fast::max(fast::max(_816.x, _816.y), _816.z), 1.0000000031710768509710513471353e-30));
-    float _833 = dot(_829, _829);
-    float3 _852 = reflect(select(float3(0.0, -1.0, 0.0), _829 * rsqrt(fast::max(_833, 1.0000000031710768509710513471353e-30)), bool3(_833 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _855 = _852.y;
-    float _881 = smoothstep(0.0, params.reflection_horizon_band, -_855);
-    float _916 = fast::clamp(_741.y, 0.0, 1.0);
-    float _924 = params.ior_air / params.ior_water;
-    float _928 = _924 * _924;
-    float _932 = fma(-_916, _916, 1.0);
-    float _938 = sqrt(fast::max(fma(-_928, _932, 1.0), 0.0));
-    float _943 = params.ior_water * _938;
-    float _957 = fma(params.ior_air, _916, -_943) / fast::max(fma(params.ior_air, _916, _943), 1.0000000031710768509710513471353e-30);
-    float _962 = params.ior_air * _938;
-    float _976 = fma(params.ior_water, _916, -_962) / fast::max(fma(params.ior_water, _916, _962), 1.0000000031710768509710513471353e-30);
-    float3 _999 = (-float3(params.sun_direction)) + _741;
-    float _1011 = fast::max(fast::max(abs(_999.x), abs(_999.y)), abs(_999.z));
-    float3 _1018 = _999 / float3(fast::max(_1011, 5.9604644775390625e-08));
-    float _1037 = fast::clamp(select(float3(0.0), _1018 / float3(fast::max(length(_1018), 1.0)), bool3(_1011 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _1071 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _782)), float3(exp((-params.scatter_coefficient) * _782))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_852.x, abs(_855), _852.z), bool3(dot(_852, _852) > 9.9999999600419720025001879548654e-13)), _881).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_881)), float3(((_928 * _932) >= 1.0) ? 1.0 : (0.5 * fma(_957, _957, _976 * _976)))) + (float3(params.sun_color) * ((_1037 > 6.103515625e-05) ? pow(fast::max(_1037, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_723 < _726) && (_146 < 0.0)));
-    out.out_color = float4(_1071, 1.0);
+    float _701 = fast::max((_1104 - params.eye_position[1u]) / _162, 0.0);
+    float3 _708 = float3(params.eye_position) + (_61 * _701);
+    float _716 = _50.y;
+    float _719 = _708.y;
+    float3 _734 = -_61;
+    float _775 = fast::clamp(fast::max(_54 - _701, 0.0), 0.0, 30000.0);
+    float3 _809 = abs(_61);
+    float3 _822 = _61 / float3(fast::max(fast::max(fast::max(_809.x, _809.y), _809.z), 1.0000000031710768509710513471353e-30));
+    float _826 = dot(_822, _822);
+    float3 _845 = reflect(select(float3(0.0, -1.0, 0.0), _822 * rsqrt(fast::max(_826, 1.0000000031710768509710513471353e-30)), bool3(_826 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _848 = _845.y;
+    float _874 = smoothstep(0.0, params.reflection_horizon_band, -_848);
+    float _909 = fast::clamp(_734.y, 0.0, 1.0);
+    float _917 = params.ior_air / params.ior_water;
+    float _921 = _917 * _917;
+    float _925 = fma(-_909, _909, 1.0);
+    float _931 = sqrt(fast::max(fma(-_921, _925, 1.0), 0.0));
+    float _936 = params.ior_water * _931;
+    float _950 = fma(params.ior_air, _909, -_936) / fast::max(fma(params.ior_air, _909, _936), 1.0000000031710768509710513471353e-30);
+    float _955 = params.ior_air * _931;
+    float _969 = fma(params.ior_water, _909, -_955) / fast::max(fma(params.ior_water, _909, _955), 1.0000000031710768509710513471353e-30);
+    float3 _992 = (-float3(params.sun_direction)) + _734;
+    float _1004 = fast::max(fast::max(abs(_992.x), abs(_992.y)), abs(_992.z));
+    float3 _1011 = _992 / float3(fast::max(_1004, 5.9604644775390625e-08));
+    float _1030 = fast::clamp(select(float3(0.0), _1011 / float3(fast::max(length(_1011), 1.0)), bool3(_1004 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _1064 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_719 - _716, 0.0) + _775)), float3(exp((-params.scatter_coefficient) * _775))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_845.x, abs(_848), _845.z), bool3(dot(_845, _845) > 9.9999999600419720025001879548654e-13)), _874).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_874)), float3(((_921 * _925) >= 1.0) ? 1.0 : (0.5 * fma(_950, _950, _969 * _969)))) + (float3(params.sun_color) * ((_1030 > 6.103515625e-05) ? pow(fast::max(_1030, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_716 < _719) && (_138 < 0.0)));
+    out.out_color = float4(_1064, 1.0);
     return out;
 }
 

@@ -9,7 +9,6 @@
     float ior_air : packoffset(c2.w);
     float3 reflection_lower_tint : packoffset(c3.x);
     float ior_water : packoffset(c3.w);
-    float2 frame_centre : packoffset(c4.x);
 };
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0, space0);
 [[vk::binding(2, 0)]] Texture2D scene_color : register(t0, space0);
@@ -19,18 +18,18 @@
 float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     // surface
     float3 scene_rgb = scene_color.Sample(linear_clamp, v_uv).xyz;
-    float3 scene_pos = scene_position.Sample(linear_clamp, v_uv).xyz - float3(frame_centre.x, 0.0, frame_centre.y);
-    float3 t14 = scene_pos - eye_position;
-    float scene_distance = length(t14);
-    float3 view_ray = t14 / max(scene_distance, 1e-06);
+    float3 to_scene = scene_position.Sample(linear_clamp, v_uv).xyz;
+    float3 scene_pos = eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    float3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t19 = view_ray.y;
-    float view_ray_y = min(t19, -1e-06);
-    float t24 = (-eye_position.y) / view_ray_y;
-    float3 surface_point = eye_position + (view_ray * t24);
-    float water_path = max(scene_distance - t24, 0.0);
-    bool t33 = (scene_pos.y < surface_point.y) && (t19 < 0.0);
+    float t14 = view_ray.y;
+    float view_ray_y = min(t14, -1e-06);
+    float t19 = (-eye_position.y) / view_ray_y;
+    float3 surface_point = eye_position + (view_ray * t19);
+    float water_path = max(scene_distance - t19, 0.0);
+    bool t28 = (scene_pos.y < surface_point.y) && (t14 < 0.0);
 
     // surface
     float n_dot_v = dot(float3(0.0, 1.0, 0.0), -view_ray);
@@ -40,40 +39,40 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float3 water_color = lerp(scatter_color, float3(0.0, 0.0, 0.0), (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 t52 = abs(view_ray);
-    float3 t60 = view_ray / max(max(max(t52.x, t52.y), t52.z), 1e-30);
-    float t61 = dot(t60, t60);
-    float3 t64 = t60 * rsqrt(max(t61, 1e-30));
-    bool t65 = t61 > 1e-30;
-    float3 t66 = t65 ? t64 : float3(0.0, (-1.0), 0.0);
-    float3 reflected_ray = reflect(t66, float3(0.0, 1.0, 0.0));
-    float t69 = reflected_ray.y;
-    float3 t72 = float3(reflected_ray.x, abs(t69), reflected_ray.z);
-    bool t75 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t75 ? t72 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t69);
-    float4 t79 = float4(sky_direction, below_horizon);
-    float3 t81 = t79.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t81).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t79.w));
+    float3 t47 = abs(view_ray);
+    float3 t55 = view_ray / max(max(max(t47.x, t47.y), t47.z), 1e-30);
+    float t56 = dot(t55, t55);
+    float3 t59 = t55 * rsqrt(max(t56, 1e-30));
+    bool t60 = t56 > 1e-30;
+    float3 t61 = t60 ? t59 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t61, float3(0.0, 1.0, 0.0));
+    float t64 = reflected_ray.y;
+    float3 t67 = float3(reflected_ray.x, abs(t64), reflected_ray.z);
+    bool t70 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t70 ? t67 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t64);
+    float4 t74 = float4(sky_direction, below_horizon);
+    float3 t76 = t74.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t76).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t74.w));
 
     // fresnel.exact
     float cos_incident = saturate(n_dot_v);
-    float t95 = ior_air / ior_water;
-    float sin2_transmitted = (t95 * t95) * (1.0 - (cos_incident * cos_incident));
+    float t90 = ior_air / ior_water;
+    float sin2_transmitted = (t90 * t90) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t101 = ior_water * cos_transmitted;
-    float t102 = ior_air * cos_incident;
-    float t106 = (t102 - t101) / max(t102 + t101, 1e-30);
-    float t107 = ior_air * cos_transmitted;
-    float t108 = ior_water * cos_incident;
-    float t112 = (t108 - t107) / max(t108 + t107, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t106 * t106) + (t112 * t112));
-    bool t118 = sin2_transmitted >= 1.0;
-    float fresnel = t118 ? 1.0 : fresnel_unpolarised;
+    float t96 = ior_water * cos_transmitted;
+    float t97 = ior_air * cos_incident;
+    float t101 = (t97 - t96) / max(t97 + t96, 1e-30);
+    float t102 = ior_air * cos_transmitted;
+    float t103 = ior_water * cos_incident;
+    float t107 = (t103 - t102) / max(t103 + t102, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t101 * t101) + (t107 * t107));
+    bool t113 = sin2_transmitted >= 1.0;
+    float fresnel = t113 ? 1.0 : fresnel_unpolarised;
 
     // compose
-    float3 t121 = lerp(water_color, reflected, (float3)(fresnel));
-    float3 t122 = t33 ? t121 : scene_rgb;
+    float3 t116 = lerp(water_color, reflected, (float3)(fresnel));
+    float3 t117 = t28 ? t116 : scene_rgb;
 
-    return float4(t122, 1.0);
+    return float4(t117, 1.0);
 }

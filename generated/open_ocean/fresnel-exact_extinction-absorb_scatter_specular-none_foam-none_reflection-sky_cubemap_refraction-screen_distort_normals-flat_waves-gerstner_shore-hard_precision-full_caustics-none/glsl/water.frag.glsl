@@ -16,14 +16,13 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 444) float gerstner_amplitude_gain;
     layout(offset = 448) vec3 reflection_lower_tint;
     layout(offset = 460) float gerstner_frequency_gain;
-    layout(offset = 464) vec2 frame_centre;
-    layout(offset = 472) float gerstner_steepness;
-    layout(offset = 476) float refraction_distortion;
-    layout(offset = 480) float refraction_shore_fade_depth;
-    layout(offset = 484) float scatter_coefficient;
-    layout(offset = 488) float reflection_horizon_band;
-    layout(offset = 492) float ior_air;
-    layout(offset = 496) float ior_water;
+    layout(offset = 464) float gerstner_steepness;
+    layout(offset = 468) float refraction_distortion;
+    layout(offset = 472) float refraction_shore_fade_depth;
+    layout(offset = 476) float scatter_coefficient;
+    layout(offset = 480) float reflection_horizon_band;
+    layout(offset = 484) float ior_air;
+    layout(offset = 488) float ior_water;
 } params;
 layout(constant_id = 0) const float gerstner_wave_count = 4.0;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
@@ -36,44 +35,44 @@ layout(location = 0) out vec4 out_color;
 void main() {
     // surface
     vec3 scene_rgb = texture(sampler2D(scene_color, linear_clamp), v_uv).xyz;
-    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 t14 = scene_pos - params.eye_position;
-    float scene_distance = length(t14);
-    vec3 view_ray = t14 / max(scene_distance, 1e-06);
+    vec3 to_scene = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz;
+    vec3 scene_pos = params.eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    vec3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.gerstner
     float pixel_angle = max(length(dFdx(view_ray)), length(dFdy(view_ray)));
     float trip_count = floor(gerstner_wave_count);
-    float loop31_c0 = params.gerstner_amplitude;
-    float loop31_c1 = params.gerstner_frequency;
-    float loop31_c2 = 0.0;
-    float loop31_c3 = 0.0;
-    for (int loop31_i = 0; loop31_i < 8; ++loop31_i) {
-        if (!(float(loop31_i) < trip_count)) break;
-        loop31_c2 = loop31_c2 + loop31_c0;
-        loop31_c3 = loop31_c3 + (loop31_c0 * loop31_c1);
-        loop31_c0 = loop31_c0 * params.gerstner_amplitude_gain;
-        loop31_c1 = loop31_c1 * params.gerstner_frequency_gain;
+    float loop26_c0 = params.gerstner_amplitude;
+    float loop26_c1 = params.gerstner_frequency;
+    float loop26_c2 = 0.0;
+    float loop26_c3 = 0.0;
+    for (int loop26_i = 0; loop26_i < 8; ++loop26_i) {
+        if (!(float(loop26_i) < trip_count)) break;
+        loop26_c2 = loop26_c2 + loop26_c0;
+        loop26_c3 = loop26_c3 + (loop26_c0 * loop26_c1);
+        loop26_c0 = loop26_c0 * params.gerstner_amplitude_gain;
+        loop26_c1 = loop26_c1 * params.gerstner_frequency_gain;
     }
-    float gerstner_max_slope = loop31_c3 / max(1.0 - params.gerstner_steepness, 0.2);
-    float t40 = view_ray.y;
-    float search_ray_down = max(-t40, 1e-06);
-    vec2 t43 = view_ray.xz;
-    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t43)) / search_ray_down));
-    float t49 = -loop31_c2;
-    float view_ray_y = min(t40, -1e-06);
-    float t52 = params.eye_position.y;
-    float surface_distance = max((loop31_c2 - t52) / view_ray_y, 0.0);
+    float gerstner_max_slope = loop26_c3 / max(1.0 - params.gerstner_steepness, 0.2);
+    float t35 = view_ray.y;
+    float search_ray_down = max(-t35, 1e-06);
+    vec2 t38 = view_ray.xz;
+    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t38)) / search_ray_down));
+    float t44 = -loop26_c2;
+    float view_ray_y = min(t35, -1e-06);
+    float t47 = params.eye_position.y;
+    float surface_distance = max((loop26_c2 - t47) / view_ray_y, 0.0);
     vec3 surface_point = params.eye_position + (view_ray * surface_distance);
-    vec2 t58 = surface_point.xz;
-    float loop60_c0 = loop31_c2;
-    float loop60_c1 = loop31_c2;
-    float loop60_c2 = t49;
-    vec2 loop60_c3 = t58;
-    vec2 loop60_c4 = vec2(0.0);
-    [[dont_unroll]] for (int loop60_i = 0; loop60_i < 9; ++loop60_i) {
+    vec2 t53 = surface_point.xz;
+    float loop55_c0 = loop26_c2;
+    float loop55_c1 = loop26_c2;
+    float loop55_c2 = t44;
+    vec2 loop55_c3 = t53;
+    vec2 loop55_c4 = vec2(0.0);
+    [[dont_unroll]] for (int loop55_i = 0; loop55_i < 9; ++loop55_i) {
         // waves.gerstner
-        float surface_distance_3 = max((loop60_c0 - t52) / view_ray_y, 0.0);
+        float surface_distance_3 = max((loop55_c0 - t47) / view_ray_y, 0.0);
         vec3 surface_point_3 = params.eye_position + (view_ray * surface_distance_3);
         vec2 t15 = surface_point_3.xz;
         float pixel_footprint = (pixel_angle * surface_distance_3) / search_ray_down;
@@ -86,27 +85,27 @@ void main() {
             // waves.gerstner
             vec2 gerstner_wave_directions_2 = params.gerstner_wave_directions[clamp(int(float(loop29_i)), 0, 7)];
             float wave_fade = clamp(2.0 - ((loop29_c1 * pixel_footprint) * 0.63661975), 0.0, 1.0);
-            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop60_c3)) + params.gerstner_wave_phases[clamp(int(float(loop29_i)), 0, 7)];
+            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop55_c3)) + params.gerstner_wave_phases[clamp(int(float(loop29_i)), 0, 7)];
             float t30 = ((params.gerstner_steepness / (trip_count * max(loop29_c1 * loop29_c0, 1e-06))) * loop29_c0) * wave_fade;
             float gerstner_sin = sin(wave_theta);
             float gerstner_cos = cos(wave_theta);
             float t34_2 = gerstner_wave_directions_2.x;
-            float t35 = gerstner_wave_directions_2.y;
-            float t38_2 = (t30 * loop29_c1) * gerstner_sin;
-            float t41 = t38_2 * t34_2;
+            float t35_2 = gerstner_wave_directions_2.y;
+            float t38_3 = (t30 * loop29_c1) * gerstner_sin;
+            float t41 = t38_3 * t34_2;
             loop29_c0 = loop29_c0 * params.gerstner_amplitude_gain;
             loop29_c1 = loop29_c1 * params.gerstner_frequency_gain;
             loop29_c2 = loop29_c2 + ((t30 * gerstner_cos) * gerstner_wave_directions_2);
-            loop29_c3 = loop29_c3 + vec3((t41 * t34_2), (t41 * t35), ((t38_2 * t35) * t35));
+            loop29_c3 = loop29_c3 + vec3((t41 * t34_2), (t41 * t35_2), ((t38_3 * t35_2) * t35_2));
         }
         float t34 = 1.0 - loop29_c3.x;
         float t36 = 1.0 - loop29_c3.z;
-        float t38 = -loop29_c3.y;
-        vec2 gerstner_grid_residual = (loop60_c3 + loop29_c2) - t15;
-        float gerstner_grid_det = max((t34 * t36) - (t38 * t38), 0.04);
+        float t38_2 = -loop29_c3.y;
+        vec2 gerstner_grid_residual = (loop55_c3 + loop29_c2) - t15;
+        float gerstner_grid_det = max((t34 * t36) - (t38_2 * t38_2), 0.04);
         float t46 = gerstner_grid_residual.x;
         float t48 = gerstner_grid_residual.y;
-        vec2 gerstner_grid_point = loop60_c3 - (vec2(((t36 * t46) - (t38 * t48)), ((t34 * t48) - (t38 * t46))) / gerstner_grid_det);
+        vec2 gerstner_grid_point = loop55_c3 - (vec2(((t36 * t46) - (t38_2 * t48)), ((t34 * t48) - (t38_2 * t46))) / gerstner_grid_det);
         float loop59_c0 = params.gerstner_amplitude;
         float loop59_c1 = params.gerstner_frequency;
         vec3 loop59_c2 = vec3(0.0);
@@ -122,106 +121,106 @@ void main() {
             float t32 = loop59_c0 * wave_fade_2;
             float gerstner_sin_2 = sin(wave_theta_2);
             float gerstner_cos_2 = cos(wave_theta_2);
-            float t35_2 = gerstner_wave_directions_3.x;
+            float t35_3 = gerstner_wave_directions_3.x;
             float t36_2 = gerstner_wave_directions_3.y;
             float t37 = t31 * gerstner_cos_2;
-            float t47 = -((t31 * loop59_c1) * gerstner_sin_2);
-            vec3 t50 = vec3((t47 * t35_2), ((t32 * loop59_c1) * gerstner_cos_2), (t47 * t36_2));
+            float t47_2 = -((t31 * loop59_c1) * gerstner_sin_2);
+            vec3 t50 = vec3((t47_2 * t35_3), ((t32 * loop59_c1) * gerstner_cos_2), (t47_2 * t36_2));
             loop59_c0 = loop59_c0 * params.gerstner_amplitude_gain;
             loop59_c1 = loop59_c1 * params.gerstner_frequency_gain;
-            loop59_c2 = loop59_c2 + vec3((t37 * t35_2), (t32 * gerstner_sin_2), (t37 * t36_2));
-            loop59_c3 = loop59_c3 + (t35_2 * t50);
+            loop59_c2 = loop59_c2 + vec3((t37 * t35_3), (t32 * gerstner_sin_2), (t37 * t36_2));
+            loop59_c3 = loop59_c3 + (t35_3 * t50);
             loop59_c4 = loop59_c4 + (t36_2 * t50);
         }
         vec3 t63 = cross(loop59_c4, loop59_c3);
-        float t64 = dot(t63, t63);
-        vec3 t68 = t63 * inversesqrt(max(t64, 1e-30));
-        bool t69_2 = t64 > 1e-30;
-        vec3 gerstner_normal = t69_2 ? t68 : vec3(0.0, 1.0, 0.0);
+        float t64_2 = dot(t63, t63);
+        vec3 t68 = t63 * inversesqrt(max(t64_2, 1e-30));
+        bool t69 = t64_2 > 1e-30;
+        vec3 gerstner_normal = t69 ? t68 : vec3(0.0, 1.0, 0.0);
         vec2 wave_slope = (-gerstner_normal.xz) / max(gerstner_normal.y, 0.0001);
         float gerstner_height = loop59_c2.y + dot(wave_slope, t15 - (gerstner_grid_point + loop59_c2.xz));
-        bool t84 = float(loop60_i) < 1.0;
-        float t85 = gerstner_height - loop60_c0;
-        float search_level = loop60_c0 + (search_relaxation * t85);
-        float t92 = (-dot(wave_slope, t43)) / search_ray_down;
+        bool t84 = float(loop55_i) < 1.0;
+        float t85 = gerstner_height - loop55_c0;
+        float search_level = loop55_c0 + (search_relaxation * t85);
+        float t92 = (-dot(wave_slope, t38)) / search_ray_down;
         float search_step = clamp(1.0 / max(1.0 - t92, 1e-06), search_relaxation, 1.0);
-        float search_level_2 = loop60_c0 + (search_step * t85);
+        float search_level_2 = loop55_c0 + (search_step * t85);
         bool t100 = t85 < 0.0;
-        float search_high = t100 ? loop60_c0 : loop60_c1;
-        float search_low = t100 ? loop60_c2 : loop60_c0;
+        float search_high = t100 ? loop55_c0 : loop55_c1;
+        float search_low = t100 ? loop55_c2 : loop55_c0;
         bool t107 = ((search_level_2 < search_low) || (search_level_2 > search_high)) || (t92 >= 1.0);
         float t110 = 0.5 * (search_low + search_high);
         float search_level_3 = t107 ? t110 : search_level_2;
         float search_level_4 = t84 ? search_level : search_level_3;
-        float t113 = t84 ? loop60_c0 : search_high;
-        float t114 = t84 ? loop60_c2 : search_low;
-        bool t116 = float(loop60_i) < 8.0;
-        float t117_2 = t116 ? search_level_4 : loop60_c0;
-        loop60_c0 = t117_2;
-        loop60_c1 = t113;
-        loop60_c2 = t114;
-        loop60_c3 = gerstner_grid_point;
-        loop60_c4 = wave_slope;
+        float t113_2 = t84 ? loop55_c0 : search_high;
+        float t114 = t84 ? loop55_c2 : search_low;
+        bool t116_2 = float(loop55_i) < 8.0;
+        float t117_2 = t116_2 ? search_level_4 : loop55_c0;
+        loop55_c0 = t117_2;
+        loop55_c1 = t113_2;
+        loop55_c2 = t114;
+        loop55_c3 = gerstner_grid_point;
+        loop55_c4 = wave_slope;
     }
-    float surface_distance_2 = max((loop60_c0 - t52) / view_ray_y, 0.0);
+    float surface_distance_2 = max((loop55_c0 - t47) / view_ray_y, 0.0);
     vec3 surface_point_2 = params.eye_position + (view_ray * surface_distance_2);
     float water_path = max(scene_distance - surface_distance_2, 0.0);
-    float t69 = scene_pos.y;
-    float t70 = surface_point_2.y;
-    float water_depth = max(t70 - t69, 0.0);
-    bool t75 = (t69 < t70) && (t40 < 0.0);
+    float t64 = scene_pos.y;
+    float t65 = surface_point_2.y;
+    float water_depth = max(t65 - t64, 0.0);
+    bool t70 = (t64 < t65) && (t35 < 0.0);
 
     // surface
     float n_dot_v = dot(vec3(0.0, 1.0, 0.0), -view_ray);
 
     // refraction.screen_distort
-    float t81 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
-    bool t82 = params.refraction_shore_fade_depth > 0.0;
-    float distortion_fade = t82 ? t81 : 1.0;
+    float t76 = clamp(water_depth / params.refraction_shore_fade_depth, 0.0, 1.0);
+    bool t77 = params.refraction_shore_fade_depth > 0.0;
+    float distortion_fade = t77 ? t76 : 1.0;
     vec2 refraction_uv = clamp(v_uv + (vec2(0.0) * (params.refraction_distortion * distortion_fade)), 0.0, 1.0);
     vec3 refracted = texture(sampler2D(scene_color, linear_clamp), refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    float t95 = clamp(water_path, 0.0, 30000.0);
-    vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t95));
-    float inverse_scatter = exp((-params.scatter_coefficient) * t95);
+    float t90 = clamp(water_path, 0.0, 30000.0);
+    vec3 transmittance = exp((-params.absorb_coefficients) * (water_depth + t90));
+    float inverse_scatter = exp((-params.scatter_coefficient) * t90);
     vec3 water_color = mix(params.scatter_color, refracted * transmittance, vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    vec3 t109 = abs(view_ray);
-    vec3 t117 = view_ray / max(max(max(t109.x, t109.y), t109.z), 1e-30);
-    float t118 = dot(t117, t117);
-    vec3 t121 = t117 * inversesqrt(max(t118, 1e-30));
-    bool t122 = t118 > 1e-30;
-    vec3 t123 = t122 ? t121 : vec3(0.0, (-1.0), 0.0);
-    vec3 reflected_ray = reflect(t123, vec3(0.0, 1.0, 0.0));
-    float t126 = reflected_ray.y;
-    vec3 t129 = vec3(reflected_ray.x, abs(t126), reflected_ray.z);
-    bool t132 = dot(reflected_ray, reflected_ray) > 1e-12;
-    vec3 sky_direction = t132 ? t129 : vec3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t126);
-    vec4 t136 = vec4(sky_direction, below_horizon);
-    vec3 t138 = t136.xyz;
-    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t138).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t136.w));
+    vec3 t104 = abs(view_ray);
+    vec3 t112 = view_ray / max(max(max(t104.x, t104.y), t104.z), 1e-30);
+    float t113 = dot(t112, t112);
+    vec3 t116 = t112 * inversesqrt(max(t113, 1e-30));
+    bool t117 = t113 > 1e-30;
+    vec3 t118 = t117 ? t116 : vec3(0.0, (-1.0), 0.0);
+    vec3 reflected_ray = reflect(t118, vec3(0.0, 1.0, 0.0));
+    float t121 = reflected_ray.y;
+    vec3 t124 = vec3(reflected_ray.x, abs(t121), reflected_ray.z);
+    bool t127 = dot(reflected_ray, reflected_ray) > 1e-12;
+    vec3 sky_direction = t127 ? t124 : vec3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t121);
+    vec4 t131 = vec4(sky_direction, below_horizon);
+    vec3 t133 = t131.xyz;
+    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t133).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t131.w));
 
     // fresnel.exact
     float cos_incident = clamp(n_dot_v, 0.0, 1.0);
-    float t152 = params.ior_air / params.ior_water;
-    float sin2_transmitted = (t152 * t152) * (1.0 - (cos_incident * cos_incident));
+    float t147 = params.ior_air / params.ior_water;
+    float sin2_transmitted = (t147 * t147) * (1.0 - (cos_incident * cos_incident));
     float cos_transmitted = sqrt(max(1.0 - sin2_transmitted, 0.0));
-    float t158 = params.ior_water * cos_transmitted;
-    float t159 = params.ior_air * cos_incident;
-    float t163 = (t159 - t158) / max(t159 + t158, 1e-30);
-    float t164 = params.ior_air * cos_transmitted;
-    float t165 = params.ior_water * cos_incident;
-    float t169 = (t165 - t164) / max(t165 + t164, 1e-30);
-    float fresnel_unpolarised = 0.5 * ((t163 * t163) + (t169 * t169));
-    bool t175 = sin2_transmitted >= 1.0;
-    float fresnel = t175 ? 1.0 : fresnel_unpolarised;
+    float t153 = params.ior_water * cos_transmitted;
+    float t154 = params.ior_air * cos_incident;
+    float t158 = (t154 - t153) / max(t154 + t153, 1e-30);
+    float t159 = params.ior_air * cos_transmitted;
+    float t160 = params.ior_water * cos_incident;
+    float t164 = (t160 - t159) / max(t160 + t159, 1e-30);
+    float fresnel_unpolarised = 0.5 * ((t158 * t158) + (t164 * t164));
+    bool t170 = sin2_transmitted >= 1.0;
+    float fresnel = t170 ? 1.0 : fresnel_unpolarised;
 
     // compose
-    vec3 t178 = mix(water_color, reflected, vec3(fresnel));
-    vec3 t179 = t75 ? t178 : scene_rgb;
+    vec3 t173 = mix(water_color, reflected, vec3(fresnel));
+    vec3 t174 = t70 ? t173 : scene_rgb;
 
-    out_color = vec4(t179, 1.0);
+    out_color = vec4(t174, 1.0);
 }

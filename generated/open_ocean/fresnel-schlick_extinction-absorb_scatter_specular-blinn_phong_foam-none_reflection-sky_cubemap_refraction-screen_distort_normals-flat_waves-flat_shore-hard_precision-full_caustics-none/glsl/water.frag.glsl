@@ -13,7 +13,6 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 64) vec3 incident_light;
     layout(offset = 76) float specular_exponent;
     layout(offset = 80) vec3 reflection_lower_tint;
-    layout(offset = 96) vec2 frame_centre;
 } params;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
@@ -25,67 +24,67 @@ layout(location = 0) out vec4 out_color;
 void main() {
     // surface
     vec3 scene_rgb = texture(sampler2D(scene_color, linear_clamp), v_uv).xyz;
-    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 t16 = scene_pos - params.eye_position;
-    float scene_distance = length(t16);
-    vec3 view_ray = t16 / max(scene_distance, 1e-06);
+    vec3 to_scene = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz;
+    vec3 scene_pos = params.eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    vec3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t21 = view_ray.y;
-    float view_ray_y = min(t21, -1e-06);
-    float t26 = (-params.eye_position.y) / view_ray_y;
-    vec3 surface_point = params.eye_position + (view_ray * t26);
-    float water_path = max(scene_distance - t26, 0.0);
-    bool t35 = (scene_pos.y < surface_point.y) && (t21 < 0.0);
+    float t16 = view_ray.y;
+    float view_ray_y = min(t16, -1e-06);
+    float t21 = (-params.eye_position.y) / view_ray_y;
+    vec3 surface_point = params.eye_position + (view_ray * t21);
+    float water_path = max(scene_distance - t21, 0.0);
+    bool t30 = (scene_pos.y < surface_point.y) && (t16 < 0.0);
 
     // surface
-    vec3 t37 = -view_ray;
-    float n_dot_v = dot(vec3(0.0, 1.0, 0.0), t37);
+    vec3 t32 = -view_ray;
+    float n_dot_v = dot(vec3(0.0, 1.0, 0.0), t32);
 
     // extinction.absorb_scatter
     float inverse_scatter = exp((-params.scatter_coefficient) * clamp(water_path, 0.0, 30000.0));
     vec3 water_color = mix(params.scatter_color, vec3(0.0), vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    vec3 t54 = abs(view_ray);
-    vec3 t62 = view_ray / max(max(max(t54.x, t54.y), t54.z), 1e-30);
-    float t63 = dot(t62, t62);
-    vec3 t66 = t62 * inversesqrt(max(t63, 1e-30));
-    bool t67 = t63 > 1e-30;
-    vec3 t68 = t67 ? t66 : vec3(0.0, (-1.0), 0.0);
-    vec3 reflected_ray = reflect(t68, vec3(0.0, 1.0, 0.0));
-    float t71 = reflected_ray.y;
-    vec3 t74 = vec3(reflected_ray.x, abs(t71), reflected_ray.z);
-    bool t77 = dot(reflected_ray, reflected_ray) > 1e-12;
-    vec3 sky_direction = t77 ? t74 : vec3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t71);
-    vec4 t81 = vec4(sky_direction, below_horizon);
-    vec3 t83 = t81.xyz;
-    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t83).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t81.w));
+    vec3 t49 = abs(view_ray);
+    vec3 t57 = view_ray / max(max(max(t49.x, t49.y), t49.z), 1e-30);
+    float t58 = dot(t57, t57);
+    vec3 t61 = t57 * inversesqrt(max(t58, 1e-30));
+    bool t62 = t58 > 1e-30;
+    vec3 t63 = t62 ? t61 : vec3(0.0, (-1.0), 0.0);
+    vec3 reflected_ray = reflect(t63, vec3(0.0, 1.0, 0.0));
+    float t66 = reflected_ray.y;
+    vec3 t69 = vec3(reflected_ray.x, abs(t66), reflected_ray.z);
+    bool t72 = dot(reflected_ray, reflected_ray) > 1e-12;
+    vec3 sky_direction = t72 ? t69 : vec3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t66);
+    vec4 t76 = vec4(sky_direction, below_horizon);
+    vec3 t78 = t76.xyz;
+    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t78).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t76.w));
 
     // fresnel.schlick
-    float t96 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float fresnel_r0 = t96 * t96;
+    float t91 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float fresnel_r0 = t91 * t91;
     float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    float t100 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t100 * t100) * one_minus_c));
+    float t95 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t95 * t95) * one_minus_c));
 
     // specular.blinn_phong
-    vec3 t108 = (-params.sun_direction) + t37;
-    float t116 = max(max(abs(t108.x), abs(t108.y)), abs(t108.z));
-    vec3 t119 = t108 / max(t116, 5.9604645e-08);
-    vec3 t122 = t119 / max(length(t119), 1.0);
-    bool t123 = t116 > 5.9604645e-08;
-    vec3 half_vector = t123 ? t122 : vec3(0.0);
-    float t126 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
-    float t129 = pow(max(t126, 6.1035156e-05), params.specular_exponent);
-    bool t130 = t126 > 6.1035156e-05;
-    float t131 = t130 ? t129 : 0.0;
-    vec3 specular = t131 * params.sun_color;
+    vec3 t103 = (-params.sun_direction) + t32;
+    float t111 = max(max(abs(t103.x), abs(t103.y)), abs(t103.z));
+    vec3 t114 = t103 / max(t111, 5.9604645e-08);
+    vec3 t117 = t114 / max(length(t114), 1.0);
+    bool t118 = t111 > 5.9604645e-08;
+    vec3 half_vector = t118 ? t117 : vec3(0.0);
+    float t121 = clamp(dot(vec3(0.0, 1.0, 0.0), half_vector), 0.0, 1.0);
+    float t124 = pow(max(t121, 6.1035156e-05), params.specular_exponent);
+    bool t125 = t121 > 6.1035156e-05;
+    float t126 = t125 ? t124 : 0.0;
+    vec3 specular = t126 * params.sun_color;
 
     // compose
     vec3 water_rgb = mix(water_color, reflected, vec3(fresnel)) + specular;
-    vec3 t136 = t35 ? water_rgb : scene_rgb;
+    vec3 t131 = t30 ? water_rgb : scene_rgb;
 
-    out_color = vec4(t136, 1.0);
+    out_color = vec4(t131, 1.0);
 }

@@ -17,7 +17,6 @@ struct WaterParams
     packed_float3 incident_light;
     float specular_exponent;
     float3 reflection_lower_tint;
-    float2 frame_centre;
 };
 
 struct main0_out
@@ -33,28 +32,27 @@ struct main0_in
 fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params [[buffer(0)]], texture2d<float> scene_color [[texture(0)]], texture2d<float> scene_position [[texture(1)]], texturecube<float> sky_cube [[texture(2)]], sampler linear_clamp [[sampler(0)]])
 {
     main0_out out = {};
-    float3 _50 = scene_position.sample(linear_clamp, in.v_uv).xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _57 = _50 - float3(params.eye_position);
-    float _61 = length(_57);
-    float3 _68 = _57 / float3(fast::max(_61, 9.9999999747524270787835121154785e-07));
-    float _71 = _68.y;
-    float _81 = (-params.eye_position[1u]) / fast::min(_71, -9.9999999747524270787835121154785e-07);
-    float3 _107 = -_68;
-    float3 _137 = abs(_68);
-    float3 _152 = _68 / float3(fast::max(fast::max(fast::max(_137.x, _137.y), _137.z), 1.0000000031710768509710513471353e-30));
-    float _156 = dot(_152, _152);
-    float3 _176 = reflect(select(float3(0.0, -1.0, 0.0), _152 * rsqrt(fast::max(_156, 1.0000000031710768509710513471353e-30)), bool3(_156 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _179 = _176.y;
-    float _205 = smoothstep(0.0, params.reflection_horizon_band, -_179);
-    float _251 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _259 = 1.0 - fast::clamp(_107.y, 0.0, 1.0);
-    float _263 = _259 * _259;
-    float3 _281 = (-float3(params.sun_direction)) + _107;
-    float _293 = fast::max(fast::max(abs(_281.x), abs(_281.y)), abs(_281.z));
-    float3 _300 = _281 / float3(fast::max(_293, 5.9604644775390625e-08));
-    float _319 = fast::clamp(select(float3(0.0), _300 / float3(fast::max(length(_300), 1.0)), bool3(_293 > 5.9604644775390625e-08)).y, 0.0, 1.0);
-    float3 _354 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_61 - _81, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_176.x, abs(_179), _176.z), bool3(dot(_176, _176) > 9.9999999600419720025001879548654e-13)), _205).xyz).xyz * mix(float3(1.0), params.reflection_lower_tint, float3(_205)), float3(fma(_251, _251, fma(-_251, _251, 1.0) * ((_263 * _263) * _259)))) + (float3(params.sun_color) * ((_319 > 6.103515625e-05) ? pow(fast::max(_319, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3((_50.y < (float3(params.eye_position) + (_68 * _81)).y) && (_71 < 0.0)));
-    out.out_color = float4(_354, 1.0);
+    float3 _34 = scene_position.sample(linear_clamp, in.v_uv).xyz;
+    float _49 = length(_34);
+    float3 _56 = _34 / float3(fast::max(_49, 9.9999999747524270787835121154785e-07));
+    float _61 = _56.y;
+    float _72 = (-params.eye_position[1u]) / fast::min(_61, -9.9999999747524270787835121154785e-07);
+    float3 _99 = -_56;
+    float3 _129 = abs(_56);
+    float3 _145 = _56 / float3(fast::max(fast::max(fast::max(_129.x, _129.y), _129.z), 1.0000000031710768509710513471353e-30));
+    float _149 = dot(_145, _145);
+    float3 _169 = reflect(select(float3(0.0, -1.0, 0.0), _145 * rsqrt(fast::max(_149, 1.0000000031710768509710513471353e-30)), bool3(_149 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _172 = _169.y;
+    float _198 = smoothstep(0.0, params.reflection_horizon_band, -_172);
+    float _244 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _252 = 1.0 - fast::clamp(_99.y, 0.0, 1.0);
+    float _256 = _252 * _252;
+    float3 _274 = (-float3(params.sun_direction)) + _99;
+    float _286 = fast::max(fast::max(abs(_274.x), abs(_274.y)), abs(_274.z));
+    float3 _293 = _274 / float3(fast::max(_286, 5.9604644775390625e-08));
+    float _312 = fast::clamp(select(float3(0.0), _293 / float3(fast::max(length(_293), 1.0)), bool3(_286 > 5.9604644775390625e-08)).y, 0.0, 1.0);
+    float3 _347 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_169.x, abs(_172), _169.z), bool3(dot(_169, _169) > 9.9999999600419720025001879548654e-13)), _198).xyz).xyz * mix(float3(1.0), params.reflection_lower_tint, float3(_198)), float3(fma(_244, _244, fma(-_244, _244, 1.0) * ((_256 * _256) * _252)))) + (float3(params.sun_color) * ((_312 > 6.103515625e-05) ? pow(fast::max(_312, 6.103515625e-05), params.specular_exponent) : 0.0)), bool3(((float3(params.eye_position) + _34).y < (float3(params.eye_position) + (_56 * _72)).y) && (_61 < 0.0)));
+    out.out_color = float4(_347, 1.0);
     return out;
 }
 

@@ -12,7 +12,6 @@
     float3 incident_light : packoffset(c4.x);
     float specular_exponent : packoffset(c4.w);
     float3 reflection_lower_tint : packoffset(c5.x);
-    float2 frame_centre : packoffset(c6.x);
 };
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0, space0);
 [[vk::binding(2, 0)]] Texture2D scene_color : register(t0, space0);
@@ -22,67 +21,67 @@
 float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     // surface
     float3 scene_rgb = scene_color.Sample(linear_clamp, v_uv).xyz;
-    float3 scene_pos = scene_position.Sample(linear_clamp, v_uv).xyz - float3(frame_centre.x, 0.0, frame_centre.y);
-    float3 t16 = scene_pos - eye_position;
-    float scene_distance = length(t16);
-    float3 view_ray = t16 / max(scene_distance, 1e-06);
+    float3 to_scene = scene_position.Sample(linear_clamp, v_uv).xyz;
+    float3 scene_pos = eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    float3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t21 = view_ray.y;
-    float view_ray_y = min(t21, -1e-06);
-    float t26 = (-eye_position.y) / view_ray_y;
-    float3 surface_point = eye_position + (view_ray * t26);
-    float water_path = max(scene_distance - t26, 0.0);
-    bool t35 = (scene_pos.y < surface_point.y) && (t21 < 0.0);
+    float t16 = view_ray.y;
+    float view_ray_y = min(t16, -1e-06);
+    float t21 = (-eye_position.y) / view_ray_y;
+    float3 surface_point = eye_position + (view_ray * t21);
+    float water_path = max(scene_distance - t21, 0.0);
+    bool t30 = (scene_pos.y < surface_point.y) && (t16 < 0.0);
 
     // surface
-    float3 t37 = -view_ray;
-    float n_dot_v = dot(float3(0.0, 1.0, 0.0), t37);
+    float3 t32 = -view_ray;
+    float n_dot_v = dot(float3(0.0, 1.0, 0.0), t32);
 
     // extinction.absorb_scatter
     float inverse_scatter = exp((-scatter_coefficient) * clamp(water_path, 0.0, 30000.0));
     float3 water_color = lerp(scatter_color, float3(0.0, 0.0, 0.0), (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 t54 = abs(view_ray);
-    float3 t62 = view_ray / max(max(max(t54.x, t54.y), t54.z), 1e-30);
-    float t63 = dot(t62, t62);
-    float3 t66 = t62 * rsqrt(max(t63, 1e-30));
-    bool t67 = t63 > 1e-30;
-    float3 t68 = t67 ? t66 : float3(0.0, (-1.0), 0.0);
-    float3 reflected_ray = reflect(t68, float3(0.0, 1.0, 0.0));
-    float t71 = reflected_ray.y;
-    float3 t74 = float3(reflected_ray.x, abs(t71), reflected_ray.z);
-    bool t77 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t77 ? t74 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t71);
-    float4 t81 = float4(sky_direction, below_horizon);
-    float3 t83 = t81.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t83).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t81.w));
+    float3 t49 = abs(view_ray);
+    float3 t57 = view_ray / max(max(max(t49.x, t49.y), t49.z), 1e-30);
+    float t58 = dot(t57, t57);
+    float3 t61 = t57 * rsqrt(max(t58, 1e-30));
+    bool t62 = t58 > 1e-30;
+    float3 t63 = t62 ? t61 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t63, float3(0.0, 1.0, 0.0));
+    float t66 = reflected_ray.y;
+    float3 t69 = float3(reflected_ray.x, abs(t66), reflected_ray.z);
+    bool t72 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t72 ? t69 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t66);
+    float4 t76 = float4(sky_direction, below_horizon);
+    float3 t78 = t76.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t78).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t76.w));
 
     // fresnel.schlick
-    float t96 = (ior_air - ior_water) / (ior_air + ior_water);
-    float fresnel_r0 = t96 * t96;
+    float t91 = (ior_air - ior_water) / (ior_air + ior_water);
+    float fresnel_r0 = t91 * t91;
     float one_minus_c = 1.0 - saturate(n_dot_v);
-    float t100 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t100 * t100) * one_minus_c));
+    float t95 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t95 * t95) * one_minus_c));
 
     // specular.blinn_phong
-    float3 t108 = (-sun_direction) + t37;
-    float t116 = max(max(abs(t108.x), abs(t108.y)), abs(t108.z));
-    float3 t119 = t108 / max(t116, 5.9604645e-08);
-    float3 t122 = t119 / max(length(t119), 1.0);
-    bool t123 = t116 > 5.9604645e-08;
-    float3 half_vector = t123 ? t122 : float3(0.0, 0.0, 0.0);
-    float t126 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
-    float t129 = pow(max(t126, 6.1035156e-05), specular_exponent);
-    bool t130 = t126 > 6.1035156e-05;
-    float t131 = t130 ? t129 : 0.0;
-    float3 specular = t131 * sun_color;
+    float3 t103 = (-sun_direction) + t32;
+    float t111 = max(max(abs(t103.x), abs(t103.y)), abs(t103.z));
+    float3 t114 = t103 / max(t111, 5.9604645e-08);
+    float3 t117 = t114 / max(length(t114), 1.0);
+    bool t118 = t111 > 5.9604645e-08;
+    float3 half_vector = t118 ? t117 : float3(0.0, 0.0, 0.0);
+    float t121 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
+    float t124 = pow(max(t121, 6.1035156e-05), specular_exponent);
+    bool t125 = t121 > 6.1035156e-05;
+    float t126 = t125 ? t124 : 0.0;
+    float3 specular = t126 * sun_color;
 
     // compose
     float3 water_rgb = lerp(water_color, reflected, (float3)(fresnel)) + specular;
-    float3 t136 = t35 ? water_rgb : scene_rgb;
+    float3 t131 = t30 ? water_rgb : scene_rgb;
 
-    return float4(t136, 1.0);
+    return float4(t131, 1.0);
 }

@@ -18,13 +18,12 @@
     float gerstner_steepness : packoffset(c29.w);
     float3 reflection_lower_tint : packoffset(c30.x);
     float refraction_distortion : packoffset(c30.w);
-    float2 frame_centre : packoffset(c31.x);
-    float refraction_shore_fade_depth : packoffset(c31.z);
-    float scatter_coefficient : packoffset(c31.w);
-    float reflection_horizon_band : packoffset(c32.x);
-    float ior_air : packoffset(c32.y);
-    float ior_water : packoffset(c32.z);
-    float specular_exponent : packoffset(c32.w);
+    float refraction_shore_fade_depth : packoffset(c31.x);
+    float scatter_coefficient : packoffset(c31.y);
+    float reflection_horizon_band : packoffset(c31.z);
+    float ior_air : packoffset(c31.w);
+    float ior_water : packoffset(c32.x);
+    float specular_exponent : packoffset(c32.y);
 };
 [[vk::constant_id(0)]] const float gerstner_wave_count = 4.0;
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0, space0);
@@ -35,44 +34,44 @@
 float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     // surface
     float3 scene_rgb = scene_color.Sample(linear_clamp, v_uv).xyz;
-    float3 scene_pos = scene_position.Sample(linear_clamp, v_uv).xyz - float3(frame_centre.x, 0.0, frame_centre.y);
-    float3 t16 = scene_pos - eye_position;
-    float scene_distance = length(t16);
-    float3 view_ray = t16 / max(scene_distance, 1e-06);
+    float3 to_scene = scene_position.Sample(linear_clamp, v_uv).xyz;
+    float3 scene_pos = eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    float3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.gerstner
     float pixel_angle = max(length(ddx(view_ray)), length(ddy(view_ray)));
     float trip_count = floor(gerstner_wave_count);
-    float loop33_c0 = gerstner_amplitude;
-    float loop33_c1 = gerstner_frequency;
-    float loop33_c2 = 0.0;
-    float loop33_c3 = 0.0;
-    for (int loop33_i = 0; loop33_i < 8; ++loop33_i) {
-        if (!(((float)loop33_i) < trip_count)) break;
-        loop33_c2 = loop33_c2 + loop33_c0;
-        loop33_c3 = loop33_c3 + (loop33_c0 * loop33_c1);
-        loop33_c0 = loop33_c0 * gerstner_amplitude_gain;
-        loop33_c1 = loop33_c1 * gerstner_frequency_gain;
+    float loop28_c0 = gerstner_amplitude;
+    float loop28_c1 = gerstner_frequency;
+    float loop28_c2 = 0.0;
+    float loop28_c3 = 0.0;
+    for (int loop28_i = 0; loop28_i < 8; ++loop28_i) {
+        if (!(((float)loop28_i) < trip_count)) break;
+        loop28_c2 = loop28_c2 + loop28_c0;
+        loop28_c3 = loop28_c3 + (loop28_c0 * loop28_c1);
+        loop28_c0 = loop28_c0 * gerstner_amplitude_gain;
+        loop28_c1 = loop28_c1 * gerstner_frequency_gain;
     }
-    float gerstner_max_slope = loop33_c3 / max(1.0 - gerstner_steepness, 0.2);
-    float t42 = view_ray.y;
-    float search_ray_down = max(-t42, 1e-06);
-    float2 t45 = view_ray.xz;
-    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t45)) / search_ray_down));
-    float t51 = -loop33_c2;
-    float view_ray_y = min(t42, -1e-06);
-    float t54 = eye_position.y;
-    float surface_distance = max((loop33_c2 - t54) / view_ray_y, 0.0);
+    float gerstner_max_slope = loop28_c3 / max(1.0 - gerstner_steepness, 0.2);
+    float t37 = view_ray.y;
+    float search_ray_down = max(-t37, 1e-06);
+    float2 t40 = view_ray.xz;
+    float search_relaxation = 1.0 / (1.0 + ((gerstner_max_slope * length(t40)) / search_ray_down));
+    float t46 = -loop28_c2;
+    float view_ray_y = min(t37, -1e-06);
+    float t49 = eye_position.y;
+    float surface_distance = max((loop28_c2 - t49) / view_ray_y, 0.0);
     float3 surface_point = eye_position + (view_ray * surface_distance);
-    float2 t60 = surface_point.xz;
-    float loop63_c0 = loop33_c2;
-    float loop63_c1 = loop33_c2;
-    float loop63_c2 = t51;
-    float2 loop63_c3 = t60;
-    float2 loop63_c4 = float2(0.0, 0.0);
-    [loop] for (int loop63_i = 0; loop63_i < 9; ++loop63_i) {
+    float2 t55 = surface_point.xz;
+    float loop58_c0 = loop28_c2;
+    float loop58_c1 = loop28_c2;
+    float loop58_c2 = t46;
+    float2 loop58_c3 = t55;
+    float2 loop58_c4 = float2(0.0, 0.0);
+    [loop] for (int loop58_i = 0; loop58_i < 9; ++loop58_i) {
         // waves.gerstner
-        float surface_distance_3 = max((loop63_c0 - t54) / view_ray_y, 0.0);
+        float surface_distance_3 = max((loop58_c0 - t49) / view_ray_y, 0.0);
         float3 surface_point_3 = eye_position + (view_ray * surface_distance_3);
         float2 t15 = surface_point_3.xz;
         float pixel_footprint = (pixel_angle * surface_distance_3) / search_ray_down;
@@ -85,7 +84,7 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
             // waves.gerstner
             float2 gerstner_wave_directions_2 = gerstner_wave_directions[clamp(((int)(float)loop29_i), 0, 7)];
             float wave_fade = saturate(2.0 - ((loop29_c1 * pixel_footprint) * 0.63661975));
-            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop63_c3)) + gerstner_wave_phases[clamp(((int)(float)loop29_i), 0, 7)];
+            float wave_theta = (loop29_c1 * dot(gerstner_wave_directions_2, loop58_c3)) + gerstner_wave_phases[clamp(((int)(float)loop29_i), 0, 7)];
             float t30 = ((gerstner_steepness / (trip_count * max(loop29_c1 * loop29_c0, 1e-06))) * loop29_c0) * wave_fade;
             float gerstner_sin = sin(wave_theta);
             float gerstner_cos = cos(wave_theta);
@@ -101,11 +100,11 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
         float t34 = 1.0 - loop29_c3.x;
         float t36 = 1.0 - loop29_c3.z;
         float t38 = -loop29_c3.y;
-        float2 gerstner_grid_residual = (loop63_c3 + loop29_c2) - t15;
+        float2 gerstner_grid_residual = (loop58_c3 + loop29_c2) - t15;
         float gerstner_grid_det = max((t34 * t36) - (t38 * t38), 0.04);
-        float t46 = gerstner_grid_residual.x;
+        float t46_2 = gerstner_grid_residual.x;
         float t48 = gerstner_grid_residual.y;
-        float2 gerstner_grid_point = loop63_c3 - (float2(((t36 * t46) - (t38 * t48)), ((t34 * t48) - (t38 * t46))) / gerstner_grid_det);
+        float2 gerstner_grid_point = loop58_c3 - (float2(((t36 * t46_2) - (t38 * t48)), ((t34 * t48) - (t38 * t46_2))) / gerstner_grid_det);
         float loop59_c0 = gerstner_amplitude;
         float loop59_c1 = gerstner_frequency;
         float3 loop59_c2 = float3(0.0, 0.0, 0.0);
@@ -123,110 +122,110 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
             float gerstner_cos_2 = cos(wave_theta_2);
             float t35_2 = gerstner_wave_directions_3.x;
             float t36_2 = gerstner_wave_directions_3.y;
-            float t37 = t31 * gerstner_cos_2;
+            float t37_2 = t31 * gerstner_cos_2;
             float t47 = -((t31 * loop59_c1) * gerstner_sin_2);
             float3 t50 = float3((t47 * t35_2), ((t32 * loop59_c1) * gerstner_cos_2), (t47 * t36_2));
             loop59_c0 = loop59_c0 * gerstner_amplitude_gain;
             loop59_c1 = loop59_c1 * gerstner_frequency_gain;
-            loop59_c2 = loop59_c2 + float3((t37 * t35_2), (t32 * gerstner_sin_2), (t37 * t36_2));
+            loop59_c2 = loop59_c2 + float3((t37_2 * t35_2), (t32 * gerstner_sin_2), (t37_2 * t36_2));
             loop59_c3 = loop59_c3 + (t35_2 * t50);
             loop59_c4 = loop59_c4 + (t36_2 * t50);
         }
         float3 t63 = cross(loop59_c4, loop59_c3);
         float t64 = dot(t63, t63);
-        float3 t68 = t63 * rsqrt(max(t64, 1e-30));
+        float3 t68_2 = t63 * rsqrt(max(t64, 1e-30));
         bool t69 = t64 > 1e-30;
-        float3 gerstner_normal = t69 ? t68 : float3(0.0, 1.0, 0.0);
+        float3 gerstner_normal = t69 ? t68_2 : float3(0.0, 1.0, 0.0);
         float2 wave_slope = (-gerstner_normal.xz) / max(gerstner_normal.y, 0.0001);
         float gerstner_height = loop59_c2.y + dot(wave_slope, t15 - (gerstner_grid_point + loop59_c2.xz));
-        bool t84_2 = ((float)loop63_i) < 1.0;
-        float t85_2 = gerstner_height - loop63_c0;
-        float search_level = loop63_c0 + (search_relaxation * t85_2);
-        float t92 = (-dot(wave_slope, t45)) / search_ray_down;
+        bool t84 = ((float)loop58_i) < 1.0;
+        float t85 = gerstner_height - loop58_c0;
+        float search_level = loop58_c0 + (search_relaxation * t85);
+        float t92 = (-dot(wave_slope, t40)) / search_ray_down;
         float search_step = clamp(1.0 / max(1.0 - t92, 1e-06), search_relaxation, 1.0);
-        float search_level_2 = loop63_c0 + (search_step * t85_2);
-        bool t100 = t85_2 < 0.0;
-        float search_high = t100 ? loop63_c0 : loop63_c1;
-        float search_low = t100 ? loop63_c2 : loop63_c0;
-        bool t107 = ((search_level_2 < search_low) || (search_level_2 > search_high)) || (t92 >= 1.0);
+        float search_level_2 = loop58_c0 + (search_step * t85);
+        bool t100 = t85 < 0.0;
+        float search_high = t100 ? loop58_c0 : loop58_c1;
+        float search_low = t100 ? loop58_c2 : loop58_c0;
+        bool t107_2 = ((search_level_2 < search_low) || (search_level_2 > search_high)) || (t92 >= 1.0);
         float t110 = 0.5 * (search_low + search_high);
-        float search_level_3 = t107 ? t110 : search_level_2;
-        float search_level_4 = t84_2 ? search_level : search_level_3;
-        float t113 = t84_2 ? loop63_c0 : search_high;
-        float t114 = t84_2 ? loop63_c2 : search_low;
-        bool t116 = ((float)loop63_i) < 8.0;
-        float t117 = t116 ? search_level_4 : loop63_c0;
-        loop63_c0 = t117;
-        loop63_c1 = t113;
-        loop63_c2 = t114;
-        loop63_c3 = gerstner_grid_point;
-        loop63_c4 = wave_slope;
+        float search_level_3 = t107_2 ? t110 : search_level_2;
+        float search_level_4 = t84 ? search_level : search_level_3;
+        float t113 = t84 ? loop58_c0 : search_high;
+        float t114 = t84 ? loop58_c2 : search_low;
+        bool t116_2 = ((float)loop58_i) < 8.0;
+        float t117 = t116_2 ? search_level_4 : loop58_c0;
+        loop58_c0 = t117;
+        loop58_c1 = t113;
+        loop58_c2 = t114;
+        loop58_c3 = gerstner_grid_point;
+        loop58_c4 = wave_slope;
     }
-    float surface_distance_2 = max((loop63_c0 - t54) / view_ray_y, 0.0);
+    float surface_distance_2 = max((loop58_c0 - t49) / view_ray_y, 0.0);
     float3 surface_point_2 = eye_position + (view_ray * surface_distance_2);
     float water_path = max(scene_distance - surface_distance_2, 0.0);
-    float t72 = scene_pos.y;
-    float t73 = surface_point_2.y;
-    float water_depth = max(t73 - t72, 0.0);
-    bool t78 = (t72 < t73) && (t42 < 0.0);
+    float t67 = scene_pos.y;
+    float t68 = surface_point_2.y;
+    float water_depth = max(t68 - t67, 0.0);
+    bool t73 = (t67 < t68) && (t37 < 0.0);
 
     // surface
-    float3 t79 = -view_ray;
-    float n_dot_v = dot(float3(0.0, 1.0, 0.0), t79);
+    float3 t74 = -view_ray;
+    float n_dot_v = dot(float3(0.0, 1.0, 0.0), t74);
 
     // refraction.screen_distort
-    float t84 = saturate(water_depth / refraction_shore_fade_depth);
-    bool t85 = refraction_shore_fade_depth > 0.0;
-    float distortion_fade = t85 ? t84 : 1.0;
+    float t79 = saturate(water_depth / refraction_shore_fade_depth);
+    bool t80 = refraction_shore_fade_depth > 0.0;
+    float distortion_fade = t80 ? t79 : 1.0;
     float2 refraction_uv = saturate(v_uv + (float2(0.0, 0.0) * (refraction_distortion * distortion_fade)));
     float3 refracted = scene_color.Sample(linear_clamp, refraction_uv).xyz;
 
     // extinction.absorb_scatter
-    float t98 = clamp(water_path, 0.0, 30000.0);
-    float3 transmittance = exp((-absorb_coefficients) * (water_depth + t98));
-    float inverse_scatter = exp((-scatter_coefficient) * t98);
+    float t93 = clamp(water_path, 0.0, 30000.0);
+    float3 transmittance = exp((-absorb_coefficients) * (water_depth + t93));
+    float inverse_scatter = exp((-scatter_coefficient) * t93);
     float3 water_color = lerp(scatter_color, refracted * transmittance, (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 t112 = abs(view_ray);
-    float3 t120 = view_ray / max(max(max(t112.x, t112.y), t112.z), 1e-30);
-    float t121 = dot(t120, t120);
-    float3 t124 = t120 * rsqrt(max(t121, 1e-30));
-    bool t125 = t121 > 1e-30;
-    float3 t126 = t125 ? t124 : float3(0.0, (-1.0), 0.0);
-    float3 reflected_ray = reflect(t126, float3(0.0, 1.0, 0.0));
-    float t129 = reflected_ray.y;
-    float3 t132 = float3(reflected_ray.x, abs(t129), reflected_ray.z);
-    bool t135 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t135 ? t132 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t129);
-    float4 t139 = float4(sky_direction, below_horizon);
-    float3 t141 = t139.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t141).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t139.w));
+    float3 t107 = abs(view_ray);
+    float3 t115 = view_ray / max(max(max(t107.x, t107.y), t107.z), 1e-30);
+    float t116 = dot(t115, t115);
+    float3 t119 = t115 * rsqrt(max(t116, 1e-30));
+    bool t120 = t116 > 1e-30;
+    float3 t121 = t120 ? t119 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t121, float3(0.0, 1.0, 0.0));
+    float t124 = reflected_ray.y;
+    float3 t127 = float3(reflected_ray.x, abs(t124), reflected_ray.z);
+    bool t130 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t130 ? t127 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t124);
+    float4 t134 = float4(sky_direction, below_horizon);
+    float3 t136 = t134.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t136).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t134.w));
 
     // fresnel.schlick
-    float t154 = (ior_air - ior_water) / (ior_air + ior_water);
-    float fresnel_r0 = t154 * t154;
+    float t149 = (ior_air - ior_water) / (ior_air + ior_water);
+    float fresnel_r0 = t149 * t149;
     float one_minus_c = 1.0 - saturate(n_dot_v);
-    float t158 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t158 * t158) * one_minus_c));
+    float t153 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t153 * t153) * one_minus_c));
 
     // specular.blinn_phong
-    float3 t166 = (-sun_direction) + t79;
-    float t174 = max(max(abs(t166.x), abs(t166.y)), abs(t166.z));
-    float3 t177 = t166 / max(t174, 5.9604645e-08);
-    float3 t180 = t177 / max(length(t177), 1.0);
-    bool t181 = t174 > 5.9604645e-08;
-    float3 half_vector = t181 ? t180 : float3(0.0, 0.0, 0.0);
-    float t184 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
-    float t187 = pow(max(t184, 6.1035156e-05), specular_exponent);
-    bool t188 = t184 > 6.1035156e-05;
-    float t189 = t188 ? t187 : 0.0;
-    float3 specular = t189 * sun_color;
+    float3 t161 = (-sun_direction) + t74;
+    float t169 = max(max(abs(t161.x), abs(t161.y)), abs(t161.z));
+    float3 t172 = t161 / max(t169, 5.9604645e-08);
+    float3 t175 = t172 / max(length(t172), 1.0);
+    bool t176 = t169 > 5.9604645e-08;
+    float3 half_vector = t176 ? t175 : float3(0.0, 0.0, 0.0);
+    float t179 = saturate(dot(float3(0.0, 1.0, 0.0), half_vector));
+    float t182 = pow(max(t179, 6.1035156e-05), specular_exponent);
+    bool t183 = t179 > 6.1035156e-05;
+    float t184 = t183 ? t182 : 0.0;
+    float3 specular = t184 * sun_color;
 
     // compose
     float3 water_rgb = lerp(water_color, reflected, (float3)(fresnel)) + specular;
-    float3 t194 = t78 ? water_rgb : scene_rgb;
+    float3 t189 = t73 ? water_rgb : scene_rgb;
 
-    return float4(t194, 1.0);
+    return float4(t189, 1.0);
 }

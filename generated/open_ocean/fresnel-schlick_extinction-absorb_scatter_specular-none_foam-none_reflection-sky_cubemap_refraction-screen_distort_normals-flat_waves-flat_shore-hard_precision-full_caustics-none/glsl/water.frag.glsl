@@ -10,7 +10,6 @@ layout(set = 0, binding = 0, std140) uniform WaterParams {
     layout(offset = 44) float ior_air;
     layout(offset = 48) vec3 reflection_lower_tint;
     layout(offset = 60) float ior_water;
-    layout(offset = 64) vec2 frame_centre;
 } params;
 layout(set = 0, binding = 1) uniform sampler linear_clamp;
 layout(set = 0, binding = 2) uniform texture2D scene_color;
@@ -22,18 +21,18 @@ layout(location = 0) out vec4 out_color;
 void main() {
     // surface
     vec3 scene_rgb = texture(sampler2D(scene_color, linear_clamp), v_uv).xyz;
-    vec3 scene_pos = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz - vec3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    vec3 t14 = scene_pos - params.eye_position;
-    float scene_distance = length(t14);
-    vec3 view_ray = t14 / max(scene_distance, 1e-06);
+    vec3 to_scene = texture(sampler2D(scene_position, linear_clamp), v_uv).xyz;
+    vec3 scene_pos = params.eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    vec3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t19 = view_ray.y;
-    float view_ray_y = min(t19, -1e-06);
-    float t24 = (-params.eye_position.y) / view_ray_y;
-    vec3 surface_point = params.eye_position + (view_ray * t24);
-    float water_path = max(scene_distance - t24, 0.0);
-    bool t33 = (scene_pos.y < surface_point.y) && (t19 < 0.0);
+    float t14 = view_ray.y;
+    float view_ray_y = min(t14, -1e-06);
+    float t19 = (-params.eye_position.y) / view_ray_y;
+    vec3 surface_point = params.eye_position + (view_ray * t19);
+    float water_path = max(scene_distance - t19, 0.0);
+    bool t28 = (scene_pos.y < surface_point.y) && (t14 < 0.0);
 
     // surface
     float n_dot_v = dot(vec3(0.0, 1.0, 0.0), -view_ray);
@@ -43,32 +42,32 @@ void main() {
     vec3 water_color = mix(params.scatter_color, vec3(0.0), vec3(inverse_scatter)) * params.incident_light;
 
     // reflection.sky_cubemap
-    vec3 t52 = abs(view_ray);
-    vec3 t60 = view_ray / max(max(max(t52.x, t52.y), t52.z), 1e-30);
-    float t61 = dot(t60, t60);
-    vec3 t64 = t60 * inversesqrt(max(t61, 1e-30));
-    bool t65 = t61 > 1e-30;
-    vec3 t66 = t65 ? t64 : vec3(0.0, (-1.0), 0.0);
-    vec3 reflected_ray = reflect(t66, vec3(0.0, 1.0, 0.0));
-    float t69 = reflected_ray.y;
-    vec3 t72 = vec3(reflected_ray.x, abs(t69), reflected_ray.z);
-    bool t75 = dot(reflected_ray, reflected_ray) > 1e-12;
-    vec3 sky_direction = t75 ? t72 : vec3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t69);
-    vec4 t79 = vec4(sky_direction, below_horizon);
-    vec3 t81 = t79.xyz;
-    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t81).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t79.w));
+    vec3 t47 = abs(view_ray);
+    vec3 t55 = view_ray / max(max(max(t47.x, t47.y), t47.z), 1e-30);
+    float t56 = dot(t55, t55);
+    vec3 t59 = t55 * inversesqrt(max(t56, 1e-30));
+    bool t60 = t56 > 1e-30;
+    vec3 t61 = t60 ? t59 : vec3(0.0, (-1.0), 0.0);
+    vec3 reflected_ray = reflect(t61, vec3(0.0, 1.0, 0.0));
+    float t64 = reflected_ray.y;
+    vec3 t67 = vec3(reflected_ray.x, abs(t64), reflected_ray.z);
+    bool t70 = dot(reflected_ray, reflected_ray) > 1e-12;
+    vec3 sky_direction = t70 ? t67 : vec3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, params.reflection_horizon_band, -t64);
+    vec4 t74 = vec4(sky_direction, below_horizon);
+    vec3 t76 = t74.xyz;
+    vec3 reflected = texture(samplerCube(sky_cube, linear_clamp), t76).xyz * mix(vec3(1.0), params.reflection_lower_tint, vec3(t74.w));
 
     // fresnel.schlick
-    float t94 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float fresnel_r0 = t94 * t94;
+    float t89 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float fresnel_r0 = t89 * t89;
     float one_minus_c = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    float t98 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t98 * t98) * one_minus_c));
+    float t93 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t93 * t93) * one_minus_c));
 
     // compose
-    vec3 t105 = mix(water_color, reflected, vec3(fresnel));
-    vec3 t106 = t33 ? t105 : scene_rgb;
+    vec3 t100 = mix(water_color, reflected, vec3(fresnel));
+    vec3 t101 = t28 ? t100 : scene_rgb;
 
-    out_color = vec4(t106, 1.0);
+    out_color = vec4(t101, 1.0);
 }

@@ -14,7 +14,6 @@ struct WaterParams
     float ior_air;
     packed_float3 reflection_lower_tint;
     float ior_water;
-    float2 frame_centre;
 };
 
 struct main0_out
@@ -30,23 +29,22 @@ struct main0_in
 fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params [[buffer(0)]], texture2d<float> scene_color [[texture(0)]], texture2d<float> scene_position [[texture(1)]], texturecube<float> sky_cube [[texture(2)]], sampler linear_clamp [[sampler(0)]])
 {
     main0_out out = {};
-    float3 _50 = scene_position.sample(linear_clamp, in.v_uv).xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _57 = _50 - float3(params.eye_position);
-    float _61 = length(_57);
-    float3 _68 = _57 / float3(fast::max(_61, 9.9999999747524270787835121154785e-07));
-    float _71 = _68.y;
-    float _81 = (-params.eye_position[1u]) / fast::min(_71, -9.9999999747524270787835121154785e-07);
-    float3 _135 = abs(_68);
-    float3 _150 = _68 / float3(fast::max(fast::max(fast::max(_135.x, _135.y), _135.z), 1.0000000031710768509710513471353e-30));
-    float _154 = dot(_150, _150);
-    float3 _174 = reflect(select(float3(0.0, -1.0, 0.0), _150 * rsqrt(fast::max(_154, 1.0000000031710768509710513471353e-30)), bool3(_154 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _177 = _174.y;
-    float _203 = smoothstep(0.0, params.reflection_horizon_band, -_177);
-    float _249 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _257 = 1.0 - fast::clamp((-_68).y, 0.0, 1.0);
-    float _261 = _257 * _257;
-    float3 _284 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_61 - _81, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_174.x, abs(_177), _174.z), bool3(dot(_174, _174) > 9.9999999600419720025001879548654e-13)), _203).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_203)), float3(fma(_249, _249, fma(-_249, _249, 1.0) * ((_261 * _261) * _257)))), bool3((_50.y < (float3(params.eye_position) + (_68 * _81)).y) && (_71 < 0.0)));
-    out.out_color = float4(_284, 1.0);
+    float3 _34 = scene_position.sample(linear_clamp, in.v_uv).xyz;
+    float _49 = length(_34);
+    float3 _56 = _34 / float3(fast::max(_49, 9.9999999747524270787835121154785e-07));
+    float _61 = _56.y;
+    float _72 = (-params.eye_position[1u]) / fast::min(_61, -9.9999999747524270787835121154785e-07);
+    float3 _127 = abs(_56);
+    float3 _143 = _56 / float3(fast::max(fast::max(fast::max(_127.x, _127.y), _127.z), 1.0000000031710768509710513471353e-30));
+    float _147 = dot(_143, _143);
+    float3 _167 = reflect(select(float3(0.0, -1.0, 0.0), _143 * rsqrt(fast::max(_147, 1.0000000031710768509710513471353e-30)), bool3(_147 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _170 = _167.y;
+    float _196 = smoothstep(0.0, params.reflection_horizon_band, -_170);
+    float _242 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _250 = 1.0 - fast::clamp((-_56).y, 0.0, 1.0);
+    float _254 = _250 * _250;
+    float3 _277 = select(scene_color.sample(linear_clamp, in.v_uv).xyz, mix(mix(float3(params.scatter_color), float3(0.0), float3(exp((-params.scatter_coefficient) * fast::clamp(fast::max(_49 - _72, 0.0), 0.0, 30000.0)))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_167.x, abs(_170), _167.z), bool3(dot(_167, _167) > 9.9999999600419720025001879548654e-13)), _196).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_196)), float3(fma(_242, _242, fma(-_242, _242, 1.0) * ((_254 * _254) * _250)))), bool3(((float3(params.eye_position) + _34).y < (float3(params.eye_position) + (_56 * _72)).y) && (_61 < 0.0)));
+    out.out_color = float4(_277, 1.0);
     return out;
 }
 

@@ -9,7 +9,6 @@
     float ior_air : packoffset(c2.w);
     float3 reflection_lower_tint : packoffset(c3.x);
     float ior_water : packoffset(c3.w);
-    float2 frame_centre : packoffset(c4.x);
 };
 [[vk::binding(1, 0)]] SamplerState linear_clamp : register(s0, space0);
 [[vk::binding(2, 0)]] Texture2D scene_color : register(t0, space0);
@@ -19,18 +18,18 @@
 float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     // surface
     float3 scene_rgb = scene_color.Sample(linear_clamp, v_uv).xyz;
-    float3 scene_pos = scene_position.Sample(linear_clamp, v_uv).xyz - float3(frame_centre.x, 0.0, frame_centre.y);
-    float3 t14 = scene_pos - eye_position;
-    float scene_distance = length(t14);
-    float3 view_ray = t14 / max(scene_distance, 1e-06);
+    float3 to_scene = scene_position.Sample(linear_clamp, v_uv).xyz;
+    float3 scene_pos = eye_position + to_scene;
+    float scene_distance = length(to_scene);
+    float3 view_ray = to_scene / max(scene_distance, 1e-06);
 
     // waves.flat
-    float t19 = view_ray.y;
-    float view_ray_y = min(t19, -1e-06);
-    float t24 = (-eye_position.y) / view_ray_y;
-    float3 surface_point = eye_position + (view_ray * t24);
-    float water_path = max(scene_distance - t24, 0.0);
-    bool t33 = (scene_pos.y < surface_point.y) && (t19 < 0.0);
+    float t14 = view_ray.y;
+    float view_ray_y = min(t14, -1e-06);
+    float t19 = (-eye_position.y) / view_ray_y;
+    float3 surface_point = eye_position + (view_ray * t19);
+    float water_path = max(scene_distance - t19, 0.0);
+    bool t28 = (scene_pos.y < surface_point.y) && (t14 < 0.0);
 
     // surface
     float n_dot_v = dot(float3(0.0, 1.0, 0.0), -view_ray);
@@ -40,32 +39,32 @@ float4 main(float2 v_uv : TEXCOORD0) : SV_Target0 {
     float3 water_color = lerp(scatter_color, float3(0.0, 0.0, 0.0), (float3)(inverse_scatter)) * incident_light;
 
     // reflection.sky_cubemap
-    float3 t52 = abs(view_ray);
-    float3 t60 = view_ray / max(max(max(t52.x, t52.y), t52.z), 1e-30);
-    float t61 = dot(t60, t60);
-    float3 t64 = t60 * rsqrt(max(t61, 1e-30));
-    bool t65 = t61 > 1e-30;
-    float3 t66 = t65 ? t64 : float3(0.0, (-1.0), 0.0);
-    float3 reflected_ray = reflect(t66, float3(0.0, 1.0, 0.0));
-    float t69 = reflected_ray.y;
-    float3 t72 = float3(reflected_ray.x, abs(t69), reflected_ray.z);
-    bool t75 = dot(reflected_ray, reflected_ray) > 1e-12;
-    float3 sky_direction = t75 ? t72 : float3(0.0, 1.0, 0.0);
-    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t69);
-    float4 t79 = float4(sky_direction, below_horizon);
-    float3 t81 = t79.xyz;
-    float3 reflected = sky_cube.Sample(linear_clamp, t81).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t79.w));
+    float3 t47 = abs(view_ray);
+    float3 t55 = view_ray / max(max(max(t47.x, t47.y), t47.z), 1e-30);
+    float t56 = dot(t55, t55);
+    float3 t59 = t55 * rsqrt(max(t56, 1e-30));
+    bool t60 = t56 > 1e-30;
+    float3 t61 = t60 ? t59 : float3(0.0, (-1.0), 0.0);
+    float3 reflected_ray = reflect(t61, float3(0.0, 1.0, 0.0));
+    float t64 = reflected_ray.y;
+    float3 t67 = float3(reflected_ray.x, abs(t64), reflected_ray.z);
+    bool t70 = dot(reflected_ray, reflected_ray) > 1e-12;
+    float3 sky_direction = t70 ? t67 : float3(0.0, 1.0, 0.0);
+    float below_horizon = smoothstep(0.0, reflection_horizon_band, -t64);
+    float4 t74 = float4(sky_direction, below_horizon);
+    float3 t76 = t74.xyz;
+    float3 reflected = sky_cube.Sample(linear_clamp, t76).xyz * lerp(float3(1.0, 1.0, 1.0), reflection_lower_tint, (float3)(t74.w));
 
     // fresnel.schlick
-    float t94 = (ior_air - ior_water) / (ior_air + ior_water);
-    float fresnel_r0 = t94 * t94;
+    float t89 = (ior_air - ior_water) / (ior_air + ior_water);
+    float fresnel_r0 = t89 * t89;
     float one_minus_c = 1.0 - saturate(n_dot_v);
-    float t98 = one_minus_c * one_minus_c;
-    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t98 * t98) * one_minus_c));
+    float t93 = one_minus_c * one_minus_c;
+    float fresnel = fresnel_r0 + ((1.0 - fresnel_r0) * ((t93 * t93) * one_minus_c));
 
     // compose
-    float3 t105 = lerp(water_color, reflected, (float3)(fresnel));
-    float3 t106 = t33 ? t105 : scene_rgb;
+    float3 t100 = lerp(water_color, reflected, (float3)(fresnel));
+    float3 t101 = t28 ? t100 : scene_rgb;
 
-    return float4(t106, 1.0);
+    return float4(t101, 1.0);
 }

@@ -19,7 +19,6 @@ struct WaterParams
     float gerstner_amplitude_gain;
     packed_float3 reflection_lower_tint;
     float gerstner_frequency_gain;
-    float2 frame_centre;
     float gerstner_steepness;
     float refraction_distortion;
     float refraction_shore_fade_depth;
@@ -47,162 +46,162 @@ fragment main0_out main0(main0_in in [[stage_in]], constant WaterParams& params 
     main0_out out = {};
     float4 _25 = scene_color.sample(linear_clamp, in.v_uv);
     float4 _33 = scene_position.sample(linear_clamp, in.v_uv);
-    float3 _54 = _33.xyz - float3(params.frame_centre.x, 0.0, params.frame_centre.y);
-    float3 _61 = _54 - float3(params.eye_position);
-    float _65 = length(_61);
-    float3 _72 = _61 / float3(fast::max(_65, 9.9999999747524270787835121154785e-07));
-    float3 _75 = dfdx(_72);
-    float3 _78 = dfdy(_72);
-    float _80 = fast::max(length(_75), length(_78));
-    float _83 = floor(gerstner_wave_count);
-    float _989;
-    float _991;
-    _991 = 0.0;
-    _989 = 0.0;
-    float _115;
-    float _120;
-    float _125;
-    float _130;
-    int _988 = 0;
-    float _990 = params.gerstner_amplitude;
-    float _992 = params.gerstner_frequency;
-    for (; _988 < 8; _992 = _130, _991 = _120, _990 = _125, _989 = _115, _988++)
+    float3 _34 = _33.xyz;
+    float3 _50 = float3(params.eye_position) + _34;
+    float _54 = length(_34);
+    float3 _61 = _34 / float3(fast::max(_54, 9.9999999747524270787835121154785e-07));
+    float3 _64 = dfdx(_61);
+    float3 _67 = dfdy(_61);
+    float _69 = fast::max(length(_64), length(_67));
+    float _72 = floor(gerstner_wave_count);
+    float _982;
+    float _984;
+    _984 = 0.0;
+    _982 = 0.0;
+    float _106;
+    float _111;
+    float _116;
+    float _121;
+    int _981 = 0;
+    float _983 = params.gerstner_amplitude;
+    float _985 = params.gerstner_frequency;
+    for (; _981 < 8; _985 = _121, _984 = _111, _983 = _116, _982 = _106, _981++)
     {
-        if (!(float(_988) < _83))
+        if (!(float(_981) < _72))
         {
             break;
         }
-        _115 = _989 + _990;
-        _120 = fma(_990, _992, _991);
-        _125 = _990 * params.gerstner_amplitude_gain;
-        _130 = _992 * params.gerstner_frequency_gain;
+        _106 = _982 + _983;
+        _111 = fma(_983, _985, _984);
+        _116 = _983 * params.gerstner_amplitude_gain;
+        _121 = _985 * params.gerstner_frequency_gain;
     }
-    float _146 = _72.y;
-    float _150 = fast::max(-_146, 9.9999999747524270787835121154785e-07);
-    float2 _154 = _72.xz;
-    float _163 = 1.0 / (1.0 + (((_991 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_154)) / _150));
-    float _166 = -_989;
-    float _170 = fast::min(_146, -9.9999999747524270787835121154785e-07);
-    float _996;
-    float2 _1000;
-    _1000 = (float3(params.eye_position) + (_72 * fast::max((_989 - params.eye_position[1u]) / _170, 0.0))).xz;
-    _996 = _989;
-    float2 _412;
-    float _679;
-    float _684;
-    float _694;
-    int _995 = 0;
-    float _1028 = _989;
-    float _1033 = _166;
-    for (; _995 < 9; _1033 = _684, _1028 = _679, _1000 = _412, _996 = _694, _995++)
+    float _138 = _61.y;
+    float _142 = fast::max(-_138, 9.9999999747524270787835121154785e-07);
+    float2 _146 = _61.xz;
+    float _155 = 1.0 / (1.0 + (((_984 / fast::max(1.0 - params.gerstner_steepness, 0.20000000298023223876953125)) * length(_146)) / _142));
+    float _158 = -_982;
+    float _162 = fast::min(_138, -9.9999999747524270787835121154785e-07);
+    float _989;
+    float2 _993;
+    _993 = (float3(params.eye_position) + (_61 * fast::max((_982 - params.eye_position[1u]) / _162, 0.0))).xz;
+    _989 = _982;
+    float2 _405;
+    float _672;
+    float _677;
+    float _687;
+    int _988 = 0;
+    float _1021 = _982;
+    float _1026 = _158;
+    for (; _988 < 9; _1026 = _677, _1021 = _672, _993 = _405, _989 = _687, _988++)
     {
-        float _216 = fast::max((_996 - params.eye_position[1u]) / _170, 0.0);
-        float2 _226 = (float3(params.eye_position) + (_72 * _216)).xz;
-        float _232 = (_80 * _216) / _150;
-        float2 _1002;
+        float _208 = fast::max((_989 - params.eye_position[1u]) / _162, 0.0);
+        float2 _218 = (float3(params.eye_position) + (_61 * _208)).xz;
+        float _224 = (_69 * _208) / _142;
+        float2 _995;
+        float3 _996;
+        _996 = float3(0.0);
+        _995 = float2(0.0);
+        float _322;
+        float _326;
+        float2 _333;
+        float3 _347;
+        int _990 = 0;
+        float _991 = params.gerstner_frequency;
+        float _994 = params.gerstner_amplitude;
+        for (; _990 < 8; _996 = _347, _995 = _333, _994 = _322, _991 = _326, _990++)
+        {
+            float _243 = float(_990);
+            if (!(_243 < _72))
+            {
+                break;
+            }
+            int _256 = clamp(int(_243), 0, 7);
+            float _281 = fma(_991, dot(params.gerstner_wave_directions[_256].xy, _993), params.gerstner_wave_phases[_256].x);
+            float _295 = ((params.gerstner_steepness / (_72 * fast::max(_991 * _994, 9.9999999747524270787835121154785e-07))) * _994) * fast::clamp(fma(-(_991 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _314 = (_295 * _991) * sin(_281);
+            float _318 = _314 * params.gerstner_wave_directions[_256].x;
+            _322 = _994 * params.gerstner_amplitude_gain;
+            _326 = _991 * params.gerstner_frequency_gain;
+            _333 = _995 + (params.gerstner_wave_directions[_256].xy * (_295 * cos(_281)));
+            _347 = _996 + float3(_318 * params.gerstner_wave_directions[_256].x, _318 * params.gerstner_wave_directions[_256].y, (_314 * params.gerstner_wave_directions[_256].y) * params.gerstner_wave_directions[_256].y);
+        }
+        float _353 = 1.0 - _996.x;
+        float _358 = 1.0 - _996.z;
+        float _362 = -_996.y;
+        float2 _368 = (_993 + _995) - _218;
+        float _381 = _368.x;
+        float _384 = _368.y;
+        _405 = _993 - (float2(fma(_358, _381, -(_362 * _384)), fma(_353, _384, -(_362 * _381))) / float2(fast::max(fma(_353, _358, -(_362 * _362)), 0.039999999105930328369140625)));
         float3 _1003;
+        float3 _1004;
+        float3 _1005;
+        _1005 = float3(0.0, 0.0, 1.0);
+        _1004 = float3(1.0, 0.0, 0.0);
         _1003 = float3(0.0);
-        _1002 = float2(0.0);
-        float _329;
-        float _333;
-        float2 _340;
-        float3 _354;
-        int _997 = 0;
-        float _998 = params.gerstner_frequency;
-        float _1001 = params.gerstner_amplitude;
-        for (; _997 < 8; _1003 = _354, _1002 = _340, _1001 = _329, _998 = _333, _997++)
+        float _517;
+        float _521;
+        float3 _533;
+        float3 _538;
+        float3 _543;
+        int _1000 = 0;
+        float _1001 = params.gerstner_frequency;
+        float _1002 = params.gerstner_amplitude;
+        for (; _1000 < 8; _1005 = _543, _1004 = _538, _1003 = _533, _1002 = _517, _1001 = _521, _1000++)
         {
-            float _251 = float(_997);
-            if (!(_251 < _83))
+            float _426 = float(_1000);
+            if (!(_426 < _72))
             {
                 break;
             }
-            int _264 = clamp(int(_251), 0, 7);
-            float _289 = fma(_998, dot(params.gerstner_wave_directions[_264].xy, _1000), params.gerstner_wave_phases[_264].x);
-            float _303 = ((params.gerstner_steepness / (_83 * fast::max(_998 * _1001, 9.9999999747524270787835121154785e-07))) * _1001) * fast::clamp(fma(-(_998 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _321 = (_303 * _998) * sin(_289);
-            float _325 = _321 * params.gerstner_wave_directions[_264].x;
-            _329 = _1001 * params.gerstner_amplitude_gain;
-            _333 = _998 * params.gerstner_frequency_gain;
-            _340 = _1002 + (params.gerstner_wave_directions[_264].xy * (_303 * cos(_289)));
-            _354 = _1003 + float3(_325 * params.gerstner_wave_directions[_264].x, _325 * params.gerstner_wave_directions[_264].y, (_321 * params.gerstner_wave_directions[_264].y) * params.gerstner_wave_directions[_264].y);
+            int _437 = clamp(int(_426), 0, 7);
+            float _446 = fast::clamp(fma(-(_1001 * _224), 0.636619746685028076171875, 2.0), 0.0, 1.0);
+            float _459 = fma(_1001, dot(params.gerstner_wave_directions[_437].xy, _405), params.gerstner_wave_phases[_437].x);
+            float _473 = ((params.gerstner_steepness / (_72 * fast::max(_1001 * _1002, 9.9999999747524270787835121154785e-07))) * _1002) * _446;
+            float _477 = _1002 * _446;
+            float _480 = sin(_459);
+            float _483 = cos(_459);
+            float _493 = _473 * _483;
+            float _500 = -((_473 * _1001) * _480);
+            float3 _513 = float3(_500 * params.gerstner_wave_directions[_437].x, (_477 * _1001) * _483, _500 * params.gerstner_wave_directions[_437].y);
+            _517 = _1002 * params.gerstner_amplitude_gain;
+            _521 = _1001 * params.gerstner_frequency_gain;
+            _533 = _1003 + float3(_493 * params.gerstner_wave_directions[_437].x, _477 * _480, _493 * params.gerstner_wave_directions[_437].y);
+            _538 = _1004 + (_513 * params.gerstner_wave_directions[_437].x);
+            _543 = _1005 + (_513 * params.gerstner_wave_directions[_437].y);
         }
-        float _360 = 1.0 - _1003.x;
-        float _365 = 1.0 - _1003.z;
-        float _369 = -_1003.y;
-        float2 _375 = (_1000 + _1002) - _226;
-        float _388 = _375.x;
-        float _391 = _375.y;
-        _412 = _1000 - (float2(fma(_365, _388, -(_369 * _391)), fma(_360, _391, -(_369 * _388))) / float2(fast::max(fma(_360, _365, -(_369 * _369)), 0.039999999105930328369140625)));
-        float3 _1010;
-        float3 _1011;
-        float3 _1012;
-        _1012 = float3(0.0, 0.0, 1.0);
-        _1011 = float3(1.0, 0.0, 0.0);
-        _1010 = float3(0.0);
-        float _524;
-        float _528;
-        float3 _540;
-        float3 _545;
-        float3 _550;
-        int _1007 = 0;
-        float _1008 = params.gerstner_frequency;
-        float _1009 = params.gerstner_amplitude;
-        for (; _1007 < 8; _1012 = _550, _1011 = _545, _1010 = _540, _1009 = _524, _1008 = _528, _1007++)
-        {
-            float _433 = float(_1007);
-            if (!(_433 < _83))
-            {
-                break;
-            }
-            int _444 = clamp(int(_433), 0, 7);
-            float _453 = fast::clamp(fma(-(_1008 * _232), 0.636619746685028076171875, 2.0), 0.0, 1.0);
-            float _466 = fma(_1008, dot(params.gerstner_wave_directions[_444].xy, _412), params.gerstner_wave_phases[_444].x);
-            float _480 = ((params.gerstner_steepness / (_83 * fast::max(_1008 * _1009, 9.9999999747524270787835121154785e-07))) * _1009) * _453;
-            float _484 = _1009 * _453;
-            float _487 = sin(_466);
-            float _490 = cos(_466);
-            float _500 = _480 * _490;
-            float _507 = -((_480 * _1008) * _487);
-            float3 _520 = float3(_507 * params.gerstner_wave_directions[_444].x, (_484 * _1008) * _490, _507 * params.gerstner_wave_directions[_444].y);
-            _524 = _1009 * params.gerstner_amplitude_gain;
-            _528 = _1008 * params.gerstner_frequency_gain;
-            _540 = _1010 + float3(_500 * params.gerstner_wave_directions[_444].x, _484 * _487, _500 * params.gerstner_wave_directions[_444].y);
-            _545 = _1011 + (_520 * params.gerstner_wave_directions[_444].x);
-            _550 = _1012 + (_520 * params.gerstner_wave_directions[_444].y);
-        }
-        float3 _556 = cross(_1012, _1011);
-        float _560 = dot(_556, _556);
-        float3 _578 = select(float3(0.0, 1.0, 0.0), _556 * rsqrt(fast::max(_560, 1.0000000031710768509710513471353e-30)), bool3(_560 > 1.0000000031710768509710513471353e-30));
-        float2 _588 = (-_578.xz) / float2(fast::max(_578.y, 9.9999997473787516355514526367188e-05));
-        float _603 = float(_995);
-        bool _604 = _603 < 1.0;
-        float _608 = (_1010.y + dot(_588, _226 - (_412 + _1010.xz))) - _996;
-        float _621 = (-dot(_588, _154)) / _150;
-        float _634 = fma(fast::clamp(1.0 / fast::max(1.0 - _621, 9.9999999747524270787835121154785e-07), _163, 1.0), _608, _996);
-        bool _637 = _608 < 0.0;
-        float _642 = _637 ? _996 : _1028;
-        float _647 = _637 ? _1033 : _996;
-        _679 = _604 ? _996 : _642;
-        _684 = _604 ? _1033 : _647;
-        _694 = (_603 < 8.0) ? (_604 ? fma(_163, _608, _996) : ((((_634 < _647) || (_634 > _642)) || (_621 >= 1.0)) ? (0.5 * (_647 + _642)) : _634)) : _996;
+        float3 _549 = cross(_1005, _1004);
+        float _553 = dot(_549, _549);
+        float3 _571 = select(float3(0.0, 1.0, 0.0), _549 * rsqrt(fast::max(_553, 1.0000000031710768509710513471353e-30)), bool3(_553 > 1.0000000031710768509710513471353e-30));
+        float2 _581 = (-_571.xz) / float2(fast::max(_571.y, 9.9999997473787516355514526367188e-05));
+        float _596 = float(_988);
+        bool _597 = _596 < 1.0;
+        float _601 = (_1003.y + dot(_581, _218 - (_405 + _1003.xz))) - _989;
+        float _614 = (-dot(_581, _146)) / _142;
+        float _627 = fma(fast::clamp(1.0 / fast::max(1.0 - _614, 9.9999999747524270787835121154785e-07), _155, 1.0), _601, _989);
+        bool _630 = _601 < 0.0;
+        float _635 = _630 ? _989 : _1021;
+        float _640 = _630 ? _1026 : _989;
+        _672 = _597 ? _989 : _635;
+        _677 = _597 ? _1026 : _640;
+        _687 = (_596 < 8.0) ? (_597 ? fma(_155, _601, _989) : ((((_627 < _640) || (_627 > _635)) || (_614 >= 1.0)) ? (0.5 * (_640 + _635)) : _627)) : _989;
     }
-    float _708 = fast::max((_996 - params.eye_position[1u]) / _170, 0.0);
-    float3 _715 = float3(params.eye_position) + (_72 * _708);
-    float _723 = _54.y;
-    float _726 = _715.y;
-    float _780 = fast::clamp(fast::max(_65 - _708, 0.0), 0.0, 30000.0);
-    float3 _813 = abs(_72);
-    float3 _826 = _72 / float3(fast::max(fast::max(fast::max(_813.x, _813.y), _813.z), 1.0000000031710768509710513471353e-30));
-    float _830 = dot(_826, _826);
-    float3 _849 = reflect(select(float3(0.0, -1.0, 0.0), _826 * rsqrt(fast::max(_830, 1.0000000031710768509710513471353e-30)), bool3(_830 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
-    float _852 = _849.y;
-    float _878 = smoothstep(0.0, params.reflection_horizon_band, -_852);
-    float _924 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
-    float _932 = 1.0 - fast::clamp((-_72).y, 0.0, 1.0);
-    float _936 = _932 * _932;
-    float3 _959 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_726 - _723, 0.0) + _780)), float3(exp((-params.scatter_coefficient) * _780))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_849.x, abs(_852), _849.z), bool3(dot(_849, _849) > 9.9999999600419720025001879548654e-13)), _878).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_878)), float3(fma(_924, _924, fma(-_924, _924, 1.0) * ((_936 * _936) * _932)))), bool3((_723 < _726) && (_146 < 0.0)));
-    out.out_color = float4(_959, 1.0);
+    float _701 = fast::max((_989 - params.eye_position[1u]) / _162, 0.0);
+    float3 _708 = float3(params.eye_position) + (_61 * _701);
+    float _716 = _50.y;
+    float _719 = _708.y;
+    float _773 = fast::clamp(fast::max(_54 - _701, 0.0), 0.0, 30000.0);
+    float3 _806 = abs(_61);
+    float3 _819 = _61 / float3(fast::max(fast::max(fast::max(_806.x, _806.y), _806.z), 1.0000000031710768509710513471353e-30));
+    float _823 = dot(_819, _819);
+    float3 _842 = reflect(select(float3(0.0, -1.0, 0.0), _819 * rsqrt(fast::max(_823, 1.0000000031710768509710513471353e-30)), bool3(_823 > 1.0000000031710768509710513471353e-30)), float3(0.0, 1.0, 0.0));
+    float _845 = _842.y;
+    float _871 = smoothstep(0.0, params.reflection_horizon_band, -_845);
+    float _917 = (params.ior_air - params.ior_water) / (params.ior_air + params.ior_water);
+    float _925 = 1.0 - fast::clamp((-_61).y, 0.0, 1.0);
+    float _929 = _925 * _925;
+    float3 _952 = select(_25.xyz, mix(mix(float3(params.scatter_color), scene_color.sample(linear_clamp, fast::clamp(in.v_uv, float2(0.0), float2(1.0))).xyz * exp((-float3(params.absorb_coefficients)) * (fast::max(_719 - _716, 0.0) + _773)), float3(exp((-params.scatter_coefficient) * _773))) * float3(params.incident_light), sky_cube.sample(linear_clamp, float4(select(float3(0.0, 1.0, 0.0), float3(_842.x, abs(_845), _842.z), bool3(dot(_842, _842) > 9.9999999600419720025001879548654e-13)), _871).xyz).xyz * mix(float3(1.0), float3(params.reflection_lower_tint), float3(_871)), float3(fma(_917, _917, fma(-_917, _917, 1.0) * ((_929 * _929) * _925)))), bool3((_716 < _719) && (_138 < 0.0)));
+    out.out_color = float4(_952, 1.0);
     return out;
 }
 

@@ -1,6 +1,6 @@
 // The shader's frame (runtime/host_values.h): the water pass and the mesh stages work in
-// positions relative to the frame centre c, within 64 m of the eye, and read what depends on
-// world positions and the time through values the host computes in double. These are those
+// positions relative to the frame centre c, within half a metre of the eye, and read what depends
+// on world positions and the time through values the host computes in double. These are those
 // values' parameters, and the test that tells a scene's clock from a catalog node's time.
 #pragma once
 
@@ -30,9 +30,5 @@ Expr scroll_offset(Graph& g, const std::string& name, const Parameter& scale,
 // The offset a fixed tile of `size` metres adds to (frame position) / size: c / size reduced
 // into [0, 1) (HostRule::TileOffset). 0 in a graph without an eye (its positions are world).
 Parameter tile_offset(const std::string& name, const std::string& size);
-
-// The frame centre (c.x, c.z), exact in float: a position the engine writes in world
-// coordinates (a position texture) less this is in the frame.
-Parameter frame_centre();
 
 } // namespace watergen

@@ -16,7 +16,7 @@ namespace watergen {
 
 // Textures of the water pass. The scene is rendered first; the water pass reads it back.
 TextureInput scene_color_texture();    // lit colour of what lies under / behind the water, rgb
-TextureInput scene_position_texture(); // world position of that surface, xyz (m)
+TextureInput scene_position_texture(); // that surface less the eye, xyz (m): camera-relative
 
 struct Preset;
 

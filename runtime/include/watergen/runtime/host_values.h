@@ -5,9 +5,9 @@
 // generated C++ header compute the same numbers with these functions.
 //
 // The shader works in a frame whose origin is the frame centre c, a point of the water plane
-// (y = 0) within 32 m of the eye per axis (frame_centre_of). Positions the engine sets in world
-// coordinates (the eye, a map's window, a matrix to or from clip space) are moved into the frame
-// on the host; a phase or texture coordinate the shader would compute from a world position
+// (y = 0) within half a metre of the eye per axis (frame_centre_of). Positions the engine sets in
+// world coordinates (the eye, a map's window, a matrix to or from clip space) are moved into the
+// frame on the host; a phase or texture coordinate the shader would compute from a world position
 // and the time, f (d . x) + s t, is split into f (d . (x - c)), small in float, and an offset
 // f (d . c) + s t, computed here in double-double arithmetic and reduced by its period (2 pi, or
 // 1 for a tile) before it is rounded to float. The float phase that reaches sin and cos then
@@ -37,7 +37,6 @@ enum class HostRule : uint8_t {
     ScrollOffset, // inputs time, scale[n], rate[2n]: per k the pair reduce(c scale_k +
                   // (rate_2k, rate_2k+1) t, 1)
     TileOffset,   // input size: reduce(c / size, 1)
-    FrameCentre,  // (c.x, c.z), exact in float
 };
 
 struct HostValue {
@@ -55,11 +54,14 @@ bool host_rule_computed(HostRule rule);
 size_t host_rule_inputs(HostRule rule);
 
 // The frame centre is the eye's (x, z) rounded to the nearest point of this lattice, in metres:
-// a multiple of 64 is exact in float up to 2^30 m, the eye stays within 32 m of it per axis
-// (2e-6 m in float; an eye near the world origin keeps the frame at the origin), and it moves
-// only when the eye crosses a cell, so a vertex buffer in the frame (water_grid.h) is rebuilt no
-// more often than the grid's own snap.
-inline constexpr double kFrameCell = 64.0;
+// a whole metre is exact in float up to 2^24 m (past the 10,000 km reach), and the eye stays
+// within half a metre of it per axis, so the shader's positions are camera-relative to 3e-8 m
+// in float: a difference of two points near the eye (a view vector, a reflected ray) keeps as
+// many digits as at the world origin. The centre moves only when the eye crosses a cell, so a
+// vertex buffer in the frame (water_grid.h) is rebuilt as often as a clipmap with 0.5 m cells
+// snaps its finest level. (A 64 m cell, tried first, left the eye up to 32 m from the centre and
+// tripled the depth-buffer path's error there: bench stability.)
+inline constexpr double kFrameCell = 1.0;
 
 // How far the frame centre may lie from the world origin: the eye's declared range (10,000 km,
 // water/mesh_shader.cpp) and a cell.

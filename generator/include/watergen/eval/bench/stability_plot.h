@@ -1,5 +1,6 @@
 // The stability bench's page (stability.html): log-log plots of GPU-against-double error over
-// time and over distance from the world origin, one line per case, and the table of every row.
+// time and over distance from the world origin, one line per case (and, dotted, its figures
+// from the --before run), and the table of every row.
 // Inline SVG, no script, no external resource.
 #pragma once
 
@@ -16,6 +17,7 @@ struct LogLogSeries {
     std::string label;
     std::vector<std::pair<double, double>> points;
     double reference = 0; // drawn when > 0 and finite
+    bool dashed = false;  // the line dotted (a run from before a change)
 };
 std::string log_log_svg(const std::string& title, const std::string& x_label,
                         const std::string& y_label, const std::vector<LogLogSeries>& series,

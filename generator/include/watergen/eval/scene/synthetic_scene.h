@@ -36,6 +36,9 @@ struct SyntheticScene {
     std::map<std::string, TextureData> textures; // by binding name (scene_color, scene_position)
     std::map<std::string, std::vector<double>> uniforms; // camera, sun: override parameter defaults
     SceneView view = beach_view(); // the camera, sun and standing sphere the textures were made for
+    // The eye scene_position's texels are relative to (xyz = scene point - this, in m, as an
+    // engine with a large world writes them): eye_position as the texels were last made.
+    std::array<double, 3> position_eye{};
 
     // CPU views of the same textures for the evaluator.
     EvalInputs eval_inputs() const;
@@ -66,6 +69,11 @@ SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* prese
 // so do render --set's.
 std::vector<double> placed_scene_value(const std::string& name, std::vector<double> value,
                                        const std::array<double, 3>& world_offset);
+
+// Re-expresses scene_position's texels relative to the scene's eye_position uniform when it
+// moved from position_eye (render --set, a conformed scene): the scene stays where it stood
+// and the eye moves over it. A sky texel keeps its direction and distance from the new eye.
+void follow_scene_eye(SyntheticScene& scene);
 
 // Inputs of the node families, each in its own file under render/: textures and uniforms the
 // nodes of those axes read (their binding names are the TextureInput names the nodes declare),
