@@ -215,21 +215,17 @@ SyntheticScene preset_scene(uint32_t width, uint32_t height, const Preset* prese
     if (preset)
         for (const auto& [name, values] : preset->values)
             scene.uniforms[name] = placed_scene_value(name, values, world_offset);
-    if (scene.uniforms["eye_position"] !=
-        std::vector<double>(scene.position_eye.begin(), scene.position_eye.end())) {
-        follow_scene_eye(scene);
-        add_depth_inputs(scene);
-    }
+    if (follow_scene_eye(scene)) add_depth_inputs(scene);
     return scene;
 }
 
-void follow_scene_eye(SyntheticScene& scene) {
+bool follow_scene_eye(SyntheticScene& scene) {
     const auto eye = scene.uniforms.find("eye_position");
     const auto position = scene.textures.find("scene_position");
     if (eye == scene.uniforms.end() || eye->second.size() != 3 || position == scene.textures.end())
-        return;
+        return false;
     const std::array<double, 3> to{eye->second[0], eye->second[1], eye->second[2]};
-    if (to == scene.position_eye) return;
+    if (to == scene.position_eye) return false;
     const std::array<double, 3>& from = scene.position_eye;
     std::vector<float>& rgba = position->second.rgba;
     for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
@@ -243,6 +239,7 @@ void follow_scene_eye(SyntheticScene& scene) {
         rgba[i + 3] = static_cast<float>(std::sqrt(r2));
     }
     scene.position_eye = to;
+    return true;
 }
 
 } // namespace watergen

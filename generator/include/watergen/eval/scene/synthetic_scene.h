@@ -73,7 +73,8 @@ std::vector<double> placed_scene_value(const std::string& name, std::vector<doub
 // Re-expresses scene_position's texels relative to the scene's eye_position uniform when it
 // moved from position_eye (render --set, a conformed scene): the scene stays where it stood
 // and the eye moves over it. A sky texel keeps its direction and distance from the new eye.
-void follow_scene_eye(SyntheticScene& scene);
+// True when the texels moved (their depth buffer is then to be made again).
+bool follow_scene_eye(SyntheticScene& scene);
 
 // Inputs of the node families, each in its own file under render/: textures and uniforms the
 // nodes of those axes read (their binding names are the TextureInput names the nodes declare),
