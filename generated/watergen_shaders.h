@@ -55,9 +55,9 @@ struct WaterParams0 {
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.5f, 0.0f, -29.5f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_shore_fade_depth = 1.0f;
@@ -94,9 +94,9 @@ struct WaterParams1 {
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.5f, 0.0f, -29.5f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_shore_fade_depth = 1.0f;
@@ -132,16 +132,16 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants1{{}};
 // Interface 2: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none).
 struct WaterParams2 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.5f, 0.0f, -29.5f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -190,16 +190,16 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants2{{{"gerstner_w
 // Interface 3: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none).
 struct WaterParams3 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.5f, 0.0f, -29.5f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -252,9 +252,9 @@ struct WaterParams4 {
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.5f, 0.0f, -29.5f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_distortion = 0.03f;
@@ -270,7 +270,7 @@ struct WaterParams4 {
     float ior_water = 1.33333f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float foam_pattern_scale = 0.1f;
     float pad0[3]{};
 };
@@ -304,9 +304,9 @@ struct WaterParams5 {
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.5f, 0.0f, -29.5f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_distortion = 0.03f;
@@ -322,7 +322,7 @@ struct WaterParams5 {
     float ior_water = 1.33333f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
     float pad0[2]{};
@@ -355,16 +355,16 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants5{{}};
 // Interface 6: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=shore,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=full,caustics=none).
 struct WaterParams6 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.5f, 0.0f, -29.5f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -380,7 +380,7 @@ struct WaterParams6 {
     float refraction_distortion = 0.03f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_fov_extension = 1.5f;
@@ -424,16 +424,16 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants6{{{"gerstner_w
 // Interface 7: 2 variants (the first: harbour_night fresnel=exact,extinction=absorb_scatter,specular=none,foam=shore,reflection=planar_projective,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=full,caustics=none).
 struct WaterParams7 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     Vec4 reflection_view_proj_c0 = {1.0f, 0.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c1 = {0.0f, 1.0f, 0.0f, 0.0f};
     Vec4 reflection_view_proj_c2 = {0.0f, 0.0f, 1.0f, 0.0f};
     // frame_world_to_clip of reflection_view_proj_c0, reflection_view_proj_c2: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec4 reflection_view_proj_c3 = {0.0f, 0.0f, -30.0f, 1.0f};
+    Vec4 reflection_view_proj_c3 = {0.5f, 0.0f, -29.5f, 1.0f};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -449,7 +449,7 @@ struct WaterParams7 {
     float refraction_distortion = 0.03f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_fov_extension = 1.5f;
@@ -495,7 +495,7 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants7{{{"gerstner_w
 // Interface 8: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams8 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float refraction_distortion = 0.03f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float refraction_shore_fade_depth = 1.0f;
@@ -530,7 +530,7 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants8{{}};
 // Interface 9: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams9 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float refraction_distortion = 0.03f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float refraction_shore_fade_depth = 1.0f;
@@ -568,18 +568,18 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants9{{}};
 // Interface 10: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams10 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
     float gerstner_frequency = 0.7f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
+    Vec3 caustics_window = {-5.5f, 24.5f, 10.0f};
     float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency_gain = 1.18f;
@@ -628,11 +628,11 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants10{{{"gerstner_
 // Interface 11: 5 variants (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams11 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
@@ -683,18 +683,18 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants11{{{"gerstner_
 // Interface 12: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams12 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
     float gerstner_frequency = 0.7f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
+    Vec3 caustics_window = {-5.5f, 24.5f, 10.0f};
     float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency_gain = 1.18f;
@@ -745,11 +745,11 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants12{{{"gerstner_
 // Interface 13: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams13 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
@@ -802,7 +802,7 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants13{{{"gerstner_
 // Interface 14: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams14 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float refraction_distortion = 0.03f;
@@ -822,7 +822,7 @@ struct WaterParams14 {
     float foam_pattern_scale = 0.1f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
 };
 static_assert(offsetof(WaterParams14, eye_position) == 0);
 static_assert(offsetof(WaterParams14, time) == 12);
@@ -850,7 +850,7 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants14{{}};
 // Interface 15: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams15 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float refraction_distortion = 0.03f;
@@ -870,7 +870,7 @@ struct WaterParams15 {
     float foam_pattern_scale = 0.1f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float shore_hardness = 1.0f;
     float pad0[3]{};
 };
@@ -901,18 +901,18 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants15{{}};
 // Interface 16: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams16 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
     float gerstner_frequency = 0.7f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
+    Vec3 caustics_window = {-5.5f, 24.5f, 10.0f};
     float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency_gain = 1.18f;
@@ -928,7 +928,7 @@ struct WaterParams16 {
     float scatter_coefficient = 0.11f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
@@ -972,11 +972,11 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants16{{{"gerstner_
 // Interface 17: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams17 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
@@ -996,7 +996,7 @@ struct WaterParams17 {
     float scatter_coefficient = 0.11f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
@@ -1038,18 +1038,18 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants17{{{"gerstner_
 // Interface 18: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams18 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
     Vec3 sun_color = {1.0f, 0.95f, 0.85f};
     float gerstner_frequency = 0.7f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
+    Vec3 caustics_window = {-5.5f, 24.5f, 10.0f};
     float gerstner_amplitude_gain = 0.82f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency_gain = 1.18f;
@@ -1065,7 +1065,7 @@ struct WaterParams18 {
     float scatter_coefficient = 0.11f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
@@ -1111,11 +1111,11 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants18{{{"gerstner_
 // Interface 19: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=blinn_phong,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams19 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float gerstner_amplitude = 0.2f;
@@ -1135,7 +1135,7 @@ struct WaterParams19 {
     float scatter_coefficient = 0.11f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float reflection_horizon_band = 0.2f;
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
@@ -1179,7 +1179,7 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants19{{{"gerstner_
 // Interface 20: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams20 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_shore_fade_depth = 1.0f;
@@ -1209,7 +1209,7 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants20{{}};
 // Interface 21: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams21 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float refraction_distortion = 0.03f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_shore_fade_depth = 1.0f;
@@ -1241,14 +1241,14 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants21{{}};
 // Interface 22: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams22 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
+    Vec3 caustics_window = {-5.5f, 24.5f, 10.0f};
     float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency = 0.7f;
@@ -1295,11 +1295,11 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants22{{{"gerstner_
 // Interface 23: 5 variants (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams23 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -1344,14 +1344,14 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants23{{{"gerstner_
 // Interface 24: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams24 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
+    Vec3 caustics_window = {-5.5f, 24.5f, 10.0f};
     float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency = 0.7f;
@@ -1399,11 +1399,11 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants24{{{"gerstner_
 // Interface 25: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams25 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -1449,7 +1449,7 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants25{{{"gerstner_
 // Interface 26: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=half,caustics=none).
 struct WaterParams26 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_distortion = 0.03f;
@@ -1465,7 +1465,7 @@ struct WaterParams26 {
     float ior_water = 1.33333f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float foam_pattern_scale = 0.1f;
     float pad0[3]{};
 };
@@ -1492,7 +1492,7 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants26{{}};
 // Interface 27: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=soft,precision=half,caustics=none).
 struct WaterParams27 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float refraction_distortion = 0.03f;
@@ -1508,7 +1508,7 @@ struct WaterParams27 {
     float ior_water = 1.33333f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
     float pad0[2]{};
@@ -1537,14 +1537,14 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants27{{}};
 // Interface 28: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=area_ratio).
 struct WaterParams28 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
+    Vec3 caustics_window = {-5.5f, 24.5f, 10.0f};
     float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency = 0.7f;
@@ -1560,7 +1560,7 @@ struct WaterParams28 {
     float refraction_shore_fade_depth = 1.0f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float caustics_strength = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -1602,11 +1602,11 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants28{{{"gerstner_
 // Interface 29: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=hard,precision=half,caustics=none).
 struct WaterParams29 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -1622,7 +1622,7 @@ struct WaterParams29 {
     float refraction_distortion = 0.03f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -1662,14 +1662,14 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants29{{{"gerstner_
 // Interface 30: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=area_ratio).
 struct WaterParams30 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     // frame_point_xz: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 caustics_window = {-5.0f, 25.0f, 10.0f};
+    Vec3 caustics_window = {-5.5f, 24.5f, 10.0f};
     float gerstner_amplitude = 0.2f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_frequency = 0.7f;
@@ -1685,7 +1685,7 @@ struct WaterParams30 {
     float refraction_shore_fade_depth = 1.0f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float caustics_strength = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -1729,11 +1729,11 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants30{{{"gerstner_
 // Interface 31: 1 variant (the first: mountain_lake fresnel=schlick,extinction=absorb_scatter,specular=none,foam=shore,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=gerstner,shore=soft,precision=half,caustics=none).
 struct WaterParams31 {
     // wave_phases of time, gerstner_frequency, gerstner_frequency_gain, gerstner_wave_speeds, gerstner_wave_directions: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    FloatElement gerstner_wave_phases[8] = {{2.150444f}, {0.9744441f}, {-1.305316f}, {-2.9053423f}, {1.1555399f}, {-2.5901787f}, {-2.1256561f}, {1.3873007f}};
+    FloatElement gerstner_wave_phases[8] = {{1.8004441f}, {0.8918441f}, {-1.9875919f}, {-2.5143008f}, {0.20553873f}, {-2.4300358f}, {2.9859228f}, {0.62915796f}};
     FloatElement gerstner_wave_speeds[8] = {{2.62f}, {2.85f}, {3.09f}, {3.36f}, {3.65f}, {3.96f}, {4.3f}, {4.68f}};
     Vec2Element gerstner_wave_directions[8] = {{{0.0f, -1.0f}}, {{0.6f, -0.8f}}, {{-0.8f, -0.6f}}, {{0.96f, -0.28f}}, {{-0.6f, -0.8f}}, {{0.8f, -0.6f}}, {{-0.28f, -0.96f}}, {{0.28f, -0.96f}}};
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float time = 0.0f;
     Vec3 absorb_coefficients = {0.46f, 0.09f, 0.06f};
     float gerstner_amplitude = 0.2f;
@@ -1749,7 +1749,7 @@ struct WaterParams31 {
     float refraction_distortion = 0.03f;
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec2 foam_pattern_offset = {0.0f, 1.0f};
+    Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float refraction_shore_fade_depth = 1.0f;
     float scatter_coefficient = 0.11f;
     float reflection_horizon_band = 0.2f;
@@ -1791,7 +1791,7 @@ inline constexpr std::array<SpecializationConstant, 1> kConstants31{{{"gerstner_
 // Interface 32: 4 variants (the first: open_ocean fresnel=exact,extinction=absorb_scatter,specular=blinn_phong,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none).
 struct WaterParams32 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float scatter_coefficient = 0.11f;
     Vec3 sun_direction = {-0.35f, -0.75f, 0.55f};
     float reflection_horizon_band = 0.2f;
@@ -1821,7 +1821,7 @@ inline constexpr std::array<SpecializationConstant, 0> kConstants32{{}};
 // Interface 33: 4 variants (the first: open_ocean fresnel=exact,extinction=absorb_scatter,specular=none,foam=none,reflection=sky_cubemap,refraction=screen_distort,normals=flat,waves=flat,shore=hard,precision=full,caustics=none).
 struct WaterParams33 {
     // frame_point: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
-    Vec3 eye_position = {0.0f, 8.0f, 0.0f};
+    Vec3 eye_position = {-0.5f, 8.0f, -0.5f};
     float scatter_coefficient = 0.11f;
     Vec3 scatter_color = {0.05f, 0.05f, 0.1f};
     float reflection_horizon_band = 0.2f;

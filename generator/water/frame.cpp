@@ -13,8 +13,16 @@ constexpr double kPi = 3.14159265358979323846;
 
 bool is_scene_clock(Expr time) {
     if (!time.valid()) return false;
-    const Node& n = time.graph().node(time.id());
-    return n.op == Op::Uniform && n.name == "time";
+    const Graph* g = &time.graph();
+    const Node* n = &g->node(time.id());
+    // Inside a switch case being built (an axis offered with several choices) the clock is a
+    // capture of the enclosing graph's: the case is framed exactly as its own variant is.
+    while (n->op == Op::Captured && g->enclosing()) {
+        const uint32_t outer = g->captures().at(static_cast<size_t>(n->values.at(0)));
+        g = g->enclosing();
+        n = &g->node(outer);
+    }
+    return n->op == Op::Uniform && n->name == "time";
 }
 
 Parameter wave_phase_offsets(const std::string& family, uint32_t waves) {
@@ -34,7 +42,9 @@ Parameter wave_phase_offsets(const std::string& family, uint32_t waves) {
 
 Expr scroll_offset(Graph& g, const std::string& name, const Parameter& scale,
                    const Parameter& rate) {
-    scene_time(g); // the host reads it
+    // The host reads the clock. A switch case's clock is its enclosing graph's, declared there
+    // (is_scene_clock); binding it again inside the case would bind the quantity to a capture.
+    if (!g.enclosing()) scene_time(g);
     const int pairs = component_count(scale.type);
     Parameter p{.name = name,
                 .type = float_type(2 * pairs),

@@ -111,8 +111,8 @@ size_t host_rule_inputs(HostRule rule) {
 
 FrameCentre frame_centre_of(double eye_x, double eye_z) {
     if (!std::isfinite(eye_x) || !std::isfinite(eye_z)) return {};
-    return {std::round(eye_x / kFrameCell) * kFrameCell,
-            std::round(eye_z / kFrameCell) * kFrameCell};
+    return {(std::floor(eye_x / kFrameCell) + 0.5) * kFrameCell,
+            (std::floor(eye_z / kFrameCell) + 0.5) * kFrameCell};
 }
 
 double wave_phase_offset(double frequency, double dx, double dz, double speed, double time,

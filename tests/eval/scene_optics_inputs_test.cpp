@@ -8,6 +8,7 @@
 
 #include "reflection_support.h"
 #include "watergen/eval/scene/synthetic_scene.h"
+#include "watergen/runtime/host_values.h"
 #include "watergen/water/axis_registry.h"
 #include "watergen/water/surface.h"
 #include "watergen/water/water_shader.h"
@@ -51,6 +52,7 @@ TEST_CASE("planar_reflection_map_agrees_with_the_sky_cube_along_the_mirrored_ray
     const uint32_t w = 64, h = 64;
     const SyntheticScene scene = make_synthetic_scene(w, h);
     const SceneCamera cam = scene_camera(w, h);
+    const FrameCentre centre = frame_centre_of(cam.eye[0], cam.eye[2]);
     std::vector<double> rays, points;
     for (double u : {0.1, 0.3, 0.5, 0.7, 0.9})
         for (double v : {0.5, 0.6, 0.75, 0.9}) {
@@ -63,9 +65,11 @@ TEST_CASE("planar_reflection_map_agrees_with_the_sky_cube_along_the_mirrored_ray
             }
             len = std::sqrt(len);
             const double t = -cam.eye[1] / (d[1] / len);
+            // The graph reads the point in the shader's frame (host_values.h).
+            const double frame[3] = {centre.x, 0.0, centre.z};
             for (int k = 0; k < 3; ++k) {
                 rays.push_back(d[k] / len);
-                points.push_back(cam.eye[k] + d[k] / len * t);
+                points.push_back(cam.eye[k] + d[k] / len * t - frame[k]);
             }
         }
     Graph g;

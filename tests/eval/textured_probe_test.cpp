@@ -13,6 +13,7 @@
 #include "watergen/eval/probe/probe.h"
 #include "watergen/eval/probe/probe_table.h"
 #include "watergen/eval/scene/synthetic_scene.h"
+#include "watergen/runtime/host_values.h"
 #include "watergen/water/node_catalog.h"
 
 using namespace watergen;
@@ -113,7 +114,12 @@ TEST_CASE("the_depth_buffer_node_unprojects_to_the_scene_positions", "[probe][te
     // texel: the depth buffer is those points projected in double and rounded to float.
     const SyntheticScene scene = make_synthetic_scene(64, 64);
     const TextureData& position = scene.textures.at("scene_position");
-    const std::vector<double>& eye = scene.uniforms.at("eye_position");
+    // The node works in the shader's frame (host_values.h): its eye input and its result are
+    // relative to the frame centre.
+    std::vector<double> eye = scene.uniforms.at("eye_position");
+    const FrameCentre centre = frame_centre_of(eye[0], eye[2]);
+    eye[0] -= centre.x;
+    eye[2] -= centre.z;
     std::vector<double> tuples, expected;
     for (uint32_t y = 0; y < 64; y += 3)
         for (uint32_t x = 0; x < 64; x += 3) {

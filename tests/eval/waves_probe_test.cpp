@@ -8,6 +8,7 @@
 
 #include "shared_runner.h"
 #include "watergen/eval/probe/probe.h"
+#include "watergen/runtime/host_values.h"
 #include "watergen/water/mesh_shader.h"
 #include "waves_support.h"
 
@@ -175,10 +176,15 @@ TEST_CASE("mesh_vertex_stage_math_agrees_between_gpu_and_cpu", "[probe][waves][m
                         to_string(lang), max_gap(run.gpu, run.cpu_float));
             // Clip coordinates up to ~40: a few float ulps of 40.
             CHECK(max_gap(run.gpu, run.cpu_float) <= 2e-5);
-            // The morphed grid point: t = clamp((d / 0.5 - 20) / 20, 0, 1), d = |x| or |z + 7|.
+            // The morphed grid point: t = clamp((d / 0.5 - 20) / 20, 0, 1), d = |x - e.x| or
+            // |z - e.z| for the eye e in the frame the grid points are in: (-0.5, -0.5) about
+            // the centre (0.5, -6.5) of the eye's whole-metre cell (host_values.h).
+            const FrameCentre c = frame_centre_of(0.0, -7.0);
+            REQUIRE(c == FrameCentre{0.5, -6.5});
             for (size_t t = 0; t < run.tuples; ++t) {
                 const double x = grid[t * 5], z = grid[t * 5 + 1], dx = grid[t * 5 + 2];
-                const double d = std::max(std::abs(x), std::abs(z + 7.0)) / 0.5;
+                const double d =
+                    std::max(std::abs(x - (0.0 - c.x)), std::abs(z - (-7.0 - c.z))) / 0.5;
                 const double morph = std::clamp((d - 20.0) / 20.0, 0.0, 1.0);
                 CHECK(run.cpu_float[t * 13 + 7] == Approx(x + dx * morph).margin(1e-5));
                 CHECK(run.gpu[t * 13 + 8] == Approx(z).margin(1e-5));

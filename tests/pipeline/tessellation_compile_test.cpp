@@ -16,6 +16,7 @@
 #include "watergen/ir/cpu/cpu_evaluator.h"
 #include "watergen/ir/emit/tessellation_emitter.h"
 #include "watergen/pipeline/variant/variant_build.h"
+#include "watergen/runtime/host_values.h"
 #include "watergen/runtime/reflection.h"
 #include "watergen/water/tessellated_mesh.h"
 
@@ -82,8 +83,12 @@ std::map<std::string, double> factors(const Graph& control,
     in.uniforms = uniforms;
     in.lanes = 1;
     in.threads = 1;
+    // The corners are world (x, z); the vertex buffer holds them in the shader's frame, whose
+    // centre follows the eye (host_values.h).
+    const std::vector<double>& eye = uniforms.at("eye_position");
+    const FrameCentre c = frame_centre_of(eye[0], eye[2]);
     for (size_t i = 0; i < 4; ++i)
-        in.varyings["corner_" + std::to_string(i)] = corners[i];
+        in.varyings["corner_" + std::to_string(i)] = {corners[i][0] - c.x, corners[i][1] - c.z};
     std::map<std::string, double> out;
     for (const char* name : {"outer_0", "outer_1", "outer_2", "outer_3", "inner_0", "inner_1"}) {
         const EvalResult r = evaluate(control, name, in, EvalPrecision::Float);

@@ -140,15 +140,18 @@ TEST_CASE("the pass grid covers the window and its margin") {
     // Margin 4.6 m = 29.44 texels of 0.15625 m: 30 texels; (64 + 60) x 2 = 248 cells.
     CHECK(g->vertices.size() == 2u * 249 * 249);
     CHECK(g->indices.size() == 6u * 248 * 248);
-    CHECK(g->vertices[0] == Approx(-5 - 30 * 0.15625));
-    CHECK(g->vertices.back() == Approx(5 + 30 * 0.15625));
+    // The vertices are in the frame around the window's corner: its centre is (-4.5, -4.5)
+    // (host_values.h).
+    const double centre = -4.5;
+    CHECK(g->vertices[0] == Approx(-5 - 30 * 0.15625 - centre));
+    CHECK(g->vertices.back() == Approx(5 + 30 * 0.15625 - centre));
     d.primitive = "points";
     d.photon_share_parameter = "caustics_photon_share";
     const auto p = pass_grid(d, window, 0.0, &error);
     REQUIRE(p);
     // Margin 1 m: 7 texels; (64 + 14) x 2 = 156 cells, a point at each centre.
     CHECK(p->indices.size() == 156u * 156);
-    CHECK(p->vertices[0] == Approx(-5 - 7 * 0.15625 + 0.15625 / 4));
+    CHECK(p->vertices[0] == Approx(-5 - 7 * 0.15625 + 0.15625 / 4 - centre));
     CHECK(p->values.at("caustics_photon_share") == std::vector<float>{0.25f});
     const double flat[3] = {-5, -5, 0};
     CHECK_FALSE(pass_grid(d, flat, 3.0, &error));

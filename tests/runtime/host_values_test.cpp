@@ -140,12 +140,12 @@ TEST_CASE("frame rules move points and matrices so the frame's point maps as the
     }
 }
 
-TEST_CASE("the frame centre is the eye rounded to the whole metre", "[host_values]") {
-    CHECK(frame_centre_of(0.0, -0.3) == FrameCentre{0.0, 0.0});
-    CHECK(frame_centre_of(0.49, 0.5) == FrameCentre{0.0, 1.0});
-    CHECK(frame_centre_of(1e5 + 20.2, -1e6 - 40.7) == FrameCentre{100020.0, -1000041.0});
-    // Exact in float: a vertex buffer is made relative to it (water_grid.h).
-    const FrameCentre far = frame_centre_of(9.99e6, -9.99e6);
-    CHECK(double(float(far.x)) == far.x);
-    CHECK(double(float(far.z)) == far.z);
+TEST_CASE("the frame centre is the centre of the eye's whole-metre cell", "[host_values]") {
+    CHECK(frame_centre_of(0.0, -0.3) == FrameCentre{0.5, -0.5});
+    CHECK(frame_centre_of(0.99, 1.0) == FrameCentre{0.5, 1.5});
+    CHECK(frame_centre_of(1e5 + 20.2, -1e6 - 40.7) == FrameCentre{100020.5, -1000040.5});
+    // A step inside one cell keeps the centre (a vertex buffer stays: water_grid.h).
+    CHECK(frame_centre_of(std::nextafter(4.0, 0.0), -5.99) == frame_centre_of(3.0, -5.01));
+    const FrameCentre far = frame_centre_of(9.99e6 + 0.7, -9.99e6 - 0.7);
+    CHECK(far == FrameCentre{9.99e6 + 0.5, -9.99e6 - 0.5});
 }

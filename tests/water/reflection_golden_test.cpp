@@ -8,6 +8,7 @@
 
 #include "reflection_support.h"
 #include "watergen/eval/scene/synthetic_scene.h"
+#include "watergen/runtime/host_values.h"
 #include "watergen/water/axis_registry.h"
 #include "watergen/water/nodes/reflection.h"
 #include "watergen/water/surface.h"
@@ -186,6 +187,7 @@ TEST_CASE("projective_uv_of_points_on_the_water_matches_the_screen", "[reflectio
     // of the reflection texture, whose field of view is 1.5x wider (002): 0.5 + (uv - 0.5) / 1.5.
     const SyntheticScene scene = make_synthetic_scene(16, 16);
     const SceneCamera cam = scene_camera(16, 16);
+    const FrameCentre centre = frame_centre_of(cam.eye[0], cam.eye[2]);
     std::vector<double> tuples;
     std::vector<std::pair<double, double>> uvs;
     for (double u : {0.5, 0.1, 0.93})
@@ -197,8 +199,9 @@ TEST_CASE("projective_uv_of_points_on_the_water_matches_the_screen", "[reflectio
                 d[k] = cam.forward[k] + cam.right[k] * sx + cam.up[k] * sy;
             const double t = -cam.eye[1] / d[1];
             REQUIRE(t > 0);
-            tuples.insert(tuples.end(),
-                          {cam.eye[0] + d[0] * t, 0.0, cam.eye[2] + d[2] * t, 0, 1, 0});
+            // The node reads the point in the shader's frame (host_values.h).
+            tuples.insert(tuples.end(), {cam.eye[0] + d[0] * t - centre.x, 0.0,
+                                         cam.eye[2] + d[2] * t - centre.z, 0, 1, 0});
             uvs.push_back({u, v});
         }
     const auto r =

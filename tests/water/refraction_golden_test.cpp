@@ -7,6 +7,7 @@
 
 #include "reflection_support.h"
 #include "watergen/eval/scene/synthetic_scene.h"
+#include "watergen/runtime/host_values.h"
 
 using namespace watergen;
 using test::eval_catalog;
@@ -127,9 +128,12 @@ TEST_CASE("refracted_ray_uv_projects_w_with_the_scene_camera", "[refraction][gol
                                 {u[0], u[1], u[2], d[0], d[1], d[2], 0, 1, 0, 1.5});
     const double wp[3] = {w.at(0, 0), w.at(0, 1), w.at(0, 2)};
     const auto expected = screen_uv(cam, wp);
-    const auto r = eval_catalog("refraction.refracted_ray_uv",
-                                {0.4, 0.8, u[0], u[1], u[2], d[0], d[1], d[2], 0, 1, 0, 1.5},
-                                EvalPrecision::Double, scene.uniforms);
+    // The node reads the point in the shader's frame (host_values.h).
+    const FrameCentre centre = frame_centre_of(cam.eye[0], cam.eye[2]);
+    const auto r = eval_catalog(
+        "refraction.refracted_ray_uv",
+        {0.4, 0.8, u[0] - centre.x, u[1], u[2] - centre.z, d[0], d[1], d[2], 0, 1, 0, 1.5},
+        EvalPrecision::Double, scene.uniforms);
     CHECK(r.at(0, 0) == Approx(expected.first).margin(1e-12));
     CHECK(r.at(0, 1) == Approx(expected.second).margin(1e-12));
     // The bent ray lands further down the screen than the straight one would at that depth.

@@ -53,14 +53,15 @@ bool host_rule_computed(HostRule rule);
 // Inputs the rule reads.
 size_t host_rule_inputs(HostRule rule);
 
-// The frame centre is the eye's (x, z) rounded to the nearest point of this lattice, in metres:
-// a whole metre is exact in float up to 2^24 m (past the 10,000 km reach), and the eye stays
+// The frame centre is the centre of the whole-metre cell the eye's (x, z) is in: the eye stays
 // within half a metre of it per axis, so the shader's positions are camera-relative to 3e-8 m
 // in float: a difference of two points near the eye (a view vector, a reflected ray) keeps as
-// many digits as at the world origin. The centre moves only when the eye crosses a cell, so a
-// vertex buffer in the frame (water_grid.h) is rebuilt as often as a clipmap with 0.5 m cells
-// snaps its finest level. (A 64 m cell, tried first, left the eye up to 32 m from the centre and
-// tripled the depth-buffer path's error there: bench stability.)
+// many digits as at the world origin. The centre moves only when the eye crosses a whole metre,
+// which is a snap of every clipmap level whose cells are a whole number of half metres, so a
+// vertex buffer in the frame (water_grid.h) is rebuilt no more often than the clipmap snaps.
+// The centre, a multiple of half a metre, keeps a dyadic grid's points exact in the frame.
+// (A 64 m cell, tried first, left the eye up to 32 m from the centre and tripled the
+// depth-buffer path's error there: bench stability.)
 inline constexpr double kFrameCell = 1.0;
 
 // How far the frame centre may lie from the world origin: the eye's declared range (10,000 km,

@@ -16,7 +16,7 @@ namespace watergen {
 using ParameterValues = std::map<std::string, std::vector<double>>;
 
 // The frame centre of a block whose values are `given` (else the parameters' defaults): the
-// eye's (eye_position) rounded to the frame lattice, or the world origin for a block without
+// eye's (eye_position) centred in its frame cell, or the world origin for a block without
 // an eye (a catalog node, a companion pass, whose caller passes the water pass' centre).
 FrameCentre frame_centre_for(const std::vector<Parameter>& parameters,
                              const ParameterValues& given);
