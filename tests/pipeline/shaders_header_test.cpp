@@ -7,6 +7,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -15,6 +16,7 @@
 #include "watergen/ir/emit/uniform_layout.h"
 #include "watergen/pipeline/record/shaders_header.h"
 #include "watergen/pipeline/record/staged_tree.h"
+#include "watergen/runtime/host_values.h"
 #include "watergen_shaders.h"
 
 using namespace watergen;
@@ -72,8 +74,30 @@ TEST_CASE("the_build_header_lists_every_variant_with_its_default_block", "[golde
         const std::vector<float> floats = default_block(info.interface_index);
         REQUIRE(floats.size() * sizeof(float) == block["size"].get<size_t>());
         std::vector<bool> member_float(floats.size(), false);
+        // A member with a host rule holds what the rule makes of the defaults, in the frame
+        // around the default eye (host_values.h); the others hold their defaults.
+        std::map<std::string, std::vector<double>> defaults;
+        for (const Json& m : block["members"])
+            defaults[m["name"].get<std::string>()] = m["default"].get<std::vector<double>>();
+        Frame frame;
+        if (auto eye = defaults.find("eye_position"); eye != defaults.end())
+            frame.centre = frame_centre_of(eye->second[0], eye->second[2]);
+        const GivenValues given = [&](const std::string& name) -> const std::vector<double>* {
+            auto it = defaults.find(name);
+            return it == defaults.end() ? nullptr : &it->second;
+        };
         for (const Json& m : block["members"]) {
-            const std::vector<double> values = m["default"];
+            std::vector<double> values = m["default"];
+            if (m.contains("host")) {
+                const auto rule = host_rule_from_name(m["host"]["rule"].get<std::string>());
+                REQUIRE(rule);
+                const HostValue h{*rule, m["host"]["inputs"].get<std::vector<std::string>>()};
+                std::string error;
+                const auto v = host_value(h, values, given, frame, &error);
+                INFO(m["name"].get<std::string>() << ": " << error);
+                REQUIRE(v);
+                values = *v;
+            }
             const size_t n = m["type"] == "float" ? 1 : m["type"].get<std::string>()[3] - '0';
             for (size_t i = 0; i < values.size(); ++i) {
                 const size_t at = (m["offset"].get<size_t>() + (i / n) * kArrayStride) / 4 + i % n;
