@@ -22,6 +22,14 @@ struct Vec4Element { Vec4 value; };
 struct Slot { uint32_t set, binding, hlsl_register, hlsl_space, msl, gl; };
 struct SpecializationConstant { const char* name; uint32_t constant_id; };
 struct VariantInfo { const char* scene; const char* key; const char* hash; uint32_t interface_index; };
+// A member the host computes in double each frame from values in world coordinates and seconds
+// (watergen/runtime/host_values.h: host_value() with this rule and inputs, in the frame of
+// frame_centre_of(eye)); its default is the value for the defaults. An array member's elements
+// are 16 bytes apart.
+struct HostMember {
+    const char* name; const char* rule; uint32_t offset, components, elements;
+    std::array<const char*, 5> inputs;
+};
 } // namespace watergen_shaders
 #endif
 
@@ -69,6 +77,7 @@ struct WaterParams0 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float pad0[3]{};
+    static constexpr std::array<HostMember, 2> kHostMembers{{{"reflection_view_proj_c3", "frame_world_to_clip", 48, 4, 0, {{"reflection_view_proj_c0", "reflection_view_proj_c2"}}}, {"eye_position", "frame_point", 64, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams0, reflection_view_proj_c0) == 0);
 static_assert(offsetof(WaterParams0, reflection_view_proj_c1) == 16);
@@ -109,6 +118,7 @@ struct WaterParams1 {
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 2> kHostMembers{{{"reflection_view_proj_c3", "frame_world_to_clip", 48, 4, 0, {{"reflection_view_proj_c0", "reflection_view_proj_c2"}}}, {"eye_position", "frame_point", 64, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams1, reflection_view_proj_c0) == 0);
 static_assert(offsetof(WaterParams1, reflection_view_proj_c1) == 16);
@@ -159,6 +169,7 @@ struct WaterParams2 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float pad0[1]{};
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"reflection_view_proj_c3", "frame_world_to_clip", 432, 4, 0, {{"reflection_view_proj_c0", "reflection_view_proj_c2"}}}, {"eye_position", "frame_point", 448, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams2, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams2, gerstner_wave_speeds) == 128);
@@ -217,6 +228,7 @@ struct WaterParams3 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"reflection_view_proj_c3", "frame_world_to_clip", 432, 4, 0, {{"reflection_view_proj_c0", "reflection_view_proj_c2"}}}, {"eye_position", "frame_point", 448, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams3, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams3, gerstner_wave_speeds) == 128);
@@ -273,6 +285,7 @@ struct WaterParams4 {
     Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float foam_pattern_scale = 0.1f;
     float pad0[3]{};
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"reflection_view_proj_c3", "frame_world_to_clip", 48, 4, 0, {{"reflection_view_proj_c0", "reflection_view_proj_c2"}}}, {"eye_position", "frame_point", 64, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 184, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams4, reflection_view_proj_c0) == 0);
 static_assert(offsetof(WaterParams4, reflection_view_proj_c1) == 16);
@@ -326,6 +339,7 @@ struct WaterParams5 {
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"reflection_view_proj_c3", "frame_world_to_clip", 48, 4, 0, {{"reflection_view_proj_c0", "reflection_view_proj_c2"}}}, {"eye_position", "frame_point", 64, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 184, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams5, reflection_view_proj_c0) == 0);
 static_assert(offsetof(WaterParams5, reflection_view_proj_c1) == 16);
@@ -388,6 +402,7 @@ struct WaterParams6 {
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 4> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"reflection_view_proj_c3", "frame_world_to_clip", 432, 4, 0, {{"reflection_view_proj_c0", "reflection_view_proj_c2"}}}, {"eye_position", "frame_point", 448, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 568, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams6, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams6, gerstner_wave_speeds) == 128);
@@ -458,6 +473,7 @@ struct WaterParams7 {
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
     float pad0[1]{};
+    static constexpr std::array<HostMember, 4> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"reflection_view_proj_c3", "frame_world_to_clip", 432, 4, 0, {{"reflection_view_proj_c0", "reflection_view_proj_c2"}}}, {"eye_position", "frame_point", 448, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 568, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams7, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams7, gerstner_wave_speeds) == 128);
@@ -509,6 +525,7 @@ struct WaterParams8 {
     float ior_water = 1.33333f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float specular_exponent = 256.0f;
+    static constexpr std::array<HostMember, 1> kHostMembers{{{"eye_position", "frame_point", 0, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams8, eye_position) == 0);
 static_assert(offsetof(WaterParams8, refraction_distortion) == 12);
@@ -546,6 +563,7 @@ struct WaterParams9 {
     float specular_exponent = 256.0f;
     float shore_hardness = 1.0f;
     float pad0[3]{};
+    static constexpr std::array<HostMember, 1> kHostMembers{{{"eye_position", "frame_point", 0, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams9, eye_position) == 0);
 static_assert(offsetof(WaterParams9, refraction_distortion) == 12);
@@ -596,6 +614,7 @@ struct WaterParams10 {
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"caustics_window", "frame_point_xz", 432, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams10, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams10, gerstner_wave_speeds) == 128);
@@ -653,6 +672,7 @@ struct WaterParams11 {
     float ior_water = 1.33333f;
     float specular_exponent = 256.0f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 2> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams11, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams11, gerstner_wave_speeds) == 128);
@@ -712,6 +732,7 @@ struct WaterParams12 {
     float specular_exponent = 256.0f;
     float shore_hardness = 1.0f;
     float pad0[1]{};
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"caustics_window", "frame_point_xz", 432, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams12, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams12, gerstner_wave_speeds) == 128);
@@ -771,6 +792,7 @@ struct WaterParams13 {
     float specular_exponent = 256.0f;
     float shore_hardness = 1.0f;
     float pad0[1]{};
+    static constexpr std::array<HostMember, 2> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams13, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams13, gerstner_wave_speeds) == 128);
@@ -823,6 +845,7 @@ struct WaterParams14 {
     Vec2 foam_pattern_drift = {0.003f, 0.002f};
     // scroll_offset of time, foam_pattern_scale, foam_pattern_drift: computed on the host in double (UniformWriter::pack, runtime/host_values.h)
     Vec2 foam_pattern_offset = {0.05f, 0.05f};
+    static constexpr std::array<HostMember, 2> kHostMembers{{{"eye_position", "frame_point", 0, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 152, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams14, eye_position) == 0);
 static_assert(offsetof(WaterParams14, time) == 12);
@@ -873,6 +896,7 @@ struct WaterParams15 {
     Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float shore_hardness = 1.0f;
     float pad0[3]{};
+    static constexpr std::array<HostMember, 2> kHostMembers{{{"eye_position", "frame_point", 0, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 152, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams15, eye_position) == 0);
 static_assert(offsetof(WaterParams15, time) == 12);
@@ -935,6 +959,7 @@ struct WaterParams16 {
     float specular_exponent = 256.0f;
     float foam_pattern_scale = 0.1f;
     float pad0[3]{};
+    static constexpr std::array<HostMember, 4> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"caustics_window", "frame_point_xz", 432, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 552, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams16, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams16, gerstner_wave_speeds) == 128);
@@ -1003,6 +1028,7 @@ struct WaterParams17 {
     float specular_exponent = 256.0f;
     float foam_pattern_scale = 0.1f;
     float pad0[3]{};
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 536, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams17, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams17, gerstner_wave_speeds) == 128);
@@ -1073,6 +1099,7 @@ struct WaterParams18 {
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 4> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"caustics_window", "frame_point_xz", 432, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 552, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams18, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams18, gerstner_wave_speeds) == 128);
@@ -1143,6 +1170,7 @@ struct WaterParams19 {
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 536, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams19, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams19, gerstner_wave_speeds) == 128);
@@ -1191,6 +1219,7 @@ struct WaterParams20 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float pad0[3]{};
+    static constexpr std::array<HostMember, 1> kHostMembers{{{"eye_position", "frame_point", 0, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams20, eye_position) == 0);
 static_assert(offsetof(WaterParams20, refraction_distortion) == 12);
@@ -1222,6 +1251,7 @@ struct WaterParams21 {
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 1> kHostMembers{{{"eye_position", "frame_point", 0, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams21, eye_position) == 0);
 static_assert(offsetof(WaterParams21, refraction_distortion) == 12);
@@ -1266,6 +1296,7 @@ struct WaterParams22 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float pad0[1]{};
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"caustics_window", "frame_point_xz", 400, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams22, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams22, gerstner_wave_speeds) == 128);
@@ -1317,6 +1348,7 @@ struct WaterParams23 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float pad0[1]{};
+    static constexpr std::array<HostMember, 2> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams23, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams23, gerstner_wave_speeds) == 128);
@@ -1369,6 +1401,7 @@ struct WaterParams24 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"caustics_window", "frame_point_xz", 400, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams24, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams24, gerstner_wave_speeds) == 128);
@@ -1421,6 +1454,7 @@ struct WaterParams25 {
     float ior_air = 1.0f;
     float ior_water = 1.33333f;
     float shore_hardness = 1.0f;
+    static constexpr std::array<HostMember, 2> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams25, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams25, gerstner_wave_speeds) == 128);
@@ -1468,6 +1502,7 @@ struct WaterParams26 {
     Vec2 foam_pattern_offset = {0.05f, 0.05f};
     float foam_pattern_scale = 0.1f;
     float pad0[3]{};
+    static constexpr std::array<HostMember, 2> kHostMembers{{{"eye_position", "frame_point", 0, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 120, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams26, eye_position) == 0);
 static_assert(offsetof(WaterParams26, time) == 12);
@@ -1512,6 +1547,7 @@ struct WaterParams27 {
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 2> kHostMembers{{{"eye_position", "frame_point", 0, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 120, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams27, eye_position) == 0);
 static_assert(offsetof(WaterParams27, time) == 12);
@@ -1568,6 +1604,7 @@ struct WaterParams28 {
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 4> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"caustics_window", "frame_point_xz", 400, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 520, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams28, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams28, gerstner_wave_speeds) == 128);
@@ -1630,6 +1667,7 @@ struct WaterParams29 {
     float ior_water = 1.33333f;
     float foam_pattern_scale = 0.1f;
     float pad0[2]{};
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 504, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams29, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams29, gerstner_wave_speeds) == 128);
@@ -1694,6 +1732,7 @@ struct WaterParams30 {
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
     float pad0[1]{};
+    static constexpr std::array<HostMember, 4> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"caustics_window", "frame_point_xz", 400, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 520, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams30, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams30, gerstner_wave_speeds) == 128);
@@ -1758,6 +1797,7 @@ struct WaterParams31 {
     float foam_pattern_scale = 0.1f;
     float shore_hardness = 1.0f;
     float pad0[1]{};
+    static constexpr std::array<HostMember, 3> kHostMembers{{{"gerstner_wave_phases", "wave_phases", 0, 1, 8, {{"time", "gerstner_frequency", "gerstner_frequency_gain", "gerstner_wave_speeds", "gerstner_wave_directions"}}}, {"eye_position", "frame_point", 384, 3, 0, {{}}}, {"foam_pattern_offset", "scroll_offset", 504, 2, 0, {{"time", "foam_pattern_scale", "foam_pattern_drift"}}}}};
 };
 static_assert(offsetof(WaterParams31, gerstner_wave_phases) == 0);
 static_assert(offsetof(WaterParams31, gerstner_wave_speeds) == 128);
@@ -1803,6 +1843,7 @@ struct WaterParams32 {
     float specular_exponent = 256.0f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float pad0[1]{};
+    static constexpr std::array<HostMember, 1> kHostMembers{{{"eye_position", "frame_point", 0, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams32, eye_position) == 0);
 static_assert(offsetof(WaterParams32, scatter_coefficient) == 12);
@@ -1829,6 +1870,7 @@ struct WaterParams33 {
     float ior_air = 1.0f;
     Vec3 reflection_lower_tint = {0.5f, 0.62f, 0.66f};
     float ior_water = 1.33333f;
+    static constexpr std::array<HostMember, 1> kHostMembers{{{"eye_position", "frame_point", 0, 3, 0, {{}}}}};
 };
 static_assert(offsetof(WaterParams33, eye_position) == 0);
 static_assert(offsetof(WaterParams33, scatter_coefficient) == 12);

@@ -18,7 +18,9 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 // The build's own C++ header (watergen_shaders.h beside manifest.json): its binding map, each
 // uniform block as a struct, its variants. The namespace is the material's name.
@@ -26,6 +28,7 @@
 
 #include "watergen/headless/headless_device.h"
 #include "watergen/runtime/binding_layout.h"
+#include "watergen/runtime/host_values.h"
 #include "watergen/runtime/pass_pipeline.h"
 #include "watergen/runtime/shader_build.h"
 #include "watergen/runtime/uniform_writer.h"
@@ -197,7 +200,49 @@ std::optional<TextureData> draw_caustics(const ShaderBuild& build, const BuildVa
 
 // An engine without the runtime library fills the build header's struct of the variant's
 // uniform block instead of a UniformWriter: the same frame's values give the same bytes.
+// The header's members with a host rule (HostMember) hold the values for the defaults' frame;
+// an engine computes them each frame in double from what it set in world coordinates and
+// seconds, as UniformWriter::pack does: host_value() of host_values.h (watergen_reflection,
+// standard library only), in the frame around the eye. False and *why when an input is missing.
+template <class Block>
+bool set_host_members(Block& block, const BuildVariant& v,
+                      const std::map<std::string, std::vector<double>>& set, std::string* why) {
+    std::map<std::string, std::vector<double>> given;
+    for (const BlockParameter& p : v.parameters)
+        given[p.name] = p.default_value;
+    for (const auto& [name, value] : set)
+        given[name] = value;
+    const auto eye = given.find("eye_position");
+    if (eye == given.end() || eye->second.size() != 3) return true; // no frame: values as given
+    const Frame frame{frame_centre_of(eye->second[0], eye->second[2]), {}};
+    const GivenValues lookup = [&](const std::string& n) -> const std::vector<double>* {
+        const auto it = given.find(n);
+        return it == given.end() ? nullptr : &it->second;
+    };
+    for (const watergen_shaders::HostMember& m : Block::kHostMembers) {
+        HostValue h{host_rule_from_name(m.rule).value_or(HostRule::Given), {}};
+        for (const char* in : m.inputs)
+            if (in) h.inputs.emplace_back(in);
+        const auto own = given.find(m.name);
+        if (own == given.end()) {
+            *why = std::string("the header's host member '") + m.name + "' is not a parameter";
+            return false;
+        }
+        const auto value = host_value(h, own->second, lookup, frame, why);
+        if (!value) return false;
+        auto* bytes = reinterpret_cast<unsigned char*>(&block);
+        for (uint32_t e = 0; e < std::max(m.elements, 1u); ++e)
+            for (uint32_t c = 0; c < m.components; ++c) {
+                const float f = static_cast<float>((*value)[e * m.components + c]);
+                std::memcpy(bytes + m.offset + 16 * e + 4 * c, &f, sizeof f);
+            }
+    }
+    return true;
+}
+
+// The build's C++ header packs the same bytes as the runtime's writer (GLSL path, std140).
 std::optional<std::string> check_header_block(const std::string& scene, const BuildVariant& v,
+                                              const std::map<std::string, std::vector<double>>& set,
                                               const std::vector<uint8_t>& packed) {
     namespace header = watergen_default;
     const auto found = std::find_if(header::kVariants.begin(), header::kVariants.end(),
@@ -208,16 +253,23 @@ std::optional<std::string> check_header_block(const std::string& scene, const Bu
         return "watergen_shaders.h does not list " + scene + " " + v.key;
     return header::with_interface(
         found->interface_index, [&](auto block) -> std::optional<std::string> {
-            block.eye_position = {0.0f, 6.0f, -20.0f};
-            if constexpr (requires { block.sun_direction; })
-                block.sun_direction = {-0.3f, -0.8f, 0.5f};
+            const auto& eye = set.at("eye_position");
+            block.eye_position = {static_cast<float>(eye[0]), static_cast<float>(eye[1]),
+                                  static_cast<float>(eye[2])};
+            if constexpr (requires { block.sun_direction; }) {
+                const auto& sun = set.at("sun_direction");
+                block.sun_direction = {static_cast<float>(sun[0]), static_cast<float>(sun[1]),
+                                       static_cast<float>(sun[2])};
+            }
+            std::string why;
+            if (!set_host_members(block, v, set, &why)) return "watergen_shaders.h: " + why;
             if (packed.size() != sizeof block ||
                 std::memcmp(packed.data(), &block, sizeof block) != 0)
                 return "watergen_shaders.h's block differs from the runtime's packing";
-            std::printf("watergen_shaders.h: interface %u (%zu bytes) packs the same bytes; "
-                        "WaterParams at set %u, binding %u\n",
-                        found->interface_index, sizeof block, header::bindings::WaterParams.set,
-                        header::bindings::WaterParams.binding);
+            std::printf("watergen_shaders.h: interface %u (%zu bytes, %zu members computed on "
+                        "the host) packs the same bytes; WaterParams at set %u, binding %u\n",
+                        found->interface_index, sizeof block, decltype(block)::kHostMembers.size(),
+                        header::bindings::WaterParams.set, header::bindings::WaterParams.binding);
             return std::nullopt;
         });
 }
@@ -261,10 +313,10 @@ int main(int argc, char** argv) {
     const std::vector<float> sun = {-0.3f, -0.8f, 0.5f};
 
     UniformWriter uniforms(v);
-    for (const auto& [name, value] :
-         std::initializer_list<std::pair<const char*, std::vector<float>>>{
-             {"eye_position", {kEye[0], kEye[1], kEye[2]}}, {"sun_direction", sun}}) {
-        const Write w = uniforms.set(name, value);
+    const std::map<std::string, std::vector<double>> frame_values = {
+        {"eye_position", {kEye[0], kEye[1], kEye[2]}}, {"sun_direction", {sun[0], sun[1], sun[2]}}};
+    for (const auto& [name, value] : frame_values) {
+        const Write w = uniforms.set(name, std::span<const double>(value));
         if (!w.ok) return fail(w.error);
         if (!w.note.empty()) std::printf("  %s\n", w.note.c_str());
     }
@@ -277,7 +329,7 @@ int main(int argc, char** argv) {
     const auto bytes = uniforms.pack(stages->fr, &error);
     if (!bytes) return fail(error);
     if (!v.geometry)
-        if (auto why = check_header_block(scene, v, *bytes)) return fail(*why);
+        if (auto why = check_header_block(scene, v, frame_values, *bytes)) return fail(*why);
 
     auto gpu = HeadlessDevice::create({}, &error);
     if (!gpu) return fail(error);

@@ -38,8 +38,15 @@ TEST_CASE("glsl_hlsl_and_cpu_agree_for_every_variant_at_512", "[render]") {
         // float evaluations can round differently). Measured at 512x512 after the GGX fix: no
         // pixel over it; at most 6 pixels of a variant over 5e-5 alone (0.0023%), all in far,
         // grazing water where the surface point's float rounding moves the waves' phases.
-        CHECK(g.over_bound == 0);
-        CHECK(h.over_bound == 0);
+        // One pixel may step: the Blinn-Phong lobe ends at the terminator (N.L = 0, specular.cpp
+        // sun_lights), a step of the model that the bound's four ulp-perturbed runs sample only
+        // by chance, and lavapipe's sin and cos (not rounded like the CPU's) move N.L by more
+        // than an ulp. Measured with the shader in the eye's frame (1 m cell): one pixel of
+        // schlick/beer_lambert/blinn_phong/both/sky_cubemap/screen_distort/analytic/gerstner/
+        // soft/full/photon_splat, (185, 62), 5.87e-4 from CPU float, bound 1.03e-5, lit on the
+        // GPU only; with specular=none it is within its bound. `watergen render` of that key.
+        CHECK(g.over_bound <= 1);
+        CHECK(h.over_bound <= 1);
         CHECK(g.over_tolerance <= 26); // 1e-4 of the pixels
         // The bound explains, it does not excuse: measured at most 0.0323 at a pixel.
         // Against double: measured at most 2.59e-3 (sum of sines at half precision, far water:

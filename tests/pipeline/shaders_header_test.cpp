@@ -29,6 +29,23 @@ Json read_json(const std::filesystem::path& path) {
     return Json::parse(in);
 }
 
+// Interface i's members computed on the host (HostMember), as "name rule offset components
+// elements input,input,...".
+std::vector<std::string> host_members(uint32_t i) {
+    return watergen_default::with_interface(i, [](auto block) {
+        std::vector<std::string> out;
+        for (const watergen_shaders::HostMember& m : decltype(block)::kHostMembers) {
+            std::string inputs;
+            for (const char* in : m.inputs)
+                if (in) inputs += (inputs.empty() ? "" : ",") + std::string(in);
+            out.push_back(std::string(m.name) + " " + m.rule + " " + std::to_string(m.offset) +
+                          " " + std::to_string(m.components) + " " + std::to_string(m.elements) +
+                          " " + inputs);
+        }
+        return out;
+    });
+}
+
 // Interface i's default block as floats.
 std::vector<float> default_block(uint32_t i) {
     return watergen_default::with_interface(i, [](auto block) {
@@ -61,7 +78,7 @@ TEST_CASE("the_build_header_lists_every_variant_with_its_default_block", "[golde
           manifest["bindings"]["resources"]["WaterParams"]["binding"]);
     CHECK(watergen_default::bindings::sky_cube.binding ==
           manifest["bindings"]["resources"]["sky_cube"]["binding"]);
-    size_t members = 0;
+    size_t members = 0, host_count = 0;
     for (size_t k = 0; k < variants.size(); ++k) {
         const Json& v = variants[k];
         const watergen_shaders::VariantInfo& info = watergen_default::kVariants[k];
@@ -86,9 +103,19 @@ TEST_CASE("the_build_header_lists_every_variant_with_its_default_block", "[golde
             auto it = defaults.find(name);
             return it == defaults.end() ? nullptr : &it->second;
         };
+        std::vector<std::string> hosts;
         for (const Json& m : block["members"]) {
             std::vector<double> values = m["default"];
             if (m.contains("host")) {
+                std::string inputs;
+                for (const Json& in : m["host"]["inputs"])
+                    inputs += (inputs.empty() ? "" : ",") + in.get<std::string>();
+                const std::string type = m["type"];
+                hosts.push_back(m["name"].get<std::string>() + " " +
+                                m["host"]["rule"].get<std::string>() + " " +
+                                std::to_string(m["offset"].get<uint32_t>()) + " " +
+                                (type == "float" ? "1" : type.substr(3, 1)) + " " +
+                                std::to_string(m.value("array_size", 0u)) + " " + inputs);
                 const auto rule = host_rule_from_name(m["host"]["rule"].get<std::string>());
                 REQUIRE(rule);
                 const HostValue h{*rule, m["host"]["inputs"].get<std::vector<std::string>>()};
@@ -109,8 +136,12 @@ TEST_CASE("the_build_header_lists_every_variant_with_its_default_block", "[golde
         }
         for (size_t at = 0; at < floats.size(); ++at)
             if (!member_float[at]) CHECK(floats[at] == 0.0f);
+        // The header says which members the host computes, and from what, as the manifest does.
+        CHECK(host_members(info.interface_index) == hosts);
+        host_count += hosts.size();
     }
-    CHECK(members > 1000); // every variant's members were compared (56 variants)
+    CHECK(host_count > 50); // the eye is framed in every variant (56)
+    CHECK(members > 1000);  // every variant's members were compared (56 variants)
 }
 
 TEST_CASE("the_build_header_is_what_the_generator_writes_for_that_output", "[golden]") {

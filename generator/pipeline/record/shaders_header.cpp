@@ -113,8 +113,8 @@ struct Interface {
 // The struct of a variant.json's uniform block, named `name`; nullopt with *error.
 std::optional<std::string> block_struct(const OJson& block, const std::string& name,
                                         std::string* error) {
-    std::string body, asserts;
-    uint32_t cursor = 0, pads = 0;
+    std::string body, asserts, hosts;
+    uint32_t cursor = 0, pads = 0, host_count = 0;
     // A member with a host rule starts at what the shader reads for the defaults (the frame
     // of the default eye): the rule's value of them, as UniformWriter::pack computes it.
     std::map<std::string, std::vector<double>> defaults;
@@ -144,9 +144,14 @@ std::optional<std::string> block_struct(const OJson& block, const std::string& n
             std::string why;
             if (auto v = host_value(h, values, given, frame, &why); v && v->size() == values.size())
                 values = *v;
-            std::string from;
-            for (const std::string& in : h.inputs)
+            std::string from, inputs;
+            for (const std::string& in : h.inputs) {
                 from += (from.empty() ? " of " : ", ") + in;
+                inputs += (inputs.empty() ? "" : ", ") + literal(in);
+            }
+            hosts += fmt::format("{}{{{}, {}, {}, {}, {}, {{{{{}}}}}}}", host_count++ ? ", " : "",
+                                 literal(member), literal(host_rule_name(h.rule)), offset, n, array,
+                                 inputs);
             note = fmt::format("    // {}{}: computed on the host in double "
                                "(UniformWriter::pack, runtime/host_values.h)\n",
                                host_rule_name(h.rule), from);
@@ -181,6 +186,8 @@ std::optional<std::string> block_struct(const OJson& block, const std::string& n
         return std::nullopt;
     }
     if (size > cursor) body += fmt::format("    float pad{}[{}]{{}};\n", pads, (size - cursor) / 4);
+    body += fmt::format("    static constexpr std::array<HostMember, {}> kHostMembers{{{{{}}}}};\n",
+                        host_count, hosts);
     if (size > 0) asserts += fmt::format("static_assert(sizeof({}) == {});\n", name, size);
     return fmt::format("struct {} {{\n{}}};\n{}", name, body, asserts);
 }
@@ -220,6 +227,14 @@ struct Vec4Element { Vec4 value; };
 struct Slot { uint32_t set, binding, hlsl_register, hlsl_space, msl, gl; };
 struct SpecializationConstant { const char* name; uint32_t constant_id; };
 struct VariantInfo { const char* scene; const char* key; const char* hash; uint32_t interface_index; };
+// A member the host computes in double each frame from values in world coordinates and seconds
+// (watergen/runtime/host_values.h: host_value() with this rule and inputs, in the frame of
+// frame_centre_of(eye)); its default is the value for the defaults. An array member's elements
+// are 16 bytes apart.
+struct HostMember {
+    const char* name; const char* rule; uint32_t offset, components, elements;
+    std::array<const char*, 5> inputs;
+};
 } // namespace watergen_shaders
 #endif
 )";
