@@ -61,7 +61,7 @@ Worst worst_over(const VariantBuild& build, const std::vector<SyntheticScene>& s
 // 1 h, 7.3e-4 at 1 day, 1.4e-4 at 1 week, all at the origin), in pixels of steep colour whose
 // float bound says as much. So the max abs is printed, not held, and each side is the worst of
 // two configurations 7 s apart (about a wave period), at the origin from time 0 and at the
-// corner from a week. (A third, 13 s, took the test past its 10 minutes under ctest -j2.)
+// corner from a week. (A third, 13 s, made the test half again as long.)
 //
 // Open: a depth-buffer scene at the corner has pixels past their float bound by more than 2x
 // the origin's (measured worst at 256x256, three configurations: 1.03e-2 against 5.5e-5 in
