@@ -220,7 +220,13 @@ bool set_host_members(Block& block, const BuildVariant& v,
         return it == given.end() ? nullptr : &it->second;
     };
     for (const watergen_shaders::HostMember& m : Block::kHostMembers) {
-        HostValue h{host_rule_from_name(m.rule).value_or(HostRule::Given), {}};
+        const auto rule = host_rule_from_name(m.rule);
+        if (!rule) {
+            *why = std::string("the header's host member '") + m.name + "' has rule '" + m.rule +
+                   "', which this runtime does not know";
+            return false;
+        }
+        HostValue h{*rule, {}};
         for (const char* in : m.inputs)
             if (in) h.inputs.emplace_back(in);
         const auto own = given.find(m.name);
@@ -253,14 +259,20 @@ std::optional<std::string> check_header_block(const std::string& scene, const Bu
         return "watergen_shaders.h does not list " + scene + " " + v.key;
     return header::with_interface(
         found->interface_index, [&](auto block) -> std::optional<std::string> {
-            const auto& eye = set.at("eye_position");
-            block.eye_position = {static_cast<float>(eye[0]), static_cast<float>(eye[1]),
-                                  static_cast<float>(eye[2])};
-            if constexpr (requires { block.sun_direction; }) {
-                const auto& sun = set.at("sun_direction");
-                block.sun_direction = {static_cast<float>(sun[0]), static_cast<float>(sun[1]),
-                                       static_cast<float>(sun[2])};
-            }
+            // The members set in world coordinates, as floats (the host rules read them in
+            // double from `set`).
+            auto vec3 = [&](const char* name, watergen_shaders::Vec3& out) {
+                const auto it = set.find(name);
+                if (it == set.end() || it->second.size() != 3) return false;
+                out = {static_cast<float>(it->second[0]), static_cast<float>(it->second[1]),
+                       static_cast<float>(it->second[2])};
+                return true;
+            };
+            if (!vec3("eye_position", block.eye_position))
+                return std::string("watergen_shaders.h: no eye_position (3 values) was set");
+            if constexpr (requires { block.sun_direction; })
+                if (!vec3("sun_direction", block.sun_direction))
+                    return std::string("watergen_shaders.h: no sun_direction (3 values) was set");
             std::string why;
             if (!set_host_members(block, v, set, &why)) return "watergen_shaders.h: " + why;
             if (packed.size() != sizeof block ||
